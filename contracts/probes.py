@@ -1,0 +1,53 @@
+"""Probe requests and their measured evidence (SI units in every metric name)."""
+
+from __future__ import annotations
+
+from typing import Literal
+
+from pydantic import Field
+
+from contracts.base import Model
+
+ProbeKind = Literal[
+    # L0 geometric checks
+    "geometry_checks",
+    # L1 rigid probes (pybullet)
+    "place", "rigid_drop", "slide",
+    # L2 deformable probes (MPM)
+    "drop", "compress", "lift", "stability",
+    # L3
+    "pick_and_place",
+]
+
+
+class ProbeSpec(Model):
+    """One probe to run; params are probe-specific numbers named with their unit, e.g. 'strain', 'height_m'."""
+
+    kind: ProbeKind
+    params: dict[str, float] = Field(default_factory=dict, description="probe settings, unit in each name")
+    held_out: bool = Field(default=False, description="an evaluation condition, kept apart from selection")
+    duration_s: float | None = Field(default=None, gt=0, description="simulated time [s]")
+
+
+class HealthStatus(Model):
+    """Numerical health of a simulation: ok, or which check failed, when and where."""
+
+    ok: bool = True
+    check: str | None = Field(default=None, description="nan | out_of_domain | j_out_of_bounds | energy_blowup | ...")
+    step: int | None = None
+    sim_time_s: float | None = None
+    scene: int | None = None
+    particle: int | None = None
+    detail: str | None = None
+
+
+class ProbeResult(Model):
+    """What a probe measured. Metrics are scalars with the unit in the name (e.g. 'rebound_ratio', 'sag_m')."""
+
+    spec: ProbeSpec
+    metrics: dict[str, float] = Field(default_factory=dict)
+    health: HealthStatus = Field(default_factory=HealthStatus)
+    sim_calls: int = Field(default=1, ge=0, description="simulations this probe ran")
+    wall_time_s: float = Field(default=0.0, ge=0, description="wall time of the probe [s]")
+    cache_key: str | None = Field(default=None, description="content key of the probe's cached result")
+    recording: str | None = Field(default=None, description="path of the probe's .rrd, relative to the asset")

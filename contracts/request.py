@@ -1,0 +1,52 @@
+"""What the user asks for: one input (text, image or mesh) plus hints."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Literal
+
+from pydantic import Field, model_validator
+
+from contracts.base import Model
+
+Quality = Literal["draft", "standard", "high"]
+InputKind = Literal["text", "image", "mesh"]
+
+
+class AssetRequest(Model):
+    """A generation request; exactly one of text, image_path or mesh_path drives the geometry."""
+
+    text: str | None = Field(default=None, description="description of the object, e.g. 'a soft plush turtle, 25 cm long'")
+    image_path: Path | None = Field(default=None, description="PNG or JPEG of the object")
+    mesh_path: Path | None = Field(default=None, description="OBJ/PLY/STL/GLB/OFF mesh file")
+    size_hint_m: float | None = Field(
+        default=None, gt=0, description="longest extent of the object [m]; overrides sizes parsed from the text"
+    )
+    material_intent: str | None = Field(
+        default=None, description="words for the behaviour, e.g. 'soft plush', 'firm rubber'; default: from the text"
+    )
+    target_overrides: dict[str, tuple[float, float]] = Field(
+        default_factory=dict, description="explicit target bands per probe metric, e.g. {'effective_modulus_pa': (2e4, 4e4)}"
+    )
+    seed: int = Field(default=0, description="seed of every random choice")
+    quality: Quality = Field(default="draft", description="resolution preset: draft | standard | high")
+
+    @model_validator(mode="after")
+    def _exactly_one_input(self) -> "AssetRequest":
+        given = [n for n in ("text", "image_path", "mesh_path") if getattr(self, n) is not None]
+        if self.text is not None and not self.text.strip() and self.image_path is None and self.mesh_path is None:
+            raise ValueError("text is empty")
+        if len(given) == 0:
+            raise ValueError("give one input: text, image_path or mesh_path")
+        if self.image_path is not None and self.mesh_path is not None:
+            raise ValueError("give either image_path or mesh_path, not both")
+        return self
+
+    @property
+    def input_kind(self) -> InputKind:
+        """Which geometry path this request takes (an image or mesh wins over text, which then describes it)."""
+        if self.mesh_path is not None:
+            return "mesh"
+        if self.image_path is not None:
+            return "image"
+        return "text"

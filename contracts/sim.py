@@ -1,0 +1,40 @@
+"""Numerical settings of an MPM rollout (SI units)."""
+
+from __future__ import annotations
+
+from typing import Literal
+
+from pydantic import Field
+
+from contracts.base import Model
+
+Device = Literal["cpu", "cuda"]
+
+
+class SimConfig(Model):
+    """How the MPM integrates; the probe decides what happens (duration, colliders)."""
+
+    device: Device = Field(default="cpu", description="Warp device: cpu or cuda")
+    dx_m: float | None = Field(
+        default=None, gt=0, description="grid spacing [m]; None = twice the particle spacing"
+    )
+    dt_max_s: float = Field(default=2e-4, gt=0, description="user cap on the time step [s]")
+    dt_fixed_s: float | None = Field(
+        default=None, gt=0, description="fixed time step [s] (benchmarks); None = adaptive CFL"
+    )
+    cfl: float = Field(default=0.4, gt=0, le=1.0, description="CFL number C in dt <= C dx / (c_p + |v|max)")
+    substeps: int = Field(default=1, ge=1, description="substeps per reported step (numerical revision)")
+    gravity_m_per_s2: tuple[float, float, float] = Field(
+        default=(0.0, 0.0, -9.81), description="gravity vector [m/s^2], z up"
+    )
+    ground_height_m: float = Field(default=0.0, description="height of the ground plane z [m]")
+    ground_friction: float = Field(default=0.5, ge=0, description="Coulomb friction of the ground [-]")
+    grid_margin_m: float = Field(
+        default=0.05, ge=0, description="free space kept around the object's bounds in the grid [m]"
+    )
+    j_min: float = Field(default=0.2, gt=0, description="health: smallest allowed det(F) [-]")
+    j_max: float = Field(default=5.0, gt=1, description="health: largest allowed det(F) [-]")
+    energy_growth_max: float = Field(
+        default=10.0, gt=1, description="health: max ratio of kinetic energy to the injected energy budget [-]"
+    )
+    seed: int = Field(default=0, description="seed for any randomness (particle jitter)")

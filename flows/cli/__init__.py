@@ -1,0 +1,1 @@
+"""The `deformsmith` command line."""

@@ -1,0 +1,24 @@
+"""Entry point: collects the command modules and maps user errors to one-line messages."""
+
+from __future__ import annotations
+
+import sys
+
+from contracts.errors import DeformSmithError
+from flows.cli.apps import app
+
+# Each module registers its commands on the shared apps when imported.
+from flows.cli import schema_cmds  # noqa: E402,F401
+
+
+def main() -> None:
+    """Run the CLI; a DeformSmithError becomes one line on stderr and its exit code."""
+    try:
+        app()
+    except DeformSmithError as exc:
+        sys.stderr.write(f"error: {exc}\n")
+        sys.exit(exc.exit_code)
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,14 @@
+"""Rerun recordings: one `.rrd` per probe with fixed entity paths and timelines."""
+
+from tasks.record.rerun_recording import (
+    COLLIDERS,
+    GAUSSIANS,
+    HARNESS_LOG,
+    METRICS,
+    PARTICLES,
+    ProbeRecording,
+    RecordingSummary,
+    read_recording,
+)
+
+__all__ = ["COLLIDERS", "GAUSSIANS", "HARNESS_LOG", "METRICS", "PARTICLES", "ProbeRecording", "RecordingSummary", "read_recording"]

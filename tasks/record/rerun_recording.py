@@ -1,0 +1,135 @@
+"""Open a recording per probe with an explicit id, log on fixed entity paths, close the file correctly.
+
+Entity-path conventions (viewers and tests rely on them):
+  world/object/particles     Points3D, positions [m]
+  world/object/gaussians     GaussianSplats3D, centres [m], scales = std-devs [m]
+  world/colliders/<name>     Boxes3D / Capsules3D / Mesh3D of a kinematic collider, poses [m]
+  metrics/<name_with_unit>   Scalars over sim time
+  harness/log                TextLog of the harness's decisions
+Timelines: `frame` (sequence) and `sim_time` (duration, seconds).
+"""
+
+from __future__ import annotations
+
+import os
+from dataclasses import dataclass, field
+from pathlib import Path
+from types import TracebackType
+
+import numpy as np
+import rerun as rr
+
+PARTICLES = "world/object/particles"
+GAUSSIANS = "world/object/gaussians"
+COLLIDERS = "world/colliders"
+METRICS = "metrics"
+HARNESS_LOG = "harness/log"
+APP_ID = "deformsmith"
+
+
+def _rgba_u8(colors: np.ndarray | None) -> np.ndarray | None:
+    """Colours in [0, 1] floats (N,3|4) or uint8 -> uint8 RGBA-compatible array."""
+    if colors is None:
+        return None
+    c = np.asarray(colors)
+    if c.dtype != np.uint8:
+        c = np.clip(np.rint(c * 255.0), 0, 255).astype(np.uint8)
+    return c
+
+
+class ProbeRecording:
+    """Context manager writing one `.rrd`; the file appears (atomically) only when the block ends cleanly."""
+
+    def __init__(self, path: str | os.PathLike[str], recording_id: str, app_id: str = APP_ID) -> None:
+        self.path = Path(path)
+        self.recording_id = recording_id
+        self._tmp = self.path.with_name(self.path.name + f".{os.getpid()}.tmp")
+        self.rec = rr.RecordingStream(app_id, recording_id=recording_id)
+
+    def __enter__(self) -> "ProbeRecording":
+        self.path.parent.mkdir(parents=True, exist_ok=True)
+        self.rec.save(str(self._tmp))
+        self.set_time(0, 0.0)
+        return self
+
+    def __exit__(self, exc_type: type[BaseException] | None, exc: BaseException | None, tb: TracebackType | None) -> None:
+        self.rec.flush()
+        self.rec.disconnect()
+        if exc_type is None:
+            os.replace(self._tmp, self.path)
+        else:
+            self._tmp.unlink(missing_ok=True)
+
+    def set_time(self, frame: int, sim_time_s: float) -> None:
+        """Move both timelines: frame index and simulated time [s]."""
+        self.rec.set_time("frame", sequence=int(frame))
+        self.rec.set_time("sim_time", duration=float(sim_time_s))
+
+    def particles(self, positions_m: np.ndarray, colors: np.ndarray | None = None, radius_m: float | None = None) -> None:
+        """Log particle positions [m]."""
+        self.rec.log(PARTICLES, rr.Points3D(np.asarray(positions_m, np.float32), colors=_rgba_u8(colors), radii=radius_m))
+
+    def gaussians(
+        self, centers_m: np.ndarray, scales_m: np.ndarray, quaternions_xyzw: np.ndarray, colors: np.ndarray | None = None
+    ) -> None:
+        """Log Gaussian splats: centres [m], std-dev scales [m], rotations as xyzw quaternions."""
+        self.rec.log(
+            GAUSSIANS,
+            rr.GaussianSplats3D(
+                np.asarray(centers_m, np.float32),
+                scales=np.asarray(scales_m, np.float32),
+                quaternions=np.asarray(quaternions_xyzw, np.float32),
+                colors=_rgba_u8(colors),
+            ),
+        )
+
+    def box_collider(self, name: str, center_m: np.ndarray, half_size_m: np.ndarray, quaternion_xyzw: np.ndarray | None = None) -> None:
+        """Log a box collider pose."""
+        q = None if quaternion_xyzw is None else rr.Quaternion(xyzw=np.asarray(quaternion_xyzw, np.float32))
+        self.rec.log(
+            f"{COLLIDERS}/{name}",
+            rr.Boxes3D(centers=[np.asarray(center_m, np.float32)], half_sizes=[np.asarray(half_size_m, np.float32)],
+                       quaternions=None if q is None else [q]),
+        )
+
+    def mesh_collider(self, name: str, vertices_m: np.ndarray, faces: np.ndarray, color: np.ndarray | None = None) -> None:
+        """Log a collider or robot link as a triangle mesh (vertices already posed, [m])."""
+        self.rec.log(
+            f"{COLLIDERS}/{name}",
+            rr.Mesh3D(vertex_positions=np.asarray(vertices_m, np.float32), triangle_indices=np.asarray(faces, np.uint32),
+                      albedo_factor=None if color is None else _rgba_u8(np.asarray(color))),
+        )
+
+    def scalar(self, name: str, value: float) -> None:
+        """Log one scalar under metrics/<name> (put the unit in the name, e.g. 'kinetic_energy_j')."""
+        self.rec.log(f"{METRICS}/{name}", rr.Scalars(float(value)))
+
+    def log(self, message: str, level: str = "INFO") -> None:
+        """Append a line to the harness log."""
+        self.rec.log(HARNESS_LOG, rr.TextLog(message, level=level))
+
+
+@dataclass
+class RecordingSummary:
+    """What a `.rrd` holds: recording ids, entity paths and timelines."""
+
+    recording_ids: list[str] = field(default_factory=list)
+    entity_paths: set[str] = field(default_factory=set)
+    timelines: set[str] = field(default_factory=set)
+    rows_per_entity: dict[str, int] = field(default_factory=dict)
+
+
+def read_recording(path: str | os.PathLike[str]) -> RecordingSummary:
+    """Read a `.rrd` back with rerun's RrdReader and summarise it."""
+    from rerun.chunk import RrdReader
+
+    reader = RrdReader(str(path))
+    summary = RecordingSummary(recording_ids=[e.recording_id for e in reader.recordings()])
+    for chunk in reader.stream():
+        entity = str(chunk.entity_path)
+        if entity.startswith("/__") or "__properties" in entity:
+            continue
+        summary.entity_paths.add(entity.lstrip("/"))
+        summary.timelines.update(chunk.timeline_names)
+        summary.rows_per_entity[entity.lstrip("/")] = summary.rows_per_entity.get(entity.lstrip("/"), 0) + chunk.num_rows
+    return summary
