@@ -1,0 +1,1 @@
+"""Probes: rigid (pybullet) and deformable (MPM) experiments that return evidence."""

@@ -1,0 +1,185 @@
+"""L1 rigid probes in pybullet on the convex collision proxy: placement, drop, slide.
+
+The proxy is a list of convex hulls (vertex arrays, asset frame: z up, resting on z = 0, metres). The object is
+one rigid body of the L1 mass with its centre of mass at the given point. Ground friction is the object's coefficient
+(the plane's own is 1.0 and Bullet multiplies them). Every probe runs in its own DIRECT client: no shared state.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Iterator, Sequence
+from contextlib import contextmanager
+from dataclasses import dataclass
+
+import numpy as np
+import pybullet as pb
+
+TIME_STEP_S = 1.0 / 480.0
+SOLVER_ITERATIONS = 100
+REST_LINEAR_SPEED_M_PER_S = 0.005
+REST_ANGULAR_SPEED_RAD_PER_S = 0.05
+
+
+@dataclass(frozen=True)
+class RigidBodySpec:
+    """What pybullet needs of the object: hulls [m], mass [kg], centre of mass [m], friction [-]."""
+
+    hulls_m: Sequence[np.ndarray]
+    mass_kg: float
+    center_of_mass_m: np.ndarray
+    friction: float
+
+    @property
+    def height_m(self) -> float:
+        """Height of the proxy's bounding box [m]."""
+        pts = np.vstack(self.hulls_m)
+        return float(pts[:, 2].max() - pts[:, 2].min())
+
+
+@contextmanager
+def _world(gravity: tuple[float, float, float]) -> Iterator[int]:
+    """A fresh DIRECT pybullet world with a ground plane at z = 0."""
+    cid = pb.connect(pb.DIRECT)
+    try:
+        pb.setPhysicsEngineParameter(fixedTimeStep=TIME_STEP_S, numSolverIterations=SOLVER_ITERATIONS, physicsClientId=cid)
+        pb.setGravity(*gravity, physicsClientId=cid)
+        plane = pb.createCollisionShape(pb.GEOM_PLANE, physicsClientId=cid)
+        ground = pb.createMultiBody(0, plane, physicsClientId=cid)
+        pb.changeDynamics(ground, -1, lateralFriction=1.0, restitution=0.0, physicsClientId=cid)
+        yield cid
+    finally:
+        pb.disconnect(cid)
+
+
+def _spawn(cid: int, body: RigidBodySpec, lift_m: float) -> int:
+    """Create the object as a compound of convex meshes, its base frame at the centre of mass."""
+    com = np.asarray(body.center_of_mass_m, dtype=float)
+    hulls = [(np.asarray(h, dtype=float) - com).tolist() for h in body.hulls_m]
+    if len(hulls) == 1:
+        shape = pb.createCollisionShape(pb.GEOM_MESH, vertices=hulls[0], physicsClientId=cid)
+    else:
+        shape = pb.createCollisionShapeArray([pb.GEOM_MESH] * len(hulls), vertices=hulls, physicsClientId=cid)
+    uid = pb.createMultiBody(body.mass_kg, shape, basePosition=(com + [0.0, 0.0, lift_m]).tolist(), physicsClientId=cid)
+    pb.changeDynamics(uid, -1, lateralFriction=body.friction, restitution=0.0, linearDamping=0.0, angularDamping=0.0,
+                      frictionAnchor=1,
+                      physicsClientId=cid)
+    return uid
+
+
+def _penetration_m(cid: int, uid: int) -> float:
+    """Deepest current penetration of the object into anything [m] (0 when none)."""
+    dists = [c[8] for c in pb.getContactPoints(bodyA=uid, physicsClientId=cid)]
+    return float(max(0.0, -min(dists))) if dists else 0.0
+
+
+def _lowest_point_m(cid: int, uid: int, body: RigidBodySpec) -> float:
+    """Lowest z of the posed proxy [m] (negative = below the ground)."""
+    pos, orn = pb.getBasePositionAndOrientation(uid, physicsClientId=cid)
+    rot = np.asarray(pb.getMatrixFromQuaternion(orn)).reshape(3, 3)
+    pts = (np.vstack(body.hulls_m) - np.asarray(body.center_of_mass_m)) @ rot.T + np.asarray(pos)
+    return float(pts[:, 2].min())
+
+
+def _tilt_deg(orn: Sequence[float]) -> float:
+    """Angle between the body's z axis and the world's z axis [deg]."""
+    rot = np.asarray(pb.getMatrixFromQuaternion(orn)).reshape(3, 3)
+    return float(math.degrees(math.acos(float(np.clip(rot[2, 2], -1.0, 1.0)))))
+
+
+def _settle(cid: int, uid: int, duration_s: float) -> tuple[float, float]:
+    """Step for duration; return (time after which the body stayed at rest [s] or inf, max penetration [m])."""
+    steps = int(round(duration_s / TIME_STEP_S))
+    last_moving = 0
+    max_pen = 0.0
+    for i in range(steps):
+        pb.stepSimulation(physicsClientId=cid)
+        v, w = pb.getBaseVelocity(uid, physicsClientId=cid)
+        if np.linalg.norm(v) > REST_LINEAR_SPEED_M_PER_S or np.linalg.norm(w) > REST_ANGULAR_SPEED_RAD_PER_S:
+            last_moving = i + 1
+        max_pen = max(max_pen, _penetration_m(cid, uid))
+    settle = (last_moving * TIME_STEP_S) if last_moving < steps else math.inf
+    return settle, max_pen
+
+
+def placement_probe(body: RigidBodySpec, duration_s: float = 3.0) -> dict[str, float]:
+    """Set the object on the ground 1 mm up, let it settle; metrics: tilt, final penetration, settle time, drift."""
+    with _world((0.0, 0.0, -9.81)) as cid:
+        uid = _spawn(cid, body, lift_m=0.001)
+        start, _ = pb.getBasePositionAndOrientation(uid, physicsClientId=cid)
+        settle_s, _ = _settle(cid, uid, duration_s)
+        pos, orn = pb.getBasePositionAndOrientation(uid, physicsClientId=cid)
+        return {
+            "place_tilt_deg": _tilt_deg(orn),
+            "place_penetration_m": max(_penetration_m(cid, uid), -_lowest_point_m(cid, uid, body)),
+            "place_settle_time_s": settle_s,
+            "place_drift_m": float(np.linalg.norm(np.subtract(pos[:2], start[:2]))),
+        }
+
+
+def drop_probe(body: RigidBodySpec, clearance_fraction: float = 0.25, duration_s: float = 3.0) -> dict[str, float]:
+    """Drop from a clearance of a fraction of the object's height; metrics after the bounce and settle."""
+    clearance = clearance_fraction * body.height_m
+    with _world((0.0, 0.0, -9.81)) as cid:
+        uid = _spawn(cid, body, lift_m=clearance)
+        start, _ = pb.getBasePositionAndOrientation(uid, physicsClientId=cid)
+        settle_s, max_pen = _settle(cid, uid, duration_s)
+        pos, orn = pb.getBasePositionAndOrientation(uid, physicsClientId=cid)
+        return {
+            "drop_clearance_m": clearance,
+            "drop_penetration_m": max(_penetration_m(cid, uid), -_lowest_point_m(cid, uid, body)),
+            "drop_max_transient_penetration_m": max_pen,
+            "drop_rest_displacement_m": float(np.linalg.norm(np.subtract(pos[:2], start[:2]))),
+            "drop_tilt_deg": _tilt_deg(orn),
+            "drop_settle_time_s": settle_s,
+        }
+
+
+def _slope_motion(body: RigidBodySpec, theta_deg: float, settle_s: float, measure_s: float) -> tuple[float, float]:
+    """Object on an incline of theta (gravity tilted, rotation locked so rolling shapes test sliding).
+
+    Returns (mean speed down the slope over the measuring window [m/s], fitted acceleration [m/s^2]).
+    """
+    th = math.radians(theta_deg)
+    g = 9.81
+    with _world((0.0, 0.0, -g)) as cid:
+        uid = _spawn(cid, body, lift_m=0.001)
+        _settle(cid, uid, settle_s)
+        _, orn0 = pb.getBasePositionAndOrientation(uid, physicsClientId=cid)
+        pb.setGravity(g * math.sin(th), 0.0, -g * math.cos(th), physicsClientId=cid)
+        steps = int(round(measure_s / TIME_STEP_S))
+        xs = np.empty(steps)
+        for i in range(steps):
+            pb.stepSimulation(physicsClientId=cid)
+            pos, _ = pb.getBasePositionAndOrientation(uid, physicsClientId=cid)
+            v, _ = pb.getBaseVelocity(uid, physicsClientId=cid)
+            pb.resetBasePositionAndOrientation(uid, pos, orn0, physicsClientId=cid)
+            pb.resetBaseVelocity(uid, v, (0.0, 0.0, 0.0), physicsClientId=cid)
+            xs[i] = pos[0]
+        t = (np.arange(steps) + 1) * TIME_STEP_S
+        half = steps // 2
+        mean_speed = float((xs[-1] - xs[half]) / (t[-1] - t[half]))
+        accel = float(2.0 * np.polyfit(t[half:], xs[half:], 2)[0])
+        return mean_speed, accel
+
+
+def slide_probe(body: RigidBodySpec, margin_deg: float = 3.0, measure_s: float = 1.0) -> dict[str, float]:
+    """Incline just below and just above atan(mu): sticks below, slides above with a = g (sin - mu cos)."""
+    mu = body.friction
+    critical = math.degrees(math.atan(mu))
+    below, above = max(0.0, critical - margin_deg), min(89.0, critical + margin_deg)
+    v_below, _ = _slope_motion(body, below, settle_s=0.3, measure_s=measure_s)
+    v_above, a_above = _slope_motion(body, above, settle_s=0.3, measure_s=measure_s)
+    th = math.radians(above)
+    a_expected = 9.81 * (math.sin(th) - mu * math.cos(th))
+    return {
+        "slide_critical_angle_deg": critical,
+        "slide_below_angle_deg": below,
+        "slide_above_angle_deg": above,
+        "slide_below_speed_m_per_s": v_below,
+        "slide_below_sticks": float(abs(v_below) < 1e-3),
+        "slide_above_slides": float(v_above > 1e-3),
+        "slide_accel_m_per_s2": a_above,
+        "slide_accel_expected_m_per_s2": a_expected,
+        "slide_accel_error_rel": abs(a_above - a_expected) / a_expected,
+    }
