@@ -1,0 +1,167 @@
+"""`deformsmith cache stats|verify|gc` and `deformsmith bench cache`."""
+
+from __future__ import annotations
+
+import os
+import re
+import time
+from pathlib import Path
+from typing import Annotated, Any, Optional
+
+import typer
+from rich.table import Table
+
+from cache.config import ENV_VAR, use_cache_root
+from contracts.errors import DeformSmithError, InputError
+from flows.cli.apps import bench_app, cache_app, console, emit_json, fail
+
+CacheOption = Annotated[
+    Optional[Path],
+    typer.Option("--cache", help=f"Cache root (default: ${ENV_VAR}, else the user cache directory).",
+                 show_default=False),
+]
+JsonOption = Annotated[bool, typer.Option("--json", help="Print machine-readable JSON on stdout.")]
+
+_DURATION = re.compile(r"^\s*(\d+(?:\.\d+)?)\s*([smhdw]?)\s*$", re.IGNORECASE)
+_SIZE = re.compile(r"^\s*(\d+(?:\.\d+)?)\s*([kmgt]?i?b?)\s*$", re.IGNORECASE)
+_SECONDS = {"": 1, "s": 1, "m": 60, "h": 3600, "d": 86400, "w": 604800}
+
+
+def resolve_cache_option(value: Path | None) -> Path:
+    """Resolve `--cache` (> env > user dir) and export it so cached tasks in this process use that root."""
+    return use_cache_root(value)
+
+
+def parse_duration(text: str) -> float:
+    """'90', '90s', '30m', '12h', '7d', '2w' -> seconds."""
+    m = _DURATION.match(text)
+    if not m:
+        raise InputError(f"invalid duration {text!r} (examples: 3600, 30m, 12h, 7d)")
+    return float(m.group(1)) * _SECONDS[m.group(2).lower()]
+
+
+def parse_size(text: str) -> int:
+    """'1000', '500MB', '2G', '1.5GiB' -> bytes (K/M/G/T are powers of 1024)."""
+    m = _SIZE.match(text)
+    if not m:
+        raise InputError(f"invalid size {text!r} (examples: 1000000, 500MB, 2GB)")
+    unit = m.group(2).lower()[:1]
+    return int(float(m.group(1)) * 1024 ** "bkmgt".index(unit or "b"))
+
+
+def _store(cache: Path | None) -> Any:
+    from cache.store import CacheStore
+
+    return CacheStore(resolve_cache_option(cache))
+
+
+def _human(n: float) -> str:
+    for unit in ("B", "KB", "MB", "GB", "TB"):
+        if abs(n) < 1024 or unit == "TB":
+            return f"{n:.1f} {unit}" if unit != "B" else f"{int(n)} B"
+        n /= 1024
+    return f"{n} B"
+
+
+def _when(ts: float | None) -> str:
+    return "-" if ts is None else time.strftime("%Y-%m-%d %H:%M:%S", time.localtime(ts))
+
+
+@cache_app.command("stats")
+def stats_cmd(cache: CacheOption = None, json_out: JsonOption = False) -> None:
+    """Entries, total size, last use and hit/miss counts of the cache."""
+    try:
+        explicit = cache is not None or bool(os.environ.get(ENV_VAR))
+        store = _store(cache)
+        if not store.root.exists() and not explicit:  # a fresh default cache is simply empty
+            data: dict[str, Any] = {"root": str(store.root), "entries": 0, "bytes": 0, "oldest_use": None,
+                                    "newest_use": None, "tmp_dirs": 0, "events": 0, "hits": 0, "misses": 0}
+        else:
+            data = store.stats()
+    except DeformSmithError as exc:
+        fail(str(exc), exc.exit_code)
+    if json_out:
+        emit_json(data)
+        return
+    table = Table(title=f"cache {data['root']}", show_header=False)
+    table.add_row("entries", str(data["entries"]))
+    table.add_row("size", _human(data["bytes"]))
+    table.add_row("oldest use", _when(data["oldest_use"]))
+    table.add_row("newest use", _when(data["newest_use"]))
+    table.add_row("runs logged", f"{data['events']} ({data['hits']} hits, {data['misses']} executed)")
+    table.add_row("temp dirs", str(data["tmp_dirs"]))
+    console.print(table)
+
+
+@cache_app.command("verify")
+def verify_cmd(
+    cache: CacheOption = None,
+    remove: Annotated[bool, typer.Option("--remove", help="Delete the corrupt entries found.")] = False,
+    json_out: JsonOption = False,
+) -> None:
+    """Recompute every entry's digests; exits 1 and names each corrupt entry if any."""
+    try:
+        store = _store(cache)
+        keys = store.keys() if store.root.is_dir() else []
+        problems = store.verify(remove=remove)
+    except DeformSmithError as exc:
+        fail(str(exc), exc.exit_code)
+    if json_out:
+        emit_json({"root": str(store.root), "checked": len(keys), "removed": remove,
+                   "corrupt": [{"key": p.key, "reason": p.reason} for p in problems]})
+    else:
+        for p in problems:
+            console.print(f"[red]corrupt[/red] {p.key}: {p.reason}" + (" (removed)" if remove else ""))
+        console.print(f"checked {len(keys)} entries, {len(problems)} corrupt")
+    if problems:
+        raise typer.Exit(1)
+
+
+@cache_app.command("gc")
+def gc_cmd(
+    cache: CacheOption = None,
+    older_than: Annotated[Optional[str], typer.Option("--older-than", help="Remove entries unused for this long (30m, 12h, 7d).")] = None,
+    max_size: Annotated[Optional[str], typer.Option("--max-size", help="Then remove least recently used entries until the total is at most this (500MB, 2GB).")] = None,
+    json_out: JsonOption = False,
+) -> None:
+    """Remove old entries and/or shrink the cache to a size (also clears crash leftovers)."""
+    try:
+        age = parse_duration(older_than) if older_than is not None else None
+        size = parse_size(max_size) if max_size is not None else None
+        result = _store(cache).gc(older_than_s=age, max_bytes=size)
+    except DeformSmithError as exc:
+        fail(str(exc), exc.exit_code)
+    if json_out:
+        emit_json(result)
+        return
+    console.print(f"removed {len(result['removed'])} entries ({_human(result['freed_bytes'])}); "
+                  f"{result['remaining_entries']} remain ({_human(result['remaining_bytes'])})")
+
+
+@bench_app.command("cache")
+def bench_cache_cmd(
+    cache: Annotated[Optional[Path], typer.Option("--cache", help="Benchmark on this filesystem (a temp dir under it; default: system temp).")] = None,
+    particles: Annotated[int, typer.Option("--particles", min=1, help="Particles in the large entry.")] = 1_000_000,
+    repeats: Annotated[int, typer.Option("--repeats", min=1, help="Repetitions per figure (median reported).")] = 3,
+    compare: Annotated[bool, typer.Option("--compare/--no-compare", help="Also compare Zarr codec/chunk settings.")] = True,
+    json_out: JsonOption = False,
+) -> None:
+    """Put/hit latency of a 1M-particle entry (positions, velocities, F) and a tiny one; key computation time."""
+    from cache.bench import run_bench
+
+    if cache is not None and cache.exists() and not cache.is_dir():
+        fail(f"--cache {cache} is not a directory")
+    with console.status("benchmarking the cache ..."):
+        data = run_bench(cache.absolute() if cache else None, n=particles, repeats=repeats, compare=compare)
+    if json_out:
+        emit_json(data)
+        return
+    table = Table(title=f"cache benchmark ({data['particles']} particles, {data['big_entry_mb']} MB)")
+    table.add_column("figure")
+    table.add_column("value", justify="right")
+    for k, v in data.items():
+        if isinstance(v, float):
+            table.add_row(k, f"{v * 1e3:.2f} ms" if k.endswith("_s") else f"{v:g}")
+    for name, res in data.get("codecs", {}).items():
+        table.add_row(f"codec {name}", f"put {res['put_s'] * 1e3:.1f} ms / hit {res['hit_s'] * 1e3:.1f} ms")
+    console.print(table)

@@ -1,0 +1,59 @@
+"""Project-wide test setup: every test runs against temporary Prefect state and a temporary cache root.
+
+Prefect reads its settings when imported, so the session-level environment is set here, before any test module
+imports prefect. Per test, `DEFORMSMITH_CACHE` points at a fresh directory (the cache root is resolved at use).
+Tests that run flows request the session-scoped `prefect_api` fixture (one temporary server per session).
+"""
+
+from __future__ import annotations
+
+import os
+import shutil
+import tempfile
+from collections.abc import Iterator
+from pathlib import Path
+
+import pytest
+
+_SESSION_DIR = Path(tempfile.mkdtemp(prefix="deformsmith-tests-"))
+os.environ["PREFECT_HOME"] = str(_SESSION_DIR / "prefect-home")
+os.environ["PREFECT_RESULTS_LOCAL_STORAGE_PATH"] = str(_SESSION_DIR / "prefect-results")
+os.environ["DEFORMSMITH_CACHE"] = str(_SESSION_DIR / "cache")
+os.environ["PREFECT_SERVER_ANALYTICS_ENABLED"] = "false"
+os.environ["PREFECT_LOGGING_TO_API_WHEN_MISSING_FLOW"] = "ignore"
+os.environ.pop("PREFECT_API_URL", None)  # never talk to a developer's own server from tests
+os.environ.pop("PREFECT_PROFILES_PATH", None)
+(_SESSION_DIR / "prefect-home").mkdir(parents=True, exist_ok=True)
+
+
+def pytest_sessionfinish(session: pytest.Session, exitstatus: int) -> None:
+    """Remove the session's temporary Prefect home and caches."""
+    shutil.rmtree(_SESSION_DIR, ignore_errors=True)
+
+
+@pytest.fixture(autouse=True)
+def _isolated_cache(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> Path:
+    """A fresh cache root per test (exported in DEFORMSMITH_CACHE)."""
+    root = tmp_path / "cache"
+    monkeypatch.setenv("DEFORMSMITH_CACHE", str(root))
+    return root
+
+
+@pytest.fixture
+def cache_dir(_isolated_cache: Path) -> Path:
+    """This test's cache root."""
+    return _isolated_cache
+
+
+@pytest.fixture(scope="session")
+def prefect_api() -> Iterator[str]:
+    """One temporary Prefect server + database for the session, heartbeats off; yields its API URL.
+
+    Subprocesses get the URL in PREFECT_API_URL so they skip starting servers of their own.
+    """
+    from prefect.settings import PREFECT_API_URL, PREFECT_FLOWS_HEARTBEAT_FREQUENCY, temporary_settings
+    from prefect.testing.utilities import prefect_test_harness
+
+    with prefect_test_harness(server_startup_timeout=120):
+        with temporary_settings({PREFECT_FLOWS_HEARTBEAT_FREQUENCY: None}):
+            yield str(PREFECT_API_URL.value())
