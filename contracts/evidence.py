@@ -19,6 +19,8 @@ class AgentSource(Model):
     completion_tokens: int = 0
     cost_usd: float = 0.0
     retries: int = Field(default=0, description="invalid answers fed back before this one")
+    errors: list[str] = Field(default_factory=list, description="the validation errors fed back, in order")
+    fallback_reason: str | None = Field(default=None, description="why the rule backend stood in, if it did")
 
 
 class GateResult(Model):
@@ -52,7 +54,10 @@ class Attempt(Model):
     evidence: EvidenceRecord = Field(default_factory=EvidenceRecord)
     gates: list[GateResult] = Field(default_factory=list)
     score: float | None = Field(default=None, description="agreement with the target behaviour, higher is better")
-    verdict: Literal["accepted", "revise", "rejected", "rolled_back", "best_so_far"]
+    verdict: Literal["accepted", "revise", "rejected", "rolled_back", "best_so_far", "escalated"]
     diagnosis: str | None = Field(default=None, description="Critic's category: action | material | numerical | geometry")
     critique: str = ""
     parent_iteration: int | None = Field(default=None, description="the attempt this one revised")
+    directions: dict[str, str] = Field(default_factory=dict, description="Critic's suggested direction per field")
+    planner_source: AgentSource | None = Field(default=None, description="which backend chose the action")
+    critic_source: AgentSource | None = Field(default=None, description="which backend judged the evidence")

@@ -30,6 +30,17 @@ def register_schema(model: type[BaseModel]) -> type[BaseModel]:
     return model
 
 
+def _register_agent_schemas() -> None:
+    """Add the harness's role I/O models (contracts.agents)."""
+    from contracts.agents import AGENT_SCHEMAS
+
+    for model in AGENT_SCHEMAS:
+        register_schema(model)
+
+
+_register_agent_schemas()
+
+
 def schema_model(name: str) -> type[BaseModel]:
     """Look a model up by name, case-insensitively."""
     by_lower = {k.lower(): v for k, v in SCHEMAS.items()}

@@ -1,0 +1,1 @@
+"""The harness's roles: rule and litellm backends, intent -> targets, the orchestrator loop and its records."""

@@ -1,0 +1,133 @@
+"""Material intent -> TargetBehaviour: vocabulary words and explicit numbers, overridable by the request."""
+
+from __future__ import annotations
+
+import math
+import re
+
+from contracts.agents import TargetBand, TargetBehaviour
+from contracts.errors import InputError
+from contracts.request import AssetRequest
+from tasks.agents.vocab import MaterialVocab, load_material_vocab
+
+_NUM = r"([-+]?\d+(?:\.\d+)?(?:[eE][-+]?\d+)?)"
+_SEP = r"\s*(?:=|:|~|≈|of|is|at|around|about)?\s*"
+_PA_UNITS = {"pa": 1.0, "kpa": 1e3, "mpa": 1e6, "gpa": 1e9}
+
+# metric -> phrase regex; the number follows the phrase (ratios accept a trailing % sign)
+_RATIO_PHRASES: dict[str, str] = {
+    "rebound_ratio": r"(?:rebound(?:\s+ratio)?|bounce(?:\s+ratio)?|restitution)",
+    "recovery_ratio": r"(?:recovery(?:\s+ratio)?|recovers?)",
+    "sag_ratio": r"(?:sag(?:\s+ratio)?|sags?)",
+    "max_impact_strain": r"(?:impact\s+strain|max(?:imum)?\s+impact\s+strain)",
+}
+_MODULUS = re.compile(
+    r"(?:\bE\b|young'?s\s+modulus|elastic\s+modulus|effective\s+modulus|modulus|stiffness)" + _SEP + _NUM
+    + r"\s*(gpa|mpa|kpa|pa)\b", re.IGNORECASE)
+_DENSITY = re.compile(r"(?:density|\brho\b)" + _SEP + _NUM + r"\s*kg\s*/\s*m(?:\^?3|³)", re.IGNORECASE)
+_POISSON = re.compile(r"(?:poisson(?:'s)?(?:\s+ratio)?|\bnu\b)" + _SEP + _NUM, re.IGNORECASE)
+
+
+def _contains_phrase(text: str, phrase: str) -> bool:
+    return re.search(r"(?<![a-z])" + re.escape(phrase.lower()) + r"(?![a-z])", text) is not None
+
+
+def _match_material(text: str, vocab: MaterialVocab) -> tuple[str, str | None]:
+    """The material named by the longest matching word (materials first, then objects); the default otherwise."""
+    best: tuple[int, str, str] | None = None
+    for name, entry in vocab.materials.items():
+        for word in entry.words:
+            if _contains_phrase(text, word) and (best is None or len(word) > best[0]):
+                best = (len(word), name, word)
+    if best is None:
+        for word, name in vocab.objects.items():
+            if _contains_phrase(text, word) and (best is None or len(word) > best[0]):
+                best = (len(word), name, word)
+    if best is None:
+        return vocab.default_material, None
+    return best[1], best[2]
+
+
+def _narrow(low: float, high: float, frac: tuple[float, float], log: bool) -> tuple[float, float]:
+    """The [f0, f1] fraction of a band, measured in its scale."""
+    if log:
+        a, b = math.log10(low), math.log10(high)
+        return 10 ** (a + frac[0] * (b - a)), 10 ** (a + frac[1] * (b - a))
+    return low + frac[0] * (high - low), low + frac[1] * (high - low)
+
+
+def _explicit_band(metric: str, value: float, vocab: MaterialVocab) -> tuple[float, float]:
+    """A band around a stated number, with the vocabulary's tolerance."""
+    tol = vocab.explicit_tolerance
+    if vocab.metric(metric).scale == "log":
+        return value / tol.log_factor, value * tol.log_factor
+    return max(0.0, value - tol.linear_abs), value + tol.linear_abs
+
+
+def explicit_numbers(text: str) -> tuple[dict[str, float], dict[str, float]]:
+    """Numbers stated in the text: (metric -> value, prior field -> value), SI units."""
+    metrics: dict[str, float] = {}
+    priors: dict[str, float] = {}
+    if m := _MODULUS.search(text):
+        metrics["effective_modulus_pa"] = float(m.group(1)) * _PA_UNITS[m.group(2).lower()]
+        priors["youngs_modulus_pa"] = metrics["effective_modulus_pa"]
+    for metric, phrase in _RATIO_PHRASES.items():
+        if m := re.search(r"(?<![a-z])" + phrase + _SEP + _NUM + r"\s*(%?)", text, re.IGNORECASE):
+            value = float(m.group(1)) / (100.0 if m.group(2) == "%" else 1.0)
+            metrics[metric] = value
+    if m := _DENSITY.search(text):
+        priors["density_kg_per_m3"] = float(m.group(1))
+    if m := _POISSON.search(text):
+        priors["poisson_ratio"] = float(m.group(1))
+    return metrics, priors
+
+
+def targets_from_intent(
+    intent: str, overrides: dict[str, tuple[float, float]] | None = None, vocab: MaterialVocab | None = None
+) -> TargetBehaviour:
+    """Bands and priors for the words of an intent; explicit numbers beat words, overrides beat both."""
+    vocab = vocab or load_material_vocab()
+    text = " ".join(intent.lower().split())
+    name, word = _match_material(text, vocab)
+    entry = vocab.materials[name]
+    source = f"vocab:{word}" if word else f"vocab:default({name})"
+    bands: dict[str, tuple[float, float, str]] = {m: (lo, hi, source) for m, (lo, hi) in entry.bands.items()}
+    matched = [word] if word else []
+    for mod_name, mod in vocab.modifiers.items():
+        hit = next((w for w in sorted(mod.words, key=len, reverse=True) if _contains_phrase(text, w)), None)
+        if hit is None:
+            continue
+        matched.append(hit)
+        text = re.sub(r"(?<![a-z])" + re.escape(hit.lower()) + r"(?![a-z])", " ", text)  # 'very soft' is not also 'soft'
+        for metric, frac in mod.band_fraction.items():
+            if metric in bands:
+                lo, hi, _ = bands[metric]
+                lo, hi = _narrow(lo, hi, frac, vocab.metric(metric).scale == "log")
+                bands[metric] = (lo, hi, f"{source}+{hit}")
+        for metric, (lo, hi) in mod.bands.items():
+            bands[metric] = (lo, hi, f"vocab:{hit}")
+    priors = dict(entry.priors)
+    stated, stated_priors = explicit_numbers(intent)
+    for metric, value in stated.items():
+        lo, hi = _explicit_band(metric, value, vocab)
+        bands[metric] = (lo, hi, f"request:{metric}={value:g}")
+    priors.update(stated_priors)
+    if "effective_modulus_pa" in bands and "effective_modulus_pa" not in stated:
+        lo, hi, _ = bands["effective_modulus_pa"]  # seed E inside the (possibly narrowed) modulus band
+        priors["youngs_modulus_pa"] = math.sqrt(lo * hi)
+    for metric, (lo, hi) in (overrides or {}).items():
+        if not (math.isfinite(lo) and math.isfinite(hi)) or lo > hi:
+            raise InputError(f"target override {metric}: need finite low <= high, got ({lo}, {hi})")
+        bands[metric] = (float(lo), float(hi), "override")
+    out = []
+    for metric, (lo, hi, src) in sorted(bands.items()):
+        spec = vocab.metric(metric)
+        scale = spec.scale if not (spec.scale == "log" and lo <= 0) else "linear"
+        out.append(TargetBand(metric=metric, unit=spec.unit, low=lo, high=hi, weight=spec.weight, scale=scale, source=src))
+    return TargetBehaviour(bands=out, priors=priors, matched_words=matched, intent=intent)
+
+
+def targets_from_request(request: AssetRequest, vocab: MaterialVocab | None = None) -> TargetBehaviour:
+    """The target behaviour of a request: material_intent (else the text) plus target_overrides."""
+    intent = request.material_intent or request.text or ""
+    return targets_from_intent(intent, dict(request.target_overrides), vocab)

@@ -1,0 +1,187 @@
+"""litellm backend: any model string plays any role; answers are validated, errors fed back, failures handled by policy."""
+
+from __future__ import annotations
+
+import json
+import os
+import re
+from collections.abc import Callable
+from typing import Any, TypeVar
+
+os.environ.setdefault("LITELLM_LOCAL_MODEL_COST_MAP", "True")  # before importing litellm: no network at import
+
+import litellm  # noqa: E402
+from pydantic import BaseModel, ValidationError  # noqa: E402
+
+from contracts.agents import (  # noqa: E402
+    Candidate, Critique, CriticRequest, DesignerRequest, PlannerContext, PlannerDecision, RoleConfig,
+)
+from contracts.evidence import AgentSource  # noqa: E402
+from tasks.agents.backend import (  # noqa: E402
+    AgentError, InvalidAnswer, RoleReply, check_candidate, check_critique, check_decision,
+)
+from tasks.agents.prompts import load_prompt  # noqa: E402
+from tasks.agents.rule import RuleCritic, RuleDesigner, RulePlanner  # noqa: E402
+
+litellm.suppress_debug_info = True
+M = TypeVar("M", bound=BaseModel)
+Completion = Callable[..., Any]
+# errors after which asking again cannot help: go straight to the failure policy
+FATAL_ERRORS: tuple[type[Exception], ...] = (
+    litellm.AuthenticationError, litellm.NotFoundError, litellm.BadRequestError, litellm.PermissionDeniedError,
+)
+
+
+def extract_json(text: str) -> str:
+    """The first JSON object in an answer: a ```json fence, else the first parseable {...}."""
+    if m := re.search(r"```(?:json)?\s*(\{.*?\})\s*```", text, re.DOTALL):
+        return m.group(1)
+    decoder = json.JSONDecoder()
+    for i, ch in enumerate(text):
+        if ch == "{":
+            try:
+                _, end = decoder.raw_decode(text[i:])
+            except json.JSONDecodeError:
+                continue
+            return text[i:i + end]
+    raise ValueError("no JSON object found in the answer")
+
+
+def _validation_message(exc: ValidationError) -> str:
+    parts = [f"{'.'.join(str(p) for p in e['loc']) or '<root>'}: {e['msg']}" for e in exc.errors()[:8]]
+    return "schema validation failed: " + "; ".join(parts)
+
+
+def _parse(text: str | None, out_type: type[M]) -> M:
+    """Validate an answer against the schema (JSON extraction from prose-wrapped answers)."""
+    if not text or not text.strip():
+        raise ValueError("empty answer")
+    try:
+        return out_type.model_validate_json(extract_json(text))
+    except ValidationError as exc:
+        raise ValueError(_validation_message(exc)) from None
+
+
+def _cost(response: Any) -> float:
+    try:
+        return float(litellm.completion_cost(completion_response=response) or 0.0)
+    except Exception:  # unknown models (local ollama) have no price
+        return 0.0
+
+
+def ask(
+    role: str,
+    cfg: RoleConfig,
+    request: BaseModel,
+    out_type: type[M],
+    check: Callable[[M], str | None],
+    fallback: Callable[[], RoleReply[M]],
+    completion: Completion | None = None,
+    max_answers: int | None = None,
+) -> RoleReply[M]:
+    """Ask a model for a schema-valid, contract-valid answer; feed each error back; then apply cfg.on_failure."""
+    completion = completion or litellm.completion
+    model = str(cfg.model)
+    prompt = load_prompt(role)
+    schema = json.dumps(out_type.model_json_schema(), separators=(",", ":"))
+    messages: list[dict[str, str]] = [
+        {"role": "system", "content": prompt["system"]},
+        {"role": "user", "content": f"{prompt['instructions']}\n{schema}\n\nRequest:\n{request.model_dump_json()}"},
+    ]
+    structured = _supports_schema(model)
+    tokens_in = tokens_out = 0
+    cost = 0.0
+    invalid: list[InvalidAnswer] = []
+    fatal: str | None = None
+    for _ in range(max(1, max_answers or cfg.max_answers)):
+        kwargs: dict[str, Any] = {"model": model, "messages": list(messages), "timeout": cfg.timeout_s,
+                                  "temperature": cfg.temperature}
+        if structured:
+            kwargs["response_format"] = out_type
+        try:
+            response = completion(**kwargs)
+        except litellm.Timeout:
+            error = f"timed out after {cfg.timeout_s:g} s"
+            invalid.append(InvalidAnswer(text="", error=error))
+            messages.append({"role": "user", "content": f"The previous request {error}. Answer again, briefly, JSON only."})
+            continue
+        except FATAL_ERRORS as exc:
+            fatal = f"{type(exc).__name__}: {exc}"
+            invalid.append(InvalidAnswer(text="", error=fatal))
+            break
+        except Exception as exc:  # rate limits, outages, connection errors, provider 5xx: worth asking again
+            error = f"{type(exc).__name__}: {str(exc)[:300]}"
+            invalid.append(InvalidAnswer(text="", error=error))
+            continue
+        usage = getattr(response, "usage", None)
+        tokens_in += int(getattr(usage, "prompt_tokens", 0) or 0)
+        tokens_out += int(getattr(usage, "completion_tokens", 0) or 0)
+        cost += _cost(response)
+        text = response.choices[0].message.content or ""
+        value: M | None = None
+        try:
+            value = _parse(text, out_type)
+            error = check(value)
+        except ValueError as exc:
+            error = str(exc)
+        if error is None and value is not None:
+            source = AgentSource(backend="litellm", model=model, prompt_tokens=tokens_in, completion_tokens=tokens_out,
+                                 cost_usd=cost, retries=len(invalid), errors=[i.error for i in invalid])
+            return RoleReply(value, source, invalid)
+        values = dict(value.values) if isinstance(value, Candidate) else None
+        invalid.append(InvalidAnswer(text=text, error=error or "invalid answer", values=values))
+        messages.append({"role": "assistant", "content": text})
+        messages.append({"role": "user", "content": f"Your answer was rejected: {error}. "
+                                                    "Reply again with ONE corrected JSON object only."})
+    errors = [i.error for i in invalid]
+    reason = fatal or f"{len(invalid)} invalid answer(s); last: {errors[-1] if errors else 'none'}"
+    if cfg.on_failure == "fail":
+        raise AgentError(f"{role} ({model}) gave no valid answer: {reason}")
+    reply = fallback()
+    source = AgentSource(backend="fallback_rule", model=model, prompt_tokens=tokens_in, completion_tokens=tokens_out,
+                         cost_usd=cost, retries=len(invalid), errors=errors, fallback_reason=reason)
+    return RoleReply(reply.value, source, invalid)
+
+
+def _supports_schema(model: str) -> bool:
+    try:
+        return bool(litellm.supports_response_schema(model=model))
+    except Exception:
+        return False
+
+
+class LLMPlanner:
+    """Planner played by a litellm model."""
+
+    def __init__(self, cfg: RoleConfig, completion: Completion | None = None) -> None:
+        self.cfg, self.completion, self.rule = cfg, completion, RulePlanner()
+
+    def plan(self, ctx: PlannerContext) -> RoleReply[PlannerDecision]:
+        """Ask for a permitted action."""
+        return ask("planner", self.cfg, ctx, PlannerDecision, lambda d: check_decision(ctx, d),
+                   lambda: self.rule.plan(ctx), self.completion)
+
+
+class LLMDesigner:
+    """Designer played by a litellm model; every invalid answer is returned so the orchestrator can charge it."""
+
+    def __init__(self, cfg: RoleConfig, completion: Completion | None = None) -> None:
+        self.cfg, self.completion, self.rule = cfg, completion, RuleDesigner()
+
+    def design(self, req: DesignerRequest) -> RoleReply[Candidate]:
+        """Ask for a candidate inside the action's fields and bounds (at most budget_left - 1 answers)."""
+        answers = min(self.cfg.max_answers, max(1, req.budget_left - 1))
+        return ask("designer", self.cfg, req, Candidate, lambda c: check_candidate(req, c),
+                   lambda: self.rule.design(req), self.completion, max_answers=answers)
+
+
+class LLMCritic:
+    """Critic played by a litellm model."""
+
+    def __init__(self, cfg: RoleConfig, completion: Completion | None = None) -> None:
+        self.cfg, self.completion, self.rule = cfg, completion, RuleCritic()
+
+    def critique(self, req: CriticRequest) -> RoleReply[Critique]:
+        """Ask for a verdict with a diagnosis and directions on editable fields."""
+        return ask("critic", self.cfg, req, Critique, lambda c: check_critique(req, c),
+                   lambda: self.rule.critique(req), self.completion)

@@ -1,0 +1,86 @@
+"""The rule backend is a real search: it converges within the contract's budget across orders of magnitude."""
+
+from __future__ import annotations
+
+import pytest
+from conftest import FakeL2Probes, fake_modulus_pa, fake_rebound, l2_targets
+
+from contracts import ProbeResult, ProbeSpec, load_contract
+from contracts.agents import TargetBand, TargetBehaviour
+from tasks.agents.orchestrator import run_stage
+
+
+@pytest.mark.parametrize("modulus_pa", [1.2e3, 1e4, 2e5, 3e6, 5e6])
+@pytest.mark.parametrize("rebound", [0.05, 0.3])
+def test_converges_across_decades(l2, modulus_pa: float, rebound: float) -> None:
+    probes = FakeL2Probes()
+    out = run_stage(l2, probes, l2_targets(modulus_pa, rebound))
+    assert out.status == "accepted", out.message
+    assert out.attempts_used <= 1 + l2.revision_budget
+    assert modulus_pa / 1.1 <= fake_modulus_pa(out.values["youngs_modulus_pa"]) <= modulus_pa * 1.1
+    assert abs(fake_rebound(out.values["damping_rate_per_s"]) - rebound) <= 0.02
+    assert out.attempts[-1].verdict == "accepted" and out.score == 1.0
+    assert len(probes.calls) == out.attempts_used  # every attempt ran its probes once, nothing else ran
+
+
+def test_deterministic(l2) -> None:
+    a = run_stage(l2, FakeL2Probes(), l2_targets(7e5))
+    b = run_stage(l2, FakeL2Probes(), l2_targets(7e5))
+    assert [x.proposal for x in a.attempts] == [x.proposal for x in b.attempts]
+
+
+def test_stops_early_when_priors_already_meet_targets(l2) -> None:
+    e = 3e4
+    t = TargetBehaviour(bands=[TargetBand(metric="effective_modulus_pa", low=fake_modulus_pa(e) / 1.2,
+                                          high=fake_modulus_pa(e) * 1.2, scale="log")], priors={"youngs_modulus_pa": e})
+    out = run_stage(l2, FakeL2Probes(), t)
+    assert out.status == "accepted" and out.attempts_used == 1
+
+
+def test_gate_failure_bounds_the_search(l2) -> None:
+    """Below 2e4 Pa the fake collapses (j_min gate): the search must climb out and still find the band."""
+    probes = FakeL2Probes(unstable_below_pa=2e4)
+    t = l2_targets(3e4)
+    out = run_stage(l2, probes, t, initial={"youngs_modulus_pa": 2e3, "poisson_ratio": 0.3, "damping_rate_per_s": 5.0})
+    first = out.attempts[0]
+    assert first.verdict == "revise" and first.diagnosis == "material"
+    assert first.directions == {"youngs_modulus_pa": "increase"}
+    assert out.status == "accepted", out.message
+
+
+def test_l3_ordered_enumeration_of_action_revisions() -> None:
+    """Pick-and-place fake: too little squeeze drops the object, too much breaks the force budget; grasp 0 and 1 fail
+    transport. Squeeze is bisected between the two failure modes, then grasps are enumerated."""
+    l3 = load_contract("L3").model_copy(update={"revision_budget": 12})
+
+    def pick_place(values: dict[str, float], action: str) -> list[ProbeResult]:
+        squeeze, rank = values["squeeze_depth_m"], int(values["grasp_rank"])
+        lifted = squeeze >= 0.009
+        force = 1500.0 * squeeze
+        ok_grasp = rank >= 2
+        m = {"lifted": float(lifted), "transported": float(lifted and ok_grasp), "released_in_target": float(lifted and ok_grasp),
+             "settled": 1.0, "max_finger_force_n": force, "numerically_healthy": 1.0, "max_strain": 0.2}
+        return [ProbeResult(spec=ProbeSpec(kind="pick_and_place"), metrics=m)]
+
+    out = run_stage(l3, pick_place, TargetBehaviour(), initial={
+        "grasp_rank": 0, "squeeze_depth_m": 0.002, "closing_speed_m_per_s": 0.02, "lift_duration_s": 1.0,
+        "transport_duration_s": 1.5, "substeps": 1})
+    assert out.status == "accepted", out.message
+    assert 0.009 <= out.values["squeeze_depth_m"] <= 20.0 / 1500.0
+    assert out.values["grasp_rank"] == 2
+    actions = [a.action for a in out.attempts]
+    assert "revise_squeeze" in actions and "revise_grasp" in actions
+
+
+def test_l3_strain_escalates_to_material() -> None:
+    l3 = load_contract("L3")
+
+    def too_soft(values: dict[str, float], action: str) -> list[ProbeResult]:
+        m = {"lifted": 1.0, "transported": 1.0, "released_in_target": 1.0, "settled": 1.0, "max_finger_force_n": 5.0,
+             "numerically_healthy": 1.0, "max_strain": 0.9}
+        return [ProbeResult(spec=ProbeSpec(kind="pick_and_place"), metrics=m)]
+
+    out = run_stage(l3, too_soft, initial={"grasp_rank": 0, "squeeze_depth_m": 0.01, "closing_speed_m_per_s": 0.02,
+                                           "lift_duration_s": 1.0, "transport_duration_s": 1.5, "substeps": 1})
+    assert out.status == "escalated" and out.escalation == "revise_material"
+    assert out.attempts[-1].verdict == "escalated" and out.attempts_used == 2
