@@ -1,15 +1,11 @@
-"""Deterministic fake probes and helpers for the harness tests (no simulation, no network)."""
+"""Deterministic fake probes and helpers for the harness tests (no simulation, no network); fixtures in conftest."""
 
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
 
-import pytest
-
-from contracts import ProbeResult, ProbeSpec, load_contract
+from contracts import ProbeResult, ProbeSpec
 from contracts.agents import TargetBand, TargetBehaviour
-from contracts.stage import StageContract
 
 HEALTHY = {"finite": 1.0, "in_domain": 1.0, "j_min": 0.9, "j_max": 1.1, "ground_tunnelling_m": 0.0,
            "stable_long_rollout": 1.0}
@@ -52,15 +48,3 @@ def l2_targets(modulus_pa: float, rebound: float = 0.1, tol: float = 1.1) -> Tar
         bands=[TargetBand(metric="effective_modulus_pa", unit="Pa", low=modulus_pa / tol, high=modulus_pa * tol, scale="log"),
                TargetBand(metric="rebound_ratio", low=rebound - 0.02, high=rebound + 0.02)],
         priors={"youngs_modulus_pa": 3e4, "poisson_ratio": 0.3, "damping_rate_per_s": 5.0})
-
-
-@pytest.fixture
-def l2() -> StageContract:
-    """The packaged L2 material contract."""
-    return load_contract("L2")
-
-
-@pytest.fixture
-def fake_l2() -> Callable[..., FakeL2Probes]:
-    """Factory of fake L2 probe runners."""
-    return FakeL2Probes

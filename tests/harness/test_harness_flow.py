@@ -5,7 +5,7 @@ from __future__ import annotations
 import math
 from pathlib import Path
 
-from conftest import HEALTHY, fake_modulus_pa, fake_rebound, l2_targets
+from harness_fakes import HEALTHY, fake_modulus_pa, fake_rebound, l2_targets
 
 from cache import CacheStore, cache_root, cached_task
 from contracts import Material, ProbeResult, ProbeSpec

@@ -7,7 +7,7 @@ import os
 from typing import Any
 
 import pytest
-from conftest import FakeL2Probes, l2_targets
+from harness_fakes import FakeL2Probes, l2_targets
 
 os.environ.setdefault("LITELLM_LOCAL_MODEL_COST_MAP", "True")
 import litellm  # noqa: E402

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from conftest import HEALTHY, FakeL2Probes, l2_targets
+from harness_fakes import HEALTHY, FakeL2Probes, l2_targets
 
 from contracts import ProbeResult, ProbeSpec
 from contracts.agents import Candidate, DesignerRequest, TargetBand, TargetBehaviour

@@ -5,7 +5,7 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
-from conftest import FakeL2Probes, l2_targets
+from harness_fakes import FakeL2Probes, l2_targets
 from typer.testing import CliRunner
 
 from contracts.agents import StageOutcome

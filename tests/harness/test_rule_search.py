@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import pytest
-from conftest import FakeL2Probes, fake_modulus_pa, fake_rebound, l2_targets
+from harness_fakes import FakeL2Probes, fake_modulus_pa, fake_rebound, l2_targets
 
 from contracts import ProbeResult, ProbeSpec, load_contract
 from contracts.agents import TargetBand, TargetBehaviour
