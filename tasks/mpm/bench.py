@@ -1,0 +1,129 @@
+"""Benchmark of the standard scene: 0.2 m cube, n^3 particles, E = 1e5 Pa, nu = 0.3, rho = 200 kg/m^3, dt = 1e-4 s."""
+
+from __future__ import annotations
+
+import os
+import platform
+import resource
+import time
+from datetime import datetime, timezone
+
+import numpy as np
+import warp as wp
+
+from contracts.errors import InputError, SimulationError
+from tasks.mpm.scene import BENCH_DT_S, bench_cube_model
+from tasks.mpm.simulator import Simulator
+
+
+def _cpu_name() -> str:
+    """Processor model name (Linux /proc/cpuinfo, else platform)."""
+    try:
+        with open("/proc/cpuinfo") as fh:
+            for line in fh:
+                if line.startswith("model name"):
+                    return line.split(":", 1)[1].strip()
+    except OSError:
+        pass
+    return platform.processor() or "cpu"
+
+
+def _model_bytes(sim: Simulator) -> int:
+    """Bytes of the device arrays the engine holds for one simulator (state, model, grid, solver)."""
+    total = 0
+    seen: set[int] = set()
+    for obj in (sim.state, sim.model, sim.solver, sim.control):
+        for val in vars(obj).values():
+            if isinstance(val, wp.array) and id(val) not in seen:
+                seen.add(id(val))
+                total += int(val.capacity)
+    return total
+
+
+def run_bench(
+    device: str = "cpu", particles: int = 64000, steps: int = 200, batch: int = 1, workers: int | None = None
+) -> dict:
+    """Time `steps` fixed-dt steps of `batch` standard cubes of ~particles each; returns the figures as a dict."""
+    if particles < 8 or steps < 1 or batch < 1:
+        raise InputError("need particles >= 8, steps >= 1, batch >= 1")
+    if device not in ("cpu", "cuda"):
+        raise InputError("device must be cpu or cuda")
+    wp.init()
+    if device == "cuda" and not wp.is_cuda_available():
+        raise SimulationError("no CUDA device is available to Warp")
+    n = max(2, int(round(particles ** (1.0 / 3.0))))
+    if workers is None:
+        workers = min(batch, os.cpu_count() or 1) if device == "cpu" else 1
+    workers = max(1, min(workers, batch))
+    shares = [batch // workers + (1 if i < batch % workers else 0) for i in range(workers)]
+    sims = [Simulator(bench_cube_model(n, b, device), health_interval_steps=100) for b in shares]
+
+    # warm-up (excluded from the timing): kernel compilation/loading, CUDA graph capture, first launches
+    t0 = time.perf_counter()
+    warm = 3
+    for s in sims:
+        s.advance(10 * BENCH_DT_S, max_steps=warm)
+    wp.synchronize_device(device)
+    warm_s = time.perf_counter() - t0
+
+    duration = steps * BENCH_DT_S * 1.5  # max_steps ends the run at exactly `steps` steps
+    t = time.perf_counter()
+    if len(sims) == 1:
+        reports = [sims[0].advance(duration, max_steps=steps)]
+    else:
+        reports = advance_parallel_steps(sims, duration, steps)
+    wp.synchronize_device(device)
+    seconds = time.perf_counter() - t
+
+    total_particles = sum(s.model.n_particles for s in sims)
+    finite = all(r.health.ok for r in reports) and all(
+        bool(np.all(np.isfinite(s.particles()["x"]))) for s in sims
+    )
+    if device == "cuda":
+        dev = wp.get_device("cuda")
+        peak = int(wp.get_mempool_used_mem_high(dev)) if wp.is_mempool_enabled(dev) else None
+        mem_kind = "gpu_mempool_high_water_bytes"
+        dev_name = dev.name
+    else:
+        peak = int(resource.getrusage(resource.RUSAGE_SELF).ru_maxrss) * 1024
+        mem_kind = "host_peak_rss_bytes"
+        dev_name = _cpu_name()
+    engine_bytes = sum(_model_bytes(s) for s in sims)
+    return {
+        "device": device,
+        "device_name": dev_name,
+        "warp_version": wp.config.version,
+        "date_utc": datetime.now(timezone.utc).isoformat(timespec="seconds"),
+        "scene": "0.2 m cube, E=1e5 Pa, nu=0.3, rho=200 kg/m^3, 0.05 m above ground, fixed dt=1e-4 s",
+        "particles": total_particles,
+        "particles_per_scene": n**3,
+        "batch": batch,
+        "workers": len(sims),
+        "steps": steps,
+        "dt_s": BENCH_DT_S,
+        "seconds": seconds,
+        "us_per_step": seconds / steps * 1e6,
+        "particle_steps_per_s": total_particles * steps / seconds,
+        "peak_memory_bytes": peak,
+        "peak_memory_kind": mem_kind,
+        "engine_array_bytes": engine_bytes,
+        "engine_bytes_per_particle": engine_bytes / total_particles,
+        "grid_nodes": sum(s.solver.grid_nodes for s in sims),
+        "finite": bool(finite),
+        "health_ok": all(r.health.ok for r in reports),
+        "warmup_excluded": True,
+        "warmup_seconds": warm_s,
+        "cuda_graph": bool(sims[0].solver.use_graph),
+        "note": "timing excludes the first launches (kernel compile/load, graph capture); includes health checks",
+        "host": platform.node(),
+        "cpu_count": os.cpu_count(),
+    }
+
+
+def advance_parallel_steps(sims: list[Simulator], duration: float, steps: int) -> list:
+    """Advance each simulator by exactly `steps` steps, concurrently in threads."""
+    from concurrent.futures import ThreadPoolExecutor
+
+    with ThreadPoolExecutor(max_workers=len(sims)) as pool:
+        return list(pool.map(lambda s: s.advance(duration, max_steps=steps), sims))
+

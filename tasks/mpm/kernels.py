@@ -1,0 +1,558 @@
+"""Warp kernels of the MLS-MPM step (SI units: m, s, kg, Pa); each kernel does one thing.
+
+Grid layout: B scenes share one flat node array; scene s owns nodes [s*nx*ny*nz, (s+1)*nx*ny*nz). Nodes sit on the
+world lattice (multiples of dx); ``grid_origin[s]`` is the lattice index of the scene's node (0, 0, 0), moved by
+``fit_grid`` so that the window follows the particles. A particle whose stencil falls outside its window is gated
+(never written to the grid) and flagged, so no kernel can index out of bounds.
+"""
+
+from __future__ import annotations
+
+import warp as wp
+
+wp.set_module_options({"enable_backward": False, "optimization_level": 3})
+
+# health flag codes (columns of the per-scene failure tables)
+FLAG_NONFINITE = wp.constant(0)
+FLAG_LEFT_DOMAIN = wp.constant(1)
+FLAG_J_OUT_OF_BOUNDS = wp.constant(2)
+FLAG_OUT_OF_GRID = wp.constant(3)
+N_FLAGS = 4
+
+# collider kinds
+COLLIDER_BOX = wp.constant(0)
+COLLIDER_CAPSULE = wp.constant(1)
+COLLIDER_HALFSPACE = wp.constant(2)
+
+EPS_V = wp.constant(1.0e-7)  # [m/s] smallest tangential speed in the friction law (avoids 0/0)
+BIG = wp.constant(1.0e30)
+
+
+@wp.func
+def quadratic_weights(f: float) -> wp.vec3:
+    """Quadratic B-spline weights of the 3 stencil nodes for a particle at offset f in [0.5, 1.5) from the base."""
+    a = 1.5 - f
+    b = f - 1.0
+    c = f - 0.5
+    return wp.vec3(0.5 * a * a, 0.75 - b * b, 0.5 * c * c)
+
+
+@wp.func
+def flag_failure(
+    fail_step: wp.array(dtype=wp.int32),
+    fail_particle: wp.array(dtype=wp.int32),
+    scene: int,
+    code: int,
+    step: int,
+    particle_local: int,
+):
+    """Record a health failure: earliest step, and the lowest particle index failing at that step."""
+    slot = scene * 4 + code
+    first = wp.atomic_min(fail_step, slot, step)
+    if step <= first:  # only particles failing at the earliest step compete for the reported index
+        wp.atomic_min(fail_particle, slot, particle_local)
+
+
+@wp.func
+def contact_velocity(v: wp.vec3, vb: wp.vec3, n: wp.vec3, mu: float, bonded: int) -> wp.vec3:
+    """Coulomb contact on a velocity: v+ = vb + alpha u_t if u_n < 0 (separation allowed); bonded -> vb."""
+    if bonded != 0:
+        return vb
+    u = v - vb
+    un = wp.dot(u, n)
+    if un >= 0.0:
+        return v
+    ut = u - un * n
+    ut_len = wp.length(ut)
+    alpha = wp.max(0.0, 1.0 - mu * (-un) / wp.max(ut_len, EPS_V))
+    return vb + alpha * ut
+
+
+@wp.func
+def collider_sdf(kind: int, params: wp.vec3, p_local: wp.vec3) -> wp.vec4:
+    """Signed distance [m] (w) and outward unit normal (xyz, local frame) of a collider at a local point."""
+    if kind == COLLIDER_BOX:
+        q = wp.vec3(wp.abs(p_local[0]), wp.abs(p_local[1]), wp.abs(p_local[2])) - params
+        qmax = wp.max(q[0], wp.max(q[1], q[2]))
+        if qmax > 0.0:
+            qo = wp.vec3(wp.max(q[0], 0.0), wp.max(q[1], 0.0), wp.max(q[2], 0.0))
+            dist = wp.length(qo)
+            nb = wp.vec3(wp.sign(p_local[0]) * qo[0], wp.sign(p_local[1]) * qo[1], wp.sign(p_local[2]) * qo[2]) / dist
+            return wp.vec4(nb[0], nb[1], nb[2], dist)
+        # inside: leave through the nearest face
+        if q[0] >= q[1] and q[0] >= q[2]:
+            return wp.vec4(wp.sign(p_local[0]), 0.0, 0.0, qmax)
+        if q[1] >= q[2]:
+            return wp.vec4(0.0, wp.sign(p_local[1]), 0.0, qmax)
+        return wp.vec4(0.0, 0.0, wp.sign(p_local[2]), qmax)
+    if kind == COLLIDER_CAPSULE:
+        # params: (radius, half_length along local z, unused)
+        c = wp.vec3(0.0, 0.0, wp.clamp(p_local[2], -params[1], params[1]))
+        d = p_local - c
+        dl = wp.length(d)
+        if dl > 1.0e-12:
+            n = d / dl
+            return wp.vec4(n[0], n[1], n[2], dl - params[0])
+        return wp.vec4(1.0, 0.0, 0.0, -params[0])
+    # half-space: solid below the local z = 0 plane
+    return wp.vec4(0.0, 0.0, 1.0, p_local[2])
+
+
+@wp.func
+def collider_contact(
+    kind: int,
+    params: wp.vec3,
+    pos: wp.vec3,
+    rot: wp.quat,
+    lin_vel: wp.vec3,
+    ang_vel: wp.vec3,
+    x: wp.vec3,
+) -> wp.mat33:
+    """World-frame query at x: rows = (normal, collider velocity at x, (phi, 0, 0))."""
+    r = x - pos
+    sd = collider_sdf(kind, params, wp.quat_rotate_inv(rot, r))
+    n = wp.quat_rotate(rot, wp.vec3(sd[0], sd[1], sd[2]))
+    vb = lin_vel + wp.cross(ang_vel, r)
+    return wp.mat33(n[0], n[1], n[2], vb[0], vb[1], vb[2], sd[3], 0.0, 0.0)
+
+
+@wp.func
+def gather_row(grid_v: wp.array(dtype=wp.vec3), row: int, wz: wp.vec3) -> wp.mat33:
+    """Weighted sums along z of 3 nodes: rows (sum_k w_k v_k, sum_k k w_k v_k, unused)."""
+    a1 = wz[1] * grid_v[row + 1]
+    a2 = wz[2] * grid_v[row + 2]
+    s0 = wz[0] * grid_v[row] + a1 + a2
+    s1 = a1 + 2.0 * a2
+    return wp.mat33(s0[0], s0[1], s0[2], s1[0], s1[1], s1[2], 0.0, 0.0, 0.0)
+
+
+@wp.kernel
+def update_collider_poses(
+    ref_pos: wp.array(dtype=wp.vec3),
+    ref_rot: wp.array(dtype=wp.quat),
+    ref_time: wp.array(dtype=wp.float64),
+    lin_vel: wp.array(dtype=wp.vec3),
+    ang_vel: wp.array(dtype=wp.vec3),
+    clock_time: wp.array(dtype=wp.float64),
+    dt_arr: wp.array(dtype=float),
+    pos_start: wp.array(dtype=wp.vec3),
+    rot_start: wp.array(dtype=wp.quat),
+    pos_end: wp.array(dtype=wp.vec3),
+    rot_end: wp.array(dtype=wp.quat),
+):
+    """Poses of kinematic colliders at the start and end of this step from reference pose + constant velocity."""
+    c = wp.tid()
+    t0 = float(clock_time[0] - ref_time[c])
+    for e in range(2):
+        t = t0 + float(e) * dt_arr[0]
+        w = ang_vel[c]
+        wl = wp.length(w)
+        q = ref_rot[c]
+        if wl > 0.0:
+            q = wp.normalize(wp.quat_from_axis_angle(w / wl, wl * t) * q)
+        p = ref_pos[c] + lin_vel[c] * t
+        if e == 0:
+            pos_start[c] = p
+            rot_start[c] = q
+        else:
+            pos_end[c] = p
+            rot_end[c] = q
+
+
+@wp.kernel
+def p2g_apic_neohookean(
+    x: wp.array(dtype=wp.vec3),
+    v: wp.array(dtype=wp.vec3),
+    C: wp.array(dtype=wp.mat33),
+    F: wp.array(dtype=wp.mat33),
+    particle_mass: wp.array(dtype=float),
+    particle_vol: wp.array(dtype=float),
+    particle_scene: wp.array(dtype=wp.int32),
+    scene_start: wp.array(dtype=wp.int32),
+    scene_mu: wp.array(dtype=float),
+    scene_lambda: wp.array(dtype=float),
+    grid_origin: wp.array(dtype=wp.vec3i),
+    nx: int,
+    ny: int,
+    nz: int,
+    dx: float,
+    dt_arr: wp.array(dtype=float),
+    clock_step: wp.array(dtype=wp.int32),
+    grid_mvm: wp.array(dtype=wp.vec4),
+    fail_step: wp.array(dtype=wp.int32),
+    fail_particle: wp.array(dtype=wp.int32),
+    per_thread: int,
+    n_items: int,
+):
+    """Particle to grid: scatter APIC momentum, neo-Hookean Kirchhoff stress impulse and mass (MLS-MPM)."""
+    t = wp.tid()
+    for p in range(t * per_thread, wp.min((t + 1) * per_thread, n_items)):
+        xp = x[p]
+        vp = v[p]
+        Fp = F[p]
+        Cp = C[p]
+        chk = xp[0] + xp[1] + xp[2] + vp[0] + vp[1] + vp[2] + wp.ddot(Fp, Fp) + wp.ddot(Cp, Cp)
+        if not wp.isfinite(chk):
+            continue  # gated; g2p reports it
+        s = particle_scene[p]
+        inv_dx = 1.0 / dx
+        o = grid_origin[s]
+        local = xp * inv_dx - wp.vec3(float(o[0]), float(o[1]), float(o[2]))
+        bx = int(wp.floor(local[0] - 0.5))
+        by = int(wp.floor(local[1] - 0.5))
+        bz = int(wp.floor(local[2] - 0.5))
+        if bx < 0 or by < 0 or bz < 0 or bx > nx - 3 or by > ny - 3 or bz > nz - 3:
+            flag_failure(fail_step, fail_particle, s, FLAG_OUT_OF_GRID, clock_step[0] + 1, p - scene_start[s])
+            continue
+        fx = local - wp.vec3(float(bx), float(by), float(bz))
+        wx = quadratic_weights(fx[0])
+        wy = quadratic_weights(fx[1])
+        wz = quadratic_weights(fx[2])
+
+        dt = dt_arr[0]
+        J = wp.determinant(Fp)
+        mu = scene_mu[s]
+        lam = scene_lambda[s]
+        # Kirchhoff stress tau = mu (F F^T - I) + lambda ln(J) I  (neo-Hookean)
+        tau = mu * (Fp * wp.transpose(Fp) - wp.identity(n=3, dtype=float)) + lam * wp.log(
+            wp.max(J, 1.0e-6)
+        ) * wp.identity(n=3, dtype=float)
+        m = particle_mass[p]
+        affine = (-dt * particle_vol[p] * 4.0 * inv_dx * inv_dx) * tau + m * Cp
+        # momentum at node offset (i,j,k): w * (m v + A (ijk - fx) dx) = w * (q0 + i a0 + j a1 + k a2)
+        q0v = m * vp - affine * (fx * dx)
+        q0 = wp.vec4(q0v[0], q0v[1], q0v[2], m)
+        a0 = wp.vec4(affine[0, 0] * dx, affine[1, 0] * dx, affine[2, 0] * dx, 0.0)
+        a1 = wp.vec4(affine[0, 1] * dx, affine[1, 1] * dx, affine[2, 1] * dx, 0.0)
+        a2 = wp.vec4(affine[0, 2] * dx, affine[1, 2] * dx, affine[2, 2] * dx, 0.0)
+        nyz = ny * nz
+        base = s * nx * nyz + bx * nyz + by * nz + bz
+        qi = q0
+        for i in range(3):
+            qij = qi
+            for j in range(3):
+                wij = wx[i] * wy[j]
+                row = base + i * nyz + j * nz
+                wp.atomic_add(grid_mvm, row, (wij * wz[0]) * qij)
+                q1 = qij + a2
+                wp.atomic_add(grid_mvm, row + 1, (wij * wz[1]) * q1)
+                wp.atomic_add(grid_mvm, row + 2, (wij * wz[2]) * (q1 + a2))
+                qij = qij + a1
+            qi = qi + a0
+
+
+@wp.kernel
+def grid_update(
+    grid_mvm: wp.array(dtype=wp.vec4),
+    grid_v: wp.array(dtype=wp.vec3),
+    grid_origin: wp.array(dtype=wp.vec3i),
+    nx: int,
+    ny: int,
+    nz: int,
+    dx: float,
+    dt_arr: wp.array(dtype=float),
+    scene_gravity: wp.array(dtype=wp.vec3),
+    scene_damping: wp.array(dtype=float),
+    ground_enabled: wp.array(dtype=wp.int32),
+    ground_height: wp.array(dtype=float),
+    ground_mu: wp.array(dtype=float),
+    ground_impulse: wp.array(dtype=wp.vec3),
+    col_start: wp.array(dtype=wp.int32),
+    col_count: wp.array(dtype=wp.int32),
+    col_kind: wp.array(dtype=wp.int32),
+    col_params: wp.array(dtype=wp.vec3),
+    col_radius2: wp.array(dtype=float),
+    col_mu: wp.array(dtype=float),
+    col_bonded: wp.array(dtype=wp.int32),
+    col_pos: wp.array(dtype=wp.vec3),
+    col_rot: wp.array(dtype=wp.quat),
+    col_lin_vel: wp.array(dtype=wp.vec3),
+    col_ang_vel: wp.array(dtype=wp.vec3),
+    col_impulse: wp.array(dtype=wp.vec3),
+    clock_time: wp.array(dtype=wp.float64),
+    clock_step: wp.array(dtype=wp.int32),
+    per_thread: int,
+    n_items: int,
+):
+    """Grid: momentum -> velocity, gravity, damping rate, ground + collider contact; clears the scatter buffer.
+
+    Impulses accumulated in ``ground_impulse`` / ``col_impulse`` are J = m_node (v+ - v) [N s]: the momentum the
+    ground/collider gives the OBJECT. The force the object exerts on the collider is -sum(J)/interval.
+    """
+    t = wp.tid()
+    for n in range(t * per_thread, wp.min((t + 1) * per_thread, n_items)):
+        if n == 0:
+            clock_time[0] = clock_time[0] + wp.float64(dt_arr[0])
+            clock_step[0] = clock_step[0] + 1
+        mvm = grid_mvm[n]
+        grid_mvm[n] = wp.vec4(0.0, 0.0, 0.0, 0.0)
+        m = mvm[3]
+        if m <= 0.0:
+            grid_v[n] = wp.vec3(0.0, 0.0, 0.0)
+            continue
+        dt = dt_arr[0]
+        cells = nx * ny * nz
+        s = n // cells
+        r = n - s * cells
+        i = r // (ny * nz)
+        j = (r // nz) % ny
+        k = r % nz
+        v = wp.vec3(mvm[0], mvm[1], mvm[2]) / m
+        v = (v + dt * scene_gravity[s]) * wp.exp(-scene_damping[s] * dt)
+        o = grid_origin[s]
+        xn = wp.vec3(float(o[0] + i), float(o[1] + j), float(o[2] + k)) * dx
+        if ground_enabled[s] != 0:
+            if xn[2] <= ground_height[s]:
+                vplus = contact_velocity(v, wp.vec3(0.0, 0.0, 0.0), wp.vec3(0.0, 0.0, 1.0), ground_mu[s], 0)
+                wp.atomic_add(ground_impulse, s, m * (vplus - v))
+                v = vplus
+        c0 = col_start[s]
+        for c in range(c0, c0 + col_count[s]):
+            rel = xn - col_pos[c]
+            if wp.dot(rel, rel) > col_radius2[c]:
+                continue  # outside the collider's bounding sphere
+            q = collider_contact(col_kind[c], col_params[c], col_pos[c], col_rot[c], col_lin_vel[c], col_ang_vel[c], xn)
+            if q[2, 0] <= 0.0:
+                vplus = contact_velocity(v, wp.vec3(q[1, 0], q[1, 1], q[1, 2]), wp.vec3(q[0, 0], q[0, 1], q[0, 2]),
+                                         col_mu[c], col_bonded[c])
+                wp.atomic_add(col_impulse, c, m * (vplus - v))
+                v = vplus
+        grid_v[n] = v
+
+
+@wp.kernel
+def g2p_apic(
+    x: wp.array(dtype=wp.vec3),
+    v: wp.array(dtype=wp.vec3),
+    C: wp.array(dtype=wp.mat33),
+    F: wp.array(dtype=wp.mat33),
+    particle_mass: wp.array(dtype=float),
+    particle_scene: wp.array(dtype=wp.int32),
+    scene_start: wp.array(dtype=wp.int32),
+    grid_v: wp.array(dtype=wp.vec3),
+    grid_origin: wp.array(dtype=wp.vec3i),
+    nx: int,
+    ny: int,
+    nz: int,
+    dx: float,
+    dt_arr: wp.array(dtype=float),
+    scene_gravity: wp.array(dtype=wp.vec3),
+    ground_enabled: wp.array(dtype=wp.int32),
+    ground_height: wp.array(dtype=float),
+    ground_mu: wp.array(dtype=float),
+    ground_impulse: wp.array(dtype=wp.vec3),
+    col_start: wp.array(dtype=wp.int32),
+    col_count: wp.array(dtype=wp.int32),
+    col_kind: wp.array(dtype=wp.int32),
+    col_params: wp.array(dtype=wp.vec3),
+    col_radius2: wp.array(dtype=float),
+    col_mu: wp.array(dtype=float),
+    col_bonded: wp.array(dtype=wp.int32),
+    col_pos_end: wp.array(dtype=wp.vec3),
+    col_rot_end: wp.array(dtype=wp.quat),
+    col_lin_vel: wp.array(dtype=wp.vec3),
+    col_ang_vel: wp.array(dtype=wp.vec3),
+    col_impulse: wp.array(dtype=wp.vec3),
+    domain_lo: wp.array(dtype=wp.vec3),
+    domain_hi: wp.array(dtype=wp.vec3),
+    j_min: float,
+    j_max: float,
+    clock_step: wp.array(dtype=wp.int32),
+    fail_step: wp.array(dtype=wp.int32),
+    fail_particle: wp.array(dtype=wp.int32),
+    x_out: wp.array(dtype=wp.vec3),
+    v_out: wp.array(dtype=wp.vec3),
+    C_out: wp.array(dtype=wp.mat33),
+    F_out: wp.array(dtype=wp.mat33),
+    per_thread: int,
+    n_items: int,
+):
+    """Grid to particle: gather velocity and APIC affine field, advect, update F, fix penetration, check health."""
+    t = wp.tid()
+    for p in range(t * per_thread, wp.min((t + 1) * per_thread, n_items)):
+        s = particle_scene[p]
+        pl = p - scene_start[s]
+        step = clock_step[0]
+        xp = x[p]
+        vp = v[p]
+        Fp = F[p]
+        Cp = C[p]
+        chk = xp[0] + xp[1] + xp[2] + vp[0] + vp[1] + vp[2] + wp.ddot(Fp, Fp) + wp.ddot(Cp, Cp)
+        if not wp.isfinite(chk):
+            flag_failure(fail_step, fail_particle, s, FLAG_NONFINITE, step, pl)
+            continue  # frozen: never spreads into the grid
+        dt = dt_arr[0]
+        inv_dx = 1.0 / dx
+        o = grid_origin[s]
+        local = xp * inv_dx - wp.vec3(float(o[0]), float(o[1]), float(o[2]))
+        bx = int(wp.floor(local[0] - 0.5))
+        by = int(wp.floor(local[1] - 0.5))
+        bz = int(wp.floor(local[2] - 0.5))
+        vn = wp.vec3(0.0, 0.0, 0.0)
+        Cn = wp.mat33(0.0)
+        if bx < 0 or by < 0 or bz < 0 or bx > nx - 3 or by > ny - 3 or bz > nz - 3:
+            vn = vp + dt * scene_gravity[s]  # outside the grid window: ballistic (flagged in p2g)
+        else:
+            fx = local - wp.vec3(float(bx), float(by), float(bz))
+            wx = quadratic_weights(fx[0])
+            wy = quadratic_weights(fx[1])
+            wz = quadratic_weights(fx[2])
+            nyz = ny * nz
+            base = s * nx * nyz + bx * nyz + by * nz + bz
+            si = wp.vec3(0.0, 0.0, 0.0)
+            sj = wp.vec3(0.0, 0.0, 0.0)
+            sk = wp.vec3(0.0, 0.0, 0.0)
+            for i in range(3):
+                bi = base + i * nyz
+                r0 = gather_row(grid_v, bi, wz)
+                r1 = gather_row(grid_v, bi + nz, wz)
+                r2 = gather_row(grid_v, bi + 2 * nz, wz)
+                # r = (sum_k w_k v_k, sum_k k w_k v_k) per row j
+                p0 = wy[0] * wp.vec3(r0[0, 0], r0[0, 1], r0[0, 2])
+                p1 = wy[1] * wp.vec3(r1[0, 0], r1[0, 1], r1[0, 2])
+                p2 = wy[2] * wp.vec3(r2[0, 0], r2[0, 1], r2[0, 2])
+                ps = p0 + p1 + p2
+                pj = p1 + 2.0 * p2
+                pk = (wy[0] * wp.vec3(r0[1, 0], r0[1, 1], r0[1, 2]) + wy[1] * wp.vec3(r1[1, 0], r1[1, 1], r1[1, 2])
+                      + wy[2] * wp.vec3(r2[1, 0], r2[1, 1], r2[1, 2]))
+                b = wx[i] * ps
+                vn += b
+                if i > 0:
+                    si += float(i) * b
+                sj += wx[i] * pj
+                sk += wx[i] * pk
+            # B = sum w v (ijk - fx)^T dx ; C = 4 B / dx^2
+            scale = 4.0 * inv_dx
+            c0 = (si - fx[0] * vn) * scale
+            c1 = (sj - fx[1] * vn) * scale
+            c2 = (sk - fx[2] * vn) * scale
+            Cn = wp.mat33(c0[0], c1[0], c2[0], c0[1], c1[1], c2[1], c0[2], c1[2], c2[2])
+        xn = xp + dt * vn
+        Fn = Fp + dt * (Cn * Fp)
+        m = particle_mass[p]
+        # residual penetration: push the particle back to the surface, remove inward relative velocity
+        if ground_enabled[s] != 0:
+            gh = ground_height[s]
+            if xn[2] < gh:
+                xn = wp.vec3(xn[0], xn[1], gh)
+                vplus = contact_velocity(vn, wp.vec3(0.0, 0.0, 0.0), wp.vec3(0.0, 0.0, 1.0), ground_mu[s], 0)
+                wp.atomic_add(ground_impulse, s, m * (vplus - vn))
+                vn = vplus
+        c_first = col_start[s]
+        for c in range(c_first, c_first + col_count[s]):
+            rel = xn - col_pos_end[c]
+            if wp.dot(rel, rel) > col_radius2[c]:
+                continue
+            q = collider_contact(col_kind[c], col_params[c], col_pos_end[c], col_rot_end[c], col_lin_vel[c],
+                                 col_ang_vel[c], xn)
+            phi = q[2, 0]
+            if phi < 0.0:
+                nrm = wp.vec3(q[0, 0], q[0, 1], q[0, 2])
+                xn = xn - phi * nrm
+                vplus = contact_velocity(vn, wp.vec3(q[1, 0], q[1, 1], q[1, 2]), nrm, col_mu[c], col_bonded[c])
+                wp.atomic_add(col_impulse, c, m * (vplus - vn))
+                vn = vplus
+        # health
+        J = wp.determinant(Fn)
+        chk2 = xn[0] + xn[1] + xn[2] + vn[0] + vn[1] + vn[2] + J + wp.ddot(Cn, Cn)
+        if not wp.isfinite(chk2):
+            flag_failure(fail_step, fail_particle, s, FLAG_NONFINITE, step, pl)
+        else:
+            if J < j_min or J > j_max:
+                flag_failure(fail_step, fail_particle, s, FLAG_J_OUT_OF_BOUNDS, step, pl)
+            lo = domain_lo[s]
+            hi = domain_hi[s]
+            if xn[0] < lo[0] or xn[1] < lo[1] or xn[2] < lo[2] or xn[0] > hi[0] or xn[1] > hi[1] or xn[2] > hi[2]:
+                flag_failure(fail_step, fail_particle, s, FLAG_LEFT_DOMAIN, step, pl)
+        x_out[p] = xn
+        v_out[p] = vn
+        C_out[p] = Cn
+        F_out[p] = Fn
+
+
+@wp.kernel
+def reset_scene_stats(
+    bmin: wp.array(dtype=wp.vec3),
+    bmax: wp.array(dtype=wp.vec3),
+    speed_max: wp.array(dtype=float),
+    kinetic: wp.array(dtype=float),
+):
+    """Reset the per-scene reductions before ``reduce_scene_stats``."""
+    s = wp.tid()
+    bmin[s] = wp.vec3(BIG, BIG, BIG)
+    bmax[s] = wp.vec3(-BIG, -BIG, -BIG)
+    speed_max[s] = 0.0
+    kinetic[s] = 0.0
+
+
+@wp.kernel
+def reduce_scene_stats(
+    x: wp.array(dtype=wp.vec3),
+    v: wp.array(dtype=wp.vec3),
+    particle_mass: wp.array(dtype=float),
+    chunk_scene: wp.array(dtype=wp.int32),
+    chunk_begin: wp.array(dtype=wp.int32),
+    chunk_end: wp.array(dtype=wp.int32),
+    domain_lo: wp.array(dtype=wp.vec3),
+    domain_hi: wp.array(dtype=wp.vec3),
+    bmin: wp.array(dtype=wp.vec3),
+    bmax: wp.array(dtype=wp.vec3),
+    speed_max: wp.array(dtype=float),
+    kinetic: wp.array(dtype=float),
+):
+    """Per scene: bounds [m] of the finite in-domain particles, max speed [m/s], kinetic energy [J] (chunked)."""
+    c = wp.tid()
+    s = chunk_scene[c]
+    lo = wp.vec3(BIG, BIG, BIG)
+    hi = wp.vec3(-BIG, -BIG, -BIG)
+    vm = float(0.0)
+    ke = float(0.0)
+    dlo = domain_lo[s]
+    dhi = domain_hi[s]
+    for p in range(chunk_begin[c], chunk_end[c]):
+        xp = x[p]
+        vp = v[p]
+        v2 = wp.dot(vp, vp)
+        if wp.isfinite(xp[0] + xp[1] + xp[2] + v2):
+            ke += 0.5 * particle_mass[p] * v2
+            vm = wp.max(vm, v2)
+            inside = xp[0] >= dlo[0] and xp[1] >= dlo[1] and xp[2] >= dlo[2]
+            inside = inside and xp[0] <= dhi[0] and xp[1] <= dhi[1] and xp[2] <= dhi[2]
+            if inside:
+                lo = wp.min(lo, xp)
+                hi = wp.max(hi, xp)
+        else:
+            ke += BIG
+    wp.atomic_min(bmin, s, lo)
+    wp.atomic_max(bmax, s, hi)
+    wp.atomic_max(speed_max, s, wp.sqrt(vm))
+    wp.atomic_add(kinetic, s, ke)
+
+
+@wp.kernel
+def fit_grid(
+    bmin: wp.array(dtype=wp.vec3),
+    bmax: wp.array(dtype=wp.vec3),
+    nx: int,
+    ny: int,
+    nz: int,
+    dx: float,
+    guard_cells: int,
+    grid_origin: wp.array(dtype=wp.vec3i),
+    grid_overflow: wp.array(dtype=wp.int32),
+):
+    """Centre each scene's grid window on its particles' bounds; flag a scene whose bounds no longer fit."""
+    s = wp.tid()
+    lo = bmin[s]
+    hi = bmax[s]
+    if lo[0] > hi[0]:
+        return
+    inv_dx = 1.0 / dx
+    c = 0.5 * (lo + hi) * inv_dx
+    grid_origin[s] = wp.vec3i(
+        int(wp.floor(c[0])) - nx // 2, int(wp.floor(c[1])) - ny // 2, int(wp.floor(c[2])) - nz // 2
+    )
+    ext = (hi - lo) * inv_dx
+    g = float(2 * guard_cells + 3)
+    if ext[0] + g > float(nx) or ext[1] + g > float(ny) or ext[2] + g > float(nz):
+        grid_overflow[s] = 1

@@ -1,0 +1,254 @@
+"""Solver: the only thing that advances time — one MLS-MPM step per call, on the model's device."""
+
+from __future__ import annotations
+
+import numpy as np
+import warp as wp
+
+from tasks.mpm import kernels as K
+from tasks.mpm.control import Control
+from tasks.mpm.model import Model
+from tasks.mpm.state import State
+
+INT_MAX = 2**31 - 1
+
+
+class Solver:
+    """MLS-MPM with neo-Hookean stress, grid Coulomb contact and device-side health flags.
+
+    Owns the grid window (fitted to the particles and moved with them), the device clock (time [s], step count),
+    the contact impulse accumulators and the failure tables. ``step`` issues only kernel launches (no host sync);
+    on CUDA the launches of one step are captured once into a graph and replayed.
+    """
+
+    def __init__(self, model: Model, use_graph: bool | None = None) -> None:
+        self.model = model
+        d = model.device
+        self.device = d
+        B = model.n_scenes
+        nc = max(1, model.n_colliders)
+        self.use_graph = (d == "cuda") if use_graph is None else (bool(use_graph) and d == "cuda")
+        self._graphs: dict[tuple, object] = {}
+        # CPU: one "thread" loops over a block of items (amortises Warp's per-thread argument copy); GPU: one each
+        self._per_thread = 1 if d == "cuda" else 2048
+        self.dt_arr = wp.zeros(1, dtype=float, device=d)
+        self._dt_host = -1.0
+        self.clock_time = wp.zeros(1, dtype=wp.float64, device=d)
+        self.clock_step = wp.zeros(1, dtype=wp.int32, device=d)
+        self.time_s = 0.0  # host mirror of clock_time (same float32 dt summed in float64)
+        self.steps = 0
+        self._since_refit = 0
+        self.ground_impulse = wp.zeros(B, dtype=wp.vec3, device=d)
+        self.collider_impulse = wp.zeros(nc, dtype=wp.vec3, device=d)
+        self.fail_step = wp.full(B * K.N_FLAGS, INT_MAX, dtype=wp.int32, device=d)
+        self.fail_particle = wp.full(B * K.N_FLAGS, INT_MAX, dtype=wp.int32, device=d)
+        self.bmin = wp.zeros(B, dtype=wp.vec3, device=d)
+        self.bmax = wp.zeros(B, dtype=wp.vec3, device=d)
+        self.speed_max = wp.zeros(B, dtype=float, device=d)
+        self.kinetic = wp.zeros(B, dtype=float, device=d)
+        self.grid_overflow = wp.zeros(B, dtype=wp.int32, device=d)
+        self.col_pos0 = wp.zeros(nc, dtype=wp.vec3, device=d)
+        self.col_rot0 = wp.zeros(nc, dtype=wp.quat, device=d)
+        self.col_pos1 = wp.zeros(nc, dtype=wp.vec3, device=d)
+        self.col_rot1 = wp.zeros(nc, dtype=wp.quat, device=d)
+        self.grid_origin = wp.zeros(B, dtype=wp.vec3i, device=d)
+        self._alloc_grid(model.grid_dims)
+        self._initial_fit = True
+
+    # -- grid ----------------------------------------------------------------------------------------------------
+    def _alloc_grid(self, dims: tuple[int, int, int]) -> None:
+        """Allocate (and zero) the scatter buffer and node velocities for B windows of dims nodes."""
+        self.grid_dims = tuple(int(n) for n in dims)
+        nodes = self.model.n_scenes * self.grid_dims[0] * self.grid_dims[1] * self.grid_dims[2]
+        self.grid_mvm = wp.zeros(nodes, dtype=wp.vec4, device=self.device)
+        self.grid_v = wp.zeros(nodes, dtype=wp.vec3, device=self.device)
+        self._graphs.clear()
+        self._since_refit = self.model.refit_interval  # refit at the next step
+
+    def grow_grid(self, needed_extent_cells: np.ndarray) -> None:
+        """Reallocate larger windows so that an extent [cells] plus margins fits (called by the rollout)."""
+        m = self.model
+        new = []
+        for a, e in enumerate(needed_extent_cells):
+            want = int(np.ceil(e)) + 2 * m.margin_cells + 4
+            new.append(max(self.grid_dims[a], int(np.ceil(want * 1.25))))
+        self._alloc_grid(tuple(new))  # type: ignore[arg-type]
+        self.grid_overflow.zero_()
+
+    @property
+    def grid_nodes(self) -> int:
+        """Number of grid nodes over all scenes."""
+        return int(self.grid_mvm.shape[0])
+
+    # -- step ----------------------------------------------------------------------------------------------------
+    def set_dt(self, dt: float) -> float:
+        """Set the device time step [s] (float32); returns the value actually used."""
+        dt32 = float(np.float32(dt))
+        if dt32 != self._dt_host:
+            self.dt_arr.fill_(dt32)
+            self._dt_host = dt32
+        return dt32
+
+    def step(self, state_in: State, state_out: State, control: Control, dt: float) -> None:
+        """Advance all scenes by dt [s]: state_out = step(state_in); state_out may be state_in (in place)."""
+        if not (dt > 0.0) or not np.isfinite(dt):
+            raise ValueError("dt must be a positive finite number of seconds")
+        control.sync(self.time_s)
+        dt32 = self.set_dt(dt)
+        refit = self._since_refit >= self.model.refit_interval
+        key = (id(state_in), id(state_out), id(control), refit, self.grid_dims)
+        entry = self._graphs.get(key)
+        if entry is None:
+            # recorded launches (arguments packed once); on CUDA captured into one graph
+            cmds = self._record_step(state_in, state_out, control, refit)
+            graph = None
+            if self.use_graph:
+                wp.load_module(K, device=self.device)
+                with wp.ScopedCapture(device=self.device, force_module_load=False) as cap:
+                    for cmd in cmds:
+                        cmd.launch()
+                graph = cap.graph
+            entry = (cmds, graph, state_in, state_out, control)  # keep the arrays alive while cached
+            self._graphs[key] = entry
+        cmds, graph = entry[0], entry[1]
+        if graph is not None:
+            wp.capture_launch(graph)
+        else:
+            for cmd in cmds:
+                cmd.launch()
+        self._since_refit = 0 if refit else self._since_refit + 1
+        self.steps += 1
+        self.time_s += dt32
+
+    def refit(self, state: State) -> None:
+        """Move each scene's grid window onto its particles now (device only, no sync)."""
+        self._launch_refit(state)
+        self._since_refit = 0
+
+    def _launch_refit(self, state: State) -> None:
+        """Launch the per-scene bounds reduction and the window fit."""
+        for cmd in self._record_refit(state):
+            cmd.launch()
+
+    def _record_refit(self, state: State) -> list:
+        """Recorded launches of the per-scene bounds reduction and the window fit."""
+        m = self.model
+        d = self.device
+        B = m.n_scenes
+        cmds = []
+        cmds.append(wp.launch(K.reset_scene_stats, dim=B, inputs=[self.bmin, self.bmax, self.speed_max, self.kinetic],
+                              device=d, record_cmd=True))
+        cmds.append(wp.launch(
+            K.reduce_scene_stats,
+            dim=m.n_chunks,
+            inputs=[state.x, state.v, m.particle_mass, m.chunk_scene, m.chunk_begin, m.chunk_end, m.domain_lo,
+                    m.domain_hi, self.bmin, self.bmax, self.speed_max, self.kinetic],
+            device=d,
+            record_cmd=True,
+        ))
+        nx, ny, nz = self.grid_dims
+        cmds.append(wp.launch(
+            K.fit_grid,
+            dim=B,
+            inputs=[self.bmin, self.bmax, nx, ny, nz, m.dx, m.guard_cells, self.grid_origin, self.grid_overflow],
+            device=d,
+            record_cmd=True,
+        ))
+        return cmds
+
+    def _record_step(self, state_in: State, state_out: State, control: Control, refit: bool) -> list:
+        """Recorded launches of one step (replayed directly on CPU, captured into a graph on CUDA)."""
+        m = self.model
+        d = self.device
+        nx, ny, nz = self.grid_dims
+        cmds = self._record_refit(state_in) if refit else []
+        if m.n_colliders:
+            cmds.append(wp.launch(
+                K.update_collider_poses,
+                dim=m.n_colliders,
+                inputs=[control.d_ref_pos, control.d_ref_rot, control.d_ref_time, control.d_lin_vel,
+                        control.d_ang_vel, self.clock_time, self.dt_arr, self.col_pos0, self.col_rot0,
+                        self.col_pos1, self.col_rot1],
+                device=d,
+                record_cmd=True,
+            ))
+        cmds.append(wp.launch(
+            K.p2g_apic_neohookean,
+            dim=self._threads(m.n_particles),
+            inputs=[state_in.x, state_in.v, state_in.C, state_in.F, m.particle_mass, m.particle_vol,
+                    m.particle_scene, m.scene_start, m.scene_mu, m.scene_lambda, self.grid_origin, nx, ny, nz,
+                    m.dx, self.dt_arr, self.clock_step, self.grid_mvm, self.fail_step, self.fail_particle, self._per_thread,
+                    m.n_particles],
+            device=d,
+            record_cmd=True,
+        ))
+        cmds.append(wp.launch(
+            K.grid_update,
+            dim=self._threads(self.grid_nodes),
+            inputs=[self.grid_mvm, self.grid_v, self.grid_origin, nx, ny, nz, m.dx, self.dt_arr, control.d_gravity,
+                    m.scene_damping, m.ground_enabled, m.ground_height, m.ground_mu, self.ground_impulse,
+                    m.col_start, m.col_count, m.col_kind, m.col_params, m.col_radius2, m.col_mu, m.col_bonded, self.col_pos0,
+                    self.col_rot0, control.d_lin_vel, control.d_ang_vel, self.collider_impulse, self.clock_time,
+                    self.clock_step, self._per_thread, self.grid_nodes],
+            device=d,
+            record_cmd=True,
+        ))
+        cmds.append(wp.launch(
+            K.g2p_apic,
+            dim=self._threads(m.n_particles),
+            inputs=[state_in.x, state_in.v, state_in.C, state_in.F, m.particle_mass, m.particle_scene,
+                    m.scene_start, self.grid_v, self.grid_origin, nx, ny, nz, m.dx, self.dt_arr, control.d_gravity,
+                    m.ground_enabled, m.ground_height, m.ground_mu, self.ground_impulse, m.col_start, m.col_count,
+                    m.col_kind, m.col_params, m.col_radius2, m.col_mu, m.col_bonded, self.col_pos1, self.col_rot1,
+                    control.d_lin_vel, control.d_ang_vel, self.collider_impulse, m.domain_lo, m.domain_hi,
+                    float(m.config.j_min), float(m.config.j_max), self.clock_step, self.fail_step,
+                    self.fail_particle, state_out.x, state_out.v, state_out.C, state_out.F, self._per_thread,
+                    m.n_particles],
+            device=d,
+            record_cmd=True,
+        ))
+        return cmds
+
+    def _threads(self, n: int) -> int:
+        """Launch dimension covering n items at self._per_thread items per thread."""
+        return (n + self._per_thread - 1) // self._per_thread
+
+    # -- readback (host syncs: call every N steps, not every step) ------------------------------------------------
+    def read_impulses(self, reset: bool = True) -> tuple[np.ndarray, np.ndarray]:
+        """Accumulated impulses [N s] given TO the object: ground (B,3), colliders (n_colliders,3); then zero them."""
+        g = self.ground_impulse.numpy().astype(np.float64)
+        c = self.collider_impulse.numpy().astype(np.float64)[: self.model.n_colliders]
+        if reset:
+            self.ground_impulse.zero_()
+            self.collider_impulse.zero_()
+        return g, c
+
+    def read_failures(self) -> tuple[np.ndarray, np.ndarray]:
+        """Failure tables (B, N_FLAGS): earliest step (INT_MAX = none) and lowest scene-local particle index."""
+        B = self.model.n_scenes
+        return (
+            self.fail_step.numpy().reshape(B, K.N_FLAGS),
+            self.fail_particle.numpy().reshape(B, K.N_FLAGS),
+        )
+
+    def clear_flag(self, code: int) -> None:
+        """Reset one check's column of the failure tables (used for the recoverable out-of-grid flag)."""
+        B = self.model.n_scenes
+        fs = self.fail_step.numpy().reshape(B, K.N_FLAGS)
+        fp = self.fail_particle.numpy().reshape(B, K.N_FLAGS)
+        fs[:, code] = INT_MAX
+        fp[:, code] = INT_MAX
+        self.fail_step.assign(fs.reshape(-1))
+        self.fail_particle.assign(fp.reshape(-1))
+
+    def scene_stats(self, state: State) -> dict[str, np.ndarray]:
+        """Fresh per-scene bounds [m], max speed [m/s], kinetic energy [J] and grid overflow flags (one sync)."""
+        self._launch_refit(state)
+        self._since_refit = 0
+        return {
+            "bmin": self.bmin.numpy().astype(np.float64),
+            "bmax": self.bmax.numpy().astype(np.float64),
+            "speed_max": self.speed_max.numpy().astype(np.float64),
+            "kinetic": self.kinetic.numpy().astype(np.float64),
+            "overflow": self.grid_overflow.numpy(),
+        }
