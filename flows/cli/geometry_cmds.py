@@ -1,0 +1,146 @@
+"""`deformsmith geometry` (L0 alone) and `deformsmith bench geometry`."""
+
+from __future__ import annotations
+
+import json
+import os
+import subprocess
+import sys
+import tempfile
+from pathlib import Path
+
+import typer
+from pydantic import ValidationError
+
+from flows.cli.apps import app, bench_app, console, emit_json, fail
+
+QUALITIES = ("draft", "standard", "high")
+
+
+@app.command("geometry")
+def geometry(
+    text: str = typer.Argument(None, help="description, e.g. 'a soft plush turtle toy, about 25 cm long'"),
+    image: Path = typer.Option(None, "--image", help="PNG/JPEG of the object (text, if given, describes it)"),
+    mesh: Path = typer.Option(None, "--mesh", help="OBJ/PLY/STL/GLB/OFF mesh (units: metres unless --size-m)"),
+    out: Path = typer.Option(..., "--out", help="output directory (written atomically)"),
+    quality: str = typer.Option("draft", "--quality", help="draft | standard | high"),
+    size_m: float = typer.Option(None, "--size-m", help="longest extent of the object [m]"),
+    seed: int = typer.Option(0, "--seed", help="seed of every random choice"),
+    no_cache: bool = typer.Option(False, "--no-cache", help="run the plain functions, without Prefect or the cache"),
+    as_json: bool = typer.Option(False, "--json", help="print geometry.json to stdout"),
+) -> None:
+    """Run L0 alone: text, image or mesh -> mesh.glb, collision/, particles.zarr, gaussians.ply, renders/, geometry.json."""
+    if quality not in QUALITIES:
+        fail(f"--quality must be one of {', '.join(QUALITIES)}, not '{quality}'")
+    if size_m is not None and not (0.01 <= size_m <= 2.0):
+        fail(f"--size-m {size_m:g} m is outside the supported range [0.01, 2] m")
+    from contracts.request import AssetRequest
+
+    try:
+        request = AssetRequest(text=text, image_path=image, mesh_path=mesh, size_hint_m=size_m, seed=seed,
+                               quality=quality)  # type: ignore[arg-type]
+    except ValidationError as exc:
+        fail("; ".join(e["msg"].removeprefix("Value error, ") for e in exc.errors()))
+    os.environ.setdefault("PREFECT_LOGGING_LEVEL", "WARNING")
+    from flows.l0_geometry import run_l0, write_l0
+
+    with console.status(f"L0 geometry ({quality})..."):
+        result = run_l0(request, use_cache=not no_cache)
+        write_l0(result, out)
+    record = json.loads((out / "geometry.json").read_text(encoding="utf-8"))
+    if as_json:
+        emit_json(record)
+    m = result.checks.metrics
+    console.print(
+        f"[bold]{result.info.name}[/] ({result.info.source}): {m['extent_x_m']:.3f} x {m['extent_y_m']:.3f} x "
+        f"{m['extent_z_m']:.3f} m, {m['volume_m3'] * 1e6:.1f} cm^3, {int(m['particle_count'])} particles, "
+        f"{int(m['gaussian_count'])} Gaussians, {int(m['proxy_parts'])} convex parts -> {out}"
+    )
+    for w in result.info.warnings:
+        console.print(f"[yellow]warning:[/] {w}")
+    if not result.checks.passed:
+        fail(f"L0 hard gates failed: {', '.join(result.checks.failed)} (outputs kept in {out} as evidence)", code=1)
+
+
+_BENCH_CASE = r"""
+import json, resource, sys, time
+from contracts.request import AssetRequest
+from tasks.geometry import pipeline
+req = AssetRequest(**json.loads(sys.argv[1]))
+s = pipeline.settings_from_contract(sys.argv[2], seed=0)
+t = {}
+t0 = time.perf_counter(); mesh, info = pipeline.build_mesh(req, s); t["mesh_s"] = time.perf_counter() - t0
+t0 = time.perf_counter(); proxy = pipeline.build_proxy(mesh, s.coacd); t["coacd_s"] = time.perf_counter() - t0
+t0 = time.perf_counter(); parts = pipeline.build_particles(mesh, s.particles); t["particles_s"] = time.perf_counter() - t0
+t0 = time.perf_counter(); g = pipeline.build_gaussians(mesh, parts, s); t["gaussians_s"] = time.perf_counter() - t0
+t0 = time.perf_counter(); ch = pipeline.check_geometry(mesh, proxy, parts, g); t["checks_s"] = time.perf_counter() - t0
+import tempfile, pathlib
+from tasks.geometry.outputs import write_outputs
+with tempfile.TemporaryDirectory() as d:
+    t0 = time.perf_counter(); write_outputs(pathlib.Path(d), mesh, proxy, parts, g, info, ch); t["write_s"] = time.perf_counter() - t0
+t["total_s"] = sum(t.values())
+t["coacd_fraction"] = t["coacd_s"] / t["total_s"]
+t["peak_rss_mb"] = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0
+t.update(particles=len(parts["positions_m"]), gaussians=len(g["positions_m"]), faces=len(mesh["faces"]),
+         convex_parts=len(proxy["part_face_count"]), gates_passed=ch.passed)
+print(json.dumps(t))
+"""
+
+_BENCH_CACHE = r"""
+import json, sys, time
+from contracts.request import AssetRequest
+from flows.l0_geometry import run_l0
+req = AssetRequest(**json.loads(sys.argv[1]))
+t0 = time.perf_counter(); run_l0(req, "draft"); first = time.perf_counter() - t0
+t0 = time.perf_counter(); run_l0(req, "draft"); second = time.perf_counter() - t0
+print(json.dumps({"first_run_s": first, "cache_hit_rerun_s": second}))
+"""
+
+
+def _run_case(code: str, *args: str, env: dict[str, str] | None = None) -> dict:
+    proc = subprocess.run([sys.executable, "-c", code, *args], capture_output=True, text=True,
+                          env={**os.environ, **(env or {})})
+    if proc.returncode != 0:
+        fail(f"benchmark case failed: {proc.stderr.strip().splitlines()[-1] if proc.stderr.strip() else proc.returncode}")
+    return json.loads(proc.stdout.strip().splitlines()[-1])
+
+
+@bench_app.command("geometry")
+def bench_geometry(
+    as_json: bool = typer.Option(False, "--json", help="print the figures as JSON"),
+    skip_cache: bool = typer.Option(False, "--skip-cache", help="skip the cache-hit measurement (Prefect start-up)"),
+    qualities: str = typer.Option(",".join(QUALITIES), "--qualities", help="comma-separated qualities"),
+) -> None:
+    """L0 wall time, peak memory and CoACD share for the plush turtle per quality and the largest pybullet_data mesh."""
+    import pybullet_data
+
+    turtle = json.dumps({"text": "a soft plush turtle toy, about 25 cm long"})
+    data = Path(pybullet_data.getDataPath())
+    candidates = [data / n for n in ("duck.obj", "teddy2_VHACD_CHs.obj", "bunny.obj", "torus/torus_textured.obj",
+                                     "soccerball.obj")]
+    largest = max(candidates, key=lambda p: p.stat().st_size)
+    mesh_req = json.dumps({"mesh_path": str(largest), "size_hint_m": 0.2})
+    figures: dict = {"turtle": {}, "largest_pybullet_mesh": {"file": largest.name}}
+    for q in qualities.split(","):
+        console.print(f"turtle, {q} ...")
+        figures["turtle"][q] = _run_case(_BENCH_CASE, turtle, q)
+        console.print(f"{largest.name}, {q} ...")
+        figures["largest_pybullet_mesh"][q] = _run_case(_BENCH_CASE, mesh_req, q)
+    if not skip_cache:
+        console.print("cache-hit rerun (Prefect flow, fresh cache) ...")
+        with tempfile.TemporaryDirectory() as d:
+            figures["turtle"]["cache"] = _run_case(_BENCH_CACHE, turtle, env={"DEFORMSMITH_CACHE": d,
+                                                                                "PREFECT_LOGGING_LEVEL": "WARNING"})
+    figures["cpu_count"] = os.cpu_count()
+    if as_json:
+        emit_json(figures)
+        return
+    for name in ("turtle", "largest_pybullet_mesh"):
+        for q, f in figures[name].items():
+            if isinstance(f, dict) and "total_s" in f:
+                console.print(f"{name:24s} {q:9s} total {f['total_s']:6.2f} s  coacd {f['coacd_s']:6.2f} s "
+                              f"({100 * f['coacd_fraction']:.0f}%)  peak {f['peak_rss_mb']:.0f} MB  "
+                              f"{f['particles']} particles")
+    if "cache" in figures["turtle"]:
+        c = figures["turtle"]["cache"]
+        console.print(f"flow first run {c['first_run_s']:.2f} s, cache-hit rerun {c['cache_hit_rerun_s']:.2f} s")

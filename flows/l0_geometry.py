@@ -1,0 +1,120 @@
+"""L0 geometry flow: build mesh -> convex proxy, particles, Gaussians -> checks (each a content-cached task)."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+from prefect import flow
+
+import cache
+from cache import cached_task
+from contracts.request import AssetRequest, Quality
+from contracts.stage import StageContract, load_contract
+from tasks.geometry import pipeline
+from tasks.geometry.checks import GeometryChecks
+from tasks.geometry.collision import CoacdSettings
+from tasks.geometry.particles import ParticleSettings
+from tasks.geometry.pipeline import Arrays, BuildInfo, L0Settings
+
+TASK_VERSION = "1"  # bump when tasks/geometry changes what these tasks return
+
+
+@dataclass(frozen=True)
+class L0Result:
+    """What L0 established: aligned mesh, convex proxy, particles, Gaussians, build record and gate results."""
+
+    mesh: Arrays
+    proxy: Arrays
+    particles: Arrays
+    gaussians: Arrays
+    info: BuildInfo
+    checks: GeometryChecks
+
+
+def geometry_request(request: AssetRequest) -> AssetRequest:
+    """The fields of a request that geometry depends on (material words or targets never invalidate L0)."""
+    return AssetRequest(text=request.text, image_path=request.image_path, mesh_path=request.mesh_path,
+                        size_hint_m=request.size_hint_m, seed=request.seed)
+
+
+@cached_task(version=TASK_VERSION, name="l0.mesh")
+def build_mesh(request: AssetRequest, settings: L0Settings) -> tuple[Arrays, BuildInfo]:
+    """Aligned, metric, watertight mesh with colours."""
+    return pipeline.build_mesh(request, settings)
+
+
+@cached_task(version=TASK_VERSION, name="l0.proxy")
+def build_proxy(mesh: Arrays, coacd: CoacdSettings) -> Arrays:
+    """CoACD convex collision proxy."""
+    return pipeline.build_proxy(mesh, coacd)
+
+
+@cached_task(version=TASK_VERSION, name="l0.particles")
+def build_particles(mesh: Arrays, particles: ParticleSettings) -> Arrays:
+    """MPM particles with volumes summing to the mesh volume."""
+    return pipeline.build_particles(mesh, particles)
+
+
+@cached_task(version=TASK_VERSION, name="l0.gaussians")
+def build_gaussians(mesh: Arrays, particles: Arrays, per_particle: float, surface_fraction: float,
+                    max_gaussians: int, seed: int) -> Arrays:
+    """Gaussians bound to the particles."""
+    s = L0Settings(quality="draft", marching_cubes_resolution=64,
+                   particles=ParticleSettings(cells_per_longest_extent=2, max_particles=1), coacd=CoacdSettings(),
+                   gaussians_per_particle=per_particle, gaussian_surface_fraction=surface_fraction,
+                   max_gaussians=max_gaussians, seed=seed)
+    return pipeline.build_gaussians(mesh, particles, s)
+
+
+@cached_task(version=TASK_VERSION, name="l0.checks")
+def check_geometry(mesh: Arrays, proxy: Arrays, particles: Arrays, gaussians: Arrays,
+                   contract: StageContract) -> GeometryChecks:
+    """Hard-gate metrics against the L0 contract."""
+    return pipeline.check_geometry(mesh, proxy, particles, gaussians, contract)
+
+
+@flow(name="l0-geometry", log_prints=False)
+def l0_geometry(request: AssetRequest, settings: L0Settings, contract: StageContract) -> L0Result:
+    """Build and check the geometry of one request."""
+    mesh, info = build_mesh(geometry_request(request), settings)
+    proxy = build_proxy(mesh, settings.coacd)
+    particles = build_particles(mesh, settings.particles)
+    gaussians = build_gaussians(mesh, particles, settings.gaussians_per_particle, settings.gaussian_surface_fraction,
+                                settings.max_gaussians, settings.seed)
+    checks = check_geometry(mesh, proxy, particles, gaussians, contract)
+    return L0Result(mesh, proxy, particles, gaussians, info, checks)
+
+
+def run_l0(request: AssetRequest, quality: Quality | None = None, contract: StageContract | None = None,
+           use_cache: bool = True, coacd_overrides: dict | None = None) -> L0Result:
+    """Run L0 for a request (the Prefect flow with cached tasks, or the plain functions with use_cache=False)."""
+    contract = contract or load_contract("L0")
+    settings = pipeline.settings_from_contract(quality or request.quality, contract, request.seed, coacd_overrides)
+    if not use_cache:
+        mesh, info = pipeline.build_mesh(geometry_request(request), settings)
+        proxy = pipeline.build_proxy(mesh, settings.coacd)
+        particles = pipeline.build_particles(mesh, settings.particles)
+        gaussians = pipeline.build_gaussians(mesh, particles, settings)
+        return L0Result(mesh, proxy, particles, gaussians, info,
+                        pipeline.check_geometry(mesh, proxy, particles, gaussians, contract))
+    with cache.local_runtime():
+        return l0_geometry(request, settings, contract)
+
+
+def write_l0(result: L0Result, out_dir: Path, extra: dict | None = None) -> dict[str, str]:
+    """Publish an L0 result into out_dir atomically (nothing is left behind on error)."""
+    from tasks.geometry.outputs import publish_dir, write_outputs
+
+    files: dict[str, str] = {}
+
+    def build(tmp: Path) -> None:
+        files.update(write_outputs(tmp, result.mesh, result.proxy, result.particles, result.gaussians, result.info,
+                                   result.checks, extra))
+
+    publish_dir(build, out_dir)
+    return files
+
+
+__all__ = ["L0Result", "run_l0", "write_l0", "l0_geometry", "geometry_request", "np"]

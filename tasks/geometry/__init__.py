@@ -1,0 +1,1 @@
+"""L0 geometry: text / image / mesh -> aligned mesh, convex proxy, MPM particles and Gaussians (metres)."""

@@ -1,0 +1,74 @@
+"""Canonical frame: z up, resting on a stable face on z = 0, centred in x, y, longest horizontal extent on x (metres)."""
+
+from __future__ import annotations
+
+from typing import Literal
+
+import numpy as np
+import trimesh
+from scipy.spatial import ConvexHull, QhullError
+
+Orientation = Literal["keep_if_stable", "most_stable"]
+
+
+def is_resting_stable(mesh: trimesh.Trimesh, margin_frac: float = 0.05) -> bool:
+    """True when the centre of mass projects inside the support polygon of the lowest points (with a margin)."""
+    z = mesh.vertices[:, 2]
+    tol = max(1e-4, 0.01 * float(mesh.extents.max()))
+    contact = mesh.vertices[z <= z.min() + tol][:, :2]
+    com = mesh.center_mass[:2] if mesh.is_watertight else mesh.centroid[:2]
+    if len(contact) < 3:
+        return False
+    try:
+        ch = ConvexHull(contact)
+    except QhullError:
+        return False
+    eq = ch.equations  # a x + b y + c <= 0 inside
+    dist_inside = -(eq[:, :2] @ com + eq[:, 2])
+    return bool(dist_inside.min() >= margin_frac * float(np.sqrt(ch.volume)))
+
+
+def most_stable_rotation(mesh: trimesh.Trimesh) -> np.ndarray:
+    """4x4 transform of the most probable resting pose (trimesh's quasi-static drop from the centre of mass)."""
+    transforms, probs = trimesh.poses.compute_stable_poses(mesh, sigma=0.0, n_samples=1)
+    if len(transforms) == 0:
+        return np.eye(4)
+    return np.asarray(transforms[int(np.argmax(probs))])
+
+
+def align_horizontal(mesh: trimesh.Trimesh) -> np.ndarray:
+    """4x4 rotation about z putting the principal horizontal axis on x (sign fixed by the third moment)."""
+    pts = mesh.vertices[:, :2] - mesh.center_mass[:2]
+    w = np.ones(len(pts))
+    cov = (pts * w[:, None]).T @ pts / w.sum()
+    evals, evecs = np.linalg.eigh(cov)
+    major = evecs[:, int(np.argmax(evals))]
+    if evals.max() - evals.min() < 1e-3 * evals.max():
+        major = np.array([1.0, 0.0])
+    proj = pts @ major
+    if np.mean(proj**3) < 0:
+        major = -major
+    ang = np.arctan2(major[1], major[0])
+    return trimesh.transformations.rotation_matrix(-ang, [0, 0, 1])
+
+
+def rest_on_ground(mesh: trimesh.Trimesh) -> None:
+    """Translate so the lowest point is on z = 0 and the bounding box is centred in x, y (in place)."""
+    lo, hi = mesh.bounds
+    mesh.apply_translation([-(lo[0] + hi[0]) / 2.0, -(lo[1] + hi[1]) / 2.0, -lo[2]])
+
+
+def canonicalize(mesh: trimesh.Trimesh, orientation: Orientation, align_xy: bool) -> tuple[trimesh.Trimesh, bool]:
+    """Return the mesh in the canonical frame and whether its orientation was changed from the input's."""
+    mesh = mesh.copy()
+    rest_on_ground(mesh)
+    rotated = False
+    if orientation == "most_stable" or not is_resting_stable(mesh):
+        tf = most_stable_rotation(mesh)
+        if not np.allclose(tf[:3, :3], np.eye(3), atol=1e-9):
+            rotated = True
+        mesh.apply_transform(tf)
+    if align_xy:
+        mesh.apply_transform(align_horizontal(mesh))
+    rest_on_ground(mesh)
+    return mesh, rotated

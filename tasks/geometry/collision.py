@@ -1,0 +1,111 @@
+"""Convex collision proxy: CoACD decomposition (parameters from the L0 contract), OBJ parts and a URDF."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from xml.sax.saxutils import escape
+
+import numpy as np
+import trimesh
+from pydantic import Field
+
+from contracts.base import Model
+
+NOMINAL_DENSITY_KG_PER_M3 = 100.0  # placeholder for the URDF inertial only; L1 sets the real mass
+
+
+class CoacdSettings(Model):
+    """CoACD knobs (see coacd.run_coacd); method 'hull' is a single convex hull for quick previews."""
+
+    method: str = Field(default="coacd", pattern="^(coacd|hull)$")
+    threshold: float = Field(default=0.08, gt=0, description="concavity threshold [-]")
+    max_convex_hull: int = Field(default=16, description="hull budget, -1 for no limit")
+    preprocess_resolution: int = Field(default=30, gt=0)
+    resolution: int = Field(default=2000, gt=0, description="sampling resolution of the Hausdorff metric")
+    mcts_iterations: int = Field(default=150, gt=0)
+    mcts_nodes: int = Field(default=20, gt=0)
+    mcts_max_depth: int = Field(default=3, gt=0)
+    max_input_faces: int = Field(default=20000, gt=0, description="decimate larger inputs first [-]")
+    seed: int = 0
+
+
+def convex_parts(mesh: trimesh.Trimesh, settings: CoacdSettings) -> list[trimesh.Trimesh]:
+    """Convex pieces covering the mesh (CoACD, or one hull)."""
+    if settings.method == "hull":
+        return [mesh.convex_hull]
+    import coacd
+
+    coacd.set_log_level("error")
+    src = mesh
+    if len(mesh.faces) > settings.max_input_faces:
+        src = _coarsen(mesh, settings.max_input_faces)
+    cm = coacd.Mesh(np.asarray(src.vertices, dtype=np.float64), np.asarray(src.faces, dtype=np.int32))
+    raw = coacd.run_coacd(
+        cm, threshold=settings.threshold, max_convex_hull=settings.max_convex_hull,
+        preprocess_resolution=settings.preprocess_resolution, resolution=settings.resolution,
+        mcts_iterations=settings.mcts_iterations, mcts_nodes=settings.mcts_nodes,
+        mcts_max_depth=settings.mcts_max_depth, seed=settings.seed,
+    )
+    parts = [trimesh.Trimesh(v, f, process=True).convex_hull for v, f in raw]
+    return [p for p in parts if p.volume > 0]
+
+
+def _coarsen(mesh: trimesh.Trimesh, max_faces: int) -> trimesh.Trimesh:
+    """Coarser watertight copy for CoACD (vertex clustering on a grid; falls back to the input)."""
+    from tasks.geometry.meshing import mesh_from_field
+    from tasks.geometry.particles import inside_lattice
+
+    res = int(max(24, min(96, np.sqrt(max_faces / 6.0))))
+    dx = float(mesh.extents.max()) / res
+    lo = mesh.bounds[0] - 1.5 * dx
+    shape = tuple(int(n) for n in np.ceil(mesh.extents / dx).astype(int) + 4)
+    occ = inside_lattice(mesh, lo + 1e-4 * dx, dx, shape)
+    try:
+        return mesh_from_field(0.5 - occ.astype(np.float64), lo, dx)
+    except Exception:  # pragma: no cover - keep the original when coarsening fails
+        return mesh
+
+
+def union_volume(parts: list[trimesh.Trimesh]) -> float:
+    """Volume of the union of convex parts [m^3] (manifold3d boolean union; sum of volumes if it fails)."""
+    try:
+        import manifold3d as mf
+
+        solids = [
+            mf.Manifold(mf.Mesh(vert_properties=np.asarray(p.vertices, np.float32), tri_verts=np.asarray(p.faces, np.uint32)))
+            for p in parts
+        ]
+        return float(mf.Manifold.batch_boolean(solids, mf.OpType.Add).volume()) if len(solids) > 1 else float(parts[0].volume)
+    except Exception:  # pragma: no cover
+        return float(sum(p.volume for p in parts))
+
+
+def write_collision(parts: list[trimesh.Trimesh], mesh: trimesh.Trimesh, out_dir: Path, name: str) -> Path:
+    """Write part_NNN.obj files and `<name>.urdf` (one link, one collision per convex part); returns the URDF path."""
+    out_dir.mkdir(parents=True, exist_ok=True)
+    files = []
+    for i, part in enumerate(parts):
+        fname = f"part_{i:03d}.obj"
+        part.export(out_dir / fname)
+        files.append(fname)
+    mass = NOMINAL_DENSITY_KG_PER_M3 * float(mesh.volume)
+    com = mesh.center_mass
+    inertia = np.asarray(mesh.moment_inertia) * NOMINAL_DENSITY_KG_PER_M3
+    geoms = "".join(
+        f'    <collision><origin xyz="0 0 0"/><geometry><mesh filename="{f}" scale="1 1 1"/></geometry></collision>\n'
+        f'    <visual><origin xyz="0 0 0"/><geometry><mesh filename="{f}" scale="1 1 1"/></geometry></visual>\n'
+        for f in files
+    )
+    safe = escape(name.replace(" ", "_")) or "asset"
+    urdf = (
+        f'<?xml version="1.0"?>\n<robot name="{safe}">\n  <!-- inertial: nominal density {NOMINAL_DENSITY_KG_PER_M3} kg/m^3;'
+        f" L1 sets the real mass -->\n"
+        f'  <link name="base_link">\n    <inertial>\n      <origin xyz="{com[0]:.9g} {com[1]:.9g} {com[2]:.9g}"/>\n'
+        f'      <mass value="{mass:.9g}"/>\n'
+        f'      <inertia ixx="{inertia[0, 0]:.9g}" ixy="{inertia[0, 1]:.9g}" ixz="{inertia[0, 2]:.9g}" '
+        f'iyy="{inertia[1, 1]:.9g}" iyz="{inertia[1, 2]:.9g}" izz="{inertia[2, 2]:.9g}"/>\n    </inertial>\n'
+        f"{geoms}  </link>\n</robot>\n"
+    )
+    path = out_dir / f"{safe}.urdf"
+    path.write_text(urdf, encoding="utf-8")
+    return path

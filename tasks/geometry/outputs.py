@@ -1,0 +1,116 @@
+"""Write an L0 result into a directory, and load it back (the API later layers use)."""
+
+from __future__ import annotations
+
+import json
+import os
+import shutil
+import tempfile
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+import trimesh
+import zarr
+
+from contracts.errors import InputError
+from tasks.geometry.checks import GeometryChecks
+from tasks.geometry.collision import write_collision
+from tasks.geometry.gaussians import read_3dgs_ply, rest_covariances, write_3dgs_ply
+from tasks.geometry.glb import write_glb
+from tasks.geometry.pipeline import Arrays, BuildInfo, arrays_to_mesh, proxy_parts
+from tasks.geometry.render import write_renders
+
+GEOMETRY_JSON = "geometry.json"
+PARTICLES = "particles.zarr"
+
+
+def write_outputs(
+    out_dir: Path, mesh: Arrays, proxy: Arrays, particles: Arrays, gaussians: Arrays, info: BuildInfo,
+    checks: GeometryChecks, extra: dict | None = None,
+) -> dict[str, str]:
+    """mesh.glb, collision/, particles.zarr, gaussians.ply, renders/*.png and geometry.json into out_dir."""
+    out_dir = Path(out_dir)
+    out_dir.mkdir(parents=True, exist_ok=True)
+    m = arrays_to_mesh(mesh)
+    write_glb(m, out_dir / "mesh.glb")
+    urdf = write_collision(proxy_parts(proxy), m, out_dir / "collision", info.name)
+    g = zarr.open_group(str(out_dir / PARTICLES), mode="w")
+    for k in ("positions_m", "volumes_m3", "colors"):
+        g.create_array(k, data=np.ascontiguousarray(particles[k]))
+    g.attrs.update({"spacing_m": float(particles["spacing_m"]), "units": "SI: metres, cubic metres",
+                    "frame": "z up, resting on z = 0, centred in x, y"})
+    b = g.create_group("gaussian_binding")
+    for k in ("positions_m", "particle_index", "particle_weight", "scales_m", "rotations_wxyz"):
+        b.create_array(k, data=np.ascontiguousarray(gaussians[k]))
+    s = g.create_group("surface_mesh")  # the aligned mesh in the asset frame (z up), for code that needs it exactly
+    for k in ("vertices", "faces", "colors"):
+        s.create_array(k, data=np.ascontiguousarray(mesh[k]))
+    write_3dgs_ply(gaussians, out_dir / "gaussians.ply")  # type: ignore[arg-type]
+    renders = write_renders(m, out_dir / "renders")
+    files = {"mesh": "mesh.glb", "urdf": f"collision/{urdf.name}", "particles": PARTICLES, "gaussians": "gaussians.ply",
+             **{f"render_{k}": f"renders/{v}" for k, v in renders.items()}}
+    record = {"schema_version": 1, "info": info.model_dump(mode="json"), "metrics": checks.metrics,
+              "gates": [gr.model_dump(mode="json") for gr in checks.gates], "passed": checks.passed,
+              "failed_gates": checks.failed, "warnings": info.warnings, "files": files, **(extra or {})}
+    (out_dir / GEOMETRY_JSON).write_text(json.dumps(record, indent=2, sort_keys=True) + "\n", encoding="utf-8")
+    return files
+
+
+def publish_dir(build, out_dir: Path) -> None:  # type: ignore[no-untyped-def]
+    """Run build(tmp_dir) and rename tmp_dir into out_dir; on any error nothing is left behind."""
+    out_dir = Path(out_dir).resolve()
+    if out_dir.exists() and any(out_dir.iterdir()) and not (out_dir / GEOMETRY_JSON).exists():
+        raise InputError(f"{out_dir} exists and is not an L0 output directory; choose an empty or new directory")
+    out_dir.parent.mkdir(parents=True, exist_ok=True)
+    tmp = Path(tempfile.mkdtemp(prefix=f".{out_dir.name}.tmp-", dir=out_dir.parent))
+    try:
+        build(tmp)
+        if out_dir.exists():
+            old = Path(tempfile.mkdtemp(prefix=f".{out_dir.name}.old-", dir=out_dir.parent))
+            os.replace(out_dir, old / "x")
+            os.replace(tmp, out_dir)
+            shutil.rmtree(old, ignore_errors=True)
+        else:
+            os.replace(tmp, out_dir)
+    finally:
+        if tmp.exists():
+            shutil.rmtree(tmp, ignore_errors=True)
+
+
+@dataclass(frozen=True)
+class L0Asset:
+    """An L0 output loaded back, in the asset frame (z up, resting on z = 0, metres)."""
+
+    mesh: trimesh.Trimesh                 # watertight, vertex colours
+    particles_m: np.ndarray               # (N, 3) rest positions [m]
+    volumes_m3: np.ndarray                # (N,), sums to mesh.volume [m^3]
+    particle_colors: np.ndarray           # (N, 3) uint8
+    spacing_m: float                      # lattice spacing [m]
+    urdf: Path                            # convex collision proxy for pybullet
+    proxy_parts: list[trimesh.Trimesh]    # convex parts
+    gaussians: dict[str, np.ndarray]      # rest Gaussians from gaussians.ply (+ binding arrays)
+    record: dict                          # geometry.json
+
+    def gaussian_covariances(self) -> np.ndarray:
+        """Rest covariances (G, 3, 3) [m^2] of the Gaussians."""
+        return rest_covariances(self.gaussians["scales_m"], self.gaussians["rotations_wxyz"])
+
+
+def load_l0(out_dir: Path) -> L0Asset:
+    """Load an L0 directory written by write_outputs."""
+    d = Path(out_dir)
+    if not (d / GEOMETRY_JSON).is_file():
+        raise InputError(f"{d} is not an L0 output directory (no {GEOMETRY_JSON})")
+    record = json.loads((d / GEOMETRY_JSON).read_text(encoding="utf-8"))
+    g = zarr.open_group(str(d / PARTICLES), mode="r")
+    s = g["surface_mesh"]
+    mesh = arrays_to_mesh({k: np.asarray(s[k][...]) for k in ("vertices", "faces", "colors")})
+    gs = dict(read_3dgs_ply(d / "gaussians.ply"))
+    for k in ("particle_index", "particle_weight"):
+        gs[k] = np.asarray(g["gaussian_binding"][k][...])
+    urdf = d / record["files"]["urdf"]
+    parts = [trimesh.load(p, force="mesh") for p in sorted((d / "collision").glob("part_*.obj"))]
+    return L0Asset(mesh=mesh, particles_m=np.asarray(g["positions_m"][...]), volumes_m3=np.asarray(g["volumes_m3"][...]),
+                   particle_colors=np.asarray(g["colors"][...]), spacing_m=float(g.attrs["spacing_m"]), urdf=urdf,
+                   proxy_parts=parts, gaussians=gs, record=record)

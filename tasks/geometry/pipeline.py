@@ -1,0 +1,249 @@
+"""The L0 units of work as plain functions (no Prefect): request -> mesh -> proxy, particles, Gaussians -> checks."""
+
+from __future__ import annotations
+
+from typing import Literal
+
+import numpy as np
+import trimesh
+from pydantic import Field
+
+from contracts.base import Model
+from contracts.errors import InputError
+from contracts.request import AssetRequest, Quality
+from contracts.shape import ShapeProgram
+from contracts.stage import StageContract, load_contract
+from tasks.geometry import catalogue, image as image_mod
+from tasks.geometry.canonical import canonicalize, rest_on_ground
+from tasks.geometry.checks import GeometryChecks, evaluate, geometry_metrics
+from tasks.geometry.collision import CoacdSettings, convex_parts, union_volume
+from tasks.geometry.gaussians import make_gaussians
+from tasks.geometry.mesh_import import import_mesh
+from tasks.geometry.meshing import mesh_program, scale_to_extents
+from tasks.geometry.particles import ParticleSettings, sample_particles
+from tasks.geometry.sdf import program_bounds
+
+Arrays = dict[str, np.ndarray]
+
+
+class L0Settings(Model):
+    """Everything that shapes L0's output for one quality (read from the L0 stage contract)."""
+
+    quality: Quality
+    marching_cubes_resolution: int = Field(gt=8, description="voxels along the longest extent [-]")
+    particles: ParticleSettings
+    coacd: CoacdSettings
+    gaussians_per_particle: float = Field(gt=0)
+    gaussian_surface_fraction: float = Field(default=0.75, ge=0, le=1)
+    max_gaussians: int = Field(default=400_000, gt=0)
+    seed: int = 0
+
+
+def settings_from_contract(quality: Quality, contract: StageContract | None = None, seed: int = 0,
+                           coacd_overrides: dict | None = None) -> L0Settings:
+    """L0 settings for a quality preset from the contract's parameters."""
+    p = (contract or load_contract("L0")).parameters
+    coacd = {k[len("coacd_"):]: (v[quality] if isinstance(v, dict) else v) for k, v in p.items() if k.startswith("coacd_")}
+    coacd.update(coacd_overrides or {})
+    return L0Settings(
+        quality=quality,
+        marching_cubes_resolution=int(p["marching_cubes_resolution"][quality]),
+        particles=ParticleSettings(
+            cells_per_longest_extent=int(p["particles_per_longest_extent"][quality]),
+            max_particles=int(p["max_particles"][quality]),
+            min_particles=int(p.get("min_particles", 1000)),
+            min_cells_through_thinnest=int(p.get("min_cells_through_thinnest", 4)),
+        ),
+        coacd=CoacdSettings(**coacd),
+        gaussians_per_particle=float(p["gaussians_per_particle"]),
+        gaussian_surface_fraction=float(p.get("gaussian_surface_fraction", 0.75)),
+        max_gaussians=int(p.get("max_gaussians", 400_000)),
+        seed=seed,
+    )
+
+
+class BuildInfo(Model):
+    """How the mesh was made: source, catalogue match, size, repairs and warnings."""
+
+    source: Literal["text", "image", "mesh"]
+    name: str
+    category: str
+    entry: str | None = Field(default=None, description="catalogue entry used (text / image prior)")
+    program: ShapeProgram | None = None
+    size: catalogue.SizeSpec | None = None
+    modifiers: list[str] = Field(default_factory=list)
+    segmentation: str | None = Field(default=None, description="alpha | grabcut (image path)")
+    thickness_m: float | None = Field(default=None, description="inflation thickness (image path) [m]")
+    reoriented: bool = Field(default=False, description="the resting pose differs from the input's orientation")
+    notes: list[str] = Field(default_factory=list)
+    warnings: list[str] = Field(default_factory=list)
+
+
+def mesh_to_arrays(mesh: trimesh.Trimesh) -> Arrays:
+    """vertices (V, 3) float64 [m], faces (F, 3) int64, colors (V, 4) uint8."""
+    vc = np.asarray(mesh.visual.vertex_colors, dtype=np.uint8) if mesh.visual.kind == "vertex" else \
+        np.tile(np.array([190, 190, 190, 255], np.uint8), (len(mesh.vertices), 1))
+    return {"vertices": np.asarray(mesh.vertices, np.float64), "faces": np.asarray(mesh.faces, np.int64), "colors": vc}
+
+
+def arrays_to_mesh(a: Arrays) -> trimesh.Trimesh:
+    """Inverse of mesh_to_arrays."""
+    m = trimesh.Trimesh(a["vertices"], a["faces"], process=False)
+    m.visual = trimesh.visual.ColorVisuals(m, vertex_colors=a["colors"])
+    return m
+
+
+def _final_size(mesh: trimesh.Trimesh, size: catalogue.SizeSpec | None) -> trimesh.Trimesh:
+    if size is not None:
+        scale_to_extents(mesh, size.resolve(mesh.extents))
+    rest_on_ground(mesh)
+    ext = mesh.extents
+    if ext.max() > catalogue.MAX_SIZE_M or ext.max() < catalogue.MIN_SIZE_M:
+        raise InputError(
+            f"the object would be {ext.max():.4g} m long, outside [{catalogue.MIN_SIZE_M:g}, {catalogue.MAX_SIZE_M:g}] m "
+            "(mesh units are taken as metres: give a size, e.g. --size-m 0.2)"
+        )
+    return mesh
+
+
+def build_mesh(request: AssetRequest, settings: L0Settings) -> tuple[Arrays, BuildInfo]:
+    """The aligned, metric, watertight mesh for a request (text, image or mesh path)."""
+    kind = request.input_kind
+    if kind == "text":
+        return _from_text(request, settings)
+    if kind == "image":
+        return _from_image(request, settings)
+    return _from_mesh(request, settings)
+
+
+def _from_text(request: AssetRequest, settings: L0Settings) -> tuple[Arrays, BuildInfo]:
+    design = catalogue.design_from_text(request.text or "", request.size_hint_m)
+    mesh = mesh_program(design.program, settings.marching_cubes_resolution)
+    mesh, rotated = canonicalize(mesh, "keep_if_stable", align_xy=False)
+    if rotated:
+        mesh, _ = canonicalize(mesh, "keep_if_stable", align_xy=True)
+    mesh = _final_size(mesh, design.size)
+    program = design.program.model_copy(update={"target_extent_m": tuple(float(v) for v in mesh.extents)})
+    info = BuildInfo(source="text", name=design.program.name, category=design.program.category, entry=design.entry,
+                     program=program, size=design.size, modifiers=design.modifiers, reoriented=rotated,
+                     warnings=design.warnings)
+    return mesh_to_arrays(mesh), info
+
+
+def _thickness_ratio(entry: str | None, aspect: float) -> float:
+    """Hidden depth / longest visible extent: from the category's nominal shape, else a rounded-blob prior."""
+    if entry is None:
+        return 0.8 * aspect if aspect > 0.3 else 0.5
+    b = program_bounds(catalogue.program_for(entry))
+    ext = b[1] - b[0]
+    best, best_err = 0.5, np.inf
+    for hidden in range(3):
+        vis = [ext[i] for i in range(3) if i != hidden]
+        err = abs(min(vis) / max(vis) - aspect)
+        if err < best_err:
+            best, best_err = ext[hidden] / max(vis), err
+    return float(np.clip(best, 0.05, 1.5))
+
+
+def _from_image(request: AssetRequest, settings: L0Settings) -> tuple[Arrays, BuildInfo]:
+    img = image_mod.load_image(request.image_path)  # type: ignore[arg-type]
+    mask, method = image_mod.segment(img, seed=request.seed)
+    warnings: list[str] = []
+    entry, size, mods = None, catalogue.SizeSpec(), []
+    if request.text and request.text.strip():
+        design = catalogue.design_from_text(request.text, request.size_hint_m)
+        entry, size, mods = design.entry, design.size, design.modifiers
+        warnings += design.warnings
+    elif request.size_hint_m is not None:
+        size = catalogue.SizeSpec(longest_m=request.size_hint_m, stated=f"size hint {request.size_hint_m:g} m")
+        catalogue.check_size(size)
+    aspect = image_mod.silhouette_aspect(mask)
+    if size.longest_m is not None:
+        longest = size.longest_m
+    elif size.extents_m[0] is not None:
+        longest = size.extents_m[0]
+    elif entry is not None:
+        b = program_bounds(catalogue.program_for(entry))
+        longest = float((b[1] - b[0]).max())
+        warnings.append(f"no size given: using the '{entry}' prior, {longest:.3g} m longest extent")
+    else:
+        longest = 0.2
+        warnings.append("no size or object named: assuming a 0.2 m longest extent")
+    thickness = (size.extents_m[2] if size.extents_m[2] is not None and size.extents_m[1] is None else None)
+    if thickness is None:
+        thickness = _thickness_ratio(entry, aspect) * longest
+    mesh = image_mod.inflate(mask, img, longest, thickness, settings.marching_cubes_resolution)
+    mesh, rotated = canonicalize(mesh, "keep_if_stable", align_xy=True)
+    mesh = _final_size(mesh, catalogue.SizeSpec(longest_m=longest, axis_scale=size.axis_scale))
+    name = request.image_path.stem if request.image_path else "image object"  # type: ignore[union-attr]
+    info = BuildInfo(source="image", name=name, category=catalogue.entry_category(entry) if entry else "unknown",
+                     entry=entry, size=size, modifiers=mods, segmentation=method, thickness_m=thickness,
+                     reoriented=rotated, warnings=warnings)
+    return mesh_to_arrays(mesh), info
+
+
+def _from_mesh(request: AssetRequest, settings: L0Settings) -> tuple[Arrays, BuildInfo]:
+    mesh, notes = import_mesh(request.mesh_path)  # type: ignore[arg-type]
+    mesh, rotated = canonicalize(mesh, "most_stable", align_xy=True)
+    size = None
+    entry = None
+    warnings: list[str] = []
+    if request.size_hint_m is not None:
+        size = catalogue.SizeSpec(longest_m=request.size_hint_m, stated=f"size hint {request.size_hint_m:g} m")
+        catalogue.check_size(size)
+    if request.text and request.text.strip():
+        design = catalogue.design_from_text(request.text, request.size_hint_m)
+        entry = design.entry
+        warnings += design.warnings
+        if design.size.explicit:
+            size = design.size
+    mesh = _final_size(mesh, size)
+    info = BuildInfo(source="mesh", name=request.mesh_path.stem, category=catalogue.entry_category(entry) if entry else "unknown",  # type: ignore[union-attr]
+                     entry=entry, size=size, reoriented=rotated, notes=notes, warnings=warnings)
+    return mesh_to_arrays(mesh), info
+
+
+def build_proxy(mesh: Arrays, settings: CoacdSettings) -> Arrays:
+    """Convex parts as concatenated arrays: vertices, faces (part-local indices), part_vertex_count, part_face_count."""
+    parts = convex_parts(arrays_to_mesh(mesh), settings)
+    return {
+        "vertices": np.concatenate([p.vertices for p in parts]).astype(np.float64),
+        "faces": np.concatenate([p.faces for p in parts]).astype(np.int64),
+        "part_vertex_count": np.array([len(p.vertices) for p in parts], np.int64),
+        "part_face_count": np.array([len(p.faces) for p in parts], np.int64),
+        "union_volume_m3": np.array(union_volume(parts)),
+    }
+
+
+def proxy_parts(proxy: Arrays) -> list[trimesh.Trimesh]:
+    """Split concatenated proxy arrays back into convex meshes."""
+    out = []
+    v0 = f0 = 0
+    for nv, nf in zip(proxy["part_vertex_count"], proxy["part_face_count"]):
+        out.append(trimesh.Trimesh(proxy["vertices"][v0 : v0 + nv], proxy["faces"][f0 : f0 + nf], process=False))
+        v0, f0 = v0 + int(nv), f0 + int(nf)
+    return out
+
+
+def build_particles(mesh: Arrays, settings: ParticleSettings) -> Arrays:
+    """positions_m (N, 3), volumes_m3 (N,) summing to the mesh volume, colors (N, 3) uint8, spacing_m, lattice_fill_ratio."""
+    m = arrays_to_mesh(mesh)
+    pos, vol, col, dx, fill = sample_particles(m, settings)
+    return {"positions_m": pos, "volumes_m3": vol, "colors": col, "spacing_m": np.array(dx),
+            "lattice_fill_ratio": np.array(fill)}
+
+
+def build_gaussians(mesh: Arrays, particles: Arrays, settings: L0Settings) -> Arrays:
+    """Gaussians bound to particles (see tasks.geometry.gaussians)."""
+    n = int(min(settings.max_gaussians, round(settings.gaussians_per_particle * len(particles["positions_m"]))))
+    g = make_gaussians(arrays_to_mesh(mesh), particles["positions_m"], float(particles["spacing_m"]), max(n, 16),
+                       settings.seed, settings.gaussian_surface_fraction)
+    return dict(g)
+
+
+def check_geometry(mesh: Arrays, proxy: Arrays, particles: Arrays, gaussians: Arrays,
+                   contract: StageContract | None = None) -> GeometryChecks:
+    """Hard-gate metrics of one L0 candidate against the L0 contract."""
+    m = arrays_to_mesh(mesh)
+    metrics = geometry_metrics(m, particles, gaussians, float(proxy["union_volume_m3"]), len(proxy["part_face_count"]))
+    return evaluate(metrics, contract or load_contract("L0"))

@@ -1,0 +1,172 @@
+"""Signed distances (metres, negative inside) of shape-program primitives, transforms and smooth booleans."""
+
+from __future__ import annotations
+
+import numpy as np
+from scipy.spatial.transform import Rotation
+
+from contracts.shape import (
+    Capsule, Cone, Cylinder, Ellipsoid, Part, RoundedBox, ShapeProgram, Superellipsoid, Torus, Transform,
+)
+
+_EPS = 1e-12
+
+
+def _len(v: np.ndarray) -> np.ndarray:
+    return np.sqrt(np.einsum("...i,...i->...", v, v))
+
+
+def sdf_ellipsoid(p: np.ndarray, prim: Ellipsoid) -> np.ndarray:
+    """Near-exact ellipsoid distance (Quilez' k0 (k0 - 1) / k1 bound)."""
+    r = np.asarray(prim.radii_m)
+    k0 = _len(p / r)
+    k1 = _len(p / (r * r))
+    return np.where(k1 > _EPS, k0 * (k0 - 1.0) / np.maximum(k1, _EPS), -r.min())
+
+
+def sdf_superellipsoid(p: np.ndarray, prim: Superellipsoid) -> np.ndarray:
+    """Radial distance to a superellipsoid surface (exact sign, distance along the ray from the centre)."""
+    r = np.asarray(prim.radii_m)
+    e1, e2 = prim.exponent_ns, prim.exponent_ew
+    q = np.abs(p) / r + _EPS
+    f = (q[:, 0] ** (2.0 / e2) + q[:, 1] ** (2.0 / e2)) ** (e2 / e1) + q[:, 2] ** (2.0 / e1)
+    norm = _len(p)
+    surf = norm * f ** (-e1 / 2.0)
+    return np.where(norm > _EPS, norm - surf, -r.min())
+
+
+def sdf_capsule(p: np.ndarray, prim: Capsule) -> np.ndarray:
+    """Capsule along z."""
+    q = p.copy()
+    h = prim.length_m / 2.0
+    q[:, 2] -= np.clip(q[:, 2], -h, h)
+    return _len(q) - prim.radius_m
+
+
+def sdf_rounded_box(p: np.ndarray, prim: RoundedBox) -> np.ndarray:
+    """Box with rounded edges, full extents size_m."""
+    half = np.asarray(prim.size_m) / 2.0
+    rr = min(prim.edge_radius_m, float(half.min()) * 0.999)
+    q = np.abs(p) - (half - rr)
+    return _len(np.maximum(q, 0.0)) + np.minimum(q.max(axis=1), 0.0) - rr
+
+
+def sdf_cylinder(p: np.ndarray, prim: Cylinder) -> np.ndarray:
+    """Cylinder along z with rounded rims."""
+    rr = min(prim.edge_radius_m, prim.radius_m * 0.999, prim.height_m * 0.4995)
+    dx = _len(p[:, :2]) - prim.radius_m + rr
+    dz = np.abs(p[:, 2]) - prim.height_m / 2.0 + rr
+    d = np.stack([dx, dz], axis=1)
+    return np.minimum(np.maximum(dx, dz), 0.0) + _len(np.maximum(d, 0.0)) - rr
+
+
+def sdf_torus(p: np.ndarray, prim: Torus) -> np.ndarray:
+    """Torus in the x-y plane."""
+    q = np.stack([_len(p[:, :2]) - prim.major_radius_m, p[:, 2]], axis=1)
+    return _len(q) - prim.minor_radius_m
+
+
+def sdf_cone(p: np.ndarray, prim: Cone) -> np.ndarray:
+    """Capped cone (frustum) along z, rounded by edge_radius (Quilez' sdCappedCone)."""
+    rr = min(prim.edge_radius_m, prim.height_m * 0.45, max(prim.radius_bottom_m, prim.radius_top_m) * 0.9)
+    h = prim.height_m / 2.0 - rr
+    r1 = max(prim.radius_bottom_m - rr, 0.0)
+    r2 = max(prim.radius_top_m - rr, 0.0)
+    qx, qy = _len(p[:, :2]), p[:, 2]
+    k1 = np.array([r2, h])
+    k2 = np.array([r2 - r1, 2.0 * h])
+    ca_x = qx - np.minimum(qx, np.where(qy < 0.0, r1, r2))
+    ca_y = np.abs(qy) - h
+    t = np.clip(((k1[0] - qx) * k2[0] + (k1[1] - qy) * k2[1]) / float(k2 @ k2), 0.0, 1.0)
+    cb_x = qx - k1[0] + k2[0] * t
+    cb_y = qy - k1[1] + k2[1] * t
+    s = np.where((cb_x < 0.0) & (ca_y < 0.0), -1.0, 1.0)
+    return s * np.sqrt(np.minimum(ca_x**2 + ca_y**2, cb_x**2 + cb_y**2)) - rr
+
+
+_SDF = {
+    "ellipsoid": sdf_ellipsoid, "superellipsoid": sdf_superellipsoid, "capsule": sdf_capsule,
+    "rounded_box": sdf_rounded_box, "cylinder": sdf_cylinder, "torus": sdf_torus, "cone": sdf_cone,
+}
+
+
+def rotation_matrix(tf: Transform) -> np.ndarray:
+    """3x3 rotation of a transform (extrinsic XYZ Euler angles in degrees)."""
+    return Rotation.from_euler("xyz", tf.rotation_deg, degrees=True).as_matrix()
+
+
+def part_sdf(p: np.ndarray, part: Part) -> np.ndarray:
+    """Distance to one transformed part: local = R^T (p - t) / s, scaled back by min(s) (a conservative bound)."""
+    tf = part.transform
+    s = np.asarray(tf.scale, dtype=np.float64)
+    local = (p - np.asarray(tf.translation_m)) @ rotation_matrix(tf) / s
+    return _SDF[part.primitive.kind](local, part.primitive) * float(s.min())
+
+
+def smooth_min(a: np.ndarray, b: np.ndarray, k: float) -> np.ndarray:
+    """Polynomial smooth minimum with blend radius k (k = 0: plain min)."""
+    if k <= 0.0:
+        return np.minimum(a, b)
+    h = np.clip(0.5 + 0.5 * (b - a) / k, 0.0, 1.0)
+    return b + (a - b) * h - k * h * (1.0 - h)
+
+
+def smooth_max(a: np.ndarray, b: np.ndarray, k: float) -> np.ndarray:
+    """Polynomial smooth maximum with blend radius k."""
+    return -smooth_min(-a, -b, k)
+
+
+def program_sdf(p: np.ndarray, program: ShapeProgram) -> np.ndarray:
+    """Signed distance of a whole program at points p (N, 3); parts are combined in order."""
+    p = np.asarray(p, dtype=np.float64)
+    d = part_sdf(p, program.parts[0])
+    for part in program.parts[1:]:
+        di = part_sdf(p, part)
+        if part.operation == "union":
+            d = smooth_min(d, di, part.blend_m)
+        elif part.operation == "subtract":
+            d = smooth_max(d, -di, part.blend_m)
+        else:
+            d = smooth_max(d, di, part.blend_m)
+    return d
+
+
+def primitive_half_extent(part: Part) -> np.ndarray:
+    """Half extents of the untransformed primitive's bounding box [m]."""
+    prim = part.primitive
+    if prim.kind in ("ellipsoid", "superellipsoid"):
+        return np.asarray(prim.radii_m, dtype=np.float64)
+    if prim.kind == "capsule":
+        return np.array([prim.radius_m, prim.radius_m, prim.radius_m + prim.length_m / 2.0])
+    if prim.kind == "rounded_box":
+        return np.asarray(prim.size_m, dtype=np.float64) / 2.0
+    if prim.kind == "cylinder":
+        return np.array([prim.radius_m, prim.radius_m, prim.height_m / 2.0])
+    if prim.kind == "torus":
+        r = prim.major_radius_m + prim.minor_radius_m
+        return np.array([r, r, prim.minor_radius_m])
+    r = max(prim.radius_bottom_m, prim.radius_top_m)
+    return np.array([r, r, prim.height_m / 2.0])
+
+
+def program_bounds(program: ShapeProgram) -> np.ndarray:
+    """Conservative (2, 3) world bounding box of the union parts, widened by blend radii [m]."""
+    lo, hi = np.full(3, np.inf), np.full(3, -np.inf)
+    corners = np.array([[sx, sy, sz] for sx in (-1, 1) for sy in (-1, 1) for sz in (-1, 1)], dtype=np.float64)
+    for part in program.parts:
+        if part.operation != "union" and part is not program.parts[0]:
+            continue
+        tf = part.transform
+        pts = (corners * primitive_half_extent(part) * np.asarray(tf.scale)) @ rotation_matrix(tf).T
+        pts += np.asarray(tf.translation_m)
+        lo = np.minimum(lo, pts.min(axis=0) - part.blend_m)
+        hi = np.maximum(hi, pts.max(axis=0) + part.blend_m)
+    return np.stack([lo, hi])
+
+
+def part_colors(p: np.ndarray, program: ShapeProgram, sharpness_m: float) -> np.ndarray:
+    """Linear RGB at surface points: parts nearest the point win, softly blended over sharpness_m."""
+    d = np.stack([np.abs(part_sdf(p, part)) for part in program.parts], axis=1)
+    w = np.exp(-(d - d.min(axis=1, keepdims=True)) / max(sharpness_m, 1e-6))
+    cols = np.asarray([part.color_rgb for part in program.parts], dtype=np.float64)
+    return (w @ cols) / w.sum(axis=1, keepdims=True)
