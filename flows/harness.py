@@ -17,6 +17,7 @@ from contracts.stage import StageContract, StageName, load_contract
 from tasks.agents.orchestrator import ProbeRunner, run_stage
 from tasks.agents.records import AttemptRecorder
 from tasks.agents.roles import build_roles
+from tasks.agents.vocab import stage_routes
 
 InputBuilder = Callable[[dict[str, float], str], dict[str, Any]]
 
@@ -86,7 +87,7 @@ def harness_stage(
     completion: Any = None,
 ) -> StageOutcome:
     """Run one stage under its contract; attempts go to record_dir/evidence/attempts.jsonl and a harness .rrd."""
-    roles = build_roles(agents, completion=completion)
+    roles = build_roles(agents, completion=completion, routes=stage_routes(contract.stage, contract.parameters))
     recorder = AttemptRecorder(record_dir, contract.stage) if record_dir is not None else None
     outcome = run_stage(contract, probe_runner, targets, roles=roles, initial=initial, initial_action=initial_action,
                         recorder=recorder)

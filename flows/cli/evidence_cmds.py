@@ -5,8 +5,10 @@ from __future__ import annotations
 from pathlib import Path
 
 import typer
+from rich.markup import escape
 from rich.table import Table
 
+from contracts.agents import StageOutcome
 from contracts.errors import InputError
 from flows.cli.apps import app, console, emit_json, fail
 
@@ -48,7 +50,16 @@ def evidence(
             failed = ", ".join(g.gate for g in a.gates if not g.passed) or ("-" if a.gates else "not probed")
             why = a.rejected_before_probe or (f"[{a.diagnosis}] " if a.diagnosis else "") + (a.critique or a.rationale)
             style = {"accepted": "green", "rejected": "red", "rolled_back": "yellow", "revise": "yellow"}.get(a.verdict)
-            table.add_row(a.stage, str(a.iteration), a.action, src, _fmt_values(a.proposal),
+            table.add_row(a.stage, str(a.iteration), a.action, escape(src), _fmt_values(a.proposal),
                           "-" if a.score is None else f"{a.score:.3f}", failed,
-                          f"[{style}]{a.verdict}[/{style}]" if style else a.verdict, why[:200])
+                          f"[{style}]{a.verdict}[/{style}]" if style else a.verdict, escape(why[:200]))
         console.print(table)
+        for outcome in sorted(f.parent.glob("*_outcome.json")):
+            try:
+                o = StageOutcome.model_validate_json(outcome.read_text(encoding="utf-8"))
+            except ValueError:
+                continue
+            if not stage or o.stage == stage.upper():
+                colour = "green" if o.passed else "red"
+                console.print(f"{o.stage}: [{colour}]{o.status}[/{colour}] ({o.attempts_used} attempts, "
+                              f"{o.sim_calls} simulations): {escape(o.message)}")

@@ -22,6 +22,7 @@ from tasks.agents.backend import (  # noqa: E402
 )
 from tasks.agents.prompts import load_prompt  # noqa: E402
 from tasks.agents.rule import RuleCritic, RuleDesigner, RulePlanner  # noqa: E402
+from tasks.agents.vocab import StageRoutes  # noqa: E402
 
 litellm.suppress_debug_info = True
 M = TypeVar("M", bound=BaseModel)
@@ -153,8 +154,8 @@ def _supports_schema(model: str) -> bool:
 class LLMPlanner:
     """Planner played by a litellm model."""
 
-    def __init__(self, cfg: RoleConfig, completion: Completion | None = None) -> None:
-        self.cfg, self.completion, self.rule = cfg, completion, RulePlanner()
+    def __init__(self, cfg: RoleConfig, completion: Completion | None = None, routes: StageRoutes | None = None) -> None:
+        self.cfg, self.completion, self.rule = cfg, completion, RulePlanner(routes)
 
     def plan(self, ctx: PlannerContext) -> RoleReply[PlannerDecision]:
         """Ask for a permitted action."""
@@ -165,8 +166,8 @@ class LLMPlanner:
 class LLMDesigner:
     """Designer played by a litellm model; every invalid answer is returned so the orchestrator can charge it."""
 
-    def __init__(self, cfg: RoleConfig, completion: Completion | None = None) -> None:
-        self.cfg, self.completion, self.rule = cfg, completion, RuleDesigner()
+    def __init__(self, cfg: RoleConfig, completion: Completion | None = None, routes: StageRoutes | None = None) -> None:
+        self.cfg, self.completion, self.rule = cfg, completion, RuleDesigner(routes)
 
     def design(self, req: DesignerRequest) -> RoleReply[Candidate]:
         """Ask for a candidate inside the action's fields and bounds (at most budget_left - 1 answers)."""
@@ -178,8 +179,8 @@ class LLMDesigner:
 class LLMCritic:
     """Critic played by a litellm model."""
 
-    def __init__(self, cfg: RoleConfig, completion: Completion | None = None) -> None:
-        self.cfg, self.completion, self.rule = cfg, completion, RuleCritic()
+    def __init__(self, cfg: RoleConfig, completion: Completion | None = None, routes: StageRoutes | None = None) -> None:
+        self.cfg, self.completion, self.rule = cfg, completion, RuleCritic(routes)
 
     def critique(self, req: CriticRequest) -> RoleReply[Critique]:
         """Ask for a verdict with a diagnosis and directions on editable fields."""

@@ -115,7 +115,7 @@ def run_stage(
 ) -> StageOutcome:
     """Run one stage's harness loop under its contract; every attempt (rejected ones too) costs one unit of budget."""
     targets = targets or TargetBehaviour()
-    routes = routes or stage_routes(contract.stage)
+    routes = routes or stage_routes(contract.stage, contract.parameters)
     roles = roles or Roles.rule(routes)
     names = [f.name for f in contract.editable_fields]
     action_fields = {a: routes.fields_of(a, names) for a in contract.permitted_actions}
@@ -232,7 +232,7 @@ def run_stage(
             current, base_iteration = dict(values), i
         if verdict == "accepted":
             status = "accepted"
-            message = f"accepted attempt {i}: every hard gate passes; {crit.rationale}"
+            message = f"accepted attempt {i} (score {score:.3f}): {crit.rationale}"
             break
     if status is None:
         if best is not None:

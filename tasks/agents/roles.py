@@ -16,7 +16,7 @@ def build_roles(config: AgentConfig | None = None, completion=None, routes: Stag
     from tasks.agents.llm import LLMCritic, LLMDesigner, LLMPlanner
 
     return Roles(
-        planner=LLMPlanner(config.planner, completion) if config.planner.backend == "litellm" else RulePlanner(routes),
-        designer=LLMDesigner(config.designer, completion) if config.designer.backend == "litellm" else RuleDesigner(routes),
-        critic=LLMCritic(config.critic, completion) if config.critic.backend == "litellm" else RuleCritic(routes),
+        planner=LLMPlanner(config.planner, completion, routes) if config.planner.backend == "litellm" else RulePlanner(routes),
+        designer=LLMDesigner(config.designer, completion, routes) if config.designer.backend == "litellm" else RuleDesigner(routes),
+        critic=LLMCritic(config.critic, completion, routes) if config.critic.backend == "litellm" else RuleCritic(routes),
     )

@@ -211,7 +211,8 @@ class RuleCritic:
                 notes.append(f"{b.metric} not measured")
                 continue
             need = 1.0 if value < b.low else -1.0
-            notes.append(f"{b.metric}={value:.4g} {b.unit} outside [{b.low:.4g}, {b.high:.4g}]")
+            unit = "" if b.unit == "-" else f" {b.unit}"
+            notes.append(f"{b.metric}={value:.4g}{unit} outside [{b.low:.4g}, {b.high:.4g}]")
             for f, slope in routes.couplings_of_metric(b.metric):
                 if f in editable:
                     votes[f] = votes.get(f, 0.0) + b.weight * min(b.deviation(value), 3.0) * need * math.copysign(1, slope)

@@ -143,6 +143,13 @@ def load_routes(directory: Path = VOCAB_DIR) -> dict[str, StageRoutes]:
         raise ContractError(f"{directory / 'routes.yaml'}: invalid routes: {exc}") from exc
 
 
-def stage_routes(stage: str) -> StageRoutes:
-    """The routes of one stage (empty routes when the table has none)."""
-    return load_routes().get(stage, StageRoutes())
+def stage_routes(stage: str, parameters: dict | None = None) -> StageRoutes:
+    """The routes of one stage; a contract's `parameters.harness_routes` mapping overrides keys of the table."""
+    base = load_routes().get(stage, StageRoutes())
+    override = (parameters or {}).get("harness_routes")
+    if not override:
+        return base
+    try:
+        return StageRoutes.model_validate({**base.model_dump(), **override})
+    except ValidationError as exc:
+        raise ContractError(f"{stage}: invalid parameters.harness_routes: {exc}") from exc

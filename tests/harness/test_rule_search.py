@@ -84,3 +84,18 @@ def test_l3_strain_escalates_to_material() -> None:
                                            "lift_duration_s": 1.0, "transport_duration_s": 1.5, "substeps": 1})
     assert out.status == "escalated" and out.escalation == "revise_material"
     assert out.attempts[-1].verdict == "escalated" and out.attempts_used == 2
+
+
+def test_contract_parameters_can_override_the_route_table(l2) -> None:
+    """A stage YAML may reorder routes declaratively: damping first."""
+    c = l2.model_copy(update={"parameters": {**l2.parameters, "harness_routes": {
+        "route_order": ["revise_damping", "revise_stiffness"]}}})
+    out = run_stage(c, FakeL2Probes(), l2_targets(8e5, 0.3))
+    assert out.status == "accepted" and out.attempts[1].action == "revise_damping"
+
+
+def test_agent_schemas_are_registered() -> None:
+    from contracts.registry import SCHEMAS
+
+    for name in ("PlannerDecision", "Candidate", "Critique", "TargetBehaviour", "TargetBand", "StageOutcome"):
+        assert SCHEMAS[name].model_json_schema()["title"] == name
