@@ -26,8 +26,10 @@ class ActionPlan(Model):
 
     grasp: GraspCandidate
     squeeze_depth_m: float = Field(ge=0, le=0.04, description="closure past the contact width, per finger [m]")
-    closing_speed_m_per_s: float = Field(default=0.02, gt=0, description="finger closing speed [m/s]")
+    closing_speed_m_per_s: float = Field(default=0.02, gt=0, description="finger closing speed, per finger [m/s]")
     lift_height_m: float = Field(default=0.10, gt=0, description="height the object is lifted [m]")
+    place_height_m: float = Field(default=0.01, ge=0,
+                                  description="grasp height above its pick height when the fingers open [m]")
     target_xy_m: tuple[float, float] = Field(description="place target in the table frame [m]")
     initial_yaw_deg: float = Field(default=0.0, description="object yaw on the table [deg]")
     approach_duration_s: float = Field(default=1.0, gt=0)

@@ -1,0 +1,227 @@
+"""Antipodal grasp selection for the Panda gripper, without learned weights, in the asset frame.
+
+Inputs are numpy arrays in the asset frame (z up, the table is z = 0, metres): surface points, their outward unit
+normals and the centre of mass. Closing lines are sampled from surface points along the inward normal and a few
+directions around it; each line's two outermost contacts give the width between flat pads (within the pads'
+footprint) and the two contact normals. A candidate must fit the 0.08 m opening (with a clearance per finger), have
+both normals inside the friction cone (angle to the closing line <= atan(mu)), keep the fingertips above the table,
+and let the open hand come down along the approach axis without any object point inside the palm or a finger
+(points against boxes from the collision meshes; tested best-first until the list is full). Ranking prefers top-down approaches and centres near the centre
+of mass, then well-aligned normals. Deterministic for a seed.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+from scipy.spatial import cKDTree
+
+from contracts.errors import SimulationError
+from contracts.robot import GraspCandidate
+from tasks.robot.panda import MAX_OPENING_M, hand_boxes_in_hand_frame, pad_geometry
+
+DOWN = np.array([0.0, 0.0, -1.0])
+
+
+class NoGraspError(SimulationError):
+    """The object offers no grasp the Panda gripper can take (too wide, no friction-cone pair, blocked)."""
+
+
+@dataclass(frozen=True)
+class GraspSettings:
+    """Knobs of the sampler; lengths [m], angles [deg]."""
+
+    n_points: int = 300
+    directions_per_point: int = 3
+    direction_spread_deg: float = 20.0
+    max_opening_m: float = MAX_OPENING_M
+    min_clearance_m: float = 0.002
+    open_clearance_m: float = 0.01
+    max_tilt_deg: float = 30.0
+    table_margin_m: float = 0.003
+    approach_distance_m: float = 0.10
+    collision_tolerance_m: float = 0.001
+    max_candidates: int = 16
+    dedup_distance_m: float = 0.005
+    dedup_angle_deg: float = 10.0
+    com_scale_m: float = 0.03
+
+
+@dataclass(frozen=True)
+class GraspSelection:
+    """Ranked candidates (best first) and how many sampled lines survived each test; ``reason`` when none did."""
+
+    candidates: list[GraspCandidate]
+    counts: dict[str, int] = field(default_factory=dict)
+    narrowest_width_m: float = float("inf")
+    reason: str = ""
+
+    @property
+    def ok(self) -> bool:
+        """At least one grasp."""
+        return bool(self.candidates)
+
+    def best(self) -> GraspCandidate:
+        """The top-ranked grasp, or NoGraspError with the reason."""
+        if not self.candidates:
+            raise NoGraspError(self.reason)
+        return self.candidates[0]
+
+
+def _cone_directions(normals: np.ndarray, rng: np.random.Generator, per_point: int, spread_rad: float) -> np.ndarray:
+    """Closing directions per point: the inward normal, then random ones within ``spread_rad`` of it. (M, K, 3)."""
+    m = len(normals)
+    inward = -normals
+    dirs = [inward]
+    helper = np.where(np.abs(inward[:, :1]) < 0.9, np.array([[1.0, 0.0, 0.0]]), np.array([[0.0, 1.0, 0.0]]))
+    e1 = np.cross(inward, helper)
+    e1 /= np.linalg.norm(e1, axis=1, keepdims=True)
+    e2 = np.cross(inward, e1)
+    for _ in range(per_point - 1):
+        theta = spread_rad * np.sqrt(rng.random(m))
+        phi = 2.0 * np.pi * rng.random(m)
+        d = (np.cos(theta)[:, None] * inward
+             + np.sin(theta)[:, None] * (np.cos(phi)[:, None] * e1 + np.sin(phi)[:, None] * e2))
+        dirs.append(d)
+    return np.stack(dirs, axis=1)
+
+
+def _approach_for(u: np.ndarray) -> np.ndarray:
+    """The approach axis closest to straight down that is perpendicular to the closing axis u."""
+    a = DOWN - (DOWN @ u) * u
+    n = np.linalg.norm(a)
+    return a / n if n > 1e-9 else np.array([np.nan, np.nan, np.nan])
+
+
+def _mean_normal(normals: np.ndarray, mask: np.ndarray) -> np.ndarray:
+    """Unit mean of the selected normals."""
+    n = normals[mask].sum(axis=0)
+    return n / max(np.linalg.norm(n), 1e-12)
+
+
+def _hand_frame(center: np.ndarray, u: np.ndarray, a: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Hand origin [m] and rotation (columns: x, y = -u, z = a) for pads centred at ``center``."""
+    y = -u
+    rot = np.column_stack([np.cross(y, a), y, a])
+    return center - a * pad_geometry().depth_in_hand_m, rot
+
+
+def _hand_hits(points: np.ndarray, center: np.ndarray, u: np.ndarray, a: np.ndarray, opening: float,
+               s: GraspSettings) -> bool:
+    """Whether any object point is inside the open hand swept from the pre-grasp down to the grasp."""
+    origin, rot = _hand_frame(center, u, a)
+    local = (points - origin) @ rot
+    tol = s.collision_tolerance_m
+    for lo, hi in hand_boxes_in_hand_frame(round(opening, 6)):
+        lo_swept = lo - np.array([0.0, 0.0, s.approach_distance_m])
+        inside = np.all((local > lo_swept + tol) & (local < hi - tol), axis=1)
+        if inside.any():
+            return True
+    return False
+
+
+def _lowest_finger_point(center: np.ndarray, u: np.ndarray, a: np.ndarray, width: float) -> float:
+    """Lowest z [m] of the fingertips (pad boxes extended to the tip) at the grasp."""
+    pad = pad_geometry()
+    x = np.cross(-u, a)
+    reach = abs(a[2]) * pad.tip_beyond_center_m + abs(x[2]) * pad.half_extents_m[0]
+    reach += abs(u[2]) * (width / 2.0 + 2.0 * pad.half_extents_m[1])
+    return float(center[2] - reach)
+
+
+def select_grasps(points_m: np.ndarray, normals: np.ndarray, center_of_mass_m: np.ndarray, friction: float,
+                  seed: int = 0, settings: GraspSettings | None = None) -> GraspSelection:
+    """Ranked antipodal grasps (asset frame) for surface points [m] with outward normals and gripper friction mu."""
+    s = settings or GraspSettings()
+    pts = np.asarray(points_m, dtype=float)
+    nrm = np.asarray(normals, dtype=float)
+    if pts.ndim != 2 or pts.shape[1] != 3 or nrm.shape != pts.shape or len(pts) < 4:
+        raise ValueError("points_m and normals must be matching (N, 3) arrays with N >= 4")
+    lengths = np.linalg.norm(nrm, axis=1)
+    keep = np.isfinite(pts).all(axis=1) & np.isfinite(nrm).all(axis=1) & (lengths > 1e-9)
+    pts, nrm = pts[keep], nrm[keep] / lengths[keep, None]
+    com = np.asarray(center_of_mass_m, dtype=float)
+    cone = np.arctan(friction)
+    usable = s.max_opening_m - 2.0 * s.min_clearance_m
+    pad = pad_geometry()
+    hx, hz = pad.half_extents_m[0], pad.half_extents_m[2]
+
+    spacing = float(np.median(cKDTree(pts).query(pts, k=2)[0][:, 1]))
+    tube = max(1e-3, 1.5 * spacing)
+    rng = np.random.default_rng(seed)
+    idx = np.sort(rng.choice(len(pts), size=min(s.n_points, len(pts)), replace=False))
+    dirs = _cone_directions(nrm[idx], rng, s.directions_per_point, np.radians(s.direction_spread_deg))
+
+    counts = {"lines": 0, "tilt_ok": 0, "cone_ok": 0, "width_ok": 0, "table_ok": 0, "collision_checked": 0,
+              "collision_free": 0}
+    narrowest = float("inf")
+    found: list[tuple[float, np.ndarray, np.ndarray, np.ndarray, float]] = []
+    for p0, line_dirs in zip(pts[idx], dirs):
+        for u in line_dirs:
+            counts["lines"] += 1
+            a = _approach_for(u)
+            tilt = np.arccos(np.clip(a @ DOWN, -1.0, 1.0)) if np.isfinite(a).all() else np.pi / 2
+            if tilt > np.radians(s.max_tilt_deg):
+                continue
+            counts["tilt_ok"] += 1
+            d = pts - p0
+            along = d @ u
+            perp = np.linalg.norm(d - along[:, None] * u, axis=1)
+            in_tube = perp <= tube
+            n_a = _mean_normal(nrm, in_tube & (along <= along[in_tube].min() + tube))
+            n_b = _mean_normal(nrm, in_tube & (along >= along[in_tube].max() - tube))
+            ang = max(np.arccos(np.clip(-(n_a @ u), -1.0, 1.0)), np.arccos(np.clip(n_b @ u, -1.0, 1.0)))
+            if ang > cone:
+                continue
+            counts["cone_ok"] += 1
+            x_axis = np.cross(u, a)
+            in_pad = (np.abs(d @ x_axis) <= hx) & (np.abs(d @ a) <= hz)
+            lo, hi = along[in_pad].min(), along[in_pad].max()
+            width = float(hi - lo)
+            narrowest = min(narrowest, width)
+            if width > usable or width <= 0.0:
+                continue
+            counts["width_ok"] += 1
+            center = p0 + u * 0.5 * (lo + hi)
+            if _lowest_finger_point(center, u, a, width) < s.table_margin_m:
+                continue
+            counts["table_ok"] += 1
+            score = -(tilt / np.radians(s.max_tilt_deg) + np.linalg.norm(center - com) / s.com_scale_m
+                      + 0.5 * ang / max(cone, 1e-9))
+            found.append((float(score), center, u, a, width))
+
+    found.sort(key=lambda f: -f[0])  # stable: ties keep sampling order, so the result is deterministic
+    chosen: list[tuple[float, np.ndarray, np.ndarray, np.ndarray, float]] = []
+    cos_dedup = np.cos(np.radians(s.dedup_angle_deg))
+    for f in found:  # best first; the (costlier) hand collision test only until the list is full
+        if not all(np.linalg.norm(f[1] - c[1]) > s.dedup_distance_m or abs(f[2] @ c[2]) < cos_dedup for c in chosen):
+            continue
+        counts["collision_checked"] += 1
+        if _hand_hits(pts, f[1], f[2], f[3], min(s.max_opening_m, f[4] + 2.0 * s.open_clearance_m), s):
+            continue
+        counts["collision_free"] += 1
+        chosen.append(f)
+        if len(chosen) == s.max_candidates:
+            break
+    candidates = [GraspCandidate(center_m=tuple(map(float, c)), closing_axis=tuple(map(float, u)),
+                                 approach_axis=tuple(map(float, a)), width_m=w, friction_cone_ok=True, score=sc,
+                                 rank=r) for r, (sc, c, u, a, w) in enumerate(chosen)]
+    reason = "" if candidates else _no_grasp_reason(counts, narrowest, usable, friction)
+    return GraspSelection(candidates, counts, narrowest, reason)
+
+
+def _no_grasp_reason(counts: dict[str, int], narrowest: float, usable: float, friction: float) -> str:
+    """One line saying which test removed the last sampled closing line."""
+    if counts["tilt_ok"] == 0:
+        why = "no closing line is close enough to horizontal for an approach from above"
+    elif counts["cone_ok"] == 0:
+        why = f"no contact pair has both normals inside the friction cone of mu = {friction:g}"
+    elif counts["width_ok"] == 0:
+        why = (f"the object is wider than the gripper's usable opening {usable * 1000:.0f} mm along every sampled "
+               f"closing line with both contacts in the friction cone (narrowest {narrowest * 1000:.0f} mm)")
+    elif counts["table_ok"] == 0:
+        why = "every pair that fits sits too low: the fingertips would hit the table"
+    else:
+        why = "the open hand would collide with the object on every approach"
+    return f"no grasp: {why} ({counts['lines']} lines sampled)"

@@ -1,0 +1,365 @@
+"""The Franka Panda from pybullet_data, for kinematics only, in its own DIRECT pybullet client.
+
+Frames: the world frame is the table frame (z up, the table top is z = 0, which is the MPM ground); the robot base
+stands on the table at ``base_position_m`` (default (-0.5, 0, 0), next to an object at the origin). The end-effector
+frame is link 11 ``panda_grasptarget`` (0.105 m past the hand): its z axis is the approach direction, its y axis points
+from the grasp centre to the left finger (joint 9). pybullet ignores ``<mimic>``: the two finger joints are coupled
+here, each at half the opening. Lengths in metres, angles in radians unless a name says ``_deg``.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass
+from functools import lru_cache
+from pathlib import Path
+
+import numpy as np
+import pybullet as pb
+import pybullet_data
+
+from contracts.errors import SimulationError
+
+URDF = "franka_panda/panda.urdf"
+ARM_JOINTS = (0, 1, 2, 3, 4, 5, 6)
+FINGER_JOINTS = (9, 10)
+HAND_LINK = 8
+EE_LINK = 11
+FINGER_LINKS = (9, 10)
+MAX_OPENING_M = 0.08
+DEFAULT_BASE_POSITION_M = (-0.5, 0.0, 0.0)
+# A standard Panda "ready" configuration: the IK seed and null-space rest pose, not a solution for any target.
+READY_Q = (0.0, -0.785, 0.0, -2.356, 0.0, 1.571, 0.785)
+POSITION_TOL_M = 5e-4  # accepted IK residual [m]
+ROTATION_TOL_RAD = np.radians(0.5)  # accepted IK residual [rad]
+POLISH_POSITION_M = 2e-5  # the polish stops below these
+POLISH_ROTATION_RAD = np.radians(0.02)
+LIMIT_BAND_RAD = 0.2
+
+
+class UnreachableError(SimulationError):
+    """The Panda cannot reach a requested end-effector pose within tolerance and joint limits."""
+
+
+@dataclass(frozen=True)
+class PadGeometry:
+    """A finger pad as a box in its finger link's frame: centre [m] and half extents [m] (x, y, z of the link)."""
+
+    center_left_m: tuple[float, float, float]
+    center_right_m: tuple[float, float, float]
+    half_extents_m: tuple[float, float, float]
+    finger_origin_in_hand_m: float
+    tip_beyond_center_m: float
+
+    @property
+    def depth_in_hand_m(self) -> float:
+        """Distance of the pad centres from the hand frame along the approach axis [m]."""
+        return self.finger_origin_in_hand_m + self.center_left_m[2]
+
+
+@dataclass(frozen=True)
+class IKSolution:
+    """Arm joint angles [rad] for a target pose and the FK residuals that verify them."""
+
+    q: np.ndarray
+    position_error_m: float
+    rotation_error_rad: float
+    iterations: int
+
+
+def _data_path() -> Path:
+    """Folder of pybullet_data."""
+    return Path(pybullet_data.getDataPath())
+
+
+@lru_cache(maxsize=1)
+def pad_geometry(half_thickness_m: float = 0.004) -> PadGeometry:
+    """Measure the finger pad from the Panda's finger collision mesh: the flat inner face at the fingertip.
+
+    The inner (gripping) face is the set of collision vertices on the plane y ~ 0 of the finger link; its x and z
+    ranges give the pad's face, and the box extends ``half_thickness_m * 2`` outward (+y of the left finger link).
+    The face is put on the finger joint's plane y = 0 (the mesh overhangs it by 0.13 mm), so the distance between the
+    two gripping faces equals the commanded opening.
+    """
+    import trimesh
+
+    mesh = trimesh.load(_data_path() / "franka_panda/meshes/collision/finger.obj", force="mesh")
+    v = np.asarray(mesh.vertices)
+    face = v[np.abs(v[:, 1] - v[:, 1].min()) < 5e-4]
+    face = face[face[:, 2] > 0.5 * v[:, 2].max()]  # the fingertip half, where the inner face is flat
+    lo, hi = face.min(axis=0), face.max(axis=0)
+    cx, cz = 0.5 * (lo[0] + hi[0]), 0.5 * (lo[2] + hi[2])
+    half = (0.5 * (hi[0] - lo[0]), half_thickness_m, 0.5 * (hi[2] - lo[2]))
+    y0 = 0.0
+    # the right finger's collision mesh is the left one turned by pi about z
+    return PadGeometry(
+        center_left_m=(float(cx), y0 + half_thickness_m, float(cz)),
+        center_right_m=(float(-cx), -(y0 + half_thickness_m), float(cz)),
+        half_extents_m=tuple(float(h) for h in half),
+        finger_origin_in_hand_m=0.0584,
+        tip_beyond_center_m=float(v[:, 2].max() - cz),
+    )
+
+
+@lru_cache(maxsize=8)
+def hand_boxes_in_hand_frame(opening_m: float) -> tuple[tuple[np.ndarray, np.ndarray], ...]:
+    """Axis-aligned boxes (lo, hi) [m] in the hand frame that cover the palm and both fingers at an opening [m].
+
+    From the collision meshes' bounds: the palm, and each finger (conservative: the box also covers the recess of
+    the finger's inner face above the pad), the right finger mirrored in x and y.
+    """
+    import trimesh
+
+    root = _data_path() / "franka_panda/meshes/collision"
+    palm = np.asarray(trimesh.load(root / "hand.obj", force="mesh").bounds)
+    lo, hi = np.asarray(trimesh.load(root / "finger.obj", force="mesh").bounds)
+    z0 = pad_geometry().finger_origin_in_hand_m
+    left_lo = np.array([lo[0], opening_m / 2.0, lo[2] + z0])
+    left_hi = np.array([hi[0], hi[1] + opening_m / 2.0, hi[2] + z0])
+    right_lo = np.array([-left_hi[0], -left_hi[1], left_lo[2]])
+    right_hi = np.array([-left_lo[0], -left_lo[1], left_hi[2]])
+    return ((palm[0], palm[1]), (left_lo, left_hi), (right_lo, right_hi))
+
+
+def grasp_rotation(closing_axis: Sequence[float], approach_axis: Sequence[float]) -> np.ndarray:
+    """End-effector rotation (columns x, y, z in the world) for a grasp: z = approach, y = -closing (left finger)."""
+    a = np.asarray(approach_axis, dtype=float)
+    a = a / np.linalg.norm(a)
+    u = np.asarray(closing_axis, dtype=float)
+    u = u - np.dot(u, a) * a
+    n = np.linalg.norm(u)
+    if n < 1e-9:
+        raise ValueError("closing axis is parallel to the approach axis")
+    y = -u / n
+    x = np.cross(y, a)
+    return np.column_stack([x, y, a])
+
+
+def rotation_error(r_target: np.ndarray, r_current: np.ndarray) -> np.ndarray:
+    """Axis-angle vector [rad] that rotates r_current onto r_target, in the world frame."""
+    d = r_target @ r_current.T
+    angle = np.arccos(np.clip((np.trace(d) - 1.0) / 2.0, -1.0, 1.0))
+    if angle < 1e-12:
+        return np.zeros(3)
+    w = np.array([d[2, 1] - d[1, 2], d[0, 2] - d[2, 0], d[1, 0] - d[0, 1]])
+    if np.pi - angle < 1e-6:  # near pi: the skew part vanishes, take the axis from the symmetric part
+        axis = np.sqrt(np.clip((np.diag(d) + 1.0) / 2.0, 0.0, None))
+        k = int(np.argmax(axis))
+        axis = (d[:, k] + np.eye(3)[:, k]) / (2.0 * axis[k])
+        return angle * axis / np.linalg.norm(axis)
+    return angle * w / (2.0 * np.sin(angle))
+
+
+def _quat_to_matrix(q: Sequence[float]) -> np.ndarray:
+    """3x3 rotation of a pybullet quaternion (x, y, z, w)."""
+    return np.asarray(pb.getMatrixFromQuaternion(q), dtype=float).reshape(3, 3)
+
+
+def matrix_to_quat(r: np.ndarray) -> np.ndarray:
+    """Quaternion (x, y, z, w) of a 3x3 rotation matrix."""
+    m = np.asarray(r, dtype=float)
+    t = np.trace(m)
+    if t > 0:
+        s = 2.0 * np.sqrt(t + 1.0)
+        q = [(m[2, 1] - m[1, 2]) / s, (m[0, 2] - m[2, 0]) / s, (m[1, 0] - m[0, 1]) / s, 0.25 * s]
+    else:
+        i = int(np.argmax(np.diag(m)))
+        j, k = (i + 1) % 3, (i + 2) % 3
+        s = 2.0 * np.sqrt(1.0 + m[i, i] - m[j, j] - m[k, k])
+        q = [0.0, 0.0, 0.0, (m[k, j] - m[j, k]) / s]
+        q[i] = 0.25 * s
+        q[j] = (m[j, i] + m[i, j]) / s
+        q[k] = (m[k, i] + m[i, k]) / s
+    q = np.asarray(q)
+    return q / np.linalg.norm(q)
+
+
+class Panda:
+    """A fixed-base Panda in a private DIRECT client: coupled fingers, forward and inverse kinematics."""
+
+    def __init__(self, base_position_m: Sequence[float] = DEFAULT_BASE_POSITION_M, base_yaw_rad: float = 0.0) -> None:
+        """Load the URDF with its base at base_position_m [m] (world = table frame), turned by base_yaw_rad about z."""
+        self.cid = pb.connect(pb.DIRECT)
+        self.base_position_m = np.asarray(base_position_m, dtype=float)
+        orn = pb.getQuaternionFromEuler((0.0, 0.0, base_yaw_rad))
+        self.body = pb.loadURDF(str(_data_path() / URDF), self.base_position_m.tolist(), orn, useFixedBase=True,
+                                physicsClientId=self.cid)
+        info = [pb.getJointInfo(self.body, j, physicsClientId=self.cid) for j in ARM_JOINTS]
+        self.lower = np.array([i[8] for i in info])
+        self.upper = np.array([i[9] for i in info])
+        self.velocity_limits = np.array([i[11] for i in info])
+        self.pads = pad_geometry()
+        self._movable = [j for j in range(pb.getNumJoints(self.body, physicsClientId=self.cid))
+                         if pb.getJointInfo(self.body, j, physicsClientId=self.cid)[2] != pb.JOINT_FIXED]
+        self.set_joints(np.asarray(READY_Q), MAX_OPENING_M)
+
+    def close(self) -> None:
+        """Disconnect the private pybullet client."""
+        if self.cid >= 0:
+            pb.disconnect(self.cid)
+            self.cid = -1
+
+    def __enter__(self) -> Panda:
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self.close()
+
+    # --- state --------------------------------------------------------------------------------------------------
+    def set_joints(self, q: np.ndarray, opening_m: float, qdot: np.ndarray | None = None,
+                   opening_rate_m_per_s: float = 0.0) -> None:
+        """Set arm angles [rad] and rates [rad/s], and the finger opening [m] and its rate [m/s] (each finger half)."""
+        qdot = np.zeros(7) if qdot is None else qdot
+        for j, qj, vj in zip(ARM_JOINTS, q, qdot):
+            pb.resetJointState(self.body, j, float(qj), float(vj), physicsClientId=self.cid)
+        half = float(np.clip(opening_m, 0.0, MAX_OPENING_M)) / 2.0
+        for j in FINGER_JOINTS:  # the mimic coupling pybullet ignores
+            pb.resetJointState(self.body, j, half, opening_rate_m_per_s / 2.0, physicsClientId=self.cid)
+
+    def finger_positions(self) -> tuple[float, float]:
+        """Current positions of finger joints 9 and 10 [m]."""
+        return tuple(pb.getJointState(self.body, j, physicsClientId=self.cid)[0] for j in FINGER_JOINTS)
+
+    def link_pose(self, link: int) -> tuple[np.ndarray, np.ndarray]:
+        """World position [m] and rotation matrix of a link's URDF frame at the current joint state."""
+        s = pb.getLinkState(self.body, link, computeForwardKinematics=1, physicsClientId=self.cid)
+        return np.asarray(s[4]), _quat_to_matrix(s[5])
+
+    def ee_pose(self, q: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
+        """Forward kinematics of the end-effector frame (link 11) [m], optionally at arm angles q [rad]."""
+        if q is not None:
+            for j, qj in zip(ARM_JOINTS, q):
+                pb.resetJointState(self.body, j, float(qj), physicsClientId=self.cid)
+        return self.link_pose(EE_LINK)
+
+    def pad_states(self) -> list[tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]]:
+        """Per finger (left, right): pad box centre [m], rotation, linear [m/s] and angular [rad/s] velocity."""
+        return [(p, r, v, w) for p, _, r, v, w in self.pad_states_with_quat()]
+
+    def pad_states_with_quat(self) -> list[tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]]:
+        """Per finger (left, right): pad centre [m], quaternion (x, y, z, w), rotation, velocities [m/s, rad/s]."""
+        out = []
+        states = pb.getLinkStates(self.body, list(FINGER_LINKS), computeLinkVelocity=1, computeForwardKinematics=1,
+                                  physicsClientId=self.cid)
+        for s, centre in zip(states, (self.pads.center_left_m, self.pads.center_right_m)):
+            rot = _quat_to_matrix(s[5])
+            pos = np.asarray(s[4]) + rot @ np.asarray(centre)
+            # pybullet reports the velocity of the link's centre of mass (s[0]); move it to the pad centre
+            w = np.asarray(s[7])
+            r = pos - np.asarray(s[0])
+            v = np.asarray(s[6]) + np.array([w[1] * r[2] - w[2] * r[1], w[2] * r[0] - w[0] * r[2],
+                                             w[0] * r[1] - w[1] * r[0]])
+            out.append((pos, np.asarray(s[5]), rot, v, w))
+        return out
+
+    def link_heights(self, links: Sequence[int]) -> np.ndarray:
+        """Lowest point [m] of each link's collision bounding box at the current joint state."""
+        return np.array([pb.getAABB(self.body, link, physicsClientId=self.cid)[0][2] for link in links])
+
+    # --- inverse kinematics -------------------------------------------------------------------------------------
+    def ee_target_for_grasp(self, center_m: Sequence[float], rotation: np.ndarray) -> np.ndarray:
+        """End-effector position [m] that puts the pad centres' midpoint at a grasp centre [m]."""
+        offset = 0.105 - self.pads.depth_in_hand_m
+        # the pads sit symmetrically in x and y of the hand, so only the depth along the approach axis differs
+        return np.asarray(center_m, dtype=float) + rotation @ np.array([0.0, 0.0, offset])
+
+    def _jacobian(self, q: np.ndarray) -> np.ndarray:
+        """6x7 geometric Jacobian of the end-effector (linear over angular) at q."""
+        full = np.zeros(len(self._movable))
+        full[:7] = q
+        full[7:] = self.finger_positions()
+        jl, ja = pb.calculateJacobian(self.body, EE_LINK, [0.0, 0.0, 0.0], full.tolist(), [0.0] * len(full),
+                                      [0.0] * len(full), physicsClientId=self.cid)
+        return np.vstack([np.asarray(jl)[:, :7], np.asarray(ja)[:, :7]])
+
+    def _errors(self, q: np.ndarray, position: np.ndarray, rotation: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Position [m] and rotation [rad] error vectors of the end-effector at q."""
+        p, r = self.ee_pose(q)
+        return position - p, rotation_error(rotation, r)
+
+    def _polish(self, q: np.ndarray, position: np.ndarray, rotation: np.ndarray, rest: np.ndarray,
+                iterations: int) -> tuple[np.ndarray, int]:
+        """Damped least squares on the exact Jacobian, inside joint limits, with a weak pull towards rest."""
+        for it in range(iterations):
+            ep, er = self._errors(q, position, rotation)
+            if np.linalg.norm(ep) < POLISH_POSITION_M and np.linalg.norm(er) < POLISH_ROTATION_RAD:
+                return q, it
+            e = np.concatenate([ep, 0.3 * er])  # 0.3 m: length scale that weighs radians against metres
+            jac = self._jacobian(q)
+            jac[3:] *= 0.3
+            lam2 = 1e-6 + 1e-2 * float(e @ e)
+            jjt = jac @ jac.T + lam2 * np.eye(6)
+            dq = jac.T @ np.linalg.solve(jjt, e)
+            pinv = jac.T @ np.linalg.solve(jac @ jac.T + 1e-9 * np.eye(6), np.eye(6))
+            # null space: towards rest, kept LIMIT_BAND_RAD inside the joint limits (steers away from the limits)
+            goal = np.clip(rest, self.lower + LIMIT_BAND_RAD, self.upper - LIMIT_BAND_RAD)
+            dq += (np.eye(7) - pinv @ jac) @ (0.05 * (goal - q))
+            step = np.max(np.abs(dq))
+            if step > 0.2:
+                dq *= 0.2 / step
+            q = np.clip(q + dq, self.lower, self.upper)
+        return q, iterations
+
+    def solve_ik(self, position_m: Sequence[float], rotation: np.ndarray, seed: np.ndarray | None = None,
+                 rest: np.ndarray | None = None, max_iterations: int = 200) -> IKSolution:
+        """Arm angles that put the end-effector at a world pose; verified by FK, or UnreachableError.
+
+        pybullet's null-space IK (joint limits, ranges, rest poses) gives the first guess from the seed; a damped
+        least-squares polish on the exact Jacobian brings it to tolerance; a few deterministic restarts are tried.
+        """
+        position = np.asarray(position_m, dtype=float)
+        rest = np.asarray(READY_Q if rest is None else rest, dtype=float)
+        seeds = [np.asarray(seed, dtype=float)] if seed is not None else []
+        seeds += [np.asarray(READY_Q), *(np.asarray(READY_Q) + d for d in _restart_offsets())]
+        quat = matrix_to_quat(rotation)
+        best: IKSolution | None = None
+        fingers = self.finger_positions()
+        for s in seeds:
+            self.set_joints(np.clip(s, self.lower, self.upper), sum(fingers))
+            lower = [*self.lower, 0.0, 0.0]
+            upper = [*self.upper, 0.04, 0.04]
+            q0 = pb.calculateInverseKinematics(
+                self.body, EE_LINK, position.tolist(), quat.tolist(), lowerLimits=lower, upperLimits=upper,
+                jointRanges=[u - lo for u, lo in zip(upper, lower)], restPoses=[*rest, *fingers],
+                maxNumIterations=100, residualThreshold=1e-6, physicsClientId=self.cid)
+            q = np.clip(np.asarray(q0[:7]), self.lower, self.upper)
+            q, its = self._polish(q, position, rotation, rest, max_iterations)
+            ep, er = self._errors(q, position, rotation)
+            sol = IKSolution(q, float(np.linalg.norm(ep)), float(np.linalg.norm(er)), its)
+            if best is None or (sol.position_error_m + 0.1 * sol.rotation_error_rad
+                                < best.position_error_m + 0.1 * best.rotation_error_rad):
+                best = sol
+            if sol.position_error_m <= POSITION_TOL_M and sol.rotation_error_rad <= ROTATION_TOL_RAD:
+                self.set_joints(sol.q, sum(fingers))
+                return sol
+        assert best is not None
+        self.set_joints(best.q, sum(fingers))
+        raise UnreachableError(
+            f"Panda cannot reach end-effector position {np.round(position, 4).tolist()} m with the requested "
+            f"orientation (base at {self.base_position_m.tolist()} m): best residual "
+            f"{best.position_error_m * 1000:.1f} mm, {np.degrees(best.rotation_error_rad):.1f} deg "
+            f"(tolerance {POSITION_TOL_M * 1000:.1f} mm, {np.degrees(ROTATION_TOL_RAD):.1f} deg)")
+
+    def track_ik(self, position_m: Sequence[float], rotation: np.ndarray, seed: np.ndarray) -> IKSolution:
+        """IK for a pose close to the one at ``seed`` (a path step): polish from the seed, falling back to solve_ik."""
+        position = np.asarray(position_m, dtype=float)
+        q, its = self._polish(np.asarray(seed, dtype=float), position, rotation, np.asarray(seed, dtype=float), 100)
+        ep, er = self._errors(q, position, rotation)
+        if np.linalg.norm(ep) <= POSITION_TOL_M and np.linalg.norm(er) <= ROTATION_TOL_RAD:
+            return IKSolution(q, float(np.linalg.norm(ep)), float(np.linalg.norm(er)), its)
+        return self.solve_ik(position, rotation, seed=seed, rest=seed)
+
+    def solve_grasp_ik(self, center_m: Sequence[float], closing_axis: Sequence[float],
+                       approach_axis: Sequence[float], seed: np.ndarray | None = None,
+                       rest: np.ndarray | None = None) -> IKSolution:
+        """Arm angles that put the pad centres' midpoint at a grasp centre [m] with the grasp's axes (world)."""
+        rot = grasp_rotation(closing_axis, approach_axis)
+        return self.solve_ik(self.ee_target_for_grasp(center_m, rot), rot, seed=seed, rest=rest)
+
+
+def _restart_offsets() -> list[np.ndarray]:
+    """Deterministic joint offsets [rad] from the ready pose for IK restarts."""
+    return [np.array([0.0, 0.4, 0.0, 0.6, 0.0, -0.4, 0.0]),
+            np.array([0.0, -0.3, 0.0, -0.4, 0.0, 0.5, 0.0]),
+            np.array([0.8, 0.2, 0.0, 0.2, 0.0, 0.0, 0.0]),
+            np.array([-0.8, 0.2, 0.0, 0.2, 0.0, 0.0, 0.0])]
