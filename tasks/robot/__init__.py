@@ -9,7 +9,8 @@ Typical use (asset frame = table frame at the object, metres):
 
 from tasks.robot.grasp import GraspSelection, GraspSettings, NoGraspError, select_grasps
 from tasks.robot.panda import Panda, UnreachableError, pad_geometry
-from tasks.robot.trajectory import PHASES, FingerPad, ObjectPose, PadArrays, RobotState, Trajectory, plan_trajectory
+from tasks.robot.trajectory import (PHASES, FingerPad, ObjectPose, PadArrays, RobotState, Trajectory,
+                                    plan_trajectory)
 
 __all__ = [
     "GraspSelection", "GraspSettings", "NoGraspError", "select_grasps", "Panda", "UnreachableError", "pad_geometry",

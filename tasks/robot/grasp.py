@@ -6,8 +6,8 @@ directions around it; each line's two outermost contacts give the width between 
 footprint) and the two contact normals. A candidate must fit the 0.08 m opening (with a clearance per finger), have
 both normals inside the friction cone (angle to the closing line <= atan(mu)), keep the fingertips above the table,
 and let the open hand come down along the approach axis without any object point inside the palm or a finger
-(points against boxes from the collision meshes; tested best-first until the list is full). Ranking prefers top-down approaches and centres near the centre
-of mass, then well-aligned normals. Deterministic for a seed.
+(points against boxes from the collision meshes; tested best-first until the list is full). Ranking prefers
+top-down approaches and centres near the centre of mass, then well-aligned normals. Deterministic for a seed.
 """
 
 from __future__ import annotations
@@ -130,6 +130,72 @@ def _lowest_finger_point(center: np.ndarray, u: np.ndarray, a: np.ndarray, width
     return float(center[2] - reach)
 
 
+@dataclass(frozen=True)
+class _Line:
+    """A closing line that passed the per-line tests: score, centre [m], closing and approach axes, width [m]."""
+
+    score: float
+    center: np.ndarray
+    u: np.ndarray
+    a: np.ndarray
+    width: float
+
+
+def _evaluate_line(p0: np.ndarray, u: np.ndarray, pts: np.ndarray, nrm: np.ndarray, com: np.ndarray, mu: float,
+                   tube: float, s: GraspSettings, counts: dict[str, int], widths: list[float]) -> _Line | None:
+    """Tilt, friction-cone, width and table tests of the closing line p0 + t u; counts each pass."""
+    counts["lines"] += 1
+    a = _approach_for(u)
+    tilt = float(np.arccos(np.clip(a @ DOWN, -1.0, 1.0))) if np.isfinite(a).all() else np.pi / 2
+    if tilt > np.radians(s.max_tilt_deg):
+        return None
+    counts["tilt_ok"] += 1
+    d = pts - p0
+    along = d @ u
+    in_tube = np.linalg.norm(d - along[:, None] * u, axis=1) <= tube
+    n_a = _mean_normal(nrm, in_tube & (along <= along[in_tube].min() + tube))  # finger 1's contact
+    n_b = _mean_normal(nrm, in_tube & (along >= along[in_tube].max() - tube))  # finger 2's contact
+    cone = np.arctan(mu)
+    ang = max(np.arccos(np.clip(-(n_a @ u), -1.0, 1.0)), np.arccos(np.clip(n_b @ u, -1.0, 1.0)))
+    if ang > cone:
+        return None
+    counts["cone_ok"] += 1
+    pad = pad_geometry()
+    in_pad = (np.abs(d @ np.cross(u, a)) <= pad.half_extents_m[0]) & (np.abs(d @ a) <= pad.half_extents_m[2])
+    lo, hi = along[in_pad].min(), along[in_pad].max()  # the flat pads touch the outermost points they cover
+    width = float(hi - lo)
+    widths.append(width)
+    if width > s.max_opening_m - 2.0 * s.min_clearance_m or width <= 0.0:
+        return None
+    counts["width_ok"] += 1
+    center = p0 + u * 0.5 * (lo + hi)
+    if _lowest_finger_point(center, u, a, width) < s.table_margin_m:
+        return None
+    counts["table_ok"] += 1
+    score = -(tilt / np.radians(s.max_tilt_deg) + np.linalg.norm(center - com) / s.com_scale_m
+              + 0.5 * ang / max(cone, 1e-9))
+    return _Line(float(score), center, u, a, width)
+
+
+def _rank(lines: list[_Line], pts: np.ndarray, s: GraspSettings, counts: dict[str, int]) -> list[_Line]:
+    """Best first, near-duplicates dropped, the hand collision test run until the list is full."""
+    lines = sorted(lines, key=lambda ln: -ln.score)  # stable: ties keep sampling order (deterministic)
+    cos_dedup = np.cos(np.radians(s.dedup_angle_deg))
+    chosen: list[_Line] = []
+    for ln in lines:
+        if not all(np.linalg.norm(ln.center - c.center) > s.dedup_distance_m or abs(ln.u @ c.u) < cos_dedup
+                   for c in chosen):
+            continue
+        counts["collision_checked"] += 1
+        if _hand_hits(pts, ln.center, ln.u, ln.a, min(s.max_opening_m, ln.width + 2.0 * s.open_clearance_m), s):
+            continue
+        counts["collision_free"] += 1
+        chosen.append(ln)
+        if len(chosen) == s.max_candidates:
+            break
+    return chosen
+
+
 def select_grasps(points_m: np.ndarray, normals: np.ndarray, center_of_mass_m: np.ndarray, friction: float,
                   seed: int = 0, settings: GraspSettings | None = None) -> GraspSelection:
     """Ranked antipodal grasps (asset frame) for surface points [m] with outward normals and gripper friction mu."""
@@ -142,71 +208,24 @@ def select_grasps(points_m: np.ndarray, normals: np.ndarray, center_of_mass_m: n
     keep = np.isfinite(pts).all(axis=1) & np.isfinite(nrm).all(axis=1) & (lengths > 1e-9)
     pts, nrm = pts[keep], nrm[keep] / lengths[keep, None]
     com = np.asarray(center_of_mass_m, dtype=float)
-    cone = np.arctan(friction)
-    usable = s.max_opening_m - 2.0 * s.min_clearance_m
-    pad = pad_geometry()
-    hx, hz = pad.half_extents_m[0], pad.half_extents_m[2]
 
     spacing = float(np.median(cKDTree(pts).query(pts, k=2)[0][:, 1]))
-    tube = max(1e-3, 1.5 * spacing)
+    tube = max(1e-3, 1.5 * spacing)  # points within this of a closing line are its contacts [m]
     rng = np.random.default_rng(seed)
     idx = np.sort(rng.choice(len(pts), size=min(s.n_points, len(pts)), replace=False))
     dirs = _cone_directions(nrm[idx], rng, s.directions_per_point, np.radians(s.direction_spread_deg))
 
-    counts = {"lines": 0, "tilt_ok": 0, "cone_ok": 0, "width_ok": 0, "table_ok": 0, "collision_checked": 0,
-              "collision_free": 0}
-    narrowest = float("inf")
-    found: list[tuple[float, np.ndarray, np.ndarray, np.ndarray, float]] = []
-    for p0, line_dirs in zip(pts[idx], dirs):
-        for u in line_dirs:
-            counts["lines"] += 1
-            a = _approach_for(u)
-            tilt = np.arccos(np.clip(a @ DOWN, -1.0, 1.0)) if np.isfinite(a).all() else np.pi / 2
-            if tilt > np.radians(s.max_tilt_deg):
-                continue
-            counts["tilt_ok"] += 1
-            d = pts - p0
-            along = d @ u
-            perp = np.linalg.norm(d - along[:, None] * u, axis=1)
-            in_tube = perp <= tube
-            n_a = _mean_normal(nrm, in_tube & (along <= along[in_tube].min() + tube))
-            n_b = _mean_normal(nrm, in_tube & (along >= along[in_tube].max() - tube))
-            ang = max(np.arccos(np.clip(-(n_a @ u), -1.0, 1.0)), np.arccos(np.clip(n_b @ u, -1.0, 1.0)))
-            if ang > cone:
-                continue
-            counts["cone_ok"] += 1
-            x_axis = np.cross(u, a)
-            in_pad = (np.abs(d @ x_axis) <= hx) & (np.abs(d @ a) <= hz)
-            lo, hi = along[in_pad].min(), along[in_pad].max()
-            width = float(hi - lo)
-            narrowest = min(narrowest, width)
-            if width > usable or width <= 0.0:
-                continue
-            counts["width_ok"] += 1
-            center = p0 + u * 0.5 * (lo + hi)
-            if _lowest_finger_point(center, u, a, width) < s.table_margin_m:
-                continue
-            counts["table_ok"] += 1
-            score = -(tilt / np.radians(s.max_tilt_deg) + np.linalg.norm(center - com) / s.com_scale_m
-                      + 0.5 * ang / max(cone, 1e-9))
-            found.append((float(score), center, u, a, width))
-
-    found.sort(key=lambda f: -f[0])  # stable: ties keep sampling order, so the result is deterministic
-    chosen: list[tuple[float, np.ndarray, np.ndarray, np.ndarray, float]] = []
-    cos_dedup = np.cos(np.radians(s.dedup_angle_deg))
-    for f in found:  # best first; the (costlier) hand collision test only until the list is full
-        if not all(np.linalg.norm(f[1] - c[1]) > s.dedup_distance_m or abs(f[2] @ c[2]) < cos_dedup for c in chosen):
-            continue
-        counts["collision_checked"] += 1
-        if _hand_hits(pts, f[1], f[2], f[3], min(s.max_opening_m, f[4] + 2.0 * s.open_clearance_m), s):
-            continue
-        counts["collision_free"] += 1
-        chosen.append(f)
-        if len(chosen) == s.max_candidates:
-            break
-    candidates = [GraspCandidate(center_m=tuple(map(float, c)), closing_axis=tuple(map(float, u)),
-                                 approach_axis=tuple(map(float, a)), width_m=w, friction_cone_ok=True, score=sc,
-                                 rank=r) for r, (sc, c, u, a, w) in enumerate(chosen)]
+    counts = dict.fromkeys(("lines", "tilt_ok", "cone_ok", "width_ok", "table_ok", "collision_checked",
+                            "collision_free"), 0)
+    widths: list[float] = []
+    lines = [ln for p0, line_dirs in zip(pts[idx], dirs) for u in line_dirs
+             if (ln := _evaluate_line(p0, u, pts, nrm, com, friction, tube, s, counts, widths)) is not None]
+    chosen = _rank(lines, pts, s, counts)
+    candidates = [GraspCandidate(center_m=tuple(map(float, ln.center)), closing_axis=tuple(map(float, ln.u)),
+                                 approach_axis=tuple(map(float, ln.a)), width_m=ln.width, friction_cone_ok=True,
+                                 score=ln.score, rank=r) for r, ln in enumerate(chosen)]
+    narrowest = min(widths, default=float("inf"))
+    usable = s.max_opening_m - 2.0 * s.min_clearance_m
     reason = "" if candidates else _no_grasp_reason(counts, narrowest, usable, friction)
     return GraspSelection(candidates, counts, narrowest, reason)
 

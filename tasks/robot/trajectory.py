@@ -1,11 +1,11 @@
 """The timed pick-and-place of an ActionPlan: joint trajectory, finger opening and finger-pad boxes at any time.
 
 Phases: approach (joint move to a pre-grasp clear of the object and the table, lengthened if needed to respect the
-joint speed limits, then a straight descent) -> closure
-(fingers close from the open width to ``width - 2 * squeeze`` at the closing speed per finger, then hold) -> lift
-(straight up) -> transport (straight, at the lift height, to above the target; then straight down to the place height)
--> release (fingers open) -> retreat (straight back along the approach) -> settle (hold). Joint moves use min-jerk timing;
-straight Cartesian moves are densely sampled IK joined by a spline in the path parameter, timed min-jerk.
+joint speed limits, then a straight descent) -> closure (fingers close from the open width to ``width - 2 * squeeze``
+at the closing speed per finger, then hold) -> lift (straight up) -> transport (straight, at the lift height, to above
+the target; then straight down to the place height) -> release (fingers open) -> retreat (straight back along the
+approach) -> settle (hold). Joint moves use min-jerk timing; straight Cartesian moves are densely sampled IK joined by
+a spline in the path parameter, timed min-jerk.
 
 Frames: world = table frame (z up, table top z = 0 = the MPM ground). The asset frame sits at ``ObjectPose`` (origin on
 the table at xy, turned by yaw about z); the object is placed at ``plan.target_xy_m`` with the same yaw. Finger 0 is the
@@ -103,6 +103,20 @@ class PadArrays:
     linear_velocity_m_per_s: np.ndarray
     angular_velocity_rad_per_s: np.ndarray
     half_extents_m: np.ndarray
+
+    def _split(self) -> list[PadArrays]:
+        """One PadArrays (N = 1) per time."""
+        return [PadArrays(self.t_s[k:k + 1], self.position_m[k:k + 1], self.quat_xyzw[k:k + 1],
+                          self.linear_velocity_m_per_s[k:k + 1], self.angular_velocity_rad_per_s[k:k + 1],
+                          self.half_extents_m[k:k + 1]) for k in range(len(self.t_s))]
+
+
+def _quat_mul(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """Hamilton product of quaternions (x, y, z, w), broadcast over leading axes."""
+    ax, ay, az, aw = np.moveaxis(a, -1, 0)
+    bx, by, bz, bw = np.moveaxis(b, -1, 0)
+    return np.stack([aw * bx + ax * bw + ay * bz - az * by, aw * by - ax * bz + ay * bw + az * bx,
+                     aw * bz + ax * by - ay * bx + az * bw, aw * bw - ax * bx - ay * by - az * bz], axis=-1)
 
 
 # --- motion pieces (local time tau in [0, duration]) -------------------------------------------------------------
@@ -244,6 +258,26 @@ class Trajectory:
                                   arr.linear_velocity_m_per_s[0, k], arr.angular_velocity_rad_per_s[0, k],
                                   sign * rot[:, 1]))
         return pads[0], pads[1]
+
+    def pad_motion(self, t0: float, t1: float) -> PadArrays:
+        """Pads as constant-velocity kinematic colliders over [t0, t1] [s]: pose at t0 and the mean linear and angular
+        (world frame) velocities that carry it exactly onto the planned pose at t1, ``q(t) = exp(w (t - t0)) q0``.
+
+        Arrays have N = 1: shapes (1, 2, ...). Feed them to the MPM's per-step collider control to avoid the drift
+        of extrapolating the instantaneous velocity.
+        """
+        if not t1 > t0:
+            raise ValueError("pad_motion needs t1 > t0")
+        a, b = self.pads_at(np.array([t0, t1]))._split()
+        dt = t1 - t0
+        dq = _quat_mul(b.quat_xyzw, a.quat_xyzw * np.array([-1.0, -1.0, -1.0, 1.0]))
+        dq *= np.where(dq[..., 3:4] < 0.0, -1.0, 1.0)
+        sin_half = np.linalg.norm(dq[..., :3], axis=-1, keepdims=True)
+        angle = 2.0 * np.arctan2(sin_half, dq[..., 3:4])
+        axis = dq[..., :3] / np.maximum(sin_half, 1e-300)
+        omega = np.where(sin_half > 1e-15, axis * angle / dt, 0.0)
+        vel = (b.position_m - a.position_m) / dt
+        return PadArrays(a.t_s, a.position_m, a.quat_xyzw, vel, omega, a.half_extents_m)
 
     def joint_table(self) -> dict[str, np.ndarray]:
         """The dense table: t [s], q [rad] (N, 7), opening [m] (N,), phase index (N,) into PHASES."""

@@ -110,6 +110,23 @@ def test_closing_axis_follows_object_yaw_and_robot_stays_above_table(traj: Traje
     assert start[2] > 0.2  # starts well above the object
 
 
+def test_pad_motion_lands_constant_velocity_colliders_on_the_plan(traj: Trajectory) -> None:
+    for t0 in (0.3, traj.contact_time_s, 2.5, 3.7, 5.2):
+        dt = 2e-3
+        m = traj.pad_motion(t0, t0 + dt)
+        end = traj.pads_at(np.array([t0 + dt]))
+        assert np.allclose(m.position_m + m.linear_velocity_m_per_s * dt, end.position_m, atol=1e-12)
+        w = m.angular_velocity_rad_per_s[0]  # exp(w dt) q0, as the MPM's Control integrates it
+        wl = np.linalg.norm(w, axis=-1, keepdims=True)
+        dq = np.concatenate([np.where(wl > 0, w / np.maximum(wl, 1e-300), 0) * np.sin(0.5 * wl * dt),
+                             np.cos(0.5 * wl * dt)], axis=-1)
+        q1 = _quat_mul(dq, m.quat_xyzw[0])
+        assert np.allclose(np.abs(np.sum(q1 * end.quat_xyzw[0], axis=-1)), 1.0, atol=1e-10)
+        inst = traj.pads_at(np.array([t0 + 0.5 * dt]))
+        assert np.allclose(m.linear_velocity_m_per_s, inst.linear_velocity_m_per_s, atol=2e-3)
+        assert np.allclose(m.angular_velocity_rad_per_s, inst.angular_velocity_rad_per_s, atol=1e-2)
+
+
 def test_finger_pads_are_cheap_per_step(traj: Trajectory) -> None:
     t0 = time.perf_counter()
     for k in range(2000):
