@@ -28,6 +28,24 @@ EPS_V = wp.constant(1.0e-7)  # [m/s] smallest tangential speed in the friction l
 BIG = wp.constant(1.0e30)
 
 
+@wp.func_native(
+    """
+#if defined(__CUDA_ARCH__) && (__CUDA_ARCH__ >= 900) && (__CUDACC_VER_MAJOR__ >= 12)
+    atomicAdd(reinterpret_cast<float4*>(&arr[idx]), make_float4(v.c[0], v.c[1], v.c[2], v.c[3]));
+#elif defined(__CUDA_ARCH__)
+    float* p = reinterpret_cast<float*>(&arr[idx]);
+    atomicAdd(p, v.c[0]); atomicAdd(p + 1, v.c[1]); atomicAdd(p + 2, v.c[2]); atomicAdd(p + 3, v.c[3]);
+#else
+    float* p = reinterpret_cast<float*>(&arr[idx]);
+    p[0] += v.c[0]; p[1] += v.c[1]; p[2] += v.c[2]; p[3] += v.c[3];
+#endif
+"""
+)
+def scatter_add_vec4(arr: wp.array(dtype=wp.vec4), idx: int, v: wp.vec4):
+    """arr[idx] += v: one 16-byte vector atomic on sm_90+ (4 scalar atomics on older GPUs, plain add on CPU)."""
+    ...
+
+
 @wp.func
 def quadratic_weights(f: float) -> wp.vec3:
     """Quadratic B-spline weights of the 3 stencil nodes for a particle at offset f in [0.5, 1.5) from the base."""
@@ -117,11 +135,14 @@ def collider_contact(
 
 
 @wp.func
-def gather_row(grid_v: wp.array(dtype=wp.vec3), row: int, wz: wp.vec3) -> wp.mat33:
+def gather_row(grid_v: wp.array(dtype=wp.vec4), row: int, wz: wp.vec3) -> wp.mat33:
     """Weighted sums along z of 3 nodes: rows (sum_k w_k v_k, sum_k k w_k v_k, unused)."""
-    a1 = wz[1] * grid_v[row + 1]
-    a2 = wz[2] * grid_v[row + 2]
-    s0 = wz[0] * grid_v[row] + a1 + a2
+    g0 = grid_v[row]
+    g1 = grid_v[row + 1]
+    g2 = grid_v[row + 2]
+    a1 = wz[1] * wp.vec3(g1[0], g1[1], g1[2])
+    a2 = wz[2] * wp.vec3(g2[0], g2[1], g2[2])
+    s0 = wz[0] * wp.vec3(g0[0], g0[1], g0[2]) + a1 + a2
     s1 = a1 + 2.0 * a2
     return wp.mat33(s0[0], s0[1], s0[2], s1[0], s1[1], s1[2], 0.0, 0.0, 0.0)
 
@@ -233,10 +254,10 @@ def p2g_apic_neohookean(
             for j in range(3):
                 wij = wx[i] * wy[j]
                 row = base + i * nyz + j * nz
-                wp.atomic_add(grid_mvm, row, (wij * wz[0]) * qij)
+                scatter_add_vec4(grid_mvm, row, (wij * wz[0]) * qij)
                 q1 = qij + a2
-                wp.atomic_add(grid_mvm, row + 1, (wij * wz[1]) * q1)
-                wp.atomic_add(grid_mvm, row + 2, (wij * wz[2]) * (q1 + a2))
+                scatter_add_vec4(grid_mvm, row + 1, (wij * wz[1]) * q1)
+                scatter_add_vec4(grid_mvm, row + 2, (wij * wz[2]) * (q1 + a2))
                 qij = qij + a1
             qi = qi + a0
 
@@ -244,7 +265,7 @@ def p2g_apic_neohookean(
 @wp.kernel
 def grid_update(
     grid_mvm: wp.array(dtype=wp.vec4),
-    grid_v: wp.array(dtype=wp.vec3),
+    grid_v: wp.array(dtype=wp.vec4),
     grid_origin: wp.array(dtype=wp.vec3i),
     nx: int,
     ny: int,
@@ -288,7 +309,7 @@ def grid_update(
         grid_mvm[n] = wp.vec4(0.0, 0.0, 0.0, 0.0)
         m = mvm[3]
         if m <= 0.0:
-            grid_v[n] = wp.vec3(0.0, 0.0, 0.0)
+            grid_v[n] = wp.vec4(0.0, 0.0, 0.0, 0.0)
             continue
         dt = dt_arr[0]
         cells = nx * ny * nz
@@ -317,7 +338,7 @@ def grid_update(
                                          col_mu[c], col_bonded[c])
                 wp.atomic_add(col_impulse, c, m * (vplus - v))
                 v = vplus
-        grid_v[n] = v
+        grid_v[n] = wp.vec4(v[0], v[1], v[2], 0.0)
 
 
 @wp.kernel
@@ -329,7 +350,7 @@ def g2p_apic(
     particle_mass: wp.array(dtype=float),
     particle_scene: wp.array(dtype=wp.int32),
     scene_start: wp.array(dtype=wp.int32),
-    grid_v: wp.array(dtype=wp.vec3),
+    grid_v: wp.array(dtype=wp.vec4),
     grid_origin: wp.array(dtype=wp.vec3i),
     nx: int,
     ny: int,

@@ -104,12 +104,23 @@ class Simulator:
             remaining = t_end - self.time_s
             if remaining <= 1e-4 * dt_nom:
                 break
-            # land on t_end: take the remainder if it is within 0.1 % of a full step (float32 dt rounding)
-            dt = remaining if remaining <= 1.001 * dt_nom else dt_nom
-            solver.step(self.state, self.state, self.control, dt)
-            self._step_time[solver.steps] = solver.time_s
-            steps += 1
-            self._since_check += 1
+            if remaining <= 1.001 * dt_nom:
+                # land on t_end: take the remainder if it is within 0.1 % of a full step (float32 dt rounding)
+                dt, n = remaining, 1
+            else:
+                dt = dt_nom
+                dt32 = float(np.float32(dt_nom))
+                n = max(1, int(remaining / dt32 - 1e-6))
+                n = min(n, self.health_interval_steps - self._since_check)
+                if max_steps is not None:
+                    n = min(n, max_steps - steps)
+            t_before, s_before = solver.time_s, solver.steps
+            solver.advance_steps(self.state, self.control, dt, n)
+            dt_used = (solver.time_s - t_before) / n
+            for k in range(1, n + 1):
+                self._step_time[s_before + k] = t_before + k * dt_used
+            steps += n
+            self._since_check += n
             if self._since_check >= self.health_interval_steps:
                 self.check_health()
         self.check_health()

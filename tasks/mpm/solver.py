@@ -61,7 +61,7 @@ class Solver:
         self.grid_dims = tuple(int(n) for n in dims)
         nodes = self.model.n_scenes * self.grid_dims[0] * self.grid_dims[1] * self.grid_dims[2]
         self.grid_mvm = wp.zeros(nodes, dtype=wp.vec4, device=self.device)
-        self.grid_v = wp.zeros(nodes, dtype=wp.vec3, device=self.device)
+        self.grid_v = wp.zeros(nodes, dtype=wp.vec4, device=self.device)  # xyz velocity, 16-byte loads
         self._graphs.clear()
         self._since_refit = self.model.refit_interval  # refit at the next step
 
@@ -119,6 +119,44 @@ class Solver:
         self._since_refit = 0 if refit else self._since_refit + 1
         self.steps += 1
         self.time_s += dt32
+
+    def advance_steps(self, state: State, control: Control, dt: float, count: int) -> None:
+        """Advance `count` in-place steps of dt [s]; on CUDA whole refit cycles replay as one graph (few host calls)."""
+        if count <= 0:
+            return
+        R = self.model.refit_interval
+        if not self.use_graph or count < R + 1:
+            for _ in range(count):
+                self.step(state, state, control, dt)
+            return
+        while count > 0 and self._since_refit < R:  # finish the current cycle step by step
+            self.step(state, state, control, dt)
+            count -= 1
+        control.sync(self.time_s)
+        dt32 = self.set_dt(dt)
+        cycles = count // (R + 1)
+        if cycles:
+            key = ("cycle", id(state), id(control), R, self.grid_dims)
+            entry = self._graphs.get(key)
+            if entry is None:
+                cmds = self._record_step(state, state, control, True)
+                for _ in range(R):
+                    cmds += self._record_step(state, state, control, False)
+                wp.load_module(K, device=self.device)
+                with wp.ScopedCapture(device=self.device, force_module_load=False) as cap:
+                    for cmd in cmds:
+                        cmd.launch()
+                entry = (cmds, cap.graph, state, control)
+                self._graphs[key] = entry
+            for _ in range(cycles):
+                wp.capture_launch(entry[1])
+            n = cycles * (R + 1)
+            self._since_refit = R
+            self.steps += n
+            self.time_s += n * dt32
+            count -= n
+        for _ in range(count):
+            self.step(state, state, control, dt)
 
     def refit(self, state: State) -> None:
         """Move each scene's grid window onto its particles now (device only, no sync)."""
