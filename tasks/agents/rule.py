@@ -93,13 +93,29 @@ def propose_field(
     return None if math.isclose(x, current, rel_tol=1e-9, abs_tol=1e-12) else x
 
 
-def _stale(action: str, history: list[HistoryEntry], patience: int = 2) -> bool:
-    """True when the last `patience` probed attempts all took this action and none reduced the failed gates."""
+def _unmet(h: HistoryEntry, targets: TargetBehaviour) -> list[str]:
+    """Metrics an attempt left failing: its failed gates and its unmet target bands."""
+    return h.failed_gates + [b.metric for b in targets.bands if b.weight > 0 and not b.contains(h.metrics.get(b.metric))]
+
+
+def _progressed(a: HistoryEntry, b: HistoryEntry, targets: TargetBehaviour) -> bool:
+    """True when b fails fewer gates than a, or moved any metric that a left failing."""
+    if len(b.failed_gates) < len(a.failed_gates):
+        return True
+    for m in _unmet(a, targets):
+        x, y = a.metrics.get(m), b.metrics.get(m)
+        if x is not None and y is not None and not math.isclose(x, y, rel_tol=1e-9, abs_tol=1e-12):
+            return True
+    return False
+
+
+def _stale(action: str, history: list[HistoryEntry], targets: TargetBehaviour, patience: int = 2) -> bool:
+    """True when the last `patience` probed attempts all took this action and none moved what was failing."""
     probed = [h for h in history if h.probed]
     if len(probed) <= patience or any(h.action != action for h in probed[-patience:]):
         return False
     tail = probed[-patience - 1:]
-    return all(b.failed_gates and len(b.failed_gates) >= len(a.failed_gates) for a, b in zip(tail, tail[1:]))
+    return not any(_progressed(a, b, targets) for a, b in zip(tail, tail[1:]))
 
 
 class RulePlanner:
@@ -122,7 +138,7 @@ class RulePlanner:
         order = [a for a in routes.route_order if a in ctx.permitted_actions]
         order += [a for a in ctx.permitted_actions if a not in order and not a.startswith(INITIAL_PREFIXES)]
         for action in order:
-            if action in routes.escalations or _stale(action, ctx.history):
+            if action in routes.escalations or _stale(action, ctx.history, ctx.targets):
                 continue
             for name in ctx.action_fields.get(action, []):
                 if name in flagged and name in specs and propose_field(
@@ -182,27 +198,38 @@ class RuleCritic:
         routes = self.routes or stage_routes(req.stage)
         editable = {f.name for f in req.editable_fields}
         failed = [g for g in req.gates if not g.passed]
-        if failed:
-            directions: dict[str, str] = {}
-            ranks: dict[str, int] = {}
-            diagnosis = None
-            for g in failed:
-                route = routes.gates.get(g.metric)
-                if route is None:
-                    continue
-                diagnosis = diagnosis or route.diagnosis
-                for f, d in route.directions.items():
-                    if f in editable and route.priority > ranks.get(f, -10**9):
-                        directions[f], ranks[f] = d, route.priority
-            if diagnosis is None:
-                diagnosis = "numerical" if any(g.value is None or not math.isfinite(g.value) for g in failed) else "none"
-            text = "; ".join(f"gate '{g.gate}' failed ({g.metric}={g.value})" for g in failed)
-            return RoleReply(Critique(verdict="revise", diagnosis=diagnosis, directions=directions,  # type: ignore[arg-type]
-                                      rationale=text, unmet=[g.metric for g in failed]), rule_source())
         unmet = [b for b in req.targets.bands if b.weight > 0 and not b.contains(req.metrics.get(b.metric))]
-        if not unmet:
+        band_dirs, band_notes = self._band_directions(req, unmet, routes, editable)
+        if not failed and not unmet:
             return RoleReply(Critique(verdict="accept", diagnosis="none",
                                       rationale="every hard gate passes and every target band holds"), rule_source())
+        if not failed:
+            return RoleReply(Critique(verdict="revise", diagnosis=STAGE_DIAGNOSIS.get(req.stage, "material"),  # type: ignore[arg-type]
+                                      directions=band_dirs, rationale="; ".join(band_notes),  # type: ignore[arg-type]
+                                      unmet=[b.metric for b in unmet]), rule_source())
+        directions: dict[str, str] = {}
+        ranks: dict[str, int] = {}
+        diagnosis = None
+        for g in failed:
+            route = routes.gates.get(g.metric)
+            if route is None:
+                continue
+            diagnosis = diagnosis or route.diagnosis
+            for f, d in route.directions.items():
+                if f in editable and route.priority > ranks.get(f, -10**9):
+                    directions[f], ranks[f] = d, route.priority
+        for f, d in band_dirs.items():  # targets still guide the fields that no failed gate speaks for (e.g. mass)
+            directions.setdefault(f, d)
+        if diagnosis is None:
+            diagnosis = "numerical" if any(g.value is None or not math.isfinite(g.value) for g in failed) else "none"
+        text = "; ".join([f"gate '{g.gate}' failed ({g.metric}={g.value})" for g in failed] + band_notes)
+        return RoleReply(Critique(verdict="revise", diagnosis=diagnosis, directions=directions,  # type: ignore[arg-type]
+                                  rationale=text, unmet=[g.metric for g in failed] + [b.metric for b in unmet]),
+                         rule_source())
+
+    @staticmethod
+    def _band_directions(req: CriticRequest, unmet: list, routes: StageRoutes, editable: set[str]):  # noqa: ANN205
+        """Weighted vote per field from the unmet bands and the couplings, plus one note per band."""
         votes: dict[str, float] = {}
         notes = []
         for b in unmet:
@@ -216,7 +243,4 @@ class RuleCritic:
             for f, slope in routes.couplings_of_metric(b.metric):
                 if f in editable:
                     votes[f] = votes.get(f, 0.0) + b.weight * min(b.deviation(value), 3.0) * need * math.copysign(1, slope)
-        directions = {f: ("increase" if v > 0 else "decrease") for f, v in votes.items() if v != 0}
-        return RoleReply(Critique(verdict="revise", diagnosis=STAGE_DIAGNOSIS.get(req.stage, "material"),  # type: ignore[arg-type]
-                                  directions=directions, rationale="; ".join(notes),  # type: ignore[arg-type]
-                                  unmet=[b.metric for b in unmet]), rule_source())
+        return {f: ("increase" if v > 0 else "decrease") for f, v in votes.items() if v != 0}, notes

@@ -44,7 +44,7 @@ def test_gate_failure_bounds_the_search(l2) -> None:
     out = run_stage(l2, probes, t, initial={"youngs_modulus_pa": 2e3, "poisson_ratio": 0.3, "damping_rate_per_s": 5.0})
     first = out.attempts[0]
     assert first.verdict == "revise" and first.diagnosis == "material"
-    assert first.directions == {"youngs_modulus_pa": "increase"}
+    assert first.directions["youngs_modulus_pa"] == "increase"
     assert out.status == "accepted", out.message
 
 
@@ -99,3 +99,24 @@ def test_agent_schemas_are_registered() -> None:
 
     for name in ("PlannerDecision", "Candidate", "Critique", "TargetBehaviour", "TargetBand", "StageOutcome"):
         assert SCHEMAS[name].model_json_schema()["title"] == name
+
+
+def test_l1_mass_gate_is_steered_by_the_mass_band() -> None:
+    """L1: the plausibility gate says only 'implausible'; the mass band on mass_kg tells the density which way."""
+    l1 = load_contract("L1")
+    volume_m3 = 2e-3
+
+    def rigid(values: dict[str, float], action: str) -> list[ProbeResult]:
+        mass = values["density_kg_per_m3"] * volume_m3
+        mu = values["ground_friction"]
+        m = {"mass_kg": mass, "mass_plausibility": float(0.2 <= mass <= 0.4), "place_tilt_deg": 0.5,
+             "place_penetration_m": 0.0, "place_settle_time_s": 0.4, "drop_penetration_m": 0.0,
+             "drop_rest_displacement_m": 0.001, "slide_below_sticks": 1.0, "slide_above_slides": 1.0,
+             "slide_accel_error_rel": 0.02 if mu > 0 else 1.0}
+        return [ProbeResult(spec=ProbeSpec(kind="place"), metrics=m)]
+
+    t = TargetBehaviour(bands=[TargetBand(metric="mass_kg", unit="kg", low=0.2, high=0.4, scale="log")],
+                        priors={"density_kg_per_m3": 30.0, "ground_friction": 0.5, "gripper_friction": 0.8})
+    out = run_stage(l1, rigid, t)
+    assert out.attempts[0].verdict == "revise" and out.attempts[0].directions["density_kg_per_m3"] == "increase"
+    assert out.status == "accepted" and 0.2 <= out.metrics["mass_kg"] <= 0.4
