@@ -177,8 +177,13 @@ def matrix_to_quat(r: np.ndarray) -> np.ndarray:
 class Panda:
     """A fixed-base Panda in a private DIRECT client: coupled fingers, forward and inverse kinematics."""
 
-    def __init__(self, base_position_m: Sequence[float] = DEFAULT_BASE_POSITION_M, base_yaw_rad: float = 0.0) -> None:
-        """Load the URDF with its base at base_position_m [m] (world = table frame), turned by base_yaw_rad about z."""
+    def __init__(self, base_position_m: Sequence[float] = DEFAULT_BASE_POSITION_M, base_yaw_rad: float = 0.0,
+                 pad_half_thickness_m: float = 0.004) -> None:
+        """Load the URDF with its base at base_position_m [m] (world = table frame), turned by base_yaw_rad about z.
+
+        pad_half_thickness_m: half thickness of the pad boxes [m]; they grow outward from the gripping face, so a
+        thicker pad (e.g. >= the MPM grid spacing) changes no contact geometry, only what a coarse grid resolves.
+        """
         self.cid = pb.connect(pb.DIRECT)
         self.base_position_m = np.asarray(base_position_m, dtype=float)
         orn = pb.getQuaternionFromEuler((0.0, 0.0, base_yaw_rad))
@@ -188,7 +193,7 @@ class Panda:
         self.lower = np.array([i[8] for i in info])
         self.upper = np.array([i[9] for i in info])
         self.velocity_limits = np.array([i[11] for i in info])
-        self.pads = pad_geometry()
+        self.pads = pad_geometry(float(pad_half_thickness_m))
         self._movable = [j for j in range(pb.getNumJoints(self.body, physicsClientId=self.cid))
                          if pb.getJointInfo(self.body, j, physicsClientId=self.cid)[2] != pb.JOINT_FIXED]
         self.set_joints(np.asarray(READY_Q), MAX_OPENING_M)

@@ -349,17 +349,19 @@ def _choose_closing_axis(panda: Panda, closing: np.ndarray, approach: np.ndarray
 
 def plan_trajectory(plan: ActionPlan, object_pose: ObjectPose | None = None, object_height_m: float | None = None,
                     panda: Panda | None = None, open_clearance_m: float = 0.01, approach_clearance_m: float = 0.03,
-                    table_dt_s: float = 0.002) -> Trajectory:
+                    table_dt_s: float = 0.002, pad_half_thickness_m: float = 0.004) -> Trajectory:
     """Turn an ActionPlan into a Trajectory (IK verified by FK; raises UnreachableError or SimulationError).
 
     object_pose: where the asset frame is on the table (default: origin, ``plan.initial_yaw_deg``).
     object_height_m: top of the asset [m]; the pre-grasp puts the fingertips that far above it plus
     approach_clearance_m (without it, the pre-grasp is 0.10 m back along the approach axis).
     open_clearance_m: gap per finger [m] between a pad and the object at the pre-grasp (capped by the 0.08 m opening).
+    pad_half_thickness_m: half thickness of the pad boxes [m] (outward from the gripping face), when no panda is given.
+    table_dt_s: spacing of the dense pad table [s].
     """
     pose = object_pose or ObjectPose((0.0, 0.0), plan.initial_yaw_deg)
     own = panda is None
-    panda = panda or Panda()
+    panda = panda or Panda(pad_half_thickness_m=pad_half_thickness_m)
     try:
         return _plan(plan, pose, object_height_m, panda, open_clearance_m, approach_clearance_m, table_dt_s)
     finally:

@@ -67,3 +67,14 @@ def test_pad_box_measured_from_the_finger_mesh() -> None:
 def test_unreachable_target_gives_a_clear_error(panda: Panda) -> None:
     with pytest.raises(UnreachableError, match="cannot reach .* best residual"):
         panda.solve_grasp_ik((1.5, 0.0, 0.1), (0.0, 1.0, 0.0), (0.0, 0.0, -1.0))
+
+
+def test_thicker_pads_grow_outward_and_keep_the_gripping_faces() -> None:
+    with Panda(pad_half_thickness_m=0.01) as robot:
+        sol = robot.solve_grasp_ik((0.0, 0.1, 0.04), (0.0, 1.0, 0.0), (0.0, 0.0, -1.0))
+        robot.set_joints(sol.q, 0.05)
+        left, right = robot.pad_states()
+        assert robot.pads.half_extents_m[1] == 0.01
+        faces = [left[0] - left[1][:, 1] * 0.01, right[0] + right[1][:, 1] * 0.01]
+        assert float((faces[1] - faces[0]) @ -left[1][:, 1]) == pytest.approx(0.05, abs=1e-6)
+        assert np.linalg.norm(0.5 * (faces[0] + faces[1]) - (0.0, 0.1, 0.04)) < 1e-3
