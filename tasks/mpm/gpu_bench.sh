@@ -11,6 +11,7 @@ ds bench mpm --device cuda --particles 1000000 --steps 300 --json > "$OUT/bench_
 ds bench mpm --device cuda --particles 8000 --steps 2000 --batch 16 --json > "$OUT/bench_8k_x16.json"; echo "x16 rc=$?"
 ds bench mpm --device cuda --particles 64000 --steps 1000 --json > "$OUT/bench_64k.json"; echo "64k rc=$?"
 ds verify physics --quick --device cuda --json > "$OUT/verify_cuda_quick.json"; echo "verify rc=$?"
+python3 -m pytest -q -p no:cacheprovider -m gpu tests/mpm/test_engine.py 2>&1 | tail -2
 python3 - "$OUT" <<'PY'
 import json, sys, pathlib
 out = pathlib.Path(sys.argv[1])

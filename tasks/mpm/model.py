@@ -222,12 +222,14 @@ class Model:
         self.col_radius2_np = np.asarray([_bounding_radius(c) ** 2 for c in specs], dtype=np.float32)
         self.col_bonded_np = np.asarray([1 if c.bonded else 0 for c in specs], dtype=np.int32)
 
-        # reduction chunks (contiguous, one scene each)
-        chunk = 256
+        # reduction chunks (contiguous, one scene each); on CUDA short chunks keep the serial loop off the
+        # critical path for small scenes, long ones limit same-address atomics for large scenes
         cs, cb, ce = [], [], []
         for s in range(self.n_scenes):
             b0 = int(self.scene_start_np[s])
             b1 = b0 + int(self.scene_counts[s])
+            n_s = b1 - b0
+            chunk = 256 if self.device == "cpu" else int(min(256, max(32, n_s // 128)))
             for b in range(b0, b1, chunk):
                 cs.append(s)
                 cb.append(b)
