@@ -41,7 +41,8 @@ def geometry(
                                quality=quality)  # type: ignore[arg-type]
     except ValidationError as exc:
         fail("; ".join(e["msg"].removeprefix("Value error, ") for e in exc.errors()))
-    os.environ.setdefault("PREFECT_LOGGING_LEVEL", "WARNING")
+    _preflight(request)
+    os.environ.setdefault("PREFECT_LOGGING_LEVEL", "CRITICAL")  # user errors surface as one line, not task tracebacks
     from flows.l0_geometry import run_l0, write_l0
 
     with console.status(f"L0 geometry ({quality})..."):
@@ -60,6 +61,22 @@ def geometry(
         console.print(f"[yellow]warning:[/] {w}")
     if not result.checks.passed:
         fail(f"L0 hard gates failed: {', '.join(result.checks.failed)} (outputs kept in {out} as evidence)", code=1)
+
+
+def _preflight(request) -> None:  # type: ignore[no-untyped-def]
+    """Cheap input checks before any flow starts (missing files, unsupported formats, absurd stated sizes)."""
+    from tasks.geometry import catalogue
+    from tasks.geometry.mesh_import import SUPPORTED
+
+    if request.mesh_path is not None:
+        if not request.mesh_path.is_file():
+            fail(f"mesh file not found: {request.mesh_path}")
+        if request.mesh_path.suffix.lower() not in SUPPORTED:
+            fail(f"unsupported mesh format '{request.mesh_path.suffix}'; use one of {', '.join(SUPPORTED)}")
+    if request.image_path is not None and not request.image_path.is_file():
+        fail(f"image file not found: {request.image_path}")
+    if request.text and request.text.strip():
+        catalogue.check_size(catalogue.parse_size(request.text))
 
 
 _BENCH_CASE = r"""

@@ -12,7 +12,25 @@ from contracts.evidence import GateResult
 from contracts.stage import StageContract
 
 _SURFACE_SAMPLES = 40_000
-_VERIFY_ABOVE_M = 1e-3  # estimated-outside points farther than this are confirmed by a ray test [m]
+_VERIFY_ABOVE_M = 1e-3  # estimated-outside points farther than this are confirmed by the winding number [m]
+_VERIFY_MAX = 128  # at most this many (the farthest) are confirmed; the rest keep the conservative estimate
+
+
+def winding_numbers(mesh: trimesh.Trimesh, points: np.ndarray) -> np.ndarray:
+    """Generalised winding number of each point (1 inside, 0 outside a closed outward mesh; Van Oosterom-Strackee)."""
+    tri = mesh.triangles
+    out = np.zeros(len(points))
+    step = max(1, 4_000_000 // max(len(tri), 1))
+    for s in range(0, len(points), step):
+        a = tri[None, :, 0, :] - points[s : s + step, None, :]
+        b = tri[None, :, 1, :] - points[s : s + step, None, :]
+        c = tri[None, :, 2, :] - points[s : s + step, None, :]
+        la, lb, lc = (np.linalg.norm(v, axis=-1) for v in (a, b, c))
+        det = np.einsum("pfi,pfi->pf", a, np.cross(b, c))
+        den = (la * lb * lc + np.einsum("pfi,pfi->pf", a, b) * lc + np.einsum("pfi,pfi->pf", b, c) * la
+               + np.einsum("pfi,pfi->pf", c, a) * lb)
+        out[s : s + step] = (2.0 * np.arctan2(det, den)).sum(axis=1) / (4.0 * np.pi)
+    return out
 
 
 class GeometryChecks(Model):
@@ -29,15 +47,16 @@ class GeometryChecks(Model):
 
 
 def outside_distance(mesh: trimesh.Trimesh, points: np.ndarray, seed: int = 0) -> np.ndarray:
-    """Distance [m] of each point outside the surface (0 inside): nearest dense surface sample and its normal's side,
-    with every estimated-outside point confirmed by trimesh's ray-parity inside test."""
+    """Distance [m] of each point outside the surface (0 inside): nearest dense surface sample and its normal's side;
+    the farthest estimated-outside points are confirmed by the winding number and measured exactly."""
     samples, fidx = trimesh.sample.sample_surface(mesh, _SURFACE_SAMPLES, seed=seed)
     d, i = cKDTree(samples).query(points)
     side = np.einsum("ij,ij->i", points - samples[i], mesh.face_normals[fidx[i]])
     out = np.where(side > 0, d, 0.0)
     check = np.flatnonzero(out > _VERIFY_ABOVE_M)
+    check = check[np.argsort(-out[check], kind="stable")][:_VERIFY_MAX]
     if len(check):
-        inside = mesh.contains(points[check])
+        inside = winding_numbers(mesh, points[check]) > 0.5
         out[check[inside]] = 0.0
         far = check[~inside]
         if len(far):

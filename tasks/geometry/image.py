@@ -55,6 +55,18 @@ def segment(image: np.ndarray, seed: int = 0) -> tuple[np.ndarray, str]:
     cv2.setRNGSeed(seed)
     cv2.grabCut(cv2.cvtColor(small, cv2.COLOR_RGB2BGR), gc, None, bgd, fgd, 6, cv2.GC_INIT_WITH_MASK)
     fg = (gc == cv2.GC_FGD) | (gc == cv2.GC_PR_FGD)
+    first = _clean(fg, "grabcut")
+    # second pass: away from the chosen region is background, its core is certain foreground and the rest of it is
+    # probably background, so the foreground model learns the object's colours only and touching clutter peels off
+    gc2 = np.full((sh, sw), cv2.GC_BGD, np.uint8)
+    k = max(3, int(0.02 * max(sh, sw)) | 1)
+    near = cv2.dilate(first.astype(np.uint8), cv2.getStructuringElement(cv2.MORPH_ELLIPSE, (k, k))).astype(bool)
+    gc2[near] = cv2.GC_PR_BGD
+    core = ndimage.distance_transform_edt(first)
+    gc2[core > 0.35 * core.max()] = cv2.GC_FGD
+    bgd, fgd = np.zeros((1, 65), np.float64), np.zeros((1, 65), np.float64)
+    cv2.grabCut(cv2.cvtColor(small, cv2.COLOR_RGB2BGR), gc2, None, bgd, fgd, 6, cv2.GC_INIT_WITH_MASK)
+    fg = (gc2 == cv2.GC_FGD) | (gc2 == cv2.GC_PR_FGD)
     fg = cv2.resize(fg.astype(np.uint8), (w, h), interpolation=cv2.INTER_NEAREST).astype(bool)
     return _clean(fg, "grabcut"), "grabcut"
 
