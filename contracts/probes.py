@@ -11,8 +11,8 @@ from contracts.base import Model
 ProbeKind = Literal[
     # L0 geometric checks
     "geometry_checks",
-    # L1 rigid probes (pybullet)
-    "place", "rigid_drop", "slide",
+    # L1: the mass model (no simulation) and rigid probes (pybullet)
+    "mass", "place", "rigid_drop", "slide",
     # L2 deformable probes (MPM)
     "drop", "compress", "lift", "stability",
     # L3

@@ -48,6 +48,12 @@ def _match_material(text: str, vocab: MaterialVocab) -> tuple[str, str | None]:
     return best[1], best[2]
 
 
+def match_material(text: str, vocab: MaterialVocab | None = None) -> str:
+    """The vocabulary material a text names (longest matching word; the default material when none matches)."""
+    vocab = vocab or load_material_vocab()
+    return _match_material(text.lower(), vocab)[0]
+
+
 def _narrow(low: float, high: float, frac: tuple[float, float], log: bool) -> tuple[float, float]:
     """The [f0, f1] fraction of a band, measured in its scale."""
     if log:

@@ -8,17 +8,26 @@ one rigid body of the L1 mass with its centre of mass at the given point. Ground
 from __future__ import annotations
 
 import math
+import tempfile
 from collections.abc import Iterator, Sequence
 from contextlib import contextmanager
 from dataclasses import dataclass
+from pathlib import Path
 
 import numpy as np
 import pybullet as pb
+import trimesh
+
+from contracts.errors import SimulationError
 
 TIME_STEP_S = 1.0 / 480.0
 SOLVER_ITERATIONS = 100
 REST_LINEAR_SPEED_M_PER_S = 0.005
 REST_ANGULAR_SPEED_RAD_PER_S = 0.05
+TRACE_FPS = 30.0
+
+Trace = list[tuple[float, tuple[float, float, float], tuple[float, float, float, float]]]
+"""(sim time [s], centre-of-mass position [m], orientation quaternion xyzw) samples at TRACE_FPS."""
 
 
 @dataclass(frozen=True)
@@ -52,18 +61,50 @@ def _world(gravity: tuple[float, float, float]) -> Iterator[int]:
         pb.disconnect(cid)
 
 
-def _spawn(cid: int, body: RigidBodySpec, lift_m: float) -> int:
-    """Create the object as a compound of convex meshes, its base frame at the centre of mass."""
+def _inertia_about_com(body: RigidBodySpec) -> np.ndarray:
+    """Inertia tensor [kg m^2] of the hulls as one homogeneous solid of the body's mass, about its centre of mass."""
+    hulls = [trimesh.convex.convex_hull(np.asarray(h, dtype=float)) for h in body.hulls_m]
+    volume = sum(h.volume for h in hulls)
+    if not volume > 0:
+        raise SimulationError("the collision proxy has no volume")
+    density = body.mass_kg / volume
     com = np.asarray(body.center_of_mass_m, dtype=float)
-    hulls = [(np.asarray(h, dtype=float) - com).tolist() for h in body.hulls_m]
-    if len(hulls) == 1:
-        shape = pb.createCollisionShape(pb.GEOM_MESH, vertices=hulls[0], physicsClientId=cid)
-    else:
-        shape = pb.createCollisionShapeArray([pb.GEOM_MESH] * len(hulls), vertices=hulls, physicsClientId=cid)
-    uid = pb.createMultiBody(body.mass_kg, shape, basePosition=(com + [0.0, 0.0, lift_m]).tolist(), physicsClientId=cid)
+    inertia = np.zeros((3, 3))
+    for h in hulls:
+        h.density = density
+        d = h.center_mass - com  # parallel-axis shift from the hull's own centre of mass
+        inertia += h.moment_inertia + h.mass * (np.dot(d, d) * np.eye(3) - np.outer(d, d))
+    return inertia
+
+
+def _write_urdf(body: RigidBodySpec, folder: Path) -> Path:
+    """A compound URDF: one convex collision per hull, inertial frame at the centre of mass."""
+    com = np.asarray(body.center_of_mass_m, dtype=float)
+    i = _inertia_about_com(body)
+    parts = []
+    for k, h in enumerate(body.hulls_m):
+        hull = trimesh.convex.convex_hull(np.asarray(h, dtype=float))
+        hull.export(folder / f"hull_{k:03d}.obj")
+        parts.append(f'<collision><geometry><mesh filename="hull_{k:03d}.obj"/></geometry></collision>')
+    urdf = folder / "object.urdf"
+    urdf.write_text(
+        '<?xml version="1.0"?><robot name="object"><link name="base"><inertial>'
+        f'<origin xyz="{com[0]:.9g} {com[1]:.9g} {com[2]:.9g}"/><mass value="{body.mass_kg:.9g}"/>'
+        f'<inertia ixx="{i[0, 0]:.9g}" ixy="{i[0, 1]:.9g}" ixz="{i[0, 2]:.9g}" iyy="{i[1, 1]:.9g}" iyz="{i[1, 2]:.9g}" '
+        f'izz="{i[2, 2]:.9g}"/></inertial>' + "".join(parts) + "</link></robot>",
+        encoding="utf-8",
+    )
+    return urdf
+
+
+def _spawn(cid: int, body: RigidBodySpec, lift_m: float) -> int:
+    """Load the object as a compound of convex hulls; pybullet's base frame is then its centre of mass."""
+    with tempfile.TemporaryDirectory(prefix="ds-rigid-") as folder:
+        urdf = _write_urdf(body, Path(folder))
+        uid = pb.loadURDF(str(urdf), basePosition=(0.0, 0.0, lift_m), flags=pb.URDF_USE_INERTIA_FROM_FILE,
+                          physicsClientId=cid)
     pb.changeDynamics(uid, -1, lateralFriction=body.friction, restitution=0.0, linearDamping=0.0, angularDamping=0.0,
-                      frictionAnchor=1,
-                      physicsClientId=cid)
+                      frictionAnchor=1, physicsClientId=cid)
     return uid
 
 
@@ -87,13 +128,24 @@ def _tilt_deg(orn: Sequence[float]) -> float:
     return float(math.degrees(math.acos(float(np.clip(rot[2, 2], -1.0, 1.0)))))
 
 
-def _settle(cid: int, uid: int, duration_s: float) -> tuple[float, float]:
+def _sample(cid: int, uid: int, trace: Trace | None, t_s: float) -> None:
+    """Append the body's pose to the trace when one is being recorded."""
+    if trace is not None:
+        pos, orn = pb.getBasePositionAndOrientation(uid, physicsClientId=cid)
+        trace.append((t_s, tuple(pos), tuple(orn)))  # type: ignore[arg-type]
+
+
+def _settle(cid: int, uid: int, duration_s: float, trace: Trace | None = None, t0_s: float = 0.0) -> tuple[float, float]:
     """Step for duration; return (time after which the body stayed at rest [s] or inf, max penetration [m])."""
     steps = int(round(duration_s / TIME_STEP_S))
+    every = max(1, int(round(1.0 / (TRACE_FPS * TIME_STEP_S))))
     last_moving = 0
     max_pen = 0.0
+    _sample(cid, uid, trace, t0_s)
     for i in range(steps):
         pb.stepSimulation(physicsClientId=cid)
+        if (i + 1) % every == 0:
+            _sample(cid, uid, trace, t0_s + (i + 1) * TIME_STEP_S)
         v, w = pb.getBaseVelocity(uid, physicsClientId=cid)
         if np.linalg.norm(v) > REST_LINEAR_SPEED_M_PER_S or np.linalg.norm(w) > REST_ANGULAR_SPEED_RAD_PER_S:
             last_moving = i + 1
@@ -102,12 +154,12 @@ def _settle(cid: int, uid: int, duration_s: float) -> tuple[float, float]:
     return settle, max_pen
 
 
-def placement_probe(body: RigidBodySpec, duration_s: float = 3.0) -> dict[str, float]:
+def placement_probe(body: RigidBodySpec, duration_s: float = 3.0, trace: Trace | None = None) -> dict[str, float]:
     """Set the object on the ground 1 mm up, let it settle; metrics: tilt, final penetration, settle time, drift."""
     with _world((0.0, 0.0, -9.81)) as cid:
         uid = _spawn(cid, body, lift_m=0.001)
         start, _ = pb.getBasePositionAndOrientation(uid, physicsClientId=cid)
-        settle_s, _ = _settle(cid, uid, duration_s)
+        settle_s, _ = _settle(cid, uid, duration_s, trace)
         pos, orn = pb.getBasePositionAndOrientation(uid, physicsClientId=cid)
         return {
             "place_tilt_deg": _tilt_deg(orn),
@@ -117,13 +169,15 @@ def placement_probe(body: RigidBodySpec, duration_s: float = 3.0) -> dict[str, f
         }
 
 
-def drop_probe(body: RigidBodySpec, clearance_fraction: float = 0.25, duration_s: float = 3.0) -> dict[str, float]:
+def drop_probe(
+    body: RigidBodySpec, clearance_fraction: float = 0.25, duration_s: float = 3.0, trace: Trace | None = None
+) -> dict[str, float]:
     """Drop from a clearance of a fraction of the object's height; metrics after the bounce and settle."""
     clearance = clearance_fraction * body.height_m
     with _world((0.0, 0.0, -9.81)) as cid:
         uid = _spawn(cid, body, lift_m=clearance)
         start, _ = pb.getBasePositionAndOrientation(uid, physicsClientId=cid)
-        settle_s, max_pen = _settle(cid, uid, duration_s)
+        settle_s, max_pen = _settle(cid, uid, duration_s, trace)
         pos, orn = pb.getBasePositionAndOrientation(uid, physicsClientId=cid)
         return {
             "drop_clearance_m": clearance,
@@ -135,7 +189,9 @@ def drop_probe(body: RigidBodySpec, clearance_fraction: float = 0.25, duration_s
         }
 
 
-def _slope_motion(body: RigidBodySpec, theta_deg: float, settle_s: float, measure_s: float) -> tuple[float, float]:
+def _slope_motion(
+    body: RigidBodySpec, theta_deg: float, settle_s: float, measure_s: float, trace: Trace | None = None
+) -> tuple[float, float]:
     """Object on an incline of theta (gravity tilted, rotation locked so rolling shapes test sliding).
 
     Returns (mean speed down the slope over the measuring window [m/s], fitted acceleration [m/s^2]).
@@ -144,8 +200,9 @@ def _slope_motion(body: RigidBodySpec, theta_deg: float, settle_s: float, measur
     g = 9.81
     with _world((0.0, 0.0, -g)) as cid:
         uid = _spawn(cid, body, lift_m=0.001)
-        _settle(cid, uid, settle_s)
+        _settle(cid, uid, settle_s, trace)
         _, orn0 = pb.getBasePositionAndOrientation(uid, physicsClientId=cid)
+        every = max(1, int(round(1.0 / (TRACE_FPS * TIME_STEP_S))))
         pb.setGravity(g * math.sin(th), 0.0, -g * math.cos(th), physicsClientId=cid)
         steps = int(round(measure_s / TIME_STEP_S))
         xs = np.empty(steps)
@@ -156,6 +213,8 @@ def _slope_motion(body: RigidBodySpec, theta_deg: float, settle_s: float, measur
             pb.resetBasePositionAndOrientation(uid, pos, orn0, physicsClientId=cid)
             pb.resetBaseVelocity(uid, v, (0.0, 0.0, 0.0), physicsClientId=cid)
             xs[i] = pos[0]
+            if (i + 1) % every == 0:
+                _sample(cid, uid, trace, settle_s + (i + 1) * TIME_STEP_S)
         t = (np.arange(steps) + 1) * TIME_STEP_S
         half = steps // 2
         mean_speed = float((xs[-1] - xs[half]) / (t[-1] - t[half]))
@@ -163,13 +222,15 @@ def _slope_motion(body: RigidBodySpec, theta_deg: float, settle_s: float, measur
         return mean_speed, accel
 
 
-def slide_probe(body: RigidBodySpec, margin_deg: float = 3.0, measure_s: float = 1.0) -> dict[str, float]:
+def slide_probe(
+    body: RigidBodySpec, margin_deg: float = 3.0, measure_s: float = 1.0, trace: Trace | None = None
+) -> dict[str, float]:
     """Incline just below and just above atan(mu): sticks below, slides above with a = g (sin - mu cos)."""
     mu = body.friction
     critical = math.degrees(math.atan(mu))
     below, above = max(0.0, critical - margin_deg), min(89.0, critical + margin_deg)
     v_below, _ = _slope_motion(body, below, settle_s=0.3, measure_s=measure_s)
-    v_above, a_above = _slope_motion(body, above, settle_s=0.3, measure_s=measure_s)
+    v_above, a_above = _slope_motion(body, above, settle_s=0.3, measure_s=measure_s, trace=trace)
     th = math.radians(above)
     a_expected = 9.81 * (math.sin(th) - mu * math.cos(th))
     return {

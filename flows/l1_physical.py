@@ -1,0 +1,272 @@
+"""L1 physical model flow: density + friction (Designer) -> mass model -> rigid probes in pybullet -> gates.
+
+Reads an L0 asset directory, writes `physical.json` (the frozen PhysicalModel, probe metrics and gates),
+`evidence/attempts.jsonl` (L1 lines) and `recordings/L1_*.rrd` into it. Each probe is a content-cached task.
+"""
+
+from __future__ import annotations
+
+import json
+import shutil
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+import cache
+from cache import cache_root, cached_task, content_key
+from contracts.agents import AgentConfig, StageOutcome, TargetBand, TargetBehaviour
+from contracts.errors import InputError
+from contracts.physical import PhysicalModel
+from contracts.probes import ProbeResult, ProbeSpec
+from contracts.stage import StageContract, load_contract
+from flows.harness import ProbeCall, run_harness, task_probe_runner
+from tasks.agents.intent import match_material, targets_from_intent
+from tasks.agents.vocab import load_material_vocab
+from tasks.geometry.outputs import L0Asset, load_l0
+from tasks.physical.model import MASS_RANGE_KG, build_physical_model, mass_plausible
+from tasks.probes import rigid
+from tasks.record import ProbeRecording
+
+TASK_VERSION = "1"  # bump when tasks/probes/rigid.py or the metrics below change
+PHYSICAL_JSON = "physical.json"
+RECORD_PARTICLES_MAX = 4000
+RIGID_KINDS = ("place", "drop", "slide")
+
+
+def proxy_hulls(asset: L0Asset) -> list[np.ndarray]:
+    """Convex parts of the collision proxy as vertex arrays [m] (asset frame)."""
+    return [np.asarray(p.vertices, dtype=np.float64) for p in asset.proxy_parts]
+
+
+def record_particles(asset: L0Asset) -> np.ndarray:
+    """A deterministic subsample of the rest particles [m] to show the rigid motion in recordings."""
+    stride = max(1, int(np.ceil(len(asset.particles_m) / RECORD_PARTICLES_MAX)))
+    return np.asarray(asset.particles_m[::stride], dtype=np.float32)
+
+
+def _write_recording(kind: str, key: str, particles_m: np.ndarray, com_m: np.ndarray, trace: rigid.Trace,
+                     metrics: dict[str, float]) -> str:
+    """Rigid motion of the particles over the probe, into the cache's recordings folder; returns the path."""
+    path = cache_root() / "recordings" / f"L1_{kind}-{key[:16]}.rrd"
+    if path.exists():
+        return str(path)
+    rest = particles_m - com_m[None, :].astype(np.float32)
+    with ProbeRecording(path, recording_id=f"L1-{kind}-{key[:16]}") as rec:
+        for frame, (t, pos, quat) in enumerate(trace):
+            rec.set_time(frame, t)
+            rot = _quat_matrix(quat)
+            rec.particles(rest @ rot.T + np.asarray(pos, np.float32))
+            rec.scalar("com_height_m", pos[2])
+        rec.log(f"L1 {kind} probe: " + ", ".join(f"{k}={v:.4g}" for k, v in sorted(metrics.items())))
+    return str(path)
+
+
+def _quat_matrix(q: tuple[float, float, float, float]) -> np.ndarray:
+    """Rotation matrix of an xyzw quaternion."""
+    x, y, z, w = q
+    return np.array([
+        [1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
+        [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
+        [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)],
+    ], dtype=np.float32)
+
+
+def _rigid_probe(kind: str, hulls: list[np.ndarray], particles_m: np.ndarray, mass_kg: float,
+                 center_of_mass_m: tuple[float, float, float], friction: float, params: dict[str, float]) -> ProbeResult:
+    """Run one rigid probe, record it, return its metrics."""
+    import time
+
+    body = rigid.RigidBodySpec(hulls, mass_kg, np.asarray(center_of_mass_m), friction)
+    trace: rigid.Trace = []
+    t0 = time.perf_counter()
+    if kind == "place":
+        metrics = rigid.placement_probe(body, duration_s=params["duration_s"], trace=trace)
+    elif kind == "drop":
+        metrics = rigid.drop_probe(body, params["clearance_fraction"], params["duration_s"], trace=trace)
+    else:
+        metrics = rigid.slide_probe(body, params["margin_deg"], params["measure_s"], trace=trace)
+    wall = time.perf_counter() - t0
+    key = content_key("l1-recording", kind, hulls, mass_kg, center_of_mass_m, friction, params)
+    rrd = _write_recording(kind, key, particles_m, np.asarray(center_of_mass_m), trace, metrics)
+    spec = ProbeSpec(kind="rigid_drop" if kind == "drop" else kind, params=params)  # type: ignore[arg-type]
+    return ProbeResult(spec=spec, metrics=metrics, sim_calls=2 if kind == "slide" else 1, wall_time_s=wall,
+                       recording=rrd)
+
+
+@cached_task(version=TASK_VERSION, name="l1.place")
+def place_task(hulls: list[np.ndarray], particles_m: np.ndarray, mass_kg: float,
+               center_of_mass_m: tuple[float, float, float], friction: float, duration_s: float) -> ProbeResult:
+    """Placement probe: settles on the ground; tilt, penetration, settle time."""
+    return _rigid_probe("place", hulls, particles_m, mass_kg, center_of_mass_m, friction, {"duration_s": duration_s})
+
+
+@cached_task(version=TASK_VERSION, name="l1.drop")
+def drop_task(hulls: list[np.ndarray], particles_m: np.ndarray, mass_kg: float,
+              center_of_mass_m: tuple[float, float, float], friction: float, clearance_fraction: float,
+              duration_s: float) -> ProbeResult:
+    """Rigid drop from a fraction of the height: penetration and rest after the bounce."""
+    return _rigid_probe("drop", hulls, particles_m, mass_kg, center_of_mass_m, friction,
+                        {"clearance_fraction": clearance_fraction, "duration_s": duration_s})
+
+
+@cached_task(version=TASK_VERSION, name="l1.slide")
+def slide_task(hulls: list[np.ndarray], particles_m: np.ndarray, mass_kg: float,
+               center_of_mass_m: tuple[float, float, float], friction: float, margin_deg: float,
+               measure_s: float) -> ProbeResult:
+    """Incline just below / above atan(mu): sticks, then slides with a = g (sin - mu cos)."""
+    return _rigid_probe("slide", hulls, particles_m, mass_kg, center_of_mass_m, friction,
+                        {"margin_deg": margin_deg, "measure_s": measure_s})
+
+
+def _intent_text(asset: L0Asset, intent: str | None) -> str:
+    """The words the material comes from: the given intent, else the request / name recorded by L0."""
+    if intent:
+        return intent
+    req = asset.record.get("request") or {}
+    info = asset.record.get("info", {})
+    return " ".join(str(x) for x in (req.get("material_intent"), req.get("text"), info.get("name"),
+                                     info.get("category")) if x)
+
+
+def l1_targets(asset: L0Asset, intent: str | None) -> tuple[TargetBehaviour, str, tuple[float, float]]:
+    """Priors (density, friction) from the intent's material and a mass band = density range x volume."""
+    text = _intent_text(asset, intent)
+    vocab = load_material_vocab()
+    material = match_material(text, vocab)
+    entry = vocab.materials[material]
+    words = targets_from_intent(text, {}, vocab)
+    priors = {k: words.priors[k] for k in ("density_kg_per_m3", "ground_friction", "gripper_friction") if k in words.priors}
+    drange = entry.prior_ranges.get("density_kg_per_m3", (priors["density_kg_per_m3"] / 2, priors["density_kg_per_m3"] * 2))
+    volume = float(np.sum(asset.volumes_m3))
+    lo, hi = max(drange[0] * volume, MASS_RANGE_KG[0]), min(drange[1] * volume, MASS_RANGE_KG[1])
+    bands = [TargetBand(metric="mass_kg", unit="kg", low=min(lo, hi), high=max(lo, hi), scale="log",
+                        source=f"vocab:{material}")]
+    return TargetBehaviour(bands=bands, priors=priors, matched_words=words.matched_words, intent=text), material, drange
+
+
+def probe_settings(contract: StageContract) -> dict[str, dict[str, float]]:
+    """Rigid-probe parameters from the L1 contract."""
+    p = contract.parameters
+    return {
+        "place": {"duration_s": float(p.get("place_duration_s", 3.0))},
+        "drop": {"clearance_fraction": float(p.get("drop_clearance_fraction_of_height", 0.25)),
+                 "duration_s": float(p.get("drop_duration_s", 3.0))},
+        "slide": {"margin_deg": float(p.get("slide_angle_margin_deg", 3.0)), "measure_s": float(p.get("slide_measure_s", 1.0))},
+    }
+
+
+def physical_from_values(asset: L0Asset, values: dict[str, float], category: str) -> PhysicalModel:
+    """The PhysicalModel of a candidate's density and friction."""
+    return build_physical_model(asset.particles_m, asset.volumes_m3, asset.spacing_m, values["density_kg_per_m3"],
+                                values["ground_friction"], values["gripper_friction"], category)
+
+
+def _mass_result(phys: PhysicalModel, density_range: tuple[float, float]) -> ProbeResult:
+    """The mass model's observations (no simulation)."""
+    ok = mass_plausible(phys.mass_kg, phys.density_kg_per_m3, density_range)
+    return ProbeResult(spec=ProbeSpec(kind="mass"), sim_calls=0,
+                       metrics={"mass_kg": phys.mass_kg, "mass_plausibility": float(ok), "volume_m3": phys.volume_m3})
+
+
+def l1_runner(asset: L0Asset, contract: StageContract, category: str, density_range: tuple[float, float]):  # type: ignore[no-untyped-def]
+    """The L1 probe runner: candidate values -> [mass, place, drop, slide] results (rigid probes cached)."""
+    hulls, shown = proxy_hulls(asset), record_particles(asset)
+    settings = probe_settings(contract)
+
+    def body_inputs(values: dict[str, float], action: str) -> dict[str, Any]:
+        phys = physical_from_values(asset, values, category)
+        return {"mass_kg": phys.mass_kg, "center_of_mass_m": phys.center_of_mass_m, "friction": phys.ground_friction}
+
+    fixed = {"hulls": hulls, "particles_m": shown}
+    cached = task_probe_runner([
+        ProbeCall(place_task, {**fixed, **settings["place"]}, body_inputs),
+        ProbeCall(drop_task, {**fixed, **settings["drop"]}, body_inputs),
+        ProbeCall(slide_task, {**fixed, **settings["slide"]}, body_inputs),
+    ])
+
+    def run(values: dict[str, float], action: str) -> list[ProbeResult]:
+        phys = physical_from_values(asset, values, category)
+        return [_mass_result(phys, density_range), *cached(values, action)]
+
+    return run
+
+
+def _copy_recordings(outcome: StageOutcome, asset_dir: Path) -> list[str]:
+    """Copy the chosen candidate's probe recordings into the asset's recordings/ folder."""
+    if outcome.best_iteration is None:
+        return []
+    chosen = next(a for a in outcome.attempts if a.iteration == outcome.best_iteration)
+    out = []
+    for src in chosen.evidence.recordings:
+        p = Path(src)
+        if p.suffix == ".rrd" and p.is_file():
+            dest = asset_dir / "recordings" / (p.name.split("-")[0] + ".rrd")
+            dest.parent.mkdir(parents=True, exist_ok=True)
+            shutil.copyfile(p, dest)
+            out.append(str(dest.relative_to(asset_dir)))
+    return out
+
+
+def run_l1(asset_dir: Path, intent: str | None = None, agents: AgentConfig | None = None,
+           contract: StageContract | None = None) -> tuple[PhysicalModel | None, StageOutcome]:
+    """Run L1 on an L0 asset directory; write physical.json; return the frozen model (None if L1 failed)."""
+    asset_dir = Path(asset_dir)
+    asset = load_l0(asset_dir)
+    contract = contract or load_contract("L1")
+    targets, material, drange = l1_targets(asset, intent)
+    category = str(asset.record.get("info", {}).get("category", material))
+    runner = l1_runner(asset, contract, category, drange)
+    outcome = run_harness(contract, runner, targets, agents=agents, record_dir=asset_dir)
+    phys = physical_from_values(asset, outcome.values, category) if outcome.passed and outcome.values else None
+    recordings = _copy_recordings(outcome, asset_dir) if phys is not None else []
+    record = {
+        "schema_version": 1, "stage": "L1", "passed": outcome.passed, "status": outcome.status,
+        "message": outcome.message, "material_class": material, "intent": targets.intent,
+        "physical_model": phys.model_dump(mode="json") if phys else None,
+        "metrics": outcome.metrics, "sim_calls": outcome.sim_calls, "attempts": outcome.attempts_used,
+        "recordings": recordings,
+    }
+    tmp = asset_dir / (PHYSICAL_JSON + ".tmp")
+    tmp.write_text(json.dumps(record, indent=2, sort_keys=True) + "\n", encoding="utf-8")
+    tmp.replace(asset_dir / PHYSICAL_JSON)
+    return phys, outcome
+
+
+def load_physical(asset_dir: Path) -> PhysicalModel:
+    """The frozen L1 model of an asset directory (InputError when L1 has not run or failed)."""
+    path = Path(asset_dir) / PHYSICAL_JSON
+    if not path.is_file():
+        raise InputError(f"{asset_dir} has no {PHYSICAL_JSON}: run `deformsmith physical --asset {asset_dir}` first")
+    record = json.loads(path.read_text(encoding="utf-8"))
+    if not record.get("physical_model"):
+        raise InputError(f"{path}: L1 did not produce a valid physical model ({record.get('message', 'failed')})")
+    return PhysicalModel.model_validate(record["physical_model"])
+
+
+def run_rigid_probe(kind: str, asset_dir: Path, rho: float | None = None, friction: float | None = None) -> ProbeResult:
+    """Run one rigid probe (place | drop | slide) on an asset, with its L1 model or overridden density/friction."""
+    if kind not in RIGID_KINDS:
+        raise InputError(f"unknown rigid probe '{kind}'; choose one of {', '.join(RIGID_KINDS)}")
+    asset = load_l0(Path(asset_dir))
+    contract = load_contract("L1")
+    if (Path(asset_dir) / PHYSICAL_JSON).is_file():
+        base = load_physical(Path(asset_dir))
+        values = {"density_kg_per_m3": base.density_kg_per_m3, "ground_friction": base.ground_friction,
+                  "gripper_friction": base.gripper_friction}
+    else:
+        values = dict(l1_targets(asset, None)[0].priors)
+    if rho is not None:
+        values["density_kg_per_m3"] = rho
+    if friction is not None:
+        values["ground_friction"] = friction
+    for name, v in values.items():
+        if not contract.field(name).contains(float(v)):
+            f = contract.field(name)
+            raise InputError(f"{name}={v} is outside the L1 contract's bounds [{f.low}, {f.high}] {f.unit}")
+    phys = physical_from_values(asset, values, str(asset.record.get("info", {}).get("category", "object")))
+    task = {"place": place_task, "drop": drop_task, "slide": slide_task}[kind]
+    with cache.local_runtime():
+        return task(hulls=proxy_hulls(asset), particles_m=record_particles(asset), mass_kg=phys.mass_kg,
+                    center_of_mass_m=phys.center_of_mass_m, friction=phys.ground_friction,
+                    **probe_settings(contract)[kind])
