@@ -47,6 +47,21 @@ def scatter_add_vec4(arr: wp.array(dtype=wp.vec4), idx: int, v: wp.vec4):
 
 
 @wp.func
+def is_finite(a: float) -> bool:
+    """True unless a is NaN or +-inf. A comparison, not wp.isfinite: on CPU that is an out-of-line call, and every
+    call in a hot loop forces the compiler to spill all live float registers around it."""
+    return wp.abs(a) <= 3.4028234e38
+
+
+@wp.func
+def state_sum(x: wp.vec3, v: wp.vec3, F: wp.mat33, C: wp.mat33) -> float:
+    """Sum of all entries of a particle's state as a shallow add tree (short dependency chain): non-finite iff an
+    entry is non-finite (or the state is absurdly large, ~1e38)."""
+    r = (x + v) + ((F[0] + F[1]) + (F[2] + C[0])) + (C[1] + C[2])
+    return (r[0] + r[1]) + r[2]
+
+
+@wp.func
 def quadratic_weights(f: float) -> wp.vec3:
     """Quadratic B-spline weights of the 3 stencil nodes for a particle at offset f in [0.5, 1.5) from the base."""
     a = 1.5 - f
@@ -212,9 +227,8 @@ def p2g_apic_neohookean(
         vp = v[p]
         Fp = F[p]
         Cp = C[p]
-        chk = xp[0] + xp[1] + xp[2] + vp[0] + vp[1] + vp[2] + wp.ddot(Fp, Fp) + wp.ddot(Cp, Cp)
-        if not wp.isfinite(chk):
-            continue  # gated; g2p reports it
+        if not is_finite(state_sum(xp, vp, Fp, Cp)):
+            continue  # gated (never written to the grid); g2p reports it
         s = particle_scene[p]
         inv_dx = 1.0 / dx
         o = grid_origin[s]
@@ -397,9 +411,7 @@ def g2p_apic(
         xp = x[p]
         vp = v[p]
         Fp = F[p]
-        Cp = C[p]
-        chk = xp[0] + xp[1] + xp[2] + vp[0] + vp[1] + vp[2] + wp.ddot(Fp, Fp) + wp.ddot(Cp, Cp)
-        if not wp.isfinite(chk):
+        if not is_finite(state_sum(xp, vp, Fp, C[p])):
             flag_failure(fail_step, fail_particle, s, FLAG_NONFINITE, step, pl)
             continue  # frozen: never spreads into the grid
         dt = dt_arr[0]
@@ -475,8 +487,8 @@ def g2p_apic(
                 vn = vplus
         # health
         J = wp.determinant(Fn)
-        chk2 = xn[0] + xn[1] + xn[2] + vn[0] + vn[1] + vn[2] + J + wp.ddot(Cn, Cn)
-        if not wp.isfinite(chk2):
+        xv = xn + vn
+        if not is_finite((xv[0] + xv[1]) + (xv[2] + J)):  # Cn enters Fn, so J covers it
             flag_failure(fail_step, fail_particle, s, FLAG_NONFINITE, step, pl)
         else:
             if J < j_min or J > j_max:
@@ -514,6 +526,7 @@ def reduce_scene_stats(
     chunk_scene: wp.array(dtype=wp.int32),
     chunk_begin: wp.array(dtype=wp.int32),
     chunk_end: wp.array(dtype=wp.int32),
+    chunk_stride: wp.array(dtype=wp.int32),
     domain_lo: wp.array(dtype=wp.vec3),
     domain_hi: wp.array(dtype=wp.vec3),
     bmin: wp.array(dtype=wp.vec3),
@@ -521,7 +534,8 @@ def reduce_scene_stats(
     speed_max: wp.array(dtype=float),
     kinetic: wp.array(dtype=float),
 ):
-    """Per scene: bounds [m] of the finite in-domain particles, max speed [m/s], kinetic energy [J] (chunked)."""
+    """Per scene: bounds [m] of the finite in-domain particles, max speed [m/s], kinetic energy [J] (chunk c covers
+    range(chunk_begin[c], chunk_end[c], chunk_stride[c]))."""
     c = wp.tid()
     s = chunk_scene[c]
     lo = wp.vec3(BIG, BIG, BIG)
@@ -530,11 +544,11 @@ def reduce_scene_stats(
     ke = float(0.0)
     dlo = domain_lo[s]
     dhi = domain_hi[s]
-    for p in range(chunk_begin[c], chunk_end[c]):
+    for p in range(chunk_begin[c], chunk_end[c], chunk_stride[c]):
         xp = x[p]
         vp = v[p]
         v2 = wp.dot(vp, vp)
-        if wp.isfinite(xp[0] + xp[1] + xp[2] + v2):
+        if is_finite((xp[0] + xp[1]) + (xp[2] + v2)):
             ke += 0.5 * particle_mass[p] * v2
             vm = wp.max(vm, v2)
             inside = xp[0] >= dlo[0] and xp[1] >= dlo[1] and xp[2] >= dlo[2]

@@ -142,8 +142,7 @@ class Simulator:
         self._since_check = 0
         solver = self.solver
         model = self.model
-        fstep, fpart = solver.read_failures()
-        stats = solver.scene_stats(self.state)
+        fstep, fpart, stats = solver.health_snapshot(self.state)
         self._vmax = float(np.max(np.where(np.isfinite(stats["speed_max"]), stats["speed_max"], 0.0)))
         new_issues: list[HealthIssue] = []
         for s in range(model.n_scenes):

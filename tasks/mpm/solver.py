@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from collections import OrderedDict
+
 import numpy as np
 import warp as wp
 
@@ -29,6 +31,9 @@ class Solver:
         nc = max(1, model.n_colliders)
         self.use_graph = (d == "cuda") if use_graph is None else (bool(use_graph) and d == "cuda")
         self._graphs: dict[tuple, object] = {}
+        # multi-step graphs of advance_steps, least recently used first (bounded: each holds its launches)
+        self._blocks: OrderedDict[tuple, tuple] = OrderedDict()
+        self._host_bufs: dict[str, wp.array] = {}  # pinned host mirrors for one-sync readbacks (CUDA)
         # CPU: one "thread" loops over a block of items (amortises Warp's per-thread argument copy); GPU: one each
         self._per_thread = 1 if d == "cuda" else 2048
         self.dt_arr = wp.zeros(1, dtype=float, device=d)
@@ -63,6 +68,7 @@ class Solver:
         self.grid_mvm = wp.zeros(nodes, dtype=wp.vec4, device=self.device)
         self.grid_v = wp.zeros(nodes, dtype=wp.vec4, device=self.device)  # xyz velocity, 16-byte loads
         self._graphs.clear()
+        self._blocks.clear()
         self._since_refit = self.model.refit_interval  # refit at the next step
 
     def grow_grid(self, needed_extent_cells: np.ndarray) -> None:
@@ -101,18 +107,12 @@ class Solver:
         if entry is None:
             # recorded launches (arguments packed once); on CUDA captured into one graph
             cmds = self._record_step(state_in, state_out, control, refit)
-            graph = None
-            if self.use_graph:
-                wp.load_module(K, device=self.device)
-                with wp.ScopedCapture(device=self.device, force_module_load=False) as cap:
-                    for cmd in cmds:
-                        cmd.launch()
-                graph = cap.graph
+            graph = self._capture(cmds) if self.use_graph else None
             entry = (cmds, graph, state_in, state_out, control)  # keep the arrays alive while cached
             self._graphs[key] = entry
         cmds, graph = entry[0], entry[1]
         if graph is not None:
-            wp.capture_launch(graph)
+            self._replay(graph)
         else:
             for cmd in cmds:
                 cmd.launch()
@@ -120,43 +120,73 @@ class Solver:
         self.steps += 1
         self.time_s += dt32
 
+    # longest block of whole refit cycles captured into one graph, in steps, and how many graphs are kept
+    MAX_BLOCK_STEPS = 256
+    MAX_BLOCK_GRAPHS = 24
+
     def advance_steps(self, state: State, control: Control, dt: float, count: int) -> None:
-        """Advance `count` in-place steps of dt [s]; on CUDA whole refit cycles replay as one graph (few host calls)."""
+        """Advance `count` in-place steps of dt [s]; on CUDA runs of steps replay as few multi-step graphs.
+
+        The steps are cut into a lead (up to the next refit), blocks of 2^b whole refit cycles and a tail; each piece
+        is one CUDA graph cached by (refit phase, length), so a reporting interval costs a handful of host calls.
+        """
         if count <= 0:
             return
-        R = self.model.refit_interval
-        if not self.use_graph or count < R + 1:
+        if not self.use_graph:
             for _ in range(count):
                 self.step(state, state, control, dt)
             return
-        while count > 0 and self._since_refit < R:  # finish the current cycle step by step
-            self.step(state, state, control, dt)
-            count -= 1
         control.sync(self.time_s)
         dt32 = self.set_dt(dt)
-        cycles = count // (R + 1)
-        if cycles:
-            key = ("cycle", id(state), id(control), R, self.grid_dims)
-            entry = self._graphs.get(key)
-            if entry is None:
-                cmds = self._record_step(state, state, control, True)
-                for _ in range(R):
-                    cmds += self._record_step(state, state, control, False)
-                wp.load_module(K, device=self.device)
-                with wp.ScopedCapture(device=self.device, force_module_load=False) as cap:
-                    for cmd in cmds:
-                        cmd.launch()
-                entry = (cmds, cap.graph, state, control)
-                self._graphs[key] = entry
-            for _ in range(cycles):
-                wp.capture_launch(entry[1])
-            n = cycles * (R + 1)
-            self._since_refit = R
+        R = self.model.refit_interval
+        cycle = R + 1
+        while count > 0:
+            phase = self._since_refit
+            if phase < R:
+                n = min(count, R - phase)  # lead: plain steps up to the next refit
+            elif count >= cycle:
+                cycles = min(count // cycle, max(1, self.MAX_BLOCK_STEPS // cycle))
+                n = (1 << (cycles.bit_length() - 1)) * cycle  # 2^b whole cycles (refit + R plain steps each)
+            else:
+                n = count  # tail: a refit and count - 1 plain steps
+            self._launch_block(state, control, phase, n)
             self.steps += n
             self.time_s += n * dt32
             count -= n
-        for _ in range(count):
-            self.step(state, state, control, dt)
+
+    def _launch_block(self, state: State, control: Control, phase: int, n: int) -> None:
+        """Replay (capturing it the first time) the graph of n in-place steps starting at refit phase `phase`."""
+        R = self.model.refit_interval
+        key = (id(state), id(control), phase, n, self.grid_dims)
+        entry = self._blocks.get(key)
+        if entry is None:
+            cmds: list = []
+            since = phase
+            for _ in range(n):
+                refit = since >= R
+                cmds += self._record_step(state, state, control, refit)
+                since = 0 if refit else since + 1
+            entry = (self._capture(cmds), since, cmds, state, control)  # keep the arrays alive while cached
+            self._blocks[key] = entry
+            while len(self._blocks) > self.MAX_BLOCK_GRAPHS:
+                self._blocks.popitem(last=False)
+        else:
+            self._blocks.move_to_end(key)
+        self._replay(entry[0])
+        self._since_refit = entry[1]
+
+    def _capture(self, cmds: list):
+        """A CUDA graph of the recorded launches (in order)."""
+        wp.load_module(K, device=self.device)
+        with wp.ScopedCapture(device=self.device, force_module_load=False) as cap:
+            for cmd in cmds:
+                cmd.launch()
+        return cap.graph
+
+    @staticmethod
+    def _replay(graph) -> None:
+        """Launch a captured graph."""
+        wp.capture_launch(graph)
 
     def refit(self, state: State) -> None:
         """Move each scene's grid window onto its particles now (device only, no sync)."""
@@ -179,7 +209,8 @@ class Solver:
         cmds.append(wp.launch(
             K.reduce_scene_stats,
             dim=m.n_chunks,
-            inputs=[state.x, state.v, m.particle_mass, m.chunk_scene, m.chunk_begin, m.chunk_end, m.domain_lo,
+            inputs=[state.x, state.v, m.particle_mass, m.chunk_scene, m.chunk_begin, m.chunk_end, m.chunk_stride,
+                    m.domain_lo,
                     m.domain_hi, self.bmin, self.bmax, self.speed_max, self.kinetic],
             device=d,
             record_cmd=True,
@@ -278,6 +309,34 @@ class Solver:
         fp[:, code] = INT_MAX
         self.fail_step.assign(fs.reshape(-1))
         self.fail_particle.assign(fp.reshape(-1))
+
+    def _read(self, arrays: dict[str, wp.array]) -> dict[str, np.ndarray]:
+        """Host copies of device arrays with a single synchronisation (pinned staging buffers on CUDA)."""
+        if self.device == "cpu":
+            return {k: a.numpy().copy() for k, a in arrays.items()}
+        out = {}
+        for k, a in arrays.items():
+            buf = self._host_bufs.get(k)
+            if buf is None or buf.shape != a.shape or buf.dtype != a.dtype:
+                buf = wp.empty(a.shape, dtype=a.dtype, device="cpu", pinned=True)
+                self._host_bufs[k] = buf
+            wp.copy(buf, a)
+        wp.synchronize_device(self.device)
+        for k in arrays:
+            out[k] = self._host_bufs[k].numpy().copy()
+        return out
+
+    def health_snapshot(self, state: State) -> tuple[np.ndarray, np.ndarray, dict[str, np.ndarray]]:
+        """read_failures() and scene_stats(state) together, with one host sync."""
+        self._launch_refit(state)
+        self._since_refit = 0
+        B = self.model.n_scenes
+        r = self._read({"fail_step": self.fail_step, "fail_particle": self.fail_particle, "bmin": self.bmin,
+                        "bmax": self.bmax, "speed_max": self.speed_max, "kinetic": self.kinetic,
+                        "overflow": self.grid_overflow})
+        stats = {k: r[k].astype(np.float64) for k in ("bmin", "bmax", "speed_max", "kinetic")}
+        stats["overflow"] = r["overflow"]
+        return r["fail_step"].reshape(B, K.N_FLAGS), r["fail_particle"].reshape(B, K.N_FLAGS), stats
 
     def scene_stats(self, state: State) -> dict[str, np.ndarray]:
         """Fresh per-scene bounds [m], max speed [m/s], kinetic energy [J] and grid overflow flags (one sync)."""
