@@ -29,3 +29,13 @@ class SimulationError(DeformSmithError):
     """A simulation could not run (not: a simulation that ran and failed a gate)."""
 
     exit_code = 5
+
+
+class StageFailure(DeformSmithError):
+    """A layer ran but produced no valid result (its gates or budget said no); the asset is not published."""
+
+    exit_code = 6
+
+    def __init__(self, stage: str, message: str) -> None:
+        super().__init__(f"{stage} failed: {message}")
+        self.stage = stage

@@ -1,0 +1,113 @@
+"""`deformsmith generate` (the main job) and `deformsmith inspect` (an asset's validation summary)."""
+
+from __future__ import annotations
+
+import re
+from pathlib import Path
+
+import typer
+from pydantic import ValidationError
+from rich.table import Table
+
+from flows.cli.apps import app, console, emit_json, fail
+
+DEFAULT_TEXT = "a soft plush turtle toy, about 25 cm long"
+
+
+def _default_out(text: str | None, image: Path | None, mesh: Path | None) -> Path:
+    """out/<slug of the input>."""
+    name = text or (image.stem if image else mesh.stem if mesh else "asset")
+    slug = re.sub(r"[^a-z0-9]+", "_", name.lower()).strip("_")[:48] or "asset"
+    return Path("out") / slug
+
+
+def _summary_table(manifest) -> Table:  # type: ignore[no-untyped-def]
+    table = Table(title="validation summary")
+    for col in ("stage", "passed", "attempts", "simulations", "key figures"):
+        table.add_column(col)
+    keys = ("mass_kg", "effective_modulus_pa", "rebound_ratio", "recovery_ratio", "sag_ratio", "volume_m3",
+            "max_finger_force_n", "place_error_m")
+    for s in manifest.validation:
+        figs = ", ".join(f"{k}={s.metrics[k]:.3g}" for k in keys if k in s.metrics)
+        table.add_row(s.stage, "yes" if s.passed else "NO", str(s.attempts), str(s.sim_calls), figs)
+    return table
+
+
+@app.command("generate")
+def generate(
+    text: str = typer.Argument(None, help=f"what to make (default with no input: '{DEFAULT_TEXT}')"),
+    image: Path = typer.Option(None, "--image", help="PNG/JPEG of the object"),
+    mesh: Path = typer.Option(None, "--mesh", help="OBJ/PLY/STL/GLB/OFF mesh"),
+    out: Path = typer.Option(None, "--out", help="asset directory to publish (default: out/<name>)"),
+    device: str = typer.Option("cpu", "--device", help="cpu | cuda (the MPM's Warp device)"),
+    quality: str = typer.Option("draft", "--quality", help="draft | standard | high"),
+    size_m: float = typer.Option(None, "--size-m", help="longest extent [m] (overrides sizes in the text)"),
+    intent: str = typer.Option(None, "--intent", help="material words, e.g. 'firm rubber' (default: from the text)"),
+    seed: int = typer.Option(0, "--seed"),
+    llm: str = typer.Option(None, "--llm", help="litellm model string for every agent role (default: offline rule backend)"),
+    cache_dir: Path = typer.Option(None, "--cache", help="cache root"),
+    as_json: bool = typer.Option(False, "--json", help="print the summary as JSON"),
+) -> None:
+    """Text, image or mesh -> a published asset directory: geometry, physical model, tested material, evidence."""
+    from cache import use_cache_root
+    from contracts.agents import AgentConfig
+    from contracts.request import AssetRequest
+
+    if device not in ("cpu", "cuda"):
+        fail(f"--device must be cpu or cuda, got '{device}'")
+    if quality not in ("draft", "standard", "high"):
+        fail(f"--quality must be draft, standard or high, got '{quality}'")
+    for path, what in ((image, "image"), (mesh, "mesh")):
+        if path is not None and not path.is_file():
+            fail(f"{what} file not found: {path}")
+    if text is None and image is None and mesh is None:
+        text = DEFAULT_TEXT
+    try:
+        request = AssetRequest(text=text, image_path=image.absolute() if image else None,
+                               mesh_path=mesh.absolute() if mesh else None, size_hint_m=size_m,
+                               material_intent=intent, seed=seed, quality=quality)  # type: ignore[arg-type]
+    except ValidationError as exc:
+        fail("invalid request: " + "; ".join(f"{'.'.join(map(str, e['loc']))}: {e['msg']}" for e in exc.errors()))
+    if cache_dir is not None:
+        use_cache_root(cache_dir)
+    out = out or _default_out(text, image, mesh)
+    agents = AgentConfig.llm(llm) if llm else None
+    from flows.generate import generate_asset
+
+    with console.status("starting") as status:
+        def on_stage(stage: str, message: str) -> None:
+            status.update(f"{stage}: {message}")
+            console.log(f"[bold]{stage}[/bold] {message}")
+
+        manifest = generate_asset(request, out, device=device, agents=agents, on_stage=on_stage)  # type: ignore[arg-type]
+    if as_json:
+        emit_json({"asset_dir": str(out), "validation": [s.model_dump(mode="json") for s in manifest.validation],
+                   "material": manifest.material.model_dump(mode="json") if manifest.material else None,
+                   "physical_model": manifest.physical_model.model_dump(mode="json") if manifest.physical_model else None,
+                   "files": manifest.files})
+    else:
+        console.print(_summary_table(manifest))
+        console.print(f"asset published: {out}")
+
+
+@app.command("inspect")
+def inspect_asset(
+    asset: Path = typer.Argument(..., help="asset directory written by `deformsmith generate`"),
+    as_json: bool = typer.Option(False, "--json"),
+) -> None:
+    """Print an asset's validation summary, material and physical model."""
+    from flows.generate import load_manifest
+
+    manifest = load_manifest(asset)
+    if as_json:
+        emit_json(manifest.model_dump(mode="json"))
+        return
+    console.print(_summary_table(manifest))
+    if manifest.material:
+        m = manifest.material
+        console.print(f"material: E = {m.youngs_modulus_pa:.4g} Pa, nu = {m.poisson_ratio:.3g}, "
+                      f"damping = {m.damping_rate_per_s:.3g} 1/s")
+    if manifest.physical_model:
+        p = manifest.physical_model
+        console.print(f"physical: rho = {p.density_kg_per_m3:.4g} kg/m^3, mass = {p.mass_kg:.4g} kg, "
+                      f"{p.particle_count} particles")

@@ -1,0 +1,153 @@
+"""`generate`: L0 -> L1 -> L2 (-> L3) on one working directory, then an atomic publish of the asset directory.
+
+Resume is the cache's job: every expensive unit is a content-cached task, so a rerun after a crash rebuilds the
+working directory from hits and re-executes only what never finished. The working directory is private
+(`.<name>.partial-<pid>` next to the output) and is renamed into place only when every layer passed.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import shutil
+import tempfile
+from collections.abc import Callable
+from importlib import metadata
+from pathlib import Path
+from typing import Any
+
+import cache  # noqa: F401  (sets the local Prefect environment before prefect is imported)
+from contracts.agents import AgentConfig
+from contracts.errors import InputError, StageFailure
+from contracts.manifest import AssetManifest, Provenance, StageSummary
+from contracts.request import AssetRequest
+from contracts.sim import Device, SimConfig
+
+ASSET_JSON = "asset.json"
+LIBRARIES = ("numpy", "warp-lang", "prefect", "zarr", "trimesh", "coacd", "pybullet", "rerun-sdk", "pydantic")
+StageCallback = Callable[[str, str], None]  # (stage, message)
+
+
+def _version(dist: str) -> str:
+    try:
+        return metadata.version(dist)
+    except metadata.PackageNotFoundError:
+        return "not installed"
+
+
+def provenance(device: Device, agents: AgentConfig | None) -> Provenance:
+    """Versions and backends that reproduce the asset."""
+    from contracts.agents import AgentConfig as _Config
+
+    return Provenance(deformsmith_version=_version("deformsmith"),
+                      library_versions={lib: _version(lib) for lib in LIBRARIES},
+                      backends=(agents or _Config.rule()).describe(), device=device)
+
+
+def _summary(stage: str, record: dict[str, Any]) -> StageSummary:
+    """A stage's line in the manifest's validation summary, from its JSON record."""
+    metrics = {k: float(v) for k, v in (record.get("metrics") or {}).items() if isinstance(v, (int, float))}
+    failed = record.get("failed_gates") or []
+    return StageSummary(stage=stage, passed=bool(record.get("passed")), attempts=int(record.get("attempts", 1)),
+                        sim_calls=int(record.get("sim_calls", 0)), metrics=metrics,
+                        failed_gates=[str(f) for f in failed])
+
+
+def _read(path: Path) -> dict[str, Any]:
+    return json.loads(path.read_text(encoding="utf-8"))
+
+
+def _files(work: Path) -> dict[str, str]:
+    """Role -> relative path of what the asset directory holds."""
+    roles = {"manifest": ASSET_JSON, "mesh": "mesh.glb", "collision": "collision", "particles": "particles.zarr",
+             "gaussians": "gaussians.ply", "evidence": "evidence", "recordings": "recordings", "renders": "renders",
+             "interaction": "interaction", "geometry_record": "geometry.json", "physical_record": "physical.json",
+             "material_record": "material.json", "manipulation_record": "manipulation.json",
+             "physgaussian_config": "export/physgaussian_config.json"}
+    return {role: rel for role, rel in roles.items() if (work / rel).exists() or role == "manifest"}
+
+
+def write_physgaussian_export(work: Path, manifest: AssetManifest) -> Path:
+    """A PhysGaussian-style simulation config next to the Gaussians: E, nu, density and the particle file (SI)."""
+    assert manifest.material is not None and manifest.physical_model is not None
+    phys, mat = manifest.physical_model, manifest.material
+    config = {
+        "material": "jelly",  # PhysGaussian's name for its neo-Hookean model
+        "E": mat.youngs_modulus_pa, "nu": mat.poisson_ratio, "density": phys.density_kg_per_m3,
+        "damping_rate_per_s": mat.damping_rate_per_s,
+        "g": list(phys.gravity_m_per_s2), "friction_ground": phys.ground_friction,
+        "gaussians_ply": "../gaussians.ply", "particles_zarr": "../particles.zarr",
+        "units": "SI (Pa, kg/m^3, m, s); frame z up, object resting on z = 0",
+        "particle_volumes": "particles.zarr/volumes_m3", "n_particles": phys.particle_count,
+    }
+    path = work / "export" / "physgaussian_config.json"
+    path.parent.mkdir(parents=True, exist_ok=True)
+    path.write_text(json.dumps(config, indent=2, sort_keys=True) + "\n", encoding="utf-8")
+    return path
+
+
+def _publish(work: Path, out_dir: Path) -> None:
+    """Rename the finished working directory into place (an existing asset is replaced whole)."""
+    if out_dir.exists():
+        old = Path(tempfile.mkdtemp(prefix=f".{out_dir.name}.old-", dir=out_dir.parent))
+        os.replace(out_dir, old / "asset")
+        os.replace(work, out_dir)
+        shutil.rmtree(old, ignore_errors=True)
+    else:
+        os.replace(work, out_dir)
+
+
+def _check_out_dir(out_dir: Path) -> None:
+    if out_dir.exists() and (not out_dir.is_dir() or (any(out_dir.iterdir()) and not (out_dir / ASSET_JSON).exists())):
+        raise InputError(f"{out_dir} exists and is not an asset directory; choose a new or empty directory")
+
+
+def generate_asset(request: AssetRequest, out_dir: Path, device: Device = "cpu", agents: AgentConfig | None = None,
+                   on_stage: StageCallback | None = None) -> AssetManifest:
+    """Run every layer for one request and publish the asset directory; StageFailure when a layer says no."""
+    from flows.l0_geometry import run_l0, write_l0
+    from flows.l1_physical import run_l1
+    from flows.l2_material import run_l2
+
+    note = on_stage or (lambda stage, message: None)
+    out_dir = Path(out_dir).expanduser().absolute()
+    _check_out_dir(out_dir)
+    out_dir.parent.mkdir(parents=True, exist_ok=True)
+    work = Path(tempfile.mkdtemp(prefix=f".{out_dir.name}.partial-", dir=out_dir.parent))
+    try:
+        note("L0", "geometry")
+        l0 = run_l0(request, quality=request.quality)
+        if not l0.checks.passed:
+            raise StageFailure("L0", f"geometry gates failed: {', '.join(l0.checks.failed)}")
+        shutil.rmtree(work)  # write_l0 publishes into a path of its own choosing
+        write_l0(l0, work, extra={"request": request.model_dump(mode="json")})
+        intent = request.material_intent or request.text
+        note("L1", "physical model: rigid probes")
+        physical, o1 = run_l1(work, intent, agents)
+        if physical is None:
+            raise StageFailure("L1", o1.message)
+        note("L2", "material: MPM probes")
+        material, o2 = run_l2(work, request, agents, sim=SimConfig(device=device), physical=physical)
+        if material is None:
+            raise StageFailure("L2", o2.message)
+        validation = [_summary("L0", _read(work / "geometry.json")), _summary("L1", _read(work / "physical.json")),
+                      _summary("L2", _read(work / "material.json"))]
+        manifest = AssetManifest(request=request, physical_model=physical, material=material, validation=validation,
+                                 provenance=provenance(device, agents))
+        write_physgaussian_export(work, manifest)
+        manifest = manifest.model_copy(update={"files": _files(work)})
+        (work / ASSET_JSON).write_text(manifest.model_dump_json(indent=2) + "\n", encoding="utf-8")
+        note("publish", str(out_dir))
+        _publish(work, out_dir)
+        return manifest
+    finally:
+        if work.exists():
+            shutil.rmtree(work, ignore_errors=True)
+
+
+def load_manifest(asset_dir: Path) -> AssetManifest:
+    """The manifest of a published asset directory (InputError when there is none)."""
+    path = Path(asset_dir) / ASSET_JSON
+    if not path.is_file():
+        raise InputError(f"{asset_dir} is not an asset directory (no {ASSET_JSON})")
+    return AssetManifest.model_validate_json(path.read_text(encoding="utf-8"))
