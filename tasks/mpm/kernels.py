@@ -526,7 +526,6 @@ def reduce_scene_stats(
     chunk_scene: wp.array(dtype=wp.int32),
     chunk_begin: wp.array(dtype=wp.int32),
     chunk_end: wp.array(dtype=wp.int32),
-    chunk_stride: wp.array(dtype=wp.int32),
     domain_lo: wp.array(dtype=wp.vec3),
     domain_hi: wp.array(dtype=wp.vec3),
     bmin: wp.array(dtype=wp.vec3),
@@ -534,8 +533,7 @@ def reduce_scene_stats(
     speed_max: wp.array(dtype=float),
     kinetic: wp.array(dtype=float),
 ):
-    """Per scene: bounds [m] of the finite in-domain particles, max speed [m/s], kinetic energy [J] (chunk c covers
-    range(chunk_begin[c], chunk_end[c], chunk_stride[c]))."""
+    """Per scene: bounds [m] of the finite in-domain particles, max speed [m/s], kinetic energy [J] (chunked)."""
     c = wp.tid()
     s = chunk_scene[c]
     lo = wp.vec3(BIG, BIG, BIG)
@@ -544,7 +542,7 @@ def reduce_scene_stats(
     ke = float(0.0)
     dlo = domain_lo[s]
     dhi = domain_hi[s]
-    for p in range(chunk_begin[c], chunk_end[c], chunk_stride[c]):
+    for p in range(chunk_begin[c], chunk_end[c]):
         xp = x[p]
         vp = v[p]
         v2 = wp.dot(vp, vp)

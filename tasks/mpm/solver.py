@@ -209,8 +209,7 @@ class Solver:
         cmds.append(wp.launch(
             K.reduce_scene_stats,
             dim=m.n_chunks,
-            inputs=[state.x, state.v, m.particle_mass, m.chunk_scene, m.chunk_begin, m.chunk_end, m.chunk_stride,
-                    m.domain_lo,
+            inputs=[state.x, state.v, m.particle_mass, m.chunk_scene, m.chunk_begin, m.chunk_end, m.domain_lo,
                     m.domain_hi, self.bmin, self.bmax, self.speed_max, self.kinetic],
             device=d,
             record_cmd=True,
