@@ -10,6 +10,7 @@ from flows.cli.apps import app
 # Each module registers its commands on the shared apps when imported.
 from flows.cli import schema_cmds  # noqa: E402,F401
 from flows.cli import physical_cmds  # noqa: E402,F401
+from flows.cli import material_cmds  # noqa: E402,F401
 from flows.cli import generate_cmds  # noqa: E402,F401
 from flows.cli import mpm_cmds  # noqa: E402,F401
 from flows.cli import geometry_cmds  # noqa: E402,F401

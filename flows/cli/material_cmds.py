@@ -1,0 +1,142 @@
+"""`deformsmith material` (L2 on an asset directory) and `deformsmith probe KIND` (one probe, its metrics)."""
+
+from __future__ import annotations
+
+import math
+import os
+from pathlib import Path
+
+import typer
+from pydantic import ValidationError
+
+from flows.cli.apps import app, console, emit_json, fail
+
+RIGID_KINDS = ("place", "drop", "slide")  # L1 rigid probes (pybullet); `drop` is rigid unless --deformable
+DEFORMABLE_KINDS = ("compress", "lift", "stability")
+KINDS = ("place", "drop", "slide", "compress", "lift", "stability")
+
+
+def _check_asset(asset: Path) -> None:
+    """The asset directory must hold an L0 output."""
+    if not (asset / "geometry.json").is_file():
+        fail(f"{asset} is not an asset directory (no geometry.json); run `deformsmith geometry ... --out {asset}`")
+
+
+def _material(E: float | None, nu: float | None, damping: float | None, asset: Path):  # type: ignore[no-untyped-def]
+    """The material to probe: the asset's L2 material (or the intent's priors), with the given overrides."""
+    from contracts.material import Material
+    from flows.l2_material import MATERIAL_JSON, l2_targets, load_material
+    from tasks.geometry.outputs import load_l0
+
+    for name, v in (("--E", E), ("--nu", nu), ("--damping", damping)):
+        if v is not None and not math.isfinite(v):
+            fail(f"{name} must be a finite number, got {v}")
+    given = {k: v for k, v in (("youngs_modulus_pa", E), ("poisson_ratio", nu), ("damping_rate_per_s", damping))
+             if v is not None}
+    _validated({"youngs_modulus_pa": 1e4, "poisson_ratio": 0.3, "damping_rate_per_s": 0.0, **given})
+    if (asset / MATERIAL_JSON).is_file():
+        base = load_material(asset).model_dump()
+    else:
+        pri = l2_targets(load_l0(asset), None).priors
+        base = {"youngs_modulus_pa": pri.get("youngs_modulus_pa", 3e4), "poisson_ratio": pri.get("poisson_ratio", 0.3),
+                "damping_rate_per_s": pri.get("damping_rate_per_s", 5.0)}
+    return _validated({**base, **given})
+
+
+def _validated(values: dict[str, float]):  # type: ignore[no-untyped-def]
+    """A Material, or one clear line naming the invalid parameter and a non-zero exit."""
+    from contracts.material import Material
+
+    try:
+        return Material(**values)
+    except ValidationError as exc:
+        msgs = []
+        for e in exc.errors():
+            field = {"youngs_modulus_pa": "E (--E) [Pa]", "poisson_ratio": "nu (--nu)",
+                     "damping_rate_per_s": "damping (--damping) [1/s]"}.get(str(e["loc"][0]), str(e["loc"][0]))
+            msgs.append(f"{field} = {e.get('input')}: {e['msg'].removeprefix('Value error, ')}")
+        fail("invalid material: " + "; ".join(msgs))
+
+
+@app.command("probe")
+def probe(
+    kind: str = typer.Argument(..., help="place | drop | slide (L1 rigid, pybullet) | compress | lift | stability"),
+    asset: Path = typer.Option(..., "--asset", help="asset directory (an L0 output, with physical.json if L1 ran)"),
+    E: float = typer.Option(None, "--E", help="Young's modulus [Pa] (deformable probes)"),
+    nu: float = typer.Option(None, "--nu", help="Poisson's ratio [-], 0 <= nu < 0.5 (deformable probes)"),
+    damping: float = typer.Option(None, "--damping", help="damping rate [1/s] (deformable probes)"),
+    rho: float = typer.Option(None, "--rho", help="density [kg/m^3] overriding the L1 model"),
+    deformable: bool = typer.Option(False, "--deformable", help="drop: the MPM drop (L2) instead of the rigid one"),
+    held_out: bool = typer.Option(False, "--held-out", help="compress/drop: the contract's held-out strain / height"),
+    as_json: bool = typer.Option(False, "--json", help="print the probe result as JSON"),
+) -> None:
+    """Run one probe on an asset and print its metrics (SI units in every metric name)."""
+    if kind not in KINDS:
+        fail(f"unknown probe '{kind}'; choose one of {', '.join(KINDS)}")
+    for name, v in (("--E", E), ("--nu", nu), ("--damping", damping)):
+        if v is not None and not math.isfinite(v):
+            fail(f"{name} must be a finite number, got {v}")
+    given = {k: v for k, v in (("youngs_modulus_pa", E), ("poisson_ratio", nu), ("damping_rate_per_s", damping))
+             if v is not None}
+    _validated({"youngs_modulus_pa": 1e4, "poisson_ratio": 0.3, "damping_rate_per_s": 0.0, **given})
+    _check_asset(asset)
+    if rho is not None and not (math.isfinite(rho) and rho > 0):
+        fail(f"--rho must be a positive finite density [kg/m^3], got {rho}")
+    os.environ.setdefault("PREFECT_LOGGING_LEVEL", "CRITICAL")
+    if kind in RIGID_KINDS and not (kind == "drop" and deformable):
+        if any(v is not None for v in (E, nu, damping)):
+            fail(f"--E/--nu/--damping apply to deformable probes; '{kind}' is a rigid L1 probe")
+        try:
+            from flows.l1_physical import run_rigid_probe
+        except ImportError:
+            fail(f"the rigid probe '{kind}' needs flows.l1_physical.run_rigid_probe, which is not available")
+        with console.status(f"rigid probe {kind}..."):
+            result = run_rigid_probe(kind, asset, rho=rho)
+    else:
+        from flows.l2_material import physical_for, run_probe
+        from tasks.geometry.outputs import load_l0
+
+        material = _material(E, nu, damping, asset)
+        physical = physical_for(asset, load_l0(asset), rho)
+        with console.status(f"MPM probe {kind} (E={material.youngs_modulus_pa:.4g} Pa)..."):
+            result = run_probe(kind, asset, material, physical=physical, held_out=held_out)
+    if as_json:
+        emit_json(result.model_dump(mode="json"))
+    else:
+        console.print(f"[bold]{kind}[/] health ok={result.health.ok} sim_calls={result.sim_calls} "
+                      f"wall={result.wall_time_s:.1f} s")
+        for k, v in sorted(result.metrics.items()):
+            console.print(f"  {k} = {v:.6g}")
+    if not result.health.ok:
+        fail(f"probe '{kind}' failed its numerical health: {result.health.check} at t={result.health.sim_time_s} s "
+             f"({result.health.detail})", code=1)
+
+
+@app.command("material")
+def material(
+    asset: Path = typer.Option(..., "--asset", help="asset directory holding L0 and L1 (physical.json)"),
+    intent: str = typer.Option(None, "--intent", help="material words, e.g. 'soft plush', 'firm rubber'"),
+    llm: str = typer.Option(None, "--llm", help="litellm model playing the agent roles (default: offline rules)"),
+    as_json: bool = typer.Option(False, "--json", help="print material.json to stdout"),
+) -> None:
+    """Run L2 on an asset: MPM probes, harness-selected neo-Hookean material -> material.json, evidence, recordings."""
+    import json
+
+    _check_asset(asset)
+    if intent is not None and not intent.strip():
+        fail("--intent is empty")
+    os.environ.setdefault("PREFECT_LOGGING_LEVEL", "CRITICAL")
+    from contracts.agents import AgentConfig
+    from flows.l2_material import MATERIAL_JSON, run_l2
+
+    agents = AgentConfig.llm(llm) if llm else None
+    with console.status("L2 material (MPM probes)..."):
+        mat, outcome = run_l2(asset, intent, agents=agents)
+    record = json.loads((asset / MATERIAL_JSON).read_text(encoding="utf-8"))
+    if as_json:
+        emit_json(record)
+    if mat is None:
+        fail(f"L2 found no valid material: {outcome.message}", code=1)
+    console.print(f"[bold]material[/]: E={mat.youngs_modulus_pa:.4g} Pa, nu={mat.poisson_ratio:.3g}, "
+                  f"damping={mat.damping_rate_per_s:.3g} 1/s ({outcome.status}, {record['sim_calls']} simulation "
+                  f"calls, {record['wall_time_s']:.1f} s) -> {asset / MATERIAL_JSON}")

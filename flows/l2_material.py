@@ -1,0 +1,368 @@
+"""L2 material flow: intent -> targets -> batched screening -> harness (cached MPM probes) -> held-out -> material.json.
+
+The L0 particles and the frozen L1 model are read from the asset directory and never edited. Each probe is a
+content-cached task keyed by (particles, physical model, material, probe settings, numerics), so a material set from
+outside (as L3 does) re-executes exactly the L2 probes. Held-out tests (the contract's other strain and drop height)
+run only on the selected material and are stored apart from the selection metrics.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import shutil
+import time
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+import cache
+from cache import cache_root, cached_task, content_key
+from contracts.agents import AgentConfig, StageOutcome, TargetBehaviour
+from contracts.errors import InputError
+from contracts.material import Material
+from contracts.physical import PhysicalModel
+from contracts.probes import ProbeResult
+from contracts.request import AssetRequest
+from contracts.sim import SimConfig
+from contracts.stage import StageContract, load_contract
+from flows.harness import probe_cache_key, run_harness
+from tasks.agents import targets_from_intent, targets_from_request
+from tasks.geometry.outputs import L0Asset, load_l0
+from tasks.probes import deformable
+from tasks.probes.rollout import DeformableBody
+
+TASK_VERSION = "1"  # bump when tasks/probes/{deformable,rollout,metrics}.py change what the probes return
+MATERIAL_JSON = "material.json"
+SELECTION_PROBES = ("compress", "drop", "lift", "stability")
+
+
+# -- cached probe tasks ----------------------------------------------------------------------------------------------
+def _recording_path(kind: str, key: str) -> Path:
+    """Where a probe's recording lives in the cache (copied into the asset for the chosen material)."""
+    return cache_root() / "recordings" / f"L2_{kind}-{key[:16]}.rrd"
+
+
+def _probe(kind: str, positions_m: np.ndarray, volumes_m3: np.ndarray, physical: PhysicalModel,
+           materials: list[Material], params: dict[str, float], sim: SimConfig, held_out: bool) -> list[ProbeResult]:
+    """Run one probe kind on a batch of materials, recording each scene under the cache's recordings folder."""
+    body = DeformableBody.from_physical(positions_m, volumes_m3, physical)
+    keys = [content_key("l2", kind, positions_m, volumes_m3, physical, m, params, sim, held_out) for m in materials]
+    paths = [_recording_path(kind, k) for k in keys]
+    results = deformable.PROBES[kind](body, materials, sim=sim, record_paths=paths, held_out=held_out, **params)
+    return [r.model_copy(update={"recording": str(p) if p.is_file() else None}) for r, p in zip(results, paths)]
+
+
+@cached_task(version=TASK_VERSION, name="l2.compress")
+def compress_task(positions_m: np.ndarray, volumes_m3: np.ndarray, physical: PhysicalModel, material: Material,
+                  strain: float, sim: SimConfig, held_out: bool = False) -> ProbeResult:
+    """Compression probe (effective modulus, recovery) of one material."""
+    return _probe("compress", positions_m, volumes_m3, physical, [material], {"strain": strain}, sim, held_out)[0]
+
+
+@cached_task(version=TASK_VERSION, name="l2.drop")
+def drop_task(positions_m: np.ndarray, volumes_m3: np.ndarray, physical: PhysicalModel, material: Material,
+              height_fraction: float, sim: SimConfig, held_out: bool = False) -> ProbeResult:
+    """Drop probe (rebound, dissipation, impact strain, settle time) of one material."""
+    return _probe("drop", positions_m, volumes_m3, physical, [material], {"height_fraction": height_fraction}, sim,
+                  held_out)[0]
+
+
+@cached_task(version=TASK_VERSION, name="l2.lift")
+def lift_task(positions_m: np.ndarray, volumes_m3: np.ndarray, physical: PhysicalModel, material: Material,
+              sim: SimConfig) -> ProbeResult:
+    """Lift/pinch probe (sag) of one material."""
+    return _probe("lift", positions_m, volumes_m3, physical, [material], {}, sim, False)[0]
+
+
+@cached_task(version=TASK_VERSION, name="l2.stability")
+def stability_task(positions_m: np.ndarray, volumes_m3: np.ndarray, physical: PhysicalModel, material: Material,
+                   duration_s: float, sim: SimConfig) -> ProbeResult:
+    """Long rest rollout (stable_long_rollout) of one material."""
+    return _probe("stability", positions_m, volumes_m3, physical, [material], {"duration_s": duration_s}, sim,
+                  False)[0]
+
+
+@cached_task(version=TASK_VERSION, name="l2.screen")
+def screen_task(positions_m: np.ndarray, volumes_m3: np.ndarray, physical: PhysicalModel, kind: str,
+                materials: list[Material], params: dict[str, float], sim: SimConfig) -> list[ProbeResult]:
+    """One batched rollout of several candidate materials (one simulation call for the batch)."""
+    return _probe(kind, positions_m, volumes_m3, physical, materials, params, sim, False)
+
+
+PROBE_TASKS: dict[str, Any] = {"compress": compress_task, "drop": drop_task, "lift": lift_task,
+                               "stability": stability_task}
+
+
+# -- inputs ----------------------------------------------------------------------------------------------------------
+def probe_parameters(contract: StageContract) -> dict[str, float]:
+    """The contract's probe settings (selection and held-out)."""
+    p = contract.parameters
+    return {"strain": float(p.get("compression_strain", 0.1)),
+            "strain_held_out": float(p.get("compression_strain_held_out", 0.15)),
+            "height_fraction": float(p.get("drop_height_fraction_of_height", 0.25)),
+            "height_fraction_held_out": float(p.get("drop_height_fraction_held_out", 0.5)),
+            "stability_duration_s": float(p.get("stability_duration_s", 3.0))}
+
+
+def probe_inputs(kind: str, asset: L0Asset, physical: PhysicalModel, material: Material, contract: StageContract,
+                 sim: SimConfig, held_out: bool = False) -> dict[str, Any]:
+    """Keyword inputs of one probe task (what its cache key is made of)."""
+    p = probe_parameters(contract)
+    base: dict[str, Any] = {"positions_m": np.asarray(asset.particles_m, np.float64),
+                            "volumes_m3": np.asarray(asset.volumes_m3, np.float64), "physical": physical,
+                            "material": material, "sim": sim}
+    if kind == "compress":
+        return {**base, "strain": p["strain_held_out" if held_out else "strain"], "held_out": held_out}
+    if kind == "drop":
+        return {**base, "height_fraction": p["height_fraction_held_out" if held_out else "height_fraction"],
+                "held_out": held_out}
+    if kind == "stability":
+        return {**base, "duration_s": p["stability_duration_s"]}
+    if kind == "lift":
+        return base
+    raise InputError(f"unknown deformable probe '{kind}'; choose one of {', '.join(PROBE_TASKS)}")
+
+
+def intent_text(asset: L0Asset, intent: str | None) -> str:
+    """The words the material comes from: the given intent, else the request / name recorded by L0."""
+    if intent:
+        return intent
+    req = asset.record.get("request") or {}
+    info = asset.record.get("info", {})
+    return " ".join(str(x) for x in (req.get("material_intent"), req.get("text"), info.get("name"),
+                                     info.get("category")) if x)
+
+
+def l2_targets(asset: L0Asset, request_or_intent: AssetRequest | str | None) -> TargetBehaviour:
+    """Target bands and priors from a request (material_intent / text / overrides) or an intent string."""
+    if isinstance(request_or_intent, AssetRequest):
+        return targets_from_request(request_or_intent)
+    return targets_from_intent(intent_text(asset, request_or_intent))
+
+
+def load_physical_model(asset_dir: Path) -> PhysicalModel:
+    """The frozen L1 model of the asset (flows.l1_physical.load_physical)."""
+    from flows.l1_physical import load_physical
+
+    return load_physical(asset_dir)
+
+
+def physical_for(asset_dir: Path, asset: L0Asset, rho: float | None = None) -> PhysicalModel:
+    """The asset's L1 model, else one from the intent's priors (probing before L1 ran); rho overrides the density."""
+    from flows.l1_physical import PHYSICAL_JSON
+    from tasks.physical import build_physical_model
+
+    if (Path(asset_dir) / PHYSICAL_JSON).is_file():
+        phys = load_physical_model(asset_dir)
+    else:
+        pri = targets_from_intent(intent_text(asset, None)).priors
+        phys = build_physical_model(asset.particles_m, asset.volumes_m3, asset.spacing_m,
+                                    float(pri.get("density_kg_per_m3", 100.0)), float(pri.get("ground_friction", 0.5)),
+                                    float(pri.get("gripper_friction", 0.8)),
+                                    str(asset.record.get("info", {}).get("category", "object")))
+    if rho is None:
+        return phys
+    if not (math.isfinite(rho) and rho > 0):
+        raise InputError(f"density must be a positive finite number of kg/m^3, got {rho}")
+    return phys.model_copy(update={"density_kg_per_m3": float(rho), "mass_kg": float(rho) * phys.volume_m3})
+
+
+# -- harness pieces --------------------------------------------------------------------------------------------------
+class _Runner:
+    """The L2 Prober: every selection probe of one candidate as cached tasks; counts simulation calls and misses."""
+
+    def __init__(self, asset: L0Asset, physical: PhysicalModel, contract: StageContract, sim: SimConfig) -> None:
+        self.asset, self.physical, self.contract, self.sim = asset, physical, contract, sim
+
+    def __call__(self, values: dict[str, float], action: str) -> list[ProbeResult]:
+        material = Material(**values)
+        out = []
+        for kind in SELECTION_PROBES:
+            kw = probe_inputs(kind, self.asset, self.physical, material, self.contract, self.sim)
+            task = PROBE_TASKS[kind]
+            key = probe_cache_key(task, kw)
+            r: ProbeResult = task(**kw)
+            out.append(r if r.cache_key else r.model_copy(update={"cache_key": key}))
+        return out
+
+
+def _fit_log(xs: list[float], ys: list[float], target: float, log_x: bool) -> float | None:
+    """x where the least-squares line through (x or log x, log y) reaches log target (None if flat or undefined)."""
+    pts = [(math.log(x) if log_x else x, math.log(y)) for x, y in zip(xs, ys) if y > 0 and (x > 0 or not log_x)]
+    if len(pts) < 2:
+        return None
+    a, b = np.polyfit([p[0] for p in pts], [p[1] for p in pts], 1)
+    if abs(a) < 1e-9:
+        return None
+    u = (math.log(target) - b) / a
+    return math.exp(u) if log_x else u
+
+
+def screen(asset: L0Asset, physical: PhysicalModel, contract: StageContract, targets: TargetBehaviour,
+           start: dict[str, float], sim: SimConfig) -> tuple[dict[str, float], dict[str, Any]]:
+    """Batched screening: compress three stiffnesses, drop three damping rates (one rollout each); interpolate the
+    start values that hit the centres of the modulus and rebound bands. Returns (initial values, summary)."""
+    p = probe_parameters(contract)
+    fields = {f.name: f for f in contract.editable_fields}
+    base = {"positions_m": np.asarray(asset.particles_m, np.float64),
+            "volumes_m3": np.asarray(asset.volumes_m3, np.float64), "physical": physical, "sim": sim}
+    values = dict(start)
+    summary: dict[str, Any] = {"sim_calls": 0}
+    band = targets.band("effective_modulus_pa")
+    if band is not None:
+        f = fields["youngs_modulus_pa"]
+        es = [min(max(values["youngs_modulus_pa"] * k, f.low), f.high) for k in (1 / 3, 1.0, 3.0)]
+        mats = [Material(youngs_modulus_pa=e, poisson_ratio=values["poisson_ratio"],
+                         damping_rate_per_s=values["damping_rate_per_s"]) for e in es]
+        rs = screen_task(kind="compress", materials=mats, params={"strain": p["strain"]}, **base)
+        ok = [(e, r.metrics["effective_modulus_pa"]) for e, r in zip(es, rs) if "effective_modulus_pa" in r.metrics]
+        guess = _fit_log([e for e, _ in ok], [m for _, m in ok], band.center, log_x=True)
+        if guess is not None:
+            values["youngs_modulus_pa"] = min(max(guess, f.low), f.high)
+        summary["compress"] = {"youngs_modulus_pa": es, "effective_modulus_pa": [r.metrics.get("effective_modulus_pa")
+                                                                                for r in rs]}
+        summary["sim_calls"] += 1
+    band = targets.band("rebound_ratio")
+    if band is not None:
+        f = fields["damping_rate_per_s"]
+        d0 = values["damping_rate_per_s"]
+        ds = sorted({min(max(d, f.low), f.high) for d in (0.25 * d0, d0, 2.5 * d0 + 2.0)})
+        mats = [Material(youngs_modulus_pa=values["youngs_modulus_pa"], poisson_ratio=values["poisson_ratio"],
+                         damping_rate_per_s=d) for d in ds]
+        rs = screen_task(kind="drop", materials=mats, params={"height_fraction": p["height_fraction"]}, **base)
+        ok = [(d, r.metrics["rebound_ratio"]) for d, r in zip(ds, rs) if "rebound_ratio" in r.metrics]
+        aim = max(band.center, 1e-3)
+        guess = _fit_log([d for d, _ in ok], [max(rb, 1e-3) for _, rb in ok], aim, log_x=False)
+        if guess is not None:
+            values["damping_rate_per_s"] = min(max(guess, f.low), f.high)
+        summary["drop"] = {"damping_rate_per_s": ds, "rebound_ratio": [r.metrics.get("rebound_ratio") for r in rs]}
+        summary["sim_calls"] += 1
+    summary["initial"] = dict(values)
+    return values, summary
+
+
+def _copy(src: str | None, dest: Path) -> str | None:
+    """Copy a recording into the asset; returns its path relative to the asset directory."""
+    if not src or not Path(src).is_file():
+        return None
+    dest.parent.mkdir(parents=True, exist_ok=True)
+    shutil.copyfile(src, dest)
+    return str(Path("recordings") / dest.name)
+
+
+def _write_json(path: Path, record: dict[str, Any]) -> None:
+    """Atomic JSON write."""
+    tmp = path.with_name(path.name + ".tmp")
+    tmp.write_text(json.dumps(record, indent=2, sort_keys=True, default=str) + "\n", encoding="utf-8")
+    tmp.replace(path)
+
+
+def evaluate_material(asset_dir: Path, material: Material, contract: StageContract | None = None,
+                      sim: SimConfig | None = None, held_out: bool = True,
+                      physical: PhysicalModel | None = None) -> dict[str, Any]:
+    """Probe a material given from outside (as L3 does): the selection probes and the held-out tests, cached."""
+    asset_dir = Path(asset_dir)
+    asset = load_l0(asset_dir)
+    physical = physical or load_physical_model(asset_dir)
+    contract = contract or load_contract("L2")
+    sim = sim or SimConfig()
+    with cache.local_runtime():
+        sel = _Runner(asset, physical, contract, sim)(material.model_dump(), "propose_material")
+        ho = [PROBE_TASKS[k](**probe_inputs(k, asset, physical, material, contract, sim, True))
+              for k in ("compress", "drop")] if held_out else []
+    from tasks.agents import merge_metrics
+
+    return {"material": material, "selection": sel, "held_out": ho, "metrics": merge_metrics(sel, contract),
+            "held_out_metrics": merge_metrics(ho, contract) if ho else {}}
+
+
+def run_l2(asset_dir: Path, request_or_intent: AssetRequest | str | None = None, agents: AgentConfig | None = None,
+           contract: StageContract | None = None, sim: SimConfig | None = None, physical: PhysicalModel | None = None,
+           screen_first: bool = True) -> tuple[Material | None, StageOutcome]:
+    """Run L2 on an asset directory holding L0 (+ L1 physical.json, or `physical` given); write material.json."""
+    t0 = time.perf_counter()
+    asset_dir = Path(asset_dir)
+    asset = load_l0(asset_dir)
+    physical = physical or load_physical_model(asset_dir)
+    contract = contract or load_contract("L2")
+    sim = sim or SimConfig()
+    targets = l2_targets(asset, request_or_intent)
+    from tasks.agents.orchestrator import initial_values
+
+    start = initial_values(contract, targets, None)
+    with cache.local_runtime():
+        initial, screening = (screen(asset, physical, contract, targets, start, sim) if screen_first
+                              else (start, {"sim_calls": 0}))
+    runner = _Runner(asset, physical, contract, sim)
+    outcome = run_harness(contract, runner, targets, agents=agents, record_dir=asset_dir, initial=initial)
+    material = Material(**outcome.values) if outcome.passed and outcome.values else None
+    record: dict[str, Any] = {"schema_version": 1, "stage": "L2", "passed": outcome.passed, "status": outcome.status,
+                              "message": outcome.message, "intent": targets.intent,
+                              "targets": targets.model_dump(mode="json")}
+    recordings: dict[str, str | None] = {}
+    held: list[ProbeResult] = []
+    if material is not None:
+        chosen = next(a for a in outcome.attempts if a.iteration == outcome.best_iteration)
+        for src in chosen.evidence.recordings:
+            kind = Path(src).name.split("-")[0].removeprefix("L2_")
+            recordings[kind] = _copy(src, asset_dir / "recordings" / f"L2_{kind}.rrd")
+        with cache.local_runtime():
+            for kind in ("compress", "drop"):
+                r = PROBE_TASKS[kind](**probe_inputs(kind, asset, physical, material, contract, sim, True))
+                held.append(r)
+                recordings[f"{kind}_held_out"] = _copy(r.recording, asset_dir / "recordings" / f"L2_{kind}_held_out.rrd")
+    from tasks.agents import merge_metrics
+
+    held_metrics = merge_metrics(held, contract) if held else {}
+    held_targets = targets.model_copy(update={"bands": [b for b in targets.bands if b.metric in held_metrics]})
+    sim_calls = outcome.sim_calls + int(screening.get("sim_calls", 0)) + sum(r.sim_calls for r in held)
+    record.update({
+        "material": material.model_dump(mode="json") if material else None,
+        "physical_model": physical.model_dump(mode="json"),
+        "metrics": outcome.metrics,
+        "held_out": {"metrics": held_metrics, "targets_met": held_targets.met(held_metrics) if held else None,
+                     "score": held_targets.score(held_metrics) if held else None,
+                     "bands": [b.metric for b in held_targets.bands],
+                     "probes": [r.model_dump(mode="json") for r in held]},
+        "selection": {"status": outcome.status, "score": outcome.score, "targets_met": targets.met(outcome.metrics),
+                      "best_iteration": outcome.best_iteration, "attempts": outcome.attempts_used,
+                      "sim_calls": outcome.sim_calls, "screening": screening,
+                      "ranking": sorted(({"iteration": a.iteration, "values": a.proposal, "score": a.score,
+                                          "verdict": a.verdict} for a in outcome.attempts if a.score is not None),
+                                        key=lambda d: -d["score"])},
+        "sim_calls": sim_calls, "wall_time_s": time.perf_counter() - t0, "recordings": recordings,
+    })
+    (asset_dir / "evidence").mkdir(parents=True, exist_ok=True)
+    lines = "".join(a.model_dump_json() + "\n" for a in outcome.attempts)
+    (asset_dir / "evidence" / "L2_attempts.jsonl").write_text(lines, encoding="utf-8")
+    _write_json(asset_dir / MATERIAL_JSON, record)
+    return material, outcome
+
+
+def load_material(asset_dir: Path) -> Material:
+    """The L2 material of an asset directory (InputError when L2 has not run or found no valid material)."""
+    path = Path(asset_dir) / MATERIAL_JSON
+    if not path.is_file():
+        raise InputError(f"{asset_dir} has no {MATERIAL_JSON}: run `deformsmith material --asset {asset_dir}` first")
+    record = json.loads(path.read_text(encoding="utf-8"))
+    if not record.get("material"):
+        raise InputError(f"{path}: L2 found no valid material ({record.get('message', 'failed')})")
+    return Material.model_validate(record["material"])
+
+
+def run_probe(kind: str, asset_dir: Path, material: Material, physical: PhysicalModel | None = None,
+              sim: SimConfig | None = None, held_out: bool = False) -> ProbeResult:
+    """Run one deformable probe (cached) on an asset with a given material."""
+    asset_dir = Path(asset_dir)
+    asset = load_l0(asset_dir)
+    physical = physical or load_physical_model(asset_dir)
+    contract = load_contract("L2")
+    kw = probe_inputs(kind, asset, physical, material, contract, sim or SimConfig(), held_out)
+    with cache.local_runtime():
+        return PROBE_TASKS[kind](**kw)
+
+
+__all__ = ["MATERIAL_JSON", "PROBE_TASKS", "evaluate_material", "l2_targets", "load_material", "probe_inputs",
+           "run_l2", "run_probe", "screen"]

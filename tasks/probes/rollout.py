@@ -1,0 +1,220 @@
+"""Shared machinery of the MPM probes: the body under test, a batched rollout with sampling, recordings, retries."""
+
+from __future__ import annotations
+
+import math
+import time
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from contracts.material import Material
+from contracts.physical import PhysicalModel
+from contracts.probes import HealthStatus, ProbeResult, ProbeSpec
+from contracts.sim import SimConfig
+from tasks.mpm import IntervalReport, SceneSpec, Simulator, build_model
+from tasks.probes.metrics import GateTracker, center_of_mass, kinetic_energy
+from tasks.record import ProbeRecording
+
+RECORDED_FRAMES = 60  # particle frames kept per recording (scalars are logged every sample)
+
+
+@dataclass(frozen=True)
+class DeformableBody:
+    """The object under test: rest particles (asset frame: z up, resting on z = 0) and its L1 physical model (SI)."""
+
+    positions_m: np.ndarray  # (N, 3) rest positions [m]
+    volumes_m3: np.ndarray  # (N,) rest volumes [m^3]
+    spacing_m: float  # particle lattice spacing [m]
+    density_kg_per_m3: float
+    ground_friction: float = 0.5
+    gripper_friction: float = 0.8
+
+    @classmethod
+    def from_physical(cls, positions_m: np.ndarray, volumes_m3: np.ndarray, physical: PhysicalModel) -> "DeformableBody":
+        """A body from L0 particles and the frozen L1 model (density, friction, spacing)."""
+        return cls(np.asarray(positions_m, np.float64), np.asarray(volumes_m3, np.float64),
+                   float(physical.particle_spacing_m), float(physical.density_kg_per_m3),
+                   float(physical.ground_friction), float(physical.gripper_friction))
+
+    @property
+    def masses_kg(self) -> np.ndarray:
+        """Particle masses m_i = rho V_i [kg]."""
+        return self.volumes_m3 * self.density_kg_per_m3
+
+    @property
+    def mass_kg(self) -> float:
+        """Total mass [kg]."""
+        return float(self.masses_kg.sum())
+
+    @property
+    def extents_m(self) -> np.ndarray:
+        """Bounding-box extents of the body's volume (particle range + one spacing) [m]."""
+        return self.positions_m.max(axis=0) - self.positions_m.min(axis=0) + self.spacing_m
+
+    @property
+    def height_m(self) -> float:
+        """Vertical extent H [m]."""
+        return float(self.extents_m[2])
+
+
+def dx_of(body: DeformableBody, sim: SimConfig) -> float:
+    """Grid spacing the engine will use [m] (SimConfig.dx_m, else twice the particle spacing)."""
+    return float(sim.dx_m) if sim.dx_m is not None else 2.0 * float(np.mean(body.volumes_m3) ** (1.0 / 3.0))
+
+
+def fundamental_period_s(body: DeformableBody, material: Material) -> float:
+    """Longest elastic period across the height, 4 H / c with the bar speed c = sqrt(E / rho) [s]."""
+    return 4.0 * body.height_m / math.sqrt(material.youngs_modulus_pa / body.density_kg_per_m3)
+
+
+def sample_interval_s(body: DeformableBody, materials: Sequence[Material], longest_s: float = 5e-3) -> float:
+    """Sampling interval: a sixth of the shortest fundamental period, within [1 ms, longest_s]."""
+    t = min(fundamental_period_s(body, m) for m in materials) / 6.0
+    return float(min(longest_s, max(1e-3, t)))
+
+
+@dataclass
+class SceneLog:
+    """What one scene of a rollout recorded: per-sample time series and its gate tracker."""
+
+    gates: GateTracker
+    series: dict[str, list[float]] = field(default_factory=dict)
+
+    def add(self, **values: float) -> None:
+        """Append one sample of named scalars."""
+        for k, v in values.items():
+            self.series.setdefault(k, []).append(float(v))
+
+    def array(self, name: str) -> np.ndarray:
+        """One series as an array."""
+        return np.asarray(self.series.get(name, []), dtype=np.float64)
+
+
+class Rollout:
+    """A batched MPM rollout of several scenes, sampled at a fixed interval, optionally recorded per scene."""
+
+    def __init__(self, scenes: Sequence[SceneSpec], sim: SimConfig, record_paths: Sequence[Path | None] | None = None,
+                 recording_prefix: str = "probe", expected_samples: int = 200) -> None:
+        self.model = build_model(list(scenes), sim)
+        self.sim = Simulator(self.model)
+        self.n = self.model.n_scenes
+        self.logs = [SceneLog(GateTracker(ground_z_m=float(self.model.ground_height_np[s]))) for s in range(self.n)]
+        self.masses = [self.model.particle_mass_np[self.model.scene_slice(s)].astype(np.float64) for s in range(self.n)]
+        paths = list(record_paths or [None] * self.n)
+        self.recordings: list[ProbeRecording | None] = []
+        for s, p in enumerate(paths):
+            rec = ProbeRecording(p, f"{recording_prefix}-{s}-{time.time_ns()}") if p is not None else None
+            if rec is not None:
+                rec.__enter__()
+            self.recordings.append(rec)
+        self.frame = 0
+        self.every = max(1, expected_samples // RECORDED_FRAMES)
+        self.wall_start = time.perf_counter()
+        self.last: IntervalReport | None = None
+
+    @property
+    def time_s(self) -> float:
+        """Simulation time [s]."""
+        return self.sim.time_s
+
+    @property
+    def ok(self) -> bool:
+        """False once the engine stopped on a fatal health issue."""
+        return self.sim.health.ok
+
+    def advance(self, interval_s: float) -> tuple[IntervalReport, list[dict[str, np.ndarray]]]:
+        """Advance one interval, sample every scene (gates, recording) and return the report and particle states."""
+        rep = self.sim.advance(interval_s)
+        self.last = rep
+        states = [self.sim.particles(s) for s in range(self.n)]
+        self.frame += 1
+        for s, st in enumerate(states):
+            self.logs[s].gates.sample(st["x"], st["F"], on_ground=bool(self.model.ground_enabled_np[s]))
+            rec = self.recordings[s]
+            if rec is not None:
+                rec.set_time(self.frame, self.time_s)
+                if self.frame % self.every == 0:
+                    rec.particles(st["x"], radius_m=0.25 * self.model.dx)
+                    for i in range(int(self.model.col_count_np[s])):
+                        c = self.model.collider_index(s, i)
+                        spec = self.model.collider_specs[c]
+                        pos, q = self.sim.control.collider_pose(c, self.time_s)
+                        if spec.kind == "box":
+                            rec.box_collider(spec.name or f"collider_{i}", pos, np.asarray(spec.size_m), q)
+                rec.scalar("kinetic_energy_j", kinetic_energy(st["v"], self.masses[s]))
+                rec.scalar("com_z_m", float(center_of_mass(st["x"], self.masses[s])[2]))
+                rec.scalar("ground_force_z_n", float(rep.ground_force_n[s][2]))
+        return rep, states
+
+    def scalar(self, scene: int, name: str, value: float) -> None:
+        """Log a probe-specific scalar into a scene's recording (if it has one)."""
+        rec = self.recordings[scene]
+        if rec is not None:
+            rec.scalar(name, value)
+
+    def failed_checks(self, scene: int) -> list[str]:
+        """Names of the fatal engine checks that concern a scene."""
+        return [i.check for i in self.sim.health.issues if i.scene == scene]
+
+    def health(self, scene: int) -> HealthStatus:
+        """The scene's health in the contract's form."""
+        issue = self.sim.health.first(scene)
+        if issue is None:
+            return HealthStatus(ok=True)
+        return HealthStatus(ok=False, check=issue.check, step=issue.step, sim_time_s=issue.sim_time_s, scene=scene,
+                            particle=issue.particle, detail=issue.detail)
+
+    def gate_metrics(self, scene: int) -> dict[str, float]:
+        """Gate metrics of a scene (its samples + the engine checks that concern it)."""
+        return self.logs[scene].gates.metrics(self.sim.health.scene_ok(scene), self.failed_checks(scene))
+
+    def close(self, messages: Sequence[str] | None = None) -> None:
+        """Write the harness log lines and close every recording."""
+        for s, rec in enumerate(self.recordings):
+            if rec is None:
+                continue
+            for line in messages or []:
+                rec.log(line)
+            h = self.health(s)
+            rec.log(f"health ok={h.ok} check={h.check} t={h.sim_time_s}", level="INFO" if h.ok else "WARN")
+            rec.__exit__(None, None, None)
+
+    @property
+    def wall_s(self) -> float:
+        """Wall time since the rollout started [s]."""
+        return time.perf_counter() - self.wall_start
+
+
+ProbeImpl = Callable[[Sequence[Material], Sequence[Path | None]], list[ProbeResult]]
+
+
+def run_batched(impl: ProbeImpl, materials: Sequence[Material], record_paths: Sequence[Path | None] | None) -> list[ProbeResult]:
+    """Run a probe over a batch of materials (one batched rollout = one simulation call). The engine stops a batch at
+    the first failed scene, so the scenes cut short by another's failure run again without it (their sim_calls and
+    wall time include the aborted batch)."""
+    paths = list(record_paths or [None] * len(materials))
+    results = impl(list(materials), paths)
+    failed = [i for i, r in enumerate(results) if not r.health.ok]
+    if not failed or len(failed) == len(results):
+        return results
+    rest = [i for i in range(len(results)) if i not in failed]
+    again = run_batched(impl, [materials[i] for i in rest], [paths[i] for i in rest])
+    out = list(results)
+    for i, r in zip(rest, again):
+        out[i] = r.model_copy(update={"sim_calls": r.sim_calls + 1, "wall_time_s": r.wall_time_s + results[i].wall_time_s})
+    return out
+
+
+def make_result(kind: str, params: dict[str, float], metrics: dict[str, float], health: HealthStatus, wall_s: float,
+                held_out: bool = False, duration_s: float | None = None) -> ProbeResult:
+    """A ProbeResult with only finite metrics (a metric that could not be measured is left out)."""
+    clean = {k: float(v) for k, v in metrics.items() if v is not None and math.isfinite(float(v))}
+    spec = ProbeSpec(kind=kind, params=dict(params), held_out=held_out, duration_s=duration_s)  # type: ignore[arg-type]
+    return ProbeResult(spec=spec, metrics=clean, health=health, sim_calls=1, wall_time_s=float(wall_s))
+
+
+__all__ = ["DeformableBody", "Rollout", "SceneLog", "dx_of", "fundamental_period_s", "make_result", "run_batched",
+           "sample_interval_s"]

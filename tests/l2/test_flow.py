@@ -1,0 +1,74 @@
+"""The L2 flow: intents end in materials that meet their own targets; a material set from outside re-executes
+exactly the L2 probes; material.json, evidence and recordings are written."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import pytest
+
+import flows.l2_material as l2
+from cache import CacheStore, cache_root
+from contracts.material import Material
+from tests.l2.helpers import box_asset
+
+L2_PROBES = {"l2.compress", "l2.drop", "l2.lift", "l2.stability"}
+
+
+def _misses(before: int) -> list[str]:
+    """Task names of the cache misses (executions) since `before` events."""
+    return [e["task"] for e in CacheStore(cache_root()).events()[before:] if e["outcome"] == "miss"]
+
+
+def _asset(tmp_path: Path, monkeypatch: pytest.MonkeyPatch, size=(0.1, 0.08, 0.06), n=6):  # type: ignore[no-untyped-def]
+    asset, phys = box_asset(size, n)
+    monkeypatch.setattr(l2, "load_l0", lambda d: asset)
+    d = tmp_path / "asset"
+    d.mkdir()
+    return d, phys
+
+
+def test_material_from_outside_reexecutes_exactly_the_l2_probes(tmp_path: Path, monkeypatch: pytest.MonkeyPatch,
+                                                              prefect_api: str) -> None:
+    """evaluate_material: a new material runs the 4 selection probes + 2 held-out tests once; a repeat runs nothing."""
+    d, phys = _asset(tmp_path, monkeypatch)
+    mat = Material(youngs_modulus_pa=2.0e4, poisson_ratio=0.3, damping_rate_per_s=8.0)
+    n0 = len(CacheStore(cache_root()).events())
+    out = l2.evaluate_material(d, mat, physical=phys)
+    misses = _misses(n0)
+    assert sorted(misses) == sorted([*L2_PROBES, "l2.compress", "l2.drop"])
+    assert all(r.health.ok for r in out["selection"]) and out["metrics"]["stable_long_rollout"] == 1.0
+    assert all(r.spec.held_out for r in out["held_out"])
+    assert out["held_out"][0].spec.params["strain"] == 0.15
+    n1 = len(CacheStore(cache_root()).events())
+    l2.evaluate_material(d, mat, physical=phys)
+    assert _misses(n1) == []
+    other = mat.model_copy(update={"youngs_modulus_pa": 3.0e4})
+    n2 = len(CacheStore(cache_root()).events())
+    l2.evaluate_material(d, other, physical=phys, held_out=False)
+    assert sorted(_misses(n2)) == sorted(L2_PROBES)
+
+
+def test_plush_and_rubber_intents_end_in_different_materials_that_meet_their_targets(
+        tmp_path: Path, monkeypatch: pytest.MonkeyPatch, prefect_api: str) -> None:
+    """Reduced version on a small box: 'soft plush' and 'firm rubber' each pass every gate and their modulus band;
+    rubber ends stiffer and bouncier than plush; held-out metrics are stored apart."""
+    d, phys = _asset(tmp_path, monkeypatch)
+    found = {}
+    for intent in ("soft plush", "firm rubber"):
+        mat, outcome = l2.run_l2(d, intent, physical=phys)
+        assert mat is not None, outcome.message
+        rec = json.loads((d / "material.json").read_text())
+        band = next(b for b in rec["targets"]["bands"] if b["metric"] == "effective_modulus_pa")
+        assert band["low"] <= rec["metrics"]["effective_modulus_pa"] <= band["high"]
+        assert rec["held_out"]["metrics"]["compression_strain"] > rec["metrics"]["compression_strain"] + 0.03
+        assert rec["held_out"]["probes"][0]["spec"]["held_out"] is True
+        assert (d / "evidence" / "L2_attempts.jsonl").read_text().strip()
+        assert (d / "recordings" / "L2_compress.rrd").is_file()
+        assert rec["sim_calls"] >= 4
+        found[intent] = rec
+    plush, rubber = found["soft plush"], found["firm rubber"]
+    assert rubber["material"]["youngs_modulus_pa"] > 20 * plush["material"]["youngs_modulus_pa"]
+    assert rubber["metrics"]["rebound_ratio"] > plush["metrics"]["rebound_ratio"]
+    assert plush["selection"]["targets_met"] and plush["selection"]["status"] == "accepted"
