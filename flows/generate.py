@@ -26,6 +26,7 @@ from contracts.sim import Device, SimConfig
 ASSET_JSON = "asset.json"
 LIBRARIES = ("numpy", "warp-lang", "prefect", "zarr", "trimesh", "coacd", "pybullet", "rerun-sdk", "pydantic")
 StageCallback = Callable[[str, str], None]  # (stage, message)
+TIMINGS: dict[str, float] = {}  # wall time per layer of the last generate_asset call in this process [s]
 
 
 def _version(dist: str) -> str:
@@ -109,7 +110,19 @@ def generate_asset(request: AssetRequest, out_dir: Path, device: Device = "cpu",
     from flows.l1_physical import run_l1
     from flows.l2_material import run_l2
 
-    note = on_stage or (lambda stage, message: None)
+    import time
+
+    report = on_stage or (lambda stage, message: None)
+    clock = {"stage": "", "t": time.perf_counter()}
+    TIMINGS.clear()
+
+    def note(stage: str, message: str) -> None:
+        now = time.perf_counter()
+        if clock["stage"]:
+            TIMINGS[str(clock["stage"])] = now - float(clock["t"])
+        clock.update(stage=stage, t=now)
+        report(stage, message)
+
     out_dir = Path(out_dir).expanduser().absolute()
     _check_out_dir(out_dir)
     out_dir.parent.mkdir(parents=True, exist_ok=True)
@@ -143,6 +156,31 @@ def generate_asset(request: AssetRequest, out_dir: Path, device: Device = "cpu",
     finally:
         if work.exists():
             shutil.rmtree(work, ignore_errors=True)
+
+
+def content_fingerprint(asset_dir: Path) -> dict[str, str]:
+    """Relative path -> digest of every file: JSON canonically, `.rrd` by what it shows (Rerun stamps ids and
+    wall-clock times on each write), everything else by bytes. Two runs of the same request on CPU match."""
+    import hashlib
+
+    from tasks.record import recording_digest
+
+    root = Path(asset_dir)
+    out: dict[str, str] = {}
+    for path in sorted(p for p in root.rglob("*") if p.is_file()):
+        rel = path.relative_to(root).as_posix()
+        if path.suffix == ".rrd":
+            out[rel] = recording_digest(path)
+        elif path.suffix == ".json":
+            doc = json.dumps(json.loads(path.read_text(encoding="utf-8")), sort_keys=True)
+            out[rel] = hashlib.sha256(doc.encode()).hexdigest()
+        elif path.suffix == ".jsonl":
+            text = path.read_text(encoding="utf-8")
+            lines = [json.dumps(json.loads(ln), sort_keys=True) for ln in text.splitlines() if ln.strip()]
+            out[rel] = hashlib.sha256("\n".join(lines).encode()).hexdigest()
+        else:
+            out[rel] = hashlib.sha256(path.read_bytes()).hexdigest()
+    return out
 
 
 def load_manifest(asset_dir: Path) -> AssetManifest:

@@ -11,7 +11,6 @@ from __future__ import annotations
 import json
 import math
 import shutil
-import time
 from pathlib import Path
 from typing import Any
 
@@ -282,7 +281,6 @@ def run_l2(asset_dir: Path, request_or_intent: AssetRequest | str | None = None,
            contract: StageContract | None = None, sim: SimConfig | None = None, physical: PhysicalModel | None = None,
            screen_first: bool = True) -> tuple[Material | None, StageOutcome]:
     """Run L2 on an asset directory holding L0 (+ L1 physical.json, or `physical` given); write material.json."""
-    t0 = time.perf_counter()
     asset_dir = Path(asset_dir)
     asset = load_l0(asset_dir)
     physical = physical or load_physical_model(asset_dir)
@@ -332,7 +330,7 @@ def run_l2(asset_dir: Path, request_or_intent: AssetRequest | str | None = None,
                       "ranking": sorted(({"iteration": a.iteration, "values": a.proposal, "score": a.score,
                                           "verdict": a.verdict} for a in outcome.attempts if a.score is not None),
                                         key=lambda d: -d["score"])},
-        "sim_calls": sim_calls, "wall_time_s": time.perf_counter() - t0, "recordings": recordings,
+        "sim_calls": sim_calls, "recordings": recordings,  # no wall time: reruns must be content-identical
     })
     (asset_dir / "evidence").mkdir(parents=True, exist_ok=True)
     lines = "".join(a.model_dump_json() + "\n" for a in outcome.attempts)

@@ -72,7 +72,7 @@ def generate(
         use_cache_root(cache_dir)
     out = out or _default_out(text, image, mesh)
     agents = AgentConfig.llm(llm) if llm else None
-    from flows.generate import generate_asset
+    from flows.generate import TIMINGS, generate_asset
 
     with console.status("starting") as status:
         def on_stage(stage: str, message: str) -> None:
@@ -84,9 +84,10 @@ def generate(
         emit_json({"asset_dir": str(out), "validation": [s.model_dump(mode="json") for s in manifest.validation],
                    "material": manifest.material.model_dump(mode="json") if manifest.material else None,
                    "physical_model": manifest.physical_model.model_dump(mode="json") if manifest.physical_model else None,
-                   "files": manifest.files})
+                   "files": manifest.files, "wall_time_s": dict(TIMINGS)})
     else:
         console.print(_summary_table(manifest))
+        console.print("wall time: " + ", ".join(f"{k} {v:.1f} s" for k, v in TIMINGS.items()))
         console.print(f"asset published: {out}")
 
 

@@ -9,6 +9,7 @@ from tasks.record.rerun_recording import (
     ProbeRecording,
     RecordingSummary,
     read_recording,
+    recording_digest,
 )
 
-__all__ = ["COLLIDERS", "GAUSSIANS", "HARNESS_LOG", "METRICS", "PARTICLES", "ProbeRecording", "RecordingSummary", "read_recording"]
+__all__ = ["COLLIDERS", "GAUSSIANS", "HARNESS_LOG", "METRICS", "PARTICLES", "ProbeRecording", "RecordingSummary", "read_recording", "recording_digest"]

@@ -133,3 +133,36 @@ def read_recording(path: str | os.PathLike[str]) -> RecordingSummary:
         summary.timelines.update(chunk.timeline_names)
         summary.rows_per_entity[entity.lstrip("/")] = summary.rows_per_entity.get(entity.lstrip("/"), 0) + chunk.num_rows
     return summary
+
+
+_RUN_SPECIFIC_COLUMNS = ("rerun.controls.RowId", "log_time", "log_tick")
+
+
+def _plain(column):  # type: ignore[no-untyped-def]
+    """Time columns as integer nanoseconds (pyarrow cannot turn nanosecond durations into Python objects)."""
+    import pyarrow as pa
+
+    if pa.types.is_duration(column.type) or pa.types.is_timestamp(column.type):
+        return column.cast(pa.int64())
+    return column
+
+
+def recording_digest(path: str | os.PathLike[str]) -> str:
+    """Digest of what a `.rrd` shows: every row's entity, timelines and data, without the ids and wall-clock times
+    that Rerun stamps on each write (so two recordings of the same run compare equal; chunking is irrelevant)."""
+    import hashlib
+
+    from rerun.chunk import RrdReader
+
+    rows: list[str] = []
+    for chunk in RrdReader(str(path)).stream():
+        entity = str(chunk.entity_path)
+        if entity.startswith("/__"):
+            continue
+        batch = chunk.to_record_batch()
+        names = [n for n in batch.schema.names if n not in _RUN_SPECIFIC_COLUMNS]
+        columns = {n: _plain(batch.column(n)).to_pylist() for n in names}
+        for i in range(batch.num_rows):
+            row = repr((entity, [(n, columns[n][i]) for n in names]))
+            rows.append(hashlib.sha256(row.encode()).hexdigest())
+    return hashlib.sha256("".join(sorted(rows)).encode()).hexdigest()

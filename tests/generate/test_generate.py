@@ -1,0 +1,77 @@
+"""generate: bad input leaves nothing; a killed run resumes from the cache and yields the same asset."""
+
+from __future__ import annotations
+
+import os
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import pytest
+
+from flows.generate import content_fingerprint
+
+REPO = Path(__file__).resolve().parents[2]
+SMALL = "a soft foam cube 4 cm"
+
+
+def _generate(out: Path, cache: Path, *args: str, wait: bool = True) -> subprocess.Popen[str] | subprocess.CompletedProcess[str]:
+    cmd = [sys.executable, "-m", "flows.cli.main", "generate", *args, "--out", str(out), "--cache", str(cache)]
+    env = dict(os.environ, PYTHONPATH=str(REPO))
+    if wait:
+        return subprocess.run(cmd, capture_output=True, text=True, timeout=1800, env=env, cwd=REPO)
+    return subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True, env=env, cwd=REPO)
+
+
+@pytest.mark.parametrize("args, message", [
+    (["--image", "/nonexistent/photo.png"], "image file not found"),
+    (["--mesh", "/nonexistent/m.obj"], "mesh file not found"),
+    (["a sponge", "--quality", "ultra"], "--quality must be"),
+    (["a sponge", "--device", "tpu"], "--device must be"),
+])
+def test_bad_input_is_one_line_and_leaves_nothing(tmp_path: Path, args: list[str], message: str) -> None:
+    out = _generate(tmp_path / "asset", tmp_path / "cache", *args)
+    assert out.returncode != 0
+    assert out.stderr.startswith("error:") and message in out.stderr and out.stderr.count("\n") == 1
+    assert not (tmp_path / "asset").exists()
+
+
+def test_out_dir_that_is_not_an_asset_is_refused(tmp_path: Path) -> None:
+    (tmp_path / "asset").mkdir()
+    (tmp_path / "asset" / "notes.txt").write_text("mine")
+    out = _generate(tmp_path / "asset", tmp_path / "cache", SMALL)
+    assert out.returncode != 0 and "not an asset directory" in out.stderr
+    assert sorted(p.name for p in (tmp_path / "asset").iterdir()) == ["notes.txt"]
+
+
+@pytest.mark.slow
+def test_killed_generate_resumes_and_yields_the_same_asset(tmp_path: Path) -> None:
+    reference = _generate(tmp_path / "reference", tmp_path / "cache_ref", SMALL)
+    assert reference.returncode == 0, reference.stderr[-2000:]
+
+    cache = tmp_path / "cache"
+    proc = _generate(tmp_path / "asset", cache, SMALL, wait=False)
+    deadline = time.time() + 1200
+    events = cache / "events.jsonl"
+    while time.time() < deadline:  # kill once L2 has started executing probes
+        if events.exists() and '"task": "l2.' in events.read_text():
+            break
+        assert proc.poll() is None, "generate finished before it could be killed"
+        time.sleep(0.5)
+    os.kill(proc.pid, signal.SIGKILL)
+    proc.wait(timeout=60)
+    assert not (tmp_path / "asset").exists()  # nothing that looks complete
+
+    resumed = _generate(tmp_path / "asset", cache, SMALL)
+    assert resumed.returncode == 0, resumed.stderr[-2000:]
+    import json
+    from collections import Counter
+
+    log = [json.loads(ln) for ln in events.read_text().splitlines()]
+    executions = Counter(e["key"] for e in log if e["outcome"] == "miss")
+    assert executions and max(executions.values()) == 1, "a finished task executed again after the kill"
+    assert any(e["outcome"] == "hit" for e in log), "the rerun found nothing finished in the cache"
+    assert content_fingerprint(tmp_path / "asset") == content_fingerprint(tmp_path / "reference")
+    assert not [p for p in tmp_path.iterdir() if ".partial-" in p.name]
