@@ -1,0 +1,74 @@
+"""`deformsmith manipulate ASSET_DIR` (L3 pick-and-place) and `deformsmith replay ASSET_DIR` (no re-simulation)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import typer
+from rich.table import Table
+
+from flows.cli.apps import app, console, emit_json, fail
+
+
+@app.command("manipulate")
+def manipulate(
+    asset: Path = typer.Argument(..., help="asset directory with L0 geometry and L1 physical.json (L2 optional)"),
+    quality: str = typer.Option("draft", "--quality", help="draft (CPU) | standard (finer particles, slower timing)"),
+    device: str = typer.Option("cpu", "--device", help="cpu | cuda"),
+    cache_dir: Path = typer.Option(None, "--cache", help="cache root (default: $DEFORMSMITH_CACHE or the user cache)"),
+    as_json: bool = typer.Option(False, "--json", help="print manipulation.json's summary as JSON"),
+) -> None:
+    """L3: grasp ranking, plan, pick-and-place in the MPM, revision through the harness, held-out conditions."""
+    from cache import use_cache_root
+
+    if not (asset / "geometry.json").is_file():
+        fail(f"{asset} is not an asset directory (no geometry.json)")
+    if not (asset / "physical.json").is_file():
+        fail(f"{asset} has no physical.json: run `deformsmith physical --asset {asset}` first")
+    if quality not in ("draft", "standard") or device not in ("cpu", "cuda"):
+        fail("--quality must be draft|standard and --device cpu|cuda")
+    if cache_dir is not None:
+        use_cache_root(cache_dir)
+    from flows.l3_manipulation import L3Options, run_l3
+
+    options = L3Options.standard(device) if quality == "standard" else L3Options(device=device)
+    with console.status("L3: pick-and-place trials in the MPM"):
+        record, outcome = run_l3(asset, options)
+    summary = {k: record[k] for k in ("passed", "status", "message", "outcome", "forces", "held_out", "attempt",
+                                      "values", "numerics", "material_source", "recordings", "wall_time_s")}
+    if as_json:
+        emit_json(summary)
+    else:
+        table = Table(title=f"L3 manipulation: {record['status']}")
+        table.add_column("label / figure")
+        table.add_column("value", justify="right")
+        for k, v in sorted(record["labels"].items()):
+            table.add_row(k, f"{v:.4g}")
+        console.print(table)
+        console.print(record["message"])
+    if not record["passed"]:
+        raise typer.Exit(1)
+
+
+@app.command("replay")
+def replay_cmd(
+    asset: Path = typer.Argument(..., help="asset directory with interaction/ data"),
+    attempt: int = typer.Option(None, "--attempt", help="attempt index (default: the last one)"),
+    video: Path = typer.Option(None, "--video", help="write an .mp4 or .gif"),
+    frames: Path = typer.Option(None, "--frames", help="write PNG frames into this folder"),
+    rrd: Path = typer.Option(None, "--rrd", help="write a Rerun recording (robot links, pads, particles, forces)"),
+    as_json: bool = typer.Option(False, "--json", help="print what was written as JSON"),
+) -> None:
+    """Replay a recorded attempt from its particle states (no re-simulation): frames, video, .rrd."""
+    from tasks.manipulation.replay import replay
+
+    if not (asset / "interaction").is_dir():
+        fail(f"{asset} has no interaction/ data: run `deformsmith manipulate {asset}` first")
+    with console.status("rendering the recorded attempt"):
+        out = replay(asset, attempt, frames_dir=frames, video=video, rrd=rrd)
+    data = {"frames": len(out.frames), "rendered": out.n_frames, "video": str(out.video) if out.video else None,
+            "recording": str(out.recording) if out.recording else None, "first_frame_sha256": out.digests[0]}
+    if as_json:
+        emit_json(data)
+    else:
+        console.print(data)

@@ -1,0 +1,363 @@
+"""L3 manipulation flow: grasp ranking -> plan -> pick-and-place trial in the MPM (cached task) -> gates -> revision.
+
+Reads L0 (geometry), L1 (physical.json, frozen) and L2 (material.json, or the vocabulary prior when L2 has not run).
+Action revisions (grasp rank, squeeze, timing) and numerical revisions (substeps: dt / n, same durations) are
+re-evaluated here by the harness; a material revision (a gate only the material can fix: deformation bound) goes back
+through L2 revalidation (``flows.l2_material.evaluate_material``: exactly the L2 probes re-execute) and is then confirmed
+by the robot under the same plan, physical model and force budget. The accepted plan is then evaluated under held-out
+conditions (other target positions and initial yaw), recorded apart. Writes ``manipulation.json``, ``interaction/``
+(one Zarr group per trial, failures kept), ``evidence/`` (harness attempt lines) and ``recordings/L3_*.rrd``.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import time
+from dataclasses import asdict, dataclass, field, replace
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+import cache
+from cache import cached_task
+from contracts.agents import AgentConfig, StageOutcome, TargetBehaviour
+from contracts.errors import InputError
+from contracts.material import Material
+from contracts.physical import PhysicalModel
+from contracts.probes import ProbeResult, ProbeSpec
+from contracts.robot import ActionPlan, GraspCandidate
+from contracts.stage import StageContract, load_contract
+from flows.harness import probe_cache_key, run_harness
+from tasks.manipulation.body import TrialBody, trial_body
+from tasks.manipulation.data import write_attempt
+from tasks.manipulation.outcome import TrialTolerances
+from tasks.manipulation.trial import TrialSettings, plan_or_error, run_trial
+from tasks.robot import select_grasps
+
+TASK_VERSION = "1"  # bump when tasks/manipulation/{trial,outcome,body}.py change what a trial returns
+MANIPULATION_JSON = "manipulation.json"
+LABELS = ("lifted", "transported", "released_in_target", "settled", "numerically_healthy")
+
+
+@dataclass(frozen=True)
+class L3Options:
+    """How L3 runs: trial numerics, the draft action timing, the first squeeze, place target and held-out conditions."""
+
+    quality: str = "draft"
+    particle_spacing_m: float = 0.0025     # trial lattice (grip force needs a grid of <= ~5 mm = 2 x spacing)
+    settings: TrialSettings = field(default_factory=TrialSettings)
+    squeeze_fraction: float = 0.12         # first squeeze depth per finger as a fraction of the grasp width
+    squeeze_depth_m: float | None = None   # overrides the fraction
+    closing_speed_m_per_s: float = 0.04
+    lift_duration_s: float = 0.5
+    transport_duration_s: float = 0.6
+    release_duration_s: float = 0.2
+    retreat_duration_s: float = 0.2
+    settle_duration_s: float = 0.2
+    target_xy_m: tuple[float, float] = (0.08, 0.06)
+    held_out: tuple[tuple[float, float, float], ...] = ((0.06, -0.08, 30.0),)  # (x [m], y [m], yaw [deg])
+    device: str = "cpu"
+
+    @classmethod
+    def standard(cls, device: str = "cuda") -> "L3Options":
+        """Standard quality: finer particles, the ActionPlan's default (slower) timing, two held-out conditions."""
+        return cls(quality="standard", particle_spacing_m=0.002, closing_speed_m_per_s=0.02, lift_duration_s=1.0,
+                   transport_duration_s=1.5, release_duration_s=0.5, retreat_duration_s=0.5, settle_duration_s=0.5,
+                   held_out=((0.06, -0.08, 30.0), (-0.02, 0.12, -45.0)), device=device,
+                   settings=TrialSettings(device=device))
+
+
+def body_inputs(body: TrialBody) -> dict[str, Any]:
+    """The trial body as hashable task inputs (arrays and numbers)."""
+    return {"particles_m": body.particles_m, "volumes_m3": body.volumes_m3, "spacing_m": body.spacing_m,
+            "source_spacing_m": body.source_spacing_m, "height_m": body.height_m,
+            "gaussians": {k: np.asarray(v) for k, v in body.gaussians.items()}}
+
+
+def _body_from(particles_m: np.ndarray, volumes_m3: np.ndarray, spacing_m: float, source_spacing_m: float,
+               height_m: float, gaussians: dict[str, np.ndarray]) -> TrialBody:
+    """Rebuild the TrialBody inside the task (surface samples are not needed there)."""
+    empty = np.zeros((0, 3))
+    return TrialBody(particles_m, volumes_m3, spacing_m, source_spacing_m, empty, empty, height_m, gaussians)
+
+
+def failed_metrics(reason: str) -> dict[str, float]:
+    """Metrics of a plan that could not be executed: every label failed, the force unknown."""
+    return {"lifted": 0.0, "transported": 0.0, "released_in_target": 0.0, "settled": 0.0, "slipped": 1.0,
+            "force_budget_violated": 0.0, "numerically_healthy": 1.0, "max_strain": 0.0,
+            "max_finger_force_n": math.nan, "plan_failed": 1.0}
+
+
+@cached_task(version=TASK_VERSION, name="l3.trial")
+def trial_task(particles_m: np.ndarray, volumes_m3: np.ndarray, spacing_m: float, source_spacing_m: float,
+               height_m: float, gaussians: dict[str, np.ndarray], physical: PhysicalModel, material: Material,
+               plan: ActionPlan, settings: dict[str, Any], tolerances: dict[str, float]) -> dict[str, Any]:
+    """One pick-and-place in the MPM: {'probe': ProbeResult, 'arrays': recorded arrays, 'info': numerics}."""
+    body = _body_from(particles_m, volumes_m3, spacing_m, source_spacing_m, height_m, gaussians)
+    s, tol = TrialSettings(**settings), TrialTolerances(**tolerances)
+    spec = ProbeSpec(kind="pick_and_place", params={"squeeze_depth_m": plan.squeeze_depth_m,
+                                                    "target_x_m": plan.target_xy_m[0],
+                                                    "target_y_m": plan.target_xy_m[1],
+                                                    "initial_yaw_deg": plan.initial_yaw_deg,
+                                                    "substeps": float(s.substeps)})
+    traj, why = plan_or_error(plan, body, s)
+    if traj is None:
+        return {"probe": ProbeResult(spec=spec, metrics=failed_metrics(why), sim_calls=0), "arrays": {},
+                "info": {"plan_error": why}}
+    r = run_trial(body, physical, material, plan, s, tol, traj)
+    probe = ProbeResult(spec=spec, metrics=r.metrics, wall_time_s=float(r.info["wall_time_s"]))  # type: ignore[arg-type]
+    return {"probe": probe, "arrays": r.arrays, "info": r.info}
+
+
+def tolerances_from(contract: StageContract) -> TrialTolerances:
+    """Label limits from the L3 contract (parameters and the force-budget gate)."""
+    p = contract.parameters
+    budget = next((g.threshold for g in contract.hard_gates if g.metric == "max_finger_force_n"), 20.0)
+    return TrialTolerances(lift_height_m=float(p.get("lift_height_m", 0.10)),
+                           place_tolerance_m=float(p.get("place_tolerance_m", 0.03)),
+                           slip_tolerance_m=float(p.get("slip_tolerance_m", 0.01)), force_budget_n=float(budget))
+
+
+@dataclass
+class L3Context:
+    """Everything a trial needs that L3 does not edit."""
+
+    asset_dir: Path
+    body: TrialBody
+    physical: PhysicalModel
+    material: Material
+    material_source: str
+    grasps: list[GraspCandidate]
+    options: L3Options
+    contract: StageContract
+    attempts: list[dict[str, Any]] = field(default_factory=list)
+
+    def plan(self, values: dict[str, float], target_xy_m: tuple[float, float] | None = None,
+             yaw_deg: float = 0.0) -> ActionPlan:
+        """The ActionPlan of a candidate (editable fields) under a condition (target, initial yaw)."""
+        o = self.options
+        rank = int(min(max(0, round(values["grasp_rank"])), len(self.grasps) - 1))
+        return ActionPlan(
+            grasp=self.grasps[rank], squeeze_depth_m=float(values["squeeze_depth_m"]),
+            closing_speed_m_per_s=float(values["closing_speed_m_per_s"]),
+            lift_height_m=float(self.contract.parameters.get("lift_height_m", 0.10)),
+            target_xy_m=target_xy_m or o.target_xy_m, initial_yaw_deg=yaw_deg,
+            closure_duration_s=0.3, lift_duration_s=float(values["lift_duration_s"]),
+            transport_duration_s=float(values["transport_duration_s"]), release_duration_s=o.release_duration_s,
+            retreat_duration_s=o.retreat_duration_s, settle_duration_s=o.settle_duration_s)
+
+    def trial(self, values: dict[str, float], role: str, action: str = "", material: Material | None = None,
+              target_xy_m: tuple[float, float] | None = None, yaw_deg: float = 0.0) -> ProbeResult:
+        """Run (or fetch from the cache) one trial and store it as an interaction attempt."""
+        plan = self.plan(values, target_xy_m, yaw_deg)
+        settings = replace(self.options.settings, substeps=int(round(values.get("substeps", 1))),
+                           device=self.options.device)
+        inputs = {**body_inputs(self.body), "physical": self.physical, "material": material or self.material,
+                  "plan": plan, "settings": asdict(settings), "tolerances": asdict(tolerances_from(self.contract))}
+        out = trial_task(**inputs)
+        key = probe_cache_key(trial_task, inputs)
+        probe: ProbeResult = out["probe"]
+        attrs = {"labels": probe.metrics, "plan": plan.model_dump(mode="json"), "info": out["info"], "role": role,
+                 "action": action, "values": values, "cache_key": key,
+                 "material": (material or self.material).model_dump(mode="json"),
+                 "physical_model": self.physical.model_dump(mode="json")}
+        n = write_attempt(self.asset_dir, out["arrays"], attrs) if out["arrays"] else None
+        self.attempts.append({"attempt": n, "role": role, "action": action, "values": values,
+                              "labels": probe.metrics, "cache_key": key,
+                              "condition": {"target_xy_m": list(plan.target_xy_m), "yaw_deg": yaw_deg}})
+        return probe.model_copy(update={"cache_key": key, "recording": f"interaction/attempt_{n:03d}"
+                                        if n is not None else None})
+
+
+def initial_values(ctx: L3Context) -> dict[str, float]:
+    """First candidate: the best grasp, a squeeze of a fraction of its width, the draft timing, one substep."""
+    o = ctx.options
+    squeeze = o.squeeze_depth_m if o.squeeze_depth_m is not None else o.squeeze_fraction * ctx.grasps[0].width_m
+    values = {"grasp_rank": 0.0, "squeeze_depth_m": squeeze, "closing_speed_m_per_s": o.closing_speed_m_per_s,
+              "lift_duration_s": o.lift_duration_s, "transport_duration_s": o.transport_duration_s, "substeps": 1.0}
+    for f in ctx.contract.editable_fields:
+        values[f.name] = min(max(values[f.name], f.low), f.high)
+    return values
+
+
+def load_context(asset_dir: Path, options: L3Options, contract: StageContract,
+                 material: Material | None = None) -> L3Context:
+    """Read L0 / L1 / L2 from the asset directory, build the trial body and rank the grasps."""
+    from flows.l1_physical import load_physical
+    from tasks.geometry.outputs import load_l0
+
+    asset = load_l0(asset_dir)
+    physical = load_physical(asset_dir)
+    source = "given"
+    if material is None:
+        material, source = material_of(asset_dir, asset)
+    body = trial_body(asset.mesh, asset.particles_m, asset.spacing_m, asset.gaussians, options.particle_spacing_m)
+    sel = select_grasps(body.surface_points_m, body.surface_normals, np.asarray(physical.center_of_mass_m),
+                        friction=physical.gripper_friction)
+    if not sel.ok:
+        raise InputError(f"{asset_dir}: {sel.reason}")
+    return L3Context(Path(asset_dir), body, physical, material, source, sel.candidates, options, contract)
+
+
+def material_of(asset_dir: Path, asset: Any) -> tuple[Material, str]:
+    """The L2 material, else the vocabulary prior of the asset's words (until L2 has run)."""
+    try:
+        from flows.l2_material import load_material
+
+        return load_material(asset_dir), "L2"
+    except (ImportError, InputError):
+        from tasks.agents import targets_from_intent
+
+        info = asset.record.get("info", {})
+        words = " ".join(str(x) for x in (info.get("name"), info.get("category")) if x) or "foam"
+        p = targets_from_intent(words).priors
+        return Material(youngs_modulus_pa=p.get("youngs_modulus_pa", 1e5), poisson_ratio=p.get("poisson_ratio", 0.3),
+                        damping_rate_per_s=p.get("damping_rate_per_s", 5.0)), "vocabulary prior"
+
+
+def revise_material(material: Material, metrics: dict[str, float], contract: StageContract) -> Material:
+    """A stiffer material when the deformation bound failed: E scaled by strain / bound (x 1.25), same nu, damping."""
+    bound = next((g.threshold for g in contract.hard_gates if g.metric == "max_strain"), 0.6)
+    strain = float(metrics.get("max_strain", bound))
+    factor = min(10.0, max(1.5, 1.25 * strain / bound)) if math.isfinite(strain) else 2.0
+    return material.model_copy(update={"youngs_modulus_pa": material.youngs_modulus_pa * factor})
+
+
+def revalidate_in_l2(asset_dir: Path, material: Material, physical: PhysicalModel) -> dict[str, Any]:
+    """L2 revalidation of a revised material (its selection probes, cached); passes when every L2 hard gate holds."""
+    from flows.l2_material import evaluate_material
+
+    l2 = load_contract("L2")
+    result = evaluate_material(asset_dir, material, contract=l2, held_out=False, physical=physical)
+    metrics = result["metrics"]
+    gates = {g.name: bool(g.passes(metrics.get(g.metric))) for g in l2.hard_gates}
+    return {"passed": all(gates.values()), "gates": gates, "metrics": metrics,
+            "probe_keys": [r.cache_key for r in result["selection"] if r.cache_key]}
+
+
+def _write_json(path: Path, record: dict[str, Any]) -> None:
+    """Atomic JSON write."""
+    tmp = path.with_name(path.name + ".tmp")
+    tmp.write_text(json.dumps(record, indent=2, sort_keys=True, default=_default) + "\n", encoding="utf-8")
+    tmp.replace(path)
+
+
+def _default(o: Any) -> Any:
+    """JSON for numpy values."""
+    if hasattr(o, "tolist"):
+        return o.tolist()
+    return str(o)
+
+
+def _accepted(metrics: dict[str, float], contract: StageContract) -> bool:
+    """Every hard gate passes."""
+    return all(g.passes(metrics.get(g.metric)) for g in contract.hard_gates)
+
+
+def run_l3(asset_dir: Path, options: L3Options | None = None, agents: AgentConfig | None = None,
+           contract: StageContract | None = None, material: Material | None = None,
+           recordings: bool = True) -> tuple[dict[str, Any], StageOutcome]:
+    """Run L3 on an asset directory (L0 + L1, L2 or a prior); write manipulation.json; return (record, outcome)."""
+    t0 = time.perf_counter()
+    asset_dir = Path(asset_dir)
+    options = options or L3Options()
+    contract = contract or load_contract("L3")
+    ctx = load_context(asset_dir, options, contract, material)
+    start = initial_values(ctx)
+
+    def runner(values: dict[str, float], action: str) -> list[ProbeResult]:
+        return [ctx.trial(values, "selection", action)]
+
+    outcome = run_harness(contract, runner, TargetBehaviour(), agents=agents, record_dir=asset_dir, initial=start,
+                          initial_action="revise_squeeze")
+    chosen_values = outcome.values
+    final_material, material_revision = ctx.material, None
+    if outcome.status == "escalated" and outcome.escalation == "revise_material":
+        last = next(a for a in reversed(outcome.attempts) if a.evidence is not None and a.evidence.metrics)
+        revised = revise_material(ctx.material, last.evidence.metrics, contract)
+        l2 = revalidate_in_l2(asset_dir, revised, ctx.physical)
+        material_revision = {"from": ctx.material.model_dump(mode="json"), "to": revised.model_dump(mode="json"),
+                             "l2_revalidation": l2, "plan_values": last.proposal}
+        if l2["passed"]:
+            with cache.local_runtime():
+                confirm = ctx.trial(dict(last.proposal), "confirmation", "revise_material", material=revised)
+            material_revision["confirmation"] = confirm.metrics
+            if _accepted(confirm.metrics, contract):
+                chosen_values, final_material = dict(last.proposal), revised
+    accepted = chosen_values is not None and (outcome.passed or final_material is not ctx.material)
+    held: list[dict[str, Any]] = []
+    if accepted and options.held_out:
+        with cache.local_runtime():
+            for x, y, yaw in options.held_out:
+                r = ctx.trial(dict(chosen_values), "held_out", material=final_material,  # type: ignore[arg-type]
+                              target_xy_m=(x, y), yaw_deg=yaw)
+                held.append({"target_xy_m": [x, y], "initial_yaw_deg": yaw, "labels": r.metrics,
+                             "success": _accepted(r.metrics, contract), "attempt": r.recording})
+    chosen = _chosen_attempt(ctx, chosen_values, final_material) if accepted else None
+    rec_paths = []
+    if recordings and chosen is not None and chosen.get("attempt") is not None:
+        from tasks.manipulation.replay import replay
+
+        path = asset_dir / "recordings" / "L3_pick_and_place.rrd"
+        path.parent.mkdir(parents=True, exist_ok=True)
+        replay(asset_dir, chosen["attempt"], rrd=path)
+        rec_paths.append(str(path.relative_to(asset_dir)))
+    record = _record(ctx, outcome, accepted, chosen, final_material, material_revision, held, rec_paths,
+                     time.perf_counter() - t0)
+    _write_json(asset_dir / MANIPULATION_JSON, record)
+    return record, outcome
+
+
+def _chosen_attempt(ctx: L3Context, values: dict[str, float] | None, material: Material) -> dict[str, Any] | None:
+    """The stored attempt of the chosen candidate (selection or confirmation) with the final material."""
+    for a in reversed(ctx.attempts):
+        if a["role"] in ("selection", "confirmation") and a["values"] == values and a["labels"] and (
+                a["role"] == "confirmation" or material is ctx.material):
+            return a
+    return None
+
+
+def _forces(labels: dict[str, float]) -> dict[str, float]:
+    """The force summary of a trial."""
+    keys = ("max_finger_force_n", "max_finger_force_0_n", "max_finger_force_1_n", "hold_normal_force_n",
+            "hold_vertical_force_n", "weight_n", "hold_friction_ratio", "hold_vertical_ratio", "gripper_friction")
+    return {k: labels[k] for k in keys if k in labels}
+
+
+def _record(ctx: L3Context, outcome: StageOutcome, accepted: bool, chosen: dict[str, Any] | None,
+            material: Material, material_revision: dict[str, Any] | None, held: list[dict[str, Any]],
+            recordings: list[str], wall: float) -> dict[str, Any]:
+    """manipulation.json."""
+    plan = ctx.plan(chosen["values"]) if chosen else None
+    labels = chosen["labels"] if chosen else {}
+    return {
+        "schema_version": 1, "stage": "L3", "passed": bool(accepted), "status": outcome.status,
+        "message": outcome.message, "material": material.model_dump(mode="json"),
+        "material_source": ctx.material_source if material is ctx.material else "L3 material revision (L2 revalidated)",
+        "physical_model": ctx.physical.model_dump(mode="json"),
+        "plan": plan.model_dump(mode="json") if plan else None,
+        "values": chosen["values"] if chosen else None, "attempt": chosen["attempt"] if chosen else None,
+        "outcome": {k: bool(labels[k]) for k in (*LABELS, "slipped", "force_budget_violated") if k in labels},
+        "labels": labels, "forces": _forces(labels),
+        "force_budget_n": tolerances_from(ctx.contract).force_budget_n,
+        "grasps": [g.model_dump(mode="json") for g in ctx.grasps],
+        "held_out": {"conditions": held, "success_rate": (sum(h["success"] for h in held) / len(held)) if held else None},
+        "material_revision": material_revision,
+        "numerics": {"quality": ctx.options.quality, "trial_particle_spacing_m": ctx.body.spacing_m,
+                     "l0_particle_spacing_m": ctx.body.source_spacing_m, "trial_particles": int(len(ctx.body.particles_m)),
+                     "grid_dx_m": 2.0 * ctx.body.spacing_m, "device": ctx.options.device,
+                     "note": "the L0 volume is resampled at the trial lattice (numerical choice); density, mass, "
+                             "friction and material are unchanged"},
+        "attempts": ctx.attempts, "harness_attempts": outcome.attempts_used, "recordings": recordings,
+        "wall_time_s": wall,
+    }
+
+
+def load_manipulation(asset_dir: Path) -> dict[str, Any]:
+    """manipulation.json of an asset (InputError when L3 has not run)."""
+    path = Path(asset_dir) / MANIPULATION_JSON
+    if not path.is_file():
+        raise InputError(f"{asset_dir} has no {MANIPULATION_JSON}: run `deformsmith manipulate {asset_dir}` first")
+    return json.loads(path.read_text(encoding="utf-8"))

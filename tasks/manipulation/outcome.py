@@ -1,0 +1,133 @@
+"""Outcome labels of a pick-and-place trial from its recorded arrays (SI units; each label a 0/1 metric).
+
+  lifted              the COM rose >= lift_height - slip_tolerance while held (held = lift start .. release start)
+  transported         at release start the COM is within place_tolerance (xy) of its target and still in the hand
+  released_in_target  at the end the COM is within place_tolerance (xy) of the target and the object rests on the table
+  settled             at the end the COM speed and the fastest particle speed (last frame interval) are small
+  slipped             the COM moved > slip_tolerance relative to the gripper frame (pad midpoint, pad axes) while held
+  force_budget_violated  a finger's mean reaction force over a control interval exceeded the budget
+  max_strain          largest |principal stretch - 1| of any particle in any recorded frame (singular values of F)
+Hold evidence (the two-jaw condition 2 mu N >= m g), over the held intervals with the object off the table and
+not yet slipped: mean
+normal force per finger N, the mean vertical force the object puts on both fingers (/ m g = hold_vertical_ratio,
+~1 since the mean acceleration over lift + transport is ~0), 2 mu N / m g (hold_friction_ratio) and its smallest
+0.05 s running mean (hold_min_capacity_ratio: ~1 or below where the object slides down the pads).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from contracts.physical import PhysicalModel
+from contracts.robot import ActionPlan
+from tasks.robot import Trajectory
+
+
+@dataclass(frozen=True)
+class TrialTolerances:
+    """Limits the labels use (the L3 contract's parameters)."""
+
+    lift_height_m: float = 0.10
+    place_tolerance_m: float = 0.03
+    slip_tolerance_m: float = 0.01
+    force_budget_n: float = 20.0
+    settle_speed_m_per_s: float = 0.02
+    settle_particle_speed_m_per_s: float = 0.1
+
+
+def _rotations(quat_xyzw: np.ndarray) -> np.ndarray:
+    """Rotation matrices (N, 3, 3) of quaternions (N, 4)."""
+    x, y, z, w = np.moveaxis(quat_xyzw, -1, 0)
+    return np.stack([
+        np.stack([1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)], -1),
+        np.stack([2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)], -1),
+        np.stack([2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)], -1)], -2)
+
+
+def max_principal_strain(F: np.ndarray) -> float:
+    """Largest |singular value - 1| over deformation gradients (..., 3, 3); nan if any is not finite."""
+    F = np.asarray(F, dtype=np.float64).reshape(-1, 3, 3)
+    if not np.all(np.isfinite(F)):
+        return float("nan")
+    s = np.linalg.svd(F, compute_uv=False)
+    return float(np.max(np.abs(s - 1.0)))
+
+
+def _index_at(t: np.ndarray, time_s: float) -> int:
+    """Index of the first control interval starting at or after time_s (clamped)."""
+    return int(min(len(t) - 1, max(0, np.searchsorted(t, time_s - 1e-9))))
+
+
+def label_trial(arrays: dict[str, np.ndarray], traj: Trajectory, plan: ActionPlan, physical: PhysicalModel,
+                tol: TrialTolerances, n_done: int, healthy: bool) -> dict[str, float]:
+    """Labels and metrics of one trial (arrays are trimmed to the n_done simulated intervals)."""
+    t = arrays["control_t_s"][:n_done]
+    com = arrays["object_com_m"][:n_done + 1]
+    force = arrays["finger_force_n"][:n_done]
+    pos, quat = arrays["finger_position_m"][:n_done], arrays["finger_quat_xyzw"][:n_done]
+    u = arrays["closing_axis_world"]
+    ph = traj.phases
+    complete = healthy and n_done > 0 and t[-1] + 1e-9 >= ph["settle"][0]
+
+    k_close, k_lift = _index_at(t, ph["closure"][0]), _index_at(t, ph["lift"][0])
+    k_rel = _index_at(t, ph["release"][0])
+    held = slice(k_lift, max(k_lift + 1, k_rel))
+    rot = _rotations(quat[:, 0])
+    mid = pos.mean(axis=1)
+    rel = np.einsum("kji,kj->ki", rot, com[:n_done] - mid)  # COM in the gripper frame
+    slip = float(np.max(np.linalg.norm(rel[held] - rel[k_lift], axis=1))) if n_done > k_lift else float("nan")
+    rise = float(np.max(com[held, 2] - com[k_close, 2])) if n_done > k_lift else float("nan")
+    target = com[k_close, :2] + np.asarray(plan.target_xy_m) - np.asarray((0.0, 0.0))
+    err_transport = float(np.linalg.norm(com[k_rel, :2] - target)) if n_done > k_rel else float("nan")
+    in_hand = n_done > k_rel and float(np.linalg.norm(rel[k_rel] - rel[k_lift])) <= 3.0 * tol.slip_tolerance_m
+
+    x_frames = arrays["particles_x_m"]
+    err_place = float(np.linalg.norm(com[-1, :2] - target))
+    resting = float(x_frames[-1][:, 2].min()) <= float(x_frames[0][:, 2].min()) + tol.slip_tolerance_m
+    dt_frame = float(np.diff(arrays["frame_t_s"][-2:])[0]) if len(x_frames) > 1 else 0.0
+    v_particles = (float(np.max(np.linalg.norm(x_frames[-1] - x_frames[-2], axis=1))) / dt_frame
+                   if dt_frame > 0 else float("inf"))
+    k_back = _index_at(t, t[-1] - 0.1)
+    span = (n_done - k_back) * float(np.mean(arrays["control_dt_s"][:n_done]))
+    v_com = float(np.linalg.norm(com[-1] - com[k_back]) / span) if span > 0 else float("inf")
+
+    mag = np.linalg.norm(force, axis=2)
+    max_f = np.nanmax(mag, axis=0) if n_done else np.array([np.nan, np.nan])
+    normal = np.stack([-(force[:, 0] @ u), force[:, 1] @ u], axis=1)
+    weight = physical.mass_kg * float(np.linalg.norm(physical.gravity_m_per_s2))
+    mu = physical.gripper_friction
+    ground = arrays["ground_force_n"][:n_done]
+    idx = np.arange(n_done)
+    drift = np.linalg.norm(rel - rel[min(k_lift, n_done - 1)], axis=1) if n_done else np.zeros(0)
+    before_slip = np.maximum.accumulate(np.where(idx >= k_lift, drift, 0.0)) <= tol.slip_tolerance_m
+    airborne = (idx >= k_lift) & (idx < k_rel) & (np.abs(ground[:, 2]) < 0.01 * weight) & before_slip
+    n_hold = float(np.mean(normal[airborne])) if airborne.any() else float("nan")
+    v_hold = float(np.mean(-(force[airborne, 0, 2] + force[airborne, 1, 2]))) if airborne.any() else float("nan")
+    window = max(1, int(round(0.05 / max(float(np.mean(arrays["control_dt_s"][:n_done])), 1e-6))))
+    capacity = np.convolve(2.0 * mu * normal.mean(axis=1), np.ones(window) / window, mode="same") / weight
+    cap_min = float(np.min(capacity[airborne])) if airborne.any() else float("nan")
+    strain = max_principal_strain(arrays["particles_F"])
+
+    lifted = complete and rise >= tol.lift_height_m - tol.slip_tolerance_m
+    return {
+        "lifted": float(lifted),
+        "transported": float(complete and lifted and in_hand and err_transport <= tol.place_tolerance_m),
+        "released_in_target": float(complete and err_place <= tol.place_tolerance_m and resting),
+        "settled": float(complete and v_com <= tol.settle_speed_m_per_s
+                         and v_particles <= tol.settle_particle_speed_m_per_s),
+        "slipped": float(not (slip <= tol.slip_tolerance_m)),
+        "force_budget_violated": float(not bool(np.all(max_f <= tol.force_budget_n))),
+        "numerically_healthy": float(healthy),
+        "max_strain": strain,
+        "max_finger_force_n": float(np.max(max_f)),
+        "max_finger_force_0_n": float(max_f[0]), "max_finger_force_1_n": float(max_f[1]),
+        "slip_distance_m": slip, "lift_rise_m": rise, "transport_error_m": err_transport,
+        "place_error_m": err_place, "settle_com_speed_m_per_s": v_com,
+        "settle_particle_speed_m_per_s": v_particles,
+        "hold_normal_force_n": n_hold, "hold_vertical_force_n": v_hold, "weight_n": weight,
+        "hold_friction_ratio": 2.0 * mu * n_hold / weight, "hold_vertical_ratio": v_hold / weight,
+        "hold_min_capacity_ratio": cap_min, "held_airborne_s": float(np.sum(arrays["control_dt_s"][:n_done][airborne])),
+        "mass_kg": physical.mass_kg, "gripper_friction": mu,
+    }

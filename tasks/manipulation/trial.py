@@ -1,0 +1,201 @@
+"""One pick-and-place in the MPM: the Panda's finger pads as kinematic box colliders driven from the trajectory.
+
+The simulation starts ``TrialSettings.settle_before_closure_s`` before closure (the object rests on the table, the
+open pads already beside it) and runs to the end of the plan (release, retreat, settle). Every control interval
+(``control_hz``) the pads are set to the constant-velocity motion that lands on the planned pose at the interval's end
+(``Trajectory.pad_motion``); the mean reaction force on each finger over the interval (eq. 3) and its impulse are
+recorded with the commanded joint states. Particle states (x, F) are recorded at ``record_fps``. SI units.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import asdict, dataclass
+
+import numpy as np
+
+from contracts.errors import SimulationError
+from contracts.material import Material
+from contracts.physical import PhysicalModel
+from contracts.robot import ActionPlan
+from contracts.sim import SimConfig
+from tasks.manipulation.body import TrialBody
+from tasks.manipulation.outcome import TrialTolerances, label_trial
+from tasks.robot import PHASES, ObjectPose, Trajectory, plan_trajectory
+
+
+@dataclass(frozen=True)
+class TrialSettings:
+    """Numerics of one trial (not physics): resolution, time stepping, control and recording rates."""
+
+    device: str = "cpu"
+    grid_margin_m: float = 0.02          # free space around the object in the (moving) grid window [m]
+    substeps: int = 1                    # numerical revision: dt / substeps, same action durations
+    dt_max_s: float = 2e-4               # cap on the adaptive time step [s]
+    cfl: float = 0.4
+    control_hz: float = 240.0            # pad pose updates and force reports per second
+    record_fps: float = 30.0             # particle-state frames per second
+    settle_before_closure_s: float = 0.1  # simulated rest before the fingers start closing [s]
+    # pad boxes grow outward from the gripping face (the finger body behind it): a box thinner than the squeeze
+    # lets the displaced material close behind it (particles leave through its back face) and the grip collapses
+    pad_half_thickness_m: float = 0.01
+
+
+@dataclass
+class TrialResult:
+    """What one trial measured: the labels and metrics, the recorded arrays and a few facts about the run."""
+
+    metrics: dict[str, float]
+    arrays: dict[str, np.ndarray]
+    info: dict[str, object]
+
+
+def object_pose(plan: ActionPlan) -> ObjectPose:
+    """Where the object starts: the table origin, turned by the plan's initial yaw."""
+    return ObjectPose((0.0, 0.0), plan.initial_yaw_deg)
+
+
+def _pad_normals(quat_xyzw: np.ndarray) -> np.ndarray:
+    """Unit y axes of the pad boxes (N, 2, 3) from quaternions (N, 2, 4)."""
+    x, y, z, w = np.moveaxis(quat_xyzw, -1, 0)
+    return np.stack([2 * (x * y - z * w), 1 - 2 * (x * x + z * z), 2 * (y * z + x * w)], axis=-1)
+
+
+def world_gaussians(body: TrialBody, pose: ObjectPose) -> dict[str, np.ndarray]:
+    """The body's rest Gaussians placed on the table at the object pose, with their particle binding."""
+    g, rot = body.gaussians, pose.rotation
+    return {"gaussian_positions_m": pose.point_to_world(g["positions_m"]),
+            "gaussian_covariances_m2": np.einsum("ij,gjk,lk->gil", rot, g["covariances_m2"], rot),
+            "gaussian_colors": np.asarray(g["colors"], dtype=np.float32),
+            "gaussian_particle_index": np.asarray(g["particle_index"]),
+            "gaussian_particle_weight": np.asarray(g["particle_weight"])}
+
+
+def run_trial(body: TrialBody, physical: PhysicalModel, material: Material, plan: ActionPlan,
+              settings: TrialSettings | None = None, tolerances: TrialTolerances | None = None,
+              trajectory: Trajectory | None = None) -> TrialResult:
+    """Simulate the plan with the object; return labels, metrics and the recording (raises SimulationError only
+    when the plan itself cannot be made: unreachable poses)."""
+    from tasks.mpm import Simulator, box_collider, build_model
+    from tasks.mpm.model import SceneSpec
+
+    s = settings or TrialSettings()
+    tol = tolerances or TrialTolerances()
+    wall0 = time.perf_counter()
+    pose = object_pose(plan)
+    traj = trajectory or plan_trajectory(plan, object_pose=pose, object_height_m=body.height_m,
+                                         pad_half_thickness_m=s.pad_half_thickness_m)
+    x0 = pose.point_to_world(body.particles_m)
+    t_start = max(0.0, traj.phases["closure"][0] - s.settle_before_closure_s)
+    t_end = traj.duration_s
+    dt_c = 1.0 / s.control_hz
+    n_int = int(math.ceil((t_end - t_start) / dt_c - 1e-9))
+    per_frame = max(1, int(round(s.control_hz / s.record_fps)))
+
+    first = traj.pad_motion(t_start, t_start + dt_c)
+    mu_g = physical.gripper_friction
+    colliders = [box_collider(traj.pad_half_extents_m, friction=mu_g, position_m=tuple(first.position_m[0, k]),
+                              rotation_xyzw=tuple(first.quat_xyzw[0, k]), name=f"finger_{k}") for k in range(2)]
+    scene = SceneSpec(positions_m=x0, volumes_m3=body.volumes_m3, density_kg_per_m3=physical.density_kg_per_m3,
+                      material=material, colliders=colliders, ground=True, ground_friction=physical.ground_friction,
+                      gravity_m_per_s2=physical.gravity_m_per_s2)
+    cfg = SimConfig(device=s.device, dx_m=2.0 * body.spacing_m, dt_max_s=s.dt_max_s, cfl=s.cfl, substeps=s.substeps,
+                    grid_margin_m=s.grid_margin_m, ground_friction=physical.ground_friction,
+                    gravity_m_per_s2=physical.gravity_m_per_s2)
+    model = build_model([scene], cfg)
+    sim = Simulator(model)
+    w = body.volumes_m3 / body.volume_m3
+
+    t_c = t_start + dt_c * np.arange(n_int)
+    force = np.full((n_int, 2, 3), np.nan)
+    ground = np.full((n_int, 3), np.nan)
+    pad_pos = np.zeros((n_int, 2, 3))
+    pad_quat = np.zeros((n_int, 2, 4))
+    pad_vel = np.zeros((n_int, 2, 3))
+    cmd_q = np.zeros((n_int, 7))
+    cmd_qdot = np.zeros((n_int, 7))
+    cmd_open = np.zeros((n_int, 2))
+    com = np.full((n_int + 1, 3), np.nan)
+    phase = np.zeros(n_int, dtype=np.int8)
+    frames_t, frames_x, frames_f, frames_k = [], [], [], []
+    steps = 0
+    healthy, issue = True, ""
+    p = sim.particles(0)
+    com[0] = w @ p["x"]
+    k = -1
+    for k in range(n_int):
+        t0, t1 = t_c[k], min(t_c[k] + dt_c, t_end)
+        if k % per_frame == 0:
+            frames_t.append(sim.time_s + t_start)
+            frames_x.append(p["x"].astype(np.float32))
+            frames_f.append(p["F"].astype(np.float32))
+            frames_k.append(k)
+        m = traj.pad_motion(t0, t1)
+        for f in range(2):
+            sim.control.set_collider(0, f, position_m=m.position_m[0, f], rotation_xyzw=m.quat_xyzw[0, f],
+                                     linear_velocity_m_per_s=m.linear_velocity_m_per_s[0, f],
+                                     angular_velocity_rad_per_s=m.angular_velocity_rad_per_s[0, f])
+        st = traj.state_at(t0)
+        cmd_q[k], cmd_qdot[k] = st.q, st.qdot
+        cmd_open[k] = (st.finger_opening_m, st.finger_opening_rate_m_per_s)
+        pad_pos[k], pad_quat[k], pad_vel[k] = m.position_m[0], m.quat_xyzw[0], m.linear_velocity_m_per_s[0]
+        phase[k] = PHASES.index(st.phase)
+        report = sim.advance(t1 - t0)
+        steps += report.steps
+        force[k] = [report.collider_force(model, 0, f) for f in range(2)]
+        ground[k] = report.ground_force_n[0]
+        p = sim.particles(0)
+        com[k + 1] = w @ p["x"]
+        if not report.health.ok:
+            healthy = False
+            first_issue = report.health.first()
+            issue = f"{first_issue.check} at t={first_issue.sim_time_s:.4f} s: {first_issue.detail}"
+            break
+    n_done = k + 1
+    frames_t.append(sim.time_s + t_start)
+    frames_x.append(p["x"].astype(np.float32))
+    frames_f.append(p["F"].astype(np.float32))
+    frames_k.append(n_done)
+    wall = time.perf_counter() - wall0
+
+    t_c, cmd_q, cmd_qdot, cmd_open, phase = t_c[:n_done], cmd_q[:n_done], cmd_qdot[:n_done], cmd_open[:n_done], \
+        phase[:n_done]
+    pad_pos, pad_quat, pad_vel, force, com = (pad_pos[:n_done], pad_quat[:n_done], pad_vel[:n_done], force[:n_done],
+                                              com[:n_done + 1])
+    ground = ground[:n_done]
+    arrays = {
+        "control_t_s": t_c, "control_dt_s": np.minimum(t_c + dt_c, t_end) - t_c,
+        "command_q_rad": cmd_q, "command_qdot_rad_per_s": cmd_qdot, "command_opening_m": cmd_open,
+        "phase": phase, "finger_position_m": pad_pos, "finger_quat_xyzw": pad_quat,
+        "finger_velocity_m_per_s": pad_vel, "finger_force_n": force, "ground_force_n": ground,
+        "finger_impulse_n_s": force * (np.minimum(t_c + dt_c, t_end) - t_c)[:, None, None],
+        "object_com_m": com, "frame_t_s": np.asarray(frames_t), "frame_control_index": np.asarray(frames_k),
+        "particles_x_m": np.stack(frames_x), "particles_F": np.stack(frames_f),
+        "finger_half_extents_m": np.asarray(traj.pad_half_extents_m, dtype=np.float64),
+        "closing_axis_world": np.asarray(traj.closing_axis_world, dtype=np.float64),
+        "rest_particles_m": x0.astype(np.float32),
+        **world_gaussians(body, pose),
+    }
+    labels = label_trial(arrays, traj, plan, physical, tol, n_done, healthy)
+    info = {"particles": int(len(x0)), "steps": int(steps), "wall_time_s": float(wall),
+            "sim_time_s": float(sim.time_s), "dx_m": float(model.dx), "particle_spacing_m": float(body.spacing_m),
+            "l0_particle_spacing_m": float(body.source_spacing_m), "health_issue": issue,
+            "settings": asdict(s), "tolerances": asdict(tol), "phases": {k: list(v) for k, v in traj.phases.items()},
+            "object_pose": {"xy_m": list(pose.xy_m), "yaw_deg": pose.yaw_deg}, "intervals": int(n_done)}
+    labels.update({"particles": float(len(x0)), "steps": float(steps), "wall_time_s": float(wall)})
+    return TrialResult(labels, arrays, info)
+
+
+def plan_or_error(plan: ActionPlan, body: TrialBody, settings: TrialSettings | None = None
+                  ) -> tuple[Trajectory | None, str]:
+    """The plan's trajectory, or None and the reason it cannot be executed (unreachable, into the table)."""
+    s = settings or TrialSettings()
+    try:
+        return plan_trajectory(plan, object_pose=object_pose(plan), object_height_m=body.height_m,
+                               pad_half_thickness_m=s.pad_half_thickness_m), ""
+    except SimulationError as exc:
+        return None, str(exc)
+
+
+__all__ = ["TrialSettings", "TrialResult", "run_trial", "plan_or_error", "object_pose"]

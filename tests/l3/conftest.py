@@ -1,0 +1,63 @@
+"""Shared trials for the L3 tests: a 3 cm soft cube (1728 particles at 2.5 mm, 5 mm grid), draft timing."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import pytest
+
+from contracts.material import Material
+from contracts.physical import PhysicalModel
+from contracts.robot import ActionPlan
+from tasks.manipulation.body import TrialBody, box_body
+from tasks.manipulation.outcome import TrialTolerances
+from tasks.manipulation.trial import TrialResult, run_trial
+from tasks.robot import select_grasps
+
+EDGE_M = 0.03
+SPACING_M = 0.0025
+RHO = 300.0
+FIRM = Material(youngs_modulus_pa=1e5, poisson_ratio=0.3, damping_rate_per_s=5.0)
+TOL = TrialTolerances(lift_height_m=0.05)
+
+
+@dataclass
+class Cube:
+    """The test object and its frozen physical model."""
+
+    body: TrialBody
+    physical: PhysicalModel
+
+    def plan(self, squeeze_depth_m: float, **kw: object) -> ActionPlan:
+        """A draft-timed plan on the best grasp."""
+        g = select_grasps(self.body.surface_points_m, self.body.surface_normals,
+                          np.asarray(self.physical.center_of_mass_m), self.physical.gripper_friction).best()
+        args = dict(grasp=g, squeeze_depth_m=squeeze_depth_m, target_xy_m=(0.08, 0.06), lift_height_m=0.05,
+                    closing_speed_m_per_s=0.04, closure_duration_s=0.3, lift_duration_s=0.4,
+                    transport_duration_s=0.6, release_duration_s=0.2, retreat_duration_s=0.2, settle_duration_s=0.2)
+        args.update(kw)
+        return ActionPlan(**args)  # type: ignore[arg-type]
+
+
+@pytest.fixture(scope="session")
+def cube() -> Cube:
+    """A 3 cm cube of a firm foam (rho 300 kg/m^3), gripper friction 0.8."""
+    body = box_body(EDGE_M, SPACING_M)
+    phys = PhysicalModel(density_kg_per_m3=RHO, volume_m3=body.volume_m3, mass_kg=RHO * body.volume_m3,
+                         particle_count=len(body.particles_m), particle_spacing_m=SPACING_M, ground_friction=0.5,
+                         gripper_friction=0.8, center_of_mass_m=(0.0, 0.0, EDGE_M / 2), extents_m=(EDGE_M,) * 3,
+                         category="foam")
+    return Cube(body, phys)
+
+
+@pytest.fixture(scope="session")
+def firm_trial(cube: Cube) -> TrialResult:
+    """A 4 mm squeeze per finger: should pick and place."""
+    return run_trial(cube.body, cube.physical, FIRM, cube.plan(0.004), tolerances=TOL)
+
+
+@pytest.fixture(scope="session")
+def weak_trial(cube: Cube) -> TrialResult:
+    """A 1 mm squeeze per finger: too weak to carry the cube through the transport."""
+    return run_trial(cube.body, cube.physical, FIRM, cube.plan(0.001), tolerances=TOL)

@@ -1,0 +1,119 @@
+"""The L3 flow on a real asset directory: budget gate, action revision, held-out conditions, material revision."""
+
+from __future__ import annotations
+
+import json
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from cache import CacheStore
+from contracts.stage import load_contract
+from flows.l3_manipulation import L3Options, run_l3
+
+FAST_COACD = dict(preprocess_resolution=20, max_convex_hull=8, threshold=0.15, mcts_iterations=30, mcts_nodes=8,
+                  mcts_max_depth=2, resolution=500, max_input_faces=3000)
+
+
+@pytest.fixture(scope="module")
+def cube_template(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    """L0 of 'a soft foam cube 3 cm' and an L1 physical.json (foam prior: density 86 kg/m^3, mu 0.8)."""
+    from contracts.request import AssetRequest
+    from flows.l0_geometry import L0Result, write_l0
+    from tasks.geometry import pipeline
+    from tasks.geometry.outputs import load_l0
+    from tasks.physical.model import build_physical_model
+
+    s = pipeline.settings_from_contract("draft", coacd_overrides=FAST_COACD)
+    mesh, info = pipeline.build_mesh(AssetRequest(text="a soft foam cube 3 cm"), s)
+    proxy = pipeline.build_proxy(mesh, s.coacd)
+    particles = pipeline.build_particles(mesh, s.particles)
+    gaussians = pipeline.build_gaussians(mesh, particles, s)
+    out = tmp_path_factory.mktemp("l3") / "cube"
+    write_l0(L0Result(mesh, proxy, particles, gaussians, info, pipeline.check_geometry(mesh, proxy, particles,
+                                                                                         gaussians)), out)
+    a = load_l0(out)
+    phys = build_physical_model(a.particles_m, a.volumes_m3, a.spacing_m, 86.0, 0.6, 0.8, "foam")
+    (out / "physical.json").write_text(json.dumps({"physical_model": phys.model_dump(mode="json")}))
+    return out
+
+
+@pytest.fixture
+def cube_asset(cube_template: Path, tmp_path: Path) -> Path:
+    """A private copy of the asset."""
+    dest = tmp_path / "cube"
+    shutil.copytree(cube_template, dest)
+    return dest
+
+
+def _contract(**updates: object):  # type: ignore[no-untyped-def]
+    """The L3 contract with a 5 cm lift (draft) and overrides."""
+    c = load_contract("L3")
+    c = c.model_copy(update={"parameters": {**c.parameters, "lift_height_m": 0.05}})
+    return c.model_copy(update=updates)
+
+
+def test_a_trial_over_the_force_budget_is_labelled_and_never_accepted(cube_asset: Path, prefect_api: str) -> None:
+    base = _contract(revision_budget=0)
+    gates = [g.model_copy(update={"threshold": 0.05}) if g.metric == "max_finger_force_n" else g
+             for g in base.hard_gates]
+    record, outcome = run_l3(cube_asset, L3Options(squeeze_depth_m=0.003, held_out=()),
+                             contract=base.model_copy(update={"hard_gates": gates}), recordings=False)
+    assert not record["passed"] and outcome.status == "no_valid_candidate"
+    assert all(a["labels"]["force_budget_violated"] == 1 for a in record["attempts"])
+    assert (cube_asset / "interaction" / "attempt_000").is_dir()  # the failed attempt is kept
+    lines = (cube_asset / "evidence" / "attempts.jsonl").read_text().splitlines()
+    assert lines and all(json.loads(x)["verdict"] != "accepted" for x in lines)
+    stored = json.loads((cube_asset / "manipulation.json").read_text())
+    assert stored["passed"] is False and stored["attempt"] is None
+
+
+def test_cli_rejects_a_directory_without_an_asset(tmp_path: Path) -> None:
+    for cmd in (["manipulate", str(tmp_path)], ["replay", str(tmp_path)]):
+        r = subprocess.run([sys.executable, "-m", "flows.cli.main", *cmd], capture_output=True, text=True)
+        assert r.returncode != 0 and "error:" in r.stderr
+
+
+@pytest.mark.slow
+def test_weak_squeeze_is_revised_then_held_out_and_cached(cube_asset: Path, prefect_api: str,
+                                                          cache_dir: Path) -> None:
+    record, outcome = run_l3(cube_asset, L3Options(squeeze_depth_m=0.001), contract=_contract())
+    first = record["attempts"][0]
+    assert first["labels"]["slipped"] == 1 and first["values"]["squeeze_depth_m"] == pytest.approx(0.001)
+    assert record["passed"] and record["values"]["squeeze_depth_m"] > 0.001
+    assert record["outcome"]["transported"] and record["outcome"]["released_in_target"]
+    assert record["held_out"]["conditions"] and record["held_out"]["conditions"][0]["initial_yaw_deg"] == 30.0
+    assert (cube_asset / "recordings" / "L3_pick_and_place.rrd").is_file()
+    store = CacheStore(cache_dir)
+    misses = len([e for e in store.events() if e["outcome"] == "miss"])
+    shutil.rmtree(cube_asset / "interaction")
+    run_l3(cube_asset, L3Options(squeeze_depth_m=0.001), contract=_contract(), recordings=False)
+    assert len([e for e in store.events() if e["outcome"] == "miss"]) == misses  # nothing re-executed
+    r = subprocess.run([sys.executable, "-m", "flows.cli.main", "replay", str(cube_asset), "--attempt", "0",
+                        "--json"], capture_output=True, text=True)
+    assert r.returncode == 0, r.stderr
+
+
+@pytest.mark.slow
+def test_material_revision_reexecutes_l2_probes_then_the_robot(cube_asset: Path, prefect_api: str,
+                                                               cache_dir: Path) -> None:
+    base = _contract(revision_budget=1)
+    gates = [g.model_copy(update={"threshold": 0.15}) if g.metric == "max_strain" else g for g in base.hard_gates]
+    record, outcome = run_l3(cube_asset, L3Options(squeeze_depth_m=0.004, held_out=()),
+                             contract=base.model_copy(update={"hard_gates": gates}), recordings=False)
+    assert outcome.status == "escalated" and outcome.escalation == "revise_material"
+    rev = record["material_revision"]
+    assert rev["to"]["youngs_modulus_pa"] > rev["from"]["youngs_modulus_pa"]
+    events = CacheStore(cache_dir).events()
+    misses = [e["task"] for e in events if e["outcome"] == "miss"]
+    first_l2 = next(i for i, t in enumerate(misses) if t.startswith("l2."))
+    after = misses[first_l2:]
+    assert {t for t in after if t.startswith("l2.")} == {"l2.compress", "l2.drop", "l2.lift", "l2.stability"}
+    assert after[-1] == "l3.trial" and set(after) <= {"l2.compress", "l2.drop", "l2.lift", "l2.stability", "l3.trial"}
+    # robot confirmation under the same plan values, physical model and force budget
+    assert rev["l2_revalidation"]["passed"] and "max_strain" in rev["confirmation"]
+    confirm = record["attempts"][-1]
+    assert confirm["role"] == "confirmation" and confirm["values"] == rev["plan_values"]

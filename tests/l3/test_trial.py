@@ -1,0 +1,61 @@
+"""One pick-and-place trial in the MPM: outcome labels, the hold condition, the force budget."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from contracts.stage import load_contract
+from tasks.manipulation.outcome import TrialTolerances, label_trial
+from tasks.manipulation.trial import TrialResult
+
+
+def test_a_firm_squeeze_picks_and_places_the_cube(firm_trial: TrialResult) -> None:
+    m = firm_trial.metrics
+    assert m["lifted"] == 1 and m["transported"] == 1 and m["released_in_target"] == 1 and m["settled"] == 1
+    assert m["slipped"] == 0 and m["numerically_healthy"] == 1 and m["force_budget_violated"] == 0
+    assert m["lift_rise_m"] >= 0.045 and m["place_error_m"] < 0.01
+    assert 0 < m["max_strain"] < 0.6
+    # recorded at >= 30 fps, particle states float32, forces per finger per control interval
+    a = firm_trial.arrays
+    assert np.median(np.diff(a["frame_t_s"])) <= 1 / 30 + 1e-9
+    assert a["particles_x_m"].dtype == np.float32 and a["particles_F"].shape[1:] == (1728, 3, 3)
+    assert a["finger_force_n"].shape == (len(a["control_t_s"]), 2, 3)
+
+
+def test_finger_forces_carry_the_weight_and_satisfy_the_hold_condition(firm_trial: TrialResult) -> None:
+    m = firm_trial.metrics
+    # off the table and held, the fingers carry the weight (mean acceleration over lift + transport ~ 0)
+    assert abs(m["hold_vertical_ratio"] - 1.0) < 0.2
+    # two-jaw condition: friction capacity of the mean normal force per finger covers the weight
+    assert m["hold_friction_ratio"] >= 1.0
+    # the two fingers squeeze equally and oppositely along the closing axis
+    a = firm_trial.arrays
+    u = a["closing_axis_world"]
+    n0, n1 = -(a["finger_force_n"][:, 0] @ u), a["finger_force_n"][:, 1] @ u
+    k = np.argmax(n0)
+    assert n0[k] > 0.5 and abs(n1[k] - n0[k]) < 0.2 * n0[k]
+
+
+def test_a_weak_squeeze_slips_and_is_labelled(weak_trial: TrialResult, firm_trial: TrialResult) -> None:
+    w, f = weak_trial.metrics, firm_trial.metrics
+    assert w["slipped"] == 1 and w["transported"] == 0 and w["released_in_target"] == 0
+    assert w["slip_distance_m"] > 0.01 > f["slip_distance_m"]
+    assert w["max_finger_force_n"] < f["max_finger_force_n"]
+
+
+def test_force_budget_violation_is_labelled_and_fails_the_gate(firm_trial: TrialResult, cube) -> None:  # type: ignore[no-untyped-def]
+    from tasks.robot import plan_trajectory
+    from tasks.manipulation.trial import object_pose
+
+    plan = cube.plan(0.004)
+    traj = plan_trajectory(plan, object_pose=object_pose(plan), object_height_m=cube.body.height_m,
+                           pad_half_thickness_m=0.01)
+    a = firm_trial.arrays
+    budget = 0.5 * firm_trial.metrics["max_finger_force_n"]
+    labels = label_trial(a, traj, plan, cube.physical, TrialTolerances(lift_height_m=0.05, force_budget_n=budget),
+                         len(a["control_t_s"]), True)
+    assert labels["force_budget_violated"] == 1
+    contract = load_contract("L3")
+    gate = next(g for g in contract.hard_gates if g.metric == "max_finger_force_n")
+    strict = gate.model_copy(update={"threshold": budget})
+    assert not strict.passes(labels["max_finger_force_n"])
