@@ -64,7 +64,8 @@ def _files(work: Path) -> dict[str, str]:
              "gaussians": "gaussians.ply", "evidence": "evidence", "recordings": "recordings", "renders": "renders",
              "interaction": "interaction", "geometry_record": "geometry.json", "physical_record": "physical.json",
              "material_record": "material.json", "manipulation_record": "manipulation.json",
-             "physgaussian_config": "export/physgaussian_config.json"}
+             "physgaussian_config": "export/physgaussian_config.json",
+             "drop_video_front": "renders/drop_front.mp4", "drop_video_side": "renders/drop_side.mp4"}
     return {role: rel for role, rel in roles.items() if (work / rel).exists() or role == "manifest"}
 
 
@@ -143,10 +144,14 @@ def generate_asset(request: AssetRequest, out_dir: Path, device: Device = "cpu",
         material, o2 = run_l2(work, request, agents, sim=SimConfig(device=device), physical=physical)
         if material is None:
             raise StageFailure("L2", o2.message)
+        note("renders", "drop protocol: 5 s drop at 30 fps, two views")
+        from flows.renders import render_drop_protocol
+
+        protocol = render_drop_protocol(work, physical, material, SimConfig(device=device))
         validation = [_summary("L0", _read(work / "geometry.json")), _summary("L1", _read(work / "physical.json")),
                       _summary("L2", _read(work / "material.json"))]
         manifest = AssetManifest(request=request, physical_model=physical, material=material, validation=validation,
-                                 provenance=provenance(device, agents))
+                                 provenance=provenance(device, agents), extra={"drop_protocol": protocol})
         write_physgaussian_export(work, manifest)
         manifest = manifest.model_copy(update={"files": _files(work)})
         (work / ASSET_JSON).write_text(manifest.model_dump_json(indent=2) + "\n", encoding="utf-8")

@@ -38,7 +38,14 @@ threads (Warp CPU kernels are single-threaded; launches release the GIL).
 
 from __future__ import annotations
 
-from tasks.mpm.control import Control
+import warp as _wp
+
+# Warp prints its banner and module loads on stdout, which belongs to --json data: warnings and errors only.
+_wp.config.quiet = True
+if hasattr(_wp, "LOG_WARNING"):
+    _wp.config.log_level = _wp.LOG_WARNING
+
+from tasks.mpm.control import Control  # noqa: E402
 from tasks.mpm.health import HealthIssue, HealthStatus
 from tasks.mpm.model import (
     ColliderSpec,

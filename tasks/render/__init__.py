@@ -1,0 +1,1 @@
+"""CPU video renders of simulated assets (deformed Gaussians), deterministic, no display needed."""
