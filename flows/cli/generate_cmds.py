@@ -112,3 +112,31 @@ def inspect_asset(
         p = manifest.physical_model
         console.print(f"physical: rho = {p.density_kg_per_m3:.4g} kg/m^3, mass = {p.mass_kg:.4g} kg, "
                       f"{p.particle_count} particles")
+
+
+@app.command("view")
+def view(
+    asset: Path = typer.Argument(..., help="asset directory"),
+    dry_run: bool = typer.Option(False, "--dry-run", help="print the viewer command instead of starting it"),
+) -> None:
+    """Open the asset's recordings (recordings/*.rrd) in the Rerun viewer."""
+    import os
+    import shutil
+    import subprocess
+    import sys
+
+    recordings = sorted((asset / "recordings").glob("*.rrd")) if asset.is_dir() else []
+    if not recordings:
+        fail(f"{asset} has no recordings/*.rrd")
+    beside = Path(sys.executable).parent / "rerun"  # rerun-sdk installs its viewer next to the interpreter
+    viewer = str(beside) if beside.is_file() else shutil.which("rerun")
+    command = [viewer or "rerun", *map(str, recordings)]
+    if dry_run:
+        typer.echo(" ".join(command))
+        return
+    if viewer is None:
+        fail("the Rerun viewer is not installed (it ships with rerun-sdk: pip install rerun-sdk); "
+             "then run: " + " ".join(command))
+    if not (os.environ.get("DISPLAY") or os.environ.get("WAYLAND_DISPLAY")) and os.name == "posix":
+        fail("no display to open a viewer on; copy the .rrd files to a machine with one and run: " + " ".join(command))
+    subprocess.Popen(command)  # the viewer runs on after this command returns

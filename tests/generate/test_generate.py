@@ -78,3 +78,27 @@ def test_killed_generate_resumes_and_yields_the_same_asset(tmp_path: Path) -> No
     assert any(e["outcome"] == "hit" for e in log), "the rerun found nothing finished in the cache"
     assert content_fingerprint(tmp_path / "asset") == content_fingerprint(tmp_path / "reference")
     assert not [p for p in tmp_path.iterdir() if ".partial-" in p.name]
+
+
+def _cli(*args: str, env: dict[str, str] | None = None) -> subprocess.CompletedProcess[str]:
+    return subprocess.run([sys.executable, "-m", "flows.cli.main", *args], capture_output=True, text=True, timeout=120,
+                          env=dict(os.environ, PYTHONPATH=str(REPO), **(env or {})), cwd=REPO)
+
+
+def test_view_names_the_recordings_and_fails_clearly_without_a_display(tmp_path: Path) -> None:
+    (tmp_path / "recordings").mkdir()
+    for name in ("L1_place.rrd", "L2_drop.rrd"):
+        (tmp_path / "recordings" / name).write_bytes(b"")
+    dry = _cli("view", str(tmp_path), "--dry-run")
+    assert dry.returncode == 0 and "L1_place.rrd" in dry.stdout and "L2_drop.rrd" in dry.stdout
+    env = {k: v for k, v in os.environ.items() if k not in ("DISPLAY", "WAYLAND_DISPLAY")}
+    headless = subprocess.run([sys.executable, "-m", "flows.cli.main", "view", str(tmp_path)], capture_output=True,
+                              text=True, timeout=120, env=dict(env, PYTHONPATH=str(REPO)), cwd=REPO)
+    assert headless.returncode != 0 and headless.stderr.startswith("error:")
+    empty = _cli("view", str(tmp_path / "nothing"))
+    assert empty.returncode != 0 and "no recordings" in empty.stderr
+
+
+def test_inspect_a_non_asset_is_one_clear_error(tmp_path: Path) -> None:
+    out = _cli("inspect", str(tmp_path))
+    assert out.returncode != 0 and out.stderr.startswith("error:") and "asset.json" in out.stderr
