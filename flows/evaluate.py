@@ -1,0 +1,191 @@
+"""`deformsmith eval`: a suite's cases through the paper's ablations (Table III), records, then the report.
+
+Layout under OUT: ``cases/<case>/<arm>/`` (the asset directories each arm built), ``records/<ablation>/<arm>/<case>.json``
+(one `ArmResult` each, written atomically), ``report/`` (Markdown, PNG plots, figures.json). Resume: a case whose
+records all exist is skipped; everything else re-runs against the content cache, so finished probes are hits.
+Cases fan out over processes (``workers``); each case runs its arms in order inside one process.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import time
+import traceback
+from collections.abc import Callable
+from concurrent.futures import ProcessPoolExecutor, as_completed
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import cache  # noqa: F401  (local Prefect environment before prefect is imported)
+from contracts.evaluation import ARMS, ArmResult, Condition, SuiteCase
+
+ALL = ("hierarchy", "harness", "manipulation")
+Progress = Callable[[str], None]
+
+
+@dataclass(frozen=True)
+class EvalOptions:
+    """How an evaluation runs."""
+
+    suite: str = "default"
+    ablations: tuple[str, ...] = ALL
+    limit: int | None = None
+    case_ids: tuple[str, ...] = ()
+    quality: str = "draft"
+    device: str = "cpu"
+    workers: int = 1
+    out: Path = Path("out/eval")
+    llm: str | None = None
+    videos: bool = True
+    conditions: tuple[Condition, ...] = field(default_factory=tuple)
+
+
+def record_path(out: Path, ablation: str, arm: str, case_id: str) -> Path:
+    """Where one arm's record of one case lives."""
+    return Path(out) / "records" / ablation / arm / f"{case_id}.json"
+
+
+def write_record(out: Path, r: ArmResult) -> Path:
+    """Atomic write of a record."""
+    path = record_path(out, r.ablation, r.arm, r.case_id)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    tmp = path.with_name(f".{path.name}.{os.getpid()}.tmp")
+    tmp.write_text(r.model_dump_json(indent=2) + "\n", encoding="utf-8")
+    tmp.replace(path)
+    return path
+
+
+def load_records(out: Path) -> list[ArmResult]:
+    """Every record under OUT/records."""
+    root = Path(out) / "records"
+    return [ArmResult.model_validate_json(p.read_text(encoding="utf-8")) for p in sorted(root.rglob("*.json"))]
+
+
+def _needed(case: SuiteCase, ablations: tuple[str, ...]) -> list[tuple[str, str]]:
+    """(ablation, arm) pairs this case takes part in."""
+    return [(a, arm) for a in ablations for arm in ARMS[a] if a != "manipulation" or case.manipulation]
+
+
+def _done(out: Path, case: SuiteCase, ablations: tuple[str, ...]) -> bool:
+    return all(record_path(out, a, arm, case.id).is_file() for a, arm in _needed(case, ablations))
+
+
+def run_case(case: SuiteCase, suite_file: Path, opts: EvalOptions, conditions: list[Condition]) -> list[str]:
+    """Every needed arm of one case; returns the record paths written."""
+    from contracts.agents import AgentConfig
+    from contracts.sim import SimConfig
+    from flows import eval_arms
+    from flows.l0_geometry import run_l0
+    from tasks.evaluation.suite import to_request
+
+    out = Path(opts.out)
+    image_dir = Path(cache.cache_root()) / "eval_images"
+    request = to_request(case, suite_file.parent, image_dir, opts.quality)  # type: ignore[arg-type]
+    sim = SimConfig(device=opts.device)  # type: ignore[arg-type]
+    agents = AgentConfig.llm(opts.llm) if opts.llm else None
+    needed = _needed(case, opts.ablations)
+    written: list[str] = []
+
+    def keep(r: ArmResult) -> None:
+        if (r.ablation, r.arm) in needed:
+            written.append(str(write_record(out, r)))
+
+    t0 = time.perf_counter()
+    l0 = run_l0(request, quality=request.quality)
+    base = out / "cases" / case.id
+    if not l0.checks.passed:
+        why = f"L0 gates failed: {', '.join(l0.checks.failed)}"
+        for ablation, arm in needed:
+            keep(ArmResult(ablation=ablation, arm=arm, case_id=case.id, case_kind=case.kind, delivered=False,  # type: ignore[arg-type]
+                           hard_failure=True, failure_kinds=[why], error=why, wall_s=time.perf_counter() - t0))
+        return written
+    l0_wall = time.perf_counter() - t0
+    h: dict[str, Any] | None = None
+    if any(a in opts.ablations for a in ALL):
+        t1 = time.perf_counter()
+        h = eval_arms.run_hierarchical(case, request, l0, base / "hierarchical", sim, agents, videos=opts.videos)
+        wall = l0_wall + time.perf_counter() - t1
+        keep(eval_arms.hierarchy_result(case, h, wall))
+        keep(eval_arms.harness_result(case, h, wall - l0_wall))
+    if "harness" in opts.ablations and h is not None:
+        keep(eval_arms.run_one_shot(case, request, h, sim, time.perf_counter()))
+    if "hierarchy" in opts.ablations:
+        t2 = time.perf_counter()
+        keep(eval_arms.run_flat(case, request, l0, base / "flat", sim, agents, t2 - l0_wall))
+    if "manipulation" in opts.ablations and case.manipulation and h is not None:
+        for r in eval_arms.run_manipulation(case, request, h, base, conditions, sim, agents, opts.quality):
+            keep(r)
+    return written
+
+
+def _case_job(case_json: str, suite_file: str, opts: EvalOptions, conditions: list[dict]) -> dict[str, Any]:
+    """Process entry point: one case, errors caught (a crashed case fails alone, with its reason)."""
+    from contracts.evaluation import Condition as _C, SuiteCase as _S
+
+    case = _S.model_validate_json(case_json)
+    t0 = time.perf_counter()
+    try:
+        paths = run_case(case, Path(suite_file), opts, [_C.model_validate(c) for c in conditions])
+        return {"case": case.id, "ok": True, "records": paths, "wall_s": time.perf_counter() - t0}
+    except Exception as exc:  # noqa: BLE001  (reported per case; the evaluation goes on)
+        return {"case": case.id, "ok": False, "error": f"{type(exc).__name__}: {exc}",
+                "trace": traceback.format_exc(limit=8), "wall_s": time.perf_counter() - t0}
+
+
+def evaluate(opts: EvalOptions, progress: Progress | None = None) -> dict[str, Any]:
+    """Run (or resume) an evaluation and write its report; returns the summary (figures, paths, wall time)."""
+    from tasks.evaluation.report import write_report
+    from tasks.evaluation.suite import load_suite, select
+
+    say = progress or (lambda msg: None)
+    suite, suite_file = load_suite(opts.suite)
+    conditions = list(opts.conditions or suite.manipulation_conditions)
+    only_c = opts.ablations == ("manipulation",)
+    cases = select(suite, opts.limit, list(opts.case_ids) or None, manipulation=only_c)
+    if "manipulation" in opts.ablations and not only_c and opts.limit is not None:
+        extra = [c for c in select(suite, None, list(opts.case_ids) or None, manipulation=True)[:opts.limit]
+                 if c not in cases]
+        cases += extra  # --limit N also gives ablation C N of its assets
+    out = Path(opts.out).absolute()
+    out.mkdir(parents=True, exist_ok=True)
+    opts = EvalOptions(**{**opts.__dict__, "out": out})
+    todo = [c for c in cases if not _done(out, c, opts.ablations)]
+    say(f"{len(cases)} case(s), {len(cases) - len(todo)} already recorded, {len(todo)} to run "
+        f"with {opts.workers} worker(s)")
+    t0 = time.perf_counter()
+    jobs: list[dict[str, Any]] = []
+    cond_json = [c.model_dump(mode="json") for c in conditions]
+    if opts.workers <= 1:
+        for c in todo:
+            say(f"case {c.id}: running")
+            jobs.append(_case_job(c.model_dump_json(), str(suite_file), opts, cond_json))
+            say(f"case {c.id}: {'ok' if jobs[-1]['ok'] else 'FAILED ' + jobs[-1]['error']} "
+                f"({jobs[-1]['wall_s']:.0f} s)")
+    else:
+        import multiprocessing as mp
+
+        with ProcessPoolExecutor(max_workers=opts.workers, mp_context=mp.get_context("spawn")) as pool:
+            futs = {pool.submit(_case_job, c.model_dump_json(), str(suite_file), opts, cond_json): c for c in todo}
+            for f in as_completed(futs):
+                jobs.append(f.result())
+                say(f"case {jobs[-1]['case']}: {'ok' if jobs[-1]['ok'] else 'FAILED ' + jobs[-1].get('error', '')} "
+                    f"({jobs[-1]['wall_s']:.0f} s)")
+    wall = time.perf_counter() - t0
+    ids = {c.id for c in cases}
+    records = [r for r in load_records(out) if r.case_id in ids and r.ablation in opts.ablations]
+    summary = write_report(out / "report", records, suite, suite_file, opts, wall, jobs)
+    return summary
+
+
+def evaluation_flow(opts: EvalOptions) -> dict[str, Any]:
+    """The evaluation as a Prefect flow run (for deployments / a server); cases fan out over processes."""
+    from prefect import flow
+
+    @flow(name="evaluate", persist_result=False, validate_parameters=False)
+    def _run(o: EvalOptions) -> dict[str, Any]:
+        return evaluate(o)
+
+    with cache.local_runtime():
+        return _run(opts)
