@@ -1,0 +1,296 @@
+"""`deformsmith batch`: many requests from a JSONL file, each in its own process, at most N at a time, one report.
+
+A line is an AssetRequest as JSON plus an optional "name" (the output directory under the batch root). A malformed
+line, an invalid request, a StageFailure or a hard crash fails that request alone; the report says why. Reruns are
+cheap: every expensive unit is content-cached, so an unchanged request republishes from cache hits.
+The Prefect flows that deployments run (one request per run, a batch fanned out over a work pool) live in
+`flows.batch_flows`; they share the parsing and the report model defined here.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import re
+import signal
+import subprocess
+import sys
+import tempfile
+import threading
+import time
+from collections.abc import Callable, Iterator
+from concurrent.futures import ThreadPoolExecutor, as_completed
+from contextlib import contextmanager
+from pathlib import Path
+from typing import Any, Literal
+
+from pydantic import BaseModel, Field, ValidationError
+
+from contracts.errors import InputError
+from contracts.request import AssetRequest
+
+REPORT_JSON = "batch_report.json"
+LOG_DIR = "_logs"
+DEFAULT_JOB = "flows.batch_job:generate_job"
+NAME_RE = re.compile(r"^[A-Za-z0-9][A-Za-z0-9._-]{0,95}$")
+Status = Literal["ok", "failed"]
+ItemCallback = Callable[["RequestResult"], None]
+
+
+class BatchItem(BaseModel):
+    """One line of the requests file: a valid request with its output name, or the reason it is unusable."""
+
+    line: int
+    name: str
+    request: AssetRequest | None = None
+    error: str | None = None
+    explicit_name: bool = False
+
+
+class RequestResult(BaseModel):
+    """How one request of a batch ended."""
+
+    name: str
+    line: int
+    status: Status
+    reason: str | None = None
+    asset_dir: str | None = None
+    wall_s: float = 0.0
+    attempts: int = 1
+    tasks_executed: int | None = Field(default=None, description="cached-task misses recorded by this request")
+    tasks_cached: int | None = Field(default=None, description="cached-task hits recorded by this request")
+    log: str | None = None
+
+
+class BatchReport(BaseModel):
+    """The batch report: one result per line, totals and throughput (SI: seconds; assets per hour)."""
+
+    schema_version: int = 1
+    requests_file: str
+    out_root: str
+    runner: str = "local"
+    concurrency: int | None = Field(default=None, description="requests at once (None: set by the pool)")
+    device: str
+    wall_s: float
+    requested: int
+    ok: int
+    failed: int
+    assets_per_hour: float
+    results: list[RequestResult]
+
+    @classmethod
+    def build(cls, results: list[RequestResult], wall_s: float, **fields: Any) -> "BatchReport":
+        """Totals and throughput from the per-request results."""
+        results = sorted(results, key=lambda r: r.line)
+        ok = sum(r.status == "ok" for r in results)
+        return cls(results=results, wall_s=round(wall_s, 3), requested=len(results), ok=ok, failed=len(results) - ok,
+                   assets_per_hour=round(3600.0 * ok / wall_s, 2) if wall_s > 0 else 0.0, **fields)
+
+    def write(self, out_root: Path) -> Path:
+        """Write the report atomically as out_root/batch_report.json."""
+        path = Path(out_root) / REPORT_JSON
+        fd, tmp = tempfile.mkstemp(prefix=".batch_report.", dir=out_root)
+        with os.fdopen(fd, "w", encoding="utf-8") as fh:
+            fh.write(self.model_dump_json(indent=2) + "\n")
+        os.replace(tmp, path)
+        return path
+
+
+# ---- parsing ----------------------------------------------------------------------------------------
+
+
+def _slug(text: str) -> str:
+    return re.sub(r"[^a-z0-9]+", "_", text.lower()).strip("_")[:48] or "asset"
+
+
+def _default_name(request: AssetRequest) -> str:
+    src = request.mesh_path or request.image_path
+    return _slug(src.stem if src is not None else request.text or "asset")
+
+
+def _errors(exc: ValidationError) -> str:
+    return "; ".join(f"{'.'.join(map(str, e['loc'])) or 'request'}: {e['msg']}" for e in exc.errors())
+
+
+def parse_line(line_no: int, text: str) -> BatchItem:
+    """One JSONL line -> a BatchItem (invalid lines carry their reason instead of a request)."""
+    fallback = f"line-{line_no}"
+    try:
+        data = json.loads(text)
+    except json.JSONDecodeError as exc:
+        return BatchItem(line=line_no, name=fallback, error=f"malformed JSON: {exc}")
+    if not isinstance(data, dict):
+        return BatchItem(line=line_no, name=fallback, error="a line must be a JSON object (an AssetRequest)")
+    name = data.pop("name", None)
+    if name is not None and (not isinstance(name, str) or not NAME_RE.match(name)):
+        return BatchItem(line=line_no, name=fallback,
+                         error=f"invalid name {name!r}: letters, digits, '.', '_', '-'; no leading dot or slash")
+    try:
+        request = AssetRequest.model_validate(data)
+    except ValidationError as exc:
+        return BatchItem(line=line_no, name=name or fallback, error=f"invalid request: {_errors(exc)}")
+    return BatchItem(line=line_no, name=name or _default_name(request), request=request, explicit_name=bool(name))
+
+
+def parse_requests(path: Path) -> list[BatchItem]:
+    """All non-blank, non-comment lines of a JSONL file; names made unique (explicit duplicates fail)."""
+    path = Path(path)
+    if not path.is_file():
+        raise InputError(f"requests file not found: {path}")
+    items: list[BatchItem] = []
+    for no, raw in enumerate(path.read_text(encoding="utf-8").splitlines(), start=1):
+        if raw.strip() and not raw.lstrip().startswith("#"):
+            items.append(parse_line(no, raw))
+    if not items:
+        raise InputError(f"{path} holds no requests")
+    seen: set[str] = set()
+    for item in items:
+        if item.name in seen:
+            if item.explicit_name:
+                item.error, item.request = f"duplicate name {item.name!r}", None
+            else:
+                item.name = f"{item.name}-{item.line}"
+        seen.add(item.name)
+    return items
+
+
+def failed_result(item: BatchItem) -> RequestResult:
+    """The result of a line that never ran."""
+    return RequestResult(name=item.name, line=item.line, status="failed", reason=item.error, attempts=0)
+
+
+# ---- the local runner: one process per request ------------------------------------------------------
+
+
+def _cache_counts(events_file: Path, pid: int, since: int) -> tuple[int, int]:
+    """(misses, hits) of one process in the cache's execution log, reading from byte offset `since`."""
+    if not events_file.is_file():
+        return 0, 0
+    miss = hit = 0
+    with events_file.open("rb") as fh:
+        fh.seek(since)
+        for raw in fh:
+            try:
+                ev = json.loads(raw)
+            except json.JSONDecodeError:
+                continue
+            if ev.get("pid") == pid:
+                miss += ev.get("outcome") == "miss"
+                hit += ev.get("outcome") == "hit"
+    return miss, hit
+
+
+def _death(rc: int) -> str:
+    if rc < 0:
+        try:
+            return f"process died from signal {signal.Signals(-rc).name}"
+        except ValueError:
+            return f"process died from signal {-rc}"
+    return f"process exited with code {rc} without a result"
+
+
+def _last_line(log: Path) -> str:
+    try:
+        lines = [ln.strip() for ln in log.read_text(encoding="utf-8", errors="replace").splitlines() if ln.strip()]
+    except OSError:
+        return ""
+    return lines[-1][-300:] if lines else ""
+
+
+def run_one(item: BatchItem, out_root: Path, device: str, job: str, env: dict[str, str], cache_dir: Path,
+            timeout_s: float | None = None) -> RequestResult:
+    """Run one request in a child process (`python -m flows.batch_job`) and read back its result."""
+    assert item.request is not None
+    logs = out_root / LOG_DIR
+    logs.mkdir(parents=True, exist_ok=True)
+    log, result_file = logs / f"{item.name}.log", logs / f"{item.name}.result.json"
+    result_file.unlink(missing_ok=True)
+    request_file = logs / f"{item.name}.request.json"
+    request_file.write_text(item.request.model_dump_json(), encoding="utf-8")
+    events = cache_dir / "events.jsonl"
+    since = events.stat().st_size if events.is_file() else 0
+    cmd = [sys.executable, "-m", "flows.batch_job", "--request", str(request_file), "--out", str(out_root / item.name),
+           "--device", device, "--job", job, "--result", str(result_file)]
+    t0 = time.perf_counter()
+    with log.open("w", encoding="utf-8") as fh:
+        proc = subprocess.Popen(cmd, stdout=fh, stderr=subprocess.STDOUT, env=env, start_new_session=True)
+        try:
+            rc = proc.wait(timeout=timeout_s)
+            reason_extra = None
+        except subprocess.TimeoutExpired:
+            os.killpg(proc.pid, signal.SIGKILL)
+            rc = proc.wait()
+            reason_extra = f"timed out after {timeout_s:g} s"
+    wall = time.perf_counter() - t0
+    misses, hits = _cache_counts(events, proc.pid, since)
+    common = dict(name=item.name, line=item.line, wall_s=round(wall, 3), tasks_executed=misses, tasks_cached=hits,
+                  log=str(log))
+    if reason_extra is None and result_file.is_file():
+        data = json.loads(result_file.read_text(encoding="utf-8"))
+        return RequestResult(status=data["status"], reason=data.get("reason"), asset_dir=data.get("asset_dir"),
+                             **common)
+    reason = reason_extra or _death(rc)
+    tail = _last_line(log)
+    return RequestResult(status="failed", reason=f"{reason}; last log line: {tail}" if tail else reason, **common)
+
+
+@contextmanager
+def prefect_api_for_children() -> Iterator[str]:
+    """An API URL the child processes share: the configured one, else one local server for the whole batch."""
+    from prefect.settings import PREFECT_API_URL
+
+    url = PREFECT_API_URL.value()
+    if url:
+        yield str(url)
+        return
+    from prefect.server.api.server import SubprocessASGIServer
+
+    server = SubprocessASGIServer()
+    server.start(timeout=120)
+    try:
+        yield server.api_url
+    finally:
+        server.stop()
+
+
+def run_batch(requests_jsonl: Path, out_root: Path, concurrency: int = 1, device: str = "cpu",
+              job: str = DEFAULT_JOB, timeout_s: float | None = None,
+              on_result: ItemCallback | None = None) -> BatchReport:
+    """Run every request of a JSONL file in its own process, `concurrency` at a time; write and return the report."""
+    import cache
+    from cache.config import ENV_VAR
+
+    if concurrency < 1:
+        raise InputError(f"concurrency must be >= 1, got {concurrency}")
+    if device not in ("cpu", "cuda"):
+        raise InputError(f"device must be cpu or cuda, got '{device}'")
+    requests_jsonl, out_root = Path(requests_jsonl).absolute(), Path(out_root).absolute()
+    items = parse_requests(requests_jsonl)
+    out_root.mkdir(parents=True, exist_ok=True)
+    cache_dir = cache.cache_root()
+    lock = threading.Lock()
+    results: list[RequestResult] = []
+
+    def done(result: RequestResult) -> None:
+        with lock:
+            results.append(result)
+        if on_result:
+            on_result(result)
+
+    for item in items:
+        if item.request is None:
+            done(failed_result(item))
+    t0 = time.perf_counter()
+    runnable = [item for item in items if item.request is not None]
+    if runnable:
+        with prefect_api_for_children() as api_url:
+            env = {**os.environ, "PREFECT_API_URL": api_url, ENV_VAR: str(cache_dir)}
+            with ThreadPoolExecutor(max_workers=concurrency) as pool:
+                futures = [pool.submit(run_one, item, out_root, device, job, env, cache_dir, timeout_s)
+                           for item in runnable]
+                for fut in as_completed(futures):
+                    done(fut.result())
+    report = BatchReport.build(results, time.perf_counter() - t0, requests_file=str(requests_jsonl),
+                               out_root=str(out_root), concurrency=concurrency, device=device)
+    report.write(out_root)
+    return report

@@ -1,0 +1,75 @@
+"""One batch request in its own process: `python -m flows.batch_job --request F --out DIR --result F`.
+
+The result file is the only channel back to the batch runner: {"status": "ok"|"failed", "reason", "asset_dir"}.
+A process that dies before writing it (a hard crash, a kill) is reported by the runner from its exit status.
+"""
+
+from __future__ import annotations
+
+import argparse
+import importlib
+import json
+import os
+import traceback
+from collections.abc import Callable
+from pathlib import Path
+from typing import Any
+
+from contracts.errors import DeformSmithError
+from contracts.request import AssetRequest
+
+Job = Callable[[AssetRequest, Path, str], dict[str, Any]]
+
+
+def generate_job(request: AssetRequest, out_dir: Path, device: str) -> dict[str, Any]:
+    """The default job: `generate_asset` for one request; returns a short summary."""
+    from flows.generate import generate_asset
+
+    manifest = generate_asset(request, out_dir, device=device)  # type: ignore[arg-type]
+    return {"asset_dir": str(out_dir), "stages": [s.stage for s in manifest.validation]}
+
+
+def resolve_job(spec: str) -> Job:
+    """'module:function' -> the callable."""
+    module, _, attr = spec.partition(":")
+    if not module or not attr:
+        raise ValueError(f"job must be 'module:function', got {spec!r}")
+    return getattr(importlib.import_module(module), attr)  # type: ignore[no-any-return]
+
+
+def run_request(request: AssetRequest, out_dir: Path, device: str, job: str = "flows.batch_job:generate_job"
+                ) -> dict[str, Any]:
+    """Run a job; a DeformSmithError or any other exception becomes a 'failed' result with its reason."""
+    try:
+        summary = resolve_job(job)(request, out_dir, device)
+        return {"status": "ok", "reason": None, "asset_dir": str(out_dir), "summary": summary}
+    except DeformSmithError as exc:
+        return {"status": "failed", "reason": f"{type(exc).__name__}: {exc}", "asset_dir": None}
+    except Exception as exc:  # a bug in one request must not hide the others' results
+        tb = traceback.format_exc(limit=3).strip().splitlines()
+        return {"status": "failed", "reason": f"{type(exc).__name__}: {exc}", "asset_dir": None, "traceback": tb}
+
+
+def _write_atomic(path: Path, data: dict[str, Any]) -> None:
+    tmp = path.with_name(f".{path.name}.{os.getpid()}")
+    tmp.write_text(json.dumps(data, indent=2, default=str) + "\n", encoding="utf-8")
+    os.replace(tmp, path)
+
+
+def main(argv: list[str] | None = None) -> int:
+    """Entry point of the child process; exit 0 when the request succeeded."""
+    ap = argparse.ArgumentParser(prog="python -m flows.batch_job")
+    ap.add_argument("--request", type=Path, required=True, help="JSON file holding one AssetRequest")
+    ap.add_argument("--out", type=Path, required=True, help="asset directory to publish")
+    ap.add_argument("--result", type=Path, required=True, help="where to write the result JSON")
+    ap.add_argument("--device", default="cpu")
+    ap.add_argument("--job", default="flows.batch_job:generate_job")
+    args = ap.parse_args(argv)
+    request = AssetRequest.model_validate_json(args.request.read_text(encoding="utf-8"))
+    result = run_request(request, args.out, args.device, args.job)
+    _write_atomic(args.result, result)
+    return 0 if result["status"] == "ok" else 1
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())

@@ -1,0 +1,61 @@
+"""`deformsmith batch REQUESTS.jsonl`: every request in its own process, a concurrency limit, one report."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import typer
+from rich.table import Table
+
+from flows.cli.apps import app, console, emit_json, fail
+
+
+def _table(report) -> Table:  # type: ignore[no-untyped-def]
+    table = Table(title=f"batch: {report.ok} ok, {report.failed} failed, {report.wall_s:.1f} s, "
+                        f"{report.assets_per_hour:.1f} assets/hour")
+    for col in ("line", "name", "status", "wall [s]", "executed/cached", "reason"):
+        table.add_column(col)
+    for r in report.results:
+        counts = "-" if r.tasks_executed is None else f"{r.tasks_executed}/{r.tasks_cached}"
+        table.add_row(str(r.line), r.name, "ok" if r.status == "ok" else "[red]failed[/red]", f"{r.wall_s:.1f}",
+                      counts, (r.reason or "")[:100])
+    return table
+
+
+@app.command("batch")
+def batch(
+    requests: Path = typer.Argument(..., help="JSONL file: one AssetRequest per line (+ optional \"name\")"),
+    out: Path = typer.Option(Path("out/batch"), "--out", help="batch root: one asset directory per request"),
+    concurrency: int = typer.Option(1, "--concurrency", "-j", help="requests running at once (one process each)"),
+    device: str = typer.Option("cpu", "--device", help="cpu | cuda (the MPM's Warp device)"),
+    timeout_s: float = typer.Option(None, "--timeout-s", help="kill a request that runs longer than this [s]"),
+    cache_dir: Path = typer.Option(None, "--cache", help="cache root (shared by every request)"),
+    as_json: bool = typer.Option(False, "--json", help="print the report as JSON"),
+) -> None:
+    """Generate many assets; a bad request fails alone; exit 1 if any failed (the report is written anyway)."""
+    from cache import use_cache_root
+    from flows.batch import REPORT_JSON, run_batch
+
+    if concurrency < 1:
+        fail(f"--concurrency must be >= 1, got {concurrency}")
+    if device not in ("cpu", "cuda"):
+        fail(f"--device must be cpu or cuda, got '{device}'")
+    if not requests.is_file():
+        fail(f"requests file not found: {requests}")
+    if cache_dir is not None:
+        use_cache_root(cache_dir)
+
+    def on_result(r) -> None:  # type: ignore[no-untyped-def]
+        mark = "[green]ok[/green]" if r.status == "ok" else f"[red]failed[/red]: {r.reason}"
+        console.log(f"{r.name} (line {r.line}) {mark} {r.wall_s:.1f} s")
+
+    with console.status(f"running requests from {requests} ({concurrency} at a time)"):
+        report = run_batch(requests, out, concurrency=concurrency, device=device, timeout_s=timeout_s,
+                           on_result=on_result)
+    if as_json:
+        emit_json(report.model_dump(mode="json"))
+    else:
+        console.print(_table(report))
+        console.print(f"report: {Path(report.out_root) / REPORT_JSON}")
+    if report.failed:
+        raise typer.Exit(1)

@@ -1,0 +1,93 @@
+"""`deformsmith batch`: parsing, per-request isolation in real child processes, the report, the CLI."""
+
+from __future__ import annotations
+
+import json
+from collections import Counter
+from pathlib import Path
+
+import pytest
+from typer.testing import CliRunner
+
+from flows.batch import REPORT_JSON, BatchReport, parse_requests, run_batch
+
+REPO = Path(__file__).resolve().parents[2]
+QUICK = "tests.deployments.jobs:quick_job"
+
+
+def _write(path: Path, lines: list[str]) -> Path:
+    path.write_text("\n".join(lines) + "\n", encoding="utf-8")
+    return path
+
+
+def test_parse_flags_each_bad_line_alone(tmp_path: Path) -> None:
+    """Malformed JSON, non-objects, invalid requests, bad and duplicate names fail with reasons; the rest parse."""
+    items = parse_requests(_write(tmp_path / "r.jsonl", [
+        '{"name": "a", "text": "a sponge"}', "{not json", "[1, 2]", "# a comment", "",
+        '{"name": "b", "quality": "draft"}', '{"name": "../evil", "text": "x"}', '{"name": "a", "text": "again"}',
+        '{"text": "a sponge"}', '{"text": "a sponge"}', '{"text": "x", "quality": "ultra"}']))
+    by_line = {i.line: i for i in items}
+    assert sorted(by_line) == [1, 2, 3, 6, 7, 8, 9, 10, 11]
+    assert by_line[1].request is not None and by_line[1].name == "a"
+    assert "malformed JSON" in (by_line[2].error or "")
+    assert "JSON object" in (by_line[3].error or "")
+    assert "give one input" in (by_line[6].error or "")
+    assert "invalid name" in (by_line[7].error or "")
+    assert "duplicate name" in (by_line[8].error or "")
+    assert by_line[9].name == "a_sponge" and by_line[10].name == "a_sponge-10"
+    assert "quality" in (by_line[11].error or "")
+
+
+def test_batch_isolates_crashes_and_failures(tmp_path: Path, prefect_api: str, monkeypatch: pytest.MonkeyPatch) -> None:
+    """A SIGKILLed process, a StageFailure and a malformed line each fail alone; the others publish; report complete."""
+    monkeypatch.setenv("PYTHONPATH", str(REPO))
+    reqs = _write(tmp_path / "r.jsonl", [
+        '{"name": "ok1", "text": "sleep 0.5"}', '{"name": "boom", "text": "crash"}', "{oops",
+        '{"name": "nogo", "text": "stage-fail"}', '{"name": "ok2", "text": "fine"}'])
+    seen: list[str] = []
+    report = run_batch(reqs, tmp_path / "out", concurrency=2, job=QUICK, on_result=lambda r: seen.append(r.name))
+    status = {r.name: r.status for r in report.results}
+    assert status == {"ok1": "ok", "boom": "failed", "line-3": "failed", "nogo": "failed", "ok2": "ok"}
+    reasons = {r.name: r.reason or "" for r in report.results}
+    assert "SIGKILL" in reasons["boom"]
+    assert "StageFailure" in reasons["nogo"] and "no material" in reasons["nogo"]
+    assert "malformed JSON" in reasons["line-3"]
+    assert (report.requested, report.ok, report.failed) == (5, 2, 3)
+    assert report.assets_per_hour > 0 and report.wall_s > 0 and sorted(seen) == sorted(status)
+    for name in ("ok1", "ok2"):
+        assert (tmp_path / "out" / name / "asset.json").is_file()
+    saved = BatchReport.model_validate_json((tmp_path / "out" / REPORT_JSON).read_text(encoding="utf-8"))
+    assert saved == report
+
+
+def test_batch_generates_two_tiny_assets(tmp_path: Path, cache_dir: Path, prefect_api: str) -> None:
+    """Two real draft generations (same request, two names) next to a bad line: both publish; every key runs once."""
+    reqs = _write(tmp_path / "r.jsonl", [
+        '{"name": "sponge-a", "text": "a kitchen sponge 10 x 7 x 3 cm", "quality": "draft"}', "{bad",
+        '{"name": "sponge-b", "text": "a kitchen sponge 10 x 7 x 3 cm", "quality": "draft"}'])
+    report = run_batch(reqs, tmp_path / "out", concurrency=2)
+    res = {r.name: r for r in report.results}
+    assert res["sponge-a"].status == "ok" and res["sponge-b"].status == "ok", report.results
+    assert res["line-2"].status == "failed"
+    for name in ("sponge-a", "sponge-b"):
+        manifest = json.loads((tmp_path / "out" / name / "asset.json").read_text(encoding="utf-8"))
+        assert manifest["request"]["text"] == "a kitchen sponge 10 x 7 x 3 cm"
+        assert res[name].wall_s > 0 and res[name].tasks_executed is not None
+    events = [json.loads(x) for x in (cache_dir / "events.jsonl").read_text(encoding="utf-8").splitlines()]
+    misses = Counter(e["key"] for e in events if e["outcome"] == "miss")
+    assert max(misses.values()) == 1  # the second request took every shared result from the cache
+    assert res["sponge-a"].tasks_cached + res["sponge-b"].tasks_cached >= len(misses)  # type: ignore[operator]
+
+
+def test_cli_reports_and_exits_nonzero(tmp_path: Path) -> None:
+    """`deformsmith batch` writes the report and exits 1 when a request failed; bad options exit 2."""
+    from flows.cli.main import app
+
+    reqs = _write(tmp_path / "r.jsonl", ["{bad", '{"name": "x"}'])
+    runner = CliRunner()
+    res = runner.invoke(app, ["batch", str(reqs), "--out", str(tmp_path / "out"), "--json"])
+    assert res.exit_code == 1, res.output
+    data = json.loads(res.stdout)
+    assert data["failed"] == 2 and (tmp_path / "out" / REPORT_JSON).is_file()
+    assert runner.invoke(app, ["batch", str(reqs), "--concurrency", "0"]).exit_code == 2
+    assert runner.invoke(app, ["batch", str(tmp_path / "missing.jsonl")]).exit_code == 2
