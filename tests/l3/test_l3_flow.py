@@ -98,6 +98,7 @@ def test_weak_squeeze_is_revised_then_held_out_and_cached(cube_asset: Path, pref
 
 
 @pytest.mark.slow
+@pytest.mark.timeout(1800)  # the four L2 probes on the asset dominate (~6-8 min on 2 CPU cores)
 def test_material_revision_reexecutes_l2_probes_then_the_robot(cube_asset: Path, prefect_api: str,
                                                                cache_dir: Path) -> None:
     base = _contract(revision_budget=1)
