@@ -39,7 +39,7 @@ from cache.runtime import configure_prefect_env
 
 configure_prefect_env()  # before prefect is imported: local PREFECT_HOME default, analytics off
 
-from cache.config import cache_root, use_cache_root  # noqa: E402
+from cache.config import cache_relative, cache_resolve, cache_root, use_cache_root  # noqa: E402
 from cache.hashing import content_key  # noqa: E402
 
 _LAZY = {  # heavy imports (prefect ~2.5 s, zarr ~0.4 s) only when used, so the CLI starts fast
@@ -69,4 +69,6 @@ __all__ = [
     "content_key",
     "local_runtime",
     "use_cache_root",
+    "cache_relative",
+    "cache_resolve",
 ]

@@ -31,3 +31,18 @@ def use_cache_root(cli_value: str | os.PathLike[str] | None) -> Path:
     root = cache_root(cli_value)
     os.environ[ENV_VAR] = str(root)
     return root
+
+
+def cache_relative(path: str | os.PathLike[str]) -> str:
+    """A path inside the cache root as a root-relative reference (records stay identical whatever the root)."""
+    p = Path(path).absolute()
+    try:
+        return p.relative_to(cache_root()).as_posix()
+    except ValueError:
+        return str(p)
+
+
+def cache_resolve(reference: str | os.PathLike[str]) -> Path:
+    """The file a cache-relative (or absolute) reference points to."""
+    p = Path(reference)
+    return p if p.is_absolute() else cache_root() / p

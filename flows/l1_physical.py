@@ -14,7 +14,7 @@ from typing import Any
 import numpy as np
 
 import cache
-from cache import cache_root, cached_task, content_key
+from cache import cache_relative, cache_resolve, cache_root, cached_task, content_key
 from contracts.agents import AgentConfig, StageOutcome, TargetBand, TargetBehaviour
 from contracts.errors import InputError
 from contracts.physical import PhysicalModel
@@ -50,7 +50,7 @@ def _write_recording(kind: str, key: str, particles_m: np.ndarray, com_m: np.nda
     """Rigid motion of the particles over the probe, into the cache's recordings folder; returns the path."""
     path = cache_root() / "recordings" / f"L1_{kind}-{key[:16]}.rrd"
     if path.exists():
-        return str(path)
+        return cache_relative(path)
     rest = particles_m - com_m[None, :].astype(np.float32)
     with ProbeRecording(path, recording_id=f"L1-{kind}-{key[:16]}") as rec:
         for frame, (t, pos, quat) in enumerate(trace):
@@ -59,7 +59,7 @@ def _write_recording(kind: str, key: str, particles_m: np.ndarray, com_m: np.nda
             rec.particles(rest @ rot.T + np.asarray(pos, np.float32))
             rec.scalar("com_height_m", pos[2])
         rec.log(f"L1 {kind} probe: " + ", ".join(f"{k}={v:.4g}" for k, v in sorted(metrics.items())))
-    return str(path)
+    return cache_relative(path)
 
 
 def _quat_matrix(q: tuple[float, float, float, float]) -> np.ndarray:
@@ -199,7 +199,7 @@ def _copy_recordings(outcome: StageOutcome, asset_dir: Path) -> list[str]:
     chosen = next(a for a in outcome.attempts if a.iteration == outcome.best_iteration)
     out = []
     for src in chosen.evidence.recordings:
-        p = Path(src)
+        p = cache_resolve(src)
         if p.suffix == ".rrd" and p.is_file():
             dest = asset_dir / "recordings" / (p.name.split("-")[0] + ".rrd")
             dest.parent.mkdir(parents=True, exist_ok=True)

@@ -17,7 +17,7 @@ from typing import Any
 import numpy as np
 
 import cache
-from cache import cache_root, cached_task, content_key
+from cache import cache_relative, cache_resolve, cache_root, cached_task, content_key
 from contracts.agents import AgentConfig, StageOutcome, TargetBehaviour
 from contracts.errors import InputError
 from contracts.material import Material
@@ -50,7 +50,7 @@ def _probe(kind: str, positions_m: np.ndarray, volumes_m3: np.ndarray, physical:
     keys = [content_key("l2", kind, positions_m, volumes_m3, physical, m, params, sim, held_out) for m in materials]
     paths = [_recording_path(kind, k) for k in keys]
     results = deformable.PROBES[kind](body, materials, sim=sim, record_paths=paths, held_out=held_out, **params)
-    return [r.model_copy(update={"recording": str(p) if p.is_file() else None}) for r, p in zip(results, paths)]
+    return [r.model_copy(update={"recording": cache_relative(p) if p.is_file() else None}) for r, p in zip(results, paths)]
 
 
 @cached_task(version=TASK_VERSION, name="l2.compress")
@@ -244,10 +244,10 @@ def screen(asset: L0Asset, physical: PhysicalModel, contract: StageContract, tar
 
 def _copy(src: str | None, dest: Path) -> str | None:
     """Copy a recording into the asset; returns its path relative to the asset directory."""
-    if not src or not Path(src).is_file():
+    if not src or not cache_resolve(src).is_file():
         return None
     dest.parent.mkdir(parents=True, exist_ok=True)
-    shutil.copyfile(src, dest)
+    shutil.copyfile(cache_resolve(src), dest)
     return str(Path("recordings") / dest.name)
 
 

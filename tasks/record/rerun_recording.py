@@ -27,11 +27,17 @@ HARNESS_LOG = "harness/log"
 APP_ID = "deformsmith"
 
 
+def _owned(values: np.ndarray, dtype: type) -> np.ndarray:
+    """A private copy: Rerun serialises logged arrays later, in the background, so a view of live simulator
+    memory (Warp's CPU .numpy() is zero-copy) would be recorded with whatever values it holds by then."""
+    return np.array(values, dtype=dtype, copy=True)
+
+
 def _rgba_u8(colors: np.ndarray | None) -> np.ndarray | None:
     """Colours in [0, 1] floats (N,3|4) or uint8 -> uint8 RGBA-compatible array."""
     if colors is None:
         return None
-    c = np.asarray(colors)
+    c = np.array(colors, copy=True)
     if c.dtype != np.uint8:
         c = np.clip(np.rint(c * 255.0), 0, 255).astype(np.uint8)
     return c
@@ -67,7 +73,7 @@ class ProbeRecording:
 
     def particles(self, positions_m: np.ndarray, colors: np.ndarray | None = None, radius_m: float | None = None) -> None:
         """Log particle positions [m]."""
-        self.rec.log(PARTICLES, rr.Points3D(np.asarray(positions_m, np.float32), colors=_rgba_u8(colors), radii=radius_m))
+        self.rec.log(PARTICLES, rr.Points3D(_owned(positions_m, np.float32), colors=_rgba_u8(colors), radii=radius_m))
 
     def gaussians(
         self, centers_m: np.ndarray, scales_m: np.ndarray, quaternions_xyzw: np.ndarray, colors: np.ndarray | None = None
@@ -76,19 +82,19 @@ class ProbeRecording:
         self.rec.log(
             GAUSSIANS,
             rr.GaussianSplats3D(
-                np.asarray(centers_m, np.float32),
-                scales=np.asarray(scales_m, np.float32),
-                quaternions=np.asarray(quaternions_xyzw, np.float32),
+                _owned(centers_m, np.float32),
+                scales=_owned(scales_m, np.float32),
+                quaternions=_owned(quaternions_xyzw, np.float32),
                 colors=_rgba_u8(colors),
             ),
         )
 
     def box_collider(self, name: str, center_m: np.ndarray, half_size_m: np.ndarray, quaternion_xyzw: np.ndarray | None = None) -> None:
         """Log a box collider pose."""
-        q = None if quaternion_xyzw is None else rr.Quaternion(xyzw=np.asarray(quaternion_xyzw, np.float32))
+        q = None if quaternion_xyzw is None else rr.Quaternion(xyzw=_owned(quaternion_xyzw, np.float32))
         self.rec.log(
             f"{COLLIDERS}/{name}",
-            rr.Boxes3D(centers=[np.asarray(center_m, np.float32)], half_sizes=[np.asarray(half_size_m, np.float32)],
+            rr.Boxes3D(centers=[_owned(center_m, np.float32)], half_sizes=[_owned(half_size_m, np.float32)],
                        quaternions=None if q is None else [q]),
         )
 
@@ -96,7 +102,7 @@ class ProbeRecording:
         """Log a collider or robot link as a triangle mesh (vertices already posed, [m])."""
         self.rec.log(
             f"{COLLIDERS}/{name}",
-            rr.Mesh3D(vertex_positions=np.asarray(vertices_m, np.float32), triangle_indices=np.asarray(faces, np.uint32),
+            rr.Mesh3D(vertex_positions=_owned(vertices_m, np.float32), triangle_indices=_owned(faces, np.uint32),
                       albedo_factor=None if color is None else _rgba_u8(np.asarray(color))),
         )
 
