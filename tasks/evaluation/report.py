@@ -53,9 +53,18 @@ def _table(ablation: str, figs: dict[str, dict[str, Figure]]) -> list[str]:
         d = None if m == "sim_calls" else direction_ok(m, fb.value if fb else None, fo.value if fo else None)
         t = meets_target(m, fo.value if fo else None)
         lines.append(f"| {LABELS[m]} | {_paper(m, pb)} | {_paper(m, po)} | {_fmt(m, fb)} | {_fmt(m, fo)} | "
-                     f"{_target(m)} | {'-' if d is None else ('yes' if d else 'NO')} | "
+                     f"{_target(m)} | {_gap(d, fb, fo)} | "
                      f"{'-' if t is None else ('yes' if t else 'NO')} |")
     return lines
+
+
+def _gap(ok: bool | None, fb: Figure | None, fo: Figure | None) -> str:
+    """'yes' (ours better, as in the paper), 'equal', 'NO' (worse) or '-'."""
+    if ok is None:
+        return "-"
+    if fb is not None and fo is not None and fb.value == fo.value:
+        return "equal"
+    return "yes" if ok else "NO"
 
 
 def _plot(ablation: str, figs: dict[str, dict[str, Figure]], path: Path) -> None:
@@ -67,7 +76,7 @@ def _plot(ablation: str, figs: dict[str, dict[str, Figure]], path: Path) -> None
 
     base, ours = ARMS[ablation]
     metrics = [m for m in METRICS[ablation] if m != "sim_calls"]
-    fig, ax = plt.subplots(figsize=(7, 3.6))
+    fig, ax = plt.subplots(figsize=(7, 4.2))
     w = 0.2
     for i, m in enumerate(metrics):
         pb, po = PAPER[ablation].get(m, (None, None))
@@ -89,7 +98,7 @@ def _plot(ablation: str, figs: dict[str, dict[str, Figure]], path: Path) -> None
     ax.set_ylabel("%")
     ax.set_ylim(0, 115)
     ax.set_title(TITLES[ablation], fontsize=10)
-    ax.legend(fontsize=7, ncol=2, loc="upper left")
+    ax.legend(fontsize=7, ncol=4, loc="upper center", bbox_to_anchor=(0.5, -0.12), frameon=False)
     fig.tight_layout()
     fig.savefig(path, dpi=120)
     plt.close(fig)

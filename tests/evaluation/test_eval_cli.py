@@ -26,6 +26,7 @@ def test_bad_inputs_fail_clearly(tmp_path: Path) -> None:
 
 
 @pytest.mark.slow
+@pytest.mark.timeout(1800)  # cold cache: L0, L1, L2 harness, one-shot, held-out probes, drop protocol (~10+ min loaded)
 def test_harness_ablation_end_to_end(tmp_path: Path) -> None:
     suite = tmp_path / "tiny.json"
     suite.write_text(json.dumps(TINY))
@@ -34,6 +35,7 @@ def test_harness_ablation_end_to_end(tmp_path: Path) -> None:
              "--json")
     assert r.returncode == 0, r.stderr[-3000:]
     summary = json.loads(r.stdout)
+    assert not summary["failed_cases"], summary["failed_cases"]
     figs = summary["figures"]["harness"]
     assert figs["harness"]["target_satisfaction"]["n"] == 1 and figs["one_shot"]["hard_failure"]["n"] == 1
     rec = json.loads((out / "records/harness/harness/cube.json").read_text())

@@ -91,3 +91,19 @@ def test_flat_contract_joins_l1_and_l2() -> None:
     assert routes.fields_of("propose_all", [f.name for f in c.editable_fields]) == [f.name for f in c.editable_fields]
     assert "mass_kg" in routes.couplings and "effective_modulus_pa" in routes.couplings
     assert routes.gates["slide_below_sticks"].directions == {"ground_friction": "increase"}
+
+
+def test_resume_skips_recorded_cases_inside_the_prefect_flow(tmp_path: Path, prefect_api: str) -> None:
+    from flows.evaluate import EvalOptions, evaluation_flow, write_record
+
+    suite = tmp_path / "s.json"
+    suite.write_text(json.dumps({"name": "s", "cases": [{"id": "a", "kind": "text", "text": "a sponge 10 cm",
+                                                         "intent": "sponge"}]}))
+    out = tmp_path / "eval"
+    for arm, sat in (("one_shot", False), ("harness", True)):
+        write_record(out, _rec("harness", arm, "a", delivered=True, target_satisfied=sat, hard_failure=not sat,
+                               sim_calls=5))
+    summary = evaluation_flow(EvalOptions(suite=str(suite), ablations=("harness",), out=out))
+    assert summary["figures"]["harness"]["harness"]["target_satisfaction"]["value"] == 1.0
+    assert summary["figures"]["harness"]["one_shot"]["hard_failure"]["value"] == 1.0
+    assert (out / "report" / "report.md").is_file() and not (out / "cases").exists()  # nothing re-ran
