@@ -36,6 +36,28 @@ def tree_digest(tree: Any) -> str:
     return hashlib.sha256(text.encode()).hexdigest()
 
 
+def _tag_floats(x: Any) -> Any:
+    """JSON data with non-finite floats replaced by tagged strings (strict JSON has no NaN / inf)."""
+    if isinstance(x, float) and not math.isfinite(x):
+        return {TAG: "float", "v": repr(x)}
+    if isinstance(x, list):
+        return [_tag_floats(i) for i in x]
+    if isinstance(x, dict):
+        return {k: _tag_floats(i) for k, i in x.items()}
+    return x
+
+
+def _untag_floats(x: Any) -> Any:
+    """Inverse of _tag_floats."""
+    if isinstance(x, list):
+        return [_untag_floats(i) for i in x]
+    if isinstance(x, dict):
+        if x.get(TAG) == "float":
+            return float(x["v"])
+        return {k: _untag_floats(i) for k, i in x.items()}
+    return x
+
+
 def encode(value: Any) -> Encoded:
     """Encode a value tree for storage; raises TypeError on unsupported types."""
     out = Encoded()
@@ -51,7 +73,7 @@ def _enc(v: Any, out: Encoded) -> Any:
     if isinstance(v, float):
         return v if math.isfinite(v) else {TAG: "float", "v": repr(v)}
     if isinstance(v, BaseModel):
-        return {TAG: "model", "cls": qualified_name(type(v)), "data": v.model_dump(mode="json")}
+        return {TAG: "model", "cls": qualified_name(type(v)), "data": _tag_floats(v.model_dump(mode="json"))}
     if isinstance(v, np.ndarray):
         if v.dtype.kind not in _ARRAY_KINDS:
             raise TypeError(f"cannot store arrays of dtype {v.dtype} (numeric and bool only)")
@@ -100,7 +122,7 @@ def decode(tree: Any, load_array: Callable[[str], np.ndarray], files_dir: Path) 
         return float(tree["v"])
     if tag == "model":
         cls = _import_qualified(tree["cls"])
-        return cls.model_validate_json(json.dumps(tree["data"]))
+        return cls.model_validate_json(json.dumps(_untag_floats(tree["data"]), allow_nan=True))
     if tag == "array":
         return load_array(tree["name"])
     if tag == "npscalar":

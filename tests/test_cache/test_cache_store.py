@@ -162,3 +162,20 @@ def test_concurrent_writers_leave_one_intact_entry(tmp_path: Path) -> None:
     store = CacheStore(root)
     assert sum(published) == 1 and store.keys() == [key] and store.verify() == []
     assert float(store.get(key)["F"].sum()) == 7 * 200_000 * 9
+
+
+def test_models_with_nan_and_inf_metrics_round_trip(tmp_path: Path) -> None:
+    """An undefined metric (NaN) or an unbounded one (inf) is data: stored and returned as such."""
+    import math
+
+    from contracts.probes import ProbeResult, ProbeSpec
+
+    from cache import CacheStore
+
+    result = ProbeResult(spec=ProbeSpec(kind="pick_and_place"),
+                         metrics={"hold_normal_force_n": math.nan, "settle_time_s": math.inf, "mass_kg": 0.15})
+    store = CacheStore(tmp_path)
+    store.put("ab" * 32, {"result": result})
+    back = store.get("ab" * 32)["result"]
+    assert math.isnan(back.metrics["hold_normal_force_n"]) and back.metrics["settle_time_s"] == math.inf
+    assert back.metrics["mass_kg"] == 0.15 and store.verify() == []
