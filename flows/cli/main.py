@@ -18,6 +18,7 @@ from flows.cli import evidence_cmds  # noqa: E402,F401
 from flows.cli import cache_cmds  # noqa: E402,F401
 from flows.cli import batch_cmds  # noqa: E402,F401
 from flows.cli import manipulate_cmds  # noqa: E402,F401
+from flows.cli import eval_cmds  # noqa: E402,F401
 
 
 def main() -> None:
