@@ -7,7 +7,7 @@ import math
 from contracts import ProbeResult, ProbeSpec
 from contracts.agents import TargetBand, TargetBehaviour
 
-HEALTHY = {"finite": 1.0, "in_domain": 1.0, "j_min": 0.9, "j_max": 1.1, "ground_tunnelling_m": 0.0,
+HEALTHY = {"finite": 1.0, "in_domain": 1.0, "engine_health_ok": 1.0, "j_min": 0.9, "j_max": 1.1, "ground_tunnelling_m": 0.0,
            "stable_long_rollout": 1.0}
 
 
