@@ -306,7 +306,8 @@ def run_l3(asset_dir: Path, options: L3Options | None = None, agents: AgentConfi
         rec_paths.append(str(path.relative_to(asset_dir)))
     record = _record(ctx, outcome, accepted, chosen, final_material, material_revision, held, rec_paths,
                      time.perf_counter() - t0)
-    _write_json(asset_dir / MANIPULATION_JSON, record)
+    # the file holds no wall time, so a rerun writes the same manipulation.json; the returned record reports it
+    _write_json(asset_dir / MANIPULATION_JSON, {k: v for k, v in record.items() if k != "wall_time_s"})
     return record, outcome
 
 
