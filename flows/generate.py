@@ -8,7 +8,6 @@ working directory from hits and re-executes only what never finished. The workin
 from __future__ import annotations
 
 import json
-import os
 import shutil
 import tempfile
 from collections.abc import Callable
@@ -22,6 +21,7 @@ from contracts.errors import InputError, StageFailure
 from contracts.manifest import AssetManifest, Provenance, StageSummary
 from contracts.request import AssetRequest
 from contracts.sim import Device, SimConfig
+from tasks.publish import replace_directory
 
 ASSET_JSON = "asset.json"
 LIBRARIES = ("numpy", "warp-lang", "prefect", "zarr", "trimesh", "coacd", "pybullet", "rerun-sdk", "pydantic")
@@ -88,17 +88,6 @@ def write_physgaussian_export(work: Path, manifest: AssetManifest) -> Path:
     return path
 
 
-def _publish(work: Path, out_dir: Path) -> None:
-    """Rename the finished working directory into place (an existing asset is replaced whole)."""
-    if out_dir.exists():
-        old = Path(tempfile.mkdtemp(prefix=f".{out_dir.name}.old-", dir=out_dir.parent))
-        os.replace(out_dir, old / "asset")
-        os.replace(work, out_dir)
-        shutil.rmtree(old, ignore_errors=True)
-    else:
-        os.replace(work, out_dir)
-
-
 def _check_out_dir(out_dir: Path) -> None:
     if out_dir.exists() and (not out_dir.is_dir() or (any(out_dir.iterdir()) and not (out_dir / ASSET_JSON).exists())):
         raise InputError(f"{out_dir} exists and is not an asset directory; choose a new or empty directory")
@@ -156,7 +145,7 @@ def generate_asset(request: AssetRequest, out_dir: Path, device: Device = "cpu",
         manifest = manifest.model_copy(update={"files": _files(work)})
         (work / ASSET_JSON).write_text(manifest.model_dump_json(indent=2) + "\n", encoding="utf-8")
         note("publish", str(out_dir))
-        _publish(work, out_dir)
+        replace_directory(work, out_dir)
         return manifest
     finally:
         if work.exists():

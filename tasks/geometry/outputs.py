@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import json
-import os
 import shutil
 import tempfile
 from dataclasses import dataclass
@@ -20,6 +19,7 @@ from tasks.geometry.gaussians import read_3dgs_ply, rest_covariances, write_3dgs
 from tasks.geometry.glb import write_glb
 from tasks.geometry.pipeline import Arrays, BuildInfo, arrays_to_mesh, proxy_parts
 from tasks.geometry.render import write_renders
+from tasks.publish import replace_directory
 
 GEOMETRY_JSON = "geometry.json"
 PARTICLES = "particles.zarr"
@@ -66,13 +66,7 @@ def publish_dir(build, out_dir: Path) -> None:  # type: ignore[no-untyped-def]
     tmp = Path(tempfile.mkdtemp(prefix=f".{out_dir.name}.tmp-", dir=out_dir.parent))
     try:
         build(tmp)
-        if out_dir.exists():
-            old = Path(tempfile.mkdtemp(prefix=f".{out_dir.name}.old-", dir=out_dir.parent))
-            os.replace(out_dir, old / "x")
-            os.replace(tmp, out_dir)
-            shutil.rmtree(old, ignore_errors=True)
-        else:
-            os.replace(tmp, out_dir)
+        replace_directory(tmp, out_dir)
     finally:
         if tmp.exists():
             shutil.rmtree(tmp, ignore_errors=True)
