@@ -56,7 +56,8 @@ def test_unreadable_yaml_is_a_clear_error(tmp_path: Path) -> None:
 
 def test_gates_evaluate_values_and_reject_missing_or_nan() -> None:
     contract = load_contract("L2")
-    good = {"finite": 1, "in_domain": 1, "j_min": 0.8, "j_max": 1.2, "ground_tunnelling_m": 0.0, "stable_long_rollout": 1}
+    good = {"finite": 1, "in_domain": 1, "engine_health_ok": 1, "j_min": 0.8, "j_max": 1.2, "ground_tunnelling_m": 0.0,
+            "stable_long_rollout": 1}
     assert contract.failed_gates(good) == []
     assert [g.metric for g in contract.failed_gates({**good, "j_min": math.nan})] == ["j_min"]
     missing = dict(good)
