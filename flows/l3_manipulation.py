@@ -159,7 +159,7 @@ class L3Context:
         out = trial_task(**inputs)
         key = probe_cache_key(trial_task, inputs)
         probe: ProbeResult = out["probe"]
-        attrs = {"labels": probe.metrics, "plan": plan.model_dump(mode="json"), "info": out["info"], "role": role,
+        attrs = {"labels": probe.metrics, "plan": plan.model_dump(mode="json"), "info": {k: v for k, v in out["info"].items() if k != "wall_time_s"}, "role": role,
                  "action": action, "values": values, "cache_key": key,
                  "material": (material or self.material).model_dump(mode="json"),
                  "physical_model": self.physical.model_dump(mode="json")}
