@@ -8,7 +8,9 @@ working directory from hits and re-executes only what never finished. The workin
 from __future__ import annotations
 
 import json
+import os
 import shutil
+import socket
 import tempfile
 from collections.abc import Callable
 from importlib import metadata
@@ -88,6 +90,36 @@ def write_physgaussian_export(work: Path, manifest: AssetManifest) -> Path:
     return path
 
 
+def _partial_prefix(out_dir: Path) -> str:
+    """Working directories are named .<name>.partial-<host>~<pid>~<random>, so a dead owner can be recognised."""
+    return f".{out_dir.name}.partial-"
+
+
+def _process_alive(pid: int) -> bool:
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except PermissionError:
+        return True
+    return True
+
+
+def remove_stale_partials(out_dir: Path) -> list[Path]:
+    """Remove working directories of out_dir left by a process of this host that died (SIGKILL, power loss)."""
+    host, prefix, removed = socket.gethostname(), _partial_prefix(out_dir), []
+    for path in out_dir.parent.glob(prefix + "*"):
+        try:
+            owner_host, pid, _ = path.name[len(prefix):].split("~", 2)
+            alive = _process_alive(int(pid))
+        except ValueError:
+            continue
+        if owner_host == host and not alive:
+            shutil.rmtree(path, ignore_errors=True)
+            removed.append(path)
+    return removed
+
+
 def _check_out_dir(out_dir: Path) -> None:
     if out_dir.exists() and (not out_dir.is_dir() or (any(out_dir.iterdir()) and not (out_dir / ASSET_JSON).exists())):
         raise InputError(f"{out_dir} exists and is not an asset directory; choose a new or empty directory")
@@ -116,7 +148,9 @@ def generate_asset(request: AssetRequest, out_dir: Path, device: Device = "cpu",
     out_dir = Path(out_dir).expanduser().absolute()
     _check_out_dir(out_dir)
     out_dir.parent.mkdir(parents=True, exist_ok=True)
-    work = Path(tempfile.mkdtemp(prefix=f".{out_dir.name}.partial-", dir=out_dir.parent))
+    remove_stale_partials(out_dir)
+    owner = f"{socket.gethostname()}~{os.getpid()}~"
+    work = Path(tempfile.mkdtemp(prefix=_partial_prefix(out_dir) + owner, dir=out_dir.parent))
     try:
         note("L0", "geometry")
         l0 = run_l0(request, quality=request.quality)

@@ -102,3 +102,19 @@ def test_view_names_the_recordings_and_fails_clearly_without_a_display(tmp_path:
 def test_inspect_a_non_asset_is_one_clear_error(tmp_path: Path) -> None:
     out = _cli("inspect", str(tmp_path))
     assert out.returncode != 0 and out.stderr.startswith("error:") and "asset.json" in out.stderr
+
+
+def test_stale_working_directories_of_dead_processes_are_removed(tmp_path: Path) -> None:
+    import socket
+
+    from flows.generate import remove_stale_partials
+
+    dead = subprocess.run([sys.executable, "-c", "import os; print(os.getpid())"], capture_output=True, text=True)
+    host = socket.gethostname()
+    stale = tmp_path / f".asset.partial-{host}~{int(dead.stdout)}~abc"
+    mine = tmp_path / f".asset.partial-{host}~{os.getpid()}~def"
+    other_host = tmp_path / f".asset.partial-elsewhere~{int(dead.stdout)}~ghi"
+    for d in (stale, mine, other_host):
+        d.mkdir()
+    assert remove_stale_partials(tmp_path / "asset") == [stale]
+    assert mine.exists() and other_host.exists() and not stale.exists()
