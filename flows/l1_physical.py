@@ -26,6 +26,7 @@ from tasks.agents.vocab import load_material_vocab
 from tasks.geometry.outputs import L0Asset, load_l0
 from tasks.physical.model import MASS_RANGE_KG, build_physical_model, mass_plausible
 from tasks.probes import rigid
+from tasks.publish import write_json_atomic
 from tasks.record import ProbeRecording
 
 TASK_VERSION = "1"  # bump when tasks/probes/rigid.py or the metrics below change
@@ -227,9 +228,7 @@ def run_l1(asset_dir: Path, intent: str | None = None, agents: AgentConfig | Non
         "metrics": outcome.metrics, "sim_calls": outcome.sim_calls, "attempts": outcome.attempts_used,
         "recordings": recordings,
     }
-    tmp = asset_dir / (PHYSICAL_JSON + ".tmp")
-    tmp.write_text(json.dumps(record, indent=2, sort_keys=True) + "\n", encoding="utf-8")
-    tmp.replace(asset_dir / PHYSICAL_JSON)
+    write_json_atomic(asset_dir / PHYSICAL_JSON, record)
     return phys, outcome
 
 

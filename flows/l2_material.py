@@ -30,6 +30,7 @@ from flows.harness import probe_cache_key, run_harness
 from tasks.agents import targets_from_intent, targets_from_request
 from tasks.geometry.outputs import L0Asset, load_l0
 from tasks.probes import deformable
+from tasks.publish import write_json_atomic
 from tasks.probes.rollout import DeformableBody
 
 TASK_VERSION = "1"  # bump when tasks/probes/{deformable,rollout,metrics}.py change what the probes return
@@ -251,13 +252,6 @@ def _copy(src: str | None, dest: Path) -> str | None:
     return str(Path("recordings") / dest.name)
 
 
-def _write_json(path: Path, record: dict[str, Any]) -> None:
-    """Atomic JSON write."""
-    tmp = path.with_name(path.name + ".tmp")
-    tmp.write_text(json.dumps(record, indent=2, sort_keys=True, default=str) + "\n", encoding="utf-8")
-    tmp.replace(path)
-
-
 def evaluate_material(asset_dir: Path, material: Material, contract: StageContract | None = None,
                       sim: SimConfig | None = None, held_out: bool = True,
                       physical: PhysicalModel | None = None) -> dict[str, Any]:
@@ -335,7 +329,7 @@ def run_l2(asset_dir: Path, request_or_intent: AssetRequest | str | None = None,
     (asset_dir / "evidence").mkdir(parents=True, exist_ok=True)
     lines = "".join(a.model_dump_json() + "\n" for a in outcome.attempts)
     (asset_dir / "evidence" / "L2_attempts.jsonl").write_text(lines, encoding="utf-8")
-    _write_json(asset_dir / MATERIAL_JSON, record)
+    write_json_atomic(asset_dir / MATERIAL_JSON, record)
     return material, outcome
 
 

@@ -31,6 +31,7 @@ from contracts.robot import ActionPlan, GraspCandidate
 from contracts.stage import StageContract, load_contract
 from flows.harness import probe_cache_key, run_harness
 from tasks.manipulation.body import TrialBody, trial_body
+from tasks.publish import write_json_atomic
 from tasks.manipulation.data import write_attempt
 from tasks.manipulation.outcome import TrialTolerances
 from tasks.manipulation.trial import TrialSettings, plan_or_error, run_trial
@@ -237,13 +238,6 @@ def revalidate_in_l2(asset_dir: Path, material: Material, physical: PhysicalMode
             "probe_keys": [r.cache_key for r in result["selection"] if r.cache_key]}
 
 
-def _write_json(path: Path, record: dict[str, Any]) -> None:
-    """Atomic JSON write."""
-    tmp = path.with_name(path.name + ".tmp")
-    tmp.write_text(json.dumps(record, indent=2, sort_keys=True, default=_default) + "\n", encoding="utf-8")
-    tmp.replace(path)
-
-
 def _default(o: Any) -> Any:
     """JSON for numpy values."""
     if hasattr(o, "tolist"):
@@ -307,7 +301,8 @@ def run_l3(asset_dir: Path, options: L3Options | None = None, agents: AgentConfi
     record = _record(ctx, outcome, accepted, chosen, final_material, material_revision, held, rec_paths,
                      time.perf_counter() - t0)
     # the file holds no wall time, so a rerun writes the same manipulation.json; the returned record reports it
-    _write_json(asset_dir / MANIPULATION_JSON, {k: v for k, v in record.items() if k != "wall_time_s"})
+    write_json_atomic(asset_dir / MANIPULATION_JSON, {k: v for k, v in record.items() if k != "wall_time_s"},
+                      default=_default)
     return record, outcome
 
 

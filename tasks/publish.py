@@ -2,10 +2,13 @@
 
 from __future__ import annotations
 
+import json
 import os
 import shutil
 import tempfile
+from collections.abc import Callable
 from pathlib import Path
+from typing import Any
 
 
 def replace_directory(finished: Path, dest: Path) -> None:
@@ -18,3 +21,11 @@ def replace_directory(finished: Path, dest: Path) -> None:
         shutil.rmtree(aside, ignore_errors=True)
     else:
         os.replace(finished, dest)
+
+
+def write_json_atomic(path: Path, record: Any, default: Callable[[Any], Any] | None = str) -> None:
+    """Write a JSON record (sorted keys, indented) to a temporary name and rename it into place."""
+    path = Path(path)
+    tmp = path.with_name(path.name + ".tmp")
+    tmp.write_text(json.dumps(record, indent=2, sort_keys=True, default=default) + "\n", encoding="utf-8")
+    tmp.replace(path)

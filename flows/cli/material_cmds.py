@@ -22,18 +22,23 @@ def _check_asset(asset: Path) -> None:
         fail(f"{asset} is not an asset directory (no geometry.json); run `deformsmith geometry ... --out {asset}`")
 
 
-def _material(E: float | None, nu: float | None, damping: float | None, asset: Path):  # type: ignore[no-untyped-def]
-    """The material to probe: the asset's L2 material (or the intent's priors), with the given overrides."""
-    from contracts.material import Material
-    from flows.l2_material import MATERIAL_JSON, l2_targets, load_material
-    from tasks.geometry.outputs import load_l0
-
+def _material_overrides(E: float | None, nu: float | None, damping: float | None) -> dict[str, float]:
+    """The material fields given on the command line, checked (finite, within Material's own bounds)."""
     for name, v in (("--E", E), ("--nu", nu), ("--damping", damping)):
         if v is not None and not math.isfinite(v):
             fail(f"{name} must be a finite number, got {v}")
     given = {k: v for k, v in (("youngs_modulus_pa", E), ("poisson_ratio", nu), ("damping_rate_per_s", damping))
              if v is not None}
     _validated({"youngs_modulus_pa": 1e4, "poisson_ratio": 0.3, "damping_rate_per_s": 0.0, **given})
+    return given
+
+
+def _material(E: float | None, nu: float | None, damping: float | None, asset: Path):  # type: ignore[no-untyped-def]
+    """The material to probe: the asset's L2 material (or the intent's priors), with the given overrides."""
+    from flows.l2_material import MATERIAL_JSON, l2_targets, load_material
+    from tasks.geometry.outputs import load_l0
+
+    given = _material_overrides(E, nu, damping)
     if (asset / MATERIAL_JSON).is_file():
         base = load_material(asset).model_dump()
     else:
@@ -73,12 +78,7 @@ def probe(
     """Run one probe on an asset and print its metrics (SI units in every metric name)."""
     if kind not in KINDS:
         fail(f"unknown probe '{kind}'; choose one of {', '.join(KINDS)}")
-    for name, v in (("--E", E), ("--nu", nu), ("--damping", damping)):
-        if v is not None and not math.isfinite(v):
-            fail(f"{name} must be a finite number, got {v}")
-    given = {k: v for k, v in (("youngs_modulus_pa", E), ("poisson_ratio", nu), ("damping_rate_per_s", damping))
-             if v is not None}
-    _validated({"youngs_modulus_pa": 1e4, "poisson_ratio": 0.3, "damping_rate_per_s": 0.0, **given})
+    _material_overrides(E, nu, damping)  # reject bad material options before touching the asset
     _check_asset(asset)
     if rho is not None and not (math.isfinite(rho) and rho > 0):
         fail(f"--rho must be a positive finite density [kg/m^3], got {rho}")
