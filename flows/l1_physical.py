@@ -29,7 +29,7 @@ from tasks.probes import rigid
 from tasks.publish import write_json_atomic
 from tasks.record import ProbeRecording
 
-TASK_VERSION = "1"  # bump when tasks/probes/rigid.py or the metrics below change
+TASK_VERSION = "2"  # bump when tasks/probes/rigid.py or the metrics below change (2: asset-frame pose, inertia lock)
 PHYSICAL_JSON = "physical.json"
 RECORD_PARTICLES_MAX = 4000
 RIGID_KINDS = ("place", "drop", "slide")

@@ -25,9 +25,10 @@ SOLVER_ITERATIONS = 100
 REST_LINEAR_SPEED_M_PER_S = 0.005
 REST_ANGULAR_SPEED_RAD_PER_S = 0.05
 TRACE_FPS = 30.0
+LOCK_INERTIA_FACTOR = 1e6  # rotational inertia x this locks rotation on the incline (rolling shapes test sliding)
 
 Trace = list[tuple[float, tuple[float, float, float], tuple[float, float, float, float]]]
-"""(sim time [s], centre-of-mass position [m], orientation quaternion xyzw) samples at TRACE_FPS."""
+"""(sim time [s], centre-of-mass position [m], asset-frame orientation quaternion xyzw) samples at TRACE_FPS."""
 
 
 @dataclass(frozen=True)
@@ -108,6 +109,20 @@ def _spawn(cid: int, body: RigidBodySpec, lift_m: float) -> int:
     return uid
 
 
+def _pose(cid: int, uid: int) -> tuple[tuple[float, float, float], tuple[float, float, float, float]]:
+    """(centre of mass [m], orientation of the asset frame xyzw) in the world.
+
+    pybullet's base frame is the link's inertial frame, and Bullet turns it to the principal axes of the inertia
+    tensor. For an asymmetric body (a duck: ixz != 0) that frame is tilted from the asset's axes from the start, so
+    the base orientation is not the object's; the asset frame's orientation is base * inverse(local inertial frame).
+    """
+    pos, orn = pb.getBasePositionAndOrientation(uid, physicsClientId=cid)
+    local_orn = pb.getDynamicsInfo(uid, -1, physicsClientId=cid)[4]
+    _, inv_local = pb.invertTransform((0.0, 0.0, 0.0), local_orn)
+    _, asset_orn = pb.multiplyTransforms((0.0, 0.0, 0.0), orn, (0.0, 0.0, 0.0), inv_local)
+    return tuple(pos), tuple(asset_orn)  # type: ignore[return-value]
+
+
 def _penetration_m(cid: int, uid: int) -> float:
     """Deepest current penetration of the object into anything [m] (0 when none)."""
     dists = [c[8] for c in pb.getContactPoints(bodyA=uid, physicsClientId=cid)]
@@ -116,14 +131,14 @@ def _penetration_m(cid: int, uid: int) -> float:
 
 def _lowest_point_m(cid: int, uid: int, body: RigidBodySpec) -> float:
     """Lowest z of the posed proxy [m] (negative = below the ground)."""
-    pos, orn = pb.getBasePositionAndOrientation(uid, physicsClientId=cid)
+    pos, orn = _pose(cid, uid)
     rot = np.asarray(pb.getMatrixFromQuaternion(orn)).reshape(3, 3)
     pts = (np.vstack(body.hulls_m) - np.asarray(body.center_of_mass_m)) @ rot.T + np.asarray(pos)
     return float(pts[:, 2].min())
 
 
 def _tilt_deg(orn: Sequence[float]) -> float:
-    """Angle between the body's z axis and the world's z axis [deg]."""
+    """Angle between the body's z axis (asset frame, see _pose) and the world's z axis [deg]."""
     rot = np.asarray(pb.getMatrixFromQuaternion(orn)).reshape(3, 3)
     return float(math.degrees(math.acos(float(np.clip(rot[2, 2], -1.0, 1.0)))))
 
@@ -131,7 +146,7 @@ def _tilt_deg(orn: Sequence[float]) -> float:
 def _sample(cid: int, uid: int, trace: Trace | None, t_s: float) -> None:
     """Append the body's pose to the trace when one is being recorded."""
     if trace is not None:
-        pos, orn = pb.getBasePositionAndOrientation(uid, physicsClientId=cid)
+        pos, orn = _pose(cid, uid)
         trace.append((t_s, tuple(pos), tuple(orn)))  # type: ignore[arg-type]
 
 
@@ -158,9 +173,9 @@ def placement_probe(body: RigidBodySpec, duration_s: float = 3.0, trace: Trace |
     """Set the object on the ground 1 mm up, let it settle; metrics: tilt, final penetration, settle time, drift."""
     with _world((0.0, 0.0, -9.81)) as cid:
         uid = _spawn(cid, body, lift_m=0.001)
-        start, _ = pb.getBasePositionAndOrientation(uid, physicsClientId=cid)
+        start, _ = _pose(cid, uid)
         settle_s, _ = _settle(cid, uid, duration_s, trace)
-        pos, orn = pb.getBasePositionAndOrientation(uid, physicsClientId=cid)
+        pos, orn = _pose(cid, uid)
         return {
             "place_tilt_deg": _tilt_deg(orn),
             "place_penetration_m": max(_penetration_m(cid, uid), -_lowest_point_m(cid, uid, body)),
@@ -176,9 +191,9 @@ def drop_probe(
     clearance = clearance_fraction * body.height_m
     with _world((0.0, 0.0, -9.81)) as cid:
         uid = _spawn(cid, body, lift_m=clearance)
-        start, _ = pb.getBasePositionAndOrientation(uid, physicsClientId=cid)
+        start, _ = _pose(cid, uid)
         settle_s, max_pen = _settle(cid, uid, duration_s, trace)
-        pos, orn = pb.getBasePositionAndOrientation(uid, physicsClientId=cid)
+        pos, orn = _pose(cid, uid)
         return {
             "drop_clearance_m": clearance,
             "drop_penetration_m": max(_penetration_m(cid, uid), -_lowest_point_m(cid, uid, body)),
@@ -192,7 +207,7 @@ def drop_probe(
 def _slope_motion(
     body: RigidBodySpec, theta_deg: float, settle_s: float, measure_s: float, trace: Trace | None = None
 ) -> tuple[float, float]:
-    """Object on an incline of theta (gravity tilted, rotation locked so rolling shapes test sliding).
+    """Object on an incline of theta (gravity tilted, rotation locked by a huge inertia so rolling shapes test sliding).
 
     Returns (mean speed down the slope over the measuring window [m/s], fitted acceleration [m/s^2]).
     """
@@ -201,7 +216,11 @@ def _slope_motion(
     with _world((0.0, 0.0, -g)) as cid:
         uid = _spawn(cid, body, lift_m=0.001)
         _settle(cid, uid, settle_s, trace)
-        _, orn0 = pb.getBasePositionAndOrientation(uid, physicsClientId=cid)
+        # Rotation is locked by a huge rotational inertia, not by resetting the pose every step: a reset drops the
+        # contact manifold and its friction anchors, and a body standing on one contact point at a time (a
+        # polyhedral ball on a small facet) then crept down an incline below atan(mu) (1 cm/s at mu = 0.9).
+        inertia = pb.getDynamicsInfo(uid, -1, physicsClientId=cid)[2]
+        pb.changeDynamics(uid, -1, localInertiaDiagonal=[LOCK_INERTIA_FACTOR * i for i in inertia], physicsClientId=cid)
         every = max(1, int(round(1.0 / (TRACE_FPS * TIME_STEP_S))))
         pb.setGravity(g * math.sin(th), 0.0, -g * math.cos(th), physicsClientId=cid)
         steps = int(round(measure_s / TIME_STEP_S))
@@ -209,9 +228,6 @@ def _slope_motion(
         for i in range(steps):
             pb.stepSimulation(physicsClientId=cid)
             pos, _ = pb.getBasePositionAndOrientation(uid, physicsClientId=cid)
-            v, _ = pb.getBaseVelocity(uid, physicsClientId=cid)
-            pb.resetBasePositionAndOrientation(uid, pos, orn0, physicsClientId=cid)
-            pb.resetBaseVelocity(uid, v, (0.0, 0.0, 0.0), physicsClientId=cid)
             xs[i] = pos[0]
             if (i + 1) % every == 0:
                 _sample(cid, uid, trace, settle_s + (i + 1) * TIME_STEP_S)
