@@ -14,8 +14,9 @@ Interface (stable; other packages code against it)::
   Two processes on one key: a per-key flock (SERIALIZABLE) gives one execution; the other gets a hit.
 - Hashable inputs / storable outputs: pydantic models (canonical JSON + class name), numpy arrays (dtype + shape +
   bytes), ``pathlib.Path`` of an existing file or directory (hashed by content; as an output it is copied into the
-  entry and comes back as a path inside the cache), str/int/float/bool/None, numpy scalars, and dict (str keys) /
-  list / tuple of these. Outputs come back as the same types (models as their class, tuples as tuples).
+  entry and comes back as a path inside the cache, on a miss as on a hit; write such outputs into
+  ``scratch_dir(prefix)``, a temporary folder removed once its files are stored), str/int/float/bool/None, numpy
+  scalars, and dict (str keys) / list / tuple of these. Outputs come back as the same types (models as their class, tuples as tuples).
 - ``content_key(*parts) -> str``: hex sha256 of the parts (same rules as above).
 - ``cache_root(cli_value=None) -> Path``: ``--cache`` value > ``$DEFORMSMITH_CACHE`` > user cache dir.
   ``use_cache_root(value)`` also exports it to ``$DEFORMSMITH_CACHE`` (what the CLI's ``--cache`` does).
@@ -48,6 +49,7 @@ _LAZY = {  # heavy imports (prefect ~2.5 s, zarr ~0.4 s) only when used, so the 
     "CacheMiss": "cache.store",
     "CacheStore": "cache.store",
     "Problem": "cache.store",
+    "scratch_dir": "cache.prefect_task",
 }
 
 
@@ -68,6 +70,7 @@ __all__ = [
     "cached_task",
     "content_key",
     "local_runtime",
+    "scratch_dir",
     "use_cache_root",
     "cache_relative",
     "cache_resolve",

@@ -5,6 +5,9 @@ from __future__ import annotations
 import asyncio
 import functools
 import inspect
+import os
+import shutil
+import tempfile
 import threading
 import time
 import uuid
@@ -85,6 +88,94 @@ class StoreHandoffSerializer(Serializer):
         return _handoff_pop(blob.decode())
 
 
+# ---- scratch folders for Path outputs ------------------------------------------------------------
+# A task that returns files writes them into `scratch_dir()`. The store copies them into the entry when Prefect
+# persists the result (before the call returns); the call then hands back the stored copies, exactly what a hit
+# returns, and removes the scratch folder, so nothing is left in the temp directory on a miss either.
+_SCRATCH: set[Path] = set()
+_RELOCATED: dict[Path, Path] = {}  # scratch file -> its stored copy (set when the entry holding it is intact)
+_SCRATCH_LOCK = threading.Lock()
+
+
+def scratch_dir(prefix: str = "deformsmith-scratch-") -> Path:
+    """A new temporary folder for a cached task's file outputs; it goes away once they are safely stored."""
+    folder = Path(os.path.abspath(tempfile.mkdtemp(prefix=prefix)))
+    with _SCRATCH_LOCK:
+        _SCRATCH.add(folder)
+    return folder
+
+
+def _scratch_of(path: Path) -> Path | None:
+    """The registered scratch folder holding `path`, if any."""
+    p = Path(os.path.abspath(path))
+    with _SCRATCH_LOCK:
+        return next((d for d in _SCRATCH if p == d or d in p.parents), None)
+
+
+def _path_pairs(value: Any, stored: Any) -> list[tuple[Path, Path]]:
+    """(returned path, stored path) pairs of two value trees of the same shape."""
+    if isinstance(value, Path) and isinstance(stored, Path):
+        return [(value, stored)]
+    if isinstance(value, dict) and isinstance(stored, dict):
+        return [pair for k in value if k in stored for pair in _path_pairs(value[k], stored[k])]
+    if isinstance(value, (list, tuple)) and isinstance(stored, (list, tuple)) and len(value) == len(stored):
+        return [pair for a, b in zip(value, stored) for pair in _path_pairs(a, b)]
+    return []
+
+
+def _has_scratch_path(value: Any) -> bool:
+    if isinstance(value, Path):
+        return _scratch_of(value) is not None
+    if isinstance(value, dict):
+        return any(_has_scratch_path(v) for v in value.values())
+    if isinstance(value, (list, tuple)):
+        return any(_has_scratch_path(v) for v in value)
+    return False
+
+
+def _note_stored(store: CacheStore, key: str, value: Any) -> None:
+    """After a put: remember where the value's scratch files now live (read back from the verified entry)."""
+    if not _has_scratch_path(value):
+        return
+    stored, _ = store.load(key)  # verified digests: the copies are intact
+    with _SCRATCH_LOCK:
+        for src, dst in _path_pairs(value, stored):
+            if dst.exists():
+                _RELOCATED[Path(os.path.abspath(src))] = dst
+
+
+def _relocate(value: Any) -> Any:
+    """The value with stored scratch files replaced by their stored copies; emptied scratch folders removed."""
+    moved: set[Path] = set()
+    kept: set[Path] = set()
+
+    def walk(v: Any) -> Any:
+        if isinstance(v, Path):
+            folder = _scratch_of(v)
+            if folder is None:
+                return v
+            with _SCRATCH_LOCK:
+                dst = _RELOCATED.pop(Path(os.path.abspath(v)), None)
+            (moved if dst is not None else kept).add(folder)
+            return dst if dst is not None else v
+        if isinstance(v, dict):
+            return {k: walk(x) for k, x in v.items()}
+        if isinstance(v, list):
+            return [walk(x) for x in v]
+        if isinstance(v, tuple):
+            return tuple(walk(x) for x in v)
+        return v
+
+    out = walk(value)
+    for folder in moved - kept:  # every returned file of the folder is in the store
+        shutil.rmtree(folder, ignore_errors=True)
+        with _SCRATCH_LOCK:
+            _SCRATCH.discard(folder)
+            for p in [p for p in _RELOCATED if folder in p.parents]:
+                _RELOCATED.pop(p)
+    return out
+
+
 _STORES: dict[Path, CacheStore] = {}
 
 
@@ -127,7 +218,9 @@ class StoreResultStorage(WritableFileSystem):
         meta = {"prefect_metadata": record["metadata"]}
         if ctx is not None:
             meta.update(task=ctx.task.name, version=ctx.task.version)
-        self._store().put(Path(path).name, value, meta)
+        store = self._store()
+        store.put(Path(path).name, value, meta)
+        _note_stored(store, Path(path).name, value)
         return path
 
     async def aread_path(self, path: str) -> bytes:
@@ -212,7 +305,24 @@ def _record_cache_event(tsk: Any, task_run: Any, state: Any) -> None:
 
 
 class CachedTask(Task):  # type: ignore[type-arg]
-    """A Prefect Task whose result storage is the content store (kept through `with_options`)."""
+    """A Prefect Task whose result storage is the content store (kept through `with_options`).
+
+    Called for its result, a miss returns file outputs as their stored copies (as a hit does), and the task's
+    scratch folder is removed (see `scratch_dir`).
+    """
+
+    def __call__(self, *args: Any, **kwargs: Any) -> Any:
+        """Run (or reuse) the task; file outputs come back inside the cache."""
+        out = super().__call__(*args, **kwargs)
+        if kwargs.get("return_state"):
+            return out
+        if inspect.isawaitable(out):
+
+            async def relocated() -> Any:
+                return _relocate(await out)
+
+            return relocated()
+        return _relocate(out)
 
     def with_options(self, *args: Any, **kwargs: Any) -> Any:
         """Like Task.with_options; the copy keeps the store-backed result storage."""

@@ -3,12 +3,11 @@
 from __future__ import annotations
 
 import shutil
-import tempfile
 from pathlib import Path
 
 import numpy as np
 
-from cache import cached_task
+from cache import cached_task, scratch_dir
 from contracts.material import Material
 from contracts.physical import PhysicalModel
 from contracts.sim import SimConfig
@@ -30,11 +29,16 @@ def drop_protocol_task(positions_m: np.ndarray, volumes_m3: np.ndarray, physical
 @cached_task(version=TASK_VERSION, name="renders.drop_videos")
 def drop_videos_task(gaussians: dict[str, np.ndarray], rest_covariances_m2: np.ndarray, rest_particles_m: np.ndarray,
                      x_frames: np.ndarray, F_frames: np.ndarray) -> dict[str, Path]:
-    """Front and side MP4s (30 fps) of the deformed Gaussians."""
-    folder = Path(tempfile.mkdtemp(prefix="ds-drop-video-"))
-    return {view: write_mp4(render_protocol_frames(gaussians, rest_covariances_m2, rest_particles_m, x_frames, F_frames,
-                                                   view), folder / f"drop_{view}.mp4", PROTOCOL_FPS)
-            for view in VIEWS}
+    """Front and side MP4s (30 fps) of the deformed Gaussians (returned as the cache's copies; the scratch folder they
+    are written to is removed once they are stored)."""
+    folder = scratch_dir(prefix="ds-drop-video-")
+    try:
+        return {view: write_mp4(render_protocol_frames(gaussians, rest_covariances_m2, rest_particles_m, x_frames,
+                                                       F_frames, view), folder / f"drop_{view}.mp4", PROTOCOL_FPS)
+                for view in VIEWS}
+    except BaseException:
+        shutil.rmtree(folder, ignore_errors=True)
+        raise
 
 
 def render_drop_protocol(asset_dir: Path, physical: PhysicalModel, material: Material,
