@@ -1,0 +1,348 @@
+"""CUDA-only kernels of the MLS-MPM step: warp- and block-level variants of the particle-to-grid scatter and of the
+per-scene re-fit reduction. Same physics and the same formulas as ``kernels.py`` (whose device functions they call);
+only the order of the float additions differs (it already does on CUDA: global float atomics).
+
+* ``p2g_warp``: one particle per thread; the lanes of a warp whose 3x3x3 stencils coincide (same base node: with
+  2 particles per cell per axis in a spatially coherent order, pairs of neighbours) add their 27 contributions
+  with warp shuffles and one lane issues the 16-byte atomics, so the global atomics (the bound of p2g) drop by
+  the group size. Any particle order is correct; coherent orders are faster.
+* ``reduce_scene_stats_block``: the grid re-fit reduction (bounds, max speed, kinetic energy) as a block
+  reduction: each block covers one chunk of one scene, threads stride over the chunk, warp shuffles + shared
+  memory reduce, and one thread per block does the 4 global atomics (instead of one serial loop per thread).
+
+Launch contract: the launch dimension is a multiple of the block size (threads past ``n_items`` take part in the
+warp/block collectives but write nothing). Never launched on CPU (the CPU path keeps ``kernels.py``, bit for bit;
+the CPU branches of the native snippets exist only so that tests can check the index arithmetic there).
+"""
+
+from __future__ import annotations
+
+import warp as wp
+
+from tasks.mpm import kernels as K
+
+wp.set_module_options({"enable_backward": False, "optimization_level": 3})
+
+@wp.func_native(
+    """
+#if defined(__CUDA_ARCH__)
+    __shared__ float red_min_f[32];
+    float r = v;
+    for (int o = 16; o > 0; o >>= 1) r = fminf(r, __shfl_xor_sync(0xffffffffu, r, o));
+    const int nw = (blockDim.x + 31) >> 5;
+    __syncthreads();
+    if ((threadIdx.x & 31) == 0) red_min_f[threadIdx.x >> 5] = r;
+    __syncthreads();
+    r = red_min_f[0];
+    for (int k = 1; k < nw; ++k) r = fminf(r, red_min_f[k]);
+    return r;
+#else
+    return v;
+#endif
+"""
+)
+def block_min_float(v: float) -> float:
+    """Minimum of v over the thread block (every thread of the block must call it; all get the result)."""
+    ...
+
+
+@wp.func_native(
+    """
+#if defined(__CUDA_ARCH__)
+    __shared__ float red_sum_f[32];
+    float r = v;
+    for (int o = 16; o > 0; o >>= 1) r += __shfl_xor_sync(0xffffffffu, r, o);
+    const int nw = (blockDim.x + 31) >> 5;
+    __syncthreads();
+    if ((threadIdx.x & 31) == 0) red_sum_f[threadIdx.x >> 5] = r;
+    __syncthreads();
+    r = red_sum_f[0];
+    for (int k = 1; k < nw; ++k) r += red_sum_f[k];
+    return r;
+#else
+    return v;
+#endif
+"""
+)
+def block_sum_float(v: float) -> float:
+    """Sum of v over the thread block (every thread of the block must call it; all get the result)."""
+    ...
+
+
+_SCATTER_WARP_SNIPPET = """
+    // the 27 stencil contributions w_ijk (q0 + i a0 + j a1 + k a2), in the order and arithmetic of kernels.py;
+    // this thread's part of the stencil: nparts = 1 (all 27), 3 (slab i = part) or 9 (row i, j = part / 3, part % 3)
+#if defined(__CUDA_ARCH__)
+    const unsigned FULL = 0xffffffffu;
+    const int lane = threadIdx.x & 31;
+    // lanes scattering the same part of the same stencil (every lane of a warp runs the same number of iterations)
+    const unsigned long long key = ok ? ((unsigned long long)base << 4) | (unsigned long long)part
+                                      : (1ull << 63) | (unsigned long long)lane;
+    const unsigned grp = __match_any_sync(FULL, key);
+    const bool leader = ok && ((__ffs(grp) - 1) == lane);
+    const unsigned extra = __reduce_max_sync(FULL, (unsigned)(__popc(grp) - 1));  // warp-uniform loop count
+    const unsigned mates = leader ? (grp & ~(1u << lane)) : 0u;
+#endif
+    auto emit_row = [&](const int i, const int j, const float* qij) {
+        const float wij = wx.c[i] * wy.c[j];
+        const int row = base + i * nyz + j * nz;
+        float qk[4] = {qij[0], qij[1], qij[2], qij[3]};
+#if defined(__CUDA_ARCH__)
+#pragma unroll
+#endif
+        for (int k = 0; k < 3; ++k) {
+            const float w = wij * wz.c[k];
+            float val[4] = {w * qk[0], w * qk[1], w * qk[2], w * qk[3]};
+#if defined(__CUDA_ARCH__)
+            unsigned r = mates;
+            for (unsigned e = 0; e < extra; ++e) {
+                const int src = r ? (__ffs(r) - 1) : lane;
+                r &= r - 1u;
+                const float o0 = __shfl_sync(FULL, val[0], src);
+                const float o1 = __shfl_sync(FULL, val[1], src);
+                const float o2 = __shfl_sync(FULL, val[2], src);
+                const float o3 = __shfl_sync(FULL, val[3], src);
+                if (src != lane) { val[0] += o0; val[1] += o1; val[2] += o2; val[3] += o3; }
+            }
+            if (leader) {
+                float* p = reinterpret_cast<float*>(&grid[row + k]);
+#if (__CUDA_ARCH__ >= 900) && (__CUDACC_VER_MAJOR__ >= 12)
+                atomicAdd(reinterpret_cast<float4*>(p), make_float4(val[0], val[1], val[2], val[3]));
+#else
+                atomicAdd(p, val[0]); atomicAdd(p + 1, val[1]); atomicAdd(p + 2, val[2]); atomicAdd(p + 3, val[3]);
+#endif
+            }
+#else
+            if (ok) {
+                float* p = reinterpret_cast<float*>(&grid[row + k]);
+                p[0] += val[0]; p[1] += val[1]; p[2] += val[2]; p[3] += val[3];
+            }
+#endif
+            for (int c = 0; c < 4; ++c) qk[c] += a2.c[c];
+        }
+    };
+    float qi[4] = {q0.c[0], q0.c[1], q0.c[2], q0.c[3]};
+    if (nparts == 1) {  // whole stencil (unrolled: register-resident weights)
+#if defined(__CUDA_ARCH__)
+#pragma unroll
+#endif
+        for (int i = 0; i < 3; ++i) {
+            float qij[4] = {qi[0], qi[1], qi[2], qi[3]};
+#if defined(__CUDA_ARCH__)
+#pragma unroll
+#endif
+            for (int j = 0; j < 3; ++j) {
+                emit_row(i, j, qij);
+                for (int c = 0; c < 4; ++c) qij[c] += a1.c[c];
+            }
+            for (int c = 0; c < 4; ++c) qi[c] += a0.c[c];
+        }
+    } else {  // one slab (nparts = 3) or one row (nparts = 9); same incremental sums as above
+        const int ip = nparts == 3 ? part : part / 3;
+        const int j0 = nparts == 9 ? part % 3 : 0;
+        const int j1 = nparts == 9 ? j0 + 1 : 3;
+        for (int i = 0; i < ip; ++i)
+            for (int c = 0; c < 4; ++c) qi[c] += a0.c[c];
+        float qij[4] = {qi[0], qi[1], qi[2], qi[3]};
+        for (int j = 0; j < j0; ++j)
+            for (int c = 0; c < 4; ++c) qij[c] += a1.c[c];
+        for (int j = j0; j < j1; ++j) {
+            emit_row(ip, j, qij);
+            for (int c = 0; c < 4; ++c) qij[c] += a1.c[c];
+        }
+    }
+"""
+
+
+@wp.func_native(_SCATTER_WARP_SNIPPET)
+def scatter_stencil_warp(
+    ok: int,
+    base: int,
+    part: int,
+    nparts: int,
+    nyz: int,
+    nz: int,
+    q0: wp.vec4,
+    a0: wp.vec4,
+    a1: wp.vec4,
+    a2: wp.vec4,
+    wx: wp.vec3,
+    wy: wp.vec3,
+    wz: wp.vec3,
+    grid: wp.array(dtype=wp.vec4),
+):
+    """Scatter a particle's 27 weighted contributions to the grid; lanes of a warp with the same stencil base are
+    summed by warp shuffles first and their lowest lane issues the atomics (every lane of the warp must call)."""
+    ...
+
+
+@wp.kernel
+def p2g_warp(
+    x: wp.array(dtype=wp.vec3),
+    v: wp.array(dtype=wp.vec3),
+    C: wp.array(dtype=wp.mat33),
+    F: wp.array(dtype=wp.mat33),
+    particle_mass: wp.array(dtype=float),
+    particle_vol: wp.array(dtype=float),
+    particle_scene: wp.array(dtype=wp.int32),
+    scene_start: wp.array(dtype=wp.int32),
+    scene_mu: wp.array(dtype=float),
+    scene_lambda: wp.array(dtype=float),
+    grid_origin: wp.array(dtype=wp.vec3i),
+    nx: int,
+    ny: int,
+    nz: int,
+    dx: float,
+    dt_arr: wp.array(dtype=float),
+    clock_step: wp.array(dtype=wp.int32),
+    grid_mvm: wp.array(dtype=wp.vec4),
+    fail_step: wp.array(dtype=wp.int32),
+    fail_particle: wp.array(dtype=wp.int32),
+    nparts: int,
+    n_items: int,
+):
+    """Particle to grid (as ``kernels.p2g_apic_neohookean``) with warp-aggregated atomics; nparts (1, 3 or 9)
+    consecutive threads share a particle, each scattering its part of the stencil (more threads at small sizes)."""
+    t = wp.tid()
+    pt = t // nparts
+    part = t - pt * nparts
+    p = wp.min(pt, n_items - 1)
+    ok = pt < n_items
+    xp = x[p]
+    vp = v[p]
+    Fp = F[p]
+    Cp = C[p]
+    if not K.is_finite(K.state_sum(xp, vp, Fp, Cp)):
+        ok = False  # gated (never written to the grid); g2p reports it
+    s = particle_scene[p]
+    inv_dx = 1.0 / dx
+    o = grid_origin[s]
+    local = xp * inv_dx - wp.vec3(float(o[0]), float(o[1]), float(o[2]))
+    bx = int(0)
+    by = int(0)
+    bz = int(0)
+    if ok:
+        bx = int(wp.floor(local[0] - 0.5))
+        by = int(wp.floor(local[1] - 0.5))
+        bz = int(wp.floor(local[2] - 0.5))
+        if bx < 0 or by < 0 or bz < 0 or bx > nx - 3 or by > ny - 3 or bz > nz - 3:
+            if part == 0:
+                K.flag_failure(fail_step, fail_particle, s, K.FLAG_OUT_OF_GRID, clock_step[0] + 1, p - scene_start[s])
+            ok = False
+    fx = local - wp.vec3(float(bx), float(by), float(bz))
+    wx = K.quadratic_weights(fx[0])
+    wy = K.quadratic_weights(fx[1])
+    wz = K.quadratic_weights(fx[2])
+    dt = dt_arr[0]
+    J = wp.determinant(Fp)
+    mu = scene_mu[s]
+    lam = scene_lambda[s]
+    # Kirchhoff stress tau = mu (F F^T - I) + lambda ln(J) I  (neo-Hookean)
+    tau = mu * (Fp * wp.transpose(Fp) - wp.identity(n=3, dtype=float)) + lam * wp.log(
+        wp.max(J, 1.0e-6)
+    ) * wp.identity(n=3, dtype=float)
+    m = particle_mass[p]
+    affine = (-dt * particle_vol[p] * 4.0 * inv_dx * inv_dx) * tau + m * Cp
+    # momentum at node offset (i,j,k): w * (m v + A (ijk - fx) dx) = w * (q0 + i a0 + j a1 + k a2)
+    q0v = m * vp - affine * (fx * dx)
+    q0 = wp.vec4(q0v[0], q0v[1], q0v[2], m)
+    a0 = wp.vec4(affine[0, 0] * dx, affine[1, 0] * dx, affine[2, 0] * dx, 0.0)
+    a1 = wp.vec4(affine[0, 1] * dx, affine[1, 1] * dx, affine[2, 1] * dx, 0.0)
+    a2 = wp.vec4(affine[0, 2] * dx, affine[1, 2] * dx, affine[2, 2] * dx, 0.0)
+    nyz = ny * nz
+    base = s * nx * nyz + bx * nyz + by * nz + bz
+    ok_i = int(0)
+    if ok:
+        ok_i = 1
+    scatter_stencil_warp(ok_i, base, part, nparts, nyz, nz, q0, a0, a1, a2, wx, wy, wz, grid_mvm)
+
+
+@wp.kernel
+def reduce_scene_stats_block(
+    x: wp.array(dtype=wp.vec3),
+    v: wp.array(dtype=wp.vec3),
+    particle_mass: wp.array(dtype=float),
+    chunk_scene: wp.array(dtype=wp.int32),
+    chunk_begin: wp.array(dtype=wp.int32),
+    chunk_end: wp.array(dtype=wp.int32),
+    domain_lo: wp.array(dtype=wp.vec3),
+    domain_hi: wp.array(dtype=wp.vec3),
+    part_lo: wp.array(dtype=wp.vec3),
+    part_hi: wp.array(dtype=wp.vec3),
+    part_v2: wp.array(dtype=float),
+    part_ke: wp.array(dtype=float),
+    block: int,
+):
+    """``kernels.reduce_scene_stats`` per chunk, one chunk per thread block (block = the launch's block size):
+    bounds [m] of the finite in-domain particles, max squared speed, kinetic energy [J] into the chunk's partials."""
+    t = wp.tid()
+    c = t // block
+    lane = t - c * block
+    s = chunk_scene[c]
+    lo = wp.vec3(K.BIG, K.BIG, K.BIG)
+    hi = wp.vec3(-K.BIG, -K.BIG, -K.BIG)
+    vm = float(0.0)
+    ke = float(0.0)
+    dlo = domain_lo[s]
+    dhi = domain_hi[s]
+    for p in range(chunk_begin[c] + lane, chunk_end[c], block):
+        xp = x[p]
+        vp = v[p]
+        v2 = wp.dot(vp, vp)
+        if K.is_finite((xp[0] + xp[1]) + (xp[2] + v2)):
+            ke += 0.5 * particle_mass[p] * v2
+            vm = wp.max(vm, v2)
+            inside = xp[0] >= dlo[0] and xp[1] >= dlo[1] and xp[2] >= dlo[2]
+            inside = inside and xp[0] <= dhi[0] and xp[1] <= dhi[1] and xp[2] <= dhi[2]
+            if inside:
+                lo = wp.min(lo, xp)
+                hi = wp.max(hi, xp)
+        else:
+            ke += K.BIG
+    lo = wp.vec3(block_min_float(lo[0]), block_min_float(lo[1]), block_min_float(lo[2]))
+    hi = wp.vec3(-block_min_float(-hi[0]), -block_min_float(-hi[1]), -block_min_float(-hi[2]))
+    vm = -block_min_float(-vm)
+    ke = block_sum_float(ke)
+    if lane == 0:
+        part_lo[c] = lo
+        part_hi[c] = hi
+        part_v2[c] = vm
+        part_ke[c] = ke
+
+
+@wp.kernel
+def combine_scene_stats(
+    scene_chunk_begin: wp.array(dtype=wp.int32),
+    part_lo: wp.array(dtype=wp.vec3),
+    part_hi: wp.array(dtype=wp.vec3),
+    part_v2: wp.array(dtype=float),
+    part_ke: wp.array(dtype=float),
+    bmin: wp.array(dtype=wp.vec3),
+    bmax: wp.array(dtype=wp.vec3),
+    speed_max: wp.array(dtype=float),
+    kinetic: wp.array(dtype=float),
+    block: int,
+):
+    """Per scene (one thread block each): combine its chunks' partials into bounds [m], max speed [m/s] and
+    kinetic energy [J] (written, not accumulated: no reset launch and no same-address atomics)."""
+    t = wp.tid()
+    s = t // block
+    lane = t - s * block
+    lo = wp.vec3(K.BIG, K.BIG, K.BIG)
+    hi = wp.vec3(-K.BIG, -K.BIG, -K.BIG)
+    vm = float(0.0)
+    ke = float(0.0)
+    for c in range(scene_chunk_begin[s] + lane, scene_chunk_begin[s + 1], block):
+        lo = wp.min(lo, part_lo[c])
+        hi = wp.max(hi, part_hi[c])
+        vm = wp.max(vm, part_v2[c])
+        ke += part_ke[c]
+    lo = wp.vec3(block_min_float(lo[0]), block_min_float(lo[1]), block_min_float(lo[2]))
+    hi = wp.vec3(-block_min_float(-hi[0]), -block_min_float(-hi[1]), -block_min_float(-hi[2]))
+    vm = -block_min_float(-vm)
+    ke = block_sum_float(ke)
+    if lane == 0:
+        bmin[s] = lo
+        bmax[s] = hi
+        speed_max[s] = wp.sqrt(vm)
+        kinetic[s] = ke
