@@ -21,9 +21,6 @@ for round in 2; do   # a second round of the latency-bound sizes, alternating, t
     done
   done
 done
-# the new path without the graphed health snapshot (its share of the small-size figures)
-DEFORMSMITH_MPM_SNAPSHOT_GRAPH=0 python3 -c 'import sys, flows.cli.mpm_cmds; from flows.cli.apps import app; sys.argv[0] = "deformsmith"; app()' \
-  bench mpm --device cuda --particles 8000 --steps 5000 --json > "$W/new/r2_bench_8000_x1_nosnapgraph.json"
 for mode in old new; do
   fast=1; [ "$mode" = old ] && fast=0
   for args in "8000 1" "8000 16" "1000000 1"; do

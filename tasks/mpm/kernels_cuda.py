@@ -6,9 +6,10 @@ only the order of the float additions differs (it already does on CUDA: global f
   2 particles per cell per axis in a spatially coherent order, pairs of neighbours) add their 27 contributions
   with warp shuffles and one lane issues the 16-byte atomics, so the global atomics (the bound of p2g) drop by
   the group size. Any particle order is correct; coherent orders are faster.
-* ``reduce_scene_stats_block``: the grid re-fit reduction (bounds, max speed, kinetic energy) as a block
-  reduction: each block covers one chunk of one scene, threads stride over the chunk, warp shuffles + shared
-  memory reduce, and one thread per block does the 4 global atomics (instead of one serial loop per thread).
+* ``refit_fused``: the grid re-fit (bounds, max speed, kinetic energy, window fit) in one launch: each block
+  reduces one chunk of one scene (threads stride over it; warp shuffles + shared memory) into the chunk's partials;
+  the last block of each scene to finish combines the scene's partials and fits its window (instead of a reset
+  launch, one serial loop per thread with same-address atomics, and a fit launch).
 
 Launch contract: the launch dimension is a multiple of the block size (threads past ``n_items`` take part in the
 warp/block collectives but write nothing). Never launched on CPU (the CPU path keeps ``kernels.py``, bit for bit;
@@ -257,24 +258,65 @@ def p2g_warp(
     scatter_stencil_warp(ok_i, base, part, nparts, nyz, nz, q0, a0, a1, a2, wx, wy, wz, grid_mvm)
 
 
+@wp.func_native(
+    """
+#if defined(__CUDA_ARCH__)
+    __shared__ int last_block_flag;
+    __syncthreads();  // this block's partials (written by its thread 0) are issued
+    if (threadIdx.x == 0) {
+        __threadfence();  // ... and visible device-wide before the ticket is taken
+        const int ticket = atomicAdd(&counter[s], 1);
+        last_block_flag = (ticket == nblocks - 1) ? 1 : 0;
+        if (last_block_flag) counter[s] = 0;  // every block of the scene has counted: ready for the next launch
+    }
+    __syncthreads();
+    if (last_block_flag) __threadfence();
+    return last_block_flag;
+#else
+    counter[s] = counter[s] + 1;  // CPU (tests only): blocks of one thread run in order
+    if (counter[s] == nblocks) { counter[s] = 0; return 1; }
+    return 0;
+#endif
+"""
+)
+def block_is_last(counter: wp.array(dtype=wp.int32), s: int, nblocks: int) -> int:
+    """1 in the last of a scene's nblocks thread blocks to get here (all its threads), else 0 (every thread of the
+    block must call; the caller's thread 0 has written the block's partials before)."""
+    ...
+
+
 @wp.kernel
-def reduce_scene_stats_block(
+def refit_fused(
     x: wp.array(dtype=wp.vec3),
     v: wp.array(dtype=wp.vec3),
     particle_mass: wp.array(dtype=float),
     chunk_scene: wp.array(dtype=wp.int32),
     chunk_begin: wp.array(dtype=wp.int32),
     chunk_end: wp.array(dtype=wp.int32),
+    scene_chunk_begin: wp.array(dtype=wp.int32),
     domain_lo: wp.array(dtype=wp.vec3),
     domain_hi: wp.array(dtype=wp.vec3),
     part_lo: wp.array(dtype=wp.vec3),
     part_hi: wp.array(dtype=wp.vec3),
     part_v2: wp.array(dtype=float),
     part_ke: wp.array(dtype=float),
+    counter: wp.array(dtype=wp.int32),
+    bmin: wp.array(dtype=wp.vec3),
+    bmax: wp.array(dtype=wp.vec3),
+    speed_max: wp.array(dtype=float),
+    kinetic: wp.array(dtype=float),
+    nx: int,
+    ny: int,
+    nz: int,
+    dx: float,
+    guard_cells: int,
+    grid_origin: wp.array(dtype=wp.vec3i),
+    grid_overflow: wp.array(dtype=wp.int32),
     block: int,
 ):
-    """``kernels.reduce_scene_stats`` per chunk, one chunk per thread block (block = the launch's block size):
-    bounds [m] of the finite in-domain particles, max squared speed, kinetic energy [J] into the chunk's partials."""
+    """The whole grid re-fit in one launch: per chunk (one thread block each, block = the launch's block size) the
+    reduction of ``kernels.reduce_scene_stats`` into the chunk's partials; then the last block of each scene
+    combines the scene's partials into bmin/bmax/speed_max/kinetic and fits its window (as ``kernels.fit_grid``)."""
     t = wp.tid()
     c = t // block
     lane = t - c * block
@@ -308,41 +350,36 @@ def reduce_scene_stats_block(
         part_hi[c] = hi
         part_v2[c] = vm
         part_ke[c] = ke
+    c0 = scene_chunk_begin[s]
+    c1 = scene_chunk_begin[s + 1]
+    if block_is_last(counter, s, c1 - c0) != 0:  # block-uniform
+        lo = wp.vec3(K.BIG, K.BIG, K.BIG)
+        hi = wp.vec3(-K.BIG, -K.BIG, -K.BIG)
+        vm = float(0.0)
+        ke = float(0.0)
+        for cc in range(c0 + lane, c1, block):
+            lo = wp.min(lo, part_lo[cc])
+            hi = wp.max(hi, part_hi[cc])
+            vm = wp.max(vm, part_v2[cc])
+            ke += part_ke[cc]
+        lo = wp.vec3(block_min_float(lo[0]), block_min_float(lo[1]), block_min_float(lo[2]))
+        hi = wp.vec3(-block_min_float(-hi[0]), -block_min_float(-hi[1]), -block_min_float(-hi[2]))
+        vm = -block_min_float(-vm)
+        ke = block_sum_float(ke)
+        if lane == 0:
+            bmin[s] = lo
+            bmax[s] = hi
+            speed_max[s] = wp.sqrt(vm)
+            kinetic[s] = ke
+            # window fit: the arithmetic of kernels.fit_grid (keep in step with it)
+            if lo[0] <= hi[0]:
+                inv_dx = 1.0 / dx
+                cen = 0.5 * (lo + hi) * inv_dx
+                grid_origin[s] = wp.vec3i(
+                    int(wp.floor(cen[0])) - nx // 2, int(wp.floor(cen[1])) - ny // 2, int(wp.floor(cen[2])) - nz // 2
+                )
+                ext = (hi - lo) * inv_dx
+                g = float(2 * guard_cells + 3)
+                if ext[0] + g > float(nx) or ext[1] + g > float(ny) or ext[2] + g > float(nz):
+                    grid_overflow[s] = 1
 
-
-@wp.kernel
-def combine_scene_stats(
-    scene_chunk_begin: wp.array(dtype=wp.int32),
-    part_lo: wp.array(dtype=wp.vec3),
-    part_hi: wp.array(dtype=wp.vec3),
-    part_v2: wp.array(dtype=float),
-    part_ke: wp.array(dtype=float),
-    bmin: wp.array(dtype=wp.vec3),
-    bmax: wp.array(dtype=wp.vec3),
-    speed_max: wp.array(dtype=float),
-    kinetic: wp.array(dtype=float),
-    block: int,
-):
-    """Per scene (one thread block each): combine its chunks' partials into bounds [m], max speed [m/s] and
-    kinetic energy [J] (written, not accumulated: no reset launch and no same-address atomics)."""
-    t = wp.tid()
-    s = t // block
-    lane = t - s * block
-    lo = wp.vec3(K.BIG, K.BIG, K.BIG)
-    hi = wp.vec3(-K.BIG, -K.BIG, -K.BIG)
-    vm = float(0.0)
-    ke = float(0.0)
-    for c in range(scene_chunk_begin[s] + lane, scene_chunk_begin[s + 1], block):
-        lo = wp.min(lo, part_lo[c])
-        hi = wp.max(hi, part_hi[c])
-        vm = wp.max(vm, part_v2[c])
-        ke += part_ke[c]
-    lo = wp.vec3(block_min_float(lo[0]), block_min_float(lo[1]), block_min_float(lo[2]))
-    hi = wp.vec3(-block_min_float(-hi[0]), -block_min_float(-hi[1]), -block_min_float(-hi[2]))
-    vm = -block_min_float(-vm)
-    ke = block_sum_float(ke)
-    if lane == 0:
-        bmin[s] = lo
-        bmax[s] = hi
-        speed_max[s] = wp.sqrt(vm)
-        kinetic[s] = ke

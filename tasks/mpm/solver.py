@@ -16,12 +16,10 @@ from tasks.mpm.state import State
 
 INT_MAX = 2**31 - 1
 
-# CUDA: kernels_cuda.py (warp-aggregated p2g, block reductions for the re-fit), block sizes fitted to the problem
-# size, cached re-fit launches and a graphed health snapshot. DEFORMSMITH_MPM_CUDA_FAST=0 selects the plain
+# CUDA: kernels_cuda.py (warp-aggregated p2g, the re-fit as one block-reduction launch), block sizes fitted to the
+# problem size, re-fit launches recorded once. DEFORMSMITH_MPM_CUDA_FAST=0 selects the plain
 # one-thread-per-item kernels of kernels.py (the reference path, as before). The CPU path never changes.
 CUDA_FAST = os.environ.get("DEFORMSMITH_MPM_CUDA_FAST", "1") != "0"
-# fast CUDA path: a health check (re-fit + readback) replays one captured graph instead of ~10 host calls
-SNAPSHOT_GRAPH = os.environ.get("DEFORMSMITH_MPM_SNAPSHOT_GRAPH", "1") != "0"
 
 
 def cuda_block_dim(n_threads: int) -> int:
@@ -57,7 +55,6 @@ class Solver:
         self._blocks: OrderedDict[tuple, tuple] = OrderedDict()
         self._host_bufs: dict[str, wp.array] = {}  # pinned host mirrors for one-sync readbacks (CUDA)
         self._refit_cmds: dict[tuple, tuple] = {}  # fast CUDA path: recorded re-fit launches per state
-        self._snap_graphs: dict[tuple, tuple] = {}  # fast CUDA path: health snapshot graphs per state
         # CPU: one "thread" loops over a block of items (amortises Warp's per-thread argument copy); GPU: one each
         self._per_thread = 1 if d == "cuda" else 2048
         self.dt_arr = wp.zeros(1, dtype=float, device=d)
@@ -122,6 +119,7 @@ class Solver:
         self.cuda_part_hi = wp.zeros(nc, dtype=wp.vec3, device=d)
         self.cuda_part_v2 = wp.zeros(nc, dtype=float, device=d)
         self.cuda_part_ke = wp.zeros(nc, dtype=float, device=d)
+        self.cuda_refit_counter = wp.zeros(m.n_scenes, dtype=wp.int32, device=d)  # blocks done per scene
 
     # -- grid ----------------------------------------------------------------------------------------------------
     def _alloc_grid(self, dims: tuple[int, int, int]) -> None:
@@ -133,7 +131,6 @@ class Solver:
         self._graphs.clear()
         self._blocks.clear()
         self._refit_cmds.clear()
-        self._snap_graphs.clear()
         self._since_refit = self.model.refit_interval  # refit at the next step
 
     def grow_grid(self, needed_extent_cells: np.ndarray) -> None:
@@ -279,27 +276,23 @@ class Solver:
         d = self.device
         B = m.n_scenes
         cmds = []
+        nx, ny, nz = self.grid_dims
         if self.fast_cuda:
-            # chunk partials (one block each), then one block per scene combines them (no reset, no atomics)
+            # one launch: chunk partials (one block each); the last block of each scene combines them (no reset,
+            # no same-address atomics) and fits the scene's window
             cmds.append(wp.launch(
-                KC.reduce_scene_stats_block,
+                KC.refit_fused,
                 dim=self.cuda_n_chunks * self.red_block,
                 inputs=[state.x, state.v, m.particle_mass, self.cuda_chunk_scene, self.cuda_chunk_begin,
-                        self.cuda_chunk_end, m.domain_lo, m.domain_hi, self.cuda_part_lo, self.cuda_part_hi,
-                        self.cuda_part_v2, self.cuda_part_ke, self.red_block],
+                        self.cuda_chunk_end, self.cuda_scene_chunk_begin, m.domain_lo, m.domain_hi,
+                        self.cuda_part_lo, self.cuda_part_hi, self.cuda_part_v2, self.cuda_part_ke,
+                        self.cuda_refit_counter, self.bmin, self.bmax, self.speed_max, self.kinetic, nx, ny, nz,
+                        m.dx, m.guard_cells, self.grid_origin, self.grid_overflow, self.red_block],
                 device=d,
                 record_cmd=True,
                 block_dim=self.red_block,
             ))
-            cmds.append(wp.launch(
-                KC.combine_scene_stats,
-                dim=B * 128,
-                inputs=[self.cuda_scene_chunk_begin, self.cuda_part_lo, self.cuda_part_hi, self.cuda_part_v2,
-                        self.cuda_part_ke, self.bmin, self.bmax, self.speed_max, self.kinetic, 128],
-                device=d,
-                record_cmd=True,
-                block_dim=128,
-            ))
+            return cmds
         else:
             cmds.append(wp.launch(K.reset_scene_stats, dim=B,
                                   inputs=[self.bmin, self.bmax, self.speed_max, self.kinetic], device=d,
@@ -312,7 +305,6 @@ class Solver:
                 device=d,
                 record_cmd=True,
             ))
-        nx, ny, nz = self.grid_dims
         cmds.append(wp.launch(
             K.fit_grid,
             dim=B,
@@ -446,39 +438,11 @@ class Solver:
                 "bmax": self.bmax, "speed_max": self.speed_max, "kinetic": self.kinetic,
                 "overflow": self.grid_overflow}
 
-    def _snapshot_graphed(self, state: State) -> dict[str, np.ndarray] | None:
-        """Fast CUDA path: the re-fit launches and the 7 device-to-pinned-host copies of a health check as one
-        CUDA graph (captured once per state and grid size), then one sync. None if the capture fails."""
-        key = (id(state), self.grid_dims)
-        entry = self._snap_graphs.get(key)
-        if entry is None:
-            arrays = self._snapshot_arrays()
-            bufs = {k: wp.empty(a.shape, dtype=a.dtype, device="cpu", pinned=True) for k, a in arrays.items()}
-            cmds = self._record_refit(state)
-            try:
-                with wp.ScopedCapture(device=self.device, force_module_load=False) as cap:
-                    for cmd in cmds:
-                        cmd.launch()
-                    for k, a in arrays.items():
-                        wp.copy(bufs[k], a)
-            except Exception:  # noqa: BLE001 - fall back to plain launches and copies
-                self._snap_graphs[key] = (None, None, None, state)
-                return None
-            entry = (cap.graph, bufs, cmds, state)  # keep the buffers and arrays alive while cached
-            self._snap_graphs[key] = entry
-        if entry[0] is None:
-            return None
-        wp.capture_launch(entry[0])
-        wp.synchronize_device(self.device)
-        return {k: b.numpy().copy() for k, b in entry[1].items()}
-
     def health_snapshot(self, state: State) -> tuple[np.ndarray, np.ndarray, dict[str, np.ndarray]]:
         """read_failures() and scene_stats(state) together, with one host sync."""
-        r = self._snapshot_graphed(state) if (self.fast_cuda and self.use_graph and SNAPSHOT_GRAPH) else None
-        if r is None:
-            self._launch_refit(state)
-            r = self._read(self._snapshot_arrays())
+        self._launch_refit(state)
         self._since_refit = 0
+        r = self._read(self._snapshot_arrays())
         B = self.model.n_scenes
         stats = {k: r[k].astype(np.float64) for k in ("bmin", "bmax", "speed_max", "kinetic")}
         stats["overflow"] = r["overflow"]

@@ -68,16 +68,19 @@ def test_fast_cuda_path_matches_reference_and_cpu(shuffle: bool, monkeypatch) ->
 
 
 def test_fast_cuda_refit_stats_match_reference(monkeypatch) -> None:
-    """Block reduction of the re-fit on one state: bounds and max speed exact, kinetic energy to float rounding."""
+    """Fused re-fit on one state: bounds, max speed and window exact, kinetic energy to float rounding."""
     _need_cuda()
     monkeypatch.setattr(solver_mod, "CUDA_FAST", True)
     sim = Simulator(build_model(_scenes(True), SimConfig(device="cuda", dt_fixed_s=1e-4)))
     sim.advance(0.005)
     stats = []
     for fast in (False, True):
-        sim.solver.fast_cuda = fast  # the re-fit launches are recorded per call
-        stats.append(sim.solver.scene_stats(sim.state))
-    for k in ("bmin", "bmax", "speed_max"):
+        sim.solver.fast_cuda = fast  # the plain path records its re-fit launches per call
+        sim.solver.grid_origin.zero_()
+        st = sim.solver.scene_stats(sim.state)
+        st["origin"] = sim.solver.grid_origin.numpy()
+        stats.append(st)
+    for k in ("bmin", "bmax", "speed_max", "origin", "overflow"):
         np.testing.assert_array_equal(stats[0][k], stats[1][k])
     np.testing.assert_allclose(stats[0]["kinetic"], stats[1]["kinetic"], rtol=1e-5)
 
