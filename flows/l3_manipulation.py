@@ -30,7 +30,7 @@ from contracts.probes import ProbeResult, ProbeSpec
 from contracts.robot import ActionPlan, GraspCandidate
 from contracts.stage import StageContract, load_contract
 from flows.harness import probe_cache_key, run_harness
-from tasks.manipulation.body import TrialBody, trial_body
+from tasks.manipulation.body import TrialBody, auto_trial_spacing, trial_body
 from tasks.publish import write_json_atomic
 from tasks.manipulation.data import write_attempt
 from tasks.manipulation.outcome import TrialTolerances
@@ -47,7 +47,9 @@ class L3Options:
     """How L3 runs: trial numerics, the draft action timing, the first squeeze, place target and held-out conditions."""
 
     quality: str = "draft"
-    particle_spacing_m: float = 0.0025     # trial lattice (grip force needs a grid of <= ~5 mm = 2 x spacing)
+    # trial lattice; None = auto: a grid of at most half the Panda pad's 17 mm face (spacing <= 4 mm) and at least
+    # 12 particles across the object's smallest extent (tasks.manipulation.body.auto_trial_spacing)
+    particle_spacing_m: float | None = None
     settings: TrialSettings = field(default_factory=TrialSettings)
     squeeze_fraction: float = 0.12         # first squeeze depth per finger as a fraction of the grasp width
     squeeze_depth_m: float | None = None   # overrides the fraction
@@ -194,7 +196,8 @@ def load_context(asset_dir: Path, options: L3Options, contract: StageContract,
     source = "given"
     if material is None:
         material, source = material_of(asset_dir, asset)
-    body = trial_body(asset.mesh, asset.particles_m, asset.spacing_m, asset.gaussians, options.particle_spacing_m)
+    spacing = options.particle_spacing_m or auto_trial_spacing(asset.mesh.extents, options.quality)
+    body = trial_body(asset.mesh, asset.particles_m, asset.spacing_m, asset.gaussians, spacing)
     sel = select_grasps(body.surface_points_m, body.surface_normals, np.asarray(physical.center_of_mass_m),
                         friction=physical.gripper_friction)
     if not sel.ok:

@@ -38,6 +38,13 @@ class TrialBody:
         return float(np.sum(self.volumes_m3))
 
 
+def auto_trial_spacing(extents_m: np.ndarray, quality: str = "draft") -> float:
+    """Trial particle spacing [m]: a grid (dx = 2 x spacing) of at most half the Panda pad's 17 mm face, so the pad
+    covers >= 2 x 2 nodes, and >= 12 particles across the smallest extent; standard quality halves the cap."""
+    cap = 0.004 if quality == "draft" else 0.002
+    return float(min(cap, float(np.min(extents_m)) / 12.0))
+
+
 def lattice_inside(mesh: trimesh.Trimesh, spacing_m: float) -> np.ndarray:
     """Lattice points [m] at ``spacing_m`` inside a watertight mesh (winding-number raster: memory grows with the
     lattice, not with lattice x triangles as trimesh's ray test does; 1e5 points in a 50k-face mesh stay small)."""

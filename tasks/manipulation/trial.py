@@ -24,6 +24,8 @@ from tasks.manipulation.body import TrialBody
 from tasks.manipulation.outcome import TrialTolerances, label_trial
 from tasks.robot import PHASES, ObjectPose, Trajectory, plan_trajectory
 
+PAD_FACES = ("-y", "+y")  # gripping face of the left and right pad boxes in the finger links' axes
+
 
 @dataclass(frozen=True)
 class TrialSettings:
@@ -77,7 +79,7 @@ def run_trial(body: TrialBody, physical: PhysicalModel, material: Material, plan
               trajectory: Trajectory | None = None) -> TrialResult:
     """Simulate the plan with the object; return labels, metrics and the recording (raises SimulationError only
     when the plan itself cannot be made: unreachable poses)."""
-    from tasks.mpm import Simulator, box_collider, build_model
+    from tasks.mpm import Simulator, build_model, pad_collider
     from tasks.mpm.model import SceneSpec
 
     s = settings or TrialSettings()
@@ -95,8 +97,11 @@ def run_trial(body: TrialBody, physical: PhysicalModel, material: Material, plan
 
     first = traj.pad_motion(t_start, t_start + dt_c)
     mu_g = physical.gripper_friction
-    colliders = [box_collider(traj.pad_half_extents_m, friction=mu_g, position_m=tuple(first.position_m[0, k]),
-                              rotation_xyzw=tuple(first.quat_xyzw[0, k]), name=f"finger_{k}") for k in range(2)]
+    # the pad boxes grow outward from the gripping faces: the left finger's face is its box's -y face, the right's
+    # (the same link axes, mirrored) its +y face
+    colliders = [pad_collider(traj.pad_half_extents_m, face, friction=mu_g, position_m=tuple(first.position_m[0, k]),
+                              rotation_xyzw=tuple(first.quat_xyzw[0, k]), name=f"finger_{k}")
+                 for k, face in enumerate(PAD_FACES)]
     scene = SceneSpec(positions_m=x0, volumes_m3=body.volumes_m3, density_kg_per_m3=physical.density_kg_per_m3,
                       material=material, colliders=colliders, ground=True, ground_friction=physical.ground_friction,
                       gravity_m_per_s2=physical.gravity_m_per_s2)

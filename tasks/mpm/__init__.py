@@ -3,7 +3,7 @@
 Physics: Kirchhoff stress tau = mu (F F^T - I) + lambda ln(J) I; damping as a rate (v *= exp(-rate dt)); gravity per
 scene; adaptive dt = min(dt_max, C dx / (c_p + |v|max + collider speed)) or SimConfig.dt_fixed_s; a dense grid
 window per scene fitted to the particles (bounds + margin), re-centred on the device every few steps and enlarged
-when the body outgrows it. Contact on grid nodes (ground plane + kinematic box / capsule / half-space colliders):
+when the body outgrows it. Contact on grid nodes (ground plane + kinematic box / capsule / half-space / finger-pad colliders):
 for u = v - v_b with u_n < 0, v+ = v_b + max(0, 1 - mu (-u_n)/max(|u_t|, eps)) u_t; separation allowed; residual
 penetration of particles corrected after grid-to-particle. ``bonded=True`` colliders clamp (v = v_b inside).
 
@@ -55,6 +55,7 @@ from tasks.mpm.model import (
     build_model,
     capsule_collider,
     halfspace_collider,
+    pad_collider,
 )
 from tasks.mpm.simulator import IntervalReport, Simulator, advance_parallel
 from tasks.mpm.solver import Solver
@@ -76,4 +77,5 @@ __all__ = [
     "build_model",
     "capsule_collider",
     "halfspace_collider",
+    "pad_collider",
 ]

@@ -23,6 +23,7 @@ N_FLAGS = 4
 COLLIDER_BOX = wp.constant(0)
 COLLIDER_CAPSULE = wp.constant(1)
 COLLIDER_HALFSPACE = wp.constant(2)
+COLLIDER_PAD = wp.constant(3)  # 3 + 2 axis + (0: gripping face at -axis, 1: at +axis); a box otherwise
 
 EPS_V = wp.constant(1.0e-7)  # [m/s] smallest tangential speed in the friction law (avoids 0/0)
 BIG = wp.constant(1.0e30)
@@ -104,7 +105,7 @@ def contact_velocity(v: wp.vec3, vb: wp.vec3, n: wp.vec3, mu: float, bonded: int
 @wp.func
 def collider_sdf(kind: int, params: wp.vec3, p_local: wp.vec3) -> wp.vec4:
     """Signed distance [m] (w) and outward unit normal (xyz, local frame) of a collider at a local point."""
-    if kind == COLLIDER_BOX:
+    if kind == COLLIDER_BOX or kind >= COLLIDER_PAD:
         q = wp.vec3(wp.abs(p_local[0]), wp.abs(p_local[1]), wp.abs(p_local[2])) - params
         qmax = wp.max(q[0], wp.max(q[1], q[2]))
         if qmax > 0.0:
@@ -112,6 +113,14 @@ def collider_sdf(kind: int, params: wp.vec3, p_local: wp.vec3) -> wp.vec4:
             dist = wp.length(qo)
             nb = wp.vec3(wp.sign(p_local[0]) * qo[0], wp.sign(p_local[1]) * qo[1], wp.sign(p_local[2]) * qo[2]) / dist
             return wp.vec4(nb[0], nb[1], nb[2], dist)
+        if kind >= COLLIDER_PAD:
+            # a finger pad: inside, the material leaves through the gripping face only (a node near the pad's rim
+            # would otherwise take a side face's normal and let the material flow into the pad unresisted)
+            a = (kind - COLLIDER_PAD) // 2
+            sgn = float(2 * ((kind - COLLIDER_PAD) % 2) - 1)
+            nrm = wp.vec3(0.0, 0.0, 0.0)
+            nrm[a] = sgn
+            return wp.vec4(nrm[0], nrm[1], nrm[2], -(params[a] - sgn * p_local[a]))
         # inside: leave through the nearest face
         if q[0] >= q[1] and q[0] >= q[2]:
             return wp.vec4(wp.sign(p_local[0]), 0.0, 0.0, qmax)

@@ -17,8 +17,20 @@ if TYPE_CHECKING:
     from tasks.mpm.control import Control
     from tasks.mpm.state import State
 
-ColliderKind = Literal["box", "capsule", "halfspace"]
+ColliderKind = Literal["box", "capsule", "halfspace", "pad"]
 _KIND_CODE = {"box": 0, "capsule": 1, "halfspace": 2}
+PAD_FACES = ("-x", "+x", "-y", "+y", "-z", "+z")  # kernel code of a pad = 3 + index here
+
+
+def kind_code(c: "ColliderSpec") -> int:
+    """The kernels' code of a collider kind (a pad's code also names its gripping face)."""
+    if c.kind == "pad":
+        if c.face not in PAD_FACES:
+            raise InputError(f"collider {c.name or 'pad'}: face must be one of {PAD_FACES}, got {c.face!r}")
+        return 3 + PAD_FACES.index(c.face)
+    if c.kind not in _KIND_CODE:
+        raise InputError(f"unknown collider kind {c.kind!r}")
+    return _KIND_CODE[c.kind]
 
 
 @dataclass
@@ -26,7 +38,11 @@ class ColliderSpec:
     """A kinematic collider: its shape in its local frame, friction, and initial pose and velocity (SI).
 
     kind: "box" (size = half extents [m]), "capsule" (size = (radius [m], half length [m] along local z, 0)),
-    "halfspace" (solid below the local z = 0 plane; size unused). rotation_xyzw is a unit quaternion (x, y, z, w).
+    "halfspace" (solid below the local z = 0 plane; size unused), "pad" (a box, size = half extents [m], that grips
+    through one face, ``face`` in local axes such as "-y": a node or particle inside it leaves through that face, as
+    material squeezed by a finger does; a plain box sends it to the nearest face, which for a pad only a few grid
+    cells wide is often a side face, and the squeezed material then flows into the pad unresisted).
+    rotation_xyzw is a unit quaternion (x, y, z, w).
     bonded = True glues the object to the collider (v = collider velocity inside it, no separation: clamps).
     """
 
@@ -39,11 +55,18 @@ class ColliderSpec:
     linear_velocity_m_per_s: tuple[float, float, float] = (0.0, 0.0, 0.0)
     angular_velocity_rad_per_s: tuple[float, float, float] = (0.0, 0.0, 0.0)
     name: str = ""
+    face: str = ""  # pads only: the gripping face, one of PAD_FACES
 
 
 def box_collider(half_extents_m: Sequence[float], **kw: object) -> ColliderSpec:
     """A box collider with half extents [m] (see ColliderSpec for the keyword fields)."""
     return ColliderSpec(kind="box", size_m=tuple(float(h) for h in half_extents_m), **kw)  # type: ignore[arg-type]
+
+
+def pad_collider(half_extents_m: Sequence[float], face: str, **kw: object) -> ColliderSpec:
+    """A finger pad: a box with half extents [m] that grips through ``face`` ("-x" ... "+z", local axes)."""
+    return ColliderSpec(kind="pad", size_m=tuple(float(h) for h in half_extents_m), face=face,  # type: ignore[arg-type]
+                        **kw)
 
 
 def capsule_collider(radius_m: float, half_length_m: float, **kw: object) -> ColliderSpec:
@@ -76,7 +99,7 @@ class SceneSpec:
 
 def _bounding_radius(c: ColliderSpec) -> float:
     """Radius [m] of a sphere around the collider origin that contains its solid (inf for a half-space)."""
-    if c.kind == "box":
+    if c.kind in ("box", "pad"):
         return float(np.linalg.norm(c.size_m))
     if c.kind == "capsule":
         return float(c.size_m[0] + c.size_m[1])
@@ -207,8 +230,7 @@ class Model:
             col_start.append(len(specs))
             col_count.append(len(s.colliders))
             for c in s.colliders:
-                if c.kind not in _KIND_CODE:
-                    raise InputError(f"unknown collider kind {c.kind!r}")
+                kind_code(c)  # raises on an unknown kind or pad face
                 if c.friction < 0 or not math.isfinite(c.friction):
                     raise InputError("collider friction must be >= 0")
                 specs.append(c)
@@ -216,7 +238,7 @@ class Model:
         self.n_colliders = len(specs)
         self.col_start_np = np.asarray(col_start, dtype=np.int32)
         self.col_count_np = np.asarray(col_count, dtype=np.int32)
-        self.col_kind_np = np.asarray([_KIND_CODE[c.kind] for c in specs], dtype=np.int32)
+        self.col_kind_np = np.asarray([kind_code(c) for c in specs], dtype=np.int32)
         self.col_params_np = np.asarray([c.size_m for c in specs], dtype=np.float32).reshape(-1, 3)
         self.col_mu_np = np.asarray([c.friction for c in specs], dtype=np.float32)
         self.col_radius2_np = np.asarray([_bounding_radius(c) ** 2 for c in specs], dtype=np.float32)

@@ -19,6 +19,8 @@ EDGE_M = 0.03
 SPACING_M = 0.0025
 RHO = 300.0
 FIRM = Material(youngs_modulus_pa=1e5, poisson_ratio=0.3, damping_rate_per_s=5.0)
+GEL = Material(youngs_modulus_pa=1e4, poisson_ratio=0.3, damping_rate_per_s=5.0)
+GEL_RHO = 1000.0
 TOL = TrialTolerances(lift_height_m=0.05)
 
 
@@ -59,5 +61,9 @@ def firm_trial(cube: Cube) -> TrialResult:
 
 @pytest.fixture(scope="session")
 def weak_trial(cube: Cube) -> TrialResult:
-    """A 1 mm squeeze per finger: too weak to carry the cube through the transport."""
-    return run_trial(cube.body, cube.physical, FIRM, cube.plan(0.001), tolerances=TOL)
+    """A 1 mm squeeze per finger on a soft, dense gel cube (E 10 kPa, 1000 kg/m^3): 2 mu N < m g, so it slips.
+
+    (On the firm foam cube a 1 mm squeeze already holds: ~1.8 N per finger against a 0.08 N weight.)"""
+    gel = cube.physical.model_copy(update={"density_kg_per_m3": GEL_RHO, "mass_kg": GEL_RHO * cube.body.volume_m3,
+                                           "category": "gel"})
+    return run_trial(cube.body, gel, GEL, Cube(cube.body, gel).plan(0.001), tolerances=TOL)

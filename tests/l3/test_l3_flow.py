@@ -11,6 +11,8 @@ from pathlib import Path
 import pytest
 
 from cache import CacheStore
+from contracts.material import Material
+from contracts.physical import PhysicalModel
 from contracts.stage import load_contract
 from flows.l3_manipulation import L3Options, run_l3
 
@@ -77,10 +79,21 @@ def test_cli_rejects_a_directory_without_an_asset(tmp_path: Path) -> None:
         assert r.returncode != 0 and "error:" in r.stderr
 
 
+def _as_gel(asset: Path) -> Material:
+    """Make the cube a soft, dense gel (E 10 kPa, 1000 kg/m^3): a 1 mm squeeze cannot carry it (2 mu N < m g)."""
+    phys_path = asset / "physical.json"
+    phys = PhysicalModel(**json.loads(phys_path.read_text())["physical_model"])
+    phys = phys.model_copy(update={"density_kg_per_m3": 1000.0, "mass_kg": 1000.0 * phys.volume_m3,
+                                   "category": "gel"})
+    phys_path.write_text(json.dumps({"physical_model": phys.model_dump(mode="json")}))
+    return Material(youngs_modulus_pa=1e4, poisson_ratio=0.3, damping_rate_per_s=5.0)
+
+
 @pytest.mark.slow
 def test_weak_squeeze_is_revised_then_held_out_and_cached(cube_asset: Path, prefect_api: str,
                                                           cache_dir: Path) -> None:
-    record, outcome = run_l3(cube_asset, L3Options(squeeze_depth_m=0.001), contract=_contract())
+    gel = _as_gel(cube_asset)
+    record, outcome = run_l3(cube_asset, L3Options(squeeze_depth_m=0.001), contract=_contract(), material=gel)
     first = record["attempts"][0]
     assert first["labels"]["slipped"] == 1 and first["values"]["squeeze_depth_m"] == pytest.approx(0.001)
     assert record["passed"] and record["values"]["squeeze_depth_m"] > 0.001
@@ -90,7 +103,7 @@ def test_weak_squeeze_is_revised_then_held_out_and_cached(cube_asset: Path, pref
     store = CacheStore(cache_dir)
     misses = len([e for e in store.events() if e["outcome"] == "miss"])
     shutil.rmtree(cube_asset / "interaction")
-    run_l3(cube_asset, L3Options(squeeze_depth_m=0.001), contract=_contract(), recordings=False)
+    run_l3(cube_asset, L3Options(squeeze_depth_m=0.001), contract=_contract(), recordings=False, material=gel)
     assert len([e for e in store.events() if e["outcome"] == "miss"]) == misses  # nothing re-executed
     r = subprocess.run([sys.executable, "-m", "flows.cli.main", "replay", str(cube_asset), "--attempt", "0",
                         "--json"], capture_output=True, text=True)
