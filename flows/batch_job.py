@@ -29,6 +29,14 @@ def generate_job(request: AssetRequest, out_dir: Path, device: str) -> dict[str,
     return {"asset_dir": str(out_dir), "stages": [s.stage for s in manifest.validation]}
 
 
+def generate_job_without_l3(request: AssetRequest, out_dir: Path, device: str) -> dict[str, Any]:
+    """`generate_asset` through L2 only (no robot validation): `deformsmith batch --no-l3`."""
+    from flows.generate import generate_asset
+
+    manifest = generate_asset(request, out_dir, device=device, manipulate=False)  # type: ignore[arg-type]
+    return {"asset_dir": str(out_dir), "stages": [s.stage for s in manifest.validation]}
+
+
 def resolve_job(spec: str) -> Job:
     """'module:function' -> the callable."""
     module, _, attr = spec.partition(":")

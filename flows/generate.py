@@ -56,6 +56,57 @@ def _summary(stage: str, record: dict[str, Any]) -> StageSummary:
                         failed_gates=[str(f) for f in failed])
 
 
+def l3_summary(record: dict[str, Any]) -> StageSummary:
+    """L3's line in the validation summary: trials run (sim calls), the shown attempt's labels, its failed gates."""
+    from contracts.stage import load_contract
+
+    trials = [a for a in record.get("attempts", []) if a.get("labels") and not a["labels"].get("plan_failed")]
+    labels = record.get("labels") or (trials[-1]["labels"] if trials else {})
+    metrics = {k: float(v) for k, v in labels.items() if isinstance(v, (int, float))}
+    failed = [] if record.get("passed") else [g.name for g in load_contract("L3").hard_gates
+                                               if not g.passes(metrics.get(g.metric))]
+    return StageSummary(stage="L3", passed=bool(record.get("passed")), attempts=len(record.get("attempts", [])),
+                        sim_calls=len(trials), metrics=metrics, failed_gates=failed)
+
+
+def shown_attempt(record: dict[str, Any]) -> int | None:
+    """The attempt the pick-and-place video shows: the accepted one, else the last trial that ran."""
+    if record.get("attempt") is not None:
+        return int(record["attempt"])
+    runs = [a["attempt"] for a in record.get("attempts", []) if a.get("attempt") is not None]
+    return int(runs[-1]) if runs else None
+
+
+def manipulation_outcome(labels: dict[str, float]) -> Any:
+    """The manifest's ManipulationOutcome from a trial's labels (None when no trial ran)."""
+    from contracts.robot import ManipulationOutcome
+
+    if not labels or labels.get("plan_failed"):
+        return None
+    return ManipulationOutcome(
+        lifted=bool(labels["lifted"]), transported=bool(labels["transported"]),
+        released_in_target=bool(labels["released_in_target"]), settled=bool(labels["settled"]),
+        slipped=bool(labels["slipped"]), force_budget_violated=bool(labels["force_budget_violated"]),
+        numerically_healthy=bool(labels["numerically_healthy"]), max_strain=float(labels["max_strain"]),
+        max_finger_force_n=(float(labels["max_finger_force_0_n"]), float(labels["max_finger_force_1_n"])),
+        slip_distance_m=float(labels["slip_distance_m"]), place_error_m=float(labels["place_error_m"]))
+
+
+def run_manipulation(work: Path, device: Device, quality: str, agents: AgentConfig | None) -> dict[str, Any]:
+    """L3 on the working directory and the pick-and-place video of the shown attempt; the manipulation record."""
+    from flows.l3_manipulation import L3Options, run_l3
+    from tasks.manipulation.replay import replay
+
+    options = L3Options(device=device) if quality == "draft" else L3Options.standard(device)
+    record, _ = run_l3(work, options, agents)
+    n = shown_attempt(record)
+    if n is not None:
+        video = work / "renders" / "pick_and_place.mp4"
+        video.parent.mkdir(parents=True, exist_ok=True)
+        replay(work, n, video=video)
+    return record
+
+
 def _read(path: Path) -> dict[str, Any]:
     return json.loads(path.read_text(encoding="utf-8"))
 
@@ -67,7 +118,8 @@ def _files(work: Path) -> dict[str, str]:
              "interaction": "interaction", "geometry_record": "geometry.json", "physical_record": "physical.json",
              "material_record": "material.json", "manipulation_record": "manipulation.json",
              "physgaussian_config": "export/physgaussian_config.json",
-             "drop_video_front": "renders/drop_front.mp4", "drop_video_side": "renders/drop_side.mp4"}
+             "drop_video_front": "renders/drop_front.mp4", "drop_video_side": "renders/drop_side.mp4",
+             "pick_and_place_video": "renders/pick_and_place.mp4"}
     return {role: rel for role, rel in roles.items() if (work / rel).exists() or role == "manifest"}
 
 
@@ -126,8 +178,12 @@ def _check_out_dir(out_dir: Path) -> None:
 
 
 def generate_asset(request: AssetRequest, out_dir: Path, device: Device = "cpu", agents: AgentConfig | None = None,
-                   on_stage: StageCallback | None = None) -> AssetManifest:
-    """Run every layer for one request and publish the asset directory; StageFailure when a layer says no."""
+                   on_stage: StageCallback | None = None, manipulate: bool = True) -> AssetManifest:
+    """Run every layer for one request and publish the asset directory; StageFailure when L0, L1 or L2 says no.
+
+    L3 (``manipulate``) validates the asset with a robot: its outcome (passed or not, with the failed gates and the
+    labelled attempts) is part of the published asset, since the deformable asset itself was established by L0-L2.
+    """
     from flows.l0_geometry import run_l0, write_l0
     from flows.l1_physical import run_l1
     from flows.l2_material import run_l2
@@ -173,7 +229,20 @@ def generate_asset(request: AssetRequest, out_dir: Path, device: Device = "cpu",
         protocol = render_drop_protocol(work, physical, material, SimConfig(device=device))
         validation = [_summary("L0", _read(work / "geometry.json")), _summary("L1", _read(work / "physical.json")),
                       _summary("L2", _read(work / "material.json"))]
+        plan, outcome = None, None
+        if manipulate:
+            note("L3", "manipulation: Panda pick-and-place in the MPM")
+            from contracts.material import Material
+            from contracts.robot import ActionPlan
+
+            l3 = run_manipulation(work, device, request.quality, agents)
+            validation.append(l3_summary(l3))
+            if l3.get("passed"):
+                material = Material(**l3["material"])  # an L3 material revision was L2-revalidated and confirmed
+                plan = ActionPlan(**l3["plan"])
+            outcome = manipulation_outcome(validation[-1].metrics)
         manifest = AssetManifest(request=request, physical_model=physical, material=material, validation=validation,
+                                 action_plan=plan, manipulation=outcome,
                                  provenance=provenance(device, agents), extra={"drop_protocol": protocol})
         write_physgaussian_export(work, manifest)
         manifest = manifest.model_copy(update={"files": _files(work)})

@@ -31,10 +31,11 @@ def batch(
     timeout_s: float = typer.Option(None, "--timeout-s", help="kill a request that runs longer than this [s]"),
     cache_dir: Path = typer.Option(None, "--cache", help="cache root (shared by every request)"),
     as_json: bool = typer.Option(False, "--json", help="print the report as JSON"),
+    l3: bool = typer.Option(True, "--l3/--no-l3", help="run L3 (robot pick-and-place validation) in every request"),
 ) -> None:
     """Generate many assets; a bad request fails alone; exit 1 if any failed (the report is written anyway)."""
     from cache import use_cache_root
-    from flows.batch import REPORT_JSON, run_batch
+    from flows.batch import DEFAULT_JOB, NO_L3_JOB, REPORT_JSON, run_batch
 
     if concurrency < 1:
         fail(f"--concurrency must be >= 1, got {concurrency}")
@@ -51,7 +52,7 @@ def batch(
 
     with console.status(f"running requests from {requests} ({concurrency} at a time)"):
         report = run_batch(requests, out, concurrency=concurrency, device=device, timeout_s=timeout_s,
-                           on_result=on_result)
+                           on_result=on_result, job=DEFAULT_JOB if l3 else NO_L3_JOB)
     if as_json:
         emit_json(report.model_dump(mode="json"))
     else:

@@ -47,6 +47,7 @@ def generate(
     llm: str = typer.Option(None, "--llm", help="litellm model string for every agent role (default: offline rule backend)"),
     cache_dir: Path = typer.Option(None, "--cache", help="cache root"),
     as_json: bool = typer.Option(False, "--json", help="print the summary as JSON"),
+    l3: bool = typer.Option(True, "--l3/--no-l3", help="run L3 (robot pick-and-place validation) after L2"),
 ) -> None:
     """Text, image or mesh -> a published asset directory: geometry, physical model, tested material, evidence."""
     from cache import use_cache_root
@@ -79,11 +80,13 @@ def generate(
             status.update(f"{stage}: {message}")
             console.log(f"[bold]{stage}[/bold] {message}")
 
-        manifest = generate_asset(request, out, device=device, agents=agents, on_stage=on_stage)  # type: ignore[arg-type]
+        manifest = generate_asset(request, out, device=device, agents=agents, on_stage=on_stage,  # type: ignore[arg-type]
+                                  manipulate=l3)
     if as_json:
         emit_json({"asset_dir": str(out), "validation": [s.model_dump(mode="json") for s in manifest.validation],
                    "material": manifest.material.model_dump(mode="json") if manifest.material else None,
                    "physical_model": manifest.physical_model.model_dump(mode="json") if manifest.physical_model else None,
+                   "manipulation": manifest.manipulation.model_dump(mode="json") if manifest.manipulation else None,
                    "files": manifest.files, "wall_time_s": dict(TIMINGS)})
     else:
         console.print(_summary_table(manifest))

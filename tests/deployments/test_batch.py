@@ -9,7 +9,7 @@ from pathlib import Path
 import pytest
 from typer.testing import CliRunner
 
-from flows.batch import REPORT_JSON, BatchReport, parse_requests, run_batch
+from flows.batch import NO_L3_JOB, REPORT_JSON, BatchReport, parse_requests, run_batch
 
 REPO = Path(__file__).resolve().parents[2]
 QUICK = "tests.deployments.jobs:quick_job"
@@ -65,7 +65,7 @@ def test_batch_generates_two_tiny_assets(tmp_path: Path, cache_dir: Path, prefec
     reqs = _write(tmp_path / "r.jsonl", [
         '{"name": "sponge-a", "text": "a kitchen sponge 10 x 7 x 3 cm", "quality": "draft"}', "{bad",
         '{"name": "sponge-b", "text": "a kitchen sponge 10 x 7 x 3 cm", "quality": "draft"}'])
-    report = run_batch(reqs, tmp_path / "out", concurrency=2)
+    report = run_batch(reqs, tmp_path / "out", concurrency=2, job=NO_L3_JOB)  # L3 of a sponge: minutes per trial
     res = {r.name: r for r in report.results}
     assert res["sponge-a"].status == "ok" and res["sponge-b"].status == "ok", report.results
     assert res["line-2"].status == "failed"
