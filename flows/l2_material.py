@@ -31,11 +31,12 @@ from tasks.agents import targets_from_intent, targets_from_request
 from tasks.geometry.outputs import L0Asset, load_l0
 from tasks.probes import deformable
 from tasks.publish import write_json_atomic
-from tasks.probes.rollout import DeformableBody
+from tasks.probes.rollout import DeformableBody, plan_batches, rollouts
 
-TASK_VERSION = "1"  # bump when tasks/probes/{deformable,rollout,metrics}.py change what the probes return
+TASK_VERSION = "2"  # bump when tasks/probes/{deformable,rollout,metrics}.py change what the probes return
 MATERIAL_JSON = "material.json"
 SELECTION_PROBES = ("compress", "drop", "lift", "stability")
+SCREEN_SCHEDULE = "auto"  # how screening candidates share rollouts (tasks.probes.rollout.plan_batches)
 
 
 # -- cached probe tasks ----------------------------------------------------------------------------------------------
@@ -50,7 +51,8 @@ def _probe(kind: str, positions_m: np.ndarray, volumes_m3: np.ndarray, physical:
     body = DeformableBody.from_physical(positions_m, volumes_m3, physical)
     keys = [content_key("l2", kind, positions_m, volumes_m3, physical, m, params, sim, held_out) for m in materials]
     paths = [_recording_path(kind, k) for k in keys]
-    results = deformable.PROBES[kind](body, materials, sim=sim, record_paths=paths, held_out=held_out, **params)
+    results = deformable.PROBES[kind](body, materials, sim=sim, record_paths=paths, held_out=held_out,
+                                      schedule=SCREEN_SCHEDULE, **params)
     return [r.model_copy(update={"recording": cache_relative(p) if p.is_file() else None}) for r, p in zip(results, paths)]
 
 
@@ -87,7 +89,8 @@ def stability_task(positions_m: np.ndarray, volumes_m3: np.ndarray, physical: Ph
 @cached_task(version=TASK_VERSION, name="l2.screen")
 def screen_task(positions_m: np.ndarray, volumes_m3: np.ndarray, physical: PhysicalModel, kind: str,
                 materials: list[Material], params: dict[str, float], sim: SimConfig) -> list[ProbeResult]:
-    """One batched rollout of several candidate materials (one simulation call for the batch)."""
+    """Several candidate materials of one probe, scheduled by SCREEN_SCHEDULE (equal-time-step candidates batched in one
+    rollout, the others one after another); screen_rollouts() counts the simulation calls."""
     return _probe(kind, positions_m, volumes_m3, physical, materials, params, sim, False)
 
 
@@ -200,9 +203,27 @@ def _fit_log(xs: list[float], ys: list[float], target: float, log_x: bool) -> fl
     return math.exp(u) if log_x else u
 
 
+def screen_moduli(values: dict[str, float], field: Any) -> list[float]:
+    """Young's moduli the screening compresses: 1/3, 1 and 3 x the start value, clamped into the field [Pa]."""
+    return [min(max(values["youngs_modulus_pa"] * k, field.low), field.high) for k in (1 / 3, 1.0, 3.0)]
+
+
+def screen_dampings(values: dict[str, float], field: Any) -> list[float]:
+    """Damping rates the screening drops: 0.25, 1 and 2.5 x the start value + 2, clamped, distinct, sorted [1/s]."""
+    d0 = values["damping_rate_per_s"]
+    return sorted({min(max(d, field.low), field.high) for d in (0.25 * d0, d0, 2.5 * d0 + 2.0)})
+
+
+def screen_rollouts(physical: PhysicalModel, positions_m: np.ndarray, volumes_m3: np.ndarray,
+                    materials: list[Material], sim: SimConfig, results: list[ProbeResult]) -> int:
+    """Simulation calls of one screen_task: one per rollout (a batch of 3 is 1; 3 candidates one after another are 3)."""
+    body = DeformableBody.from_physical(positions_m, volumes_m3, physical)
+    return rollouts(plan_batches(body, materials, sim, SCREEN_SCHEDULE), results)
+
+
 def screen(asset: L0Asset, physical: PhysicalModel, contract: StageContract, targets: TargetBehaviour,
            start: dict[str, float], sim: SimConfig) -> tuple[dict[str, float], dict[str, Any]]:
-    """Batched screening: compress three stiffnesses, drop three damping rates (one rollout each); interpolate the
+    """Screening: compress three stiffnesses, drop three damping rates (scheduled by SCREEN_SCHEDULE); interpolate the
     start values that hit the centres of the modulus and rebound bands. Returns (initial values, summary)."""
     p = probe_parameters(contract)
     fields = {f.name: f for f in contract.editable_fields}
@@ -213,7 +234,7 @@ def screen(asset: L0Asset, physical: PhysicalModel, contract: StageContract, tar
     band = targets.band("effective_modulus_pa")
     if band is not None:
         f = fields["youngs_modulus_pa"]
-        es = [min(max(values["youngs_modulus_pa"] * k, f.low), f.high) for k in (1 / 3, 1.0, 3.0)]
+        es = screen_moduli(values, f)
         mats = [Material(youngs_modulus_pa=e, poisson_ratio=values["poisson_ratio"],
                          damping_rate_per_s=values["damping_rate_per_s"]) for e in es]
         rs = screen_task(kind="compress", materials=mats, params={"strain": p["strain"]}, **base)
@@ -221,14 +242,14 @@ def screen(asset: L0Asset, physical: PhysicalModel, contract: StageContract, tar
         guess = _fit_log([e for e, _ in ok], [m for _, m in ok], band.center, log_x=True)
         if guess is not None:
             values["youngs_modulus_pa"] = min(max(guess, f.low), f.high)
+        calls = screen_rollouts(physical, base["positions_m"], base["volumes_m3"], mats, sim, rs)
         summary["compress"] = {"youngs_modulus_pa": es, "effective_modulus_pa": [r.metrics.get("effective_modulus_pa")
-                                                                                for r in rs]}
-        summary["sim_calls"] += 1
+                                                                                for r in rs], "sim_calls": calls}
+        summary["sim_calls"] += calls
     band = targets.band("rebound_ratio")
     if band is not None:
         f = fields["damping_rate_per_s"]
-        d0 = values["damping_rate_per_s"]
-        ds = sorted({min(max(d, f.low), f.high) for d in (0.25 * d0, d0, 2.5 * d0 + 2.0)})
+        ds = screen_dampings(values, f)
         mats = [Material(youngs_modulus_pa=values["youngs_modulus_pa"], poisson_ratio=values["poisson_ratio"],
                          damping_rate_per_s=d) for d in ds]
         rs = screen_task(kind="drop", materials=mats, params={"height_fraction": p["height_fraction"]}, **base)
@@ -237,8 +258,10 @@ def screen(asset: L0Asset, physical: PhysicalModel, contract: StageContract, tar
         guess = _fit_log([d for d, _ in ok], [max(rb, 1e-3) for _, rb in ok], aim, log_x=False)
         if guess is not None:
             values["damping_rate_per_s"] = min(max(guess, f.low), f.high)
-        summary["drop"] = {"damping_rate_per_s": ds, "rebound_ratio": [r.metrics.get("rebound_ratio") for r in rs]}
-        summary["sim_calls"] += 1
+        calls = screen_rollouts(physical, base["positions_m"], base["volumes_m3"], mats, sim, rs)
+        summary["drop"] = {"damping_rate_per_s": ds, "rebound_ratio": [r.metrics.get("rebound_ratio") for r in rs],
+                           "sim_calls": calls}
+        summary["sim_calls"] += calls
     summary["initial"] = dict(values)
     return values, summary
 

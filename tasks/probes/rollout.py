@@ -208,6 +208,75 @@ def run_batched(impl: ProbeImpl, materials: Sequence[Material], record_paths: Se
     return out
 
 
+# -- candidate scheduling ---------------------------------------------------------------------------------------------
+# A lock-step batch advances every scene at the smallest stable time step of the batch (the stiffest candidate's CFL dt)
+# for the longest duration any scene needs (the softest candidate's periods, the slowest to settle). Candidates with
+# the same time step (a damping sweep) share launches and sampling and gain from a batch; a stiffness sweep does not
+# (turtle, draft, firm rubber, 2-core CPU: E x 1/3, 1, 3 batched 50.0 s, one after another 39.3 s; three damping rates
+# batched 35.6 s, one after another 41.0 s: `deformsmith bench l2`, tasks/probes/BENCHMARKS.md). Threads do not help
+# on the CPU (two probes in two threads took 6.1 s against 4.6 s one after another).
+SCHEDULES = ("auto", "batch", "grouped", "sequential")
+BATCH_DT_REL_TOL = 0.02  # candidates whose stable dt and fundamental period agree within 2 % may share a rollout
+
+
+def _signature(body: DeformableBody, material: Material) -> tuple[float, float]:
+    """(dilatational wave speed c_p [m/s], fundamental period [s]): what sets a candidate's time step and durations."""
+    return material.p_wave_speed_m_per_s(body.density_kg_per_m3), fundamental_period_s(body, material)
+
+
+def plan_batches(body: DeformableBody, materials: Sequence[Material], sim: SimConfig | None = None,
+                 schedule: str = "auto") -> list[list[int]]:
+    """Which candidates share one lock-step rollout (lists of indices into materials, in a deterministic order).
+
+    batch       one rollout of all candidates (the stiffest dt, the longest duration for every scene)
+    grouped     one rollout per set of candidates with the same time step and periods (within BATCH_DT_REL_TOL,
+                i.e. the same E and nu; e.g. a damping sweep), the sets one after another
+    sequential  one rollout per candidate, one after another
+    auto        grouped (the fastest measured on the CPU; on CUDA it keeps equal-dt candidates together)
+    """
+    if schedule not in SCHEDULES:
+        raise ValueError(f"unknown schedule '{schedule}'; choose one of {', '.join(SCHEDULES)}")
+    n = len(materials)
+    if schedule == "auto":
+        schedule = "grouped"
+    if schedule == "batch" or n <= 1:
+        return [list(range(n))] if n else []
+    if schedule == "sequential":
+        return [[i] for i in range(n)]
+    groups: list[list[int]] = []
+    sigs: list[tuple[float, float]] = []
+    for i, m in enumerate(materials):
+        sig = _signature(body, m)
+        for g, ref in zip(groups, sigs):
+            if all(abs(a - b) <= BATCH_DT_REL_TOL * max(abs(a), abs(b)) for a, b in zip(sig, ref)):
+                g.append(i)
+                break
+        else:
+            groups.append([i])
+            sigs.append(sig)
+    return groups
+
+
+def run_scheduled(impl: "ProbeImpl", materials: Sequence[Material], record_paths: Sequence[Path | None] | None,
+                  body: DeformableBody, sim: SimConfig | None = None, schedule: str = "auto") -> list[ProbeResult]:
+    """Run a probe over candidates as planned by plan_batches: each group one batched rollout (run_batched), the groups
+    one after another (deterministic). Results come back in the order of `materials`; each result's sim_calls counts
+    the rollouts it took part in (a batch of 3 is one simulation call: see rollouts())."""
+    mats = list(materials)
+    paths = list(record_paths or [None] * len(mats))
+    out: list[ProbeResult | None] = [None] * len(mats)
+    for group in plan_batches(body, mats, sim, schedule):
+        for i, r in zip(group, run_batched(impl, [mats[i] for i in group], [paths[i] for i in group])):
+            out[i] = r
+    return [r for r in out if r is not None]
+
+
+def rollouts(groups: Sequence[Sequence[int]], results: Sequence[ProbeResult]) -> int:
+    """Simulation calls a scheduled run made: per group, its first rollout plus the reruns without failed scenes (the
+    scenes of the deepest rerun carry the group's count in their sim_calls)."""
+    return sum(max(results[i].sim_calls for i in g) for g in groups if g)
+
+
 def make_result(kind: str, params: dict[str, float], metrics: dict[str, float], health: HealthStatus, wall_s: float,
                 held_out: bool = False, duration_s: float | None = None) -> ProbeResult:
     """A ProbeResult with only finite metrics (a metric that could not be measured is left out)."""
@@ -216,5 +285,5 @@ def make_result(kind: str, params: dict[str, float], metrics: dict[str, float], 
     return ProbeResult(spec=spec, metrics=clean, health=health, sim_calls=1, wall_time_s=float(wall_s))
 
 
-__all__ = ["DeformableBody", "Rollout", "SceneLog", "dx_of", "fundamental_period_s", "make_result", "run_batched",
-           "sample_interval_s"]
+__all__ = ["SCHEDULES", "DeformableBody", "Rollout", "SceneLog", "dx_of", "fundamental_period_s", "make_result",
+           "plan_batches", "rollouts", "run_batched", "run_scheduled", "sample_interval_s"]
