@@ -42,6 +42,9 @@ class TrialSettings:
     # pad boxes grow outward from the gripping face (the finger body behind it): a box thinner than the squeeze
     # lets the displaced material close behind it (particles leave through its back face) and the grip collapses
     pad_half_thickness_m: float = 0.01
+    # a robot aborts a pick whose lift failed: the outcome is decided (not lifted, so not transported or placed), and
+    # transport, release, retreat and settle (~half the simulated time) would be spent on a known failure
+    stop_when_lift_fails: bool = True
 
 
 @dataclass
@@ -125,7 +128,10 @@ def run_trial(body: TrialBody, physical: PhysicalModel, material: Material, plan
     phase = np.zeros(n_int, dtype=np.int8)
     frames_t, frames_x, frames_f, frames_k = [], [], [], []
     steps = 0
-    healthy, issue = True, ""
+    healthy, issue, stopped = True, "", ""
+    lift_end = traj.phases["lift"][1]
+    lift_needed = tol.lift_height_m - tol.slip_tolerance_m  # the `lifted` label's threshold
+    k_close = int(max(0, min(n_int - 1, math.ceil((traj.phases["closure"][0] - t_start) / dt_c - 1e-9))))
     p = sim.particles(0)
     com[0] = w @ p["x"]
     k = -1
@@ -157,6 +163,11 @@ def run_trial(body: TrialBody, physical: PhysicalModel, material: Material, plan
             first_issue = report.health.first()
             issue = f"{first_issue.check} at t={first_issue.sim_time_s:.4f} s: {first_issue.detail}"
             break
+        if s.stop_when_lift_fails and t1 >= lift_end - 1e-9 > t0:
+            rise = float(np.max(com[k_close:k + 2, 2]) - com[k_close, 2])
+            if rise < lift_needed:
+                stopped = f"lift failed: the object rose {rise:.4f} m of the {lift_needed:.4f} m needed"
+                break
     n_done = k + 1
     frames_t.append(sim.time_s + t_start)
     frames_x.append(p["x"].astype(np.float32))
@@ -185,10 +196,10 @@ def run_trial(body: TrialBody, physical: PhysicalModel, material: Material, plan
     labels = label_trial(arrays, traj, plan, physical, tol, n_done, healthy)
     info = {"particles": int(len(x0)), "steps": int(steps), "wall_time_s": float(wall),
             "sim_time_s": float(sim.time_s), "dx_m": float(model.dx), "particle_spacing_m": float(body.spacing_m),
-            "l0_particle_spacing_m": float(body.source_spacing_m), "health_issue": issue,
+            "l0_particle_spacing_m": float(body.source_spacing_m), "health_issue": issue, "stopped": stopped,
             "settings": asdict(s), "tolerances": asdict(tol), "phases": {k: list(v) for k, v in traj.phases.items()},
             "object_pose": {"xy_m": list(pose.xy_m), "yaw_deg": pose.yaw_deg}, "intervals": int(n_done)}
-    labels.update({"particles": float(len(x0)), "steps": float(steps)})  # wall time stays in info, not in the data
+    labels.update({"particles": float(len(x0)), "steps": float(steps), "stopped_after_failed_lift": float(bool(stopped))})  # wall time stays in info, not in the data
     return TrialResult(labels, arrays, info)
 
 
