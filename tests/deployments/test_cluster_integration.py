@@ -61,7 +61,8 @@ def test_batch_through_deployments_survives_a_killed_worker(tmp_path: Path) -> N
     with lc.LocalCluster(tmp_path / "cluster", cache, workers=2) as cluster:
         batch_id = cluster.run_deployment(lc.NIGHTLY, {
             "requests_jsonl": str(requests), "out_root": str(out), "poll_s": 3.0,
-            "heartbeat_timeout_s": 75.0, "pending_timeout_s": 120.0, "timeout_s": 1200.0})
+            "heartbeat_timeout_s": 75.0, "pending_timeout_s": 120.0, "timeout_s": 1200.0,
+            "job": "flows.batch_job:generate_job_without_l3"})  # the machinery under test, not L3 (minutes/request)
         victim = _victim(lc, cluster, cache, timeout_s=600)
         killed = cluster.kill_worker(victim)
         killed_events = [e for e in _events(cache) if e["pid"] in killed]
