@@ -173,7 +173,6 @@ def run_trial(body: TrialBody, physical: PhysicalModel, material: Material, plan
     frames_x.append(p["x"].astype(np.float32))
     frames_f.append(p["F"].astype(np.float32))
     frames_k.append(n_done)
-    wall = time.perf_counter() - wall0
 
     t_c, cmd_q, cmd_qdot, cmd_open, phase = t_c[:n_done], cmd_q[:n_done], cmd_qdot[:n_done], cmd_open[:n_done], \
         phase[:n_done]
@@ -194,6 +193,7 @@ def run_trial(body: TrialBody, physical: PhysicalModel, material: Material, plan
         **world_gaussians(body, pose),
     }
     labels = label_trial(arrays, traj, plan, physical, tol, n_done, healthy)
+    wall = time.perf_counter() - wall0  # the whole trial: simulation, recording and labelling
     info = {"particles": int(len(x0)), "steps": int(steps), "wall_time_s": float(wall),
             "sim_time_s": float(sim.time_s), "dx_m": float(model.dx), "particle_spacing_m": float(body.spacing_m),
             "l0_particle_spacing_m": float(body.source_spacing_m), "health_issue": issue, "stopped": stopped,
