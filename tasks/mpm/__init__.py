@@ -3,8 +3,8 @@
 Physics: Kirchhoff stress tau = mu (F F^T - I) + lambda ln(J) I; damping as a rate (v *= exp(-rate dt)); gravity per
 scene; adaptive dt = min(dt_max, C dx / (c_p + |v|max + collider speed)) or SimConfig.dt_fixed_s; a dense grid
 window per scene fitted to the particles (bounds + margin), re-centred on the device every few steps and enlarged
-when the body outgrows it. Contact on grid nodes (ground plane + kinematic box / capsule / half-space / finger-pad colliders):
-for u = v - v_b with u_n < 0, v+ = v_b + max(0, 1 - mu (-u_n)/max(|u_t|, eps)) u_t; separation allowed; residual
+when the body outgrows it. Contact on grid nodes (ground plane + kinematic box / capsule / half-space / finger-pad /
+convex-polytope colliders): for u = v - v_b with u_n < 0, v+ = v_b + max(0, 1 - mu (-u_n)/max(|u_t|, eps)) u_t; separation allowed; residual
 penetration of particles corrected after grid-to-particle. ``bonded=True`` colliders clamp (v = v_b inside).
 
 Public API (Model / State / Control / Solver, plus a Simulator that drives reporting intervals)::
@@ -54,6 +54,7 @@ from tasks.mpm.model import (
     box_collider,
     build_model,
     capsule_collider,
+    convex_collider,
     halfspace_collider,
     pad_collider,
 )
@@ -76,6 +77,7 @@ __all__ = [
     "box_collider",
     "build_model",
     "capsule_collider",
+    "convex_collider",
     "halfspace_collider",
     "pad_collider",
 ]

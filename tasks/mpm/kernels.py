@@ -24,6 +24,7 @@ COLLIDER_BOX = wp.constant(0)
 COLLIDER_CAPSULE = wp.constant(1)
 COLLIDER_HALFSPACE = wp.constant(2)
 COLLIDER_PAD = wp.constant(3)  # 3 + 2 axis + (0: gripping face at -axis, 1: at +axis); a box otherwise
+COLLIDER_CONVEX = wp.constant(9)  # a convex polytope: params = (first plane, plane count, 0) in the planes array
 
 EPS_V = wp.constant(1.0e-7)  # [m/s] smallest tangential speed in the friction law (avoids 0/0)
 BIG = wp.constant(1.0e30)
@@ -103,8 +104,24 @@ def contact_velocity(v: wp.vec3, vb: wp.vec3, n: wp.vec3, mu: float, bonded: int
 
 
 @wp.func
-def collider_sdf(kind: int, params: wp.vec3, p_local: wp.vec3) -> wp.vec4:
+def convex_sdf(planes: wp.array(dtype=wp.vec4), first: int, count: int, p_local: wp.vec3) -> wp.vec4:
+    """Convex polytope {x : n_i . x <= d_i}: phi = max_i (n_i . x - d_i) and that plane's normal. Exact inside and
+    on the faces (so the contact test phi <= 0 is exact); outside near edges and corners it is a lower bound of the
+    distance, which only matters for how far away a node counts as near."""
+    best = wp.vec4(0.0, 0.0, 1.0, -BIG)
+    for i in range(first, first + count):
+        pl = planes[i]
+        d = pl[0] * p_local[0] + pl[1] * p_local[1] + pl[2] * p_local[2] - pl[3]
+        if d > best[3]:
+            best = wp.vec4(pl[0], pl[1], pl[2], d)
+    return best
+
+
+@wp.func
+def collider_sdf(kind: int, params: wp.vec3, p_local: wp.vec3, planes: wp.array(dtype=wp.vec4)) -> wp.vec4:
     """Signed distance [m] (w) and outward unit normal (xyz, local frame) of a collider at a local point."""
+    if kind == COLLIDER_CONVEX:
+        return convex_sdf(planes, int(params[0]), int(params[1]), p_local)
     if kind == COLLIDER_BOX or kind >= COLLIDER_PAD:
         q = wp.vec3(wp.abs(p_local[0]), wp.abs(p_local[1]), wp.abs(p_local[2])) - params
         qmax = wp.max(q[0], wp.max(q[1], q[2]))
@@ -149,10 +166,11 @@ def collider_contact(
     lin_vel: wp.vec3,
     ang_vel: wp.vec3,
     x: wp.vec3,
+    planes: wp.array(dtype=wp.vec4),
 ) -> wp.mat33:
     """World-frame query at x: rows = (normal, collider velocity at x, (phi, 0, 0))."""
     r = x - pos
-    sd = collider_sdf(kind, params, wp.quat_rotate_inv(rot, r))
+    sd = collider_sdf(kind, params, wp.quat_rotate_inv(rot, r), planes)
     n = wp.quat_rotate(rot, wp.vec3(sd[0], sd[1], sd[2]))
     vb = lin_vel + wp.cross(ang_vel, r)
     return wp.mat33(n[0], n[1], n[2], vb[0], vb[1], vb[2], sd[3], 0.0, 0.0)
@@ -305,6 +323,7 @@ def grid_update(
     col_count: wp.array(dtype=wp.int32),
     col_kind: wp.array(dtype=wp.int32),
     col_params: wp.array(dtype=wp.vec3),
+    col_planes: wp.array(dtype=wp.vec4),
     col_radius2: wp.array(dtype=float),
     col_mu: wp.array(dtype=float),
     col_bonded: wp.array(dtype=wp.int32),
@@ -355,7 +374,8 @@ def grid_update(
             rel = xn - col_pos[c]
             if wp.dot(rel, rel) > col_radius2[c]:
                 continue  # outside the collider's bounding sphere
-            q = collider_contact(col_kind[c], col_params[c], col_pos[c], col_rot[c], col_lin_vel[c], col_ang_vel[c], xn)
+            q = collider_contact(col_kind[c], col_params[c], col_pos[c], col_rot[c], col_lin_vel[c], col_ang_vel[c], xn,
+                                 col_planes)
             if q[2, 0] <= 0.0:
                 vplus = contact_velocity(v, wp.vec3(q[1, 0], q[1, 1], q[1, 2]), wp.vec3(q[0, 0], q[0, 1], q[0, 2]),
                                          col_mu[c], col_bonded[c])
@@ -389,6 +409,7 @@ def g2p_apic(
     col_count: wp.array(dtype=wp.int32),
     col_kind: wp.array(dtype=wp.int32),
     col_params: wp.array(dtype=wp.vec3),
+    col_planes: wp.array(dtype=wp.vec4),
     col_radius2: wp.array(dtype=float),
     col_mu: wp.array(dtype=float),
     col_bonded: wp.array(dtype=wp.int32),
@@ -486,7 +507,7 @@ def g2p_apic(
             if wp.dot(rel, rel) > col_radius2[c]:
                 continue
             q = collider_contact(col_kind[c], col_params[c], col_pos_end[c], col_rot_end[c], col_lin_vel[c],
-                                 col_ang_vel[c], xn)
+                                 col_ang_vel[c], xn, col_planes)
             phi = q[2, 0]
             if phi < 0.0:
                 nrm = wp.vec3(q[0, 0], q[0, 1], q[0, 2])

@@ -17,13 +17,17 @@ if TYPE_CHECKING:
     from tasks.mpm.control import Control
     from tasks.mpm.state import State
 
-ColliderKind = Literal["box", "capsule", "halfspace", "pad"]
+ColliderKind = Literal["box", "capsule", "halfspace", "pad", "convex"]
 _KIND_CODE = {"box": 0, "capsule": 1, "halfspace": 2}
 PAD_FACES = ("-x", "+x", "-y", "+y", "-z", "+z")  # kernel code of a pad = 3 + index here
 
 
 def kind_code(c: "ColliderSpec") -> int:
     """The kernels' code of a collider kind (a pad's code also names its gripping face)."""
+    if c.kind == "convex":
+        if c.planes is None or len(c.planes) < 4:
+            raise InputError(f"collider {c.name or 'convex'}: a convex collider needs >= 4 planes (convex_collider)")
+        return 9
     if c.kind == "pad":
         if c.face not in PAD_FACES:
             raise InputError(f"collider {c.name or 'pad'}: face must be one of {PAD_FACES}, got {c.face!r}")
@@ -41,7 +45,9 @@ class ColliderSpec:
     "halfspace" (solid below the local z = 0 plane; size unused), "pad" (a box, size = half extents [m], that grips
     through one face, ``face`` in local axes such as "-y": a node or particle inside it leaves through that face, as
     material squeezed by a finger does; a plain box sends it to the nearest face, which for a pad only a few grid
-    cells wide is often a side face, and the squeezed material then flows into the pad unresisted).
+    cells wide is often a side face, and the squeezed material then flows into the pad unresisted), "convex" (a convex
+    polytope, ``planes`` (P, 4) = outward unit normal n and offset d [m] of each face, inside iff n . x <= d for all;
+    size = half extents [m] of its bounding box about the local origin; built by ``convex_collider`` from points).
     rotation_xyzw is a unit quaternion (x, y, z, w).
     bonded = True glues the object to the collider (v = collider velocity inside it, no separation: clamps).
     """
@@ -56,6 +62,7 @@ class ColliderSpec:
     angular_velocity_rad_per_s: tuple[float, float, float] = (0.0, 0.0, 0.0)
     name: str = ""
     face: str = ""  # pads only: the gripping face, one of PAD_FACES
+    planes: np.ndarray | None = None  # convex only: (P, 4) face planes (n_x, n_y, n_z, d) in the local frame
 
 
 def box_collider(half_extents_m: Sequence[float], **kw: object) -> ColliderSpec:
@@ -66,6 +73,26 @@ def box_collider(half_extents_m: Sequence[float], **kw: object) -> ColliderSpec:
 def pad_collider(half_extents_m: Sequence[float], face: str, **kw: object) -> ColliderSpec:
     """A finger pad: a box with half extents [m] that grips through ``face`` ("-x" ... "+z", local axes)."""
     return ColliderSpec(kind="pad", size_m=tuple(float(h) for h in half_extents_m), face=face,  # type: ignore[arg-type]
+                        **kw)
+
+
+def convex_collider(points_m: np.ndarray, **kw: object) -> ColliderSpec:
+    """A convex collider: the convex hull of points [m] given in the collider's local frame (a CoACD part, a tool,
+    a fixture). Coplanar hull facets are merged into one plane."""
+    from scipy.spatial import ConvexHull, QhullError
+
+    pts = np.asarray(points_m, dtype=np.float64).reshape(-1, 3)
+    if len(pts) < 4 or not np.all(np.isfinite(pts)):
+        raise InputError("a convex collider needs >= 4 finite points")
+    try:
+        hull = ConvexHull(pts)
+    except QhullError as exc:
+        raise InputError(f"a convex collider needs points spanning a volume: {str(exc).splitlines()[0]}") from exc
+    eq = hull.equations  # rows (n, offset): n . x + offset <= 0 inside, |n| = 1
+    planes = np.column_stack([eq[:, :3], -eq[:, 3]])
+    planes = np.unique(np.round(planes, 9), axis=0)
+    half = np.max(np.abs(pts[hull.vertices]), axis=0)
+    return ColliderSpec(kind="convex", size_m=tuple(float(h) for h in half), planes=planes,  # type: ignore[arg-type]
                         **kw)
 
 
@@ -99,7 +126,7 @@ class SceneSpec:
 
 def _bounding_radius(c: ColliderSpec) -> float:
     """Radius [m] of a sphere around the collider origin that contains its solid (inf for a half-space)."""
-    if c.kind in ("box", "pad"):
+    if c.kind in ("box", "pad", "convex"):
         return float(np.linalg.norm(c.size_m))
     if c.kind == "capsule":
         return float(c.size_m[0] + c.size_m[1])
@@ -239,7 +266,18 @@ class Model:
         self.col_start_np = np.asarray(col_start, dtype=np.int32)
         self.col_count_np = np.asarray(col_count, dtype=np.int32)
         self.col_kind_np = np.asarray([kind_code(c) for c in specs], dtype=np.int32)
-        self.col_params_np = np.asarray([c.size_m for c in specs], dtype=np.float32).reshape(-1, 3)
+        planes, params = [np.zeros((1, 4))], []
+        first = 1  # plane 0 is a placeholder so the array is never empty
+        for c in specs:
+            if c.kind == "convex":
+                assert c.planes is not None
+                params.append((float(first), float(len(c.planes)), 0.0))
+                planes.append(np.asarray(c.planes, dtype=np.float64))
+                first += len(c.planes)
+            else:
+                params.append(tuple(c.size_m))
+        self.col_planes_np = np.concatenate(planes).astype(np.float32)
+        self.col_params_np = np.asarray(params, dtype=np.float32).reshape(-1, 3)
         self.col_mu_np = np.asarray([c.friction for c in specs], dtype=np.float32)
         self.col_radius2_np = np.asarray([_bounding_radius(c) ** 2 for c in specs], dtype=np.float32)
         self.col_bonded_np = np.asarray([1 if c.bonded else 0 for c in specs], dtype=np.int32)
@@ -282,6 +320,7 @@ class Model:
         self.col_count = wp.array(self.col_count_np, dtype=wp.int32, device=d)
         self.col_kind = wp.array(np.concatenate([self.col_kind_np, np.zeros(pad, np.int32)]), dtype=wp.int32, device=d)
         self.col_params = _vec3_array(np.concatenate([self.col_params_np, np.zeros((pad, 3), np.float32)]), d)
+        self.col_planes = wp.array(self.col_planes_np, dtype=wp.vec4, device=d)
         self.col_radius2 = wp.array(
             np.concatenate([self.col_radius2_np, np.zeros(pad, np.float32)]), dtype=float, device=d
         )
