@@ -47,9 +47,18 @@ def provenance(device: Device, agents: AgentConfig | None) -> Provenance:
                       backends=(agents or _Config.rule()).describe(), device=device)
 
 
+def finite_metrics(values: dict[str, Any]) -> dict[str, float]:
+    """The numeric, finite entries (a NaN, e.g. a hold force of a trial that never held, is written to JSON as null,
+    and asset.json would no longer load)."""
+    import math
+
+    return {k: float(v) for k, v in values.items()
+            if isinstance(v, (int, float)) and math.isfinite(float(v))}
+
+
 def _summary(stage: str, record: dict[str, Any]) -> StageSummary:
     """A stage's line in the manifest's validation summary, from its JSON record."""
-    metrics = {k: float(v) for k, v in (record.get("metrics") or {}).items() if isinstance(v, (int, float))}
+    metrics = finite_metrics(record.get("metrics") or {})
     failed = record.get("failed_gates") or []
     return StageSummary(stage=stage, passed=bool(record.get("passed")), attempts=int(record.get("attempts", 1)),
                         sim_calls=int(record.get("sim_calls", 0)), metrics=metrics,
@@ -62,7 +71,7 @@ def l3_summary(record: dict[str, Any]) -> StageSummary:
 
     trials = [a for a in record.get("attempts", []) if a.get("labels") and not a["labels"].get("plan_failed")]
     labels = record.get("labels") or (trials[-1]["labels"] if trials else {})
-    metrics = {k: float(v) for k, v in labels.items() if isinstance(v, (int, float))}
+    metrics = finite_metrics(labels)
     failed = [] if record.get("passed") else [g.name for g in load_contract("L3").hard_gates
                                                if not g.passes(metrics.get(g.metric))]
     return StageSummary(stage="L3", passed=bool(record.get("passed")), attempts=len(record.get("attempts", [])),

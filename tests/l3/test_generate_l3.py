@@ -33,6 +33,19 @@ def test_a_failed_l3_names_its_failed_gates_and_shows_the_last_trial(weak_trial:
     assert out is not None and out.slipped and not out.lifted
 
 
+def test_a_failed_l3_summary_round_trips_through_asset_json(weak_trial: TrialResult) -> None:
+    """A trial that never held has NaN hold forces: the manifest must still load (it wrote null and broke inspect)."""
+    from contracts.manifest import AssetManifest, Provenance
+    from contracts.request import AssetRequest
+
+    labels = dict(weak_trial.metrics, hold_normal_force_n=float("nan"))
+    s = l3_summary(_record(False, [labels], None))
+    assert "hold_normal_force_n" not in s.metrics and "lifted" in s.metrics
+    m = AssetManifest(request=AssetRequest(text="a cube"), validation=[s], manipulation=manipulation_outcome(s.metrics),
+                      provenance=Provenance(deformsmith_version="test"))
+    assert AssetManifest.model_validate_json(m.model_dump_json()) == m
+
+
 def test_an_unexecutable_plan_has_no_outcome() -> None:
     rec = {"passed": False, "attempt": None, "attempts": [{"attempt": None, "labels": {"plan_failed": 1.0}}]}
     s = l3_summary(rec)
