@@ -115,6 +115,14 @@ def inspect_asset(
         p = manifest.physical_model
         console.print(f"physical: rho = {p.density_kg_per_m3:.4g} kg/m^3, mass = {p.mass_kg:.4g} kg, "
                       f"{p.particle_count} particles")
+    for s in manifest.validation:
+        if s.failed_gates:
+            console.print(f"{s.stage} failed gates: {', '.join(s.failed_gates)}")
+    if manifest.manipulation:
+        o = manifest.manipulation
+        console.print(f"pick-and-place: lifted {o.lifted}, transported {o.transported}, released in target "
+                      f"{o.released_in_target}, slipped {o.slipped}, max finger force "
+                      f"{max(o.max_finger_force_n):.3g} N, max strain {o.max_strain:.3g}")
 
 
 @app.command("view")
