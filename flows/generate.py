@@ -258,6 +258,7 @@ def generate_asset(request: AssetRequest, out_dir: Path, device: Device = "cpu",
         (work / ASSET_JSON).write_text(manifest.model_dump_json(indent=2) + "\n", encoding="utf-8")
         note("publish", str(out_dir))
         replace_directory(work, out_dir)
+        TIMINGS["publish"] = time.perf_counter() - float(clock["t"])
         return manifest
     finally:
         if work.exists():
