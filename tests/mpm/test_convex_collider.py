@@ -19,11 +19,11 @@ TABLE_HALF = (0.08, 0.08, 0.02)
 CORNERS = np.array(list(itertools.product(*[(-h, h) for h in TABLE_HALF])))
 
 
-def _drop_on(collider) -> tuple[np.ndarray, np.ndarray]:  # type: ignore[no-untyped-def]
+def _drop_on(collider, device: str = "cpu") -> tuple[np.ndarray, np.ndarray]:  # type: ignore[no-untyped-def]
     """A 3 cm block dropped from 1 cm onto a tilted slab (no ground): final positions and the mean slab force."""
     scene = box_scene((-0.015, -0.015, 0.13), (0.015, 0.015, 0.16), 0.0025, MAT, 300.0, colliders=[collider],
                       ground=False)
-    model = build_model([scene], SimConfig(device="cpu", grid_margin_m=0.02))
+    model = build_model([scene], SimConfig(device=device, grid_margin_m=0.02))
     sim = Simulator(model)
     sim.advance(0.3)
     rep = sim.advance(0.1)
@@ -67,3 +67,13 @@ def test_a_wedge_hull_deflects_the_block_along_its_face() -> None:
 def test_degenerate_hulls_are_refused(pts: np.ndarray, message: str) -> None:
     with pytest.raises(InputError, match=message):
         convex_collider(pts)
+
+
+@pytest.mark.gpu
+def test_convex_hull_on_cuda_matches_the_cpu() -> None:
+    tilt = (0.0, math.sin(0.05), 0.0, math.cos(0.05))
+    pose = dict(position_m=(0.0, 0.0, 0.1), rotation_xyzw=tilt, friction=0.9)
+    x_cpu, f_cpu = _drop_on(convex_collider(CORNERS, **pose))
+    x_gpu, f_gpu = _drop_on(convex_collider(CORNERS, **pose), device="cuda")
+    assert np.max(np.abs(x_gpu - x_cpu)) < 1e-4
+    assert np.linalg.norm(f_gpu - f_cpu) < 0.02 * np.linalg.norm(f_cpu)

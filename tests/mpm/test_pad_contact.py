@@ -16,7 +16,8 @@ EDGE = 0.05
 DX = 0.0083
 
 
-def _squeeze(kind: str, squeeze_m: float = 0.006, hold_s: float = 0.3) -> tuple[float, float, np.ndarray, list]:
+def _squeeze(kind: str, squeeze_m: float = 0.006, hold_s: float = 0.3, device: str = "cpu"
+             ) -> tuple[float, float, np.ndarray, list]:
     """Close two pads on a soft 5 cm cube resting on the table; normal force after closure and after a hold."""
     mat = Material(youngs_modulus_pa=15.6e3, poisson_ratio=0.3, damping_rate_per_s=16.7)
     gap = 0.004
@@ -27,7 +28,7 @@ def _squeeze(kind: str, squeeze_m: float = 0.006, hold_s: float = 0.3) -> tuple[
     else:
         cols = [box_collider(PAD_HALF, position_m=p, friction=0.7) for p in pos]
     scene = box_scene((-EDGE / 2, -EDGE / 2, 0.0), (EDGE / 2, EDGE / 2, EDGE), DX / 2, mat, 100.0, colliders=cols)
-    model = build_model([scene], SimConfig(device="cpu", dx_m=DX, grid_margin_m=0.02))
+    model = build_model([scene], SimConfig(device=device, dx_m=DX, grid_margin_m=0.02))
     sim = Simulator(model)
     v = 0.04
     sim.control.set_collider(0, 0, linear_velocity_m_per_s=(v, 0, 0))
@@ -68,3 +69,10 @@ def test_pad_needs_a_valid_face() -> None:
                       colliders=[pad_collider((0.01, 0.01, 0.01), "y", position_m=(0.0, 0.0, 0.1))])
     with pytest.raises(InputError, match="face"):
         build_model([scene], SimConfig(device="cpu"))
+
+
+@pytest.mark.gpu
+def test_pad_squeeze_on_cuda_matches_the_cpu() -> None:
+    n_cpu, h_cpu, _, _ = _squeeze("pad", hold_s=0.1)
+    n_gpu, h_gpu, _, _ = _squeeze("pad", hold_s=0.1, device="cuda")
+    assert abs(n_gpu - n_cpu) < 0.03 * n_cpu and abs(h_gpu - h_cpu) < 0.03 * h_cpu
