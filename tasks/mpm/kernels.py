@@ -222,6 +222,44 @@ def update_collider_poses(
             rot_end[c] = q
 
 
+@wp.func
+def apic_momentum(Fp: wp.mat33, Cp: wp.mat33, vp: wp.vec3, m: float, vol: float, mu: float, lam: float, dt: float,
+                  dx: float, fx: wp.vec3) -> wp.mat44:
+    """What a particle scatters (MLS-MPM, APIC, neo-Hookean): rows (q0, a0, a1, a2) such that the momentum + mass it
+    gives the node at stencil offset (i, j, k) is w_ijk (q0 + i a0 + j a1 + k a2); fx = position in cells from the
+    stencil base."""
+    inv_dx = 1.0 / dx
+    J = wp.determinant(Fp)
+    # Kirchhoff stress tau = mu (F F^T - I) + lambda ln(J) I  (neo-Hookean)
+    tau = mu * (Fp * wp.transpose(Fp) - wp.identity(n=3, dtype=float)) + lam * wp.log(
+        wp.max(J, 1.0e-6)
+    ) * wp.identity(n=3, dtype=float)
+    affine = (-dt * vol * 4.0 * inv_dx * inv_dx) * tau + m * Cp
+    # momentum at node offset (i,j,k): w * (m v + A (ijk - fx) dx) = w * (q0 + i a0 + j a1 + k a2)
+    q0v = m * vp - affine * (fx * dx)
+    return wp.mat44(q0v[0], q0v[1], q0v[2], m,
+                    affine[0, 0] * dx, affine[1, 0] * dx, affine[2, 0] * dx, 0.0,
+                    affine[0, 1] * dx, affine[1, 1] * dx, affine[2, 1] * dx, 0.0,
+                    affine[0, 2] * dx, affine[1, 2] * dx, affine[2, 2] * dx, 0.0)
+
+
+@wp.func
+def fit_window(s: int, lo: wp.vec3, hi: wp.vec3, nx: int, ny: int, nz: int, dx: float, guard_cells: int,
+               grid_origin: wp.array(dtype=wp.vec3i), grid_overflow: wp.array(dtype=wp.int32)):
+    """Centre scene s's grid window on bounds [lo, hi] [m]; flag the scene when they no longer fit (no bounds: no-op)."""
+    if lo[0] > hi[0]:
+        return
+    inv_dx = 1.0 / dx
+    c = 0.5 * (lo + hi) * inv_dx
+    grid_origin[s] = wp.vec3i(
+        int(wp.floor(c[0])) - nx // 2, int(wp.floor(c[1])) - ny // 2, int(wp.floor(c[2])) - nz // 2
+    )
+    ext = (hi - lo) * inv_dx
+    g = float(2 * guard_cells + 3)
+    if ext[0] + g > float(nx) or ext[1] + g > float(ny) or ext[2] + g > float(nz):
+        grid_overflow[s] = 1
+
+
 @wp.kernel
 def p2g_apic_neohookean(
     x: wp.array(dtype=wp.vec3),
@@ -271,22 +309,12 @@ def p2g_apic_neohookean(
         wy = quadratic_weights(fx[1])
         wz = quadratic_weights(fx[2])
 
-        dt = dt_arr[0]
-        J = wp.determinant(Fp)
-        mu = scene_mu[s]
-        lam = scene_lambda[s]
-        # Kirchhoff stress tau = mu (F F^T - I) + lambda ln(J) I  (neo-Hookean)
-        tau = mu * (Fp * wp.transpose(Fp) - wp.identity(n=3, dtype=float)) + lam * wp.log(
-            wp.max(J, 1.0e-6)
-        ) * wp.identity(n=3, dtype=float)
-        m = particle_mass[p]
-        affine = (-dt * particle_vol[p] * 4.0 * inv_dx * inv_dx) * tau + m * Cp
-        # momentum at node offset (i,j,k): w * (m v + A (ijk - fx) dx) = w * (q0 + i a0 + j a1 + k a2)
-        q0v = m * vp - affine * (fx * dx)
-        q0 = wp.vec4(q0v[0], q0v[1], q0v[2], m)
-        a0 = wp.vec4(affine[0, 0] * dx, affine[1, 0] * dx, affine[2, 0] * dx, 0.0)
-        a1 = wp.vec4(affine[0, 1] * dx, affine[1, 1] * dx, affine[2, 1] * dx, 0.0)
-        a2 = wp.vec4(affine[0, 2] * dx, affine[1, 2] * dx, affine[2, 2] * dx, 0.0)
+        q = apic_momentum(Fp, Cp, vp, particle_mass[p], particle_vol[p], scene_mu[s], scene_lambda[s], dt_arr[0],
+                          dx, fx)
+        q0 = q[0]
+        a0 = q[1]
+        a1 = q[2]
+        a2 = q[3]
         nyz = ny * nz
         base = s * nx * nyz + bx * nyz + by * nz + bz
         qi = q0
@@ -606,16 +634,4 @@ def fit_grid(
 ):
     """Centre each scene's grid window on its particles' bounds; flag a scene whose bounds no longer fit."""
     s = wp.tid()
-    lo = bmin[s]
-    hi = bmax[s]
-    if lo[0] > hi[0]:
-        return
-    inv_dx = 1.0 / dx
-    c = 0.5 * (lo + hi) * inv_dx
-    grid_origin[s] = wp.vec3i(
-        int(wp.floor(c[0])) - nx // 2, int(wp.floor(c[1])) - ny // 2, int(wp.floor(c[2])) - nz // 2
-    )
-    ext = (hi - lo) * inv_dx
-    g = float(2 * guard_cells + 3)
-    if ext[0] + g > float(nx) or ext[1] + g > float(ny) or ext[2] + g > float(nz):
-        grid_overflow[s] = 1
+    fit_window(s, bmin[s], bmax[s], nx, ny, nz, dx, guard_cells, grid_origin, grid_overflow)

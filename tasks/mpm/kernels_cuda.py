@@ -234,28 +234,14 @@ def p2g_warp(
     wx = K.quadratic_weights(fx[0])
     wy = K.quadratic_weights(fx[1])
     wz = K.quadratic_weights(fx[2])
-    dt = dt_arr[0]
-    J = wp.determinant(Fp)
-    mu = scene_mu[s]
-    lam = scene_lambda[s]
-    # Kirchhoff stress tau = mu (F F^T - I) + lambda ln(J) I  (neo-Hookean)
-    tau = mu * (Fp * wp.transpose(Fp) - wp.identity(n=3, dtype=float)) + lam * wp.log(
-        wp.max(J, 1.0e-6)
-    ) * wp.identity(n=3, dtype=float)
-    m = particle_mass[p]
-    affine = (-dt * particle_vol[p] * 4.0 * inv_dx * inv_dx) * tau + m * Cp
-    # momentum at node offset (i,j,k): w * (m v + A (ijk - fx) dx) = w * (q0 + i a0 + j a1 + k a2)
-    q0v = m * vp - affine * (fx * dx)
-    q0 = wp.vec4(q0v[0], q0v[1], q0v[2], m)
-    a0 = wp.vec4(affine[0, 0] * dx, affine[1, 0] * dx, affine[2, 0] * dx, 0.0)
-    a1 = wp.vec4(affine[0, 1] * dx, affine[1, 1] * dx, affine[2, 1] * dx, 0.0)
-    a2 = wp.vec4(affine[0, 2] * dx, affine[1, 2] * dx, affine[2, 2] * dx, 0.0)
+    q = K.apic_momentum(Fp, Cp, vp, particle_mass[p], particle_vol[p], scene_mu[s], scene_lambda[s], dt_arr[0], dx,
+                        fx)
     nyz = ny * nz
     base = s * nx * nyz + bx * nyz + by * nz + bz
     ok_i = int(0)
     if ok:
         ok_i = 1
-    scatter_stencil_warp(ok_i, base, part, nparts, nyz, nz, q0, a0, a1, a2, wx, wy, wz, grid_mvm)
+    scatter_stencil_warp(ok_i, base, part, nparts, nyz, nz, q[0], q[1], q[2], q[3], wx, wy, wz, grid_mvm)
 
 
 @wp.func_native(
@@ -316,7 +302,7 @@ def refit_fused(
 ):
     """The whole grid re-fit in one launch: per chunk (one thread block each, block = the launch's block size) the
     reduction of ``kernels.reduce_scene_stats`` into the chunk's partials; then the last block of each scene
-    combines the scene's partials into bmin/bmax/speed_max/kinetic and fits its window (as ``kernels.fit_grid``)."""
+    combines the scene's partials into bmin/bmax/speed_max/kinetic and fits its window (``kernels.fit_window``)."""
     t = wp.tid()
     c = t // block
     lane = t - c * block
@@ -371,15 +357,5 @@ def refit_fused(
             bmax[s] = hi
             speed_max[s] = wp.sqrt(vm)
             kinetic[s] = ke
-            # window fit: the arithmetic of kernels.fit_grid (keep in step with it)
-            if lo[0] <= hi[0]:
-                inv_dx = 1.0 / dx
-                cen = 0.5 * (lo + hi) * inv_dx
-                grid_origin[s] = wp.vec3i(
-                    int(wp.floor(cen[0])) - nx // 2, int(wp.floor(cen[1])) - ny // 2, int(wp.floor(cen[2])) - nz // 2
-                )
-                ext = (hi - lo) * inv_dx
-                g = float(2 * guard_cells + 3)
-                if ext[0] + g > float(nx) or ext[1] + g > float(ny) or ext[2] + g > float(nz):
-                    grid_overflow[s] = 1
+            K.fit_window(s, lo, hi, nx, ny, nz, dx, guard_cells, grid_origin, grid_overflow)
 
