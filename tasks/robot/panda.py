@@ -258,8 +258,43 @@ class Panda:
         return out
 
     def link_heights(self, links: Sequence[int]) -> np.ndarray:
-        """Lowest point [m] of each link's collision bounding box at the current joint state."""
-        return np.array([pb.getAABB(self.body, link, physicsClientId=self.cid)[0][2] for link in links])
+        """Lowest point [m] of each link's collision geometry at the current joint state.
+
+        Exact: the lowest vertex of the link's collision mesh (convex hull) in the world. pybullet's ``getAABB`` is
+        not used for meshes: it pads every shape by Bullet's collision margin (4 mm for the Panda's meshes) and, for a
+        turned link, bounds a turned local box, so it put fingertips that clear the table by 3 mm "into" it. A link
+        without a mesh falls back to its AABB.
+        """
+        links = list(links)
+        states = pb.getLinkStates(self.body, links, computeForwardKinematics=1, physicsClientId=self.cid)
+        out = np.empty(len(links))
+        for i, (link, s) in enumerate(zip(links, states)):
+            shapes = self._collision_vertices(link)
+            if not shapes:
+                out[i] = pb.getAABB(self.body, link, physicsClientId=self.cid)[0][2]
+                continue
+            # collision shapes are placed relative to the link's inertial frame (s[0], s[1])
+            rot_z = _quat_to_matrix(s[1])[2]
+            out[i] = float(s[0][2]) + min(float(np.min(v @ (rot_z @ rc)) + rot_z @ pc) for v, pc, rc in shapes)
+        return out
+
+    def _collision_vertices(self, link: int) -> list[tuple[np.ndarray, np.ndarray, np.ndarray]]:
+        """Per collision mesh of a link: convex-hull vertices in the shape's frame [m] (scaled), and the shape's
+        position [m] and rotation in the link's inertial frame (cached; [] where a shape is not a mesh)."""
+        cache = self.__dict__.setdefault("_hull_cache", {})
+        if link not in cache:
+            import trimesh
+
+            shapes = []
+            for d in pb.getCollisionShapeData(self.body, link, physicsClientId=self.cid):
+                name = d[4].decode() if isinstance(d[4], bytes) else d[4]
+                if d[2] != pb.GEOM_MESH or not name:
+                    return cache.setdefault(link, [])
+                mesh = trimesh.load(name, force="mesh")
+                v = np.asarray(mesh.convex_hull.vertices) * np.asarray(d[3])
+                shapes.append((v, np.asarray(d[5], dtype=float), _quat_to_matrix(d[6])))
+            cache[link] = shapes
+        return cache[link]
 
     # --- inverse kinematics -------------------------------------------------------------------------------------
     def ee_target_for_grasp(self, center_m: Sequence[float], rotation: np.ndarray) -> np.ndarray:
