@@ -27,6 +27,10 @@ class ActionPlan(Model):
     grasp: GraspCandidate
     squeeze_depth_m: float = Field(ge=0, le=0.04, description="closure past the contact width, per finger [m]")
     closing_speed_m_per_s: float = Field(default=0.02, gt=0, description="finger closing speed, per finger [m/s]")
+    grip_force_limit_n: float | None = Field(
+        default=None, gt=0, description="force-guarded closure: the fingers stop closing (and hold that opening until "
+        "release) when their mean normal force is about to reach this, per finger [N]; None: position control "
+        "to the full squeeze")
     lift_height_m: float = Field(default=0.10, gt=0, description="height the object is lifted [m]")
     place_height_m: float = Field(default=0.01, ge=0,
                                   description="grasp height above its pick height when the fingers open [m]")
@@ -52,6 +56,8 @@ class ManipulationOutcome(Model):
     force_budget_violated: bool = Field(description="a finger's mean reaction force exceeded the budget [-]")
     numerically_healthy: bool = Field(description="no health check failed [-]")
     max_strain: float = Field(description="largest principal strain of any particle [-]")
+    strain_p99: float | None = Field(default=None, description="principal strain exceeded by at most 1 % of the "
+                                     "body's volume, largest over the recorded frames (the deformation bound) [-]")
     max_finger_force_n: tuple[float, float] = Field(description="max mean reaction force per finger [N]")
     slip_distance_m: float = Field(description="object displacement relative to the fingers while held [m]")
     place_error_m: float = Field(description="distance of the rest position from the target [m]")

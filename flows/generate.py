@@ -97,6 +97,7 @@ def manipulation_outcome(labels: dict[str, float]) -> Any:
         released_in_target=bool(labels["released_in_target"]), settled=bool(labels["settled"]),
         slipped=bool(labels["slipped"]), force_budget_violated=bool(labels["force_budget_violated"]),
         numerically_healthy=bool(labels["numerically_healthy"]), max_strain=float(labels["max_strain"]),
+        strain_p99=float(labels["strain_p99"]) if "strain_p99" in labels else None,
         max_finger_force_n=(float(labels["max_finger_force_0_n"]), float(labels["max_finger_force_1_n"])),
         slip_distance_m=float(labels["slip_distance_m"]), place_error_m=float(labels["place_error_m"]))
 

@@ -37,7 +37,7 @@ from tasks.manipulation.outcome import TrialTolerances
 from tasks.manipulation.trial import TrialSettings, plan_or_error, run_trial
 from tasks.robot import select_grasps
 
-TASK_VERSION = "2"  # bump when tasks/manipulation/{trial,outcome,body}.py change what a trial returns
+TASK_VERSION = "3"  # bump when tasks/manipulation/{trial,outcome,body}.py change what a trial returns
 MANIPULATION_JSON = "manipulation.json"
 LABELS = ("lifted", "transported", "released_in_target", "settled", "numerically_healthy")
 
@@ -89,7 +89,7 @@ def _body_from(particles_m: np.ndarray, volumes_m3: np.ndarray, spacing_m: float
 def failed_metrics(reason: str) -> dict[str, float]:
     """Metrics of a plan that could not be executed: every label failed, the force unknown."""
     return {"lifted": 0.0, "transported": 0.0, "released_in_target": 0.0, "settled": 0.0, "slipped": 1.0,
-            "force_budget_violated": 0.0, "numerically_healthy": 1.0, "max_strain": 0.0,
+            "force_budget_violated": 0.0, "numerically_healthy": 1.0, "max_strain": 0.0, "strain_p99": 0.0,
             "max_finger_force_n": math.nan, "plan_failed": 1.0}
 
 
@@ -137,6 +137,12 @@ class L3Context:
     contract: StageContract
     attempts: list[dict[str, Any]] = field(default_factory=list)
 
+    @property
+    def grip_force_limit_n(self) -> float | None:
+        """The force-guarded closure's limit per finger [N] (contract parameter; None: position control)."""
+        v = self.contract.parameters.get("grip_force_limit_n")
+        return float(v) if v else None
+
     def plan(self, values: dict[str, float], target_xy_m: tuple[float, float] | None = None,
              yaw_deg: float = 0.0) -> ActionPlan:
         """The ActionPlan of a candidate (editable fields) under a condition (target, initial yaw)."""
@@ -144,6 +150,7 @@ class L3Context:
         rank = int(min(max(0, round(values["grasp_rank"])), len(self.grasps) - 1))
         return ActionPlan(
             grasp=self.grasps[rank], squeeze_depth_m=float(values["squeeze_depth_m"]),
+            grip_force_limit_n=self.grip_force_limit_n,
             closing_speed_m_per_s=float(values["closing_speed_m_per_s"]),
             lift_height_m=float(self.contract.parameters.get("lift_height_m", 0.10)),
             target_xy_m=target_xy_m or o.target_xy_m, initial_yaw_deg=yaw_deg,
@@ -223,8 +230,8 @@ def material_of(asset_dir: Path, asset: Any) -> tuple[Material, str]:
 
 def revise_material(material: Material, metrics: dict[str, float], contract: StageContract) -> Material:
     """A stiffer material when the deformation bound failed: E scaled by strain / bound (x 1.25), same nu, damping."""
-    bound = next((g.threshold for g in contract.hard_gates if g.metric == "max_strain"), 0.6)
-    strain = float(metrics.get("max_strain", bound))
+    bound = next((g.threshold for g in contract.hard_gates if g.metric == "strain_p99"), 0.6)
+    strain = float(metrics.get("strain_p99", bound))
     factor = min(10.0, max(1.5, 1.25 * strain / bound)) if math.isfinite(strain) else 2.0
     return material.model_copy(update={"youngs_modulus_pa": material.youngs_modulus_pa * factor})
 

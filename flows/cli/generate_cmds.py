@@ -122,7 +122,9 @@ def inspect_asset(
         o = manifest.manipulation
         console.print(f"pick-and-place: lifted {o.lifted}, transported {o.transported}, released in target "
                       f"{o.released_in_target}, slipped {o.slipped}, max finger force "
-                      f"{max(o.max_finger_force_n):.3g} N, max strain {o.max_strain:.3g}")
+                      f"{max(o.max_finger_force_n):.3g} N, strain (1 % of volume) "
+                      f"{o.strain_p99 if o.strain_p99 is not None else float('nan'):.3g}, peak particle strain "
+                      f"{o.max_strain:.3g}")
 
 
 @app.command("view")

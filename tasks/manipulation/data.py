@@ -7,7 +7,7 @@ Arrays (SI units, float32 particle states at >= 30 fps, float64 otherwise):
   finger_force_n (K, 2, 3): mean reaction force ON each finger over the interval (eq. 3); finger_impulse_n_s (K, 2, 3)
   ground_force_n (K, 3)  object_com_m (K + 1, 3)  closing_axis_world (3,)
   frame_t_s (T,)  frame_control_index (T,)  particles_x_m (T, N, 3) f32  particles_F (T, N, 3, 3) f32
-  rest_particles_m (N, 3)  gaussian_* (rest Gaussians in the world frame at t = 0, bound to the trial particles)
+  rest_particles_m (N, 3)  particle_volumes_m3 (N,)  gaussian_* (rest Gaussians in the world frame at t = 0, bound to the trial particles)
 Attributes: ``labels`` (the outcome metrics, failed attempts included), ``plan`` (ActionPlan JSON), ``info`` (numerics,
 particles, steps, wall time), ``role`` (selection | held_out | confirmation) and anything the caller adds. Each attempt
 is written to a temporary folder and renamed into place, so a reader never sees half an attempt.

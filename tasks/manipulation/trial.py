@@ -134,6 +134,10 @@ def run_trial(body: TrialBody, physical: PhysicalModel, material: Material, plan
     k_close = int(max(0, min(n_int - 1, math.ceil((traj.phases["closure"][0] - t_start) / dt_c - 1e-9))))
     p = sim.particles(0)
     com[0] = w @ p["x"]
+    # force-guarded closure (plan.grip_force_limit_n): once the fingers' mean normal force, extrapolated one control
+    # interval ahead, reaches the limit, the fingers hold that opening until the plan opens them wider (release)
+    guard_n, hold_opening, guard, last_normal = plan.grip_force_limit_n, None, {}, float("nan")
+    axis = np.asarray(traj.closing_axis_world, dtype=float)
     k = -1
     for k in range(n_int):
         t0, t1 = t_c[k], min(t_c[k] + dt_c, t_end)
@@ -142,14 +146,15 @@ def run_trial(body: TrialBody, physical: PhysicalModel, material: Material, plan
             frames_x.append(p["x"].astype(np.float32))
             frames_f.append(p["F"].astype(np.float32))
             frames_k.append(k)
-        m = traj.pad_motion(t0, t1)
+        m = traj.pad_motion(t0, t1, hold_opening)
         for f in range(2):
             sim.control.set_collider(0, f, position_m=m.position_m[0, f], rotation_xyzw=m.quat_xyzw[0, f],
                                      linear_velocity_m_per_s=m.linear_velocity_m_per_s[0, f],
                                      angular_velocity_rad_per_s=m.angular_velocity_rad_per_s[0, f])
         st = traj.state_at(t0)
         cmd_q[k], cmd_qdot[k] = st.q, st.qdot
-        cmd_open[k] = (st.finger_opening_m, st.finger_opening_rate_m_per_s)
+        held = hold_opening is not None and hold_opening > st.finger_opening_m
+        cmd_open[k] = (hold_opening, 0.0) if held else (st.finger_opening_m, st.finger_opening_rate_m_per_s)
         pad_pos[k], pad_quat[k], pad_vel[k] = m.position_m[0], m.quat_xyzw[0], m.linear_velocity_m_per_s[0]
         phase[k] = PHASES.index(st.phase)
         report = sim.advance(t1 - t0)
@@ -158,6 +163,13 @@ def run_trial(body: TrialBody, physical: PhysicalModel, material: Material, plan
         ground[k] = report.ground_force_n[0]
         p = sim.particles(0)
         com[k + 1] = w @ p["x"]
+        if guard_n is not None and hold_opening is None and st.phase == "closure":
+            normal = 0.5 * float(-(force[k, 0] @ axis) + force[k, 1] @ axis)  # mean per finger over the interval
+            rise = max(0.0, normal - last_normal) if np.isfinite(last_normal) else 0.0
+            if np.isfinite(normal) and normal + rise >= guard_n:  # about to reach the limit by the next interval
+                hold_opening = traj.opening_at(t1)
+                guard = {"stopped_at_s": float(t1), "opening_m": hold_opening, "normal_force_n": normal}
+            last_normal = normal
         if not report.health.ok:
             healthy = False
             first_issue = report.health.first()
@@ -189,7 +201,7 @@ def run_trial(body: TrialBody, physical: PhysicalModel, material: Material, plan
         "particles_x_m": np.stack(frames_x), "particles_F": np.stack(frames_f),
         "finger_half_extents_m": np.asarray(traj.pad_half_extents_m, dtype=np.float64),
         "closing_axis_world": np.asarray(traj.closing_axis_world, dtype=np.float64),
-        "rest_particles_m": x0.astype(np.float32),
+        "rest_particles_m": x0.astype(np.float32), "particle_volumes_m3": np.asarray(body.volumes_m3, dtype=np.float64),
         **world_gaussians(body, pose),
     }
     labels = label_trial(arrays, traj, plan, physical, tol, n_done, healthy)
@@ -198,8 +210,11 @@ def run_trial(body: TrialBody, physical: PhysicalModel, material: Material, plan
             "sim_time_s": float(sim.time_s), "dx_m": float(model.dx), "particle_spacing_m": float(body.spacing_m),
             "l0_particle_spacing_m": float(body.source_spacing_m), "health_issue": issue, "stopped": stopped,
             "settings": asdict(s), "tolerances": asdict(tol), "phases": {k: list(v) for k, v in traj.phases.items()},
-            "object_pose": {"xy_m": list(pose.xy_m), "yaw_deg": pose.yaw_deg}, "intervals": int(n_done)}
-    labels.update({"particles": float(len(x0)), "steps": float(steps), "stopped_after_failed_lift": float(bool(stopped))})  # wall time stays in info, not in the data
+            "object_pose": {"xy_m": list(pose.xy_m), "yaw_deg": pose.yaw_deg}, "intervals": int(n_done),
+            "grip_guard": guard}
+    labels.update({"particles": float(len(x0)), "steps": float(steps), "stopped_after_failed_lift": float(bool(stopped)),
+                   "grip_guard_stopped": float(bool(guard)),
+                   "closed_width_m": float(guard["opening_m"]) if guard else float(traj.closed_width_m)})  # wall time stays in info, not in the data
     return TrialResult(labels, arrays, info)
 
 

@@ -259,16 +259,40 @@ class Trajectory:
                                   sign * rot[:, 1]))
         return pads[0], pads[1]
 
-    def pad_motion(self, t0: float, t1: float) -> PadArrays:
+    def opening_at(self, t: float) -> float:
+        """Commanded finger opening at time t [s] (from the dense table) [m]."""
+        x = float(np.clip(t, 0.0, self.duration_s)) / self.table_dt_s
+        i = min(int(np.floor(x)), len(self._table["t"]) - 2)
+        a = x - i
+        return float((1.0 - a) * self._table["opening"][i] + a * self._table["opening"][i + 1])
+
+    def _held_open(self, pads: PadArrays, min_opening_m: float) -> PadArrays:
+        """The pads (N = 1) moved apart along the line between them so that the opening is at least min_opening_m."""
+        extra = min_opening_m - self.opening_at(float(pads.t_s[0]))
+        if extra <= 0.0:
+            return pads
+        d = pads.position_m[0, 0] - pads.position_m[0, 1]
+        d = d / max(float(np.linalg.norm(d)), 1e-12)  # finger 0 lies on +d, finger 1 on -d
+        pos = pads.position_m.copy()
+        pos[0, 0] += 0.5 * extra * d
+        pos[0, 1] -= 0.5 * extra * d
+        return PadArrays(pads.t_s, pos, pads.quat_xyzw, pads.linear_velocity_m_per_s,
+                         pads.angular_velocity_rad_per_s, pads.half_extents_m)
+
+    def pad_motion(self, t0: float, t1: float, min_opening_m: float | None = None) -> PadArrays:
         """Pads as constant-velocity kinematic colliders over [t0, t1] [s]: pose at t0 and the mean linear and angular
         (world frame) velocities that carry it exactly onto the planned pose at t1, ``q(t) = exp(w (t - t0)) q0``.
 
         Arrays have N = 1: shapes (1, 2, ...). Feed them to the MPM's per-step collider control to avoid the drift
-        of extrapolating the instantaneous velocity.
+        of extrapolating the instantaneous velocity. ``min_opening_m`` holds the fingers at least that far apart (a
+        force-guarded closure that stopped early: the hand follows the plan, the fingers stay where they stopped
+        until the plan opens them wider).
         """
         if not t1 > t0:
             raise ValueError("pad_motion needs t1 > t0")
         a, b = self.pads_at(np.array([t0, t1]))._split()
+        if min_opening_m is not None:
+            a, b = self._held_open(a, min_opening_m), self._held_open(b, min_opening_m)
         dt = t1 - t0
         dq = _quat_mul(b.quat_xyzw, a.quat_xyzw * np.array([-1.0, -1.0, -1.0, 1.0]))
         dq *= np.where(dq[..., 3:4] < 0.0, -1.0, 1.0)

@@ -59,7 +59,7 @@ def test_l3_ordered_enumeration_of_action_revisions() -> None:
         force = 1500.0 * squeeze
         ok_grasp = rank >= 2
         m = {"lifted": float(lifted), "transported": float(lifted and ok_grasp), "released_in_target": float(lifted and ok_grasp),
-             "settled": 1.0, "max_finger_force_n": force, "numerically_healthy": 1.0, "max_strain": 0.2}
+             "settled": 1.0, "max_finger_force_n": force, "numerically_healthy": 1.0, "max_strain": 0.2, "strain_p99": 0.1}
         return [ProbeResult(spec=ProbeSpec(kind="pick_and_place"), metrics=m)]
 
     out = run_stage(l3, pick_place, TargetBehaviour(), initial={
@@ -77,7 +77,7 @@ def test_l3_strain_escalates_to_material() -> None:
 
     def too_soft(values: dict[str, float], action: str) -> list[ProbeResult]:
         m = {"lifted": 1.0, "transported": 1.0, "released_in_target": 1.0, "settled": 1.0, "max_finger_force_n": 5.0,
-             "numerically_healthy": 1.0, "max_strain": 0.9}
+             "numerically_healthy": 1.0, "max_strain": 0.9, "strain_p99": 0.8}
         return [ProbeResult(spec=ProbeSpec(kind="pick_and_place"), metrics=m)]
 
     out = run_stage(l3, too_soft, initial={"grasp_rank": 0, "squeeze_depth_m": 0.01, "closing_speed_m_per_s": 0.02,

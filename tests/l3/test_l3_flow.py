@@ -115,7 +115,7 @@ def test_weak_squeeze_is_revised_then_held_out_and_cached(cube_asset: Path, pref
 def test_material_revision_reexecutes_l2_probes_then_the_robot(cube_asset: Path, prefect_api: str,
                                                                cache_dir: Path) -> None:
     base = _contract(revision_budget=1)
-    gates = [g.model_copy(update={"threshold": 0.15}) if g.metric == "max_strain" else g for g in base.hard_gates]
+    gates = [g.model_copy(update={"threshold": 0.05}) if g.metric == "strain_p99" else g for g in base.hard_gates]
     record, outcome = run_l3(cube_asset, L3Options(squeeze_depth_m=0.004, held_out=()),
                              contract=base.model_copy(update={"hard_gates": gates}), recordings=False)
     assert outcome.status == "escalated" and outcome.escalation == "revise_material"
@@ -128,6 +128,6 @@ def test_material_revision_reexecutes_l2_probes_then_the_robot(cube_asset: Path,
     assert {t for t in after if t.startswith("l2.")} == {"l2.compress", "l2.drop", "l2.lift", "l2.stability"}
     assert after[-1] == "l3.trial" and set(after) <= {"l2.compress", "l2.drop", "l2.lift", "l2.stability", "l3.trial"}
     # robot confirmation under the same plan values, physical model and force budget
-    assert rev["l2_revalidation"]["passed"] and "max_strain" in rev["confirmation"]
+    assert rev["l2_revalidation"]["passed"] and "strain_p99" in rev["confirmation"]
     confirm = record["attempts"][-1]
     assert confirm["role"] == "confirmation" and confirm["values"] == rev["plan_values"]
