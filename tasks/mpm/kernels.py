@@ -48,6 +48,132 @@ def scatter_add_vec4(arr: wp.array(dtype=wp.vec4), idx: int, v: wp.vec4):
     ...
 
 
+# module options of the CUDA-only kernel variants (each built in a module of its own, compiled only when used)
+_UNIQUE_OPTIONS = {"enable_backward": False, "optimization_level": 3}
+
+
+@wp.func_native(
+    """
+#if defined(__CUDA_ARCH__)
+    // every lane of the warp calls (one particle per thread, t = the global thread index, whole-warp launches)
+    __shared__ float4 coop_buf_v3[(WP_TILE_BLOCK_DIM / 32) * 24];
+    const int lane = threadIdx.x & 31;
+    float* fb = reinterpret_cast<float*>(coop_buf_v3 + (threadIdx.x >> 5) * 24);
+    const int p0 = t - lane;
+    int nv = n - p0;
+    nv = nv < 0 ? 0 : (nv > 32 ? 32 : nv);
+    float* g = reinterpret_cast<float*>(arr.data) + (size_t)p0 * 3;
+    __syncwarp();
+    if (store) {
+        fb[lane * 3] = val.c[0]; fb[lane * 3 + 1] = val.c[1]; fb[lane * 3 + 2] = val.c[2];
+        __syncwarp();
+        if (nv == 32) { if (lane < 24) reinterpret_cast<float4*>(g)[lane] = reinterpret_cast<const float4*>(fb)[lane]; }
+        else { for (int k = lane; k < nv * 3; k += 32) g[k] = fb[k]; }
+        __syncwarp();
+        return val;
+    }
+    if (nv == 32) { if (lane < 24) reinterpret_cast<float4*>(fb)[lane] = reinterpret_cast<const float4*>(g)[lane]; }
+    else { for (int k = lane; k < nv * 3; k += 32) fb[k] = g[k]; }
+    __syncwarp();
+    const wp::vec_t<3, float> r(fb[lane * 3], fb[lane * 3 + 1], fb[lane * 3 + 2]);
+    __syncwarp();
+    return r;
+#else
+    if (t >= n) return val;
+    if (store) { arr.data[t] = val; return val; }
+    return arr.data[t];
+#endif
+"""
+)
+def coop_vec3(arr: wp.array(dtype=wp.vec3), t: int, n: int, store: int, val: wp.vec3) -> wp.vec3:
+    """Warp-cooperative arr[t] (store=0) or arr[t] = val (store=1) for t < n: the warp's 32 consecutive records move
+    as 16-byte vector accesses through shared memory (array 16-byte aligned, contiguous). Every lane must call."""
+    ...
+
+
+@wp.func_native(
+    """
+#if defined(__CUDA_ARCH__)
+    __shared__ float4 coop_buf_m33[(WP_TILE_BLOCK_DIM / 32) * 72];
+    const int lane = threadIdx.x & 31;
+    float* fb = reinterpret_cast<float*>(coop_buf_m33 + (threadIdx.x >> 5) * 72);
+    const int p0 = t - lane;
+    int nv = n - p0;
+    nv = nv < 0 ? 0 : (nv > 32 ? 32 : nv);
+    float* g = reinterpret_cast<float*>(arr.data) + (size_t)p0 * 9;
+    __syncwarp();
+    if (store) {
+        for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < 3; ++j) fb[lane * 9 + i * 3 + j] = val.data[i][j];
+        __syncwarp();
+        if (nv == 32) {
+            for (int k = lane; k < 72; k += 32) reinterpret_cast<float4*>(g)[k] = reinterpret_cast<const float4*>(fb)[k];
+        } else {
+            for (int k = lane; k < nv * 9; k += 32) g[k] = fb[k];
+        }
+        __syncwarp();
+        return val;
+    }
+    if (nv == 32) {
+        for (int k = lane; k < 72; k += 32) reinterpret_cast<float4*>(fb)[k] = reinterpret_cast<const float4*>(g)[k];
+    } else {
+        for (int k = lane; k < nv * 9; k += 32) fb[k] = g[k];
+    }
+    __syncwarp();
+    wp::mat_t<3, 3, float> r;
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) r.data[i][j] = fb[lane * 9 + i * 3 + j];
+    __syncwarp();
+    return r;
+#else
+    if (t >= n) return val;
+    if (store) { arr.data[t] = val; return val; }
+    return arr.data[t];
+#endif
+"""
+)
+def coop_mat33(arr: wp.array(dtype=wp.mat33), t: int, n: int, store: int, val: wp.mat33) -> wp.mat33:
+    """``coop_vec3`` for mat33 records (36 bytes each)."""
+    ...
+
+
+@wp.func_native(
+    """
+#if defined(__CUDA_ARCH__)
+    // every lane of the warp calls; lanes with has != 0 add v to arr[s]
+    const unsigned FULL = 0xffffffffu;
+    const unsigned any = __ballot_sync(FULL, has != 0);
+    if (any == 0u) return;
+    const int first = __ffs(any) - 1;
+    const int s0 = __shfl_sync(FULL, s, first);
+    if (__all_sync(FULL, has == 0 || s == s0)) {
+        float a = has ? v.c[0] : 0.0f;
+        float b = has ? v.c[1] : 0.0f;
+        float c = has ? v.c[2] : 0.0f;
+        for (int o = 16; o > 0; o >>= 1) {
+            a += __shfl_xor_sync(FULL, a, o);
+            b += __shfl_xor_sync(FULL, b, o);
+            c += __shfl_xor_sync(FULL, c, o);
+        }
+        if ((int)(threadIdx.x & 31) == first) {
+            float* p = reinterpret_cast<float*>(&arr.data[s0]);
+            atomicAdd(p, a); atomicAdd(p + 1, b); atomicAdd(p + 2, c);
+        }
+    } else if (has) {
+        float* p = reinterpret_cast<float*>(&arr.data[s]);
+        atomicAdd(p, v.c[0]); atomicAdd(p + 1, v.c[1]); atomicAdd(p + 2, v.c[2]);
+    }
+#else
+    if (has) arr.data[s] = arr.data[s] + v;
+#endif
+"""
+)
+def warp_add_vec3(arr: wp.array(dtype=wp.vec3), s: int, v: wp.vec3, has: int):
+    """arr[s] += v for the lanes with has != 0, summed over the warp first when those lanes share s (one atomic
+    per warp instead of one per lane: same-address atomics serialise). Every lane of the warp must call."""
+    ...
+
+
 @wp.func
 def is_finite(a: float) -> bool:
     """True unless a is NaN or +-inf. A comparison, not wp.isfinite: on CPU that is an out-of-line call, and every
@@ -331,234 +457,309 @@ def p2g_apic_neohookean(
             qi = qi + a0
 
 
-@wp.kernel
-def grid_update(
-    grid_mvm: wp.array(dtype=wp.vec4),
-    grid_v: wp.array(dtype=wp.vec4),
-    grid_origin: wp.array(dtype=wp.vec3i),
-    nx: int,
-    ny: int,
-    nz: int,
-    dx: float,
-    dt_arr: wp.array(dtype=float),
-    scene_gravity: wp.array(dtype=wp.vec3),
-    scene_damping: wp.array(dtype=float),
-    ground_enabled: wp.array(dtype=wp.int32),
-    ground_height: wp.array(dtype=float),
-    ground_mu: wp.array(dtype=float),
-    ground_impulse: wp.array(dtype=wp.vec3),
-    col_start: wp.array(dtype=wp.int32),
-    col_count: wp.array(dtype=wp.int32),
-    col_kind: wp.array(dtype=wp.int32),
-    col_params: wp.array(dtype=wp.vec3),
-    col_planes: wp.array(dtype=wp.vec4),
-    col_radius2: wp.array(dtype=float),
-    col_mu: wp.array(dtype=float),
-    col_bonded: wp.array(dtype=wp.int32),
-    col_pos: wp.array(dtype=wp.vec3),
-    col_rot: wp.array(dtype=wp.quat),
-    col_lin_vel: wp.array(dtype=wp.vec3),
-    col_ang_vel: wp.array(dtype=wp.vec3),
-    col_impulse: wp.array(dtype=wp.vec3),
-    clock_time: wp.array(dtype=wp.float64),
-    clock_step: wp.array(dtype=wp.int32),
-    per_thread: int,
-    n_items: int,
-):
-    """Grid: momentum -> velocity, gravity, damping rate, ground + collider contact; clears the scatter buffer.
+def make_grid_update(colliders: bool = True, agg: bool = False, module: str | None = None) -> wp.Kernel:
+    """The grid update kernel. colliders=False leaves out the kinematic-collider contact (scenes with only the
+    ground: no per-node collider loop, fewer registers). agg=True (CUDA only: one node per thread, whole-warp
+    launches) sums a warp's ground impulses by shuffles and issues one atomic per warp instead of one per node (they
+    all go to the scene's one ground_impulse entry, and same-address atomics serialise). colliders=True, agg=False
+    is the reference kernel (the CPU path, unchanged)."""
 
-    Impulses accumulated in ``ground_impulse`` / ``col_impulse`` are J = m_node (v+ - v) [N s]: the momentum the
-    ground/collider gives the OBJECT. The force the object exerts on the collider is -sum(J)/interval.
-    """
-    t = wp.tid()
-    for n in range(t * per_thread, wp.min((t + 1) * per_thread, n_items)):
-        if n == 0:
-            clock_time[0] = clock_time[0] + wp.float64(dt_arr[0])
-            clock_step[0] = clock_step[0] + 1
-        mvm = grid_mvm[n]
-        grid_mvm[n] = wp.vec4(0.0, 0.0, 0.0, 0.0)
-        m = mvm[3]
-        if m <= 0.0:
-            grid_v[n] = wp.vec4(0.0, 0.0, 0.0, 0.0)
-            continue
-        dt = dt_arr[0]
-        cells = nx * ny * nz
-        s = n // cells
-        r = n - s * cells
-        i = r // (ny * nz)
-        j = (r // nz) % ny
-        k = r % nz
-        v = wp.vec3(mvm[0], mvm[1], mvm[2]) / m
-        v = (v + dt * scene_gravity[s]) * wp.exp(-scene_damping[s] * dt)
-        o = grid_origin[s]
-        xn = wp.vec3(float(o[0] + i), float(o[1] + j), float(o[2] + k)) * dx
-        if ground_enabled[s] != 0:
-            if xn[2] <= ground_height[s]:
-                vplus = contact_velocity(v, wp.vec3(0.0, 0.0, 0.0), wp.vec3(0.0, 0.0, 1.0), ground_mu[s], 0)
-                wp.atomic_add(ground_impulse, s, m * (vplus - v))
-                v = vplus
-        c0 = col_start[s]
-        for c in range(c0, c0 + col_count[s]):
-            rel = xn - col_pos[c]
-            if wp.dot(rel, rel) > col_radius2[c]:
-                continue  # outside the collider's bounding sphere
-            q = collider_contact(col_kind[c], col_params[c], col_pos[c], col_rot[c], col_lin_vel[c], col_ang_vel[c], xn,
-                                 col_planes)
-            if q[2, 0] <= 0.0:
-                vplus = contact_velocity(v, wp.vec3(q[1, 0], q[1, 1], q[1, 2]), wp.vec3(q[0, 0], q[0, 1], q[0, 2]),
-                                         col_mu[c], col_bonded[c])
-                wp.atomic_add(col_impulse, c, m * (vplus - v))
-                v = vplus
-        grid_v[n] = wp.vec4(v[0], v[1], v[2], 0.0)
+    def _grid_update_body(
+        grid_mvm: wp.array(dtype=wp.vec4),
+        grid_v: wp.array(dtype=wp.vec4),
+        grid_origin: wp.array(dtype=wp.vec3i),
+        nx: int,
+        ny: int,
+        nz: int,
+        dx: float,
+        dt_arr: wp.array(dtype=float),
+        scene_gravity: wp.array(dtype=wp.vec3),
+        scene_damping: wp.array(dtype=float),
+        ground_enabled: wp.array(dtype=wp.int32),
+        ground_height: wp.array(dtype=float),
+        ground_mu: wp.array(dtype=float),
+        ground_impulse: wp.array(dtype=wp.vec3),
+        col_start: wp.array(dtype=wp.int32),
+        col_count: wp.array(dtype=wp.int32),
+        col_kind: wp.array(dtype=wp.int32),
+        col_params: wp.array(dtype=wp.vec3),
+        col_planes: wp.array(dtype=wp.vec4),
+        col_radius2: wp.array(dtype=float),
+        col_mu: wp.array(dtype=float),
+        col_bonded: wp.array(dtype=wp.int32),
+        col_pos: wp.array(dtype=wp.vec3),
+        col_rot: wp.array(dtype=wp.quat),
+        col_lin_vel: wp.array(dtype=wp.vec3),
+        col_ang_vel: wp.array(dtype=wp.vec3),
+        col_impulse: wp.array(dtype=wp.vec3),
+        clock_time: wp.array(dtype=wp.float64),
+        clock_step: wp.array(dtype=wp.int32),
+        per_thread: int,
+        n_items: int,
+    ):
+        """Grid: momentum -> velocity, gravity, damping rate, ground + collider contact; clears the scatter buffer.
 
-
-@wp.kernel
-def g2p_apic(
-    x: wp.array(dtype=wp.vec3),
-    v: wp.array(dtype=wp.vec3),
-    C: wp.array(dtype=wp.mat33),
-    F: wp.array(dtype=wp.mat33),
-    particle_mass: wp.array(dtype=float),
-    particle_scene: wp.array(dtype=wp.int32),
-    scene_start: wp.array(dtype=wp.int32),
-    grid_v: wp.array(dtype=wp.vec4),
-    grid_origin: wp.array(dtype=wp.vec3i),
-    nx: int,
-    ny: int,
-    nz: int,
-    dx: float,
-    dt_arr: wp.array(dtype=float),
-    scene_gravity: wp.array(dtype=wp.vec3),
-    ground_enabled: wp.array(dtype=wp.int32),
-    ground_height: wp.array(dtype=float),
-    ground_mu: wp.array(dtype=float),
-    ground_impulse: wp.array(dtype=wp.vec3),
-    col_start: wp.array(dtype=wp.int32),
-    col_count: wp.array(dtype=wp.int32),
-    col_kind: wp.array(dtype=wp.int32),
-    col_params: wp.array(dtype=wp.vec3),
-    col_planes: wp.array(dtype=wp.vec4),
-    col_radius2: wp.array(dtype=float),
-    col_mu: wp.array(dtype=float),
-    col_bonded: wp.array(dtype=wp.int32),
-    col_pos_end: wp.array(dtype=wp.vec3),
-    col_rot_end: wp.array(dtype=wp.quat),
-    col_lin_vel: wp.array(dtype=wp.vec3),
-    col_ang_vel: wp.array(dtype=wp.vec3),
-    col_impulse: wp.array(dtype=wp.vec3),
-    domain_lo: wp.array(dtype=wp.vec3),
-    domain_hi: wp.array(dtype=wp.vec3),
-    j_min: float,
-    j_max: float,
-    clock_step: wp.array(dtype=wp.int32),
-    fail_step: wp.array(dtype=wp.int32),
-    fail_particle: wp.array(dtype=wp.int32),
-    x_out: wp.array(dtype=wp.vec3),
-    v_out: wp.array(dtype=wp.vec3),
-    C_out: wp.array(dtype=wp.mat33),
-    F_out: wp.array(dtype=wp.mat33),
-    per_thread: int,
-    n_items: int,
-):
-    """Grid to particle: gather velocity and APIC affine field, advect, update F, fix penetration, check health."""
-    t = wp.tid()
-    for p in range(t * per_thread, wp.min((t + 1) * per_thread, n_items)):
-        s = particle_scene[p]
-        pl = p - scene_start[s]
-        step = clock_step[0]
-        xp = x[p]
-        vp = v[p]
-        Fp = F[p]
-        if not is_finite(state_sum(xp, vp, Fp, C[p])):
-            flag_failure(fail_step, fail_particle, s, FLAG_NONFINITE, step, pl)
-            continue  # frozen: never spreads into the grid
-        dt = dt_arr[0]
-        inv_dx = 1.0 / dx
-        o = grid_origin[s]
-        local = xp * inv_dx - wp.vec3(float(o[0]), float(o[1]), float(o[2]))
-        bx = int(wp.floor(local[0] - 0.5))
-        by = int(wp.floor(local[1] - 0.5))
-        bz = int(wp.floor(local[2] - 0.5))
-        vn = wp.vec3(0.0, 0.0, 0.0)
-        Cn = wp.mat33(0.0)
-        if bx < 0 or by < 0 or bz < 0 or bx > nx - 3 or by > ny - 3 or bz > nz - 3:
-            vn = vp + dt * scene_gravity[s]  # outside the grid window: ballistic (flagged in p2g)
-        else:
-            fx = local - wp.vec3(float(bx), float(by), float(bz))
-            wx = quadratic_weights(fx[0])
-            wy = quadratic_weights(fx[1])
-            wz = quadratic_weights(fx[2])
-            nyz = ny * nz
-            base = s * nx * nyz + bx * nyz + by * nz + bz
-            si = wp.vec3(0.0, 0.0, 0.0)
-            sj = wp.vec3(0.0, 0.0, 0.0)
-            sk = wp.vec3(0.0, 0.0, 0.0)
-            for i in range(3):
-                bi = base + i * nyz
-                r0 = gather_row(grid_v, bi, wz)
-                r1 = gather_row(grid_v, bi + nz, wz)
-                r2 = gather_row(grid_v, bi + 2 * nz, wz)
-                # r = (sum_k w_k v_k, sum_k k w_k v_k) per row j
-                p0 = wy[0] * wp.vec3(r0[0, 0], r0[0, 1], r0[0, 2])
-                p1 = wy[1] * wp.vec3(r1[0, 0], r1[0, 1], r1[0, 2])
-                p2 = wy[2] * wp.vec3(r2[0, 0], r2[0, 1], r2[0, 2])
-                ps = p0 + p1 + p2
-                pj = p1 + 2.0 * p2
-                pk = (wy[0] * wp.vec3(r0[1, 0], r0[1, 1], r0[1, 2]) + wy[1] * wp.vec3(r1[1, 0], r1[1, 1], r1[1, 2])
-                      + wy[2] * wp.vec3(r2[1, 0], r2[1, 1], r2[1, 2]))
-                b = wx[i] * ps
-                vn += b
-                if i > 0:
-                    si += float(i) * b
-                sj += wx[i] * pj
-                sk += wx[i] * pk
-            # B = sum w v (ijk - fx)^T dx ; C = 4 B / dx^2
-            scale = 4.0 * inv_dx
-            c0 = (si - fx[0] * vn) * scale
-            c1 = (sj - fx[1] * vn) * scale
-            c2 = (sk - fx[2] * vn) * scale
-            Cn = wp.mat33(c0[0], c1[0], c2[0], c0[1], c1[1], c2[1], c0[2], c1[2], c2[2])
-        xn = xp + dt * vn
-        Fn = Fp + dt * (Cn * Fp)
-        m = particle_mass[p]
-        # residual penetration: push the particle back to the surface, remove inward relative velocity
-        if ground_enabled[s] != 0:
-            gh = ground_height[s]
-            if xn[2] < gh:
-                xn = wp.vec3(xn[0], xn[1], gh)
-                vplus = contact_velocity(vn, wp.vec3(0.0, 0.0, 0.0), wp.vec3(0.0, 0.0, 1.0), ground_mu[s], 0)
-                wp.atomic_add(ground_impulse, s, m * (vplus - vn))
-                vn = vplus
-        c_first = col_start[s]
-        for c in range(c_first, c_first + col_count[s]):
-            rel = xn - col_pos_end[c]
-            if wp.dot(rel, rel) > col_radius2[c]:
+        Impulses accumulated in ``ground_impulse`` / ``col_impulse`` are J = m_node (v+ - v) [N s]: the momentum the
+        ground/collider gives the OBJECT. The force the object exerts on the collider is -sum(J)/interval.
+        """
+        t = wp.tid()
+        if wp.static(agg):
+            g_imp = wp.vec3(0.0, 0.0, 0.0)
+            g_has = int(0)
+            g_scene = int(0)
+        for n in range(t * per_thread, wp.min((t + 1) * per_thread, n_items)):
+            if n == 0:
+                clock_time[0] = clock_time[0] + wp.float64(dt_arr[0])
+                clock_step[0] = clock_step[0] + 1
+            mvm = grid_mvm[n]
+            grid_mvm[n] = wp.vec4(0.0, 0.0, 0.0, 0.0)
+            m = mvm[3]
+            if m <= 0.0:
+                grid_v[n] = wp.vec4(0.0, 0.0, 0.0, 0.0)
                 continue
-            q = collider_contact(col_kind[c], col_params[c], col_pos_end[c], col_rot_end[c], col_lin_vel[c],
-                                 col_ang_vel[c], xn, col_planes)
-            phi = q[2, 0]
-            if phi < 0.0:
-                nrm = wp.vec3(q[0, 0], q[0, 1], q[0, 2])
-                xn = xn - phi * nrm
-                vplus = contact_velocity(vn, wp.vec3(q[1, 0], q[1, 1], q[1, 2]), nrm, col_mu[c], col_bonded[c])
-                wp.atomic_add(col_impulse, c, m * (vplus - vn))
-                vn = vplus
-        # health
-        J = wp.determinant(Fn)
-        xv = xn + vn
-        if not is_finite((xv[0] + xv[1]) + (xv[2] + J)):  # Cn enters Fn, so J covers it
-            flag_failure(fail_step, fail_particle, s, FLAG_NONFINITE, step, pl)
-        else:
-            if J < j_min or J > j_max:
-                flag_failure(fail_step, fail_particle, s, FLAG_J_OUT_OF_BOUNDS, step, pl)
-            lo = domain_lo[s]
-            hi = domain_hi[s]
-            if xn[0] < lo[0] or xn[1] < lo[1] or xn[2] < lo[2] or xn[0] > hi[0] or xn[1] > hi[1] or xn[2] > hi[2]:
-                flag_failure(fail_step, fail_particle, s, FLAG_LEFT_DOMAIN, step, pl)
-        x_out[p] = xn
-        v_out[p] = vn
-        C_out[p] = Cn
-        F_out[p] = Fn
+            dt = dt_arr[0]
+            cells = nx * ny * nz
+            s = n // cells
+            r = n - s * cells
+            i = r // (ny * nz)
+            j = (r // nz) % ny
+            k = r % nz
+            v = wp.vec3(mvm[0], mvm[1], mvm[2]) / m
+            v = (v + dt * scene_gravity[s]) * wp.exp(-scene_damping[s] * dt)
+            o = grid_origin[s]
+            xn = wp.vec3(float(o[0] + i), float(o[1] + j), float(o[2] + k)) * dx
+            if ground_enabled[s] != 0:
+                if xn[2] <= ground_height[s]:
+                    vplus = contact_velocity(v, wp.vec3(0.0, 0.0, 0.0), wp.vec3(0.0, 0.0, 1.0), ground_mu[s], 0)
+                    if wp.static(agg):
+                        g_imp = m * (vplus - v)
+                        g_has = 1
+                        g_scene = s
+                    else:
+                        wp.atomic_add(ground_impulse, s, m * (vplus - v))
+                    v = vplus
+            if wp.static(colliders):
+                c0 = col_start[s]
+                for c in range(c0, c0 + col_count[s]):
+                    rel = xn - col_pos[c]
+                    if wp.dot(rel, rel) > col_radius2[c]:
+                        continue  # outside the collider's bounding sphere
+                    q = collider_contact(col_kind[c], col_params[c], col_pos[c], col_rot[c], col_lin_vel[c],
+                                         col_ang_vel[c], xn, col_planes)
+                    if q[2, 0] <= 0.0:
+                        vplus = contact_velocity(v, wp.vec3(q[1, 0], q[1, 1], q[1, 2]),
+                                                 wp.vec3(q[0, 0], q[0, 1], q[0, 2]), col_mu[c], col_bonded[c])
+                        wp.atomic_add(col_impulse, c, m * (vplus - v))
+                        v = vplus
+            grid_v[n] = wp.vec4(v[0], v[1], v[2], 0.0)
+        if wp.static(agg):
+            warp_add_vec3(ground_impulse, g_scene, g_imp, g_has)  # every lane of the warp (whole-warp launches)
+
+    return wp.kernel(_grid_update_body, enable_backward=False, module=module,
+                     module_options=None if module != "unique" else dict(_UNIQUE_OPTIONS))
+
+
+grid_update = make_grid_update()
+
+
+def make_g2p(colliders: bool = True, coop: bool = False, agg: bool = False, module: str | None = None) -> wp.Kernel:
+    """The grid-to-particle kernel. colliders=False leaves out the kinematic-collider contact (scenes with only the
+    ground). CUDA only, one particle per thread and whole-warp launches: coop=True moves a warp's 32 particles' x, v,
+    F, C as contiguous 16-byte loads/stores through shared memory (a lane's own scalar accesses to 36-byte mat33
+    records touch ~9 cache lines per warp instruction); agg=True sums a warp's ground impulses by shuffles (one
+    atomic per warp). colliders=True, coop=agg=False is the reference kernel (the CPU path, unchanged: same rollout
+    bit for bit)."""
+
+    def _g2p_body(
+        x: wp.array(dtype=wp.vec3),
+        v: wp.array(dtype=wp.vec3),
+        C: wp.array(dtype=wp.mat33),
+        F: wp.array(dtype=wp.mat33),
+        particle_mass: wp.array(dtype=float),
+        particle_scene: wp.array(dtype=wp.int32),
+        scene_start: wp.array(dtype=wp.int32),
+        grid_v: wp.array(dtype=wp.vec4),
+        grid_origin: wp.array(dtype=wp.vec3i),
+        nx: int,
+        ny: int,
+        nz: int,
+        dx: float,
+        dt_arr: wp.array(dtype=float),
+        scene_gravity: wp.array(dtype=wp.vec3),
+        ground_enabled: wp.array(dtype=wp.int32),
+        ground_height: wp.array(dtype=float),
+        ground_mu: wp.array(dtype=float),
+        ground_impulse: wp.array(dtype=wp.vec3),
+        col_start: wp.array(dtype=wp.int32),
+        col_count: wp.array(dtype=wp.int32),
+        col_kind: wp.array(dtype=wp.int32),
+        col_params: wp.array(dtype=wp.vec3),
+        col_planes: wp.array(dtype=wp.vec4),
+        col_radius2: wp.array(dtype=float),
+        col_mu: wp.array(dtype=float),
+        col_bonded: wp.array(dtype=wp.int32),
+        col_pos_end: wp.array(dtype=wp.vec3),
+        col_rot_end: wp.array(dtype=wp.quat),
+        col_lin_vel: wp.array(dtype=wp.vec3),
+        col_ang_vel: wp.array(dtype=wp.vec3),
+        col_impulse: wp.array(dtype=wp.vec3),
+        domain_lo: wp.array(dtype=wp.vec3),
+        domain_hi: wp.array(dtype=wp.vec3),
+        j_min: float,
+        j_max: float,
+        clock_step: wp.array(dtype=wp.int32),
+        fail_step: wp.array(dtype=wp.int32),
+        fail_particle: wp.array(dtype=wp.int32),
+        x_out: wp.array(dtype=wp.vec3),
+        v_out: wp.array(dtype=wp.vec3),
+        C_out: wp.array(dtype=wp.mat33),
+        F_out: wp.array(dtype=wp.mat33),
+        per_thread: int,
+        n_items: int,
+    ):
+        """Grid to particle: gather velocity and APIC affine field, advect, update F, fix penetration, check health."""
+        t = wp.tid()
+        if wp.static(coop):
+            # one particle per thread, a warp's 32 consecutive particles moved as one contiguous span (every lane calls;
+            # lanes past n_items take part and write nothing). A frozen particle stores back what it loaded.
+            xo = coop_vec3(x, t, n_items, 0, wp.vec3(0.0, 0.0, 0.0))
+            vo = coop_vec3(v, t, n_items, 0, wp.vec3(0.0, 0.0, 0.0))
+            Fo = coop_mat33(F, t, n_items, 0, wp.mat33(0.0))
+            Co = coop_mat33(C, t, n_items, 0, wp.mat33(0.0))
+        if wp.static(agg):
+            g_imp = wp.vec3(0.0, 0.0, 0.0)
+            g_has = int(0)
+            g_scene = int(0)
+        for p in range(t * per_thread, wp.min((t + 1) * per_thread, n_items)):
+            s = particle_scene[p]
+            pl = p - scene_start[s]
+            step = clock_step[0]
+            if wp.static(coop):
+                xp = xo
+                vp = vo
+                Fp = Fo
+                Cp = Co
+            else:
+                xp = x[p]
+                vp = v[p]
+                Fp = F[p]
+                Cp = C[p]
+            if not is_finite(state_sum(xp, vp, Fp, Cp)):
+                flag_failure(fail_step, fail_particle, s, FLAG_NONFINITE, step, pl)
+                continue  # frozen: never spreads into the grid
+            dt = dt_arr[0]
+            inv_dx = 1.0 / dx
+            o = grid_origin[s]
+            local = xp * inv_dx - wp.vec3(float(o[0]), float(o[1]), float(o[2]))
+            bx = int(wp.floor(local[0] - 0.5))
+            by = int(wp.floor(local[1] - 0.5))
+            bz = int(wp.floor(local[2] - 0.5))
+            vn = wp.vec3(0.0, 0.0, 0.0)
+            Cn = wp.mat33(0.0)
+            if bx < 0 or by < 0 or bz < 0 or bx > nx - 3 or by > ny - 3 or bz > nz - 3:
+                vn = vp + dt * scene_gravity[s]  # outside the grid window: ballistic (flagged in p2g)
+            else:
+                fx = local - wp.vec3(float(bx), float(by), float(bz))
+                wx = quadratic_weights(fx[0])
+                wy = quadratic_weights(fx[1])
+                wz = quadratic_weights(fx[2])
+                nyz = ny * nz
+                base = s * nx * nyz + bx * nyz + by * nz + bz
+                si = wp.vec3(0.0, 0.0, 0.0)
+                sj = wp.vec3(0.0, 0.0, 0.0)
+                sk = wp.vec3(0.0, 0.0, 0.0)
+                for i in range(3):
+                    bi = base + i * nyz
+                    r0 = gather_row(grid_v, bi, wz)
+                    r1 = gather_row(grid_v, bi + nz, wz)
+                    r2 = gather_row(grid_v, bi + 2 * nz, wz)
+                    # r = (sum_k w_k v_k, sum_k k w_k v_k) per row j
+                    p0 = wy[0] * wp.vec3(r0[0, 0], r0[0, 1], r0[0, 2])
+                    p1 = wy[1] * wp.vec3(r1[0, 0], r1[0, 1], r1[0, 2])
+                    p2 = wy[2] * wp.vec3(r2[0, 0], r2[0, 1], r2[0, 2])
+                    ps = p0 + p1 + p2
+                    pj = p1 + 2.0 * p2
+                    pk = (wy[0] * wp.vec3(r0[1, 0], r0[1, 1], r0[1, 2]) + wy[1] * wp.vec3(r1[1, 0], r1[1, 1], r1[1, 2])
+                          + wy[2] * wp.vec3(r2[1, 0], r2[1, 1], r2[1, 2]))
+                    b = wx[i] * ps
+                    vn += b
+                    if i > 0:
+                        si += float(i) * b
+                    sj += wx[i] * pj
+                    sk += wx[i] * pk
+                # B = sum w v (ijk - fx)^T dx ; C = 4 B / dx^2
+                scale = 4.0 * inv_dx
+                c0 = (si - fx[0] * vn) * scale
+                c1 = (sj - fx[1] * vn) * scale
+                c2 = (sk - fx[2] * vn) * scale
+                Cn = wp.mat33(c0[0], c1[0], c2[0], c0[1], c1[1], c2[1], c0[2], c1[2], c2[2])
+            xn = xp + dt * vn
+            Fn = Fp + dt * (Cn * Fp)
+            m = particle_mass[p]
+            # residual penetration: push the particle back to the surface, remove inward relative velocity
+            if ground_enabled[s] != 0:
+                gh = ground_height[s]
+                if xn[2] < gh:
+                    xn = wp.vec3(xn[0], xn[1], gh)
+                    vplus = contact_velocity(vn, wp.vec3(0.0, 0.0, 0.0), wp.vec3(0.0, 0.0, 1.0), ground_mu[s], 0)
+                    if wp.static(agg):
+                        g_imp = m * (vplus - vn)
+                        g_has = 1
+                        g_scene = s
+                    else:
+                        wp.atomic_add(ground_impulse, s, m * (vplus - vn))
+                    vn = vplus
+            if wp.static(colliders):
+                c_first = col_start[s]
+                for c in range(c_first, c_first + col_count[s]):
+                    rel = xn - col_pos_end[c]
+                    if wp.dot(rel, rel) > col_radius2[c]:
+                        continue
+                    q = collider_contact(col_kind[c], col_params[c], col_pos_end[c], col_rot_end[c], col_lin_vel[c],
+                                         col_ang_vel[c], xn, col_planes)
+                    phi = q[2, 0]
+                    if phi < 0.0:
+                        nrm = wp.vec3(q[0, 0], q[0, 1], q[0, 2])
+                        xn = xn - phi * nrm
+                        vplus = contact_velocity(vn, wp.vec3(q[1, 0], q[1, 1], q[1, 2]), nrm, col_mu[c],
+                                                 col_bonded[c])
+                        wp.atomic_add(col_impulse, c, m * (vplus - vn))
+                        vn = vplus
+            # health
+            J = wp.determinant(Fn)
+            xv = xn + vn
+            if not is_finite((xv[0] + xv[1]) + (xv[2] + J)):  # Cn enters Fn, so J covers it
+                flag_failure(fail_step, fail_particle, s, FLAG_NONFINITE, step, pl)
+            else:
+                if J < j_min or J > j_max:
+                    flag_failure(fail_step, fail_particle, s, FLAG_J_OUT_OF_BOUNDS, step, pl)
+                lo = domain_lo[s]
+                hi = domain_hi[s]
+                if xn[0] < lo[0] or xn[1] < lo[1] or xn[2] < lo[2] or xn[0] > hi[0] or xn[1] > hi[1] or xn[2] > hi[2]:
+                    flag_failure(fail_step, fail_particle, s, FLAG_LEFT_DOMAIN, step, pl)
+            if wp.static(coop):
+                xo = xn
+                vo = vn
+                Co = Cn
+                Fo = Fn
+            else:
+                x_out[p] = xn
+                v_out[p] = vn
+                C_out[p] = Cn
+                F_out[p] = Fn
+        if wp.static(agg):
+            warp_add_vec3(ground_impulse, g_scene, g_imp, g_has)  # every lane of the warp (whole-warp launches)
+        if wp.static(coop):
+            coop_vec3(x_out, t, n_items, 1, xo)
+            coop_vec3(v_out, t, n_items, 1, vo)
+            coop_mat33(C_out, t, n_items, 1, Co)
+            coop_mat33(F_out, t, n_items, 1, Fo)
+
+    return wp.kernel(_g2p_body, enable_backward=False, module=module,
+                     module_options=None if module != "unique" else dict(_UNIQUE_OPTIONS))
+
+
+g2p_apic = make_g2p()
 
 
 @wp.kernel

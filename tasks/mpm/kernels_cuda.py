@@ -10,6 +10,10 @@ only the order of the float additions differs (it already does on CUDA: global f
   reduces one chunk of one scene (threads stride over it; warp shuffles + shared memory) into the chunk's partials;
   the last block of each scene to finish combines the scene's partials and fits its window (instead of a reset
   launch, one serial loop per thread with same-address atomics, and a fit launch).
+* Variants (selected by ``solver.py``; each in a module of its own, compiled on first use): ``g2p_kernel`` and
+  ``grid_update_kernel`` return the kernels of ``kernels.make_g2p`` / ``make_grid_update`` without the collider
+  contact (scenes with only the ground), with warp-summed ground impulses, and (g2p) with warp-cooperative
+  particle loads/stores; ``p2g_kernel(True)`` is p2g_warp with warp-cooperative loads (not used by default).
 
 Launch contract: the launch dimension is a multiple of the block size (threads past ``n_items`` take part in the
 warp/block collectives but write nothing). Never launched on CPU (the CPU path keeps ``kernels.py``, bit for bit;
@@ -17,6 +21,8 @@ the CPU branches of the native snippets exist only so that tests can check the i
 """
 
 from __future__ import annotations
+
+import functools
 
 import warp as wp
 
@@ -177,71 +183,108 @@ def scatter_stencil_warp(
     ...
 
 
-@wp.kernel
-def p2g_warp(
-    x: wp.array(dtype=wp.vec3),
-    v: wp.array(dtype=wp.vec3),
-    C: wp.array(dtype=wp.mat33),
-    F: wp.array(dtype=wp.mat33),
-    particle_mass: wp.array(dtype=float),
-    particle_vol: wp.array(dtype=float),
-    particle_scene: wp.array(dtype=wp.int32),
-    scene_start: wp.array(dtype=wp.int32),
-    scene_mu: wp.array(dtype=float),
-    scene_lambda: wp.array(dtype=float),
-    grid_origin: wp.array(dtype=wp.vec3i),
-    nx: int,
-    ny: int,
-    nz: int,
-    dx: float,
-    dt_arr: wp.array(dtype=float),
-    clock_step: wp.array(dtype=wp.int32),
-    grid_mvm: wp.array(dtype=wp.vec4),
-    fail_step: wp.array(dtype=wp.int32),
-    fail_particle: wp.array(dtype=wp.int32),
-    nparts: int,
-    n_items: int,
-):
-    """Particle to grid (as ``kernels.p2g_apic_neohookean``) with warp-aggregated atomics; nparts (1, 3 or 9)
-    consecutive threads share a particle, each scattering its part of the stencil (more threads at small sizes)."""
-    t = wp.tid()
-    pt = t // nparts
-    part = t - pt * nparts
-    p = wp.min(pt, n_items - 1)
-    ok = pt < n_items
-    xp = x[p]
-    vp = v[p]
-    Fp = F[p]
-    Cp = C[p]
-    if not K.is_finite(K.state_sum(xp, vp, Fp, Cp)):
-        ok = False  # gated (never written to the grid); g2p reports it
-    s = particle_scene[p]
-    inv_dx = 1.0 / dx
-    o = grid_origin[s]
-    local = xp * inv_dx - wp.vec3(float(o[0]), float(o[1]), float(o[2]))
-    bx = int(0)
-    by = int(0)
-    bz = int(0)
-    if ok:
-        bx = int(wp.floor(local[0] - 0.5))
-        by = int(wp.floor(local[1] - 0.5))
-        bz = int(wp.floor(local[2] - 0.5))
-        if bx < 0 or by < 0 or bz < 0 or bx > nx - 3 or by > ny - 3 or bz > nz - 3:
-            if part == 0:
-                K.flag_failure(fail_step, fail_particle, s, K.FLAG_OUT_OF_GRID, clock_step[0] + 1, p - scene_start[s])
-            ok = False
-    fx = local - wp.vec3(float(bx), float(by), float(bz))
-    wx = K.quadratic_weights(fx[0])
-    wy = K.quadratic_weights(fx[1])
-    wz = K.quadratic_weights(fx[2])
-    q = K.apic_momentum(Fp, Cp, vp, particle_mass[p], particle_vol[p], scene_mu[s], scene_lambda[s], dt_arr[0], dx,
-                        fx)
-    nyz = ny * nz
-    base = s * nx * nyz + bx * nyz + by * nz + bz
-    ok_i = int(0)
-    if ok:
-        ok_i = 1
-    scatter_stencil_warp(ok_i, base, part, nparts, nyz, nz, q[0], q[1], q[2], q[3], wx, wy, wz, grid_mvm)
+def make_p2g_warp(coop: bool = False, module: str | None = None) -> wp.Kernel:
+    """The warp-aggregated p2g; coop=True (nparts = 1 only) loads a warp's 32 particles' x, v, F, C as contiguous
+    16-byte vector loads through shared memory (``kernels.coop_vec3``)."""
+
+    def _p2g_warp_body(
+        x: wp.array(dtype=wp.vec3),
+        v: wp.array(dtype=wp.vec3),
+        C: wp.array(dtype=wp.mat33),
+        F: wp.array(dtype=wp.mat33),
+        particle_mass: wp.array(dtype=float),
+        particle_vol: wp.array(dtype=float),
+        particle_scene: wp.array(dtype=wp.int32),
+        scene_start: wp.array(dtype=wp.int32),
+        scene_mu: wp.array(dtype=float),
+        scene_lambda: wp.array(dtype=float),
+        grid_origin: wp.array(dtype=wp.vec3i),
+        nx: int,
+        ny: int,
+        nz: int,
+        dx: float,
+        dt_arr: wp.array(dtype=float),
+        clock_step: wp.array(dtype=wp.int32),
+        grid_mvm: wp.array(dtype=wp.vec4),
+        fail_step: wp.array(dtype=wp.int32),
+        fail_particle: wp.array(dtype=wp.int32),
+        nparts: int,
+        n_items: int,
+    ):
+        """Particle to grid (as ``kernels.p2g_apic_neohookean``) with warp-aggregated atomics; nparts (1, 3 or 9)
+        consecutive threads share a particle, each scattering its part of the stencil (more threads at small sizes)."""
+        t = wp.tid()
+        pt = t // nparts
+        part = t - pt * nparts
+        p = wp.min(pt, n_items - 1)
+        ok = pt < n_items
+        if wp.static(coop):  # nparts == 1: a warp's 32 consecutive particles as one contiguous span per array
+            xp = K.coop_vec3(x, t, n_items, 0, wp.vec3(0.0, 0.0, 0.0))
+            vp = K.coop_vec3(v, t, n_items, 0, wp.vec3(0.0, 0.0, 0.0))
+            Fp = K.coop_mat33(F, t, n_items, 0, wp.mat33(0.0))
+            Cp = K.coop_mat33(C, t, n_items, 0, wp.mat33(0.0))
+        else:
+            xp = x[p]
+            vp = v[p]
+            Fp = F[p]
+            Cp = C[p]
+        if not K.is_finite(K.state_sum(xp, vp, Fp, Cp)):
+            ok = False  # gated (never written to the grid); g2p reports it
+        s = particle_scene[p]
+        inv_dx = 1.0 / dx
+        o = grid_origin[s]
+        local = xp * inv_dx - wp.vec3(float(o[0]), float(o[1]), float(o[2]))
+        bx = int(0)
+        by = int(0)
+        bz = int(0)
+        if ok:
+            bx = int(wp.floor(local[0] - 0.5))
+            by = int(wp.floor(local[1] - 0.5))
+            bz = int(wp.floor(local[2] - 0.5))
+            if bx < 0 or by < 0 or bz < 0 or bx > nx - 3 or by > ny - 3 or bz > nz - 3:
+                if part == 0:
+                    K.flag_failure(fail_step, fail_particle, s, K.FLAG_OUT_OF_GRID, clock_step[0] + 1, p - scene_start[s])
+                ok = False
+        fx = local - wp.vec3(float(bx), float(by), float(bz))
+        wx = K.quadratic_weights(fx[0])
+        wy = K.quadratic_weights(fx[1])
+        wz = K.quadratic_weights(fx[2])
+        q = K.apic_momentum(Fp, Cp, vp, particle_mass[p], particle_vol[p], scene_mu[s], scene_lambda[s], dt_arr[0], dx,
+                            fx)
+        nyz = ny * nz
+        base = s * nx * nyz + bx * nyz + by * nz + bz
+        ok_i = int(0)
+        if ok:
+            ok_i = 1
+        scatter_stencil_warp(ok_i, base, part, nparts, nyz, nz, q[0], q[1], q[2], q[3], wx, wy, wz, grid_mvm)
+
+    return wp.kernel(_p2g_warp_body, enable_backward=False, module=module,
+                     module_options=None if module != "unique" else dict(K._UNIQUE_OPTIONS))
+
+
+p2g_warp = make_p2g_warp()
+
+
+@functools.cache
+def p2g_kernel(coop: bool) -> wp.Kernel:
+    """p2g_warp, or its variant with warp-cooperative particle loads (own module, compiled on first use)."""
+    return make_p2g_warp(True, module="unique") if coop else p2g_warp
+
+
+@functools.cache
+def g2p_kernel(colliders: bool, coop: bool, agg: bool) -> wp.Kernel:
+    """kernels.g2p_apic (colliders, not coop, not agg) or one of its CUDA variants (own module, built on first use)."""
+    if colliders and not coop and not agg:
+        return K.g2p_apic
+    return K.make_g2p(colliders, coop, agg, module="unique")
+
+
+@functools.cache
+def grid_update_kernel(colliders: bool, agg: bool) -> wp.Kernel:
+    """kernels.grid_update (colliders, not agg) or one of its CUDA variants (own module, built on first use)."""
+    if colliders and not agg:
+        return K.grid_update
+    return K.make_grid_update(colliders, agg, module="unique")
 
 
 @wp.func_native(

@@ -22,6 +22,11 @@ INT_MAX = 2**31 - 1
 CUDA_FAST = os.environ.get("DEFORMSMITH_MPM_CUDA_FAST", "1") != "0"
 
 
+def _env_flag(name: str, default: bool = True) -> bool:
+    """An on/off experiment switch of the fast CUDA path (read when a Solver is built)."""
+    return os.environ.get(name, "1" if default else "0") != "0"
+
+
 def cuda_block_dim(n_threads: int) -> int:
     """Threads per CUDA block for a launch of n_threads: small blocks at small sizes spread the work over the SMs
     (an H100/H200 has 132), 256 once there are enough blocks to fill them."""
@@ -33,6 +38,11 @@ def cuda_block_dim(n_threads: int) -> int:
     if n_threads >= 128 * 132 * 2:
         return 128
     return 64
+
+
+def _coop_ok(state: State) -> bool:
+    """Whether a state's arrays suit the warp-cooperative accesses (contiguous, 16-byte aligned)."""
+    return all(a.is_contiguous and a.ptr is not None and a.ptr % 16 == 0 for a in (state.x, state.v, state.F, state.C))
 
 
 class Solver:
@@ -79,8 +89,26 @@ class Solver:
         self.col_rot1 = wp.zeros(nc, dtype=wp.quat, device=d)
         self.grid_origin = wp.zeros(B, dtype=wp.vec3i, device=d)
         self.fast_cuda = d == "cuda" and CUDA_FAST
+        self.cuda_colliders, self.cuda_agg, self.cuda_coop_g2p, self.cuda_coop_p2g = True, False, False, False
         if self.fast_cuda:
             self._init_cuda_blocks()
+            # kernel variants of the fast path (switches DEFORMSMITH_MPM_<NAME>=0/1, for experiments and tests):
+            # SPECIALIZE: no kinematic colliders in the model -> g2p / grid update without the collider contact code;
+            # AGG: a warp's ground impulses summed by shuffles, one atomic per warp (same-address atomics serialise);
+            # COOP_G2P: g2p moves a warp's 32 particle records (x, v, F, C) as contiguous 16-byte accesses through
+            # shared memory instead of a scalar access per float of a 36-byte record. H200, standard cube, with vs
+            # without: a gain at 64k (37.8 -> 27.9 us/step) and 16 x 8k (54.9 -> 47.8), a loss at 8k (+1 us: one
+            # latency-bound wave of small blocks) and 1M (250.7 -> 260.9), so by default only for
+            # COOP_MIN <= particles <= COOP_MAX (sizes in between not measured);
+            # COOP_P2G: the same for p2g's loads (no gain measured: off by default)
+            self.cuda_colliders = model.n_colliders > 0 or not _env_flag("DEFORMSMITH_MPM_SPECIALIZE")
+            self.cuda_agg = _env_flag("DEFORMSMITH_MPM_AGG")
+            coop = _env_flag("DEFORMSMITH_MPM_COOP")
+            coop_min = int(os.environ.get("DEFORMSMITH_MPM_COOP_MIN", "24000"))
+            coop_max = int(os.environ.get("DEFORMSMITH_MPM_COOP_MAX", "400000")) or 2**31
+            sized = coop_min <= model.n_particles <= coop_max
+            self.cuda_coop_g2p = coop and _env_flag("DEFORMSMITH_MPM_COOP_G2P") and sized
+            self.cuda_coop_p2g = coop and _env_flag("DEFORMSMITH_MPM_COOP_P2G", False) and sized
         self._alloc_grid(model.grid_dims)
         self._initial_fit = True
 
@@ -333,8 +361,9 @@ class Solver:
         if self.fast_cuda:
             bd = self.p2g_block
             nt = m.n_particles * self.p2g_parts
+            coop = self.cuda_coop_p2g and self.p2g_parts == 1 and _coop_ok(state_in)
             cmds.append(wp.launch(
-                KC.p2g_warp,
+                KC.p2g_kernel(coop),
                 dim=-(-nt // bd) * bd,  # whole blocks: every lane reaches the warp collectives
                 inputs=[state_in.x, state_in.v, state_in.C, state_in.F, m.particle_mass, m.particle_vol,
                         m.particle_scene, m.scene_start, m.scene_mu, m.scene_lambda, self.grid_origin, nx, ny, nz,
@@ -355,9 +384,22 @@ class Solver:
                 device=d,
                 record_cmd=True,
             ))
+        gu_kernel, g2p_kernel, gu_dim, g2p_dim = K.grid_update, K.g2p_apic, self._threads(self.grid_nodes), \
+            self._threads(m.n_particles)
+        gu_block = g2p_block = None
+        if self.fast_cuda:
+            coop = self.cuda_coop_g2p and _coop_ok(state_in) and _coop_ok(state_out)
+            gu_block = cuda_block_dim(self.grid_nodes)
+            gu_kernel = KC.grid_update_kernel(self.cuda_colliders, self.cuda_agg)
+            g2p_block = cuda_block_dim(m.n_particles)
+            g2p_kernel = KC.g2p_kernel(self.cuda_colliders, coop, self.cuda_agg)
+            if self.cuda_agg:  # warp collectives: whole blocks (the threads past the items take part, write nothing)
+                gu_dim = -(-self.grid_nodes // gu_block) * gu_block
+            if self.cuda_agg or coop:
+                g2p_dim = -(-m.n_particles // g2p_block) * g2p_block
         cmds.append(wp.launch(
-            K.grid_update,
-            dim=self._threads(self.grid_nodes),
+            gu_kernel,
+            dim=gu_dim,
             inputs=[self.grid_mvm, self.grid_v, self.grid_origin, nx, ny, nz, m.dx, self.dt_arr, control.d_gravity,
                     m.scene_damping, m.ground_enabled, m.ground_height, m.ground_mu, self.ground_impulse,
                     m.col_start, m.col_count, m.col_kind, m.col_params, m.col_planes, m.col_radius2, m.col_mu, m.col_bonded, self.col_pos0,
@@ -365,11 +407,11 @@ class Solver:
                     self.clock_step, self._per_thread, self.grid_nodes],
             device=d,
             record_cmd=True,
-            block_dim=cuda_block_dim(self.grid_nodes) if self.fast_cuda else None,
+            block_dim=gu_block,
         ))
         cmds.append(wp.launch(
-            K.g2p_apic,
-            dim=self._threads(m.n_particles),
+            g2p_kernel,
+            dim=g2p_dim,
             inputs=[state_in.x, state_in.v, state_in.C, state_in.F, m.particle_mass, m.particle_scene,
                     m.scene_start, self.grid_v, self.grid_origin, nx, ny, nz, m.dx, self.dt_arr, control.d_gravity,
                     m.ground_enabled, m.ground_height, m.ground_mu, self.ground_impulse, m.col_start, m.col_count,
@@ -380,7 +422,7 @@ class Solver:
                     m.n_particles],
             device=d,
             record_cmd=True,
-            block_dim=cuda_block_dim(m.n_particles) if self.fast_cuda else None,
+            block_dim=g2p_block,
         ))
         return cmds
 
