@@ -25,6 +25,7 @@ from tasks.manipulation.outcome import TrialTolerances, label_trial
 from tasks.robot import PHASES, ObjectPose, Trajectory, plan_trajectory
 
 PAD_FACES = ("-y", "+y")  # gripping face of the left and right pad boxes in the finger links' axes
+CARRY_PHASES = ("lift", "transport")  # the hand holds the object off the table: the grid lattice moves with it
 
 
 @dataclass(frozen=True)
@@ -147,6 +148,10 @@ def run_trial(body: TrialBody, physical: PhysicalModel, material: Material, plan
             frames_f.append(p["F"].astype(np.float32))
             frames_k.append(k)
         m = traj.pad_motion(t0, t1, hold_opening)
+        # while the hand carries the object, the grid lattice moves with it (tasks.mpm Control.set_grid_velocity):
+        # pads crossing lattice planes would release and re-grip node layers and the squeeze would leak away
+        carrying = traj.phase_at(t0) in CARRY_PHASES
+        sim.control.set_grid_velocity(0, m.linear_velocity_m_per_s[0].mean(axis=0) if carrying else (0.0, 0.0, 0.0))
         for f in range(2):
             sim.control.set_collider(0, f, position_m=m.position_m[0, f], rotation_xyzw=m.quat_xyzw[0, f],
                                      linear_velocity_m_per_s=m.linear_velocity_m_per_s[0, f],

@@ -62,6 +62,13 @@ class Control:
         self.d_lin_vel = wp.zeros(m, dtype=wp.vec3, device=d)
         self.d_ang_vel = wp.zeros(m, dtype=wp.vec3, device=d)
         self.d_gravity = wp.zeros(model.n_scenes, dtype=wp.vec3, device=d)
+        # lattice motion per scene: offset [cells] at the reference time [s] and velocity [cells/s] (kernels.lattice_shift)
+        B = model.n_scenes
+        self.slide_ref = np.zeros((B, 3))
+        self.slide_time = np.zeros(B)
+        self.slide_vel = np.zeros((B, 3))
+        self._slide_pending: dict[int, np.ndarray] = {}
+        self.d_grid_slide = wp.zeros(8 * B, dtype=wp.float64, device=d)
 
     # -- setters -------------------------------------------------------------------------------------------------
     def set_collider(
@@ -89,6 +96,33 @@ class Control:
                     raise InputError(f"collider {key} must be finite")
                 entry[key] = arr
         self._dirty = True
+
+    def set_grid_velocity(self, scene: int, velocity_m_per_s: Sequence[float]) -> None:
+        """Move scene's grid lattice at this velocity [m/s] from the next step on (0: the lattice stays where it is).
+
+        Grid contact sees a collider's surface only at nodes, so a collider that crosses lattice planes while it holds
+        material (a gripper carrying an object) releases and re-grips a node layer at every crossing and its squeeze
+        leaks away; a lattice moving with the gripper keeps the contact geometry fixed. MLS-MPM keeps no grid state
+        between steps, so a moving lattice changes nothing else.
+        """
+        v = np.asarray(velocity_m_per_s, dtype=np.float64).reshape(3)
+        if not np.all(np.isfinite(v)):
+            raise InputError("grid velocity must be finite")
+        self._slide_pending[scene] = v
+        self._dirty = True
+
+    @property
+    def grid_sliding(self) -> bool:
+        """Whether any scene's lattice moves (pending changes included)."""
+        vel = self.slide_vel.copy()
+        for s, v in self._slide_pending.items():
+            vel[s] = v / self.model.dx
+        return bool(np.any(vel != 0.0))
+
+    def lattice_shift(self, scene: int, time_s: float) -> np.ndarray:
+        """Host evaluation of a scene's lattice offset [cells] in [0, 1) at time t [s] (as the kernels compute it)."""
+        a = self.slide_ref[scene] + self.slide_vel[scene] * (time_s - self.slide_time[scene])
+        return a - np.floor(a)
 
     def set_gravity(self, scene: int, gravity_m_per_s2: Sequence[float]) -> None:
         """Set a scene's gravity vector [m/s^2] from the next step on."""
@@ -140,6 +174,15 @@ class Control:
             if "ang" in entry:
                 self.ang_vel[c] = entry["ang"]
         self._pending.clear()
+        if self._slide_pending:
+            for sc, v in self._slide_pending.items():
+                self.slide_ref[sc] = self.lattice_shift(sc, time_s)
+                self.slide_time[sc] = time_s
+                self.slide_vel[sc] = v / self.model.dx
+            self._slide_pending.clear()
+            table = np.zeros((self.model.n_scenes, 8))
+            table[:, :3], table[:, 3], table[:, 4:7] = self.slide_ref, self.slide_time, self.slide_vel
+            self.d_grid_slide.assign(table.reshape(-1))
         n = self.model.n_colliders
         if n:
             self.d_ref_pos.assign(self.ref_pos.astype(np.float32))

@@ -1,8 +1,9 @@
 """Warp kernels of the MLS-MPM step (SI units: m, s, kg, Pa); each kernel does one thing.
 
-Grid layout: B scenes share one flat node array; scene s owns nodes [s*nx*ny*nz, (s+1)*nx*ny*nz). Nodes sit on the
-world lattice (multiples of dx); ``grid_origin[s]`` is the lattice index of the scene's node (0, 0, 0), moved by
-``fit_grid`` so that the window follows the particles. A particle whose stencil falls outside its window is gated
+Grid layout: B scenes share one flat node array; scene s owns nodes [s*nx*ny*nz, (s+1)*nx*ny*nz). Nodes sit on a
+lattice of spacing dx: the world lattice (multiples of dx), or one offset by ``lattice_shift`` when the scene's lattice
+moves (a gripper carrying the object); ``grid_origin[s]`` is the position of the scene's node (0, 0, 0) in cells
+(lattice index + offset), moved by ``fit_grid`` so that the window follows the particles. A particle whose stencil falls outside its window is gated
 (never written to the grid) and flagged, so no kernel can index out of bounds.
 """
 
@@ -370,15 +371,30 @@ def apic_momentum(Fp: wp.mat33, Cp: wp.mat33, vp: wp.vec3, m: float, vol: float,
 
 
 @wp.func
+def lattice_shift(s: int, grid_slide: wp.array(dtype=wp.float64), clock_time: wp.array(dtype=wp.float64)) -> wp.vec3:
+    """Scene s's lattice offset now, in cells, in [0, 1): grid_slide[8 s:8 s + 8] = (offset at the reference time
+    (3), reference time [s], lattice velocity [cells/s] (3), unused); all zero = the fixed world lattice."""
+    b = s * 8
+    t = clock_time[0] - grid_slide[b + 3]
+    a0 = grid_slide[b] + grid_slide[b + 4] * t
+    a1 = grid_slide[b + 1] + grid_slide[b + 5] * t
+    a2 = grid_slide[b + 2] + grid_slide[b + 6] * t
+    return wp.vec3(float(a0 - wp.floor(a0)), float(a1 - wp.floor(a1)), float(a2 - wp.floor(a2)))
+
+
+@wp.func
 def fit_window(s: int, lo: wp.vec3, hi: wp.vec3, nx: int, ny: int, nz: int, dx: float, guard_cells: int,
-               grid_origin: wp.array(dtype=wp.vec3i), grid_overflow: wp.array(dtype=wp.int32)):
-    """Centre scene s's grid window on bounds [lo, hi] [m]; flag the scene when they no longer fit (no bounds: no-op)."""
+               shift: wp.vec3, grid_origin: wp.array(dtype=wp.vec3), grid_overflow: wp.array(dtype=wp.int32)):
+    """Centre scene s's grid window on bounds [lo, hi] [m] on the lattice offset by shift [cells]; flag the scene when
+    they no longer fit (no bounds: no-op). grid_origin[s] = position of node (0, 0, 0) in cells (lattice index +
+    shift)."""
     if lo[0] > hi[0]:
         return
     inv_dx = 1.0 / dx
-    c = 0.5 * (lo + hi) * inv_dx
-    grid_origin[s] = wp.vec3i(
-        int(wp.floor(c[0])) - nx // 2, int(wp.floor(c[1])) - ny // 2, int(wp.floor(c[2])) - nz // 2
+    c = 0.5 * (lo + hi) * inv_dx - shift
+    grid_origin[s] = wp.vec3(
+        float(int(wp.floor(c[0])) - nx // 2) + shift[0], float(int(wp.floor(c[1])) - ny // 2) + shift[1],
+        float(int(wp.floor(c[2])) - nz // 2) + shift[2]
     )
     ext = (hi - lo) * inv_dx
     g = float(2 * guard_cells + 3)
@@ -398,7 +414,7 @@ def p2g_apic_neohookean(
     scene_start: wp.array(dtype=wp.int32),
     scene_mu: wp.array(dtype=float),
     scene_lambda: wp.array(dtype=float),
-    grid_origin: wp.array(dtype=wp.vec3i),
+    grid_origin: wp.array(dtype=wp.vec3),
     nx: int,
     ny: int,
     nz: int,
@@ -423,7 +439,7 @@ def p2g_apic_neohookean(
         s = particle_scene[p]
         inv_dx = 1.0 / dx
         o = grid_origin[s]
-        local = xp * inv_dx - wp.vec3(float(o[0]), float(o[1]), float(o[2]))
+        local = xp * inv_dx - o
         bx = int(wp.floor(local[0] - 0.5))
         by = int(wp.floor(local[1] - 0.5))
         bz = int(wp.floor(local[2] - 0.5))
@@ -467,7 +483,7 @@ def make_grid_update(colliders: bool = True, agg: bool = False, module: str | No
     def _grid_update_body(
         grid_mvm: wp.array(dtype=wp.vec4),
         grid_v: wp.array(dtype=wp.vec4),
-        grid_origin: wp.array(dtype=wp.vec3i),
+        grid_origin: wp.array(dtype=wp.vec3),
         nx: int,
         ny: int,
         nz: int,
@@ -527,7 +543,7 @@ def make_grid_update(colliders: bool = True, agg: bool = False, module: str | No
             v = wp.vec3(mvm[0], mvm[1], mvm[2]) / m
             v = (v + dt * scene_gravity[s]) * wp.exp(-scene_damping[s] * dt)
             o = grid_origin[s]
-            xn = wp.vec3(float(o[0] + i), float(o[1] + j), float(o[2] + k)) * dx
+            xn = (o + wp.vec3(float(i), float(j), float(k))) * dx
             if ground_enabled[s] != 0:
                 if xn[2] <= ground_height[s]:
                     vplus = contact_velocity(v, wp.vec3(0.0, 0.0, 0.0), wp.vec3(0.0, 0.0, 1.0), ground_mu[s], 0)
@@ -579,7 +595,7 @@ def make_g2p(colliders: bool = True, coop: bool = False, agg: bool = False, modu
         particle_scene: wp.array(dtype=wp.int32),
         scene_start: wp.array(dtype=wp.int32),
         grid_v: wp.array(dtype=wp.vec4),
-        grid_origin: wp.array(dtype=wp.vec3i),
+        grid_origin: wp.array(dtype=wp.vec3),
         nx: int,
         ny: int,
         nz: int,
@@ -650,7 +666,7 @@ def make_g2p(colliders: bool = True, coop: bool = False, agg: bool = False, modu
             dt = dt_arr[0]
             inv_dx = 1.0 / dx
             o = grid_origin[s]
-            local = xp * inv_dx - wp.vec3(float(o[0]), float(o[1]), float(o[2]))
+            local = xp * inv_dx - o
             bx = int(wp.floor(local[0] - 0.5))
             by = int(wp.floor(local[1] - 0.5))
             bz = int(wp.floor(local[2] - 0.5))
@@ -830,9 +846,12 @@ def fit_grid(
     nz: int,
     dx: float,
     guard_cells: int,
-    grid_origin: wp.array(dtype=wp.vec3i),
+    grid_slide: wp.array(dtype=wp.float64),
+    clock_time: wp.array(dtype=wp.float64),
+    grid_origin: wp.array(dtype=wp.vec3),
     grid_overflow: wp.array(dtype=wp.int32),
 ):
     """Centre each scene's grid window on its particles' bounds; flag a scene whose bounds no longer fit."""
     s = wp.tid()
-    fit_window(s, bmin[s], bmax[s], nx, ny, nz, dx, guard_cells, grid_origin, grid_overflow)
+    fit_window(s, bmin[s], bmax[s], nx, ny, nz, dx, guard_cells, lattice_shift(s, grid_slide, clock_time), grid_origin,
+               grid_overflow)

@@ -198,7 +198,7 @@ def make_p2g_warp(coop: bool = False, module: str | None = None) -> wp.Kernel:
         scene_start: wp.array(dtype=wp.int32),
         scene_mu: wp.array(dtype=float),
         scene_lambda: wp.array(dtype=float),
-        grid_origin: wp.array(dtype=wp.vec3i),
+        grid_origin: wp.array(dtype=wp.vec3),
         nx: int,
         ny: int,
         nz: int,
@@ -233,7 +233,7 @@ def make_p2g_warp(coop: bool = False, module: str | None = None) -> wp.Kernel:
         s = particle_scene[p]
         inv_dx = 1.0 / dx
         o = grid_origin[s]
-        local = xp * inv_dx - wp.vec3(float(o[0]), float(o[1]), float(o[2]))
+        local = xp * inv_dx - o
         bx = int(0)
         by = int(0)
         bz = int(0)
@@ -339,7 +339,9 @@ def refit_fused(
     nz: int,
     dx: float,
     guard_cells: int,
-    grid_origin: wp.array(dtype=wp.vec3i),
+    grid_slide: wp.array(dtype=wp.float64),
+    clock_time: wp.array(dtype=wp.float64),
+    grid_origin: wp.array(dtype=wp.vec3),
     grid_overflow: wp.array(dtype=wp.int32),
     block: int,
 ):
@@ -400,5 +402,6 @@ def refit_fused(
             bmax[s] = hi
             speed_max[s] = wp.sqrt(vm)
             kinetic[s] = ke
-            K.fit_window(s, lo, hi, nx, ny, nz, dx, guard_cells, grid_origin, grid_overflow)
+            K.fit_window(s, lo, hi, nx, ny, nz, dx, guard_cells, K.lattice_shift(s, grid_slide, clock_time), grid_origin,
+                         grid_overflow)
 

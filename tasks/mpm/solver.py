@@ -87,7 +87,9 @@ class Solver:
         self.col_rot0 = wp.zeros(nc, dtype=wp.quat, device=d)
         self.col_pos1 = wp.zeros(nc, dtype=wp.vec3, device=d)
         self.col_rot1 = wp.zeros(nc, dtype=wp.quat, device=d)
-        self.grid_origin = wp.zeros(B, dtype=wp.vec3i, device=d)
+        self.grid_origin = wp.zeros(B, dtype=wp.vec3, device=d)  # node (0, 0, 0) of each window [cells]
+        self._no_slide = wp.zeros(8 * B, dtype=wp.float64, device=d)  # the fixed world lattice
+        self._slide = self._no_slide  # the lattice motion of the last control stepped with
         self.fast_cuda = d == "cuda" and CUDA_FAST
         self.cuda_colliders, self.cuda_agg, self.cuda_coop_g2p, self.cuda_coop_p2g = True, False, False, False
         if self.fast_cuda:
@@ -191,7 +193,8 @@ class Solver:
             raise ValueError("dt must be a positive finite number of seconds")
         control.sync(self.time_s)
         dt32 = self.set_dt(dt)
-        refit = self._since_refit >= self.model.refit_interval
+        self._slide = control.d_grid_slide
+        refit = self._since_refit >= self.refit_interval(control)
         key = (id(state_in), id(state_out), id(control), refit, self.grid_dims)
         entry = self._graphs.get(key)
         if entry is None:
@@ -227,8 +230,9 @@ class Solver:
                 self.step(state, state, control, dt)
             return
         control.sync(self.time_s)
+        self._slide = control.d_grid_slide
         dt32 = self.set_dt(dt)
-        R = self.model.refit_interval
+        R = self.refit_interval(control)
         cycle = R + 1
         while count > 0:
             phase = self._since_refit
@@ -246,8 +250,8 @@ class Solver:
 
     def _launch_block(self, state: State, control: Control, phase: int, n: int) -> None:
         """Replay (capturing it the first time) the graph of n in-place steps starting at refit phase `phase`."""
-        R = self.model.refit_interval
-        key = (id(state), id(control), phase, n, self.grid_dims)
+        R = self.refit_interval(control)
+        key = (id(state), id(control), phase, n, R, self.grid_dims)
         entry = self._blocks.get(key)
         if entry is None:
             cmds: list = []
@@ -278,6 +282,11 @@ class Solver:
         """Launch a captured graph."""
         wp.capture_launch(graph)
 
+    def refit_interval(self, control: Control) -> int:
+        """Plain steps between window re-fits: the model's, or 0 (every step) while a scene's lattice slides (the
+        lattice offset is set at each re-fit)."""
+        return 0 if control.grid_sliding else self.model.refit_interval
+
     def refit(self, state: State) -> None:
         """Move each scene's grid window onto its particles now (device only, no sync)."""
         self._launch_refit(state)
@@ -287,7 +296,7 @@ class Solver:
         """Launch the per-scene bounds reduction and the window fit."""
         if self.fast_cuda:
             # recorded once per (state, grid size): packing the launch arguments costs ~0.1 ms of Python per call
-            key = (id(state), self.grid_dims)
+            key = (id(state), id(self._slide), self.grid_dims)
             entry = self._refit_cmds.get(key)
             if entry is None:
                 entry = (self._record_refit(state), state)  # keep the state alive while cached
@@ -315,7 +324,8 @@ class Solver:
                         self.cuda_chunk_end, self.cuda_scene_chunk_begin, m.domain_lo, m.domain_hi,
                         self.cuda_part_lo, self.cuda_part_hi, self.cuda_part_v2, self.cuda_part_ke,
                         self.cuda_refit_counter, self.bmin, self.bmax, self.speed_max, self.kinetic, nx, ny, nz,
-                        m.dx, m.guard_cells, self.grid_origin, self.grid_overflow, self.red_block],
+                        m.dx, m.guard_cells, self._slide, self.clock_time, self.grid_origin, self.grid_overflow,
+                        self.red_block],
                 device=d,
                 record_cmd=True,
                 block_dim=self.red_block,
@@ -336,7 +346,8 @@ class Solver:
         cmds.append(wp.launch(
             K.fit_grid,
             dim=B,
-            inputs=[self.bmin, self.bmax, nx, ny, nz, m.dx, m.guard_cells, self.grid_origin, self.grid_overflow],
+            inputs=[self.bmin, self.bmax, nx, ny, nz, m.dx, m.guard_cells, self._slide, self.clock_time,
+                    self.grid_origin, self.grid_overflow],
             device=d,
             record_cmd=True,
         ))
