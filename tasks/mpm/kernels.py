@@ -491,6 +491,7 @@ def make_grid_update(colliders: bool = True, agg: bool = False, module: str | No
         dt_arr: wp.array(dtype=float),
         scene_gravity: wp.array(dtype=wp.vec3),
         scene_damping: wp.array(dtype=float),
+        grid_slide: wp.array(dtype=wp.float64),
         ground_enabled: wp.array(dtype=wp.int32),
         ground_height: wp.array(dtype=float),
         ground_mu: wp.array(dtype=float),
@@ -513,7 +514,8 @@ def make_grid_update(colliders: bool = True, agg: bool = False, module: str | No
         per_thread: int,
         n_items: int,
     ):
-        """Grid: momentum -> velocity, gravity, damping rate, ground + collider contact; clears the scatter buffer.
+        """Grid: momentum -> velocity, gravity, damping rate (relative to the lattice velocity), ground + collider
+        contact; clears the scatter buffer.
 
         Impulses accumulated in ``ground_impulse`` / ``col_impulse`` are J = m_node (v+ - v) [N s]: the momentum the
         ground/collider gives the OBJECT. The force the object exerts on the collider is -sum(J)/interval.
@@ -541,7 +543,17 @@ def make_grid_update(colliders: bool = True, agg: bool = False, module: str | No
             j = (r // nz) % ny
             k = r % nz
             v = wp.vec3(mvm[0], mvm[1], mvm[2]) / m
-            v = (v + dt * scene_gravity[s]) * wp.exp(-scene_damping[s] * dt)
+            if wp.static(colliders):
+                # the damping rate acts relative to the scene's lattice velocity: zero, or the gripper's while it
+                # carries the object (a damping at rest in the world would drag a carried object out of the hand)
+                b = s * 8
+                vr = wp.vec3(float(grid_slide[b + 4]), float(grid_slide[b + 5]), float(grid_slide[b + 6])) * dx
+                if vr[0] != 0.0 or vr[1] != 0.0 or vr[2] != 0.0:
+                    v = vr + (v + dt * scene_gravity[s] - vr) * wp.exp(-scene_damping[s] * dt)
+                else:
+                    v = (v + dt * scene_gravity[s]) * wp.exp(-scene_damping[s] * dt)
+            else:
+                v = (v + dt * scene_gravity[s]) * wp.exp(-scene_damping[s] * dt)
             o = grid_origin[s]
             xn = (o + wp.vec3(float(i), float(j), float(k))) * dx
             if ground_enabled[s] != 0:
