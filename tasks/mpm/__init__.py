@@ -1,9 +1,11 @@
 """MPM engine (NVIDIA Warp): 3D MLS-MPM, quadratic B-splines, neo-Hookean, grid Coulomb contact. SI units.
 
-Physics: Kirchhoff stress tau = mu (F F^T - I) + lambda ln(J) I; damping as a rate (v *= exp(-rate dt)); gravity per
-scene; adaptive dt = min(dt_max, C dx / (c_p + |v|max + collider speed)) or SimConfig.dt_fixed_s; a dense grid
-window per scene fitted to the particles (bounds + margin), re-centred on the device every few steps and enlarged
-when the body outgrows it. Contact on grid nodes (ground plane + kinematic box / capsule / half-space / finger-pad /
+Physics: Kirchhoff stress tau = mu (F F^T - I) + lambda ln(J) I; damping as a rate (v *= exp(-rate dt), relative
+to the scene's lattice velocity: zero unless set); gravity per scene; adaptive dt = min(dt_max, C dx / (c_p + |v|max
++ collider speed)) or SimConfig.dt_fixed_s; a dense grid window per scene fitted to the particles (bounds + margin),
+re-centred on the device every few steps and enlarged when the body outgrows it. The lattice is the world lattice
+unless ``Control.set_grid_velocity`` moves it (a gripper carrying the object: pads crossing lattice planes would
+release and re-grip node layers and the squeeze would leak away). Contact on grid nodes (ground plane + kinematic box / capsule / half-space / finger-pad /
 convex-polytope colliders): for u = v - v_b with u_n < 0, v+ = v_b + max(0, 1 - mu (-u_n)/max(|u_t|, eps)) u_t; separation allowed; residual
 penetration of particles corrected after grid-to-particle. ``bonded=True`` colliders clamp (v = v_b inside).
 
@@ -21,6 +23,7 @@ Public API (Model / State / Control / Solver, plus a Simulator that drives repor
     sim.control.set_collider(scene, index, position_m=..., rotation_xyzw=..., linear_velocity_m_per_s=...,
                              angular_velocity_rad_per_s=...)        # pose re-anchored now; moves at that velocity
     sim.control.set_gravity(scene, (gx, gy, gz))
+    sim.control.set_grid_velocity(scene, (vx, vy, vz))  # lattice (and damping frame) moves with a carrying hand [m/s]
     report = sim.advance(0.01)                 # one reporting interval [s]; adaptive/fixed dt inside
     report.collider_force(model, scene, index) # mean force [N] the OBJECT exerts ON that collider over the interval
     report.ground_force_n[scene]               # same for the ground; f = -(1/dt_k) sum J_c, J_c = m (v+ - v)
