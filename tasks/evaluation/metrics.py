@@ -40,7 +40,10 @@ def wilson(k: float, n: int, z: float = 1.96) -> tuple[float, float]:
     d = 1 + z * z / n
     c = (p + z * z / (2 * n)) / d
     h = z * math.sqrt(p * (1 - p) / n + z * z / (4 * n * n)) / d
-    return (max(0.0, c - h), min(1.0, c + h))
+    # at k = 0 or k = n the interval ends exactly at the rate (c - h / c + h equal it only up to round-off)
+    lo = 0.0 if k <= 0 else max(0.0, c - h)
+    hi = 1.0 if k >= n else min(1.0, c + h)
+    return (lo, hi)
 
 
 def rate(flags: list[tuple[str, bool]]) -> Figure:

@@ -90,7 +90,8 @@ def _plot(ablation: str, figs: dict[str, dict[str, Figure]], path: Path) -> None
             x = i + (j - 1.5) * w
             err = None
             if f is not None and f.low is not None and f.high is not None:
-                err = [[100 * (v - f.low)], [100 * (f.high - v)]]
+                # a rate of 0 or 1 sits on its Wilson bound up to round-off: clip the arms at 0 (matplotlib refuses < 0)
+                err = [[max(0.0, 100 * (v - f.low))], [max(0.0, 100 * (f.high - v))]]
             ax.bar(x, 100 * v, w, color=col, label=label if i == 0 else None, yerr=err, capsize=3)
             if f is not None:
                 ax.text(x, 100 * v + 2, f"N={f.n}", ha="center", fontsize=6)

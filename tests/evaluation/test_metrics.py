@@ -56,6 +56,9 @@ def test_wilson_bounds() -> None:
     lo, hi = wilson(9, 10)
     assert 0.55 < lo < 0.9 < hi <= 1.0
     assert wilson(0, 5)[0] == 0.0
+    # all-successes / no-successes intervals end exactly at the rate (round-off gave 0.9999999999999999 at 6/6, and
+    # the report's error bars went negative: matplotlib refused to plot a 44-case run)
+    assert all(wilson(n, n)[1] == 1.0 and wilson(0, n)[0] == 0.0 for n in range(1, 200))
 
 
 def test_report_is_traceable(tmp_path: Path) -> None:
