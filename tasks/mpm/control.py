@@ -68,6 +68,7 @@ class Control:
         self.slide_time = np.zeros(B)
         self.slide_vel = np.zeros((B, 3))
         self._slide_pending: dict[int, np.ndarray] = {}
+        self._sliding = False
         self.d_grid_slide = wp.zeros(8 * B, dtype=wp.float64, device=d)
 
     # -- setters -------------------------------------------------------------------------------------------------
@@ -108,16 +109,15 @@ class Control:
         v = np.asarray(velocity_m_per_s, dtype=np.float64).reshape(3)
         if not np.all(np.isfinite(v)):
             raise InputError("grid velocity must be finite")
+        if scene not in self._slide_pending and np.array_equal(v / self.model.dx, self.slide_vel[scene]):
+            return  # unchanged: nothing to re-anchor or upload
         self._slide_pending[scene] = v
         self._dirty = True
 
     @property
     def grid_sliding(self) -> bool:
-        """Whether any scene's lattice moves (pending changes included)."""
-        vel = self.slide_vel.copy()
-        for s, v in self._slide_pending.items():
-            vel[s] = v / self.model.dx
-        return bool(np.any(vel != 0.0))
+        """Whether any scene's lattice moves (as of the last sync: the solver syncs before it asks)."""
+        return self._sliding
 
     def lattice_shift(self, scene: int, time_s: float) -> np.ndarray:
         """Host evaluation of a scene's lattice offset [cells] in [0, 1) at time t [s] (as the kernels compute it)."""
@@ -180,6 +180,7 @@ class Control:
                 self.slide_time[sc] = time_s
                 self.slide_vel[sc] = v / self.model.dx
             self._slide_pending.clear()
+            self._sliding = bool(np.any(self.slide_vel != 0.0))
             table = np.zeros((self.model.n_scenes, 8))
             table[:, :3], table[:, 3], table[:, 4:7] = self.slide_ref, self.slide_time, self.slide_vel
             self.d_grid_slide.assign(table.reshape(-1))
