@@ -158,6 +158,15 @@ def _case_rows(records: list[ArmResult], report_dir: Path, out: Path) -> list[st
     return lines
 
 
+def _shown_path(path: Path) -> str:
+    """A suite file as the report names it: relative to the repository when it is one of ours, else as given."""
+    root = Path(__file__).resolve().parents[2]
+    try:
+        return str(Path(path).resolve().relative_to(root))
+    except ValueError:
+        return str(path)
+
+
 def write_report(report_dir: Path, records: list[ArmResult], suite: Suite, suite_file: Path, opts: Any,
                  wall_s: float, jobs: list[dict[str, Any]]) -> dict[str, Any]:
     """report.md, plots and figures.json; returns the summary (also the CLI's --json)."""
@@ -166,7 +175,7 @@ def write_report(report_dir: Path, records: list[ArmResult], suite: Suite, suite
     out = report_dir.parent
     figs = aggregate(records)
     md = [f"# DeformSmith evaluation: suite '{suite.name}'", "",
-          f"Suite file `{suite_file}` ({len(suite.cases)} cases); this run: ablations {', '.join(opts.ablations)}, "
+          f"Suite file `{_shown_path(suite_file)}` ({len(suite.cases)} cases); this run: ablations {', '.join(opts.ablations)}, "
           f"quality {opts.quality}, device {opts.device}, {opts.workers} worker(s), "
           f"limit {opts.limit if opts.limit is not None else 'none'}, agents {opts.llm or 'offline rule backend'}. "
           f"Wall time of this invocation: {wall_s:.0f} s (cached work is not re-run).", "",
