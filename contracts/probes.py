@@ -15,6 +15,8 @@ ProbeKind = Literal[
     "mass", "place", "rigid_drop", "slide",
     # L2 deformable probes (MPM)
     "drop", "compress", "lift", "stability",
+    # L2 probes on a specimen of the material (a cube): where the target bands are measured
+    "specimen_compress", "specimen_drop",
     # L3
     "pick_and_place",
 ]

@@ -1,8 +1,8 @@
 """The arms of the three ablations on one case, each ending in a `contracts.evaluation.ArmResult`.
 
 Independent physics tests (shared by every arm): the held-out L2 probes (compression at the contract's held-out strain,
-drop from the held-out height) judged by the L2 hard gates they report, the held-out target bands, and the paper's drop
-protocol (5 s drop from a quarter height, plausibility metrics). Every probe is a cached task: a rerun costs hits.
+drop from the held-out height, on the object and on the material's specimen) judged by the L2 hard gates they report,
+the held-out target bands (measured on the specimen, as in L2), and the paper's drop protocol (5 s drop from a quarter height, plausibility metrics). Every probe is a cached task: a rerun costs hits.
 """
 
 from __future__ import annotations
@@ -26,22 +26,19 @@ from contracts.sim import SimConfig
 from contracts.stage import StageContract, load_contract
 from flows.harness import probe_cache_key, run_harness
 
-HELD_OUT_KINDS = ("compress", "drop")
-
 
 def physics_tests(asset_dir: Path, physical: PhysicalModel, material: Material, targets: TargetBehaviour,
                   sim: SimConfig, videos: bool = False) -> dict[str, Any]:
     """Held-out probes + gates + targets and the drop protocol of one (physical, material) on an asset's L0."""
-    from flows.l2_material import PROBE_TASKS, probe_inputs
+    from flows.l2_material import HELD_OUT_PROBES, PROBE_TASKS, l2_metrics, probe_inputs
     from flows.renders import drop_protocol_task, render_drop_protocol
-    from tasks.agents import merge_metrics
     from tasks.geometry.outputs import load_l0
 
     l2 = load_contract("L2")
     asset = load_l0(asset_dir)
     keys, probes = {}, []
     with cache.local_runtime():
-        for kind in HELD_OUT_KINDS:
+        for kind in HELD_OUT_PROBES:
             kw = probe_inputs(kind, asset, physical, material, l2, sim, True)
             keys[f"l2.{kind}.held_out"] = probe_cache_key(PROBE_TASKS[kind], kw)
             probes.append(PROBE_TASKS[kind](**kw))
@@ -52,7 +49,7 @@ def physics_tests(asset_dir: Path, physical: PhysicalModel, material: Material, 
     keys["renders.drop_protocol"] = probe_cache_key(drop_protocol_task, {
         "positions_m": asset.particles_m, "volumes_m3": asset.volumes_m3, "physical": physical, "material": material,
         "sim": sim})
-    held = merge_metrics(probes, l2)
+    held = l2_metrics(probes, l2)
     gates = {g.name: bool(g.passes(held.get(g.metric))) for g in l2.hard_gates if g.metric in held}
     bands = [b for b in targets.bands if b.metric in held]
     ho_targets = targets.model_copy(update={"bands": bands})

@@ -4,6 +4,12 @@ The L0 particles and the frozen L1 model are read from the asset directory and n
 content-cached task keyed by (particles, physical model, material, probe settings, numerics), so a material set from
 outside (as L3 does) re-executes exactly the L2 probes. Held-out tests (the contract's other strain and drop height)
 run only on the selected material and are stored apart from the selection metrics.
+
+The target bands (effective modulus, recovery, rebound) are material properties, so they are measured on a specimen
+of the material (tasks.probes.specimen: a cube at the object's spacing, density and friction) by the same compression
+and drop probes; the screening runs on the specimen too. The object's own probes (compress, drop, lift, stability)
+are the structural checks: their hard-gate metrics count, and their other compression / drop metrics are reported as
+``object_<name>`` (object_effective_modulus_pa is the structure's stiffness, not the material's).
 """
 
 from __future__ import annotations
@@ -30,13 +36,18 @@ from flows.harness import probe_cache_key, run_harness
 from tasks.agents import targets_from_intent, targets_from_request
 from tasks.geometry.outputs import L0Asset, load_l0
 from tasks.probes import deformable
+from tasks.probes.specimen import SPECIMEN_PARTICLES_PER_AXIS, specimen_particles
 from tasks.publish import write_json_atomic
 from tasks.probes.rollout import DeformableBody, plan_batches, rollouts
 
 TASK_VERSION = "2"  # bump when tasks/probes/{deformable,rollout,metrics}.py change what the probes return
 MATERIAL_JSON = "material.json"
-SELECTION_PROBES = ("compress", "drop", "lift", "stability")
-SCREEN_SCHEDULE = "auto"  # how screening candidates share rollouts (tasks.probes.rollout.plan_batches)
+SELECTION_PROBES = ("compress", "drop", "lift", "stability", "specimen_compress", "specimen_drop")
+HELD_OUT_PROBES = ("compress", "drop", "specimen_compress", "specimen_drop")  # at the contract's held-out settings
+SPECIMEN_PROBES = {"specimen_compress": "compress", "specimen_drop": "drop"}  # specimen kind -> deformable probe
+OBJECT_VIEW_KINDS = ("compress", "drop")  # object probes whose non-gate metrics are reported as object_<name>
+SCREEN_SCHEDULE = "auto"  # how object candidates share rollouts (tasks.probes.rollout.plan_batches)
+SPECIMEN_SCREEN_SCHEDULE = "batch"  # the screening's three specimen candidates in one lock-step rollout
 
 
 # -- cached probe tasks ----------------------------------------------------------------------------------------------
@@ -46,14 +57,22 @@ def _recording_path(kind: str, key: str) -> Path:
 
 
 def _probe(kind: str, positions_m: np.ndarray, volumes_m3: np.ndarray, physical: PhysicalModel,
-           materials: list[Material], params: dict[str, float], sim: SimConfig, held_out: bool) -> list[ProbeResult]:
-    """Run one probe kind on a batch of materials, recording each scene under the cache's recordings folder."""
+           materials: list[Material], params: dict[str, float], sim: SimConfig, held_out: bool,
+           schedule: str = SCREEN_SCHEDULE) -> list[ProbeResult]:
+    """Run one probe kind (an object probe, or a specimen_* kind on the specimen's particles) on a batch of materials,
+    recording each scene under the cache's recordings folder."""
     body = DeformableBody.from_physical(positions_m, volumes_m3, physical)
     keys = [content_key("l2", kind, positions_m, volumes_m3, physical, m, params, sim, held_out) for m in materials]
     paths = [_recording_path(kind, k) for k in keys]
-    results = deformable.PROBES[kind](body, materials, sim=sim, record_paths=paths, held_out=held_out,
-                                      schedule=SCREEN_SCHEDULE, **params)
-    return [r.model_copy(update={"recording": cache_relative(p) if p.is_file() else None}) for r, p in zip(results, paths)]
+    results = deformable.PROBES[SPECIMEN_PROBES.get(kind, kind)](body, materials, sim=sim, record_paths=paths,
+                                                                 held_out=held_out, schedule=schedule, **params)
+    out = []
+    for r, p in zip(results, paths):
+        upd: dict[str, Any] = {"recording": cache_relative(p) if p.is_file() else None}
+        if kind in SPECIMEN_PROBES:
+            upd["spec"] = r.spec.model_copy(update={"kind": kind})
+        out.append(r.model_copy(update=upd))
+    return out
 
 
 @cached_task(version=TASK_VERSION, name="l2.compress")
@@ -86,16 +105,34 @@ def stability_task(positions_m: np.ndarray, volumes_m3: np.ndarray, physical: Ph
                   False)[0]
 
 
+@cached_task(version=TASK_VERSION, name="l2.specimen_compress")
+def specimen_compress_task(positions_m: np.ndarray, volumes_m3: np.ndarray, physical: PhysicalModel,
+                           material: Material, strain: float, sim: SimConfig, held_out: bool = False) -> ProbeResult:
+    """Compression probe of the material's specimen: the modulus and recovery the target bands are about."""
+    return _probe("specimen_compress", positions_m, volumes_m3, physical, [material], {"strain": strain}, sim,
+                  held_out)[0]
+
+
+@cached_task(version=TASK_VERSION, name="l2.specimen_drop")
+def specimen_drop_task(positions_m: np.ndarray, volumes_m3: np.ndarray, physical: PhysicalModel, material: Material,
+                       height_fraction: float, sim: SimConfig, held_out: bool = False) -> ProbeResult:
+    """Drop probe of the material's specimen: the rebound the target bands are about."""
+    return _probe("specimen_drop", positions_m, volumes_m3, physical, [material], {"height_fraction": height_fraction},
+                  sim, held_out)[0]
+
+
 @cached_task(version=TASK_VERSION, name="l2.screen")
 def screen_task(positions_m: np.ndarray, volumes_m3: np.ndarray, physical: PhysicalModel, kind: str,
-                materials: list[Material], params: dict[str, float], sim: SimConfig) -> list[ProbeResult]:
-    """Several candidate materials of one probe, scheduled by SCREEN_SCHEDULE (equal-time-step candidates batched in one
-    rollout, the others one after another); screen_rollouts() counts the simulation calls."""
-    return _probe(kind, positions_m, volumes_m3, physical, materials, params, sim, False)
+                materials: list[Material], params: dict[str, float], sim: SimConfig,
+                schedule: str = SCREEN_SCHEDULE) -> list[ProbeResult]:
+    """Several candidate materials of one probe, scheduled by `schedule` (tasks.probes.rollout.plan_batches);
+    screen_rollouts() counts the simulation calls."""
+    return _probe(kind, positions_m, volumes_m3, physical, materials, params, sim, False, schedule)
 
 
 PROBE_TASKS: dict[str, Any] = {"compress": compress_task, "drop": drop_task, "lift": lift_task,
-                               "stability": stability_task}
+                               "stability": stability_task, "specimen_compress": specimen_compress_task,
+                               "specimen_drop": specimen_drop_task}
 
 
 # -- inputs ----------------------------------------------------------------------------------------------------------
@@ -106,7 +143,33 @@ def probe_parameters(contract: StageContract) -> dict[str, float]:
             "strain_held_out": float(p.get("compression_strain_held_out", 0.15)),
             "height_fraction": float(p.get("drop_height_fraction_of_height", 0.25)),
             "height_fraction_held_out": float(p.get("drop_height_fraction_held_out", 0.5)),
-            "stability_duration_s": float(p.get("stability_duration_s", 3.0))}
+            "stability_duration_s": float(p.get("stability_duration_s", 3.0)),
+            "specimen_particles_per_axis": float(p.get("specimen_particles_per_axis", SPECIMEN_PARTICLES_PER_AXIS))}
+
+
+def specimen_arrays(physical: PhysicalModel, contract: StageContract) -> tuple[np.ndarray, np.ndarray]:
+    """The specimen's rest positions [m] and volumes [m^3]: a cube at the object's particle spacing."""
+    n = int(probe_parameters(contract)["specimen_particles_per_axis"])
+    return specimen_particles(float(physical.particle_spacing_m), n)
+
+
+def object_view(results: list[ProbeResult], contract: StageContract) -> list[ProbeResult]:
+    """The object's compression / drop metrics renamed object_<name> except the hard-gate ones: the band metrics come
+    from the specimen (the object's effective modulus is its structure's, e.g. 0.024 x E for a dog on four legs)."""
+    gates = {g.metric for g in contract.hard_gates}
+    out = []
+    for r in results:
+        if r.spec.kind in OBJECT_VIEW_KINDS:
+            r = r.model_copy(update={"metrics": {(k if k in gates else f"object_{k}"): v for k, v in r.metrics.items()}})
+        out.append(r)
+    return out
+
+
+def l2_metrics(results: list[ProbeResult], contract: StageContract) -> dict[str, float]:
+    """One metrics dict of L2 probes (object view + specimen), each gate metric at its worst (merge_metrics)."""
+    from tasks.agents import merge_metrics
+
+    return merge_metrics(object_view(results, contract), contract)
 
 
 def probe_inputs(kind: str, asset: L0Asset, physical: PhysicalModel, material: Material, contract: StageContract,
@@ -116,6 +179,9 @@ def probe_inputs(kind: str, asset: L0Asset, physical: PhysicalModel, material: M
     base: dict[str, Any] = {"positions_m": np.asarray(asset.particles_m, np.float64),
                             "volumes_m3": np.asarray(asset.volumes_m3, np.float64), "physical": physical,
                             "material": material, "sim": sim}
+    if kind in SPECIMEN_PROBES:
+        base["positions_m"], base["volumes_m3"] = specimen_arrays(physical, contract)
+        kind = SPECIMEN_PROBES[kind]
     if kind == "compress":
         return {**base, "strain": p["strain_held_out" if held_out else "strain"], "held_out": held_out}
     if kind == "drop":
@@ -188,7 +254,7 @@ class _Runner:
             key = probe_cache_key(task, kw)
             r: ProbeResult = task(**kw)
             out.append(r if r.cache_key else r.model_copy(update={"cache_key": key}))
-        return out
+        return object_view(out, self.contract)
 
 
 def _fit_log(xs: list[float], ys: list[float], target: float, log_x: bool) -> float | None:
@@ -215,20 +281,23 @@ def screen_dampings(values: dict[str, float], field: Any) -> list[float]:
 
 
 def screen_rollouts(physical: PhysicalModel, positions_m: np.ndarray, volumes_m3: np.ndarray,
-                    materials: list[Material], sim: SimConfig, results: list[ProbeResult]) -> int:
+                    materials: list[Material], sim: SimConfig, results: list[ProbeResult],
+                    schedule: str = SCREEN_SCHEDULE) -> int:
     """Simulation calls of one screen_task: one per rollout (a batch of 3 is 1; 3 candidates one after another are 3)."""
     body = DeformableBody.from_physical(positions_m, volumes_m3, physical)
-    return rollouts(plan_batches(body, materials, sim, SCREEN_SCHEDULE), results)
+    return rollouts(plan_batches(body, materials, sim, schedule), results)
 
 
 def screen(asset: L0Asset, physical: PhysicalModel, contract: StageContract, targets: TargetBehaviour,
            start: dict[str, float], sim: SimConfig) -> tuple[dict[str, float], dict[str, Any]]:
-    """Screening: compress three stiffnesses, drop three damping rates (scheduled by SCREEN_SCHEDULE); interpolate the
-    start values that hit the centres of the modulus and rebound bands. Returns (initial values, summary)."""
+    """Screening on the material's specimen: compress three stiffnesses, drop three damping rates (each set in one
+    lock-step rollout, SPECIMEN_SCREEN_SCHEDULE); interpolate the start values that hit the centres of the modulus and
+    rebound bands. Returns (initial values, summary)."""
     p = probe_parameters(contract)
     fields = {f.name: f for f in contract.editable_fields}
-    base = {"positions_m": np.asarray(asset.particles_m, np.float64),
-            "volumes_m3": np.asarray(asset.volumes_m3, np.float64), "physical": physical, "sim": sim}
+    pos, vol = specimen_arrays(physical, contract)
+    base = {"positions_m": pos, "volumes_m3": vol, "physical": physical, "sim": sim,
+            "schedule": SPECIMEN_SCREEN_SCHEDULE}
     values = dict(start)
     summary: dict[str, Any] = {"sim_calls": 0}
     band = targets.band("effective_modulus_pa")
@@ -237,12 +306,12 @@ def screen(asset: L0Asset, physical: PhysicalModel, contract: StageContract, tar
         es = screen_moduli(values, f)
         mats = [Material(youngs_modulus_pa=e, poisson_ratio=values["poisson_ratio"],
                          damping_rate_per_s=values["damping_rate_per_s"]) for e in es]
-        rs = screen_task(kind="compress", materials=mats, params={"strain": p["strain"]}, **base)
+        rs = screen_task(kind="specimen_compress", materials=mats, params={"strain": p["strain"]}, **base)
         ok = [(e, r.metrics["effective_modulus_pa"]) for e, r in zip(es, rs) if "effective_modulus_pa" in r.metrics]
         guess = _fit_log([e for e, _ in ok], [m for _, m in ok], band.center, log_x=True)
         if guess is not None:
             values["youngs_modulus_pa"] = min(max(guess, f.low), f.high)
-        calls = screen_rollouts(physical, base["positions_m"], base["volumes_m3"], mats, sim, rs)
+        calls = screen_rollouts(physical, pos, vol, mats, sim, rs, SPECIMEN_SCREEN_SCHEDULE)
         summary["compress"] = {"youngs_modulus_pa": es, "effective_modulus_pa": [r.metrics.get("effective_modulus_pa")
                                                                                 for r in rs], "sim_calls": calls}
         summary["sim_calls"] += calls
@@ -252,13 +321,14 @@ def screen(asset: L0Asset, physical: PhysicalModel, contract: StageContract, tar
         ds = screen_dampings(values, f)
         mats = [Material(youngs_modulus_pa=values["youngs_modulus_pa"], poisson_ratio=values["poisson_ratio"],
                          damping_rate_per_s=d) for d in ds]
-        rs = screen_task(kind="drop", materials=mats, params={"height_fraction": p["height_fraction"]}, **base)
+        rs = screen_task(kind="specimen_drop", materials=mats, params={"height_fraction": p["height_fraction"]},
+                         **base)
         ok = [(d, r.metrics["rebound_ratio"]) for d, r in zip(ds, rs) if "rebound_ratio" in r.metrics]
         aim = max(band.center, 1e-3)
         guess = _fit_log([d for d, _ in ok], [max(rb, 1e-3) for _, rb in ok], aim, log_x=False)
         if guess is not None:
             values["damping_rate_per_s"] = min(max(guess, f.low), f.high)
-        calls = screen_rollouts(physical, base["positions_m"], base["volumes_m3"], mats, sim, rs)
+        calls = screen_rollouts(physical, pos, vol, mats, sim, rs, SPECIMEN_SCREEN_SCHEDULE)
         summary["drop"] = {"damping_rate_per_s": ds, "rebound_ratio": [r.metrics.get("rebound_ratio") for r in rs],
                            "sim_calls": calls}
         summary["sim_calls"] += calls
@@ -287,11 +357,9 @@ def evaluate_material(asset_dir: Path, material: Material, contract: StageContra
     with cache.local_runtime():
         sel = _Runner(asset, physical, contract, sim)(material.model_dump(), "propose_material")
         ho = [PROBE_TASKS[k](**probe_inputs(k, asset, physical, material, contract, sim, True))
-              for k in ("compress", "drop")] if held_out else []
-    from tasks.agents import merge_metrics
-
-    return {"material": material, "selection": sel, "held_out": ho, "metrics": merge_metrics(sel, contract),
-            "held_out_metrics": merge_metrics(ho, contract) if ho else {}}
+              for k in HELD_OUT_PROBES] if held_out else []
+    return {"material": material, "selection": sel, "held_out": ho, "metrics": l2_metrics(sel, contract),
+            "held_out_metrics": l2_metrics(ho, contract) if ho else {}}
 
 
 def run_l2(asset_dir: Path, request_or_intent: AssetRequest | str | None = None, agents: AgentConfig | None = None,
@@ -324,13 +392,11 @@ def run_l2(asset_dir: Path, request_or_intent: AssetRequest | str | None = None,
             kind = Path(src).name.split("-")[0].removeprefix("L2_")
             recordings[kind] = _copy(src, asset_dir / "recordings" / f"L2_{kind}.rrd")
         with cache.local_runtime():
-            for kind in ("compress", "drop"):
+            for kind in HELD_OUT_PROBES:
                 r = PROBE_TASKS[kind](**probe_inputs(kind, asset, physical, material, contract, sim, True))
                 held.append(r)
                 recordings[f"{kind}_held_out"] = _copy(r.recording, asset_dir / "recordings" / f"L2_{kind}_held_out.rrd")
-    from tasks.agents import merge_metrics
-
-    held_metrics = merge_metrics(held, contract) if held else {}
+    held_metrics = l2_metrics(held, contract) if held else {}
     held_targets = targets.model_copy(update={"bands": [b for b in targets.bands if b.metric in held_metrics]})
     sim_calls = outcome.sim_calls + int(screening.get("sim_calls", 0)) + sum(r.sim_calls for r in held)
     record.update({
@@ -379,5 +445,5 @@ def run_probe(kind: str, asset_dir: Path, material: Material, physical: Physical
         return PROBE_TASKS[kind](**kw)
 
 
-__all__ = ["MATERIAL_JSON", "PROBE_TASKS", "evaluate_material", "l2_targets", "load_material", "probe_inputs",
-           "run_l2", "run_probe", "screen"]
+__all__ = ["HELD_OUT_PROBES", "MATERIAL_JSON", "PROBE_TASKS", "evaluate_material", "l2_metrics", "l2_targets",
+           "load_material", "object_view", "probe_inputs", "run_l2", "run_probe", "screen", "specimen_arrays"]

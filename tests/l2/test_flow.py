@@ -11,9 +11,18 @@ import pytest
 import flows.l2_material as l2
 from cache import CacheStore, cache_root
 from contracts.material import Material
+from contracts.stage import load_contract
 from tests.l2.helpers import box_asset
 
-L2_PROBES = {"l2.compress", "l2.drop", "l2.lift", "l2.stability"}
+L2_PROBES = {"l2.compress", "l2.drop", "l2.lift", "l2.stability", "l2.specimen_compress", "l2.specimen_drop"}
+HELD_OUT = ["l2.compress", "l2.drop", "l2.specimen_compress", "l2.specimen_drop"]
+
+
+def _contract():  # type: ignore[no-untyped-def]
+    """The L2 contract with the smallest specimen the probes measure well (8^3 particles): the test box is coarse, so
+    the default 10^3 specimen would be twice the box's size and most of the test's time."""
+    c = load_contract("L2")
+    return c.model_copy(update={"parameters": {**c.parameters, "specimen_particles_per_axis": 8}})
 
 
 def _misses(before: int) -> list[str]:
@@ -31,22 +40,22 @@ def _asset(tmp_path: Path, monkeypatch: pytest.MonkeyPatch, size=(0.1, 0.08, 0.0
 
 def test_material_from_outside_reexecutes_exactly_the_l2_probes(tmp_path: Path, monkeypatch: pytest.MonkeyPatch,
                                                               prefect_api: str) -> None:
-    """evaluate_material: a new material runs the 4 selection probes + 2 held-out tests once; a repeat runs nothing."""
+    """evaluate_material: a new material runs the 6 selection probes + 4 held-out tests once; a repeat runs nothing."""
     d, phys = _asset(tmp_path, monkeypatch)
     mat = Material(youngs_modulus_pa=2.0e4, poisson_ratio=0.3, damping_rate_per_s=8.0)
     n0 = len(CacheStore(cache_root()).events())
-    out = l2.evaluate_material(d, mat, physical=phys)
+    out = l2.evaluate_material(d, mat, physical=phys, contract=_contract())
     misses = _misses(n0)
-    assert sorted(misses) == sorted([*L2_PROBES, "l2.compress", "l2.drop"])
+    assert sorted(misses) == sorted([*L2_PROBES, *HELD_OUT])
     assert all(r.health.ok for r in out["selection"]) and out["metrics"]["stable_long_rollout"] == 1.0
     assert all(r.spec.held_out for r in out["held_out"])
     assert out["held_out"][0].spec.params["strain"] == 0.15
     n1 = len(CacheStore(cache_root()).events())
-    l2.evaluate_material(d, mat, physical=phys)
+    l2.evaluate_material(d, mat, physical=phys, contract=_contract())
     assert _misses(n1) == []
     other = mat.model_copy(update={"youngs_modulus_pa": 3.0e4})
     n2 = len(CacheStore(cache_root()).events())
-    l2.evaluate_material(d, other, physical=phys, held_out=False)
+    l2.evaluate_material(d, other, physical=phys, held_out=False, contract=_contract())
     assert sorted(_misses(n2)) == sorted(L2_PROBES)
 
 
@@ -57,7 +66,7 @@ def test_plush_and_rubber_intents_end_in_different_materials_that_meet_their_tar
     d, phys = _asset(tmp_path, monkeypatch)
     found = {}
     for intent in ("soft plush", "firm rubber"):
-        mat, outcome = l2.run_l2(d, intent, physical=phys)
+        mat, outcome = l2.run_l2(d, intent, physical=phys, contract=_contract())
         assert mat is not None, outcome.message
         rec = json.loads((d / "material.json").read_text())
         band = next(b for b in rec["targets"]["bands"] if b["metric"] == "effective_modulus_pa")
