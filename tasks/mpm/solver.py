@@ -92,6 +92,7 @@ class Solver:
         self._slide = self._no_slide  # the lattice motion of the last control stepped with
         self.fast_cuda = d == "cuda" and CUDA_FAST
         self.cuda_colliders, self.cuda_agg, self.cuda_coop_g2p, self.cuda_coop_p2g = True, False, False, False
+        self.cuda_fuse, self.cuda_scatter, self.cuda_fuse_regs = False, 0, 0
         if self.fast_cuda:
             self._init_cuda_blocks()
             # kernel variants of the fast path (switches DEFORMSMITH_MPM_<NAME>=0/1, for experiments and tests):
@@ -111,16 +112,30 @@ class Solver:
             sized = coop_min <= model.n_particles <= coop_max
             self.cuda_coop_g2p = coop and _env_flag("DEFORMSMITH_MPM_COOP_G2P") and sized
             self.cuda_coop_p2g = coop and _env_flag("DEFORMSMITH_MPM_COOP_P2G", False) and sized
+            # FUSE: inside multi-step graphs, the g2p of a step and the p2g of the next (no re-fit between them) run
+            # as one kernel (kernels_cuda.make_g2p2g): the scatter works on the new state in registers (no reload of
+            # the particle records, one launch fewer per step), for FUSE_MIN <= particles; FUSE_REGS caps its
+            # registers per thread (with the cooperative records and the row scan it takes 147, i.e. 3 blocks of 128
+            # per SM; capped at 128 it spills 4 bytes and runs 4: H200, 16 x 8k 43.5 -> 41.3 us per step)
+            fuse_min = int(os.environ.get("DEFORMSMITH_MPM_FUSE_MIN", "0"))
+            self.cuda_fuse = _env_flag("DEFORMSMITH_MPM_FUSE") and model.n_particles >= fuse_min
+            self.cuda_fuse_regs = int(os.environ.get("DEFORMSMITH_MPM_FUSE_REGS", "128"))
+            # SCATTER, one particle per thread (the fused kernel; p2g when it runs one thread per particle): scan =
+            # kernels_cuda.scatter_stencil_scan (a warp's particles merged along stencil rows: ~7 instead of 13.5
+            # atomics per particle in lattice order), warp = scatter_stencil_warp (per-node shuffles, same-base lanes)
+            scat = os.environ.get("DEFORMSMITH_MPM_SCATTER", "scan")
+            self.cuda_scatter = {"warp": KC.SCATTER_WARP, "scan": KC.SCATTER_SCAN}[scat]
         self._alloc_grid(model.grid_dims)
         self._initial_fit = True
 
     def _init_cuda_blocks(self) -> None:
         """Block sizes of the CUDA kernels and the chunks (one scene each, one thread block each) of the re-fit."""
         m = self.model
-        # threads per particle in p2g: at small sizes the scatter is latency bound, so split each particle's
-        # 27-node stencil over 3 threads (one slab each) to put more threads on the SMs
-        # (H200: 8k particles 27.0 / 24.6 / 25.6 us per step for 1 / 3 / 9; 16 x 8k 69.5 / 76.2 / 95.8 us)
-        parts = 3 if m.n_particles < 24_000 else 1
+        # threads per particle in p2g: with the per-node warp scatter, small sizes are latency bound and split each
+        # particle's 27-node stencil over 3 threads (one slab each) to put more threads on the SMs (H200: 8k
+        # particles 27.0 / 24.6 / 25.6 us per step for 1 / 3 / 9; 16 x 8k 69.5 / 76.2 / 95.8 us); the row-scan
+        # scatter (default) runs one thread per particle at every size (H200, 8k: 15.1 vs 15.5-15.7 us with 3)
+        parts = 3 if m.n_particles < 24_000 and os.environ.get("DEFORMSMITH_MPM_SCATTER", "scan") == "warp" else 1
         self.p2g_parts = int(os.environ.get("DEFORMSMITH_MPM_P2G_PARTS", parts))  # experiments: 1, 3 or 9
         if self.p2g_parts not in (1, 3, 9):
             raise ValueError("DEFORMSMITH_MPM_P2G_PARTS must be 1, 3 or 9")
@@ -256,10 +271,14 @@ class Solver:
         if entry is None:
             cmds: list = []
             since = phase
-            for _ in range(n):
+            fused_prev = False  # this step's p2g ran inside the previous step's fused g2p2g
+            for k in range(n):
                 refit = since >= R
-                cmds += self._record_step(state, state, control, refit)
                 since = 0 if refit else since + 1
+                # fuse this step's g2p with the next step's p2g unless the block ends or the next step re-fits
+                fuse = self.cuda_fuse and k + 1 < n and since < R
+                cmds += self._record_step(state, state, control, refit, skip_p2g=fused_prev, fuse_next=fuse)
+                fused_prev = fuse
             entry = (self._capture(cmds), since, cmds, state, control)  # keep the arrays alive while cached
             self._blocks[key] = entry
             while len(self._blocks) > self.MAX_BLOCK_GRAPHS:
@@ -353,11 +372,16 @@ class Solver:
         ))
         return cmds
 
-    def _record_step(self, state_in: State, state_out: State, control: Control, refit: bool) -> list:
-        """Recorded launches of one step (replayed directly on CPU, captured into a graph on CUDA)."""
+    def _record_step(self, state_in: State, state_out: State, control: Control, refit: bool, skip_p2g: bool = False,
+                     fuse_next: bool = False) -> list:
+        """Recorded launches of one step (replayed directly on CPU, captured into a graph on CUDA). Fast CUDA path,
+        in-place multi-step graphs only: skip_p2g = the previous step's fused kernel did this step's p2g (no re-fit
+        in between); fuse_next = end with the fused g2p2g, which also does the next step's p2g."""
         m = self.model
         d = self.device
         nx, ny, nz = self.grid_dims
+        if skip_p2g or fuse_next:
+            assert self.fast_cuda and state_in is state_out and not (refit and skip_p2g)
         cmds = self._record_refit(state_in) if refit else []
         if m.n_colliders:
             cmds.append(wp.launch(
@@ -369,12 +393,14 @@ class Solver:
                 device=d,
                 record_cmd=True,
             ))
-        if self.fast_cuda:
+        if skip_p2g:
+            pass  # done by the previous step's fused kernel
+        elif self.fast_cuda:
             bd = self.p2g_block
             nt = m.n_particles * self.p2g_parts
             coop = self.cuda_coop_p2g and self.p2g_parts == 1 and _coop_ok(state_in)
             cmds.append(wp.launch(
-                KC.p2g_kernel(coop),
+                KC.p2g_kernel(coop, self.cuda_scatter if self.p2g_parts == 1 else KC.SCATTER_WARP),
                 dim=-(-nt // bd) * bd,  # whole blocks: every lane reaches the warp collectives
                 inputs=[state_in.x, state_in.v, state_in.C, state_in.F, m.particle_mass, m.particle_vol,
                         m.particle_scene, m.scene_start, m.scene_mu, m.scene_lambda, self.grid_origin, nx, ny, nz,
@@ -421,6 +447,26 @@ class Solver:
             record_cmd=True,
             block_dim=gu_block,
         ))
+        if fuse_next:
+            coop = self.cuda_coop_g2p and _coop_ok(state_in)
+            bd = cuda_block_dim(m.n_particles)
+            cmds.append(wp.launch(
+                KC.g2p2g_kernel(self.cuda_colliders, coop, self.cuda_agg, self.cuda_scatter, self.cuda_fuse_regs),
+                dim=-(-m.n_particles // bd) * bd,  # whole blocks: every lane reaches the warp collectives
+                inputs=[state_in.x, state_in.v, state_in.C, state_in.F, m.particle_mass, m.particle_scene,
+                        m.scene_start, self.grid_v, self.grid_origin, nx, ny, nz, m.dx, self.dt_arr,
+                        control.d_gravity, m.ground_enabled, m.ground_height, m.ground_mu, self.ground_impulse,
+                        m.col_start, m.col_count, m.col_kind, m.col_params, m.col_planes, m.col_radius2, m.col_mu,
+                        m.col_bonded, self.col_pos1, self.col_rot1, control.d_lin_vel, control.d_ang_vel,
+                        self.collider_impulse, m.domain_lo, m.domain_hi, float(m.config.j_min),
+                        float(m.config.j_max), self.clock_step, self.fail_step, self.fail_particle, state_out.x,
+                        state_out.v, state_out.C, state_out.F, m.particle_vol, m.scene_mu, m.scene_lambda,
+                        self.grid_mvm, m.n_particles],
+                device=d,
+                record_cmd=True,
+                block_dim=bd,
+            ))
+            return cmds
         cmds.append(wp.launch(
             g2p_kernel,
             dim=g2p_dim,

@@ -144,3 +144,38 @@ def test_fast_cuda_variants_without_colliders_match_cpu(env: dict, monkeypatch) 
     np.testing.assert_allclose(out[0][0], out[1][0], atol=2e-4)
     assert np.all(out[1][1][:, 2] < -1.0)  # landed: the cubes push on the ground (force on the ground, along -z)
     np.testing.assert_allclose(out[0][1], out[1][1], rtol=5e-2, atol=2e-2)
+
+
+# the fused g2p + next p2g (DEFORMSMITH_MPM_FUSE, default on) and the scatter variants (DEFORMSMITH_MPM_SCATTER: scan,
+# the default, or warp), also with the row-scan p2g of one thread per particle (P2G_PARTS=1) and uncapped registers
+@pytest.mark.parametrize("env", [
+    {"DEFORMSMITH_MPM_FUSE": "0"},
+    {"DEFORMSMITH_MPM_SCATTER": "warp"},
+    {"DEFORMSMITH_MPM_P2G_PARTS": "1", "DEFORMSMITH_MPM_FUSE_REGS": "0"},
+    {"DEFORMSMITH_MPM_P2G_PARTS": "1", "DEFORMSMITH_MPM_SCATTER": "warp", "DEFORMSMITH_MPM_FUSE": "0"},
+])
+@pytest.mark.parametrize("shuffle", [False, True])
+def test_fast_cuda_fusion_and_scatter_variants_match_cpu(env: dict, shuffle: bool, monkeypatch) -> None:
+    """Ground, a moving box collider and a thrown cube, lattice-ordered and shuffled, for each variant."""
+    _need_cuda()
+    for k, v in env.items():
+        monkeypatch.setenv(k, v)
+    fast = _rollout("cuda", True, shuffle, monkeypatch)
+    cpu = _rollout("cpu", False, shuffle, monkeypatch)
+    np.testing.assert_allclose(fast[0], cpu[0], atol=1e-4)
+    np.testing.assert_allclose(fast[1], cpu[1], rtol=2e-2, atol=2e-3)
+    np.testing.assert_allclose(fast[2], cpu[2], rtol=2e-2, atol=2e-3)
+
+
+def test_fast_cuda_default_runs_fused_blocks(monkeypatch) -> None:
+    """The default fast path replays multi-step graphs with the fused kernel and the row-scan scatter."""
+    _need_cuda()
+    from tasks.mpm.scene import bench_cube_model
+
+    monkeypatch.setattr(solver_mod, "CUDA_FAST", True)
+    sim = Simulator(bench_cube_model(10, 2, "cuda"))
+    sim.advance(0.005)
+    sol = sim.solver
+    assert sol.cuda_fuse and sol.cuda_scatter == solver_mod.KC.SCATTER_SCAN
+    names = {c.kernel.key for entry in sol._blocks.values() for c in entry[2]}
+    assert any("g2p2g" in n for n in names), names
