@@ -37,7 +37,7 @@ from tasks.manipulation.outcome import TrialTolerances
 from tasks.manipulation.trial import TrialSettings, plan_or_error, run_trial
 from tasks.robot import select_grasps
 
-TASK_VERSION = "5"  # bump when tasks/manipulation/{trial,outcome,body}.py change what a trial returns
+TASK_VERSION = "6"  # bump when tasks/manipulation/{trial,outcome,body}.py change what a trial returns (6: settle until at rest)
 MANIPULATION_JSON = "manipulation.json"
 LABELS = ("lifted", "transported", "released_in_target", "settled", "numerically_healthy")
 

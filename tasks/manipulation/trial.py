@@ -1,7 +1,8 @@
 """One pick-and-place in the MPM: the Panda's finger pads as kinematic box colliders driven from the trajectory.
 
 The simulation starts ``TrialSettings.settle_before_closure_s`` before closure (the object rests on the table, the
-open pads already beside it) and runs to the end of the plan (release, retreat, settle). Every control interval
+open pads already beside it) and runs to the end of the plan (release, retreat, settle), then, with the hand still,
+until the object is at rest (the ``settled`` label's test, at most ``settle_until_rest_max_s``). Every control interval
 (``control_hz``) the pads are set to the constant-velocity motion that lands on the planned pose at the interval's end
 (``Trajectory.pad_motion``); the mean reaction force on each finger over the interval (eq. 3) and its impulse are
 recorded with the commanded joint states. Particle states (x, F) are recorded at ``record_fps``. SI units.
@@ -46,6 +47,10 @@ class TrialSettings:
     # a robot aborts a pick whose lift failed: the outcome is decided (not lifted, so not transported or placed), and
     # transport, release, retreat and settle (~half the simulated time) would be spent on a known failure
     stop_when_lift_fails: bool = True
+    # after the plan's last phase the hand holds still and the simulation goes on until the object is at rest (the
+    # `settled` thresholds of TrialTolerances), at most this long: a ball still rolling at 6 cm/s when a 0.2 s settle
+    # phase ends has not been judged, it has been cut off [s]; 0 ends every trial with the plan
+    settle_until_rest_max_s: float = 1.0
 
 
 @dataclass
@@ -78,6 +83,15 @@ def world_gaussians(body: TrialBody, pose: ObjectPose) -> dict[str, np.ndarray]:
             "gaussian_particle_weight": np.asarray(g["particle_weight"])}
 
 
+def _at_rest(com_m: np.ndarray, com_span_s: float, x_m: np.ndarray, x_prev_m: np.ndarray, frame_span_s: float,
+             tol: TrialTolerances) -> bool:
+    """The `settled` label's condition (tasks.manipulation.outcome) if the trial ended now: the COM speed over the
+    window com_m and the fastest particle's displacement since the last recorded frame are below the thresholds."""
+    v_com = float(np.linalg.norm(com_m[-1] - com_m[0])) / com_span_s
+    v_par = float(np.max(np.linalg.norm(x_m - x_prev_m, axis=1))) / frame_span_s
+    return v_com <= tol.settle_speed_m_per_s and v_par <= tol.settle_particle_speed_m_per_s
+
+
 def run_trial(body: TrialBody, physical: PhysicalModel, material: Material, plan: ActionPlan,
               settings: TrialSettings | None = None, tolerances: TrialTolerances | None = None,
               trajectory: Trajectory | None = None) -> TrialResult:
@@ -97,6 +111,8 @@ def run_trial(body: TrialBody, physical: PhysicalModel, material: Material, plan
     t_end = traj.duration_s
     dt_c = 1.0 / s.control_hz
     n_int = int(math.ceil((t_end - t_start) / dt_c - 1e-9))
+    n_ext = int(math.ceil(max(0.0, s.settle_until_rest_max_s) / dt_c - 1e-9))  # intervals after the plan, at most
+    n_all = n_int + n_ext
     per_frame = max(1, int(round(s.control_hz / s.record_fps)))
 
     first = traj.pad_motion(t_start, t_start + dt_c)
@@ -116,17 +132,18 @@ def run_trial(body: TrialBody, physical: PhysicalModel, material: Material, plan
     sim = Simulator(model)
     w = body.volumes_m3 / body.volume_m3
 
-    t_c = t_start + dt_c * np.arange(n_int)
-    force = np.full((n_int, 2, 3), np.nan)
-    ground = np.full((n_int, 3), np.nan)
-    pad_pos = np.zeros((n_int, 2, 3))
-    pad_quat = np.zeros((n_int, 2, 4))
-    pad_vel = np.zeros((n_int, 2, 3))
-    cmd_q = np.zeros((n_int, 7))
-    cmd_qdot = np.zeros((n_int, 7))
-    cmd_open = np.zeros((n_int, 2))
-    com = np.full((n_int + 1, 3), np.nan)
-    phase = np.zeros(n_int, dtype=np.int8)
+    t_c = np.concatenate([t_start + dt_c * np.arange(n_int), t_end + dt_c * np.arange(n_ext)])
+    dt_k = np.concatenate([np.minimum(t_c[:n_int] + dt_c, t_end) - t_c[:n_int], np.full(n_ext, dt_c)])
+    force = np.full((n_all, 2, 3), np.nan)
+    ground = np.full((n_all, 3), np.nan)
+    pad_pos = np.zeros((n_all, 2, 3))
+    pad_quat = np.zeros((n_all, 2, 4))
+    pad_vel = np.zeros((n_all, 2, 3))
+    cmd_q = np.zeros((n_all, 7))
+    cmd_qdot = np.zeros((n_all, 7))
+    cmd_open = np.zeros((n_all, 2))
+    com = np.full((n_all + 1, 3), np.nan)
+    phase = np.zeros(n_all, dtype=np.int8)
     frames_t, frames_x, frames_f, frames_k = [], [], [], []
     steps = 0
     healthy, issue, stopped = True, "", ""
@@ -139,9 +156,17 @@ def run_trial(body: TrialBody, physical: PhysicalModel, material: Material, plan
     # interval ahead, reaches the limit, the fingers hold that opening until the plan opens them wider (release)
     guard_n, hold_opening, guard, last_normal = plan.grip_force_limit_n, None, {}, float("nan")
     axis = np.asarray(traj.closing_axis_world, dtype=float)
+    n_rest = max(1, int(round(0.1 / dt_c)))  # the `settled` label's COM speed window (tasks.manipulation.outcome)
     k = -1
-    for k in range(n_int):
-        t0, t1 = t_c[k], min(t_c[k] + dt_c, t_end)
+    for k in range(n_all):
+        t0, t1 = t_c[k], t_c[k] + dt_k[k]
+        # after the plan: stop at the end of the plan or at a frame once the object is at rest (the label's test)
+        if k >= n_int and (k == n_int or k % per_frame == 0):
+            lo = max(0, k - n_rest)
+            if _at_rest(com[lo:k + 1], float(t_c[k] - t_c[lo]), p["x"], frames_x[-1],
+                        float(sim.time_s + t_start - frames_t[-1]), tol):
+                k -= 1
+                break
         if k % per_frame == 0:
             frames_t.append(sim.time_s + t_start)
             frames_x.append(p["x"].astype(np.float32))
@@ -197,11 +222,11 @@ def run_trial(body: TrialBody, physical: PhysicalModel, material: Material, plan
                                               com[:n_done + 1])
     ground = ground[:n_done]
     arrays = {
-        "control_t_s": t_c, "control_dt_s": np.minimum(t_c + dt_c, t_end) - t_c,
+        "control_t_s": t_c, "control_dt_s": dt_k[:n_done],
         "command_q_rad": cmd_q, "command_qdot_rad_per_s": cmd_qdot, "command_opening_m": cmd_open,
         "phase": phase, "finger_position_m": pad_pos, "finger_quat_xyzw": pad_quat,
         "finger_velocity_m_per_s": pad_vel, "finger_force_n": force, "ground_force_n": ground,
-        "finger_impulse_n_s": force * (np.minimum(t_c + dt_c, t_end) - t_c)[:, None, None],
+        "finger_impulse_n_s": force * dt_k[:n_done, None, None],
         "object_com_m": com, "frame_t_s": np.asarray(frames_t), "frame_control_index": np.asarray(frames_k),
         "particles_x_m": np.stack(frames_x), "particles_F": np.stack(frames_f),
         "finger_half_extents_m": np.asarray(traj.pad_half_extents_m, dtype=np.float64),
@@ -216,6 +241,7 @@ def run_trial(body: TrialBody, physical: PhysicalModel, material: Material, plan
             "l0_particle_spacing_m": float(body.source_spacing_m), "health_issue": issue, "stopped": stopped,
             "settings": asdict(s), "tolerances": asdict(tol), "phases": {k: list(v) for k, v in traj.phases.items()},
             "object_pose": {"xy_m": list(pose.xy_m), "yaw_deg": pose.yaw_deg}, "intervals": int(n_done),
+            "settle_extension_s": float(max(0, n_done - n_int) * dt_c),
             "grip_guard": guard}
     labels.update({"particles": float(len(x0)), "steps": float(steps), "stopped_after_failed_lift": float(bool(stopped)),
                    "grip_guard_stopped": float(bool(guard)),

@@ -92,3 +92,25 @@ def test_a_force_guarded_closure_holds_a_stiff_object_within_the_force_budget(cu
     gap = np.linalg.norm(np.diff(r.arrays["finger_position_m"][lift], axis=1)[:, 0], axis=1)
     planned = np.linalg.norm(np.diff(traj.pads_at(t).position_m, axis=1)[:, 0], axis=1)
     assert np.allclose(gap - planned, guard["opening_m"] - traj.closed_width_m, atol=1e-6)
+
+
+def test_a_trial_goes_on_after_the_plan_until_the_object_is_at_rest(cube) -> None:  # type: ignore[no-untyped-def]
+    """A hurried release (50 ms release and retreat, 20 ms settle) leaves the cube wobbling when the plan ends: cut off
+    there it is not `settled` (its particles still move faster than the label's 0.1 m/s); simulated on with the hand
+    still until it is at rest (at most settle_until_rest_max_s), the same trial settles in the target, and the
+    recording covers the extra time."""
+    from tasks.manipulation.trial import TrialSettings, run_trial
+    from tests.l3.conftest import FIRM, TOL
+
+    plan = cube.plan(0.004, release_duration_s=0.05, retreat_duration_s=0.05, settle_duration_s=0.02)
+    cut = run_trial(cube.body, cube.physical, FIRM, plan, settings=TrialSettings(settle_until_rest_max_s=0.0),
+                    tolerances=TOL)
+    on = run_trial(cube.body, cube.physical, FIRM, plan, settings=TrialSettings(settle_until_rest_max_s=0.5),
+                   tolerances=TOL)
+    assert cut.info["settle_extension_s"] == 0.0 and cut.metrics["settled"] == 0
+    assert cut.metrics["settle_particle_speed_m_per_s"] > TOL.settle_particle_speed_m_per_s
+    assert 0.0 < on.info["settle_extension_s"] <= 0.5
+    assert on.metrics["settled"] == 1 and on.metrics["released_in_target"] == 1
+    assert on.metrics["settle_com_speed_m_per_s"] <= TOL.settle_speed_m_per_s
+    assert on.arrays["frame_t_s"][-1] > cut.arrays["frame_t_s"][-1] + 0.02
+    assert len(on.arrays["control_dt_s"]) == len(on.arrays["control_t_s"]) == len(on.arrays["finger_force_n"])
