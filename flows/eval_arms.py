@@ -31,7 +31,7 @@ def physics_tests(asset_dir: Path, physical: PhysicalModel, material: Material, 
                   sim: SimConfig, videos: bool = False) -> dict[str, Any]:
     """Held-out probes + gates + targets and the drop protocol of one (physical, material) on an asset's L0."""
     from flows.l2_material import HELD_OUT_PROBES, PROBE_TASKS, l2_metrics, probe_inputs
-    from flows.renders import drop_protocol_task, render_drop_protocol
+    from flows.renders import drop_protocol_task, protocol_states, render_drop_protocol
     from tasks.geometry.outputs import load_l0
 
     l2 = load_contract("L2")
@@ -45,7 +45,7 @@ def physics_tests(asset_dir: Path, physical: PhysicalModel, material: Material, 
         if videos:
             protocol = render_drop_protocol(asset_dir, physical, material, sim)
         else:
-            _, protocol = drop_protocol_task(asset.particles_m, asset.volumes_m3, physical, material, sim)
+            _, protocol = protocol_states(asset.particles_m, asset.volumes_m3, physical, material, sim)
     keys["renders.drop_protocol"] = probe_cache_key(drop_protocol_task, {
         "positions_m": asset.particles_m, "volumes_m3": asset.volumes_m3, "physical": physical, "material": material,
         "sim": sim})

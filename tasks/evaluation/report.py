@@ -228,7 +228,8 @@ def write_report(report_dir: Path, records: list[ArmResult], suite: Suite, suite
 
 def _quality_rows(records: list[ArmResult]) -> list[str]:
     """Drop-protocol metrics per delivered asset of A's arms."""
-    keys = ("shape_retention", "volume_ratio_end", "height_ratio_end", "max_extent_growth", "plausible")
+    keys = ("shape_retention", "volume_ratio_end", "body_height_ratio_end", "tilt_deg_end", "max_extent_growth",
+            "plausible")
     lines = ["| case | arm | " + " | ".join(keys) + " |", "|---|---|" + "---|" * len(keys)]
     for r in sorted(records, key=lambda r: (r.case_id, r.arm)):
         if r.ablation != "hierarchy" or not r.delivered:

@@ -18,14 +18,18 @@ PROTOCOL_FPS = 30.0
 PROTOCOL_HEIGHT_FRACTION = 0.25
 
 
-def _rigid_residual(rest: np.ndarray, now: np.ndarray) -> np.ndarray:
-    """Displacements left after the best rigid motion (Kabsch) that maps rest onto now [m]."""
+def _best_rotation(rest: np.ndarray, now: np.ndarray) -> np.ndarray:
+    """The rotation R of the best rigid motion (Kabsch) mapping rest onto now: (rest - mean) @ R ~ now - mean."""
     a = rest - rest.mean(axis=0)
     b = now - now.mean(axis=0)
     u, _, vt = np.linalg.svd(a.T @ b)
     d = np.sign(np.linalg.det(u @ vt))
-    rot = u @ np.diag([1.0, 1.0, d]) @ vt
-    return b - a @ rot
+    return u @ np.diag([1.0, 1.0, d]) @ vt
+
+
+def _rigid_residual(rest: np.ndarray, now: np.ndarray) -> np.ndarray:
+    """Displacements left after the best rigid motion (Kabsch) that maps rest onto now [m]."""
+    return (now - now.mean(axis=0)) - (rest - rest.mean(axis=0)) @ _best_rotation(rest, now)
 
 
 def plausibility_metrics(rest_m: np.ndarray, volumes_m3: np.ndarray, x_frames: np.ndarray, F_frames: np.ndarray,
@@ -35,8 +39,13 @@ def plausibility_metrics(rest_m: np.ndarray, volumes_m3: np.ndarray, x_frames: n
     shape_retention      1 - RMS(non-rigid displacement at the end) / H: 1 = the rest shape came back [-]
     volume_ratio_end     sum(J V) / sum(V) in the last frame [-]
     height_ratio_end     vertical extent in the last frame / at rest [-]
+    body_height_ratio_end  extent along the body's own vertical axis (the rest z axis carried by the best rigid
+                         rotation) in the last frame / at rest [-]: a tall object that tips over keeps it, one that
+                         squashes loses it
+    tilt_deg_end         angle between the body's own vertical axis and the world's in the last frame [deg]
     max_extent_growth    largest bounding-box extent over all frames / the largest rest extent [-]
-    collapsed            1 if height_ratio_end < 0.5 [-];  exploded  1 if max_extent_growth > 2 or not finite [-]
+    collapsed            1 if body_height_ratio_end < 0.5 [-] (a plush bunny lying on its side after the drop has not
+                         collapsed);  exploded  1 if max_extent_growth > 2 or not finite [-]
     plausible            1 if healthy, not collapsed, not exploded, |volume_ratio_end - 1| <= 0.1 and
                          shape_retention >= 0.8 [-]
     """
@@ -47,17 +56,21 @@ def plausibility_metrics(rest_m: np.ndarray, volumes_m3: np.ndarray, x_frames: n
     finite = bool(np.all(np.isfinite(x_frames)) and np.all(np.isfinite(F_frames)))
     if not finite:
         return {"shape_retention": 0.0, "volume_ratio_end": float("nan"), "height_ratio_end": float("nan"),
+                "body_height_ratio_end": float("nan"), "tilt_deg_end": float("nan"),
                 "max_extent_growth": float("inf"), "collapsed": 0.0, "exploded": 1.0, "plausible": 0.0}
     residual = _rigid_residual(rest, last)
+    up = _best_rotation(rest, last)[2]  # the rest z axis, carried into the last frame
+    body_height_ratio = float(np.ptp(last @ up)) / height
+    tilt = float(np.degrees(np.arccos(np.clip(up[2], -1.0, 1.0))))
     retention = 1.0 - float(np.sqrt((residual ** 2).sum(axis=1).mean())) / height
     det = np.linalg.det(np.asarray(F_frames[-1], np.float64))
     volume_ratio = float((det * volumes_m3).sum() / volumes_m3.sum())
     height_ratio = float(np.ptp(last[:, 2])) / height
     growth = max(float(np.ptp(x, axis=0).max()) for x in x_frames) / extent0
-    collapsed, exploded = height_ratio < 0.5, growth > 2.0
+    collapsed, exploded = body_height_ratio < 0.5, growth > 2.0
     plausible = healthy and not collapsed and not exploded and abs(volume_ratio - 1.0) <= 0.1 and retention >= 0.8
     return {"shape_retention": retention, "volume_ratio_end": volume_ratio, "height_ratio_end": height_ratio,
-            "max_extent_growth": growth, "collapsed": float(collapsed), "exploded": float(exploded),
+            "body_height_ratio_end": body_height_ratio, "tilt_deg_end": tilt, "max_extent_growth": growth, "collapsed": float(collapsed), "exploded": float(exploded),
             "plausible": float(plausible)}
 
 

@@ -64,3 +64,20 @@ def test_protocol_frames_render_deterministically(tmp_path: Path) -> None:
     import imageio.v2 as imageio
 
     assert imageio.get_reader(video).count_frames() == len(a)
+
+
+def test_a_tall_body_that_tips_over_has_not_collapsed_but_a_squashed_one_has() -> None:
+    """Collapse is judged along the body's own vertical axis: a 1 x 1 x 4 column lying on its side after the drop keeps
+    its shape (world height ratio 0.25, body height ratio 1, tilt 90 deg: plausible); the same column squashed to 0.3
+    of its height in place has collapsed."""
+    g = np.arange(4) * 0.01
+    rest = np.stack(np.meshgrid(g[:2], g[:2], np.arange(16) * 0.01, indexing="ij"), -1).reshape(-1, 3)
+    lying = np.stack([rest[:, 0], 0.15 - rest[:, 2], rest[:, 1]], axis=1)  # turned 90 deg about x, on the ground
+    squashed = rest * [1.8, 1.8, 0.3]
+    F = np.tile(np.eye(3), (2, len(rest), 1, 1))
+    vol = np.full(len(rest), 1e-6)
+    tipped = plausibility_metrics(rest, vol, np.stack([rest, lying]), F, healthy=True)
+    assert tipped["height_ratio_end"] < 0.3 and abs(tipped["body_height_ratio_end"] - 1.0) < 1e-9
+    assert abs(tipped["tilt_deg_end"] - 90.0) < 1e-6 and tipped["collapsed"] == 0 and tipped["plausible"] == 1
+    flat = plausibility_metrics(rest, vol, np.stack([rest, squashed]), F, healthy=True)
+    assert flat["body_height_ratio_end"] < 0.5 and flat["collapsed"] == 1 and flat["plausible"] == 0
