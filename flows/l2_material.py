@@ -45,6 +45,7 @@ MATERIAL_JSON = "material.json"
 SELECTION_PROBES = ("compress", "drop", "lift", "stability", "specimen_compress", "specimen_drop")
 HELD_OUT_PROBES = ("compress", "drop", "specimen_compress", "specimen_drop")  # at the contract's held-out settings
 SPECIMEN_PROBES = {"specimen_compress": "compress", "specimen_drop": "drop"}  # specimen kind -> deformable probe
+SPECIMEN_SHAPE = {"specimen_compress": "cube", "specimen_drop": "ball"}  # tasks.probes.specimen: why a ball for the drop
 OBJECT_VIEW_KINDS = ("compress", "drop")  # object probes whose non-gate metrics are reported as object_<name>
 SCREEN_SCHEDULE = "auto"  # how object candidates share rollouts (tasks.probes.rollout.plan_batches)
 SPECIMEN_SCREEN_SCHEDULE = "batch"  # the screening's three specimen candidates in one lock-step rollout
@@ -147,10 +148,12 @@ def probe_parameters(contract: StageContract) -> dict[str, float]:
             "specimen_particles_per_axis": float(p.get("specimen_particles_per_axis", SPECIMEN_PARTICLES_PER_AXIS))}
 
 
-def specimen_arrays(physical: PhysicalModel, contract: StageContract) -> tuple[np.ndarray, np.ndarray]:
-    """The specimen's rest positions [m] and volumes [m^3]: a cube at the object's particle spacing."""
+def specimen_arrays(physical: PhysicalModel, contract: StageContract,
+                    kind: str = "specimen_compress") -> tuple[np.ndarray, np.ndarray]:
+    """A specimen probe's rest positions [m] and volumes [m^3] at the object's particle spacing: the cube for the
+    compression, the ball inscribed in it for the drop."""
     n = int(probe_parameters(contract)["specimen_particles_per_axis"])
-    return specimen_particles(float(physical.particle_spacing_m), n)
+    return specimen_particles(float(physical.particle_spacing_m), n, SPECIMEN_SHAPE[kind])
 
 
 def object_view(results: list[ProbeResult], contract: StageContract) -> list[ProbeResult]:
@@ -180,7 +183,7 @@ def probe_inputs(kind: str, asset: L0Asset, physical: PhysicalModel, material: M
                             "volumes_m3": np.asarray(asset.volumes_m3, np.float64), "physical": physical,
                             "material": material, "sim": sim}
     if kind in SPECIMEN_PROBES:
-        base["positions_m"], base["volumes_m3"] = specimen_arrays(physical, contract)
+        base["positions_m"], base["volumes_m3"] = specimen_arrays(physical, contract, kind)
         kind = SPECIMEN_PROBES[kind]
     if kind == "compress":
         return {**base, "strain": p["strain_held_out" if held_out else "strain"], "held_out": held_out}
@@ -295,9 +298,7 @@ def screen(asset: L0Asset, physical: PhysicalModel, contract: StageContract, tar
     rebound bands. Returns (initial values, summary)."""
     p = probe_parameters(contract)
     fields = {f.name: f for f in contract.editable_fields}
-    pos, vol = specimen_arrays(physical, contract)
-    base = {"positions_m": pos, "volumes_m3": vol, "physical": physical, "sim": sim,
-            "schedule": SPECIMEN_SCREEN_SCHEDULE}
+    base = {"physical": physical, "sim": sim, "schedule": SPECIMEN_SCREEN_SCHEDULE}
     values = dict(start)
     summary: dict[str, Any] = {"sim_calls": 0}
     band = targets.band("effective_modulus_pa")
@@ -306,7 +307,9 @@ def screen(asset: L0Asset, physical: PhysicalModel, contract: StageContract, tar
         es = screen_moduli(values, f)
         mats = [Material(youngs_modulus_pa=e, poisson_ratio=values["poisson_ratio"],
                          damping_rate_per_s=values["damping_rate_per_s"]) for e in es]
-        rs = screen_task(kind="specimen_compress", materials=mats, params={"strain": p["strain"]}, **base)
+        pos, vol = specimen_arrays(physical, contract, "specimen_compress")
+        rs = screen_task(positions_m=pos, volumes_m3=vol, kind="specimen_compress", materials=mats,
+                         params={"strain": p["strain"]}, **base)
         ok = [(e, r.metrics["effective_modulus_pa"]) for e, r in zip(es, rs) if "effective_modulus_pa" in r.metrics]
         guess = _fit_log([e for e, _ in ok], [m for _, m in ok], band.center, log_x=True)
         if guess is not None:
@@ -321,8 +324,9 @@ def screen(asset: L0Asset, physical: PhysicalModel, contract: StageContract, tar
         ds = screen_dampings(values, f)
         mats = [Material(youngs_modulus_pa=values["youngs_modulus_pa"], poisson_ratio=values["poisson_ratio"],
                          damping_rate_per_s=d) for d in ds]
-        rs = screen_task(kind="specimen_drop", materials=mats, params={"height_fraction": p["height_fraction"]},
-                         **base)
+        pos, vol = specimen_arrays(physical, contract, "specimen_drop")
+        rs = screen_task(positions_m=pos, volumes_m3=vol, kind="specimen_drop", materials=mats,
+                         params={"height_fraction": p["height_fraction"]}, **base)
         ok = [(d, r.metrics["rebound_ratio"]) for d, r in zip(ds, rs) if "rebound_ratio" in r.metrics]
         aim = max(band.center, 1e-3)
         guess = _fit_log([d for d, _ in ok], [max(rb, 1e-3) for _, rb in ok], aim, log_x=False)

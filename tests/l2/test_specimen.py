@@ -36,6 +36,12 @@ def test_specimen_is_a_cube_on_the_ground_at_the_given_spacing() -> None:
         specimen_particles(0.0)
     with pytest.raises(InputError):
         specimen_particles(0.004, 4)
+    with pytest.raises(InputError):
+        specimen_particles(0.004, 10, "pyramid")
+    ball, _ = specimen_particles(0.004, 10, "ball")
+    assert 0.45 < len(ball) / 1000 < 0.6  # pi/6 of the cube
+    assert np.isclose(ball[:, 2].min(), 0.002) and np.allclose(ball[:, :2].mean(axis=0), 0.0, atol=1e-12)
+    assert np.ptp(ball[:, 0]) <= 9 * 0.004 + 1e-12
 
 
 def test_specimen_follows_the_contract_and_the_physical_spacing() -> None:
@@ -45,6 +51,22 @@ def test_specimen_follows_the_contract_and_the_physical_spacing() -> None:
     n = int(contract.parameters["specimen_particles_per_axis"])
     assert len(pos) == n ** 3
     assert np.isclose(pos[1, 2] - pos[0, 2], phys.particle_spacing_m)
+    ball, _ = specimen_arrays(phys, contract, "specimen_drop")
+    assert len(ball) < len(pos) and np.isclose(np.ptp(ball[:, 2]), np.ptp(pos[:, 2]))
+
+
+def test_a_rubber_ball_specimen_rebounds_like_rubber_where_a_flat_landing_cube_cannot() -> None:
+    """At damping 0 a 1.5 MPa rubber ball specimen (10-particle lattice) rebounds into rubber's band [0.4, 0.8]; the
+    cube of the same lattice landing flat on the grid ground stays far below it (why the drop uses the ball)."""
+    from tasks.probes.deformable import drop
+
+    rubber = Material(youngs_modulus_pa=1.5e6, poisson_ratio=0.48, damping_rate_per_s=0.0)
+    out = {}
+    for shape in ("ball", "cube"):
+        x, v = specimen_particles(0.004, 10, shape)
+        out[shape] = drop(DeformableBody(x, v, 0.004, 950.0, 0.9, 1.0), [rubber], height_fraction=0.25)[0]
+    assert out["ball"].health.ok and 0.4 <= out["ball"].metrics["rebound_ratio"] <= 0.8
+    assert out["cube"].metrics["rebound_ratio"] < out["ball"].metrics["rebound_ratio"] - 0.1
 
 
 def test_a_structure_is_softer_than_its_material_and_the_bands_read_the_specimen() -> None:
