@@ -158,12 +158,14 @@ def specimen_arrays(physical: PhysicalModel, contract: StageContract,
 
 def object_view(results: list[ProbeResult], contract: StageContract) -> list[ProbeResult]:
     """The object's compression / drop metrics renamed object_<name> except the hard-gate ones: the band metrics come
-    from the specimen (the object's effective modulus is its structure's, e.g. 0.024 x E for a dog on four legs)."""
+    from the specimen (the object's effective modulus is its structure's, e.g. 0.024 x E for a dog on four legs).
+    Idempotent: a result already in this view is returned as it is."""
     gates = {g.metric for g in contract.hard_gates}
     out = []
     for r in results:
         if r.spec.kind in OBJECT_VIEW_KINDS:
-            r = r.model_copy(update={"metrics": {(k if k in gates else f"object_{k}"): v for k, v in r.metrics.items()}})
+            r = r.model_copy(update={"metrics": {(k if k in gates or k.startswith("object_") else f"object_{k}"): v
+                                                 for k, v in r.metrics.items()}})
         out.append(r)
     return out
 

@@ -90,3 +90,4 @@ def test_a_structure_is_softer_than_its_material_and_the_bands_read_the_specimen
     assert merged["j_min"] == min(r_obj.metrics["j_min"], r_spec.metrics["j_min"])
     viewed = object_view([r_obj], contract)[0]
     assert "effective_modulus_pa" not in viewed.metrics and viewed.metrics["finite"] == 1.0
+    assert object_view([viewed], contract)[0].metrics == viewed.metrics  # viewing twice renames nothing more
