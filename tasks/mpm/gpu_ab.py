@@ -49,7 +49,7 @@ def main() -> None:
     ap = argparse.ArgumentParser()
     ap.add_argument("--old", default="_old")
     ap.add_argument("--plan", required=True)
-    ap.add_argument("--out", default=os.environ.get("OUT", "/tmp/mpm_ab"))
+    ap.add_argument("--out", default=os.environ.get("OUT", "mpm_ab"))
     a = ap.parse_args()
     here = pathlib.Path.cwd()
     roots = {"old": (here / a.old).resolve(), "new": here}
