@@ -47,6 +47,16 @@ class TargetBand(Model):
         """True when value is finite and inside the band."""
         return value is not None and math.isfinite(value) and self.low <= value <= self.high
 
+    def point(self, u: float) -> float:
+        """The value a fraction u of the way from low (0) to high (1), in the band's scale."""
+        if self.scale == "log":
+            return self.low * (self.high / self.low) ** u
+        return self.low + u * (self.high - self.low)
+
+    def contains_inner(self, value: float | None, margin: float = 0.1) -> bool:
+        """True when value lies inside the band less a margin (a fraction of its width, in its scale) at each end."""
+        return value is not None and math.isfinite(value) and self.point(margin) <= value <= self.point(1.0 - margin)
+
     def deviation(self, value: float | None) -> float:
         """Distance outside the band: decades for log bands, band widths (or |centre|) otherwise; inf if missing."""
         if value is None or not math.isfinite(value):

@@ -49,6 +49,7 @@ SPECIMEN_SHAPE = {"specimen_compress": "cube", "specimen_drop": "ball"}  # tasks
 OBJECT_VIEW_KINDS = ("compress", "drop")  # object probes whose non-gate metrics are reported as object_<name>
 SCREEN_SCHEDULE = "auto"  # how object candidates share rollouts (tasks.probes.rollout.plan_batches)
 SPECIMEN_SCREEN_SCHEDULE = "batch"  # the screening's three specimen candidates in one lock-step rollout
+SCREEN_KEEP_MARGIN = 0.1  # a start value is kept when its metric is inside its band less 10 % of the width at each end
 
 
 # -- cached probe tasks ----------------------------------------------------------------------------------------------
@@ -274,6 +275,16 @@ def _fit_log(xs: list[float], ys: list[float], target: float, log_x: bool) -> fl
     return math.exp(u) if log_x else u
 
 
+def _start_in_band(start: float, xs: list[float], results: list[ProbeResult], metric: str, band: Any,
+                   margin: float = SCREEN_KEEP_MARGIN) -> bool:
+    """True when the start value was screened and its metric lies inside the band less `margin` at each end: the
+    screening then keeps the start value instead of aiming at the band's centre (the least change that meets the
+    target; a centre the solver cannot reach, e.g. a rebound of 0.6 for rubber, would otherwise drive the value to
+    its bound)."""
+    i = next((k for k, x in enumerate(xs) if math.isclose(x, start, rel_tol=1e-12, abs_tol=1e-15)), None)
+    return i is not None and band.contains_inner(results[i].metrics.get(metric), margin)
+
+
 def screen_moduli(values: dict[str, float], field: Any) -> list[float]:
     """Young's moduli the screening compresses: 1/3, 1 and 3 x the start value, clamped into the field [Pa]."""
     return [min(max(values["youngs_modulus_pa"] * k, field.low), field.high) for k in (1 / 3, 1.0, 3.0)]
@@ -296,8 +307,8 @@ def screen_rollouts(physical: PhysicalModel, positions_m: np.ndarray, volumes_m3
 def screen(asset: L0Asset, physical: PhysicalModel, contract: StageContract, targets: TargetBehaviour,
            start: dict[str, float], sim: SimConfig) -> tuple[dict[str, float], dict[str, Any]]:
     """Screening on the material's specimen: compress three stiffnesses, drop three damping rates (each set in one
-    lock-step rollout, SPECIMEN_SCREEN_SCHEDULE); interpolate the start values that hit the centres of the modulus and
-    rebound bands. Returns (initial values, summary)."""
+    lock-step rollout, SPECIMEN_SCREEN_SCHEDULE); keep a start value whose metric is already well inside its band
+    (_start_in_band), else interpolate the value that hits the band's centre. Returns (initial values, summary)."""
     p = probe_parameters(contract)
     fields = {f.name: f for f in contract.editable_fields}
     base = {"physical": physical, "sim": sim, "schedule": SPECIMEN_SCREEN_SCHEDULE}
@@ -313,12 +324,14 @@ def screen(asset: L0Asset, physical: PhysicalModel, contract: StageContract, tar
         rs = screen_task(positions_m=pos, volumes_m3=vol, kind="specimen_compress", materials=mats,
                          params={"strain": p["strain"]}, **base)
         ok = [(e, r.metrics["effective_modulus_pa"]) for e, r in zip(es, rs) if "effective_modulus_pa" in r.metrics]
-        guess = _fit_log([e for e, _ in ok], [m for _, m in ok], band.center, log_x=True)
+        kept = _start_in_band(values["youngs_modulus_pa"], es, rs, "effective_modulus_pa", band)
+        guess = None if kept else _fit_log([e for e, _ in ok], [m for _, m in ok], band.center, log_x=True)
         if guess is not None:
             values["youngs_modulus_pa"] = min(max(guess, f.low), f.high)
         calls = screen_rollouts(physical, pos, vol, mats, sim, rs, SPECIMEN_SCREEN_SCHEDULE)
         summary["compress"] = {"youngs_modulus_pa": es, "effective_modulus_pa": [r.metrics.get("effective_modulus_pa")
-                                                                                for r in rs], "sim_calls": calls}
+                                                                                for r in rs], "sim_calls": calls,
+                               "kept_start": kept}
         summary["sim_calls"] += calls
     band = targets.band("rebound_ratio")
     if band is not None:
@@ -331,12 +344,13 @@ def screen(asset: L0Asset, physical: PhysicalModel, contract: StageContract, tar
                          params={"height_fraction": p["height_fraction"]}, **base)
         ok = [(d, r.metrics["rebound_ratio"]) for d, r in zip(ds, rs) if "rebound_ratio" in r.metrics]
         aim = max(band.center, 1e-3)
-        guess = _fit_log([d for d, _ in ok], [max(rb, 1e-3) for _, rb in ok], aim, log_x=False)
+        kept = _start_in_band(values["damping_rate_per_s"], ds, rs, "rebound_ratio", band)
+        guess = None if kept else _fit_log([d for d, _ in ok], [max(rb, 1e-3) for _, rb in ok], aim, log_x=False)
         if guess is not None:
             values["damping_rate_per_s"] = min(max(guess, f.low), f.high)
         calls = screen_rollouts(physical, pos, vol, mats, sim, rs, SPECIMEN_SCREEN_SCHEDULE)
         summary["drop"] = {"damping_rate_per_s": ds, "rebound_ratio": [r.metrics.get("rebound_ratio") for r in rs],
-                           "sim_calls": calls}
+                           "sim_calls": calls, "kept_start": kept}
         summary["sim_calls"] += calls
     summary["initial"] = dict(values)
     return values, summary

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import math
 import os
 from pathlib import Path
 
@@ -87,6 +88,15 @@ def write_harness_log(path: Path, stage: str, attempts: list[Attempt], outcome: 
     return path
 
 
+def _nan_metrics(record: dict) -> dict:
+    """JSON writes a NaN metric (e.g. a hold force never measured because the object slipped) as null: read it back
+    as NaN, so a resumed harness can reload every attempt it wrote."""
+    ev = record.get("evidence") if isinstance(record, dict) else None
+    if isinstance(ev, dict) and isinstance(ev.get("metrics"), dict):
+        ev["metrics"] = {k: (math.nan if v is None else v) for k, v in ev["metrics"].items()}
+    return record
+
+
 def read_attempts(path: str | os.PathLike[str]) -> list[Attempt]:
     """Reload attempts from a JSONL file into the models (InputError names the bad line)."""
     out = []
@@ -95,7 +105,7 @@ def read_attempts(path: str | os.PathLike[str]) -> list[Attempt]:
         if not line.strip():
             continue
         try:
-            out.append(Attempt.model_validate(json.loads(line)))
+            out.append(Attempt.model_validate(_nan_metrics(json.loads(line))))
         except (ValueError, TypeError) as exc:
             raise InputError(f"{p}:{n}: not a valid attempt record: {str(exc).splitlines()[0]}") from exc
     return out

@@ -69,3 +69,20 @@ def test_evidence_command_table_and_json(l2, tmp_path: Path) -> None:
     (tmp_path / "bad.jsonl").write_text("{not json}\n")
     res = runner.invoke(app, ["evidence", str(tmp_path / "bad.jsonl")])
     assert res.exit_code != 0 and "bad.jsonl:1" in res.output
+
+
+def test_a_nan_metric_survives_the_round_trip(tmp_path: Path) -> None:
+    """A trial whose object slipped has no hold force (NaN, written as JSON null): the line reloads with NaN instead
+    of failing, so a rerun of the stage can read the file it wrote."""
+    import math
+
+    from contracts.evidence import EvidenceRecord
+
+    a = Attempt(stage="L3", iteration=0, action="revise_squeeze", proposal={"squeeze_depth_m": 0.004},
+                source={"backend": "rule"}, verdict="revise",
+                evidence=EvidenceRecord(metrics={"lifted": 0.0, "hold_normal_force_n": math.nan}))
+    path = tmp_path / "attempts.jsonl"
+    path.write_text(a.model_dump_json() + "\n")
+    assert '"hold_normal_force_n":null' in path.read_text()
+    (back,) = read_attempts(path)
+    assert back.evidence.metrics["lifted"] == 0.0 and math.isnan(back.evidence.metrics["hold_normal_force_n"])
