@@ -39,6 +39,7 @@ class EvalOptions:
     out: Path = Path("out/eval")
     llm: str | None = None
     videos: bool = True
+    vision_llm: str | None = None  # rates our assets' drop videos; None: the --llm model, if any
     conditions: tuple[Condition, ...] = field(default_factory=tuple)
 
 
@@ -107,7 +108,13 @@ def run_case(case: SuiteCase, suite_file: Path, opts: EvalOptions, conditions: l
         t1 = time.perf_counter()
         h = eval_arms.run_hierarchical(case, request, l0, base / "hierarchical", sim, agents, videos=opts.videos)
         wall = l0_wall + time.perf_counter() - t1
-        keep(eval_arms.hierarchy_result(case, h, wall))
+        ours = eval_arms.hierarchy_result(case, h, wall)
+        rater = opts.vision_llm or opts.llm
+        if rater and opts.videos and ours.delivered:
+            from tasks.evaluation.vision import with_ratings
+
+            ours = with_ratings(ours, request.text or request.material_intent or case.id, rater)
+        keep(ours)
         keep(eval_arms.harness_result(case, h, wall - l0_wall))
     if "harness" in opts.ablations and h is not None:
         keep(eval_arms.run_one_shot(case, request, h, sim, time.perf_counter()))

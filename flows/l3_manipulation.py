@@ -4,8 +4,11 @@ Reads L0 (geometry), L1 (physical.json, frozen) and L2 (material.json, or the vo
 Action revisions (grasp rank, squeeze, timing) and numerical revisions (substeps: dt / n, same durations) are
 re-evaluated here by the harness; a material revision (a gate only the material can fix: deformation bound) goes back
 through L2 revalidation (``flows.l2_material.evaluate_material``: exactly the L2 probes re-execute) and is then confirmed
-by the robot under the same plan, physical model and force budget. The accepted plan is then evaluated under held-out
-conditions (other target positions and initial yaw), recorded apart. Writes ``manipulation.json``, ``interaction/``
+by the robot under the same plan, physical model and force budget. An accepted plan is tried under two robustness
+conditions (other yaws, training only); when one fails, or when no plan passed at all, L3 asks L2 for a material
+inside its target bands (flows.l3_material: stiffer against a slip, more damping against an object that rolls on),
+revalidated by L2 on its gates and bands, and adopts it only when the robot then does better. The final plan is then
+evaluated under held-out conditions (other target positions and initial yaw), recorded apart. Writes ``manipulation.json``, ``interaction/``
 (one Zarr group per trial, failures kept), ``evidence/`` (harness attempt lines) and ``recordings/L3_*.rrd``.
 """
 

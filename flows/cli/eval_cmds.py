@@ -23,6 +23,8 @@ def eval_cmd(
     out: Path = typer.Option(Path("out/eval"), "--out", help="evaluation directory (records, cases, report)"),
     llm: str = typer.Option(None, "--llm", help="litellm model for every agent role (default: offline rule backend)"),
     videos: bool = typer.Option(True, "--videos/--no-videos", help="render the drop-protocol MP4s of our assets"),
+    vision_llm: str = typer.Option(None, "--vision-llm", help="litellm model with vision that rates the drop videos "
+                                   "0-1 (physical realism, photorealism, semantic consistency); default: --llm"),
     cache_dir: Path = typer.Option(None, "--cache", help="cache root"),
     as_json: bool = typer.Option(False, "--json", help="print the figures as JSON"),
 ) -> None:
@@ -36,6 +38,8 @@ def eval_cmd(
         fail(f"--device must be cpu or cuda, got '{device}'")
     if quality not in ("draft", "standard", "high"):
         fail(f"--quality must be draft, standard or high, got '{quality}'")
+    if vision_llm and not videos:
+        fail("--vision-llm rates the drop-protocol videos: drop --no-videos")
     if cache_dir is not None:
         use_cache_root(cache_dir)
     from flows.evaluate import EvalOptions, evaluate
@@ -44,7 +48,7 @@ def eval_cmd(
     load_suite(suite)  # a bad suite fails here, before anything runs
     opts = EvalOptions(suite=suite, ablations=tuple(a for a in ABLATIONS if a in chosen), limit=limit,
                        case_ids=tuple(case or ()), quality=quality, device=device, workers=workers, out=out,
-                       llm=llm, videos=videos)
+                       llm=llm, videos=videos, vision_llm=vision_llm)
     summary = evaluate(opts, progress=lambda msg: console.log(msg))
     if as_json:
         emit_json(summary)

@@ -202,9 +202,9 @@ def write_report(report_dir: Path, records: list[ArmResult], suite: Suite, suite
     md += ["## Asset quality: the paper's drop protocol", "",
            "5 s gravity drop from a quarter of the object's height at 30 fps, two views (front / side MP4 links "
            "below). Automated plausibility: shape retention >= 0.8, |volume ratio - 1| <= 0.1, no collapse "
-           "(height ratio >= 0.5), no explosion (extent growth <= 2). The 0-1 ratings of physical realism, "
-           "photorealism and semantic consistency need a vision LLM (`--llm`); none was rated in this run.", ""]
+           "(height ratio >= 0.5), no explosion (extent growth <= 2).", ""]
     md += _quality_rows(records)
+    md += ["", *_rating_rows(records, opts)]
     md += ["", "## Wall time", "", "Wall time per case and arm as recorded (cache hits make reruns cheaper; the "
            "hierarchical arm includes L0):", "", "| ablation | arm | cases | total [s] | mean per case [s] |",
            "|---|---|---|---|---|"]
@@ -224,6 +224,33 @@ def write_report(report_dir: Path, records: list[ArmResult], suite: Suite, suite
     summary["report"] = str(report_dir / "report.md")
     summary["figures_json"] = str(report_dir / "figures.json")
     return summary
+
+
+def _rating_rows(records: list[ArmResult], opts: Any) -> list[str]:
+    """The vision LLM's 0-1 ratings of our assets' drop videos: the mean per rating, then one row per asset."""
+    from tasks.evaluation.vision import RATINGS
+
+    rated = [r for r in records if r.ablation == "hierarchy" and r.arm == "hierarchical"
+             and all(f"rating_{k}" in r.metrics for k in RATINGS)]
+    failed = [r for r in records if r.ablation == "hierarchy" and "vision_rating_error" in r.evidence]
+    rater = getattr(opts, "vision_llm", None) or getattr(opts, "llm", None)
+    lines = ["### Vision-LLM ratings (0-1)", ""]
+    if not rated:
+        why = (f"{len(failed)} asset(s) could not be rated by {rater}: {failed[0].evidence['vision_rating_error']}"
+               if failed else "no vision LLM was configured (`--vision-llm` or `--llm`), or the videos were off")
+        return lines + [f"None in this run: {why}.", ""]
+    means = {k: sum(r.metrics[f"rating_{k}"] for r in rated) / len(rated) for k in RATINGS}
+    lines += [f"Rated by `{rated[0].evidence.get('vision_rating', {}).get('model', rater)}` from "
+              f"{rated[0].evidence.get('vision_rating', {}).get('frames_per_view', '?')} frames per view of the front "
+              f"and side videos; {len(rated)} asset(s) rated, {len(failed)} not.", "",
+              "| rating | mean | N |", "|---|---|---|"]
+    lines += [f"| {k.replace('_', ' ')} | {means[k]:.2f} | {len(rated)} |" for k in RATINGS]
+    lines += ["", "| case | " + " | ".join(RATINGS) + " | reason |", "|---|" + "---|" * (len(RATINGS) + 1)]
+    for r in sorted(rated, key=lambda r: r.case_id):
+        why = str(r.evidence.get("vision_rating", {}).get("rationale", "")).replace("|", "/")
+        lines.append(f"| {r.case_id} | " + " | ".join(f"{r.metrics[f'rating_{k}']:.2f}" for k in RATINGS)
+                     + f" | {why} |")
+    return lines + [""]
 
 
 def _quality_rows(records: list[ArmResult]) -> list[str]:

@@ -22,6 +22,8 @@ def test_bad_inputs_fail_clearly(tmp_path: Path) -> None:
     assert r.returncode != 0 and "--ablation must be one of" in r.stderr
     r = _cli("--suite", str(tmp_path / "none.yaml"), "--out", str(tmp_path / "o"))
     assert r.returncode != 0 and "suite" in r.stderr and "not found" in r.stderr
+    r = _cli("--vision-llm", "some/vision-model", "--no-videos", "--out", str(tmp_path / "o"))
+    assert r.returncode != 0 and "--vision-llm rates the drop-protocol videos" in r.stderr
     assert not (tmp_path / "o").exists()
 
 
