@@ -65,8 +65,8 @@ class L3Options:
     settle_duration_s: float = 0.2
     target_xy_m: tuple[float, float] = (0.08, 0.06)
     held_out: tuple[tuple[float, float, float], ...] = ((0.06, -0.08, 30.0),)  # (x [m], y [m], yaw [deg])
-    # training conditions a candidate that passes at the nominal one must also pass before it is accepted (a grasp
-    # that holds by a hair at one yaw slips at the next); distinct from every held-out condition
+    # training conditions the accepted plan is also tried under (a grasp that holds by a hair at one yaw slips at
+    # the next); a failure asks L2 for a material with more margin; distinct from every held-out condition
     robustness: tuple[tuple[float, float, float], ...] = ((0.08, 0.06, 45.0), (0.08, 0.06, -75.0))
     material_fallback: bool = True  # when no plan passes, ask L2 for a material within its bands (flows.l3_material)
     device: str = "cpu"
@@ -188,13 +188,18 @@ class L3Context:
         return probe.model_copy(update={"cache_key": key, "recording": f"interaction/attempt_{n:03d}"
                                         if n is not None else None})
 
+    def under(self, values: dict[str, float], conditions: tuple[tuple[float, float, float], ...], role: str,
+              action: str = "", material: Material | None = None) -> list[ProbeResult]:
+        """One trial per condition (x [m], y [m], yaw [deg]): the robustness or the held-out conditions."""
+        return [self.trial(values, role, action, material=material, target_xy_m=(x, y), yaw_deg=yaw)
+                for x, y, yaw in conditions]
+
     def trials(self, values: dict[str, float], role: str, action: str = "",
                material: Material | None = None) -> list[ProbeResult]:
         """The trial under the nominal condition (role), then under each robustness condition (L3Options.robustness,
         role 'robustness')."""
         return [self.trial(values, role, action, material=material),
-                *(self.trial(values, "robustness", action, material=material, target_xy_m=(x, y), yaw_deg=yaw)
-                  for x, y, yaw in self.options.robustness)]
+                *self.under(values, self.options.robustness, "robustness", action, material)]
 
 
 def initial_values(ctx: L3Context) -> dict[str, float]:
@@ -279,8 +284,7 @@ def run_l3(asset_dir: Path, options: L3Options | None = None, agents: AgentConfi
         # the accepted plan under the training perturbations; a failure asks the material for margin, adopted only
         # when the revised material passes the nominal condition and strictly more perturbations
         with cache.local_runtime():
-            rob = [ctx.trial(dict(chosen_values), "robustness", material=ctx.material, target_xy_m=(x, y), yaw_deg=yaw)
-                   for x, y, yaw in options.robustness]
+            rob = ctx.under(dict(chosen_values), options.robustness, "robustness")
         robustness = _conditions(options.robustness, rob, contract)
         failing = [r for r in rob if not _accepted(r.metrics, contract)]
         if failing:
@@ -304,11 +308,9 @@ def run_l3(asset_dir: Path, options: L3Options | None = None, agents: AgentConfi
     held: list[dict[str, Any]] = []
     if accepted and options.held_out:
         with cache.local_runtime():
-            for x, y, yaw in options.held_out:
-                r = ctx.trial(dict(chosen_values), "held_out", material=final_material,  # type: ignore[arg-type]
-                              target_xy_m=(x, y), yaw_deg=yaw)
-                held.append({"target_xy_m": [x, y], "initial_yaw_deg": yaw, "labels": r.metrics,
-                             "success": _accepted(r.metrics, contract), "attempt": r.recording})
+            results = ctx.under(dict(chosen_values), options.held_out, "held_out",  # type: ignore[arg-type]
+                                material=final_material)
+        held = _conditions(options.held_out, results, contract)["conditions"]
     chosen = _chosen_attempt(ctx, chosen_values, final_material) if accepted else None
     rec_paths = []
     if recordings and chosen is not None and chosen.get("attempt") is not None:
