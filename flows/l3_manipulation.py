@@ -41,7 +41,8 @@ from tasks.manipulation.outcome import TrialTolerances
 from tasks.manipulation.trial import TrialSettings, plan_or_error, run_trial
 from tasks.robot import select_grasps
 
-TASK_VERSION = "6"  # bump when tasks/manipulation/{trial,outcome,body}.py change what a trial returns (6: settle until at rest)
+TASK_VERSION = "7"  # bump when tasks/manipulation/{trial,outcome,body,frame}.py change what a trial returns (6: settle until
+# at rest; 7: simulated in the frame where the closing axis is at 45 degrees to the grid)
 MANIPULATION_JSON = "manipulation.json"
 LABELS = ("lifted", "transported", "released_in_target", "settled", "numerically_healthy")
 

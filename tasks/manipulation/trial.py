@@ -22,6 +22,7 @@ from contracts.physical import PhysicalModel
 from contracts.robot import ActionPlan
 from contracts.sim import SimConfig
 from tasks.manipulation.body import TrialBody
+from tasks.manipulation.frame import SimFrame
 from tasks.manipulation.outcome import TrialTolerances, label_trial
 from tasks.robot import PHASES, ObjectPose, Trajectory, plan_trajectory
 
@@ -51,6 +52,12 @@ class TrialSettings:
     # `settled` thresholds of TrialTolerances), at most this long: a ball still rolling at 6 cm/s when a 0.2 s settle
     # phase ends has not been judged, it has been cut off [s]; 0 ends every trial with the plan
     settle_until_rest_max_s: float = 1.0
+    # the trial is simulated in a frame turned about the vertical so that the closing axis makes this angle with the
+    # MPM grid's x axis (tasks.manipulation.frame); everything recorded is in the world frame. None: the world frame,
+    # where the grasp meets the grid at an angle that depends on the object's yaw, and so did the outcome at draft
+    # resolution. 45: pad faces at 45 degrees to both horizontal grid axes; faces parallel to a node plane (0)
+    # under-grip at every resolution tried (tasks/manipulation/BENCHMARKS.md) [deg]
+    closing_axis_to_grid_deg: float | None = 45.0
 
 
 @dataclass
@@ -107,6 +114,7 @@ def run_trial(body: TrialBody, physical: PhysicalModel, material: Material, plan
     traj = trajectory or plan_trajectory(plan, object_pose=pose, object_height_m=body.height_m,
                                          pad_half_thickness_m=s.pad_half_thickness_m)
     x0 = pose.point_to_world(body.particles_m)
+    frame = SimFrame.aligned(traj.closing_axis_world, s.closing_axis_to_grid_deg)
     t_start = max(0.0, traj.phases["closure"][0] - s.settle_before_closure_s)
     t_end = traj.duration_s
     dt_c = 1.0 / s.control_hz
@@ -119,10 +127,11 @@ def run_trial(body: TrialBody, physical: PhysicalModel, material: Material, plan
     mu_g = physical.gripper_friction
     # the pad boxes grow outward from the gripping faces: the left finger's face is its box's -y face, the right's
     # (the same link axes, mirrored) its +y face
-    colliders = [pad_collider(traj.pad_half_extents_m, face, friction=mu_g, position_m=tuple(first.position_m[0, k]),
-                              rotation_xyzw=tuple(first.quat_xyzw[0, k]), name=f"finger_{k}")
+    colliders = [pad_collider(traj.pad_half_extents_m, face, friction=mu_g,
+                              position_m=tuple(frame.to_sim(first.position_m[0, k])),
+                              rotation_xyzw=tuple(frame.quat_to_sim(first.quat_xyzw[0, k])), name=f"finger_{k}")
                  for k, face in enumerate(PAD_FACES)]
-    scene = SceneSpec(positions_m=x0, volumes_m3=body.volumes_m3, density_kg_per_m3=physical.density_kg_per_m3,
+    scene = SceneSpec(positions_m=frame.to_sim(x0), volumes_m3=body.volumes_m3, density_kg_per_m3=physical.density_kg_per_m3,
                       material=material, colliders=colliders, ground=True, ground_friction=physical.ground_friction,
                       gravity_m_per_s2=physical.gravity_m_per_s2)
     cfg = SimConfig(device=s.device, dx_m=2.0 * body.spacing_m, dt_max_s=s.dt_max_s, cfl=s.cfl, substeps=s.substeps,
@@ -150,7 +159,12 @@ def run_trial(body: TrialBody, physical: PhysicalModel, material: Material, plan
     lift_end = traj.phases["lift"][1]
     lift_needed = tol.lift_height_m - tol.slip_tolerance_m  # the `lifted` label's threshold
     k_close = int(max(0, min(n_int - 1, math.ceil((traj.phases["closure"][0] - t_start) / dt_c - 1e-9))))
-    p = sim.particles(0)
+
+    def particles_world() -> dict[str, np.ndarray]:
+        q = sim.particles(0)
+        return {"x": frame.to_world(q["x"]), "F": frame.tensor_to_world(q["F"])}
+
+    p = particles_world()
     com[0] = w @ p["x"]
     # force-guarded closure (plan.grip_force_limit_n): once the fingers' mean normal force, extrapolated one control
     # interval ahead, reaches the limit, the fingers hold that opening until the plan opens them wider (release)
@@ -176,11 +190,13 @@ def run_trial(body: TrialBody, physical: PhysicalModel, material: Material, plan
         # while the hand carries the object, the grid lattice moves with it (tasks.mpm Control.set_grid_velocity):
         # pads crossing lattice planes would release and re-grip node layers and the squeeze would leak away
         carrying = traj.phase_at(t0) in CARRY_PHASES
-        sim.control.set_grid_velocity(0, m.linear_velocity_m_per_s[0].mean(axis=0) if carrying else (0.0, 0.0, 0.0))
+        sim.control.set_grid_velocity(0, frame.to_sim(m.linear_velocity_m_per_s[0].mean(axis=0)) if carrying
+                                      else (0.0, 0.0, 0.0))
         for f in range(2):
-            sim.control.set_collider(0, f, position_m=m.position_m[0, f], rotation_xyzw=m.quat_xyzw[0, f],
-                                     linear_velocity_m_per_s=m.linear_velocity_m_per_s[0, f],
-                                     angular_velocity_rad_per_s=m.angular_velocity_rad_per_s[0, f])
+            sim.control.set_collider(0, f, position_m=frame.to_sim(m.position_m[0, f]),
+                                     rotation_xyzw=frame.quat_to_sim(m.quat_xyzw[0, f]),
+                                     linear_velocity_m_per_s=frame.to_sim(m.linear_velocity_m_per_s[0, f]),
+                                     angular_velocity_rad_per_s=frame.to_sim(m.angular_velocity_rad_per_s[0, f]))
         st = traj.state_at(t0)
         cmd_q[k], cmd_qdot[k] = st.q, st.qdot
         held = hold_opening is not None and hold_opening > st.finger_opening_m
@@ -189,9 +205,9 @@ def run_trial(body: TrialBody, physical: PhysicalModel, material: Material, plan
         phase[k] = PHASES.index(st.phase)
         report = sim.advance(t1 - t0)
         steps += report.steps
-        force[k] = [report.collider_force(model, 0, f) for f in range(2)]
-        ground[k] = report.ground_force_n[0]
-        p = sim.particles(0)
+        force[k] = frame.to_world(np.array([report.collider_force(model, 0, f) for f in range(2)], dtype=float))
+        ground[k] = frame.to_world(np.asarray(report.ground_force_n[0], dtype=float))
+        p = particles_world()
         com[k + 1] = w @ p["x"]
         if guard_n is not None and hold_opening is None and st.phase == "closure":
             normal = 0.5 * float(-(force[k, 0] @ axis) + force[k, 1] @ axis)  # mean per finger over the interval
@@ -242,7 +258,7 @@ def run_trial(body: TrialBody, physical: PhysicalModel, material: Material, plan
             "settings": asdict(s), "tolerances": asdict(tol), "phases": {k: list(v) for k, v in traj.phases.items()},
             "object_pose": {"xy_m": list(pose.xy_m), "yaw_deg": pose.yaw_deg}, "intervals": int(n_done),
             "settle_extension_s": float(max(0, n_done - n_int) * dt_c),
-            "grip_guard": guard}
+            "grip_guard": guard, "sim_frame_yaw_deg": math.degrees(frame.yaw_rad)}
     labels.update({"particles": float(len(x0)), "steps": float(steps), "stopped_after_failed_lift": float(bool(stopped)),
                    "grip_guard_stopped": float(bool(guard)),
                    "closed_width_m": float(guard["opening_m"]) if guard else float(traj.closed_width_m)})  # wall time stays in info, not in the data
