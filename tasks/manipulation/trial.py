@@ -161,8 +161,9 @@ def run_trial(body: TrialBody, physical: PhysicalModel, material: Material, plan
     k_close = int(max(0, min(n_int - 1, math.ceil((traj.phases["closure"][0] - t_start) / dt_c - 1e-9))))
 
     def particles_world() -> dict[str, np.ndarray]:
+        """Positions in the world frame; F stays in the simulation frame (turned only when a frame is recorded)."""
         q = sim.particles(0)
-        return {"x": frame.to_world(q["x"]), "F": frame.tensor_to_world(q["F"])}
+        return {"x": frame.to_world(q["x"]), "F_sim": q["F"]}
 
     p = particles_world()
     com[0] = w @ p["x"]
@@ -184,7 +185,7 @@ def run_trial(body: TrialBody, physical: PhysicalModel, material: Material, plan
         if k % per_frame == 0:
             frames_t.append(sim.time_s + t_start)
             frames_x.append(p["x"].astype(np.float32))
-            frames_f.append(p["F"].astype(np.float32))
+            frames_f.append(frame.tensor_to_world(p["F_sim"]).astype(np.float32))
             frames_k.append(k)
         m = traj.pad_motion(t0, t1, hold_opening)
         # while the hand carries the object, the grid lattice moves with it (tasks.mpm Control.set_grid_velocity):
@@ -229,7 +230,7 @@ def run_trial(body: TrialBody, physical: PhysicalModel, material: Material, plan
     n_done = k + 1
     frames_t.append(sim.time_s + t_start)
     frames_x.append(p["x"].astype(np.float32))
-    frames_f.append(p["F"].astype(np.float32))
+    frames_f.append(frame.tensor_to_world(p["F_sim"]).astype(np.float32))
     frames_k.append(n_done)
 
     t_c, cmd_q, cmd_qdot, cmd_open, phase = t_c[:n_done], cmd_q[:n_done], cmd_qdot[:n_done], cmd_open[:n_done], \
