@@ -210,10 +210,11 @@ class RuleCritic:
         directions: dict[str, str] = {}
         ranks: dict[str, int] = {}
         diagnosis = None
+        failed_metrics = {g.metric for g in failed}
         for g in failed:
             route = routes.gates.get(g.metric)
-            if route is None:
-                continue
+            if route is None or (route.after is not None and route.after in failed_metrics):
+                continue  # no route, or a consequence of an earlier phase's failure (not lifted -> not transported)
             diagnosis = diagnosis or route.diagnosis
             for f, d in route.directions.items():
                 if f in editable and route.priority > ranks.get(f, -10**9):

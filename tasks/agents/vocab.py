@@ -9,7 +9,7 @@ from typing import Literal
 import yaml
 
 import contracts
-from pydantic import Field, ValidationError
+from pydantic import Field, ValidationError, model_validator
 
 from contracts.base import Model
 from contracts.errors import ContractError
@@ -78,6 +78,8 @@ class GateRoute(Model):
     directions: dict[str, Literal["increase", "decrease", "next"]] = Field(default_factory=dict)
     escalate: str | None = None
     priority: int = Field(default=0, description="when failed gates disagree on a field, the highest priority wins")
+    after: str | None = Field(default=None, description="the gate metric of the phase before this gate's: while that "
+                              "gate fails too, this failure is its consequence and suggests no direction")
 
 
 class StageRoutes(Model):
@@ -90,6 +92,13 @@ class StageRoutes(Model):
     methods: dict[str, Literal["secant", "bisection", "enumerate"]] = Field(default_factory=dict)
     integers: list[str] = Field(default_factory=list)
     gates: dict[str, GateRoute] = Field(default_factory=dict)
+
+    @model_validator(mode="after")
+    def _after_names_a_gate(self) -> "StageRoutes":
+        bad = {m: r.after for m, r in self.gates.items() if r.after is not None and (r.after not in self.gates or r.after == m)}
+        if bad:
+            raise ValueError(f"'after' must name another gate of the same table: {bad}")
+        return self
 
     def fields_of(self, action: str, all_fields: list[str]) -> list[str]:
         """Fields an action may edit; an unlisted action may edit every editable field."""
