@@ -195,13 +195,6 @@ class L3Context:
         return [self.trial(values, role, action, material=material, target_xy_m=(x, y), yaw_deg=yaw)
                 for x, y, yaw in conditions]
 
-    def trials(self, values: dict[str, float], role: str, action: str = "",
-               material: Material | None = None) -> list[ProbeResult]:
-        """The trial under the nominal condition (role), then under each robustness condition (L3Options.robustness,
-        role 'robustness')."""
-        return [self.trial(values, role, action, material=material),
-                *self.under(values, self.options.robustness, "robustness", action, material)]
-
 
 def initial_values(ctx: L3Context) -> dict[str, float]:
     """First candidate: the best grasp, a squeeze of a fraction of its width, the draft timing, one substep."""
@@ -351,8 +344,9 @@ def _base_attempt(ctx: L3Context, outcome: StageOutcome, escalated: bool) -> Any
 def _revise_material(ctx: L3Context, values: dict[str, float], metrics: dict[str, float],
                      trigger: str) -> dict[str, Any] | None:
     """Material revision asked by a trial's failed gates (flows.l3_material), L2 revalidation (one half-way retry
-    when a band is left), then the robot under the same plan: the nominal condition and the robustness conditions.
-    'accepted' when L2 passed and the nominal condition passes; None when the material has nothing to give."""
+    when a band is left), then the robot under the same plan: the nominal condition, and the robustness conditions
+    when it passes. 'accepted' when L2 passed and the nominal condition passes; None when the material has nothing to
+    give."""
     limits = MaterialLimits.from_asset(ctx.asset_dir)
     proposal = revise_material(ctx.material, metrics, ctx.contract, limits)
     if proposal is None:
@@ -371,10 +365,12 @@ def _revise_material(ctx: L3Context, values: dict[str, float], metrics: dict[str
                            "l2_checks": checks, "plan_values": dict(values), "accepted": False}
     if checks[-1]["passed"]:
         with cache.local_runtime():
-            confirm = ctx.trials(dict(values), "confirmation", "revise_material", material=revised)
+            confirm = [ctx.trial(dict(values), "confirmation", "revise_material", material=revised)]
+            rev["accepted"] = _accepted(confirm[0].metrics, ctx.contract)
+            if rev["accepted"]:  # the robustness conditions only matter for a material the nominal condition accepts
+                confirm += ctx.under(dict(values), ctx.options.robustness, "robustness", "revise_material", revised)
         rev["confirmation"] = confirm[0].metrics
         rev["robustness"] = _conditions(ctx.options.robustness, confirm[1:], ctx.contract)
-        rev["accepted"] = _accepted(confirm[0].metrics, ctx.contract)
     return rev
 
 

@@ -210,3 +210,35 @@ def test_a_revision_that_is_no_more_robust_is_not_adopted(cube_asset: Path, pref
     assert record["passed"] and record["material"]["youngs_modulus_pa"] == 2e4
     assert record["material_revision"]["accepted"] is False and record["robustness"]["passed"] == 0
     assert record["material_source"] == "L2"
+
+
+def test_a_revised_material_that_fails_the_nominal_condition_is_not_tried_under_the_perturbations(
+        cube_asset: Path, prefect_api: str, monkeypatch: pytest.MonkeyPatch) -> None:
+    """No plan passes, so L3 asks L2 for a stiffer material; the robot still slips with it under the nominal
+    condition, so the material is not adopted and the robustness conditions (which could not change that) are not
+    run."""
+    import flows.l3_manipulation as l3
+    from contracts.agents import TargetBand, TargetBehaviour
+    from contracts.probes import ProbeResult, ProbeSpec
+
+    targets = TargetBehaviour(bands=[TargetBand(metric="effective_modulus_pa", unit="Pa", low=1e4, high=1e5,
+                                                scale="log")])
+    (cube_asset / "material.json").write_text(json.dumps({
+        "passed": True, "targets": targets.model_dump(mode="json"), "metrics": {"effective_modulus_pa": 2e4},
+        "material": {"youngs_modulus_pa": 2e4, "poisson_ratio": 0.3, "damping_rate_per_s": 5.0}}))
+
+    def fake_trial(self, values, role, action="", material=None, target_xy_m=None, yaw_deg=0.0):  # noqa: ANN001, ANN202
+        labels = dict(SLIP)
+        self.attempts.append({"attempt": None, "role": role, "action": action, "values": values, "labels": labels,
+                              "cache_key": None, "condition": {}})
+        return ProbeResult(spec=ProbeSpec(kind="pick_and_place", params={}), metrics=labels)
+
+    monkeypatch.setattr(l3.L3Context, "trial", fake_trial)
+    monkeypatch.setattr(l3, "revalidate_in_l2", lambda *a, **k: {"passed": True, "gates": {}, "bands": {},
+                                                                 "metrics": {}, "probe_keys": []})
+    record, _ = run_l3(cube_asset, L3Options(squeeze_depth_m=0.004), contract=_contract(), recordings=False)
+    rev = record["material_revision"]
+    assert not record["passed"] and rev["trigger"] == "no plan passed" and rev["accepted"] is False
+    roles = [a["role"] for a in record["attempts"]]
+    assert roles[-1] == "confirmation" and "robustness" not in roles
+    assert rev["robustness"] == {"conditions": [], "passed": 0}
