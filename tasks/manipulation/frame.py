@@ -15,15 +15,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-
-def _quat_mul(a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    """Hamilton product of quaternions in (x, y, z, w) order, broadcast over leading axes."""
-    ax, ay, az, aw = np.moveaxis(np.asarray(a, dtype=float), -1, 0)
-    bx, by, bz, bw = np.moveaxis(np.asarray(b, dtype=float), -1, 0)
-    return np.stack([aw * bx + ax * bw + ay * bz - az * by,
-                     aw * by - ax * bz + ay * bw + az * bx,
-                     aw * bz + ax * by - ay * bx + az * bw,
-                     aw * bw - ax * bx - ay * by - az * bz], axis=-1)
+from tasks.robot.trajectory import quat_mul
 
 
 @dataclass(frozen=True)
@@ -74,7 +66,7 @@ class SimFrame:
         if self.is_identity:
             return np.asarray(q_xyzw, dtype=float)
         h = 0.5 * self.yaw_rad
-        return _quat_mul(np.array([0.0, 0.0, math.sin(h), math.cos(h)]), q_xyzw)
+        return quat_mul(np.array([0.0, 0.0, math.sin(h), math.cos(h)]), np.asarray(q_xyzw, dtype=float))
 
 
 __all__ = ["SimFrame"]

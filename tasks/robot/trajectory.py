@@ -111,7 +111,7 @@ class PadArrays:
                           self.half_extents_m[k:k + 1]) for k in range(len(self.t_s))]
 
 
-def _quat_mul(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+def quat_mul(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     """Hamilton product of quaternions (x, y, z, w), broadcast over leading axes."""
     ax, ay, az, aw = np.moveaxis(a, -1, 0)
     bx, by, bz, bw = np.moveaxis(b, -1, 0)
@@ -294,7 +294,7 @@ class Trajectory:
         if min_opening_m is not None:
             a, b = self._held_open(a, min_opening_m), self._held_open(b, min_opening_m)
         dt = t1 - t0
-        dq = _quat_mul(b.quat_xyzw, a.quat_xyzw * np.array([-1.0, -1.0, -1.0, 1.0]))
+        dq = quat_mul(b.quat_xyzw, a.quat_xyzw * np.array([-1.0, -1.0, -1.0, 1.0]))
         dq *= np.where(dq[..., 3:4] < 0.0, -1.0, 1.0)
         sin_half = np.linalg.norm(dq[..., :3], axis=-1, keepdims=True)
         angle = 2.0 * np.arctan2(sin_half, dq[..., 3:4])

@@ -139,38 +139,52 @@ PASS = {"lifted": 1.0, "transported": 1.0, "released_in_target": 1.0, "settled":
 SLIP = {**PASS, "lifted": 0.0, "transported": 0.0, "released_in_target": 0.0, "settled": 0.0, "slipped": 1.0}
 
 
+def _l2_material_in_band(asset: Path, e0: float = 2.0e4):  # type: ignore[no-untyped-def]
+    """material.json of an L2 material of modulus e0 whose modulus band is [10, 100] kPa; returns the targets."""
+    from contracts.agents import TargetBand, TargetBehaviour
+
+    targets = TargetBehaviour(bands=[TargetBand(metric="effective_modulus_pa", unit="Pa", low=1e4, high=1e5,
+                                                scale="log")])
+    (asset / "material.json").write_text(json.dumps({
+        "passed": True, "targets": targets.model_dump(mode="json"), "metrics": {"effective_modulus_pa": e0},
+        "material": {"youngs_modulus_pa": e0, "poisson_ratio": 0.3, "damping_rate_per_s": 5.0}}))
+    return targets
+
+
+def _stand_in_robot(monkeypatch: pytest.MonkeyPatch, labels_of, revalidate=None) -> None:  # type: ignore[no-untyped-def]
+    """The robot replaced by labels_of(material, yaw_deg) (every trial stored as an attempt, as the real one is) and
+    L2's revalidation by `revalidate` (default: passes); the flow around them is L3's own."""
+    import flows.l3_manipulation as l3
+    from contracts.probes import ProbeResult, ProbeSpec
+
+    def fake_trial(self, values, role, action="", material=None, target_xy_m=None, yaw_deg=0.0):  # noqa: ANN001, ANN202
+        labels = dict(labels_of(material or self.material, yaw_deg))
+        self.attempts.append({"attempt": None, "role": role, "action": action, "values": values, "labels": labels,
+                              "cache_key": None, "condition": {"target_xy_m": list(target_xy_m or (0.0, 0.0)),
+                                                               "yaw_deg": yaw_deg}})
+        return ProbeResult(spec=ProbeSpec(kind="pick_and_place", params={}), metrics=labels)
+
+    monkeypatch.setattr(l3.L3Context, "trial", fake_trial)
+    monkeypatch.setattr(l3, "revalidate_in_l2", revalidate or (lambda *a, **k: {
+        "passed": True, "gates": {}, "bands": {}, "metrics": {}, "probe_keys": []}))
+
+
 def test_a_plan_that_slips_under_a_perturbation_gets_the_stiffest_in_band_material(
         cube_asset: Path, prefect_api: str, monkeypatch: pytest.MonkeyPatch) -> None:
     """The accepted plan is tried under the robustness conditions; one slips, so L3 asks L2 for the stiffest modulus
     its band allows, and adopts it because it passes the nominal condition and more perturbations. The robot is a
     stand-in here (a grasp holds at yaw 0, or anywhere once E >= 1.5 E0); the logic around it is the flow's own."""
-    import flows.l3_manipulation as l3
-    from contracts.agents import TargetBand, TargetBehaviour
-    from contracts.probes import ProbeResult, ProbeSpec
-
     e0 = 2.0e4
-    targets = TargetBehaviour(bands=[TargetBand(metric="effective_modulus_pa", unit="Pa", low=1e4, high=1e5,
-                                                scale="log")])
-    (cube_asset / "material.json").write_text(json.dumps({
-        "passed": True, "targets": targets.model_dump(mode="json"), "metrics": {"effective_modulus_pa": e0},
-        "material": {"youngs_modulus_pa": e0, "poisson_ratio": 0.3, "damping_rate_per_s": 5.0}}))
+    targets = _l2_material_in_band(cube_asset, e0)
     revalidated = []
-
-    def fake_trial(self, values, role, action="", material=None, target_xy_m=None, yaw_deg=0.0):  # noqa: ANN001, ANN202
-        m = material or self.material
-        labels = dict(PASS if yaw_deg == 0.0 or m.youngs_modulus_pa >= 1.5 * e0 else SLIP)
-        self.attempts.append({"attempt": None, "role": role, "action": action, "values": values, "labels": labels,
-                              "cache_key": None, "condition": {"target_xy_m": list(target_xy_m or (0.0, 0.0)),
-                                                               "yaw_deg": yaw_deg}})
-        return ProbeResult(spec=ProbeSpec(kind="pick_and_place", params={}), metrics=labels)
 
     def fake_revalidate(asset_dir, material, physical, limits):  # noqa: ANN001, ANN202
         revalidated.append(material.youngs_modulus_pa)
         return {"passed": True, "gates": {"finite": True}, "bands": {"effective_modulus_pa": True}, "metrics": {},
                 "probe_keys": []}
 
-    monkeypatch.setattr(l3.L3Context, "trial", fake_trial)
-    monkeypatch.setattr(l3, "revalidate_in_l2", fake_revalidate)
+    _stand_in_robot(monkeypatch, lambda m, yaw: PASS if yaw == 0.0 or m.youngs_modulus_pa >= 1.5 * e0 else SLIP,
+                    fake_revalidate)
     record, outcome = run_l3(cube_asset, L3Options(squeeze_depth_m=0.004), contract=_contract(), recordings=False)
     assert outcome.status == "accepted" and record["passed"]
     rev = record["material_revision"]
@@ -187,25 +201,8 @@ def test_a_plan_that_slips_under_a_perturbation_gets_the_stiffest_in_band_materi
 def test_a_revision_that_is_no_more_robust_is_not_adopted(cube_asset: Path, prefect_api: str,
                                                           monkeypatch: pytest.MonkeyPatch) -> None:
     """When the stiffer material slips under the same perturbations, L3 keeps the L2 material (least change)."""
-    import flows.l3_manipulation as l3
-    from contracts.agents import TargetBand, TargetBehaviour
-    from contracts.probes import ProbeResult, ProbeSpec
-
-    targets = TargetBehaviour(bands=[TargetBand(metric="effective_modulus_pa", unit="Pa", low=1e4, high=1e5,
-                                                scale="log")])
-    (cube_asset / "material.json").write_text(json.dumps({
-        "passed": True, "targets": targets.model_dump(mode="json"), "metrics": {"effective_modulus_pa": 2e4},
-        "material": {"youngs_modulus_pa": 2e4, "poisson_ratio": 0.3, "damping_rate_per_s": 5.0}}))
-
-    def fake_trial(self, values, role, action="", material=None, target_xy_m=None, yaw_deg=0.0):  # noqa: ANN001, ANN202
-        labels = dict(PASS if yaw_deg in (0.0, 30.0) else SLIP)
-        self.attempts.append({"attempt": None, "role": role, "action": action, "values": values, "labels": labels,
-                              "cache_key": None, "condition": {}})
-        return ProbeResult(spec=ProbeSpec(kind="pick_and_place", params={}), metrics=labels)
-
-    monkeypatch.setattr(l3.L3Context, "trial", fake_trial)
-    monkeypatch.setattr(l3, "revalidate_in_l2", lambda *a, **k: {"passed": True, "gates": {}, "bands": {},
-                                                                 "metrics": {}, "probe_keys": []})
+    _l2_material_in_band(cube_asset)
+    _stand_in_robot(monkeypatch, lambda m, yaw: PASS if yaw in (0.0, 30.0) else SLIP)
     record, _ = run_l3(cube_asset, L3Options(squeeze_depth_m=0.004), contract=_contract(), recordings=False)
     assert record["passed"] and record["material"]["youngs_modulus_pa"] == 2e4
     assert record["material_revision"]["accepted"] is False and record["robustness"]["passed"] == 0
@@ -217,25 +214,8 @@ def test_a_revised_material_that_fails_the_nominal_condition_is_not_tried_under_
     """No plan passes, so L3 asks L2 for a stiffer material; the robot still slips with it under the nominal
     condition, so the material is not adopted and the robustness conditions (which could not change that) are not
     run."""
-    import flows.l3_manipulation as l3
-    from contracts.agents import TargetBand, TargetBehaviour
-    from contracts.probes import ProbeResult, ProbeSpec
-
-    targets = TargetBehaviour(bands=[TargetBand(metric="effective_modulus_pa", unit="Pa", low=1e4, high=1e5,
-                                                scale="log")])
-    (cube_asset / "material.json").write_text(json.dumps({
-        "passed": True, "targets": targets.model_dump(mode="json"), "metrics": {"effective_modulus_pa": 2e4},
-        "material": {"youngs_modulus_pa": 2e4, "poisson_ratio": 0.3, "damping_rate_per_s": 5.0}}))
-
-    def fake_trial(self, values, role, action="", material=None, target_xy_m=None, yaw_deg=0.0):  # noqa: ANN001, ANN202
-        labels = dict(SLIP)
-        self.attempts.append({"attempt": None, "role": role, "action": action, "values": values, "labels": labels,
-                              "cache_key": None, "condition": {}})
-        return ProbeResult(spec=ProbeSpec(kind="pick_and_place", params={}), metrics=labels)
-
-    monkeypatch.setattr(l3.L3Context, "trial", fake_trial)
-    monkeypatch.setattr(l3, "revalidate_in_l2", lambda *a, **k: {"passed": True, "gates": {}, "bands": {},
-                                                                 "metrics": {}, "probe_keys": []})
+    _l2_material_in_band(cube_asset)
+    _stand_in_robot(monkeypatch, lambda m, yaw: SLIP)
     record, _ = run_l3(cube_asset, L3Options(squeeze_depth_m=0.004), contract=_contract(), recordings=False)
     rev = record["material_revision"]
     assert not record["passed"] and rev["trigger"] == "no plan passed" and rev["accepted"] is False
