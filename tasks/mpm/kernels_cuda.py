@@ -433,7 +433,8 @@ def p2g_kernel(coop: bool, scatter: int = SCATTER_WARP) -> wp.Kernel:
     return make_p2g_warp(coop, module="unique", scatter=scatter)
 
 
-def make_g2p2g(colliders: bool, coop: bool, agg: bool, scatter: int = SCATTER_WARP, max_regs: int = 0) -> wp.Kernel:
+def make_g2p2g(colliders: bool, coop: bool, agg: bool, scatter: int = SCATTER_WARP, max_regs: int = 0,
+               keep_c: bool = False) -> wp.Kernel:
     """g2p of step n fused with p2g of step n+1 (CUDA only; one particle per thread, whole-block launches).
 
     The body is ``kernels.make_g2p`` (same switches, same arithmetic in the same order) followed by ``p2g_warp`` on
@@ -441,7 +442,15 @@ def make_g2p2g(colliders: bool, coop: bool, agg: bool, scatter: int = SCATTER_WA
     of its own. Valid when no re-fit comes between the two steps (same grid window) and the grid update of step n
     has run (grid_mvm is clear: it reads grid_v only, and scatters into grid_mvm); ``solver.py`` uses it inside
     multi-step graphs. The clock: ``clock_step`` already counts step n here (the grid update of step n advanced it),
-    as it does for the separate p2g of step n+1, so the out-of-grid flag names the same step."""
+    as it does for the separate p2g of step n+1, so the out-of-grid flag names the same step.
+
+    keep_c=False (default): C makes no round trip through memory. A live particle's C is rebuilt from the grid by
+    every g2p and the fused scatter takes it from registers, so the kernel neither loads nor stores C (72 of the 192
+    bytes that a step moves per particle, and the costliest cooperative record moves). The state is updated in place
+    (solver.py), so C in memory keeps its value from the block's start until the block's last step, a plain g2p,
+    writes the current one; a frozen particle keeps its whole state as before. The frozen test reads x, v and F: a
+    non-finite C at a g2p always comes with a non-finite v (both are sums over the same grid velocities with positive
+    weights), so C adds nothing to it. keep_c=True loads and stores C as the plain g2p does."""
 
     def _g2p2g_body(
         x: wp.array(dtype=wp.vec3),
@@ -501,12 +510,16 @@ def make_g2p2g(colliders: bool, coop: bool, agg: bool, scatter: int = SCATTER_WA
             xp = K.coop_vec3(x, t, n_items, 0, wp.vec3(0.0, 0.0, 0.0))
             vp = K.coop_vec3(v, t, n_items, 0, wp.vec3(0.0, 0.0, 0.0))
             Fp = K.coop_mat33(F, t, n_items, 0, wp.mat33(0.0))
-            Cp = K.coop_mat33(C, t, n_items, 0, wp.mat33(0.0))
+            Cp = wp.mat33(0.0)
+            if wp.static(keep_c):
+                Cp = K.coop_mat33(C, t, n_items, 0, wp.mat33(0.0))
         else:
             xp = x[p]
             vp = v[p]
             Fp = F[p]
-            Cp = C[p]
+            Cp = wp.mat33(0.0)
+            if wp.static(keep_c):
+                Cp = C[p]
         if wp.static(agg):
             g_imp = wp.vec3(0.0, 0.0, 0.0)
             g_has = int(0)
@@ -614,14 +627,16 @@ def make_g2p2g(colliders: bool, coop: bool, agg: bool, scatter: int = SCATTER_WA
                 if not wp.static(coop):
                     x_out[p] = xn
                     v_out[p] = vn
-                    C_out[p] = Cn
+                    if wp.static(keep_c):
+                        C_out[p] = Cn
                     F_out[p] = Fn
         if wp.static(agg):
             K.warp_add_vec3(ground_impulse, g_scene, g_imp, g_has)  # every lane of the warp
         if wp.static(coop):  # a frozen particle stores back what it loaded
             K.coop_vec3(x_out, t, n_items, 1, xn)
             K.coop_vec3(v_out, t, n_items, 1, vn)
-            K.coop_mat33(C_out, t, n_items, 1, Cn)
+            if wp.static(keep_c):
+                K.coop_mat33(C_out, t, n_items, 1, Cn)
             K.coop_mat33(F_out, t, n_items, 1, Fn)
         # p2g of the next step from the state just written (p2g_warp, one thread per particle)
         if scat != 0:
@@ -655,10 +670,11 @@ def make_g2p2g(colliders: bool, coop: bool, agg: bool, scatter: int = SCATTER_WA
 
 
 @functools.cache
-def g2p2g_kernel(colliders: bool, coop: bool, agg: bool, scatter: int = SCATTER_WARP, max_regs: int = 0) -> wp.Kernel:
+def g2p2g_kernel(colliders: bool, coop: bool, agg: bool, scatter: int = SCATTER_WARP, max_regs: int = 0,
+                 keep_c: bool = False) -> wp.Kernel:
     """The fused g2p + next p2g of ``make_g2p2g`` (own module, compiled on first use); max_regs caps its registers
-    per thread (0: the compiler's choice)."""
-    return make_g2p2g(colliders, coop, agg, scatter, max_regs)
+    per thread (0: the compiler's choice); keep_c: C round-trips through memory as in the plain g2p."""
+    return make_g2p2g(colliders, coop, agg, scatter, max_regs, keep_c)
 
 
 @functools.cache

@@ -92,7 +92,7 @@ class Solver:
         self._slide = self._no_slide  # the lattice motion of the last control stepped with
         self.fast_cuda = d == "cuda" and CUDA_FAST
         self.cuda_colliders, self.cuda_agg, self.cuda_coop_g2p, self.cuda_coop_p2g = True, False, False, False
-        self.cuda_fuse, self.cuda_scatter, self.cuda_fuse_regs = False, 0, 0
+        self.cuda_fuse, self.cuda_scatter, self.cuda_fuse_regs, self.cuda_fuse_keep_c = False, 0, 0, False
         if self.fast_cuda:
             self._init_cuda_blocks()
             # kernel variants of the fast path (switches DEFORMSMITH_MPM_<NAME>=0/1, for experiments and tests):
@@ -120,6 +120,9 @@ class Solver:
             fuse_min = int(os.environ.get("DEFORMSMITH_MPM_FUSE_MIN", "0"))
             self.cuda_fuse = _env_flag("DEFORMSMITH_MPM_FUSE") and model.n_particles >= fuse_min
             self.cuda_fuse_regs = int(os.environ.get("DEFORMSMITH_MPM_FUSE_REGS", "128"))
+            # FUSE_C: the fused kernel loads and stores C like the plain g2p (off: C stays in registers between the
+            # fused g2p and scatter, and memory gets it from the block's last plain g2p; kernels_cuda.make_g2p2g)
+            self.cuda_fuse_keep_c = _env_flag("DEFORMSMITH_MPM_FUSE_C", False)
             # SCATTER, one particle per thread (the fused kernel; p2g when it runs one thread per particle): scan =
             # kernels_cuda.scatter_stencil_scan (a warp's particles merged along stencil rows: ~7 instead of 13.5
             # atomics per particle in lattice order), warp = scatter_stencil_warp (per-node shuffles, same-base lanes)
@@ -451,7 +454,8 @@ class Solver:
             coop = self.cuda_coop_g2p and _coop_ok(state_in)
             bd = cuda_block_dim(m.n_particles)
             cmds.append(wp.launch(
-                KC.g2p2g_kernel(self.cuda_colliders, coop, self.cuda_agg, self.cuda_scatter, self.cuda_fuse_regs),
+                KC.g2p2g_kernel(self.cuda_colliders, coop, self.cuda_agg, self.cuda_scatter, self.cuda_fuse_regs,
+                                self.cuda_fuse_keep_c),
                 dim=-(-m.n_particles // bd) * bd,  # whole blocks: every lane reaches the warp collectives
                 inputs=[state_in.x, state_in.v, state_in.C, state_in.F, m.particle_mass, m.particle_scene,
                         m.scene_start, self.grid_v, self.grid_origin, nx, ny, nz, m.dx, self.dt_arr,

@@ -146,13 +146,14 @@ def test_fast_cuda_variants_without_colliders_match_cpu(env: dict, monkeypatch) 
     np.testing.assert_allclose(out[0][1], out[1][1], rtol=5e-2, atol=2e-2)
 
 
-# the fused g2p + next p2g (DEFORMSMITH_MPM_FUSE, default on) and the scatter variants (DEFORMSMITH_MPM_SCATTER: scan,
+# the fused g2p + next p2g (DEFORMSMITH_MPM_FUSE, default on; FUSE_C=1 loads and stores C) and the scatter variants (DEFORMSMITH_MPM_SCATTER: scan,
 # the default, or warp), also with the row-scan p2g of one thread per particle (P2G_PARTS=1) and uncapped registers
 @pytest.mark.parametrize("env", [
     {"DEFORMSMITH_MPM_FUSE": "0"},
     {"DEFORMSMITH_MPM_SCATTER": "warp"},
     {"DEFORMSMITH_MPM_P2G_PARTS": "1", "DEFORMSMITH_MPM_FUSE_REGS": "0"},
     {"DEFORMSMITH_MPM_P2G_PARTS": "1", "DEFORMSMITH_MPM_SCATTER": "warp", "DEFORMSMITH_MPM_FUSE": "0"},
+    {"DEFORMSMITH_MPM_FUSE_C": "1"},  # the fused kernel round-trips C through memory (default: it keeps C in registers)
 ])
 @pytest.mark.parametrize("shuffle", [False, True])
 def test_fast_cuda_fusion_and_scatter_variants_match_cpu(env: dict, shuffle: bool, monkeypatch) -> None:
