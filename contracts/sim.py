@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from typing import Literal
 
-from pydantic import Field
+from pydantic import Field, model_serializer
 
 from contracts.base import Model
 
@@ -38,3 +38,17 @@ class SimConfig(Model):
         default=10.0, gt=1, description="health: max ratio of kinetic energy to the injected energy budget [-]"
     )
     seed: int = Field(default=0, description="seed for any randomness (particle jitter)")
+    cpu_threads: int = Field(
+        default=1, ge=1, le=64,
+        description="CPU only: threads sharing each rollout's particles (tasks/mpm/cpu_threads.py). Results depend "
+                    "on this number (float sums in another order), not on the cores present; ignored on CUDA",
+    )
+
+    @model_serializer(mode="wrap")
+    def _omit_single_thread(self, handler):  # type: ignore[no-untyped-def]
+        """cpu_threads = 1 is left out of the dump, so the cache keys of configurations from before the field
+        existed still name the same results."""
+        out = handler(self)
+        if isinstance(out, dict) and out.get("cpu_threads") == 1:
+            out.pop("cpu_threads")
+        return out

@@ -102,12 +102,14 @@ def manipulation_outcome(labels: dict[str, float]) -> Any:
         slip_distance_m=float(labels["slip_distance_m"]), place_error_m=float(labels["place_error_m"]))
 
 
-def run_manipulation(work: Path, device: Device, quality: str, agents: AgentConfig | None) -> dict[str, Any]:
+def run_manipulation(work: Path, device: Device, quality: str, agents: AgentConfig | None,
+                     cpu_threads: int = 1) -> dict[str, Any]:
     """L3 on the working directory and the pick-and-place video of the shown attempt; the manipulation record."""
     from flows.l3_manipulation import L3Options, run_l3
     from tasks.manipulation.replay import replay
 
-    options = L3Options(device=device) if quality == "draft" else L3Options.standard(device)
+    options = (L3Options(device=device, cpu_threads=cpu_threads) if quality == "draft"
+               else L3Options.standard(device, cpu_threads))
     record, _ = run_l3(work, options, agents)
     n = shown_attempt(record)
     if n is not None:
@@ -188,8 +190,11 @@ def _check_out_dir(out_dir: Path) -> None:
 
 
 def generate_asset(request: AssetRequest, out_dir: Path, device: Device = "cpu", agents: AgentConfig | None = None,
-                   on_stage: StageCallback | None = None, manipulate: bool = True) -> AssetManifest:
+                   on_stage: StageCallback | None = None, manipulate: bool = True,
+                   cpu_threads: int = 1) -> AssetManifest:
     """Run every layer for one request and publish the asset directory; StageFailure when L0, L1 or L2 says no.
+
+    cpu_threads: on the CPU, threads sharing each MPM rollout's particles (SimConfig.cpu_threads).
 
     L3 (``manipulate``) validates the asset with a robot: its outcome (passed or not, with the failed gates and the
     labelled attempts) is part of the published asset, since the deformable asset itself was established by L0-L2.
@@ -230,13 +235,14 @@ def generate_asset(request: AssetRequest, out_dir: Path, device: Device = "cpu",
         if physical is None:
             raise StageFailure("L1", o1.message)
         note("L2", "material: MPM probes")
-        material, o2 = run_l2(work, request, agents, sim=SimConfig(device=device), physical=physical)
+        sim = SimConfig(device=device, cpu_threads=cpu_threads)
+        material, o2 = run_l2(work, request, agents, sim=sim, physical=physical)
         if material is None:
             raise StageFailure("L2", o2.message)
         note("renders", "drop protocol: 5 s drop at 30 fps, two views")
         from flows.renders import render_drop_protocol
 
-        protocol = render_drop_protocol(work, physical, material, SimConfig(device=device))
+        protocol = render_drop_protocol(work, physical, material, sim)
         validation = [_summary("L0", _read(work / "geometry.json")), _summary("L1", _read(work / "physical.json")),
                       _summary("L2", _read(work / "material.json"))]
         plan, outcome = None, None
@@ -245,7 +251,7 @@ def generate_asset(request: AssetRequest, out_dir: Path, device: Device = "cpu",
             from contracts.material import Material
             from contracts.robot import ActionPlan
 
-            l3 = run_manipulation(work, device, request.quality, agents)
+            l3 = run_manipulation(work, device, request.quality, agents, cpu_threads)
             validation.append(l3_summary(l3))
             if l3.get("passed"):
                 material = Material(**l3["material"])  # an L3 material revision was L2-revalidated and confirmed

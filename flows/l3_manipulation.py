@@ -71,14 +71,23 @@ class L3Options:
     robustness: tuple[tuple[float, float, float], ...] = ((0.08, 0.06, 45.0), (0.08, 0.06, -75.0))
     material_fallback: bool = True  # when no plan passes, ask L2 for a material within its bands (flows.l3_material)
     device: str = "cpu"
+    cpu_threads: int = 1  # CPU: threads sharing each trial's particles (SimConfig.cpu_threads)
 
     @classmethod
-    def standard(cls, device: str = "cuda") -> "L3Options":
+    def standard(cls, device: str = "cuda", cpu_threads: int = 1) -> "L3Options":
         """Standard quality: finer particles, the ActionPlan's default (slower) timing, two held-out conditions."""
         return cls(quality="standard", particle_spacing_m=0.002, closing_speed_m_per_s=0.02, lift_duration_s=1.0,
                    transport_duration_s=1.5, release_duration_s=0.5, retreat_duration_s=0.5, settle_duration_s=0.5,
-                   held_out=((0.06, -0.08, 30.0), (-0.02, 0.12, -45.0)), device=device,
+                   held_out=((0.06, -0.08, 30.0), (-0.02, 0.12, -45.0)), device=device, cpu_threads=cpu_threads,
                    settings=TrialSettings(device=device))
+
+
+def settings_inputs(settings: TrialSettings) -> dict[str, Any]:
+    """Trial settings as task inputs; one CPU thread is left out, so earlier trials' cache keys still hold."""
+    out = asdict(settings)
+    if out.get("cpu_threads") == 1:
+        out.pop("cpu_threads")
+    return out
 
 
 def body_inputs(body: TrialBody) -> dict[str, Any]:
@@ -172,9 +181,10 @@ class L3Context:
         """Run (or fetch from the cache) one trial and store it as an interaction attempt."""
         plan = self.plan(values, target_xy_m, yaw_deg)
         settings = replace(self.options.settings, substeps=int(round(values.get("substeps", 1))),
-                           device=self.options.device)
+                           device=self.options.device, cpu_threads=self.options.cpu_threads)
         inputs = {**body_inputs(self.body), "physical": self.physical, "material": material or self.material,
-                  "plan": plan, "settings": asdict(settings), "tolerances": asdict(tolerances_from(self.contract))}
+                  "plan": plan, "settings": settings_inputs(settings),
+                  "tolerances": asdict(tolerances_from(self.contract))}
         out = trial_task(**inputs)
         key = probe_cache_key(trial_task, inputs)
         probe: ProbeResult = out["probe"]

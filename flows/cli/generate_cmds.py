@@ -40,6 +40,8 @@ def generate(
     mesh: Path = typer.Option(None, "--mesh", help="OBJ/PLY/STL/GLB/OFF mesh"),
     out: Path = typer.Option(None, "--out", help="asset directory to publish (default: out/<name>)"),
     device: str = typer.Option("cpu", "--device", help="cpu | cuda (the MPM's Warp device)"),
+    cpu_threads: int = typer.Option(2, "--cpu-threads", help="CPU: threads sharing each MPM rollout (results depend "
+                                    "on this number, not on the machine's cores)"),
     quality: str = typer.Option("draft", "--quality", help="draft | standard | high"),
     size_m: float = typer.Option(None, "--size-m", help="longest extent [m] (overrides sizes in the text)"),
     intent: str = typer.Option(None, "--intent", help="material words, e.g. 'firm rubber' (default: from the text)"),
@@ -58,6 +60,8 @@ def generate(
         fail(f"--device must be cpu or cuda, got '{device}'")
     if quality not in ("draft", "standard", "high"):
         fail(f"--quality must be draft, standard or high, got '{quality}'")
+    if not 1 <= cpu_threads <= 64:
+        fail(f"--cpu-threads must be 1 to 64, got {cpu_threads}")
     for path, what in ((image, "image"), (mesh, "mesh")):
         if path is not None and not path.is_file():
             fail(f"{what} file not found: {path}")
@@ -81,7 +85,7 @@ def generate(
             console.log(f"[bold]{stage}[/bold] {message}")
 
         manifest = generate_asset(request, out, device=device, agents=agents, on_stage=on_stage,  # type: ignore[arg-type]
-                                  manipulate=l3)
+                                  manipulate=l3, cpu_threads=cpu_threads)
     if as_json:
         emit_json({"asset_dir": str(out), "validation": [s.model_dump(mode="json") for s in manifest.validation],
                    "material": manifest.material.model_dump(mode="json") if manifest.material else None,

@@ -60,24 +60,26 @@ def bench_mpm(
     steps: int = typer.Option(200, "--steps", help="timed steps"),
     batch: int = typer.Option(1, "--batch", help="independent scenes advanced together"),
     workers: int = typer.Option(0, "--workers", help="CPU threads sharing the batch (0 = one per core)"),
+    cpu_threads: int = typer.Option(1, "--cpu-threads", help="CPU: threads sharing each rollout's particles"),
     json_out: bool = typer.Option(False, "--json", help="print the figures as JSON on stdout"),
 ) -> None:
     """Benchmark the MPM step on the standard cube scene (warm-up/compile excluded from the timing)."""
     if device not in ("cpu", "cuda"):
         fail("--device must be cpu or cuda")
-    if particles < 8 or steps < 1 or batch < 1 or workers < 0:
-        fail("need --particles >= 8, --steps >= 1, --batch >= 1, --workers >= 0")
+    if particles < 8 or steps < 1 or batch < 1 or workers < 0 or not 1 <= cpu_threads <= 64:
+        fail("need --particles >= 8, --steps >= 1, --batch >= 1, --workers >= 0, 1 <= --cpu-threads <= 64")
     import warp as wp
 
     wp.config.quiet = True
     from tasks.mpm.bench import run_bench
 
     with contextlib.redirect_stdout(sys.stderr):  # Warp's own messages must not mix with --json output
-        res = run_bench(device=device, particles=particles, steps=steps, batch=batch, workers=workers or None)
+        res = run_bench(device=device, particles=particles, steps=steps, batch=batch, workers=workers or None,
+                        cpu_threads=cpu_threads)
     if json_out:
         emit_json(res)
     else:
-        for k in ("device_name", "particles", "batch", "workers", "steps", "seconds", "us_per_step",
+        for k in ("device_name", "particles", "batch", "workers", "cpu_threads", "steps", "seconds", "us_per_step",
                   "particle_steps_per_s", "peak_memory_bytes", "finite"):
             console.print(f"{k:>22}: {res[k]}")
         console.print(f"[dim]{res['note']}[/dim]")

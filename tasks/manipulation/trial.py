@@ -35,6 +35,7 @@ class TrialSettings:
     """Numerics of one trial (not physics): resolution, time stepping, control and recording rates."""
 
     device: str = "cpu"
+    cpu_threads: int = 1                 # CPU: threads sharing the trial's particles (SimConfig.cpu_threads)
     grid_margin_m: float = 0.02          # free space around the object in the (moving) grid window [m]
     substeps: int = 1                    # numerical revision: dt / substeps, same action durations
     dt_max_s: float = 2e-4               # cap on the adaptive time step [s]
@@ -134,7 +135,8 @@ def run_trial(body: TrialBody, physical: PhysicalModel, material: Material, plan
     scene = SceneSpec(positions_m=frame.to_sim(x0), volumes_m3=body.volumes_m3, density_kg_per_m3=physical.density_kg_per_m3,
                       material=material, colliders=colliders, ground=True, ground_friction=physical.ground_friction,
                       gravity_m_per_s2=physical.gravity_m_per_s2)
-    cfg = SimConfig(device=s.device, dx_m=2.0 * body.spacing_m, dt_max_s=s.dt_max_s, cfl=s.cfl, substeps=s.substeps,
+    cfg = SimConfig(device=s.device, cpu_threads=s.cpu_threads, dx_m=2.0 * body.spacing_m, dt_max_s=s.dt_max_s,
+                    cfl=s.cfl, substeps=s.substeps,
                     grid_margin_m=s.grid_margin_m, ground_friction=physical.ground_friction,
                     gravity_m_per_s2=physical.gravity_m_per_s2)
     model = build_model([scene], cfg)

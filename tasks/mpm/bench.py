@@ -41,11 +41,13 @@ def _model_bytes(sim: Simulator) -> int:
 
 
 def run_bench(
-    device: str = "cpu", particles: int = 64000, steps: int = 200, batch: int = 1, workers: int | None = None
+    device: str = "cpu", particles: int = 64000, steps: int = 200, batch: int = 1, workers: int | None = None,
+    cpu_threads: int = 1,
 ) -> dict:
-    """Time `steps` fixed-dt steps of `batch` standard cubes of ~particles each; returns the figures as a dict."""
-    if particles < 8 or steps < 1 or batch < 1:
-        raise InputError("need particles >= 8, steps >= 1, batch >= 1")
+    """Time `steps` fixed-dt steps of `batch` standard cubes of ~particles each; returns the figures as a dict.
+    workers: CPU threads each advancing a share of the batch; cpu_threads: threads sharing each of those rollouts."""
+    if particles < 8 or steps < 1 or batch < 1 or not 1 <= cpu_threads <= 64:
+        raise InputError("need particles >= 8, steps >= 1, batch >= 1, 1 <= cpu_threads <= 64")
     if device not in ("cpu", "cuda"):
         raise InputError("device must be cpu or cuda")
     wp.init()
@@ -56,7 +58,7 @@ def run_bench(
         workers = min(batch, os.cpu_count() or 1) if device == "cpu" else 1
     workers = max(1, min(workers, batch))
     shares = [batch // workers + (1 if i < batch % workers else 0) for i in range(workers)]
-    sims = [Simulator(bench_cube_model(n, b, device), health_interval_steps=100) for b in shares]
+    sims = [Simulator(bench_cube_model(n, b, device, cpu_threads), health_interval_steps=100) for b in shares]
 
     # warm-up (excluded from the timing): kernel compilation/loading, CUDA graph capture, first launches. On CUDA
     # the warm-up replays the timed run's exact call sequence (every advance ends with a health check that re-fits
@@ -102,6 +104,7 @@ def run_bench(
         "particles_per_scene": n**3,
         "batch": batch,
         "workers": len(sims),
+        "cpu_threads": cpu_threads if device == "cpu" else 1,
         "steps": steps,
         "dt_s": BENCH_DT_S,
         "seconds": seconds,

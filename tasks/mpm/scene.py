@@ -65,7 +65,7 @@ def bench_cube_scene(n_per_axis: int, material: Material = BENCH_MATERIAL) -> Sc
     return box_scene(lo, hi, spacing, material, BENCH_DENSITY)
 
 
-def bench_cube_model(n_per_axis: int, batch: int = 1, device: str = "cpu") -> Model:
-    """Model of `batch` copies of the standard cube, fixed dt 1e-4 s, dx = 0.4/n m."""
-    cfg = SimConfig(device=device, dx_m=2.0 * BENCH_EDGE_M / n_per_axis, dt_fixed_s=BENCH_DT_S)
+def bench_cube_model(n_per_axis: int, batch: int = 1, device: str = "cpu", cpu_threads: int = 1) -> Model:
+    """Model of `batch` copies of the standard cube, fixed dt 1e-4 s, dx = 0.4/n m (cpu_threads: SimConfig's)."""
+    cfg = SimConfig(device=device, dx_m=2.0 * BENCH_EDGE_M / n_per_axis, dt_fixed_s=BENCH_DT_S, cpu_threads=cpu_threads)
     return build_model([bench_cube_scene(n_per_axis) for _ in range(batch)], cfg)

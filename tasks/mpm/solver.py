@@ -11,6 +11,7 @@ import warp as wp
 from tasks.mpm import kernels as K
 from tasks.mpm import kernels_cuda as KC
 from tasks.mpm.control import Control
+from tasks.mpm.cpu_threads import CpuChunks, ParallelLaunch, chunk_bounds
 from tasks.mpm.model import Model
 from tasks.mpm.state import State
 
@@ -91,6 +92,10 @@ class Solver:
         self._no_slide = wp.zeros(8 * B, dtype=wp.float64, device=d)  # the fixed world lattice
         self._slide = self._no_slide  # the lattice motion of the last control stepped with
         self.fast_cuda = d == "cuda" and CUDA_FAST
+        # CPU: the particle kernels of a step split over config.cpu_threads chunks run in threads (cpu_threads.py)
+        self.cpu_threads = int(model.config.cpu_threads) if d == "cpu" else 1
+        bounds = chunk_bounds(model.n_particles, self.cpu_threads) if self.cpu_threads > 1 else []
+        self._chunks = CpuChunks(bounds, model.scene_start_np, B, nc, B * K.N_FLAGS, d) if len(bounds) > 1 else None
         self.cuda_colliders, self.cuda_agg, self.cuda_coop_g2p, self.cuda_coop_p2g = True, False, False, False
         self.cuda_fuse, self.cuda_scatter, self.cuda_fuse_regs, self.cuda_fuse_keep_c = False, 0, 0, False
         if self.fast_cuda:
@@ -176,6 +181,8 @@ class Solver:
         nodes = self.model.n_scenes * self.grid_dims[0] * self.grid_dims[1] * self.grid_dims[2]
         self.grid_mvm = wp.zeros(nodes, dtype=wp.vec4, device=self.device)
         self.grid_v = wp.zeros(nodes, dtype=wp.vec4, device=self.device)  # xyz velocity, 16-byte loads
+        if self._chunks is not None:
+            self._chunks.alloc_grid(nodes)
         self._graphs.clear()
         self._blocks.clear()
         self._refit_cmds.clear()
@@ -414,16 +421,7 @@ class Solver:
                 block_dim=bd,
             ))
         else:
-            cmds.append(wp.launch(
-                K.p2g_apic_neohookean,
-                dim=self._threads(m.n_particles),
-                inputs=[state_in.x, state_in.v, state_in.C, state_in.F, m.particle_mass, m.particle_vol,
-                        m.particle_scene, m.scene_start, m.scene_mu, m.scene_lambda, self.grid_origin, nx, ny, nz,
-                        m.dx, self.dt_arr, self.clock_step, self.grid_mvm, self.fail_step, self.fail_particle,
-                        self._per_thread, m.n_particles],
-                device=d,
-                record_cmd=True,
-            ))
+            cmds += self._cpu_p2g(state_in)
         gu_kernel, g2p_kernel, gu_dim, g2p_dim = K.grid_update, K.g2p_apic, self._threads(self.grid_nodes), \
             self._threads(m.n_particles)
         gu_block = g2p_block = None
@@ -471,22 +469,75 @@ class Solver:
                 block_dim=bd,
             ))
             return cmds
+        if self._chunks is not None and not self.fast_cuda:
+            return cmds + self._cpu_g2p(g2p_kernel, state_in, state_out, control)
         cmds.append(wp.launch(
             g2p_kernel,
             dim=g2p_dim,
-            inputs=[state_in.x, state_in.v, state_in.C, state_in.F, m.particle_mass, m.particle_scene,
-                    m.scene_start, self.grid_v, self.grid_origin, nx, ny, nz, m.dx, self.dt_arr, control.d_gravity,
-                    m.ground_enabled, m.ground_height, m.ground_mu, self.ground_impulse, m.col_start, m.col_count,
-                    m.col_kind, m.col_params, m.col_planes, m.col_radius2, m.col_mu, m.col_bonded, self.col_pos1, self.col_rot1,
-                    control.d_lin_vel, control.d_ang_vel, self.collider_impulse, m.domain_lo, m.domain_hi,
-                    float(m.config.j_min), float(m.config.j_max), self.clock_step, self.fail_step,
-                    self.fail_particle, state_out.x, state_out.v, state_out.C, state_out.F, self._per_thread,
-                    m.n_particles],
+            inputs=self._g2p_inputs(state_in, state_out, control, 0, m.n_particles, None),
             device=d,
             record_cmd=True,
             block_dim=g2p_block,
         ))
         return cmds
+
+    # -- the particle kernels' inputs, whole or one CPU chunk's (parts: cpu_threads.CpuChunks.part(k), or None) --
+    def _p2g_inputs(self, state: State, a: int, b: int, parts: dict | None) -> list:
+        m = self.model
+        nx, ny, nz = self.grid_dims
+        whole = a == 0 and b == m.n_particles
+        sl = (lambda arr: arr) if whole else (lambda arr: arr[a:b])
+        scene_start = m.scene_start if whole else self._chunks.scene_start[self._chunk_index(a)]
+        grid, fs, fp = ((self.grid_mvm, self.fail_step, self.fail_particle) if parts is None else
+                        (parts["grid"], parts["fail_step"], parts["fail_particle"]))
+        return [sl(state.x), sl(state.v), sl(state.C), sl(state.F), sl(m.particle_mass), sl(m.particle_vol),
+                sl(m.particle_scene), scene_start, m.scene_mu, m.scene_lambda, self.grid_origin, nx, ny, nz, m.dx,
+                self.dt_arr, self.clock_step, grid, fs, fp, self._per_thread, b - a]
+
+    def _g2p_inputs(self, state_in: State, state_out: State, control: Control, a: int, b: int,
+                    parts: dict | None) -> list:
+        m = self.model
+        nx, ny, nz = self.grid_dims
+        whole = a == 0 and b == m.n_particles
+        sl = (lambda arr: arr) if whole else (lambda arr: arr[a:b])
+        scene_start = m.scene_start if whole else self._chunks.scene_start[self._chunk_index(a)]
+        ground, collider, fs, fp = ((self.ground_impulse, self.collider_impulse, self.fail_step, self.fail_particle)
+                                    if parts is None else
+                                    (parts["ground"], parts["collider"], parts["fail_step"], parts["fail_particle"]))
+        return [sl(state_in.x), sl(state_in.v), sl(state_in.C), sl(state_in.F), sl(m.particle_mass),
+                sl(m.particle_scene), scene_start, self.grid_v, self.grid_origin, nx, ny, nz, m.dx, self.dt_arr,
+                control.d_gravity, m.ground_enabled, m.ground_height, m.ground_mu, ground, m.col_start, m.col_count,
+                m.col_kind, m.col_params, m.col_planes, m.col_radius2, m.col_mu, m.col_bonded, self.col_pos1,
+                self.col_rot1, control.d_lin_vel, control.d_ang_vel, collider, m.domain_lo, m.domain_hi,
+                float(m.config.j_min), float(m.config.j_max), self.clock_step, fs, fp, sl(state_out.x),
+                sl(state_out.v), sl(state_out.C), sl(state_out.F), self._per_thread, b - a]
+
+    def _chunk_index(self, a: int) -> int:
+        return [c[0] for c in self._chunks.bounds].index(a)
+
+    def _cpu_p2g(self, state: State) -> list:
+        """CPU p2g: one launch, or one per chunk in threads and then the chunk grids added in order."""
+        m = self.model
+        if self._chunks is None:
+            return [wp.launch(K.p2g_apic_neohookean, dim=self._threads(m.n_particles),
+                              inputs=self._p2g_inputs(state, 0, m.n_particles, None), device=self.device,
+                              record_cmd=True)]
+        ch = self._chunks
+        launches = [wp.launch(K.p2g_apic_neohookean, dim=self._threads(b - a),
+                              inputs=self._p2g_inputs(state, a, b, ch.part(k) if k else None), device=self.device,
+                              record_cmd=True)
+                    for k, (a, b) in enumerate(ch.bounds)]
+        return [ParallelLaunch(launches), ch.merge_grid_cmd(self.grid_mvm, self._per_thread)]
+
+    def _cpu_g2p(self, kernel, state_in: State, state_out: State, control: Control) -> list:
+        """CPU g2p, one launch per chunk in threads, then the chunks' impulses and failures folded in."""
+        ch = self._chunks
+        launches = [wp.launch(kernel, dim=self._threads(b - a),
+                              inputs=self._g2p_inputs(state_in, state_out, control, a, b, ch.part(k) if k else None),
+                              device=self.device, record_cmd=True)
+                    for k, (a, b) in enumerate(ch.bounds)]
+        return [ParallelLaunch(launches),
+                ch.merge_tables_cmd(self.ground_impulse, self.collider_impulse, self.fail_step, self.fail_particle)]
 
     def _threads(self, n: int) -> int:
         """Launch dimension covering n items at self._per_thread items per thread."""
