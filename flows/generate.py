@@ -206,6 +206,7 @@ def generate_asset(request: AssetRequest, out_dir: Path, device: Device = "cpu",
     import time
 
     report = on_stage or (lambda stage, message: None)
+    cpu_threads = cpu_threads if device == "cpu" else 1  # no effect on CUDA: keep its cache keys
     clock = {"stage": "", "t": time.perf_counter()}
     TIMINGS.clear()
 

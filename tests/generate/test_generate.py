@@ -32,6 +32,7 @@ def _generate(out: Path, cache: Path, *args: str, wait: bool = True) -> subproce
     (["--mesh", "/nonexistent/m.obj"], "mesh file not found"),
     (["a sponge", "--quality", "ultra"], "--quality must be"),
     (["a sponge", "--device", "tpu"], "--device must be"),
+    (["a sponge", "--cpu-threads", "0"], "--cpu-threads must be"),
 ])
 def test_bad_input_is_one_line_and_leaves_nothing(tmp_path: Path, args: list[str], message: str) -> None:
     out = _generate(tmp_path / "asset", tmp_path / "cache", *args)

@@ -99,3 +99,13 @@ def test_single_thread_cache_keys_are_unchanged() -> None:
     assert SimConfig(**SimConfig(cpu_threads=2).model_dump()) == SimConfig(cpu_threads=2)
     with pytest.raises(ValueError):
         SimConfig(cpu_threads=0)
+
+
+def test_trial_settings_keep_single_thread_keys_and_pass_threads_to_the_mpm() -> None:
+    """L3: one thread is left out of a trial's task inputs (earlier trials stay cache hits); two are kept and restored."""
+    from flows.l3_manipulation import settings_inputs
+    from tasks.manipulation.trial import TrialSettings
+
+    assert "cpu_threads" not in settings_inputs(TrialSettings())
+    two = settings_inputs(TrialSettings(cpu_threads=2))
+    assert two["cpu_threads"] == 2 and TrialSettings(**two).cpu_threads == 2
