@@ -15,6 +15,7 @@ def manipulate(
     asset: Path = typer.Argument(..., help="asset directory with L0 geometry and L1 physical.json (L2 optional)"),
     quality: str = typer.Option("draft", "--quality", help="draft (CPU) | standard (finer particles, slower timing)"),
     device: str = typer.Option("cpu", "--device", help="cpu | cuda"),
+    cpu_threads: int = typer.Option(2, "--cpu-threads", help="CPU: threads sharing each trial's particles"),
     cache_dir: Path = typer.Option(None, "--cache", help="cache root (default: $DEFORMSMITH_CACHE or the user cache)"),
     as_json: bool = typer.Option(False, "--json", help="print manipulation.json's summary as JSON"),
 ) -> None:
@@ -27,11 +28,15 @@ def manipulate(
         fail(f"{asset} has no physical.json: run `deformsmith physical --asset {asset}` first")
     if quality not in ("draft", "standard") or device not in ("cpu", "cuda"):
         fail("--quality must be draft|standard and --device cpu|cuda")
+    if not 1 <= cpu_threads <= 64:
+        fail(f"--cpu-threads must be 1 to 64, got {cpu_threads}")
     if cache_dir is not None:
         use_cache_root(cache_dir)
     from flows.l3_manipulation import L3Options, run_l3
 
-    options = L3Options.standard(device) if quality == "standard" else L3Options(device=device)
+    threads = cpu_threads if device == "cpu" else 1
+    options = (L3Options.standard(device, threads) if quality == "standard"
+               else L3Options(device=device, cpu_threads=threads))
     with console.status("L3: pick-and-place trials in the MPM"):
         record, outcome = run_l3(asset, options)
     summary = {k: record[k] for k in ("passed", "status", "message", "outcome", "forces", "held_out", "attempt",

@@ -118,6 +118,7 @@ def material(
     asset: Path = typer.Option(..., "--asset", help="asset directory holding L0 and L1 (physical.json)"),
     intent: str = typer.Option(None, "--intent", help="material words, e.g. 'soft plush', 'firm rubber'"),
     llm: str = typer.Option(None, "--llm", help="litellm model playing the agent roles (default: offline rules)"),
+    cpu_threads: int = typer.Option(2, "--cpu-threads", help="threads sharing each MPM rollout's particles"),
     as_json: bool = typer.Option(False, "--json", help="print material.json to stdout"),
 ) -> None:
     """Run L2 on an asset: MPM probes, harness-selected neo-Hookean material -> material.json, evidence, recordings."""
@@ -126,8 +127,11 @@ def material(
     _check_asset(asset)
     if intent is not None and not intent.strip():
         fail("--intent is empty")
+    if not 1 <= cpu_threads <= 64:
+        fail(f"--cpu-threads must be 1 to 64, got {cpu_threads}")
     os.environ.setdefault("PREFECT_LOGGING_LEVEL", "CRITICAL")
     from contracts.agents import AgentConfig
+    from contracts.sim import SimConfig
     from flows.l2_material import MATERIAL_JSON, run_l2
 
     agents = AgentConfig.llm(llm) if llm else None
@@ -135,7 +139,7 @@ def material(
 
     started = time.perf_counter()
     with console.status("L2 material (MPM probes)..."):
-        mat, outcome = run_l2(asset, intent, agents=agents)
+        mat, outcome = run_l2(asset, intent, agents=agents, sim=SimConfig(cpu_threads=cpu_threads))
     wall_s = time.perf_counter() - started
     record = json.loads((asset / MATERIAL_JSON).read_text(encoding="utf-8"))
     if as_json:
