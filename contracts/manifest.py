@@ -32,6 +32,8 @@ class Provenance(Model):
     backends: dict[str, str] = Field(default_factory=dict, description="role -> backend/model")
     cache_keys: dict[str, str] = Field(default_factory=dict, description="task -> cache key")
     device: str = "cpu"
+    cpu_threads: int = Field(default=1, ge=1, description="CPU threads sharing each MPM rollout (results depend on "
+                                                         "this number; 1 on CUDA)")
 
 
 class AssetManifest(Model):

@@ -38,13 +38,13 @@ def _version(dist: str) -> str:
         return "not installed"
 
 
-def provenance(device: Device, agents: AgentConfig | None) -> Provenance:
-    """Versions and backends that reproduce the asset."""
+def provenance(device: Device, agents: AgentConfig | None, cpu_threads: int = 1) -> Provenance:
+    """Versions, backends and numerics that reproduce the asset."""
     from contracts.agents import AgentConfig as _Config
 
     return Provenance(deformsmith_version=_version("deformsmith"),
                       library_versions={lib: _version(lib) for lib in LIBRARIES},
-                      backends=(agents or _Config.rule()).describe(), device=device)
+                      backends=(agents or _Config.rule()).describe(), device=device, cpu_threads=cpu_threads)
 
 
 def finite_metrics(values: dict[str, Any]) -> dict[str, float]:
@@ -260,7 +260,7 @@ def generate_asset(request: AssetRequest, out_dir: Path, device: Device = "cpu",
             outcome = manipulation_outcome(validation[-1].metrics)
         manifest = AssetManifest(request=request, physical_model=physical, material=material, validation=validation,
                                  action_plan=plan, manipulation=outcome,
-                                 provenance=provenance(device, agents), extra={"drop_protocol": protocol})
+                                 provenance=provenance(device, agents, cpu_threads), extra={"drop_protocol": protocol})
         write_physgaussian_export(work, manifest)
         manifest = manifest.model_copy(update={"files": _files(work)})
         (work / ASSET_JSON).write_text(manifest.model_dump_json(indent=2) + "\n", encoding="utf-8")
