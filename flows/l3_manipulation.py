@@ -31,6 +31,7 @@ from contracts.material import Material
 from contracts.physical import PhysicalModel
 from contracts.probes import ProbeResult, ProbeSpec
 from contracts.robot import ActionPlan, GraspCandidate
+from contracts.sim import SimConfig
 from contracts.stage import StageContract, load_contract
 from flows.harness import probe_cache_key, run_harness
 from flows.l3_material import MaterialLimits, failed_gates, halfway, revalidate_in_l2, revise_material
@@ -72,6 +73,10 @@ class L3Options:
     material_fallback: bool = True  # when no plan passes, ask L2 for a material within its bands (flows.l3_material)
     device: str = "cpu"
     cpu_threads: int = 1  # CPU: threads sharing each trial's particles (SimConfig.cpu_threads)
+
+    def sim(self) -> SimConfig:
+        """L2's settings for a revalidation from L3: the same device and CPU threads as the trials."""
+        return SimConfig(device=self.device, cpu_threads=self.cpu_threads if self.device == "cpu" else 1)  # type: ignore[arg-type]
 
     @classmethod
     def standard(cls, device: str = "cuda", cpu_threads: int = 1) -> "L3Options":
@@ -364,7 +369,7 @@ def _revise_material(ctx: L3Context, values: dict[str, float], metrics: dict[str
     revised, reason = proposal
     checks = []
     for _ in range(2):
-        l2 = revalidate_in_l2(ctx.asset_dir, revised, ctx.physical, limits)
+        l2 = revalidate_in_l2(ctx.asset_dir, revised, ctx.physical, limits, sim=ctx.options.sim())
         checks.append({"material": revised.model_dump(mode="json"), **l2})
         if l2["passed"] or not all(l2["gates"].values()):
             break

@@ -23,6 +23,7 @@ import numpy as np
 from contracts.agents import TargetBehaviour
 from contracts.material import Material
 from contracts.physical import PhysicalModel
+from contracts.sim import SimConfig
 from contracts.stage import StageContract, load_contract
 
 BAND_MARGIN = 0.1  # a revision aims this fraction of the band's width (in its scale) inside the band's end
@@ -134,13 +135,13 @@ def halfway(original: Material, revised: Material) -> Material:
 
 
 def revalidate_in_l2(asset_dir: Path, material: Material, physical: PhysicalModel,
-                     limits: MaterialLimits | None = None) -> dict[str, Any]:
-    """L2 revalidation of a revised material (its selection probes, cached): passes when every L2 hard gate holds and
-    every target band that held for the L2 material still holds."""
+                     limits: MaterialLimits | None = None, sim: SimConfig | None = None) -> dict[str, Any]:
+    """L2 revalidation of a revised material (its selection probes, cached, under `sim`: L3's device and CPU threads):
+    passes when every L2 hard gate holds and every target band that held for the L2 material still holds."""
     from flows.l2_material import evaluate_material
 
     l2 = load_contract("L2")
-    result = evaluate_material(asset_dir, material, contract=l2, held_out=False, physical=physical)
+    result = evaluate_material(asset_dir, material, contract=l2, sim=sim, held_out=False, physical=physical)
     metrics = result["metrics"]
     gates = {g.name: bool(g.passes(metrics.get(g.metric))) for g in l2.hard_gates}
     bands = {b.metric: bool(b.contains(metrics.get(b.metric))) for b in (limits.held_bands() if limits else [])}

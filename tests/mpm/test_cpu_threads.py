@@ -109,3 +109,12 @@ def test_trial_settings_keep_single_thread_keys_and_pass_threads_to_the_mpm() ->
     assert "cpu_threads" not in settings_inputs(TrialSettings())
     two = settings_inputs(TrialSettings(cpu_threads=2))
     assert two["cpu_threads"] == 2 and TrialSettings(**two).cpu_threads == 2
+
+
+def test_l3_revalidates_in_l2_with_its_own_device_and_threads() -> None:
+    """An L3 material revision's L2 probes run under the trials' device and CPU threads (not a default CPU config)."""
+    from flows.l3_manipulation import L3Options
+
+    assert L3Options(cpu_threads=2).sim() == SimConfig(device="cpu", cpu_threads=2)
+    assert L3Options(device="cuda", cpu_threads=2).sim() == SimConfig(device="cuda")
+    assert L3Options().sim() == SimConfig()  # the single-threaded CPU default: earlier revalidations stay cache hits
