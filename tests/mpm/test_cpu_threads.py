@@ -118,3 +118,21 @@ def test_l3_revalidates_in_l2_with_its_own_device_and_threads() -> None:
     assert L3Options(cpu_threads=2).sim() == SimConfig(device="cpu", cpu_threads=2)
     assert L3Options(device="cuda", cpu_threads=2).sim() == SimConfig(device="cuda")
     assert L3Options().sim() == SimConfig()  # the single-threaded CPU default: earlier revalidations stay cache hits
+
+
+def test_threads_follow_a_grid_reallocation() -> None:
+    """After the solver reallocates a larger grid mid-rollout, the chunks scatter into new buffers of the new size."""
+    out = []
+    for threads in (1, 2):
+        sim = _sim(threads)
+        sim.advance(0.01)
+        before = sim.solver.grid_dims
+        sim.solver.grow_grid(np.array(before, dtype=float) + 6.0)
+        assert sim.solver.grid_dims > before
+        if threads > 1:
+            assert sim.solver._chunks.grid_nodes == sim.solver.grid_nodes
+        rep = sim.advance(0.01)
+        assert rep.health.ok, rep.health.issues
+        out.append((sim.particles()["x"], rep.ground_force_n))
+    np.testing.assert_allclose(out[1][0], out[0][0], atol=1e-4)
+    np.testing.assert_allclose(out[1][1], out[0][1], rtol=2e-2, atol=2e-3)
