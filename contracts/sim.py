@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from typing import Literal
 
-from pydantic import Field, model_serializer
+from pydantic import Field, model_serializer, model_validator
 
 from contracts.base import Model
 
@@ -41,8 +41,16 @@ class SimConfig(Model):
     cpu_threads: int = Field(
         default=1, ge=1, le=64,
         description="CPU only: threads sharing each rollout's particles (tasks/mpm/cpu_threads.py). Results depend "
-                    "on this number (float sums in another order), not on the cores present; ignored on CUDA",
+                    "on this number (float sums in another order), not on the cores present; always 1 on CUDA",
     )
+
+    @model_validator(mode="before")
+    @classmethod
+    def _one_thread_on_cuda(cls, data):  # type: ignore[no-untyped-def]
+        """CUDA ignores CPU threads: record 1, so a CUDA configuration has one cache key whatever was asked."""
+        if isinstance(data, dict) and data.get("device") == "cuda" and data.get("cpu_threads", 1) != 1:
+            data = {**data, "cpu_threads": 1}
+        return data
 
     @model_serializer(mode="wrap")
     def _omit_single_thread(self, handler):  # type: ignore[no-untyped-def]

@@ -206,7 +206,6 @@ def generate_asset(request: AssetRequest, out_dir: Path, device: Device = "cpu",
     import time
 
     report = on_stage or (lambda stage, message: None)
-    cpu_threads = cpu_threads if device == "cpu" else 1  # no effect on CUDA: keep its cache keys
     clock = {"stage": "", "t": time.perf_counter()}
     TIMINGS.clear()
 
@@ -260,7 +259,7 @@ def generate_asset(request: AssetRequest, out_dir: Path, device: Device = "cpu",
             outcome = manipulation_outcome(validation[-1].metrics)
         manifest = AssetManifest(request=request, physical_model=physical, material=material, validation=validation,
                                  action_plan=plan, manipulation=outcome,
-                                 provenance=provenance(device, agents, cpu_threads), extra={"drop_protocol": protocol})
+                                 provenance=provenance(device, agents, sim.cpu_threads), extra={"drop_protocol": protocol})
         write_physgaussian_export(work, manifest)
         manifest = manifest.model_copy(update={"files": _files(work)})
         (work / ASSET_JSON).write_text(manifest.model_dump_json(indent=2) + "\n", encoding="utf-8")

@@ -72,11 +72,15 @@ class L3Options:
     robustness: tuple[tuple[float, float, float], ...] = ((0.08, 0.06, 45.0), (0.08, 0.06, -75.0))
     material_fallback: bool = True  # when no plan passes, ask L2 for a material within its bands (flows.l3_material)
     device: str = "cpu"
-    cpu_threads: int = 1  # CPU: threads sharing each trial's particles (SimConfig.cpu_threads)
+    cpu_threads: int = 1  # CPU: threads sharing each trial's particles (SimConfig.cpu_threads; 1 on CUDA)
+
+    def __post_init__(self) -> None:
+        if self.device != "cpu":  # as SimConfig: CPU threads mean nothing on CUDA, and must not split cache keys
+            object.__setattr__(self, "cpu_threads", 1)
 
     def sim(self) -> SimConfig:
         """L2's settings for a revalidation from L3: the same device and CPU threads as the trials."""
-        return SimConfig(device=self.device, cpu_threads=self.cpu_threads if self.device == "cpu" else 1)  # type: ignore[arg-type]
+        return SimConfig(device=self.device, cpu_threads=self.cpu_threads)  # type: ignore[arg-type]
 
     @classmethod
     def standard(cls, device: str = "cuda", cpu_threads: int = 1) -> "L3Options":

@@ -34,9 +34,8 @@ def manipulate(
         use_cache_root(cache_dir)
     from flows.l3_manipulation import L3Options, run_l3
 
-    threads = cpu_threads if device == "cpu" else 1
-    options = (L3Options.standard(device, threads) if quality == "standard"
-               else L3Options(device=device, cpu_threads=threads))
+    options = (L3Options.standard(device, cpu_threads) if quality == "standard"
+               else L3Options(device=device, cpu_threads=cpu_threads))
     with console.status("L3: pick-and-place trials in the MPM"):
         record, outcome = run_l3(asset, options)
     summary = {k: record[k] for k in ("passed", "status", "message", "outcome", "forces", "held_out", "attempt",

@@ -104,7 +104,7 @@ def run_bench(
         "particles_per_scene": n**3,
         "batch": batch,
         "workers": len(sims),
-        "cpu_threads": cpu_threads if device == "cpu" else 1,
+        "cpu_threads": sims[0].model.config.cpu_threads,
         "steps": steps,
         "dt_s": BENCH_DT_S,
         "seconds": seconds,

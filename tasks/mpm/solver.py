@@ -93,7 +93,7 @@ class Solver:
         self._slide = self._no_slide  # the lattice motion of the last control stepped with
         self.fast_cuda = d == "cuda" and CUDA_FAST
         # CPU: the particle kernels of a step split over config.cpu_threads chunks run in threads (cpu_threads.py)
-        self.cpu_threads = int(model.config.cpu_threads) if d == "cpu" else 1
+        self.cpu_threads = int(model.config.cpu_threads)  # 1 on CUDA (SimConfig)
         bounds = chunk_bounds(model.n_particles, self.cpu_threads) if self.cpu_threads > 1 else []
         self._chunks = CpuChunks(bounds, model.scene_start_np, B, nc, B * K.N_FLAGS, d) if len(bounds) > 1 else None
         self.cuda_colliders, self.cuda_agg, self.cuda_coop_g2p, self.cuda_coop_p2g = True, False, False, False
@@ -474,33 +474,37 @@ class Solver:
         cmds.append(wp.launch(
             g2p_kernel,
             dim=g2p_dim,
-            inputs=self._g2p_inputs(state_in, state_out, control, 0, m.n_particles, None),
+            inputs=self._g2p_inputs(state_in, state_out, control, 0),
             device=d,
             record_cmd=True,
             block_dim=g2p_block,
         ))
         return cmds
 
-    # -- the particle kernels' inputs, whole or one CPU chunk's (parts: cpu_threads.CpuChunks.part(k), or None) --
-    def _p2g_inputs(self, state: State, a: int, b: int, parts: dict | None) -> list:
+    # -- the particle kernels' inputs: all particles, or CPU chunk k's slice and buffers ---------------------------
+    def _chunk_view(self, k: int) -> tuple:
+        """(count, slice of a per-particle array, scene_start, own buffers or None) of chunk k; without chunks,
+        chunk 0 is every particle with the solver's own buffers."""
+        m = self.model
+        if self._chunks is None:
+            return m.n_particles, (lambda arr: arr), m.scene_start, None
+        a, b = self._chunks.bounds[k]
+        return b - a, (lambda arr: arr[a:b]), self._chunks.scene_start[k], self._chunks.part(k) if k else None
+
+    def _p2g_inputs(self, state: State, k: int) -> list:
         m = self.model
         nx, ny, nz = self.grid_dims
-        whole = a == 0 and b == m.n_particles
-        sl = (lambda arr: arr) if whole else (lambda arr: arr[a:b])
-        scene_start = m.scene_start if whole else self._chunks.scene_start[self._chunk_index(a)]
+        n, sl, scene_start, parts = self._chunk_view(k)
         grid, fs, fp = ((self.grid_mvm, self.fail_step, self.fail_particle) if parts is None else
                         (parts["grid"], parts["fail_step"], parts["fail_particle"]))
         return [sl(state.x), sl(state.v), sl(state.C), sl(state.F), sl(m.particle_mass), sl(m.particle_vol),
                 sl(m.particle_scene), scene_start, m.scene_mu, m.scene_lambda, self.grid_origin, nx, ny, nz, m.dx,
-                self.dt_arr, self.clock_step, grid, fs, fp, self._per_thread, b - a]
+                self.dt_arr, self.clock_step, grid, fs, fp, self._per_thread, n]
 
-    def _g2p_inputs(self, state_in: State, state_out: State, control: Control, a: int, b: int,
-                    parts: dict | None) -> list:
+    def _g2p_inputs(self, state_in: State, state_out: State, control: Control, k: int) -> list:
         m = self.model
         nx, ny, nz = self.grid_dims
-        whole = a == 0 and b == m.n_particles
-        sl = (lambda arr: arr) if whole else (lambda arr: arr[a:b])
-        scene_start = m.scene_start if whole else self._chunks.scene_start[self._chunk_index(a)]
+        n, sl, scene_start, parts = self._chunk_view(k)
         ground, collider, fs, fp = ((self.ground_impulse, self.collider_impulse, self.fail_step, self.fail_particle)
                                     if parts is None else
                                     (parts["ground"], parts["collider"], parts["fail_step"], parts["fail_particle"]))
@@ -510,32 +514,23 @@ class Solver:
                 m.col_kind, m.col_params, m.col_planes, m.col_radius2, m.col_mu, m.col_bonded, self.col_pos1,
                 self.col_rot1, control.d_lin_vel, control.d_ang_vel, collider, m.domain_lo, m.domain_hi,
                 float(m.config.j_min), float(m.config.j_max), self.clock_step, fs, fp, sl(state_out.x),
-                sl(state_out.v), sl(state_out.C), sl(state_out.F), self._per_thread, b - a]
-
-    def _chunk_index(self, a: int) -> int:
-        return [c[0] for c in self._chunks.bounds].index(a)
+                sl(state_out.v), sl(state_out.C), sl(state_out.F), self._per_thread, n]
 
     def _cpu_p2g(self, state: State) -> list:
         """CPU p2g: one launch, or one per chunk in threads and then the chunk grids added in order."""
-        m = self.model
-        if self._chunks is None:
-            return [wp.launch(K.p2g_apic_neohookean, dim=self._threads(m.n_particles),
-                              inputs=self._p2g_inputs(state, 0, m.n_particles, None), device=self.device,
-                              record_cmd=True)]
         ch = self._chunks
-        launches = [wp.launch(K.p2g_apic_neohookean, dim=self._threads(b - a),
-                              inputs=self._p2g_inputs(state, a, b, ch.part(k) if k else None), device=self.device,
-                              record_cmd=True)
-                    for k, (a, b) in enumerate(ch.bounds)]
-        return [ParallelLaunch(launches), ch.merge_grid_cmd(self.grid_mvm, self._per_thread)]
+        launches = [wp.launch(K.p2g_apic_neohookean, dim=self._threads(self._chunk_view(k)[0]),
+                              inputs=self._p2g_inputs(state, k), device=self.device, record_cmd=True)
+                    for k in range(len(ch.bounds) if ch else 1)]
+        return launches if ch is None else [ParallelLaunch(launches), ch.merge_grid_cmd(self.grid_mvm, self._per_thread)]
 
     def _cpu_g2p(self, kernel, state_in: State, state_out: State, control: Control) -> list:
         """CPU g2p, one launch per chunk in threads, then the chunks' impulses and failures folded in."""
         ch = self._chunks
-        launches = [wp.launch(kernel, dim=self._threads(b - a),
-                              inputs=self._g2p_inputs(state_in, state_out, control, a, b, ch.part(k) if k else None),
-                              device=self.device, record_cmd=True)
-                    for k, (a, b) in enumerate(ch.bounds)]
+        launches = [wp.launch(kernel, dim=self._threads(self._chunk_view(k)[0]),
+                              inputs=self._g2p_inputs(state_in, state_out, control, k), device=self.device,
+                              record_cmd=True)
+                    for k in range(len(ch.bounds))]
         return [ParallelLaunch(launches),
                 ch.merge_tables_cmd(self.ground_impulse, self.collider_impulse, self.fail_step, self.fail_particle)]
 
