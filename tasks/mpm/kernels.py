@@ -473,12 +473,16 @@ def p2g_apic_neohookean(
             qi = qi + a0
 
 
-def make_grid_update(colliders: bool = True, agg: bool = False, module: str | None = None) -> wp.Kernel:
+def make_grid_update(colliders: bool = True, agg: bool = False, module: str | None = None, lazy: bool = False
+                     ) -> wp.Kernel:
     """The grid update kernel. colliders=False leaves out the kinematic-collider contact (scenes with only the
     ground: no per-node collider loop, fewer registers). agg=True (CUDA only: one node per thread, whole-warp
     launches) sums a warp's ground impulses by shuffles and issues one atomic per warp instead of one per node (they
-    all go to the scene's one ground_impulse entry, and same-address atomics serialise). colliders=True, agg=False
-    is the reference kernel (the CPU path, unchanged)."""
+    all go to the scene's one ground_impulse entry, and same-address atomics serialise). lazy=True writes nothing for
+    a node without mass: its scatter buffer is already clear, and its velocity is stale but read only with a zero
+    weight (a particle's stencil nodes all get mass from it; weights are zero only on a stencil's edge), so the
+    rollout is the same bit for bit. colliders=True, agg=lazy=False is the reference kernel (the CPU path,
+    unchanged)."""
 
     def _grid_update_body(
         grid_mvm: wp.array(dtype=wp.vec4),
@@ -530,11 +534,18 @@ def make_grid_update(colliders: bool = True, agg: bool = False, module: str | No
                 clock_time[0] = clock_time[0] + wp.float64(dt_arr[0])
                 clock_step[0] = clock_step[0] + 1
             mvm = grid_mvm[n]
-            grid_mvm[n] = wp.vec4(0.0, 0.0, 0.0, 0.0)
             m = mvm[3]
-            if m <= 0.0:
-                grid_v[n] = wp.vec4(0.0, 0.0, 0.0, 0.0)
-                continue
+            if wp.static(lazy):
+                if m <= 0.0:
+                    if m != 0.0 or mvm[0] != 0.0 or mvm[1] != 0.0 or mvm[2] != 0.0:
+                        grid_mvm[n] = wp.vec4(0.0, 0.0, 0.0, 0.0)
+                    continue
+                grid_mvm[n] = wp.vec4(0.0, 0.0, 0.0, 0.0)
+            else:
+                grid_mvm[n] = wp.vec4(0.0, 0.0, 0.0, 0.0)
+                if m <= 0.0:
+                    grid_v[n] = wp.vec4(0.0, 0.0, 0.0, 0.0)
+                    continue
             dt = dt_arr[0]
             cells = nx * ny * nz
             s = n // cells

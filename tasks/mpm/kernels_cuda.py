@@ -686,11 +686,12 @@ def g2p_kernel(colliders: bool, coop: bool, agg: bool) -> wp.Kernel:
 
 
 @functools.cache
-def grid_update_kernel(colliders: bool, agg: bool) -> wp.Kernel:
-    """kernels.grid_update (colliders, not agg) or one of its CUDA variants (own module, built on first use)."""
-    if colliders and not agg:
+def grid_update_kernel(colliders: bool, agg: bool, lazy: bool = False) -> wp.Kernel:
+    """kernels.grid_update (colliders, not agg, not lazy) or one of its CUDA variants (own module, built on first
+    use)."""
+    if colliders and not agg and not lazy:
         return K.grid_update
-    return K.make_grid_update(colliders, agg, module="unique")
+    return K.make_grid_update(colliders, agg, module="unique", lazy=lazy)
 
 
 @wp.func_native(
