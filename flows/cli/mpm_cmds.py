@@ -61,6 +61,9 @@ def bench_mpm(
     batch: int = typer.Option(1, "--batch", help="independent scenes advanced together"),
     workers: int = typer.Option(0, "--workers", help="CPU threads sharing the batch (0 = one per core)"),
     cpu_threads: int = typer.Option(1, "--cpu-threads", help="CPU: threads sharing each rollout's particles"),
+    compare_sequential: bool = typer.Option(
+        False, "--compare-sequential",
+        help="also run the batch's scenes one after another in this process and print both ratios"),
     json_out: bool = typer.Option(False, "--json", help="print the figures as JSON on stdout"),
 ) -> None:
     """Benchmark the MPM step on the standard cube scene (warm-up/compile excluded from the timing)."""
@@ -68,6 +71,8 @@ def bench_mpm(
         fail("--device must be cpu or cuda")
     if particles < 8 or steps < 1 or batch < 1 or workers < 0 or not 1 <= cpu_threads <= 64:
         fail("need --particles >= 8, --steps >= 1, --batch >= 1, --workers >= 0, 1 <= --cpu-threads <= 64")
+    if compare_sequential and batch < 2:
+        fail("--compare-sequential needs --batch >= 2")
     import warp as wp
 
     wp.config.quiet = True
@@ -75,11 +80,17 @@ def bench_mpm(
 
     with contextlib.redirect_stdout(sys.stderr):  # Warp's own messages must not mix with --json output
         res = run_bench(device=device, particles=particles, steps=steps, batch=batch, workers=workers or None,
-                        cpu_threads=cpu_threads)
+                        cpu_threads=cpu_threads, compare_sequential=compare_sequential)
     if json_out:
         emit_json(res)
     else:
         for k in ("device_name", "particles", "batch", "workers", "cpu_threads", "steps", "seconds", "us_per_step",
                   "particle_steps_per_s", "peak_memory_bytes", "finite"):
             console.print(f"{k:>22}: {res[k]}")
+        cmp = res["sequential_comparison"]
+        if cmp:
+            console.print(f"{'one after another':>22}: {cmp['sequential_us_per_step']:.2f} us/step "
+                          f"(batch {cmp['batch_us_per_step']:.2f}): {cmp['ratio_per_step']:.2f}x per step; "
+                          f"whole rollouts {cmp['sequential_rollouts_s']:.3f} s vs {cmp['batch_rollout_s']:.3f} s: "
+                          f"{cmp['ratio_end_to_end']:.2f}x end to end")
         console.print(f"[dim]{res['note']}[/dim]")

@@ -42,12 +42,15 @@ def _model_bytes(sim: Simulator) -> int:
 
 def run_bench(
     device: str = "cpu", particles: int = 64000, steps: int = 200, batch: int = 1, workers: int | None = None,
-    cpu_threads: int = 1,
+    cpu_threads: int = 1, compare_sequential: bool = False,
 ) -> dict:
     """Time `steps` fixed-dt steps of `batch` standard cubes of ~particles each; returns the figures as a dict.
-    workers: CPU threads each advancing a share of the batch; cpu_threads: threads sharing each of those rollouts."""
+    workers: CPU threads each advancing a share of the batch; cpu_threads: threads sharing each of those rollouts;
+    compare_sequential: also run the batch's scenes one after another in the same process (``sequential_comparison``)."""
     if particles < 8 or steps < 1 or batch < 1 or not 1 <= cpu_threads <= 64:
         raise InputError("need particles >= 8, steps >= 1, batch >= 1, 1 <= cpu_threads <= 64")
+    if compare_sequential and batch < 2:
+        raise InputError("--compare-sequential needs --batch >= 2")
     if device not in ("cpu", "cuda"):
         raise InputError("device must be cpu or cuda")
     wp.init()
@@ -94,6 +97,8 @@ def run_bench(
         mem_kind = "host_peak_rss_bytes"
         dev_name = _cpu_name()
     engine_bytes = sum(_model_bytes(s) for s in sims)
+    comparison = sequential_comparison(device, n, batch, steps, cpu_threads, seconds / steps * 1e6) \
+        if compare_sequential else None
     return {
         "device": device,
         "device_name": dev_name,
@@ -124,6 +129,39 @@ def run_bench(
         "note": "timing excludes the first launches (kernel compile/load, graph capture); includes health checks",
         "host": platform.node(),
         "cpu_count": os.cpu_count(),
+        "sequential_comparison": comparison,
+    }
+
+
+def _rollout_seconds(device: str, n: int, batch: int, steps: int, cpu_threads: int) -> float:
+    """Wall time of one whole rollout of `batch` cubes: model build, simulator, `steps` steps (graph capture
+    included; kernels already loaded in this process), synchronised."""
+    t = time.perf_counter()
+    sim = Simulator(bench_cube_model(n, batch, device, cpu_threads), health_interval_steps=100)
+    sim.advance(steps * BENCH_DT_S * 1.5, max_steps=steps)
+    wp.synchronize_device(device)
+    return time.perf_counter() - t
+
+
+def sequential_comparison(device: str, n: int, batch: int, steps: int, cpu_threads: int, batch_us: float) -> dict:
+    """The batch against its scenes run one after another, in this process: per step (each scene's own timed run,
+    warm-up excluded, as the batch's) and end to end (each rollout built and run from scratch: model, simulator,
+    graph capture, steps; the batch likewise). Ratios > 1: the batch is faster."""
+    single = [run_bench(device, n**3, steps, 1, 1, cpu_threads)["us_per_step"] for _ in range(batch)]
+    seq_e2e = [_rollout_seconds(device, n, 1, steps, cpu_threads) for _ in range(batch)]
+    batch_e2e = _rollout_seconds(device, n, batch, steps, cpu_threads)
+    return {
+        "scenes": batch,
+        "single_us_per_step": single,
+        "sequential_us_per_step": float(sum(single)),
+        "batch_us_per_step": batch_us,
+        "ratio_per_step": float(sum(single)) / batch_us,
+        "sequential_rollouts_s": float(sum(seq_e2e)),
+        "batch_rollout_s": batch_e2e,
+        "ratio_end_to_end": float(sum(seq_e2e)) / batch_e2e,
+        "note": "per step: timed steps only, warm-up excluded, one scene at a time vs the batch; end to end: "
+                f"{batch} whole rollouts of {steps} steps one after another (model build, graph capture, steps) vs "
+                "one batched rollout, kernels already loaded",
     }
 
 
