@@ -35,10 +35,9 @@ def _packed_call(cmd: Any) -> Callable[[], None] | None:
     except (AttributeError, TypeError):
         return None
 
-    def call() -> None:
+    def call() -> None:  # byref keeps the struct and the bounds alive; the struct holds copies of the parameters
         forward(p_bounds, p_args)
 
-    call.keep_alive = (struct, bounds, params)  # type: ignore[attr-defined]  # the pointers above refer to these
     return call
 
 

@@ -67,7 +67,7 @@ class Solver:
         # multi-step graphs of advance_steps, least recently used first (bounded: each holds its launches)
         self._blocks: OrderedDict[tuple, tuple] = OrderedDict()
         self._host_bufs: dict[str, wp.array] = {}  # pinned host mirrors for one-sync readbacks (CUDA)
-        self._refit_cmds: dict[tuple, tuple] = {}  # CPU and fast CUDA path: recorded re-fit launches per state
+        self._refit_cmds: dict[tuple, tuple] = {}  # recorded re-fit launches per state
         # CPU: one "thread" loops over a block of items (amortises Warp's per-thread argument copy); GPU: one each
         self._per_thread = 1 if d == "cuda" else 2048
         self.dt_arr = wp.zeros(1, dtype=float, device=d)
@@ -234,7 +234,7 @@ class Solver:
             # recorded launches (arguments packed once); on CUDA captured into one graph
             cmds = self._record_step(state_in, state_out, control, refit)
             graph = self._capture(cmds) if self.use_graph else None
-            if graph is None and self.device_is_cpu:
+            if self.device_is_cpu:
                 cmds = pack_cpu_launches(cmds)  # replays skip Warp's per-call argument packing
             entry = (cmds, graph, state_in, state_out, control)  # keep the arrays alive while cached
             self._graphs[key] = entry
@@ -333,18 +333,14 @@ class Solver:
 
     def _launch_refit(self, state: State) -> None:
         """Launch the per-scene bounds reduction and the window fit."""
-        if self.fast_cuda or self.device_is_cpu:
-            # recorded once per (state, grid size): packing the launch arguments costs ~0.1 ms of Python per call
-            key = (id(state), id(self._slide), self.grid_dims)
-            entry = self._refit_cmds.get(key)
-            if entry is None:
-                cmds = self._record_refit(state)
-                entry = (pack_cpu_launches(cmds) if self.device_is_cpu else cmds, state)  # keeps the state alive
-                self._refit_cmds[key] = entry
-            cmds = entry[0]
-        else:
+        # recorded once per (state, grid size): packing the launch arguments costs ~0.1 ms of Python per call
+        key = (id(state), id(self._slide), self.grid_dims)
+        entry = self._refit_cmds.get(key)
+        if entry is None:
             cmds = self._record_refit(state)
-        for cmd in cmds:
+            entry = (pack_cpu_launches(cmds) if self.device_is_cpu else cmds, state)  # keeps the state alive
+            self._refit_cmds[key] = entry
+        for cmd in entry[0]:
             cmd.launch()
 
     def _record_refit(self, state: State) -> list:
