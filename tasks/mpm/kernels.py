@@ -402,6 +402,68 @@ def fit_window(s: int, lo: wp.vec3, hi: wp.vec3, nx: int, ny: int, nz: int, dx: 
         grid_overflow[s] = 1
 
 
+@wp.func
+def p2g_particle(
+    xp: wp.vec3,
+    vp: wp.vec3,
+    Cp: wp.mat33,
+    Fp: wp.mat33,
+    m: float,
+    vol: float,
+    s: int,
+    pl: int,
+    mu: float,
+    lam: float,
+    o: wp.vec3,
+    nx: int,
+    ny: int,
+    nz: int,
+    dx: float,
+    dt: float,
+    step_next: int,
+    grid_mvm: wp.array(dtype=wp.vec4),
+    fail_step: wp.array(dtype=wp.int32),
+    fail_particle: wp.array(dtype=wp.int32),
+):
+    """Scatter one particle's APIC momentum, stress impulse and mass (state x, v, C, F; scene s, scene-local index
+    pl, window origin o [cells]); a non-finite state is gated (g2p reports it), one outside the window is flagged as
+    out of the grid at step step_next."""
+    if not is_finite(state_sum(xp, vp, Fp, Cp)):
+        return  # gated (never written to the grid); g2p reports it
+    inv_dx = 1.0 / dx
+    local = xp * inv_dx - o
+    bx = int(wp.floor(local[0] - 0.5))
+    by = int(wp.floor(local[1] - 0.5))
+    bz = int(wp.floor(local[2] - 0.5))
+    if bx < 0 or by < 0 or bz < 0 or bx > nx - 3 or by > ny - 3 or bz > nz - 3:
+        flag_failure(fail_step, fail_particle, s, FLAG_OUT_OF_GRID, step_next, pl)
+        return
+    fx = local - wp.vec3(float(bx), float(by), float(bz))
+    wx = quadratic_weights(fx[0])
+    wy = quadratic_weights(fx[1])
+    wz = quadratic_weights(fx[2])
+
+    q = apic_momentum(Fp, Cp, vp, m, vol, mu, lam, dt, dx, fx)
+    q0 = q[0]
+    a0 = q[1]
+    a1 = q[2]
+    a2 = q[3]
+    nyz = ny * nz
+    base = s * nx * nyz + bx * nyz + by * nz + bz
+    qi = q0
+    for i in range(3):
+        qij = qi
+        for j in range(3):
+            wij = wx[i] * wy[j]
+            row = base + i * nyz + j * nz
+            scatter_add_vec4(grid_mvm, row, (wij * wz[0]) * qij)
+            q1 = qij + a2
+            scatter_add_vec4(grid_mvm, row + 1, (wij * wz[1]) * q1)
+            scatter_add_vec4(grid_mvm, row + 2, (wij * wz[2]) * (q1 + a2))
+            qij = qij + a1
+        qi = qi + a0
+
+
 @wp.kernel
 def p2g_apic_neohookean(
     x: wp.array(dtype=wp.vec3),
@@ -430,47 +492,10 @@ def p2g_apic_neohookean(
     """Particle to grid: scatter APIC momentum, neo-Hookean Kirchhoff stress impulse and mass (MLS-MPM)."""
     t = wp.tid()
     for p in range(t * per_thread, wp.min((t + 1) * per_thread, n_items)):
-        xp = x[p]
-        vp = v[p]
-        Fp = F[p]
-        Cp = C[p]
-        if not is_finite(state_sum(xp, vp, Fp, Cp)):
-            continue  # gated (never written to the grid); g2p reports it
         s = particle_scene[p]
-        inv_dx = 1.0 / dx
-        o = grid_origin[s]
-        local = xp * inv_dx - o
-        bx = int(wp.floor(local[0] - 0.5))
-        by = int(wp.floor(local[1] - 0.5))
-        bz = int(wp.floor(local[2] - 0.5))
-        if bx < 0 or by < 0 or bz < 0 or bx > nx - 3 or by > ny - 3 or bz > nz - 3:
-            flag_failure(fail_step, fail_particle, s, FLAG_OUT_OF_GRID, clock_step[0] + 1, p - scene_start[s])
-            continue
-        fx = local - wp.vec3(float(bx), float(by), float(bz))
-        wx = quadratic_weights(fx[0])
-        wy = quadratic_weights(fx[1])
-        wz = quadratic_weights(fx[2])
-
-        q = apic_momentum(Fp, Cp, vp, particle_mass[p], particle_vol[p], scene_mu[s], scene_lambda[s], dt_arr[0],
-                          dx, fx)
-        q0 = q[0]
-        a0 = q[1]
-        a1 = q[2]
-        a2 = q[3]
-        nyz = ny * nz
-        base = s * nx * nyz + bx * nyz + by * nz + bz
-        qi = q0
-        for i in range(3):
-            qij = qi
-            for j in range(3):
-                wij = wx[i] * wy[j]
-                row = base + i * nyz + j * nz
-                scatter_add_vec4(grid_mvm, row, (wij * wz[0]) * qij)
-                q1 = qij + a2
-                scatter_add_vec4(grid_mvm, row + 1, (wij * wz[1]) * q1)
-                scatter_add_vec4(grid_mvm, row + 2, (wij * wz[2]) * (q1 + a2))
-                qij = qij + a1
-            qi = qi + a0
+        p2g_particle(x[p], v[p], C[p], F[p], particle_mass[p], particle_vol[p], s, p - scene_start[s], scene_mu[s],
+                     scene_lambda[s], grid_origin[s], nx, ny, nz, dx, dt_arr[0], clock_step[0] + 1, grid_mvm,
+                     fail_step, fail_particle)
 
 
 def make_grid_update(colliders: bool = True, agg: bool = False, module: str | None = None, lazy: bool = False
@@ -601,13 +626,17 @@ def make_grid_update(colliders: bool = True, agg: bool = False, module: str | No
 grid_update = make_grid_update()
 
 
-def make_g2p(colliders: bool = True, coop: bool = False, agg: bool = False, module: str | None = None) -> wp.Kernel:
+def make_g2p(colliders: bool = True, coop: bool = False, agg: bool = False, module: str | None = None,
+             scatter_next: bool = False) -> wp.Kernel:
     """The grid-to-particle kernel. colliders=False leaves out the kinematic-collider contact (scenes with only the
     ground). CUDA only, one particle per thread and whole-warp launches: coop=True moves a warp's 32 particles' x, v,
     F, C as contiguous 16-byte loads/stores through shared memory (a lane's own scalar accesses to 36-byte mat33
     records touch ~9 cache lines per warp instruction); agg=True sums a warp's ground impulses by shuffles (one
     atomic per warp). colliders=True, coop=agg=False is the reference kernel (the CPU path, unchanged: same rollout
-    bit for bit)."""
+    bit for bit). scatter_next=True (CPU, with coop=agg=False) also does the next step's p2g of each particle from
+    its new state (``p2g_particle``, as ``p2g_apic_neohookean`` would after reloading it): valid when the grid update
+    has cleared grid_mvm and no re-fit comes before the next step; same results bit for bit, one pass over the
+    particles fewer per step."""
 
     def _g2p_body(
         x: wp.array(dtype=wp.vec3),
@@ -653,6 +682,10 @@ def make_g2p(colliders: bool = True, coop: bool = False, agg: bool = False, modu
         v_out: wp.array(dtype=wp.vec3),
         C_out: wp.array(dtype=wp.mat33),
         F_out: wp.array(dtype=wp.mat33),
+        particle_vol: wp.array(dtype=float),
+        scene_mu: wp.array(dtype=float),
+        scene_lambda: wp.array(dtype=float),
+        grid_mvm: wp.array(dtype=wp.vec4),
         per_thread: int,
         n_items: int,
     ):
@@ -786,6 +819,9 @@ def make_g2p(colliders: bool = True, coop: bool = False, agg: bool = False, modu
                 v_out[p] = vn
                 C_out[p] = Cn
                 F_out[p] = Fn
+            if wp.static(scatter_next):
+                p2g_particle(xn, vn, Cn, Fn, m, particle_vol[p], s, pl, scene_mu[s], scene_lambda[s], o, nx, ny, nz,
+                             dx, dt, step + 1, grid_mvm, fail_step, fail_particle)
         if wp.static(agg):
             warp_add_vec3(ground_impulse, g_scene, g_imp, g_has)  # every lane of the warp (whole-warp launches)
         if wp.static(coop):
@@ -799,6 +835,8 @@ def make_g2p(colliders: bool = True, coop: bool = False, agg: bool = False, modu
 
 
 g2p_apic = make_g2p()
+# CPU: the g2p of step n and the p2g of step n+1 in one pass (solver.py, fused CPU steps)
+g2p_p2g_cpu = make_g2p(module="unique", scatter_next=True)
 
 
 @wp.kernel

@@ -98,6 +98,9 @@ class Solver:
         self.cpu_threads = int(model.config.cpu_threads)  # 1 on CUDA (SimConfig)
         bounds = chunk_bounds(model.n_particles, self.cpu_threads) if self.cpu_threads > 1 else []
         self._chunks = CpuChunks(bounds, model.scene_start_np, B, nc, B * K.N_FLAGS, d) if len(bounds) > 1 else None
+        # CPU_FUSE: inside advance_steps, the g2p of a step and the p2g of the next (no re-fit between them) run as one
+        # pass over the particles (kernels.g2p_p2g_cpu): same results bit for bit, one thread hand-off fewer per step
+        self.cpu_fuse = self.device_is_cpu and _env_flag("DEFORMSMITH_MPM_CPU_FUSE")
         self.cuda_colliders, self.cuda_agg, self.cuda_coop_g2p, self.cuda_coop_p2g = True, False, False, False
         self.cuda_fuse, self.cuda_scatter, self.cuda_fuse_regs, self.cuda_fuse_keep_c = False, 0, 0, False
         self.cuda_grid_lazy = False
@@ -228,11 +231,19 @@ class Solver:
         dt32 = self.set_dt(dt)
         self._slide = control.d_grid_slide
         refit = self._since_refit >= self.refit_interval(control)
-        key = (id(state_in), id(state_out), id(control), refit, self.grid_dims)
+        self._replay_step(state_in, state_out, control, refit)
+        self._since_refit = 0 if refit else self._since_refit + 1
+        self.steps += 1
+        self.time_s += dt32
+
+    def _replay_step(self, state_in: State, state_out: State, control: Control, refit: bool, skip_p2g: bool = False,
+                     fuse_next: bool = False) -> None:
+        """Run one step's recorded launches (recorded, and on CUDA captured into a graph, on first use)."""
+        key = (id(state_in), id(state_out), id(control), refit, self.grid_dims, skip_p2g, fuse_next)
         entry = self._graphs.get(key)
         if entry is None:
             # recorded launches (arguments packed once); on CUDA captured into one graph
-            cmds = self._record_step(state_in, state_out, control, refit)
+            cmds = self._record_step(state_in, state_out, control, refit, skip_p2g, fuse_next)
             graph = self._capture(cmds) if self.use_graph else None
             if self.device_is_cpu:
                 cmds = pack_cpu_launches(cmds)  # replays skip Warp's per-call argument packing
@@ -244,21 +255,22 @@ class Solver:
         else:
             for cmd in cmds:
                 cmd.launch()
-        self._since_refit = 0 if refit else self._since_refit + 1
-        self.steps += 1
-        self.time_s += dt32
 
     # longest block of whole refit cycles captured into one graph, in steps, and how many graphs are kept
     MAX_BLOCK_STEPS = 256
     MAX_BLOCK_GRAPHS = 24
 
     def advance_steps(self, state: State, control: Control, dt: float, count: int) -> None:
-        """Advance `count` in-place steps of dt [s]; on CUDA runs of steps replay as few multi-step graphs.
+        """Advance `count` in-place steps of dt [s]; on CUDA runs of steps replay as few multi-step graphs, on the CPU
+        a step's g2p also does the next step's p2g where no re-fit comes between them (``cpu_fuse``).
 
         The steps are cut into a lead (up to the next refit), blocks of 2^b whole refit cycles and a tail; each piece
         is one CUDA graph cached by (refit phase, length), so a reporting interval costs a handful of host calls.
         """
         if count <= 0:
+            return
+        if self.cpu_fuse:
+            self._advance_cpu_fused(state, control, dt, count)
             return
         if not self.use_graph:
             for _ in range(count):
@@ -282,6 +294,25 @@ class Solver:
             self.steps += n
             self.time_s += n * dt32
             count -= n
+
+    def _advance_cpu_fused(self, state: State, control: Control, dt: float, count: int) -> None:
+        """CPU: `count` in-place steps of dt [s], each g2p fused with the next step's p2g where no re-fit comes
+        between them and the call goes on (the last step ends with a plain g2p: the state is whole between calls)."""
+        if not (dt > 0.0) or not np.isfinite(dt):
+            raise ValueError("dt must be a positive finite number of seconds")
+        control.sync(self.time_s)
+        dt32 = self.set_dt(dt)
+        self._slide = control.d_grid_slide
+        R = self.refit_interval(control)
+        fused_prev = False  # this step's p2g ran inside the previous step's g2p
+        for k in range(count):
+            refit = self._since_refit >= R
+            self._since_refit = 0 if refit else self._since_refit + 1
+            fuse = k + 1 < count and self._since_refit < R
+            self._replay_step(state, state, control, refit, skip_p2g=fused_prev, fuse_next=fuse)
+            fused_prev = fuse
+            self.steps += 1
+            self.time_s += dt32
 
     def _launch_block(self, state: State, control: Control, phase: int, n: int) -> None:
         """Replay (capturing it the first time) the graph of n in-place steps starting at refit phase `phase`."""
@@ -398,7 +429,7 @@ class Solver:
         d = self.device
         nx, ny, nz = self.grid_dims
         if skip_p2g or fuse_next:
-            assert self.fast_cuda and state_in is state_out and not (refit and skip_p2g)
+            assert (self.fast_cuda or self.device_is_cpu) and state_in is state_out and not (refit and skip_p2g)
         cmds = self._record_refit(state_in) if refit else []
         if m.n_colliders:
             cmds.append(wp.launch(
@@ -411,7 +442,8 @@ class Solver:
                 record_cmd=True,
             ))
         if skip_p2g:
-            pass  # done by the previous step's fused kernel
+            if self._chunks is not None and not self.fast_cuda:  # done by the previous step's g2p, into chunk grids
+                cmds.append(self._chunks.merge_grid_cmd(self.grid_mvm, self._per_thread))
         elif self.fast_cuda:
             bd = self.p2g_block
             nt = m.n_particles * self.p2g_parts
@@ -455,7 +487,9 @@ class Solver:
             record_cmd=True,
             block_dim=gu_block,
         ))
-        if fuse_next:
+        if fuse_next and not self.fast_cuda:
+            g2p_kernel = K.g2p_p2g_cpu  # CPU: this step's g2p and the next step's p2g in one pass
+        elif fuse_next:
             coop = self.cuda_coop_g2p and _coop_ok(state_in)
             bd = cuda_block_dim(m.n_particles)
             cmds.append(wp.launch(
@@ -512,16 +546,18 @@ class Solver:
         m = self.model
         nx, ny, nz = self.grid_dims
         n, sl, scene_start, parts = self._chunk_view(k)
-        ground, collider, fs, fp = ((self.ground_impulse, self.collider_impulse, self.fail_step, self.fail_particle)
-                                    if parts is None else
-                                    (parts["ground"], parts["collider"], parts["fail_step"], parts["fail_particle"]))
+        ground, collider, fs, fp, grid = (
+            (self.ground_impulse, self.collider_impulse, self.fail_step, self.fail_particle, self.grid_mvm)
+            if parts is None else
+            (parts["ground"], parts["collider"], parts["fail_step"], parts["fail_particle"], parts["grid"]))
         return [sl(state_in.x), sl(state_in.v), sl(state_in.C), sl(state_in.F), sl(m.particle_mass),
                 sl(m.particle_scene), scene_start, self.grid_v, self.grid_origin, nx, ny, nz, m.dx, self.dt_arr,
                 control.d_gravity, m.ground_enabled, m.ground_height, m.ground_mu, ground, m.col_start, m.col_count,
                 m.col_kind, m.col_params, m.col_planes, m.col_radius2, m.col_mu, m.col_bonded, self.col_pos1,
                 self.col_rot1, control.d_lin_vel, control.d_ang_vel, collider, m.domain_lo, m.domain_hi,
                 float(m.config.j_min), float(m.config.j_max), self.clock_step, fs, fp, sl(state_out.x),
-                sl(state_out.v), sl(state_out.C), sl(state_out.F), self._per_thread, n]
+                sl(state_out.v), sl(state_out.C), sl(state_out.F), sl(m.particle_vol), m.scene_mu, m.scene_lambda, grid,
+                self._per_thread, n]
 
     def _cpu_p2g(self, state: State) -> list:
         """CPU p2g: one launch, or one per chunk in threads and then the chunk grids added in order."""
