@@ -2,8 +2,11 @@
 
 from __future__ import annotations
 
+import contextvars
 import inspect
+import os
 from collections.abc import Callable, Sequence
+from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -57,6 +60,37 @@ def _with_key(state: Any, key: str | None) -> ProbeResult:
     if key and result.cache_key is None:
         result = result.model_copy(update={"cache_key": key})
     return result
+
+
+# CPU probes run at most this many at a time (env DEFORMSMITH_PROBE_WORKERS; 1 = one after another). Warp's CPU
+# launches release the GIL: two 1k-particle rollouts in two threads take 0.40-0.44 s against 0.60-0.62 s one after
+# another on the 2-core VM (tasks/probes/BENCHMARKS.md), with the same results bit for bit.
+PROBE_WORKERS_ENV = "DEFORMSMITH_PROBE_WORKERS"
+
+
+def probe_workers(n_calls: int, device: str = "cpu") -> int:
+    """Concurrent probe tasks for n_calls independent calls: 1 on CUDA (the probes share the device's stream and its
+    graph captures), else min(calls, cores, $DEFORMSMITH_PROBE_WORKERS)."""
+    if device != "cpu" or n_calls <= 1:
+        return 1
+    try:
+        cores = len(os.sched_getaffinity(0))
+    except AttributeError:  # not Linux
+        cores = os.cpu_count() or 1
+    env = os.environ.get(PROBE_WORKERS_ENV, "").strip()
+    cap = int(env) if env.isdigit() and int(env) > 0 else cores
+    return max(1, min(n_calls, cores, cap))
+
+
+def call_tasks(calls: Sequence[tuple[Any, dict[str, Any]]], workers: int = 1) -> list[Any]:
+    """Call each (task, inputs) and return the results in order; up to `workers` at a time in threads, each in a
+    copy of the caller's context (so a call inside a flow run is a task run of that flow, as when called directly).
+    An exception in any call is raised after the others have finished."""
+    if workers <= 1 or len(calls) <= 1:
+        return [t(**kw) for t, kw in calls]
+    with ThreadPoolExecutor(max_workers=workers, thread_name_prefix="probe") as pool:
+        futures = [pool.submit(contextvars.copy_context().run, t, **kw) for t, kw in calls]
+        return [f.result() for f in futures]
 
 
 def task_probe_runner(probes: Sequence[ProbeCall], parallel: bool = False) -> ProbeRunner:

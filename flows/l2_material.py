@@ -32,7 +32,7 @@ from contracts.probes import ProbeResult
 from contracts.request import AssetRequest
 from contracts.sim import SimConfig
 from contracts.stage import StageContract, load_contract
-from flows.harness import probe_cache_key, run_harness
+from flows.harness import call_tasks, probe_cache_key, probe_workers, run_harness
 from tasks.agents import targets_from_intent, targets_from_request
 from tasks.geometry.outputs import L0Asset, load_l0
 from tasks.probes import deformable
@@ -253,13 +253,11 @@ class _Runner:
 
     def __call__(self, values: dict[str, float], action: str) -> list[ProbeResult]:
         material = Material(**values)
-        out = []
-        for kind in SELECTION_PROBES:
-            kw = probe_inputs(kind, self.asset, self.physical, material, self.contract, self.sim)
-            task = PROBE_TASKS[kind]
-            key = probe_cache_key(task, kw)
-            r: ProbeResult = task(**kw)
-            out.append(r if r.cache_key else r.model_copy(update={"cache_key": key}))
+        calls = [(PROBE_TASKS[kind], probe_inputs(kind, self.asset, self.physical, material, self.contract, self.sim))
+                 for kind in SELECTION_PROBES]
+        results: list[ProbeResult] = call_tasks(calls, probe_workers(len(calls), self.sim.device))
+        out = [r if r.cache_key else r.model_copy(update={"cache_key": probe_cache_key(t, kw)})
+               for r, (t, kw) in zip(results, calls)]
         return object_view(out, self.contract)
 
 
@@ -365,6 +363,13 @@ def _copy(src: str | None, dest: Path) -> str | None:
     return str(Path("recordings") / dest.name)
 
 
+def held_out_probes(asset: L0Asset, physical: PhysicalModel, material: Material, contract: StageContract,
+                    sim: SimConfig) -> list[ProbeResult]:
+    """The held-out tests of one material (HELD_OUT_PROBES order; cached tasks, run side by side on the CPU)."""
+    calls = [(PROBE_TASKS[k], probe_inputs(k, asset, physical, material, contract, sim, True)) for k in HELD_OUT_PROBES]
+    return call_tasks(calls, probe_workers(len(calls), sim.device))
+
+
 def evaluate_material(asset_dir: Path, material: Material, contract: StageContract | None = None,
                       sim: SimConfig | None = None, held_out: bool = True,
                       physical: PhysicalModel | None = None) -> dict[str, Any]:
@@ -376,8 +381,7 @@ def evaluate_material(asset_dir: Path, material: Material, contract: StageContra
     sim = sim or SimConfig()
     with cache.local_runtime():
         sel = _Runner(asset, physical, contract, sim)(material.model_dump(), "propose_material")
-        ho = [PROBE_TASKS[k](**probe_inputs(k, asset, physical, material, contract, sim, True))
-              for k in HELD_OUT_PROBES] if held_out else []
+        ho = held_out_probes(asset, physical, material, contract, sim) if held_out else []
     return {"material": material, "selection": sel, "held_out": ho, "metrics": l2_metrics(sel, contract),
             "held_out_metrics": l2_metrics(ho, contract) if ho else {}}
 
@@ -412,10 +416,9 @@ def run_l2(asset_dir: Path, request_or_intent: AssetRequest | str | None = None,
             kind = Path(src).name.split("-")[0].removeprefix("L2_")
             recordings[kind] = _copy(src, asset_dir / "recordings" / f"L2_{kind}.rrd")
         with cache.local_runtime():
-            for kind in HELD_OUT_PROBES:
-                r = PROBE_TASKS[kind](**probe_inputs(kind, asset, physical, material, contract, sim, True))
-                held.append(r)
-                recordings[f"{kind}_held_out"] = _copy(r.recording, asset_dir / "recordings" / f"L2_{kind}_held_out.rrd")
+            held = held_out_probes(asset, physical, material, contract, sim)
+        for kind, r in zip(HELD_OUT_PROBES, held):
+            recordings[f"{kind}_held_out"] = _copy(r.recording, asset_dir / "recordings" / f"L2_{kind}_held_out.rrd")
     held_metrics = l2_metrics(held, contract) if held else {}
     held_targets = targets.model_copy(update={"bands": [b for b in targets.bands if b.metric in held_metrics]})
     sim_calls = outcome.sim_calls + int(screening.get("sim_calls", 0)) + sum(r.sim_calls for r in held)

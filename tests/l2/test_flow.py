@@ -59,6 +59,23 @@ def test_material_from_outside_reexecutes_exactly_the_l2_probes(tmp_path: Path, 
     assert sorted(_misses(n2)) == sorted(L2_PROBES)
 
 
+def test_probes_side_by_side_give_what_they_give_one_after_another(tmp_path: Path, monkeypatch: pytest.MonkeyPatch,
+                                                                     prefect_api: str) -> None:
+    """The selection probes and held-out tests run two at a time (flows.harness.call_tasks) with the same results,
+    bit for bit and in the same order, as one at a time (DEFORMSMITH_PROBE_WORKERS=1), each on a cold cache."""
+    d, phys = _asset(tmp_path, monkeypatch)
+    mat = Material(youngs_modulus_pa=2.0e4, poisson_ratio=0.3, damping_rate_per_s=8.0)
+    runs = {}
+    for workers in ("2", "1"):
+        monkeypatch.setenv("DEFORMSMITH_PROBE_WORKERS", workers)
+        monkeypatch.setenv("DEFORMSMITH_CACHE", str(tmp_path / f"cache{workers}"))
+        n0 = len(CacheStore(cache_root()).events())
+        out = l2.evaluate_material(d, mat, physical=phys, contract=_contract())
+        assert sorted(_misses(n0)) == sorted([*L2_PROBES, *HELD_OUT])  # cold: every probe ran
+        runs[workers] = [(r.spec.kind, r.metrics, r.cache_key) for r in (*out["selection"], *out["held_out"])]
+    assert runs["2"] == runs["1"]
+
+
 def test_plush_and_rubber_intents_end_in_different_materials_that_meet_their_targets(
         tmp_path: Path, monkeypatch: pytest.MonkeyPatch, prefect_api: str) -> None:
     """Reduced version on a small box: 'soft plush' and 'firm rubber' each pass every gate and their modulus band;

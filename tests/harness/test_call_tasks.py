@@ -1,0 +1,57 @@
+"""flows.harness.call_tasks / probe_workers: independent probe tasks side by side on the CPU, results in call order,
+errors raised, one at a time on CUDA."""
+
+from __future__ import annotations
+
+import threading
+
+import pytest
+
+from flows.harness import PROBE_WORKERS_ENV, call_tasks, probe_workers
+
+
+def test_calls_run_side_by_side_and_come_back_in_order() -> None:
+    both_in_flight = threading.Barrier(2, timeout=10)  # breaks (fails the test) unless two calls run at once
+
+    def probe(k: int) -> int:
+        if k < 2:
+            both_in_flight.wait()
+        return k * k
+
+    assert call_tasks([(probe, {"k": k}) for k in range(5)], workers=2) == [0, 1, 4, 9, 16]
+
+
+def test_one_worker_calls_in_order_on_the_callers_thread() -> None:
+    seen: list[tuple[int, str]] = []
+
+    def probe(k: int) -> int:
+        seen.append((k, threading.current_thread().name))
+        return k
+
+    assert call_tasks([(probe, {"k": k}) for k in range(3)], workers=1) == [0, 1, 2]
+    assert seen == [(k, threading.current_thread().name) for k in range(3)]
+
+
+def test_an_error_in_one_call_is_raised_after_the_others_finish() -> None:
+    done: list[int] = []
+
+    def probe(k: int) -> int:
+        if k == 0:
+            raise ValueError("probe 0 failed")
+        done.append(k)
+        return k
+
+    with pytest.raises(ValueError, match="probe 0 failed"):
+        call_tasks([(probe, {"k": k}) for k in range(4)], workers=2)
+    assert sorted(done) == [1, 2, 3]
+
+
+def test_workers_follow_calls_cores_env_and_device(monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.delenv(PROBE_WORKERS_ENV, raising=False)
+    assert probe_workers(1) == 1
+    assert probe_workers(6, "cuda") == 1
+    assert 1 <= probe_workers(6) <= 6
+    monkeypatch.setenv(PROBE_WORKERS_ENV, "1")
+    assert probe_workers(6) == 1
+    monkeypatch.setenv(PROBE_WORKERS_ENV, "not a number")
+    assert probe_workers(6) == probe_workers(6, "cpu")
