@@ -127,6 +127,11 @@ def run_case(case: SuiteCase, suite_file: Path, opts: EvalOptions, conditions: l
     return written
 
 
+def _set_env(values: dict[str, str]) -> None:
+    """Worker-process initializer: export `values`."""
+    os.environ.update(values)
+
+
 def _case_job(case_json: str, suite_file: str, opts: EvalOptions, conditions: list[dict]) -> dict[str, Any]:
     """Process entry point: one case, errors caught (a crashed case fails alone, with its reason)."""
     from contracts.evaluation import Condition as _C, SuiteCase as _S
@@ -173,7 +178,11 @@ def evaluate(opts: EvalOptions, progress: Progress | None = None) -> dict[str, A
     else:
         import multiprocessing as mp
 
-        with ProcessPoolExecutor(max_workers=opts.workers, mp_context=mp.get_context("spawn")) as pool:
+        from flows.harness import child_probe_workers
+
+        with ProcessPoolExecutor(max_workers=opts.workers, mp_context=mp.get_context("spawn"),
+                                 initializer=_set_env,  # the cases' probe threads share the cores
+                                 initargs=(child_probe_workers(opts.workers),)) as pool:
             futs = {pool.submit(_case_job, c.model_dump_json(), str(suite_file), opts, cond_json): c for c in todo}
             for f in as_completed(futs):
                 jobs.append(f.result())

@@ -68,15 +68,27 @@ def _with_key(state: Any, key: str | None) -> ProbeResult:
 PROBE_WORKERS_ENV = "DEFORMSMITH_PROBE_WORKERS"
 
 
+def _cores() -> int:
+    try:
+        return len(os.sched_getaffinity(0))
+    except AttributeError:  # not Linux
+        return os.cpu_count() or 1
+
+
+def child_probe_workers(processes: int) -> dict[str, str]:
+    """Environment for one of `processes` concurrent worker processes (batch, eval): the cores shared out, so the
+    workers' probes together do not run more threads than there are cores; empty when the user set the variable."""
+    if PROBE_WORKERS_ENV in os.environ:
+        return {}
+    return {PROBE_WORKERS_ENV: str(max(1, _cores() // max(1, processes)))}
+
+
 def probe_workers(n_calls: int, device: str = "cpu") -> int:
     """Concurrent probe tasks for n_calls independent calls: 1 on CUDA (the probes share the device's stream and its
     graph captures), else min(calls, cores, $DEFORMSMITH_PROBE_WORKERS)."""
     if device != "cpu" or n_calls <= 1:
         return 1
-    try:
-        cores = len(os.sched_getaffinity(0))
-    except AttributeError:  # not Linux
-        cores = os.cpu_count() or 1
+    cores = _cores()
     env = os.environ.get(PROBE_WORKERS_ENV, "").strip()
     cap = int(env) if env.isdigit() and int(env) > 0 else cores
     return max(1, min(n_calls, cores, cap))

@@ -7,7 +7,7 @@ import threading
 
 import pytest
 
-from flows.harness import PROBE_WORKERS_ENV, call_tasks, probe_workers
+from flows.harness import PROBE_WORKERS_ENV, call_tasks, child_probe_workers, probe_workers
 
 
 def test_calls_run_side_by_side_and_come_back_in_order() -> None:
@@ -55,3 +55,25 @@ def test_workers_follow_calls_cores_env_and_device(monkeypatch: pytest.MonkeyPat
     assert probe_workers(6) == 1
     monkeypatch.setenv(PROBE_WORKERS_ENV, "not a number")
     assert probe_workers(6) == probe_workers(6, "cpu")
+
+
+def test_worker_processes_share_the_cores_unless_the_user_chose(monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.delenv(PROBE_WORKERS_ENV, raising=False)
+    one = int(child_probe_workers(1)[PROBE_WORKERS_ENV])
+    assert one >= 1
+    assert child_probe_workers(10 * one) == {PROBE_WORKERS_ENV: "1"}
+    monkeypatch.setenv(PROBE_WORKERS_ENV, "3")
+    assert child_probe_workers(4) == {}
+
+
+def test_eval_worker_processes_get_their_share(monkeypatch: pytest.MonkeyPatch) -> None:
+    """flows.evaluate's worker initializer exports the share in each spawned worker process."""
+    import multiprocessing as mp
+    import os
+    from concurrent.futures import ProcessPoolExecutor
+
+    from flows.evaluate import _set_env
+
+    with ProcessPoolExecutor(max_workers=1, mp_context=mp.get_context("spawn"), initializer=_set_env,
+                             initargs=({PROBE_WORKERS_ENV: "1"},)) as pool:
+        assert pool.submit(os.getenv, PROBE_WORKERS_ENV).result(timeout=120) == "1"
