@@ -285,7 +285,7 @@ def run_batch(requests_jsonl: Path, out_root: Path, concurrency: int = 1, device
     runnable = [item for item in items if item.request is not None]
     if runnable:
         with prefect_api_for_children() as api_url:
-            from flows.harness import child_probe_workers
+            from tasks.probes.workers import child_probe_workers
 
             env = {**os.environ, "PREFECT_API_URL": api_url, ENV_VAR: str(cache_dir),
                    **child_probe_workers(concurrency)}  # the requests' probe threads share the cores

@@ -178,7 +178,7 @@ def evaluate(opts: EvalOptions, progress: Progress | None = None) -> dict[str, A
     else:
         import multiprocessing as mp
 
-        from flows.harness import child_probe_workers
+        from tasks.probes.workers import child_probe_workers
 
         with ProcessPoolExecutor(max_workers=opts.workers, mp_context=mp.get_context("spawn"),
                                  initializer=_set_env,  # the cases' probe threads share the cores

@@ -2,11 +2,9 @@
 
 from __future__ import annotations
 
-import contextvars
+import functools
 import inspect
-import os
 from collections.abc import Callable, Sequence
-from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -21,6 +19,7 @@ from tasks.agents.orchestrator import ProbeRunner, run_stage
 from tasks.agents.records import AttemptRecorder
 from tasks.agents.roles import build_roles
 from tasks.agents.vocab import stage_routes
+from tasks.probes.workers import side_by_side
 
 InputBuilder = Callable[[dict[str, float], str], dict[str, Any]]
 
@@ -62,47 +61,11 @@ def _with_key(state: Any, key: str | None) -> ProbeResult:
     return result
 
 
-# CPU probes run at most this many at a time (env DEFORMSMITH_PROBE_WORKERS; 1 = one after another). Warp's CPU
-# launches release the GIL: two 1k-particle rollouts in two threads take 0.40-0.44 s against 0.60-0.62 s one after
-# another on the 2-core VM (tasks/probes/BENCHMARKS.md), with the same results bit for bit.
-PROBE_WORKERS_ENV = "DEFORMSMITH_PROBE_WORKERS"
-
-
-def _cores() -> int:
-    try:
-        return len(os.sched_getaffinity(0))
-    except AttributeError:  # not Linux
-        return os.cpu_count() or 1
-
-
-def child_probe_workers(processes: int) -> dict[str, str]:
-    """Environment for one of `processes` concurrent worker processes (batch, eval): the cores shared out, so the
-    workers' probes together do not run more threads than there are cores; empty when the user set the variable."""
-    if PROBE_WORKERS_ENV in os.environ:
-        return {}
-    return {PROBE_WORKERS_ENV: str(max(1, _cores() // max(1, processes)))}
-
-
-def probe_workers(n_calls: int, device: str = "cpu") -> int:
-    """Concurrent probe tasks for n_calls independent calls: 1 on CUDA (the probes share the device's stream and its
-    graph captures), else min(calls, cores, $DEFORMSMITH_PROBE_WORKERS)."""
-    if device != "cpu" or n_calls <= 1:
-        return 1
-    cores = _cores()
-    env = os.environ.get(PROBE_WORKERS_ENV, "").strip()
-    cap = int(env) if env.isdigit() and int(env) > 0 else cores
-    return max(1, min(n_calls, cores, cap))
-
-
 def call_tasks(calls: Sequence[tuple[Any, dict[str, Any]]], workers: int = 1) -> list[Any]:
-    """Call each (task, inputs) and return the results in order; up to `workers` at a time in threads, each in a
-    copy of the caller's context (so a call inside a flow run is a task run of that flow, as when called directly).
-    An exception in any call is raised after the others have finished."""
-    if workers <= 1 or len(calls) <= 1:
-        return [t(**kw) for t, kw in calls]
-    with ThreadPoolExecutor(max_workers=workers, thread_name_prefix="probe") as pool:
-        futures = [pool.submit(contextvars.copy_context().run, t, **kw) for t, kw in calls]
-        return [f.result() for f in futures]
+    """Call each (task, inputs) and return the results in order, up to `workers` at a time
+    (tasks.probes.workers.side_by_side: each in a copy of the caller's context, so inside a flow run a call is a task
+    run of that flow, as when called directly)."""
+    return side_by_side([functools.partial(t, **kw) for t, kw in calls], workers)
 
 
 def task_probe_runner(probes: Sequence[ProbeCall], parallel: bool = False) -> ProbeRunner:

@@ -32,13 +32,14 @@ from contracts.probes import ProbeResult
 from contracts.request import AssetRequest
 from contracts.sim import SimConfig
 from contracts.stage import StageContract, load_contract
-from flows.harness import call_tasks, probe_cache_key, probe_workers, run_harness
+from flows.harness import call_tasks, probe_cache_key, run_harness
 from tasks.agents import targets_from_intent, targets_from_request
 from tasks.geometry.outputs import L0Asset, load_l0
 from tasks.probes import deformable
 from tasks.probes.specimen import SPECIMEN_PARTICLES_PER_AXIS, specimen_particles
 from tasks.publish import write_json_atomic
 from tasks.probes.rollout import DeformableBody, plan_batches, rollouts
+from tasks.probes.workers import probe_workers
 
 TASK_VERSION = "2"  # bump when tasks/probes/{deformable,rollout,metrics}.py change what the probes return
 MATERIAL_JSON = "material.json"

@@ -10,6 +10,7 @@ expected ones (another Warp version), it falls back to ``Launch.launch``.
 from __future__ import annotations
 
 import ctypes
+import threading
 from collections.abc import Callable
 from typing import Any
 
@@ -79,3 +80,24 @@ def pack_cpu_launches(cmds: list) -> list:
 
 
 __all__ = ["PackedCpuLaunch", "pack_cpu_launches"]
+
+
+_LOAD_LOCK = threading.Lock()
+_LOADED = False
+
+
+def load_cpu_modules() -> None:
+    """Load every Warp module the CPU engine launches from (once per process, under a lock).
+
+    Warp loads a module at its first launch, and two threads loading the same module at once can replace the
+    executable the other is already running (Warp 1.19's ``Module.load`` holds no lock; a side-by-side L2 run
+    segfaulted that way). Call this before rollouts run side by side in threads."""
+    global _LOADED
+    with _LOAD_LOCK:
+        if _LOADED:
+            return
+        from tasks.mpm import cpu_threads, kernels
+
+        for module in (kernels, cpu_threads, kernels.g2p_p2g_cpu.module):
+            wp.load_module(module, device="cpu")
+        _LOADED = True

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import functools
 import math
 import time
 from collections.abc import Callable, Sequence
@@ -16,6 +17,7 @@ from contracts.probes import HealthStatus, ProbeResult, ProbeSpec
 from contracts.sim import SimConfig
 from tasks.mpm import IntervalReport, SceneSpec, Simulator, build_model
 from tasks.probes.metrics import GateTracker, center_of_mass, kinetic_energy
+from tasks.probes.workers import probe_workers, side_by_side
 from tasks.record import ProbeRecording
 
 RECORDED_FRAMES = 60  # particle frames kept per recording (scalars are logged every sample)
@@ -261,13 +263,16 @@ def plan_batches(body: DeformableBody, materials: Sequence[Material], sim: SimCo
 def run_scheduled(impl: "ProbeImpl", materials: Sequence[Material], record_paths: Sequence[Path | None] | None,
                   body: DeformableBody, sim: SimConfig | None = None, schedule: str = "auto") -> list[ProbeResult]:
     """Run a probe over candidates as planned by plan_batches: each group one batched rollout (run_batched), the groups
-    one after another (deterministic). Results come back in the order of `materials`; each result's sim_calls counts
+    side by side on the CPU (tasks.probes.workers; each group's result is the same as alone: deterministic). Results come back in the order of `materials`; each result's sim_calls counts
     the rollouts it took part in (a batch of 3 is one simulation call: see rollouts())."""
     mats = list(materials)
     paths = list(record_paths or [None] * len(mats))
     out: list[ProbeResult | None] = [None] * len(mats)
-    for group in plan_batches(body, mats, sim, schedule):
-        for i, r in zip(group, run_batched(impl, [mats[i] for i in group], [paths[i] for i in group])):
+    groups = plan_batches(body, mats, sim, schedule)
+    jobs = [functools.partial(run_batched, impl, [mats[i] for i in g], [paths[i] for i in g]) for g in groups]
+    device = sim.device if sim is not None else "cpu"
+    for group, results in zip(groups, side_by_side(jobs, probe_workers(len(jobs), device))):  # CPU: side by side
+        for i, r in zip(group, results):
             out[i] = r
     return [r for r in out if r is not None]
 

@@ -1,5 +1,5 @@
-"""flows.harness.call_tasks / probe_workers: independent probe tasks side by side on the CPU, results in call order,
-errors raised, one at a time on CUDA."""
+"""flows.harness.call_tasks and tasks.probes.workers: independent probe tasks side by side on the CPU, results in call
+order, errors raised, one at a time on CUDA, worker processes sharing the cores."""
 
 from __future__ import annotations
 
@@ -7,7 +7,8 @@ import threading
 
 import pytest
 
-from flows.harness import PROBE_WORKERS_ENV, call_tasks, child_probe_workers, probe_workers
+from flows.harness import call_tasks
+from tasks.probes.workers import PROBE_WORKERS_ENV, child_probe_workers, probe_workers
 
 
 def test_calls_run_side_by_side_and_come_back_in_order() -> None:

@@ -47,6 +47,19 @@ def test_scheduled_candidates_count_one_call_per_rollout_and_match_their_solo_ru
     assert rollouts(plan_batches(body, mats, SimConfig(), "grouped"), grouped) == 2
 
 
+def test_rollouts_side_by_side_match_one_after_another(monkeypatch: pytest.MonkeyPatch) -> None:
+    """The sequential schedule's rollouts run two at a time on the CPU (tasks.probes.workers) and give what they give
+    one after another (DEFORMSMITH_PROBE_WORKERS=1), in the same order."""
+    body = box_body((0.06, 0.06, 0.04), 5)
+    mats = [_mat(1e4), _mat(3e4), _mat(1e4, d=20.0)]
+    runs = {}
+    for workers in ("2", "1"):
+        monkeypatch.setenv("DEFORMSMITH_PROBE_WORKERS", workers)
+        runs[workers] = [(r.metrics, r.sim_calls) for r in stability(body, mats, duration_s=0.1, schedule="sequential")]
+    assert runs["2"] == runs["1"]
+    assert len({str(m) for m, _ in runs["1"]}) == 3  # three different candidates, three different results
+
+
 def test_a_body_at_rest_counts_as_settled_whatever_its_noise_ratio() -> None:
     """Round-off kinetic energy (late ~ peak ~ 2e-9 M g H) is rest, not a failure to decay; real motion is not."""
     M, H = 0.15, 0.085

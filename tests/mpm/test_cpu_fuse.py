@@ -53,3 +53,21 @@ def test_fused_cpu_steps_give_the_separate_passes_rollout_bit_for_bit(threads: i
     for k, v in plain.items():
         np.testing.assert_array_equal(fused[k], v, err_msg=f"{k} ({threads} threads)")
     assert np.abs(fused["collider0"]).sum() > 0 and np.abs(fused["ground1"]).sum() > 0
+
+
+def test_preloaded_modules_cover_every_cpu_launch() -> None:
+    """tasks.mpm.cpu_launch.load_cpu_modules loads what a CPU rollout launches (fused and chunked steps, colliders,
+    re-fits, a sliding lattice): the rollout loads no Warp module after it, so rollouts side by side in threads never
+    load one at the same time."""
+    from warp._src.context import user_modules
+
+    from tasks.mpm.cpu_launch import load_cpu_modules
+
+    def loaded() -> dict:
+        return {name: dict(m.execs) for name, m in list(user_modules.items()) if m.execs}
+
+    load_cpu_modules()
+    before = loaded()
+    assert K.g2p_p2g_cpu.module.name in before and K.__name__ in before
+    _rollout(2)
+    assert loaded() == before

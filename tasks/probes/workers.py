@@ -1,0 +1,62 @@
+"""Independent probe rollouts side by side in threads on the CPU.
+
+Warp's CPU launches release the GIL, and since the engine replays them with a prebuilt argument struct
+(tasks/mpm/cpu_launch.py) little Python runs between them: two 1k-particle rollouts in two threads take 0.40-0.44 s
+against 0.60-0.62 s one after another on the 2-core VM (tasks/mpm/BENCHMARKS.md), with the same results bit for bit.
+On CUDA the rollouts share the device's stream and its graph captures, so they run one at a time there.
+"""
+
+from __future__ import annotations
+
+import contextvars
+import os
+from collections.abc import Callable, Sequence
+from concurrent.futures import ThreadPoolExecutor
+from typing import TypeVar
+
+from tasks.mpm.cpu_launch import load_cpu_modules
+
+T = TypeVar("T")
+
+# at most this many probe rollouts at a time (1 = one after another); default: the cores this process may use
+PROBE_WORKERS_ENV = "DEFORMSMITH_PROBE_WORKERS"
+
+
+def cores() -> int:
+    """CPU cores this process may run on."""
+    try:
+        return len(os.sched_getaffinity(0))
+    except AttributeError:  # not Linux
+        return os.cpu_count() or 1
+
+
+def probe_workers(n_jobs: int, device: str = "cpu") -> int:
+    """Threads for n_jobs independent rollouts: 1 on CUDA, else min(jobs, cores, $DEFORMSMITH_PROBE_WORKERS)."""
+    if device != "cpu" or n_jobs <= 1:
+        return 1
+    env = os.environ.get(PROBE_WORKERS_ENV, "").strip()
+    cap = int(env) if env.isdigit() and int(env) > 0 else cores()
+    return max(1, min(n_jobs, cores(), cap))
+
+
+def child_probe_workers(processes: int) -> dict[str, str]:
+    """Environment for one of `processes` concurrent worker processes (batch, eval): the cores shared out, so the
+    workers' probes together do not run more threads than there are cores; empty when the user set the variable."""
+    if PROBE_WORKERS_ENV in os.environ:
+        return {}
+    return {PROBE_WORKERS_ENV: str(max(1, cores() // max(1, processes)))}
+
+
+def side_by_side(jobs: Sequence[Callable[[], T]], workers: int = 1) -> list[T]:
+    """Run each job (CPU MPM rollouts) and return the results in order; up to `workers` at a time in threads, each in a
+    copy of the caller's context (a Prefect task called inside a flow run stays a task run of that flow). An exception in any job
+    is raised after the others have finished."""
+    if workers <= 1 or len(jobs) <= 1:
+        return [job() for job in jobs]
+    load_cpu_modules()  # no two threads may load a Warp module at once (tasks.mpm.cpu_launch)
+    with ThreadPoolExecutor(max_workers=workers, thread_name_prefix="probe") as pool:
+        futures = [pool.submit(contextvars.copy_context().run, job) for job in jobs]
+        return [f.result() for f in futures]
+
+
+__all__ = ["PROBE_WORKERS_ENV", "child_probe_workers", "cores", "probe_workers", "side_by_side"]
