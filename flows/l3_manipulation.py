@@ -14,6 +14,7 @@ evaluated under held-out conditions (other target positions and initial yaw), re
 
 from __future__ import annotations
 
+import functools
 import json
 import math
 import time
@@ -40,6 +41,7 @@ from tasks.publish import write_json_atomic
 from tasks.manipulation.data import write_attempt
 from tasks.manipulation.outcome import TrialTolerances
 from tasks.manipulation.trial import TrialSettings, plan_or_error, run_trial
+from tasks.probes.workers import probe_workers, side_by_side
 from tasks.robot import select_grasps
 
 TASK_VERSION = "7"  # bump when tasks/manipulation/{trial,outcome,body,frame}.py change what a trial returns (6: settle until
@@ -188,13 +190,23 @@ class L3Context:
     def trial(self, values: dict[str, float], role: str, action: str = "", material: Material | None = None,
               target_xy_m: tuple[float, float] | None = None, yaw_deg: float = 0.0) -> ProbeResult:
         """Run (or fetch from the cache) one trial and store it as an interaction attempt."""
+        plan, inputs = self._trial_inputs(values, material, target_xy_m, yaw_deg)
+        return self._store(trial_task(**inputs), plan, inputs, values, role, action, material, yaw_deg)
+
+    def _trial_inputs(self, values: dict[str, float], material: Material | None,
+                      target_xy_m: tuple[float, float] | None, yaw_deg: float) -> tuple[ActionPlan, dict[str, Any]]:
+        """The plan of a trial and the inputs of its cached task."""
         plan = self.plan(values, target_xy_m, yaw_deg)
         settings = replace(self.options.settings, substeps=int(round(values.get("substeps", 1))),
                            device=self.options.device, cpu_threads=self.options.cpu_threads)
         inputs = {**body_inputs(self.body), "physical": self.physical, "material": material or self.material,
                   "plan": plan, "settings": settings_inputs(settings),
                   "tolerances": asdict(tolerances_from(self.contract))}
-        out = trial_task(**inputs)
+        return plan, inputs
+
+    def _store(self, out: dict[str, Any], plan: ActionPlan, inputs: dict[str, Any], values: dict[str, float],
+               role: str, action: str, material: Material | None, yaw_deg: float) -> ProbeResult:
+        """Store a trial's output as the next interaction attempt; its probe result, keyed."""
         key = probe_cache_key(trial_task, inputs)
         probe: ProbeResult = out["probe"]
         attrs = {"labels": probe.metrics, "plan": plan.model_dump(mode="json"), "info": {k: v for k, v in out["info"].items() if k != "wall_time_s"}, "role": role,
@@ -210,9 +222,14 @@ class L3Context:
 
     def under(self, values: dict[str, float], conditions: tuple[tuple[float, float, float], ...], role: str,
               action: str = "", material: Material | None = None) -> list[ProbeResult]:
-        """One trial per condition (x [m], y [m], yaw [deg]): the robustness or the held-out conditions."""
-        return [self.trial(values, role, action, material=material, target_xy_m=(x, y), yaw_deg=yaw)
-                for x, y, yaw in conditions]
+        """One trial per condition (x [m], y [m], yaw [deg]): the robustness or the held-out conditions. The trials
+        are independent: on the CPU they run side by side (tasks.probes.workers), then are stored as attempts in the
+        order of `conditions`, as one after another would."""
+        runs = [self._trial_inputs(values, material, (x, y), yaw) for x, y, yaw in conditions]
+        outs = side_by_side([functools.partial(trial_task, **inputs) for _, inputs in runs],
+                            probe_workers(len(runs), self.options.device))
+        return [self._store(out, plan, inputs, values, role, action, material, yaw)
+                for (plan, inputs), out, (_, _, yaw) in zip(runs, outs, conditions)]
 
 
 def initial_values(ctx: L3Context) -> dict[str, float]:

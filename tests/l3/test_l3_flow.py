@@ -164,7 +164,12 @@ def _stand_in_robot(monkeypatch: pytest.MonkeyPatch, labels_of, revalidate=None)
                                                                "yaw_deg": yaw_deg}})
         return ProbeResult(spec=ProbeSpec(kind="pick_and_place", params={}), metrics=labels)
 
+    def fake_under(self, values, conditions, role, action="", material=None):  # noqa: ANN001, ANN202
+        return [fake_trial(self, values, role, action, material=material, target_xy_m=(x, y), yaw_deg=yaw)
+                for x, y, yaw in conditions]
+
     monkeypatch.setattr(l3.L3Context, "trial", fake_trial)
+    monkeypatch.setattr(l3.L3Context, "under", fake_under)  # the robot's conditions, one after another
     monkeypatch.setattr(l3, "revalidate_in_l2", revalidate or (lambda *a, **k: {
         "passed": True, "gates": {}, "bands": {}, "metrics": {}, "probe_keys": []}))
 
@@ -223,3 +228,29 @@ def test_a_revised_material_that_fails_the_nominal_condition_is_not_tried_under_
     roles = [a["role"] for a in record["attempts"]]
     assert roles[-1] == "confirmation" and "robustness" not in roles
     assert rev["robustness"] == {"conditions": [], "passed": 0}
+
+
+def test_conditions_side_by_side_give_what_they_give_one_after_another(cube_asset: Path, prefect_api: str,
+                                                                        monkeypatch: pytest.MonkeyPatch,
+                                                                        tmp_path: Path) -> None:
+    """L3Context.under runs a plan's conditions (here the two robustness yaws) two at a time on the CPU and stores them
+    as attempts in the order of the conditions: labels, cache keys and attempts are those of one at a time
+    (DEFORMSMITH_PROBE_WORKERS=1), each on a cold cache."""
+    import cache
+    import flows.l3_manipulation as l3
+
+    gel = _as_gel(cube_asset)
+    options = L3Options(squeeze_depth_m=0.004)
+    runs = {}
+    for workers in ("2", "1"):
+        monkeypatch.setenv("DEFORMSMITH_PROBE_WORKERS", workers)
+        monkeypatch.setenv("DEFORMSMITH_CACHE", str(tmp_path / f"cache{workers}"))
+        shutil.rmtree(cube_asset / "interaction", ignore_errors=True)
+        ctx = l3.load_context(cube_asset, options, _contract(), gel)
+        with cache.local_runtime():
+            results = ctx.under(l3.initial_values(ctx), options.robustness, "robustness")
+        assert len({r.cache_key for r in results}) == 2
+        runs[workers] = ([(r.metrics, r.cache_key, r.recording) for r in results],
+                         [(a["attempt"], a["role"], a["condition"], a["labels"]) for a in ctx.attempts])
+    assert runs["2"] == runs["1"]
+    assert [a[2]["yaw_deg"] for a in runs["2"][1]] == [c[2] for c in options.robustness]
