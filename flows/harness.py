@@ -19,7 +19,7 @@ from tasks.agents.orchestrator import ProbeRunner, run_stage
 from tasks.agents.records import AttemptRecorder
 from tasks.agents.roles import build_roles
 from tasks.agents.vocab import stage_routes
-from tasks.probes.workers import side_by_side
+from tasks.mpm import side_by_side
 
 InputBuilder = Callable[[dict[str, float], str], dict[str, Any]]
 
@@ -62,24 +62,22 @@ def _with_key(state: Any, key: str | None) -> ProbeResult:
 
 
 def call_tasks(calls: Sequence[tuple[Any, dict[str, Any]]], workers: int = 1) -> list[Any]:
-    """Call each (task, inputs) and return the results in order, up to `workers` at a time
-    (tasks.probes.workers.side_by_side: each in a copy of the caller's context, so inside a flow run a call is a task
-    run of that flow, as when called directly)."""
+    """Call each (task, inputs) of CPU MPM probes and return the results in order, up to `workers` at a time
+    (tasks.mpm.side_by_side: each in a copy of the caller's context, so inside a flow run a call is a task run of that
+    flow, as when called directly)."""
     return side_by_side([functools.partial(t, **kw) for t, kw in calls], workers)
 
 
 def task_probe_runner(probes: Sequence[ProbeCall], parallel: bool = False) -> ProbeRunner:
-    """A ProbeRunner that calls each probe task (inside the running flow: cached, a hit runs nothing)."""
+    """A ProbeRunner that calls each probe task (inside the running flow: cached, a hit runs nothing); parallel: all of
+    a candidate's probes at once, in threads."""
 
     def run(values: dict[str, float], action: str) -> list[ProbeResult]:
         calls = [(p.task, {**p.fixed, **p.inputs(dict(values), action)}) for p in probes]
         keys = [probe_cache_key(t, kw) for t, kw in calls]
-        if parallel:
-            futures = [t.submit(**kw) for t, kw in calls]
-            for f in futures:
-                f.wait()
-            return [_with_key(f.state, k) for f, k in zip(futures, keys)]
-        return [_with_key(t(**kw, return_state=True), k) for (t, kw), k in zip(calls, keys)]
+        states = side_by_side([functools.partial(t, **kw, return_state=True) for t, kw in calls],
+                              len(calls) if parallel else 1, device=None)
+        return [_with_key(state, k) for state, k in zip(states, keys)]
 
     return run
 

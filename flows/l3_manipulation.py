@@ -41,7 +41,8 @@ from tasks.publish import write_json_atomic
 from tasks.manipulation.data import write_attempt
 from tasks.manipulation.outcome import TrialTolerances
 from tasks.manipulation.trial import TrialSettings, plan_or_error, run_trial
-from tasks.probes.workers import probe_workers, side_by_side
+from tasks.mpm import side_by_side
+from tasks.probes.workers import probe_workers
 from tasks.robot import select_grasps
 
 TASK_VERSION = "7"  # bump when tasks/manipulation/{trial,outcome,body,frame}.py change what a trial returns (6: settle until
@@ -223,11 +224,11 @@ class L3Context:
     def under(self, values: dict[str, float], conditions: tuple[tuple[float, float, float], ...], role: str,
               action: str = "", material: Material | None = None) -> list[ProbeResult]:
         """One trial per condition (x [m], y [m], yaw [deg]): the robustness or the held-out conditions. The trials
-        are independent: on the CPU they run side by side (tasks.probes.workers), then are stored as attempts in the
+        are independent: on the CPU they run side by side (tasks.mpm.side_by_side), then are stored as attempts in the
         order of `conditions`, as one after another would."""
         runs = [self._trial_inputs(values, material, (x, y), yaw) for x, y, yaw in conditions]
         outs = side_by_side([functools.partial(trial_task, **inputs) for _, inputs in runs],
-                            probe_workers(len(runs), self.options.device))
+                            probe_workers(len(runs), self.options.device), self.options.device)
         return [self._store(out, plan, inputs, values, role, action, material, yaw)
                 for (plan, inputs), out, (_, _, yaw) in zip(runs, outs, conditions)]
 

@@ -61,7 +61,7 @@ from tasks.mpm.model import (
     halfspace_collider,
     pad_collider,
 )
-from tasks.mpm.simulator import IntervalReport, Simulator, advance_parallel
+from tasks.mpm.simulator import IntervalReport, Simulator, advance_parallel, side_by_side
 from tasks.mpm.solver import Solver
 from tasks.mpm.state import State
 
@@ -77,6 +77,7 @@ __all__ = [
     "Solver",
     "State",
     "advance_parallel",
+    "side_by_side",
     "box_collider",
     "build_model",
     "capsule_collider",

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import functools
 import os
 import platform
 import resource
@@ -13,7 +14,7 @@ import warp as wp
 
 from contracts.errors import InputError, SimulationError
 from tasks.mpm.scene import BENCH_DT_S, bench_cube_model
-from tasks.mpm.simulator import Simulator
+from tasks.mpm.simulator import Simulator, side_by_side
 
 
 def _cpu_name() -> str:
@@ -46,7 +47,8 @@ def run_bench(
 ) -> dict:
     """Time `steps` fixed-dt steps of `batch` standard cubes of ~particles each; returns the figures as a dict.
     workers: CPU threads each advancing a share of the batch; cpu_threads: threads sharing each of those rollouts;
-    compare_sequential: also run the batch's scenes one after another in the same process (``sequential_comparison``)."""
+    compare_sequential: also run the batch's scenes one after another in the same process
+    (``sequential_comparison``)."""
     if particles < 8 or steps < 1 or batch < 1 or not 1 <= cpu_threads <= 64:
         raise InputError("need particles >= 8, steps >= 1, batch >= 1, 1 <= cpu_threads <= 64")
     if compare_sequential and batch < 2:
@@ -167,8 +169,6 @@ def sequential_comparison(device: str, n: int, batch: int, steps: int, cpu_threa
 
 def advance_parallel_steps(sims: list[Simulator], duration: float, steps: int) -> list:
     """Advance each simulator by exactly `steps` steps, concurrently in threads."""
-    from concurrent.futures import ThreadPoolExecutor
-
-    with ThreadPoolExecutor(max_workers=len(sims)) as pool:
-        return list(pool.map(lambda s: s.advance(duration, max_steps=steps), sims))
+    return side_by_side([functools.partial(s.advance, duration, max_steps=steps) for s in sims], len(sims),
+                        sims[0].model.device)
 

@@ -2,18 +2,24 @@
 
 from __future__ import annotations
 
+import contextvars
+import functools
 import math
+from collections.abc import Callable
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
-from typing import Sequence
+from typing import Sequence, TypeVar
 
 import numpy as np
 
 from tasks.mpm.control import Control
+from tasks.mpm.cpu_launch import load_cpu_modules
 from tasks.mpm.health import FATAL, FLAG_NAMES, HealthIssue, HealthStatus
 from tasks.mpm.model import Model
 from tasks.mpm.solver import INT_MAX, Solver
 from tasks.mpm.state import State
+
+T = TypeVar("T")
 
 OUT_OF_GRID = FLAG_NAMES.index("out_of_grid")
 
@@ -212,9 +218,22 @@ def _detail(name: str, model: Model) -> str:
     }.get(name, "")
 
 
+def side_by_side(jobs: Sequence[Callable[[], T]], workers: int = 1, device: str | None = "cpu") -> list[T]:
+    """Run each job and return the results in order; up to `workers` at a time in threads (Warp's CPU launches release
+    the GIL), each in a copy of the caller's context (a Prefect task called inside a flow run stays a task run of that
+    flow). device="cpu": the jobs launch CPU kernels, so the engine's modules are loaded first (no two threads may load
+    a Warp module at once: tasks.mpm.cpu_launch.load_cpu_modules). An exception in any job is raised after the others
+    have finished."""
+    if workers <= 1 or len(jobs) <= 1:
+        return [job() for job in jobs]
+    if device == "cpu":
+        load_cpu_modules()
+    with ThreadPoolExecutor(max_workers=workers, thread_name_prefix="side-by-side") as pool:
+        futures = [pool.submit(contextvars.copy_context().run, job) for job in jobs]
+        return [f.result() for f in futures]
+
+
 def advance_parallel(sims: Sequence[Simulator], duration_s: float) -> list[IntervalReport]:
     """Advance several independent simulators concurrently in threads (Warp CPU launches release the GIL)."""
-    if len(sims) == 1:
-        return [sims[0].advance(duration_s)]
-    with ThreadPoolExecutor(max_workers=len(sims)) as pool:
-        return list(pool.map(lambda s: s.advance(duration_s), sims))
+    device = sims[0].model.device if sims else "cpu"
+    return side_by_side([functools.partial(s.advance, duration_s) for s in sims], len(sims), device)

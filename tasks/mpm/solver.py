@@ -223,13 +223,17 @@ class Solver:
             self._dt_host = dt32
         return dt32
 
-    def step(self, state_in: State, state_out: State, control: Control, dt: float) -> None:
-        """Advance all scenes by dt [s]: state_out = step(state_in); state_out may be state_in (in place)."""
+    def _begin(self, control: Control, dt: float) -> float:
+        """Check dt [s], apply the control's pending changes and set the device time step; returns it (float32)."""
         if not (dt > 0.0) or not np.isfinite(dt):
             raise ValueError("dt must be a positive finite number of seconds")
         control.sync(self.time_s)
-        dt32 = self.set_dt(dt)
         self._slide = control.d_grid_slide
+        return self.set_dt(dt)
+
+    def step(self, state_in: State, state_out: State, control: Control, dt: float) -> None:
+        """Advance all scenes by dt [s]: state_out = step(state_in); state_out may be state_in (in place)."""
+        dt32 = self._begin(control, dt)
         refit = self._since_refit >= self.refit_interval(control)
         self._replay_step(state_in, state_out, control, refit)
         self._since_refit = 0 if refit else self._since_refit + 1
@@ -298,11 +302,7 @@ class Solver:
     def _advance_cpu_fused(self, state: State, control: Control, dt: float, count: int) -> None:
         """CPU: `count` in-place steps of dt [s], each g2p fused with the next step's p2g where no re-fit comes
         between them and the call goes on (the last step ends with a plain g2p: the state is whole between calls)."""
-        if not (dt > 0.0) or not np.isfinite(dt):
-            raise ValueError("dt must be a positive finite number of seconds")
-        control.sync(self.time_s)
-        dt32 = self.set_dt(dt)
-        self._slide = control.d_grid_slide
+        dt32 = self._begin(control, dt)
         R = self.refit_interval(control)
         fused_prev = False  # this step's p2g ran inside the previous step's g2p
         for k in range(count):

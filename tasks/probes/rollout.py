@@ -15,9 +15,9 @@ from contracts.material import Material
 from contracts.physical import PhysicalModel
 from contracts.probes import HealthStatus, ProbeResult, ProbeSpec
 from contracts.sim import SimConfig
-from tasks.mpm import IntervalReport, SceneSpec, Simulator, build_model
+from tasks.mpm import IntervalReport, SceneSpec, Simulator, build_model, side_by_side
 from tasks.probes.metrics import GateTracker, center_of_mass, kinetic_energy
-from tasks.probes.workers import probe_workers, side_by_side
+from tasks.probes.workers import probe_workers
 from tasks.record import ProbeRecording
 
 RECORDED_FRAMES = 60  # particle frames kept per recording (scalars are logged every sample)
@@ -263,15 +263,16 @@ def plan_batches(body: DeformableBody, materials: Sequence[Material], sim: SimCo
 def run_scheduled(impl: "ProbeImpl", materials: Sequence[Material], record_paths: Sequence[Path | None] | None,
                   body: DeformableBody, sim: SimConfig | None = None, schedule: str = "auto") -> list[ProbeResult]:
     """Run a probe over candidates as planned by plan_batches: each group one batched rollout (run_batched), the groups
-    side by side on the CPU (tasks.probes.workers; each group's result is the same as alone: deterministic). Results come back in the order of `materials`; each result's sim_calls counts
-    the rollouts it took part in (a batch of 3 is one simulation call: see rollouts())."""
+    side by side on the CPU (tasks.probes.workers; a group's result is the same as alone: deterministic). Results come
+    back in the order of `materials`; each result's sim_calls counts the rollouts it took part in (a batch of 3 is one
+    simulation call: see rollouts())."""
     mats = list(materials)
     paths = list(record_paths or [None] * len(mats))
     out: list[ProbeResult | None] = [None] * len(mats)
     groups = plan_batches(body, mats, sim, schedule)
     jobs = [functools.partial(run_batched, impl, [mats[i] for i in g], [paths[i] for i in g]) for g in groups]
     device = sim.device if sim is not None else "cpu"
-    for group, results in zip(groups, side_by_side(jobs, probe_workers(len(jobs), device))):  # CPU: side by side
+    for group, results in zip(groups, side_by_side(jobs, probe_workers(len(jobs), device), device)):
         for i, r in zip(group, results):
             out[i] = r
     return [r for r in out if r is not None]

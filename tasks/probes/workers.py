@@ -1,4 +1,4 @@
-"""Independent probe rollouts side by side in threads on the CPU.
+"""How many independent probe rollouts run side by side in threads on the CPU (tasks.mpm.side_by_side runs them).
 
 Warp's CPU launches release the GIL, and since the engine replays them with a prebuilt argument struct
 (tasks/mpm/cpu_launch.py) little Python runs between them: two 1k-particle rollouts in two threads take 0.40-0.44 s
@@ -8,15 +8,7 @@ On CUDA the rollouts share the device's stream and its graph captures, so they r
 
 from __future__ import annotations
 
-import contextvars
 import os
-from collections.abc import Callable, Sequence
-from concurrent.futures import ThreadPoolExecutor
-from typing import TypeVar
-
-from tasks.mpm.cpu_launch import load_cpu_modules
-
-T = TypeVar("T")
 
 # at most this many probe rollouts at a time (1 = one after another); default: the cores this process may use
 PROBE_WORKERS_ENV = "DEFORMSMITH_PROBE_WORKERS"
@@ -47,16 +39,4 @@ def child_probe_workers(processes: int) -> dict[str, str]:
     return {PROBE_WORKERS_ENV: str(max(1, cores() // max(1, processes)))}
 
 
-def side_by_side(jobs: Sequence[Callable[[], T]], workers: int = 1) -> list[T]:
-    """Run each job (CPU MPM rollouts) and return the results in order; up to `workers` at a time in threads, each in a
-    copy of the caller's context (a Prefect task called inside a flow run stays a task run of that flow). An exception in any job
-    is raised after the others have finished."""
-    if workers <= 1 or len(jobs) <= 1:
-        return [job() for job in jobs]
-    load_cpu_modules()  # no two threads may load a Warp module at once (tasks.mpm.cpu_launch)
-    with ThreadPoolExecutor(max_workers=workers, thread_name_prefix="probe") as pool:
-        futures = [pool.submit(contextvars.copy_context().run, job) for job in jobs]
-        return [f.result() for f in futures]
-
-
-__all__ = ["PROBE_WORKERS_ENV", "child_probe_workers", "cores", "probe_workers", "side_by_side"]
+__all__ = ["PROBE_WORKERS_ENV", "child_probe_workers", "cores", "probe_workers"]

@@ -6,24 +6,17 @@ from __future__ import annotations
 
 import numpy as np
 
-from contracts.material import Material
 from contracts.sim import SimConfig
-from tasks.mpm import Simulator, box_collider, build_model
+from tasks.mpm import Simulator, build_model
 from tasks.mpm import cpu_launch
 from tasks.mpm import solver as solver_mod
 from tasks.mpm.cpu_launch import PackedCpuLaunch, pack_cpu_launches
-from tasks.mpm.scene import box_scene
-
-MAT = Material(youngs_modulus_pa=1e5, poisson_ratio=0.3, damping_rate_per_s=5.0)
+from tests.mpm.scenes import pressed_and_thrown
 
 
 def _rollout(threads: int) -> tuple[dict, Simulator]:
     """A cube pressed by a moving box and a second cube thrown onto the ground, 0.03 s."""
-    a = box_scene((0.0, 0.0, 0.001), (0.04, 0.04, 0.041), 0.0025, MAT, 400.0,
-                  colliders=[box_collider((0.02, 0.05, 0.05), position_m=(-0.021, 0.02, 0.03), friction=0.6,
-                                          linear_velocity_m_per_s=(0.2, 0.0, 0.0))])
-    b = box_scene((0.0, 0.0, 0.002), (0.035, 0.04, 0.042), 0.0025, MAT, 400.0, velocity_m_per_s=(0.5, 0.0, -0.3))
-    sim = Simulator(build_model([a, b], SimConfig(device="cpu", dt_fixed_s=1e-4, cpu_threads=threads)))
+    sim = Simulator(build_model(pressed_and_thrown(), SimConfig(device="cpu", dt_fixed_s=1e-4, cpu_threads=threads)))
     rep = sim.advance(0.03)
     assert rep.health.ok
     out = dict(sim.particles())

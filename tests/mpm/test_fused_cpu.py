@@ -7,22 +7,16 @@ from __future__ import annotations
 
 import numpy as np
 
-from contracts.material import Material
 from contracts.sim import SimConfig
-from tasks.mpm import Simulator, box_collider, build_model
+from tasks.mpm import Simulator, build_model
 from tasks.mpm import kernels_cuda as KC
-from tasks.mpm.scene import box_scene
-
-MAT = Material(youngs_modulus_pa=1e5, poisson_ratio=0.3, damping_rate_per_s=5.0)
+from tests.mpm.scenes import pressed_and_thrown
 
 
 def _model():
     """A cube pressed by a moving box and a thrown cube in shuffled order, both landing on the ground."""
     rng = np.random.default_rng(5)
-    a = box_scene((0.0, 0.0, 0.001), (0.04, 0.04, 0.041), 0.005, MAT, 400.0,
-                  colliders=[box_collider((0.02, 0.05, 0.05), position_m=(-0.021, 0.02, 0.03), friction=0.6,
-                                          linear_velocity_m_per_s=(0.2, 0.0, 0.0))])
-    b = box_scene((0.0, 0.0, 0.002), (0.035, 0.04, 0.042), 0.005, MAT, 400.0, velocity_m_per_s=(0.5, 0.0, -0.3))
+    a, b = pressed_and_thrown(0.005)
     perm = rng.permutation(len(b.positions_m))
     b.positions_m, b.volumes_m3 = b.positions_m[perm], b.volumes_m3[perm]
     b.velocities_m_per_s = b.velocities_m_per_s[perm]
