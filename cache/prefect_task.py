@@ -18,7 +18,7 @@ from typing import Any, Literal, Optional, TypeVar
 
 from prefect import Task, task
 from prefect.cache_policies import CachePolicy
-from prefect.context import TaskRunContext
+from prefect.context import FlowRunContext, TaskRunContext
 from prefect.filesystems import WritableFileSystem
 from prefect.serializers import Serializer
 
@@ -26,6 +26,7 @@ from cache import codec
 from cache.config import cache_root
 from cache.hashing import content_key
 from cache.locks import FlockLockManager
+from cache.runtime import local_runtime
 from cache.store import CacheStore
 from contracts.errors import CacheError
 
@@ -313,7 +314,12 @@ class CachedTask(Task):  # type: ignore[type-arg]
 
     def __call__(self, *args: Any, **kwargs: Any) -> Any:
         """Run (or reuse) the task; file outputs come back inside the cache."""
-        out = super().__call__(*args, **kwargs)
+        if FlowRunContext.get() is None and TaskRunContext.get() is None:
+            # called outside any flow: the same local runtime as the flows (the prestarted server, no heartbeat)
+            with local_runtime():
+                out = super().__call__(*args, **kwargs)
+        else:
+            out = super().__call__(*args, **kwargs)
         if kwargs.get("return_state"):
             return out
         if inspect.isawaitable(out):

@@ -240,7 +240,9 @@ def prefect_api_for_children() -> Iterator[str]:
     """An API URL the child processes share: the configured one, else one local server for the whole batch."""
     from prefect.settings import PREFECT_API_URL
 
-    url = PREFECT_API_URL.value()
+    from cache.runtime import prestarted_api_url
+
+    url = PREFECT_API_URL.value() or prestarted_api_url()
     if url:
         yield str(url)
         return

@@ -21,8 +21,21 @@ from flows.cli import manipulate_cmds  # noqa: E402,F401
 from flows.cli import eval_cmds  # noqa: E402,F401
 
 
+# commands that run Prefect flows: their process starts Prefect's local API server first thing, in the background
+FLOW_COMMANDS = frozenset({"generate", "geometry", "physical", "material", "manipulate", "probe", "eval", "batch"})
+
+
+def _prestart_for(argv: list[str]) -> None:
+    """Prestart the local Prefect server when the command line runs flows (not for --help)."""
+    if argv and argv[0] in FLOW_COMMANDS and not {"--help", "-h"} & set(argv):
+        from cache.runtime import prestart_local_server
+
+        prestart_local_server()
+
+
 def main() -> None:
     """Run the CLI; a DeformSmithError becomes one line on stderr and its exit code."""
+    _prestart_for(sys.argv[1:])
     try:
         app()
     except DeformSmithError as exc:

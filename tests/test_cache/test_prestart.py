@@ -1,0 +1,83 @@
+"""Prefect's local API server started in the background by flow commands (cache.runtime.prestart_local_server)."""
+
+from __future__ import annotations
+
+import json
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+import cache.runtime as runtime
+from flows.cli import main as cli_main
+
+REPO = Path(__file__).resolve().parents[2]
+
+_SCRIPT = """
+import json, os, sys, time
+t0 = time.perf_counter()
+from cache.runtime import prestart_local_server, prestarted_api_url, local_runtime
+prestart_local_server()
+from prefect import flow
+from prefect.settings import PREFECT_API_URL
+
+@flow
+def double(x: int) -> int:
+    return 2 * x
+
+with local_runtime():
+    used = str(PREFECT_API_URL.value())
+    value = double(21)
+print(json.dumps({"url": prestarted_api_url(), "used": used, "value": value,
+                  "server_module_imported": "prefect.server.api.server" in sys.modules}))
+"""
+
+
+def test_a_flow_runs_against_the_prestarted_server_and_the_process_never_imports_the_server_module(
+        tmp_path: Path) -> None:
+    env = {k: v for k, v in os.environ.items() if k != "PREFECT_API_URL"}
+    env.update(PREFECT_HOME=str(tmp_path / "prefect-home"), PYTHONPATH=str(REPO))
+    res = subprocess.run([sys.executable, "-c", _SCRIPT], cwd=REPO, env=env, capture_output=True, text=True,
+                         timeout=300)
+    assert res.returncode == 0, res.stderr[-2000:]
+    out = json.loads(res.stdout.strip().splitlines()[-1])
+    assert out["value"] == 42
+    assert out["url"] and out["url"].startswith("http://127.0.0.1:") and out["url"].endswith("/api")
+    assert out["used"] == out["url"]
+    assert out["server_module_imported"] is False  # Prefect's own temporary server was never started
+
+
+def test_no_prestart_when_prefect_is_pointed_at_a_server(monkeypatch: pytest.MonkeyPatch) -> None:
+    fresh = runtime._Prestart()
+    monkeypatch.setattr(runtime, "_PRESTART", fresh)
+    monkeypatch.setenv("PREFECT_API_URL", "http://127.0.0.1:1/api")
+    runtime.prestart_local_server()
+    assert fresh.thread is None and runtime.prestarted_api_url() is None
+
+
+def test_only_flow_commands_prestart(monkeypatch: pytest.MonkeyPatch) -> None:
+    calls: list[int] = []
+    monkeypatch.setattr(runtime, "prestart_local_server", lambda: calls.append(1))
+    for argv in (["generate"], ["material", "--asset", "x"], ["batch", "r.jsonl"], ["eval", "--suite", "s"]):
+        cli_main._prestart_for(argv)
+    assert len(calls) == 4
+    for argv in ([], ["inspect", "d"], ["schema", "--list"], ["bench", "mpm"], ["generate", "--help"],
+                 ["verify", "physics"]):
+        cli_main._prestart_for(argv)
+    assert len(calls) == 4
+
+
+def test_a_server_that_does_not_come_up_leaves_flows_on_prefects_own(monkeypatch: pytest.MonkeyPatch) -> None:
+    fresh = runtime._Prestart()
+    monkeypatch.setattr(runtime, "_PRESTART", fresh)
+    monkeypatch.delenv("PREFECT_API_URL", raising=False)
+
+    def broken(port: int) -> subprocess.Popen:
+        return subprocess.Popen([sys.executable, "-c", "import sys; sys.exit(1)"])
+
+    monkeypatch.setattr(runtime, "_start_server_process", broken)
+    runtime.prestart_local_server()
+    assert runtime.prestarted_api_url() is None
+    assert fresh.process is None
