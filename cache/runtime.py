@@ -47,6 +47,20 @@ def uses_remote_server() -> bool:
 
 HEALTH_POLL_S = 0.05
 
+# The server process runs uvicorn behind a watchdog thread that exits it once its parent is gone: a command killed
+# (SIGKILL, a crash) or ending before the server is up must not leave it running, holding the command's stderr open
+_SERVE = """
+import os, runpy, sys, threading, time
+parent = os.getppid()
+def watch():
+    while os.getppid() == parent:
+        time.sleep(0.5)
+    os._exit(0)
+threading.Thread(target=watch, daemon=True).start()
+sys.argv = ["uvicorn", *sys.argv[1:]]
+runpy.run_module("uvicorn", run_name="__main__")
+"""
+
 
 class _Prestart:
     """Prefect's local API server, started on a background thread while the command imports and loads.
@@ -55,27 +69,43 @@ class _Prestart:
     with a new PREFECT_HOME (the database is created), after ~2 s of importing its server module in the calling
     process. Here the same app (``prefect.server.api.server:create_app`` under uvicorn, as Prefect runs it) starts
     first thing, in a process of its own, so its start overlaps the command's imports; the calling process never
-    imports the server module. If it does not come up, flows fall back to Prefect's own temporary server."""
+    imports the server module. If it does not come up, flows fall back to Prefect's own temporary server. The server
+    stops at exit (``close``, an atexit hook registered before the thread starts), and by itself if the command dies."""
 
     def __init__(self) -> None:
         self.thread: threading.Thread | None = None
         self.api_url: str | None = None
         self.process: subprocess.Popen | None = None
+        self.closed = False
         self.lock = threading.Lock()
 
     def run(self) -> None:
         for _ in range(3):  # a port taken between choosing and binding: uvicorn exits with code 3
             port = _free_port()
-            self.process = _start_server_process(port)
-            atexit.register(self.stop)
-            if _wait_healthy(self.process, port):
+            with self.lock:
+                if self.closed:  # the command is exiting: start nothing
+                    return
+                self.process = _start_server_process(port)
+                proc = self.process
+            if _wait_healthy(proc, port):
                 self.api_url = f"http://127.0.0.1:{port}/api"
                 return
-            self.stop()
+            self._stop(proc)
+            with self.lock:
+                if self.process is proc:
+                    self.process = None
 
-    def stop(self) -> None:
-        proc, self.process = self.process, None
-        if proc is None or proc.poll() is not None:
+    def close(self) -> None:
+        """Stop the server (if one started) and start none after this."""
+        with self.lock:
+            self.closed = True
+            proc, self.process = self.process, None
+        if proc is not None:
+            self._stop(proc)
+
+    @staticmethod
+    def _stop(proc: subprocess.Popen) -> None:
+        if proc.poll() is not None:
             return
         proc.terminate()
         try:
@@ -101,7 +131,7 @@ def _start_server_process(port: int) -> subprocess.Popen:
         raise ModuleNotFoundError("prefect")
     app_dir = Path(spec.origin).parent.parent
     env = {**os.environ, "PREFECT_UI_ENABLED": "0", "PREFECT__SERVER_EPHEMERAL": "1", "PREFECT__SERVER_FINAL": "1"}
-    args = [sys.executable, "-m", "uvicorn", "--app-dir", str(app_dir), "--factory",
+    args = [sys.executable, "-c", _SERVE, "--app-dir", str(app_dir), "--factory",
             "prefect.server.api.server:create_app", "--host", "127.0.0.1", "--port", str(port), "--log-level",
             "error", "--lifespan", "on"]
     # stdout stays clean for --json output; errors still reach stderr
@@ -132,7 +162,8 @@ def prestart_local_server() -> None:
     if os.environ.get("PREFECT_API_URL"):
         return
     with _PRESTART.lock:
-        if _PRESTART.thread is None:
+        if _PRESTART.thread is None and not _PRESTART.closed:
+            atexit.register(_PRESTART.close)
             _PRESTART.thread = threading.Thread(target=_safe_run, name="prefect-server-start", daemon=True)
             _PRESTART.thread.start()
 

@@ -4,8 +4,10 @@ from __future__ import annotations
 
 import json
 import os
+import signal
 import subprocess
 import sys
+import time
 from pathlib import Path
 
 import pytest
@@ -37,16 +39,57 @@ print(json.dumps({"url": prestarted_api_url(), "used": used, "value": value,
 
 def test_a_flow_runs_against_the_prestarted_server_and_the_process_never_imports_the_server_module(
         tmp_path: Path) -> None:
-    env = {k: v for k, v in os.environ.items() if k != "PREFECT_API_URL"}
-    env.update(PREFECT_HOME=str(tmp_path / "prefect-home"), PYTHONPATH=str(REPO))
-    res = subprocess.run([sys.executable, "-c", _SCRIPT], cwd=REPO, env=env, capture_output=True, text=True,
-                         timeout=300)
+    res = subprocess.run([sys.executable, "-c", _SCRIPT], cwd=REPO, env=_env(tmp_path), capture_output=True,
+                         text=True, timeout=300)
     assert res.returncode == 0, res.stderr[-2000:]
     out = json.loads(res.stdout.strip().splitlines()[-1])
     assert out["value"] == 42
     assert out["url"] and out["url"].startswith("http://127.0.0.1:") and out["url"].endswith("/api")
     assert out["used"] == out["url"]
     assert out["server_module_imported"] is False  # Prefect's own temporary server was never started
+
+
+_KILLED = """
+import sys, time
+from cache.runtime import _PRESTART, prestart_local_server, prestarted_api_url
+prestart_local_server()
+assert prestarted_api_url()
+print(_PRESTART.process.pid, flush=True)
+time.sleep(600)
+"""
+
+
+def _env(tmp_path: Path) -> dict[str, str]:
+    env = {k: v for k, v in os.environ.items() if k != "PREFECT_API_URL"}
+    env.update(PREFECT_HOME=str(tmp_path / "prefect-home"), PYTHONPATH=str(REPO))
+    return env
+
+
+def test_the_server_exits_when_its_command_is_killed(tmp_path: Path) -> None:
+    proc = subprocess.Popen([sys.executable, "-c", _KILLED], cwd=REPO, env=_env(tmp_path), stdout=subprocess.PIPE,
+                            stderr=subprocess.DEVNULL, text=True)
+    try:
+        server_pid = int(proc.stdout.readline())
+    finally:
+        proc.kill()  # SIGKILL: no atexit hook runs
+        proc.wait(timeout=30)
+    deadline = time.time() + 20
+    while time.time() < deadline and Path(f"/proc/{server_pid}").exists():
+        time.sleep(0.2)
+    gone = not Path(f"/proc/{server_pid}").exists()
+    if not gone:
+        os.kill(server_pid, signal.SIGKILL)
+    assert gone, "the server outlived its command"
+
+
+def test_a_command_that_exits_at_once_is_not_held_open_by_the_server(tmp_path: Path) -> None:
+    # the server inherits stderr: a server started (or starting) after the command's exit would hold a caller's
+    # pipe open, and a caller reading it to the end would wait forever (a CI hang before the atexit close)
+    for _ in range(3):
+        t0 = time.time()
+        res = subprocess.run([sys.executable, "-m", "flows.cli.main", "generate", "a sponge", "--quality", "ultra"],
+                             cwd=REPO, env=_env(tmp_path), capture_output=True, text=True, timeout=120)
+        assert res.returncode != 0 and res.stderr.startswith("error:") and time.time() - t0 < 60
 
 
 def test_no_prestart_when_prefect_is_pointed_at_a_server(monkeypatch: pytest.MonkeyPatch) -> None:
