@@ -38,11 +38,23 @@ def configure_prefect_env() -> None:
     os.environ.setdefault("PREFECT_SERVER_EPHEMERAL_STARTUP_TIMEOUT_SECONDS", "180")
 
 
+# the API URL of a local server DeformSmith started for this process or for its parent (a batch or an evaluation
+# sharing one server with its workers): flows against it run as locally as against Prefect's own temporary server
+LOCAL_API_ENV = "DEFORMSMITH_LOCAL_PREFECT_API"
+
+
 def uses_remote_server() -> bool:
-    """True when the user points Prefect at their own server with PREFECT_API_URL."""
+    """True when the user points Prefect at their own server with PREFECT_API_URL (a local server DeformSmith
+    started, named in DEFORMSMITH_LOCAL_PREFECT_API, is not theirs)."""
     from prefect.settings import PREFECT_API_URL
 
-    return bool(PREFECT_API_URL.value())
+    url = PREFECT_API_URL.value()
+    return bool(url) and str(url) != os.environ.get(LOCAL_API_ENV)
+
+
+def local_api_env(url: str) -> dict[str, str]:
+    """Environment for a child process that uses the local server at `url` started here."""
+    return {"PREFECT_API_URL": url, LOCAL_API_ENV: url}
 
 
 HEALTH_POLL_S = 0.05
@@ -89,6 +101,7 @@ class _Prestart:
                 proc = self.process
             if _wait_healthy(proc, port):
                 self.api_url = f"http://127.0.0.1:{port}/api"
+                os.environ[LOCAL_API_ENV] = self.api_url  # and for the child processes that will share it
                 return
             self._stop(proc)
             with self.lock:

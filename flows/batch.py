@@ -236,22 +236,26 @@ def run_one(item: BatchItem, out_root: Path, device: str, job: str, env: dict[st
 
 
 @contextmanager
-def prefect_api_for_children() -> Iterator[str]:
-    """An API URL the child processes share: the configured one, else one local server for the whole batch."""
-    from prefect.settings import PREFECT_API_URL
+def prefect_api_for_children() -> Iterator[dict[str, str]]:
+    """The Prefect environment the child processes share: the user's server, else one local server for the whole
+    batch (marked local, so that the children's flows run without heartbeats, as against their own)."""
+    from cache.runtime import local_api_env, prestarted_api_url, uses_remote_server
 
-    from cache.runtime import prestarted_api_url
+    if uses_remote_server():
+        from prefect.settings import PREFECT_API_URL
 
-    url = PREFECT_API_URL.value() or prestarted_api_url()
+        yield {"PREFECT_API_URL": str(PREFECT_API_URL.value())}
+        return
+    url = prestarted_api_url()
     if url:
-        yield str(url)
+        yield local_api_env(url)
         return
     from prefect.server.api.server import SubprocessASGIServer
 
     server = SubprocessASGIServer()
     server.start(timeout=120)
     try:
-        yield server.api_url
+        yield local_api_env(server.api_url)
     finally:
         server.stop()
 
@@ -286,10 +290,10 @@ def run_batch(requests_jsonl: Path, out_root: Path, concurrency: int = 1, device
     t0 = time.perf_counter()
     runnable = [item for item in items if item.request is not None]
     if runnable:
-        with prefect_api_for_children() as api_url:
+        with prefect_api_for_children() as prefect_env:
             from tasks.probes.workers import child_probe_workers
 
-            env = {**os.environ, "PREFECT_API_URL": api_url, ENV_VAR: str(cache_dir),
+            env = {**os.environ, **prefect_env, ENV_VAR: str(cache_dir),
                    **child_probe_workers(concurrency)}  # the requests' probe threads share the cores
             with ThreadPoolExecutor(max_workers=concurrency) as pool:
                 futures = [pool.submit(run_one, item, out_root, device, job, env, cache_dir, timeout_s)

@@ -178,11 +178,15 @@ def evaluate(opts: EvalOptions, progress: Progress | None = None) -> dict[str, A
     else:
         import multiprocessing as mp
 
+        from cache.runtime import local_api_env, prestarted_api_url, uses_remote_server
         from tasks.probes.workers import child_probe_workers
 
+        # the workers share this process's local Prefect server instead of each starting one (a user's server: theirs)
+        url = None if uses_remote_server() else prestarted_api_url()
+        env = {**child_probe_workers(opts.workers), **(local_api_env(url) if url else {})}
         with ProcessPoolExecutor(max_workers=opts.workers, mp_context=mp.get_context("spawn"),
                                  initializer=_set_env,  # the cases' probe threads share the cores
-                                 initargs=(child_probe_workers(opts.workers),)) as pool:
+                                 initargs=(env,)) as pool:
             futs = {pool.submit(_case_job, c.model_dump_json(), str(suite_file), opts, cond_json): c for c in todo}
             for f in as_completed(futs):
                 jobs.append(f.result())

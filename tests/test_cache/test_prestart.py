@@ -124,3 +124,46 @@ def test_a_server_that_does_not_come_up_leaves_flows_on_prefects_own(monkeypatch
     runtime.prestart_local_server()
     assert runtime.prestarted_api_url() is None
     assert fresh.process is None
+
+
+def test_a_local_server_shared_by_a_parent_is_not_the_users_server(monkeypatch: pytest.MonkeyPatch) -> None:
+    from prefect.settings import PREFECT_API_URL, temporary_settings
+
+    url = "http://127.0.0.1:9/api"
+    monkeypatch.setenv(runtime.LOCAL_API_ENV, url)
+    with temporary_settings({PREFECT_API_URL: url}):
+        assert not runtime.uses_remote_server()  # flows run without heartbeats, as against their own server
+    with temporary_settings({PREFECT_API_URL: "http://10.0.0.7:4200/api"}):
+        assert runtime.uses_remote_server()
+
+
+def test_batch_children_share_the_prestarted_server_marked_local(monkeypatch: pytest.MonkeyPatch) -> None:
+    from flows.batch import prefect_api_for_children
+
+    fresh = runtime._Prestart()
+    fresh.thread, fresh.api_url = _done_thread(), "http://127.0.0.1:9/api"
+    monkeypatch.setattr(runtime, "_PRESTART", fresh)
+    with prefect_api_for_children() as env:
+        assert env == {"PREFECT_API_URL": fresh.api_url, runtime.LOCAL_API_ENV: fresh.api_url}
+
+
+def _done_thread():
+    import threading
+
+    t = threading.Thread(target=lambda: None)
+    t.start()
+    t.join()
+    return t
+
+
+def test_spawned_workers_see_the_shared_server_as_local() -> None:
+    import multiprocessing as mp
+    from concurrent.futures import ProcessPoolExecutor
+
+    from flows.evaluate import _set_env
+
+    url = "http://127.0.0.1:9/api"
+    for env, remote in ((runtime.local_api_env(url), False), ({"PREFECT_API_URL": url}, True)):
+        with ProcessPoolExecutor(max_workers=1, mp_context=mp.get_context("spawn"), initializer=_set_env,
+                                 initargs=(env,)) as pool:
+            assert pool.submit(runtime.uses_remote_server).result(timeout=120) is remote
