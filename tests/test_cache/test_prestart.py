@@ -143,8 +143,15 @@ def test_batch_children_share_the_prestarted_server_marked_local(monkeypatch: py
     fresh = runtime._Prestart()
     fresh.thread, fresh.api_url = _done_thread(), "http://127.0.0.1:9/api"
     monkeypatch.setattr(runtime, "_PRESTART", fresh)
-    with prefect_api_for_children() as env:
-        assert env == {"PREFECT_API_URL": fresh.api_url, runtime.LOCAL_API_ENV: fresh.api_url}
+    monkeypatch.delenv(runtime.LOCAL_API_ENV, raising=False)
+    from prefect.settings import PREFECT_API_URL, temporary_settings
+
+    with temporary_settings(restore_defaults={PREFECT_API_URL}):  # no server configured (whatever the session set)
+        with prefect_api_for_children() as env:
+            assert env == {"PREFECT_API_URL": fresh.api_url, runtime.LOCAL_API_ENV: fresh.api_url}
+    with temporary_settings({PREFECT_API_URL: "http://10.0.0.7:4200/api"}):  # a user's server: theirs, unmarked
+        with prefect_api_for_children() as env:
+            assert env == {"PREFECT_API_URL": "http://10.0.0.7:4200/api"}
 
 
 def _done_thread():
