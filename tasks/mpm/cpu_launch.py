@@ -98,6 +98,6 @@ def load_cpu_modules() -> None:
             return
         from tasks.mpm import cpu_threads, kernels
 
-        for module in (kernels, cpu_threads, kernels.g2p_p2g_cpu.module):
+        for module in (kernels, cpu_threads, kernels.g2p_p2g_cpu.module, kernels.grid_update_merge_cpu.module):
             wp.load_module(module, device="cpu")
         _LOADED = True

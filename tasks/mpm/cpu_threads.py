@@ -131,12 +131,16 @@ class CpuChunks:
         self.step_parts = wp.full(P * n_slots, INT_MAX, dtype=wp.int32, device=d)
         self.particle_parts = wp.full(P * n_slots, INT_MAX, dtype=wp.int32, device=d)
         self.grid_parts: wp.array | None = None
+        self.grid_stacked: wp.array | None = None
         self.grid_nodes = 0
 
-    def alloc_grid(self, nodes: int) -> None:
-        """Zeroed chunk grid buffers for `nodes` nodes (called whenever the solver reallocates its grid)."""
+    def alloc_grid(self, nodes: int) -> wp.array:
+        """Zeroed scatter buffers for `nodes` nodes (called whenever the solver reallocates its grid): one array, the
+        main buffer (returned, a view) followed by the chunks' (``kernels.grid_update_merge_cpu`` reads them all)."""
         self.grid_nodes = int(nodes)
-        self.grid_parts = wp.zeros(self.n_parts * self.grid_nodes, dtype=wp.vec4, device=self.device)
+        self.grid_stacked = wp.zeros((self.n_parts + 1) * self.grid_nodes, dtype=wp.vec4, device=self.device)
+        self.grid_parts = self.grid_stacked[self.grid_nodes:]
+        return self.grid_stacked[:self.grid_nodes]
 
     def part(self, k: int) -> dict[str, wp.array]:
         """Chunk k's (k >= 1) views: grid buffer, ground and collider impulses, failure tables."""

@@ -498,8 +498,8 @@ def p2g_apic_neohookean(
                      fail_step, fail_particle)
 
 
-def make_grid_update(colliders: bool = True, agg: bool = False, module: str | None = None, lazy: bool = False
-                     ) -> wp.Kernel:
+def make_grid_update(colliders: bool = True, agg: bool = False, module: str | None = None, lazy: bool = False,
+                     merge: bool = False) -> wp.Kernel:
     """The grid update kernel. colliders=False leaves out the kinematic-collider contact (scenes with only the
     ground: no per-node collider loop, fewer registers). agg=True (CUDA only: one node per thread, whole-warp
     launches) sums a warp's ground impulses by shuffles and issues one atomic per warp instead of one per node (they
@@ -507,7 +507,9 @@ def make_grid_update(colliders: bool = True, agg: bool = False, module: str | No
     a node without mass: its scatter buffer is already clear, and its velocity is stale but read only with a zero
     weight (a particle's stencil nodes all get mass from it; weights are zero only on a stencil's edge), so the
     rollout is the same bit for bit. colliders=True, agg=lazy=False is the reference kernel (the CPU path,
-    unchanged)."""
+    unchanged). merge=True (CPU, threads sharing a rollout): grid_mvm is the main scatter buffer followed by the
+    chunks' (n_items nodes each); each node first adds the chunks' entries in chunk order and clears them, as
+    ``cpu_threads.merge_grids`` did in a pass of its own (same sums, bit for bit)."""
 
     def _grid_update_body(
         grid_mvm: wp.array(dtype=wp.vec4),
@@ -559,6 +561,10 @@ def make_grid_update(colliders: bool = True, agg: bool = False, module: str | No
                 clock_time[0] = clock_time[0] + wp.float64(dt_arr[0])
                 clock_step[0] = clock_step[0] + 1
             mvm = grid_mvm[n]
+            if wp.static(merge):
+                for j in range(n + n_items, grid_mvm.shape[0], n_items):
+                    mvm = mvm + grid_mvm[j]
+                    grid_mvm[j] = wp.vec4(0.0, 0.0, 0.0, 0.0)
             m = mvm[3]
             if wp.static(lazy):
                 if m <= 0.0:
@@ -624,6 +630,8 @@ def make_grid_update(colliders: bool = True, agg: bool = False, module: str | No
 
 
 grid_update = make_grid_update()
+# CPU with threads sharing a rollout: the chunk grids' merge folded into the grid update (one pass over the nodes)
+grid_update_merge_cpu = make_grid_update(module="unique", merge=True)
 
 
 def make_g2p(colliders: bool = True, coop: bool = False, agg: bool = False, module: str | None = None,

@@ -101,6 +101,9 @@ class Solver:
         # CPU_FUSE: inside advance_steps, the g2p of a step and the p2g of the next (no re-fit between them) run as one
         # pass over the particles (kernels.g2p_p2g_cpu): same results bit for bit, one thread hand-off fewer per step
         self.cpu_fuse = self.device_is_cpu and _env_flag("DEFORMSMITH_MPM_CPU_FUSE")
+        # CPU_MERGE: with chunks, the grid update adds the chunk grids itself (kernels.grid_update_merge_cpu) instead
+        # of a merge pass before it: one serial pass over the nodes fewer per step, same results bit for bit
+        self.cpu_merge_fold = self._chunks is not None and _env_flag("DEFORMSMITH_MPM_CPU_MERGE")
         self.cuda_colliders, self.cuda_agg, self.cuda_coop_g2p, self.cuda_coop_p2g = True, False, False, False
         self.cuda_fuse, self.cuda_scatter, self.cuda_fuse_regs, self.cuda_fuse_keep_c = False, 0, 0, False
         self.cuda_grid_lazy = False
@@ -190,10 +193,11 @@ class Solver:
         """Allocate (and zero) the scatter buffer and node velocities for B windows of dims nodes."""
         self.grid_dims = tuple(int(n) for n in dims)
         nodes = self.model.n_scenes * self.grid_dims[0] * self.grid_dims[1] * self.grid_dims[2]
-        self.grid_mvm = wp.zeros(nodes, dtype=wp.vec4, device=self.device)
+        if self._chunks is not None:  # the main scatter buffer is the head of one array with the chunks'
+            self.grid_mvm = self._chunks.alloc_grid(nodes)
+        else:
+            self.grid_mvm = wp.zeros(nodes, dtype=wp.vec4, device=self.device)
         self.grid_v = wp.zeros(nodes, dtype=wp.vec4, device=self.device)  # xyz velocity, 16-byte loads
-        if self._chunks is not None:
-            self._chunks.alloc_grid(nodes)
         self._graphs.clear()
         self._blocks.clear()
         self._refit_cmds.clear()
@@ -442,7 +446,8 @@ class Solver:
                 record_cmd=True,
             ))
         if skip_p2g:
-            if self._chunks is not None and not self.fast_cuda:  # done by the previous step's g2p, into chunk grids
+            # done by the previous step's g2p, into chunk grids (added by the grid update, or merged here)
+            if self._chunks is not None and not self.fast_cuda and not self.cpu_merge_fold:
                 cmds.append(self._chunks.merge_grid_cmd(self.grid_mvm, self._per_thread))
         elif self.fast_cuda:
             bd = self.p2g_block
@@ -464,6 +469,9 @@ class Solver:
         gu_kernel, g2p_kernel, gu_dim, g2p_dim = K.grid_update, K.g2p_apic, self._threads(self.grid_nodes), \
             self._threads(m.n_particles)
         gu_block = g2p_block = None
+        scatter = self.grid_mvm
+        if self.cpu_merge_fold:  # the grid update reads and clears the chunks' buffers too
+            gu_kernel, scatter = K.grid_update_merge_cpu, self._chunks.grid_stacked
         if self.fast_cuda:
             coop = self.cuda_coop_g2p and _coop_ok(state_in) and _coop_ok(state_out)
             gu_block = cuda_block_dim(self.grid_nodes)
@@ -477,7 +485,7 @@ class Solver:
         cmds.append(wp.launch(
             gu_kernel,
             dim=gu_dim,
-            inputs=[self.grid_mvm, self.grid_v, self.grid_origin, nx, ny, nz, m.dx, self.dt_arr, control.d_gravity,
+            inputs=[scatter, self.grid_v, self.grid_origin, nx, ny, nz, m.dx, self.dt_arr, control.d_gravity,
                     m.scene_damping, control.d_grid_slide, m.ground_enabled, m.ground_height, m.ground_mu,
                     self.ground_impulse, m.col_start, m.col_count, m.col_kind, m.col_params, m.col_planes,
                     m.col_radius2, m.col_mu, m.col_bonded, self.col_pos0,
@@ -565,7 +573,10 @@ class Solver:
         launches = [wp.launch(K.p2g_apic_neohookean, dim=self._threads(self._chunk_view(k)[0]),
                               inputs=self._p2g_inputs(state, k), device=self.device, record_cmd=True)
                     for k in range(len(ch.bounds) if ch else 1)]
-        return launches if ch is None else [ParallelLaunch(launches), ch.merge_grid_cmd(self.grid_mvm, self._per_thread)]
+        if ch is None:
+            return launches
+        merge = [] if self.cpu_merge_fold else [ch.merge_grid_cmd(self.grid_mvm, self._per_thread)]
+        return [ParallelLaunch(launches), *merge]
 
     def _cpu_g2p(self, kernel, state_in: State, state_out: State, control: Control) -> list:
         """CPU g2p, one launch per chunk in threads, then the chunks' impulses and failures folded in."""

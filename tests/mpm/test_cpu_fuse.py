@@ -65,3 +65,18 @@ def test_preloaded_modules_cover_every_cpu_launch() -> None:
     assert K.g2p_p2g_cpu.module.name in before and K.__name__ in before
     _rollout(2)
     assert loaded() == before
+
+
+def test_grid_update_that_merges_the_chunk_grids_gives_the_separate_merge_rollout_bit_for_bit(monkeypatch) -> None:
+    folded, sim = _rollout(2)
+    assert sim.solver.cpu_merge_fold and sim.solver._chunks is not None
+    kernels = [getattr(c, "kernel", None) for e in sim.solver._graphs.values() for c in e[0]]
+    assert K.grid_update_merge_cpu in kernels and K.grid_update not in kernels
+    monkeypatch.setenv("DEFORMSMITH_MPM_CPU_MERGE", "0")
+    separate, sim_sep = _rollout(2)
+    assert not sim_sep.solver.cpu_merge_fold
+    assert K.grid_update_merge_cpu not in [getattr(c, "kernel", None) for e in sim_sep.solver._graphs.values()
+                                           for c in e[0]]
+    for k, v in separate.items():
+        np.testing.assert_array_equal(folded[k], v, err_msg=k)
+    assert not sim.solver._chunks.grid_parts.numpy().any()  # the chunks' buffers are left clear for the next scatter
