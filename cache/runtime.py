@@ -57,6 +57,15 @@ def local_api_env(url: str) -> dict[str, str]:
     return {"PREFECT_API_URL": url, LOCAL_API_ENV: url}
 
 
+def shared_server_env() -> dict[str, str]:
+    """Environment for child processes to share this process's prestarted local server (waits for its start); {}
+    against a user's server or when none is up (each child then runs as it would alone)."""
+    if uses_remote_server():
+        return {}
+    url = prestarted_api_url()
+    return local_api_env(url) if url else {}
+
+
 HEALTH_POLL_S = 0.05
 
 # The server process runs uvicorn behind a watchdog thread that exits it once its parent is gone: a command killed

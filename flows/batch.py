@@ -239,16 +239,16 @@ def run_one(item: BatchItem, out_root: Path, device: str, job: str, env: dict[st
 def prefect_api_for_children() -> Iterator[dict[str, str]]:
     """The Prefect environment the child processes share: the user's server, else one local server for the whole
     batch (marked local, so that the children's flows run without heartbeats, as against their own)."""
-    from cache.runtime import local_api_env, prestarted_api_url, uses_remote_server
+    from cache.runtime import local_api_env, shared_server_env, uses_remote_server
 
     if uses_remote_server():
         from prefect.settings import PREFECT_API_URL
 
         yield {"PREFECT_API_URL": str(PREFECT_API_URL.value())}
         return
-    url = prestarted_api_url()
-    if url:
-        yield local_api_env(url)
+    shared = shared_server_env()
+    if shared:
+        yield shared
         return
     from prefect.server.api.server import SubprocessASGIServer
 

@@ -178,12 +178,11 @@ def evaluate(opts: EvalOptions, progress: Progress | None = None) -> dict[str, A
     else:
         import multiprocessing as mp
 
-        from cache.runtime import local_api_env, prestarted_api_url, uses_remote_server
+        from cache.runtime import shared_server_env
         from tasks.probes.workers import child_probe_workers
 
-        # the workers share this process's local Prefect server instead of each starting one (a user's server: theirs)
-        url = None if uses_remote_server() else prestarted_api_url()
-        env = {**child_probe_workers(opts.workers), **(local_api_env(url) if url else {})}
+        # the workers share this process's local Prefect server instead of each starting one
+        env = {**child_probe_workers(opts.workers), **shared_server_env()}
         with ProcessPoolExecutor(max_workers=opts.workers, mp_context=mp.get_context("spawn"),
                                  initializer=_set_env,  # the cases' probe threads share the cores
                                  initargs=(env,)) as pool:
