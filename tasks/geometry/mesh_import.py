@@ -9,11 +9,12 @@ import trimesh
 from scipy.spatial import cKDTree
 
 from contracts.errors import InputError
-from tasks.geometry.meshing import largest_body, mesh_from_field
+from tasks.geometry.meshing import mesh_from_field, split_largest
 from tasks.geometry.raster import lattice_winding
 
 SUPPORTED = (".obj", ".ply", ".stl", ".glb", ".gltf", ".off")
 REMESH_RESOLUTION = 128  # voxels along the longest extent when a voxel remesh is needed
+MAX_DETACHED_SHARE = 0.05  # separate bodies beyond this share of the volume make a mesh several objects [-]
 
 
 def load_mesh_file(path: Path) -> trimesh.Trimesh:
@@ -52,7 +53,8 @@ def _vertex_colors(mesh: trimesh.Trimesh) -> np.ndarray:
 
 
 def repair_mesh(mesh: trimesh.Trimesh) -> tuple[trimesh.Trimesh, list[str]]:
-    """Merge seams, fix winding and fill small holes; voxel-remesh overlapping or broken bodies. Returns notes."""
+    """Merge seams, fix winding and fill small holes; voxel-remesh overlapping or broken bodies; refuse separate
+    objects (detached fragments up to MAX_DETACHED_SHARE of the volume are dropped). Returns notes."""
     notes: list[str] = []
     colors = np.asarray(mesh.visual.vertex_colors)
     m = trimesh.Trimesh(mesh.vertices, mesh.faces, process=True, validate=True)
@@ -78,13 +80,24 @@ def repair_mesh(mesh: trimesh.Trimesh) -> tuple[trimesh.Trimesh, list[str]]:
                 f"the mesh is open ({open_edges} boundary edges) and encloses no well-defined volume; close it first"
             )
         notes.append(f"{open_edges} boundary edges closed by voxel remeshing")
-    else:
-        notes.append(f"{m.body_count} overlapping bodies merged by voxel remeshing")
-    return voxel_remesh(m, REMESH_RESOLUTION), notes
+    out, detached, share = split_largest(voxel_remesh(m, REMESH_RESOLUTION))
+    if share > MAX_DETACHED_SHARE:
+        raise InputError(
+            f"the mesh holds {detached + 1} separate bodies (the largest has {100 * (1 - share):.0f} % of the volume); "
+            "an asset is one object: join the parts, or give them one file each"
+        )
+    if m.is_watertight and m.body_count > detached + 1:
+        notes.append(f"{m.body_count - detached} overlapping bodies merged by voxel remeshing")
+    if detached:
+        notes.append(f"dropped {detached} detached fragment(s) holding {100 * share:.2g} % of the volume")
+    if out.volume <= 0:
+        raise InputError("the mesh encloses no volume")
+    return out, notes
 
 
 def voxel_remesh(mesh: trimesh.Trimesh, resolution: int) -> trimesh.Trimesh:
-    """Union of all bodies as a watertight mesh: winding-number occupancy -> marching cubes, colours carried over."""
+    """Union of all bodies as a watertight mesh (every separate body kept): winding-number occupancy -> marching
+    cubes, colours carried over."""
     dx = float(mesh.extents.max()) / resolution
     lo = mesh.bounds[0] - 1.5 * dx
     shape = tuple(int(n) for n in np.ceil(mesh.extents / dx).astype(int) + 4)
@@ -92,10 +105,7 @@ def voxel_remesh(mesh: trimesh.Trimesh, resolution: int) -> trimesh.Trimesh:
     occ = (winding > 0).astype(np.float64)
     from scipy.ndimage import gaussian_filter
 
-    out = mesh_from_field(0.5 - gaussian_filter(occ, 0.6), lo, dx)
-    out = largest_body(out)
-    if out.volume <= 0:
-        raise InputError("the mesh encloses no volume")
+    out = mesh_from_field(0.5 - gaussian_filter(occ, 0.6), lo, dx, one_body=False)
     out.visual = trimesh.visual.ColorVisuals(out, vertex_colors=_transfer(mesh.vertices, np.asarray(mesh.visual.vertex_colors), out.vertices))
     return out
 

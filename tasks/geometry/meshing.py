@@ -14,8 +14,10 @@ _CHUNK = 1_000_000
 _LEVEL_NUDGE = 1e-3  # field samples closer to the level than this x the largest step across it are moved off it [-]
 
 
-def mesh_from_field(field: np.ndarray, origin: np.ndarray, spacing: float, level: float = 0.0) -> trimesh.Trimesh:
-    """Closed mesh of {field < level}; the field is padded with 'outside' so the surface always closes."""
+def mesh_from_field(field: np.ndarray, origin: np.ndarray, spacing: float, level: float = 0.0,
+                    one_body: bool = True) -> trimesh.Trimesh:
+    """Closed mesh of {field < level}; the field is padded with 'outside' so the surface always closes.
+    one_body: keep only the largest body (marching cubes can leave specks); False keeps every body."""
     padded = np.pad(np.asarray(field, dtype=np.float64), 1, mode="constant", constant_values=max(level, 0.0) + spacing)
     if not (padded.min() < level < padded.max()):
         raise InputError("the shape has no volume (no inside region at this resolution)")
@@ -29,7 +31,8 @@ def mesh_from_field(field: np.ndarray, origin: np.ndarray, spacing: float, level
     verts = verts + np.asarray(origin, dtype=np.float64) - spacing
     mesh = trimesh.Trimesh(verts, faces, process=True)
     mesh.merge_vertices()
-    return largest_body(orient_outward(mesh))
+    mesh = orient_outward(mesh)
+    return largest_body(mesh) if one_body else mesh
 
 
 def _crossing_step(field: np.ndarray, level: float) -> float:
@@ -53,11 +56,19 @@ def orient_outward(mesh: trimesh.Trimesh) -> trimesh.Trimesh:
 
 def largest_body(mesh: trimesh.Trimesh) -> trimesh.Trimesh:
     """Keep the connected body with the largest volume (marching cubes can leave specks)."""
+    return split_largest(mesh)[0]
+
+
+def split_largest(mesh: trimesh.Trimesh) -> tuple[trimesh.Trimesh, int, float]:
+    """The connected body with the largest volume, how many others there are, and their share of the volume [-]
+    (a body that is not watertight counts as no volume)."""
     if mesh.body_count <= 1:
-        return mesh
+        return mesh, 0, 0.0
     bodies = mesh.split(only_watertight=False)
-    vols = [abs(b.volume) if b.is_watertight else 0.0 for b in bodies]
-    return bodies[int(np.argmax(vols))]
+    vols = np.array([abs(b.volume) if b.is_watertight else 0.0 for b in bodies])
+    keep = int(np.argmax(vols))
+    total = float(vols.sum())
+    return bodies[keep], len(bodies) - 1, (1.0 - float(vols[keep]) / total) if total > 0 else 0.0
 
 
 def sample_program(program: ShapeProgram, resolution: int) -> tuple[np.ndarray, np.ndarray, float]:

@@ -150,3 +150,27 @@ def test_bad_meshes_are_clear_errors(tmp_path: Path) -> None:
         pipeline.build_mesh(AssetRequest(mesh_path=DATA / "bunny.obj", size_hint_m=30.0), settings())
     with pytest.raises(InputError, match="unsupported mesh format"):
         pipeline.build_mesh(AssetRequest(mesh_path=Path(__file__)), settings())
+
+
+def test_separate_bodies_are_refused_and_small_fragments_dropped(tmp_path: Path) -> None:
+    """Two equal spheres apart are two objects: a clear error, not half of them silently. A detached 1 cm bead next
+    to an 8 cm ball (0.2 % of the volume) is dropped, with a note saying so, and the ball keeps its volume."""
+    import trimesh
+
+    from tasks.geometry.mesh_import import import_mesh
+
+    far = trimesh.creation.icosphere(3, 0.05)
+    far.apply_translation([0.3, 0.0, 0.0])
+    pair = tmp_path / "pair.ply"
+    trimesh.util.concatenate([trimesh.creation.icosphere(3, 0.05), far]).export(pair)
+    with pytest.raises(InputError, match="2 separate bodies .*50 % of the volume"):
+        import_mesh(pair)
+    bead = trimesh.creation.icosphere(3, 0.01)
+    bead.apply_translation([0.1, 0.0, 0.0])
+    ball_and_bead = tmp_path / "ball_and_bead.ply"
+    trimesh.util.concatenate([trimesh.creation.icosphere(3, 0.08), bead]).export(ball_and_bead)
+    mesh, notes = import_mesh(ball_and_bead)
+    assert mesh.body_count == 1 and mesh.is_watertight
+    assert mesh.volume == pytest.approx(4 / 3 * np.pi * 0.08**3, rel=0.03)
+    assert any(n.startswith("dropped 1 detached fragment") for n in notes), notes
+    assert not any("overlapping" in n for n in notes)
