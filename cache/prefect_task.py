@@ -215,6 +215,10 @@ class StoreResultStorage(WritableFileSystem):
 
         record = json.loads(content)
         value = _handoff_pop(record["result"])
+        if isinstance(value, BaseException):
+            # Prefect persists a failed run's exception under a random key; nothing reads it back and the store
+            # keeps results only (a failure must not look like an entry), so it is dropped here
+            return path
         ctx = TaskRunContext.get()
         meta = {"prefect_metadata": record["metadata"]}
         if ctx is not None:

@@ -1,5 +1,12 @@
 """Errors a user sees: one clear line, non-zero exit (the CLI maps them)."""
 
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from pydantic import ValidationError
+
 
 class DeformSmithError(Exception):
     """Base of every error that the CLI reports as one line on stderr."""
@@ -39,3 +46,19 @@ class StageFailure(DeformSmithError):
     def __init__(self, stage: str, message: str) -> None:
         super().__init__(f"{stage} failed: {message}")
         self.stage = stage
+
+
+def validation_message(exc: ValidationError, names: dict[str, str] | None = None,
+                       limit: int | None = None, with_input: bool = False) -> str:
+    """One line from a pydantic ValidationError: 'field.path: reason; ...' (pydantic's 'Value error, ' prefix
+    dropped; an error of the whole model is its reason alone). `names` renames top-level fields, `limit` keeps the
+    first N errors, `with_input` adds ' = <value given>' after each field."""
+    parts = []
+    for err in exc.errors()[:limit]:
+        loc = [str(p) for p in err["loc"]]
+        if loc and names and loc[0] in names:
+            loc[0] = names[loc[0]]
+        given = f" = {err.get('input')}" if with_input else ""
+        reason = err["msg"].removeprefix("Value error, ")
+        parts.append(f"{'.'.join(loc)}{given}: {reason}" if loc else reason)
+    return "; ".join(parts)

@@ -10,7 +10,7 @@ import yaml
 from pydantic import Field, ValidationError, model_validator
 
 from contracts.base import Model
-from contracts.errors import ContractError
+from contracts.errors import ContractError, validation_message
 
 StageName = Literal["L0", "L1", "L2", "L3"]
 STAGES_DIR = Path(__file__).parent / "stages"
@@ -106,11 +106,7 @@ class StageContract(Model):
 
 
 def _format_errors(path: Path, exc: ValidationError) -> str:
-    parts = []
-    for err in exc.errors():
-        loc = ".".join(str(p) for p in err["loc"]) or "<root>"
-        parts.append(f"{loc}: {err['msg']}")
-    return f"{path}: invalid stage contract: " + "; ".join(parts)
+    return f"{path}: invalid stage contract: " + validation_message(exc)
 
 
 def load_contract_file(path: Path) -> StageContract:

@@ -26,7 +26,7 @@ from typing import Any, Literal
 
 from pydantic import BaseModel, Field, ValidationError
 
-from contracts.errors import InputError
+from contracts.errors import InputError, validation_message
 from contracts.request import AssetRequest
 
 REPORT_JSON = "batch_report.json"
@@ -109,10 +109,6 @@ def _default_name(request: AssetRequest) -> str:
     return _slug(src.stem if src is not None else request.text or "asset")
 
 
-def _errors(exc: ValidationError) -> str:
-    return "; ".join(f"{'.'.join(map(str, e['loc'])) or 'request'}: {e['msg']}" for e in exc.errors())
-
-
 def parse_line(line_no: int, text: str) -> BatchItem:
     """One JSONL line -> a BatchItem (invalid lines carry their reason instead of a request)."""
     fallback = f"line-{line_no}"
@@ -129,7 +125,7 @@ def parse_line(line_no: int, text: str) -> BatchItem:
     try:
         request = AssetRequest.model_validate(data)
     except ValidationError as exc:
-        return BatchItem(line=line_no, name=name or fallback, error=f"invalid request: {_errors(exc)}")
+        return BatchItem(line=line_no, name=name or fallback, error="invalid request: " + validation_message(exc))
     return BatchItem(line=line_no, name=name or _default_name(request), request=request, explicit_name=bool(name))
 
 

@@ -216,6 +216,9 @@ def generate_asset(request: AssetRequest, out_dir: Path, device: Device = "cpu",
         clock.update(stage=stage, t=now)
         report(stage, message)
 
+    from tasks.agents.intent import targets_from_request
+
+    targets = targets_from_request(request)  # a rigid material or a bad target override fails before any layer runs
     out_dir = Path(out_dir).expanduser().absolute()
     _check_out_dir(out_dir)
     out_dir.parent.mkdir(parents=True, exist_ok=True)
@@ -227,6 +230,8 @@ def generate_asset(request: AssetRequest, out_dir: Path, device: Device = "cpu",
         l0 = run_l0(request, quality=request.quality)
         if not l0.checks.passed:
             raise StageFailure("L0", f"geometry gates failed: {', '.join(l0.checks.failed)}")
+        for warning in l0.info.warnings:  # recorded in geometry.json; said here too, as the run goes
+            report("L0", f"warning: {warning}")
         shutil.rmtree(work)  # write_l0 publishes into a path of its own choosing
         write_l0(l0, work, extra={"request": request.model_dump(mode="json")})
         intent = request.material_intent or request.text
@@ -235,6 +240,8 @@ def generate_asset(request: AssetRequest, out_dir: Path, device: Device = "cpu",
         if physical is None:
             raise StageFailure("L1", o1.message)
         note("L2", "material: MPM probes")
+        if not targets.matched_words:
+            report("L2", f"warning: no material named in '{targets.intent}': using the default material's target bands")
         sim = SimConfig(device=device, cpu_threads=cpu_threads)
         material, o2 = run_l2(work, request, agents, sim=sim, physical=physical)
         if material is None:

@@ -9,6 +9,7 @@ import typer
 from pydantic import ValidationError
 from rich.table import Table
 
+from contracts.errors import validation_message
 from flows.cli.apps import app, console, emit_json, fail
 
 DEFAULT_TEXT = "a soft plush turtle toy, about 25 cm long"
@@ -72,17 +73,21 @@ def generate(
                                mesh_path=mesh.absolute() if mesh else None, size_hint_m=size_m,
                                material_intent=intent, seed=seed, quality=quality)  # type: ignore[arg-type]
     except ValidationError as exc:
-        fail("invalid request: " + "; ".join(f"{'.'.join(map(str, e['loc']))}: {e['msg']}" for e in exc.errors()))
+        fail("invalid request: " + validation_message(exc))
     if cache_dir is not None:
         use_cache_root(cache_dir)
     out = out or _default_out(text, image, mesh)
     agents = AgentConfig.llm(llm) if llm else None
+    from tasks.agents.intent import targets_from_request
+
+    targets_from_request(request)  # a rigid material is one line here, before the layers are imported
     from flows.generate import TIMINGS, generate_asset
 
     with console.status("starting") as status:
         def on_stage(stage: str, message: str) -> None:
             status.update(f"{stage}: {message}")
-            console.log(f"[bold]{stage}[/bold] {message}")
+            style = "yellow" if message.startswith("warning:") else "default"
+            console.log(f"[bold]{stage}[/bold] [{style}]{message}[/{style}]")
 
         manifest = generate_asset(request, out, device=device, agents=agents, on_stage=on_stage,  # type: ignore[arg-type]
                                   manipulate=l3, cpu_threads=cpu_threads)

@@ -12,6 +12,7 @@ from pathlib import Path
 import typer
 from pydantic import ValidationError
 
+from contracts.errors import validation_message
 from flows.cli.apps import app, bench_app, console, emit_json, fail
 
 QUALITIES = ("draft", "standard", "high")
@@ -40,7 +41,7 @@ def geometry(
         request = AssetRequest(text=text, image_path=image, mesh_path=mesh, size_hint_m=size_m, seed=seed,
                                quality=quality)  # type: ignore[arg-type]
     except ValidationError as exc:
-        fail("; ".join(e["msg"].removeprefix("Value error, ") for e in exc.errors()))
+        fail("invalid request: " + validation_message(exc))
     _preflight(request)
     os.environ.setdefault("PREFECT_LOGGING_LEVEL", "CRITICAL")  # user errors surface as one line, not task tracebacks
     from flows.l0_geometry import run_l0, write_l0

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import logging
 import sys
 
 from contracts.errors import DeformSmithError
@@ -33,9 +34,28 @@ def _prestart_for(argv: list[str]) -> None:
         prestart_local_server()
 
 
+class _UserErrorTracebacks(logging.Filter):
+    """Drops Prefect's run-log records that carry a DeformSmithError's traceback: main() reports it as one line (the
+    runs' one-line 'Finished in state Failed(...)' records stay)."""
+
+    def filter(self, record: logging.LogRecord) -> bool:
+        return not (record.exc_info and isinstance(record.exc_info[1], DeformSmithError))
+
+
+def quiet_user_error_logs() -> None:
+    """A user error inside a flow (a mesh with no triangles, a blank photo) ends in its `error:` line, not in two
+    tracebacks from Prefect's run loggers and a drain notice from its events worker at exit."""
+    for name in ("prefect.flow_runs", "prefect.task_runs"):
+        run_logger = logging.getLogger(name)
+        if not any(isinstance(f, _UserErrorTracebacks) for f in run_logger.filters):
+            run_logger.addFilter(_UserErrorTracebacks())
+    logging.getLogger("EventsWorker").setLevel(logging.ERROR)  # "Still processing items" while draining at exit
+
+
 def main() -> None:
     """Run the CLI; a DeformSmithError becomes one line on stderr and its exit code."""
     _prestart_for(sys.argv[1:])
+    quiet_user_error_logs()
     try:
         app()
     except DeformSmithError as exc:

@@ -10,6 +10,7 @@ from pathlib import Path
 import typer
 from pydantic import ValidationError
 
+from contracts.errors import validation_message
 from flows.cli.apps import app, bench_app, console, emit_json, fail
 
 RIGID_KINDS = ("place", "drop", "slide")  # L1 rigid probes (pybullet); `drop` is rigid unless --deformable
@@ -49,6 +50,10 @@ def _material(E: float | None, nu: float | None, damping: float | None, asset: P
     return _validated({**base, **given})
 
 
+_PARAMETER_NAMES = {"youngs_modulus_pa": "E (--E) [Pa]", "poisson_ratio": "nu (--nu)",
+                    "damping_rate_per_s": "damping (--damping) [1/s]"}
+
+
 def _validated(values: dict[str, float]):  # type: ignore[no-untyped-def]
     """A Material, or one clear line naming the invalid parameter and a non-zero exit."""
     from contracts.material import Material
@@ -56,12 +61,7 @@ def _validated(values: dict[str, float]):  # type: ignore[no-untyped-def]
     try:
         return Material(**values)
     except ValidationError as exc:
-        msgs = []
-        for e in exc.errors():
-            field = {"youngs_modulus_pa": "E (--E) [Pa]", "poisson_ratio": "nu (--nu)",
-                     "damping_rate_per_s": "damping (--damping) [1/s]"}.get(str(e["loc"][0]), str(e["loc"][0]))
-            msgs.append(f"{field} = {e.get('input')}: {e['msg'].removeprefix('Value error, ')}")
-        fail("invalid material: " + "; ".join(msgs))
+        fail("invalid material: " + validation_message(exc, names=_PARAMETER_NAMES, with_input=True))
 
 
 @app.command("probe")

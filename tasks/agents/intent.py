@@ -32,6 +32,18 @@ def _contains_phrase(text: str, phrase: str) -> bool:
     return re.search(r"(?<![a-z])" + re.escape(phrase.lower()) + r"(?![a-z])", text) is not None
 
 
+def check_deformable(text: str, vocab: MaterialVocab) -> None:
+    """InputError when the text names a rigid material (steel, glass, wood, ...) and no deformable one."""
+    named = [w for entry in vocab.materials.values() for w in entry.words if _contains_phrase(text, w)]
+    rigid = [w for w in vocab.rigid_words if _contains_phrase(text, w)]
+    if rigid and not named:
+        soft = ", ".join(sorted({entry.words[0] for entry in vocab.materials.values()})[:8])
+        raise InputError(
+            f"'{max(rigid, key=len)}' is a rigid material (Young's modulus ~1e9-1e11 Pa): DeformSmith makes deformable "
+            f"objects. Name a deformable material (e.g. {soft}) in the text or with --intent"
+        )
+
+
 def _match_material(text: str, vocab: MaterialVocab) -> tuple[str, str | None]:
     """The material named by the longest matching word (materials first, then objects); the default otherwise."""
     best: tuple[int, str, str] | None = None
@@ -94,6 +106,7 @@ def targets_from_intent(
     """Bands and priors for the words of an intent; explicit numbers beat words, overrides beat both."""
     vocab = vocab or load_material_vocab()
     text = " ".join(intent.lower().split())
+    check_deformable(text, vocab)
     name, word = _match_material(text, vocab)
     entry = vocab.materials[name]
     source = f"vocab:{word}" if word else f"vocab:default({name})"

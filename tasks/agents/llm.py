@@ -17,6 +17,7 @@ from contracts.agents import (  # noqa: E402
     Candidate, Critique, CriticRequest, DesignerRequest, PlannerContext, PlannerDecision, RoleConfig,
 )
 from contracts.evidence import AgentSource  # noqa: E402
+from contracts.errors import validation_message  # noqa: E402
 from tasks.agents.backend import (  # noqa: E402
     AgentError, InvalidAnswer, RoleReply, check_candidate, check_critique, check_decision,
 )
@@ -49,8 +50,7 @@ def extract_json(text: str) -> str:
 
 
 def _validation_message(exc: ValidationError) -> str:
-    parts = [f"{'.'.join(str(p) for p in e['loc']) or '<root>'}: {e['msg']}" for e in exc.errors()[:8]]
-    return "schema validation failed: " + "; ".join(parts)
+    return "schema validation failed: " + validation_message(exc, limit=8)
 
 
 def _parse(text: str | None, out_type: type[M]) -> M:

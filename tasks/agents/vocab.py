@@ -58,6 +58,7 @@ class MaterialVocab(Model):
     modifiers: dict[str, ModifierEntry] = Field(default_factory=dict)
     explicit_tolerance: ExplicitTolerance = Field(default_factory=ExplicitTolerance)
     objects: dict[str, str] = Field(default_factory=dict)
+    rigid_words: list[str] = Field(default_factory=list)
 
     def metric(self, name: str) -> MetricSpec:
         """The scoring spec of a metric (linear, weight 1, unit '-' when unlisted)."""

@@ -33,7 +33,7 @@ from pydantic import ValidationError
 
 import contracts
 
-from contracts.errors import InputError
+from contracts.errors import InputError, validation_message
 from contracts.evaluation import Drawing, Suite, SuiteCase
 from contracts.request import AssetRequest, Quality
 
@@ -74,8 +74,7 @@ def load_suite(name_or_file: str, check_vocab: bool = True) -> tuple[Suite, Path
     try:
         suite = Suite.model_validate(_read(path))
     except ValidationError as exc:
-        parts = [f"{'.'.join(str(x) for x in e['loc']) or '<root>'}: {e['msg']}" for e in exc.errors()]
-        raise InputError(f"{path}: invalid suite: " + "; ".join(parts)) from exc
+        raise InputError(f"{path}: invalid suite: " + validation_message(exc)) from exc
     if check_vocab:
         problems = check_cases(suite, path.parent)
         if problems:

@@ -33,12 +33,27 @@ def _generate(out: Path, cache: Path, *args: str, wait: bool = True) -> subproce
     (["a sponge", "--quality", "ultra"], "--quality must be"),
     (["a sponge", "--device", "tpu"], "--device must be"),
     (["a sponge", "--cpu-threads", "0"], "--cpu-threads must be"),
+    (["a steel wrench"], "'steel' is a rigid material"),
 ])
 def test_bad_input_is_one_line_and_leaves_nothing(tmp_path: Path, args: list[str], message: str) -> None:
     out = _generate(tmp_path / "asset", tmp_path / "cache", *args)
     assert out.returncode != 0
     assert out.stderr.startswith("error:") and message in out.stderr and out.stderr.count("\n") == 1
     assert not (tmp_path / "asset").exists()
+
+
+def test_unusable_file_found_inside_a_flow_ends_in_its_error_line(tmp_path: Path) -> None:
+    """A mesh file that exists but holds no triangles fails in L0's first task: the user gets its one-line error last,
+    no Prefect tracebacks, no failure stored in the cache, nothing published."""
+    empty = tmp_path / "empty.obj"
+    empty.write_text("# no faces\n")
+    out = _generate(tmp_path / "asset", tmp_path / "cache", "--mesh", str(empty), "--no-l3")
+    assert out.returncode == 2, out.stderr[-2000:]
+    assert out.stderr.rstrip().splitlines()[-1] == "error: empty.obj holds no triangles"
+    for noise in ("Traceback", "Failed to write result", "Still processing items"):
+        assert noise not in out.stderr
+    assert not (tmp_path / "asset").exists()
+    assert not list((tmp_path / "cache").glob("entries/*"))
 
 
 def test_out_dir_that_is_not_an_asset_is_refused(tmp_path: Path) -> None:

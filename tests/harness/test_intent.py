@@ -41,6 +41,18 @@ def test_objects_imply_materials_and_unknown_falls_back() -> None:
     assert default.matched_words == [] and default.band("effective_modulus_pa").source.startswith("vocab:default")
 
 
+@pytest.mark.parametrize("text", ["a steel wrench", "a wooden toy", "a glass marble"])
+def test_rigid_materials_are_refused(text: str) -> None:
+    with pytest.raises(InputError, match="is a rigid material .*Name a deformable material"):
+        targets_from_intent(text)
+
+
+@pytest.mark.parametrize("text, word", [("a steel-grey plush seal", "plush"), ("a stone-washed denim plush", "plush"),
+                                        ("a wooden-handled sponge", "sponge")])
+def test_a_deformable_material_wins_over_rigid_words(text: str, word: str) -> None:
+    assert targets_from_intent(text).matched_words[0] == word
+
+
 def test_explicit_numbers_beat_words() -> None:
     t = targets_from_intent("a soft plush turtle with E = 50 kPa, rebound 0.3 and sag 10%, density 120 kg/m3")
     assert _band(t, "effective_modulus_pa") == pytest.approx((4e4, 6.25e4))

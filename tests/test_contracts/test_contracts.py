@@ -13,6 +13,7 @@ import yaml
 from pydantic import ValidationError
 
 from contracts import AssetRequest, ContractError, Material, ShapeProgram, load_contract, load_contract_file
+from contracts.errors import validation_message
 from contracts.registry import SCHEMAS
 from contracts.stage import STAGE_FILES, STAGES_DIR
 
@@ -95,6 +96,20 @@ def test_request_needs_exactly_one_geometry_source(tmp_path: Path) -> None:
 def test_unknown_fields_are_rejected() -> None:
     with pytest.raises(ValidationError):
         Material(youngs_modulus_pa=1e5, poisson_ratio=0.3, youngs_modulus=3)
+
+
+def test_validation_message_is_one_line_naming_fields_and_values() -> None:
+    with pytest.raises(ValidationError) as bad_values:
+        Material(youngs_modulus_pa=-5.0, poisson_ratio=0.7)
+    names = {"youngs_modulus_pa": "E [Pa]"}
+    text = validation_message(bad_values.value, names=names, with_input=True)
+    assert "\n" not in text
+    assert text.startswith("E [Pa] = -5.0: ") and "; poisson_ratio = 0.7: " in text
+    assert validation_message(bad_values.value, limit=1).count(";") == 0
+    with pytest.raises(ValidationError) as whole_model:  # a model validator's error: no field, no pydantic prefix
+        AssetRequest()
+    text = validation_message(whole_model.value)
+    assert text and not text.startswith(("Value error", ":")) and "\n" not in text
 
 
 def test_shape_program_roundtrips_through_json() -> None:
