@@ -32,6 +32,18 @@ def fail(message: str, code: int = 2) -> NoReturn:
     raise typer.Exit(code)
 
 
+def check_device(device: str) -> None:
+    """--device is cpu or cuda, and cuda has a GPU that Warp can use: checked before any layer runs."""
+    if device not in ("cpu", "cuda"):
+        fail(f"--device must be cpu or cuda, got '{device}'")
+    if device == "cuda":
+        import tasks.mpm  # noqa: F401  (Warp quiet on stdout)
+        import warp as wp
+
+        if not wp.is_cuda_available():
+            fail("--device cuda: no CUDA device is available to Warp (no NVIDIA GPU or driver); use --device cpu")
+
+
 def emit_json(data: Any) -> None:
     """Write machine-readable output to stdout."""
     sys.stdout.write(json.dumps(data, indent=2, sort_keys=True, default=str) + "\n")

@@ -7,7 +7,7 @@ from pathlib import Path
 import typer
 from rich.table import Table
 
-from flows.cli.apps import app, console, emit_json, fail
+from flows.cli.apps import app, check_device, console, emit_json, fail
 
 
 def _table(report) -> Table:  # type: ignore[no-untyped-def]
@@ -39,8 +39,7 @@ def batch(
 
     if concurrency < 1:
         fail(f"--concurrency must be >= 1, got {concurrency}")
-    if device not in ("cpu", "cuda"):
-        fail(f"--device must be cpu or cuda, got '{device}'")
+    check_device(device)
     if not requests.is_file():
         fail(f"requests file not found: {requests}")
     if cache_dir is not None:

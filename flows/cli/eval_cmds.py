@@ -6,7 +6,7 @@ from pathlib import Path
 
 import typer
 
-from flows.cli.apps import app, console, emit_json, fail
+from flows.cli.apps import app, check_device, console, emit_json, fail
 
 ABLATIONS = ("hierarchy", "harness", "manipulation")
 
@@ -34,8 +34,7 @@ def eval_cmd(
     chosen = ABLATIONS if ablation == "all" else tuple(a.strip() for a in ablation.split(","))
     if not chosen or any(a not in ABLATIONS for a in chosen):
         fail(f"--ablation must be one of {', '.join(ABLATIONS)}, a comma list of them, or all; got '{ablation}'")
-    if device not in ("cpu", "cuda"):
-        fail(f"--device must be cpu or cuda, got '{device}'")
+    check_device(device)
     if quality not in ("draft", "standard", "high"):
         fail(f"--quality must be draft, standard or high, got '{quality}'")
     if vision_llm and not videos:

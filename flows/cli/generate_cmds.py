@@ -10,7 +10,7 @@ from pydantic import ValidationError
 from rich.table import Table
 
 from contracts.errors import validation_message
-from flows.cli.apps import app, console, emit_json, fail
+from flows.cli.apps import app, check_device, console, emit_json, fail
 
 DEFAULT_TEXT = "a soft plush turtle toy, about 25 cm long"
 
@@ -57,8 +57,7 @@ def generate(
     from contracts.agents import AgentConfig
     from contracts.request import AssetRequest
 
-    if device not in ("cpu", "cuda"):
-        fail(f"--device must be cpu or cuda, got '{device}'")
+    check_device(device)
     if quality not in ("draft", "standard", "high"):
         fail(f"--quality must be draft, standard or high, got '{quality}'")
     if not 1 <= cpu_threads <= 64:

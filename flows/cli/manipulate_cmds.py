@@ -7,7 +7,7 @@ from pathlib import Path
 import typer
 from rich.table import Table
 
-from flows.cli.apps import app, console, emit_json, fail
+from flows.cli.apps import app, check_device, console, emit_json, fail
 
 
 @app.command("manipulate")
@@ -26,8 +26,9 @@ def manipulate(
         fail(f"{asset} is not an asset directory (no geometry.json)")
     if not (asset / "physical.json").is_file():
         fail(f"{asset} has no physical.json: run `deformsmith physical --asset {asset}` first")
-    if quality not in ("draft", "standard") or device not in ("cpu", "cuda"):
-        fail("--quality must be draft|standard and --device cpu|cuda")
+    if quality not in ("draft", "standard"):
+        fail(f"--quality must be draft or standard, got '{quality}'")
+    check_device(device)
     if not 1 <= cpu_threads <= 64:
         fail(f"--cpu-threads must be 1 to 64, got {cpu_threads}")
     if cache_dir is not None:

@@ -56,6 +56,18 @@ def test_unusable_file_found_inside_a_flow_ends_in_its_error_line(tmp_path: Path
     assert not list((tmp_path / "cache").glob("entries/*"))
 
 
+def test_cuda_without_a_gpu_is_refused_before_any_layer(tmp_path: Path) -> None:
+    import tasks.mpm  # noqa: F401
+    import warp as wp
+
+    if wp.is_cuda_available():
+        pytest.skip("this machine has a CUDA device")
+    out = _generate(tmp_path / "asset", tmp_path / "cache", "a sponge", "--device", "cuda")
+    assert out.returncode == 2
+    assert out.stderr.rstrip().splitlines()[-1].startswith("error: --device cuda: no CUDA device is available")
+    assert "L0" not in out.stderr and not (tmp_path / "asset").exists()
+
+
 def test_out_dir_that_is_not_an_asset_is_refused(tmp_path: Path) -> None:
     (tmp_path / "asset").mkdir()
     (tmp_path / "asset" / "notes.txt").write_text("mine")
