@@ -19,6 +19,11 @@ class SimConfig(Model):
         default=None, gt=0, description="grid spacing [m]; None = twice the particle spacing"
     )
     dt_max_s: float = Field(default=2e-4, gt=0, description="user cap on the time step [s]")
+    dt_min_s: float = Field(
+        default=1e-6, gt=0,
+        description="smallest time step [s] the material's CFL step may ask for; a stiffer material (or a finer grid) "
+                    "is refused before the rollout starts instead of running for hours",
+    )
     dt_fixed_s: float | None = Field(
         default=None, gt=0, description="fixed time step [s] (benchmarks); None = adaptive CFL"
     )

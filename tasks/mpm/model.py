@@ -138,6 +138,21 @@ def _vec3_array(a: np.ndarray, device: str) -> wp.array:
     return wp.array(np.ascontiguousarray(a, dtype=np.float32).reshape(-1, 3), dtype=wp.vec3, device=device)
 
 
+def _check_time_step(model: "Model", config: SimConfig) -> None:
+    """SimulationError when a scene's material alone needs CFL steps below config.dt_min_s (explicit MPM)."""
+    worst = int(np.argmax(model.p_wave_speed))
+    c = float(model.p_wave_speed[worst])
+    dt = config.cfl * model.dx / c / config.substeps
+    if dt < config.dt_min_s:
+        m = model.materials[worst]
+        raise SimulationError(
+            f"the material is too stiff for explicit MPM at dx = {model.dx:.3g} m: E = {m.youngs_modulus_pa:.3g} Pa, "
+            f"nu = {m.poisson_ratio:g}, density {model.densities[worst]:.4g} kg/m^3 give a p-wave speed of {c:.3g} m/s "
+            f"and CFL time steps of {dt:.2g} s, below the {config.dt_min_s:g} s floor (SimConfig.dt_min_s): "
+            "lower E or nu, or coarsen the grid"
+        )
+
+
 class Model:
     """Static data of B batched scenes on one Warp device; build with ``build_model``."""
 
@@ -204,6 +219,8 @@ class Model:
         self.p_wave_speed = np.asarray(
             [m.p_wave_speed_m_per_s(r) for m, r in zip(self.materials, self.densities)], dtype=np.float64
         )
+        if config.dt_fixed_s is None:
+            _check_time_step(self, config)
 
         # ground and gravity
         self.ground_enabled_np = np.asarray([1 if s.ground else 0 for s in scenes], dtype=np.int32)

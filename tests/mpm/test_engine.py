@@ -109,6 +109,20 @@ def test_adaptive_dt_respects_cfl_and_cap() -> None:
     assert soft.stable_dt() == pytest.approx(1e-4)
 
 
+def test_material_too_stiff_for_the_time_step_floor_is_refused_before_the_rollout() -> None:
+    """E = 1e12 Pa at 500 kg/m^3 on 2 cm cells: c_p = sqrt(1.346e12 / 500) = 5.19e4 m/s, CFL steps of 1.5e-7 s (a 1 s
+    probe: ~7e6 steps): refused with the numbers, at model build; 1e5 Pa builds; a fixed time step is the user's own
+    choice and is not checked; a lower floor admits it."""
+    from contracts.errors import SimulationError
+
+    stiff = Material(youngs_modulus_pa=1e12, poisson_ratio=0.3)
+    with pytest.raises(SimulationError, match=r"too stiff .*p-wave speed of 5.19e\+04 m/s.*below the 1e-06 s floor"):
+        build_model([_cube(material=stiff)], _cfg())
+    build_model([_cube()], _cfg())
+    build_model([_cube(material=stiff)], _cfg(dt_fixed_s=1e-7))
+    build_model([_cube(material=stiff)], _cfg(dt_min_s=1e-8))
+
+
 def test_nan_is_reported_with_scene_and_particle_not_spread() -> None:
     """A NaN in one particle of scene 1 is a structured failure naming scene 1 and that particle; no crash."""
     model = build_model([_cube(), _cube()], _cfg())
