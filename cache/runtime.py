@@ -153,7 +153,7 @@ def _start_server_process(port: int) -> subprocess.Popen:
         raise ModuleNotFoundError("prefect")
     app_dir = Path(spec.origin).parent.parent
     env = {**os.environ, "PREFECT_UI_ENABLED": "0", "PREFECT__SERVER_EPHEMERAL": "1", "PREFECT__SERVER_FINAL": "1"}
-    args = [sys.executable, "-c", _SERVE, "--app-dir", str(app_dir), "--factory",
+    args = [sys.executable, "-P", "-c", _SERVE, "--app-dir", str(app_dir), "--factory",
             "prefect.server.api.server:create_app", "--host", "127.0.0.1", "--port", str(port), "--log-level",
             "error", "--lifespan", "on"]
     # stdout stays clean for --json output; errors still reach stderr

@@ -206,7 +206,9 @@ def run_one(item: BatchItem, out_root: Path, device: str, job: str, env: dict[st
     request_file.write_text(item.request.model_dump_json(), encoding="utf-8")
     events = cache_dir / "events.jsonl"
     since = events.stat().st_size if events.is_file() else 0
-    cmd = [sys.executable, "-m", "flows.batch_job", "--request", str(request_file), "--out", str(out_root / item.name),
+    # -P: the working directory is not put on sys.path, so a folder there named like one of our packages (a user's
+    # `cache/` or `tasks/`) cannot shadow it in the child (it would, under an editable install)
+    cmd = [sys.executable, "-P", "-m", "flows.batch_job", "--request", str(request_file), "--out", str(out_root / item.name),
            "--device", device, "--job", job, "--result", str(result_file)]
     t0 = time.perf_counter()
     with log.open("w", encoding="utf-8") as fh:

@@ -116,7 +116,7 @@ print(json.dumps({"first_run_s": first, "cache_hit_rerun_s": second}))
 
 
 def _run_case(code: str, *args: str, env: dict[str, str] | None = None) -> dict:
-    proc = subprocess.run([sys.executable, "-c", code, *args], capture_output=True, text=True,
+    proc = subprocess.run([sys.executable, "-P", "-c", code, *args], capture_output=True, text=True,
                           env={**os.environ, **(env or {})})
     if proc.returncode != 0:
         fail(f"benchmark case failed: {proc.stderr.strip().splitlines()[-1] if proc.stderr.strip() else proc.returncode}")

@@ -91,3 +91,18 @@ def test_cli_reports_and_exits_nonzero(tmp_path: Path) -> None:
     assert data["failed"] == 2 and (tmp_path / "out" / REPORT_JSON).is_file()
     assert runner.invoke(app, ["batch", str(reqs), "--concurrency", "0"]).exit_code == 2
     assert runner.invoke(app, ["batch", str(tmp_path / "missing.jsonl")]).exit_code == 2
+
+
+def test_children_ignore_folders_in_the_working_directory(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    """Run from a folder holding a user's own `cache/` and `tasks/` (no PYTHONPATH: the package comes from the install),
+    a child still imports DeformSmith's packages and fails for the request's own reason. Under an editable install,
+    a child run with the working directory on sys.path failed every request with "ImportError: cannot import name
+    'cached_task' from 'cache' (unknown location)"."""
+    for name in ("cache", "tasks", "flows", "contracts"):
+        (tmp_path / name).mkdir()
+    monkeypatch.delenv("PYTHONPATH", raising=False)
+    monkeypatch.chdir(tmp_path)
+    reqs = _write(tmp_path / "r.jsonl", ['{"name": "wrench", "text": "a steel wrench"}'])
+    report = run_batch(reqs, tmp_path / "out", concurrency=1, job=NO_L3_JOB)
+    (result,) = report.results
+    assert result.status == "failed" and "is a rigid material" in (result.reason or ""), result.reason
