@@ -194,10 +194,66 @@ def _last_line(log: Path) -> str:
     return lines[-1][-300:] if lines else ""
 
 
+class Children:
+    """The batch's running request processes, so that an interrupted batch stops them (each runs in a session of its
+    own, out of reach of the terminal's Ctrl-C) and starts no more."""
+
+    def __init__(self) -> None:
+        self._lock = threading.Lock()
+        self._procs: set[subprocess.Popen[bytes]] = set()
+        self.stopping = threading.Event()
+
+    def start(self, cmd: list[str], **kwargs: Any) -> subprocess.Popen[bytes] | None:
+        """Start a child in a new session; None once the batch is stopping."""
+        with self._lock:
+            if self.stopping.is_set():
+                return None
+            proc = subprocess.Popen(cmd, start_new_session=True, **kwargs)
+            self._procs.add(proc)
+            return proc
+
+    def finished(self, proc: subprocess.Popen[bytes]) -> None:
+        with self._lock:
+            self._procs.discard(proc)
+
+    def stop_all(self, grace_s: float = 10.0) -> None:
+        """SIGINT to every child's process group (a request removes its working directory on the way out), SIGKILL
+        to what is left after grace_s; no child starts after this."""
+        with self._lock:
+            self.stopping.set()
+            procs = list(self._procs)
+        for proc in procs:
+            _signal_group(proc, signal.SIGINT)
+        deadline = time.monotonic() + grace_s
+        try:
+            for proc in procs:
+                try:
+                    proc.wait(timeout=max(0.0, deadline - time.monotonic()))
+                except subprocess.TimeoutExpired:
+                    pass
+        finally:
+            for proc in procs:
+                _signal_group(proc, signal.SIGKILL)  # also what the request left running in its group
+
+
+def _signal_group(proc: subprocess.Popen[bytes], sig: signal.Signals) -> None:
+    try:
+        os.killpg(proc.pid, sig)
+    except (ProcessLookupError, PermissionError):
+        pass
+
+
+INTERRUPTED = "interrupted"
+
+
 def run_one(item: BatchItem, out_root: Path, device: str, job: str, env: dict[str, str], cache_dir: Path,
-            timeout_s: float | None = None) -> RequestResult:
+            timeout_s: float | None = None, children: Children | None = None) -> RequestResult:
     """Run one request in a child process (`python -m flows.batch_job`) and read back its result."""
     assert item.request is not None
+    children = children or Children()
+    if children.stopping.is_set():
+        return RequestResult(name=item.name, line=item.line, status="failed", attempts=0,
+                             reason=f"{INTERRUPTED} before it started")
     logs = out_root / LOG_DIR
     logs.mkdir(parents=True, exist_ok=True)
     log, result_file = logs / f"{item.name}.log", logs / f"{item.name}.result.json"
@@ -212,15 +268,22 @@ def run_one(item: BatchItem, out_root: Path, device: str, job: str, env: dict[st
            "--device", device, "--job", job, "--result", str(result_file)]
     t0 = time.perf_counter()
     with log.open("w", encoding="utf-8") as fh:
-        proc = subprocess.Popen(cmd, stdout=fh, stderr=subprocess.STDOUT, env=env, start_new_session=True)
+        proc = children.start(cmd, stdout=fh, stderr=subprocess.STDOUT, env=env)
+        if proc is None:
+            return RequestResult(name=item.name, line=item.line, status="failed", attempts=0,
+                                 reason=f"{INTERRUPTED} before it started")
         try:
             rc = proc.wait(timeout=timeout_s)
             reason_extra = None
         except subprocess.TimeoutExpired:
-            os.killpg(proc.pid, signal.SIGKILL)
+            _signal_group(proc, signal.SIGKILL)
             rc = proc.wait()
             reason_extra = f"timed out after {timeout_s:g} s"
+        finally:
+            children.finished(proc)
     wall = time.perf_counter() - t0
+    if reason_extra is None and children.stopping.is_set() and not result_file.is_file():
+        reason_extra = f"{INTERRUPTED} after {wall:.1f} s"
     misses, hits = _cache_counts(events, proc.pid, since)
     common = dict(name=item.name, line=item.line, wall_s=round(wall, 3), tasks_executed=misses, tasks_cached=hits,
                   log=str(log))
@@ -229,7 +292,7 @@ def run_one(item: BatchItem, out_root: Path, device: str, job: str, env: dict[st
         return RequestResult(status=data["status"], reason=data.get("reason"), asset_dir=data.get("asset_dir"),
                              **common)
     reason = reason_extra or _death(rc)
-    tail = _last_line(log)
+    tail = "" if reason.startswith(INTERRUPTED) else _last_line(log)  # its last line is the KeyboardInterrupt
     return RequestResult(status="failed", reason=f"{reason}; last log line: {tail}" if tail else reason, **common)
 
 
@@ -287,18 +350,49 @@ def run_batch(requests_jsonl: Path, out_root: Path, concurrency: int = 1, device
             done(failed_result(item))
     t0 = time.perf_counter()
     runnable = [item for item in items if item.request is not None]
+    interrupted = False
     if runnable:
-        with prefect_api_for_children() as prefect_env:
+        children = Children()
+        with prefect_api_for_children() as prefect_env, _sigterm_as_interrupt():
             from tasks.probes.workers import child_probe_workers
 
             env = {**os.environ, **prefect_env, ENV_VAR: str(cache_dir),
                    **child_probe_workers(concurrency)}  # the requests' probe threads share the cores
             with ThreadPoolExecutor(max_workers=concurrency) as pool:
-                futures = [pool.submit(run_one, item, out_root, device, job, env, cache_dir, timeout_s)
+                futures = [pool.submit(run_one, item, out_root, device, job, env, cache_dir, timeout_s, children)
                            for item in runnable]
-                for fut in as_completed(futures):
-                    done(fut.result())
+                pending = set(futures)
+                try:
+                    for fut in as_completed(futures):
+                        pending.discard(fut)
+                        done(fut.result())
+                except KeyboardInterrupt:  # Ctrl-C (or SIGTERM): stop the children, report every request, re-raise
+                    interrupted = True
+                    children.stop_all()
+                    for fut in futures:
+                        if fut in pending:
+                            done(fut.result())
     report = BatchReport.build(results, time.perf_counter() - t0, requests_file=str(requests_jsonl),
                                out_root=str(out_root), concurrency=concurrency, device=device)
     report.write(out_root)
+    if interrupted:
+        raise KeyboardInterrupt
     return report
+
+
+@contextmanager
+def _sigterm_as_interrupt() -> Iterator[None]:
+    """In the main thread, SIGTERM (a scheduler or `kill` stopping the batch) stops it as Ctrl-C does, so that its
+    children, which run in sessions of their own, do not outlive it."""
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+
+    def interrupt(signum: int, frame: Any) -> None:
+        raise KeyboardInterrupt
+
+    previous = signal.signal(signal.SIGTERM, interrupt)
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGTERM, previous)

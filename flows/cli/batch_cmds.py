@@ -49,9 +49,13 @@ def batch(
         mark = "[green]ok[/green]" if r.status == "ok" else f"[red]failed[/red]: {r.reason}"
         console.log(f"{r.name} (line {r.line}) {mark} {r.wall_s:.1f} s")
 
-    with console.status(f"running requests from {requests} ({concurrency} at a time)"):
-        report = run_batch(requests, out, concurrency=concurrency, device=device, timeout_s=timeout_s,
-                           on_result=on_result, job=DEFAULT_JOB if l3 else NO_L3_JOB)
+    try:
+        with console.status(f"running requests from {requests} ({concurrency} at a time)"):
+            report = run_batch(requests, out, concurrency=concurrency, device=device, timeout_s=timeout_s,
+                               on_result=on_result, job=DEFAULT_JOB if l3 else NO_L3_JOB)
+    except KeyboardInterrupt:  # run_batch stopped the children and wrote the report first
+        console.print(f"report (interrupted): {out / REPORT_JSON}")
+        raise
     if as_json:
         emit_json(report.model_dump(mode="json"))
     else:

@@ -61,6 +61,12 @@ def main() -> None:
     except DeformSmithError as exc:
         sys.stderr.write(f"error: {exc}\n")
         sys.exit(exc.exit_code)
+    except SystemExit as exc:
+        if exc.code == 130:  # Ctrl-C: Typer turns KeyboardInterrupt into a silent exit 130
+            resumes = sys.argv[1:2] and sys.argv[1] in FLOW_COMMANDS
+            sys.stderr.write("interrupted" + ("; finished tasks are cached: the same command resumes from them\n"
+                                              if resumes else "\n"))
+        raise
 
 
 if __name__ == "__main__":

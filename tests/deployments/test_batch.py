@@ -106,3 +106,42 @@ def test_children_ignore_folders_in_the_working_directory(tmp_path: Path, monkey
     report = run_batch(reqs, tmp_path / "out", concurrency=1, job=NO_L3_JOB)
     (result,) = report.results
     assert result.status == "failed" and "is a rigid material" in (result.reason or ""), result.reason
+
+
+@pytest.mark.parametrize("signame", ["SIGINT", "SIGTERM"])
+def test_ctrl_c_stops_the_batch_at_once_and_reports(tmp_path: Path, signame: str) -> None:
+    """SIGINT (Ctrl-C) or SIGTERM while the first of three 60 s requests runs: the batch returns within seconds (it
+    used to run every request to its end first, and SIGTERM left its child running), its child is gone, none of the
+    others starts, and the report says each was interrupted."""
+    import os
+    import signal
+    import subprocess
+    import sys
+    import time
+
+    reqs = _write(tmp_path / "r.jsonl", [f'{{"name": "r{i}", "text": "sleep 60"}}' for i in range(3)])
+    code = ("import sys; from pathlib import Path; from flows.batch import run_batch; "
+            f"run_batch(Path(sys.argv[1]), Path(sys.argv[2]), concurrency=1, job={QUICK!r})")
+    proc = subprocess.Popen([sys.executable, "-c", code, str(reqs), str(tmp_path / "out")], cwd=REPO,
+                            env=dict(os.environ, PYTHONPATH=str(REPO)), stderr=subprocess.PIPE, text=True,
+                            preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
+    log = tmp_path / "out" / "_logs" / "r0.log"
+    deadline = time.time() + 120
+    while not (log.is_file() and str(tmp_path) in _running_batch_jobs()):
+        assert proc.poll() is None and time.time() < deadline, proc.stderr.read() if proc.poll() is not None else ""
+        time.sleep(0.2)
+    t0 = time.time()
+    proc.send_signal(getattr(signal, signame))
+    proc.communicate(timeout=60)
+    assert proc.returncode != 0 and time.time() - t0 < 30
+    assert str(tmp_path) not in _running_batch_jobs()
+    report = BatchReport.model_validate_json((tmp_path / "out" / REPORT_JSON).read_text(encoding="utf-8"))
+    assert sorted((r.name, r.status) for r in report.results) == [("r0", "failed"), ("r1", "failed"), ("r2", "failed")]
+    assert all((r.reason or "").startswith("interrupted") for r in report.results)
+    assert [r.attempts for r in sorted(report.results, key=lambda r: r.name)] == [1, 0, 0]
+
+
+def _running_batch_jobs() -> str:
+    import subprocess
+
+    return subprocess.run(["pgrep", "-af", "flows.batch_job"], capture_output=True, text=True).stdout

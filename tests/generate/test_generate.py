@@ -68,6 +68,28 @@ def test_cuda_without_a_gpu_is_refused_before_any_layer(tmp_path: Path) -> None:
     assert "L0" not in out.stderr and not (tmp_path / "asset").exists()
 
 
+def test_ctrl_c_stops_at_once_says_so_and_publishes_nothing(tmp_path: Path) -> None:
+    """SIGINT once L0 has run (its result is in the cache): exit 130 within seconds, a last line telling the user that
+    a rerun resumes, no asset and no partial directory."""
+    cache = tmp_path / "cache"
+    cmd = [sys.executable, "-m", "flows.cli.main", "generate", "a sponge", "--no-l3", "--out", str(tmp_path / "asset"),
+           "--cache", str(cache)]
+    proc = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True, cwd=REPO,
+                            env=dict(os.environ, PYTHONPATH=str(REPO)),
+                            preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
+    events = cache / "events.jsonl"
+    deadline = time.time() + 300
+    while not (events.exists() and '"task": "l0.' in events.read_text()):
+        assert proc.poll() is None and time.time() < deadline, "generate ended before it could be interrupted"
+        time.sleep(0.2)
+    t0 = time.time()
+    proc.send_signal(signal.SIGINT)
+    _, err = proc.communicate(timeout=120)
+    assert proc.returncode == 130 and time.time() - t0 < 60
+    assert err.rstrip().splitlines()[-1].startswith("interrupted; finished tasks are cached")
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["cache"]  # no asset, no partial working directory
+
+
 def test_out_dir_that_is_not_an_asset_is_refused(tmp_path: Path) -> None:
     (tmp_path / "asset").mkdir()
     (tmp_path / "asset" / "notes.txt").write_text("mine")
