@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import os
 import sys
 from typing import Any, NoReturn
 
@@ -24,6 +25,20 @@ app.add_typer(bench_app, name="bench")
 app.add_typer(verify_app, name="verify")
 
 console = Console(stderr=True)  # progress and tables go to stderr; --json data goes to stdout
+
+_USER_PREFECT_LEVEL = "PREFECT_LOGGING_LEVEL" in os.environ
+
+
+def prefect_log_level(level: str) -> None:
+    """Prefect's log level for this command, unless the user set PREFECT_LOGGING_LEVEL. Prefect reads it once, when
+    it first logs, so a command sets it before it runs a flow."""
+    if not _USER_PREFECT_LEVEL:
+        os.environ["PREFECT_LOGGING_LEVEL"] = level
+
+
+# Prefect's INFO records (a flow run began, a task ran its cache hook, finished in state Completed: ~45 lines for one
+# asset) would drown the progress lines; warnings and errors stay. PREFECT_LOGGING_LEVEL=INFO brings them back.
+prefect_log_level("WARNING")
 
 
 def fail(message: str, code: int = 2) -> NoReturn:

@@ -13,7 +13,7 @@ import typer
 from pydantic import ValidationError
 
 from contracts.errors import validation_message
-from flows.cli.apps import app, bench_app, console, emit_json, fail
+from flows.cli.apps import app, bench_app, console, emit_json, fail, prefect_log_level
 
 QUALITIES = ("draft", "standard", "high")
 
@@ -43,7 +43,7 @@ def geometry(
     except ValidationError as exc:
         fail("invalid request: " + validation_message(exc))
     _preflight(request)
-    os.environ.setdefault("PREFECT_LOGGING_LEVEL", "CRITICAL")  # user errors surface as one line, not task tracebacks
+    prefect_log_level("CRITICAL")  # user errors surface as one line, not task tracebacks
     from flows.l0_geometry import run_l0, write_l0
 
     with console.status(f"L0 geometry ({quality})..."):

@@ -3,16 +3,10 @@
 from __future__ import annotations
 
 import logging
-import os
 import sys
 
-# Prefect's INFO records (a flow run began, a task ran its cache hook, finished in state Completed: ~45 lines for one
-# asset) drown the progress lines; warnings and errors stay. PREFECT_LOGGING_LEVEL=INFO brings them back. Set before
-# anything imports Prefect, which reads it once.
-os.environ.setdefault("PREFECT_LOGGING_LEVEL", "WARNING")
-
-from contracts.errors import DeformSmithError  # noqa: E402
-from flows.cli.apps import app  # noqa: E402
+from contracts.errors import DeformSmithError
+from flows.cli.apps import app
 
 # Each module registers its commands on the shared apps when imported.
 from flows.cli import schema_cmds  # noqa: E402,F401

@@ -4,14 +4,13 @@
 from __future__ import annotations
 
 import math
-import os
 from pathlib import Path
 
 import typer
 from pydantic import ValidationError
 
 from contracts.errors import validation_message
-from flows.cli.apps import app, bench_app, console, emit_json, fail
+from flows.cli.apps import app, bench_app, console, emit_json, fail, prefect_log_level
 
 RIGID_KINDS = ("place", "drop", "slide")  # L1 rigid probes (pybullet); `drop` is rigid unless --deformable
 DEFORMABLE_KINDS = ("compress", "lift", "stability")
@@ -83,7 +82,7 @@ def probe(
     _check_asset(asset)
     if rho is not None and not (math.isfinite(rho) and rho > 0):
         fail(f"--rho must be a positive finite density [kg/m^3], got {rho}")
-    os.environ.setdefault("PREFECT_LOGGING_LEVEL", "CRITICAL")
+    prefect_log_level("CRITICAL")
     if kind in RIGID_KINDS and not (kind == "drop" and deformable):
         if any(v is not None for v in (E, nu, damping)):
             fail(f"--E/--nu/--damping apply to deformable probes; '{kind}' is a rigid L1 probe")
@@ -129,7 +128,7 @@ def material(
         fail("--intent is empty")
     if not 1 <= cpu_threads <= 64:
         fail(f"--cpu-threads must be 1 to 64, got {cpu_threads}")
-    os.environ.setdefault("PREFECT_LOGGING_LEVEL", "CRITICAL")
+    prefect_log_level("CRITICAL")
     from contracts.agents import AgentConfig
     from contracts.sim import SimConfig
     from flows.l2_material import MATERIAL_JSON, run_l2

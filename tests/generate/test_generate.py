@@ -170,3 +170,17 @@ def test_stale_working_directories_of_dead_processes_are_removed(tmp_path: Path)
         d.mkdir()
     assert remove_stale_partials(tmp_path / "asset") == [stale]
     assert mine.exists() and other_host.exists() and not stale.exists()
+
+
+def test_prefect_log_level_is_ours_unless_the_user_set_one(monkeypatch: pytest.MonkeyPatch) -> None:
+    """Commands quiet Prefect's INFO records, but a PREFECT_LOGGING_LEVEL the user set is kept."""
+    from flows.cli import apps
+
+    monkeypatch.setattr(apps, "_USER_PREFECT_LEVEL", False)
+    monkeypatch.setenv("PREFECT_LOGGING_LEVEL", "WARNING")
+    apps.prefect_log_level("CRITICAL")
+    assert os.environ["PREFECT_LOGGING_LEVEL"] == "CRITICAL"
+    monkeypatch.setattr(apps, "_USER_PREFECT_LEVEL", True)
+    monkeypatch.setenv("PREFECT_LOGGING_LEVEL", "INFO")
+    apps.prefect_log_level("CRITICAL")
+    assert os.environ["PREFECT_LOGGING_LEVEL"] == "INFO"
