@@ -337,11 +337,11 @@ def run_batch(requests_jsonl: Path, out_root: Path, concurrency: int = 1, device
     out_root.mkdir(parents=True, exist_ok=True)
     cache_dir = cache.cache_root()
     lock = threading.Lock()
-    results: list[RequestResult] = []
+    results: dict[int, RequestResult] = {}  # by line: a result handed in twice (see the interrupt below) counts once
 
     def done(result: RequestResult) -> None:
         with lock:
-            results.append(result)
+            results[result.line] = result
         if on_result:
             on_result(result)
 
@@ -361,18 +361,18 @@ def run_batch(requests_jsonl: Path, out_root: Path, concurrency: int = 1, device
             with ThreadPoolExecutor(max_workers=concurrency) as pool:
                 futures = [pool.submit(run_one, item, out_root, device, job, env, cache_dir, timeout_s, children)
                            for item in runnable]
-                pending = set(futures)
+                handled: set[Any] = set()
                 try:
                     for fut in as_completed(futures):
-                        pending.discard(fut)
                         done(fut.result())
+                        handled.add(fut)
                 except KeyboardInterrupt:  # Ctrl-C (or SIGTERM): stop the children, report every request, re-raise
                     interrupted = True
                     children.stop_all()
                     for fut in futures:
-                        if fut in pending:
+                        if fut not in handled:
                             done(fut.result())
-    report = BatchReport.build(results, time.perf_counter() - t0, requests_file=str(requests_jsonl),
+    report = BatchReport.build(list(results.values()), time.perf_counter() - t0, requests_file=str(requests_jsonl),
                                out_root=str(out_root), concurrency=concurrency, device=device)
     report.write(out_root)
     if interrupted:
