@@ -2,6 +2,8 @@
 
 The result file is the only channel back to the batch runner: {"status": "ok"|"failed", "reason", "asset_dir"}.
 A process that dies before writing it (a hard crash, a kill) is reported by the runner from its exit status.
+SIGINT stops a request as Ctrl-C stops `generate` (its working directory removed), and so does the loss of the batch
+that started it (killed, crashed): a request does not run on for a batch that is gone.
 """
 
 from __future__ import annotations
@@ -10,6 +12,9 @@ import argparse
 import importlib
 import json
 import os
+import signal
+import threading
+import time
 import traceback
 from collections.abc import Callable
 from pathlib import Path
@@ -64,8 +69,28 @@ def _write_atomic(path: Path, data: dict[str, Any]) -> None:
     os.replace(tmp, path)
 
 
+def stop_when_orphaned(poll_s: float = 0.5, grace_s: float = 10.0) -> None:
+    """Once the parent process is gone, interrupt the main thread as Ctrl-C would (directed at it, so that a blocking
+    call returns), and exit after grace_s if it has not stopped by then."""
+    parent = os.getppid()
+    main_thread = threading.main_thread().ident
+    assert main_thread is not None
+
+    def watch() -> None:
+        while os.getppid() == parent:
+            time.sleep(poll_s)
+        signal.pthread_kill(main_thread, signal.SIGINT)
+        time.sleep(grace_s)
+        os._exit(130)
+
+    threading.Thread(target=watch, name="orphan-watch", daemon=True).start()
+
+
 def main(argv: list[str] | None = None) -> int:
     """Entry point of the child process; exit 0 when the request succeeded."""
+    # SIGINT is KeyboardInterrupt even when the batch was started with it ignored (nohup, a non-interactive shell)
+    signal.signal(signal.SIGINT, signal.default_int_handler)
+    stop_when_orphaned()
     ap = argparse.ArgumentParser(prog="python -m flows.batch_job")
     ap.add_argument("--request", type=Path, required=True, help="JSON file holding one AssetRequest")
     ap.add_argument("--out", type=Path, required=True, help="asset directory to publish")

@@ -145,3 +145,33 @@ def _running_batch_jobs() -> str:
     import subprocess
 
     return subprocess.run(["pgrep", "-af", "flows.batch_job"], capture_output=True, text=True).stdout
+
+
+def test_requests_stop_when_the_batch_is_killed(tmp_path: Path) -> None:
+    """SIGKILL of the batch (an OOM kill, a crash) while a 60 s request runs: the request, in a session of its own,
+    stops within seconds instead of running on with no batch to report to."""
+    import os
+    import signal
+    import subprocess
+    import sys
+    import time
+
+    reqs = _write(tmp_path / "r.jsonl", ['{"name": "r0", "text": "sleep 60"}'])
+    code = ("import sys; from pathlib import Path; from flows.batch import run_batch; "
+            f"run_batch(Path(sys.argv[1]), Path(sys.argv[2]), concurrency=1, job={QUICK!r})")
+    proc = subprocess.Popen([sys.executable, "-c", code, str(reqs), str(tmp_path / "out")], cwd=REPO,
+                            env=dict(os.environ, PYTHONPATH=str(REPO)), stderr=subprocess.DEVNULL)
+    deadline = time.time() + 120
+    while str(tmp_path) not in _running_batch_jobs():
+        assert proc.poll() is None and time.time() < deadline
+        time.sleep(0.2)
+    time.sleep(2.0)  # the request is past its start-up and sleeping
+    proc.send_signal(signal.SIGKILL)
+    proc.wait(timeout=30)
+    deadline = time.time() + 15
+    try:
+        while str(tmp_path) in _running_batch_jobs():
+            assert time.time() < deadline, "the request outlived its batch by 15 s"
+            time.sleep(0.2)
+    finally:
+        subprocess.run(["pkill", "-KILL", "-f", f"flows.batch_job.*{tmp_path}"], check=False)
