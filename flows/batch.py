@@ -299,14 +299,17 @@ def run_one(item: BatchItem, out_root: Path, device: str, job: str, env: dict[st
 @contextmanager
 def prefect_api_for_children() -> Iterator[dict[str, str]]:
     """The Prefect environment the child processes share: the user's server, else one local server for the whole
-    batch (marked local, so that the children's flows run without heartbeats, as against their own)."""
-    from cache.runtime import local_api_env, shared_server_env, uses_remote_server
+    batch (marked local, so that the children's flows run without heartbeats, as against their own). The local one is
+    DeformSmith's (`cache.runtime.prestart_local_server`, already started by the CLI): it exits by itself if the
+    batch is killed, where Prefect's own temporary server, the fallback, would be left running."""
+    from cache.runtime import local_api_env, prestart_local_server, shared_server_env, uses_remote_server
 
     if uses_remote_server():
         from prefect.settings import PREFECT_API_URL
 
         yield {"PREFECT_API_URL": str(PREFECT_API_URL.value())}
         return
+    prestart_local_server()
     shared = shared_server_env()
     if shared:
         yield shared
