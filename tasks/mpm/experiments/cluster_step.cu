@@ -32,6 +32,24 @@ __device__ __forceinline__ void weights(float fx, float w[3]) {
   w[2] = 0.5f * (fx - 0.5f) * (fx - 0.5f);
 }
 
+struct Stencil {  // a particle's quadratic B-spline stencil: base node, fractional offsets, per-axis weights
+  int b[3];
+  float f[3], w[3][3];
+};
+
+__device__ __forceinline__ Stencil stencil(const float x[3], const Params& p) {
+  Stencil s;
+  const float o[3] = {p.ox, p.oy, p.oz};
+#pragma unroll
+  for (int a = 0; a < 3; ++a) {
+    float g = (x[a] - o[a]) * p.inv_dx;
+    s.b[a] = (int)floorf(g - 0.5f);
+    s.f[a] = g - s.b[a];
+    weights(s.f[a], s.w[a]);
+  }
+  return s;
+}
+
 __global__ void step_loop(float* __restrict__ X, float* __restrict__ V, float* __restrict__ Fm,
                           float* __restrict__ Cm, Params p) {
   extern __shared__ float4 grid[];
@@ -67,11 +85,10 @@ __global__ void step_loop(float* __restrict__ X, float* __restrict__ V, float* _
       float A[9];
 #pragma unroll
       for (int k = 0; k < 9; ++k) A[k] = -p.dt * p.vol * s4 * tau[k] + p.mass * Cq[k];
-      float gx = (x[0] - p.ox) * p.inv_dx, gy = (x[1] - p.oy) * p.inv_dx, gz = (x[2] - p.oz) * p.inv_dx;
-      int bx = (int)floorf(gx - 0.5f), by = (int)floorf(gy - 0.5f), bz = (int)floorf(gz - 0.5f);
-      float fx = gx - bx, fy = gy - by, fz = gz - bz;
-      float wx[3], wy[3], wz[3];
-      weights(fx, wx); weights(fy, wy); weights(fz, wz);
+      const Stencil st = stencil(x, p);
+      const int bx = st.b[0], by = st.b[1], bz = st.b[2];
+      const float fx = st.f[0], fy = st.f[1], fz = st.f[2];
+      const float *wx = st.w[0], *wy = st.w[1], *wz = st.w[2];
       float mv[3] = {p.mass * v[0], p.mass * v[1], p.mass * v[2]};
 #pragma unroll
       for (int i = 0; i < 3; ++i)
@@ -108,11 +125,10 @@ __global__ void step_loop(float* __restrict__ X, float* __restrict__ V, float* _
     // g2p
     for (int q = p0 + threadIdx.x; q < p1; q += blockDim.x) {
       float x[3] = {X[3 * q], X[3 * q + 1], X[3 * q + 2]};
-      float gx = (x[0] - p.ox) * p.inv_dx, gy = (x[1] - p.oy) * p.inv_dx, gz = (x[2] - p.oz) * p.inv_dx;
-      int bx = (int)floorf(gx - 0.5f), by = (int)floorf(gy - 0.5f), bz = (int)floorf(gz - 0.5f);
-      float fx = gx - bx, fy = gy - by, fz = gz - bz;
-      float wx[3], wy[3], wz[3];
-      weights(fx, wx); weights(fy, wy); weights(fz, wz);
+      const Stencil st = stencil(x, p);
+      const int bx = st.b[0], by = st.b[1], bz = st.b[2];
+      const float fx = st.f[0], fy = st.f[1], fz = st.f[2];
+      const float *wx = st.w[0], *wy = st.w[1], *wz = st.w[2];
       float nv[3] = {0.f, 0.f, 0.f}, B[9] = {0.f, 0.f, 0.f, 0.f, 0.f, 0.f, 0.f, 0.f, 0.f};
 #pragma unroll
       for (int i = 0; i < 3; ++i)
