@@ -246,14 +246,19 @@ def _signal_group(proc: subprocess.Popen[bytes], sig: signal.Signals) -> None:
 INTERRUPTED = "interrupted"
 
 
+def _not_started(item: BatchItem) -> RequestResult:
+    """The result of a request that an interrupted batch never started."""
+    return RequestResult(name=item.name, line=item.line, status="failed", attempts=0,
+                         reason=f"{INTERRUPTED} before it started")
+
+
 def run_one(item: BatchItem, out_root: Path, device: str, job: str, env: dict[str, str], cache_dir: Path,
             timeout_s: float | None = None, children: Children | None = None) -> RequestResult:
     """Run one request in a child process (`python -m flows.batch_job`) and read back its result."""
     assert item.request is not None
     children = children or Children()
     if children.stopping.is_set():
-        return RequestResult(name=item.name, line=item.line, status="failed", attempts=0,
-                             reason=f"{INTERRUPTED} before it started")
+        return _not_started(item)
     logs = out_root / LOG_DIR
     logs.mkdir(parents=True, exist_ok=True)
     log, result_file = logs / f"{item.name}.log", logs / f"{item.name}.result.json"
@@ -270,8 +275,7 @@ def run_one(item: BatchItem, out_root: Path, device: str, job: str, env: dict[st
     with log.open("w", encoding="utf-8") as fh:
         proc = children.start(cmd, stdout=fh, stderr=subprocess.STDOUT, env=env)
         if proc is None:
-            return RequestResult(name=item.name, line=item.line, status="failed", attempts=0,
-                                 reason=f"{INTERRUPTED} before it started")
+            return _not_started(item)
         try:
             rc = proc.wait(timeout=timeout_s)
             reason_extra = None

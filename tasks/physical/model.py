@@ -8,9 +8,9 @@ from contracts.errors import InputError
 from contracts.physical import PhysicalModel
 
 # What a robot hand can hold, from about the lightest object L0 admits (1 cm x 5 mm x 5 mm of the lightest foam,
-# 12 kg/m^3: ~3 mg; a foam earplug is ~0.2 g) to a large pillow (~3 kg) and a bit beyond. Outside this, L1 fails its gate; inside it,
-# plausibility is the density's (within the material's range). The floor was 2 g, which refused the catalogue's own
-# foam earplug whatever its density.
+# 12 kg/m^3: ~3 mg; a foam earplug is ~0.2 g) to a large pillow (~3 kg) and a bit beyond. Outside this, L1 fails its
+# gate; inside it, plausibility is the density's (within the material's range). The floor was 2 g, which refused the
+# catalogue's own foam earplug whatever its density.
 MASS_RANGE_KG: tuple[float, float] = (1.0e-6, 5.0)
 DENSITY_BAND_SLACK = 1.5  # a density may sit this factor outside the material's prior range and still be plausible
 

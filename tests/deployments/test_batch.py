@@ -3,8 +3,14 @@
 from __future__ import annotations
 
 import json
+import os
+import signal
+import subprocess
+import sys
+import time
 from collections import Counter
 from pathlib import Path
+from typing import Any
 
 import pytest
 from typer.testing import CliRunner
@@ -113,18 +119,8 @@ def test_ctrl_c_stops_the_batch_at_once_and_reports(tmp_path: Path, signame: str
     """SIGINT (Ctrl-C) or SIGTERM while the first of three 60 s requests runs: the batch returns within seconds (it
     used to run every request to its end first, and SIGTERM left its child running), its child is gone, none of the
     others starts, and the report says each was interrupted."""
-    import os
-    import signal
-    import subprocess
-    import sys
-    import time
-
-    reqs = _write(tmp_path / "r.jsonl", [f'{{"name": "r{i}", "text": "sleep 60"}}' for i in range(3)])
-    code = ("import sys; from pathlib import Path; from flows.batch import run_batch; "
-            f"run_batch(Path(sys.argv[1]), Path(sys.argv[2]), concurrency=1, job={QUICK!r})")
-    proc = subprocess.Popen([sys.executable, "-c", code, str(reqs), str(tmp_path / "out")], cwd=REPO,
-                            env=dict(os.environ, PYTHONPATH=str(REPO)), stderr=subprocess.PIPE, text=True,
-                            preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
+    proc = _start_batch(tmp_path, 3, stderr=subprocess.PIPE, text=True,
+                        preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
     log = tmp_path / "out" / "_logs" / "r0.log"
     deadline = time.time() + 120
     while not (log.is_file() and str(tmp_path) in _running_batch_jobs()):
@@ -141,26 +137,23 @@ def test_ctrl_c_stops_the_batch_at_once_and_reports(tmp_path: Path, signame: str
     assert [r.attempts for r in sorted(report.results, key=lambda r: r.name)] == [1, 0, 0]
 
 
-def _running_batch_jobs() -> str:
-    import subprocess
+def _start_batch(tmp_path: Path, n: int, **popen: Any) -> "subprocess.Popen[Any]":
+    """run_batch in a process of its own over n requests of 60 s each (r0, r1, ...), out into tmp_path/out."""
+    reqs = _write(tmp_path / "r.jsonl", [f'{{"name": "r{i}", "text": "sleep 60"}}' for i in range(n)])
+    code = ("import sys; from pathlib import Path; from flows.batch import run_batch; "
+            f"run_batch(Path(sys.argv[1]), Path(sys.argv[2]), concurrency=1, job={QUICK!r})")
+    return subprocess.Popen([sys.executable, "-c", code, str(reqs), str(tmp_path / "out")], cwd=REPO,
+                            env=dict(os.environ, PYTHONPATH=str(REPO)), **popen)
 
+
+def _running_batch_jobs() -> str:
     return subprocess.run(["pgrep", "-af", "flows.batch_job"], capture_output=True, text=True).stdout
 
 
 def test_requests_stop_when_the_batch_is_killed(tmp_path: Path) -> None:
     """SIGKILL of the batch (an OOM kill, a crash) while a 60 s request runs: the request, in a session of its own,
     stops within seconds instead of running on with no batch to report to."""
-    import os
-    import signal
-    import subprocess
-    import sys
-    import time
-
-    reqs = _write(tmp_path / "r.jsonl", ['{"name": "r0", "text": "sleep 60"}'])
-    code = ("import sys; from pathlib import Path; from flows.batch import run_batch; "
-            f"run_batch(Path(sys.argv[1]), Path(sys.argv[2]), concurrency=1, job={QUICK!r})")
-    proc = subprocess.Popen([sys.executable, "-c", code, str(reqs), str(tmp_path / "out")], cwd=REPO,
-                            env=dict(os.environ, PYTHONPATH=str(REPO)), stderr=subprocess.DEVNULL)
+    proc = _start_batch(tmp_path, 1, stderr=subprocess.DEVNULL)
     deadline = time.time() + 120
     while str(tmp_path) not in _running_batch_jobs():
         assert proc.poll() is None and time.time() < deadline
