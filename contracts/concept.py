@@ -1,0 +1,42 @@
+"""What L0 understood a request to be: the lexicon concept, how it was found, and its typical real mass (SI units)."""
+
+from __future__ import annotations
+
+from typing import Literal
+
+from pydantic import Field
+
+from contracts.base import Model
+
+# How a concept was found, best first: the lexicon names the noun (or one of its synonyms); the noun is unknown but
+# the text names a body plan ("a four-legged plush", "a ring-shaped ..."); only a category ("a plush animal",
+# "a vegetable"); only a material ("a foam thing"); nothing at all (a generic soft block).
+FallbackLevel = Literal["exact", "synonym", "body_plan", "category", "material", "generic"]
+
+
+class ConceptMatch(Model):
+    """The lexicon concept L0 built for a request, with the fallback taken and the typical mass of the real object."""
+
+    concept: str = Field(description="lexicon key of the object built, e.g. 'plush_turtle'; 'generic_<plan>' when "
+                         "the noun is unknown and only a body plan or category was understood")
+    noun: str | None = Field(default=None, description="the head noun read from the text, e.g. 'turtle'")
+    body_plan: str = Field(description="grammar body plan the shape program came from, e.g. 'quadruped'")
+    category: str = Field(description="object category, e.g. 'plush_animal', 'fruit', 'baked_good'")
+    fallback_level: FallbackLevel = Field(description="how the concept was found (contracts.concept.FallbackLevel)")
+    fallback_note: str | None = Field(default=None, description="one line saying which fallback was taken and why")
+    shape_from: str | None = Field(default=None, description="concept whose shape was used ('shaped like X'), "
+                                   "when it differs from the object's own")
+    default_material: str | None = Field(default=None, description="vocabulary material class the object is "
+                                         "usually made of (contracts/vocab/materials.yaml)")
+    hollow: bool = Field(default=False, description="a hollow object (ball, squeeze toy, bath toy): its mass is a "
+                         "shell's, not the solid volume's")
+    typical_mass_kg: float | None = Field(default=None, gt=0, description="typical mass of the real object at its "
+                                          "typical size [kg]")
+    typical_size_m: float | None = Field(default=None, gt=0, description="longest extent the typical mass refers "
+                                         "to [m]")
+    typical_mass_range_kg: tuple[float, float] | None = Field(
+        default=None, description="plausible mass range of the real object at the built size [kg]")
+    mass_source: str | None = Field(default=None, description="where the typical mass comes from (a product "
+                                    "listing, a nutrition database, a standard)")
+    colors: dict[str, str] = Field(default_factory=dict, description="part name -> colour word applied from the "
+                                   "text")
