@@ -30,6 +30,10 @@ class ConceptMatch(Model):
                                          "usually made of (contracts/vocab/materials.yaml)")
     hollow: bool = Field(default=False, description="a hollow object (ball, squeeze toy, bath toy): its mass is a "
                          "shell's, not the solid volume's")
+    wall_thickness_m: float | None = Field(default=None, gt=0, description="shell wall of a hollow object [m]")
+    density_kg_per_m3: float | None = Field(default=None, gt=0, description="density of the object's solid volume "
+                                            "(of its wall when hollow) from the lexicon: the material class's prior "
+                                            "or the object's own effective density [kg/m^3]")
     typical_mass_kg: float | None = Field(default=None, gt=0, description="typical mass of the real object at its "
                                           "typical size [kg]")
     typical_size_m: float | None = Field(default=None, gt=0, description="longest extent the typical mass refers "
@@ -40,3 +44,12 @@ class ConceptMatch(Model):
                                     "listing, a nutrition database, a standard)")
     colors: dict[str, str] = Field(default_factory=dict, description="part name -> colour word applied from the "
                                    "text")
+
+    def mass_estimate_kg(self, volume_m3: float, area_m2: float) -> float | None:
+        """The object's mass from its built geometry: wall area x wall thickness x density when hollow, else volume x
+        density [kg]; None when the lexicon gave no density (a material-only fallback)."""
+        if self.density_kg_per_m3 is None:
+            return None
+        if self.hollow and self.wall_thickness_m is not None:
+            return min(area_m2 * self.wall_thickness_m, volume_m3) * self.density_kg_per_m3
+        return volume_m3 * self.density_kg_per_m3

@@ -10,6 +10,7 @@ from prefect import flow
 
 import cache
 from cache import cached_task
+from contracts.agents import AgentConfig
 from contracts.request import AssetRequest, Quality
 from contracts.stage import StageContract, load_contract
 from tasks.geometry import pipeline
@@ -19,7 +20,9 @@ from tasks.geometry.particles import ParticleSettings
 from tasks.geometry.pipeline import Arrays, BuildInfo, L0Settings
 
 TASK_VERSION = "1"  # bump when tasks/geometry changes what these tasks return
-MESH_VERSION = "2"  # l0.mesh alone; 2: marching cubes no longer pinches the surface at samples on the level
+MESH_VERSION = "4"  # l0.mesh alone; 2: marching cubes no longer pinches the surface at samples on the level;
+# 3: BuildInfo.generator / design_attempts (LLM Designer, reconstruction backends); 4: text -> lexicon concept and
+# grammar program (BuildInfo.concept), colours and shape phrases
 
 
 @dataclass(frozen=True)
@@ -37,7 +40,7 @@ class L0Result:
 def geometry_request(request: AssetRequest) -> AssetRequest:
     """The fields of a request that geometry depends on (material words or targets never invalidate L0)."""
     return AssetRequest(text=request.text, image_path=request.image_path, mesh_path=request.mesh_path,
-                        size_hint_m=request.size_hint_m, seed=request.seed)
+                        size_hint_m=request.size_hint_m, seed=request.seed, geometry_backend=request.geometry_backend)
 
 
 @cached_task(version=MESH_VERSION, name="l0.mesh")
@@ -89,10 +92,17 @@ def l0_geometry(request: AssetRequest, settings: L0Settings, contract: StageCont
 
 
 def run_l0(request: AssetRequest, quality: Quality | None = None, contract: StageContract | None = None,
-           use_cache: bool = True, coacd_overrides: dict | None = None) -> L0Result:
-    """Run L0 for a request (the Prefect flow with cached tasks, or the plain functions with use_cache=False)."""
+           use_cache: bool = True, coacd_overrides: dict | None = None,
+           agents: AgentConfig | None = None) -> L0Result:
+    """Run L0 for a request (the Prefect flow with cached tasks, or the plain functions with use_cache=False).
+    agents: a litellm Designer writes the shape program of a text request (its Critic judges the renders when it
+    has vision); the model strings key the cache."""
     contract = contract or load_contract("L0")
     settings = pipeline.settings_from_contract(quality or request.quality, contract, request.seed, coacd_overrides)
+    if agents is not None and agents.designer.backend == "litellm" and request.input_kind == "text" \
+            and request.geometry_backend is None:
+        critic = agents.critic if agents.critic.backend == "litellm" else None
+        settings = settings.model_copy(update={"designer": agents.designer, "critic": critic})
     if not use_cache:
         mesh, info = pipeline.build_mesh(geometry_request(request), settings)
         proxy = pipeline.build_proxy(mesh, settings.coacd)
@@ -104,15 +114,27 @@ def run_l0(request: AssetRequest, quality: Quality | None = None, contract: Stag
         return l0_geometry(request, settings, contract)
 
 
-def write_l0(result: L0Result, out_dir: Path, extra: dict | None = None) -> dict[str, str]:
-    """Publish an L0 result into out_dir atomically (nothing is left behind on error)."""
+def write_l0(result: L0Result, out_dir: Path, extra: dict | None = None,
+             request: AssetRequest | None = None) -> dict[str, str]:
+    """Publish an L0 result into out_dir atomically (nothing is left behind on error). `request`, the whole request
+    (material intent and target overrides too, which never key L0's cache), is stored as geometry.json's `request`,
+    so that `physical` and `material` run on the directory derive the material as `generate` does."""
     from tasks.geometry.outputs import publish_dir, write_outputs
 
+    if request is not None:
+        extra = {**(extra or {}), "request": request.model_dump(mode="json")}
     files: dict[str, str] = {}
 
     def build(tmp: Path) -> None:
         files.update(write_outputs(tmp, result.mesh, result.proxy, result.particles, result.gaussians, result.info,
                                    result.checks, extra))
+        if result.info.design_attempts:  # the LLM Designer's attempts, as the other stages record theirs
+            from tasks.agents.records import AttemptRecorder
+
+            recorder = AttemptRecorder(tmp, "L0")
+            for attempt in result.info.design_attempts:
+                recorder.record(attempt)
+            recorder.close()
 
     publish_dir(build, out_dir)
     return files

@@ -1,8 +1,7 @@
-"""Offline text Designer: description -> catalogue shape program, stated sizes and modifiers."""
+"""Offline text Designer: description -> lexicon concept and shape program, stated sizes and modifiers."""
 
 from __future__ import annotations
 
-import difflib
 import functools
 import re
 from pathlib import Path
@@ -13,8 +12,11 @@ import yaml
 from pydantic import Field
 
 from contracts.base import Model
+from contracts.concept import ConceptMatch
 from contracts.errors import InputError
+from contracts.lexicon import load_lexicon
 from contracts.shape import ShapeProgram
+from tasks.geometry import concepts
 
 CATALOGUE_FILE = Path(__file__).with_name("catalogue.yaml")
 MIN_SIZE_M, MAX_SIZE_M = 0.01, 2.0
@@ -77,7 +79,8 @@ class Design(Model):
     size: SizeSpec
     modifiers: list[str] = Field(default_factory=list)
     warnings: list[str] = Field(default_factory=list)
-    match_score: float = Field(description="keyword match strength; 0 means nearest-category fallback")
+    match_score: float = Field(description="2 the lexicon's own noun, 1 a synonym or plural, 0 a fallback by meaning")
+    concept: ConceptMatch | None = Field(default=None, description="the concept understood and the fallback taken")
 
 
 @functools.lru_cache(maxsize=1)
@@ -96,12 +99,21 @@ def entry_keywords(name: str) -> list[str]:
 
 
 def entry_category(name: str) -> str:
-    """Category of an entry (used for priors downstream)."""
-    return str(_raw()["entries"][name]["category"])
+    """Category of a lexicon concept or catalogue entry (used for priors downstream)."""
+    entries = load_lexicon().entries
+    return entries[name].category if name in entries else str(_raw()["entries"][name]["category"])
 
 
 def program_for(name: str) -> ShapeProgram:
-    """The shape program (metres) of a catalogue entry."""
+    """The shape program (metres) of a lexicon concept at its typical size, or of a catalogue-only entry."""
+    entries = load_lexicon().entries
+    if name in entries:
+        return concepts.concept_program(name)
+    return catalogue_program(name)
+
+
+def catalogue_program(name: str) -> ShapeProgram:
+    """The hand-written shape program (metres) of a catalogue entry, at the catalogue's size."""
     raw = _raw()
     unit = float(raw["length_unit_m"])
     palette = raw["palette"]
@@ -126,45 +138,6 @@ def _scale(v: Any, unit: float) -> Any:
 
 def _words(text: str) -> list[str]:
     return re.findall(r"[a-z]+", text.lower())
-
-
-def match_entry(text: str) -> tuple[str, float]:
-    """Best entry for a description: longest keyword phrase found (score > 0), else fuzzy nearest (score 0)."""
-    words = _words(text)
-    joined = " " + " ".join(words) + " "
-    best, best_score = None, 0.0
-    for name in entry_names():
-        for kw in entry_keywords(name):
-            kw_words = _words(kw)
-            forms = {" " + " ".join(kw_words) + " ", " " + " ".join(kw_words) + "s "}
-            if any(f in joined for f in forms):
-                score = len(kw_words) + 0.01 * len(kw)
-                if score > best_score:
-                    best, best_score = name, score
-    if best is not None:
-        return best, best_score
-    vocab = {kw_word: name for name in entry_names() for kw in entry_keywords(name) for kw_word in _words(kw)}
-    vocab.update({w: name for name in entry_names() for w in [entry_category(name)] + name.split("_")})
-    scored = []
-    for w in words:
-        if w in MODIFIERS or len(w) < 3:
-            continue
-        for cand in difflib.get_close_matches(w, list(vocab), n=1, cutoff=0.6):
-            scored.append((difflib.SequenceMatcher(None, w, cand).ratio(), cand))
-    if scored:
-        scored.sort(key=lambda t: (-t[0], t[1]))
-        return vocab[scored[0][1]], 0.0
-    return _soft_default(words), 0.0
-
-
-def _soft_default(words: list[str]) -> str:
-    """Fallback entry from material words when no object word is recognised."""
-    hints = {"plush": "teddy_bear", "stuffed": "teddy_bear", "toy": "teddy_bear", "foam": "foam_block",
-             "rubber": "rubber_ball", "silicone": "silicone_ball", "soft": "foam_ball", "jelly": "jelly"}
-    for w in words:
-        if w in hints:
-            return hints[w]
-    return "foam_block"
 
 
 def parse_size(text: str) -> SizeSpec:
@@ -250,19 +223,32 @@ def check_size(size: SizeSpec) -> None:
             )
 
 
+_HYPHEN_SIZE = re.compile(r"(\d)\s*-\s*(mm|cm|m|inch|in|ft)\b(?:\s*-\s*(?=[a-z]))?", re.I)
+
+
+def normalise_sizes(text: str) -> str:
+    """'an 8-cm-tall cat' -> 'an 8 cm tall cat' (so the size binds to its axis)."""
+    return _HYPHEN_SIZE.sub(lambda m: f"{m.group(1)} {m.group(2)} ", text)
+
+
 def design_from_text(text: str, size_hint_m: float | None = None) -> Design:
-    """Map a description to a catalogue program, the stated size and the modifiers; record any fallback."""
+    """Map a description to a lexicon concept's program (grammar body plan or catalogue shape), the stated size, the
+    modifiers and colours; an unknown noun takes a fallback by meaning, recorded in `concept` and `warnings`."""
     if not text or not text.strip():
         raise InputError("the description is empty")
-    name, score = match_entry(text)
-    warnings = []
-    if score == 0.0:
-        warnings.append(f"no catalogue object named in '{text.strip()}': using the nearest category "
-                        f"'{entry_category(name)}' (entry '{name}')")
-    size = parse_size(text)
+    text_n = normalise_sizes(text)
+    size = parse_size(text_n)
     if size_hint_m is not None:
         size = SizeSpec(longest_m=size_hint_m, stated=f"size hint {size_hint_m:g} m")
-    mods, axis_scale = parse_modifiers(strip_sizes(text))
+    reading = concepts.read_text(strip_sizes(text_n))
+    program, match, build_warnings = concepts.build(reading, strip_sizes(text_n))
+    own_name = concepts.normalise(strip_sizes(text_n))
+    if match.noun:  # 'a mini bagel' names the object; 'mini' is not a modifier there
+        own_name = own_name.replace(match.noun, " ")
+    mods, axis_scale = parse_modifiers(own_name)
     size = size.model_copy(update={"axis_scale": axis_scale})
     check_size(size)
-    return Design(entry=name, program=program_for(name), size=size, modifiers=mods, warnings=warnings, match_score=score)
+    warnings = [w for w in reading.warnings + build_warnings if w]
+    score = {"exact": 2.0, "synonym": 1.0}.get(match.fallback_level, 0.0)
+    return Design(entry=match.concept, program=program, size=size, modifiers=mods, warnings=warnings,
+                  match_score=score, concept=match)

@@ -1,4 +1,5 @@
-"""Single image -> object mask (alpha, or GrabCut seeded from the border) -> inflated watertight mesh with image colours."""
+"""Single image -> object mask: alpha, or GrabCut seeded by colour-contrast saliency and a centre prior, with thin
+strips reaching the image border (door frames, table edges) cut off and cast shadows removed."""
 
 from __future__ import annotations
 
@@ -6,15 +7,16 @@ from pathlib import Path
 
 import cv2
 import numpy as np
-import trimesh
 from scipy import ndimage
 
 from contracts.errors import InputError
-from tasks.geometry.meshing import mesh_from_field
+from tasks.geometry.image_guard import check_image_size
 
 SEG_MAX_SIDE = 400  # segmentation works on an image at most this large [px]
 MIN_AREA_FRAC = 0.004
 MAX_AREA_FRAC = 0.95
+STRIP_OPEN_FRAC = 0.3  # opening radius / the mask's largest inscribed radius: cuts strips thinner than this [-]
+SHADOW_CHROMA = 10.0  # Lab a-b distance under which a darker pixel counts as the background in shade [-]
 
 
 def load_image(path: Path) -> np.ndarray:
@@ -22,6 +24,7 @@ def load_image(path: Path) -> np.ndarray:
     path = Path(path)
     if not path.is_file():
         raise InputError(f"image file not found: {path}")
+    check_image_size(path)  # refuse a decompression bomb from its header, before decoding
     raw = cv2.imread(str(path), cv2.IMREAD_UNCHANGED)
     if raw is None or raw.size == 0:
         raise InputError(f"cannot read image {path.name}: not a valid PNG/JPEG")
@@ -35,7 +38,7 @@ def load_image(path: Path) -> np.ndarray:
 
 
 def segment(image: np.ndarray, seed: int = 0) -> tuple[np.ndarray, str]:
-    """Foreground mask (H, W) bool and the method used ('alpha' or 'grabcut')."""
+    """Foreground mask (H, W) bool and the method used ('alpha' or 'grabcut+saliency[+shadow]')."""
     h, w = image.shape[:2]
     if image.shape[2] == 4:
         alpha = image[:, :, 3]
@@ -47,16 +50,24 @@ def segment(image: np.ndarray, seed: int = 0) -> tuple[np.ndarray, str]:
         raise InputError("no object found: the image is blank (one uniform colour)")
     scale = min(1.0, SEG_MAX_SIDE / max(h, w))
     small = cv2.resize(rgb, (max(8, int(w * scale)), max(8, int(h * scale))), interpolation=cv2.INTER_AREA)
+    bgr = cv2.cvtColor(small, cv2.COLOR_RGB2BGR)
+    lab = cv2.cvtColor(small, cv2.COLOR_RGB2LAB).astype(np.float32)
     sh, sw = small.shape[:2]
-    gc = np.full((sh, sw), cv2.GC_PR_FGD, np.uint8)
     band = max(2, int(0.03 * max(sh, sw)))
-    gc[:band, :] = gc[-band:, :] = gc[:, :band] = gc[:, -band:] = cv2.GC_BGD
-    bgd, fgd = np.zeros((1, 65), np.float64), np.zeros((1, 65), np.float64)
+    border = np.zeros((sh, sw), bool)
+    border[:band, :] = border[-band:, :] = border[:, :band] = border[:, -band:] = True
     cv2.setRNGSeed(seed)
-    cv2.grabCut(cv2.cvtColor(small, cv2.COLOR_RGB2BGR), gc, None, bgd, fgd, 6, cv2.GC_INIT_WITH_MASK)
-    fg = (gc == cv2.GC_FGD) | (gc == cv2.GC_PR_FGD)
-    first = _clean(fg, "grabcut")
-    # second pass: away from the chosen region is background, its core is certain foreground and the rest of it is
+    sal = saliency(lab, border)
+    # pass 1: the border is background; salient pixels are probably the object, the rest probably background
+    gc = np.where(sal >= _otsu(sal), cv2.GC_PR_FGD, cv2.GC_PR_BGD).astype(np.uint8)
+    if (gc == cv2.GC_PR_FGD).mean() < MIN_AREA_FRAC:
+        gc[:] = cv2.GC_PR_FGD
+    gc[border] = cv2.GC_BGD
+    first = _clean(_grabcut(bgr, gc), "grabcut", sal)
+    shadow = shadow_pixels(lab, first)
+    if shadow.any() and (first & ~shadow).sum() > 0.5 * first.sum():
+        first = _clean(first & ~shadow, "grabcut", sal)
+    # pass 2: away from the chosen region is background, its core is certain foreground and the rest of it is
     # probably background, so the foreground model learns the object's colours only and touching clutter peels off
     gc2 = np.full((sh, sw), cv2.GC_BGD, np.uint8)
     k = max(3, int(0.02 * max(sh, sw)) | 1)
@@ -64,85 +75,128 @@ def segment(image: np.ndarray, seed: int = 0) -> tuple[np.ndarray, str]:
     gc2[near] = cv2.GC_PR_BGD
     core = ndimage.distance_transform_edt(first)
     gc2[core > 0.35 * core.max()] = cv2.GC_FGD
-    bgd, fgd = np.zeros((1, 65), np.float64), np.zeros((1, 65), np.float64)
-    cv2.grabCut(cv2.cvtColor(small, cv2.COLOR_RGB2BGR), gc2, None, bgd, fgd, 6, cv2.GC_INIT_WITH_MASK)
-    fg = (gc2 == cv2.GC_FGD) | (gc2 == cv2.GC_PR_FGD)
+    fg = _clean(_grabcut(bgr, gc2), "grabcut", sal)
+    method = "grabcut+saliency"
+    shadow = shadow_pixels(lab, fg)
+    if shadow.any():
+        fg = _clean(fg & ~shadow, "grabcut", sal)
+        method += "+shadow"
     fg = cv2.resize(fg.astype(np.uint8), (w, h), interpolation=cv2.INTER_NEAREST).astype(bool)
-    return _clean(fg, "grabcut"), "grabcut"
+    return _clean(fg, "grabcut"), method
 
 
-def _clean(mask: np.ndarray, method: str) -> np.ndarray:
-    """Open/close, keep the most central large component, fill holes; error when nothing plausible remains."""
+def _grabcut(bgr: np.ndarray, gc: np.ndarray, iterations: int = 6) -> np.ndarray:
+    bgd, fgd = np.zeros((1, 65), np.float64), np.zeros((1, 65), np.float64)
+    cv2.grabCut(bgr, gc, None, bgd, fgd, iterations, cv2.GC_INIT_WITH_MASK)
+    return (gc == cv2.GC_FGD) | (gc == cv2.GC_PR_FGD)
+
+
+def _otsu(values: np.ndarray) -> float:
+    v = np.clip(values * 255.0, 0, 255).astype(np.uint8)
+    t, _ = cv2.threshold(v, 0, 255, cv2.THRESH_BINARY + cv2.THRESH_OTSU)
+    return float(t) / 255.0
+
+
+def _colour_centres(lab: np.ndarray, where: np.ndarray, k: int) -> np.ndarray:
+    """k-means Lab colour centres of the pixels `where` (deterministic for a fixed cv2 RNG seed)."""
+    px = lab[where].reshape(-1, 3).astype(np.float32)
+    if len(px) > 20_000:
+        px = px[:: len(px) // 20_000 + 1]
+    k = max(1, min(k, len(px)))
+    crit = (cv2.TERM_CRITERIA_EPS + cv2.TERM_CRITERIA_MAX_ITER, 30, 0.5)
+    _, _, centres = cv2.kmeans(px, k, None, crit, 2, cv2.KMEANS_PP_CENTERS)
+    return centres
+
+
+def _nearest_distance(lab: np.ndarray, centres: np.ndarray) -> np.ndarray:
+    d = np.linalg.norm(lab[:, :, None, :] - centres[None, None, :, :], axis=-1)
+    return d.min(axis=2)
+
+
+def saliency(lab: np.ndarray, border: np.ndarray) -> np.ndarray:
+    """Per-pixel object likelihood in [0, 1]: Lab distance to the nearest border colour x a centre prior."""
+    sh, sw = border.shape
+    contrast = _nearest_distance(lab, _colour_centres(lab, border, 8))
+    contrast = cv2.GaussianBlur(contrast, (0, 0), 0.01 * max(sh, sw) + 0.5)
+    contrast = contrast / max(float(np.percentile(contrast, 99)), 1e-6)
+    yy, xx = np.mgrid[:sh, :sw]
+    centre = np.exp(-0.5 * (((xx - sw / 2.0) / (0.35 * sw)) ** 2 + ((yy - sh / 2.0) / (0.35 * sh)) ** 2))
+    return np.clip(contrast, 0.0, 1.0) * centre
+
+
+def shadow_pixels(lab: np.ndarray, mask: np.ndarray) -> np.ndarray:
+    """Mask pixels that look like the surrounding background in shade: the ring's chroma, darker, unlike the core."""
+    size = max(mask.shape)
+    k = max(5, int(0.06 * size) | 1)
+    ring = cv2.dilate(mask.astype(np.uint8), cv2.getStructuringElement(cv2.MORPH_ELLIPSE, (k, k))).astype(bool) & ~mask
+    core_d = ndimage.distance_transform_edt(mask)
+    core = core_d > 0.5 * core_d.max()
+    if ring.sum() < 20 or core.sum() < 20:
+        return np.zeros_like(mask)
+    bg = _colour_centres(lab, ring, 6)
+    obj = _colour_centres(lab, core, 6)
+    ab, L = lab[:, :, 1:], lab[:, :, 0]
+    chroma_d = np.linalg.norm(ab[:, :, None, :] - bg[None, None, :, 1:], axis=-1)
+    darker = L[:, :, None] < 0.85 * bg[None, None, :, 0]
+    lighter_than_black = L[:, :, None] > 0.2 * bg[None, None, :, 0]
+    shade_d = np.where(darker & lighter_than_black, chroma_d, np.inf).min(axis=2)
+    obj_d = _nearest_distance(lab, obj)
+    cand = mask & (shade_d < SHADOW_CHROMA) & (shade_d < 0.5 * obj_d) & ~core
+    # a shadow is a sizeable region reaching the outline, not scattered dark texture inside the object
+    cand = cv2.morphologyEx(cand.astype(np.uint8), cv2.MORPH_OPEN, np.ones((3, 3), np.uint8)).astype(bool)
+    n, labels, stats, _ = cv2.connectedComponentsWithStats(cand.astype(np.uint8), connectivity=8)
+    edge = mask & ~cv2.erode(mask.astype(np.uint8), np.ones((3, 3), np.uint8)).astype(bool)
+    keep = np.zeros(n, bool)
+    on_edge = np.unique(labels[edge & cand])
+    keep[on_edge] = True
+    keep[0] = False
+    keep &= stats[:, cv2.CC_STAT_AREA] >= 0.01 * mask.sum()
+    return keep[labels]
+
+
+def _clean(mask: np.ndarray, method: str, saliency_map: np.ndarray | None = None) -> np.ndarray:
+    """Cut thin strips, reject border-hugging regions, keep the most central / salient large component, fill holes;
+    error when nothing plausible remains."""
     h, w = mask.shape
+    m = mask.astype(np.uint8)
     k = max(3, int(0.01 * max(h, w)) | 1)
-    kernel = cv2.getStructuringElement(cv2.MORPH_ELLIPSE, (k, k))
-    m = cv2.morphologyEx(mask.astype(np.uint8), cv2.MORPH_OPEN, kernel)
-    m = cv2.morphologyEx(m, cv2.MORPH_CLOSE, kernel)
-    n, labels, stats, cents = cv2.connectedComponentsWithStats(m, connectivity=8)
+    m = cv2.morphologyEx(m, cv2.MORPH_CLOSE, cv2.getStructuringElement(cv2.MORPH_ELLIPSE, (k, k)))
+    # strips (door frames, table edges) are thin: an opening wider than them but narrower than the object cuts them
+    thick = ndimage.distance_transform_edt(m)
+    r = max(1, int(STRIP_OPEN_FRAC * float(thick.max())))
+    opened = cv2.morphologyEx(m, cv2.MORPH_OPEN, cv2.getStructuringElement(cv2.MORPH_ELLIPSE, (2 * r + 1, 2 * r + 1)))
+    if opened.sum() < 0.3 * m.sum():
+        opened = m
+    n, labels, stats, cents = cv2.connectedComponentsWithStats(opened, connectivity=8)
     if n <= 1:
         raise InputError(f"no object found in the image ({method} segmentation is empty)")
     area = stats[1:, cv2.CC_STAT_AREA].astype(np.float64)
     diag = np.hypot(h, w)
     dist = np.hypot(cents[1:, 0] - w / 2.0, cents[1:, 1] - h / 2.0) / diag
     score = area * np.exp(-((dist / 0.25) ** 2))
+    if saliency_map is not None:
+        sal = ndimage.mean(saliency_map, labels, np.arange(1, n))
+        score *= 0.25 + np.asarray(sal)
+    # a region running along the image border (a door frame, the table edge) is background
+    x0, y0 = stats[1:, cv2.CC_STAT_LEFT], stats[1:, cv2.CC_STAT_TOP]
+    x1, y1 = x0 + stats[1:, cv2.CC_STAT_WIDTH], y0 + stats[1:, cv2.CC_STAT_HEIGHT]
+    spans = ((y0 == 0) & (y1 == h)) | ((x0 == 0) & (x1 == w))
+    score = np.where(spans & (area < 0.5 * h * w), score * 1e-3, score)
     best = 1 + int(np.argmax(score))
-    out = ndimage.binary_fill_holes(labels == best)
+    # give back what the opening shaved off (legs, ears, tails, and what hangs on them), except pieces reaching the
+    # image border and regions spanning it: those are strips of the background (door frames, table edges)
+    n2, lab2 = cv2.connectedComponents((m.astype(bool) & ~opened.astype(bool)).astype(np.uint8), connectivity=8)
+    edge_ids = np.unique(np.concatenate([lab2[0], lab2[-1], lab2[:, 0], lab2[:, -1]]))
+    strips = 1 + np.flatnonzero(spans & (np.arange(n - 1) != best - 1))
+    bad = np.isin(lab2, edge_ids[edge_ids > 0]) | np.isin(labels, strips)
+    n3, lab3 = cv2.connectedComponents((m.astype(bool) & ~bad).astype(np.uint8), connectivity=8)
+    keep = np.bincount(lab3[labels == best], minlength=n3)
+    keep[0] = 0
+    out = lab3 == int(np.argmax(keep))
+    out = ndimage.binary_fill_holes(out)
     frac = float(out.mean())
     if frac < MIN_AREA_FRAC:
         raise InputError(f"no object found in the image (largest region covers only {100 * frac:.2f}% of it)")
     if frac > MAX_AREA_FRAC:
         raise InputError("no object found: the foreground fills the whole image; crop less tightly or use a PNG with alpha")
     return out
-
-
-def inflate(
-    mask: np.ndarray, image: np.ndarray, longest_m: float, thickness_m: float, resolution: int
-) -> trimesh.Trimesh:
-    """Watertight mesh of the silhouette inflated to `thickness_m`; image right -> +x, image up -> +z, depth -> y."""
-    ys, xs = np.nonzero(mask)
-    y0, y1, x0, x1 = ys.min(), ys.max() + 1, xs.min(), xs.max() + 1
-    crop = mask[y0:y1, x0:x1].astype(np.float32)
-    long_px = max(crop.shape)
-    n = resolution / long_px
-    small = cv2.resize(crop, (max(2, round(crop.shape[1] * n)), max(2, round(crop.shape[0] * n))), interpolation=cv2.INTER_AREA)
-    small = cv2.GaussianBlur(np.pad(small, 3), (0, 0), 0.7) >= 0.5
-    spacing = longest_m / max(small.shape)
-    d_in = ndimage.distance_transform_edt(small) * spacing
-    d_out = ndimage.distance_transform_edt(~small) * spacing
-    half = thickness_m / 2.0
-    reach = max(float(d_in.max()), spacing)
-    prof = np.sqrt(np.clip(1.0 - (1.0 - np.minimum(d_in / reach, 1.0)) ** 2, 0.0, 1.0))
-    height = np.where(small, half * prof + 0.5 * spacing, -d_out)
-    nz = int(np.ceil(half / spacing)) + 3
-    z = (np.arange(2 * nz + 1) - nz) * spacing
-    field = np.abs(z)[None, None, :] - height[:, :, None]  # axes: row, col, depth
-    mesh = mesh_from_field(field, np.array([0.0, 0.0, -nz * spacing]), spacing)
-    v = mesh.vertices
-    row, col, depth = v[:, 0], v[:, 1], v[:, 2]
-    src_r = y0 + (row / spacing - 3.0 + 0.5) / n - 0.5
-    src_c = x0 + (col / spacing - 3.0 + 0.5) / n - 0.5
-    mesh.vertices = np.stack([col, depth, -row], axis=1)
-    mesh.invert()  # the axis swap mirrors the mesh
-    colors = _sample_colors(image, mask, src_r, src_c)
-    mesh.visual = trimesh.visual.ColorVisuals(mesh, vertex_colors=colors)
-    return mesh
-
-
-def _sample_colors(image: np.ndarray, mask: np.ndarray, rows: np.ndarray, cols: np.ndarray) -> np.ndarray:
-    """RGBA uint8 from the object's pixels (background replaced by the nearest object pixel before sampling)."""
-    rgb = image[:, :, :3]
-    _, (ir, ic) = ndimage.distance_transform_edt(~mask, return_indices=True)
-    filled = rgb[ir, ic]
-    filled = cv2.GaussianBlur(filled, (0, 0), 1.0)
-    r = np.clip(np.round(rows).astype(int), 0, mask.shape[0] - 1)
-    c = np.clip(np.round(cols).astype(int), 0, mask.shape[1] - 1)
-    out = np.full((len(rows), 4), 255, np.uint8)
-    out[:, :3] = filled[r, c]
-    return out
-
-
-def silhouette_aspect(mask: np.ndarray) -> float:
-    """Short / long side of the mask's bounding box."""
-    ys, xs = np.nonzero(mask)
-    a, b = ys.max() - ys.min() + 1, xs.max() - xs.min() + 1
-    return float(min(a, b) / max(a, b))

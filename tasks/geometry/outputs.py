@@ -50,7 +50,8 @@ def write_outputs(
     renders = write_renders(m, out_dir / "renders")
     files = {"mesh": "mesh.glb", "urdf": f"collision/{urdf.name}", "particles": PARTICLES, "gaussians": "gaussians.ply",
              **{f"render_{k}": f"renders/{v}" for k, v in renders.items()}}
-    record = {"schema_version": 1, "info": info.model_dump(mode="json"), "metrics": checks.metrics,
+    record = {"schema_version": 1, "info": info.model_dump(mode="json", exclude={"design_attempts"}),  # -> evidence/
+              "metrics": checks.metrics,
               "gates": [gr.model_dump(mode="json") for gr in checks.gates], "passed": checks.passed,
               "failed_gates": checks.failed, "warnings": info.warnings, "files": files, **(extra or {})}
     (out_dir / GEOMETRY_JSON).write_text(json.dumps(record, indent=2, sort_keys=True) + "\n", encoding="utf-8")

@@ -8,12 +8,15 @@ import numpy as np
 import trimesh
 from pydantic import Field
 
+from contracts.agents import RoleConfig
 from contracts.base import Model
+from contracts.concept import ConceptMatch
 from contracts.errors import InputError
+from contracts.evidence import Attempt
 from contracts.request import AssetRequest, Quality
 from contracts.shape import ShapeProgram
 from contracts.stage import StageContract, load_contract
-from tasks.geometry import catalogue, image as image_mod
+from tasks.geometry import catalogue, image as image_mod, silhouette
 from tasks.geometry.canonical import canonicalize, rest_on_ground
 from tasks.geometry.checks import GeometryChecks, evaluate, geometry_metrics
 from tasks.geometry.collision import CoacdSettings, convex_parts, union_volume
@@ -22,6 +25,7 @@ from tasks.geometry.mesh_import import import_mesh
 from tasks.geometry.meshing import mesh_program, scale_to_extents
 from tasks.geometry.particles import ParticleSettings, sample_particles
 from tasks.geometry.sdf import program_bounds
+from tasks.geometry.silhouette import PhotoReconstruction
 
 Arrays = dict[str, np.ndarray]
 
@@ -37,6 +41,10 @@ class L0Settings(Model):
     gaussian_surface_fraction: float = Field(default=0.75, ge=0, le=1)
     max_gaussians: int = Field(default=400_000, gt=0)
     seed: int = 0
+    designer: RoleConfig | None = Field(default=None, description="litellm model that writes the ShapeProgram of a "
+                                        "text request (None: the offline grammar)")
+    critic: RoleConfig | None = Field(default=None, description="litellm model that judges the design's renders "
+                                      "(used when it has vision)")
 
 
 def settings_from_contract(quality: Quality, contract: StageContract | None = None, seed: int = 0,
@@ -72,11 +80,19 @@ class BuildInfo(Model):
     program: ShapeProgram | None = None
     size: catalogue.SizeSpec | None = None
     modifiers: list[str] = Field(default_factory=list)
-    segmentation: str | None = Field(default=None, description="alpha | grabcut (image path)")
-    thickness_m: float | None = Field(default=None, description="inflation thickness (image path) [m]")
+    concept: ConceptMatch | None = Field(default=None, description="text path: the lexicon concept understood, the "
+                                         "fallback taken and the real object's typical mass")
+    segmentation: str | None = Field(default=None, description="image path: alpha | grabcut+saliency[+shadow] "
+                                     "(tasks/geometry/image.py); the reconstruction is in `photo`")
+    thickness_m: float | None = Field(default=None, description="depth along the camera's view (image path) [m]")
+    photo: PhotoReconstruction | None = Field(default=None, description="image path: how the photo became a mesh")
     reoriented: bool = Field(default=False, description="the resting pose differs from the input's orientation")
     notes: list[str] = Field(default_factory=list)
     warnings: list[str] = Field(default_factory=list)
+    generator: str = Field(default="offline", description="what made the shape: offline | litellm/<model> | "
+                           "backend:<spec> (a fallback to the offline grammar says so in warnings)")
+    design_attempts: list[Attempt] = Field(default_factory=list, description="the LLM Designer's attempts "
+                                           "(written to evidence/attempts.jsonl as stage L0)")
 
 
 def mesh_to_arrays(mesh: trimesh.Trimesh) -> Arrays:
@@ -109,6 +125,14 @@ def _final_size(mesh: trimesh.Trimesh, size: catalogue.SizeSpec | None) -> trime
 def build_mesh(request: AssetRequest, settings: L0Settings) -> tuple[Arrays, BuildInfo]:
     """The aligned, metric, watertight mesh for a request (text, image or mesh path)."""
     kind = request.input_kind
+    if request.geometry_backend is not None:
+        from tasks.geometry.backends import from_backend
+
+        return from_backend(request, settings)
+    if kind == "text" and settings.designer is not None:
+        from tasks.agents.shape_designer import from_text_llm
+
+        return from_text_llm(request, settings)
     if kind == "text":
         return _from_text(request, settings)
     if kind == "image":
@@ -126,59 +150,88 @@ def _from_text(request: AssetRequest, settings: L0Settings) -> tuple[Arrays, Bui
     program = design.program.model_copy(update={"target_extent_m": tuple(float(v) for v in mesh.extents)})
     info = BuildInfo(source="text", name=design.program.name, category=design.program.category, entry=design.entry,
                      program=program, size=design.size, modifiers=design.modifiers, reoriented=rotated,
-                     warnings=design.warnings)
+                     warnings=design.warnings, concept=_sized_concept(design.concept, mesh))
     return mesh_to_arrays(mesh), info
 
 
-def _thickness_ratio(entry: str | None, aspect: float) -> float:
-    """Hidden depth / longest visible extent: from the category's nominal shape, else a rounded-blob prior."""
-    if entry is None:
-        return 0.8 * aspect if aspect > 0.3 else 0.5
-    b = program_bounds(catalogue.program_for(entry))
-    ext = b[1] - b[0]
-    best, best_err = 0.5, np.inf
-    for hidden in range(3):
-        vis = [ext[i] for i in range(3) if i != hidden]
-        err = abs(min(vis) / max(vis) - aspect)
-        if err < best_err:
-            best, best_err = ext[hidden] / max(vis), err
-    return float(np.clip(best, 0.05, 1.5))
+def _sized_concept(concept: ConceptMatch | None, mesh: trimesh.Trimesh) -> ConceptMatch | None:
+    """The concept with the plausible mass range at the built size: typical mass x (built / typical longest
+    extent)^3, within a factor of 2 either way [kg]."""
+    if concept is None or concept.typical_mass_kg is None or concept.typical_size_m is None:
+        return concept
+    m = concept.typical_mass_kg * (float(mesh.extents.max()) / concept.typical_size_m) ** 3
+    return concept.model_copy(update={"typical_mass_range_kg": (m / 2.0, m * 2.0)})
+
+
+def _is_named(design: catalogue.Design) -> bool:
+    """True when the Designer found the object itself (no fallback to a body plan, category or material)."""
+    concept = getattr(design, "concept", None)
+    if concept is not None and getattr(concept, "fallback_level", None) is not None:
+        return concept.fallback_level in ("exact", "synonym")
+    return getattr(design, "match_score", 0.0) > 0.0
+
+
+def _named_design(text: str | None, size_hint_m: float | None) -> catalogue.Design | None:
+    """The Designer's result for a text when it names a known object, else None."""
+    if not text or not text.strip():
+        return None
+    try:
+        design = catalogue.design_from_text(text, size_hint_m)
+    except InputError:
+        return None
+    return design if _is_named(design) else None
 
 
 def _from_image(request: AssetRequest, settings: L0Settings) -> tuple[Arrays, BuildInfo]:
     img = image_mod.load_image(request.image_path)  # type: ignore[arg-type]
     mask, method = image_mod.segment(img, seed=request.seed)
     warnings: list[str] = []
-    entry, size, mods = None, catalogue.SizeSpec(), []
+    notes: list[str] = []
+    entry, size, mods, named, design = None, catalogue.SizeSpec(), [], None, None
+    path = request.image_path
+    stem = path.stem.replace("_", " ").replace("-", " ") if path is not None else None
     if request.text and request.text.strip():
         design = catalogue.design_from_text(request.text, request.size_hint_m)
-        entry, size, mods = design.entry, design.size, design.modifiers
-        warnings += design.warnings
+        size, mods = design.size, design.modifiers
+        if _is_named(design):
+            named = design
+        else:
+            warnings += design.warnings
     elif request.size_hint_m is not None:
         size = catalogue.SizeSpec(longest_m=request.size_hint_m, stated=f"size hint {request.size_hint_m:g} m")
         catalogue.check_size(size)
-    aspect = image_mod.silhouette_aspect(mask)
+    for source, words in (("intent", request.material_intent), ("file name", stem)):
+        if named is None and (found := _named_design(words, request.size_hint_m)) is not None:
+            named = found
+            notes.append(f"object '{found.entry}' named by the {source} '{words}'")
+    if named is not None:
+        entry = named.entry
     if size.longest_m is not None:
         longest = size.longest_m
     elif size.extents_m[0] is not None:
         longest = size.extents_m[0]
-    elif entry is not None:
-        b = program_bounds(catalogue.program_for(entry))
+    elif named is not None:
+        b = program_bounds(named.program)
         longest = float((b[1] - b[0]).max())
         warnings.append(f"no size given: using the '{entry}' prior, {longest:.3g} m longest extent")
     else:
         longest = 0.2
         warnings.append("no size or object named: assuming a 0.2 m longest extent")
-    thickness = (size.extents_m[2] if size.extents_m[2] is not None and size.extents_m[1] is None else None)
-    if thickness is None:
-        thickness = _thickness_ratio(entry, aspect) * longest
-    mesh = image_mod.inflate(mask, img, longest, thickness, settings.marching_cubes_resolution)
+    mesh, photo = silhouette.reconstruct(mask, img, longest, settings.marching_cubes_resolution,
+                                         named.program if named is not None else None, entry)
+    warnings += photo.notes
+    before = mesh.vertices.copy()
     mesh, rotated = canonicalize(mesh, "keep_if_stable", align_xy=True)
     mesh = _final_size(mesh, catalogue.SizeSpec(longest_m=longest, axis_scale=size.axis_scale))
+    photo = silhouette.follow_camera(photo, before, mesh.vertices)
     name = request.image_path.stem if request.image_path else "image object"  # type: ignore[union-attr]
+    depth = float(np.ptp(mesh.vertices @ np.asarray(photo.camera_forward)))
     info = BuildInfo(source="image", name=name, category=catalogue.entry_category(entry) if entry else "unknown",
-                     entry=entry, size=size, modifiers=mods, segmentation=method, thickness_m=thickness,
-                     reoriented=rotated, warnings=warnings)
+                     entry=entry, program=named.program if photo.method == "program fit" else None, size=size,
+                     modifiers=mods,
+                     segmentation=method, thickness_m=depth, reoriented=rotated, notes=notes,
+                     warnings=warnings, photo=photo,
+                     concept=_sized_concept(getattr(named or design, "concept", None), mesh))
     return mesh_to_arrays(mesh), info
 
 

@@ -77,11 +77,11 @@ def test_cluttered_photo_is_segmented_and_inflated(tmp_path: Path) -> None:
     rgb = image.load_image(path)
     mask, method = image.segment(rgb)
     iou = (mask & truth).sum() / (mask | truth).sum()
-    assert method == "grabcut" and iou > 0.9
+    assert method.startswith("grabcut") and iou > 0.9
     mesh, info, *_, checks = run(AssetRequest(image_path=path, text="a plush turtle 30 cm long"), settings(**FAST_COACD))
     assert checks.passed, checks.failed
     assert checks.metrics["max_extent_m"] == pytest.approx(0.30, rel=0.05)
-    assert info.segmentation == "grabcut" and info.entry == "plush_turtle"
+    assert info.segmentation.startswith("grabcut") and info.entry == "plush_turtle"
     col = mesh["colors"][:, :3].astype(int)
     assert np.mean(col[:, 1] > col[:, 0] + 40) > 0.8  # green, taken from the photo
 

@@ -128,8 +128,9 @@ def test_modifiers_fallback_and_absurd_sizes() -> None:
     assert d.entry == "foam_block" and d.modifiers == ["small", "flat"] and not d.warnings
     assert d.size.axis_scale[2] < d.size.axis_scale[0] < 1.0
     assert catalogue.design_from_text("a soft plush turtle, 25 cm long").modifiers == []  # 'long' belongs to the size
-    d = catalogue.design_from_text("a stuffed giraffe")
-    assert d.match_score == 0 and d.program.category == "plush_animal" and "nearest category" in d.warnings[0]
+    d = catalogue.design_from_text("a stuffed quokka")  # not in the lexicon: a generic plush animal, never a named one
+    assert d.match_score == 0 and d.program.category == "plush_animal" and d.entry.startswith("generic_")
+    assert "'quokka' is not in the lexicon" in d.warnings[0] and d.concept.fallback_level == "category"
     from contracts.errors import InputError
 
     with pytest.raises(InputError, match="outside the supported range"):

@@ -1,0 +1,108 @@
+"""The object lexicon (data under contracts/lexicon/): everyday deformable objects with their body plan, colours,
+material, typical size and typical mass with its source (SI units)."""
+
+from __future__ import annotations
+
+import functools
+from pathlib import Path
+from typing import Any
+
+import yaml
+from pydantic import Field, ValidationError, model_validator
+
+from contracts.base import Model
+from contracts.errors import InputError
+
+LEXICON_DIR = Path(__file__).with_name("lexicon")
+MATERIALS_FILE = Path(__file__).parent / "vocab" / "materials.yaml"
+COLORS_FILE = LEXICON_DIR / "colors.yaml"
+
+
+@functools.lru_cache(maxsize=1)
+def material_densities() -> dict[str, float]:
+    """Vocabulary material class -> prior density [kg/m^3] (contracts/vocab/materials.yaml)."""
+    raw = yaml.safe_load(MATERIALS_FILE.read_text(encoding="utf-8"))["materials"]
+    return {k: float(v["priors"]["density_kg_per_m3"]) for k, v in raw.items()}
+
+
+class LexiconEntry(Model):
+    """One everyday object: how to build it and what the real one is like."""
+
+    key: str = Field(description="stable concept key, e.g. 'plush_turtle'")
+    nouns: list[str] = Field(min_length=1, description="nouns and synonyms that name it (singular; plurals by code); "
+                             "'(generic)' for the generic_* concepts, which no noun names")
+    plan: str | None = Field(default=None, description="grammar body plan (tasks/geometry/grammar)")
+    catalogue: str | None = Field(default=None, description="hand-written program in tasks/geometry/catalogue.yaml "
+                                  "used instead of a plan")
+    params: dict[str, Any] = Field(default_factory=dict, description="body-plan parameters")
+    colors: dict[str, str] = Field(default_factory=dict, description="part or part group -> colour word")
+    material: str = Field(description="vocabulary material class (contracts/vocab/materials.yaml)")
+    category: str
+    size_m: float = Field(ge=0.005, le=2.0, description="typical longest extent [m]")
+    mass_kg: float = Field(gt=0, le=20.0, description="typical mass of the real object at size_m [kg]")
+    mass_source: str = Field(min_length=8, description="where mass_kg comes from (the kind of reference)")
+    hollow: bool = Field(default=False, description="a hollow shell (ball, squeeze toy, bath toy, inflatable)")
+    wall_m: float | None = Field(default=None, gt=0, le=0.02, description="shell wall thickness of a hollow object [m]")
+    density_kg_per_m3: float | None = Field(default=None, gt=0, description="effective density of the solid object "
+                                            "when the material class's prior does not describe it [kg/m^3]")
+    takes_shape: bool = Field(default=False, description="made in any shape: 'a cat cushion' is a cushion shaped "
+                              "like a cat")
+
+    @model_validator(mode="after")
+    def _check(self) -> "LexiconEntry":
+        if (self.plan is None) == (self.catalogue is None):
+            raise ValueError(f"{self.key}: give exactly one of plan and catalogue")
+        if self.material not in material_densities():
+            raise ValueError(f"{self.key}: material '{self.material}' is not in contracts/vocab/materials.yaml")
+        if self.hollow and self.wall_m is None and self.density_kg_per_m3 is None:
+            raise ValueError(f"{self.key}: a hollow object needs wall_m (or an effective density)")
+        return self
+
+    @property
+    def solid_density_kg_per_m3(self) -> float:
+        """Density of the object's solid volume, or of its wall when hollow [kg/m^3]."""
+        return self.density_kg_per_m3 or material_densities()[self.material]
+
+
+class Lexicon(Model):
+    """All entries (key -> entry) and the colour words (word -> linear RGB)."""
+
+    entries: dict[str, LexiconEntry]
+    colors: dict[str, tuple[float, float, float]]
+
+
+def _read(path: Path) -> list[dict[str, Any]]:
+    raw = yaml.safe_load(path.read_text(encoding="utf-8")) or {}
+    defaults = raw.get("defaults", {})
+    out = []
+    for key, fields in (raw.get("entries") or {}).items():
+        merged = {**defaults, **(fields or {})}
+        if "params" in defaults and "params" in (fields or {}):
+            merged["params"] = {**defaults["params"], **fields["params"]}
+        if "colors" in defaults and "colors" in (fields or {}):
+            merged["colors"] = {**defaults["colors"], **fields["colors"]}
+        out.append({"key": key, **merged})
+    return out
+
+
+@functools.lru_cache(maxsize=1)
+def load_lexicon() -> Lexicon:
+    """Every entry of contracts/lexicon/*.yaml (except colors.yaml), validated; duplicate keys are an error."""
+    entries: dict[str, LexiconEntry] = {}
+    for path in sorted(LEXICON_DIR.glob("*.yaml")):
+        if path.name == COLORS_FILE.name:
+            continue
+        for raw in _read(path):
+            try:
+                entry = LexiconEntry(**raw)
+            except ValidationError as exc:
+                raise InputError(f"{path.name}: entry '{raw.get('key')}': {exc.errors()[0]['msg']}") from exc
+            if entry.key in entries:
+                raise InputError(f"{path.name}: duplicate lexicon key '{entry.key}'")
+            entries[entry.key] = entry
+    colors = yaml.safe_load(COLORS_FILE.read_text(encoding="utf-8"))["colors"]
+    for entry in entries.values():
+        unknown = sorted(set(entry.colors.values()) - set(colors))
+        if unknown:
+            raise InputError(f"lexicon entry '{entry.key}': unknown colour words {unknown} (add them to colors.yaml)")
+    return Lexicon(entries=entries, colors={k: tuple(float(x) for x in v) for k, v in colors.items()})

@@ -1,0 +1,504 @@
+"""Text -> lexicon concept: head noun (exact, synonym, plural), shape phrases, colour words on named parts, and a
+graded fallback by meaning (body plan, category, material) for nouns the lexicon does not know."""
+
+from __future__ import annotations
+
+import functools
+import re
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from contracts.concept import ConceptMatch, FallbackLevel
+from contracts.lexicon import LexiconEntry, load_lexicon
+from contracts.shape import Part, ShapeProgram
+from tasks.geometry import grammar
+from tasks.geometry.grammar.parts import part_group
+
+# Words that say what an unknown object is like (checked only when the head noun is not in the lexicon).
+BODY_PLAN_WORDS: dict[str, str] = {
+    "four legged": "generic_quadruped", "quadruped": "generic_quadruped", "legged": "generic_quadruped",
+    "mammal": "generic_quadruped", "two legged": "generic_biped", "biped": "generic_biped", "winged": "generic_bird",
+    "feathered": "generic_bird", "tentacled": "generic_cephalopod", "tentacle": "generic_cephalopod",
+    "finned": "generic_fish", "fins": "generic_fish", "six legged": "generic_insect", "legless": "generic_worm",
+    "wriggly": "generic_worm",
+}
+CATEGORY_WORDS: dict[str, str] = {
+    "animal": "generic_quadruped", "creature": "generic_quadruped", "stuffed animal": "generic_quadruped",
+    "plush toy": "generic_quadruped", "plushie": "generic_quadruped", "plush": "generic_quadruped",
+    "stuffed toy": "generic_quadruped", "stuffed": "generic_quadruped", "soft toy": "generic_quadruped",
+    "stuffie": "generic_quadruped",
+    "stuffy": "generic_quadruped", "cuddly toy": "generic_quadruped", "beanie": "generic_quadruped",
+    "pet": "generic_quadruped", "dinosaur": "generic_quadruped", "monster": "generic_biped", "doll": "generic_biped",
+    "figure": "generic_biped", "sea creature": "generic_fish", "sea animal": "generic_fish",
+    "marine animal": "generic_fish", "bird": "generic_bird", "insect": "generic_insect", "bug": "generic_insect",
+    "fruit": "generic_round_fruit", "vegetable": "generic_vegetable", "veggie": "generic_vegetable",
+    "berry": "generic_berry", "pastry": "generic_baked", "cake": "generic_baked", "bread": "generic_baked",
+    "baked good": "generic_baked", "bun": "generic_baked", "cookie": "generic_baked", "sweet": "generic_jelly",
+    "candy": "generic_jelly", "pillow": "generic_cushion", "cushion": "generic_cushion", "ball": "generic_ball",
+    "toy": "generic_quadruped",
+}
+# material class -> generic concept built from the material alone
+MATERIAL_GENERIC: dict[str, str] = {
+    "pu_foam": "generic_block", "pe_foam": "generic_block", "sponge": "generic_block", "rubber": "generic_ball",
+    "silicone": "generic_blob", "gel": "generic_blob", "bread": "generic_baked", "plush": "generic_quadruped",
+    "fruit": "generic_round_fruit", "textile": "generic_block", "inflatable": "generic_ball",
+    "marshmallow": "generic_block", "dough": "generic_blob",
+}
+# "X-shaped" / "shaped like X" words that are shapes rather than objects
+SHAPE_WORDS: dict[str, tuple[str, dict]] = {
+    "heart": ("heart", {}), "star": ("star", {}), "ring": ("ring", {"tube": 0.2}), "donut": ("ring", {}),
+    "doughnut": ("ring", {}), "circle": ("disc", {"height": 0.25}), "round": ("cushion", {"shape": "round"}),
+    "square": ("cushion", {"shape": "square"}), "cube": ("block", {"width": 1.0, "height": 1.0, "edge": 0.15}),
+    "sphere": ("ball", {}), "egg": ("egg", {}), "cloud": ("cloud", {}), "bone": ("bone", {}),
+    "moon": ("croissant", {"bend": 1.1, "thickness": 0.25}), "crescent": ("croissant", {"bend": 1.1}),
+    "cylinder": ("disc", {"height": 1.0}), "cone": ("cone", {}), "dome": ("cone", {"kind": "dome", "height": 0.5}),
+    "tube": ("tube", {}), "teardrop": ("egg", {"pointiness": 0.7}), "drop": ("egg", {"pointiness": 0.7}),
+    "pebble": ("egg", {"squash": 0.5, "pointiness": 0.1}), "brick": ("block", {}),
+    "bolster": ("cushion", {"shape": "bolster"}),
+}
+# nouns that name a generic form: a more specific object noun before them wins ('teether ring', 'sock ball')
+GENERIC_NOUNS = frozenset({"ball", "ring", "block", "cube", "roll", "pad", "disc", "tube", "bar", "piece", "toy",
+                           "noodle", "cushion", "pillow", "roller", "bun", "bone", "loaf", "bread"})
+MEASURE_NOUNS = frozenset({"loaf", "block", "piece", "slice", "ball", "lump", "chunk", "bar", "bag", "roll", "pack",
+                           "cube", "wedge", "stick", "sheet", "bunch", "scoop", "handful", "pair"})
+PATTERN_WORDS = ("striped", "stripes", "spotted", "spots", "polka dot", "dotted", "checked", "checkered", "plaid",
+                 "tartan", "patterned", "floral", "camo", "camouflage", "rainbow", "tie dye", "speckled")
+STOP_WORDS = frozenset("""a an the of with and or in on for to from made that which is are it its one some this very
+really super extra about around approximately roughly approx like shaped shape form looks looking resembling cute
+little small big large tiny mini huge giant soft squishy fluffy fuzzy furry cuddly stuffed plush plushie toy squeezable
+squeeze squeezy firm stiff hard bouncy floppy smooth ripe fresh baked sweet round flat thin thick long short tall wide
+narrow chubby fat slim elongated flattened realistic cartoon kawaii happy sleeping sitting standing lying baby adult
+kids kid childs child children pet dog cat new old toy toys piece whole half sliced cut mm cm m inch inches in ft
+feet foot meter metre meters metres millimetre millimeter centimetre centimeter x by diameter across high tall deep
+length width height thickness depth size sized shaped light heavy dense wobbly gooey sticky fat skinny weighted
+textured velvety knitted crocheted felt fleece minky furry hairy woolly wool cotton vinyl latex squishmallow
+squishmallows jellycat ikea giant jumbo medium pocket keychain handmade homemade kitchen bath bathroom dish thing
+things object objects item items something stuff""".split())
+
+
+# category of a catalogue-shaped donor -> the generic concept an unknown noun shaped like it becomes
+CATEGORY_GENERIC: dict[str, str] = {"plush_animal": "generic_quadruped", "fruit": "generic_round_fruit",
+                                    "bread": "generic_baked", "ball": "generic_ball", "pillow": "generic_cushion",
+                                    "jelly": "generic_jelly"}
+# body plan of a shape donor -> the generic concept an unknown noun 'shaped like' it becomes
+PLAN_GENERIC: dict[str, str] = {
+    "quadruped": "generic_quadruped", "biped_seated": "generic_biped", "biped_standing": "generic_biped",
+    "bird": "generic_bird", "fish": "generic_fish", "cetacean": "generic_fish", "pinniped": "generic_fish",
+    "cephalopod": "generic_cephalopod", "insect": "generic_insect", "segmented": "generic_worm",
+    "snake": "generic_worm", "round_fruit": "generic_round_fruit", "pear": "generic_round_fruit",
+    "berry": "generic_berry", "elongated": "generic_vegetable", "bun": "generic_baked", "loaf": "generic_baked",
+    "cushion": "generic_cushion", "ball": "generic_ball", "blob": "generic_blob",
+}
+
+
+@dataclass
+class Reading:
+    """What was read from a text before building: the concept's entry, its shape donor (an entry or a shape word's
+    plan), the ConceptMatch and the warnings to show."""
+
+    match: ConceptMatch
+    entry: LexiconEntry
+    donor: LexiconEntry | None = None
+    donor_plan: tuple[str, dict] | None = None
+    warnings: list[str] = field(default_factory=list)
+
+
+def normalise(text: str) -> str:
+    """Lower case, hyphens and punctuation as spaces (so 'four-legged' reads as 'four legged')."""
+    t = text.lower().replace("×", "x")
+    t = re.sub(r"[-_/]", " ", t)
+    t = re.sub(r"[^a-z0-9.,;' ]", " ", t)
+    return re.sub(r"\s+", " ", t).strip()
+
+
+_IRREGULAR = {"mouse": ["mice"], "goose": ["geese"], "octopus": ["octopuses", "octopi"],
+              "cactus": ["cacti", "cactuses"], "fish": ["fish", "fishes"], "sheep": ["sheep"], "deer": ["deer"], "moose": ["moose"], "die": ["dice"],
+              "tooth": ["teeth"], "child": ["children"], "squid": ["squid", "squids"], "shrimp": ["shrimp", "shrimps"],
+              "salmon": ["salmon"], "bison": ["bison"], "jellyfish": ["jellyfish", "jellyfishes"]}
+
+
+def plurals(noun: str) -> list[str]:
+    """Plural forms of a noun (of its last word when it has several)."""
+    *head, last = noun.split()
+    if last in _IRREGULAR:
+        forms = _IRREGULAR[last]
+    elif re.search(r"(s|x|z|ch|sh)$", last):
+        forms = [last + "es"]
+    elif re.search(r"[^aeiou]y$", last):
+        forms = [last[:-1] + "ies"]
+    elif last.endswith("fe"):
+        forms = [last[:-2] + "ves", last + "s"]
+    elif last.endswith("f") and not last.endswith("ff"):
+        forms = [last[:-1] + "ves", last + "s"]
+    elif last.endswith("o"):
+        forms = [last + "es", last + "s"]
+    else:
+        forms = [last + "s"]
+    return [" ".join(head + [f]) for f in forms]
+
+
+@functools.lru_cache(maxsize=1)
+def noun_index() -> dict[str, tuple[str, str, bool]]:
+    """Surface form -> (concept key, noun, exact) for every lexicon noun and its plurals."""
+    lex = load_lexicon()
+    index: dict[str, tuple[str, str, bool]] = {}
+    for key, entry in lex.entries.items():
+        for i, noun in enumerate(entry.nouns):
+            if noun.startswith("("):
+                continue
+            n = normalise(noun)
+            exact = i == 0
+            index.setdefault(n, (key, n, exact))
+            for pl in plurals(n):
+                index.setdefault(pl, (key, n, False))
+    return index
+
+
+def diminutive_base(word: str) -> str | None:
+    """The lexicon noun a diminutive stands for ('ducky', 'duckie' -> 'duck'; 'froggy' -> 'frog'), if any."""
+    for cut in ("ies", "ie", "y"):
+        if word.endswith(cut) and len(word) - len(cut) >= 3:
+            stem = word[: -len(cut)]
+            for cand in (stem, stem[:-1] if len(stem) > 3 and stem[-1] == stem[-2] else stem):
+                if cand in noun_index():
+                    return cand
+    return None
+
+
+def _expand_diminutives(text: str) -> str:
+    """Text with unknown diminutives replaced by their nouns ('a rubber ducky' -> 'a rubber duck')."""
+    def repl(m: re.Match) -> str:
+        w = m.group(0)
+        return w if w in noun_index() else (diminutive_base(w) or w)
+
+    return re.sub(r"[a-z]+", repl, text)
+
+
+def _find(text: str, phrases: dict) -> list[tuple[int, int, str]]:
+    """Non-overlapping phrase occurrences (longest first) as (start, end, phrase), in text order; phrases are
+    matched on whole words (word n-grams of the text looked up in the dict)."""
+    words = [(m.start(), m.end(), m.group(0)) for m in re.finditer(r"[a-z0-9']+", text)]
+    used = [False] * len(words)
+    hits: list[tuple[int, int, str]] = []
+    for n in range(min(5, len(words)), 0, -1):
+        for i in range(len(words) - n + 1):
+            if any(used[i : i + n]):
+                continue
+            phrase = " ".join(w for _, _, w in words[i : i + n])
+            if phrase in phrases:
+                hits.append((words[i][0], words[i + n - 1][1], phrase))
+                used[i : i + n] = [True] * n
+    return sorted(hits)
+
+
+_SHAPE_PHRASE = re.compile(r"\b(?:shaped like|in the shape of|in the form of|looks like|looking like|resembling)"
+                           r"\s+(?:an? |the )?([a-z ]+?)(?=$|[,.;]| with | and | made | that | which | for )")
+_X_SHAPED = re.compile(r"\b([a-z]+(?: [a-z]+)?) shaped\b")
+_CLAUSE_END = re.compile(r"[,.;]| with | made of | that | which | for | filled | in (?:a |an )?(?=[a-z])")
+
+
+def _shape_donor(text: str) -> tuple[str, object | None, str]:
+    """(text without the shape phrase, donor (lexicon entry key or shape-word plan), donor words)."""
+    m = _SHAPE_PHRASE.search(text)
+    if m is None:
+        m = _X_SHAPED.search(text)
+    if m is None:
+        return text, None, ""
+    words = m.group(1).strip()
+    rest = (text[: m.start()] + " " + text[m.end():]).strip()
+    hits = _find(words, noun_index())
+    if hits:
+        return rest, noun_index()[hits[-1][2]][0], words
+    for w in reversed(words.split()):
+        if w in SHAPE_WORDS:
+            return rest, SHAPE_WORDS[w], w
+    return rest, None, words  # 'an oddly shaped sponge': no donor
+
+
+def _known_word(w: str) -> bool:
+    """A word that is not an unknown object noun: grammar, adjectives, colours, materials, categories, nouns."""
+    vocab = (STOP_WORDS, load_lexicon().colors, GENERIC_NOUNS, MEASURE_NOUNS, SHAPE_WORDS, _material_words(),
+             CATEGORY_WORDS, noun_index())
+    return any(w in v for v in vocab) or re.fullmatch(r"[\d.]+", w) is not None or any(w in p for p in PATTERN_WORDS)
+
+
+@functools.lru_cache(maxsize=1)
+def _material_words() -> dict[str, str]:
+    """Material word -> material class (contracts/vocab/materials.yaml)."""
+    import yaml
+
+    from contracts.lexicon import MATERIALS_FILE
+
+    raw = yaml.safe_load(MATERIALS_FILE.read_text(encoding="utf-8"))["materials"]
+    return {normalise(w): name for name, m in raw.items() for w in m["words"]}
+
+
+def _material_in(text: str) -> str | None:
+    hits = _find(text, _material_words())
+    return _material_words()[max(hits, key=lambda h: h[1] - h[0])[2]] if hits else None
+
+
+def _head(main: str) -> tuple[tuple[int, int, str] | None, tuple[int, int, str] | None, str | None]:
+    """(head noun hit, an earlier noun hit that shapes it, an unknown trailing head word) in the main clause."""
+    hits = _find(main, noun_index())
+    tail_unknown = None
+    words = [(m.start(), m.group(0)) for m in re.finditer(r"[a-z]+", main)]
+    last_end = hits[-1][1] if hits else -1
+    for start, w in reversed(words):
+        if start < last_end:
+            break
+        if w in ("thing", "things", "object", "objects", "item", "items", "something", "stuff"):
+            break
+        if not _known_word(w) and len(w) > 2:
+            tail_unknown = w
+            break
+    if not hits:
+        return None, None, tail_unknown
+    of = re.search(r"\bof\b", main)
+    if of and len(hits) > 1 and hits[0][1] <= of.start() < hits[1][0] \
+            and noun_index()[hits[0][2]][1].split()[-1] in MEASURE_NOUNS:
+        return hits[-1], None, tail_unknown  # 'a ball of dough' is dough, 'a loaf of bread' bread
+    head = hits[-1]
+    earlier = [h for h in hits[:-1] if h[2] not in load_lexicon().colors]  # 'an orange cushion' is coloured
+    head_noun = noun_index()[head[2]][1]
+    donor = earlier[-1] if earlier else None
+    if donor is not None and head_noun.split()[-1] in GENERIC_NOUNS \
+            and not load_lexicon().entries[noun_index()[head[2]][0]].takes_shape:
+        return donor, None, tail_unknown  # 'a teether ring' is a teether
+    return head, donor, tail_unknown
+
+
+def _match(entry: LexiconEntry, level: FallbackLevel, noun: str | None, note: str | None,
+           material: str | None = None) -> ConceptMatch:
+    """The ConceptMatch of an entry; a material named by the text (fallbacks) replaces the entry's, and then the
+    entry's density no longer applies; material-only fallbacks carry no typical mass."""
+    mat_only = level in ("material", "generic")
+    return ConceptMatch(
+        concept=entry.key, noun=noun, body_plan=entry.plan or f"catalogue:{entry.catalogue}", category=entry.category,
+        fallback_level=level, fallback_note=note, default_material=material or entry.material, hollow=entry.hollow,
+        wall_thickness_m=entry.wall_m, density_kg_per_m3=entry.solid_density_kg_per_m3 if material is None else None,
+        typical_mass_kg=None if mat_only else entry.mass_kg, typical_size_m=entry.size_m,
+        mass_source=None if mat_only else entry.mass_source)
+
+
+def _fallback(t: str, noun: str | None, donor: LexiconEntry | None, donor_plan: tuple[str, dict] | None,
+              donor_words: str) -> tuple[LexiconEntry, ConceptMatch]:
+    """The generic concept for an unknown noun, by meaning: its stated shape or body-plan word, then its category,
+    then its material, else a soft block; never another named object."""
+    lex = load_lexicon()
+    what = f"'{noun}' is not in the lexicon" if noun else "no object is named"
+    material = _material_in(t)
+    if donor is not None or donor_plan is not None:
+        plan = donor.plan if donor is not None else None
+        key = PLAN_GENERIC.get(plan or "", "generic_block")
+        if donor is not None and donor.plan is None:  # a hand-written catalogue shape: go by its category
+            key = CATEGORY_GENERIC.get(donor.category, key)
+        return lex.entries[key], _match(lex.entries[key], "body_plan", noun, f"{what}: built a generic "
+                                        f"{key[8:].replace('_', ' ')} in its stated shape ('{donor_words}')", material)
+    plan_hits, cat_hits = _find(t, BODY_PLAN_WORDS), _find(t, CATEGORY_WORDS)
+    if plan_hits:
+        key, level, why = BODY_PLAN_WORDS[plan_hits[-1][2]], "body_plan", f"from '{plan_hits[-1][2]}'"
+    elif cat_hits:
+        key, level, why = CATEGORY_WORDS[cat_hits[-1][2]], "category", f"for the category '{cat_hits[-1][2]}'"
+    elif material is not None:
+        key = MATERIAL_GENERIC[material]
+        note = f"{what}: built a generic {key[8:]} of {material} (the only thing the text says about it)"
+        return lex.entries[key], _match(lex.entries[key], "material", noun, note, material)
+    else:
+        note = f"{what} and no body plan, category or material: built a generic soft block"
+        return lex.entries["generic_block"], _match(lex.entries["generic_block"], "generic", noun, note)
+    level_: FallbackLevel = level  # type: ignore[assignment]
+    return lex.entries[key], _match(lex.entries[key], level_, noun,
+                                    f"{what}: built a generic {key[8:].replace('_', ' ')} {why}")
+
+
+def read_text(text: str) -> Reading:
+    """The concept a description names, with its shape donor, colours and fallback level."""
+    lex = load_lexicon()
+    t = _expand_diminutives(normalise(text))
+    t_shape, donor, donor_words = _shape_donor(t)
+    main = _CLAUSE_END.split(t_shape, maxsplit=1)[0]
+    head, compound, unknown = _head(main)
+    if head is None and unknown is None:
+        head, compound, unknown = _head(t_shape)  # the object may be named after 'with' ('one with a bear face')
+    warnings: list[str] = []
+    donor_entry = lex.entries[donor] if isinstance(donor, str) else None
+    donor_plan = donor if isinstance(donor, tuple) else None
+    if head is not None and unknown is None:
+        key, noun, exact = noun_index()[head[2]]
+        entry = lex.entries[key]
+        level: FallbackLevel = "exact" if exact else "synonym"
+        match = _match(entry, level, noun, None)
+        if compound is not None and donor is None and entry.takes_shape:
+            donor_entry = lex.entries[noun_index()[compound[2]][0]]
+            donor_words = compound[2]
+    else:
+        entry, match = _fallback(t, unknown, donor_entry, donor_plan, donor_words)
+        warnings.append(match.fallback_note or "")
+    if donor_entry is not None and donor_entry.key != entry.key:
+        match = match.model_copy(update={"shape_from": donor_entry.key})
+    elif donor_plan is not None:
+        match = match.model_copy(update={"shape_from": f"{donor_plan[0]}"})
+    return Reading(match=match, entry=entry, donor=donor_entry, donor_plan=donor_plan, warnings=warnings)
+
+
+def _entry_program(entry: LexiconEntry, size_m: float) -> ShapeProgram:
+    """The entry's own program at size_m, painted with its default colours (cached: programs are immutable)."""
+    return _entry_program_cached(entry.key, float(size_m))
+
+
+@functools.lru_cache(maxsize=512)
+def _entry_program_cached(key: str, size_m: float) -> ShapeProgram:
+    lex = load_lexicon()
+    entry = lex.entries[key]
+    if entry.catalogue is not None:
+        from tasks.geometry.catalogue import catalogue_program
+
+        prog = catalogue_program(entry.catalogue)
+        prog = grammar.resize(prog, size_m)
+        if entry.colors:
+            parts = []
+            for p in prog.parts:
+                k = _color_key(p.name, entry.colors)
+                parts.append(p.model_copy(update={"color_rgb": lex.colors[entry.colors[k]]}) if k else p)
+            prog = prog.model_copy(update={"parts": parts})
+        return prog
+    colors = {k: lex.colors[v] for k, v in entry.colors.items()}
+    return grammar.build_program(entry.plan or "", entry.params, colors, entry.key.replace("_", " "),
+                                 entry.category, size_m)
+
+
+def concept_program(key: str) -> ShapeProgram:
+    """A lexicon concept's program at its typical size with its default colours."""
+    return _entry_program(load_lexicon().entries[key], load_lexicon().entries[key].size_m)
+
+
+def _color_key(name: str, colors: dict) -> str | None:
+    g = part_group(name)
+    for k in (name, g, g + "s", g.split()[-1], g.split()[-1] + "s"):
+        if k in colors:
+            return k
+    return None
+
+
+def build(reading: Reading, text: str) -> tuple[ShapeProgram, ConceptMatch, list[str]]:
+    """The painted program of a reading at the object's typical size, with the colour and pattern words of the text
+    applied; and warnings (a pattern that could not be drawn)."""
+    entry = reading.entry
+    size = entry.size_m
+    if reading.donor is not None:
+        base = _entry_program(reading.donor, size)
+    elif reading.donor_plan is not None:
+        plan, params = reading.donor_plan
+        body = lex_color(entry)
+        base = grammar.build_program(plan, params, {"body": body}, entry.key.replace("_", " "), entry.category, size)
+    else:
+        base = _entry_program(entry, size)
+    program = base.model_copy(update={"name": entry.key.replace("_", " "), "category": entry.category})
+    program, applied = apply_colors(program, normalise(text))
+    program, pattern, warning = apply_pattern(program, normalise(text))
+    if pattern:
+        applied = {**applied, **pattern}
+    return program, reading.match.model_copy(update={"colors": applied}), [warning] if warning else []
+
+
+_SPOTS = ("spotted", "spots", "spot", "polka dot", "polka dots", "dotted", "dots", "speckled")
+_STRIPES = ("striped", "stripes", "stripe", "stripy", "banded")
+
+
+def apply_pattern(program: ShapeProgram, text: str) -> tuple[ShapeProgram, dict[str, str], str | None]:
+    """Spots or stripes on the main part (a thin raised patch or band of a second colour, ~1 % of the part's size):
+    the colour named before 'spots' / 'stripes', else white on a dark body and dark brown on a light one. Drawn on an
+    unrotated ellipsoid-like main part; otherwise a warning says the pattern is not drawn."""
+    words = {w for w in _find(text, {w: 1 for w in _SPOTS + _STRIPES + PATTERN_WORDS})}
+    named = [w[2] for w in sorted(words)]
+    if not named:
+        return program, {}, None
+    kind = "spot" if named[0] in _SPOTS else "stripe" if named[0] in _STRIPES else None
+    main = program.parts[0]
+    tf = main.transform
+    if kind is None or main.primitive.kind not in ("ellipsoid", "superellipsoid") or any(tf.rotation_deg) \
+            or tuple(tf.scale) != (1.0, 1.0, 1.0):
+        return program, {}, f"pattern '{named[0]}' is not drawn on this shape: colours apply per part"
+    lex = load_lexicon()
+    colour_hits = [h for h in _find(text, lex.colors)]
+    word = next((c for _, end, c in colour_hits if re.match(r"\s*(?:polka )?(spots?|dots?|stripes?)\b", text[end:])),
+                None)
+    if word is None:
+        word = "white" if float(np.mean(main.color_rgb)) < 0.3 else "dark brown"
+    rgb = lex.colors[word]
+    r = np.asarray(main.primitive.radii_m, dtype=np.float64)
+    c = np.asarray(tf.translation_m, dtype=np.float64)
+    extra: list[Part] = []
+    if kind == "spot":
+        for i, (az, el) in enumerate(((0.6, 0.5), (2.0, 0.7), (3.4, 0.4), (4.6, 0.8), (5.6, 0.35), (1.2, 1.2))):
+            d = np.array([np.cos(el) * np.cos(az), np.cos(el) * np.sin(az), np.sin(el)])
+            p = c + r * d / np.linalg.norm(d)  # on the ellipsoid surface (radial direction)
+            n = d / r / np.linalg.norm(d / r)  # ellipsoid normal there
+            extra.append(_patch(f"spot {i + 1}", p, n, 0.3 * float(r.min()), 0.04 * float(r.min()), rgb))
+    else:
+        for i, x in enumerate(np.linspace(-0.5, 0.5, 3) * r[0]):
+            f = float(np.sqrt(max(1.0 - (x / r[0]) ** 2, 0.05)))
+            band = Part(name=f"stripe {i + 1}", primitive={"kind": "ellipsoid", "radii_m": (
+                float(0.07 * r[0]), float(1.015 * r[1] * f), float(1.015 * r[2] * f))},
+                transform={"translation_m": (float(c[0] + x), float(c[1]), float(c[2]))}, color_rgb=rgb)
+            extra.append(band)
+    parts = list(program.parts) + extra
+    if len(parts) > 64:
+        return program, {}, f"pattern '{named[0]}' is not drawn: the shape has too many parts"
+    return program.model_copy(update={"parts": parts}), {kind: word}, None
+
+
+def _patch(name: str, at: np.ndarray, normal: np.ndarray, radius: float, thickness: float, rgb: tuple) -> Part:
+    """A thin disc-like ellipsoid lying on a surface at `at` with its thin axis along `normal`."""
+    from tasks.geometry.grammar.parts import _euler_z_to
+
+    return Part(name=name, primitive={"kind": "ellipsoid", "radii_m": (radius, radius, thickness)},
+                transform={"translation_m": tuple(float(v) for v in at), "rotation_deg": _euler_z_to(normal)},
+                color_rgb=rgb)
+
+
+def lex_color(entry: LexiconEntry) -> tuple[float, float, float]:
+    """The entry's body colour (linear RGB)."""
+    lex = load_lexicon()
+    word = entry.colors.get("body") or next(iter(entry.colors.values()), "beige")
+    return lex.colors[word]
+
+
+def apply_colors(program: ShapeProgram, text: str) -> tuple[ShapeProgram, dict[str, str]]:
+    """Colour words in the text painted on the parts they name ('with a green leaf'), the rest on the body: every part
+    that had the body's colour takes the first colour not bound to a part."""
+    lex = load_lexicon()
+    hits = _find(text, lex.colors)
+    if not hits:
+        return program, {}
+    groups = {part_group(p.name) for p in program.parts}
+    group_words = {}
+    for g in groups:
+        for form in {g, g.split()[-1], *plurals(g.split()[-1])}:
+            group_words[form] = g
+    applied: dict[str, str] = {}
+    primary: str | None = None
+    for start, end, word in hits:
+        after = re.findall(r"[a-z]+", text[end:])[:3]
+        if after and (after[0] in _SPOTS + _STRIPES or after[:2] == ["polka", "dots"]):
+            continue  # 'black spots': the pattern's colour (apply_pattern)
+        bound = next((group_words[w] for w in after if w in group_words), None)
+        if bound is not None and bound not in ("body", part_group(program.parts[0].name)):
+            applied.setdefault(bound, word)
+        elif primary is None:
+            primary = word
+    parts = list(program.parts)
+    if primary is not None:
+        body_rgb = next((p.color_rgb for p in parts if part_group(p.name) == "body"), parts[0].color_rgb)
+        new = lex.colors[primary]
+        parts = [p.model_copy(update={"color_rgb": new}) if np.allclose(p.color_rgb, body_rgb, atol=0.02)
+                 and part_group(p.name).split()[-1] not in ("eye", "nose") else p for p in parts]
+        applied["body"] = primary
+    for g, word in applied.items():
+        if g == "body":
+            continue
+        parts = [p.model_copy(update={"color_rgb": lex.colors[word]}) if part_group(p.name) == g
+                 or part_group(p.name).split()[-1] == g.split()[-1] else p for p in parts]
+    return program.model_copy(update={"parts": parts}), applied

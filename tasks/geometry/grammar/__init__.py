@@ -1,0 +1,145 @@
+"""Compositional shape grammar: body plans (functions of named parameters) -> painted, sized ShapePrograms."""
+
+from __future__ import annotations
+
+from typing import Any, Callable
+
+import numpy as np
+from pydantic import ValidationError
+
+from contracts.base import Model
+from contracts.errors import InputError
+from contracts.shape import Part, ShapeProgram
+from tasks.geometry.grammar import animals, food, things
+from tasks.geometry.grammar.parts import part_group
+
+RGB = tuple[float, float, float]
+
+# plan name -> (parameter model, builder); every builder returns unpainted parts in its unit frame
+PLANS: dict[str, tuple[type[Model], Callable[[Any], list[Part]]]] = {
+    "quadruped": (animals.QuadrupedParams, animals.quadruped),
+    "biped_seated": (animals.SeatedBipedParams, animals.biped_seated),
+    "biped_standing": (animals.StandingBipedParams, animals.biped_standing),
+    "bird": (animals.BirdParams, animals.bird),
+    "fish": (animals.FishParams, animals.fish),
+    "cetacean": (animals.CetaceanParams, animals.cetacean),
+    "pinniped": (animals.PinnipedParams, animals.pinniped),
+    "cephalopod": (animals.CephalopodParams, animals.cephalopod),
+    "turtle": (animals.TurtleParams, animals.turtle),
+    "insect": (animals.InsectParams, animals.insect),
+    "segmented": (animals.SegmentedParams, animals.segmented),
+    "snake": (animals.SnakeParams, animals.snake),
+    "round_fruit": (food.RoundFruitParams, food.round_fruit),
+    "pear": (food.PearParams, food.pear),
+    "elongated": (food.ElongatedParams, food.elongated),
+    "berry": (food.BerryParams, food.berry),
+    "floret": (food.FloretParams, food.floret),
+    "mushroom": (food.MushroomParams, food.mushroom),
+    "loaf": (food.LoafParams, food.loaf),
+    "bun": (food.BunParams, food.bun),
+    "croissant": (food.CroissantParams, food.croissant),
+    "muffin": (food.MuffinParams, food.muffin),
+    "pie": (food.PieParams, food.pie),
+    "cushion": (things.CushionParams, things.cushion),
+    "ball": (things.BallParams, things.ball),
+    "block": (things.BlockParams, things.block),
+    "disc": (things.DiscParams, things.disc),
+    "ring": (things.RingParams, things.ring),
+    "tube": (things.TubeParams, things.tube),
+    "cone": (things.ConeParams, things.cone_plan),
+    "star": (things.StarParams, things.star),
+    "heart": (things.HeartParams, things.heart),
+    "bone": (things.BoneParams, things.bone),
+    "egg": (things.EggParams, things.egg),
+    "cloud": (things.CloudParams, things.cloud),
+    "cactus": (things.CactusParams, things.cactus),
+    "blob": (things.BlobParams, things.blob),
+}
+
+# colours a part keeps unless the request or the entry names one (eyes and noses are dark)
+_DARK = {"eye", "nose", "pupil"}
+BLACK: RGB = (0.02, 0.02, 0.02)
+
+
+def plan_names() -> list[str]:
+    """All body plans."""
+    return list(PLANS)
+
+
+def plan_parameters(plan: str, params: dict[str, Any] | None = None) -> Model:
+    """Validated parameters of a plan (InputError naming the plan and the bad field)."""
+    if plan not in PLANS:
+        raise InputError(f"unknown body plan '{plan}' (known: {', '.join(PLANS)})")
+    model = PLANS[plan][0]
+    try:
+        return model(**(params or {}))
+    except ValidationError as exc:
+        first = exc.errors()[0]
+        where = ".".join(str(x) for x in first["loc"])
+        raise InputError(f"body plan '{plan}': parameter {where}: {first['msg']}") from exc
+
+
+def part_color(name: str, colors: dict[str, RGB]) -> RGB:
+    """Colour of a part: its own name, then what it is ('front left leg' -> 'leg', 'legs'), then the body's."""
+    group = part_group(name)
+    for key in (name.lower(), group, group + "s", group.split()[-1], group.split()[-1] + "s"):
+        if key in colors:
+            return colors[key]
+    if group.split()[-1] in _DARK:
+        return BLACK
+    for key in ("body", "main"):
+        if key in colors:
+            return colors[key]
+    return (0.6, 0.6, 0.6)
+
+
+def paint(parts: list[Part], colors: dict[str, RGB]) -> list[Part]:
+    """Parts with colours from a part-or-group -> linear RGB map."""
+    return [p.model_copy(update={"color_rgb": part_color(p.name, colors)}) for p in parts]
+
+
+def scale_parts(parts: list[Part], factor: float) -> list[Part]:
+    """Parts scaled uniformly about the origin (every length: radii, sizes, translations, blends)."""
+    out = []
+    for p in parts:
+        d = p.model_dump()
+        for k, v in d["primitive"].items():
+            if k.endswith("_m"):
+                d["primitive"][k] = [x * factor for x in v] if isinstance(v, (list, tuple)) else v * factor
+        d["transform"]["translation_m"] = [x * factor for x in d["transform"]["translation_m"]]
+        d["blend_m"] = d["blend_m"] * factor
+        out.append(Part(**d))
+    return out
+
+
+def build_program(plan: str, params: dict[str, Any] | None, colors: dict[str, RGB], name: str, category: str,
+                  size_m: float | None = None) -> ShapeProgram:
+    """The painted ShapeProgram of a body plan; its longest extent is size_m [m] when given."""
+    p = plan_parameters(plan, params)
+    parts = paint(PLANS[plan][1](p), colors)
+    program = ShapeProgram(name=name, category=category, parts=parts)
+    if size_m is not None:
+        program = resize(program, size_m)
+    return program
+
+
+def program_extents(program: ShapeProgram, resolution: int = 48) -> np.ndarray:
+    """Extents (x, y, z) [m] of the solid a program describes, from its signed distances on a grid (within about a
+    cell; the primitives' bounding boxes overstate rotated and subtracted parts)."""
+    from tasks.geometry.meshing import sample_program
+
+    field, _, spacing = sample_program(program, resolution)
+    inside = field < 0
+    if not inside.any():
+        raise InputError(f"program '{program.name}' has no volume")
+    ext = []
+    for ax in range(3):
+        idx = np.flatnonzero(inside.any(axis=tuple(a for a in range(3) if a != ax)))
+        ext.append((idx[-1] - idx[0] + 1) * spacing)
+    return np.asarray(ext)
+
+
+def resize(program: ShapeProgram, size_m: float) -> ShapeProgram:
+    """The program scaled so its longest extent is size_m [m]."""
+    longest = float(program_extents(program).max())
+    return program.model_copy(update={"parts": scale_parts(list(program.parts), size_m / longest)})

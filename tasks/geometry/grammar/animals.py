@@ -1,0 +1,531 @@
+"""Animal body plans: quadruped, seated and standing bipeds, bird, fish, cetacean, pinniped, cephalopod, turtle,
+insect, segmented worm and snake. Each returns unpainted parts in a unit frame (x front, y left, z up, body length
+about 1); the registry scales them to the object's size."""
+
+from __future__ import annotations
+
+from typing import Literal
+
+import numpy as np
+from pydantic import Field
+
+from contracts.base import Model
+from contracts.shape import Part
+from tasks.geometry.grammar.parts import cone, ellipsoid, limb, mirrored, superellipsoid, tapered
+
+Ears = Literal["none", "round", "pointed", "floppy", "long", "big", "small"]
+Snout = Literal["none", "short", "long", "trunk", "beak", "flat", "duckbill"]
+Tail = Literal["none", "short", "long", "curly", "bushy", "thick", "pom"]
+
+
+def _ears(kind: str, head: np.ndarray, r: float, size: float = 1.0) -> list[Part]:
+    """A pair of ears on a head of radius r centred at `head`."""
+    hx, hz = float(head[0]), float(head[2])
+    s = size * r
+    if kind == "none":
+        return []
+    if kind == "round":
+        return mirrored(ellipsoid, "ear", (0.25 * s, 0.38 * s, 0.38 * s), (hx - 0.1 * r, 0.62 * r, hz + 0.78 * r),
+                        blend=0.1 * r)
+    if kind == "small":
+        return mirrored(ellipsoid, "ear", (0.15 * s, 0.22 * s, 0.22 * s), (hx - 0.1 * r, 0.6 * r, hz + 0.8 * r),
+                        blend=0.06 * r)
+    if kind == "pointed":
+        return mirrored(cone, "ear", 0.33 * s, 0.04 * s, 0.6 * s, (hx - 0.05 * r, 0.55 * r, hz + 0.85 * r),
+                        edge=0.05 * s, blend=0.08 * r, rot=(-15, 0, 0))
+    if kind == "floppy":
+        return mirrored(ellipsoid, "ear", (0.35 * s, 0.14 * s, 0.65 * s), (hx - 0.15 * r, 0.95 * r, hz + 0.05 * r),
+                        blend=0.1 * r, rot=(20, 0, 0))
+    if kind == "long":
+        return mirrored(ellipsoid, "ear", (0.22 * s, 0.3 * s, 1.1 * s), (hx - 0.15 * r, 0.42 * r, hz + 1.75 * r),
+                        blend=0.1 * r, rot=(-10, 0, 0))
+    # big (elephant): wide flat ears on the sides of the head
+    return mirrored(ellipsoid, "ear", (0.45 * s, 0.12 * s, 0.75 * s), (hx - 0.35 * r, 0.95 * r, hz + 0.1 * r),
+                    blend=0.1 * r, rot=(0, 0, 15))
+
+
+def _face(head: np.ndarray, r: float, snout: str, forward: np.ndarray | None = None) -> list[Part]:
+    """Eyes and snout/trunk/beak on the front (+x) of a head of radius r."""
+    hx, hz = float(head[0]), float(head[2])
+    parts = mirrored(ellipsoid, "eye", (0.12 * r, 0.12 * r, 0.12 * r), (hx + 0.82 * r, 0.38 * r, hz + 0.28 * r))
+    if snout == "short":
+        parts.append(ellipsoid("snout", (0.4 * r, 0.45 * r, 0.35 * r), (hx + 0.85 * r, 0, hz - 0.2 * r), blend=0.1 * r))
+        parts.append(ellipsoid("nose", (0.13 * r, 0.18 * r, 0.12 * r), (hx + 1.22 * r, 0, hz - 0.08 * r)))
+    elif snout == "long":
+        parts.append(ellipsoid("snout", (0.75 * r, 0.4 * r, 0.35 * r), (hx + 1.05 * r, 0, hz - 0.2 * r),
+                               blend=0.15 * r))
+        parts.append(ellipsoid("nose", (0.14 * r, 0.2 * r, 0.14 * r), (hx + 1.78 * r, 0, hz - 0.1 * r)))
+    elif snout == "flat":
+        parts.append(cylinder_snout(hx + 0.95 * r, hz - 0.15 * r, r))
+    elif snout == "trunk":
+        parts.append(tapered("trunk", (hx + 0.75 * r, 0, hz - 0.1 * r), (hx + 1.45 * r, 0, hz - 1.3 * r), 0.3 * r,
+                             0.17 * r, blend=0.15 * r))
+    elif snout == "beak":
+        parts.append(tapered("beak", (hx + 0.8 * r, 0, hz - 0.05 * r), (hx + 1.55 * r, 0, hz - 0.15 * r), 0.28 * r,
+                             0.03 * r, blend=0.05 * r))
+    elif snout == "duckbill":
+        parts.append(ellipsoid("beak", (0.6 * r, 0.4 * r, 0.14 * r), (hx + 1.1 * r, 0, hz - 0.15 * r), blend=0.05 * r))
+    return parts
+
+
+def cylinder_snout(x: float, z: float, r: float) -> Part:
+    """A pig's flat round snout facing +x."""
+    from tasks.geometry.grammar.parts import cylinder
+
+    return cylinder("snout", 0.38 * r, 0.45 * r, (x, 0, z), edge=0.08 * r, blend=0.08 * r, rot=(0, 90, 0))
+
+
+def _tail(kind: str, rear: np.ndarray, r: float, length: float) -> list[Part]:
+    """A tail leaving the body at `rear` (radius scale r, length in body lengths)."""
+    x, z = float(rear[0]), float(rear[2])
+    if kind == "none":
+        return []
+    if kind in ("short", "pom"):
+        return [ellipsoid("tail", (0.5 * r, 0.5 * r, 0.5 * r), (x - 0.2 * r, 0, z + 0.2 * r), blend=0.2 * r)]
+    if kind == "curly":
+        return [limb("tail", (x, 0, z), (x - 0.25 * length, 0, z + 0.2 * length), 0.18 * r, blend=0.1 * r),
+                ellipsoid("tail tip", (0.3 * r, 0.3 * r, 0.3 * r), (x - 0.27 * length, 0, z + 0.25 * length),
+                          blend=0.1 * r)]
+    if kind == "bushy":
+        return [ellipsoid("tail", (0.55 * length, 0.3 * length, 0.22 * length),
+                          (x - 0.35 * length, 0, z + 0.3 * length), blend=0.15 * r, rot=(0, 40, 0))]
+    if kind == "thick":
+        return [tapered("tail", (x + 0.2 * r, 0, z), (x - length, 0, max(z - 0.6 * length, 0.6 * r)), 1.2 * r,
+                        0.25 * r, blend=0.3 * r)]
+    return [tapered("tail", (x, 0, z), (x - 0.8 * length, 0, z + 0.5 * length), 0.35 * r, 0.15 * r, blend=0.15 * r)]
+
+
+class QuadrupedParams(Model):
+    """A four- (or more-) legged animal standing on its legs."""
+
+    body_width: float = Field(default=0.62, gt=0.1, le=1.5, description="body width / body length [-]")
+    body_height: float = Field(default=0.58, gt=0.1, le=1.5, description="body height / body length [-]")
+    leg_count: int = Field(default=4, ge=2, le=8, description="legs (pairs along the body)")
+    leg_length: float = Field(default=0.25, ge=0.0, le=1.5, description="leg length below the body / body length")
+    leg_radius: float = Field(default=0.115, gt=0.02, le=0.3, description="leg radius / body length")
+    head_size: float = Field(default=0.42, gt=0.1, le=1.0, description="head diameter / body length")
+    neck_length: float = Field(default=0.0, ge=0.0, le=2.0, description="neck length / body length")
+    neck_angle_deg: float = Field(default=45.0, ge=0.0, le=90.0, description="neck elevation [deg]")
+    ears: Ears = "round"
+    ear_size: float = Field(default=1.0, gt=0.2, le=3.0)
+    snout: Snout = "short"
+    tail: Tail = "long"
+    tail_length: float = Field(default=0.35, ge=0.0, le=2.0, description="tail length / body length")
+    horns: int = Field(default=0, ge=0, le=2)
+    hump: bool = False
+
+
+def quadruped(p: QuadrupedParams) -> list[Part]:
+    """Body on legs, head in front (optionally on a neck), ears, face, tail."""
+    bw, bh = p.body_width, p.body_height
+    zb = p.leg_length + 0.42 * bh
+    parts = [ellipsoid("body", (0.5, bw / 2, bh / 2), (0, 0, zb))]
+    if p.hump:
+        parts.append(ellipsoid("hump", (0.2, 0.2, 0.2), (-0.05, 0, zb + 0.4 * bh), blend=0.08))
+    if p.leg_length > 0:
+        pairs = p.leg_count // 2
+        xs = np.linspace(0.3, -0.3, pairs) if pairs > 1 else np.array([0.0])
+        names = ["front", "rear"] if pairs == 2 else [f"{i + 1}" for i in range(pairs)]
+        for x, nm in zip(xs, names):
+            top = (float(x), 0.55 * bw / 2, zb - 0.25 * bh)
+            parts += mirrored(limb, f"{nm} leg", top, (float(x) + 0.02, 0.58 * bw / 2, p.leg_radius),
+                              p.leg_radius, blend=0.04)
+    else:
+        parts.append(ellipsoid("legs", (0.42, 0.85 * bw / 2, 0.12), (0, 0, 0.12), blend=0.05))
+    hr = p.head_size / 2
+    a = np.radians(p.neck_angle_deg)
+    base = np.array([0.42, 0.0, zb + 0.15 * bh])
+    if p.neck_length > 0:
+        tip = base + p.neck_length * np.array([np.cos(a), 0.0, np.sin(a)])
+        parts.append(limb("neck", base, tip, max(0.35 * hr, 0.6 * p.leg_radius), blend=0.05))
+        head = tip + np.array([0.3 * hr, 0, 0.2 * hr])
+    else:
+        head = np.array([0.5 + 0.55 * hr, 0.0, zb + 0.2 * bh + 0.3 * hr])
+    parts.append(ellipsoid("head", (hr, 0.95 * hr, 0.92 * hr), head, blend=0.08))
+    parts += _ears(p.ears, head, hr, p.ear_size)
+    parts += _face(head, hr, p.snout)
+    if p.horns:
+        parts += mirrored(tapered, "horn", (head[0] - 0.1 * hr, 0.35 * hr, head[2] + 0.75 * hr),
+                          (head[0] - 0.2 * hr, 0.5 * hr, head[2] + 1.45 * hr), 0.14 * hr, 0.04 * hr, blend=0.03)
+    parts += _tail(p.tail, np.array([-0.47, 0.0, zb + 0.1 * bh]), 0.1, p.tail_length)
+    return parts
+
+
+class SeatedBipedParams(Model):
+    """A teddy-style sitting figure: body, big head, legs forward, arms at the sides."""
+
+    head_size: float = Field(default=1.0, gt=0.3, le=2.0, description="head scale relative to a teddy bear's [-]")
+    body_width: float = Field(default=1.0, gt=0.4, le=2.0, description="body width scale [-]")
+    arm_length: float = Field(default=1.0, ge=0.0, le=2.5)
+    leg_length: float = Field(default=1.0, ge=0.0, le=2.5)
+    ears: Ears = "round"
+    ear_size: float = Field(default=1.0, gt=0.2, le=3.0)
+    snout: Snout = "short"
+    tail: Tail = "none"
+    belly: bool = False
+
+
+def biped_seated(p: SeatedBipedParams) -> list[Part]:
+    """Seated body (teddy bear proportions in metres for a 0.31 m figure)."""
+    w = p.body_width
+    parts = [ellipsoid("body", (0.065, 0.06 * w, 0.085), (0, 0, 0.085))]
+    if p.belly:
+        parts.append(ellipsoid("belly", (0.03, 0.045 * w, 0.06), (0.04, 0, 0.08), blend=0.01))
+    hr = 0.058 * p.head_size
+    head = np.array([0.005, 0.0, 0.155 + hr * 0.9])
+    parts.append(ellipsoid("head", (hr, 1.03 * hr, 0.97 * hr), head, blend=0.015))
+    parts += _ears(p.ears, head, hr, p.ear_size)
+    parts += _face(head, hr, p.snout)
+    if p.leg_length > 0:
+        ll = 0.05 * p.leg_length
+        parts += mirrored(limb, "leg", (0.02, 0.038 * w, 0.028), (0.02 + ll + 0.02, 0.04 * w, 0.028), 0.028,
+                          blend=0.01)
+    if p.arm_length > 0:
+        al = 0.065 * p.arm_length
+        parts += mirrored(limb, "arm", (0.005, 0.05 * w, 0.13), (0.03, 0.06 * w + 0.4 * al, 0.13 - 0.8 * al), 0.022,
+                          blend=0.01)
+    parts += _tail(p.tail, np.array([-0.062, 0.0, 0.04]), 0.03, 0.05)
+    return parts
+
+
+class StandingBipedParams(Model):
+    """An upright figure on two legs (doll, monkey, gingerbread-like plush, dinosaur on hind legs)."""
+
+    head_size: float = Field(default=1.0, gt=0.3, le=2.5)
+    body_width: float = Field(default=1.0, gt=0.4, le=2.5)
+    body_depth: float = Field(default=1.0, gt=0.3, le=2.5)
+    arm_length: float = Field(default=1.0, ge=0.0, le=2.5)
+    leg_length: float = Field(default=1.0, ge=0.2, le=2.5)
+    ears: Ears = "none"
+    ear_size: float = Field(default=1.0, gt=0.2, le=3.0)
+    snout: Snout = "none"
+    tail: Tail = "none"
+    tail_length: float = Field(default=0.4, ge=0.0, le=2.0)
+
+
+def biped_standing(p: StandingBipedParams) -> list[Part]:
+    """Legs, torso, head, arms hanging at the sides (height about 1)."""
+    ll = 0.3 * p.leg_length
+    w, d = p.body_width, p.body_depth
+    parts = [ellipsoid("body", (0.11 * d, 0.15 * w, 0.2), (0, 0, ll + 0.17))]
+    parts += mirrored(limb, "leg", (0, 0.07 * w, ll + 0.05), (0.02, 0.08 * w, 0.055), 0.055, blend=0.02)
+    hr = 0.13 * p.head_size
+    head = np.array([0.0, 0.0, ll + 0.36 + 0.85 * hr])
+    parts.append(ellipsoid("head", (hr, hr, hr), head, blend=0.03))
+    parts += _ears(p.ears, head, hr, p.ear_size)
+    parts += _face(head, hr, p.snout)
+    if p.arm_length > 0:
+        al = 0.25 * p.arm_length
+        parts += mirrored(limb, "arm", (0, 0.14 * w, ll + 0.3), (0.02, 0.19 * w, ll + 0.3 - al), 0.04, blend=0.02)
+    parts += _tail(p.tail, np.array([-0.1 * d, 0.0, ll + 0.1]), 0.1, p.tail_length)
+    return parts
+
+
+class BirdParams(Model):
+    """A bird: body, head, beak, wings, tail, feet; upright (penguin, owl) or horizontal (duck, chick)."""
+
+    upright: float = Field(default=0.0, ge=0.0, le=1.0, description="0 horizontal body, 1 standing upright [-]")
+    body_width: float = Field(default=0.6, gt=0.2, le=1.5)
+    head_size: float = Field(default=0.45, gt=0.15, le=1.2)
+    neck_length: float = Field(default=0.0, ge=0.0, le=1.5)
+    beak: Literal["short", "long", "duckbill", "hooked"] = "short"
+    wing_size: float = Field(default=1.0, ge=0.0, le=3.0)
+    tail: Literal["none", "short", "fan"] = "short"
+    leg_length: float = Field(default=0.0, ge=0.0, le=1.5)
+    crest: bool = False
+    belly: bool = False
+
+
+def bird(p: BirdParams) -> list[Part]:
+    """Body of length 1 (tilted up to vertical with `upright`), head over the front, beak forward."""
+    u = p.upright
+    zb = p.leg_length + 0.32 + 0.25 * u
+    rx, rz = 0.5 - 0.22 * u, 0.3 + 0.22 * u
+    parts = [ellipsoid("body", (rx, p.body_width / 2, rz), (0, 0, zb))]
+    if p.belly:
+        parts.append(ellipsoid("belly", (0.7 * rx, 0.8 * p.body_width / 2, 0.8 * rz), (0.25 * rx, 0, zb - 0.05),
+                               blend=0.02))
+    hr = p.head_size / 2
+    head = np.array([rx * (0.75 - 0.55 * u), 0.0, zb + rz * (0.75 + 0.35 * u) + 0.4 * hr])
+    if p.neck_length > 0:
+        top = head + np.array([0.25 * p.neck_length, 0, 0.8 * p.neck_length])
+        parts.append(limb("neck", head - np.array([0, 0, 0.3 * hr]), top, 0.35 * hr, blend=0.05))
+        head = top
+    parts.append(ellipsoid("head", (hr, 0.95 * hr, hr), head, blend=0.06))
+    parts += mirrored(ellipsoid, "eye", (0.12 * hr, 0.12 * hr, 0.12 * hr),
+                      (head[0] + 0.7 * hr, 0.55 * hr, head[2] + 0.25 * hr))
+    bx = head[0] + 0.85 * hr
+    if p.beak == "duckbill":
+        parts.append(ellipsoid("beak", (0.55 * hr, 0.45 * hr, 0.16 * hr), (bx + 0.35 * hr, 0, head[2] - 0.15 * hr),
+                               blend=0.03))
+    else:
+        length = {"short": 0.55, "long": 1.3, "hooked": 0.6}[p.beak] * hr
+        tip_z = head[2] - (0.35 * hr if p.beak == "hooked" else 0.1 * hr)
+        parts.append(tapered("beak", (bx, 0, head[2] - 0.05 * hr), (bx + length, 0, tip_z), 0.3 * hr, 0.03 * hr,
+                             blend=0.03))
+    if p.crest:
+        parts.append(ellipsoid("crest", (0.35 * hr, 0.12 * hr, 0.45 * hr), (head[0] - 0.2 * hr, 0, head[2] + hr),
+                               blend=0.04))
+    if p.wing_size > 0:
+        ws = p.wing_size
+        parts += mirrored(ellipsoid, "wing", (0.6 * rx * ws, 0.08, 0.55 * rz * ws), (-0.1 * rx, p.body_width / 2, zb),
+                          blend=0.04, rot=(-10, 10 - 30 * u, 0))
+    if p.tail == "short":
+        parts.append(ellipsoid("tail", (0.22, 0.15, 0.06), (-rx * (1.0 - 0.3 * u), 0, zb - 0.1 * u + 0.1 * (1 - u)),
+                               blend=0.05, rot=(0, -20 + 60 * u, 0)))
+    elif p.tail == "fan":
+        parts.append(ellipsoid("tail", (0.35, 0.3, 0.06), (-rx - 0.15, 0, zb + 0.15), blend=0.05, rot=(0, -35, 0)))
+    if p.leg_length > 0:
+        parts += mirrored(limb, "leg", (0, 0.12, zb - 0.7 * rz), (0.02, 0.12, 0.05), 0.04, blend=0.02)
+    parts += mirrored(ellipsoid, "foot", (0.14, 0.09, 0.04), (0.1, 0.12, 0.04), blend=0.02)
+    return parts
+
+
+class FishParams(Model):
+    """A fish: laterally flattened body, tail fin, dorsal and side fins."""
+
+    body_height: float = Field(default=0.55, gt=0.1, le=1.5, description="body height / length [-]")
+    body_width: float = Field(default=0.35, gt=0.05, le=1.5, description="body width / length [-]")
+    tail: Literal["fan", "fork", "round"] = "fan"
+    tail_size: float = Field(default=1.0, gt=0.2, le=2.5)
+    dorsal: bool = True
+    side_fins: bool = True
+    flat: bool = Field(default=False, description="a ray or flatfish lying on its belly (wide, low)")
+
+
+def fish(p: FishParams) -> list[Part]:
+    """Body of length 1 along x; tail towards -x."""
+    if p.flat:
+        parts = [ellipsoid("body", (0.5, max(p.body_width, 0.4), 0.08), (0, 0, 0.08))]
+        parts += mirrored(ellipsoid, "eye", (0.03, 0.03, 0.03), (0.3, 0.08, 0.14))
+        parts.append(tapered("tail", (-0.45, 0, 0.06), (-0.95 * p.tail_size, 0, 0.06), 0.05, 0.015, blend=0.02))
+        return parts
+    h, w = p.body_height, p.body_width
+    zc = h / 2
+    parts = [ellipsoid("body", (0.5, w / 2, h / 2), (0, 0, zc))]
+    t = p.tail_size
+    tail_len = 0.3 * t
+    parts.append(cone("tail", 0.04, 0.22 * t * (h / 0.55) ** 0.5, tail_len, (-0.5 - tail_len / 2 + 0.03, 0, zc),
+                      edge=0.03, blend=0.06, rot=(0, 90, 0), scale=(1, 0.3, 1)))
+    if p.tail == "fork":
+        parts.append(ellipsoid("tail notch", (0.12 * t, 0.2, 0.08 * t), (-0.5 - tail_len - 0.06 * t, 0, zc)))
+        parts[-1] = parts[-1].model_copy(update={"operation": "subtract", "blend_m": 0.02})
+    if p.dorsal:
+        parts.append(ellipsoid("dorsal fin", (0.2, 0.05, 0.12), (-0.05, 0, zc + 0.46 * h), blend=0.04))
+    if p.side_fins:
+        parts += mirrored(ellipsoid, "fin", (0.12, 0.04, 0.07), (0.12, w / 2, zc - 0.15 * h), blend=0.03,
+                          rot=(30, 0, 0))
+    parts += mirrored(ellipsoid, "eye", (0.05, 0.035, 0.05), (0.33, 0.33 * w, zc + 0.12 * h))
+    return parts
+
+
+class CetaceanParams(Model):
+    """A whale, dolphin or shark: long body, flukes (horizontal) or tail fin (vertical), dorsal fin, flippers."""
+
+    body_width: float = Field(default=0.4, gt=0.1, le=1.0)
+    body_height: float = Field(default=0.38, gt=0.1, le=1.0)
+    tail_vertical: bool = Field(default=False, description="a shark's vertical tail fin instead of flukes")
+    dorsal_size: float = Field(default=1.0, ge=0.0, le=3.0)
+    beak: bool = Field(default=False, description="a dolphin's beak")
+    blunt_head: bool = Field(default=False, description="a sperm whale's square head")
+
+
+def cetacean(p: CetaceanParams) -> list[Part]:
+    """Streamlined body along x, tail towards -x."""
+    w, h = p.body_width, p.body_height
+    zc = h / 2
+    if p.blunt_head:
+        parts = [superellipsoid("body", (0.5, w / 2, h / 2), (0, 0, zc), ns=0.7, ew=0.8)]
+    else:
+        parts = [ellipsoid("body", (0.5, w / 2, h / 2), (0, 0, zc))]
+    parts.append(tapered("tail stock", (-0.35, 0, zc), (-0.68, 0, zc + 0.02), 0.33 * min(w, h), 0.06, blend=0.06))
+    if p.tail_vertical:
+        parts.append(ellipsoid("tail", (0.09, 0.03, 0.22), (-0.7, 0, zc + 0.05), blend=0.03, rot=(0, -25, 0)))
+    else:
+        parts += mirrored(ellipsoid, "fluke", (0.08, 0.16, 0.025), (-0.72, 0.1, zc + 0.02), blend=0.03, rot=(0, 0, -30))
+    if p.dorsal_size > 0:
+        d = p.dorsal_size
+        parts.append(tapered("dorsal fin", (-0.05, 0, zc + 0.35 * h), (-0.12, 0, zc + 0.45 * h + 0.12 * d),
+                             0.07 * d, 0.015, blend=0.04))
+    parts += mirrored(ellipsoid, "flipper", (0.1, 0.1, 0.025), (0.18, w / 2 + 0.03, zc - 0.3 * h), blend=0.03,
+                      rot=(-25, 0, -30))
+    if p.beak:
+        parts.append(tapered("beak", (0.42, 0, zc - 0.05 * h), (0.62, 0, zc - 0.1 * h), 0.08, 0.04, blend=0.04))
+    parts += mirrored(ellipsoid, "eye", (0.025, 0.02, 0.025), (0.33, 0.38 * w, zc + 0.05 * h))
+    return parts
+
+
+class PinnipedParams(Model):
+    """A seal, sea lion or walrus lying on its belly: tapered body, raised head, fore and hind flippers."""
+
+    body_width: float = Field(default=0.4, gt=0.1, le=1.0)
+    head_raise: float = Field(default=0.3, ge=0.0, le=1.0, description="how far the head is raised [-]")
+    tusks: bool = False
+    whiskers: bool = False
+
+
+def pinniped(p: PinnipedParams) -> list[Part]:
+    """Body along x lying on the ground, head at +x."""
+    w = p.body_width
+    parts = [ellipsoid("body", (0.35, w / 2, 0.17), (0.05, 0, 0.17)),
+             tapered("rear body", (-0.1, 0, 0.15), (-0.42, 0, 0.08), 0.16, 0.06, blend=0.08)]
+    head = np.array([0.42, 0.0, 0.2 + 0.25 * p.head_raise])
+    parts.append(ellipsoid("head", (0.12, 0.11, 0.11), head, blend=0.06))
+    parts.append(ellipsoid("muzzle", (0.07, 0.075, 0.055), head + np.array([0.1, 0, -0.03]), blend=0.03))
+    parts.append(ellipsoid("nose", (0.02, 0.03, 0.02), head + np.array([0.17, 0, -0.0])))
+    parts += mirrored(ellipsoid, "eye", (0.018, 0.018, 0.018), (head[0] + 0.08, 0.05, head[2] + 0.04))
+    parts += mirrored(ellipsoid, "front flipper", (0.11, 0.05, 0.02), (0.15, w / 2 + 0.02, 0.03), blend=0.03,
+                      rot=(0, 0, 35))
+    parts += mirrored(ellipsoid, "rear flipper", (0.1, 0.06, 0.02), (-0.5, 0.05, 0.07), blend=0.02, rot=(0, 0, -25))
+    if p.tusks:
+        parts += mirrored(tapered, "tusk", head + np.array([0.12, 0.035, -0.06]), head + np.array([0.15, 0.04, -0.2]),
+                          0.015, 0.006, blend=0.005)
+    return parts
+
+
+class CephalopodParams(Model):
+    """An octopus, squid or jellyfish: a mantle/dome with arms around it."""
+
+    arm_count: int = Field(default=8, ge=0, le=12)
+    arm_length: float = Field(default=1.0, ge=0.0, le=3.0, description="arm length / mantle diameter [-]")
+    mantle_height: float = Field(default=1.0, gt=0.3, le=3.0, description="mantle height / a round head's [-]")
+    curl: float = Field(default=0.5, ge=0.0, le=1.0, description="how far the arm tips curl up [-]")
+
+
+def cephalopod(p: CephalopodParams) -> list[Part]:
+    """Mantle on top of a ring of arms lying on the ground (mantle radius 0.25)."""
+    r = 0.25
+    zc = 0.12 + r * p.mantle_height * 0.8
+    parts = [ellipsoid("head", (r, r, r * p.mantle_height), (0, 0, zc))]
+    parts += mirrored(ellipsoid, "eye", (0.03, 0.03, 0.03), (0.92 * r, 0.3 * r, zc - 0.1 * r * p.mantle_height))
+    L = 2 * r * p.arm_length
+    for i in range(p.arm_count):
+        a = 2 * np.pi * (i + 0.5) / p.arm_count
+        d = np.array([np.cos(a), np.sin(a), 0.0])
+        start = d * 0.5 * r + np.array([0, 0, 0.09])
+        mid = d * (0.5 * r + 0.7 * L) + np.array([0, 0, 0.05])
+        tip = d * (0.5 * r + L) + np.array([0, 0, 0.05 + 0.15 * L * p.curl])
+        parts.append(limb(f"arm {i + 1}", start, mid, 0.055, blend=0.03))
+        parts.append(limb(f"arm {i + 1} tip", mid, tip, 0.035, blend=0.02))
+    return parts
+
+
+class TurtleParams(Model):
+    """A turtle or tortoise: domed shell, belly, head, four flippers or legs, short tail (the catalogue's turtle at
+    the default parameters, in metres for a 0.29 m toy)."""
+
+    shell_height: float = Field(default=1.0, gt=0.3, le=2.5, description="shell dome height scale [-]")
+    head_size: float = Field(default=1.0, gt=0.3, le=2.5)
+    flipper_length: float = Field(default=1.0, gt=0.3, le=2.5)
+
+
+def turtle(p: TurtleParams) -> list[Part]:
+    """Shell, belly, head, flippers, tail and eyes (centimetre numbers of the hand-written catalogue entry)."""
+    c = 0.01
+    sh, hs, fl = p.shell_height, p.head_size, p.flipper_length
+    parts = [superellipsoid("shell", (11 * c, 8.5 * c, 4.5 * c * sh), (0, 0, 4.8 * c * (0.4 + 0.6 * sh)), ns=0.7,
+                            ew=1.0),
+             ellipsoid("belly", (10 * c, 8 * c, 2.5 * c), (0, 0, 2.6 * c), blend=1.0 * c),
+             ellipsoid("head", (3.6 * c * hs, 3.0 * c * hs, 2.8 * c * hs), (12.5 * c + 3.6 * c * (hs - 1), 0, 4.6 * c),
+                       blend=1.5 * c)]
+    parts += mirrored(ellipsoid, "front flipper", (3.8 * c * fl, 2.0 * c, 1.0 * c), (6 * c, 8 * c, 1.6 * c),
+                      blend=1.0 * c, rot=(0, 0, 35))
+    parts += mirrored(ellipsoid, "rear flipper", (3.0 * c * fl, 1.8 * c, 1.0 * c), (-7 * c, 7 * c, 1.6 * c),
+                      blend=1.0 * c, rot=(0, 0, -30))
+    parts.append(cone("tail", 1.2 * c, 0.2 * c, 3 * c, (-11.5 * c, 0, 3 * c), edge=0.2 * c, blend=0.8 * c,
+                      rot=(0, -90, 0)))
+    hx = 12.5 * c + 3.6 * c * (hs - 1) + 2.7 * c * hs
+    parts += mirrored(ellipsoid, "eye", (0.6 * c, 0.6 * c, 0.6 * c), (hx, 1.4 * c * hs, 5.6 * c))
+    return parts
+
+
+class InsectParams(Model):
+    """A ladybird, bee or beetle: domed body, head, six short legs, optional wings and antennae."""
+
+    body_width: float = Field(default=0.75, gt=0.2, le=1.5)
+    body_height: float = Field(default=0.45, gt=0.1, le=1.5)
+    wings: bool = False
+    antennae: bool = True
+    stripes: int = Field(default=0, ge=0, le=4, description="bands across the body (a bee) [-]")
+
+
+def insect(p: InsectParams) -> list[Part]:
+    """Body of length 1 along x."""
+    w, h = p.body_width, p.body_height
+    parts = [ellipsoid("body", (0.45, w / 2, h / 2), (-0.05, 0, h / 2 + 0.04))]
+    for i in range(p.stripes):
+        x = -0.25 + 0.5 * (i + 0.5) / p.stripes
+        parts.append(ellipsoid(f"stripe {i + 1}", (0.05, w / 2 + 0.01, h / 2 + 0.01), (x - 0.05, 0, h / 2 + 0.04)))
+    head = np.array([0.45, 0.0, 0.22])
+    parts.append(ellipsoid("head", (0.16, 0.2, 0.16), head, blend=0.04))
+    parts += mirrored(ellipsoid, "eye", (0.04, 0.04, 0.04), head + np.array([0.13, 0.09, 0.05]))
+    for i, x in enumerate((0.2, -0.05, -0.3)):
+        parts += mirrored(limb, f"leg {i + 1}", (x, 0.3 * w, 0.08), (x + 0.05, 0.55 * w, 0.03), 0.03, blend=0.02)
+    if p.antennae:
+        parts += mirrored(limb, "antenna", head + np.array([0.08, 0.06, 0.12]), head + np.array([0.2, 0.14, 0.3]),
+                          0.018, blend=0.01)
+    if p.wings:
+        parts += mirrored(ellipsoid, "wing", (0.25, 0.18, 0.03), (-0.1, 0.2, h + 0.06), blend=0.02, rot=(20, 0, 20))
+    return parts
+
+
+class SegmentedParams(Model):
+    """A caterpillar, worm or centipede: a chain of round segments with a head."""
+
+    segments: int = Field(default=6, ge=2, le=16)
+    segment_size: float = Field(default=1.35, gt=0.3, le=2.0, description="segment radius scale [-]")
+    taper: float = Field(default=0.3, ge=0.0, le=0.9, description="radius loss from head to tail [-]")
+    wave: float = Field(default=0.3, ge=0.0, le=1.0, description="vertical wave amplitude / segment radius [-]")
+    antennae: bool = True
+    legs: bool = False
+
+
+def segmented(p: SegmentedParams) -> list[Part]:
+    """Segments along x (tail at -x), head at the front."""
+    n = p.segments
+    r0 = 0.5 / (n + 1) * 1.25 * p.segment_size
+    parts: list[Part] = []
+    for i in range(n):
+        f = i / max(n - 1, 1)
+        r = r0 * (1 - p.taper * (1 - f))
+        x = -0.5 + (i + 0.5) / (n + 1)
+        z = r + p.wave * r0 * 0.5 * (1 + np.sin(np.pi * i * 0.9))
+        parts.append(ellipsoid(f"segment {i + 1}" if i else "body", (1.05 * r, r, r), (x, 0, z), blend=0.3 * r0))
+        if p.legs:
+            parts += mirrored(limb, f"leg {i + 1}", (x, 0.6 * r, 0.5 * r), (x, 1.1 * r, 0.12 * r0), 0.12 * r0,
+                              blend=0.05 * r0)
+    hr = 1.1 * r0
+    head = np.array([-0.5 + (n + 0.5) / (n + 1) + 0.1 * r0, 0, hr * 1.1])
+    parts.append(ellipsoid("head", (hr, hr, hr), head, blend=0.3 * r0))
+    parts += mirrored(ellipsoid, "eye", (0.15 * hr, 0.15 * hr, 0.15 * hr),
+                      head + np.array([0.8 * hr, 0.35 * hr, 0.3 * hr]))
+    if p.antennae:
+        parts += mirrored(limb, "antenna", head + np.array([0.2 * hr, 0.3 * hr, 0.8 * hr]),
+                          head + np.array([0.5 * hr, 0.6 * hr, 1.8 * hr]), 0.1 * hr, blend=0.05 * hr)
+    return parts
+
+
+class SnakeParams(Model):
+    """A snake (or eel) lying in S-curves: a chain of tapering segments."""
+
+    thickness: float = Field(default=1.0, gt=0.3, le=3.0, description="body radius scale [-]")
+    bends: float = Field(default=1.5, ge=0.0, le=3.0, description="S-curve periods along the body [-]")
+
+
+def snake(p: SnakeParams) -> list[Part]:
+    """Body along x in the ground plane, head at +x."""
+    n = 10
+    xs = np.linspace(-0.5, 0.45, n + 1)
+    amp = 0.08 if p.bends > 0 else 0.0
+    ys = amp * np.sin(2 * np.pi * p.bends * (xs + 0.5) / 0.95)
+    ys = ys - ys[-1]  # the head on the x axis, so its eyes mirror about y = 0
+    r0 = 0.035 * p.thickness
+    parts: list[Part] = []
+    for i in range(n):
+        r = r0 * (0.35 + 0.65 * (i + 1) / n)
+        name = "body" if i == n - 1 else ("tail" if i == 0 else f"segment {i + 1}")
+        parts.append(limb(name, (xs[i], ys[i], r0), (xs[i + 1], ys[i + 1], r0), r, blend=0.2 * r0))
+    head = np.array([0.5, ys[-1], r0 * 1.1])
+    parts.append(ellipsoid("head", (1.8 * r0, 1.3 * r0, 1.05 * r0), head, blend=0.3 * r0))
+    parts += mirrored(ellipsoid, "eye", (0.25 * r0,) * 3, head + np.array([0.9 * r0, 0.7 * r0, 0.5 * r0]))
+    return parts

@@ -1,0 +1,301 @@
+"""Produce and baked-goods body plans: round and pear-shaped fruit, elongated fruit and vegetables, berries,
+florets, mushrooms, loaves, buns, croissants, muffins and pies (unit frame, longest extent about 1)."""
+
+from __future__ import annotations
+
+from typing import Literal
+
+import numpy as np
+from pydantic import Field
+
+from contracts.base import Model
+from contracts.shape import Part
+from tasks.geometry.grammar.parts import box, cone, cylinder, ellipsoid, limb, superellipsoid, tapered
+
+
+def _stem_and_leaves(top: np.ndarray, r: float, stem: bool, leaves: int, stem_length: float = 1.0) -> list[Part]:
+    """A stem on top of a fruit of radius r and `leaves` leaves around it."""
+    parts: list[Part] = []
+    if stem:
+        tip = top + np.array([0.03 * r, 0, 0.25 * r * stem_length])
+        parts.append(limb("stem", top - np.array([0, 0, 0.08 * r]), tip, 0.05 * r, blend=0.03 * r))
+    for i in range(leaves):
+        a = 2 * np.pi * i / max(leaves, 1) + 0.4
+        d = np.array([np.cos(a), np.sin(a), 0.0])
+        at = top + d * 0.3 * r + np.array([0, 0, 0.06 * r])
+        parts.append(ellipsoid(f"leaf {i + 1}" if leaves > 1 else "leaf", (0.32 * r, 0.15 * r, 0.035 * r), at,
+                               blend=0.02 * r, rot=(0, -15, float(np.degrees(a)))))
+    return parts
+
+
+class RoundFruitParams(Model):
+    """Apple, orange, peach, tomato, plum, lemon, melon, pumpkin, onion, potato ..."""
+
+    aspect: float = Field(default=0.95, gt=0.3, le=2.0, description="height / width [-]")
+    elongation: float = Field(default=1.0, gt=0.5, le=2.5, description="length (x) / width (y) [-]")
+    squareness: float = Field(default=1.0, gt=0.3, le=1.0, description="superellipsoid exponent; 1 round [-]")
+    stem: bool = True
+    stem_length: float = Field(default=1.0, gt=0.1, le=4.0)
+    leaves: int = Field(default=0, ge=0, le=8)
+    dimple: bool = Field(default=False, description="a hollow around the stem (apple)")
+    ribs: int = Field(default=0, ge=0, le=12, description="lobes around the vertical axis (pumpkin, pepper)")
+    tips: bool = Field(default=False, description="pointed ends along x (lemon)")
+    crease: bool = Field(default=False, description="a groove down one side (peach, plum)")
+    lying: bool = Field(default=False, description="stem along x (a lemon or potato lies on its side)")
+
+
+def round_fruit(p: RoundFruitParams) -> list[Part]:
+    """A round body of radius 0.5 (width), its stem and leaves on top."""
+    r = 0.5
+    rx, ry, rz = r * p.elongation, r, r * p.aspect
+    if p.ribs:
+        parts = [superellipsoid("body", (0.8 * rx, 0.8 * ry, rz), (0, 0, rz), ns=p.squareness, ew=p.squareness)]
+        for i in range(p.ribs):
+            a = 2 * np.pi * i / p.ribs
+            parts.append(ellipsoid(f"rib {i + 1}", (0.45 * r, 0.3 * r, 0.95 * rz),
+                                   (0.55 * rx * np.cos(a), 0.55 * ry * np.sin(a), rz), blend=0.12 * r,
+                                   rot=(0, 0, float(np.degrees(a)))))
+    else:
+        parts = [superellipsoid("body", (rx, ry, rz), (0, 0, rz), ns=p.squareness, ew=p.squareness)]
+    if p.tips:
+        for s, nm in ((1, "front tip"), (-1, "rear tip")):
+            parts.append(tapered(nm, (s * 0.8 * rx, 0, rz), (s * (rx + 0.16 * r), 0, rz), 0.22 * r, 0.05 * r,
+                                 blend=0.08 * r))
+    if p.crease:
+        parts.append(ellipsoid("crease", (0.04 * r, 0.08 * r, 0.9 * rz), (rx * 0.98, 0, rz)).model_copy(
+            update={"operation": "subtract", "blend_m": 0.05 * r}))
+    if p.dimple:
+        parts.append(ellipsoid("dimple", (0.22 * r, 0.22 * r, 0.12 * r), (0, 0, 2 * rz + 0.02 * r)).model_copy(
+            update={"operation": "subtract", "blend_m": 0.1 * r}))
+    top = np.array([0.0, 0.0, 2 * rz - (0.08 * r if p.dimple else 0.0)])
+    parts += _stem_and_leaves(top, r, p.stem, p.leaves, p.stem_length)
+    return parts
+
+
+class PearParams(Model):
+    """Pear, avocado, eggplant, gourd, butternut squash: a big lower bulb and a smaller upper one."""
+
+    neck: float = Field(default=0.6, gt=0.2, le=1.0, description="upper bulb radius / lower [-]")
+    height: float = Field(default=1.5, gt=0.8, le=3.5, description="total height / lower bulb diameter [-]")
+    stem: bool = True
+    leaves: int = Field(default=0, ge=0, le=4)
+    lying: bool = Field(default=False, description="lying along x (an eggplant)")
+
+
+def pear(p: PearParams) -> list[Part]:
+    """Lower bulb of radius 0.5 at the bottom, upper bulb above (or towards +x when lying)."""
+    r = 0.5
+    r2 = r * p.neck
+    top_c = 2 * r * p.height - r2
+    if p.lying:
+        parts = [ellipsoid("body", (r, r, r), (0, 0, r)),
+                 tapered("waist", (0.3 * r, 0, r), (top_c - r, 0, r), 0.85 * r, 0.95 * r2, blend=0.3 * r),
+                 ellipsoid("neck", (r2, r2, r2), (top_c - r, 0, r), blend=0.2 * r)]
+        parts.append(limb("stem", (top_c - r + 0.85 * r2, 0, r), (top_c - r + r2 + 0.25 * r, 0, r), 0.08 * r,
+                          blend=0.04 * r))
+        if p.leaves:
+            parts.append(cone("calyx", 0.35 * r, 0.08 * r, 0.2 * r, (top_c - r + 0.85 * r2, 0, r), edge=0.03 * r,
+                              blend=0.05 * r, rot=(0, 90, 0)))
+        return parts
+    parts = [ellipsoid("body", (r, r, r), (0, 0, r)),
+             tapered("waist", (0, 0, 1.3 * r), (0, 0, top_c), 0.85 * r, 0.95 * r2, blend=0.3 * r),
+             ellipsoid("neck", (r2, r2, 1.1 * r2), (0, 0, top_c), blend=0.2 * r)]
+    parts += _stem_and_leaves(np.array([0.0, 0.0, top_c + 1.05 * r2]), r, p.stem, p.leaves)
+    return parts
+
+
+class ElongatedParams(Model):
+    """Banana, carrot, cucumber, zucchini, corn cob, sausage, baguette: a long body along x."""
+
+    radius: float = Field(default=0.1, gt=0.02, le=0.4, description="radius / length [-]")
+    taper: float = Field(default=0.0, ge=0.0, le=1.0, description="radius lost towards -x (a carrot's point) [-]")
+    curvature: float = Field(default=0.0, ge=0.0, le=1.5, description="bend of the body [rad / length]")
+    end_tips: float = Field(default=0.0, ge=0.0, le=1.0, description="both ends narrowed (banana, croissant) [-]")
+    stem: Literal["none", "stub", "leafy"] = "none"
+    flatten: float = Field(default=1.0, gt=0.3, le=1.0, description="height / width of the cross-section [-]")
+
+
+def elongated(p: ElongatedParams) -> list[Part]:
+    """Five tapered segments along a circular arc in the x-z plane; the stem at +x."""
+    n = 5
+    s = np.linspace(-0.5, 0.5, n + 1)
+    k = p.curvature
+    if k > 1e-6:
+        R = 1.0 / k
+        ang = s * k
+        xs, zs = R * np.sin(ang), R * (1 - np.cos(ang))
+    else:
+        xs, zs = s, np.zeros_like(s)
+    zs = zs - zs.min()
+    def rad(t: float) -> float:
+        f = 1.0 - p.taper * (0.5 - t)  # t in [-0.5, 0.5]: full radius at +x, tapering towards -x
+        f *= 1.0 - p.end_tips * (2 * abs(t)) ** 2 * 0.75
+        return max(p.radius * f, 0.01)
+    parts: list[Part] = []
+    r0 = rad(0.0)
+    for i in range(n):
+        a = (xs[i], 0.0, zs[i] + r0)
+        b = (xs[i + 1], 0.0, zs[i + 1] + r0)
+        name = "body" if i == n // 2 else f"segment {i + 1}"
+        part = tapered(name, a, b, rad(s[i]), rad(s[i + 1]), blend=0.3 * p.radius)
+        if p.flatten < 1.0:
+            tf = part.transform
+            part = part.model_copy(update={"transform": tf.model_copy(update={"scale": (p.flatten, 1.0, 1.0)})})
+        parts.append(part)
+    end = np.array([xs[-1], 0.0, zs[-1] + r0])
+    if p.stem == "stub":
+        d = end - np.array([xs[-2], 0.0, zs[-2] + r0])
+        d /= np.linalg.norm(d)
+        parts.append(limb("stem", end, end + d * 0.07, 0.25 * p.radius, blend=0.2 * p.radius))
+    elif p.stem == "leafy":
+        for j, a in enumerate((-25, 0, 25)):
+            d = np.array([np.cos(np.radians(a)) * 0.8, np.sin(np.radians(a)) * 0.6, 0.4])
+            parts.append(limb(f"leaf {j + 1}", end, end + d * 0.18, 0.22 * p.radius, blend=0.2 * p.radius))
+    return parts
+
+
+class BerryParams(Model):
+    """Strawberry-like: a rounded cone pointing down under a green crown."""
+
+    aspect: float = Field(default=1.15, gt=0.5, le=2.0, description="height / width [-]")
+    leaves: int = Field(default=5, ge=0, le=8)
+
+
+def berry(p: BerryParams) -> list[Part]:
+    """Width 1 berry, tip at the bottom."""
+    h = p.aspect
+    parts = [ellipsoid("body", (0.5, 0.5, 0.35 * h), (0, 0, 0.62 * h)),
+             cone("tip", 0.18, 0.45, 0.6 * h, (0, 0, 0.33 * h), edge=0.12, blend=0.15)]
+    parts += _stem_and_leaves(np.array([0.0, 0.0, 0.95 * h]), 0.5, True, p.leaves)
+    return parts
+
+
+class FloretParams(Model):
+    """Broccoli, cauliflower: a stalk under a cluster of florets."""
+
+    head_width: float = Field(default=1.0, gt=0.3, le=1.5)
+    stalk: float = Field(default=0.5, ge=0.1, le=1.5, description="stalk length / head width [-]")
+
+
+def floret(p: FloretParams) -> list[Part]:
+    """Lying on its side: stalk towards -x, head at +x."""
+    w = p.head_width
+    L = p.stalk
+    parts = [limb("stalk", (-L, 0, 0.12), (0.05, 0, 0.18), 0.1, blend=0.05)]
+    for i, (dy, dz, r) in enumerate(((0, 0.25, 0.25), (0.22, 0.15, 0.2), (-0.22, 0.15, 0.2), (0.1, 0.38, 0.18),
+                                     (-0.1, 0.38, 0.18), (0, 0.05, 0.2))):
+        parts.append(ellipsoid("head" if i == 0 else f"floret {i}", (0.22 * w, r * w, r * w),
+                               (0.25 * w, dy * w, 0.05 + dz * w), blend=0.06))
+    return parts
+
+
+class MushroomParams(Model):
+    """A mushroom: a cap on a stem."""
+
+    cap_width: float = Field(default=1.0, gt=0.3, le=2.0)
+    cap_height: float = Field(default=0.45, gt=0.1, le=1.5, description="cap height / width [-]")
+    stem_height: float = Field(default=0.55, gt=0.1, le=2.0, description="stem height / cap width [-]")
+
+
+def mushroom(p: MushroomParams) -> list[Part]:
+    """Stem from the ground, cap on top (cap width 1 at the default)."""
+    w = p.cap_width
+    sh = p.stem_height * w
+    parts = [ellipsoid("cap", (0.5 * w, 0.5 * w, p.cap_height * w), (0, 0, sh)),
+             box("cap underside", (1.2 * w, 1.2 * w, 2 * p.cap_height * w), (0, 0, sh - 0.02 * w - p.cap_height * w),
+                 op="subtract"),
+             cylinder("stem", 0.17 * w, sh + 0.05 * w, (0, 0, (sh + 0.05 * w) / 2), edge=0.03 * w, blend=0.03 * w)]
+    return parts
+
+
+class LoafParams(Model):
+    """A loaf of bread or a cake: a rounded block with a domed top."""
+
+    width: float = Field(default=0.5, gt=0.1, le=1.5, description="width / length [-]")
+    height: float = Field(default=0.45, gt=0.1, le=1.5, description="height / length [-]")
+    dome: float = Field(default=0.35, ge=0.0, le=1.0, description="share of the height in the domed top [-]")
+    roundness: float = Field(default=0.6, gt=0.1, le=1.0, description="1 an oval loaf, small a tin loaf [-]")
+
+
+def loaf(p: LoafParams) -> list[Part]:
+    """Length 1 along x."""
+    base_h = p.height * (1 - p.dome)
+    parts = [superellipsoid("crumb", (0.5, p.width / 2, base_h / 2), (0, 0, base_h / 2), ns=0.3 + 0.3 * p.roundness,
+                            ew=0.3 + 0.7 * p.roundness)]
+    if p.dome > 0:
+        parts.append(ellipsoid("crust", (0.48, 0.98 * p.width / 2, p.height * p.dome + 0.02), (0, 0, base_h * 0.95),
+                               blend=0.05))
+    parts[0] = parts[0].model_copy(update={"name": "crust" if p.dome == 0 else "crumb"})
+    return parts
+
+
+class BunParams(Model):
+    """A bun, roll, scone, dumpling, cookie, mochi: a flattened dome."""
+
+    height: float = Field(default=0.55, gt=0.05, le=1.5, description="height / diameter [-]")
+    elongation: float = Field(default=1.0, gt=0.5, le=3.0, description="length / width [-]")
+    flat_bottom: float = Field(default=0.6, ge=0.0, le=1.0, description="0 an ellipsoid, 1 a flat base [-]")
+    topping: bool = Field(default=False, description="a cap of a different colour (frosting, glaze, seeds)")
+
+
+def bun(p: BunParams) -> list[Part]:
+    """Diameter 1 (width), resting on a flattened base."""
+    h = p.height
+    e = 1.0 - 0.5 * p.flat_bottom
+    parts = [superellipsoid("body", (0.5 * p.elongation, 0.5, h / 2), (0, 0, h / 2), ns=e, ew=1.0)]
+    if p.topping:
+        parts.append(ellipsoid("topping", (0.47 * p.elongation, 0.47, 0.32 * h), (0, 0, 0.72 * h), blend=0.02))
+    return parts
+
+
+class CroissantParams(Model):
+    """A croissant or crescent: a thick middle tapering to two curled horns."""
+
+    bend: float = Field(default=0.9, ge=0.0, le=1.5, description="how far the horns curl [-]")
+    thickness: float = Field(default=0.3, gt=0.1, le=0.6, description="middle height / length [-]")
+
+
+def croissant(p: CroissantParams) -> list[Part]:
+    """Crescent in the x-y plane (horns towards -x)."""
+    n = 7
+    parts = []
+    for i in range(n):
+        t = (i - (n - 1) / 2) / ((n - 1) / 2)  # -1 .. 1
+        a = t * p.bend * 1.4
+        x, y = 0.3 * np.cos(a) - 0.1, 0.45 * np.sin(a)
+        r = p.thickness / 2 * (1 - 0.6 * t * t)
+        name = "body" if i == n // 2 else f"segment {i + 1}"
+        parts.append(ellipsoid(name, (r * 1.1, r * 1.25, r), (x, y, r), blend=0.08, rot=(0, 0, float(np.degrees(a)))))
+    return parts
+
+
+class MuffinParams(Model):
+    """A muffin or cupcake: a flared paper cup under a domed top."""
+
+    cup_height: float = Field(default=0.5, gt=0.1, le=1.5, description="cup height / top diameter [-]")
+    top_height: float = Field(default=0.35, gt=0.05, le=1.0, description="dome height / top diameter [-]")
+
+
+def muffin(p: MuffinParams) -> list[Part]:
+    """Top diameter 1."""
+    ch = p.cup_height
+    return [cone("cup", 0.36, 0.44, ch, (0, 0, ch / 2), edge=0.03),
+            ellipsoid("top", (0.5, 0.5, p.top_height), (0, 0, ch), blend=0.04)]
+
+
+class PieParams(Model):
+    """A pie, tart or pizza: a disc with a raised rim."""
+
+    height: float = Field(default=0.15, gt=0.02, le=0.6, description="height / diameter [-]")
+    rim: float = Field(default=0.05, ge=0.0, le=0.2, description="rim tube radius / diameter [-]")
+
+
+def pie(p: PieParams) -> list[Part]:
+    """Diameter 1."""
+    h = p.height
+    parts = [cylinder("filling", 0.48, h, (0, 0, h / 2), edge=0.3 * h)]
+    if p.rim > 0:
+        from tasks.geometry.grammar.parts import torus
+
+        parts.append(torus("crust", 0.5 - p.rim, p.rim, (0, 0, h - 0.3 * p.rim), blend=0.02))
+    return parts

@@ -1,0 +1,271 @@
+"""Object body plans: cushion, ball, block, disc, ring, tube, cone, dome, star, heart, bone, egg, teardrop, cloud,
+cactus and blob (unit frame, longest extent about 1)."""
+
+from __future__ import annotations
+
+from typing import Literal
+
+import numpy as np
+from pydantic import Field
+
+from contracts.base import Model
+from contracts.shape import Part
+from tasks.geometry.grammar.parts import box, cone, cylinder, ellipsoid, limb, superellipsoid, tapered, torus
+
+
+class CushionParams(Model):
+    """A cushion or pillow: a puffed square, rectangle, round pad or bolster."""
+
+    shape: Literal["square", "round", "bolster"] = "square"
+    width: float = Field(default=1.0, gt=0.1, le=2.0, description="width / length [-]")
+    thickness: float = Field(default=0.3, gt=0.05, le=1.0, description="thickness / length [-]")
+    puff: float = Field(default=0.6, gt=0.1, le=1.0, description="1 a round pillow, small a boxy one [-]")
+    piping: bool = False
+
+
+def cushion(p: CushionParams) -> list[Part]:
+    """Length 1 along x, lying flat (a bolster lies along x)."""
+    t = p.thickness
+    if p.shape == "bolster":
+        return [cylinder("body", t / 2, 1.0, (0, 0, t / 2), edge=0.3 * t, rot=(0, 90, 0))]
+    if p.shape == "round":
+        parts = [superellipsoid("body", (0.5, 0.5 * p.width, t / 2), (0, 0, t / 2), ns=p.puff, ew=1.0)]
+    else:
+        parts = [superellipsoid("body", (0.5, 0.5 * p.width, t / 2), (0, 0, t / 2), ns=p.puff, ew=0.25)]
+    if p.piping:
+        parts.append(superellipsoid("piping", (0.51, 0.51 * p.width, 0.04), (0, 0, t / 2), ns=0.2,
+                                    ew=0.25 if p.shape == "square" else 1.0, blend=0.01))
+    return parts
+
+
+class BallParams(Model):
+    """A ball: sphere or spheroid (a rugby ball is prolate)."""
+
+    aspect: float = Field(default=1.0, gt=0.3, le=3.0, description="length (x) / diameter [-]")
+    squash: float = Field(default=1.0, gt=0.3, le=1.0, description="height / diameter [-]")
+    panels: bool = Field(default=False, description="a seam band around the equator (a second colour)")
+
+
+def ball(p: BallParams) -> list[Part]:
+    """Diameter 1."""
+    rz = 0.5 * p.squash
+    parts = [ellipsoid("body", (0.5 * p.aspect, 0.5, rz), (0, 0, rz))]
+    if p.panels:
+        parts.append(ellipsoid("seam", (0.505 * p.aspect, 0.06, rz * 1.01), (0, 0, rz)))
+    return parts
+
+
+class BlockParams(Model):
+    """A block, brick, cube, bar or slab: a rounded box."""
+
+    width: float = Field(default=0.7, gt=0.02, le=1.0, description="width / length [-]")
+    height: float = Field(default=0.4, gt=0.02, le=1.0, description="height / length [-]")
+    edge: float = Field(default=0.1, ge=0.0, le=0.5, description="edge radius / the smallest side [-]")
+    layer: float = Field(default=0.0, ge=0.0, le=0.9, description="top layer share (a scrub pad on a sponge) [-]")
+
+
+def block(p: BlockParams) -> list[Part]:
+    """Length 1 along x."""
+    w, h = p.width, p.height
+    e = p.edge * min(1.0, w, h)
+    if p.layer > 0:
+        hb = h * (1 - p.layer)
+        return [box("body", (1.0, w, hb), (0, 0, hb / 2), edge=e),
+                box("top layer", (1.0, w, h * p.layer + e), (0, 0, hb + (h * p.layer - e) / 2),
+                    edge=min(e, h * p.layer / 2))]
+    return [box("body", (1.0, w, h), (0, 0, h / 2), edge=e)]
+
+
+class DiscParams(Model):
+    """A disc or cylinder standing on its face: pancake, tortilla, coaster, puck, pouf, can-shaped cushion."""
+
+    height: float = Field(default=0.1, gt=0.005, le=2.0, description="height / diameter [-]")
+    edge: float = Field(default=0.4, ge=0.0, le=1.0, description="rim rounding / half the height [-]")
+    elongation: float = Field(default=1.0, gt=0.5, le=2.0, description="an oval disc's length / width [-]")
+
+
+def disc(p: DiscParams) -> list[Part]:
+    """Diameter 1."""
+    h = p.height
+    part = cylinder("body", 0.5, h, (0, 0, h / 2), edge=p.edge * min(h / 2, 0.5))
+    if p.elongation != 1.0:
+        part = part.model_copy(update={"transform": part.transform.model_copy(update={"scale": (p.elongation, 1, 1)})})
+    return [part]
+
+
+class RingParams(Model):
+    """A ring: bagel, doughnut, teether, swim ring, ring cushion (a torus with a real hole)."""
+
+    tube: float = Field(default=0.2, gt=0.05, le=0.24, description="tube radius / outer diameter; below 0.25 "
+                        "the hole stays open [-]")
+    squash: float = Field(default=0.8, gt=0.3, le=1.0, description="tube height / tube width [-]")
+    icing: bool = Field(default=False, description="a top layer of another colour (a glazed doughnut)")
+
+
+def ring(p: RingParams) -> list[Part]:
+    """Outer diameter 1 lying flat."""
+    minor = p.tube
+    major = 0.5 - minor
+    zc = minor * p.squash
+    parts = [torus("body", major, minor, (0, 0, zc), scale=(1, 1, p.squash))]
+    if p.icing:
+        parts.append(torus("icing", major, minor * 0.92, (0, 0, zc + 0.25 * minor * p.squash),
+                           scale=(1, 1, 0.8 * p.squash)))
+    return parts
+
+
+class TubeParams(Model):
+    """A tube or roll lying along x: pool noodle, rolled towel, foam roller, hose (optional through-hole)."""
+
+    radius: float = Field(default=0.2, gt=0.02, le=0.5, description="outer radius / length [-]")
+    hole: float = Field(default=0.0, ge=0.0, le=0.7, description="inner radius / outer radius [-]")
+
+
+def tube(p: TubeParams) -> list[Part]:
+    """Length 1 along x."""
+    r = p.radius
+    parts = [cylinder("body", r, 1.0, (0, 0, r), edge=0.15 * r, rot=(0, 90, 0))]
+    if p.hole > 0:
+        parts.append(cylinder("hole", r * p.hole, 1.2, (0, 0, r), rot=(0, 90, 0), op="subtract"))
+    return parts
+
+
+class ConeParams(Model):
+    """A cone, frustum or dome: party hat, ice-cream scoop, foam cone, dome (hemisphere)."""
+
+    kind: Literal["cone", "dome"] = "cone"
+    height: float = Field(default=1.2, gt=0.1, le=3.0, description="height / base diameter [-]")
+    top: float = Field(default=0.1, ge=0.0, le=0.9, description="top radius / base radius (a frustum) [-]")
+
+
+def cone_plan(p: ConeParams) -> list[Part]:
+    """Base diameter 1 on the ground."""
+    h = p.height
+    if p.kind == "dome":
+        return [box("body", (1.0, 1.0, h), (0, 0, h / 2)),
+                ellipsoid("dome", (0.5, 0.5, h), (0, 0, 0)).model_copy(update={"operation": "intersect"})]
+    return [cone("body", 0.5, 0.5 * p.top, h, (0, 0, h / 2), edge=0.04)]
+
+
+class StarParams(Model):
+    """A puffy five-pointed star lying flat (a star cushion, a star squishy)."""
+
+    points: int = Field(default=5, ge=3, le=8)
+    thickness: float = Field(default=0.25, gt=0.05, le=0.6, description="thickness / diameter [-]")
+    inner: float = Field(default=0.42, gt=0.2, le=0.8, description="inner radius / outer radius [-]")
+
+
+def star(p: StarParams) -> list[Part]:
+    """Outer diameter 1, a point towards +x."""
+    t = p.thickness
+    parts = [cylinder("body", 0.5 * p.inner, t, (0, 0, t / 2), edge=0.4 * t)]
+    for i in range(p.points):
+        a = 2 * np.pi * i / p.points
+        d = np.array([np.cos(a), np.sin(a), 0.0])
+        rb = 0.5 * p.inner * np.sin(np.pi / p.points) * 1.6
+        squash = min(1.0, t / 2 / rb)  # the point's local x is vertical: Rz(a) Ry(90) takes z to d and x to -z
+        parts.append(cone(f"point {i + 1}", rb, 0.03, 0.37, d * 0.285 + np.array([0, 0, t / 2]), edge=0.02,
+                          blend=0.04, rot=(0, 90, float(np.degrees(a))), scale=(squash, 1, 1)))
+    return parts
+
+
+class HeartParams(Model):
+    """A puffy heart lying flat, its point towards -x."""
+
+    thickness: float = Field(default=0.3, gt=0.05, le=0.8, description="thickness / width [-]")
+
+
+def heart(p: HeartParams) -> list[Part]:
+    """Width 1 along y."""
+    t = p.thickness
+    lobes = [ellipsoid(f"{side} lobe", (0.27, 0.27, t / 2), (0.12, s * 0.22, t / 2), blend=0.05)
+             for side, s in (("left", 1), ("right", -1))]
+    body = tapered("body", (0.05, 0, t / 2), (-0.5, 0, t / 2), 0.4, 0.03, blend=0.08)
+    tf = body.transform
+    body = body.model_copy(update={"transform": tf.model_copy(update={"scale": (t / 0.8, 1, 1)})})
+    return [body] + lobes
+
+
+class BoneParams(Model):
+    """A dog-bone chew toy: a shaft with two knobs at each end."""
+
+    shaft_radius: float = Field(default=0.09, gt=0.02, le=0.25, description="shaft radius / length [-]")
+    knob_radius: float = Field(default=0.12, gt=0.03, le=0.3)
+
+
+def bone(p: BoneParams) -> list[Part]:
+    """Length 1 along x, lying flat."""
+    k = p.knob_radius
+    z = k
+    parts = [limb("shaft", (-0.35, 0, z), (0.35, 0, z), p.shaft_radius)]
+    for sx, nx in ((1, "front"), (-1, "rear")):
+        for sy, ny in ((1, "left"), (-1, "right")):
+            parts.append(ellipsoid(f"{nx} {ny} knob", (k, k, k), (sx * (0.5 - k), sy * 0.8 * k, z), blend=0.03))
+    return parts
+
+
+class EggParams(Model):
+    """An egg, a teardrop or a pebble (one end blunter than the other), lying on its side."""
+
+    aspect: float = Field(default=0.75, gt=0.3, le=1.0, description="width / length [-]")
+    pointiness: float = Field(default=0.35, ge=0.0, le=0.9, description="how much narrower the front end is [-]")
+    squash: float = Field(default=1.0, gt=0.2, le=1.0, description="height / width (a pebble) [-]")
+
+
+def egg(p: EggParams) -> list[Part]:
+    """Length 1 along x, blunt end at -x."""
+    w = p.aspect * 0.5
+    h = w * p.squash
+    return [ellipsoid("body", (0.32, w, h), (-0.18, 0, h)),
+            ellipsoid("front", (0.36, w * (1 - p.pointiness), h * (1 - p.pointiness)), (0.14, 0, h),
+                      blend=0.25)]
+
+
+class CloudParams(Model):
+    """A cloud-shaped cushion: overlapping puffs along x."""
+
+    puffs: int = Field(default=4, ge=2, le=8)
+    thickness: float = Field(default=0.35, gt=0.1, le=1.0, description="thickness / length [-]")
+
+
+def cloud(p: CloudParams) -> list[Part]:
+    """Length about 1 along x, standing in the x-z plane on a flat base."""
+    t = p.thickness
+    parts = [superellipsoid("body", (0.5, t / 2, 0.16), (0, 0, 0.16), ns=0.5, ew=0.8)]
+    xs = np.linspace(-0.3, 0.3, p.puffs)
+    for i, x in enumerate(xs):
+        r = 0.18 + 0.06 * np.cos(np.pi * x / 0.6)
+        parts.append(ellipsoid(f"puff {i + 1}", (r, t / 2, r), (float(x), 0, 0.16 + 0.4 * r), blend=0.05))
+    return parts
+
+
+class CactusParams(Model):
+    """A cactus plush: an upright column with arms."""
+
+    arms: int = Field(default=2, ge=0, le=2)
+    pot: bool = True
+
+
+def cactus(p: CactusParams) -> list[Part]:
+    """Height about 1."""
+    z0 = 0.22 if p.pot else 0.0
+    parts = [limb("body", (0, 0, z0 + 0.12), (0, 0, z0 + 0.65), 0.12)]
+    for i, (s, h) in enumerate(((1, 0.4), (-1, 0.5))[: p.arms]):
+        parts.append(limb(f"arm {i + 1}", (0, s * 0.1, z0 + h), (0, s * 0.25, z0 + h), 0.06, blend=0.03))
+        parts.append(limb(f"arm {i + 1} tip", (0, s * 0.25, z0 + h), (0, s * 0.25, z0 + h + 0.18), 0.06, blend=0.03))
+    if p.pot:
+        parts.append(cone("pot", 0.14, 0.18, 0.24, (0, 0, 0.12), edge=0.02, blend=0.02))
+    return parts
+
+
+class BlobParams(Model):
+    """A blob of slime, putty or dough: a slumped rounded lump."""
+
+    height: float = Field(default=0.45, gt=0.1, le=1.0, description="height / width [-]")
+    elongation: float = Field(default=1.0, gt=0.5, le=2.5)
+
+
+def blob(p: BlobParams) -> list[Part]:
+    """Width 1, flat underside."""
+    h = p.height
+    return [superellipsoid("body", (0.5 * p.elongation, 0.5, h / 2), (0, 0, h / 2), ns=0.55, ew=1.0)]
