@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import re
 from pathlib import Path
 from typing import Literal
 
@@ -11,6 +12,8 @@ from contracts.base import Model
 
 Quality = Literal["draft", "standard", "high"]
 InputKind = Literal["text", "image", "mesh"]
+# 'package.module:function' (an optional '#tag' names a version: change it to rebuild cached geometry) or an HTTP URL
+GEOMETRY_BACKEND_PATTERN = r"(?:[A-Za-z_][\w]*(?:\.[A-Za-z_]\w*)*:[A-Za-z_]\w*(?:#\S*)?|https?://\S+)"
 
 
 class AssetRequest(Model):
@@ -29,6 +32,10 @@ class AssetRequest(Model):
         default_factory=dict, description="explicit target bands per probe metric, e.g. {'effective_modulus_pa': (2e4, 4e4)}"
     )
     seed: int = Field(default=0, description="seed of every random choice")
+    geometry_backend: str | None = Field(
+        default=None, description="reconstruction backend that makes the mesh from the text / image: a Python entry "
+        "point 'module:function' or an HTTP endpoint 'http(s)://...' (tasks/geometry/backends.py); None: built in"
+    )
     quality: Quality = Field(default="draft", description="resolution preset: draft | standard | high")
 
     @model_validator(mode="after")
@@ -40,6 +47,12 @@ class AssetRequest(Model):
             raise ValueError("give one input: text, image_path or mesh_path")
         if self.image_path is not None and self.mesh_path is not None:
             raise ValueError("give either image_path or mesh_path, not both")
+        if self.geometry_backend is not None:
+            if self.mesh_path is not None:
+                raise ValueError("a geometry backend builds the mesh from text or an image: give no mesh_path")
+            if not re.fullmatch(GEOMETRY_BACKEND_PATTERN, self.geometry_backend.strip()):
+                raise ValueError(f"geometry_backend '{self.geometry_backend}' is neither 'module:function' nor an "
+                                 "http(s):// URL")
         return self
 
     @property
