@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import json
 import shutil
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
@@ -21,10 +22,11 @@ from contracts.physical import PhysicalModel
 from contracts.probes import ProbeResult, ProbeSpec
 from contracts.stage import StageContract, load_contract
 from flows.harness import ProbeCall, run_harness, task_probe_runner
-from tasks.agents.intent import match_material, targets_from_intent
+from tasks.agents.intent import asset_material, asset_targets, concept_of, explicit_numbers
 from tasks.agents.vocab import load_material_vocab
 from tasks.geometry.outputs import L0Asset, load_l0
-from tasks.physical.model import MASS_RANGE_KG, build_physical_model, mass_plausible
+from tasks.physical.mass import MassCheck, mass_check
+from tasks.physical.model import build_physical_model, mass_plausible
 from tasks.probes import rigid
 from tasks.publish import write_json_atomic
 from tasks.record import ProbeRecording
@@ -120,30 +122,47 @@ def slide_task(hulls: list[np.ndarray], particles_m: np.ndarray, mass_kg: float,
                         {"margin_deg": margin_deg, "measure_s": measure_s})
 
 
-def _intent_text(asset: L0Asset, intent: str | None) -> str:
-    """The words the material comes from: the given intent, else the request / name recorded by L0."""
-    if intent:
-        return intent
-    req = asset.record.get("request") or {}
-    info = asset.record.get("info", {})
-    return " ".join(str(x) for x in (req.get("material_intent"), req.get("text"), info.get("name"),
-                                     info.get("category")) if x)
+@dataclass(frozen=True)
+class L1Plan:
+    """What L1 starts from: target behaviour and priors, the material class and the mass check."""
+
+    targets: TargetBehaviour
+    material: str
+    mass: MassCheck
+
+
+def longest_extent_m(asset: L0Asset) -> float:
+    """Longest side of the asset's bounding box [m] (the size a typical mass is scaled to)."""
+    return float(np.max(asset.mesh.extents))
+
+
+def l1_plan(asset: L0Asset, intent: str | None, contract: StageContract | None = None) -> L1Plan:
+    """Priors (density, friction) from the asset's request (or the intent given) and its mass check: the material's
+    density range x volume, and the typical mass of the concept L0 built when it has one (tasks.physical.mass)."""
+    vocab = load_material_vocab()
+    contract = contract or load_contract("L1")
+    words = asset_targets(asset.record, intent, vocab)
+    material = asset_material(asset.record, words, vocab)
+    entry = vocab.materials[material]
+    priors = {k: words.priors[k] for k in ("density_kg_per_m3", "ground_friction", "gripper_friction")
+              if k in words.priors}
+    rho = priors["density_kg_per_m3"]
+    drange = entry.prior_ranges.get("density_kg_per_m3", (rho / 2, rho * 2))
+    field = contract.field("density_kg_per_m3")
+    mass = mass_check(float(np.sum(asset.volumes_m3)), longest_extent_m(asset), float(asset.mesh.area), material,
+                      rho, drange, concept_of(asset.record), entry.shell_wall_thickness_m,
+                      "density_kg_per_m3" in explicit_numbers(words.intent)[1], (field.low, field.high))
+    priors["density_kg_per_m3"] = mass.density_kg_per_m3
+    lo, hi = mass.band_kg
+    bands = [TargetBand(metric="mass_kg", unit="kg", low=lo, high=hi, scale="log", source=mass.source)]
+    targets = TargetBehaviour(bands=bands, priors=priors, matched_words=words.matched_words, intent=words.intent)
+    return L1Plan(targets, material, mass)
 
 
 def l1_targets(asset: L0Asset, intent: str | None) -> tuple[TargetBehaviour, str, tuple[float, float]]:
-    """Priors (density, friction) from the intent's material and a mass band = density range x volume."""
-    text = _intent_text(asset, intent)
-    vocab = load_material_vocab()
-    material = match_material(text, vocab)
-    entry = vocab.materials[material]
-    words = targets_from_intent(text, {}, vocab)
-    priors = {k: words.priors[k] for k in ("density_kg_per_m3", "ground_friction", "gripper_friction") if k in words.priors}
-    drange = entry.prior_ranges.get("density_kg_per_m3", (priors["density_kg_per_m3"] / 2, priors["density_kg_per_m3"] * 2))
-    volume = float(np.sum(asset.volumes_m3))
-    lo, hi = max(drange[0] * volume, MASS_RANGE_KG[0]), min(drange[1] * volume, MASS_RANGE_KG[1])
-    bands = [TargetBand(metric="mass_kg", unit="kg", low=min(lo, hi), high=max(lo, hi), scale="log",
-                        source=f"vocab:{material}")]
-    return TargetBehaviour(bands=bands, priors=priors, matched_words=words.matched_words, intent=text), material, drange
+    """Priors, the material class and the density range the mass gate admits (l1_plan without the mass record)."""
+    plan = l1_plan(asset, intent)
+    return plan.targets, plan.material, plan.mass.density_range_kg_per_m3
 
 
 def probe_settings(contract: StageContract) -> dict[str, dict[str, float]]:
@@ -215,15 +234,17 @@ def run_l1(asset_dir: Path, intent: str | None = None, agents: AgentConfig | Non
     asset_dir = Path(asset_dir)
     asset = load_l0(asset_dir)
     contract = contract or load_contract("L1")
-    targets, material, drange = l1_targets(asset, intent)
+    plan = l1_plan(asset, intent, contract)
+    targets, material = plan.targets, plan.material
     category = str(asset.record.get("info", {}).get("category", material))
-    runner = l1_runner(asset, contract, category, drange)
+    runner = l1_runner(asset, contract, category, plan.mass.density_range_kg_per_m3)
     outcome = run_harness(contract, runner, targets, agents=agents, record_dir=asset_dir)
     phys = physical_from_values(asset, outcome.values, category) if outcome.passed and outcome.values else None
     recordings = _copy_recordings(outcome, asset_dir) if phys is not None else []
     record = {
         "schema_version": 1, "stage": "L1", "passed": outcome.passed, "status": outcome.status,
         "message": outcome.message, "material_class": material, "intent": targets.intent,
+        "mass_check": plan.mass.model_dump(mode="json"), "targets": targets.model_dump(mode="json"),
         "physical_model": phys.model_dump(mode="json") if phys else None,
         "metrics": outcome.metrics, "sim_calls": outcome.sim_calls, "attempts": outcome.attempts_used,
         "recordings": recordings,

@@ -33,7 +33,7 @@ from contracts.request import AssetRequest
 from contracts.sim import SimConfig
 from contracts.stage import StageContract, load_contract
 from flows.harness import call_tasks, probe_cache_key, run_harness
-from tasks.agents import targets_from_intent, targets_from_request
+from tasks.agents.intent import asset_targets
 from tasks.geometry.outputs import L0Asset, load_l0
 from tasks.probes import deformable
 from tasks.probes.specimen import SPECIMEN_PARTICLES_PER_AXIS, specimen_particles
@@ -202,20 +202,15 @@ def probe_inputs(kind: str, asset: L0Asset, physical: PhysicalModel, material: M
 
 
 def intent_text(asset: L0Asset, intent: str | None) -> str:
-    """The words the material comes from: the given intent, else the request / name recorded by L0."""
-    if intent:
-        return intent
-    req = asset.record.get("request") or {}
-    info = asset.record.get("info", {})
-    return " ".join(str(x) for x in (req.get("material_intent"), req.get("text"), info.get("name"),
-                                     info.get("category")) if x)
+    """The words the material comes from: the given intent, else the request L0 stored (its material intent or text),
+    else the name L0 recorded (tasks.agents.intent.asset_targets)."""
+    return asset_targets(asset.record, intent).intent
 
 
 def l2_targets(asset: L0Asset, request_or_intent: AssetRequest | str | None) -> TargetBehaviour:
-    """Target bands and priors from a request (material_intent / text / overrides) or an intent string."""
-    if isinstance(request_or_intent, AssetRequest):
-        return targets_from_request(request_or_intent)
-    return targets_from_intent(intent_text(asset, request_or_intent))
+    """Target bands and priors from a request (material_intent / text / overrides), an intent string, or (None) the
+    request L0 stored in the asset; the concept L0 built gives the material when the words name none."""
+    return asset_targets(asset.record, request_or_intent)
 
 
 def load_physical_model(asset_dir: Path) -> PhysicalModel:
@@ -233,7 +228,9 @@ def physical_for(asset_dir: Path, asset: L0Asset, rho: float | None = None) -> P
     if (Path(asset_dir) / PHYSICAL_JSON).is_file():
         phys = load_physical_model(asset_dir)
     else:
-        pri = targets_from_intent(intent_text(asset, None)).priors
+        from flows.l1_physical import l1_targets
+
+        pri = l1_targets(asset, None)[0].priors  # L1's start values, mass check included
         phys = build_physical_model(asset.particles_m, asset.volumes_m3, asset.spacing_m,
                                     float(pri.get("density_kg_per_m3", 100.0)), float(pri.get("ground_friction", 0.5)),
                                     float(pri.get("gripper_friction", 0.8)),

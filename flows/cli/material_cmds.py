@@ -114,8 +114,10 @@ def probe(
 
 @app.command("material")
 def material(
-    asset: Path = typer.Option(..., "--asset", help="asset directory holding L0 and L1 (physical.json)"),
-    intent: str = typer.Option(None, "--intent", help="material words, e.g. 'soft plush', 'firm rubber'"),
+    asset_dir: Path = typer.Argument(None, help="asset directory holding L0 and L1 (physical.json) (or --asset)"),
+    asset: Path = typer.Option(None, "--asset", help="asset directory holding L0 and L1 (physical.json)"),
+    intent: str = typer.Option(None, "--intent", help="material words, e.g. 'soft plush', 'firm rubber'; default: "
+                               "the request `geometry` stored (its --intent, else its text), as `generate` does"),
     llm: str = typer.Option(None, "--llm", help="litellm model playing the agent roles (default: offline rules)"),
     cpu_threads: int = typer.Option(2, "--cpu-threads", help="threads sharing each MPM rollout's particles"),
     as_json: bool = typer.Option(False, "--json", help="print material.json to stdout"),
@@ -123,6 +125,9 @@ def material(
     """Run L2 on an asset: MPM probes, harness-selected neo-Hookean material -> material.json, evidence, recordings."""
     import json
 
+    from flows.cli.physical_cmds import asset_path
+
+    asset = asset_path(asset_dir, asset)
     _check_asset(asset)
     if intent is not None and not intent.strip():
         fail("--intent is empty")

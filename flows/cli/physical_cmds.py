@@ -1,4 +1,4 @@
-"""`deformsmith physical --asset DIR`: run L1 (physical model + rigid probes) on an L0 output."""
+"""`deformsmith physical DIR` (or --asset DIR): run L1 (physical model + rigid probes) on an L0 output."""
 
 from __future__ import annotations
 
@@ -10,28 +10,45 @@ from rich.table import Table
 from flows.cli.apps import app, console, emit_json, fail
 
 
+def asset_path(positional: Path | None, option: Path | None) -> Path:
+    """The asset directory given as the argument or with --asset (one of them, not two different ones)."""
+    if positional is None and option is None:
+        fail("give the asset directory, as the argument or with --asset DIR")
+    if positional is not None and option is not None and positional != option:
+        fail(f"two asset directories given ({positional} and --asset {option}); give one")
+    return positional if positional is not None else option  # type: ignore[return-value]
+
+
 @app.command("physical")
 def physical(
-    asset: Path = typer.Option(..., "--asset", help="asset directory written by `deformsmith geometry`"),
-    intent: str = typer.Option(None, "--intent", help="material words, e.g. 'soft plush'; default: the request's text"),
+    asset_dir: Path = typer.Argument(None, help="asset directory written by `deformsmith geometry` (or --asset)"),
+    asset: Path = typer.Option(None, "--asset", help="asset directory written by `deformsmith geometry`"),
+    intent: str = typer.Option(None, "--intent", help="material words, e.g. 'soft plush'; default: the request "
+                               "`geometry` stored (its --intent, else its text), as `generate` does"),
     cache_dir: Path = typer.Option(None, "--cache", help="cache root (default: $DEFORMSMITH_CACHE or the user cache)"),
     as_json: bool = typer.Option(False, "--json", help="print the physical model and metrics as JSON"),
 ) -> None:
     """L1: density and friction from the intent, mass model, rigid placement / drop / slide probes in pybullet."""
     from cache import use_cache_root
 
+    asset = asset_path(asset_dir, asset)
+    if intent is not None and not intent.strip():
+        fail("--intent is empty")
     if not (asset / "geometry.json").is_file():
         fail(f"{asset} is not an L0 asset directory (no geometry.json); run `deformsmith geometry ... --out {asset}`")
     if cache_dir is not None:
         use_cache_root(cache_dir)
     from flows.l1_physical import run_l1
 
+    import json
+
     with console.status("L1: rigid probes in pybullet"):
         phys, outcome = run_l1(asset, intent)
+    mass = json.loads((asset / "physical.json").read_text(encoding="utf-8")).get("mass_check") or {}
     if as_json:
         emit_json({"passed": outcome.passed, "status": outcome.status, "message": outcome.message,
                    "physical_model": phys.model_dump(mode="json") if phys else None, "metrics": outcome.metrics,
-                   "sim_calls": outcome.sim_calls, "attempts": outcome.attempts_used})
+                   "sim_calls": outcome.sim_calls, "attempts": outcome.attempts_used, "mass_check": mass})
     else:
         table = Table(title=f"L1 physical model: {outcome.status}")
         table.add_column("metric")
@@ -43,6 +60,11 @@ def physical(
         for k, v in sorted(outcome.metrics.items()):
             table.add_row(k, f"{v:.4g}")
         console.print(table)
+        if mass:
+            lo, hi = mass["band_kg"]
+            console.print(f"mass check: {lo * 1e3:.3g}-{hi * 1e3:.3g} g from {mass['source']}")
+            for note in mass.get("notes", []):
+                console.print(f"  {note}")
         console.print(outcome.message)
     if not outcome.passed:
         raise typer.Exit(1)

@@ -5,8 +5,11 @@ from __future__ import annotations
 import math
 import re
 
+from pydantic import ValidationError
+
 from contracts.agents import TargetBand, TargetBehaviour
-from contracts.errors import InputError
+from contracts.concept import ConceptMatch
+from contracts.errors import InputError, validation_message
 from contracts.request import AssetRequest
 from tasks.agents.vocab import MaterialVocab, load_material_vocab
 
@@ -44,13 +47,16 @@ def check_deformable(text: str, vocab: MaterialVocab) -> None:
         )
 
 
-def _match_material(text: str, vocab: MaterialVocab) -> tuple[str, str | None]:
-    """The material named by the longest matching word (materials first, then objects); the default otherwise."""
+def _match_material(text: str, vocab: MaterialVocab, concept_material: str | None = None) -> tuple[str, str | None]:
+    """The material named by the longest matching word (materials first, then the concept L0 built, then object
+    words); the default otherwise."""
     best: tuple[int, str, str] | None = None
     for name, entry in vocab.materials.items():
         for word in entry.words:
             if _contains_phrase(text, word) and (best is None or len(word) > best[0]):
                 best = (len(word), name, word)
+    if best is None and concept_material in vocab.materials:
+        return str(concept_material), None
     if best is None:
         for word, name in vocab.objects.items():
             if _contains_phrase(text, word) and (best is None or len(word) > best[0]):
@@ -60,10 +66,11 @@ def _match_material(text: str, vocab: MaterialVocab) -> tuple[str, str | None]:
     return best[1], best[2]
 
 
-def match_material(text: str, vocab: MaterialVocab | None = None) -> str:
-    """The vocabulary material a text names (longest matching word; the default material when none matches)."""
+def match_material(text: str, vocab: MaterialVocab | None = None, concept_material: str | None = None) -> str:
+    """The vocabulary material a text names (longest matching word; else the concept's default material; else the
+    default material)."""
     vocab = vocab or load_material_vocab()
-    return _match_material(text.lower(), vocab)[0]
+    return _match_material(text.lower(), vocab, concept_material)[0]
 
 
 def _narrow(low: float, high: float, frac: tuple[float, float], log: bool) -> tuple[float, float]:
@@ -101,15 +108,19 @@ def explicit_numbers(text: str) -> tuple[dict[str, float], dict[str, float]]:
 
 
 def targets_from_intent(
-    intent: str, overrides: dict[str, tuple[float, float]] | None = None, vocab: MaterialVocab | None = None
+    intent: str, overrides: dict[str, tuple[float, float]] | None = None, vocab: MaterialVocab | None = None,
+    concept: ConceptMatch | None = None,
 ) -> TargetBehaviour:
-    """Bands and priors for the words of an intent; explicit numbers beat words, overrides beat both."""
+    """Bands and priors for the words of an intent; explicit numbers beat words, overrides beat both. The concept L0
+    built (if any) gives the material when the words name none."""
     vocab = vocab or load_material_vocab()
     text = " ".join(intent.lower().split())
     check_deformable(text, vocab)
-    name, word = _match_material(text, vocab)
+    name, word = _match_material(text, vocab, concept.default_material if concept else None)
     entry = vocab.materials[name]
-    source = f"vocab:{word}" if word else f"vocab:default({name})"
+    by_concept = word is None and concept is not None and concept.default_material == name
+    source = f"vocab:{word}" if word else f"concept:{concept.concept}({name})" if by_concept else \
+        f"vocab:default({name})"
     bands: dict[str, tuple[float, float, str]] = {m: (lo, hi, source) for m, (lo, hi) in entry.bands.items()}
     matched = [word] if word else []
     for mod_name, mod in vocab.modifiers.items():
@@ -150,3 +161,52 @@ def targets_from_request(request: AssetRequest, vocab: MaterialVocab | None = No
     """The target behaviour of a request: material_intent (else the text) plus target_overrides."""
     intent = request.material_intent or request.text or ""
     return targets_from_intent(intent, dict(request.target_overrides), vocab)
+
+
+# -- the one path from an L0 asset record to its material (generate and the layer-by-layer commands alike) ----------
+def concept_of(record: dict) -> ConceptMatch | None:
+    """The concept L0 recorded for its request (geometry.json info.concept); None when the record has none."""
+    raw = (record.get("info") or {}).get("concept")
+    if not raw:
+        return None
+    try:
+        return ConceptMatch.model_validate(raw)
+    except ValidationError as exc:
+        raise InputError(f"geometry.json info.concept is not a valid ConceptMatch: {validation_message(exc)}") from None
+
+
+def stored_request(record: dict) -> AssetRequest | None:
+    """The whole request L0 stored in its directory (geometry.json request); None for records written without it."""
+    raw = record.get("request")
+    if not raw:
+        return None
+    try:
+        return AssetRequest.model_validate(raw)
+    except ValidationError as exc:
+        raise InputError(f"geometry.json request is not a valid request: {validation_message(exc)}") from None
+
+
+def request_intent(request: AssetRequest | None, record: dict) -> str:
+    """The words a material comes from: the request's material intent, else its text, else what L0 built (the
+    name and category it recorded, for an image or mesh without text or an asset stored without its request)."""
+    if request is not None and (request.material_intent or request.text):
+        return str(request.material_intent or request.text)
+    info = record.get("info") or {}
+    return " ".join(str(x) for x in (info.get("name"), info.get("category")) if x)
+
+
+def asset_targets(record: dict, given: AssetRequest | str | None = None,
+                  vocab: MaterialVocab | None = None) -> TargetBehaviour:
+    """The target behaviour of an L0 asset: from the request or intent given, else from the request L0 stored
+    (words, modifiers and target overrides), with the material of the concept L0 built when the words name none.
+    `generate` and `geometry` -> `physical` -> `material` both come through here, so they agree."""
+    request = given if isinstance(given, AssetRequest) else stored_request(record) if not given else None
+    intent = given if isinstance(given, str) and given.strip() else request_intent(request, record)
+    overrides = dict(request.target_overrides) if request is not None else {}
+    return targets_from_intent(str(intent), overrides, vocab, concept_of(record))
+
+
+def asset_material(record: dict, targets: TargetBehaviour, vocab: MaterialVocab | None = None) -> str:
+    """The vocabulary material of an asset's targets (the words of targets.intent, else the concept's material)."""
+    concept = concept_of(record)
+    return match_material(targets.intent, vocab, concept.default_material if concept else None)

@@ -32,6 +32,8 @@ class MaterialEntry(Model):
     priors: dict[str, float]
     prior_ranges: dict[str, tuple[float, float]] = Field(default_factory=dict)
     bands: dict[str, tuple[float, float]]
+    shell_wall_thickness_m: float | None = Field(default=None, gt=0, description="wall of a hollow object made of "
+                                                 "this material (its shell's mass when no typical mass is known) [m]")
 
 
 class ModifierEntry(Model):

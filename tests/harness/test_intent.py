@@ -90,3 +90,17 @@ def test_score_and_met() -> None:
     off = {**inside, "effective_modulus_pa": 1.5e4}
     assert not t.met(off) and t.score(off) < t.score({**inside, "effective_modulus_pa": 5e5}) < 1.0
     assert not t.met({}) and t.score({}) == 0.0
+
+
+def test_the_concept_l0_built_gives_the_material_the_words_do_not_name() -> None:
+    """A ConceptMatch's default material comes after the material words and before object words ('duck' -> rubber)."""
+    from contracts.concept import ConceptMatch
+
+    plush_duck = ConceptMatch(concept="plush_duck", noun="duck", body_plan="bird", category="plush_animal",
+                              fallback_level="exact", default_material="plush")
+    t = targets_from_intent("a yellow duck", concept=plush_duck)
+    assert _band(t, "effective_modulus_pa") == (5e3, 5e4) and t.priors["density_kg_per_m3"] == 100.0
+    assert t.band("effective_modulus_pa").source == "concept:plush_duck(plush)" and t.matched_words == []
+    assert _band(targets_from_intent("a rubber duck", concept=plush_duck), "effective_modulus_pa") == (1e6, 2.5e6)
+    unknown = plush_duck.model_copy(update={"default_material": "vinyl"})  # not a vocabulary class: ignored
+    assert "duck" in targets_from_intent("a yellow duck", concept=unknown).matched_words

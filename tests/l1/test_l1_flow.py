@@ -50,7 +50,13 @@ def sponge(sponge_template: Path, tmp_path: Path) -> Path:
 def test_l1_accepts_a_sponge_and_freezes_its_physical_model(sponge: Path, prefect_api: str) -> None:
     phys, outcome = run_l1(sponge)
     assert outcome.passed and phys is not None
-    assert 260 / 1.5 <= phys.density_kg_per_m3 <= 400 * 1.5  # the sponge prior range
+    check = json.loads((sponge / "physical.json").read_text())["mass_check"]
+    lo, hi = check["density_range_kg_per_m3"]  # the sponge prior range, or the named object's typical mass / volume
+    assert lo / 1.5 <= phys.density_kg_per_m3 <= hi * 1.5
+    if any(c.startswith("typical mass of kitchen_sponge") for c in check["checks"]):
+        assert 0.009 <= phys.mass_kg <= 0.036  # a real kitchen sponge, dry: 12-25 g (it was ~70 g of sponge rubber)
+    else:
+        assert 260 / 1.5 <= phys.density_kg_per_m3 <= 400 * 1.5
     assert phys.mass_kg == pytest.approx(phys.density_kg_per_m3 * phys.volume_m3, rel=1e-6)
     assert phys.volume_m3 == pytest.approx(0.10 * 0.07 * 0.03, rel=0.15)  # a rounded block of the stated size
     assert outcome.metrics["place_penetration_m"] <= 1e-3 and outcome.metrics["place_tilt_deg"] < 5
