@@ -48,6 +48,18 @@ class StageFailure(DeformSmithError):
         self.stage = stage
 
 
+class RequirementNotMet(DeformSmithError):
+    """The asset was published, but a validation the user required (`--require-l3`) did not pass."""
+
+    exit_code = 7
+
+    def __init__(self, stage: str, message: str, asset_dir: str | None = None) -> None:
+        where = f" (asset published: {asset_dir})" if asset_dir else ""
+        super().__init__(f"{stage} required but not passed: {message}{where}")
+        self.stage = stage
+        self.asset_dir = asset_dir
+
+
 def validation_message(exc: ValidationError, names: dict[str, str] | None = None,
                        limit: int | None = None, with_input: bool = False) -> str:
     """One line from a pydantic ValidationError: 'field.path: reason; ...' (pydantic's 'Value error, ' prefix

@@ -22,6 +22,8 @@ class StageSummary(Model):
     sim_calls: int = Field(ge=0)
     metrics: dict[str, float] = Field(default_factory=dict)
     failed_gates: list[str] = Field(default_factory=list)
+    reason: str | None = Field(default=None, description="why the stage did not pass, in words (e.g. L3: 'no grasp: "
+                                                        "...' or 'not lifted: mean finger force ... < m g / (2 mu)')")
 
 
 class Provenance(Model):
@@ -30,6 +32,8 @@ class Provenance(Model):
     deformsmith_version: str
     library_versions: dict[str, str] = Field(default_factory=dict)
     backends: dict[str, str] = Field(default_factory=dict, description="role -> backend/model")
+    fallbacks: list[str] = Field(default_factory=list, description="where and why the offline rule backend stood in "
+                                                                   "for the configured LLM (empty: it never did)")
     cache_keys: dict[str, str] = Field(default_factory=dict, description="task -> cache key")
     device: str = "cpu"
     cpu_threads: int = Field(default=1, ge=1, description="CPU threads sharing each MPM rollout (results depend on "

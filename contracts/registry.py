@@ -10,7 +10,7 @@ from contracts.material import Material
 from contracts.physical import PhysicalModel
 from contracts.probes import ProbeResult, ProbeSpec
 from contracts.request import AssetRequest
-from contracts.robot import ActionPlan, GraspCandidate, ManipulationOutcome
+from contracts.robot import ActionPlan, GraspCandidate, GripperSpec, ManipulationOutcome
 from contracts.shape import ShapeProgram
 from contracts.sim import SimConfig
 from contracts.stage import StageContract
@@ -19,7 +19,8 @@ SCHEMAS: dict[str, type[BaseModel]] = {
     m.__name__: m
     for m in (
         AssetRequest, ShapeProgram, PhysicalModel, Material, SimConfig, ProbeSpec, ProbeResult,
-        GraspCandidate, ActionPlan, ManipulationOutcome, StageContract, Attempt, EvidenceRecord, AssetManifest,
+        GraspCandidate, GripperSpec, ActionPlan, ManipulationOutcome, StageContract, Attempt, EvidenceRecord,
+        AssetManifest,
     )
 }
 

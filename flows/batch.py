@@ -33,6 +33,7 @@ REPORT_JSON = "batch_report.json"
 LOG_DIR = "_logs"
 DEFAULT_JOB = "flows.batch_job:generate_job"
 NO_L3_JOB = "flows.batch_job:generate_job_without_l3"
+REQUIRE_L3_JOB = "flows.batch_job:generate_job_requiring_l3"
 NAME_RE = re.compile(r"^[A-Za-z0-9][A-Za-z0-9._-]{0,95}$")
 Status = Literal["ok", "failed"]
 ItemCallback = Callable[["RequestResult"], None]

@@ -34,6 +34,16 @@ def generate_job(request: AssetRequest, out_dir: Path, device: str) -> dict[str,
     return {"asset_dir": str(out_dir), "stages": [s.stage for s in manifest.validation]}
 
 
+def generate_job_requiring_l3(request: AssetRequest, out_dir: Path, device: str) -> dict[str, Any]:
+    """`deformsmith batch --require-l3`: `generate_asset`, then RequirementNotMet when L3 did not pass (the request
+    fails with L3's reason; its asset is published all the same)."""
+    from flows.generate import generate_asset, require_l3
+
+    manifest = generate_asset(request, out_dir, device=device)  # type: ignore[arg-type]
+    require_l3(manifest, out_dir)
+    return {"asset_dir": str(out_dir), "stages": [s.stage for s in manifest.validation]}
+
+
 def generate_job_without_l3(request: AssetRequest, out_dir: Path, device: str) -> dict[str, Any]:
     """`generate_asset` through L2 only (no robot validation): `deformsmith batch --no-l3`."""
     from flows.generate import generate_asset
@@ -56,8 +66,9 @@ def run_request(request: AssetRequest, out_dir: Path, device: str, job: str = "f
     try:
         summary = resolve_job(job)(request, out_dir, device)
         return {"status": "ok", "reason": None, "asset_dir": str(out_dir), "summary": summary}
-    except DeformSmithError as exc:
-        return {"status": "failed", "reason": f"{type(exc).__name__}: {exc}", "asset_dir": None}
+    except DeformSmithError as exc:  # a RequirementNotMet names the asset it published anyway
+        return {"status": "failed", "reason": f"{type(exc).__name__}: {exc}",
+                "asset_dir": getattr(exc, "asset_dir", None)}
     except Exception as exc:  # a bug in one request must not hide the others' results
         tb = traceback.format_exc(limit=3).strip().splitlines()
         return {"status": "failed", "reason": f"{type(exc).__name__}: {exc}", "asset_dir": None, "traceback": tb}

@@ -65,25 +65,101 @@ def _summary(stage: str, record: dict[str, Any]) -> StageSummary:
                         failed_gates=[str(f) for f in failed])
 
 
+def reported_labels(record: dict[str, Any]) -> dict[str, Any]:
+    """The labels the manifest reports: the adopted trial's, else the best trial under the asset's own material
+    (manipulation.json's best_attempt), else (a record written before best_attempt existed) the last trial."""
+    best = record.get("best_attempt") or {}
+    trials = [a for a in record.get("attempts", []) if a.get("labels") and not a["labels"].get("plan_failed")]
+    return record.get("labels") or best.get("labels") or (trials[-1]["labels"] if trials else {})
+
+
 def l3_summary(record: dict[str, Any]) -> StageSummary:
-    """L3's line in the validation summary: trials run (sim calls), the shown attempt's labels, its failed gates."""
+    """L3's line in the validation summary: trials run (sim calls), the reported attempt's labels, its failed gates
+    and the reason in words (no grasp: the one failed gate 'grasp available')."""
     from contracts.stage import load_contract
+    from flows.l3_report import NO_GRASP_GATE
 
     trials = [a for a in record.get("attempts", []) if a.get("labels") and not a["labels"].get("plan_failed")]
-    labels = record.get("labels") or (trials[-1]["labels"] if trials else {})
-    metrics = finite_metrics(labels)
-    failed = [] if record.get("passed") else [g.name for g in load_contract("L3").hard_gates
-                                               if not g.passes(metrics.get(g.metric))]
-    return StageSummary(stage="L3", passed=bool(record.get("passed")), attempts=len(record.get("attempts", [])),
-                        sim_calls=len(trials), metrics=metrics, failed_gates=failed)
+    metrics = finite_metrics(reported_labels(record))
+    passed = bool(record.get("passed"))
+    if passed:
+        failed: list[str] = []
+    elif record.get("status") == "no_grasp":
+        failed = [NO_GRASP_GATE]
+    elif (record.get("best_attempt") or {}).get("failed_gates") is not None:
+        failed = list(record["best_attempt"]["failed_gates"])  # judged under the contract L3 ran with
+    else:
+        failed = [g.name for g in load_contract("L3").hard_gates if not g.passes(metrics.get(g.metric))]
+    reason = None if passed else (record.get("reason") or record.get("message") or None)
+    return StageSummary(stage="L3", passed=passed, attempts=len(record.get("attempts", [])),
+                        sim_calls=len(trials), metrics=metrics, failed_gates=failed, reason=reason)
 
 
 def shown_attempt(record: dict[str, Any]) -> int | None:
-    """The attempt the pick-and-place video shows: the accepted one, else the last trial that ran."""
+    """The attempt the pick-and-place video shows: the accepted one, else the one the manifest reports, else the
+    last trial that ran."""
     if record.get("attempt") is not None:
         return int(record["attempt"])
+    best = record.get("best_attempt") or {}
+    if best.get("attempt") is not None:
+        return int(best["attempt"])
     runs = [a["attempt"] for a in record.get("attempts", []) if a.get("attempt") is not None]
     return int(runs[-1]) if runs else None
+
+
+def reported_plan(record: dict[str, Any]) -> Any:
+    """The manifest's action plan: the adopted one, else the best plan tried (None when no plan was possible)."""
+    from contracts.robot import ActionPlan
+
+    plan = record.get("plan") or (record.get("best_attempt") or {}).get("plan")
+    return ActionPlan(**plan) if plan else None
+
+
+def cache_keys(work: Path, l3: dict[str, Any] | None) -> dict[str, str]:
+    """Task -> cache key of the results the asset carries: L2's chosen candidate's probes and its held-out probes,
+    L3's reported trial and its robustness and held-out trials (`CacheStore(root).get(key)` returns each)."""
+    keys: dict[str, str] = {}
+    if (work / "material.json").is_file():
+        l2 = _read(work / "material.json")
+        best = (l2.get("selection") or {}).get("best_iteration")
+        attempts = work / "evidence" / "L2_attempts.jsonl"
+        if best is not None and attempts.is_file():
+            for line in attempts.read_text(encoding="utf-8").splitlines():
+                a = json.loads(line) if line.strip() else {}
+                if a.get("iteration") == best:
+                    for i, key in enumerate((a.get("evidence") or {}).get("probe_keys") or []):
+                        keys[f"l2.selection.{i}"] = str(key)
+        for probe in (l2.get("held_out") or {}).get("probes") or []:
+            if probe.get("cache_key"):
+                keys[f"l2.{probe['spec']['kind']}.held_out"] = str(probe["cache_key"])
+    if l3:
+        best_l3 = l3.get("best_attempt") or {}
+        if best_l3.get("cache_key"):
+            keys["l3.trial"] = str(best_l3["cache_key"])
+        by_attempt = {a.get("attempt"): a.get("cache_key") for a in l3.get("attempts", [])}
+        for group in ("robustness", "held_out"):
+            for i, row in enumerate((l3.get(group) or {}).get("conditions", [])):
+                key = by_attempt.get(_attempt_number(row.get("attempt")))
+                if key:
+                    keys[f"l3.trial.{group}.{i}"] = str(key)
+    return keys
+
+
+def _attempt_number(path: Any) -> int | None:
+    """'interaction/attempt_007' -> 7."""
+    try:
+        return int(str(path).rsplit("_", 1)[1])
+    except (IndexError, ValueError):
+        return None
+
+
+def require_l3(manifest: AssetManifest, out_dir: Path) -> None:
+    """`--require-l3`: RequirementNotMet (exit 7) when L3 ran and did not pass; the asset is already published."""
+    from contracts.errors import RequirementNotMet
+
+    l3 = next((s for s in manifest.validation if s.stage == "L3"), None)
+    if l3 is not None and not l3.passed:
+        raise RequirementNotMet("L3", l3.reason or ", ".join(l3.failed_gates), str(out_dir))
 
 
 def manipulation_outcome(labels: dict[str, float]) -> Any:
@@ -103,14 +179,14 @@ def manipulation_outcome(labels: dict[str, float]) -> Any:
 
 
 def run_manipulation(work: Path, device: Device, quality: str, agents: AgentConfig | None,
-                     cpu_threads: int = 1) -> dict[str, Any]:
+                     cpu_threads: int = 1, progress: Callable[[str], None] | None = None) -> dict[str, Any]:
     """L3 on the working directory and the pick-and-place video of the shown attempt; the manipulation record."""
     from flows.l3_manipulation import L3Options, run_l3
     from tasks.manipulation.replay import replay
 
     options = (L3Options(device=device, cpu_threads=cpu_threads) if quality == "draft"
                else L3Options.standard(device, cpu_threads))
-    record, _ = run_l3(work, options, agents)
+    record, _ = run_l3(work, options, agents, progress=progress)
     n = shown_attempt(record)
     if n is not None:
         video = work / "renders" / "pick_and_place.mp4"
@@ -219,6 +295,9 @@ def generate_asset(request: AssetRequest, out_dir: Path, device: Device = "cpu",
     from tasks.agents.intent import targets_from_request
 
     targets = targets_from_request(request)  # a rigid material or a bad target override fails before any layer runs
+    from tasks.agents.fallbacks import fallback_notes, reset as reset_fallbacks
+
+    reset_fallbacks()  # an LLM found unusable in an earlier run of this process is asked again
     out_dir = Path(out_dir).expanduser().absolute()
     _check_out_dir(out_dir)
     out_dir.parent.mkdir(parents=True, exist_ok=True)
@@ -227,7 +306,7 @@ def generate_asset(request: AssetRequest, out_dir: Path, device: Device = "cpu",
     work = Path(tempfile.mkdtemp(prefix=_partial_prefix(out_dir) + owner, dir=out_dir.parent))
     try:
         note("L0", "geometry")
-        l0 = run_l0(request, quality=request.quality)
+        l0 = run_l0(request, quality=request.quality, agents=agents)  # a litellm Designer writes the shape too
         if not l0.checks.passed:
             raise StageFailure("L0", f"geometry gates failed: {', '.join(l0.checks.failed)}")
         for warning in l0.info.warnings:  # recorded in geometry.json; said here too, as the run goes
@@ -252,21 +331,25 @@ def generate_asset(request: AssetRequest, out_dir: Path, device: Device = "cpu",
         protocol = render_drop_protocol(work, physical, material, sim)
         validation = [_summary("L0", _read(work / "geometry.json")), _summary("L1", _read(work / "physical.json")),
                       _summary("L2", _read(work / "material.json"))]
-        plan, outcome = None, None
+        plan, outcome, l3 = None, None, None
         if manipulate:
             note("L3", "manipulation: Panda pick-and-place in the MPM")
             from contracts.material import Material
-            from contracts.robot import ActionPlan
 
-            l3 = run_manipulation(work, device, request.quality, agents, cpu_threads)
+            l3 = run_manipulation(work, device, request.quality, agents, cpu_threads,  # "L3 trial k of n: ..." lines
+                                  progress=lambda message: report("L3", message.removeprefix("L3").lstrip(": ")))
             validation.append(l3_summary(l3))
             if l3.get("passed"):
                 material = Material(**l3["material"])  # an L3 material revision was L2-revalidated and confirmed
-                plan = ActionPlan(**l3["plan"])
+            plan = reported_plan(l3)  # adopted, else the best tried under the material the asset carries
             outcome = manipulation_outcome(validation[-1].metrics)
+        prov = provenance(device, agents, sim.cpu_threads)
+        prov = prov.model_copy(update={"cache_keys": cache_keys(work, l3),  # what made the shape (L0's generator)
+                                       "backends": {**prov.backends, "geometry": l0.info.generator},
+                                       "fallbacks": fallback_notes(work)})  # where the rule backend stood in
         manifest = AssetManifest(request=request, physical_model=physical, material=material, validation=validation,
-                                 action_plan=plan, manipulation=outcome,
-                                 provenance=provenance(device, agents, sim.cpu_threads), extra={"drop_protocol": protocol})
+                                 action_plan=plan, manipulation=outcome, provenance=prov,
+                                 extra={"drop_protocol": protocol})
         write_physgaussian_export(work, manifest)
         manifest = manifest.model_copy(update={"files": _files(work)})
         (work / ASSET_JSON).write_text(manifest.model_dump_json(indent=2) + "\n", encoding="utf-8")

@@ -23,6 +23,7 @@ from pathlib import Path
 from typing import Any
 
 import numpy as np
+import trimesh
 
 import cache
 from cache import cached_task
@@ -36,17 +37,26 @@ from contracts.sim import SimConfig
 from contracts.stage import StageContract, load_contract
 from flows.harness import probe_cache_key, run_harness
 from flows.l3_material import MaterialLimits, failed_gates, halfway, revalidate_in_l2, revise_material
+from flows.l3_report import (L3Progress, Progress, best_attempt, failed_gate_names, planned_trials, record_no_grasp,
+                             trial_reason)
 from tasks.manipulation.body import TrialBody, auto_trial_spacing, trial_body
 from tasks.publish import write_json_atomic
 from tasks.manipulation.data import write_attempt
+from tasks.manipulation.recordings import copy_atomic, record_attempt
 from tasks.manipulation.outcome import TrialTolerances
 from tasks.manipulation.trial import TrialSettings, plan_or_error, run_trial
 from tasks.mpm import side_by_side
 from tasks.probes.workers import probe_workers
-from tasks.robot import select_grasps
+from contracts.robot import DEFAULT_GRIPPER
+from tasks.robot import NoGraspError, select_grasps
+from tasks.robot.choice import choose_gripper, grasp_settings
+from tasks.robot.gripper import gripper
+from tasks.robot.squeeze import SqueezePlan, squeeze_plan
 
-TASK_VERSION = "7"  # bump when tasks/manipulation/{trial,outcome,body,frame}.py change what a trial returns (6: settle until
-# at rest; 7: simulated in the frame where the closing axis is at 45 degrees to the grid)
+TASK_VERSION = "9"  # bump when tasks/manipulation/{trial,outcome,body,frame}.py change what a trial returns
+# (6: settle until at rest; 7: simulated in the frame where the closing axis is at 45 degrees to the grid; 8: the
+# approach is recorded; 9: grippers as data, a force-controlled closure that keeps its target while held and skips the
+# rest of the closure, the time-step cap follows dx)
 MANIPULATION_JSON = "manipulation.json"
 LABELS = ("lifted", "transported", "released_in_target", "settled", "numerically_healthy")
 
@@ -76,6 +86,8 @@ class L3Options:
     material_fallback: bool = True  # when no plan passes, ask L2 for a material within its bands (flows.l3_material)
     device: str = "cpu"
     cpu_threads: int = 1  # CPU: threads sharing each trial's particles (SimConfig.cpu_threads; 1 on CUDA)
+    gripper: str | None = None  # contracts/grippers/<name>.yaml; None: the Planner's choose_gripper
+    # (tasks.robot.choice)
 
     def __post_init__(self) -> None:
         if self.device != "cpu":  # as SimConfig: CPU threads mean nothing on CUDA, and must not split cache keys
@@ -166,10 +178,19 @@ class L3Context:
     options: L3Options
     contract: StageContract
     attempts: list[dict[str, Any]] = field(default_factory=list)
+    recordings: bool = True  # each stored trial also gets recordings/L3_attempt_NNN.rrd (tasks.manipulation.recordings)
+    gripper: str = DEFAULT_GRIPPER
+    gripper_reason: str = ""
+    squeeze: SqueezePlan | None = None  # the force target and stiffness-scaled squeeze range of the best grasp
+    gripper_options: list[dict[str, Any]] = field(default_factory=list)  # what choose_gripper weighed
+    progress: L3Progress = field(default_factory=L3Progress)
 
     @property
     def grip_force_limit_n(self) -> float | None:
-        """The force-guarded closure's limit per finger [N] (contract parameter; None: position control)."""
+        """The force-controlled closure's target per finger [N]: the hold force the object's mass needs
+        (tasks.robot.squeeze), else the contract's cap (None: position control)."""
+        if self.squeeze is not None:
+            return self.squeeze.force_target_n
         v = self.contract.parameters.get("grip_force_limit_n")
         return float(v) if v else None
 
@@ -179,7 +200,8 @@ class L3Context:
         o = self.options
         rank = int(min(max(0, round(values["grasp_rank"])), len(self.grasps) - 1))
         return ActionPlan(
-            grasp=self.grasps[rank], squeeze_depth_m=float(values["squeeze_depth_m"]),
+            grasp=self.grasps[rank], gripper=self.gripper, gripper_reason=self.gripper_reason,
+            squeeze_depth_m=float(values["squeeze_depth_m"]),
             grip_force_limit_n=self.grip_force_limit_n,
             closing_speed_m_per_s=float(values["closing_speed_m_per_s"]),
             lift_height_m=float(self.contract.parameters.get("lift_height_m", 0.10)),
@@ -192,7 +214,10 @@ class L3Context:
               target_xy_m: tuple[float, float] | None = None, yaw_deg: float = 0.0) -> ProbeResult:
         """Run (or fetch from the cache) one trial and store it as an interaction attempt."""
         plan, inputs = self._trial_inputs(values, material, target_xy_m, yaw_deg)
-        return self._store(trial_task(**inputs), plan, inputs, values, role, action, material, yaw_deg)
+        self.progress.trials(len(self.attempts) + 1, 1, _what(role, action, values))
+        probe = self._store(trial_task(**inputs), plan, inputs, values, role, action, material, yaw_deg)
+        self._report(probe)
+        return probe
 
     def _trial_inputs(self, values: dict[str, float], material: Material | None,
                       target_xy_m: tuple[float, float] | None, yaw_deg: float) -> tuple[ActionPlan, dict[str, Any]]:
@@ -215,8 +240,9 @@ class L3Context:
                  "material": (material or self.material).model_dump(mode="json"),
                  "physical_model": self.physical.model_dump(mode="json")}
         n = write_attempt(self.asset_dir, out["arrays"], attrs) if out["arrays"] else None
+        rrd = record_attempt(self.asset_dir, n, out["arrays"], attrs, key) if n is not None and self.recordings else None
         self.attempts.append({"attempt": n, "role": role, "action": action, "values": values,
-                              "labels": probe.metrics, "cache_key": key,
+                              "labels": probe.metrics, "cache_key": key, "recording": rrd,
                               "condition": {"target_xy_m": list(plan.target_xy_m), "yaw_deg": yaw_deg}})
         return probe.model_copy(update={"cache_key": key, "recording": f"interaction/attempt_{n:03d}"
                                         if n is not None else None})
@@ -227,16 +253,39 @@ class L3Context:
         are independent: on the CPU they run side by side (tasks.mpm.side_by_side), then are stored as attempts in the
         order of `conditions`, as one after another would."""
         runs = [self._trial_inputs(values, material, (x, y), yaw) for x, y, yaw in conditions]
+        self.progress.trials(len(self.attempts) + 1, len(runs), f"{role}, {len(runs)} conditions side by side"
+                             + (f" ({action})" if action else ""))
         outs = side_by_side([functools.partial(trial_task, **inputs) for _, inputs in runs],
                             probe_workers(len(runs), self.options.device), self.options.device)
-        return [self._store(out, plan, inputs, values, role, action, material, yaw)
-                for (plan, inputs), out, (_, _, yaw) in zip(runs, outs, conditions)]
+        stored = [self._store(out, plan, inputs, values, role, action, material, yaw)
+                  for (plan, inputs), out, (_, _, yaw) in zip(runs, outs, conditions)]
+        for i, probe in enumerate(stored):
+            self._report(probe, len(self.attempts) - len(stored) + i + 1)
+        return stored
+
+    def _report(self, probe: ProbeResult, number: int | None = None) -> None:
+        """The progress line of a finished trial: its reason in words when it failed."""
+        reason = trial_reason(probe.metrics, self.contract, tolerances_from(self.contract))
+        self.progress.result(number or len(self.attempts), reason)
+
+
+def _what(role: str, action: str, values: dict[str, float]) -> str:
+    """A trial in words: role, revision, grasp rank and squeeze."""
+    parts = [role + (f" ({action})" if action else "")]
+    if "grasp_rank" in values:
+        parts.append(f"grasp {int(round(values['grasp_rank']))}")
+    if "squeeze_depth_m" in values:
+        parts.append(f"squeeze {values['squeeze_depth_m'] * 1000:.1f} mm")
+    return ", ".join(parts)
 
 
 def initial_values(ctx: L3Context) -> dict[str, float]:
-    """First candidate: the best grasp, a squeeze of a fraction of its width, the draft timing, one substep."""
+    """First candidate: the best grasp, the deepest squeeze of its stiffness-scaled range (the closure is
+    force-controlled: the fingers stop at the force target, this only bounds how deep they may go), the draft timing,
+    one substep."""
     o = ctx.options
-    squeeze = o.squeeze_depth_m if o.squeeze_depth_m is not None else o.squeeze_fraction * ctx.grasps[0].width_m
+    squeeze = (o.squeeze_depth_m if o.squeeze_depth_m is not None else ctx.squeeze.high_m if ctx.squeeze is not None
+               else o.squeeze_fraction * ctx.grasps[0].width_m)
     values = {"grasp_rank": 0.0, "squeeze_depth_m": squeeze, "closing_speed_m_per_s": o.closing_speed_m_per_s,
               "lift_duration_s": o.lift_duration_s, "transport_duration_s": o.transport_duration_s, "substeps": 1.0}
     for f in ctx.contract.editable_fields:
@@ -255,13 +304,62 @@ def load_context(asset_dir: Path, options: L3Options, contract: StageContract,
     source = "given"
     if material is None:
         material, source = material_of(asset_dir, asset)
-    spacing = options.particle_spacing_m or auto_trial_spacing(asset.mesh.extents, options.quality)
-    body = trial_body(asset.mesh, asset.particles_m, asset.spacing_m, asset.gaussians, spacing)
-    sel = select_grasps(body.surface_points_m, body.surface_normals, np.asarray(physical.center_of_mass_m),
-                        friction=physical.gripper_friction)
-    if not sel.ok:
-        raise InputError(f"{asset_dir}: {sel.reason}")
-    return L3Context(Path(asset_dir), body, physical, material, source, sel.candidates, options, contract)
+    hold = _hold_inputs(physical, material, contract)
+    com = np.asarray(physical.center_of_mass_m)
+    if options.gripper is not None:
+        name, reason, rows = options.gripper, "given (L3Options.gripper)", []
+    else:  # the Planner's choose_gripper action (the L3 contract): from widths, mass and stiffness
+        surf, faces = trimesh.sample.sample_surface_even(asset.mesh, SURFACE_SAMPLES, seed=0)
+        choice = choose_gripper(np.asarray(surf), np.asarray(asset.mesh.face_normals[faces]), com,
+                                physical.gripper_friction, extents_m=asset.mesh.extents, **hold)
+        if choice.name is None:  # run_l3 records it as L3's outcome (no grasp is a result)
+            raise NoGraspError(choice.reason)
+        name, reason, rows = choice.name, choice.reason, choice.summary()
+    g = gripper(name)
+    spacing = options.particle_spacing_m or auto_trial_spacing(asset.mesh.extents, options.quality, g.pad_face_m)
+    body = trial_body(asset.mesh, asset.particles_m, asset.spacing_m, asset.gaussians, spacing,
+                      surface_samples=SURFACE_SAMPLES)
+    nominal = squeeze_plan(width_m=g.stroke_m, pad_area_m2=g.pad_area_m2, gripper_max_n=g.spec.max_grip_force_n,
+                           friction=physical.gripper_friction, **hold)
+    sel = select_grasps(body.surface_points_m, body.surface_normals, com, friction=physical.gripper_friction,
+                        settings=grasp_settings(name, nominal.soft_indent_m))
+    if not sel.ok:  # run_l3 records it as L3's outcome (no grasp is a result)
+        raise NoGraspError(f"{name}: {sel.reason}")
+    sq = squeeze_plan(width_m=sel.candidates[0].width_m, pad_area_m2=g.pad_area_m2,
+                      gripper_max_n=g.spec.max_grip_force_n, friction=physical.gripper_friction,
+                      **hold)
+    if not contract.parameters.get("hold_force_margin"):  # no hold target: position control, the contract's range
+        return L3Context(Path(asset_dir), body, physical, material, source, sel.candidates, options, contract,
+                         gripper=name, gripper_reason=reason, gripper_options=rows)
+    return L3Context(Path(asset_dir), body, physical, material, source, sel.candidates, options,
+                     _with_squeeze_range(contract, sq), gripper=name, gripper_reason=reason, squeeze=sq,
+                     gripper_options=rows)
+
+
+SURFACE_SAMPLES = 2000  # surface points for grasp sampling (the trial body's, and the gripper choice's)
+
+
+def _hold_inputs(physical: PhysicalModel, material: Material, contract: StageContract) -> dict[str, float]:
+    """What the hold force and the squeeze estimate need: material, mass, gravity, force budget and margin."""
+    p = contract.parameters
+    budget = tolerances_from(contract).force_budget_n
+    cap = float(p.get("grip_force_limit_n") or 0.5 * budget)
+    return {"youngs_modulus_pa": material.youngs_modulus_pa, "poisson_ratio": material.poisson_ratio,
+            "mass_kg": physical.mass_kg, "gravity_m_per_s2": float(np.linalg.norm(physical.gravity_m_per_s2)),
+            "budget_n": min(budget, 2.0 * cap), "margin": float(p.get("hold_force_margin") or 3.0),
+            "floor_n": float(p.get("hold_force_floor_n", 1.0))}
+
+
+def _with_squeeze_range(contract: StageContract, sq: SqueezePlan) -> StageContract:
+    """The contract with squeeze_depth_m's range narrowed to the object's stiffness-scaled range (inside the
+    contract's own bounds)."""
+    fields = []
+    for f in contract.editable_fields:
+        if f.name == "squeeze_depth_m":
+            lo = min(max(sq.low_m, f.low), f.high)
+            f = f.model_copy(update={"low": lo, "high": min(max(sq.high_m, lo), f.high)})
+        fields.append(f)
+    return contract.model_copy(update={"editable_fields": fields})
 
 
 def material_of(asset_dir: Path, asset: Any) -> tuple[Material, str]:
@@ -294,13 +392,27 @@ def _accepted(metrics: dict[str, float], contract: StageContract) -> bool:
 
 def run_l3(asset_dir: Path, options: L3Options | None = None, agents: AgentConfig | None = None,
            contract: StageContract | None = None, material: Material | None = None,
-           recordings: bool = True) -> tuple[dict[str, Any], StageOutcome]:
-    """Run L3 on an asset directory (L0 + L1, L2 or a prior); write manipulation.json; return (record, outcome)."""
+           recordings: bool = True, progress: Progress | None = None) -> tuple[dict[str, Any], StageOutcome]:
+    """Run L3 on an asset directory (L0 + L1, L2 or a prior); write manipulation.json; return (record, outcome).
+
+    An object no gripper can hold is a result, not an error: manipulation.json and evidence/ record the reason as
+    L3's one attempt (status 'no_grasp'). progress: a sink for 'L3 trial k of at most n: ... (elapsed)' lines."""
     t0 = time.perf_counter()
     asset_dir = Path(asset_dir)
     options = options or L3Options()
     contract = contract or load_contract("L3")
-    ctx = load_context(asset_dir, options, contract, material)
+    report = L3Progress(progress, planned_trials(contract, len(options.robustness), len(options.held_out),
+                                                 options.material_fallback), t0)
+    report.say("L3: trial body and grasp selection")
+    try:
+        ctx = load_context(asset_dir, options, contract, material)
+    except NoGraspError as exc:
+        report.say(f"L3: {exc}")
+        return _no_grasp(asset_dir, options, contract, material, str(exc), t0)
+    ctx.progress = report
+    ctx.recordings = recordings
+    report.say(f"L3: {len(ctx.grasps)} grasp candidates, the best {ctx.grasps[0].width_m * 1000:.0f} mm wide; "
+               f"{len(ctx.body.particles_m)} particles per trial")
     start = initial_values(ctx)
 
     def runner(values: dict[str, float], action: str) -> list[ProbeResult]:
@@ -343,20 +455,44 @@ def run_l3(asset_dir: Path, options: L3Options | None = None, agents: AgentConfi
                                 material=final_material)
         held = _conditions(options.held_out, results, contract)["conditions"]
     chosen = _chosen_attempt(ctx, chosen_values, final_material) if accepted else None
-    rec_paths = []
-    if recordings and chosen is not None and chosen.get("attempt") is not None:
-        from tasks.manipulation.replay import replay
-
-        path = asset_dir / "recordings" / "L3_pick_and_place.rrd"
-        path.parent.mkdir(parents=True, exist_ok=True)
-        replay(asset_dir, chosen["attempt"], rrd=path)
-        rec_paths.append(str(path.relative_to(asset_dir)))
+    rec_paths = [a["recording"] for a in ctx.attempts if a.get("recording")]  # every trial's, failed ones included
+    if recordings and chosen is not None and chosen.get("recording"):  # the chosen trial's under its README name
+        copy_atomic(asset_dir / chosen["recording"], asset_dir / "recordings" / "L3_pick_and_place.rrd")
+        rec_paths.append("recordings/L3_pick_and_place.rrd")
     record = _record(ctx, outcome, accepted, chosen, final_material, material_revision, held, robustness, rec_paths,
                      time.perf_counter() - t0)
+    report.say(f"L3 {'passed' if accepted else 'did not pass: ' + record['reason']}")
     # the file holds no wall time, so a rerun writes the same manipulation.json; the returned record reports it
     write_json_atomic(asset_dir / MANIPULATION_JSON, {k: v for k, v in record.items() if k != "wall_time_s"},
                       default=_default)
     return record, outcome
+
+
+def _no_grasp(asset_dir: Path, options: L3Options, contract: StageContract, material: Material | None, reason: str,
+              t0: float) -> tuple[dict[str, Any], StageOutcome]:
+    """L3's record when no gripper can hold the object: no trial ran; the reason is L3's one attempt in evidence/."""
+    from flows.l1_physical import load_physical
+    from tasks.geometry.outputs import load_l0
+
+    physical = load_physical(asset_dir)
+    source = "given"
+    if material is None:
+        material, source = material_of(asset_dir, load_l0(asset_dir))
+    attempts = record_no_grasp(asset_dir, reason)
+    record = {
+        "schema_version": 1, "stage": "L3", "passed": False, "status": "no_grasp", "message": reason,
+        "reason": reason, "best_attempt": None, "material": material.model_dump(mode="json"),
+        "material_source": source, "physical_model": physical.model_dump(mode="json"), "plan": None, "values": None,
+        "attempt": None, "outcome": {}, "labels": {}, "forces": {},
+        "force_budget_n": tolerances_from(contract).force_budget_n, "grasps": [],
+        "gripper": {"name": None, "reason": reason, "options": [], "squeeze": None},
+        "held_out": {"conditions": [], "success_rate": None}, "robustness": None, "material_revision": None,
+        "numerics": {"quality": options.quality, "device": options.device}, "attempts": attempts,
+        "harness_attempts": 1, "recordings": [], "wall_time_s": time.perf_counter() - t0,
+    }
+    write_json_atomic(asset_dir / MANIPULATION_JSON, {k: v for k, v in record.items() if k != "wall_time_s"},
+                      default=_default)
+    return record, StageOutcome(stage="L3", status="no_valid_candidate", attempts_used=1, message=reason)
 
 
 def _conditions(conditions: tuple[tuple[float, float, float], ...], results: list[ProbeResult],
@@ -391,6 +527,8 @@ def _revise_material(ctx: L3Context, values: dict[str, float], metrics: dict[str
     revised, reason = proposal
     checks = []
     for _ in range(2):
+        ctx.progress.say(f"L3 material revision ({trigger}): L2 revalidation of E = {revised.youngs_modulus_pa:.3g} "
+                         f"Pa, damping {revised.damping_rate_per_s:.3g} 1/s")
         l2 = revalidate_in_l2(ctx.asset_dir, revised, ctx.physical, limits, sim=ctx.options.sim())
         checks.append({"material": revised.model_dump(mode="json"), **l2})
         if l2["passed"] or not all(l2["gates"].values()):
@@ -433,9 +571,23 @@ def _record(ctx: L3Context, outcome: StageOutcome, accepted: bool, chosen: dict[
     """manipulation.json."""
     plan = ctx.plan(chosen["values"]) if chosen else None
     labels = chosen["labels"] if chosen else {}
+    tol = tolerances_from(ctx.contract)
+    attempts = [{**a, "reason": trial_reason(a["labels"], ctx.contract, tol)} for a in ctx.attempts]
+    best = chosen if accepted else best_attempt(attempts, ctx.contract)
+    reason = "" if accepted else (trial_reason(best["labels"], ctx.contract, tol) if best else outcome.message)
+    if not accepted and material_revision is not None and not material_revision.get("accepted"):
+        reason += ("; the robot failed with the L2-revalidated material revision too" if material_revision.get(
+            "l2_revalidation", {}).get("passed") else "; the material revision failed L2's revalidation")
     return {
         "schema_version": 1, "stage": "L3", "passed": bool(accepted), "status": outcome.status,
-        "message": outcome.message, "material": material.model_dump(mode="json"),
+        "message": outcome.message, "reason": reason,
+        # the attempt the manifest reports: the adopted one, else the best trial under the asset's own material
+        "best_attempt": None if best is None else {
+            "attempt": best["attempt"], "role": best["role"], "values": best["values"], "labels": best["labels"],
+            "plan": ctx.plan(best["values"]).model_dump(mode="json"), "cache_key": best.get("cache_key"),
+            "failed_gates": failed_gate_names(best["labels"], ctx.contract),
+            "reason": trial_reason(best["labels"], ctx.contract, tol)},
+        "material": material.model_dump(mode="json"),
         "material_source": ctx.material_source if material is ctx.material else "L3 material revision (L2 revalidated)",
         "physical_model": ctx.physical.model_dump(mode="json"),
         "plan": plan.model_dump(mode="json") if plan else None,
@@ -444,6 +596,9 @@ def _record(ctx: L3Context, outcome: StageOutcome, accepted: bool, chosen: dict[
         "labels": labels, "forces": _forces(labels),
         "force_budget_n": tolerances_from(ctx.contract).force_budget_n,
         "grasps": [g.model_dump(mode="json") for g in ctx.grasps],
+        # the Planner's choose_gripper: the gripper, why, what it weighed; the force target and squeeze range
+        "gripper": {"name": ctx.gripper, "reason": ctx.gripper_reason, "options": ctx.gripper_options,
+                    "squeeze": ctx.squeeze.as_dict() if ctx.squeeze else None},
         "held_out": {"conditions": held, "success_rate": (sum(h["success"] for h in held) / len(held)) if held else None},
         "robustness": robustness if accepted else None,
         "material_revision": material_revision,
@@ -452,7 +607,7 @@ def _record(ctx: L3Context, outcome: StageOutcome, accepted: bool, chosen: dict[
                      "grid_dx_m": 2.0 * ctx.body.spacing_m, "device": ctx.options.device,
                      "note": "the L0 volume is resampled at the trial lattice (numerical choice); density, mass, "
                              "friction and material are unchanged"},
-        "attempts": ctx.attempts, "harness_attempts": outcome.attempts_used, "recordings": recordings,
+        "attempts": attempts, "harness_attempts": outcome.attempts_used, "recordings": recordings,
         "wall_time_s": wall,
     }
 

@@ -8,6 +8,7 @@ import typer
 from rich.table import Table
 
 from flows.cli.apps import app, check_device, console, emit_json, fail
+from flows.cli.preflight import check_locations
 
 
 def _table(report) -> Table:  # type: ignore[no-untyped-def]
@@ -32,11 +33,15 @@ def batch(
     cache_dir: Path = typer.Option(None, "--cache", help="cache root (shared by every request)"),
     as_json: bool = typer.Option(False, "--json", help="print the report as JSON"),
     l3: bool = typer.Option(True, "--l3/--no-l3", help="run L3 (robot pick-and-place validation) in every request"),
+    require_l3: bool = typer.Option(False, "--require-l3", help="a request whose L3 does not pass fails (its asset is "
+                                    "published all the same)"),
 ) -> None:
     """Generate many assets; a bad request fails alone; exit 1 if any failed (the report is written anyway)."""
     from cache import use_cache_root
-    from flows.batch import DEFAULT_JOB, NO_L3_JOB, REPORT_JSON, run_batch
+    from flows.batch import DEFAULT_JOB, NO_L3_JOB, REPORT_JSON, REQUIRE_L3_JOB, run_batch
 
+    if require_l3 and not l3:
+        fail("--require-l3 needs L3: drop --no-l3")
     if concurrency < 1:
         fail(f"--concurrency must be >= 1, got {concurrency}")
     check_device(device)
@@ -44,6 +49,7 @@ def batch(
         fail(f"requests file not found: {requests}")
     if cache_dir is not None:
         use_cache_root(cache_dir)
+    check_locations(out_root=out)  # the batch root and the cache root are usable, before any request runs
 
     def on_result(r) -> None:  # type: ignore[no-untyped-def]
         mark = "[green]ok[/green]" if r.status == "ok" else f"[red]failed[/red]: {r.reason}"
@@ -52,7 +58,8 @@ def batch(
     try:
         with console.status(f"running requests from {requests} ({concurrency} at a time)"):
             report = run_batch(requests, out, concurrency=concurrency, device=device, timeout_s=timeout_s,
-                               on_result=on_result, job=DEFAULT_JOB if l3 else NO_L3_JOB)
+                               on_result=on_result,
+                               job=REQUIRE_L3_JOB if require_l3 else DEFAULT_JOB if l3 else NO_L3_JOB)
     except KeyboardInterrupt:  # run_batch stopped the children and wrote the report first
         console.print(f"report (interrupted): {out / REPORT_JSON}")
         raise

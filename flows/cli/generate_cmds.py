@@ -7,10 +7,14 @@ from pathlib import Path
 
 import typer
 from pydantic import ValidationError
+from rich.markup import escape
 from rich.table import Table
 
 from contracts.errors import validation_message
 from flows.cli.apps import app, check_device, console, emit_json, fail
+from flows.cli.geometry_cmds import GEOMETRY_BACKEND_HELP
+from flows.cli.llm_option import LLM_FALLBACK_HELP, llm_agents
+from flows.cli.preflight import check_request
 
 DEFAULT_TEXT = "a soft plush turtle toy, about 25 cm long"
 
@@ -30,7 +34,10 @@ def _summary_table(manifest) -> Table:  # type: ignore[no-untyped-def]
             "max_finger_force_n", "place_error_m")
     for s in manifest.validation:
         figs = ", ".join(f"{k}={s.metrics[k]:.3g}" for k in keys if k in s.metrics)
-        table.add_row(s.stage, "yes" if s.passed else "NO", str(s.attempts), str(s.sim_calls), figs)
+        why = s.reason or ", ".join(s.failed_gates)
+        why = why if len(why) <= 120 else why[:117] + "..."  # in full below the table and in asset.json
+        table.add_row(s.stage, "yes" if s.passed else f"NO — {escape(why)}" if why else "NO", str(s.attempts),
+                      str(s.sim_calls), figs)
     return table
 
 
@@ -47,14 +54,19 @@ def generate(
     size_m: float = typer.Option(None, "--size-m", help="longest extent [m] (overrides sizes in the text)"),
     intent: str = typer.Option(None, "--intent", help="material words, e.g. 'firm rubber' (default: from the text)"),
     seed: int = typer.Option(0, "--seed"),
-    llm: str = typer.Option(None, "--llm", help="litellm model string for every agent role (default: offline rule backend)"),
+    llm: str = typer.Option(None, "--llm", help="litellm model string for every agent role, L0's shape Designer "
+                            "included (default: offline rule backend)"),
+    llm_fallback: str = typer.Option("rule", "--llm-fallback", help=LLM_FALLBACK_HELP),
+    geometry_backend: str = typer.Option(None, "--geometry-backend", envvar="DEFORMSMITH_GEOMETRY_BACKEND",
+                                         help=GEOMETRY_BACKEND_HELP),
     cache_dir: Path = typer.Option(None, "--cache", help="cache root"),
     as_json: bool = typer.Option(False, "--json", help="print the summary as JSON"),
     l3: bool = typer.Option(True, "--l3/--no-l3", help="run L3 (robot pick-and-place validation) after L2"),
+    require_l3: bool = typer.Option(False, "--require-l3", help="exit 7 when L3 does not pass (no grasp, a failed "
+                                    "pick); the asset is published either way"),
 ) -> None:
     """Text, image or mesh -> a published asset directory: geometry, physical model, tested material, evidence."""
     from cache import use_cache_root
-    from contracts.agents import AgentConfig
     from contracts.request import AssetRequest
 
     check_device(device)
@@ -62,6 +74,8 @@ def generate(
         fail(f"--quality must be draft, standard or high, got '{quality}'")
     if not 1 <= cpu_threads <= 64:
         fail(f"--cpu-threads must be 1 to 64, got {cpu_threads}")
+    if require_l3 and not l3:
+        fail("--require-l3 needs L3: drop --no-l3")
     for path, what in ((image, "image"), (mesh, "mesh")):
         if path is not None and not path.is_file():
             fail(f"{what} file not found: {path}")
@@ -70,23 +84,25 @@ def generate(
     try:
         request = AssetRequest(text=text, image_path=image.absolute() if image else None,
                                mesh_path=mesh.absolute() if mesh else None, size_hint_m=size_m,
-                               material_intent=intent, seed=seed, quality=quality)  # type: ignore[arg-type]
+                               material_intent=intent, seed=seed, quality=quality,
+                               geometry_backend=geometry_backend or None)  # type: ignore[arg-type]
     except ValidationError as exc:
         fail("invalid request: " + validation_message(exc))
     if cache_dir is not None:
         use_cache_root(cache_dir)
     out = out or _default_out(text, image, mesh)
-    agents = AgentConfig.llm(llm) if llm else None
+    check_request(request, out)  # image header, output parent and cache root usable, before any layer
+    agents = llm_agents(llm, llm_fallback)
     from tasks.agents.intent import targets_from_request
 
     targets_from_request(request)  # a rigid material is one line here, before the layers are imported
-    from flows.generate import TIMINGS, generate_asset
+    from flows.generate import TIMINGS, generate_asset, require_l3 as check_l3
 
     with console.status("starting") as status:
         def on_stage(stage: str, message: str) -> None:
             status.update(f"{stage}: {message}")
             style = "yellow" if message.startswith("warning:") else "default"
-            console.log(f"[bold]{stage}[/bold] [{style}]{message}[/{style}]")
+            console.log(f"[bold]{stage}[/bold] [{style}]{escape(message)}[/{style}]")  # a reason may hold [ ]
 
         manifest = generate_asset(request, out, device=device, agents=agents, on_stage=on_stage,  # type: ignore[arg-type]
                                   manipulate=l3, cpu_threads=cpu_threads)
@@ -100,6 +116,12 @@ def generate(
         console.print(_summary_table(manifest))
         console.print("wall time: " + ", ".join(f"{k} {v:.1f} s" for k, v in TIMINGS.items()))
         console.print(f"asset published: {out}")
+    l3_line = next((s for s in manifest.validation if s.stage == "L3"), None)
+    if l3_line is not None and not l3_line.passed:
+        console.print(f"L3 did not pass: {l3_line.reason or ', '.join(l3_line.failed_gates)}; the asset is published "
+                      f"with this outcome" + ("" if require_l3 else " (--require-l3 makes this exit 7)"), markup=False)
+    if require_l3:
+        check_l3(manifest, out)  # RequirementNotMet: one error line, exit 7
 
 
 @app.command("inspect")

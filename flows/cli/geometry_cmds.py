@@ -14,8 +14,17 @@ from pydantic import ValidationError
 
 from contracts.errors import validation_message
 from flows.cli.apps import app, bench_app, console, emit_json, fail, prefect_log_level
+from flows.cli.llm_option import LLM_FALLBACK_HELP, llm_agents
+from flows.cli.preflight import check_request
 
 QUALITIES = ("draft", "standard", "high")
+GEOMETRY_BACKEND_HELP = ("reconstruction backend that makes the mesh: a Python entry point 'module:function' or an "
+                         "HTTP endpoint 'http://host:port/path' (interface: tasks/geometry/backends.py)")
+
+
+def _agents(llm: str | None, fallback: str = "rule"):  # type: ignore[no-untyped-def]
+    """Every role played by one litellm model (L0: the shape Designer and Critic), or None for the offline code."""
+    return llm_agents(llm, fallback)
 
 
 @app.command("geometry")
@@ -27,8 +36,15 @@ def geometry(
     quality: str = typer.Option("draft", "--quality", help="draft | standard | high"),
     size_m: float = typer.Option(None, "--size-m", help="longest extent of the object [m]"),
     seed: int = typer.Option(0, "--seed", help="seed of every random choice"),
+    intent: str = typer.Option(None, "--intent", help="material words, e.g. 'firm rubber' (default: from the text); "
+                               "stored with the request for `physical` and `material`, never changes the geometry"),
     no_cache: bool = typer.Option(False, "--no-cache", help="run the plain functions, without Prefect or the cache"),
     as_json: bool = typer.Option(False, "--json", help="print geometry.json to stdout"),
+    llm: str = typer.Option(None, "--llm", help="litellm model string: the model writes the shape program of a text "
+                            "request (a vision model also judges its renders); default: the offline grammar"),
+    llm_fallback: str = typer.Option("rule", "--llm-fallback", help=LLM_FALLBACK_HELP),
+    geometry_backend: str = typer.Option(None, "--geometry-backend", envvar="DEFORMSMITH_GEOMETRY_BACKEND",
+                                         help=GEOMETRY_BACKEND_HELP),
 ) -> None:
     """Run L0 alone: text, image or mesh -> mesh.glb, collision/, particles.zarr, gaussians.ply, renders/, geometry.json."""
     if quality not in QUALITIES:
@@ -38,17 +54,22 @@ def geometry(
     from contracts.request import AssetRequest
 
     try:
-        request = AssetRequest(text=text, image_path=image, mesh_path=mesh, size_hint_m=size_m, seed=seed,
-                               quality=quality)  # type: ignore[arg-type]
+        request = AssetRequest(text=text, image_path=image.absolute() if image else None,
+                               mesh_path=mesh.absolute() if mesh else None, size_hint_m=size_m,
+                               material_intent=intent, seed=seed, quality=quality,
+                               geometry_backend=geometry_backend or None)  # type: ignore[arg-type]
     except ValidationError as exc:
         fail("invalid request: " + validation_message(exc))
+    if intent is not None and not intent.strip():
+        fail("--intent is empty")
     _preflight(request)
+    check_request(request, out, cache=not no_cache)  # image header, output parent and cache root usable
     prefect_log_level("CRITICAL")  # user errors surface as one line, not task tracebacks
     from flows.l0_geometry import run_l0, write_l0
 
     with console.status(f"L0 geometry ({quality})..."):
-        result = run_l0(request, use_cache=not no_cache)
-        write_l0(result, out)
+        result = run_l0(request, use_cache=not no_cache, agents=_agents(llm, llm_fallback))
+        write_l0(result, out, request=request)
     record = json.loads((out / "geometry.json").read_text(encoding="utf-8"))
     if as_json:
         emit_json(record)
@@ -123,13 +144,44 @@ def _run_case(code: str, *args: str, env: dict[str, str] | None = None) -> dict:
     return json.loads(proc.stdout.strip().splitlines()[-1])
 
 
+def _bench_suite(suite: Path, quality: str, sheet: Path | None, as_json: bool) -> None:
+    """`bench geometry --suite`: every prompt through L0, one row each (see tasks/geometry/suite_bench.py)."""
+    from contracts.errors import InputError
+    from tasks.geometry.suite_bench import run_suite
+
+    quality = quality.split(",")[0]
+    if quality not in QUALITIES:
+        fail(f"--qualities must name one of {', '.join(QUALITIES)}, not '{quality}'")
+    try:
+        result = run_suite(suite, quality, sheet, progress=lambda m: console.print(m))
+    except InputError as exc:
+        fail(str(exc))
+    if as_json:
+        emit_json(result)
+        return
+    for r in result["rows"]:
+        mass = f"{r['mass_estimate_kg'] * 1e3:8.1f} g" if r["mass_estimate_kg"] is not None else "       -  "
+        ext = " x ".join(f"{v:.3f}" for v in r["extents_m"])
+        console.print(f"{r['text'][:44]:44s} {r['concept']:20s} {r['fallback_level']:9s} {ext} m {mass} "
+                      f"{r['seconds']:5.1f} s")
+    console.print(result["summary"])
+
+
 @bench_app.command("geometry")
 def bench_geometry(
     as_json: bool = typer.Option(False, "--json", help="print the figures as JSON"),
     skip_cache: bool = typer.Option(False, "--skip-cache", help="skip the cache-hit measurement (Prefect start-up)"),
     qualities: str = typer.Option(",".join(QUALITIES), "--qualities", help="comma-separated qualities"),
+    suite: Path = typer.Option(None, "--suite", help="YAML/JSON prompt suite (e.g. tests/geometry/heldout_prompts.yaml "
+                               "or contracts/suites/default.yaml): per prompt the concept, fallback level, size, "
+                               "mass estimate and seconds of L0 (at the first of --qualities, default draft)"),
+    contact_sheet: Path = typer.Option(None, "--contact-sheet", help="with --suite: PNG of every prompt's render"),
 ) -> None:
-    """L0 wall time, peak memory and CoACD share for the plush turtle per quality and the largest pybullet_data mesh."""
+    """L0 wall time, peak memory and CoACD share for the plush turtle per quality and the largest pybullet_data mesh;
+    with --suite, the text path on every prompt of a suite."""
+    if suite is not None:
+        _bench_suite(suite, qualities if qualities != ",".join(QUALITIES) else "draft", contact_sheet, as_json)
+        return
     import pybullet_data
 
     turtle = json.dumps({"text": "a soft plush turtle toy, about 25 cm long"})

@@ -18,8 +18,13 @@ def manipulate(
     cpu_threads: int = typer.Option(2, "--cpu-threads", help="CPU: threads sharing each trial's particles"),
     cache_dir: Path = typer.Option(None, "--cache", help="cache root (default: $DEFORMSMITH_CACHE or the user cache)"),
     as_json: bool = typer.Option(False, "--json", help="print manipulation.json's summary as JSON"),
+    require_l3: bool = typer.Option(False, "--require-l3", help="exit 7 when L3 does not pass (no grasp, a failed "
+                                    "pick); manipulation.json is written either way"),
 ) -> None:
-    """L3: grasp ranking, plan, pick-and-place in the MPM, revision through the harness, held-out conditions."""
+    """L3: grasp ranking, plan, pick-and-place in the MPM, revision through the harness, held-out conditions.
+
+    An L3 that does not pass (no grasp, no valid pick) is a result: recorded, printed with its reason, exit 0
+    (exit 7 with --require-l3)."""
     from cache import use_cache_root
 
     if not (asset / "geometry.json").is_file():
@@ -37,10 +42,15 @@ def manipulate(
 
     options = (L3Options.standard(device, cpu_threads) if quality == "standard"
                else L3Options(device=device, cpu_threads=cpu_threads))
-    with console.status("L3: pick-and-place trials in the MPM"):
-        record, outcome = run_l3(asset, options)
-    summary = {k: record[k] for k in ("passed", "status", "message", "outcome", "forces", "held_out", "attempt",
-                                      "values", "numerics", "material_source", "recordings", "wall_time_s")}
+    with console.status("L3: pick-and-place trials in the MPM") as status:
+        def progress(message: str) -> None:
+            status.update(message)
+            console.log(message, markup=False)
+
+        record, outcome = run_l3(asset, options, progress=progress)
+    summary = {k: record.get(k) for k in ("passed", "status", "message", "reason", "outcome", "forces", "held_out",
+                                          "attempt", "values", "numerics", "material_source", "recordings",
+                                          "wall_time_s")}
     if as_json:
         emit_json(summary)
     else:
@@ -52,7 +62,13 @@ def manipulate(
         console.print(table)
         console.print(record["message"])
     if not record["passed"]:
-        raise typer.Exit(1)
+        console.print(f"L3 did not pass: {record.get('reason') or record['message']}; recorded in "
+                      f"{asset / 'manipulation.json'}" + ("" if require_l3 else " (--require-l3 makes this exit 7)"),
+                      markup=False)
+        if require_l3:
+            from contracts.errors import RequirementNotMet
+
+            raise RequirementNotMet("L3", record.get("reason") or record["message"])
 
 
 @app.command("replay")

@@ -38,10 +38,12 @@ class TrialBody:
         return float(np.sum(self.volumes_m3))
 
 
-def auto_trial_spacing(extents_m: np.ndarray, quality: str = "draft") -> float:
-    """Trial particle spacing [m]: a grid (dx = 2 x spacing) of at most half the Panda pad's 17 mm face, so the pad
-    covers >= 2 x 2 nodes, and >= 12 particles across the smallest extent; standard quality halves the cap."""
-    cap = 0.004 if quality == "draft" else 0.002
+def auto_trial_spacing(extents_m: np.ndarray, quality: str = "draft", pad_face_m: float | None = None) -> float:
+    """Trial particle spacing [m]: a grid (dx = 2 x spacing) of at most half the gripper pad's face (the Franka Hand's
+    17 mm: 4 mm; a larger pad allows pad_face / 4), so the pad covers >= 2 x 2 nodes, and >= 12 particles across the
+    smallest extent; standard quality halves the cap."""
+    cap = max(0.004, (pad_face_m or 0.0) / 4.0)
+    cap = cap if quality == "draft" else cap / 2.0
     return float(min(cap, float(np.min(extents_m)) / 12.0))
 
 

@@ -8,6 +8,9 @@ Arrays (SI units, float32 particle states at >= 30 fps, float64 otherwise):
   ground_force_n (K, 3)  object_com_m (K + 1, 3)  closing_axis_world (3,)
   frame_t_s (T,)  frame_control_index (T,)  particles_x_m (T, N, 3) f32  particles_F (T, N, 3, 3) f32
   rest_particles_m (N, 3)  particle_volumes_m3 (N,)  gaussian_* (rest Gaussians in the world frame at t = 0, bound to the trial particles)
+  approach_t_s (A,)  approach_q_rad (A, 7)  approach_opening_m (A,)  approach_finger_position_m (A, 2, 3)
+  approach_finger_quat_xyzw (A, 2, 4): the commanded robot from t = 0 until the simulation starts (the object at rest),
+  at the recording rate, so that a replay shows the whole attempt (absent in attempts recorded before them)
 Attributes: ``labels`` (the outcome metrics, failed attempts included), ``plan`` (ActionPlan JSON), ``info`` (numerics,
 particles, steps, wall time), ``role`` (selection | held_out | confirmation) and anything the caller adds. Each attempt
 is written to a temporary folder and renamed into place, so a reader never sees half an attempt.
@@ -44,6 +47,18 @@ def attempt_indices(asset_dir: Path) -> list[int]:
     if not root.is_dir():
         return []
     return sorted(int(m.group(1)) for p in root.iterdir() if (m := _NAME.match(p.name)))
+
+
+def approach_track(trajectory: Any, t_end_s: float, fps: float) -> dict[str, np.ndarray]:
+    """The commanded robot of a tasks.robot.Trajectory on [0, t_end_s) at fps: times [s], arm angles [rad], finger
+    opening [m] and the pad boxes' poses (what a replay draws before the simulated part of a trial)."""
+    t = np.arange(int(np.ceil(max(0.0, t_end_s) * fps - 1e-9))) / fps
+    states = [trajectory.state_at(float(tk)) for tk in t]
+    pads = trajectory.pads_at(t)
+    return {"approach_t_s": t, "approach_q_rad": np.asarray([s.q for s in states], dtype=np.float64).reshape(-1, 7),
+            "approach_opening_m": np.asarray([s.finger_opening_m for s in states], dtype=np.float64),
+            "approach_finger_position_m": np.asarray(pads.position_m, dtype=np.float64).reshape(-1, 2, 3),
+            "approach_finger_quat_xyzw": np.asarray(pads.quat_xyzw, dtype=np.float64).reshape(-1, 2, 4)}
 
 
 def _jsonable(value: Any) -> Any:

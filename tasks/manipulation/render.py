@@ -1,8 +1,10 @@
-"""A small deterministic CPU splat rasteriser: Gaussians and finger pads as depth-sorted discs (numpy only).
+"""The pinhole Camera, and a small deterministic CPU splat rasteriser for the drop-protocol videos: Gaussians (and any
+extra points) as depth-sorted discs over a table, numpy only.
 
-Each Gaussian becomes a disc whose pixel radius is the projected 1.5-sigma size (clamped to ``MAX_RADIUS_PX``); each pixel
-takes the colour of the nearest disc covering it (stable sort on depth, ties by index): the same inputs always give
-the same bytes. Pads are drawn as grey surface samples. Lengths in metres, the camera looks from ``eye`` at ``target``.
+Each Gaussian becomes a disc whose pixel radius is the projected 1.5-sigma size (clamped to ``MAX_RADIUS_PX``); each
+pixel takes the colour of the nearest disc covering it (stable sort on depth, ties by index): the same inputs always give
+the same bytes. Lengths in metres, the camera looks from ``eye`` at ``target``. The pick-and-place video (robot, table,
+object) is tasks.manipulation.scene's.
 """
 
 from __future__ import annotations
@@ -36,37 +38,6 @@ class Camera:
         down = np.cross(fwd, right)
         f = 0.5 * self.height / np.tan(np.radians(self.fov_deg) / 2.0)
         return np.stack([right, down, fwd]), eye, float(f)
-
-
-def camera_for(points_m: np.ndarray, width: int = 320, height: int = 240) -> Camera:
-    """A camera that frames the given points (e.g. the object's start and place positions) from the front right."""
-    lo, hi = points_m.min(axis=0), points_m.max(axis=0)
-    c = 0.5 * (lo + hi)
-    r = max(0.06, 0.5 * float(np.linalg.norm(hi - lo)))
-    d = 1.5 * r / np.tan(np.radians(20.0))
-    direction = np.array([0.55, -0.7, 0.45])
-    direction /= np.linalg.norm(direction)
-    return Camera(tuple(c + d * direction), tuple(c), 40.0, width, height)
-
-
-def box_samples(position_m: np.ndarray, quat_xyzw: np.ndarray, half_m: np.ndarray, n: int = 10) -> np.ndarray:
-    """Points on the surface of a box [m] (n x n per face)."""
-    u = np.linspace(-1.0, 1.0, n)
-    a, b = np.meshgrid(u, u, indexing="ij")
-    faces = []
-    for axis in range(3):
-        for sign in (-1.0, 1.0):
-            p = np.zeros((n * n, 3))
-            others = [k for k in range(3) if k != axis]
-            p[:, axis] = sign
-            p[:, others[0]], p[:, others[1]] = a.ravel(), b.ravel()
-            faces.append(p)
-    local = np.concatenate(faces) * np.asarray(half_m)
-    x, y, z, w = quat_xyzw
-    rot = np.array([[1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
-                    [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
-                    [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)]])
-    return local @ rot.T + np.asarray(position_m)
 
 
 def _background(cam: Camera) -> np.ndarray:

@@ -1,14 +1,14 @@
-"""Replay a recorded attempt WITHOUT re-simulating: Gaussians driven by the recorded particles (x, F), PNG frames,
-an MP4 (imageio-ffmpeg) or GIF, and a Rerun .rrd with the Panda's links (pybullet_data meshes posed by FK from the
-recorded joint states), the finger pads, particles, Gaussians and the per-finger force curves.
+"""Replay a recorded attempt WITHOUT re-simulating: video frames of the robot (the URDF's visual meshes at the recorded
+joint states, or a box gripper around the recorded pads), the table and the object (Gaussians driven by the recorded
+particles x and F) from t = 0 to the end of the attempt (tasks.manipulation.scene), as PNG frames, an MP4 (H.264,
+imageio-ffmpeg) or GIF at 30 fps, 1280 x 720 by default; and a Rerun .rrd with the robot's links, the finger pads,
+particles, Gaussians and the per-finger force curves.
 """
 
 from __future__ import annotations
 
 import hashlib
-import xml.etree.ElementTree as ET
 from dataclasses import dataclass, field
-from functools import lru_cache
 from pathlib import Path
 
 import numpy as np
@@ -16,20 +16,26 @@ import numpy as np
 from contracts.errors import InputError
 from tasks.geometry.gaussians import deform_gaussians
 from tasks.manipulation.data import read_attempt
-from tasks.manipulation.render import Camera, box_samples, camera_for, render
+from tasks.manipulation.scene import VIDEO_FPS, VIDEO_SIZE, AttemptRenderer
 
 ROBOT = "world/robot"
+RRD_MAX_GAUSSIANS = 20000  # a recording keeps at most this many Gaussians per frame (a deterministic stride)
+RRD_MESH_CELL_M = 0.006  # the robot's visual meshes in a recording, coarsened to this cell (a smaller file)
 
 
 @dataclass
 class ReplayResult:
-    """What a replay wrote: frame files, their SHA-256 digests (of the raw pixels), video and recording paths."""
+    """What a replay wrote: frame files, their SHA-256 digests (of the raw pixels), video and recording paths, the
+    video's rate [1/s], size [px] and duration [s]."""
 
     frames: list[Path] = field(default_factory=list)
     digests: list[str] = field(default_factory=list)
     video: Path | None = None
     recording: Path | None = None
     n_frames: int = 0
+    fps: float = VIDEO_FPS
+    size: tuple[int, int] = VIDEO_SIZE
+    duration_s: float = 0.0
 
 
 def frame_gaussians(arrays: dict[str, np.ndarray], i: int) -> tuple[np.ndarray, np.ndarray]:
@@ -39,154 +45,164 @@ def frame_gaussians(arrays: dict[str, np.ndarray], i: int) -> tuple[np.ndarray, 
                             arrays["rest_particles_m"], arrays["particles_x_m"][i], arrays["particles_F"][i])
 
 
-def attempt_camera(arrays: dict[str, np.ndarray], width: int = 320, height: int = 240) -> Camera:
-    """A fixed camera for the whole attempt, framing the object's path."""
-    com = arrays["object_com_m"]
-    pts = np.concatenate([com[np.isfinite(com).all(axis=1)], arrays["rest_particles_m"].astype(np.float64)])
-    return camera_for(pts, width, height)
+def render_frames(arrays: dict[str, np.ndarray], width: int = VIDEO_SIZE[0], height: int = VIDEO_SIZE[1],
+                  attrs: dict | None = None) -> list[np.ndarray]:
+    """Every video frame of an attempt (deterministic)."""
+    return AttemptRenderer(arrays, attrs, width, height).frames()
 
 
-def render_frame(arrays: dict[str, np.ndarray], i: int, cam: Camera) -> np.ndarray:
-    """RGB image of recorded frame i: the deformed Gaussians and both finger pads."""
-    centers, cov = frame_gaussians(arrays, i)
-    k = int(min(arrays["frame_control_index"][i], len(arrays["control_t_s"]) - 1))
-    pads = np.concatenate([box_samples(arrays["finger_position_m"][k, f], arrays["finger_quat_xyzw"][k, f],
-                                       arrays["finger_half_extents_m"]) for f in range(2)])
-    return render(cam, centers, cov, arrays["gaussian_colors"], pads)
+def video_writer(path: Path, fps: float = VIDEO_FPS):  # type: ignore[no-untyped-def]
+    """An imageio writer for .mp4 (H.264, yuv420p) or .gif at fps (InputError for another suffix)."""
+    import imageio.v2 as imageio
 
-
-def render_frames(arrays: dict[str, np.ndarray], width: int = 320, height: int = 240) -> list[np.ndarray]:
-    """Every recorded frame rendered (deterministic)."""
-    cam = attempt_camera(arrays, width, height)
-    return [render_frame(arrays, i, cam) for i in range(len(arrays["frame_t_s"]))]
+    if path.suffix.lower() == ".gif":
+        return imageio.get_writer(path, mode="I", duration=1000.0 / fps, loop=0)
+    if path.suffix.lower() == ".mp4":
+        return imageio.get_writer(path, fps=fps, codec="libx264", macro_block_size=8, quality=7,
+                                  ffmpeg_params=["-preset", "veryfast"])
+    raise InputError(f"--video must end in .mp4 or .gif, got {path.name}")
 
 
 def replay(asset_dir: Path, attempt: int | None = None, frames_dir: Path | None = None, video: Path | None = None,
-           rrd: Path | None = None, width: int = 320, height: int = 240) -> ReplayResult:
-    """Replay an attempt of an asset: PNG frames into frames_dir, an .mp4/.gif video, an .rrd (each optional)."""
+           rrd: Path | None = None, width: int = VIDEO_SIZE[0], height: int = VIDEO_SIZE[1]) -> ReplayResult:
+    """Replay an attempt of an asset: PNG frames into frames_dir, an .mp4/.gif video, an .rrd (each optional).
+    Frames are rendered one at a time and streamed to the files (a long attempt never sits in memory)."""
     import imageio.v2 as imageio
 
     arrays, attrs = read_attempt(Path(asset_dir), attempt)
-    images = render_frames(arrays, width, height)
-    out = ReplayResult(n_frames=len(images), digests=[hashlib.sha256(im.tobytes()).hexdigest() for im in images])
-    if frames_dir is not None:
-        frames_dir = Path(frames_dir)
-        frames_dir.mkdir(parents=True, exist_ok=True)
-        for i, im in enumerate(images):
-            p = frames_dir / f"frame_{i:04d}.png"
-            imageio.imwrite(p, im)
-            out.frames.append(p)
+    writer = None
     if video is not None:
         video = Path(video)
-        video.parent.mkdir(parents=True, exist_ok=True)
-        fps = float(1.0 / np.median(np.diff(arrays["frame_t_s"]))) if len(images) > 1 else 30.0
-        if video.suffix.lower() == ".gif":
-            imageio.mimsave(video, images, duration=1.0 / fps, loop=0)
-        elif video.suffix.lower() == ".mp4":
-            with imageio.get_writer(video, fps=fps, codec="libx264", macro_block_size=8, quality=7) as w:
-                for im in images:
-                    w.append_data(im)
-        else:
+        if video.suffix.lower() not in (".mp4", ".gif"):  # before any rendering
             raise InputError(f"--video must end in .mp4 or .gif, got {video.name}")
+        video.parent.mkdir(parents=True, exist_ok=True)
+        tmp = video.with_name(f".{video.stem}.tmp{video.suffix}")
+        writer = video_writer(tmp)
+    if frames_dir is not None:
+        Path(frames_dir).mkdir(parents=True, exist_ok=True)
+    try:
+        renderer = AttemptRenderer(arrays, attrs, width, height)
+        out = ReplayResult(n_frames=len(renderer), size=(width, height), duration_s=len(renderer) / VIDEO_FPS)
+        for i in range(len(renderer)):
+            im = renderer.frame(i)
+            out.digests.append(hashlib.sha256(im.tobytes()).hexdigest())
+            if frames_dir is not None:
+                p = Path(frames_dir) / f"frame_{i:04d}.png"
+                imageio.imwrite(p, im)
+                out.frames.append(p)
+            if writer is not None:
+                writer.append_data(im)
+    except BaseException:
+        if writer is not None:
+            writer.close()
+            tmp.unlink(missing_ok=True)
+        raise
+    if writer is not None:
+        writer.close()
+        tmp.replace(video)  # type: ignore[union-attr]
         out.video = video
     if rrd is not None:
         out.recording = write_rrd(arrays, attrs, Path(rrd))
     return out
 
 
-# --- the Panda's links for the recording ------------------------------------------------------------------------
-def _rpy_matrix(rpy: list[float]) -> np.ndarray:
-    """URDF roll-pitch-yaw -> rotation matrix."""
-    r, p, y = rpy
-    rx = np.array([[1, 0, 0], [0, np.cos(r), -np.sin(r)], [0, np.sin(r), np.cos(r)]])
-    ry = np.array([[np.cos(p), 0, np.sin(p)], [0, 1, 0], [-np.sin(p), 0, np.cos(p)]])
-    rz = np.array([[np.cos(y), -np.sin(y), 0], [np.sin(y), np.cos(y), 0], [0, 0, 1]])
-    return rz @ ry @ rx
+def _stride(n: int, cap: int | None) -> slice:
+    """A deterministic subsample of n items to at most cap (every k-th)."""
+    return slice(None, None, max(1, -(-n // cap)) if cap else 1)
 
 
-@lru_cache(maxsize=1)
-def panda_link_meshes() -> dict[str, tuple[np.ndarray, np.ndarray]]:
-    """Visual meshes of the Panda's links from pybullet_data, in each link's URDF frame: name -> (vertices, faces)."""
-    import pybullet_data
-    import trimesh
+def write_rrd(arrays: dict[str, np.ndarray], attrs: dict, path: Path, max_particles: int | None = None,
+              max_gaussians: int | None = RRD_MAX_GAUSSIANS, gaussian_every: int = 1) -> Path:
+    """The attempt as a Rerun recording (written atomically: the file appears when complete).
 
-    root = Path(pybullet_data.getDataPath()) / "franka_panda"
-    tree = ET.parse(root / "panda.urdf")
-    out: dict[str, tuple[np.ndarray, np.ndarray]] = {}
-    for link in tree.getroot().iter("link"):
-        vis = link.find("visual")
-        if vis is None or vis.find("geometry/mesh") is None:
-            continue
-        fname = vis.find("geometry/mesh").get("filename").replace("package://", "")  # type: ignore[union-attr]
-        origin = vis.find("origin")
-        xyz = [float(v) for v in (origin.get("xyz", "0 0 0") if origin is not None else "0 0 0").split()]
-        rpy = [float(v) for v in (origin.get("rpy", "0 0 0") if origin is not None else "0 0 0").split()]
-        mesh = trimesh.load(root / fname, force="mesh")
-        v = np.asarray(mesh.vertices) @ _rpy_matrix(rpy).T + np.asarray(xyz)
-        out[link.get("name")] = (v.astype(np.float32), np.asarray(mesh.faces, dtype=np.uint32))  # type: ignore[index]
-    return out
-
-
-def robot_link_poses(q: np.ndarray, opening: np.ndarray) -> list[dict[str, tuple[np.ndarray, np.ndarray]]]:
-    """Per recorded state, the world pose (position [m], rotation) of each Panda link by FK (pybullet DIRECT)."""
-    import pybullet as pb
-
-    from tasks.robot import Panda
-
-    poses = []
-    with Panda() as panda:
-        names = {pb.getJointInfo(panda.body, j, physicsClientId=panda.cid)[12].decode(): j
-                 for j in range(pb.getNumJoints(panda.body, physicsClientId=panda.cid))}
-        base = pb.getBodyInfo(panda.body, physicsClientId=panda.cid)[0].decode()
-        base_pos, base_orn = pb.getBasePositionAndOrientation(panda.body, physicsClientId=panda.cid)
-        base_rot = np.asarray(pb.getMatrixFromQuaternion(base_orn)).reshape(3, 3)
-        for qk, wk in zip(q, opening):
-            panda.set_joints(np.asarray(qk), float(wk))
-            frame = {base: (np.asarray(base_pos), base_rot)}
-            frame.update({n: panda.link_pose(j) for n, j in names.items()})
-            poses.append(frame)
-    return poses
-
-
-def write_rrd(arrays: dict[str, np.ndarray], attrs: dict, path: Path) -> Path:
-    """The attempt as a Rerun recording: robot links, pads, particles, Gaussians (per frame), forces (per interval)."""
+    world/robot/<link>: the URDF's visual meshes (static) with their FK pose per frame, or world/robot/gripper: a
+    box gripper; world/colliders/finger_<k>: the pad boxes; world/object/particles and world/object/gaussians (at most
+    max_particles / max_gaussians, a deterministic stride; the Gaussians at every gaussian_every-th frame and the
+    last); metrics/finger_<k>_force_n (|force| on each finger [N]),
+    metrics/object_com_height_m and metrics/grip_opening_m at the control rate; harness/log: the labels. Timelines:
+    ``frame`` (the recorded particle frames) and ``sim_time`` [s]; the approach before the simulation (the object at
+    rest) is on ``sim_time`` only.
+    """
     import rerun as rr
+    from scipy.spatial.transform import Rotation
 
+    from tasks.manipulation.robot_view import (HAND_LINKS, gripper_boxes, gripper_spec, link_poses,
+                                               panda_visual_meshes, uses_urdf_hand)
     from tasks.record import ProbeRecording
     from tasks.robot import PHASES
 
-    meshes = panda_link_meshes()
-    k_frames = np.minimum(arrays["frame_control_index"], len(arrays["control_t_s"]) - 1)
-    poses = robot_link_poses(arrays["command_q_rad"][k_frames], arrays["command_opening_m"][k_frames, 0])
-    t_c = arrays["control_t_s"]
+    spec = gripper_spec(attrs.get("plan"))
+    urdf_hand = uses_urdf_hand(spec)
+    meshes = {m.name: m for m in panda_visual_meshes(RRD_MESH_CELL_M) if urdf_hand or m.name not in HAND_LINKS}
+    t_c = np.asarray(arrays.get("control_sim_t_s", arrays["control_t_s"]))  # simulated time of each interval
+    k_frames = np.minimum(arrays["frame_control_index"], len(t_c) - 1)
+    a_t = np.asarray(arrays.get("approach_t_s", np.zeros(0)))
+
+    def track(name: str, recorded: np.ndarray, shape: tuple[int, ...]) -> np.ndarray:
+        """The approach's values (when recorded) followed by the recorded frames' ones."""
+        before = np.asarray(arrays.get(name, np.zeros((0, *shape)))).reshape(-1, *shape)
+        return np.concatenate([before, recorded])
+
+    q = track("approach_q_rad", arrays["command_q_rad"][k_frames], (7,))
+    pads = track("approach_finger_position_m", arrays["finger_position_m"][k_frames], (2, 3))
+    quats = track("approach_finger_quat_xyzw", arrays["finger_quat_xyzw"][k_frames], (2, 4))
+    poses = link_poses(q, track("approach_opening_m", arrays["command_opening_m"][k_frames, 0], ()))
+    half = arrays["finger_half_extents_m"]
+    ps = _stride(arrays["particles_x_m"].shape[1], max_particles)
+    gs = _stride(len(arrays["gaussian_positions_m"]), max_gaussians)
+    colors = np.asarray(arrays["gaussian_colors"])[gs]
+
+    def robot(rec: ProbeRecording, j: int) -> None:
+        for name, (p, r) in poses[j].items():
+            if name in meshes:
+                rec.rec.log(f"{ROBOT}/{name}", rr.Transform3D(translation=p.astype(np.float32),
+                                                               mat3x3=r.astype(np.float32)))
+        if not urdf_hand:
+            flange = poses[j].get("panda_link8")
+            boxes = gripper_boxes(pads[j], half, flange[1][:, 2] if flange else np.array([0.0, 0.0, -1.0]), spec)
+            rec.rec.log(f"{ROBOT}/gripper", rr.Boxes3D(
+                centers=np.array([b[0] for b in boxes], np.float32),
+                half_sizes=np.array([b[2] for b in boxes], np.float32),
+                quaternions=[rr.Quaternion(xyzw=Rotation.from_matrix(b[1]).as_quat()) for b in boxes],
+                colors=np.array([np.rint(255 * b[3]) for b in boxes], np.uint8), fill_mode="solid"))
+        for f in range(2):
+            rec.box_collider(f"finger_{f}", pads[j, f], half, quats[j, f])
+
+    def obj(rec: ProbeRecording, centers: np.ndarray | None, cov: np.ndarray | None, particles: np.ndarray) -> None:
+        rec.particles(particles[ps], radius_m=0.001)
+        if centers is None or cov is None:
+            return
+        ev, vecs = np.linalg.eigh(cov[gs])
+        vecs = vecs * np.where(np.linalg.det(vecs) < 0, -1.0, 1.0)[:, None, None]
+        rec.gaussians(centers[gs], np.sqrt(np.clip(ev, 1e-14, None)), Rotation.from_matrix(vecs).as_quat(), colors)
+
     with ProbeRecording(path, recording_id=f"L3-attempt-{attrs.get('attempt', 0)}") as rec:
-        for name, (v, f) in meshes.items():
-            rec.rec.log(f"{ROBOT}/{name}", rr.Mesh3D(vertex_positions=v, triangle_indices=f,
-                                                     albedo_factor=[235, 235, 240, 255]), static=True)
+        for name, m in meshes.items():
+            rgba = np.rint(255 * np.append(m.rgb, 1.0)).astype(np.uint8)
+            rec.rec.log(f"{ROBOT}/{name}", rr.Mesh3D(vertex_positions=m.vertices_m.astype(np.float32),
+                                                     triangle_indices=m.faces.astype(np.uint32),
+                                                     vertex_normals=m.normals.astype(np.float32), albedo_factor=rgba),
+                        static=True)
+        rec.rec.disable_timeline("frame")  # the approach: sim_time only
+        for j, t in enumerate(a_t):
+            rec.rec.set_time("sim_time", duration=float(t))
+            robot(rec, j)
+            if j == 0:
+                obj(rec, np.asarray(arrays["gaussian_positions_m"]), np.asarray(arrays["gaussian_covariances_m2"]),
+                    arrays["rest_particles_m"])
         frame_k = 0
         for i, t in enumerate(arrays["frame_t_s"]):
             rec.set_time(i, float(t))
-            for name, (p, R) in poses[i].items():
-                if name in meshes:
-                    rec.rec.log(f"{ROBOT}/{name}", rr.Transform3D(translation=p.astype(np.float32),
-                                                                   mat3x3=R.astype(np.float32)))
-            rec.particles(arrays["particles_x_m"][i], radius_m=0.001)
-            centers, cov = frame_gaussians(arrays, i)
-            w, vecs = np.linalg.eigh(cov)
-            vecs = vecs * np.where(np.linalg.det(vecs) < 0, -1.0, 1.0)[:, None, None]
-            from scipy.spatial.transform import Rotation
-            rec.gaussians(centers, np.sqrt(np.clip(w, 1e-14, None)), Rotation.from_matrix(vecs).as_quat(),
-                          arrays["gaussian_colors"])
-            k = int(k_frames[i])
-            for f in range(2):
-                rec.box_collider(f"finger_{f}", arrays["finger_position_m"][k, f], arrays["finger_half_extents_m"],
-                                 arrays["finger_quat_xyzw"][k, f])
+            robot(rec, len(a_t) + i)
+            shown = i % max(1, gaussian_every) == 0 or i == len(k_frames) - 1
+            obj(rec, *(frame_gaussians(arrays, i) if shown else (None, None)), arrays["particles_x_m"][i])
             k_next = int(arrays["frame_control_index"][i + 1]) if i + 1 < len(k_frames) else len(t_c)
-            for kk in range(frame_k, min(k_next, len(t_c))):  # force curves at the control rate
+            for kk in range(frame_k, min(k_next, len(t_c))):  # curves at the control rate
                 rec.rec.set_time("sim_time", duration=float(t_c[kk]))
                 for f in range(2):
                     rec.scalar(f"finger_{f}_force_n", float(np.linalg.norm(arrays["finger_force_n"][kk, f])))
                 rec.scalar("object_com_height_m", float(arrays["object_com_m"][kk, 2]))
+                rec.scalar("grip_opening_m", float(arrays["command_opening_m"][kk, 0]))
             frame_k = max(frame_k, k_next)
         labels = attrs.get("labels", {})
         rec.log("L3 attempt %s (%s): " % (attrs.get("attempt"), attrs.get("role", "")) + ", ".join(
@@ -207,7 +223,9 @@ def rrd_particle_frames(path: Path) -> list[np.ndarray]:
         if table is None:
             raise InputError("this rerun version cannot read chunks back")
         cols = {name: table.column(i) for i, name in enumerate(table.schema.names)}
-        frame_col = next(c for n, c in cols.items() if n.endswith("frame") or n == "frame")
+        frame_col = next((c for n, c in cols.items() if n.endswith("frame") or n == "frame"), None)
+        if frame_col is None:  # the object at rest before the simulation (sim_time only)
+            continue
         pos_col = next(c for n, c in cols.items() if "Points3D:positions" in n or n.endswith("positions"))
         for fr, pos in zip(frame_col.to_pylist(), pos_col.to_pylist()):
             if pos is not None:

@@ -22,12 +22,14 @@ from contracts.physical import PhysicalModel
 from contracts.robot import ActionPlan
 from contracts.sim import SimConfig
 from tasks.manipulation.body import TrialBody
+from tasks.manipulation.data import approach_track
 from tasks.manipulation.frame import SimFrame
 from tasks.manipulation.outcome import TrialTolerances, label_trial
 from tasks.robot import PHASES, ObjectPose, Trajectory, plan_trajectory
 
 PAD_FACES = ("-y", "+y")  # gripping face of the left and right pad boxes in the finger links' axes
 CARRY_PHASES = ("lift", "transport")  # the hand holds the object off the table: the grid lattice moves with it
+HOLD_PHASES = ("closure", "lift", "transport")  # a force-controlled closure keeps its force target through these
 
 
 @dataclass(frozen=True)
@@ -38,7 +40,10 @@ class TrialSettings:
     cpu_threads: int = 1                 # CPU: threads sharing the trial's particles (SimConfig.cpu_threads)
     grid_margin_m: float = 0.02          # free space around the object in the (moving) grid window [m]
     substeps: int = 1                    # numerical revision: dt / substeps, same action durations
-    dt_max_s: float = 2e-4               # cap on the adaptive time step [s]
+    dt_max_s: float = 2e-4               # cap on the adaptive time step [s] at a grid of dt_max_dx_m or finer
+    # a coarser grid (the larger pads of a wide gripper allow one) raises the cap in proportion to dx, so a pad moves
+    # the same fraction of a cell per step; the CFL limit still applies [m]; None: the cap is dt_max_s at any dx
+    dt_max_dx_m: float | None = 0.008
     cfl: float = 0.4
     control_hz: float = 240.0            # pad pose updates and force reports per second
     record_fps: float = 30.0             # particle-state frames per second
@@ -49,6 +54,9 @@ class TrialSettings:
     # a robot aborts a pick whose lift failed: the outcome is decided (not lifted, so not transported or placed), and
     # transport, release, retreat and settle (~half the simulated time) would be spent on a known failure
     stop_when_lift_fails: bool = True
+    # ... when the COM rose less than this share of the `lifted` threshold by the lift's end: a soft body hanging from
+    # the pads lags the hand and may still rise during transport (the label is decided over the whole hold) [-]
+    lift_fail_fraction: float = 0.75
     # after the plan's last phase the hand holds still and the simulation goes on until the object is at rest (the
     # `settled` thresholds of TrialTolerances), at most this long: a ball still rolling at 6 cm/s when a 0.2 s settle
     # phase ends has not been judged, it has been cut off [s]; 0 ends every trial with the plan
@@ -59,6 +67,13 @@ class TrialSettings:
     # resolution. 45: pad faces at 45 degrees to both horizontal grid axes; faces parallel to a node plane (0)
     # under-grip at every resolution tried (tasks/manipulation/BENCHMARKS.md) [deg]
     closing_axis_to_grid_deg: float | None = 45.0
+    # force-controlled closure (ActionPlan.grip_force_limit_n): once the force target is reached, the fingers dwell
+    # this long, then the lift starts (the rest of the planned closure, to the deepest squeeze, is skipped) [s]
+    skip_rest_of_closure: bool = True
+    closure_dwell_s: float = 0.05
+    # while held, the fingers close further when the force falls below this share of the target (a force-controlled
+    # gripper keeps its set force as a soft object relaxes under the pads) [-]
+    reclose_fraction: float = 0.9
 
 
 @dataclass
@@ -135,7 +150,9 @@ def run_trial(body: TrialBody, physical: PhysicalModel, material: Material, plan
     scene = SceneSpec(positions_m=frame.to_sim(x0), volumes_m3=body.volumes_m3, density_kg_per_m3=physical.density_kg_per_m3,
                       material=material, colliders=colliders, ground=True, ground_friction=physical.ground_friction,
                       gravity_m_per_s2=physical.gravity_m_per_s2)
-    cfg = SimConfig(device=s.device, cpu_threads=s.cpu_threads, dx_m=2.0 * body.spacing_m, dt_max_s=s.dt_max_s,
+    dx = 2.0 * body.spacing_m
+    dt_max = s.dt_max_s * (max(1.0, dx / s.dt_max_dx_m) if s.dt_max_dx_m else 1.0)
+    cfg = SimConfig(device=s.device, cpu_threads=s.cpu_threads, dx_m=dx, dt_max_s=dt_max,
                     cfl=s.cfl, substeps=s.substeps,
                     grid_margin_m=s.grid_margin_m, ground_friction=physical.ground_friction,
                     gravity_m_per_s2=physical.gravity_m_per_s2)
@@ -169,13 +186,20 @@ def run_trial(body: TrialBody, physical: PhysicalModel, material: Material, plan
 
     p = particles_world()
     com[0] = w @ p["x"]
-    # force-guarded closure (plan.grip_force_limit_n): once the fingers' mean normal force, extrapolated one control
-    # interval ahead, reaches the limit, the fingers hold that opening until the plan opens them wider (release)
+    # force-controlled closure (plan.grip_force_limit_n, the force target per finger): the fingers close at the plan's
+    # speed until their mean normal force, extrapolated one control interval ahead, reaches the target; they then hold
+    # that opening and the plan goes on with the lift (the rest of the planned closure is skipped after a short dwell:
+    # control_t_s is plan time, control_sim_t_s the simulated time); while the object is held (closure, lift,
+    # transport) they close further at the closing speed whenever the force falls below `reclose` x the target, never
+    # past the plan's deepest squeeze; they open when the plan opens them wider (release)
     guard_n, hold_opening, guard, last_normal = plan.grip_force_limit_n, None, {}, float("nan")
     axis = np.asarray(traj.closing_axis_world, dtype=float)
     n_rest = max(1, int(round(0.1 / dt_c)))  # the `settled` label's COM speed window (tasks.manipulation.outcome)
+    closure_end, skipped, contact_k = traj.phases["closure"][1], 0.0, 1.0
+    sim_t = np.zeros(n_all)
     k = -1
-    for k in range(n_all):
+    while k + 1 < n_all:
+        k += 1
         t0, t1 = t_c[k], t_c[k] + dt_k[k]
         # after the plan: stop at the end of the plan or at a frame once the object is at rest (the label's test)
         if k >= n_int and (k == n_int or k % per_frame == 0):
@@ -189,7 +213,15 @@ def run_trial(body: TrialBody, physical: PhysicalModel, material: Material, plan
             frames_x.append(p["x"].astype(np.float32))
             frames_f.append(frame.tensor_to_world(p["F_sim"]).astype(np.float32))
             frames_k.append(k)
-        m = traj.pad_motion(t0, t1, hold_opening)
+        st = traj.state_at(t0)
+        hold_end = hold_opening
+        if (hold_opening is not None and st.phase in HOLD_PHASES and np.isfinite(last_normal)
+                and last_normal < s.reclose_fraction * float(guard_n)):
+            # per finger: at the closing speed, but no further than the contact stiffness measured at the target
+            # says the force deficit needs (a stiff object is not squeezed by a whole speed x interval at once)
+            step = min(plan.closing_speed_m_per_s * (t1 - t0), (float(guard_n) - last_normal) / contact_k)
+            hold_end = max(traj.closed_width_m, hold_opening - 2.0 * step)
+        m = traj.pad_motion(t0, t1, hold_opening, hold_end)
         # while the hand carries the object, the grid lattice moves with it (tasks.mpm Control.set_grid_velocity):
         # pads crossing lattice planes would release and re-grip node layers and the squeeze would leak away
         carrying = traj.phase_at(t0) in CARRY_PHASES
@@ -200,10 +232,11 @@ def run_trial(body: TrialBody, physical: PhysicalModel, material: Material, plan
                                      rotation_xyzw=frame.quat_to_sim(m.quat_xyzw[0, f]),
                                      linear_velocity_m_per_s=frame.to_sim(m.linear_velocity_m_per_s[0, f]),
                                      angular_velocity_rad_per_s=frame.to_sim(m.angular_velocity_rad_per_s[0, f]))
-        st = traj.state_at(t0)
         cmd_q[k], cmd_qdot[k] = st.q, st.qdot
         held = hold_opening is not None and hold_opening > st.finger_opening_m
-        cmd_open[k] = (hold_opening, 0.0) if held else (st.finger_opening_m, st.finger_opening_rate_m_per_s)
+        cmd_open[k] = ((hold_opening, (hold_end - hold_opening) / (t1 - t0)) if held  # type: ignore[operator]
+                       else (st.finger_opening_m, st.finger_opening_rate_m_per_s))
+        sim_t[k] = sim.time_s + t_start
         pad_pos[k], pad_quat[k], pad_vel[k] = m.position_m[0], m.quat_xyzw[0], m.linear_velocity_m_per_s[0]
         phase[k] = PHASES.index(st.phase)
         report = sim.advance(t1 - t0)
@@ -212,12 +245,18 @@ def run_trial(body: TrialBody, physical: PhysicalModel, material: Material, plan
         ground[k] = frame.to_world(np.asarray(report.ground_force_n[0], dtype=float))
         p = particles_world()
         com[k + 1] = w @ p["x"]
-        if guard_n is not None and hold_opening is None and st.phase == "closure":
+        hold_opening = hold_end
+        if guard_n is not None and st.phase in HOLD_PHASES:
             normal = 0.5 * float(-(force[k, 0] @ axis) + force[k, 1] @ axis)  # mean per finger over the interval
             rise = max(0.0, normal - last_normal) if np.isfinite(last_normal) else 0.0
-            if np.isfinite(normal) and normal + rise >= guard_n:  # about to reach the limit by the next interval
-                hold_opening = traj.opening_at(t1)
+            if hold_opening is None and st.phase == "closure" and np.isfinite(normal) and normal + rise >= guard_n:
+                hold_opening = traj.opening_at(t1)  # about to reach the target by the next interval
                 guard = {"stopped_at_s": float(t1), "opening_m": hold_opening, "normal_force_n": normal}
+                # the contact's stiffness per finger as measured: force over squeeze (at least 1 N/m)
+                contact_k = max(1.0, normal / max(1e-6, 0.5 * (traj.contact_width_m - hold_opening)))
+                skipped = max(0.0, closure_end - s.closure_dwell_s - t1) if s.skip_rest_of_closure else 0.0
+                if skipped > 0.0:  # the lift starts after the dwell, not at the planned (deepest) closure's end
+                    t_c, dt_k, n_int, n_all = _replan_times(t_c, dt_k, k, t1 + skipped, t_end, dt_c, n_ext)
             last_normal = normal
         if not report.health.ok:
             healthy = False
@@ -226,10 +265,13 @@ def run_trial(body: TrialBody, physical: PhysicalModel, material: Material, plan
             break
         if s.stop_when_lift_fails and t1 >= lift_end - 1e-9 > t0:
             rise = float(np.max(com[k_close:k + 2, 2]) - com[k_close, 2])
-            if rise < lift_needed:
+            if rise < s.lift_fail_fraction * lift_needed:
                 stopped = f"lift failed: the object rose {rise:.4f} m of the {lift_needed:.4f} m needed"
                 break
     n_done = k + 1
+    if guard:
+        guard["min_opening_m"] = float(np.min(cmd_open[:n_done, 0]))
+        guard["closure_skipped_s"] = skipped
     frames_t.append(sim.time_s + t_start)
     frames_x.append(p["x"].astype(np.float32))
     frames_f.append(frame.tensor_to_world(p["F_sim"]).astype(np.float32))
@@ -241,7 +283,7 @@ def run_trial(body: TrialBody, physical: PhysicalModel, material: Material, plan
                                               com[:n_done + 1])
     ground = ground[:n_done]
     arrays = {
-        "control_t_s": t_c, "control_dt_s": dt_k[:n_done],
+        "control_t_s": t_c, "control_dt_s": dt_k[:n_done], "control_sim_t_s": sim_t[:n_done],
         "command_q_rad": cmd_q, "command_qdot_rad_per_s": cmd_qdot, "command_opening_m": cmd_open,
         "phase": phase, "finger_position_m": pad_pos, "finger_quat_xyzw": pad_quat,
         "finger_velocity_m_per_s": pad_vel, "finger_force_n": force, "ground_force_n": ground,
@@ -251,7 +293,7 @@ def run_trial(body: TrialBody, physical: PhysicalModel, material: Material, plan
         "finger_half_extents_m": np.asarray(traj.pad_half_extents_m, dtype=np.float64),
         "closing_axis_world": np.asarray(traj.closing_axis_world, dtype=np.float64),
         "rest_particles_m": x0.astype(np.float32), "particle_volumes_m3": np.asarray(body.volumes_m3, dtype=np.float64),
-        **world_gaussians(body, pose),
+        **world_gaussians(body, pose), **approach_track(traj, t_start, s.record_fps),
     }
     labels = label_trial(arrays, traj, plan, physical, tol, n_done, healthy)
     wall = time.perf_counter() - wall0  # the whole trial: simulation, recording and labelling
@@ -264,8 +306,23 @@ def run_trial(body: TrialBody, physical: PhysicalModel, material: Material, plan
             "grip_guard": guard, "sim_frame_yaw_deg": math.degrees(frame.yaw_rad)}
     labels.update({"particles": float(len(x0)), "steps": float(steps), "stopped_after_failed_lift": float(bool(stopped)),
                    "grip_guard_stopped": float(bool(guard)),
-                   "closed_width_m": float(guard["opening_m"]) if guard else float(traj.closed_width_m)})  # wall time stays in info, not in the data
+                   "closed_width_m": float(guard["min_opening_m"]) if guard else float(traj.closed_width_m),
+                   "squeeze_per_finger_m": 0.5 * (traj.contact_width_m - (float(guard["min_opening_m"]) if guard
+                                                                         else float(traj.closed_width_m))),
+                   "grip_force_target_n": float(guard_n) if guard_n is not None else float("nan")})
+    # wall time stays in info, not in the data
     return TrialResult(labels, arrays, info)
+
+
+def _replan_times(t_c: np.ndarray, dt_k: np.ndarray, k: int, t_next: float, t_end: float, dt_c: float, n_ext: int
+                  ) -> tuple[np.ndarray, np.ndarray, int, int]:
+    """Control intervals after interval k when the plan goes on at plan time t_next [s] (the closure's skipped
+    rest): (start times, durations, intervals to the plan's end, intervals in all)."""
+    m = int(math.ceil(max(0.0, t_end - t_next) / dt_c - 1e-9))
+    plan_t = t_next + dt_c * np.arange(m)
+    t_new = np.concatenate([t_c[:k + 1], plan_t, t_end + dt_c * np.arange(n_ext)])
+    dt_new = np.concatenate([dt_k[:k + 1], np.minimum(plan_t + dt_c, t_end) - plan_t, np.full(n_ext, dt_c)])
+    return t_new, dt_new, k + 1 + m, k + 1 + m + n_ext
 
 
 def plan_or_error(plan: ActionPlan, body: TrialBody, settings: TrialSettings | None = None

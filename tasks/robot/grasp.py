@@ -1,13 +1,16 @@
-"""Antipodal grasp selection for the Panda gripper, without learned weights, in the asset frame.
+"""Antipodal grasp selection for a parallel gripper on the Panda, without learned weights, in the asset frame.
 
 Inputs are numpy arrays in the asset frame (z up, the table is z = 0, metres): surface points, their outward unit
 normals and the centre of mass. Closing lines are sampled from surface points along the inward normal and a few
-directions around it; each line's two outermost contacts give the width between flat pads (within the pads'
-footprint) and the two contact normals. A candidate must fit the 0.08 m opening (with a clearance per finger), have
-both normals inside the friction cone (angle to the closing line <= atan(mu)), keep the fingertips above the table,
-and let the open hand come down along the approach axis without any object point inside the palm or a finger
-(points against boxes from the collision meshes; tested best-first until the list is full). Ranking prefers
-top-down approaches and centres near the centre of mass, then well-aligned normals. Deterministic for a seed.
+directions around it, so lines cross the whole body, not only its narrow parts; each line's two outermost contacts
+give the width between flat pads (within the pads' footprint) and the two contact normals. A candidate must fit the
+gripper's stroke (``GraspSettings.gripper``, contracts/grippers; with a clearance per finger), have both normals
+inside the friction cone (angle to the closing line <= atan(mu)), keep the fingertips above the table, and let the
+open hand come down along the approach axis without any object point inside the palm or a finger (points against
+the gripper's collision boxes; tested best-first until the list is full). A soft object may be wider than the stroke
+by ``2 * soft_indent_m``: the open fingers press it by up to that much per finger as they come down (the squeeze it
+takes before the force target, see tasks.robot.squeeze). Ranking prefers top-down approaches and centres near the
+centre of mass, then well-aligned normals and no pre-press. Deterministic for a seed.
 """
 
 from __future__ import annotations
@@ -18,14 +21,14 @@ import numpy as np
 from scipy.spatial import cKDTree
 
 from contracts.errors import SimulationError
-from contracts.robot import GraspCandidate
-from tasks.robot.panda import MAX_OPENING_M, hand_boxes_in_hand_frame, pad_geometry
+from contracts.robot import DEFAULT_GRIPPER, GraspCandidate
+from tasks.robot.gripper import Gripper, gripper
 
 DOWN = np.array([0.0, 0.0, -1.0])
 
 
 class NoGraspError(SimulationError):
-    """The object offers no grasp the Panda gripper can take (too wide, no friction-cone pair, blocked)."""
+    """The object offers no grasp the gripper can take (too wide, no friction-cone pair, blocked)."""
 
 
 @dataclass(frozen=True)
@@ -35,7 +38,10 @@ class GraspSettings:
     n_points: int = 300
     directions_per_point: int = 3
     direction_spread_deg: float = 20.0
-    max_opening_m: float = MAX_OPENING_M
+    gripper: str = DEFAULT_GRIPPER       # contracts/grippers/<name>.yaml
+    max_opening_m: float | None = None  # None: the gripper's stroke
+    soft_indent_m: float = 0.0          # how far the open fingers may press a soft object as they come down [m]
+    max_width_m: float | None = None    # widest grasp taken at all [m] (a smaller gripper: its stroke)
     min_clearance_m: float = 0.002
     open_clearance_m: float = 0.01
     max_tilt_deg: float = 30.0
@@ -100,20 +106,21 @@ def _mean_normal(normals: np.ndarray, mask: np.ndarray) -> np.ndarray:
     return n / max(np.linalg.norm(n), 1e-12)
 
 
-def _hand_frame(center: np.ndarray, u: np.ndarray, a: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Hand origin [m] and rotation (columns: x, y = -u, z = a) for pads centred at ``center``."""
-    y = -u
-    rot = np.column_stack([np.cross(y, a), y, a])
-    return center - a * pad_geometry().depth_in_hand_m, rot
+def _opening_limit(s: GraspSettings, g: Gripper) -> float:
+    """Largest opening the sampler uses [m]."""
+    return g.stroke_m if s.max_opening_m is None else min(s.max_opening_m, g.stroke_m)
 
 
 def _hand_hits(points: np.ndarray, center: np.ndarray, u: np.ndarray, a: np.ndarray, opening: float,
-               s: GraspSettings) -> bool:
-    """Whether any object point is inside the open hand swept from the pre-grasp down to the grasp."""
-    origin, rot = _hand_frame(center, u, a)
-    local = (points - origin) @ rot
+               s: GraspSettings, g: Gripper) -> bool:
+    """Whether any object point is inside the open hand swept from the pre-grasp down to the grasp (the fingers
+    tested ``soft_indent_m`` further out: a soft object may be pressed that far)."""
+    rot = np.column_stack([np.cross(-u, a), -u, a])  # TCP frame: x, y = -u (towards finger 0), z = a
+    local = (points - center) @ rot
     tol = s.collision_tolerance_m
-    for lo, hi in hand_boxes_in_hand_frame(round(opening, 6)):
+    palm, *fingers = g.boxes(opening)
+    fingers = list(g.boxes(opening + 2.0 * s.soft_indent_m))[1:] if s.soft_indent_m > 0 else fingers
+    for lo, hi in (palm, *fingers):
         lo_swept = lo - np.array([0.0, 0.0, s.approach_distance_m])
         inside = np.all((local > lo_swept + tol) & (local < hi - tol), axis=1)
         if inside.any():
@@ -121,12 +128,14 @@ def _hand_hits(points: np.ndarray, center: np.ndarray, u: np.ndarray, a: np.ndar
     return False
 
 
-def _lowest_finger_point(center: np.ndarray, u: np.ndarray, a: np.ndarray, width: float) -> float:
-    """Lowest z [m] of the fingertips (pad boxes extended to the tip) at the grasp."""
-    pad = pad_geometry()
+def _lowest_finger_point(center: np.ndarray, u: np.ndarray, a: np.ndarray, width: float,
+                         g: Gripper | None = None) -> float:
+    """Lowest z [m] of the fingertips (pad boxes extended to the tip) at the grasp (default: the Franka Hand)."""
+    g = g or gripper()
+    half = g.pad_half_extents_m
     x = np.cross(-u, a)
-    reach = abs(a[2]) * pad.tip_beyond_center_m + abs(x[2]) * pad.half_extents_m[0]
-    reach += abs(u[2]) * (width / 2.0 + 2.0 * pad.half_extents_m[1])
+    reach = abs(a[2]) * g.tip_beyond_center_m + abs(x[2]) * half[0]
+    reach += abs(u[2]) * (width / 2.0 + 2.0 * half[1])
     return float(center[2] - reach)
 
 
@@ -142,7 +151,8 @@ class _Line:
 
 
 def _evaluate_line(p0: np.ndarray, u: np.ndarray, pts: np.ndarray, nrm: np.ndarray, com: np.ndarray, mu: float,
-                   tube: float, s: GraspSettings, counts: dict[str, int], widths: list[float]) -> _Line | None:
+                   tube: float, s: GraspSettings, g: Gripper, counts: dict[str, int], widths: list[float]
+                   ) -> _Line | None:
     """Tilt, friction-cone, width and table tests of the closing line p0 + t u; counts each pass."""
     counts["lines"] += 1
     a = _approach_for(u)
@@ -160,24 +170,27 @@ def _evaluate_line(p0: np.ndarray, u: np.ndarray, pts: np.ndarray, nrm: np.ndarr
     if ang > cone:
         return None
     counts["cone_ok"] += 1
-    pad = pad_geometry()
-    in_pad = (np.abs(d @ np.cross(u, a)) <= pad.half_extents_m[0]) & (np.abs(d @ a) <= pad.half_extents_m[2])
+    half = g.pad_half_extents_m
+    in_pad = (np.abs(d @ np.cross(u, a)) <= half[0]) & (np.abs(d @ a) <= half[2])
     lo, hi = along[in_pad].min(), along[in_pad].max()  # the flat pads touch the outermost points they cover
     width = float(hi - lo)
     widths.append(width)
-    if width > s.max_opening_m - 2.0 * s.min_clearance_m or width <= 0.0:
+    usable = _opening_limit(s, g) - 2.0 * s.min_clearance_m
+    if width > usable + 2.0 * s.soft_indent_m or width > (s.max_width_m or np.inf) or width <= 0.0:
         return None
     counts["width_ok"] += 1
     center = p0 + u * 0.5 * (lo + hi)
-    if _lowest_finger_point(center, u, a, width) < s.table_margin_m:
+    if _lowest_finger_point(center, u, a, width, g) < s.table_margin_m:
         return None
     counts["table_ok"] += 1
+    press = max(0.0, width - usable) / (2.0 * s.soft_indent_m) if s.soft_indent_m > 0 else 0.0
     score = -(tilt / np.radians(s.max_tilt_deg) + np.linalg.norm(center - com) / s.com_scale_m
-              + 0.5 * ang / max(cone, 1e-9))
+              + 0.5 * ang / max(cone, 1e-9) + press)
     return _Line(float(score), center, u, a, width)
 
 
-def _rank(lines: list[_Line], pts: np.ndarray, s: GraspSettings, counts: dict[str, int]) -> list[_Line]:
+def _rank(lines: list[_Line], pts: np.ndarray, s: GraspSettings, g: Gripper, counts: dict[str, int]
+          ) -> list[_Line]:
     """Best first, near-duplicates dropped, the hand collision test run until the list is full."""
     lines = sorted(lines, key=lambda ln: -ln.score)  # stable: ties keep sampling order (deterministic)
     cos_dedup = np.cos(np.radians(s.dedup_angle_deg))
@@ -187,7 +200,8 @@ def _rank(lines: list[_Line], pts: np.ndarray, s: GraspSettings, counts: dict[st
                    for c in chosen):
             continue
         counts["collision_checked"] += 1
-        if _hand_hits(pts, ln.center, ln.u, ln.a, min(s.max_opening_m, ln.width + 2.0 * s.open_clearance_m), s):
+        if _hand_hits(pts, ln.center, ln.u, ln.a, min(_opening_limit(s, g), ln.width + 2.0 * s.open_clearance_m),
+                      s, g):
             continue
         counts["collision_free"] += 1
         chosen.append(ln)
@@ -200,6 +214,7 @@ def select_grasps(points_m: np.ndarray, normals: np.ndarray, center_of_mass_m: n
                   seed: int = 0, settings: GraspSettings | None = None) -> GraspSelection:
     """Ranked antipodal grasps (asset frame) for surface points [m] with outward normals and gripper friction mu."""
     s = settings or GraspSettings()
+    g = gripper(s.gripper)
     pts = np.asarray(points_m, dtype=float)
     nrm = np.asarray(normals, dtype=float)
     if pts.ndim != 2 or pts.shape[1] != 3 or nrm.shape != pts.shape or len(pts) < 4:
@@ -219,26 +234,27 @@ def select_grasps(points_m: np.ndarray, normals: np.ndarray, center_of_mass_m: n
                             "collision_free"), 0)
     widths: list[float] = []
     lines = [ln for p0, line_dirs in zip(pts[idx], dirs) for u in line_dirs
-             if (ln := _evaluate_line(p0, u, pts, nrm, com, friction, tube, s, counts, widths)) is not None]
-    chosen = _rank(lines, pts, s, counts)
+             if (ln := _evaluate_line(p0, u, pts, nrm, com, friction, tube, s, g, counts, widths)) is not None]
+    chosen = _rank(lines, pts, s, g, counts)
     candidates = [GraspCandidate(center_m=tuple(map(float, ln.center)), closing_axis=tuple(map(float, ln.u)),
                                  approach_axis=tuple(map(float, ln.a)), width_m=ln.width, friction_cone_ok=True,
                                  score=ln.score, rank=r) for r, ln in enumerate(chosen)]
     narrowest = min(widths, default=float("inf"))
-    usable = s.max_opening_m - 2.0 * s.min_clearance_m
-    reason = "" if candidates else _no_grasp_reason(counts, narrowest, usable, friction)
+    usable = _opening_limit(s, g) - 2.0 * s.min_clearance_m + 2.0 * s.soft_indent_m
+    reason = "" if candidates else _no_grasp_reason(counts, narrowest, usable, friction, g.name)
     return GraspSelection(candidates, counts, narrowest, reason)
 
 
-def _no_grasp_reason(counts: dict[str, int], narrowest: float, usable: float, friction: float) -> str:
+def _no_grasp_reason(counts: dict[str, int], narrowest: float, usable: float, friction: float, name: str) -> str:
     """One line saying which test removed the last sampled closing line."""
     if counts["tilt_ok"] == 0:
         why = "no closing line is close enough to horizontal for an approach from above"
     elif counts["cone_ok"] == 0:
         why = f"no contact pair has both normals inside the friction cone of mu = {friction:g}"
     elif counts["width_ok"] == 0:
-        why = (f"the object is wider than the gripper's usable opening {usable * 1000:.0f} mm along every sampled "
-               f"closing line with both contacts in the friction cone (narrowest {narrowest * 1000:.0f} mm)")
+        why = (f"the object is wider than the gripper's usable opening {usable * 1000:.0f} mm ({name}) along "
+               f"every sampled closing line with both contacts in the friction cone "
+               f"(narrowest {narrowest * 1000:.0f} mm)")
     elif counts["table_ok"] == 0:
         why = "every pair that fits sits too low: the fingertips would hit the table"
     else:

@@ -5,6 +5,11 @@ stands on the table at ``base_position_m`` (default (-0.5, 0, 0), next to an obj
 frame is link 11 ``panda_grasptarget`` (0.105 m past the hand): its z axis is the approach direction, its y axis points
 from the grasp centre to the left finger (joint 9). pybullet ignores ``<mimic>``: the two finger joints are coupled
 here, each at half the opening. Lengths in metres, angles in radians unless a name says ``_deg``.
+
+Another gripper (contracts/grippers/*.yaml, ``Panda(gripper=name)``) is mounted on the flange (link 7,
+``panda_link8``): the end-effector frame is then its TCP (the pad-face midpoint, ``tcp_offset_m`` along the flange z,
+turned by ``tcp_yaw_deg``), its pads sit at +-(opening / 2) along the TCP y axis, and its body and fingers are the
+record's boxes; the URDF's own hand links are then ignored (not in IK, pads or the table test).
 """
 
 from __future__ import annotations
@@ -19,12 +24,16 @@ import pybullet as pb
 import pybullet_data
 
 from contracts.errors import SimulationError
+from contracts.robot import DEFAULT_GRIPPER
 
 URDF = "franka_panda/panda.urdf"
 ARM_JOINTS = (0, 1, 2, 3, 4, 5, 6)
 FINGER_JOINTS = (9, 10)
 HAND_LINK = 8
 EE_LINK = 11
+FLANGE_LINK = 7  # panda_link8, where a gripper without a URDF is mounted
+ARM_LINKS_WITH_COLLISION = tuple(range(1, 7))
+URDF_HAND_LINKS = (8, 9, 10)
 FINGER_LINKS = (9, 10)
 MAX_OPENING_M = 0.08
 DEFAULT_BASE_POSITION_M = (-0.5, 0.0, 0.0)
@@ -178,12 +187,24 @@ class Panda:
     """A fixed-base Panda in a private DIRECT client: coupled fingers, forward and inverse kinematics."""
 
     def __init__(self, base_position_m: Sequence[float] = DEFAULT_BASE_POSITION_M, base_yaw_rad: float = 0.0,
-                 pad_half_thickness_m: float = 0.004) -> None:
+                 pad_half_thickness_m: float = 0.004, gripper: str = DEFAULT_GRIPPER) -> None:
         """Load the URDF with its base at base_position_m [m] (world = table frame), turned by base_yaw_rad about z.
 
         pad_half_thickness_m: half thickness of the pad boxes [m]; they grow outward from the gripping face, so a
         thicker pad (e.g. >= the MPM grid spacing) changes no contact geometry, only what a coarse grid resolves.
+        gripper: the gripper on the flange (contracts/grippers/<name>.yaml).
         """
+        from tasks.robot.gripper import gripper as load
+
+        self.gripper = load(gripper)
+        spec = self.gripper.spec
+        self.ee_link = EE_LINK if spec.urdf_hand else FLANGE_LINK
+        yaw = np.radians(spec.tcp_yaw_deg)
+        # the TCP in the end-effector link's frame: the URDF grasp target itself, or the record's offset on the flange
+        self._tcp_pos = np.zeros(3) if spec.urdf_hand else np.array([0.0, 0.0, spec.tcp_offset_m])
+        self._tcp_rot = np.eye(3) if spec.urdf_hand else np.array(
+            [[np.cos(yaw), -np.sin(yaw), 0.0], [np.sin(yaw), np.cos(yaw), 0.0], [0.0, 0.0, 1.0]])
+        self._opening = (spec.stroke_m, 0.0)  # a data gripper's opening [m] and its rate [m/s]
         self.cid = pb.connect(pb.DIRECT)
         self.base_position_m = np.asarray(base_position_m, dtype=float)
         orn = pb.getQuaternionFromEuler((0.0, 0.0, base_yaw_rad))
@@ -193,10 +214,16 @@ class Panda:
         self.lower = np.array([i[8] for i in info])
         self.upper = np.array([i[9] for i in info])
         self.velocity_limits = np.array([i[11] for i in info])
-        self.pads = pad_geometry(float(pad_half_thickness_m))
+        if spec.urdf_hand:
+            self.pads = pad_geometry(float(pad_half_thickness_m))
+        else:  # the pads at the TCP, +-(opening / 2) along its y axis, growing outward from their faces
+            hx, _, hz = self.gripper.pad_half_extents_m
+            ht = float(pad_half_thickness_m)
+            self.pads = PadGeometry((0.0, ht, 0.0), (0.0, -ht, 0.0), (hx, ht, hz), 0.0,
+                                    self.gripper.tip_beyond_center_m)
         self._movable = [j for j in range(pb.getNumJoints(self.body, physicsClientId=self.cid))
                          if pb.getJointInfo(self.body, j, physicsClientId=self.cid)[2] != pb.JOINT_FIXED]
-        self.set_joints(np.asarray(READY_Q), MAX_OPENING_M)
+        self.set_joints(np.asarray(READY_Q), spec.stroke_m)
 
     def close(self) -> None:
         """Disconnect the private pybullet client."""
@@ -217,6 +244,7 @@ class Panda:
         qdot = np.zeros(7) if qdot is None else qdot
         for j, qj, vj in zip(ARM_JOINTS, q, qdot):
             pb.resetJointState(self.body, j, float(qj), float(vj), physicsClientId=self.cid)
+        self._opening = (float(np.clip(opening_m, 0.0, self.gripper.stroke_m)), float(opening_rate_m_per_s))
         half = float(np.clip(opening_m, 0.0, MAX_OPENING_M)) / 2.0
         for j in FINGER_JOINTS:  # the mimic coupling pybullet ignores
             pb.resetJointState(self.body, j, half, opening_rate_m_per_s / 2.0, physicsClientId=self.cid)
@@ -230,12 +258,24 @@ class Panda:
         s = pb.getLinkState(self.body, link, computeForwardKinematics=1, physicsClientId=self.cid)
         return np.asarray(s[4]), _quat_to_matrix(s[5])
 
+    def opening(self) -> float:
+        """Current finger opening [m] (the gap between the pad faces)."""
+        if self.gripper.spec.urdf_hand:
+            return float(sum(self.finger_positions()))
+        return self._opening[0]
+
     def ee_pose(self, q: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
-        """Forward kinematics of the end-effector frame (link 11) [m], optionally at arm angles q [rad]."""
+        """Forward kinematics of the end-effector (TCP) frame [m], optionally at arm angles q [rad]."""
         if q is not None:
             for j, qj in zip(ARM_JOINTS, q):
                 pb.resetJointState(self.body, j, float(qj), physicsClientId=self.cid)
-        return self.link_pose(EE_LINK)
+        p, r = self.link_pose(self.ee_link)
+        return p + r @ self._tcp_pos, r @ self._tcp_rot
+
+    def _link_target(self, position: np.ndarray, rotation: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Pose of the end-effector link [m] that puts the TCP at a pose."""
+        r_link = rotation @ self._tcp_rot.T
+        return position - r_link @ self._tcp_pos, r_link
 
     def pad_states(self) -> list[tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]]:
         """Per finger (left, right): pad box centre [m], rotation, linear [m/s] and angular [rad/s] velocity."""
@@ -243,6 +283,8 @@ class Panda:
 
     def pad_states_with_quat(self) -> list[tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]]:
         """Per finger (left, right): pad centre [m], quaternion (x, y, z, w), rotation, velocities [m/s, rad/s]."""
+        if not self.gripper.spec.urdf_hand:
+            return self._data_pad_states()
         out = []
         states = pb.getLinkStates(self.body, list(FINGER_LINKS), computeLinkVelocity=1, computeForwardKinematics=1,
                                   physicsClientId=self.cid)
@@ -256,6 +298,39 @@ class Panda:
                                              w[0] * r[1] - w[1] * r[0]])
             out.append((pos, np.asarray(s[5]), rot, v, w))
         return out
+
+    def _data_pad_states(self) -> list[tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]]:
+        """Pads of a gripper without a URDF: at the TCP +-(opening / 2 + half thickness) along its y axis, turned as
+        the TCP; velocities from the flange link's and the opening rate."""
+        s = pb.getLinkState(self.body, self.ee_link, computeLinkVelocity=1, computeForwardKinematics=1,
+                            physicsClientId=self.cid)
+        r_link = _quat_to_matrix(s[5])
+        tcp, rot = np.asarray(s[4]) + r_link @ self._tcp_pos, r_link @ self._tcp_rot
+        quat = matrix_to_quat(rot)
+        w = np.asarray(s[7])
+        opening, rate = self._opening
+        out = []
+        for sign in (1.0, -1.0):  # finger 0 (left) on +y
+            pos = tcp + rot @ np.array([0.0, sign * (opening / 2.0 + self.pads.half_extents_m[1]), 0.0])
+            v = np.asarray(s[6]) + np.cross(w, pos - np.asarray(s[0])) + rot @ np.array([0.0, sign * rate / 2.0, 0.0])
+            out.append((pos, quat, rot, v, w))
+        return out
+
+    def gripper_boxes_world(self) -> list[tuple[np.ndarray, np.ndarray, np.ndarray]]:
+        """The gripper's collision boxes (palm, finger 0, finger 1) at the current state: centre [m], rotation (columns
+        = box axes) and half extents [m] in the world (what a renderer draws for a gripper without a URDF mesh)."""
+        p, r = self.ee_pose()
+        return [(p + r @ (0.5 * (lo + hi)), r, 0.5 * (hi - lo)) for lo, hi in self.gripper.boxes(self.opening())]
+
+    def lowest_point(self) -> float:
+        """Lowest point [m] of the robot below the base (arm links and gripper) at the current joint state."""
+        if self.gripper.spec.urdf_hand:
+            return float(self.link_heights((*ARM_LINKS_WITH_COLLISION, FLANGE_LINK, *URDF_HAND_LINKS)).min())
+        from tasks.robot.gripper import lowest_box_point
+
+        p, r = self.ee_pose()
+        boxes = self.gripper.boxes(self.opening())
+        return min(float(self.link_heights(ARM_LINKS_WITH_COLLISION).min()), lowest_box_point(boxes, p, r))
 
     def link_heights(self, links: Sequence[int]) -> np.ndarray:
         """Lowest point [m] of each link's collision geometry at the current joint state.
@@ -299,7 +374,7 @@ class Panda:
     # --- inverse kinematics -------------------------------------------------------------------------------------
     def ee_target_for_grasp(self, center_m: Sequence[float], rotation: np.ndarray) -> np.ndarray:
         """End-effector position [m] that puts the pad centres' midpoint at a grasp centre [m]."""
-        offset = 0.105 - self.pads.depth_in_hand_m
+        offset = self.gripper.tcp_beyond_pad_center_m
         # the pads sit symmetrically in x and y of the hand, so only the depth along the approach axis differs
         return np.asarray(center_m, dtype=float) + rotation @ np.array([0.0, 0.0, offset])
 
@@ -308,8 +383,8 @@ class Panda:
         full = np.zeros(len(self._movable))
         full[:7] = q
         full[7:] = self.finger_positions()
-        jl, ja = pb.calculateJacobian(self.body, EE_LINK, [0.0, 0.0, 0.0], full.tolist(), [0.0] * len(full),
-                                      [0.0] * len(full), physicsClientId=self.cid)
+        jl, ja = pb.calculateJacobian(self.body, self.ee_link, self._tcp_pos.tolist(), full.tolist(),
+                                      [0.0] * len(full), [0.0] * len(full), physicsClientId=self.cid)
         return np.vstack([np.asarray(jl)[:, :7], np.asarray(ja)[:, :7]])
 
     def _errors(self, q: np.ndarray, position: np.ndarray, rotation: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -351,15 +426,17 @@ class Panda:
         rest = np.asarray(READY_Q if rest is None else rest, dtype=float)
         seeds = [np.asarray(seed, dtype=float)] if seed is not None else []
         seeds += [np.asarray(READY_Q), *(np.asarray(READY_Q) + d for d in _restart_offsets())]
-        quat = matrix_to_quat(rotation)
+        link_position, link_rotation = self._link_target(position, rotation)
+        quat = matrix_to_quat(link_rotation)
         best: IKSolution | None = None
         fingers = self.finger_positions()
+        opening = self.opening()
         for s in seeds:
-            self.set_joints(np.clip(s, self.lower, self.upper), sum(fingers))
+            self.set_joints(np.clip(s, self.lower, self.upper), opening)
             lower = [*self.lower, 0.0, 0.0]
             upper = [*self.upper, 0.04, 0.04]
             q0 = pb.calculateInverseKinematics(
-                self.body, EE_LINK, position.tolist(), quat.tolist(), lowerLimits=lower, upperLimits=upper,
+                self.body, self.ee_link, link_position.tolist(), quat.tolist(), lowerLimits=lower, upperLimits=upper,
                 jointRanges=[u - lo for u, lo in zip(upper, lower)], restPoses=[*rest, *fingers],
                 maxNumIterations=100, residualThreshold=1e-6, physicsClientId=self.cid)
             q = np.clip(np.asarray(q0[:7]), self.lower, self.upper)
@@ -370,10 +447,10 @@ class Panda:
                                 < best.position_error_m + 0.1 * best.rotation_error_rad):
                 best = sol
             if sol.position_error_m <= POSITION_TOL_M and sol.rotation_error_rad <= ROTATION_TOL_RAD:
-                self.set_joints(sol.q, sum(fingers))
+                self.set_joints(sol.q, opening)
                 return sol
         assert best is not None
-        self.set_joints(best.q, sum(fingers))
+        self.set_joints(best.q, opening)
         raise UnreachableError(
             f"Panda cannot reach end-effector position {np.round(position, 4).tolist()} m with the requested "
             f"orientation (base at {self.base_position_m.tolist()} m): best residual "

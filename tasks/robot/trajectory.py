@@ -25,11 +25,10 @@ from scipy.interpolate import CubicSpline
 
 from contracts.errors import SimulationError
 from contracts.robot import ActionPlan
-from tasks.robot.panda import MAX_OPENING_M, READY_Q, IKSolution, Panda, UnreachableError, grasp_rotation
+from tasks.robot.panda import READY_Q, IKSolution, Panda, UnreachableError, grasp_rotation
 from tasks.robot.timing import min_jerk, ramped_travel, ramped_travel_time
 
 PHASES = ("approach", "closure", "lift", "transport", "release", "retreat", "settle")
-ROBOT_LINKS_ABOVE_TABLE = tuple(range(1, 11))
 CARTESIAN_STEP_M = 0.004
 MAX_JOINT_STEP_RAD = 0.15
 SPEED_LIMIT_FRACTION = 0.9
@@ -279,20 +278,23 @@ class Trajectory:
         return PadArrays(pads.t_s, pos, pads.quat_xyzw, pads.linear_velocity_m_per_s,
                          pads.angular_velocity_rad_per_s, pads.half_extents_m)
 
-    def pad_motion(self, t0: float, t1: float, min_opening_m: float | None = None) -> PadArrays:
+    def pad_motion(self, t0: float, t1: float, min_opening_m: float | None = None,
+                   min_opening_end_m: float | None = None) -> PadArrays:
         """Pads as constant-velocity kinematic colliders over [t0, t1] [s]: pose at t0 and the mean linear and angular
         (world frame) velocities that carry it exactly onto the planned pose at t1, ``q(t) = exp(w (t - t0)) q0``.
 
         Arrays have N = 1: shapes (1, 2, ...). Feed them to the MPM's per-step collider control to avoid the drift
         of extrapolating the instantaneous velocity. ``min_opening_m`` holds the fingers at least that far apart (a
         force-guarded closure that stopped early: the hand follows the plan, the fingers stay where they stopped
-        until the plan opens them wider).
+        until the plan opens them wider). ``min_opening_end_m``: that floor at t1 when it differs from the one at t0
+        (a force-controlled closure that closes further while it holds).
         """
         if not t1 > t0:
             raise ValueError("pad_motion needs t1 > t0")
         a, b = self.pads_at(np.array([t0, t1]))._split()
         if min_opening_m is not None:
-            a, b = self._held_open(a, min_opening_m), self._held_open(b, min_opening_m)
+            end = min_opening_m if min_opening_end_m is None else min_opening_end_m
+            a, b = self._held_open(a, min_opening_m), self._held_open(b, end)
         dt = t1 - t0
         dq = quat_mul(b.quat_xyzw, a.quat_xyzw * np.array([-1.0, -1.0, -1.0, 1.0]))
         dq *= np.where(dq[..., 3:4] < 0.0, -1.0, 1.0)
@@ -379,13 +381,17 @@ def plan_trajectory(plan: ActionPlan, object_pose: ObjectPose | None = None, obj
     object_pose: where the asset frame is on the table (default: origin, ``plan.initial_yaw_deg``).
     object_height_m: top of the asset [m]; the pre-grasp puts the fingertips that far above it plus
     approach_clearance_m (without it, the pre-grasp is 0.10 m back along the approach axis).
-    open_clearance_m: gap per finger [m] between a pad and the object at the pre-grasp (capped by the 0.08 m opening).
+    open_clearance_m: gap per finger [m] between a pad and the object at the pre-grasp (capped by the gripper's
+    stroke: a soft object wider than the stroke is pressed by the open fingers as they come down).
+    The plan's gripper (``plan.gripper``) is mounted on the Panda; a given panda must carry the same one.
     pad_half_thickness_m: half thickness of the pad boxes [m] (outward from the gripping face), when no panda is given.
     table_dt_s: spacing of the dense pad table [s].
     """
     pose = object_pose or ObjectPose((0.0, 0.0), plan.initial_yaw_deg)
     own = panda is None
-    panda = panda or Panda(pad_half_thickness_m=pad_half_thickness_m)
+    panda = panda or Panda(pad_half_thickness_m=pad_half_thickness_m, gripper=plan.gripper)
+    if panda.gripper.name != plan.gripper:
+        raise ValueError(f"the plan's gripper is {plan.gripper}, the given Panda carries {panda.gripper.name}")
     try:
         return _plan(plan, pose, object_height_m, panda, open_clearance_m, approach_clearance_m, table_dt_s)
     finally:
@@ -407,7 +413,7 @@ def _plan(plan: ActionPlan, pose: ObjectPose, object_height_m: float | None, pan
 
     # finger widths [m]
     contact = float(g.width_m)
-    w_open = min(MAX_OPENING_M, contact + 2.0 * open_clearance_m)
+    w_open = min(panda.gripper.stroke_m, contact + 2.0 * open_clearance_m)
     w_closed = max(0.0, contact - 2.0 * plan.squeeze_depth_m)
 
     # Cartesian waypoints of the grasp centre [m]
@@ -517,7 +523,7 @@ def _fill_table(traj: Trajectory, panda: Panda) -> None:
                 qk = -qk  # keep quaternions on one hemisphere so interpolation is smooth
             quat[k, f] = qk
         if k % 5 == 0 or k == n - 1:
-            lowest = min(lowest, float(panda.link_heights(ROBOT_LINKS_ABOVE_TABLE).min()))
+            lowest = min(lowest, panda.lowest_point())
     traj._table = {"t": times, "q": q, "opening": opening, "phase": phase, "pos": pos, "quat": quat, "vel": vel,
                    "omega": omega}
     traj.min_robot_height_m = lowest

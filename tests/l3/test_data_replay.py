@@ -9,6 +9,7 @@ import numpy as np
 
 from tasks.manipulation.data import attempt_indices, read_attempt, write_attempt
 from tasks.manipulation.replay import render_frames, replay, rrd_particle_frames
+from tasks.manipulation.scene import attempt_timeline
 from tasks.manipulation.trial import TrialResult
 
 
@@ -22,10 +23,14 @@ def test_attempts_are_stored_and_replayed_exactly(firm_trial: TrialResult, weak_
     assert attrs["labels"]["slipped"] == 1  # failed attempts are kept, labelled
     np.testing.assert_array_equal(arrays["particles_x_m"], weak_trial.arrays["particles_x_m"])
 
-    out = replay(asset, 0, frames_dir=tmp_path / "frames", video=tmp_path / "v.mp4", rrd=tmp_path / "a.rrd")
-    assert out.n_frames == len(firm_trial.arrays["frame_t_s"]) and len(out.frames) == out.n_frames
+    out = replay(asset, 0, frames_dir=tmp_path / "frames", video=tmp_path / "v.mp4", rrd=tmp_path / "a.rrd",
+                 width=320, height=180)
+    arrays, attrs = read_attempt(asset, 0)
+    # the video runs from the recorded approach (t = 0) through the last simulated frame, at 30 fps
+    assert out.n_frames == len(attempt_timeline(arrays)) and len(out.frames) == out.n_frames
+    assert out.n_frames > len(firm_trial.arrays["frame_t_s"]) + 20
     assert (tmp_path / "v.mp4").stat().st_size > 1000
-    again = [hashlib.sha256(im.tobytes()).hexdigest() for im in render_frames(read_attempt(asset, 0)[0])]
+    again = [hashlib.sha256(im.tobytes()).hexdigest() for im in render_frames(arrays, 320, 180, attrs)]
     assert again == out.digests  # byte-identical re-render
     assert len(set(out.digests)) > 5  # the frames show motion
     rrd = rrd_particle_frames(tmp_path / "a.rrd")

@@ -1,8 +1,20 @@
-"""L3 inside `generate`: its line in the validation summary, the manifest's outcome, the attempt the video shows."""
+"""L3 inside `generate`: its line in the validation summary, the manifest's outcome, the attempt the video shows,
+the reason in words and the progress lines."""
 
 from __future__ import annotations
 
-from flows.generate import l3_summary, manipulation_outcome, shown_attempt
+import json
+import re
+import shutil
+from pathlib import Path
+from typing import Any
+
+import pytest
+
+from contracts.stage import load_contract
+from flows.generate import cache_keys, finite_metrics, l3_summary, manipulation_outcome, reported_plan, shown_attempt
+from flows.l3_report import best_attempt, trial_reason
+from tasks.manipulation.outcome import TrialTolerances
 from tasks.manipulation.trial import TrialResult
 
 
@@ -50,3 +62,112 @@ def test_an_unexecutable_plan_has_no_outcome() -> None:
     rec = {"passed": False, "attempt": None, "attempts": [{"attempt": None, "labels": {"plan_failed": 1.0}}]}
     s = l3_summary(rec)
     assert s.sim_calls == 0 and manipulation_outcome(s.metrics) is None and shown_attempt(rec) is None
+
+
+# --- how L3's result reaches the user: reasons in words, progress, the reported attempt (issue 24) ---
+
+FAST_COACD = dict(preprocess_resolution=20, max_convex_hull=8, threshold=0.15, mcts_iterations=30, mcts_nodes=8,
+                  mcts_max_depth=2, resolution=500, max_input_faces=3000)
+
+
+def _asset(out: Path, text: str, density: float) -> Path:
+    """L0 of a text request (draft, a fast convex decomposition) and an L1 physical.json of foam at `density`."""
+    from contracts.request import AssetRequest
+    from flows.l0_geometry import L0Result, write_l0
+    from tasks.geometry import pipeline
+    from tasks.geometry.outputs import load_l0
+    from tasks.physical.model import build_physical_model
+
+    s = pipeline.settings_from_contract("draft", coacd_overrides=FAST_COACD)
+    mesh, info = pipeline.build_mesh(AssetRequest(text=text), s)
+    proxy = pipeline.build_proxy(mesh, s.coacd)
+    particles = pipeline.build_particles(mesh, s.particles)
+    gaussians = pipeline.build_gaussians(mesh, particles, s)
+    write_l0(L0Result(mesh, proxy, particles, gaussians, info,
+                      pipeline.check_geometry(mesh, proxy, particles, gaussians)), out)
+    a = load_l0(out)
+    phys = build_physical_model(a.particles_m, a.volumes_m3, a.spacing_m, density, 0.6, 0.8, "foam")
+    (out / "physical.json").write_text(json.dumps({"physical_model": phys.model_dump(mode="json")}))
+    return out
+
+
+@pytest.fixture(scope="module")
+def small_cube(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    """A 3 cm foam cube (L0 + L1): graspable by every gripper."""
+    return _asset(tmp_path_factory.mktemp("l3r") / "cube", "a soft foam cube 3 cm", 86.0)
+
+
+def _tol() -> TrialTolerances:
+    from flows.l3_manipulation import tolerances_from
+
+    return tolerances_from(load_contract("L3"))
+
+
+def test_a_trial_that_slips_is_explained_by_coulomb_friction(weak_trial: TrialResult,
+                                                             firm_trial: TrialResult) -> None:
+    """The reason names the failed gate in physical terms: the hold force against m g / (2 mu) from the labels."""
+    contract = load_contract("L3")
+    m = weak_trial.metrics
+    why = trial_reason(m, contract, _tol())
+    assert why.startswith("not lifted:") and "also failed: transported" in why, why
+    need = m["weight_n"] / (2.0 * m["gripper_friction"])
+    assert f"m g / (2 mu) = {need:.2g} N" in why
+    force = float(re.search(r"finger force ([0-9.e+-]+) N", why).group(1))  # type: ignore[union-attr]
+    assert (force < need) == ("<" in why.split("m g")[0])
+    assert trial_reason(firm_trial.metrics, contract, _tol()) == ""
+    over = dict(firm_trial.metrics, max_finger_force_n=25.0, force_budget_violated=1.0)
+    assert trial_reason(over, contract, _tol()).startswith("force budget exceeded: peak finger force 25 N > 20 N")
+
+
+def test_a_failed_l3_reports_its_best_trial_under_the_assets_material(cube: Any, weak_trial: TrialResult,
+                                                                     firm_trial: TrialResult) -> None:
+    """A material revision that was tried but not adopted (here its confirmation still failed one gate) must not give
+    the manifest its figures: the asset keeps its material, so the figures, plan and key are the selection trial's."""
+    contract = load_contract("L3")
+    confirm = dict(firm_trial.metrics, settled=0.0)  # fewer failed gates than the selection trial, but not adopted
+    attempts = [{"attempt": 0, "role": "selection", "values": {"squeeze_depth_m": 0.001}, "labels": weak_trial.metrics,
+                 "cache_key": "k0"},
+                {"attempt": 1, "role": "confirmation", "values": {"squeeze_depth_m": 0.001}, "labels": confirm,
+                 "cache_key": "k1"}]
+    best = best_attempt(attempts, contract)
+    assert best is attempts[0]
+    rec = {"passed": False, "status": "no_valid_candidate", "attempt": None, "labels": {}, "attempts": attempts,
+           "reason": trial_reason(best["labels"], contract, _tol()),
+           "best_attempt": {**best, "plan": cube.plan(0.001).model_dump(mode="json"),
+                            "failed_gates": ["lifted", "transported"]}}
+    s = l3_summary(rec)
+    assert s.metrics == finite_metrics(weak_trial.metrics) and s.reason == rec["reason"]
+    assert s.failed_gates == ["lifted", "transported"]
+    assert shown_attempt(rec) == 0 and reported_plan(rec) is not None
+    assert cache_keys(Path("/nonexistent"), rec) == {"l3.trial": "k0"}
+
+
+def test_one_failed_trial_reaches_the_manifest_with_its_reason_progress_and_key(
+        small_cube: Path, tmp_path: Path, prefect_api: str) -> None:
+    """A real trial that fails a (tightened) deformation bound: progress lines while it runs, the reason in words, and
+    the manifest's figures, plan and cache key are those of that trial in manipulation.json."""
+    from flows.l3_manipulation import L3Options, run_l3
+
+    asset = shutil.copytree(small_cube, tmp_path / "cube")
+    base = load_contract("L3")
+    gates = [g.model_copy(update={"threshold": 1e-9}) if g.metric == "strain_p99" else g  # any squeeze fails it
+             for g in base.hard_gates]
+    contract = base.model_copy(update={"hard_gates": gates, "revision_budget": 0,
+                                       "parameters": {**base.parameters, "lift_height_m": 0.05}})
+    lines: list[str] = []
+    record, _ = run_l3(asset, L3Options(squeeze_depth_m=0.003, held_out=(), material_fallback=False),
+                       contract=contract, recordings=False, progress=lines.append)
+    assert any(re.fullmatch(r"L3 trial 1 of at most 3: selection \(revise_squeeze\), grasp 0, squeeze [0-9.]+ mm "
+                            r"\(\d+ s\)", ln) for ln in lines), lines  # 1 harness trial + 2 robustness yaws
+    assert any(ln.startswith("L3 trial 1: deformation bound exceeded: strain (1 % of volume)") for ln in lines), lines
+    assert lines[-1].startswith("L3 did not pass: deformation bound exceeded")
+    stored = json.loads((asset / "manipulation.json").read_text())
+    assert not stored["passed"] and stored["reason"].startswith("deformation bound exceeded: strain")
+    trial = stored["attempts"][0]
+    assert stored["best_attempt"]["attempt"] == trial["attempt"] == 0 and trial["reason"] == stored["reason"]
+    s = l3_summary(stored)
+    assert s.metrics == finite_metrics(trial["labels"]) and s.failed_gates == ["deformation bounded"]
+    assert s.reason == stored["reason"]
+    plan = reported_plan(stored)
+    assert plan is not None and plan.squeeze_depth_m == pytest.approx(trial["values"]["squeeze_depth_m"])
+    assert cache_keys(asset, stored)["l3.trial"] == trial["cache_key"] is not None

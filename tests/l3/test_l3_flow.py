@@ -59,7 +59,10 @@ def _contract(**updates: object):  # type: ignore[no-untyped-def]
 
 
 def test_a_trial_over_the_force_budget_is_labelled_and_never_accepted(cube_asset: Path, prefect_api: str) -> None:
+    # position control (no hold-force target): a force-controlled closure keeps each finger at its target, which is
+    # capped at half the budget, so only a position-controlled squeeze can go over a 0.05 N budget
     base = _contract(revision_budget=0)
+    base = base.model_copy(update={"parameters": {**base.parameters, "hold_force_margin": None}})
     gates = [g.model_copy(update={"threshold": 0.05}) if g.metric == "max_finger_force_n" else g
              for g in base.hard_gates]
     record, outcome = run_l3(cube_asset, L3Options(squeeze_depth_m=0.003, held_out=()),

@@ -1,0 +1,67 @@
+"""Every L3 trial as a probe recording in the asset: recordings/L3_attempt_NNN.rrd next to interaction/attempt_NNN.
+
+The recording of a trial (tasks.manipulation.replay.write_rrd: robot links, pads, particles, Gaussians, per-finger
+force curves) is made once per trial cache key into the cache's recordings folder, like L1's and L2's probe
+recordings, and copied into the asset; both files appear only when complete (written to a temporary name, then
+renamed). What it shows depends on the trial alone (its id and log name the trial's key, not the attempt number), so a
+cached trial stored as another attempt reuses it.
+"""
+
+from __future__ import annotations
+
+import os
+import shutil
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+RECORDING_VERSION = "1"  # bump when write_rrd changes what a trial's recording shows
+# what a trial's recording keeps (a deterministic stride; ~4-6 MB for the draft plush turtle's 3.8 s trial)
+MAX_PARTICLES = 3000     # particles per frame
+MAX_GAUSSIANS = 2000     # Gaussians per frame ...
+GAUSSIAN_EVERY = 2       # ... at every second recorded frame (15 fps)
+
+
+def attempt_recording_name(attempt: int) -> str:
+    """The asset-relative path of an attempt's recording."""
+    return f"recordings/L3_attempt_{attempt:03d}.rrd"
+
+
+def cached_recording(arrays: dict[str, np.ndarray], attrs: dict[str, Any], trial_key: str) -> Path:
+    """The trial's recording in the cache (written there on first use, atomically)."""
+    from cache import cache_root
+    from tasks.manipulation.replay import write_rrd
+
+    path = cache_root() / "recordings" / f"L3_trial-{trial_key[:16]}-r{RECORDING_VERSION}.rrd"
+    if not path.is_file():
+        shown = {"labels": attrs.get("labels", {}), "role": f"trial {trial_key[:16]}", "plan": attrs.get("plan"),
+                 "attempt": trial_key[:16]}
+        write_rrd(arrays, shown, path, MAX_PARTICLES, MAX_GAUSSIANS, GAUSSIAN_EVERY)
+    return path
+
+
+def record_attempt(asset_dir: Path, attempt: int, arrays: dict[str, np.ndarray], attrs: dict[str, Any],
+                   trial_key: str | None) -> str:
+    """Put the trial's recording into the asset as recordings/L3_attempt_NNN.rrd; returns that relative path (a trial
+    without a cache key is recorded straight into the asset)."""
+    rel = attempt_recording_name(attempt)
+    if trial_key is None:
+        from tasks.manipulation.replay import write_rrd
+
+        write_rrd(arrays, attrs, Path(asset_dir) / rel, MAX_PARTICLES, MAX_GAUSSIANS, GAUSSIAN_EVERY)
+    else:
+        copy_atomic(cached_recording(arrays, attrs, trial_key), Path(asset_dir) / rel)
+    return rel
+
+
+def copy_atomic(src: Path, dest: Path) -> Path:
+    """Copy a file so that dest appears only complete."""
+    dest.parent.mkdir(parents=True, exist_ok=True)
+    tmp = dest.with_name(f".{dest.name}.{os.getpid()}.tmp")
+    try:
+        shutil.copyfile(src, tmp)
+        os.replace(tmp, dest)
+    finally:
+        tmp.unlink(missing_ok=True)
+    return dest

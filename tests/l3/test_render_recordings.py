@@ -1,0 +1,123 @@
+"""Every L3 trial is a probe with its Rerun recording: robot links, pads, particles, Gaussians and per-finger force
+curves, read back with rerun's own reader; stored as recordings/L3_attempt_NNN.rrd beside interaction/attempt_NNN,
+made once per trial (cached) and written atomically."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from tasks.manipulation.replay import write_rrd
+from tasks.record import read_recording, recording_digest
+from tests.l3.render_helpers import synthetic_attempt
+
+LINKS = [f"world/robot/panda_link{i}" for i in range(8)] + ["world/robot/panda_hand", "world/robot/panda_leftfinger",
+                                                            "world/robot/panda_rightfinger"]
+
+
+@pytest.fixture(scope="module")
+def attempt() -> tuple[dict[str, np.ndarray], dict]:
+    """A short attempt: 0.3 s of approach, then closure and lift with 2 N on each finger while holding."""
+    arrays, attrs = synthetic_attempt(approach_s=0.3)
+    keep = arrays["control_t_s"] < arrays["control_t_s"][0] + 0.8
+    k_frames = arrays["frame_control_index"] < keep.sum()
+    short = dict(arrays, **{k: arrays[k][keep] for k in ("control_t_s", "control_sim_t_s", "command_q_rad",
+                                                         "command_opening_m", "phase", "finger_position_m",
+                                                         "finger_quat_xyzw", "finger_force_n")},
+                 object_com_m=arrays["object_com_m"][:keep.sum() + 1],
+                 **{k: arrays[k][k_frames] for k in ("frame_t_s", "frame_control_index", "particles_x_m",
+                                                     "particles_F")})
+    return short, attrs
+
+
+def _scalars(path: Path, entity: str) -> np.ndarray:
+    """The values logged on a metrics entity, in time order, read back from the .rrd."""
+    from rerun.chunk import RrdReader
+
+    rows = []
+    for chunk in RrdReader(str(path)).stream():
+        if str(chunk.entity_path).lstrip("/") != entity:
+            continue
+        batch = chunk.to_record_batch()
+        names = batch.schema.names
+        t = batch.column(next(n for n in names if n.endswith("sim_time"))).cast("int64").to_pylist()
+        v = batch.column(next(n for n in names if "scalars" in n.lower())).to_pylist()
+        rows += [(ti, float(np.ravel(vi)[0])) for ti, vi in zip(t, v)]
+    return np.array([v for _, v in sorted(rows)])
+
+
+def test_a_trial_recording_holds_robot_pads_object_and_force_curves(attempt: tuple, tmp_path: Path) -> None:
+    arrays, attrs = attempt
+    path = write_rrd(arrays, attrs, tmp_path / "L3_attempt_000.rrd")
+    s = read_recording(path)
+    want = {*LINKS, "world/colliders/finger_0", "world/colliders/finger_1", "world/object/particles",
+            "world/object/gaussians", "metrics/finger_0_force_n", "metrics/finger_1_force_n", "harness/log"}
+    assert want <= s.entity_paths and {"frame", "sim_time"} <= s.timelines
+    n_approach, n_frames = len(arrays["approach_t_s"]), len(arrays["frame_t_s"])
+    # a link: its mesh (static) and one pose per robot state shown (the approach's and each recorded frame's)
+    assert s.rows_per_entity["world/robot/panda_link7"] == 1 + n_approach + n_frames
+    assert s.rows_per_entity["world/colliders/finger_0"] == n_approach + n_frames
+    # the per-finger force curves at the control rate are the recorded forces
+    for f in range(2):
+        got = _scalars(path, f"metrics/finger_{f}_force_n")
+        np.testing.assert_allclose(got, np.linalg.norm(arrays["finger_force_n"][:, f], axis=1), rtol=1e-6)
+    assert _scalars(path, "metrics/finger_0_force_n").max() == pytest.approx(2.0)
+
+
+def test_a_box_gripper_is_recorded_as_boxes(tmp_path: Path) -> None:
+    arrays, attrs = synthetic_attempt(edge_m=0.07, spacing_m=0.01, gripper="robotiq_2f85", approach_s=0.1,
+                                      end_s=None)
+    keep = arrays["frame_t_s"] < arrays["frame_t_s"][0] + 0.2
+    short = dict(arrays, **{k: arrays[k][keep] for k in ("frame_t_s", "frame_control_index", "particles_x_m",
+                                                         "particles_F")})
+    s = read_recording(write_rrd(short, attrs, tmp_path / "box.rrd"))
+    assert "world/robot/gripper" in s.entity_paths and "world/robot/panda_link7" in s.entity_paths
+    assert not {"world/robot/panda_hand", "world/robot/panda_leftfinger"} & s.entity_paths
+
+
+def test_every_stored_trial_gets_its_recording_made_once(attempt: tuple, tmp_path: Path,
+                                                         monkeypatch: pytest.MonkeyPatch) -> None:
+    """L3's _store: interaction/attempt_NNN and recordings/L3_attempt_NNN.rrd for each trial, failed ones included;
+    the same trial stored again reuses the cached recording (nothing is re-recorded)."""
+    from contracts.material import Material
+    from contracts.physical import PhysicalModel
+    from contracts.probes import ProbeResult, ProbeSpec
+    from contracts.robot import ActionPlan
+    from contracts.stage import load_contract
+    from flows.l3_manipulation import L3Context, L3Options
+    from tasks.manipulation import replay as replay_module
+    from tasks.manipulation.body import box_body
+
+    arrays, attrs = attempt
+    body = box_body(0.03, 0.005)
+    phys = PhysicalModel(density_kg_per_m3=300.0, volume_m3=body.volume_m3, mass_kg=300.0 * body.volume_m3,
+                         particle_count=len(body.particles_m), particle_spacing_m=0.005, ground_friction=0.5,
+                         gripper_friction=0.8, center_of_mass_m=(0.0, 0.0, 0.015), extents_m=(0.03,) * 3,
+                         category="foam")
+    ctx = L3Context(tmp_path / "asset", body, phys, Material(youngs_modulus_pa=1e5, poisson_ratio=0.3,
+                                                             damping_rate_per_s=5.0), "given", [], L3Options(),
+                    load_contract("L3"))
+    plan = ActionPlan.model_validate(attrs["plan"])
+    failed = {"lifted": 0.0, "transported": 0.0, "released_in_target": 0.0, "settled": 1.0}
+    out = {"probe": ProbeResult(spec=ProbeSpec(kind="pick_and_place"), metrics=failed), "arrays": arrays, "info": {}}
+    inputs = {"plan": plan, "settings": {"substeps": 1}}
+    ctx._store(out, plan, inputs, {"squeeze_depth_m": 0.003}, "selection", "", None, 0.0)
+    rrd0 = tmp_path / "asset" / "recordings" / "L3_attempt_000.rrd"
+    assert ctx.attempts[0]["recording"] == "recordings/L3_attempt_000.rrd" and rrd0.is_file()
+    assert (tmp_path / "asset" / "interaction" / "attempt_000").is_dir()
+    assert set(LINKS) <= read_recording(rrd0).entity_paths
+    assert not list((tmp_path / "asset" / "recordings").glob("*.tmp"))  # nothing half-written left
+
+    def no_rerecording(*args: object, **kwargs: object) -> None:
+        raise AssertionError("a cached trial's recording was written again")
+
+    monkeypatch.setattr(replay_module, "write_rrd", no_rerecording)
+    ctx._store(out, plan, inputs, {"squeeze_depth_m": 0.003}, "held_out", "", None, 0.0)
+    rrd1 = tmp_path / "asset" / "recordings" / "L3_attempt_001.rrd"
+    assert ctx.attempts[1]["recording"] == "recordings/L3_attempt_001.rrd"
+    assert recording_digest(rrd1) == recording_digest(rrd0)
+    ctx.recordings = False  # run_l3(recordings=False): no recordings
+    ctx._store(out, plan, inputs, {"squeeze_depth_m": 0.003}, "held_out", "", None, 0.0)
+    assert ctx.attempts[2]["recording"] is None
