@@ -122,20 +122,32 @@ def gc_cmd(
     cache: CacheOption = None,
     older_than: Annotated[Optional[str], typer.Option("--older-than", help="Remove entries unused for this long (30m, 12h, 7d).")] = None,
     max_size: Annotated[Optional[str], typer.Option("--max-size", help="Then remove least recently used entries until the total is at most this (500MB, 2GB).")] = None,
+    outputs: Annotated[Optional[list[Path]], typer.Option("--outputs", help="A folder holding asset directories: also remove the .NAME.partial-* working directories that dead runs left in it (repeatable).")] = None,
     json_out: JsonOption = False,
 ) -> None:
-    """Remove old entries and/or shrink the cache to a size (also clears crash leftovers)."""
+    """Remove old entries and/or shrink the cache to a size; also removes what dead processes left (crash leftovers:
+    recordings/*.rrd.<pid>.tmp, tmp/ entries, and with --outputs the .NAME.partial-* working directories)."""
+    from cache.tempfiles import remove_dead_temporaries
+
     try:
         age = parse_duration(older_than) if older_than is not None else None
         size = parse_size(max_size) if max_size is not None else None
-        result = _store(cache).gc(older_than_s=age, max_bytes=size)
+        for folder in outputs or []:
+            if not folder.is_dir():
+                raise InputError(f"--outputs {folder}: not a directory")
+        store = _store(cache)
+        store.require_root()  # never tidy a folder that is not a DeformSmith cache
+        dead = remove_dead_temporaries(store.root, list(outputs or []))
+        result = store.gc(older_than_s=age, max_bytes=size)
     except DeformSmithError as exc:
         fail(str(exc), exc.exit_code)
+    result = {**result, "dead_temporaries_removed": dead["removed"], "dead_temporaries_bytes": dead["freed_bytes"]}
     if json_out:
         emit_json(result)
         return
     console.print(f"removed {len(result['removed'])} entries ({_human(result['freed_bytes'])}); "
-                  f"{result['remaining_entries']} remain ({_human(result['remaining_bytes'])})")
+                  f"{result['remaining_entries']} remain ({_human(result['remaining_bytes'])}); "
+                  f"{len(dead['removed'])} temporaries of dead processes removed ({_human(dead['freed_bytes'])})")
 
 
 @bench_app.command("cache")

@@ -7,6 +7,7 @@ from pathlib import Path
 import typer
 
 from flows.cli.apps import app, check_device, console, emit_json, fail
+from flows.cli.preflight import check_locations
 
 ABLATIONS = ("hierarchy", "harness", "manipulation")
 
@@ -41,6 +42,7 @@ def eval_cmd(
         fail("--vision-llm rates the drop-protocol videos: drop --no-videos")
     if cache_dir is not None:
         use_cache_root(cache_dir)
+    check_locations(out_root=out)  # the evaluation folder and the cache root are usable, before any case runs
     from flows.evaluate import EvalOptions, evaluate
     from tasks.evaluation.suite import load_suite
 

@@ -7,6 +7,7 @@ import sys
 
 from contracts.errors import DeformSmithError
 from flows.cli.apps import app
+from flows.cli.preflight import filesystem_error, is_filesystem_error
 
 # Each module registers its commands on the shared apps when imported.
 from flows.cli import schema_cmds  # noqa: E402,F401
@@ -39,7 +40,8 @@ class _UserErrorTracebacks(logging.Filter):
     runs' one-line 'Finished in state Failed(...)' records stay)."""
 
     def filter(self, record: logging.LogRecord) -> bool:
-        return not (record.exc_info and isinstance(record.exc_info[1], DeformSmithError))
+        exc = record.exc_info[1] if record.exc_info else None
+        return not (isinstance(exc, DeformSmithError) or is_filesystem_error(exc))  # type: ignore[arg-type]
 
 
 def quiet_user_error_logs() -> None:
@@ -61,6 +63,12 @@ def main() -> None:
     except DeformSmithError as exc:
         sys.stderr.write(f"error: {exc}\n")
         sys.exit(exc.exit_code)
+    except OSError as exc:  # read-only, missing, full: one line naming the path and the cause, exit 2
+        if not is_filesystem_error(exc):
+            raise
+        user = filesystem_error(exc)
+        sys.stderr.write(f"error: {user}\n")
+        sys.exit(user.exit_code)
     except SystemExit as exc:
         if exc.code == 130:  # Ctrl-C: Typer turns KeyboardInterrupt into a silent exit 130
             resumes = sys.argv[1:2] and sys.argv[1] in FLOW_COMMANDS

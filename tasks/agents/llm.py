@@ -2,10 +2,12 @@
 
 from __future__ import annotations
 
+import base64
 import json
 import os
 import re
-from collections.abc import Callable
+import socket
+from collections.abc import Callable, Sequence
 from typing import Any, TypeVar
 
 os.environ.setdefault("LITELLM_LOCAL_MODEL_COST_MAP", "True")  # before importing litellm: no network at import
@@ -21,17 +23,46 @@ from contracts.errors import validation_message  # noqa: E402
 from tasks.agents.backend import (  # noqa: E402
     AgentError, InvalidAnswer, RoleReply, check_candidate, check_critique, check_decision,
 )
+from tasks.agents import fallbacks  # noqa: E402
 from tasks.agents.prompts import load_prompt  # noqa: E402
 from tasks.agents.rule import RuleCritic, RuleDesigner, RulePlanner  # noqa: E402
 from tasks.agents.vocab import StageRoutes  # noqa: E402
 
 litellm.suppress_debug_info = True
+_LITELLM_COMPLETION = litellm.completion  # models found unusable are remembered only for real calls, not test mocks
 M = TypeVar("M", bound=BaseModel)
 Completion = Callable[..., Any]
-# errors after which asking again cannot help: go straight to the failure policy
+# errors after which asking again cannot help: go straight to the failure policy (an unreachable server will not
+# answer the next time either)
 FATAL_ERRORS: tuple[type[Exception], ...] = (
     litellm.AuthenticationError, litellm.NotFoundError, litellm.BadRequestError, litellm.PermissionDeniedError,
+    litellm.APIConnectionError,
 )
+# errors that make the model unusable for the rest of the run (no key, no such model, no server): every later call
+# goes straight to the failure policy, without asking
+UNAVAILABLE_ERRORS: tuple[type[Exception], ...] = (
+    litellm.AuthenticationError, litellm.NotFoundError, litellm.PermissionDeniedError, litellm.APIConnectionError,
+)
+
+
+_NO_CREDENTIALS = re.compile(r"missing credentials|api[_ ]key (must|is not|was not|not) (be )?(set|provided|found)|"
+                             r"no api[_ ]key|(invalid|incorrect) api[_ ]key", re.IGNORECASE)
+
+
+def is_unusable(exc: BaseException) -> bool:
+    """True for an error after which the model cannot answer this run: no credentials, no server (refused, unknown
+    host), no such model. litellm reports some of these as InternalServerError: its causes are searched too."""
+    seen: BaseException | None = exc
+    for _ in range(12):
+        if seen is None:
+            return False
+        if isinstance(seen, litellm.Timeout) or "Timeout" in type(seen).__name__:
+            return False  # a slow server may answer the next time
+        if isinstance(seen, (*UNAVAILABLE_ERRORS, ConnectionRefusedError, socket.gaierror)) \
+                or type(seen).__name__ in ("APIConnectionError", "ConnectError") or _NO_CREDENTIALS.search(str(seen)):
+            return True
+        seen = seen.__cause__ or seen.__context__
+    return False
 
 
 def extract_json(text: str) -> str:
@@ -79,21 +110,37 @@ def ask(
     fallback: Callable[[], RoleReply[M]],
     completion: Completion | None = None,
     max_answers: int | None = None,
+    images: Sequence[bytes] = (),
+    fatal_errors: tuple[type[Exception], ...] = FATAL_ERRORS,
+    structured: bool | None = None,
 ) -> RoleReply[M]:
-    """Ask a model for a schema-valid, contract-valid answer; feed each error back; then apply cfg.on_failure."""
-    completion = completion or litellm.completion
+    """Ask a model for a schema-valid, contract-valid answer; feed each error back; then apply cfg.on_failure.
+
+    images: PNG bytes attached to the request (vision models); fatal_errors: errors that end the asking at once;
+    structured: ask for schema-constrained output (default: when litellm says the model supports it)."""
     model = str(cfg.model)
+    where = f"{getattr(request, 'stage', None) or 'L0'} {role}"
+    if completion is None and litellm.completion is _LITELLM_COMPLETION and model in fallbacks.UNAVAILABLE:
+        # found unusable earlier in this run: do not ask again
+        return _give_up(role, cfg, where, fallbacks.UNAVAILABLE[model], [], [], fallback, 0, 0, 0.0, unusable=True)
+    completion = completion or litellm.completion
     prompt = load_prompt(role)
     schema = json.dumps(out_type.model_json_schema(), separators=(",", ":"))
-    messages: list[dict[str, str]] = [
+    text = f"{prompt['instructions']}\n{schema}\n\nRequest:\n{request.model_dump_json()}"
+    content: Any = text if not images else [{"type": "text", "text": text}, *(
+        {"type": "image_url", "image_url": {"url": "data:image/png;base64," + base64.b64encode(png).decode()}}
+        for png in images)]
+    messages: list[dict[str, Any]] = [
         {"role": "system", "content": prompt["system"]},
-        {"role": "user", "content": f"{prompt['instructions']}\n{schema}\n\nRequest:\n{request.model_dump_json()}"},
+        {"role": "user", "content": content},
     ]
-    structured = _supports_schema(model)
+    structured = _supports_schema(model) if structured is None else structured
     tokens_in = tokens_out = 0
     cost = 0.0
-    invalid: list[InvalidAnswer] = []
+    invalid: list[InvalidAnswer] = []  # answers the model gave that failed validation: each costs the stage budget
+    transport: list[str] = []  # calls that got no answer (no key, no server, timeouts): cost nothing
     fatal: str | None = None
+    unusable = False
     for _ in range(max(1, max_answers or cfg.max_answers)):
         kwargs: dict[str, Any] = {"model": model, "messages": list(messages), "timeout": cfg.timeout_s,
                                   "temperature": cfg.temperature}
@@ -103,17 +150,19 @@ def ask(
             response = completion(**kwargs)
         except litellm.Timeout:
             error = f"timed out after {cfg.timeout_s:g} s"
-            invalid.append(InvalidAnswer(text="", error=error))
+            transport.append(error)
             messages.append({"role": "user", "content": f"The previous request {error}. Answer again, briefly, JSON only."})
             continue
-        except FATAL_ERRORS as exc:
-            fatal = f"{type(exc).__name__}: {exc}"
-            invalid.append(InvalidAnswer(text="", error=fatal))
-            break
-        except Exception as exc:  # rate limits, outages, connection errors, provider 5xx: worth asking again
+        except Exception as exc:
             error = f"{type(exc).__name__}: {str(exc)[:300]}"
-            invalid.append(InvalidAnswer(text="", error=error))
-            continue
+            transport.append(error)
+            unusable = is_unusable(exc)
+            if not unusable and not isinstance(exc, fatal_errors):
+                continue  # rate limits, outages, provider 5xx: worth asking again
+            fatal = error
+            if unusable and completion is _LITELLM_COMPLETION:
+                fallbacks.UNAVAILABLE[model] = f"{fatal} (first met at {where})"
+            break
         usage = getattr(response, "usage", None)
         tokens_in += int(getattr(usage, "prompt_tokens", 0) or 0)
         tokens_out += int(getattr(usage, "completion_tokens", 0) or 0)
@@ -127,20 +176,35 @@ def ask(
             error = str(exc)
         if error is None and value is not None:
             source = AgentSource(backend="litellm", model=model, prompt_tokens=tokens_in, completion_tokens=tokens_out,
-                                 cost_usd=cost, retries=len(invalid), errors=[i.error for i in invalid])
+                                 cost_usd=cost, retries=len(invalid), errors=[*transport, *(i.error for i in invalid)])
             return RoleReply(value, source, invalid)
         values = dict(value.values) if isinstance(value, Candidate) else None
         invalid.append(InvalidAnswer(text=text, error=error or "invalid answer", values=values))
         messages.append({"role": "assistant", "content": text})
         messages.append({"role": "user", "content": f"Your answer was rejected: {error}. "
                                                     "Reply again with ONE corrected JSON object only."})
-    errors = [i.error for i in invalid]
+    errors = [*transport, *(i.error for i in invalid)]
     reason = fatal or f"{len(invalid)} invalid answer(s); last: {errors[-1] if errors else 'none'}"
+    if not invalid and transport:
+        reason, unusable = fatal or f"no answer ({transport[-1]})", True
+    return _give_up(role, cfg, where, reason, errors, invalid, fallback, tokens_in, tokens_out, cost, unusable)
+
+
+def _give_up(role: str, cfg: RoleConfig, where: str, reason: str, errors: list[str], invalid: list[InvalidAnswer],
+             fallback: Callable[[], RoleReply[M]], tokens_in: int, tokens_out: int, cost: float,
+             unusable: bool) -> RoleReply[M]:
+    """cfg.on_failure: raise (LLMUnavailable when no answer came at all), or let the rule backend answer, saying so."""
+    model = str(cfg.model)
     if cfg.on_failure == "fail":
+        if unusable:
+            raise fallbacks.LLMUnavailable(f"the LLM litellm/{model} is not usable ({reason}) at {where}; "
+                                           "nothing published (--llm-fallback rule lets the offline rule backend "
+                                           "stand in)")
         raise AgentError(f"{role} ({model}) gave no valid answer: {reason}")
+    fallbacks.announce(f"the offline rule backend stands in for litellm/{model} at {where}: {fallbacks.brief(reason)}")
     reply = fallback()
     source = AgentSource(backend="fallback_rule", model=model, prompt_tokens=tokens_in, completion_tokens=tokens_out,
-                         cost_usd=cost, retries=len(invalid), errors=errors, fallback_reason=reason)
+                         cost_usd=cost, retries=len(invalid), errors=errors, fallback_reason=f"{reason} (at {where})")
     return RoleReply(reply.value, source, invalid)
 
 

@@ -1,0 +1,116 @@
+"""Pre-flight checks of the places a command writes (output parent, cache root) and one-line filesystem errors.
+
+Run before any layer: each location must exist or be creatable, be a directory a file can be created in, and have at
+least `DEFORMSMITH_MIN_FREE_MB` megabytes free (default 100 MB). `filesystem_error` turns an OSError met anywhere
+later (read-only, missing, full) into the InputError the CLI prints as one `error:` line with the path and the cause.
+"""
+
+from __future__ import annotations
+
+import errno
+import os
+import shutil
+import tempfile
+from pathlib import Path
+
+from contracts.errors import InputError
+
+MIN_FREE_MB_DEFAULT = 100.0  # free space a location must have before a run starts [MB]
+MIN_FREE_ENV = "DEFORMSMITH_MIN_FREE_MB"
+# errors of the place, not of the program: read-only, no permission, missing, full, not a directory
+FILESYSTEM_ERRNOS = frozenset({errno.EROFS, errno.EACCES, errno.EPERM, errno.ENOSPC, errno.EDQUOT, errno.ENOENT,
+                               errno.ENOTDIR, errno.EISDIR, errno.ENAMETOOLONG, errno.EEXIST, errno.ENOTEMPTY})
+_CAUSES = {errno.EROFS: "read-only file system", errno.EACCES: "permission denied", errno.EPERM: "not permitted",
+           errno.ENOSPC: "no space left on the device", errno.EDQUOT: "disk quota exceeded",
+           errno.ENOENT: "no such file or directory",
+           errno.ENOTDIR: "a part of the path is a file, not a directory", errno.EISDIR: "is a directory",
+           errno.ENAMETOOLONG: "file name too long"}
+
+
+def min_free_bytes() -> int:
+    """Free space required in each written location [B]: DEFORMSMITH_MIN_FREE_MB (MB) or 100 MB."""
+    raw = os.environ.get(MIN_FREE_ENV, "").strip()
+    try:
+        mb = float(raw) if raw else MIN_FREE_MB_DEFAULT
+    except ValueError:
+        raise InputError(f"{MIN_FREE_ENV}={raw!r} is not a number of megabytes") from None
+    if mb < 0:
+        raise InputError(f"{MIN_FREE_ENV}={raw!r} must not be negative")
+    return int(mb * 1e6)
+
+
+def is_filesystem_error(exc: BaseException) -> bool:
+    """An OSError caused by the place written or read (read-only, missing, full ...), not by the program."""
+    return isinstance(exc, OSError) and exc.errno in FILESYSTEM_ERRNOS
+
+
+def filesystem_error(exc: OSError, what: str | None = None) -> InputError:
+    """One-line InputError naming the path and the cause of a filesystem OSError."""
+    path = exc.filename if exc.filename is not None else "?"
+    cause = _CAUSES.get(exc.errno or 0) or exc.strerror or str(exc)
+    if exc.filename2 is not None:
+        path = f"{path} -> {exc.filename2}"
+    return InputError(f"{what + ': ' if what else ''}cannot use {path}: {cause}")
+
+
+def _existing_ancestor(path: Path) -> Path:
+    """The deepest existing path on the way to `path` (itself when it exists)."""
+    probe = path
+    while not os.path.lexists(probe) and probe != probe.parent:
+        probe = probe.parent
+    return probe
+
+
+def check_directory(path: Path, what: str, min_free: int | None = None) -> None:
+    """`path` is (or can become) a directory files can be created in, with `min_free` bytes free; else InputError."""
+    path = Path(path).expanduser().absolute()
+    base = _existing_ancestor(path)
+    if not base.is_dir():
+        raise InputError(f"{what}: cannot use {path}: {base} is a file, not a directory")
+    try:
+        fd, name = tempfile.mkstemp(prefix=".deformsmith-probe-", dir=base)
+        os.close(fd)
+        os.unlink(name)
+    except OSError as exc:
+        cause = _CAUSES.get(exc.errno or 0) or exc.strerror or str(exc)
+        where = "" if base == path else f" (files cannot be created in {base})"
+        raise InputError(f"{what}: cannot use {path}{where}: {cause}") from None
+    need = min_free_bytes() if min_free is None else min_free
+    free = shutil.disk_usage(base).free
+    if free < need:
+        raise InputError(f"{what}: cannot use {path}: only {free / 1e6:.0f} MB free on its device, "
+                         f"{need / 1e6:.0f} MB needed (set {MIN_FREE_ENV} to change)")
+
+
+def check_locations(out: Path | None = None, cache: bool = True, out_root: Path | None = None) -> None:
+    """Before any layer runs: the output's parent (when `out` is given), the folder `out_root` that holds many
+    outputs (batch, eval) and the cache root are usable; then the cache's temporaries of dead processes go."""
+    if out_root is not None:
+        if Path(out_root).exists() and not Path(out_root).is_dir():
+            raise InputError(f"--out: {out_root} is a file, not a directory")
+        check_directory(out_root, "--out")
+    if out is not None:
+        out = Path(out).expanduser().absolute()
+        if out.exists() and not out.is_dir():
+            raise InputError(f"--out: {out} is a file, not a directory")
+        check_directory(out.parent, "--out")
+    if cache:
+        from cache import cache_root
+
+        root = cache_root()
+        check_directory(root, "cache root")
+        for sub in ("locks", "tmp", "entries", "recordings"):  # a fully cached request still writes its lock files
+            if os.path.lexists(root / sub):
+                check_directory(root / sub, "cache root", min_free=0)
+        from cache.tempfiles import remove_dead_temporaries
+
+        remove_dead_temporaries(root)  # what killed runs left in the cache (their pids are dead)
+
+
+def check_request(request, out: Path | None, cache: bool = True) -> None:  # type: ignore[no-untyped-def]
+    """Every pre-flight check of a generation request: its image's header (decompression bombs) and the locations."""
+    if request.image_path is not None and Path(request.image_path).is_file():
+        from tasks.geometry.image_guard import check_image_size
+
+        check_image_size(request.image_path)
+    check_locations(out, cache=cache)

@@ -1,0 +1,60 @@
+"""When the rule backend stands in for an LLM: the models found unusable this run, the warning said on the console,
+and the error raised under `--llm-fallback fail`; `fallback_notes` reads where it happened back from the evidence."""
+
+from __future__ import annotations
+
+import json
+import re
+import sys
+from pathlib import Path
+
+from contracts.errors import InputError
+
+UNAVAILABLE: dict[str, str] = {}  # model string -> why it is unusable this run (no key, no server, no such model)
+_SAID: set[str] = set()
+
+
+class LLMUnavailable(InputError):
+    """The configured LLM cannot be used (credential, connection, unknown model) and the policy is to fail."""
+
+
+def brief(reason: str, limit: int = 160) -> str:
+    """A provider error for the console: litellm's repeated 'XError: litellm.XError: XError:' prefix said once, cut."""
+    text = re.sub(r"^(?:(?:litellm\.)?(\w+Error): )+", lambda m: m.group(1) + ": ", reason.strip())
+    return text if len(text) <= limit else text[:limit - 3] + "..."
+
+
+def announce(message: str) -> None:
+    """Say on stderr, once per message, that the rule backend stood in for an LLM."""
+    if message not in _SAID:
+        _SAID.add(message)
+        sys.stderr.write(f"warning: {message}\n")
+        sys.stderr.flush()
+
+
+def reset() -> None:
+    """Forget the models found unusable and the warnings said (a new run, or a test)."""
+    UNAVAILABLE.clear()
+    _SAID.clear()
+
+
+def fallback_notes(asset_dir: Path) -> list[str]:
+    """'<stage> attempt <n> <role>: the rule backend stood in for <model> (<reason>)', one per fallback recorded in
+    evidence/attempts.jsonl."""
+    path = Path(asset_dir) / "evidence" / "attempts.jsonl"
+    notes: list[str] = []
+    if not path.is_file():
+        return notes
+    for line in path.read_text(encoding="utf-8").splitlines():
+        if not line.strip():
+            continue
+        attempt = json.loads(line)
+        for key, role in (("planner_source", "planner"), ("source", "designer"), ("critic_source", "critic")):
+            src = attempt.get(key) or {}
+            if src.get("backend") == "fallback_rule":
+                reason = brief(src.get("fallback_reason") or "no reason recorded", 240)
+                note = (f"{attempt.get('stage')} attempt {attempt.get('iteration')} {role}: the rule backend stood in "
+                        f"for litellm/{src.get('model')} ({reason})")
+                if note not in notes:
+                    notes.append(note)
+    return notes
