@@ -18,6 +18,7 @@ from pathlib import Path
 from typing import Any
 
 import cache  # noqa: F401  (sets the local Prefect environment before prefect is imported)
+from cache.tempfiles import pid_alive
 from contracts.agents import AgentConfig
 from contracts.errors import InputError, StageFailure
 from contracts.manifest import AssetManifest, Provenance, StageSummary
@@ -235,23 +236,13 @@ def _partial_prefix(out_dir: Path) -> str:
     return f".{out_dir.name}.partial-"
 
 
-def _process_alive(pid: int) -> bool:
-    try:
-        os.kill(pid, 0)
-    except ProcessLookupError:
-        return False
-    except PermissionError:
-        return True
-    return True
-
-
 def remove_stale_partials(out_dir: Path) -> list[Path]:
     """Remove working directories of out_dir left by a process of this host that died (SIGKILL, power loss)."""
     host, prefix, removed = socket.gethostname(), _partial_prefix(out_dir), []
     for path in out_dir.parent.glob(prefix + "*"):
         try:
             owner_host, pid, _ = path.name[len(prefix):].split("~", 2)
-            alive = _process_alive(int(pid))
+            alive = pid_alive(int(pid))
         except ValueError:
             continue
         if owner_host == host and not alive:

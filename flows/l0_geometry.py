@@ -99,10 +99,40 @@ def run_l0(request: AssetRequest, quality: Quality | None = None, contract: Stag
     has vision); the model strings key the cache."""
     contract = contract or load_contract("L0")
     settings = pipeline.settings_from_contract(quality or request.quality, contract, request.seed, coacd_overrides)
+    stood_in: str | None = None
     if agents is not None and agents.designer.backend == "litellm" and request.input_kind == "text" \
             and request.geometry_backend is None:
-        critic = agents.critic if agents.critic.backend == "litellm" else None
-        settings = settings.model_copy(update={"designer": agents.designer, "critic": critic})
+        stood_in = _designer_without_credentials(agents)
+        if stood_in is None:
+            critic = agents.critic if agents.critic.backend == "litellm" else None
+            settings = settings.model_copy(update={"designer": agents.designer, "critic": critic})
+    result = _run_l0(request, settings, contract, use_cache)
+    if stood_in is not None:  # the offline build is cached under the offline key, so a later run with a key asks
+        info = result.info.model_copy(update={"warnings": [*result.info.warnings, stood_in]})
+        result = L0Result(result.mesh, result.proxy, result.particles, result.gaussians, info, result.checks)
+    return result
+
+
+def _designer_without_credentials(agents: AgentConfig) -> str | None:
+    """When the Designer's model has no credentials in the environment: the fallback note (the offline grammar
+    stands in; L0 is keyed as offline), or LLMUnavailable under --llm-fallback fail. None when it can be asked."""
+    from tasks.agents import fallbacks
+
+    model = str(agents.designer.model)
+    missing = fallbacks.missing_credentials(model)
+    if not missing:
+        return None
+    reason = f"no credentials for {model}: {', '.join(missing)} not set"
+    if agents.designer.on_failure == "fail":
+        raise fallbacks.LLMUnavailable(f"L0 designer: {reason} (--llm-fallback fail)")
+    fallbacks.UNAVAILABLE[model] = reason
+    fallbacks.announce(f"the offline rule backend stands in for litellm/{model} at L0 shape_designer: {reason}")
+    return f"L0 designer: the offline grammar stood in for litellm/{model} ({reason})"
+
+
+def _run_l0(request: AssetRequest, settings: pipeline.L0Settings, contract: StageContract,
+            use_cache: bool) -> L0Result:
+    """L0 with resolved settings: the plain functions (use_cache=False) or the Prefect flow with cached tasks."""
     if not use_cache:
         mesh, info = pipeline.build_mesh(geometry_request(request), settings)
         proxy = pipeline.build_proxy(mesh, settings.coacd)

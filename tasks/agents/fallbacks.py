@@ -38,6 +38,18 @@ def reset() -> None:
     _SAID.clear()
 
 
+def missing_credentials(model: str) -> list[str]:
+    """The credential variables (``*_KEY``, ``*_TOKEN``) litellm needs for a model and cannot find in the environment;
+    an address with a default (``OLLAMA_API_BASE``) is not a credential."""
+    from tasks.agents.llm import litellm  # litellm only through tasks.agents.llm (it fetches its cost map otherwise)
+
+    try:
+        found = litellm.validate_environment(model)
+    except Exception:  # an unknown provider: let the first call say what is wrong
+        return []
+    return [k for k in found.get("missing_keys", []) if k.endswith(("_KEY", "_TOKEN"))]
+
+
 def fallback_notes(asset_dir: Path) -> list[str]:
     """'<stage> attempt <n> <role>: the rule backend stood in for <model> (<reason>)', one per fallback recorded in
     evidence/attempts.jsonl."""

@@ -209,6 +209,7 @@ def test_designer_model_keys_the_cache_and_only_text_requests_use_it(monkeypatch
     from cache import content_key
 
     seen = []
+    monkeypatch.setenv("OPENAI_API_KEY", "sk-test")  # VISION is an OpenAI model: with its key it is asked
     monkeypatch.setattr(l0, "l0_geometry", lambda request, settings, contract: seen.append(settings))
     monkeypatch.setattr(l0.cache, "local_runtime", lambda: __import__("contextlib").nullcontext())
     l0.run_l0(AssetRequest(text="a whale"), "draft")
@@ -218,6 +219,36 @@ def test_designer_model_keys_the_cache_and_only_text_requests_use_it(monkeypatch
               agents=AgentConfig.llm(VISION))
     assert [s.designer.model if s.designer else None for s in seen] == [None, PLAIN, VISION, None]
     assert len({content_key(s) for s in seen}) == 3  # no model and a backend request share the offline settings
+
+
+def test_a_model_without_credentials_is_not_asked_and_l0_is_keyed_offline(monkeypatch: pytest.MonkeyPatch,
+                                                                          capsys: pytest.CaptureFixture) -> None:
+    """No OPENAI_API_KEY: the offline build is made under the offline key (a later run with the key is not served
+    the fallback from the cache), the console and the record say so; --llm-fallback fail refuses instead."""
+    import flows.l0_geometry as l0
+    from tasks.agents import fallbacks
+    from tasks.geometry.pipeline import BuildInfo
+
+    monkeypatch.delenv("OPENAI_API_KEY", raising=False)
+    fallbacks.reset()
+    seen = []
+
+    def fake(request, settings, contract):  # noqa: ANN001, ANN202
+        seen.append(settings)
+        return l0.L0Result({}, {}, {}, {}, BuildInfo(source="text", name="whale", category="plush_animal"), None)
+
+    monkeypatch.setattr(l0, "l0_geometry", fake)
+    monkeypatch.setattr(l0.cache, "local_runtime", lambda: __import__("contextlib").nullcontext())
+    result = l0.run_l0(AssetRequest(text="a whale"), "draft", agents=AgentConfig.llm(VISION))
+    assert seen[0].designer is None  # the offline settings, hence the offline cache key
+    assert any("OPENAI_API_KEY not set" in w and VISION in w for w in result.info.warnings)
+    assert f"stands in for litellm/{VISION} at L0 shape_designer" in capsys.readouterr().err
+    assert VISION in fallbacks.UNAVAILABLE  # later stages do not ask it either
+    fallbacks.reset()
+    strict = AgentConfig.llm(VISION, on_failure="fail")
+    with pytest.raises(fallbacks.LLMUnavailable, match="OPENAI_API_KEY"):
+        l0.run_l0(AssetRequest(text="a whale"), "draft", agents=strict)
+    fallbacks.reset()
 
 
 def test_cli_with_an_unreachable_model_says_it_fell_back(tmp_path: Path) -> None:
