@@ -9,6 +9,7 @@ import json
 import os
 import subprocess
 import sys
+import tempfile
 import time
 from pathlib import Path
 from typing import Any
@@ -75,7 +76,7 @@ def test_the_plush_set_passes_l3(tmp_path: Path) -> None:
 
 if __name__ == "__main__":
     out = Path(sys.argv[1]) if len(sys.argv) > 1 else Path("plush_set.json")
-    work = Path(os.environ.get("PLUSH_SET_DIR", "/tmp/plush_set"))
+    work = Path(os.environ.get("PLUSH_SET_DIR") or tempfile.mkdtemp(prefix="plush_set-"))
     results = []
     for i, text in enumerate(PLUSH_SET):
         results.append(run_plush(text, work / f"plush_{i}"))
