@@ -12,6 +12,8 @@ from tasks.geometry import pipeline
 from tasks.geometry.outputs import L0Asset
 
 
+FAST_COACD = dict(preprocess_resolution=20, max_convex_hull=8, threshold=0.15, mcts_iterations=30, mcts_nodes=8,
+                  mcts_max_depth=2, resolution=500, max_input_faces=3000)
 BUILT = "built"  # asset_of(concept=BUILT): keep the concept L0 recorded (if any)
 
 
@@ -31,3 +33,17 @@ def asset_of(request: AssetRequest, concept: ConceptMatch | None | str = BUILT, 
     return L0Asset(mesh=m, particles_m=np.zeros((1, 3)), volumes_m3=np.array([float(m.volume)]),
                    particle_colors=np.zeros((1, 3), np.uint8), spacing_m=0.01, urdf=Path("none.urdf"),
                    proxy_parts=[], gaussians={}, record=record)
+
+
+def write_l0_dir(request: AssetRequest, out: Path, stored: bool = True) -> Path:
+    """A whole L0 directory of a request at draft (fast CoACD) in out; stored: geometry.json keeps the request."""
+    from flows.l0_geometry import L0Result, write_l0
+
+    s = pipeline.settings_from_contract("draft", coacd_overrides=FAST_COACD)
+    mesh, info = pipeline.build_mesh(request, s)
+    proxy = pipeline.build_proxy(mesh, s.coacd)
+    particles = pipeline.build_particles(mesh, s.particles)
+    gaussians = pipeline.build_gaussians(mesh, particles, s)
+    checks = pipeline.check_geometry(mesh, proxy, particles, gaussians)
+    write_l0(L0Result(mesh, proxy, particles, gaussians, info, checks), out, request=request if stored else None)
+    return out

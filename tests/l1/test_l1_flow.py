@@ -9,32 +9,19 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from l1_assets import write_l0_dir
 
 from cache import CacheStore
 from contracts.errors import InputError
 from contracts.request import AssetRequest
-from flows.l0_geometry import L0Result, write_l0
 from flows.l1_physical import load_physical, run_l1, run_rigid_probe
-from tasks.geometry import pipeline
 from tasks.record import read_recording
-
-FAST_COACD = dict(preprocess_resolution=20, max_convex_hull=8, threshold=0.15, mcts_iterations=30, mcts_nodes=8,
-                  mcts_max_depth=2, resolution=500, max_input_faces=3000)
-
 
 @pytest.fixture(scope="module")
 def sponge_template(tmp_path_factory: pytest.TempPathFactory) -> Path:
     """An L0 directory of a 10 x 7 x 3 cm kitchen sponge (built once per module)."""
-    request = AssetRequest(text="a kitchen sponge 10 x 7 x 3 cm")
-    s = pipeline.settings_from_contract("draft", coacd_overrides=FAST_COACD)
-    mesh, info = pipeline.build_mesh(request, s)
-    proxy = pipeline.build_proxy(mesh, s.coacd)
-    particles = pipeline.build_particles(mesh, s.particles)
-    gaussians = pipeline.build_gaussians(mesh, particles, s)
-    checks = pipeline.check_geometry(mesh, proxy, particles, gaussians)
-    out = tmp_path_factory.mktemp("l0") / "sponge"
-    write_l0(L0Result(mesh, proxy, particles, gaussians, info, checks), out)
-    return out
+    return write_l0_dir(AssetRequest(text="a kitchen sponge 10 x 7 x 3 cm"), tmp_path_factory.mktemp("l0") / "sponge",
+                        stored=False)
 
 
 @pytest.fixture

@@ -15,15 +15,12 @@ import shutil
 from pathlib import Path
 
 import pytest
-from l1_assets import asset_of
-from test_l1_flow import FAST_COACD
+from l1_assets import asset_of, write_l0_dir
 
 from contracts.concept import ConceptMatch
 from contracts.errors import InputError
 from contracts.request import AssetRequest
-from flows.l0_geometry import L0Result, write_l0
 from flows.l1_physical import L1Plan, l1_plan, run_l1
-from tasks.geometry import pipeline
 from tasks.geometry.outputs import load_l0
 from tasks.physical.mass import concept_band, mass_check, typical_mass_at_size
 
@@ -164,15 +161,7 @@ def test_a_malformed_concept_is_one_clear_error() -> None:
 @pytest.fixture(scope="module")
 def ball_template(tmp_path_factory: pytest.TempPathFactory) -> Path:
     """An L0 directory of a 7 cm rubber ball, its geometry.json carrying the racquetball ConceptMatch."""
-    request = AssetRequest(text="a rubber ball 7 cm")
-    s = pipeline.settings_from_contract("draft", coacd_overrides=FAST_COACD)
-    mesh, info = pipeline.build_mesh(request, s)
-    proxy = pipeline.build_proxy(mesh, s.coacd)
-    particles = pipeline.build_particles(mesh, s.particles)
-    gaussians = pipeline.build_gaussians(mesh, particles, s)
-    checks = pipeline.check_geometry(mesh, proxy, particles, gaussians)
-    out = tmp_path_factory.mktemp("l0") / "ball"
-    write_l0(L0Result(mesh, proxy, particles, gaussians, info, checks), out, request=request)
+    out = write_l0_dir(AssetRequest(text="a rubber ball 7 cm"), tmp_path_factory.mktemp("l0") / "ball")
     record = json.loads((out / "geometry.json").read_text(encoding="utf-8"))
     record["info"]["concept"] = RACQUETBALL.model_dump(mode="json")
     (out / "geometry.json").write_text(json.dumps(record), encoding="utf-8")
