@@ -16,15 +16,18 @@ from contracts.concept import ConceptMatch
 from contracts.errors import InputError
 from contracts.lexicon import load_lexicon
 from contracts.shape import ShapeProgram
-from tasks.geometry import concepts
+from tasks.geometry import concepts, size_words
 
 CATALOGUE_FILE = Path(__file__).with_name("catalogue.yaml")
 MIN_SIZE_M, MAX_SIZE_M = 0.01, 2.0
 
 _UNITS = {"mm": 0.001, "millimeter": 0.001, "millimetre": 0.001, "cm": 0.01, "centimeter": 0.01,
           "centimetre": 0.01, "m": 1.0, "meter": 1.0, "metre": 1.0, "in": 0.0254, "inch": 0.0254, "inches": 0.0254,
-          '"': 0.0254, "ft": 0.3048, "foot": 0.3048, "feet": 0.3048}
-_UNIT_RE = r"(mm|millimet(?:er|re)s?|cm|centimet(?:er|re)s?|m|met(?:er|re)s?|inch(?:es)?|in|\"|ft|foot|feet)\b"
+          '"': 0.0254, "ft": 0.3048, "foot": 0.3048, "feet": 0.3048, "km": 1000.0, "kilometer": 1000.0,
+          "kilometre": 1000.0, "dm": 0.1, "decimeter": 0.1, "decimetre": 0.1, "yd": 0.9144, "yard": 0.9144,
+          "mile": 1609.344, "um": 1e-6, "micron": 1e-6, "nm": 1e-9}
+_UNIT_RE = (r"(mm|millimet(?:er|re)s?|cm|centimet(?:er|re)s?|km|kilomet(?:er|re)s?|dm|decimet(?:er|re)s?|"
+            r"m|met(?:er|re)s?|inch(?:es)?|in|\"|ft|foot|feet|yd|yards?|miles?|um|µm|microns?|nm)\b")
 _NUM = r"(\d+(?:\.\d+)?)"
 _DIMS_RE = re.compile(rf"{_NUM}\s*(?:{_UNIT_RE})?\s*[x×by]+\s*{_NUM}\s*(?:{_UNIT_RE})?(?:\s*[x×by]+\s*{_NUM})?\s*{_UNIT_RE}", re.I)
 _ONE_RE = re.compile(
@@ -167,6 +170,9 @@ def parse_size(text: str) -> SizeSpec:
             longest = val
         stated.append(mm.group(0).strip())
     if not stated:
+        said = size_words.read_size_words(_strip_numeric_sizes(t), frozenset(MODIFIERS))
+        if said.longest_m is not None:  # 'the size of an orange', 'fist-sized'
+            return SizeSpec(longest_m=said.longest_m, stated="; ".join(said.stated))
         return SizeSpec()
     if any(v is not None for v in ext):
         return SizeSpec(extents_m=tuple(ext), stated="; ".join(stated))  # type: ignore[arg-type]
@@ -177,7 +183,10 @@ def _unit_key(u: str) -> str:
     u = u.lower()
     if u in _UNITS:
         return u
-    for stem, key in (("milli", "mm"), ("centi", "cm"), ("met", "m"), ("inch", "in"), ("f", "ft")):
+    if u == "µm":
+        return "um"
+    for stem, key in (("milli", "mm"), ("centi", "cm"), ("kilo", "km"), ("deci", "dm"), ("met", "m"), ("inch", "in"),
+                      ("f", "ft"), ("yard", "yd"), ("mile", "mile"), ("micron", "micron")):
         if u.startswith(stem):
             return key
     return "cm"
@@ -194,12 +203,18 @@ def _assign(ext: list[float | None], word: str, val: float) -> None:
         ext[0] = ext[1] = val
 
 
-def strip_sizes(text: str) -> str:
-    """The text without its size phrases (so '25 cm long' is not read as the modifier 'long')."""
+def _strip_numeric_sizes(text: str) -> str:
     t = text.replace("×", "x")
     for rx in (_DIMS_RE, _PREFIX_RE, _ONE_RE):
         t = rx.sub(" ", t)
     return t
+
+
+def strip_sizes(text: str) -> str:
+    """The text without its size phrases (so '25 cm long' is not read as the modifier 'long', nor 'the size of an
+    orange' as an orange)."""
+    t = _strip_numeric_sizes(text)
+    return size_words.strip_spans(t, size_words.read_size_words(t, frozenset(MODIFIERS)).spans)
 
 
 def parse_modifiers(text: str) -> tuple[list[str], tuple[float, float, float]]:
@@ -248,7 +263,8 @@ def design_from_text(text: str, size_hint_m: float | None = None) -> Design:
     mods, axis_scale = parse_modifiers(own_name)
     size = size.model_copy(update={"axis_scale": axis_scale})
     check_size(size)
-    warnings = [w for w in reading.warnings + build_warnings if w]
+    said = size_words.read_size_words(_strip_numeric_sizes(text_n), frozenset(MODIFIERS))
+    warnings = [w for w in said.warnings + reading.warnings + build_warnings if w]
     score = {"exact": 2.0, "synonym": 1.0}.get(match.fallback_level, 0.0)
     return Design(entry=match.concept, program=program, size=size, modifiers=mods, warnings=warnings,
                   match_score=score, concept=match)

@@ -1,0 +1,105 @@
+"""Sizes said by comparison ('the size of an orange', 'fist-sized') and length words that are not a supported unit.
+
+A comparison resolves to a longest extent [m]: a body or everyday reference (fist, palm, coin...) from the table
+below, else a lexicon object's typical size. A comparison that is not understood, or a number with a length word
+this parser does not know, becomes a warning: a size is never dropped without saying so.
+"""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass, field
+
+from contracts.lexicon import load_lexicon
+
+# Everyday references [m], longest extent (adult hand anthropometry; coin ~ 1 euro / US quarter; credit card ISO/IEC 7810)
+REFERENCE_SIZES_M: dict[str, float] = {
+    "fist": 0.10, "palm": 0.09, "hand": 0.19, "thumb": 0.06, "finger": 0.08, "head": 0.22, "pocket": 0.12,
+    "bite": 0.03, "coin": 0.025, "marble": 0.016, "pea": 0.01, "credit card": 0.086, "card": 0.086,
+    "shoe box": 0.33, "shoebox": 0.33, "phone": 0.15, "smartphone": 0.15,
+}
+# 'life-sized', 'full-size': the object's own typical size; nothing to change
+SAME_SIZE_WORDS = frozenset({"life", "full", "real", "normal", "regular", "standard", "medium", "mid", "average",
+                             "true", "actual", "natural"})
+
+_NOT_A_SIZE_WORD = frozenset({"a", "an", "the", "any", "one", "same", "what", "this", "that", "of", "in", "by", "to",
+                              "and", "for", "its", "right", "each", "every", "which", "no"})  # 'a size 5 football'
+
+_ARTICLE = r"(?:an?\s+|the\s+|one\s+)?"
+_OWNER = r"(?:(?:an?\s+)?(?:adult|child|kid|man|woman|person|grown\s*up)(?:'s|s')?\s+)?"
+_COMPARE = re.compile(
+    rf"\b(?:(?:about|roughly|around|approximately|nearly|almost)\s+)?(?:the\s+)?size\s+of\s+{_ARTICLE}{_OWNER}"
+    r"([a-z]+(?:\s+[a-z]+)?)", re.I)
+_SIZED = re.compile(r"\b([a-z]+)(?:-|\s)?sized?\b", re.I)
+_LENGTH_WORD = re.compile(r"(\d+(?:\.\d+)?)\s*([a-zµ]*(?:met(?:er|re)s?|metric)|furlongs?|leagues?|nmi|angstroms?|"
+                          r"parsecs?|light\s*years?)\b", re.I)
+
+
+@dataclass
+class SizeWords:
+    """What the comparisons in a text say: a longest extent [m] (or None), the phrases read, and warnings."""
+
+    longest_m: float | None = None
+    stated: list[str] = field(default_factory=list)
+    spans: list[tuple[int, int]] = field(default_factory=list)
+    warnings: list[str] = field(default_factory=list)
+
+
+def _lexicon_size(words: str) -> float | None:
+    """Typical longest extent [m] of the lexicon object these words name (singular or plural), if any."""
+    from tasks.geometry.concepts import noun_index, normalise
+
+    hit = noun_index().get(normalise(words))
+    return None if hit is None else float(load_lexicon().entries[hit[0]].size_m)
+
+
+def _reference_size(words: str) -> float | None:
+    w = words.lower().strip()
+    if w in REFERENCE_SIZES_M:
+        return REFERENCE_SIZES_M[w]
+    if w.endswith("s") and w[:-1] in REFERENCE_SIZES_M:
+        return REFERENCE_SIZES_M[w[:-1]]
+    return _lexicon_size(w)
+
+
+def read_size_words(text: str, relative_words: frozenset[str] | set[str] = frozenset()) -> SizeWords:
+    """Comparisons and unsupported length words in `text`; `relative_words` ('mini', 'giant') are left to modifiers."""
+    out = SizeWords()
+    for m in _COMPARE.finditer(text):
+        words = m.group(1).split()
+        size, end = None, m.end()
+        for n in (2, 1):  # 'a tennis ball' before 'a tennis'; 'an orange with stripes' -> 'orange'
+            if len(words) >= n and (size := _reference_size(" ".join(words[:n]))) is not None:
+                end = m.end() if n == 2 else m.start(1) + len(words[0])
+                break
+        phrase = text[m.start():end]
+        out.spans.append((m.start(), end))
+        if size is None:
+            out.warnings.append(f"size comparison '{phrase.strip()}' not understood: the object's typical size is used")
+            continue
+        out.longest_m = size
+        out.stated.append(f"{phrase.strip()} (~{size:g} m)")
+    for m in _SIZED.finditer(text):
+        word = m.group(1).lower()
+        if word in relative_words or word in _NOT_A_SIZE_WORD or any(a <= m.start() < b for a, b in out.spans):
+            continue
+        out.spans.append((m.start(), m.end()))
+        if word in SAME_SIZE_WORDS:
+            continue
+        size = _reference_size(word)
+        if size is None:
+            out.warnings.append(f"size word '{m.group(0)}' not understood: the object's typical size is used")
+            continue
+        out.longest_m = size
+        out.stated.append(f"{m.group(0)} (~{size:g} m)")
+    for m in _LENGTH_WORD.finditer(text):
+        out.warnings.append(f"length unit in '{m.group(0)}' not understood (use mm, cm, m, km, in or ft): ignored")
+    return out
+
+
+def strip_spans(text: str, spans: list[tuple[int, int]]) -> str:
+    """`text` with the given character spans blanked out."""
+    chars = list(text)
+    for a, b in spans:
+        chars[a:b] = " " * (b - a)
+    return "".join(chars)
