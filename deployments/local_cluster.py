@@ -11,6 +11,7 @@ coordinators. The same steps, spread over hosts, are the multi-machine recipe in
 from __future__ import annotations
 
 import argparse
+import contextlib
 import json
 import os
 import signal
@@ -214,8 +215,13 @@ class LocalCluster:
         """Every flow run: id, name, deployment id, state type and name, parent task run id."""
         code = ("import json; from prefect.client.orchestration import get_client\n"
                 "from prefect.client.schemas.sorting import FlowRunSort\n"
+                "runs = []\n"
                 "with get_client(sync_client=True) as c:\n"
-                "    runs = c.read_flow_runs(limit=200, offset=0, sort=FlowRunSort.EXPECTED_START_TIME_ASC)\n"
+                "    while True:\n"
+                "        page = c.read_flow_runs(limit=200, offset=len(runs), sort=FlowRunSort.EXPECTED_START_TIME_ASC)\n"
+                "        runs += page\n"
+                "        if len(page) < 200:\n"
+                "            break\n"
                 "print(json.dumps([{'id': str(r.id), 'name': r.name, 'deployment_id': str(r.deployment_id),"
                 " 'state': r.state.type.value if r.state else None, 'state_name': r.state.name if r.state else None,"
                 " 'message': r.state.message if r.state else None, 'parent': str(r.parent_task_run_id),"
@@ -243,10 +249,23 @@ def main() -> int:
     ap.add_argument("--batch", type=Path, default=None, help="run this JSONL through deformsmith-batch/nightly, then stop")
     ap.add_argument("--out", type=Path, default=Path("out/batch"), help="batch output root")
     ap.add_argument("--timeout-s", type=float, default=3600.0)
+    ap.add_argument("--postgres", action="store_true",
+                    help="the server's database on a throwaway PostgreSQL under <home>/pg (Debian's postgresql) "
+                         "instead of SQLite")
     args = ap.parse_args()
     home = args.home or Path(tempfile.mkdtemp(prefix="deformsmith-cluster-"))
     cache = args.cache or Path(os.environ.get("DEFORMSMITH_CACHE") or home / "cache")
-    with LocalCluster(home, cache, workers=args.workers, port=args.port) as cluster:
+    with contextlib.ExitStack() as stack:
+        env: dict[str, str] = {}
+        if args.postgres:
+            from local_postgres import LocalPostgres
+
+            env["PREFECT_API_DATABASE_CONNECTION_URL"] = stack.enter_context(LocalPostgres(home / "pg")).url
+        return _serve(args, home, cache, env)
+
+
+def _serve(args: argparse.Namespace, home: Path, cache: Path, env: dict[str, str]) -> int:
+    with LocalCluster(home, cache, workers=args.workers, port=args.port, extra_env=env) as cluster:
         print(f"server {cluster.api_url} (UI: http://127.0.0.1:{cluster.port}); {args.workers} workers; "
               f"cache {cache}; logs {cluster.logs}", flush=True)
         if args.batch is None:
