@@ -3,7 +3,8 @@
 Three kinds, each named after its owner's process id, and removed only when that process is gone:
 - ``<cache>/recordings/**/<name>.rrd.<pid>.tmp``: a Rerun recording being written (tasks.record.ProbeRecording);
 - ``<cache>/tmp/<key>.<pid>.<random>``: a cache entry being written (cache.store.CacheStore.put);
-- ``<dir>/.<name>.partial-<host>~<pid>~<random>``: an asset's working directory beside its output (flows.generate).
+- ``<dir>/.<name>.{partial,tmp,old}-<host>~<pid>~<random>``: a working directory beside an output (an asset being
+  built by flows.generate, an L0 output by tasks.geometry.outputs, an old directory set aside by tasks.publish).
 A name that carries no host (the first two) is removed only once untouched for `GRACE_S` seconds, so that a live
 writer of another host sharing the cache is never mistaken for a dead local one.
 """
@@ -22,7 +23,12 @@ from typing import Any
 GRACE_S = 60.0  # a pid-only temporary must be untouched this long before it counts as dead [s]
 _RRD_TMP = re.compile(r"^.+\.rrd\.(\d+)\.tmp$")
 _ENTRY_TMP = re.compile(r"^[0-9a-f]{16,}\.(\d+)\.[0-9a-f]{8}$")
-_PARTIAL = re.compile(r"^\..+\.partial-(?P<host>[^~]+)~(?P<pid>\d+)~")
+_PARTIAL = re.compile(r"^\.(?P<name>.+)\.(?:partial|tmp|old)-(?P<host>[^~]+)~(?P<pid>\d+)~")
+
+
+def owner_tag() -> str:
+    """`<host>~<pid>~`: put in a working directory's name so that a dead owner can be recognised (dead_partials)."""
+    return f"{socket.gethostname()}~{os.getpid()}~"
 
 
 def pid_alive(pid: int) -> bool:
@@ -59,14 +65,15 @@ def dead_cache_temporaries(root: Path, grace_s: float = GRACE_S, now: float | No
     return sorted(found)
 
 
-def dead_partials(parent: Path) -> list[Path]:
-    """`.<name>.partial-<host>~<pid>~*` working directories in `parent` left by a dead process of this host."""
+def dead_partials(parent: Path, name: str | None = None) -> list[Path]:
+    """`.<name>.{partial,tmp,old}-<host>~<pid>~*` working directories in `parent` left by a dead process of this
+    host (only those of output `name` when given)."""
     parent, host, found = Path(parent), socket.gethostname(), []
     if not parent.is_dir():
         return found
-    for path in parent.glob(".*.partial-*"):
+    for path in parent.glob(".*-*~*~*"):
         m = _PARTIAL.match(path.name)
-        if m and m.group("host") == host and not pid_alive(int(m.group("pid"))):
+        if m and m.group("host") == host and not pid_alive(int(m.group("pid"))) and name in (None, m.group("name")):
             found.append(path)
     return sorted(found)
 

@@ -10,12 +10,14 @@ from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
+from cache.tempfiles import owner_tag
+
 
 def replace_directory(finished: Path, dest: Path) -> None:
     """Rename `finished` to `dest` (same filesystem); an existing `dest` is moved aside first, then removed."""
     finished, dest = Path(finished), Path(dest)
     if dest.exists():
-        aside = Path(tempfile.mkdtemp(prefix=f".{dest.name}.old-", dir=dest.parent))
+        aside = Path(tempfile.mkdtemp(prefix=f".{dest.name}.old-{owner_tag()}", dir=dest.parent))
         os.replace(dest, aside / "previous")
         os.replace(finished, dest)
         shutil.rmtree(aside, ignore_errors=True)

@@ -12,6 +12,7 @@ import numpy as np
 import trimesh
 import zarr
 
+from cache.tempfiles import dead_partials, owner_tag, remove_paths
 from contracts.errors import InputError
 from tasks.geometry.checks import GeometryChecks
 from tasks.geometry.collision import write_collision
@@ -64,7 +65,8 @@ def publish_dir(build, out_dir: Path) -> None:  # type: ignore[no-untyped-def]
     if out_dir.exists() and any(out_dir.iterdir()) and not (out_dir / GEOMETRY_JSON).exists():
         raise InputError(f"{out_dir} exists and is not an L0 output directory; choose an empty or new directory")
     out_dir.parent.mkdir(parents=True, exist_ok=True)
-    tmp = Path(tempfile.mkdtemp(prefix=f".{out_dir.name}.tmp-", dir=out_dir.parent))
+    remove_paths(dead_partials(out_dir.parent, out_dir.name))  # what a killed run of this output left
+    tmp = Path(tempfile.mkdtemp(prefix=f".{out_dir.name}.tmp-{owner_tag()}", dir=out_dir.parent))
     try:
         build(tmp)
         replace_directory(tmp, out_dir)

@@ -96,3 +96,27 @@ def test_gc_refuses_a_folder_that_is_not_a_cache(tmp_path: Path) -> None:
                           capture_output=True, text=True, timeout=120)
     assert proc.returncode != 0 and "not a DeformSmith cache" in proc.stderr
     assert keep.exists()
+
+
+def test_l0_and_publish_working_dirs_name_their_owner_and_a_dead_ones_go(tmp_path: Path) -> None:
+    """L0's `.NAME.tmp-*` and publish's `.NAME.old-*` carry host and pid; the next L0 publish of NAME removes the
+    dead ones of NAME (and only those), a live owner's and another name's stay."""
+    from cache.tempfiles import dead_partials, owner_tag
+    from tasks.geometry.outputs import publish_dir
+
+    host = socket.gethostname()
+    dead_tmp = tmp_path / f".geo.tmp-{host}~{dead_pid()}~abc"
+    dead_old = tmp_path / f".geo.old-{host}~{dead_pid()}~def"
+    live = tmp_path / f".geo.tmp-{owner_tag()}ghi"
+    other = tmp_path / f".other.tmp-{host}~{dead_pid()}~jkl"
+    for d in (dead_tmp, dead_old, live, other):
+        d.mkdir()
+    assert dead_partials(tmp_path, "geo") == sorted([dead_old, dead_tmp])
+
+    def build(tmp: Path) -> None:
+        assert tmp.name.startswith(f".geo.tmp-{owner_tag()}")
+        (tmp / "geometry.json").write_text("{}", encoding="utf-8")
+
+    publish_dir(build, tmp_path / "geo")
+    assert not dead_tmp.exists() and not dead_old.exists() and live.exists() and other.exists()
+    assert (tmp_path / "geo" / "geometry.json").is_file()
