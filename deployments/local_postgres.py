@@ -3,7 +3,8 @@
     with LocalPostgres(Path("/tmp/pg")) as pg:
         LocalCluster(home, cache, extra_env={"PREFECT_API_DATABASE_CONNECTION_URL": pg.url})
 
-The data directory, socket and log live under the given folder; the server listens on 127.0.0.1 at a free port and
+The data directory, socket and log live under the given folder (as root: a fresh folder in the temp dir that the
+`postgres` user can reach, removed on exit); the server listens on 127.0.0.1 at a free port and
 is stopped (fast shutdown) on exit. Run as root, PostgreSQL's own binaries refuse to start, so they run as the
 `postgres` system user (which must then exist); otherwise as the current user.
 """
@@ -14,6 +15,7 @@ import os
 import pwd
 import shutil
 import subprocess
+import tempfile
 import time
 from pathlib import Path
 from typing import Any
@@ -39,13 +41,16 @@ class LocalPostgres:
 
     def __init__(self, root: Path, port: int | None = None) -> None:
         self.root = Path(root).absolute()
-        self.data, self.log = self.root / "data", self.root / "postgres.log"
-        self.port = port or free_port()
-        self.url = f"postgresql+asyncpg://prefect@127.0.0.1:{self.port}/{DATABASE}"
         self._as_user: list[str] = []
+        self._own_root = False
         if os.geteuid() == 0:
             pwd.getpwnam("postgres")  # KeyError when the system user is missing
             self._as_user = ["runuser", "-u", "postgres", "--"]
+            # the postgres user may not traverse root's folders (pytest's tmp is 0700): a folder of its own in /tmp
+            self.root, self._own_root = Path(tempfile.mkdtemp(prefix="deformsmith-pg-")), True
+        self.data, self.log = self.root / "data", self.root / "postgres.log"
+        self.port = port or free_port()
+        self.url = f"postgresql+asyncpg://prefect@127.0.0.1:{self.port}/{DATABASE}"
 
     def _run(self, *args: str, timeout_s: float = 120) -> str:
         proc = subprocess.run([*self._as_user, *args], capture_output=True, text=True, timeout=timeout_s)
@@ -75,6 +80,8 @@ class LocalPostgres:
     def stop(self) -> None:
         if (self.data / "postmaster.pid").is_file():
             self._run(_pg_bin("pg_ctl"), "-D", str(self.data), "-m", "fast", "-w", "stop", timeout_s=60)
+        if self._own_root:
+            shutil.rmtree(self.root, ignore_errors=True)
 
     def __enter__(self) -> "LocalPostgres":
         try:
