@@ -41,6 +41,7 @@ from cache.runtime import configure_prefect_env
 configure_prefect_env()  # before prefect is imported: local PREFECT_HOME default, analytics off
 
 from cache.config import cache_relative, cache_resolve, cache_root, use_cache_root  # noqa: E402
+from cache.dont_store import dont_store  # noqa: E402
 from cache.hashing import content_key  # noqa: E402
 
 _LAZY = {  # heavy imports (prefect ~2.5 s, zarr ~0.4 s) only when used, so the CLI starts fast
@@ -69,6 +70,7 @@ __all__ = [
     "cache_root",
     "cached_task",
     "content_key",
+    "dont_store",
     "local_runtime",
     "scratch_dir",
     "use_cache_root",

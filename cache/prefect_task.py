@@ -24,6 +24,7 @@ from prefect.serializers import Serializer
 
 from cache import codec
 from cache.config import cache_root
+from cache.dont_store import take_mark
 from cache.hashing import content_key
 from cache.locks import FlockLockManager
 from cache.runtime import local_runtime
@@ -220,6 +221,8 @@ class StoreResultStorage(WritableFileSystem):
             # keeps results only (a failure must not look like an entry), so it is dropped here
             return path
         ctx = TaskRunContext.get()
+        if ctx is not None and take_mark(ctx.task_run.id):
+            return path  # a stand-in result (cache.dont_store): returned to the caller, never stored
         meta = {"prefect_metadata": record["metadata"]}
         if ctx is not None:
             meta.update(task=ctx.task.name, version=ctx.task.version)

@@ -15,6 +15,7 @@ os.environ.setdefault("LITELLM_LOCAL_MODEL_COST_MAP", "True")  # before importin
 import litellm  # noqa: E402
 from pydantic import BaseModel, ValidationError  # noqa: E402
 
+from cache.dont_store import dont_store  # noqa: E402
 from contracts.agents import (  # noqa: E402
     Candidate, Critique, CriticRequest, DesignerRequest, PlannerContext, PlannerDecision, RoleConfig,
 )
@@ -202,6 +203,7 @@ def _give_up(role: str, cfg: RoleConfig, where: str, reason: str, errors: list[s
                                            "stand in)")
         raise AgentError(f"{role} ({model}) gave no valid answer: {reason}")
     fallbacks.announce(f"the offline rule backend stands in for litellm/{model} at {where}: {fallbacks.brief(reason)}")
+    dont_store()  # inside a cached task: the stand-in is not kept under the LLM's key
     reply = fallback()
     source = AgentSource(backend="fallback_rule", model=model, prompt_tokens=tokens_in, completion_tokens=tokens_out,
                          cost_usd=cost, retries=len(invalid), errors=errors, fallback_reason=f"{reason} (at {where})")

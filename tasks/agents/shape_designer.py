@@ -11,6 +11,7 @@ import imageio.v3 as iio
 import numpy as np
 import trimesh
 
+from cache.dont_store import dont_store
 from contracts.agents import RoleConfig
 from contracts.errors import InputError
 from contracts.evidence import AgentSource, Attempt, EvidenceRecord
@@ -188,6 +189,7 @@ def _fallback(request: Any, settings: Any, design: ShapeDesign, designer: RoleCo
     """The offline grammar's build, its record saying that (and why) the LLM Designer was not used."""
     from tasks.geometry import pipeline
 
+    dont_store()  # the offline build is not kept under the LLM Designer's key: a later run asks the LLM again
     arrays, info = pipeline._from_text(request, settings)
     note = (f"the LLM Designer (litellm/{designer.model}) gave no valid shape program "
             f"({design.fallback_reason}); built by the offline grammar instead")
