@@ -22,7 +22,6 @@ def verify_physics(
         fail("--device must be cpu or cuda")
     import warp as wp
 
-    wp.config.quiet = True
     from tasks.mpm.verify import CASES, run_case
 
     names = list(case) if case else list(CASES)
@@ -65,6 +64,8 @@ def bench_mpm(
         False, "--compare-sequential",
         help="also run the batch's scenes one after another in this process and print both ratios"),
     json_out: bool = typer.Option(False, "--json", help="print the figures as JSON on stdout"),
+    kernel: list[str] = typer.Option(
+        None, "--kernel", help="engine kernel option name=value (contracts.sim.KernelOptions; repeatable)"),
 ) -> None:
     """Benchmark the MPM step on the standard cube scene (warm-up/compile excluded from the timing)."""
     if device not in ("cpu", "cuda"):
@@ -73,14 +74,17 @@ def bench_mpm(
         fail("need --particles >= 8, --steps >= 1, --batch >= 1, --workers >= 0, 1 <= --cpu-threads <= 64")
     if compare_sequential and batch < 2:
         fail("--compare-sequential needs --batch >= 2")
-    import warp as wp
+    from contracts.sim import KernelOptions
 
-    wp.config.quiet = True
+    try:
+        options = KernelOptions.from_assignments(kernel or [])
+    except ValueError as exc:
+        fail(f"--kernel: {exc}")
     from tasks.mpm.bench import run_bench
 
     with contextlib.redirect_stdout(sys.stderr):  # Warp's own messages must not mix with --json output
         res = run_bench(device=device, particles=particles, steps=steps, batch=batch, workers=workers or None,
-                        cpu_threads=cpu_threads, compare_sequential=compare_sequential)
+                        cpu_threads=cpu_threads, compare_sequential=compare_sequential, kernel=options)
     if json_out:
         emit_json(res)
     else:

@@ -41,16 +41,14 @@ threads (Warp CPU kernels are single-threaded; launches release the GIL).
 
 from __future__ import annotations
 
-import warp as _wp
+from tasks.native_output import init_warp_quietly
 
-# Warp prints its banner and module loads on stdout, which belongs to --json data: warnings and errors only.
-_wp.config.quiet = True
-if hasattr(_wp, "LOG_WARNING"):
-    _wp.config.log_level = _wp.LOG_WARNING
+# Warp: banner and module loads off stdout (it belongs to --json data), no CUDA-driver notice on a CPU machine
+WARP_INIT_NOTES = init_warp_quietly()
 
 from tasks.mpm.control import Control  # noqa: E402
-from tasks.mpm.health import HealthIssue, HealthStatus
-from tasks.mpm.model import (
+from tasks.mpm.health import HealthIssue, HealthStatus  # noqa: E402
+from tasks.mpm.model import (  # noqa: E402
     ColliderSpec,
     Model,
     SceneSpec,
@@ -61,9 +59,9 @@ from tasks.mpm.model import (
     halfspace_collider,
     pad_collider,
 )
-from tasks.mpm.simulator import IntervalReport, Simulator, advance_parallel, side_by_side
-from tasks.mpm.solver import Solver
-from tasks.mpm.state import State
+from tasks.mpm.simulator import IntervalReport, Simulator, advance_parallel, side_by_side  # noqa: E402
+from tasks.mpm.solver import Solver  # noqa: E402
+from tasks.mpm.state import State  # noqa: E402
 
 __all__ = [
     "ColliderSpec",

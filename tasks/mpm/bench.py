@@ -7,12 +7,13 @@ import os
 import platform
 import resource
 import time
-from datetime import datetime, timezone
+from datetime import UTC, datetime
 
 import numpy as np
 import warp as wp
 
 from contracts.errors import InputError, SimulationError
+from contracts.sim import KernelOptions
 from tasks.mpm.scene import BENCH_DT_S, bench_cube_model
 from tasks.mpm.simulator import Simulator, side_by_side
 
@@ -43,12 +44,13 @@ def _model_bytes(sim: Simulator) -> int:
 
 def run_bench(
     device: str = "cpu", particles: int = 64000, steps: int = 200, batch: int = 1, workers: int | None = None,
-    cpu_threads: int = 1, compare_sequential: bool = False,
+    cpu_threads: int = 1, compare_sequential: bool = False, kernel: KernelOptions | None = None,
 ) -> dict:
     """Time `steps` fixed-dt steps of `batch` standard cubes of ~particles each; returns the figures as a dict.
     workers: CPU threads each advancing a share of the batch; cpu_threads: threads sharing each of those rollouts;
     compare_sequential: also run the batch's scenes one after another in the same process
-    (``sequential_comparison``)."""
+    (``sequential_comparison``); kernel: the engine's kernel options (SimConfig.kernel; None = defaults)."""
+    kernel = kernel or KernelOptions()
     if particles < 8 or steps < 1 or batch < 1 or not 1 <= cpu_threads <= 64:
         raise InputError("need particles >= 8, steps >= 1, batch >= 1, 1 <= cpu_threads <= 64")
     if compare_sequential and batch < 2:
@@ -63,7 +65,7 @@ def run_bench(
         workers = min(batch, os.cpu_count() or 1) if device == "cpu" else 1
     workers = max(1, min(workers, batch))
     shares = [batch // workers + (1 if i < batch % workers else 0) for i in range(workers)]
-    sims = [Simulator(bench_cube_model(n, b, device, cpu_threads), health_interval_steps=100) for b in shares]
+    sims = [Simulator(bench_cube_model(n, b, device, cpu_threads, kernel), health_interval_steps=100) for b in shares]
 
     # warm-up (excluded from the timing): kernel compilation/loading, CUDA graph capture, first launches. On CUDA
     # the warm-up replays the timed run's exact call sequence (every advance ends with a health check that re-fits
@@ -99,19 +101,20 @@ def run_bench(
         mem_kind = "host_peak_rss_bytes"
         dev_name = _cpu_name()
     engine_bytes = sum(_model_bytes(s) for s in sims)
-    comparison = sequential_comparison(device, n, batch, steps, cpu_threads, seconds / steps * 1e6) \
+    comparison = sequential_comparison(device, n, batch, steps, cpu_threads, seconds / steps * 1e6, kernel) \
         if compare_sequential else None
     return {
         "device": device,
         "device_name": dev_name,
         "warp_version": wp.config.version,
-        "date_utc": datetime.now(timezone.utc).isoformat(timespec="seconds"),
+        "date_utc": datetime.now(UTC).isoformat(timespec="seconds"),
         "scene": "0.2 m cube, E=1e5 Pa, nu=0.3, rho=200 kg/m^3, 0.05 m above ground, fixed dt=1e-4 s",
         "particles": total_particles,
         "particles_per_scene": n**3,
         "batch": batch,
         "workers": len(sims),
         "cpu_threads": sims[0].model.config.cpu_threads,
+        "kernel_options": kernel.model_dump(mode="json"),
         "steps": steps,
         "dt_s": BENCH_DT_S,
         "seconds": seconds,
@@ -135,23 +138,25 @@ def run_bench(
     }
 
 
-def _rollout_seconds(device: str, n: int, batch: int, steps: int, cpu_threads: int) -> float:
+def _rollout_seconds(device: str, n: int, batch: int, steps: int, cpu_threads: int, kernel: KernelOptions) -> float:
     """Wall time of one whole rollout of `batch` cubes: model build, simulator, `steps` steps (graph capture
     included; kernels already loaded in this process), synchronised."""
     t = time.perf_counter()
-    sim = Simulator(bench_cube_model(n, batch, device, cpu_threads), health_interval_steps=100)
+    sim = Simulator(bench_cube_model(n, batch, device, cpu_threads, kernel), health_interval_steps=100)
     sim.advance(steps * BENCH_DT_S * 1.5, max_steps=steps)
     wp.synchronize_device(device)
     return time.perf_counter() - t
 
 
-def sequential_comparison(device: str, n: int, batch: int, steps: int, cpu_threads: int, batch_us: float) -> dict:
+def sequential_comparison(device: str, n: int, batch: int, steps: int, cpu_threads: int, batch_us: float,
+                          kernel: KernelOptions | None = None) -> dict:
     """The batch against its scenes run one after another, in this process: per step (each scene's own timed run,
     warm-up excluded, as the batch's) and end to end (each rollout built and run from scratch: model, simulator,
     graph capture, steps; the batch likewise). Ratios > 1: the batch is faster."""
-    single = [run_bench(device, n**3, steps, 1, 1, cpu_threads)["us_per_step"] for _ in range(batch)]
-    seq_e2e = [_rollout_seconds(device, n, 1, steps, cpu_threads) for _ in range(batch)]
-    batch_e2e = _rollout_seconds(device, n, batch, steps, cpu_threads)
+    kernel = kernel or KernelOptions()
+    single = [run_bench(device, n**3, steps, 1, 1, cpu_threads, kernel=kernel)["us_per_step"] for _ in range(batch)]
+    seq_e2e = [_rollout_seconds(device, n, 1, steps, cpu_threads, kernel) for _ in range(batch)]
+    batch_e2e = _rollout_seconds(device, n, batch, steps, cpu_threads, kernel)
     return {
         "scenes": batch,
         "single_us_per_step": single,

@@ -3,7 +3,8 @@
 from __future__ import annotations
 
 import math
-from typing import TYPE_CHECKING, Sequence
+from typing import TYPE_CHECKING
+from collections.abc import Sequence
 
 import numpy as np
 import warp as wp
@@ -12,6 +13,8 @@ from contracts.errors import InputError
 
 if TYPE_CHECKING:
     from tasks.mpm.model import Model
+
+Vec = Sequence[float] | np.ndarray  # a vector [SI], list, tuple or array
 
 
 def _quat_mul(a: np.ndarray, b: np.ndarray) -> np.ndarray:
@@ -77,10 +80,10 @@ class Control:
         scene: int,
         index: int,
         *,
-        position_m: Sequence[float] | None = None,
-        rotation_xyzw: Sequence[float] | None = None,
-        linear_velocity_m_per_s: Sequence[float] | None = None,
-        angular_velocity_rad_per_s: Sequence[float] | None = None,
+        position_m: Vec | None = None,
+        rotation_xyzw: Vec | None = None,
+        linear_velocity_m_per_s: Vec | None = None,
+        angular_velocity_rad_per_s: Vec | None = None,
     ) -> None:
         """Set a collider's pose [m] / velocity [m/s, rad/s] from the next step on (None = keep current)."""
         c = self.model.collider_index(scene, index)
@@ -98,7 +101,7 @@ class Control:
                 entry[key] = arr
         self._dirty = True
 
-    def set_grid_velocity(self, scene: int, velocity_m_per_s: Sequence[float]) -> None:
+    def set_grid_velocity(self, scene: int, velocity_m_per_s: Vec) -> None:
         """Move scene's grid lattice at this velocity [m/s] from the next step on (0: the lattice stays where it is).
 
         Grid contact sees a collider's surface only at nodes, so a collider that crosses lattice planes while it holds
@@ -124,7 +127,7 @@ class Control:
         a = self.slide_ref[scene] + self.slide_vel[scene] * (time_s - self.slide_time[scene])
         return a - np.floor(a)
 
-    def set_gravity(self, scene: int, gravity_m_per_s2: Sequence[float]) -> None:
+    def set_gravity(self, scene: int, gravity_m_per_s2: Vec) -> None:
         """Set a scene's gravity vector [m/s^2] from the next step on."""
         g = np.asarray(gravity_m_per_s2, dtype=np.float64).reshape(3)
         if not np.all(np.isfinite(g)):

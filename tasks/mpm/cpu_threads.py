@@ -31,7 +31,8 @@ def merge_grids(dst: wp.array(dtype=wp.vec4), parts: wp.array(dtype=wp.vec4), n_
                 n: int):
     """dst[i] += parts[k * n + i] for k = 0, 1, ... in order; the parts are zeroed for the next scatter."""
     t = wp.tid()
-    for i in range(t * per_thread, wp.min((t + 1) * per_thread, n)):
+    # Warp's stub types wp.tid() as int | tuple (its 2-D+ forms); in this 1-D kernel it is an int
+    for i in range(t * per_thread, wp.min((t + 1) * per_thread, n)):  # type: ignore[arg-type, operator]
         acc = dst[i]
         for k in range(n_parts):
             j = k * n + i
@@ -124,7 +125,7 @@ class CpuChunks:
         self.device = d
         # scene_start shifted per chunk: a kernel's particle index is local to its slice (failures name the
         # scene-local index p - scene_start[s], as without chunks)
-        self.scene_start = [wp.array(np.asarray(scene_start, np.int64) - a, dtype=wp.int32, device=d)
+        self.scene_start: list[wp.array] = [wp.array(np.asarray(scene_start, np.int64) - a, dtype=wp.int32, device=d)
                             for a, _ in bounds]
         self.ground_parts = wp.zeros(P * n_scenes, dtype=wp.vec3, device=d)
         self.collider_parts = wp.zeros(P * n_colliders, dtype=wp.vec3, device=d)
@@ -144,6 +145,7 @@ class CpuChunks:
 
     def part(self, k: int) -> dict[str, wp.array]:
         """Chunk k's (k >= 1) views: grid buffer, ground and collider impulses, failure tables."""
+        assert self.grid_parts is not None, "alloc_grid before part"
         j = k - 1
         g, c, s = self.grid_nodes, self.n_colliders, self.n_slots
         return {"grid": self.grid_parts[j * g:(j + 1) * g],

@@ -316,6 +316,52 @@ def gather_row(grid_v: wp.array(dtype=wp.vec4), row: int, wz: wp.vec3) -> wp.mat
     return wp.mat33(s0[0], s0[1], s0[2], s1[0], s1[1], s1[2], 0.0, 0.0, 0.0)
 
 
+# -- argument bundles of the step kernels ----------------------------------------------------------------------------
+@wp.struct
+class Ground:
+    """The ground plane of each scene: enabled (0/1), height [m] (z), Coulomb friction [-]."""
+
+    enabled: wp.array(dtype=wp.int32)
+    height: wp.array(dtype=float)
+    mu: wp.array(dtype=float)
+
+
+@wp.struct
+class Colliders:
+    """The kinematic colliders' shapes: scene s owns [start[s], start[s] + count[s]); kind (COLLIDER_*), params
+    (box half extents [m] / capsule radius and half length [m] / convex polytope planes), the planes of the convex
+    ones, bounding sphere radius^2 [m^2] around the pose, friction [-], bonded (0/1)."""
+
+    start: wp.array(dtype=wp.int32)
+    count: wp.array(dtype=wp.int32)
+    kind: wp.array(dtype=wp.int32)
+    params: wp.array(dtype=wp.vec3)
+    planes: wp.array(dtype=wp.vec4)
+    radius2: wp.array(dtype=float)
+    mu: wp.array(dtype=float)
+    bonded: wp.array(dtype=wp.int32)
+
+
+@wp.struct
+class ColliderMotion:
+    """The colliders' poses at one instant of the step (position [m], rotation) and velocities [m/s], [rad/s]."""
+
+    pos: wp.array(dtype=wp.vec3)
+    rot: wp.array(dtype=wp.quat)
+    lin_vel: wp.array(dtype=wp.vec3)
+    ang_vel: wp.array(dtype=wp.vec3)
+
+
+@wp.struct
+class HealthLimits:
+    """What a healthy particle keeps to: each scene's domain box [m] and det(F) in [j_min, j_max]."""
+
+    domain_lo: wp.array(dtype=wp.vec3)
+    domain_hi: wp.array(dtype=wp.vec3)
+    j_min: float
+    j_max: float
+
+
 @wp.kernel
 def update_collider_poses(
     ref_pos: wp.array(dtype=wp.vec3),
@@ -523,22 +569,10 @@ def make_grid_update(colliders: bool = True, agg: bool = False, module: str | No
         scene_gravity: wp.array(dtype=wp.vec3),
         scene_damping: wp.array(dtype=float),
         grid_slide: wp.array(dtype=wp.float64),
-        ground_enabled: wp.array(dtype=wp.int32),
-        ground_height: wp.array(dtype=float),
-        ground_mu: wp.array(dtype=float),
+        ground: Ground,
         ground_impulse: wp.array(dtype=wp.vec3),
-        col_start: wp.array(dtype=wp.int32),
-        col_count: wp.array(dtype=wp.int32),
-        col_kind: wp.array(dtype=wp.int32),
-        col_params: wp.array(dtype=wp.vec3),
-        col_planes: wp.array(dtype=wp.vec4),
-        col_radius2: wp.array(dtype=float),
-        col_mu: wp.array(dtype=float),
-        col_bonded: wp.array(dtype=wp.int32),
-        col_pos: wp.array(dtype=wp.vec3),
-        col_rot: wp.array(dtype=wp.quat),
-        col_lin_vel: wp.array(dtype=wp.vec3),
-        col_ang_vel: wp.array(dtype=wp.vec3),
+        cols: Colliders,
+        col_start_pose: ColliderMotion,
         col_impulse: wp.array(dtype=wp.vec3),
         clock_time: wp.array(dtype=wp.float64),
         clock_step: wp.array(dtype=wp.int32),
@@ -598,9 +632,9 @@ def make_grid_update(colliders: bool = True, agg: bool = False, module: str | No
                 v = (v + dt * scene_gravity[s]) * wp.exp(-scene_damping[s] * dt)
             o = grid_origin[s]
             xn = (o + wp.vec3(float(i), float(j), float(k))) * dx
-            if ground_enabled[s] != 0:
-                if xn[2] <= ground_height[s]:
-                    vplus = contact_velocity(v, wp.vec3(0.0, 0.0, 0.0), wp.vec3(0.0, 0.0, 1.0), ground_mu[s], 0)
+            if ground.enabled[s] != 0:
+                if xn[2] <= ground.height[s]:
+                    vplus = contact_velocity(v, wp.vec3(0.0, 0.0, 0.0), wp.vec3(0.0, 0.0, 1.0), ground.mu[s], 0)
                     if wp.static(agg):
                         g_imp = m * (vplus - v)
                         g_has = 1
@@ -609,16 +643,16 @@ def make_grid_update(colliders: bool = True, agg: bool = False, module: str | No
                         wp.atomic_add(ground_impulse, s, m * (vplus - v))
                     v = vplus
             if wp.static(colliders):
-                c0 = col_start[s]
-                for c in range(c0, c0 + col_count[s]):
-                    rel = xn - col_pos[c]
-                    if wp.dot(rel, rel) > col_radius2[c]:
+                c0 = cols.start[s]
+                for c in range(c0, c0 + cols.count[s]):
+                    rel = xn - col_start_pose.pos[c]
+                    if wp.dot(rel, rel) > cols.radius2[c]:
                         continue  # outside the collider's bounding sphere
-                    q = collider_contact(col_kind[c], col_params[c], col_pos[c], col_rot[c], col_lin_vel[c],
-                                         col_ang_vel[c], xn, col_planes)
+                    q = collider_contact(cols.kind[c], cols.params[c], col_start_pose.pos[c], col_start_pose.rot[c],
+                                         col_start_pose.lin_vel[c], col_start_pose.ang_vel[c], xn, cols.planes)
                     if q[2, 0] <= 0.0:
                         vplus = contact_velocity(v, wp.vec3(q[1, 0], q[1, 1], q[1, 2]),
-                                                 wp.vec3(q[0, 0], q[0, 1], q[0, 2]), col_mu[c], col_bonded[c])
+                                                 wp.vec3(q[0, 0], q[0, 1], q[0, 2]), cols.mu[c], cols.bonded[c])
                         wp.atomic_add(col_impulse, c, m * (vplus - v))
                         v = vplus
             grid_v[n] = wp.vec4(v[0], v[1], v[2], 0.0)
@@ -634,6 +668,151 @@ grid_update = make_grid_update()
 grid_update_merge_cpu = make_grid_update(module="unique", merge=True)
 
 
+# -- the steps of a particle's grid-to-particle update (shared by g2p, the fused CPU g2p + p2g and the fused CUDA
+# g2p2g of kernels_cuda.py: one body, the same arithmetic in the same order) ----------------------------------------
+@wp.func
+def g2p_gather(
+    grid_v: wp.array(dtype=wp.vec4),
+    xp: wp.vec3,
+    vp: wp.vec3,
+    s: int,
+    o: wp.vec3,
+    nx: int,
+    ny: int,
+    nz: int,
+    dx: float,
+    dt: float,
+    scene_gravity: wp.array(dtype=wp.vec3),
+):
+    """Velocity [m/s] and APIC affine field C [1/s] at a particle at xp of scene s (window origin o [cells]) from the
+    grid velocities of its 27 stencil nodes; outside the grid window ballistic (v + dt g, C = 0; flagged in p2g)."""
+    inv_dx = 1.0 / dx
+    local = xp * inv_dx - o
+    bx = int(wp.floor(local[0] - 0.5))
+    by = int(wp.floor(local[1] - 0.5))
+    bz = int(wp.floor(local[2] - 0.5))
+    vn = wp.vec3(0.0, 0.0, 0.0)
+    Cn = wp.mat33(0.0)
+    if bx < 0 or by < 0 or bz < 0 or bx > nx - 3 or by > ny - 3 or bz > nz - 3:
+        vn = vp + dt * scene_gravity[s]  # outside the grid window: ballistic (flagged in p2g)
+    else:
+        fx = local - wp.vec3(float(bx), float(by), float(bz))
+        wx = quadratic_weights(fx[0])
+        wy = quadratic_weights(fx[1])
+        wz = quadratic_weights(fx[2])
+        nyz = ny * nz
+        base = s * nx * nyz + bx * nyz + by * nz + bz
+        si = wp.vec3(0.0, 0.0, 0.0)
+        sj = wp.vec3(0.0, 0.0, 0.0)
+        sk = wp.vec3(0.0, 0.0, 0.0)
+        for i in range(3):
+            bi = base + i * nyz
+            r0 = gather_row(grid_v, bi, wz)
+            r1 = gather_row(grid_v, bi + nz, wz)
+            r2 = gather_row(grid_v, bi + 2 * nz, wz)
+            # r = (sum_k w_k v_k, sum_k k w_k v_k) per row j
+            p0 = wy[0] * wp.vec3(r0[0, 0], r0[0, 1], r0[0, 2])
+            p1 = wy[1] * wp.vec3(r1[0, 0], r1[0, 1], r1[0, 2])
+            p2 = wy[2] * wp.vec3(r2[0, 0], r2[0, 1], r2[0, 2])
+            ps = p0 + p1 + p2
+            pj = p1 + 2.0 * p2
+            pk = (wy[0] * wp.vec3(r0[1, 0], r0[1, 1], r0[1, 2]) + wy[1] * wp.vec3(r1[1, 0], r1[1, 1], r1[1, 2])
+                  + wy[2] * wp.vec3(r2[1, 0], r2[1, 1], r2[1, 2]))
+            b = wx[i] * ps
+            vn += b
+            if i > 0:
+                si += float(i) * b
+            sj += wx[i] * pj
+            sk += wx[i] * pk
+        # B = sum w v (ijk - fx)^T dx ; C = 4 B / dx^2
+        scale = 4.0 * inv_dx
+        c0 = (si - fx[0] * vn) * scale
+        c1 = (sj - fx[1] * vn) * scale
+        c2 = (sk - fx[2] * vn) * scale
+        Cn = wp.mat33(c0[0], c1[0], c2[0], c0[1], c1[1], c2[1], c0[2], c1[2], c2[2])
+    return vn, Cn
+
+
+@wp.func
+def g2p_advect(xp: wp.vec3, Fp: wp.mat33, vn: wp.vec3, Cn: wp.mat33, dt: float):
+    """Position [m] and deformation gradient after dt [s] at velocity vn and velocity gradient Cn."""
+    return xp + dt * vn, Fp + dt * (Cn * Fp)
+
+
+@wp.func
+def g2p_ground(xn: wp.vec3, vn: wp.vec3, m: float, height: float, mu: float):
+    """Residual ground penetration: a particle of mass m [kg] below the ground at height [m] is put back on it and
+    loses its inward velocity (Coulomb, friction mu). Returns (x, v, impulse [N s] the ground gave, 1 if in contact)."""
+    x = xn
+    v = vn
+    imp = wp.vec3(0.0, 0.0, 0.0)
+    hit = int(0)
+    if xn[2] < height:
+        x = wp.vec3(xn[0], xn[1], height)
+        vplus = contact_velocity(vn, wp.vec3(0.0, 0.0, 0.0), wp.vec3(0.0, 0.0, 1.0), mu, 0)
+        imp = m * (vplus - vn)
+        hit = 1
+        v = vplus
+    return x, v, imp, hit
+
+
+@wp.func
+def g2p_colliders(
+    xn: wp.vec3,
+    vn: wp.vec3,
+    m: float,
+    s: int,
+    cols: Colliders,
+    motion: ColliderMotion,
+    col_impulse: wp.array(dtype=wp.vec3),
+):
+    """Residual penetration of scene s's kinematic colliders (poses at the step's end): the particle is pushed back
+    to each surface and loses its inward relative velocity; the impulses go to col_impulse. Returns (x, v)."""
+    x = xn
+    v = vn
+    c_first = cols.start[s]
+    for c in range(c_first, c_first + cols.count[s]):
+        rel = x - motion.pos[c]
+        if wp.dot(rel, rel) > cols.radius2[c]:
+            continue
+        q = collider_contact(cols.kind[c], cols.params[c], motion.pos[c], motion.rot[c], motion.lin_vel[c],
+                             motion.ang_vel[c], x, cols.planes)
+        phi = q[2, 0]
+        if phi < 0.0:
+            nrm = wp.vec3(q[0, 0], q[0, 1], q[0, 2])
+            x = x - phi * nrm
+            vplus = contact_velocity(v, wp.vec3(q[1, 0], q[1, 1], q[1, 2]), nrm, cols.mu[c], cols.bonded[c])
+            wp.atomic_add(col_impulse, c, m * (vplus - v))
+            v = vplus
+    return x, v
+
+
+@wp.func
+def g2p_health(
+    xn: wp.vec3,
+    vn: wp.vec3,
+    Fn: wp.mat33,
+    s: int,
+    pl: int,
+    step: int,
+    limits: HealthLimits,
+    fail_step: wp.array(dtype=wp.int32),
+    fail_particle: wp.array(dtype=wp.int32),
+):
+    """Health checks of a particle's new state: non-finite, det(F) outside [j_min, j_max], outside the domain."""
+    J = wp.determinant(Fn)
+    xv = xn + vn
+    if not is_finite((xv[0] + xv[1]) + (xv[2] + J)):  # Cn enters Fn, so J covers it
+        flag_failure(fail_step, fail_particle, s, FLAG_NONFINITE, step, pl)
+    else:
+        if J < limits.j_min or J > limits.j_max:
+            flag_failure(fail_step, fail_particle, s, FLAG_J_OUT_OF_BOUNDS, step, pl)
+        lo = limits.domain_lo[s]
+        hi = limits.domain_hi[s]
+        if xn[0] < lo[0] or xn[1] < lo[1] or xn[2] < lo[2] or xn[0] > hi[0] or xn[1] > hi[1] or xn[2] > hi[2]:
+            flag_failure(fail_step, fail_particle, s, FLAG_LEFT_DOMAIN, step, pl)
+
+
 def make_g2p(colliders: bool = True, coop: bool = False, agg: bool = False, module: str | None = None,
              scatter_next: bool = False) -> wp.Kernel:
     """The grid-to-particle kernel. colliders=False leaves out the kinematic-collider contact (scenes with only the
@@ -644,7 +823,8 @@ def make_g2p(colliders: bool = True, coop: bool = False, agg: bool = False, modu
     bit for bit). scatter_next=True (CPU, with coop=agg=False) also does the next step's p2g of each particle from
     its new state (``p2g_particle``, as ``p2g_apic_neohookean`` would after reloading it): valid when the grid update
     has cleared grid_mvm and no re-fit comes before the next step; same results bit for bit, one pass over the
-    particles fewer per step."""
+    particles fewer per step. The particle's steps are the shared functions ``g2p_gather``, ``g2p_advect``,
+    ``g2p_ground``, ``g2p_colliders`` and ``g2p_health`` (also the body of ``kernels_cuda.make_g2p2g``)."""
 
     def _g2p_body(
         x: wp.array(dtype=wp.vec3),
@@ -662,27 +842,12 @@ def make_g2p(colliders: bool = True, coop: bool = False, agg: bool = False, modu
         dx: float,
         dt_arr: wp.array(dtype=float),
         scene_gravity: wp.array(dtype=wp.vec3),
-        ground_enabled: wp.array(dtype=wp.int32),
-        ground_height: wp.array(dtype=float),
-        ground_mu: wp.array(dtype=float),
+        ground: Ground,
         ground_impulse: wp.array(dtype=wp.vec3),
-        col_start: wp.array(dtype=wp.int32),
-        col_count: wp.array(dtype=wp.int32),
-        col_kind: wp.array(dtype=wp.int32),
-        col_params: wp.array(dtype=wp.vec3),
-        col_planes: wp.array(dtype=wp.vec4),
-        col_radius2: wp.array(dtype=float),
-        col_mu: wp.array(dtype=float),
-        col_bonded: wp.array(dtype=wp.int32),
-        col_pos_end: wp.array(dtype=wp.vec3),
-        col_rot_end: wp.array(dtype=wp.quat),
-        col_lin_vel: wp.array(dtype=wp.vec3),
-        col_ang_vel: wp.array(dtype=wp.vec3),
+        cols: Colliders,
+        col_end: ColliderMotion,
         col_impulse: wp.array(dtype=wp.vec3),
-        domain_lo: wp.array(dtype=wp.vec3),
-        domain_hi: wp.array(dtype=wp.vec3),
-        j_min: float,
-        j_max: float,
+        limits: HealthLimits,
         clock_step: wp.array(dtype=wp.int32),
         fail_step: wp.array(dtype=wp.int32),
         fail_particle: wp.array(dtype=wp.int32),
@@ -728,95 +893,23 @@ def make_g2p(colliders: bool = True, coop: bool = False, agg: bool = False, modu
                 flag_failure(fail_step, fail_particle, s, FLAG_NONFINITE, step, pl)
                 continue  # frozen: never spreads into the grid
             dt = dt_arr[0]
-            inv_dx = 1.0 / dx
             o = grid_origin[s]
-            local = xp * inv_dx - o
-            bx = int(wp.floor(local[0] - 0.5))
-            by = int(wp.floor(local[1] - 0.5))
-            bz = int(wp.floor(local[2] - 0.5))
-            vn = wp.vec3(0.0, 0.0, 0.0)
-            Cn = wp.mat33(0.0)
-            if bx < 0 or by < 0 or bz < 0 or bx > nx - 3 or by > ny - 3 or bz > nz - 3:
-                vn = vp + dt * scene_gravity[s]  # outside the grid window: ballistic (flagged in p2g)
-            else:
-                fx = local - wp.vec3(float(bx), float(by), float(bz))
-                wx = quadratic_weights(fx[0])
-                wy = quadratic_weights(fx[1])
-                wz = quadratic_weights(fx[2])
-                nyz = ny * nz
-                base = s * nx * nyz + bx * nyz + by * nz + bz
-                si = wp.vec3(0.0, 0.0, 0.0)
-                sj = wp.vec3(0.0, 0.0, 0.0)
-                sk = wp.vec3(0.0, 0.0, 0.0)
-                for i in range(3):
-                    bi = base + i * nyz
-                    r0 = gather_row(grid_v, bi, wz)
-                    r1 = gather_row(grid_v, bi + nz, wz)
-                    r2 = gather_row(grid_v, bi + 2 * nz, wz)
-                    # r = (sum_k w_k v_k, sum_k k w_k v_k) per row j
-                    p0 = wy[0] * wp.vec3(r0[0, 0], r0[0, 1], r0[0, 2])
-                    p1 = wy[1] * wp.vec3(r1[0, 0], r1[0, 1], r1[0, 2])
-                    p2 = wy[2] * wp.vec3(r2[0, 0], r2[0, 1], r2[0, 2])
-                    ps = p0 + p1 + p2
-                    pj = p1 + 2.0 * p2
-                    pk = (wy[0] * wp.vec3(r0[1, 0], r0[1, 1], r0[1, 2]) + wy[1] * wp.vec3(r1[1, 0], r1[1, 1], r1[1, 2])
-                          + wy[2] * wp.vec3(r2[1, 0], r2[1, 1], r2[1, 2]))
-                    b = wx[i] * ps
-                    vn += b
-                    if i > 0:
-                        si += float(i) * b
-                    sj += wx[i] * pj
-                    sk += wx[i] * pk
-                # B = sum w v (ijk - fx)^T dx ; C = 4 B / dx^2
-                scale = 4.0 * inv_dx
-                c0 = (si - fx[0] * vn) * scale
-                c1 = (sj - fx[1] * vn) * scale
-                c2 = (sk - fx[2] * vn) * scale
-                Cn = wp.mat33(c0[0], c1[0], c2[0], c0[1], c1[1], c2[1], c0[2], c1[2], c2[2])
-            xn = xp + dt * vn
-            Fn = Fp + dt * (Cn * Fp)
+            vn, Cn = g2p_gather(grid_v, xp, vp, s, o, nx, ny, nz, dx, dt, scene_gravity)
+            xn, Fn = g2p_advect(xp, Fp, vn, Cn, dt)
             m = particle_mass[p]
             # residual penetration: push the particle back to the surface, remove inward relative velocity
-            if ground_enabled[s] != 0:
-                gh = ground_height[s]
-                if xn[2] < gh:
-                    xn = wp.vec3(xn[0], xn[1], gh)
-                    vplus = contact_velocity(vn, wp.vec3(0.0, 0.0, 0.0), wp.vec3(0.0, 0.0, 1.0), ground_mu[s], 0)
+            if ground.enabled[s] != 0:
+                xn, vn, g_imp_p, g_hit = g2p_ground(xn, vn, m, ground.height[s], ground.mu[s])
+                if g_hit != 0:
                     if wp.static(agg):
-                        g_imp = m * (vplus - vn)
+                        g_imp = g_imp_p
                         g_has = 1
                         g_scene = s
                     else:
-                        wp.atomic_add(ground_impulse, s, m * (vplus - vn))
-                    vn = vplus
+                        wp.atomic_add(ground_impulse, s, g_imp_p)
             if wp.static(colliders):
-                c_first = col_start[s]
-                for c in range(c_first, c_first + col_count[s]):
-                    rel = xn - col_pos_end[c]
-                    if wp.dot(rel, rel) > col_radius2[c]:
-                        continue
-                    q = collider_contact(col_kind[c], col_params[c], col_pos_end[c], col_rot_end[c], col_lin_vel[c],
-                                         col_ang_vel[c], xn, col_planes)
-                    phi = q[2, 0]
-                    if phi < 0.0:
-                        nrm = wp.vec3(q[0, 0], q[0, 1], q[0, 2])
-                        xn = xn - phi * nrm
-                        vplus = contact_velocity(vn, wp.vec3(q[1, 0], q[1, 1], q[1, 2]), nrm, col_mu[c],
-                                                 col_bonded[c])
-                        wp.atomic_add(col_impulse, c, m * (vplus - vn))
-                        vn = vplus
-            # health
-            J = wp.determinant(Fn)
-            xv = xn + vn
-            if not is_finite((xv[0] + xv[1]) + (xv[2] + J)):  # Cn enters Fn, so J covers it
-                flag_failure(fail_step, fail_particle, s, FLAG_NONFINITE, step, pl)
-            else:
-                if J < j_min or J > j_max:
-                    flag_failure(fail_step, fail_particle, s, FLAG_J_OUT_OF_BOUNDS, step, pl)
-                lo = domain_lo[s]
-                hi = domain_hi[s]
-                if xn[0] < lo[0] or xn[1] < lo[1] or xn[2] < lo[2] or xn[0] > hi[0] or xn[1] > hi[1] or xn[2] > hi[2]:
-                    flag_failure(fail_step, fail_particle, s, FLAG_LEFT_DOMAIN, step, pl)
+                xn, vn = g2p_colliders(xn, vn, m, s, cols, col_end, col_impulse)
+            g2p_health(xn, vn, Fn, s, pl, step, limits, fail_step, fail_particle)
             if wp.static(coop):
                 xo = xn
                 vo = vn
@@ -843,7 +936,7 @@ def make_g2p(colliders: bool = True, coop: bool = False, agg: bool = False, modu
 
 
 g2p_apic = make_g2p()
-# CPU: the g2p of step n and the p2g of step n+1 in one pass (solver.py, fused CPU steps)
+# CPU: the g2p of step n and the p2g of step n+1 in one pass (plan_cpu.py, fused CPU steps)
 g2p_p2g_cpu = make_g2p(module="unique", scatter_next=True)
 
 

@@ -10,16 +10,17 @@ only the order of the float additions differs (it already does on CUDA: global f
   reduces one chunk of one scene (threads stride over it; warp shuffles + shared memory) into the chunk's partials;
   the last block of each scene to finish combines the scene's partials and fits its window (instead of a reset
   launch, one serial loop per thread with same-address atomics, and a fit launch).
-* Variants (selected by ``solver.py``; each in a module of its own, compiled on first use): ``g2p_kernel`` and
-  ``grid_update_kernel`` return the kernels of ``kernels.make_g2p`` / ``make_grid_update`` without the collider
-  contact (scenes with only the ground), with warp-summed ground impulses, and (g2p) with warp-cooperative
-  particle loads/stores; ``p2g_kernel(True)`` is p2g_warp with warp-cooperative loads (not used by default).
+* Variants (selected by ``plan_cuda.py`` from ``SimConfig.kernel``; each in a module of its own, compiled on first
+  use): ``g2p_kernel`` and ``grid_update_kernel`` return the kernels of ``kernels.make_g2p`` / ``make_grid_update``
+  without the collider contact (scenes with only the ground), with warp-summed ground impulses, and (g2p) with
+  warp-cooperative particle loads/stores; ``p2g_kernel(True)`` is p2g_warp with warp-cooperative loads (not used by
+  default).
 * ``scatter_stencil_scan``: the scatter of one particle per thread as a row scan: the warp's 32 particles' terms go
   through shared memory and 27 lanes (9 stencil rows x 3 runs of ~11 particles) add consecutive particles'
   overlapping rows in a 3-node window along z, issuing each node once per run: ~7 atomics per particle in lattice
   order instead of 13.5 (pairs merged by ``scatter_stencil_warp``). ``p2g_kernel(coop, SCATTER_SCAN)`` uses it.
 * ``make_g2p2g``: the g2p of step n and the p2g of step n+1 in one kernel (the scatter reads the new state from
-  registers: no reload of the particle records, one launch fewer per step), used by ``solver.py`` inside
+  registers: no reload of the particle records, one launch fewer per step), used by ``plan_cuda.py`` inside
   multi-step graphs wherever no re-fit comes between the two steps.
 
 Launch contract: the launch dimension is a multiple of the block size (threads past ``n_items`` take part in the
@@ -437,10 +438,11 @@ def make_g2p2g(colliders: bool, coop: bool, agg: bool, scatter: int = SCATTER_WA
                keep_c: bool = False) -> wp.Kernel:
     """g2p of step n fused with p2g of step n+1 (CUDA only; one particle per thread, whole-block launches).
 
-    The body is ``kernels.make_g2p`` (same switches, same arithmetic in the same order) followed by ``p2g_warp`` on
+    The g2p part calls the same steps as ``kernels.make_g2p`` (``kernels.g2p_gather``, ``g2p_advect``, ``g2p_ground``,
+    ``g2p_colliders``, ``g2p_health``: same switches, same arithmetic in the same order), followed by ``p2g_warp`` on
     the particle's new state, still in registers: the next step's scatter needs no reload of x, v, F, C and no launch
     of its own. Valid when no re-fit comes between the two steps (same grid window) and the grid update of step n
-    has run (grid_mvm is clear: it reads grid_v only, and scatters into grid_mvm); ``solver.py`` uses it inside
+    has run (grid_mvm is clear: it reads grid_v only, and scatters into grid_mvm); ``plan_cuda.py`` uses it inside
     multi-step graphs. The clock: ``clock_step`` already counts step n here (the grid update of step n advanced it),
     as it does for the separate p2g of step n+1, so the out-of-grid flag names the same step.
 
@@ -468,27 +470,12 @@ def make_g2p2g(colliders: bool, coop: bool, agg: bool, scatter: int = SCATTER_WA
         dx: float,
         dt_arr: wp.array(dtype=float),
         scene_gravity: wp.array(dtype=wp.vec3),
-        ground_enabled: wp.array(dtype=wp.int32),
-        ground_height: wp.array(dtype=float),
-        ground_mu: wp.array(dtype=float),
+        ground: K.Ground,
         ground_impulse: wp.array(dtype=wp.vec3),
-        col_start: wp.array(dtype=wp.int32),
-        col_count: wp.array(dtype=wp.int32),
-        col_kind: wp.array(dtype=wp.int32),
-        col_params: wp.array(dtype=wp.vec3),
-        col_planes: wp.array(dtype=wp.vec4),
-        col_radius2: wp.array(dtype=float),
-        col_mu: wp.array(dtype=float),
-        col_bonded: wp.array(dtype=wp.int32),
-        col_pos_end: wp.array(dtype=wp.vec3),
-        col_rot_end: wp.array(dtype=wp.quat),
-        col_lin_vel: wp.array(dtype=wp.vec3),
-        col_ang_vel: wp.array(dtype=wp.vec3),
+        cols: K.Colliders,
+        col_end: K.ColliderMotion,
         col_impulse: wp.array(dtype=wp.vec3),
-        domain_lo: wp.array(dtype=wp.vec3),
-        domain_hi: wp.array(dtype=wp.vec3),
-        j_min: float,
-        j_max: float,
+        limits: K.HealthLimits,
         clock_step: wp.array(dtype=wp.int32),
         fail_step: wp.array(dtype=wp.int32),
         fail_particle: wp.array(dtype=wp.int32),
@@ -542,88 +529,20 @@ def make_g2p2g(colliders: bool, coop: bool, agg: bool, scatter: int = SCATTER_WA
                 K.flag_failure(fail_step, fail_particle, s, K.FLAG_NONFINITE, step, pl)
             else:
                 scat = 1
-                local = xp * inv_dx - o
-                bx = int(wp.floor(local[0] - 0.5))
-                by = int(wp.floor(local[1] - 0.5))
-                bz = int(wp.floor(local[2] - 0.5))
-                vn = wp.vec3(0.0, 0.0, 0.0)
-                Cn = wp.mat33(0.0)
-                if bx < 0 or by < 0 or bz < 0 or bx > nx - 3 or by > ny - 3 or bz > nz - 3:
-                    vn = vp + dt * scene_gravity[s]  # outside the grid window: ballistic (flagged in p2g)
-                else:
-                    fx = local - wp.vec3(float(bx), float(by), float(bz))
-                    wx = K.quadratic_weights(fx[0])
-                    wy = K.quadratic_weights(fx[1])
-                    wz = K.quadratic_weights(fx[2])
-                    nyz = ny * nz
-                    base = s * nx * nyz + bx * nyz + by * nz + bz
-                    si = wp.vec3(0.0, 0.0, 0.0)
-                    sj = wp.vec3(0.0, 0.0, 0.0)
-                    sk = wp.vec3(0.0, 0.0, 0.0)
-                    for i in range(3):
-                        bi = base + i * nyz
-                        r0 = K.gather_row(grid_v, bi, wz)
-                        r1 = K.gather_row(grid_v, bi + nz, wz)
-                        r2 = K.gather_row(grid_v, bi + 2 * nz, wz)
-                        p0 = wy[0] * wp.vec3(r0[0, 0], r0[0, 1], r0[0, 2])
-                        p1 = wy[1] * wp.vec3(r1[0, 0], r1[0, 1], r1[0, 2])
-                        p2 = wy[2] * wp.vec3(r2[0, 0], r2[0, 1], r2[0, 2])
-                        ps = p0 + p1 + p2
-                        pj = p1 + 2.0 * p2
-                        pk = (wy[0] * wp.vec3(r0[1, 0], r0[1, 1], r0[1, 2]) + wy[1] * wp.vec3(r1[1, 0], r1[1, 1], r1[1, 2])
-                              + wy[2] * wp.vec3(r2[1, 0], r2[1, 1], r2[1, 2]))
-                        b = wx[i] * ps
-                        vn += b
-                        if i > 0:
-                            si += float(i) * b
-                        sj += wx[i] * pj
-                        sk += wx[i] * pk
-                    scale = 4.0 * inv_dx
-                    c0 = (si - fx[0] * vn) * scale
-                    c1 = (sj - fx[1] * vn) * scale
-                    c2 = (sk - fx[2] * vn) * scale
-                    Cn = wp.mat33(c0[0], c1[0], c2[0], c0[1], c1[1], c2[1], c0[2], c1[2], c2[2])
-                xn = xp + dt * vn
-                Fn = Fp + dt * (Cn * Fp)
-                if ground_enabled[s] != 0:
-                    gh = ground_height[s]
-                    if xn[2] < gh:
-                        xn = wp.vec3(xn[0], xn[1], gh)
-                        vplus = K.contact_velocity(vn, wp.vec3(0.0, 0.0, 0.0), wp.vec3(0.0, 0.0, 1.0), ground_mu[s], 0)
+                vn, Cn = K.g2p_gather(grid_v, xp, vp, s, o, nx, ny, nz, dx, dt, scene_gravity)
+                xn, Fn = K.g2p_advect(xp, Fp, vn, Cn, dt)
+                if ground.enabled[s] != 0:
+                    xn, vn, g_imp_p, g_hit = K.g2p_ground(xn, vn, m, ground.height[s], ground.mu[s])
+                    if g_hit != 0:
                         if wp.static(agg):
-                            g_imp = m * (vplus - vn)
+                            g_imp = g_imp_p
                             g_has = 1
                             g_scene = s
                         else:
-                            wp.atomic_add(ground_impulse, s, m * (vplus - vn))
-                        vn = vplus
+                            wp.atomic_add(ground_impulse, s, g_imp_p)
                 if wp.static(colliders):
-                    c_first = col_start[s]
-                    for c in range(c_first, c_first + col_count[s]):
-                        rel = xn - col_pos_end[c]
-                        if wp.dot(rel, rel) > col_radius2[c]:
-                            continue
-                        q = K.collider_contact(col_kind[c], col_params[c], col_pos_end[c], col_rot_end[c],
-                                               col_lin_vel[c], col_ang_vel[c], xn, col_planes)
-                        phi = q[2, 0]
-                        if phi < 0.0:
-                            nrm = wp.vec3(q[0, 0], q[0, 1], q[0, 2])
-                            xn = xn - phi * nrm
-                            vplus = K.contact_velocity(vn, wp.vec3(q[1, 0], q[1, 1], q[1, 2]), nrm, col_mu[c],
-                                                       col_bonded[c])
-                            wp.atomic_add(col_impulse, c, m * (vplus - vn))
-                            vn = vplus
-                J = wp.determinant(Fn)
-                xv = xn + vn
-                if not K.is_finite((xv[0] + xv[1]) + (xv[2] + J)):
-                    K.flag_failure(fail_step, fail_particle, s, K.FLAG_NONFINITE, step, pl)
-                else:
-                    if J < j_min or J > j_max:
-                        K.flag_failure(fail_step, fail_particle, s, K.FLAG_J_OUT_OF_BOUNDS, step, pl)
-                    lo = domain_lo[s]
-                    hi = domain_hi[s]
-                    if xn[0] < lo[0] or xn[1] < lo[1] or xn[2] < lo[2] or xn[0] > hi[0] or xn[1] > hi[1] or xn[2] > hi[2]:
-                        K.flag_failure(fail_step, fail_particle, s, K.FLAG_LEFT_DOMAIN, step, pl)
+                    xn, vn = K.g2p_colliders(xn, vn, m, s, cols, col_end, col_impulse)
+                K.g2p_health(xn, vn, Fn, s, pl, step, limits, fail_step, fail_particle)
                 if not wp.static(coop):
                     x_out[p] = xn
                     v_out[p] = vn

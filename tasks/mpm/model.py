@@ -3,8 +3,9 @@
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Literal, Sequence
+from typing import TYPE_CHECKING, Literal, TypedDict, Unpack, cast
 
 import numpy as np
 import warp as wp
@@ -22,7 +23,7 @@ _KIND_CODE = {"box": 0, "capsule": 1, "halfspace": 2}
 PAD_FACES = ("-x", "+x", "-y", "+y", "-z", "+z")  # kernel code of a pad = 3 + index here
 
 
-def kind_code(c: "ColliderSpec") -> int:
+def kind_code(c: ColliderSpec) -> int:
     """The kernels' code of a collider kind (a pad's code also names its gripping face)."""
     if c.kind == "convex":
         if c.planes is None or len(c.planes) < 4:
@@ -65,18 +66,34 @@ class ColliderSpec:
     planes: np.ndarray | None = None  # convex only: (P, 4) face planes (n_x, n_y, n_z, d) in the local frame
 
 
-def box_collider(half_extents_m: Sequence[float], **kw: object) -> ColliderSpec:
+class ColliderKw(TypedDict, total=False):
+    """The keyword fields of ColliderSpec that the ``*_collider`` helpers pass through."""
+
+    friction: float
+    bonded: bool
+    position_m: tuple[float, float, float]
+    rotation_xyzw: tuple[float, float, float, float]
+    linear_velocity_m_per_s: tuple[float, float, float]
+    angular_velocity_rad_per_s: tuple[float, float, float]
+    name: str
+
+
+def _size3(values: Sequence[float] | np.ndarray) -> tuple[float, float, float]:
+    """Floats of a 3-vector as a tuple (the length is not checked here, as before)."""
+    return cast(tuple[float, float, float], tuple(float(h) for h in values))
+
+
+def box_collider(half_extents_m: Sequence[float] | np.ndarray, **kw: Unpack[ColliderKw]) -> ColliderSpec:
     """A box collider with half extents [m] (see ColliderSpec for the keyword fields)."""
-    return ColliderSpec(kind="box", size_m=tuple(float(h) for h in half_extents_m), **kw)  # type: ignore[arg-type]
+    return ColliderSpec(kind="box", size_m=_size3(half_extents_m), **kw)
 
 
-def pad_collider(half_extents_m: Sequence[float], face: str, **kw: object) -> ColliderSpec:
+def pad_collider(half_extents_m: Sequence[float] | np.ndarray, face: str, **kw: Unpack[ColliderKw]) -> ColliderSpec:
     """A finger pad: a box with half extents [m] that grips through ``face`` ("-x" ... "+z", local axes)."""
-    return ColliderSpec(kind="pad", size_m=tuple(float(h) for h in half_extents_m), face=face,  # type: ignore[arg-type]
-                        **kw)
+    return ColliderSpec(kind="pad", size_m=_size3(half_extents_m), face=face, **kw)
 
 
-def convex_collider(points_m: np.ndarray, **kw: object) -> ColliderSpec:
+def convex_collider(points_m: np.ndarray, **kw: Unpack[ColliderKw]) -> ColliderSpec:
     """A convex collider: the convex hull of points [m] given in the collider's local frame (a CoACD part, a tool,
     a fixture). Coplanar hull facets are merged into one plane."""
     from scipy.spatial import ConvexHull, QhullError
@@ -92,18 +109,28 @@ def convex_collider(points_m: np.ndarray, **kw: object) -> ColliderSpec:
     planes = np.column_stack([eq[:, :3], -eq[:, 3]])
     planes = np.unique(np.round(planes, 9), axis=0)
     half = np.max(np.abs(pts[hull.vertices]), axis=0)
-    return ColliderSpec(kind="convex", size_m=tuple(float(h) for h in half), planes=planes,  # type: ignore[arg-type]
-                        **kw)
+    return ColliderSpec(kind="convex", size_m=_size3(half), planes=planes, **kw)
 
 
-def capsule_collider(radius_m: float, half_length_m: float, **kw: object) -> ColliderSpec:
+def capsule_collider(radius_m: float, half_length_m: float, **kw: Unpack[ColliderKw]) -> ColliderSpec:
     """A capsule collider along its local z axis: radius [m], half length of the segment [m]."""
-    return ColliderSpec(kind="capsule", size_m=(float(radius_m), float(half_length_m), 0.0), **kw)  # type: ignore[arg-type]
+    return ColliderSpec(kind="capsule", size_m=(float(radius_m), float(half_length_m), 0.0), **kw)
 
 
-def halfspace_collider(**kw: object) -> ColliderSpec:
+def halfspace_collider(**kw: Unpack[ColliderKw]) -> ColliderSpec:
     """A half-space collider: solid below the plane z = 0 of its local frame (walls, inclines)."""
-    return ColliderSpec(kind="halfspace", **kw)  # type: ignore[arg-type]
+    return ColliderSpec(kind="halfspace", **kw)
+
+
+class SceneKw(TypedDict, total=False):
+    """The optional ground, gravity and domain fields of SceneSpec that scene builders pass through."""
+
+    ground: bool
+    ground_height_m: float | None
+    ground_friction: float | None
+    gravity_m_per_s2: tuple[float, float, float] | None
+    domain_min_m: tuple[float, float, float] | None
+    domain_max_m: tuple[float, float, float] | None
 
 
 @dataclass
@@ -138,7 +165,7 @@ def _vec3_array(a: np.ndarray, device: str) -> wp.array:
     return wp.array(np.ascontiguousarray(a, dtype=np.float32).reshape(-1, 3), dtype=wp.vec3, device=device)
 
 
-def _check_time_step(model: "Model", config: SimConfig) -> None:
+def _check_time_step(model: Model, config: SimConfig) -> None:
     """SimulationError when a scene's material alone needs CFL steps below config.dt_min_s (explicit MPM)."""
     worst = int(np.argmax(model.p_wave_speed))
     c = float(model.p_wave_speed[worst])
@@ -283,7 +310,8 @@ class Model:
         self.col_start_np = np.asarray(col_start, dtype=np.int32)
         self.col_count_np = np.asarray(col_count, dtype=np.int32)
         self.col_kind_np = np.asarray([kind_code(c) for c in specs], dtype=np.int32)
-        planes, params = [np.zeros((1, 4))], []
+        planes: list[np.ndarray] = [np.zeros((1, 4))]
+        params: list[tuple[float, ...]] = []
         first = 1  # plane 0 is a placeholder so the array is never empty
         for c in specs:
             if c.kind == "convex":
@@ -303,46 +331,48 @@ class Model:
         # critical path for small scenes, long ones limit same-address atomics for large scenes. (Interleaving a
         # scene's chunks for coalesced loads was measured on an H200 and gained nothing: the loop is latency-bound.)
         cs, cb, ce = [], [], []
-        for s in range(self.n_scenes):
-            b0 = int(self.scene_start_np[s])
-            b1 = b0 + int(self.scene_counts[s])
+        for si in range(self.n_scenes):
+            b0 = int(self.scene_start_np[si])
+            b1 = b0 + int(self.scene_counts[si])
             n_s = b1 - b0
             chunk = 256 if self.device == "cpu" else int(min(256, max(32, n_s // 128)))
             for b in range(b0, b1, chunk):
-                cs.append(s)
+                cs.append(si)
                 cb.append(b)
                 ce.append(min(b + chunk, b1))
         d = self.device
-        self.chunk_scene = wp.array(np.asarray(cs, np.int32), dtype=wp.int32, device=d)
-        self.chunk_begin = wp.array(np.asarray(cb, np.int32), dtype=wp.int32, device=d)
-        self.chunk_end = wp.array(np.asarray(ce, np.int32), dtype=wp.int32, device=d)
+        self.chunk_scene: wp.array = wp.array(np.asarray(cs, np.int32), dtype=wp.int32, device=d)
+        self.chunk_begin: wp.array = wp.array(np.asarray(cb, np.int32), dtype=wp.int32, device=d)
+        self.chunk_end: wp.array = wp.array(np.asarray(ce, np.int32), dtype=wp.int32, device=d)
         self.n_chunks = len(cs)
 
         # device arrays
-        self.particle_mass = wp.array(self.particle_mass_np, dtype=float, device=d)
-        self.particle_vol = wp.array(self.particle_vol_np, dtype=float, device=d)
-        self.particle_scene = wp.array(self.particle_scene_np, dtype=wp.int32, device=d)
-        self.scene_start = wp.array(self.scene_start_np, dtype=wp.int32, device=d)
-        self.scene_mu = wp.array(self.mu_np, dtype=float, device=d)
-        self.scene_lambda = wp.array(self.lambda_np, dtype=float, device=d)
-        self.scene_damping = wp.array(self.damping_np, dtype=float, device=d)
-        self.ground_enabled = wp.array(self.ground_enabled_np, dtype=wp.int32, device=d)
-        self.ground_height = wp.array(self.ground_height_np, dtype=float, device=d)
-        self.ground_mu = wp.array(self.ground_mu_np, dtype=float, device=d)
+        self.particle_mass: wp.array = wp.array(self.particle_mass_np, dtype=float, device=d)
+        self.particle_vol: wp.array = wp.array(self.particle_vol_np, dtype=float, device=d)
+        self.particle_scene: wp.array = wp.array(self.particle_scene_np, dtype=wp.int32, device=d)
+        self.scene_start: wp.array = wp.array(self.scene_start_np, dtype=wp.int32, device=d)
+        self.scene_mu: wp.array = wp.array(self.mu_np, dtype=float, device=d)
+        self.scene_lambda: wp.array = wp.array(self.lambda_np, dtype=float, device=d)
+        self.scene_damping: wp.array = wp.array(self.damping_np, dtype=float, device=d)
+        self.ground_enabled: wp.array = wp.array(self.ground_enabled_np, dtype=wp.int32, device=d)
+        self.ground_height: wp.array = wp.array(self.ground_height_np, dtype=float, device=d)
+        self.ground_mu: wp.array = wp.array(self.ground_mu_np, dtype=float, device=d)
         self.domain_lo = _vec3_array(self.domain_lo_np, d)
         self.domain_hi = _vec3_array(self.domain_hi_np, d)
         nc = max(1, self.n_colliders)  # keep arrays non-empty for kernel arguments
         pad = nc - self.n_colliders
-        self.col_start = wp.array(self.col_start_np, dtype=wp.int32, device=d)
-        self.col_count = wp.array(self.col_count_np, dtype=wp.int32, device=d)
-        self.col_kind = wp.array(np.concatenate([self.col_kind_np, np.zeros(pad, np.int32)]), dtype=wp.int32, device=d)
+        self.col_start: wp.array = wp.array(self.col_start_np, dtype=wp.int32, device=d)
+        self.col_count: wp.array = wp.array(self.col_count_np, dtype=wp.int32, device=d)
+        self.col_kind: wp.array = wp.array(np.concatenate([self.col_kind_np, np.zeros(pad, np.int32)]), dtype=wp.int32,
+                                           device=d)
         self.col_params = _vec3_array(np.concatenate([self.col_params_np, np.zeros((pad, 3), np.float32)]), d)
-        self.col_planes = wp.array(self.col_planes_np, dtype=wp.vec4, device=d)
-        self.col_radius2 = wp.array(
+        self.col_planes: wp.array = wp.array(self.col_planes_np, dtype=wp.vec4, device=d)
+        self.col_radius2: wp.array = wp.array(
             np.concatenate([self.col_radius2_np, np.zeros(pad, np.float32)]), dtype=float, device=d
         )
-        self.col_mu = wp.array(np.concatenate([self.col_mu_np, np.zeros(pad, np.float32)]), dtype=float, device=d)
-        self.col_bonded = wp.array(
+        self.col_mu: wp.array = wp.array(np.concatenate([self.col_mu_np, np.zeros(pad, np.float32)]), dtype=float,
+                                         device=d)
+        self.col_bonded: wp.array = wp.array(
             np.concatenate([self.col_bonded_np, np.zeros(pad, np.int32)]), dtype=wp.int32, device=d
         )
 

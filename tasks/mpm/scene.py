@@ -2,13 +2,14 @@
 
 from __future__ import annotations
 
-from typing import Sequence
+from collections.abc import Sequence
+from typing import Unpack
 
 import numpy as np
 
 from contracts.material import Material
-from contracts.sim import SimConfig
-from tasks.mpm.model import ColliderSpec, Model, SceneSpec, build_model
+from contracts.sim import KernelOptions, SimConfig
+from tasks.mpm.model import ColliderSpec, Model, SceneKw, SceneSpec, build_model
 
 
 def box_particles(
@@ -34,7 +35,7 @@ def box_scene(
     density_kg_per_m3: float,
     colliders: list[ColliderSpec] | None = None,
     velocity_m_per_s: Sequence[float] | None = None,
-    **kw: object,
+    **kw: Unpack[SceneKw],
 ) -> SceneSpec:
     """A SceneSpec for a solid box of particles (2 per grid cell per axis when dx = 2 spacing)."""
     pos, vol = box_particles(lo_m, hi_m, spacing_m)
@@ -46,7 +47,7 @@ def box_scene(
         material=material,
         colliders=list(colliders or []),
         velocities_m_per_s=vel,
-        **kw,  # type: ignore[arg-type]
+        **kw,
     )
 
 
@@ -65,7 +66,10 @@ def bench_cube_scene(n_per_axis: int, material: Material = BENCH_MATERIAL) -> Sc
     return box_scene(lo, hi, spacing, material, BENCH_DENSITY)
 
 
-def bench_cube_model(n_per_axis: int, batch: int = 1, device: str = "cpu", cpu_threads: int = 1) -> Model:
-    """Model of `batch` copies of the standard cube, fixed dt 1e-4 s, dx = 0.4/n m (cpu_threads: SimConfig's)."""
-    cfg = SimConfig(device=device, dx_m=2.0 * BENCH_EDGE_M / n_per_axis, dt_fixed_s=BENCH_DT_S, cpu_threads=cpu_threads)
+def bench_cube_model(n_per_axis: int, batch: int = 1, device: str = "cpu", cpu_threads: int = 1,
+                     kernel: KernelOptions | None = None) -> Model:
+    """Model of `batch` copies of the standard cube, fixed dt 1e-4 s, dx = 0.4/n m (cpu_threads, kernel: SimConfig's
+    fields)."""
+    cfg = SimConfig(device=device, dx_m=2.0 * BENCH_EDGE_M / n_per_axis, dt_fixed_s=BENCH_DT_S, cpu_threads=cpu_threads,
+                    kernel=kernel or KernelOptions())
     return build_model([bench_cube_scene(n_per_axis) for _ in range(batch)], cfg)

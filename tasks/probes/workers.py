@@ -2,8 +2,8 @@
 
 Warp's CPU launches release the GIL, and since the engine replays them with a prebuilt argument struct
 (tasks/mpm/cpu_launch.py) little Python runs between them: two 1k-particle rollouts in two threads take 0.40-0.44 s
-against 0.60-0.62 s one after another on the 2-core VM (tasks/mpm/BENCHMARKS.md), with the same results bit for bit.
-On CUDA the rollouts share the device's stream and its graph captures, so they run one at a time there.
+against 0.60-0.62 s one after another on the 2-core VM (benchmarks/engine/BENCHMARKS.md), with the same results
+bit for bit. On CUDA the rollouts share the device's stream and its graph captures, so they run one at a time there.
 """
 
 from __future__ import annotations

@@ -7,17 +7,17 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from contracts.sim import SimConfig
+from contracts.sim import KernelOptions, SimConfig
 from tasks.mpm import Simulator, build_model
 from tasks.mpm import kernels as K
 from tasks.mpm.scene import box_scene
 from tests.mpm.scenes import MAT, pressed_and_thrown
 
 
-def _rollout(threads: int) -> tuple[dict, Simulator]:
+def _rollout(threads: int, kernel: KernelOptions | None = None) -> tuple[dict, Simulator]:
     """A cube pressed by a moving box, a cube thrown onto the ground, a cube carried by a sliding lattice; 0.03 s."""
     c = box_scene((0.0, 0.0, 0.01), (0.03, 0.03, 0.04), 0.0025, MAT, 400.0, velocity_m_per_s=(0.0, 0.3, 0.0))
-    cfg = SimConfig(device="cpu", dt_fixed_s=1e-4, cpu_threads=threads)
+    cfg = SimConfig(device="cpu", dt_fixed_s=1e-4, cpu_threads=threads, kernel=kernel or KernelOptions())
     sim = Simulator(build_model([*pressed_and_thrown(), c], cfg), health_interval_steps=37)
     out: dict = {}
     for k, slide in enumerate(((0.0, 0.0, 0.0), (0.0, 0.3, 0.0), (0.0, 0.0, 0.0))):
@@ -31,17 +31,16 @@ def _rollout(threads: int) -> tuple[dict, Simulator]:
 
 
 @pytest.mark.parametrize("threads", [1, 2])
-def test_fused_cpu_steps_give_the_separate_passes_rollout_bit_for_bit(threads: int, monkeypatch) -> None:
+def test_fused_cpu_steps_give_the_separate_passes_rollout_bit_for_bit(threads: int) -> None:
     fused, sim = _rollout(threads)
-    assert sim.solver.cpu_fuse
+    assert sim.solver.plan.fuse
     kernels = [getattr(c, "kernel", None) for e in sim.solver._graphs.values() for c in e[0]]
     kernels += [x.kernel for e in sim.solver._graphs.values() for c in e[0] for x in getattr(c, "cmds", [])]
     assert K.g2p_p2g_cpu in kernels and K.p2g_apic_neohookean in kernels
     n_fused = sum(1 for key in sim.solver._graphs if key[-1])
     assert n_fused >= 1
-    monkeypatch.setenv("DEFORMSMITH_MPM_CPU_FUSE", "0")
-    plain, sim_plain = _rollout(threads)
-    assert not sim_plain.solver.cpu_fuse
+    plain, sim_plain = _rollout(threads, KernelOptions(cpu_fuse=False))
+    assert not sim_plain.solver.plan.fuse
     assert K.g2p_p2g_cpu not in [getattr(c, "kernel", None) for e in sim_plain.solver._graphs.values()
                                  for c in e[0]]
     for k, v in plain.items():
@@ -67,16 +66,16 @@ def test_preloaded_modules_cover_every_cpu_launch() -> None:
     assert loaded() == before
 
 
-def test_grid_update_that_merges_the_chunk_grids_gives_the_separate_merge_rollout_bit_for_bit(monkeypatch) -> None:
+def test_grid_update_that_merges_the_chunk_grids_gives_the_separate_merge_rollout_bit_for_bit() -> None:
     folded, sim = _rollout(2)
-    assert sim.solver.cpu_merge_fold and sim.solver._chunks is not None
+    assert sim.solver.plan.merge_fold and sim.solver.plan.chunks is not None
     kernels = [getattr(c, "kernel", None) for e in sim.solver._graphs.values() for c in e[0]]
     assert K.grid_update_merge_cpu in kernels and K.grid_update not in kernels
-    monkeypatch.setenv("DEFORMSMITH_MPM_CPU_MERGE", "0")
-    separate, sim_sep = _rollout(2)
-    assert not sim_sep.solver.cpu_merge_fold
+    separate, sim_sep = _rollout(2, KernelOptions(cpu_merge=False))
+    assert not sim_sep.solver.plan.merge_fold
     assert K.grid_update_merge_cpu not in [getattr(c, "kernel", None) for e in sim_sep.solver._graphs.values()
                                            for c in e[0]]
     for k, v in separate.items():
         np.testing.assert_array_equal(folded[k], v, err_msg=k)
-    assert not sim.solver._chunks.grid_parts.numpy().any()  # the chunks' buffers are left clear for the next scatter
+    # the chunks' buffers are left clear for the next scatter
+    assert not sim.solver.plan.chunks.grid_parts.numpy().any()

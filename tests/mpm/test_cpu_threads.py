@@ -33,7 +33,7 @@ def _scenes() -> list:
 
 def _sim(threads: int) -> Simulator:
     sim = Simulator(build_model(_scenes(), SimConfig(device="cpu", dt_fixed_s=1e-4, cpu_threads=threads)))
-    assert (sim.solver._chunks is not None) == (threads > 1)
+    assert (sim.solver.plan.chunks is not None) == (threads > 1)
     return sim
 
 
@@ -78,7 +78,7 @@ def test_nan_in_a_later_chunk_is_reported_like_one_thread() -> None:
         sim = _sim(threads)
         v = sim.state.v.numpy()
         bad = int(sim.model.scene_start_np[2]) + 11
-        assert bad >= sim.solver._chunks.bounds[1][0] if threads > 1 else True
+        assert bad >= sim.solver.plan.chunks.bounds[1][0] if threads > 1 else True
         v[bad] = (np.nan, 0.0, 0.0)
         sim.state.v.assign(v)
         rep = sim.advance(0.002)
@@ -130,7 +130,7 @@ def test_threads_follow_a_grid_reallocation() -> None:
         sim.solver.grow_grid(np.array(before, dtype=float) + 6.0)
         assert sim.solver.grid_dims > before
         if threads > 1:
-            assert sim.solver._chunks.grid_nodes == sim.solver.grid_nodes
+            assert sim.solver.plan.chunks.grid_nodes == sim.solver.grid_nodes
         rep = sim.advance(0.01)
         assert rep.health.ok, rep.health.issues
         out.append((sim.particles()["x"], rep.ground_force_n))

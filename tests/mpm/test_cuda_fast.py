@@ -8,9 +8,11 @@ import pytest
 import warp as wp
 
 from contracts.material import Material
-from contracts.sim import SimConfig
+from contracts.sim import KernelOptions, SimConfig
 from tasks.mpm import Simulator, box_collider, build_model
-from tasks.mpm import solver as solver_mod
+from tasks.mpm import kernels_cuda as KC
+from tasks.mpm.plan_cpu import CpuLaunchPlan
+from tasks.mpm.plan_cuda import CudaLaunchPlan
 from tasks.mpm.scene import box_scene
 
 pytestmark = pytest.mark.gpu
@@ -45,9 +47,9 @@ def _scenes(shuffle: bool) -> list:
     return out
 
 
-def _rollout(device: str, fast: bool, shuffle: bool, monkeypatch) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    monkeypatch.setattr(solver_mod, "CUDA_FAST", fast)
-    model = build_model(_scenes(shuffle), SimConfig(device=device, dt_fixed_s=1e-4))
+def _rollout(device: str, fast: bool, shuffle: bool, **options) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    kernel = KernelOptions(cuda_fast=fast, **options)
+    model = build_model(_scenes(shuffle), SimConfig(device=device, dt_fixed_s=1e-4, kernel=kernel))
     sim = Simulator(model)
     assert sim.solver.fast_cuda == (fast and device == "cuda")
     rep = sim.advance(0.03)
@@ -56,26 +58,27 @@ def _rollout(device: str, fast: bool, shuffle: bool, monkeypatch) -> tuple[np.nd
 
 
 @pytest.mark.parametrize("shuffle", [False, True])
-def test_fast_cuda_path_matches_reference_and_cpu(shuffle: bool, monkeypatch) -> None:
+def test_fast_cuda_path_matches_reference_and_cpu(shuffle: bool) -> None:
     _need_cuda()
-    ref = _rollout("cuda", False, shuffle, monkeypatch)
-    fast = _rollout("cuda", True, shuffle, monkeypatch)
-    cpu = _rollout("cpu", False, shuffle, monkeypatch)
+    ref = _rollout("cuda", False, shuffle)
+    fast = _rollout("cuda", True, shuffle)
+    cpu = _rollout("cpu", False, shuffle)
     for other in (ref, cpu):
         np.testing.assert_allclose(fast[0], other[0], atol=1e-4)
         np.testing.assert_allclose(fast[1], other[1], rtol=2e-2, atol=2e-3)
         np.testing.assert_allclose(fast[2], other[2], rtol=2e-2, atol=2e-3)
 
 
-def test_fast_cuda_refit_stats_match_reference(monkeypatch) -> None:
+def test_fast_cuda_refit_stats_match_reference() -> None:
     """Fused re-fit on one state: bounds, max speed and window exact, kinetic energy to float rounding."""
     _need_cuda()
-    monkeypatch.setattr(solver_mod, "CUDA_FAST", True)
     sim = Simulator(build_model(_scenes(True), SimConfig(device="cuda", dt_fixed_s=1e-4)))
     sim.advance(0.005)
     stats = []
-    for fast in (False, True):
-        sim.solver.fast_cuda = fast  # the plain path records its re-fit launches per call
+    fast_plan = sim.solver.plan
+    for plan in (CpuLaunchPlan(sim.solver, KernelOptions()), fast_plan):  # the reference plan, then the fast one
+        sim.solver.plan = plan
+        sim.solver._refit_cmds.clear()
         sim.solver.grid_origin.zero_()
         st = sim.solver.scene_stats(sim.state)
         st["origin"] = sim.solver.grid_origin.numpy()
@@ -85,9 +88,8 @@ def test_fast_cuda_refit_stats_match_reference(monkeypatch) -> None:
     np.testing.assert_allclose(stats[0]["kinetic"], stats[1]["kinetic"], rtol=1e-5)
 
 
-def test_fast_cuda_nan_is_gated_and_reported(monkeypatch) -> None:
+def test_fast_cuda_nan_is_gated_and_reported() -> None:
     _need_cuda()
-    monkeypatch.setattr(solver_mod, "CUDA_FAST", True)
     model = build_model(_scenes(False), SimConfig(device="cuda", dt_fixed_s=1e-4))
     sim = Simulator(model)
     v = sim.state.v.numpy()
@@ -103,40 +105,35 @@ def test_fast_cuda_nan_is_gated_and_reported(monkeypatch) -> None:
     assert np.all(np.isfinite(x[good]))
 
 
-# the kernel variants of the fast path (solver.py: DEFORMSMITH_MPM_SPECIALIZE / AGG / COOP...): every variant forced on
-# small problems, where the size policy would not pick all of them
-_ALL_VARIANTS = {"DEFORMSMITH_MPM_COOP_MIN": "0", "DEFORMSMITH_MPM_COOP_MAX": "0", "DEFORMSMITH_MPM_COOP_P2G": "1",
-                 "DEFORMSMITH_MPM_P2G_PARTS": "1"}  # one thread per particle in p2g: its cooperative loads
-_NO_VARIANTS = {"DEFORMSMITH_MPM_SPECIALIZE": "0", "DEFORMSMITH_MPM_AGG": "0", "DEFORMSMITH_MPM_COOP": "0"}
+# the kernel variants of the fast path (KernelOptions specialize / agg / coop...): every variant forced on small
+# problems, where the size policy would not pick all of them
+_ALL_VARIANTS = {"coop_min_particles": 0, "coop_max_particles": 0, "coop_p2g": True,
+                 "p2g_parts": 1}  # one thread per particle in p2g: its cooperative loads
+_NO_VARIANTS = {"specialize": False, "agg": False, "coop": False}
 
 
 @pytest.mark.parametrize("shuffle", [False, True])
-def test_fast_cuda_variants_with_colliders_match_cpu(shuffle: bool, monkeypatch) -> None:
+def test_fast_cuda_variants_with_colliders_match_cpu(shuffle: bool) -> None:
     """Warp-cooperative particle loads/stores (g2p and p2g) and warp-summed ground impulses, with a moving box
     collider, for lattice-ordered and shuffled particles."""
     _need_cuda()
-    for k, v in _ALL_VARIANTS.items():
-        monkeypatch.setenv(k, v)
-    fast = _rollout("cuda", True, shuffle, monkeypatch)
-    cpu = _rollout("cpu", False, shuffle, monkeypatch)
+    fast = _rollout("cuda", True, shuffle, **_ALL_VARIANTS)
+    cpu = _rollout("cpu", False, shuffle)
     np.testing.assert_allclose(fast[0], cpu[0], atol=1e-4)
     np.testing.assert_allclose(fast[1], cpu[1], rtol=2e-2, atol=2e-3)
     np.testing.assert_allclose(fast[2], cpu[2], rtol=2e-2, atol=2e-3)
 
 
-@pytest.mark.parametrize("env", [_ALL_VARIANTS, {}, _NO_VARIANTS])
-def test_fast_cuda_variants_without_colliders_match_cpu(env: dict, monkeypatch) -> None:
+@pytest.mark.parametrize("options", [_ALL_VARIANTS, {}, _NO_VARIANTS])
+def test_fast_cuda_variants_without_colliders_match_cpu(options: dict) -> None:
     """Two 11^3 cubes (1331 particles each: a warp spans both scenes, the last warp is partial) dropped onto the
     ground, no kinematic colliders (the specialised kernels): CUDA matches the CPU after landing."""
     _need_cuda()
     from tasks.mpm.scene import bench_cube_model
 
-    for k, v in env.items():
-        monkeypatch.setenv(k, v)
     out = []
-    for device, fast in (("cuda", True), ("cpu", False)):
-        monkeypatch.setattr(solver_mod, "CUDA_FAST", fast)
-        sim = Simulator(bench_cube_model(11, 2, device))
+    for device, kernel in (("cuda", KernelOptions(**options)), ("cpu", KernelOptions())):
+        sim = Simulator(bench_cube_model(11, 2, device, kernel=kernel))
         sim.advance(0.12)  # falls 0.05 m (~0.1 s), then rests on the ground
         rep = sim.advance(0.02)
         assert rep.health.ok, rep.health.issues
@@ -146,38 +143,36 @@ def test_fast_cuda_variants_without_colliders_match_cpu(env: dict, monkeypatch) 
     np.testing.assert_allclose(out[0][1], out[1][1], rtol=5e-2, atol=2e-2)
 
 
-# the fused g2p + next p2g (DEFORMSMITH_MPM_FUSE, default on; FUSE_C=1 loads and stores C) and the scatter variants (DEFORMSMITH_MPM_SCATTER: scan,
-# the default, or warp), also with the row-scan p2g of one thread per particle (P2G_PARTS=1) and uncapped registers
-@pytest.mark.parametrize("env", [
-    {"DEFORMSMITH_MPM_FUSE": "0"},
-    {"DEFORMSMITH_MPM_SCATTER": "warp"},
-    {"DEFORMSMITH_MPM_P2G_PARTS": "1", "DEFORMSMITH_MPM_FUSE_REGS": "0"},
-    {"DEFORMSMITH_MPM_P2G_PARTS": "1", "DEFORMSMITH_MPM_SCATTER": "warp", "DEFORMSMITH_MPM_FUSE": "0"},
-    {"DEFORMSMITH_MPM_FUSE_C": "1"},  # the fused kernel round-trips C through memory (default: it keeps C in registers)
-    {"DEFORMSMITH_MPM_GRID_LAZY": "0"},  # the grid update writes every node (default: only nodes with mass)
+# the fused g2p + next p2g (KernelOptions.fuse, default on; fuse_keep_c loads and stores C) and the scatter variants
+# (scatter: scan, the default, or warp), also with the row-scan p2g of one thread per particle (p2g_parts=1) and
+# uncapped registers
+@pytest.mark.parametrize("options", [
+    {"fuse": False},
+    {"scatter": "warp"},
+    {"p2g_parts": 1, "fuse_max_registers": 0},
+    {"p2g_parts": 1, "scatter": "warp", "fuse": False},
+    {"fuse_keep_c": True},  # the fused kernel round-trips C through memory (default: it keeps C in registers)
+    {"grid_lazy": False},  # the grid update writes every node (default: only nodes with mass)
 ])
 @pytest.mark.parametrize("shuffle", [False, True])
-def test_fast_cuda_fusion_and_scatter_variants_match_cpu(env: dict, shuffle: bool, monkeypatch) -> None:
+def test_fast_cuda_fusion_and_scatter_variants_match_cpu(options: dict, shuffle: bool) -> None:
     """Ground, a moving box collider and a thrown cube, lattice-ordered and shuffled, for each variant."""
     _need_cuda()
-    for k, v in env.items():
-        monkeypatch.setenv(k, v)
-    fast = _rollout("cuda", True, shuffle, monkeypatch)
-    cpu = _rollout("cpu", False, shuffle, monkeypatch)
+    fast = _rollout("cuda", True, shuffle, **options)
+    cpu = _rollout("cpu", False, shuffle)
     np.testing.assert_allclose(fast[0], cpu[0], atol=1e-4)
     np.testing.assert_allclose(fast[1], cpu[1], rtol=2e-2, atol=2e-3)
     np.testing.assert_allclose(fast[2], cpu[2], rtol=2e-2, atol=2e-3)
 
 
-def test_fast_cuda_default_runs_fused_blocks(monkeypatch) -> None:
+def test_fast_cuda_default_runs_fused_blocks() -> None:
     """The default fast path replays multi-step graphs with the fused kernel and the row-scan scatter."""
     _need_cuda()
     from tasks.mpm.scene import bench_cube_model
 
-    monkeypatch.setattr(solver_mod, "CUDA_FAST", True)
     sim = Simulator(bench_cube_model(10, 2, "cuda"))
     sim.advance(0.005)
     sol = sim.solver
-    assert sol.cuda_fuse and sol.cuda_scatter == solver_mod.KC.SCATTER_SCAN
+    assert isinstance(sol.plan, CudaLaunchPlan) and sol.plan.fuse and sol.plan.scatter == KC.SCATTER_SCAN
     names = {c.kernel.key for entry in sol._blocks.values() for c in entry[2]}
     assert any("g2p2g" in n for n in names), names

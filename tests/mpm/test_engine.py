@@ -18,7 +18,7 @@ MAT = Material(youngs_modulus_pa=1e5, poisson_ratio=0.3)
 
 def _cube(lo=(0.0, 0.0, 0.0), a=0.05, n=5, **kw):
     """A small cube scene (n particles per axis)."""
-    hi = tuple(l + a for l in lo)
+    hi = tuple(lo_i + a for lo_i in lo)
     return box_scene(lo, hi, a / n, kw.pop("material", MAT), kw.pop("density", 500.0), **kw)
 
 
@@ -217,7 +217,7 @@ def test_batched_scenes_match_single_runs() -> None:
     scenes = [_cube(lo=(0, 0, 0.03), material=m) for m in mats]
     batch = Simulator(build_model(scenes, _cfg(dt_fixed_s=2e-4)))
     batch.advance(0.06)
-    for s, sc in enumerate(scenes):
+    for s in range(len(scenes)):
         single = Simulator(build_model([_cube(lo=(0, 0, 0.03), material=mats[s])], _cfg(dt_fixed_s=2e-4)))
         single.advance(0.06)
         np.testing.assert_allclose(batch.particles(s)["x"], single.particles(0)["x"], atol=1e-6)

@@ -7,9 +7,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from contracts.sim import SimConfig
+from contracts.sim import KernelOptions, SimConfig
 from tasks.mpm import Simulator, build_model
-from tasks.mpm import kernels_cuda as KC
+from tasks.mpm.plan_cuda import CudaLaunchPlan
 from tests.mpm.scenes import pressed_and_thrown
 
 
@@ -23,16 +23,16 @@ def _model():
     return build_model([a, b], SimConfig(device="cpu", dt_fixed_s=1e-4))
 
 
-def _run(fuse: bool, scatter: int, steps: int = 40, block: int = 13, keep_c: bool = False, lazy: bool = False) -> dict:
+def _run(fuse: bool, scatter: str, steps: int = 40, block: int = 13, keep_c: bool = False, lazy: bool = False) -> dict:
     """`steps` steps of the fast CUDA path's launches on the CPU, in blocks as Solver._launch_block records them."""
     sim = Simulator(_model(), use_graph=False)
     sol, st, ctl = sim.solver, sim.state, sim.control
-    sol.fast_cuda, sol._per_thread, sol.p2g_parts = True, 1, 1
-    sol._init_cuda_blocks()
-    sol.cuda_colliders, sol.cuda_agg, sol.cuda_coop_g2p = True, False, True
-    sol.cuda_fuse, sol.cuda_scatter, sol.cuda_fuse_keep_c, sol.cuda_grid_lazy = fuse, scatter, keep_c, lazy
+    opts = KernelOptions(specialize=False, agg=False, coop_min_particles=0, p2g_parts=1, fuse=fuse, scatter=scatter,
+                         fuse_keep_c=keep_c, grid_lazy=lazy)
+    sol.plan = CudaLaunchPlan(sol, opts)  # the fast CUDA path's plan, one particle per thread, on the CPU
+    assert sol.plan.with_colliders and sol.plan.coop_g2p and not sol.plan.agg
     ctl.sync(sol.time_s)
-    sol._slide = ctl.d_grid_slide
+    sol.slide = ctl.d_grid_slide
     sol.set_dt(1e-4)
     R = sol.refit_interval(ctl)
     done, fused = 0, 0
@@ -42,8 +42,8 @@ def _run(fuse: bool, scatter: int, steps: int = 40, block: int = 13, keep_c: boo
         for k in range(n):
             refit = since >= R
             since = 0 if refit else since + 1
-            fuse_next = sol.cuda_fuse and k + 1 < n and since < R
-            for cmd in sol._record_step(st, st, ctl, refit, skip_p2g=prev, fuse_next=fuse_next):
+            fuse_next = sol.plan.fuse and k + 1 < n and since < R
+            for cmd in sol.plan.record_step(st, st, ctl, refit, skip_p2g=prev, fuse_next=fuse_next):
                 fused += "g2p2g" in cmd.kernel.key
                 cmd.launch()
             prev = fuse_next
@@ -57,12 +57,12 @@ def _run(fuse: bool, scatter: int, steps: int = 40, block: int = 13, keep_c: boo
 
 
 def test_fused_step_matches_unfused_bit_for_bit() -> None:
-    ref = _run(False, KC.SCATTER_WARP)
+    ref = _run(False, "warp")
     # keep_c=False: the fused kernel neither loads nor stores C; the block's last (plain) g2p writes it
     # lazy: the grid update skips the nodes without mass (the window moves with both cubes: stale velocities are
     # left at nodes that change place, and never read with a non-zero weight)
-    for scatter, keep_c, lazy in ((KC.SCATTER_WARP, True, False), (KC.SCATTER_SCAN, True, False),
-                                  (KC.SCATTER_SCAN, False, False), (KC.SCATTER_SCAN, False, True)):
+    for scatter, keep_c, lazy in (("warp", True, False), ("scan", True, False), ("scan", False, False),
+                                  ("scan", False, True)):
         out = _run(True, scatter, keep_c=keep_c, lazy=lazy)
         assert int(out.pop("fused")) > 20  # most steps ran fused
         for k, a in out.items():

@@ -1,10 +1,12 @@
 """Per-kernel GPU time of the MPM step on the standard cube (CUDA activity timing, no graphs).
 
-    python -m tasks.mpm.gpu_profile --particles 8000 [--batch 16] [--steps 60] [--warmup N] [--json]
+    python -m benchmarks.engine.gpu_profile --particles 8000 [--batch 16] [--steps 60] [--warmup N] [--json] \
+        [--kernel name=value ...]
 
 Runs `steps` plain (ungraphed) steps after a warm-up (default: two re-fit cycles, the cube still falling; --warmup 1200
 profiles it on the ground, where the ground contact runs, as in most of the bench's steps) and prints the mean time
-per launch of each kernel [us] and the share of the re-fit launches per step. DEFORMSMITH_MPM_CUDA_FAST=0 profiles the plain kernels.
+per launch of each kernel [us] and the share of the re-fit launches per step. ``--kernel cuda_fast=false`` profiles
+the plain kernels (any ``contracts.sim.KernelOptions`` field can be set so).
 """
 
 from __future__ import annotations
@@ -15,15 +17,17 @@ from collections import defaultdict
 
 import warp as wp
 
+from contracts.sim import KernelOptions
 from tasks.mpm.scene import BENCH_DT_S, bench_cube_model
 from tasks.mpm.simulator import Simulator
 
 
-def profile(particles: int, batch: int = 1, steps: int = 60, warmup: int | None = None) -> dict:
+def profile(particles: int, batch: int = 1, steps: int = 60, warmup: int | None = None,
+            kernel: KernelOptions | None = None) -> dict:
     """Mean GPU time per launch [us] of each kernel over `steps` ungraphed steps (after a warm-up)."""
     wp.init()
     n = max(2, int(round(particles ** (1.0 / 3.0))))
-    sim = Simulator(bench_cube_model(n, batch, "cuda"), health_interval_steps=10**9, use_graph=False)
+    sim = Simulator(bench_cube_model(n, batch, "cuda", kernel=kernel), health_interval_steps=10**9, use_graph=False)
     solver = sim.solver
     if warmup is None:
         warmup = 2 * (sim.model.refit_interval + 1)
@@ -49,6 +53,7 @@ def profile(particles: int, batch: int = 1, steps: int = 60, warmup: int | None 
         "warmup_steps": warmup,
         "refit_interval": sim.model.refit_interval,
         "fast_cuda": bool(solver.fast_cuda),
+        "kernel_options": sim.model.config.kernel.model_dump(mode="json"),
         "kernels": kernels,
         "kernel_us_per_step": sum(k["per_step_us"] for k in kernels.values()),
     }
@@ -61,8 +66,9 @@ def main() -> None:
     ap.add_argument("--steps", type=int, default=60)
     ap.add_argument("--warmup", type=int, default=None, help="steps before profiling (default: 2 re-fit cycles)")
     ap.add_argument("--json", action="store_true")
+    ap.add_argument("--kernel", action="append", default=[], help="KernelOptions name=value (repeatable)")
     a = ap.parse_args()
-    r = profile(a.particles, a.batch, a.steps, a.warmup)
+    r = profile(a.particles, a.batch, a.steps, a.warmup, KernelOptions.from_assignments(a.kernel))
     if a.json:
         print(json.dumps(r))
         return

@@ -1,31 +1,32 @@
 #!/usr/bin/env bash
 # Before/after of the CUDA kernels on the device machine, back to back in one session: the plain one-thread-per-item
-# kernels of kernels.py (DEFORMSMITH_MPM_CUDA_FAST=0, "old") and the block-level ones of kernels_cuda.py ("new").
+# kernels of kernels.py (KernelOptions cuda_fast=false, "old") and the block-level ones of kernels_cuda.py ("new").
 # Run from the repo root with Warp + pydantic on PYTHONPATH. Everything lands in ${OUT}/compare.json (+ log).
 set -u
 OUT=${OUT:-/tmp/mpm_gpu}; mkdir -p "$OUT"
 W=${WORK:-/tmp/mpm_cmp}; rm -rf "$W"; mkdir -p "$W"
 export PYTHONPATH="$PWD:${PYTHONPATH:-}" PYTHONUNBUFFERED=1
 for mode in old new; do
-  fast=1; [ "$mode" = old ] && fast=0
-  echo "=== $mode (DEFORMSMITH_MPM_CUDA_FAST=$fast)"
-  DEFORMSMITH_MPM_CUDA_FAST=$fast OUT="$W/$mode" bash tasks/mpm/gpu_bench.sh
+  fast=true; [ "$mode" = old ] && fast=false
+  echo "=== $mode (cuda_fast=$fast)"
+  KERNEL="cuda_fast=$fast" OUT="$W/$mode" bash benchmarks/engine/gpu_bench.sh
 done
 for round in 2; do   # a second round of the latency-bound sizes, alternating, to see run-to-run spread
   for mode in old new; do
-    fast=1; [ "$mode" = old ] && fast=0
+    fast=true; [ "$mode" = old ] && fast=false
     for args in "8000 5000 1" "8000 2000 16"; do
       set -- $args
-      DEFORMSMITH_MPM_CUDA_FAST=$fast python3 -c 'import sys, flows.cli.mpm_cmds; from flows.cli.apps import app; sys.argv[0] = "deformsmith"; app()' \
-        bench mpm --device cuda --particles $1 --steps $2 --batch $3 --json > "$W/$mode/r${round}_bench_$1_x$3.json"
+      python3 -c 'import sys, flows.cli.mpm_cmds; from flows.cli.apps import app; sys.argv[0] = "deformsmith"; app()' \
+        bench mpm --device cuda --particles $1 --steps $2 --batch $3 --kernel cuda_fast=$fast --json \
+        > "$W/$mode/r${round}_bench_$1_x$3.json"
     done
   done
 done
 for mode in old new; do
-  fast=1; [ "$mode" = old ] && fast=0
+  fast=true; [ "$mode" = old ] && fast=false
   for args in "8000 1" "8000 16" "1000000 1"; do
     set -- $args
-    DEFORMSMITH_MPM_CUDA_FAST=$fast python3 -m tasks.mpm.gpu_profile --particles $1 --batch $2 --steps 60 --json \
+    python3 -m benchmarks.engine.gpu_profile --particles $1 --batch $2 --steps 60 --kernel cuda_fast=$fast --json \
       > "$W/$mode/profile_$1_x$2.json" || echo "profile $mode $args failed"
   done
 done

@@ -1,16 +1,18 @@
 """Old-vs-new GPU bench runs in one device call (each run its own process, figures from the bench's --json).
 
-    python3 -m tasks.mpm.gpu_ab --old _old --plan PLAN [--out DIR]
+    python3 -m benchmarks.engine.gpu_ab --old _old --plan PLAN [--out DIR]
 
-PLAN is a ';'-separated list of runs ``tag:tree:ENV=V,ENV=V:particles:steps:batch`` (tree: old or new; ENV part may be
-empty). The old tree is a ``git archive`` of the old commit extracted into a folder of the repo root (``--old``); new
+PLAN is a ';'-separated list of runs ``tag:tree:NAME=V,NAME=V:particles:steps:batch`` (tree: old or new; the NAME=V
+part, ``contracts.sim.KernelOptions`` fields passed as ``deformsmith bench mpm --kernel NAME=V``, may be empty; a
+tree from before KernelOptions took the same switches as DEFORMSMITH_MPM_* environment variables). The old tree is
+a ``git archive`` of the old commit extracted into a folder of the repo root (``--old``); new
 is the working tree. Prints one line per run and a JSON list of every run's figures to DIR/ab.json.
 
 Example (device machine, repo root, Warp + pydantic on PYTHONPATH; old tree from
 ``git archive <commit> tasks contracts flows cache | tar -x -C _old`` made here and carried):
 
-    python3 -m tasks.mpm.gpu_ab --out $OUT --plan "o8:old::8000:5000:1;n8:new::8000:5000:1;\
-        n16w:new:DEFORMSMITH_MPM_SCATTER=warp:8000:2000:16"
+    python3 -m benchmarks.engine.gpu_ab --out $OUT --plan "o8:old::8000:5000:1;n8:new::8000:5000:1;\
+        n16w:new:scatter=warp:8000:2000:16"
 """
 
 from __future__ import annotations
@@ -26,13 +28,18 @@ import time
 CLI = ('import sys, flows.cli.mpm_cmds; from flows.cli.apps import app; sys.argv[0] = "deformsmith"; app()')
 
 
-def run_one(root: pathlib.Path, env: dict, particles: int, steps: int, batch: int) -> dict:
-    """One bench process in `root` with extra environment `env`; the parsed --json (or an error record)."""
+def run_one(root: pathlib.Path, options: dict, particles: int, steps: int, batch: int) -> dict:
+    """One bench process in `root` with kernel options `options` (name -> value text); the parsed --json (or an error
+    record)."""
     e = dict(os.environ)
-    e.update(env)
     e["PYTHONPATH"] = f"{root}:{e.get('PYTHONPATH', '')}"
     cmd = [sys.executable, "-c", CLI, "bench", "mpm", "--device", "cuda", "--particles", str(particles), "--steps",
            str(steps), "--batch", str(batch), "--json"]
+    for name, value in options.items():
+        if name.startswith("DEFORMSMITH_MPM_"):  # an old tree's switch: its environment variable
+            e[name] = value
+        else:
+            cmd += ["--kernel", f"{name}={value}"]
     t = time.time()
     p = subprocess.run(cmd, cwd=root, env=e, capture_output=True, text=True)
     wall = time.time() - t
@@ -61,9 +68,9 @@ def main() -> None:
         if not item:
             continue
         tag, tree, envs, n, k, b = item.split(":")
-        env = dict(kv.split("=", 1) for kv in envs.split(",") if kv)
-        d = run_one(roots[tree], env, int(n), int(k), int(b))
-        d.update({"tag": tag, "tree": tree, "env": env})
+        options = dict(kv.split("=", 1) for kv in envs.split(",") if kv)
+        d = run_one(roots[tree], options, int(n), int(k), int(b))
+        d.update({"tag": tag, "tree": tree, "kernel": options})
         res.append(d)
         if "error" in d:
             print(f"{tag:24s} {tree} ERROR rc={d['rc']}: {d['error'][-600:]}", flush=True)

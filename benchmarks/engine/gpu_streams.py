@@ -2,7 +2,7 @@
 CUDA stream, all replayed from one host thread (graphs captured in a warm-up of the same sequence), against one
 16-scene batch and against the 16 scenes one after another on one stream. No health checks in the timed part.
 
-    python3 -m tasks.mpm.gpu_streams        # device machine, repo root, Warp + pydantic on PYTHONPATH
+    python3 -m benchmarks.engine.gpu_streams        # device machine, repo root, Warp + pydantic on PYTHONPATH
 """
 
 from __future__ import annotations
