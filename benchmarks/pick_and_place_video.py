@@ -5,9 +5,10 @@
 Times, per run (wall clock; and the CPU seconds of the replay, in this process and in the ffmpeg encoder, which a
 shared machine's load does not inflate): the renderer's set-up (camera, backdrop ray casting, forward kinematics of
 every frame), the frames (robot triangles and object splats rasterised by Warp CPU kernels, the caption), the H.264
-encoding (imageio-ffmpeg, its own process) and the whole `replay` call. The first run of a process also loads the Panda's meshes and Warp's
-kernels (compiled once per machine into Warp's kernel cache); later runs (``--repeat``) are warm. The 1-minute load
-average around each run is recorded: on a shared 2-core machine CPU timings vary with what else runs.
+encoding (imageio-ffmpeg, its own process) and the whole `replay` call. The first run of a process also loads the
+Panda's meshes and Warp's kernels (compiled once per machine into Warp's kernel cache); later runs (``--repeat``) are
+warm. The 1-minute load average around each run is recorded: on a shared 2-core machine CPU timings vary with what
+else runs.
 """
 
 from __future__ import annotations
@@ -20,6 +21,7 @@ import sys
 import tempfile
 import time
 from pathlib import Path
+from typing import TypedDict
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
@@ -32,7 +34,26 @@ def _cpu() -> tuple[float, float]:
     return time.process_time(), children.ru_utime + children.ru_stime
 
 
-def run_once(asset: Path, attempt: int | None, width: int, height: int) -> dict[str, float]:
+class VideoRun(TypedDict):
+    """The figures of one run (seconds, MB, frames per second, pixels, load average)."""
+
+    replay_wall_s: float
+    replay_cpu_s: float
+    encoder_cpu_s: float
+    setup_s: float
+    frames_s: float
+    per_frame_s: float
+    encode_s: float
+    frames: int
+    video_duration_s: float
+    mp4_mb: float
+    fps: float
+    size: list[int]
+    loadavg_1min_before: float
+    loadavg_1min_after: float
+
+
+def run_once(asset: Path, attempt: int | None, width: int, height: int) -> VideoRun:
     """One timed replay to a temporary MP4, with its phases timed separately on the same data."""
     import imageio.v2 as imageio
 

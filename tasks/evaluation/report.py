@@ -80,10 +80,11 @@ def _plot(ablation: str, figs: dict[str, dict[str, Figure]], path: Path) -> None
     w = 0.2
     for i, m in enumerate(metrics):
         pb, po = PAPER[ablation].get(m, (None, None))
-        vals = [(pb, None, f"paper {base}", "#bbbbbb"), (po, None, f"paper {ours}", "#777777")]
+        vals: list[tuple[float | None, Figure | None, str, str]] = [
+            (pb, None, f"paper {base}", "#bbbbbb"), (po, None, f"paper {ours}", "#777777")]
         for arm, col in ((base, "#e69f00"), (ours, "#0072b2")):
-            f = figs[arm][m]
-            vals.append((f.value, f, f"ours: {arm}", col))
+            fig_arm = figs[arm][m]
+            vals.append((fig_arm.value, fig_arm, f"ours: {arm}", col))
         for j, (v, f, label, col) in enumerate(vals):
             if v is None:
                 continue

@@ -1,6 +1,6 @@
 """Does a grasp's outcome depend on the object's yaw? One plan at several yaws, in several simulation frames.
 
-    python -m flows.l3_yaw_sweep ASSET_DIR [--yaws 0,45,-75,30,-45,60,90,-20] [--frames none,0,45]
+    python -m benchmarks.l3_yaw_sweep ASSET_DIR [--yaws 0,45,-75,30,-45,60,90,-20] [--frames none,0,45]
         [--spacing M] [--youngs PA] [--plan-from manipulation.json] [--workers 2] [--json]
 
 ASSET_DIR is an L2 (or L3) asset directory; it is copied to a temporary folder first (never written into). The plan is
@@ -72,7 +72,7 @@ def summarise(rows: list[dict[str, Any]]) -> dict[str, Any]:
 
 
 def main(argv: list[str] | None = None) -> int:
-    ap = argparse.ArgumentParser(prog="python -m flows.l3_yaw_sweep", description=__doc__.split("\n")[0])
+    ap = argparse.ArgumentParser(prog="python -m benchmarks.l3_yaw_sweep", description=__doc__.split("\n")[0])
     ap.add_argument("asset_dir")
     ap.add_argument("--yaws", default="0,45,-75,30,-45,60,90,-20", help="initial yaws [deg], comma-separated")
     ap.add_argument("--frames", default="none,45", help="'none' or closing-axis-to-grid angles [deg], comma-separated")

@@ -15,7 +15,6 @@ import time
 from pathlib import Path
 from typing import Any
 
-
 from contracts.material import Material
 from contracts.sim import SimConfig
 
@@ -44,7 +43,7 @@ def run_l2_bench(asset_dir: Path, intent: str | None = None, schedules: tuple[st
     values = initial_values(contract, targets, None)
     fields = {f.name: f for f in contract.editable_fields}
     p = probe_parameters(contract)
-    sim = SimConfig(device=device)  # type: ignore[arg-type]
+    sim = SimConfig(device=device)
     body = DeformableBody.from_physical(asset.particles_m, asset.volumes_m3, physical)
     candidates = {
         "compress": ([Material(youngs_modulus_pa=e, poisson_ratio=values["poisson_ratio"],
@@ -73,16 +72,18 @@ def run_l2_bench(asset_dir: Path, intent: str | None = None, schedules: tuple[st
             for sched in schedules:
                 for rep in range(repeat):
                     paths = [Path(tmp) / f"{kind}-{sched}-{rep}-{i}.rrd" for i in range(len(mats))]
+                    probe: Any = deformable.PROBES[kind]
                     t = time.perf_counter()
-                    rs = deformable.PROBES[kind](body, mats, sim=sim, record_paths=paths, schedule=sched, **params)
+                    rs = probe(body, mats, sim=sim, record_paths=paths, schedule=sched, **params)
                     wall = time.perf_counter() - t
                     groups = plan_batches(body, mats, sim, sched)
-                    row = {"wall_s": round(wall, 3), "sim_calls": rollouts(groups, rs), "groups": groups,
-                           "healthy": all(r.health.ok for r in rs),
-                           "candidates": [{"material": m.model_dump(mode="json"),
-                                           "rollout_wall_s": round(r.wall_time_s, 3),
-                                           "metrics": {k: r.metrics.get(k) for k in KEY_METRICS[kind]}}
-                                          for m, r in zip(mats, rs)]}
+                    row: dict[str, Any] = {
+                        "wall_s": round(wall, 3), "sim_calls": rollouts(groups, rs), "groups": groups,
+                        "healthy": all(r.health.ok for r in rs),
+                        "candidates": [{"material": m.model_dump(mode="json"),
+                                        "rollout_wall_s": round(r.wall_time_s, 3),
+                                        "metrics": {k: r.metrics.get(k) for k in KEY_METRICS[kind]}}
+                                       for m, r in zip(mats, rs)]}
                     if rep == 0:
                         rows[sched] = row
                     else:
@@ -90,7 +91,7 @@ def run_l2_bench(asset_dir: Path, intent: str | None = None, schedules: tuple[st
                         rows[sched]["deterministic"] = rows[sched].get("deterministic", True) and all(
                             a["metrics"] == b["metrics"] for a, b in zip(rows[sched]["candidates"], row["candidates"]))
             ref = rows.get("sequential")
-            for sched, row in rows.items():
+            for row in rows.values():
                 if ref is not None:
                     row["same_metrics_as_alone"] = all(a["metrics"] == b["metrics"]
                                                        for a, b in zip(row["candidates"], ref["candidates"]))

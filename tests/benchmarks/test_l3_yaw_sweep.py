@@ -3,8 +3,9 @@
 from __future__ import annotations
 
 import math
+from typing import Any
 
-from flows.l3_yaw_sweep import main, summarise
+from benchmarks.l3_yaw_sweep import main, summarise
 
 
 def test_a_folder_without_an_l2_material_is_refused(tmp_path, capsys) -> None:  # type: ignore[no-untyped-def]
@@ -19,7 +20,7 @@ def test_bad_yaws_are_refused(tmp_path, capsys) -> None:  # type: ignore[no-unty
 
 
 def test_the_summary_counts_lifts_per_frame_and_averages_the_hold_force_of_lifts() -> None:
-    rows = [{"frame": None, "lifted": True, "success": True, "hold_normal_force_n": 1.0},
+    rows: list[dict[str, Any]] = [{"frame": None, "lifted": True, "success": True, "hold_normal_force_n": 1.0},
             {"frame": None, "lifted": False, "success": False, "hold_normal_force_n": math.nan},
             {"frame": 45.0, "lifted": True, "success": False, "hold_normal_force_n": 2.0},
             {"frame": 45.0, "lifted": True, "success": True, "hold_normal_force_n": 3.0},

@@ -13,9 +13,9 @@ arrays are assembled and the labels computed: at standard quality the labels (ma
 F in every recorded frame, numpy on the CPU) take longer than the simulation on a GPU. A machine without pybullet
 (the GPU machine) runs a bundle prepared here::
 
-    python -m tasks.manipulation.bench_trial cube --device cpu --json                # prepare + run here
-    python -m tasks.manipulation.bench_trial turtle --quality standard --export .benchtrial/turtle_std.pkl
-    python -m tasks.manipulation.bench_trial --bundle .benchtrial/turtle_std.pkl --device cuda --json
+    python -m benchmarks.l3_trial cube --device cpu --json      # prepare + run here
+    python -m benchmarks.l3_trial turtle --quality standard --export .benchtrial/turtle_std.pkl
+    python -m benchmarks.l3_trial --bundle .benchtrial/turtle_std.pkl --device cuda --json
 
 A bundle is a pickle of the trial inputs (body, physical model, material, plan, settings, tolerances and the planned
 Trajectory); the trajectory's motion pieces (closures of tasks.robot.trajectory's factories) are stored as the
@@ -62,7 +62,7 @@ class _NoPybullet(types.ModuleType):
         if name.startswith("__"):
             raise AttributeError(name)
         raise RuntimeError(f"{self.__name__}.{name} used, but pybullet is not installed here: plan on a machine "
-                           "with pybullet and pass the trajectory (bench_trial --export / --bundle)")
+                           "with pybullet and pass the trajectory (benchmarks.l3_trial --export / --bundle)")
 
 
 def _stub_pybullet(force: bool = False) -> bool:
@@ -94,7 +94,7 @@ class _BundlePickler(pickle.Pickler):
 
     def reducer_override(self, obj: Any) -> Any:
         # the importable copies (this module may run as __main__)
-        from tasks.manipulation.bench_trial import _rebuild_piece, _rebuild_ppoly
+        from benchmarks.l3_trial import _rebuild_piece, _rebuild_ppoly
 
         if type(obj).__module__.startswith("scipy.interpolate"):
             from scipy.interpolate import PPoly
@@ -122,6 +122,21 @@ def dump_bundle(inputs: dict[str, Any]) -> bytes:
     buf = io.BytesIO()
     _BundlePickler(buf, protocol=pickle.HIGHEST_PROTOCOL).dump(inputs)
     return buf.getvalue()
+
+
+_OLD_HOMES = {"tasks.manipulation.bench_trial": "benchmarks.l3_trial"}  # bundles exported before the move
+
+
+class _BundleUnpickler(pickle.Unpickler):
+    """Reads bundles, also those exported when this module was tasks.manipulation.bench_trial."""
+
+    def find_class(self, module: str, name: str) -> Any:
+        return super().find_class(_OLD_HOMES.get(module, module), name)
+
+
+def load_bundle(data: bytes) -> dict[str, Any]:
+    """The prepared inputs from ``dump_bundle``'s bytes."""
+    return _BundleUnpickler(io.BytesIO(data)).load()
 
 
 def cube_inputs(device: str = "cpu") -> dict[str, Any]:
@@ -230,14 +245,15 @@ def bench(inputs: dict[str, Any], device: str = "cpu", repeat: int = 1, full: bo
         r = run_trial(inputs["body"], inputs["physical"], inputs["material"], inputs["plan"], settings,
                       inputs["tolerances"], inputs["trajectory"])
         outer.append(time.perf_counter() - t0)
-        walls.append(float(r.info["wall_time_s"]))
+        walls.append(float(r.info["wall_time_s"]))  # type: ignore[arg-type]
         loads.append([round(load0, 2), round(os.getloadavg()[0], 2)])
     assert r is not None
-    info, m = r.info, r.metrics
+    info: dict[str, Any] = r.info
+    m = r.metrics
     plan = inputs["plan"]
     return {
         "case": inputs["case"], "quality": inputs["quality"], "device": device,
-        "date": _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds"), "machine": machine(),
+        "date": _dt.datetime.now(_dt.UTC).isoformat(timespec="seconds"), "machine": machine(),
         "particles": int(info["particles"]), "steps": int(info["steps"]), "sim_time_s": float(info["sim_time_s"]),
         # trial_wall_s: the whole run_trial call (set-up, control loop, recording, labels), the last run;
         # wall_s: run_trial's own info['wall_time_s'], which stops before the arrays and labels are made
@@ -255,7 +271,7 @@ def bench(inputs: dict[str, Any], device: str = "cpu", repeat: int = 1, full: bo
 
 
 def main(argv: list[str] | None = None) -> int:
-    ap = argparse.ArgumentParser(prog="python -m tasks.manipulation.bench_trial", description=__doc__.split("\n")[0])
+    ap = argparse.ArgumentParser(prog="python -m benchmarks.l3_trial", description=__doc__.split("\n")[0])
     ap.add_argument("case", nargs="?", choices=("turtle", "cube"), help="what to prepare (omit with --bundle)")
     ap.add_argument("--asset", type=Path, default=DEFAULT_TURTLE, help="asset directory of the turtle case")
     ap.add_argument("--quality", choices=("draft", "standard"), default="draft")
@@ -269,7 +285,7 @@ def main(argv: list[str] | None = None) -> int:
     a = ap.parse_args(argv)
     if a.bundle:
         stubbed = _stub_pybullet(a.no_pybullet)
-        inputs = pickle.loads(a.bundle.read_bytes())
+        inputs = load_bundle(a.bundle.read_bytes())
     elif a.case:
         stubbed = False
         inputs = cube_inputs(a.device) if a.case == "cube" else turtle_inputs(a.asset, a.quality, a.device)
@@ -284,7 +300,7 @@ def main(argv: list[str] | None = None) -> int:
         return 0
     out = bench(inputs, a.device, a.repeat, a.full)
     out["pybullet_stand_in"] = stubbed
-    out["command"] = "python -m tasks.manipulation.bench_trial " + " ".join(sys.argv[1:] if argv is None else argv)
+    out["command"] = "python -m benchmarks.l3_trial " + " ".join(sys.argv[1:] if argv is None else argv)
     if a.json:
         print(json.dumps(out))
     else:
