@@ -42,9 +42,9 @@ configure_prefect_env()  # before prefect is imported: local PREFECT_HOME defaul
 
 from cache.config import cache_relative, cache_resolve, cache_root, use_cache_root  # noqa: E402
 from cache.dont_store import dont_store  # noqa: E402
-from cache.hashing import content_key  # noqa: E402
 
-_LAZY = {  # heavy imports (prefect ~2.5 s, zarr ~0.4 s) only when used, so the CLI starts fast
+_LAZY = {  # heavy imports (prefect ~2.5 s, zarr ~0.4 s, numpy ~0.3 s) only when used, so the CLI starts fast
+    "content_key": "cache.hashing",
     "cached_task": "cache.prefect_task",
     "local_runtime": "cache.runtime",
     "CacheMiss": "cache.store",

@@ -9,7 +9,7 @@ import math
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import Any, cast
 
 import numpy as np
 from pydantic import BaseModel
@@ -121,7 +121,7 @@ def decode(tree: Any, load_array: Callable[[str], np.ndarray], files_dir: Path) 
     if tag == "float":
         return float(tree["v"])
     if tag == "model":
-        cls = _import_qualified(tree["cls"])
+        cls = cast(type[BaseModel], _import_qualified(tree["cls"]))  # encode tags only BaseModel instances "model"
         return cls.model_validate_json(json.dumps(_untag_floats(tree["data"]), allow_nan=True))
     if tag == "array":
         return load_array(tree["name"])

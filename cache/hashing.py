@@ -36,7 +36,7 @@ def array_digest(array: np.ndarray) -> str:
     h = hashlib.sha256()
     h.update(f"{array.dtype.str}|{array.shape}|".encode())
     if array.size:
-        h.update(memoryview(np.ascontiguousarray(array).reshape(-1)).cast("B"))
+        h.update(np.ascontiguousarray(array).reshape(-1).data.cast("B"))
     return h.hexdigest()
 
 

@@ -14,7 +14,7 @@ import uuid
 from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any, Literal, Optional, TypeVar
+from typing import Any, Literal, TypeVar
 
 from prefect import Task, task
 from prefect.cache_policies import CachePolicy
@@ -193,7 +193,7 @@ class StoreResultStorage(WritableFileSystem):
     """Prefect result storage backed by CacheStore: one verified Zarr group per cache key."""
 
     _block_type_name = "DeformSmith Cache Store"
-    root: Optional[str] = None  # None: the cache root resolved at use (`--cache` / env / user dir)
+    root: str | None = None  # None: the cache root resolved at use (`--cache` / env / user dir)
 
     def _store(self) -> CacheStore:
         return store_for(Path(self.root) if self.root else None)
@@ -201,7 +201,7 @@ class StoreResultStorage(WritableFileSystem):
     def _resolve_path(self, path: str) -> Path:
         return self._store().root / "entries" / path
 
-    def read_path(self, path: str, _sync: bool | None = None) -> bytes:
+    def read_path(self, path: str, _sync: bool | None = None) -> bytes:  # type: ignore[override]  # sync only
         """Prefect record of the entry (verified); raises if missing or corrupt, which Prefect treats as a miss."""
         key = Path(path).name
         value, meta = self._store().load_keep(key)
@@ -210,7 +210,7 @@ class StoreResultStorage(WritableFileSystem):
 
         return json.dumps({"metadata": metadata, "result": _handoff_put(value)}).encode()
 
-    def write_path(self, path: str, content: bytes, _sync: bool | None = None) -> str:
+    def write_path(self, path: str, content: bytes, _sync: bool | None = None) -> str:  # type: ignore[override]
         """Publish the handed-off result under the key atomically."""
         import json
 
@@ -249,7 +249,7 @@ class ContentCachePolicy(CachePolicy):
 
     def compute_key(
         self, task_ctx: TaskRunContext, inputs: dict[str, Any], flow_parameters: dict[str, Any], **kwargs: Any
-    ) -> Optional[str]:
+    ) -> str | None:
         """Content key of the inputs; failures are remembered so the task fails loudly instead of uncached."""
         t0 = time.perf_counter()
         run_id = task_ctx.task_run.id if task_ctx and task_ctx.task_run else None
@@ -312,7 +312,7 @@ def _record_cache_event(tsk: Any, task_run: Any, state: Any) -> None:
     )
 
 
-class CachedTask(Task):  # type: ignore[type-arg]
+class CachedTask(Task):
     """A Prefect Task whose result storage is the content store (kept through `with_options`).
 
     Called for its result, a miss returns file outputs as their stored copies (as a hit does), and the task's
@@ -343,7 +343,7 @@ class CachedTask(Task):  # type: ignore[type-arg]
         return _as_cached(super().with_options(*args, **kwargs))
 
 
-def _as_cached(made: Task) -> Any:  # type: ignore[type-arg]
+def _as_cached(made: Task) -> Any:
     """Attach the store-backed result storage after construction.
 
     Prefect's constructor insists that block instances be saved on a server; this one has nothing to save (it
@@ -393,7 +393,6 @@ def cached_task(version: str | int, name: str | None = None, **prefect_task_kwar
 
         hooks = list(prefect_task_kwargs.pop("on_completion", None) or [])
         made = task(
-            body,
             name=task_name,
             version=version,
             cache_policy=policy,
@@ -401,7 +400,7 @@ def cached_task(version: str | int, name: str | None = None, **prefect_task_kwar
             result_serializer=StoreHandoffSerializer(),
             on_completion=[_record_cache_event, *hooks],
             **prefect_task_kwargs,
-        )
+        )(body)
         return _as_cached(made)
 
     return decorate

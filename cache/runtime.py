@@ -52,6 +52,11 @@ def uses_remote_server() -> bool:
     return bool(url) and str(url) != os.environ.get(LOCAL_API_ENV)
 
 
+def set_env(values: dict[str, str]) -> None:
+    """Worker-process initializer: export `values` (before anything imports Prefect in that process)."""
+    os.environ.update(values)
+
+
 def local_api_env(url: str) -> dict[str, str]:
     """Environment for a child process that uses the local server at `url` started here."""
     return {"PREFECT_API_URL": url, LOCAL_API_ENV: url}
@@ -220,5 +225,8 @@ def local_runtime() -> Iterator[None]:
     url = prestarted_api_url()
     if url:
         settings[PREFECT_API_URL] = url
+    if all(setting.value() == value for setting, value in settings.items()):
+        yield  # inside an outer local_runtime (every cached task of a flow): copying the settings costs ~0.1 s
+        return
     with temporary_settings(settings):
         yield

@@ -68,7 +68,8 @@ def dead_cache_temporaries(root: Path, grace_s: float = GRACE_S, now: float | No
 def dead_partials(parent: Path, name: str | None = None) -> list[Path]:
     """`.<name>.{partial,tmp,old}-<host>~<pid>~*` working directories in `parent` left by a dead process of this
     host (only those of output `name` when given)."""
-    parent, host, found = Path(parent), socket.gethostname(), []
+    parent, host = Path(parent), socket.gethostname()
+    found: list[Path] = []
     if not parent.is_dir():
         return found
     for path in parent.glob(".*-*~*~*"):

@@ -29,7 +29,7 @@ class TargetBand(Model):
     source: str = Field(default="vocab", description="where the band came from: vocab:<word> | request:<text> | override")
 
     @model_validator(mode="after")
-    def _ordered(self) -> "TargetBand":
+    def _ordered(self) -> TargetBand:
         if not (math.isfinite(self.low) and math.isfinite(self.high)) or self.low > self.high:
             raise ValueError("need finite low <= high")
         if self.scale == "log" and self.low <= 0:
@@ -128,7 +128,7 @@ class PlannerContext(Model):
     budget_left: int = Field(ge=0, description="attempts left, this one included")
     current_values: dict[str, float] = Field(description="the candidate a revision starts from")
     targets: TargetBehaviour
-    last_critique: "Critique | None" = None
+    last_critique: Critique | None = None
     history: list[HistoryEntry] = Field(default_factory=list)
     initial_action: str | None = Field(default=None, description="the layer's suggested first action")
 
@@ -149,7 +149,7 @@ class DesignerRequest(Model):
     fields: list[EditableField] = Field(description="the only fields the candidate may set")
     current_values: dict[str, float]
     targets: TargetBehaviour
-    critique: "Critique | None" = None
+    critique: Critique | None = None
     history: list[HistoryEntry] = Field(default_factory=list)
     feedback: str | None = Field(default=None, description="why the previous proposal was rejected, if it was")
     budget_left: int = Field(default=1, ge=0, description="attempts left, this one included")
@@ -218,7 +218,7 @@ class RoleConfig(Model):
     )
 
     @model_validator(mode="after")
-    def _model_given(self) -> "RoleConfig":
+    def _model_given(self) -> RoleConfig:
         if self.backend == "litellm" and not self.model:
             raise ValueError("a litellm role needs a model string")
         return self
@@ -232,12 +232,12 @@ class AgentConfig(Model):
     critic: RoleConfig = Field(default_factory=RoleConfig)
 
     @classmethod
-    def rule(cls) -> "AgentConfig":
+    def rule(cls) -> AgentConfig:
         """Every role played by the offline rule backend."""
         return cls()
 
     @classmethod
-    def llm(cls, model: str, on_failure: Literal["fail", "fallback_rule"] = "fallback_rule", **kw: float) -> "AgentConfig":
+    def llm(cls, model: str, on_failure: Literal["fail", "fallback_rule"] = "fallback_rule", **kw: float) -> AgentConfig:
         """Every role played by one litellm model."""
         role = RoleConfig(backend="litellm", model=model, on_failure=on_failure, **kw)
         return cls(planner=role, designer=role, critic=role)

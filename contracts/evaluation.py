@@ -28,7 +28,7 @@ class Drawing(Model):
     size_px: int = Field(default=256, ge=64, le=1024)
 
     @model_validator(mode="after")
-    def _polygon(self) -> "Drawing":
+    def _polygon(self) -> Drawing:
         if self.shape == "polygon" and len(self.points) < 3:
             raise ValueError("a polygon needs >= 3 points")
         return self
@@ -57,7 +57,7 @@ class SuiteCase(Model):
     tags: list[str] = Field(default_factory=list)
 
     @model_validator(mode="after")
-    def _inputs(self) -> "SuiteCase":
+    def _inputs(self) -> SuiteCase:
         if not CASE_ID.match(self.id):
             raise ValueError(f"case id '{self.id}' must match {CASE_ID.pattern}")
         if self.kind == "text" and not (self.text and self.text.strip()):
@@ -79,7 +79,7 @@ class Suite(Model):
     cases: list[SuiteCase] = Field(min_length=1)
 
     @model_validator(mode="after")
-    def _unique(self) -> "Suite":
+    def _unique(self) -> Suite:
         ids = [c.id for c in self.cases]
         dup = sorted({i for i in ids if ids.count(i) > 1})
         if dup:

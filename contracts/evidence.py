@@ -61,3 +61,23 @@ class Attempt(Model):
     directions: dict[str, str] = Field(default_factory=dict, description="Critic's suggested direction per field")
     planner_source: AgentSource | None = Field(default=None, description="which backend chose the action")
     critic_source: AgentSource | None = Field(default=None, description="which backend judged the evidence")
+
+
+class StageTally(Model):
+    """What one stage spent and how it ended, derived from its attempt records (`inspect` and `evidence` print it)."""
+
+    stage: StageName
+    status: str = Field(description="the harness outcome (accepted | best_valid | ...); L0: passed | failed")
+    passed: bool = Field(description="a valid candidate came out (best_valid counts: see unmet_targets)")
+    attempts: int = Field(ge=0, description="harness iterations: the stage's lines in evidence/attempts.jsonl")
+    loop_sim_calls: int = Field(ge=0, description="simulations of those attempts (their evidence.sim_calls)")
+    extra_sim_calls: dict[str, int] = Field(default_factory=dict,
+                                            description="simulations outside the loop by role: screening, held_out, "
+                                                        "robustness, confirmation, other")
+    unmet_targets: list[str] = Field(default_factory=list, description="target bands the kept candidate misses")
+    message: str = ""
+
+    @property
+    def sim_calls(self) -> int:
+        """Every simulation the stage ran: the loop's and the ones outside it."""
+        return self.loop_sim_calls + sum(self.extra_sim_calls.values())

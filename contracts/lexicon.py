@@ -49,7 +49,7 @@ class LexiconEntry(Model):
                               "like a cat")
 
     @model_validator(mode="after")
-    def _check(self) -> "LexiconEntry":
+    def _check(self) -> LexiconEntry:
         if (self.plan is None) == (self.catalogue is None):
             raise ValueError(f"{self.key}: give exactly one of plan and catalogue")
         if self.material not in material_densities():

@@ -4,13 +4,14 @@ from __future__ import annotations
 
 from typing import Any
 
-from pydantic import Field
+from pydantic import Field, model_serializer
 
 from contracts.base import Model
 from contracts.material import Material
 from contracts.physical import PhysicalModel
 from contracts.request import AssetRequest
 from contracts.robot import ActionPlan, ManipulationOutcome
+from contracts.sim import KernelOptions
 
 
 class StageSummary(Model):
@@ -38,6 +39,16 @@ class Provenance(Model):
     device: str = "cpu"
     cpu_threads: int = Field(default=1, ge=1, description="CPU threads sharing each MPM rollout (results depend on "
                                                          "this number; 1 on CUDA)")
+    kernel: KernelOptions | None = Field(default=None, description="the MPM kernel options when not the engine's "
+                                                                   "defaults (SimConfig.kernel); absent: the defaults")
+
+    @model_serializer(mode="wrap")
+    def _omit_default_kernel(self, handler):
+        """No `kernel` key when the defaults ran, so manifests of default runs read as they always did."""
+        out = handler(self)
+        if isinstance(out, dict) and out.get("kernel") is None:
+            out.pop("kernel", None)
+        return out
 
 
 class AssetManifest(Model):

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import re
+import unicodedata
 from pathlib import Path
 from typing import Literal
 
@@ -14,6 +15,23 @@ Quality = Literal["draft", "standard", "high"]
 InputKind = Literal["text", "image", "mesh"]
 # 'package.module:function' (an optional '#tag' names a version: change it to rebuild cached geometry) or an HTTP URL
 GEOMETRY_BACKEND_PATTERN = r"(?:[A-Za-z_][\w]*(?:\.[A-Za-z_]\w*)*:[A-Za-z_]\w*(?:#\S*)?|https?://\S+)"
+
+
+MIN_SIZE_M, MAX_SIZE_M = 0.01, 2.0  # the longest extent L0 can build [m]
+MESH_SUFFIXES = (".obj", ".ply", ".stl", ".glb", ".gltf", ".off")  # what L0 reads (tasks/geometry/mesh_import.py)
+MAX_TEXT_CHARS = 1000  # a description, not a document: longer text is refused before any layer runs
+
+
+def _check_words(name: str, value: str | None) -> None:
+    """A description must be readable words: not longer than MAX_TEXT_CHARS, no control characters."""
+    if value is None:
+        return
+    if len(value) > MAX_TEXT_CHARS:
+        raise ValueError(f"{name} is {len(value)} characters long; at most {MAX_TEXT_CHARS} are read")
+    bad = sorted({f"U+{ord(c):04X}" for c in value if unicodedata.category(c) in ("Cc", "Cs", "Co", "Cn")
+                  and c not in "\t\n\r"})
+    if bad:
+        raise ValueError(f"{name} holds control characters ({', '.join(bad[:5])})")
 
 
 class AssetRequest(Model):
@@ -39,12 +57,20 @@ class AssetRequest(Model):
     quality: Quality = Field(default="draft", description="resolution preset: draft | standard | high")
 
     @model_validator(mode="after")
-    def _exactly_one_input(self) -> "AssetRequest":
+    def _exactly_one_input(self) -> AssetRequest:
         given = [n for n in ("text", "image_path", "mesh_path") if getattr(self, n) is not None]
         if self.text is not None and not self.text.strip() and self.image_path is None and self.mesh_path is None:
             raise ValueError("text is empty")
         if len(given) == 0:
             raise ValueError("give one input: text, image_path or mesh_path")
+        for name in ("text", "material_intent"):
+            _check_words(name, getattr(self, name))
+        if self.mesh_path is not None and Path(self.mesh_path).suffix.lower() not in MESH_SUFFIXES:
+            raise ValueError(f"unsupported mesh format '{Path(self.mesh_path).suffix}'; use one of "
+                             f"{', '.join(MESH_SUFFIXES)}")
+        if self.size_hint_m is not None and not (MIN_SIZE_M <= self.size_hint_m <= MAX_SIZE_M):
+            raise ValueError(f"size_hint_m = {self.size_hint_m:g} m is outside the supported range "
+                             f"[{MIN_SIZE_M:g}, {MAX_SIZE_M:g}] m")
         if self.image_path is not None and self.mesh_path is not None:
             raise ValueError("give either image_path or mesh_path, not both")
         if self.geometry_backend is not None:

@@ -7,6 +7,7 @@ from pathlib import Path
 from pydantic import Field, model_validator
 
 from contracts.base import Model
+from contracts.stage import packaged_parameters
 
 Vec3 = tuple[float, float, float]
 GRIPPERS_DIR = Path(__file__).parent / "grippers"
@@ -29,7 +30,7 @@ class BoxSpec(Model):
     hi_m: Vec3
 
     @model_validator(mode="after")
-    def _ordered(self) -> "BoxSpec":
+    def _ordered(self) -> BoxSpec:
         if any(lo >= hi for lo, hi in zip(self.lo_m, self.hi_m)):
             raise ValueError("a box needs lo_m < hi_m on every axis")
         return self
@@ -61,7 +62,7 @@ class GripperSpec(Model):
     finger_top_m: float | None = Field(default=None, lt=0, description="TCP-frame z where a finger meets the body [m]")
 
     @model_validator(mode="after")
-    def _geometry(self) -> "GripperSpec":
+    def _geometry(self) -> GripperSpec:
         missing = [k for k in ("pad", "palm_box", "finger_half_width_m", "finger_thickness_m", "finger_top_m")
                    if getattr(self, k) is None]
         if missing and not self.urdf_hand:
@@ -115,7 +116,8 @@ class ActionPlan(Model):
         default=None, gt=0, description="force-controlled closure: the fingers close until their mean normal force is "
         "about to reach this force target, per finger [N], and hold that opening until release (however deep, up to "
         "squeeze_depth_m); None: position control to the full squeeze")
-    lift_height_m: float = Field(default=0.10, gt=0, description="height the object is lifted [m]")
+    lift_height_m: float = Field(default_factory=lambda: float(packaged_parameters("L3")["lift_height_m"]), gt=0,
+                                 description="height the object is lifted [m] (default: the L3 contract's)")
     place_height_m: float = Field(default=0.01, ge=0,
                                   description="grasp height above its pick height when the fingers open [m]")
     target_xy_m: tuple[float, float] = Field(description="place target in the table frame [m]")

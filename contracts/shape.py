@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from typing import Annotated, Literal, Union
+from typing import Annotated, Literal
 
 from pydantic import Field
 
@@ -72,7 +72,7 @@ class Cone(Model):
 
 
 Primitive = Annotated[
-    Union[Ellipsoid, Superellipsoid, Capsule, RoundedBox, Cylinder, Torus, Cone], Field(discriminator="kind")
+    Ellipsoid | Superellipsoid | Capsule | RoundedBox | Cylinder | Torus | Cone, Field(discriminator="kind")
 ]
 
 

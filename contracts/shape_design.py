@@ -8,7 +8,7 @@ from pydantic import Field
 
 from contracts.base import Model
 from contracts.shape import ShapeProgram
-from contracts.stage import StageContract
+from contracts.stage import L0Parameters, StageContract
 
 FRAME = ("metres; z up; the object rests on the ground with its lowest point at z = 0 after meshing; put its "
          "longest horizontal extent on x; parts are combined in order as signed distances (union / subtract / "
@@ -29,14 +29,12 @@ class ShapeBounds(Model):
                                       "largest body [-]")
 
     @classmethod
-    def from_contract(cls, contract: StageContract) -> "ShapeBounds":
+    def from_contract(cls, contract: StageContract) -> ShapeBounds:
         """The bounds in the L0 contract's parameters."""
-        p = contract.parameters
-        return cls(max_parts=int(p["shape_max_parts"]), part_size_m=tuple(p["shape_part_size_m"]),
-                   extent_m=tuple(p["shape_extent_m"]), max_blend_m=float(p["shape_max_blend_m"]),
-                   part_scale=tuple(p["shape_part_scale"]),
-                   check_resolution=int(p.get("shape_check_resolution", 40)),
-                   max_detached_share=float(p.get("shape_max_detached_share", 0.01)))
+        p = L0Parameters.of(contract)
+        return cls(max_parts=p.shape_max_parts, part_size_m=p.shape_part_size_m, extent_m=p.shape_extent_m,
+                   max_blend_m=p.shape_max_blend_m, part_scale=p.shape_part_scale,
+                   check_resolution=p.shape_check_resolution, max_detached_share=p.shape_max_detached_share)
 
 
 class ShapeDesignRequest(Model):

@@ -3,11 +3,12 @@
 from __future__ import annotations
 
 import math
+from functools import cache
 from pathlib import Path
-from typing import Any, Literal
+from typing import Any, Literal, Self, TypeVar
 
 import yaml
-from pydantic import Field, ValidationError, model_validator
+from pydantic import ConfigDict, Field, ValidationError, model_validator
 
 from contracts.base import Model
 from contracts.errors import ContractError, validation_message
@@ -29,7 +30,7 @@ class HardGate(Model):
     description: str = ""
 
     @model_validator(mode="after")
-    def _bounds_match_op(self) -> "HardGate":
+    def _bounds_match_op(self) -> HardGate:
         if self.op == "within":
             if self.low is None or self.high is None or self.low > self.high:
                 raise ValueError("op 'within' needs low <= high")
@@ -59,7 +60,7 @@ class EditableField(Model):
     description: str = ""
 
     @model_validator(mode="after")
-    def _ordered(self) -> "EditableField":
+    def _ordered(self) -> EditableField:
         if not self.low <= self.high:
             raise ValueError("low must be <= high")
         if self.scale == "log" and self.low <= 0:
@@ -84,7 +85,7 @@ class StageContract(Model):
     parameters: dict[str, Any] = Field(default_factory=dict, description="stage settings (SI units in the names)")
 
     @model_validator(mode="after")
-    def _gates_observed(self) -> "StageContract":
+    def _gates_observed(self) -> StageContract:
         missing = sorted({g.metric for g in self.hard_gates} - set(self.required_observations))
         if missing:
             raise ValueError(f"hard gates read metrics that are not required observations: {missing}")
@@ -103,6 +104,95 @@ class StageContract(Model):
     def failed_gates(self, observations: dict[str, float]) -> list[HardGate]:
         """Gates that the observations do not pass (missing metrics fail)."""
         return [g for g in self.hard_gates if not g.passes(observations.get(g.metric))]
+
+    def typed_parameters(self, model: type[P]) -> P:
+        """`parameters` as a stage's parameter model: a setting this contract leaves out takes the packaged
+        contract's value (the packaged stage YAML is the one place defaults live); ContractError names the field."""
+        given = {**packaged_parameters(self.stage), **self.parameters}
+        try:
+            return model.model_validate(given)
+        except ValidationError as exc:
+            raise ContractError(f"{self.stage}: invalid parameters: " + validation_message(exc)) from None
+
+
+class StageParameters(Model):
+    """Typed `parameters` of a stage contract. No field has a default here: the packaged stage YAML holds them all
+    (StageContract.typed_parameters fills what a user contract leaves out). Keys of other stages are ignored (the
+    flat evaluation contract carries L1's and L2's together)."""
+
+    model_config = ConfigDict(extra="ignore", frozen=True)
+
+    @classmethod
+    def of(cls, contract: StageContract) -> Self:
+        """The parameters of a contract, typed."""
+        return contract.typed_parameters(cls)
+
+
+P = TypeVar("P", bound=StageParameters)
+PerQuality = float | dict[str, float]  # one value, or one per quality preset (draft | standard | high)
+
+
+def at_quality(value: PerQuality, quality: str) -> float:
+    """A per-quality parameter's value at a quality preset."""
+    return value[quality] if isinstance(value, dict) else value
+
+
+class L0Parameters(StageParameters):
+    """L0 geometry settings (contracts/stages/L0_geometry.yaml says what each is)."""
+
+    marching_cubes_resolution: PerQuality
+    particles_per_longest_extent: PerQuality
+    max_particles: PerQuality
+    min_particles: int
+    min_cells_through_thinnest: int
+    gaussians_per_particle: float
+    gaussian_surface_fraction: float
+    max_gaussians: int
+    shape_max_parts: int
+    shape_part_size_m: tuple[float, float]
+    shape_extent_m: tuple[float, float]
+    shape_max_blend_m: float
+    shape_part_scale: tuple[float, float]
+    shape_check_resolution: int
+    shape_max_detached_share: float
+    geometry_backend_timeout_s: float
+    geometry_backend_default_size_m: float
+
+
+class L1Parameters(StageParameters):
+    """L1 rigid-probe settings."""
+
+    place_duration_s: float = Field(gt=0, description="placement probe's simulated time [s]")
+    drop_clearance_fraction_of_height: float = Field(ge=0, description="drop height over the object's height [-]")
+    drop_duration_s: float = Field(gt=0, description="drop probe's simulated time [s]")
+    slide_angle_margin_deg: float = Field(gt=0, description="incline below / above atan(mu) [deg]")
+    slide_measure_s: float = Field(gt=0, description="time the slide's acceleration is measured over [s]")
+
+
+class L2Parameters(StageParameters):
+    """L2 deformable-probe settings (selection and held-out)."""
+
+    compression_strain: float = Field(gt=0)
+    compression_strain_held_out: float = Field(gt=0)
+    drop_height_fraction_of_height: float = Field(gt=0)
+    drop_height_fraction_held_out: float = Field(gt=0)
+    stability_duration_s: float = Field(gt=0)
+    specimen_particles_per_axis: int = Field(ge=2, description="particles along each side of the specimen cube")
+    harness_routes: dict[str, Any] | None = None
+
+
+class L3Parameters(StageParameters):
+    """L3 trial limits and the force-controlled closure."""
+
+    lift_height_m: float = Field(gt=0, description="height the object is lifted [m]")
+    place_tolerance_m: float = Field(gt=0, description="largest distance from the target that counts as placed [m]")
+    slip_tolerance_m: float = Field(ge=0, description="slip allowed while held [m]")
+    record_fps: int = Field(gt=0)
+    hold_force_margin: float | None = Field(description="hold force = margin x m g / (2 mu); null or 0: position "
+                                            "control within the squeeze field's range")
+    hold_force_floor_n: float = Field(ge=0)
+    grip_force_limit_n: float | None = Field(description="cap of the force target per finger [N] (null: half the "
+                                             "force budget)")
 
 
 def _format_errors(path: Path, exc: ValidationError) -> str:
@@ -124,6 +214,16 @@ def load_contract_file(path: Path) -> StageContract:
         return StageContract.model_validate(data)
     except ValidationError as exc:
         raise ContractError(_format_errors(path, exc)) from exc
+
+
+@cache
+def _packaged(stage: str) -> dict[str, Any]:
+    return dict(load_contract_file(STAGES_DIR / STAGE_FILES[stage]).parameters)
+
+
+def packaged_parameters(stage: str) -> dict[str, Any]:
+    """The packaged contract's parameters of a stage (a copy): where every parameter's default lives."""
+    return dict(_packaged(stage))
 
 
 def load_contract(stage: StageName, directory: Path | None = None) -> StageContract:

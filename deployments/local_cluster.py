@@ -88,7 +88,7 @@ class LocalCluster:
         self.env.update(extra_env or {})
 
     # ---- lifecycle ------------------------------------------------------------------------------------
-    def __enter__(self) -> "LocalCluster":
+    def __enter__(self) -> LocalCluster:
         try:
             self.start()
         except BaseException:

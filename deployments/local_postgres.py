@@ -83,7 +83,7 @@ class LocalPostgres:
         if self._own_root:
             shutil.rmtree(self.root, ignore_errors=True)
 
-    def __enter__(self) -> "LocalPostgres":
+    def __enter__(self) -> LocalPostgres:
         try:
             self.start()
         except BaseException:

@@ -81,7 +81,7 @@ class BatchReport(BaseModel):
     results: list[RequestResult]
 
     @classmethod
-    def build(cls, results: list[RequestResult], wall_s: float, **fields: Any) -> "BatchReport":
+    def build(cls, results: list[RequestResult], wall_s: float, **fields: Any) -> BatchReport:
         """Totals and throughput from the per-request results."""
         results = sorted(results, key=lambda r: r.line)
         ok = sum(r.status == "ok" for r in results)

@@ -12,9 +12,9 @@ from __future__ import annotations
 
 import shutil
 import time
-from datetime import datetime, timezone
+from datetime import UTC, datetime
 from pathlib import Path
-from typing import Any
+from typing import Any, cast
 from uuid import UUID
 
 import cache  # noqa: F401  (sets the local Prefect environment before prefect is imported)
@@ -52,7 +52,7 @@ def generate_flow(request: dict[str, Any], out_dir: str, device: str = "cpu", jo
 
 
 def _now() -> datetime:
-    return datetime.now(timezone.utc)
+    return datetime.now(UTC)
 
 
 def _last_heartbeat(client: SyncPrefectClient, run_id: UUID) -> datetime | None:
@@ -102,9 +102,11 @@ class _Tracker:
         n = self.attempts.get(item.name, 0) + 1
         self.attempts[item.name] = n
         self.started.setdefault(item.name, time.perf_counter())
-        run = run_deployment(self.deployment, timeout=0, flow_run_name=f"{item.name}#{n}", tags=["deformsmith-batch"],
-                             parameters={"request": item.request.model_dump(mode="json"), "device": self.device,
-                                         "out_dir": str(self.out_root / item.name), "job": self.job})
+        # run_deployment is sync_compatible (typed FlowRun | Coroutine): called from sync code it returns the FlowRun
+        run = cast(FlowRun, run_deployment(
+            self.deployment, timeout=0, flow_run_name=f"{item.name}#{n}", tags=["deformsmith-batch"],
+            parameters={"request": item.request.model_dump(mode="json"), "device": self.device,
+                        "out_dir": str(self.out_root / item.name), "job": self.job}))
         self.runs[item.name] = run.id
         get_run_logger().info("submitted %s (attempt %d) as flow run %s", item.name, n, run.id)
 

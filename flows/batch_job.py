@@ -57,7 +57,7 @@ def resolve_job(spec: str) -> Job:
     module, _, attr = spec.partition(":")
     if not module or not attr:
         raise ValueError(f"job must be 'module:function', got {spec!r}")
-    return getattr(importlib.import_module(module), attr)  # type: ignore[no-any-return]
+    return getattr(importlib.import_module(module), attr)
 
 
 def run_request(request: AssetRequest, out_dir: Path, device: str, job: str = "flows.batch_job:generate_job"

@@ -18,13 +18,15 @@ import numpy as np
 
 import cache
 from contracts.agents import AgentConfig, TargetBehaviour
+from contracts.asset_dir import attempt_path
 from contracts.evaluation import ArmResult, Condition, ConditionResult, SuiteCase
 from contracts.material import Material
 from contracts.physical import PhysicalModel
 from contracts.request import AssetRequest
 from contracts.sim import SimConfig
-from contracts.stage import StageContract, load_contract
+from contracts.stage import load_contract
 from flows.harness import probe_cache_key, run_harness
+from tasks.asset_dir import AssetDir, geometry_info
 
 
 def physics_tests(asset_dir: Path, physical: PhysicalModel, material: Material, targets: TargetBehaviour,
@@ -78,10 +80,6 @@ def _failures(tests: dict[str, Any] | None, selection_gates: dict[str, bool] | N
     return kinds
 
 
-def _read_json(path: Path) -> dict[str, Any]:
-    return json.loads(path.read_text(encoding="utf-8")) if path.is_file() else {}
-
-
 def _metrics(tests: dict[str, Any] | None) -> dict[str, float]:
     """Flat float metrics of the independent tests for the record."""
     if tests is None:
@@ -109,10 +107,9 @@ def run_hierarchical(case: SuiteCase, request: AssetRequest, l0: Any, arm_dir: P
         out["error"] = f"L1: {o1.message}"
         return out
     material, o2 = run_l2(arm_dir, request, agents, sim=sim, physical=physical)
-    rec = _read_json(arm_dir / "material.json")
-    sel = rec.get("selection", {})
+    sel = AssetDir(arm_dir).material().selection
     out.update({"l2_passed": material is not None, "material": material,
-                "l2_sim_calls": int(sel.get("sim_calls", 0)) + int(sel.get("screening", {}).get("sim_calls", 0)),
+                "l2_sim_calls": sel.sim_calls + int(sel.screening["sim_calls"]),
                 "l2_attempts": o2.attempts_used, "targets": l2_targets(load_l0(arm_dir), request)})
     if material is None:
         out["error"] = f"L2: {o2.message}"
@@ -178,11 +175,11 @@ def run_flat(case: SuiteCase, request: AssetRequest, l0: Any, arm_dir: Path, sim
     asset = load_l0(arm_dir)
     l1c, l2c = load_contract("L1"), load_contract("L2")
     contract = flat_contract(l1c, l2c)
-    t1, material_class, drange = l1_targets(asset, request.material_intent or request.text)
+    t1, _, drange = l1_targets(asset, request.material_intent or request.text)
     t2 = l2_targets(asset, request)
     targets = TargetBehaviour(bands=[*t1.bands, *t2.bands], priors={**t2.priors, **t1.priors},
                               matched_words=t2.matched_words, intent=t2.intent)
-    category = str(asset.record.get("info", {}).get("category", material_class))
+    category = geometry_info(asset.record).category
     start1 = initial_values(l1c, t1, None)
     prior_phys = physical_from_values(asset, start1, category)
     with cache.local_runtime():  # the same screening tool, at the prior density (nothing is frozen yet)
@@ -195,7 +192,7 @@ def run_flat(case: SuiteCase, request: AssetRequest, l0: Any, arm_dir: Path, sim
         return [*rigid(v1, action), *_Runner(asset, phys, l2c, sim)(v2, action)]
 
     outcome = run_harness(contract, runner, targets, agents=agents, record_dir=arm_dir, initial={**start1, **start2})
-    calls = outcome.sim_calls + int(screening.get("sim_calls", 0))
+    calls = outcome.sim_calls + int(screening["sim_calls"])
     h: dict[str, Any] = {"asset_dir": str(arm_dir), "material": None, "physical": None, "tests": None}
     if outcome.passed and outcome.values:
         v1, v2 = split_values(outcome.values, l1c, l2c)
@@ -303,29 +300,31 @@ def run_manipulation(case: SuiteCase, request: AssetRequest, h: dict[str, Any], 
     t0 = time.perf_counter()
     full_dir = base / "full"
     _copy_asset(src, full_dir)
-    record, outcome = run_l3(full_dir, opts, agents, l3c)
-    final = Material.model_validate(record["material"])
+    _, outcome = run_l3(full_dir, opts, agents, l3c)
+    record = AssetDir(full_dir).manipulation()
+    final = record.material
     ok, tests = (base_ok, base_tests) if final == h["material"] else material_passes(
         full_dir, h["physical"], final, targets, sim)
     by_cond = {(round(x["target_xy_m"][0], 6), round(x["target_xy_m"][1], 6), round(x["initial_yaw_deg"], 6)): x
-               for x in record.get("held_out", {}).get("conditions", [])}
-    key_of = {a["attempt"]: a.get("cache_key") for a in record.get("attempts", []) if a.get("attempt") is not None}
+               for x in record.held_out["conditions"]}
+    # a condition row names its trial by its interaction path (None: the plan failed, nothing was stored)
+    key_of = {attempt_path(a["attempt"]): a["cache_key"] for a in record.attempts if a["attempt"] is not None}
     conds = []
     for c in conditions:
         x = by_cond.get((round(c.target_xy_m[0], 6), round(c.target_xy_m[1], 6), round(c.initial_yaw_deg, 6)))
-        att = x.get("attempt") if x else None
-        idx = int(att.rsplit("_", 1)[1]) if att else None
+        att = x["attempt"] if x else None
         conds.append(ConditionResult(condition=c, task_success=bool(x and x["success"]), material_pass=ok,
                                      labels=_finite(x["labels"]) if x else {}, attempt=att,
-                                     cache_key=key_of.get(idx) if idx is not None else None))
+                                     cache_key=key_of.get(att) if att else None))
     results.append(ArmResult(ablation="manipulation", arm="full", case_id=case.id, case_kind=case.kind,
-                             delivered=bool(record.get("passed")), conditions=conds,
-                             sim_calls=len(record.get("attempts", [])), asset_dir=str(full_dir),
-                             evidence={"material": record["material"], "material_source": record.get("material_source"),
+                             delivered=record.passed, conditions=conds, sim_calls=len(record.attempts),
+                             asset_dir=str(full_dir),
+                             evidence={"material": record.material.model_dump(mode="json"),
+                                       "material_source": record.material_source,
                                        "material_tests": tests["cache_keys"], "files": ["manipulation.json"],
-                                       "harness_status": outcome.status, "plan_values": record.get("values"),
-                                       "recordings": record.get("recordings", [])},
-                             error=None if record.get("passed") else record.get("message"),
+                                       "harness_status": outcome.status, "plan_values": record.values,
+                                       "recordings": record.recordings},
+                             error=None if record.passed else record.message,
                              wall_s=time.perf_counter() - t0))
     return results
 

@@ -8,7 +8,6 @@ Cases fan out over processes (``workers``); each case runs its arms in order ins
 
 from __future__ import annotations
 
-import json
 import os
 import time
 import traceback
@@ -19,7 +18,9 @@ from pathlib import Path
 from typing import Any
 
 import cache  # noqa: F401  (local Prefect environment before prefect is imported)
+from cache.runtime import set_env
 from contracts.evaluation import ARMS, ArmResult, Condition, SuiteCase
+from prefect import flow
 
 ALL = ("hierarchy", "harness", "manipulation")
 Progress = Callable[[str], None]
@@ -84,7 +85,7 @@ def run_case(case: SuiteCase, suite_file: Path, opts: EvalOptions, conditions: l
     out = Path(opts.out)
     image_dir = Path(cache.cache_root()) / "eval_images"
     request = to_request(case, suite_file.parent, image_dir, opts.quality)  # type: ignore[arg-type]
-    sim = SimConfig(device=opts.device)  # type: ignore[arg-type]
+    sim = SimConfig(device=opts.device)
     agents = AgentConfig.llm(opts.llm) if opts.llm else None
     needed = _needed(case, opts.ablations)
     written: list[str] = []
@@ -99,7 +100,7 @@ def run_case(case: SuiteCase, suite_file: Path, opts: EvalOptions, conditions: l
     if not l0.checks.passed:
         why = f"L0 gates failed: {', '.join(l0.checks.failed)}"
         for ablation, arm in needed:
-            keep(ArmResult(ablation=ablation, arm=arm, case_id=case.id, case_kind=case.kind, delivered=False,  # type: ignore[arg-type]
+            keep(ArmResult(ablation=ablation, arm=arm, case_id=case.id, case_kind=case.kind, delivered=False,
                            hard_failure=True, failure_kinds=[why], error=why, wall_s=time.perf_counter() - t0))
         return written
     l0_wall = time.perf_counter() - t0
@@ -127,9 +128,8 @@ def run_case(case: SuiteCase, suite_file: Path, opts: EvalOptions, conditions: l
     return written
 
 
-def _set_env(values: dict[str, str]) -> None:
-    """Worker-process initializer: export `values`."""
-    os.environ.update(values)
+_set_env = set_env  # the worker initializer lives in cache.runtime: unpickling it in a spawned worker must not import
+# Prefect (this module does), or Prefect's settings are read before the environment they depend on is set
 
 
 def _case_job(case_json: str, suite_file: str, opts: EvalOptions, conditions: list[dict]) -> dict[str, Any]:
@@ -198,13 +198,14 @@ def evaluate(opts: EvalOptions, progress: Progress | None = None) -> dict[str, A
     return summary
 
 
+@flow(name="evaluate", persist_result=False, validate_parameters=False)
+def evaluate_suite(opts: EvalOptions) -> dict[str, Any]:
+    """The evaluation as one Prefect flow run (for deployments / a server); its cases fan out over worker processes,
+    each running the layers' flows as runs of its own."""
+    return evaluate(opts)
+
+
 def evaluation_flow(opts: EvalOptions) -> dict[str, Any]:
-    """The evaluation as a Prefect flow run (for deployments / a server); cases fan out over processes."""
-    from prefect import flow
-
-    @flow(name="evaluate", persist_result=False, validate_parameters=False)
-    def _run(o: EvalOptions) -> dict[str, Any]:
-        return evaluate(o)
-
+    """The `evaluate` flow against the local Prefect runtime."""
     with cache.local_runtime():
-        return _run(opts)
+        return evaluate_suite(opts)

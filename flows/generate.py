@@ -15,21 +15,29 @@ import tempfile
 from collections.abc import Callable
 from importlib import metadata
 from pathlib import Path
-from typing import Any
+from typing import Any, TypedDict
 
-import cache  # noqa: F401  (sets the local Prefect environment before prefect is imported)
+import cache  # (sets the local Prefect environment before prefect is imported)
 from cache.tempfiles import pid_alive
 from contracts.agents import AgentConfig
+from contracts.asset_dir import ASSET_JSON, attempt_path
 from contracts.errors import InputError, StageFailure
 from contracts.manifest import AssetManifest, Provenance, StageSummary
 from contracts.request import AssetRequest
-from contracts.sim import Device, SimConfig
+from contracts.sim import Device, KernelOptions, SimConfig
+from prefect import flow
 from tasks.publish import replace_directory
 
-ASSET_JSON = "asset.json"
 LIBRARIES = ("numpy", "warp-lang", "prefect", "zarr", "trimesh", "coacd", "pybullet", "rerun-sdk", "pydantic")
 StageCallback = Callable[[str, str], None]  # (stage, message)
 TIMINGS: dict[str, float] = {}  # wall time per layer of the last generate_asset call in this process [s]
+
+
+class _StageClock(TypedDict):
+    """The stage being timed and when it started (time.perf_counter() [s])."""
+
+    stage: str
+    t: float
 
 
 def _version(dist: str) -> str:
@@ -39,13 +47,15 @@ def _version(dist: str) -> str:
         return "not installed"
 
 
-def provenance(device: Device, agents: AgentConfig | None, cpu_threads: int = 1) -> Provenance:
-    """Versions, backends and numerics that reproduce the asset."""
+def provenance(device: Device, agents: AgentConfig | None, cpu_threads: int = 1,
+               kernel: KernelOptions | None = None) -> Provenance:
+    """Versions, backends and numerics that reproduce the asset (the MPM kernel options when not the defaults)."""
     from contracts.agents import AgentConfig as _Config
 
     return Provenance(deformsmith_version=_version("deformsmith"),
                       library_versions={lib: _version(lib) for lib in LIBRARIES},
-                      backends=(agents or _Config.rule()).describe(), device=device, cpu_threads=cpu_threads)
+                      backends=(agents or _Config.rule()).describe(), device=device, cpu_threads=cpu_threads,
+                      kernel=None if kernel is None or kernel == KernelOptions() else kernel)
 
 
 def finite_metrics(values: dict[str, Any]) -> dict[str, float]:
@@ -92,7 +102,8 @@ def l3_summary(record: dict[str, Any]) -> StageSummary:
     else:
         failed = [g.name for g in load_contract("L3").hard_gates if not g.passes(metrics.get(g.metric))]
     reason = None if passed else (record.get("reason") or record.get("message") or None)
-    return StageSummary(stage="L3", passed=passed, attempts=len(record.get("attempts", [])),
+    attempts = int(record.get("harness_attempts") or len(record.get("attempts", [])))  # harness attempts, as evidence
+    return StageSummary(stage="L3", passed=passed, attempts=attempts,
                         sim_calls=len(trials), metrics=metrics, failed_gates=failed, reason=reason)
 
 
@@ -120,9 +131,11 @@ def cache_keys(work: Path, l3: dict[str, Any] | None) -> dict[str, str]:
     """Task -> cache key of the results the asset carries: L2's chosen candidate's probes and its held-out probes,
     L3's reported trial and its robustness and held-out trials (`CacheStore(root).get(key)` returns each)."""
     keys: dict[str, str] = {}
-    if (work / "material.json").is_file():
-        l2 = _read(work / "material.json")
-        best = (l2.get("selection") or {}).get("best_iteration")
+    from tasks.asset_dir import AssetDir
+
+    if AssetDir(work).has("material"):
+        l2 = AssetDir(work).material()
+        best = l2.selection.best_iteration
         attempts = work / "evidence" / "L2_attempts.jsonl"
         if best is not None and attempts.is_file():
             for line in attempts.read_text(encoding="utf-8").splitlines():
@@ -130,28 +143,22 @@ def cache_keys(work: Path, l3: dict[str, Any] | None) -> dict[str, str]:
                 if a.get("iteration") == best:
                     for i, key in enumerate((a.get("evidence") or {}).get("probe_keys") or []):
                         keys[f"l2.selection.{i}"] = str(key)
-        for probe in (l2.get("held_out") or {}).get("probes") or []:
-            if probe.get("cache_key"):
+        for probe in l2.held_out.probes:  # ProbeResult dumps
+            if probe["cache_key"]:
                 keys[f"l2.{probe['spec']['kind']}.held_out"] = str(probe["cache_key"])
     if l3:
         best_l3 = l3.get("best_attempt") or {}
         if best_l3.get("cache_key"):
             keys["l3.trial"] = str(best_l3["cache_key"])
-        by_attempt = {a.get("attempt"): a.get("cache_key") for a in l3.get("attempts", [])}
+        # a condition row names its trial by its interaction path (None: the plan failed, nothing was stored)
+        by_path = {(attempt_path(a["attempt"]) if a.get("attempt") is not None else None): a.get("cache_key")
+                   for a in l3.get("attempts", [])}
         for group in ("robustness", "held_out"):
             for i, row in enumerate((l3.get(group) or {}).get("conditions", [])):
-                key = by_attempt.get(_attempt_number(row.get("attempt")))
+                key = by_path.get(row.get("attempt"))
                 if key:
                     keys[f"l3.trial.{group}.{i}"] = str(key)
     return keys
-
-
-def _attempt_number(path: Any) -> int | None:
-    """'interaction/attempt_007' -> 7."""
-    try:
-        return int(str(path).rsplit("_", 1)[1])
-    except (IndexError, ValueError):
-        return None
 
 
 def require_l3(manifest: AssetManifest, out_dir: Path) -> None:
@@ -182,6 +189,7 @@ def manipulation_outcome(labels: dict[str, float]) -> Any:
 def run_manipulation(work: Path, device: Device, quality: str, agents: AgentConfig | None,
                      cpu_threads: int = 1, progress: Callable[[str], None] | None = None) -> dict[str, Any]:
     """L3 on the working directory and the pick-and-place video of the shown attempt; the manipulation record."""
+    from cache.files import cached_file
     from flows.l3_manipulation import L3Options, run_l3
     from tasks.manipulation.replay import replay
 
@@ -192,12 +200,25 @@ def run_manipulation(work: Path, device: Device, quality: str, agents: AgentConf
     if n is not None:
         video = work / "renders" / "pick_and_place.mp4"
         video.parent.mkdir(parents=True, exist_ok=True)
-        replay(work, n, video=video)
+        cached_file(pick_and_place_video_key(work, n), video, lambda path: replay(work, n, video=path))
     return record
 
 
-def _read(path: Path) -> dict[str, Any]:
-    return json.loads(path.read_text(encoding="utf-8"))
+def pick_and_place_video_key(work: Path, attempt: int) -> str:
+    """The video's cache key: the recorded attempt's bytes and the code and libraries that render and encode it
+    (rendering it takes ~10 s on the CPU; a warm rerun copies it)."""
+    from cache import content_key
+    from cache.files import source_digest
+
+    root = Path(__file__).resolve().parent.parent
+    renderer = [root / "tasks" / "manipulation" / f"{m}.py" for m in
+                ("replay", "scene", "raster", "raster_kernels", "render", "robot_view", "data", "particle_frames")]
+    code = source_digest([*renderer, root / "tasks" / "geometry" / "gaussians.py", root / "tasks" / "robot" / "panda.py",
+                          root / "tasks" / "robot" / "trajectory.py", root / "contracts" / "robot.py",
+                          root / "contracts" / "grippers"],
+                         ("imageio", "imageio-ffmpeg", "numpy", "opencv-python-headless", "opencv-python", "pybullet",
+                          "scipy", "warp-lang"))
+    return content_key("pick_and_place_video", code, work / "interaction" / f"attempt_{attempt:03d}")
 
 
 def _files(work: Path) -> dict[str, str]:
@@ -259,7 +280,24 @@ def _check_out_dir(out_dir: Path) -> None:
 def generate_asset(request: AssetRequest, out_dir: Path, device: Device = "cpu", agents: AgentConfig | None = None,
                    on_stage: StageCallback | None = None, manipulate: bool = True,
                    cpu_threads: int = 1) -> AssetManifest:
-    """Run every layer for one request and publish the asset directory; StageFailure when L0, L1 or L2 says no.
+    """Run every layer for one request and publish the asset directory: the `generate` flow against the local Prefect
+    runtime. Bad input (a rigid material, a bad target override, an output that is not an asset directory) fails
+    before any flow starts."""
+    from tasks.agents.intent import targets_from_request
+    from tasks.geometry.catalogue import check_text_size
+
+    targets_from_request(request)
+    check_text_size(request)  # '10 km long' is refused here, not after the Prefect server started
+    _check_out_dir(Path(out_dir).expanduser().absolute())
+    with cache.local_runtime():
+        return generate(request, out_dir, device, agents, on_stage, manipulate, cpu_threads)
+
+
+@flow(name="generate", validate_parameters=False, persist_result=False)
+def generate(request: AssetRequest, out_dir: Path, device: Device = "cpu", agents: AgentConfig | None = None,
+             on_stage: StageCallback | None = None, manipulate: bool = True, cpu_threads: int = 1) -> AssetManifest:
+    """L0 -> L1 -> L2 -> drop renders (-> L3) -> publish, each layer a subflow (l0-geometry, l1-physical, l2-material,
+    l3-manipulation); StageFailure when L0, L1 or L2 says no.
 
     cpu_threads: on the CPU, threads sharing each MPM rollout's particles (SimConfig.cpu_threads).
 
@@ -273,14 +311,14 @@ def generate_asset(request: AssetRequest, out_dir: Path, device: Device = "cpu",
     import time
 
     report = on_stage or (lambda stage, message: None)
-    clock = {"stage": "", "t": time.perf_counter()}
+    clock: _StageClock = {"stage": "", "t": time.perf_counter()}
     TIMINGS.clear()
 
     def note(stage: str, message: str) -> None:
         now = time.perf_counter()
         if clock["stage"]:
             TIMINGS[str(clock["stage"])] = now - float(clock["t"])
-        clock.update(stage=stage, t=now)
+        clock["stage"], clock["t"] = stage, now
         report(stage, message)
 
     from tasks.agents.intent import targets_from_request
@@ -320,8 +358,11 @@ def generate_asset(request: AssetRequest, out_dir: Path, device: Device = "cpu",
         from flows.renders import render_drop_protocol
 
         protocol = render_drop_protocol(work, physical, material, sim)
-        validation = [_summary("L0", _read(work / "geometry.json")), _summary("L1", _read(work / "physical.json")),
-                      _summary("L2", _read(work / "material.json"))]
+        from tasks.asset_dir import AssetDir, document_json
+
+        adir = AssetDir(work)  # what L0, L1 and L2 wrote, validated
+        validation = [_summary("L0", document_json(adir.geometry())), _summary("L1", document_json(adir.physical())),
+                      _summary("L2", document_json(adir.material()))]
         plan, outcome, l3 = None, None, None
         if manipulate:
             note("L3", "manipulation: Panda pick-and-place in the MPM")
@@ -334,7 +375,7 @@ def generate_asset(request: AssetRequest, out_dir: Path, device: Device = "cpu",
                 material = Material(**l3["material"])  # an L3 material revision was L2-revalidated and confirmed
             plan = reported_plan(l3)  # adopted, else the best tried under the material the asset carries
             outcome = manipulation_outcome(validation[-1].metrics)
-        prov = provenance(device, agents, sim.cpu_threads)
+        prov = provenance(device, agents, sim.cpu_threads, sim.kernel)
         prov = prov.model_copy(update={"cache_keys": cache_keys(work, l3),  # what made the shape (L0's generator)
                                        "backends": {**prov.backends, "geometry": l0.info.generator},
                                        "fallbacks": fallback_notes(work)})  # where the rule backend stood in
@@ -343,7 +384,7 @@ def generate_asset(request: AssetRequest, out_dir: Path, device: Device = "cpu",
                                  extra={"drop_protocol": protocol})
         write_physgaussian_export(work, manifest)
         manifest = manifest.model_copy(update={"files": _files(work)})
-        (work / ASSET_JSON).write_text(manifest.model_dump_json(indent=2) + "\n", encoding="utf-8")
+        adir.write_manifest(manifest)
         note("publish", str(out_dir))
         replace_directory(work, out_dir)
         TIMINGS["publish"] = time.perf_counter() - float(clock["t"])
@@ -379,8 +420,7 @@ def content_fingerprint(asset_dir: Path) -> dict[str, str]:
 
 
 def load_manifest(asset_dir: Path) -> AssetManifest:
-    """The manifest of a published asset directory (InputError when there is none)."""
-    path = Path(asset_dir) / ASSET_JSON
-    if not path.is_file():
-        raise InputError(f"{asset_dir} is not an asset directory (no {ASSET_JSON})")
-    return AssetManifest.model_validate_json(path.read_text(encoding="utf-8"))
+    """The manifest of a published asset directory (InputError when there is none or it is invalid): AssetDir's."""
+    from tasks.asset_dir import AssetDir
+
+    return AssetDir(asset_dir).manifest()

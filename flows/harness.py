@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import functools
 import inspect
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
@@ -11,6 +10,8 @@ from typing import Any
 
 import cache  # noqa: F401  (sets the local Prefect environment before prefect is imported)
 from prefect import flow
+from prefect.futures import PrefectFuture, wait
+from prefect.task_runners import ThreadPoolTaskRunner
 
 from contracts.agents import AgentConfig, StageOutcome, TargetBehaviour
 from contracts.probes import ProbeResult
@@ -19,7 +20,6 @@ from tasks.agents.orchestrator import ProbeRunner, run_stage
 from tasks.agents.records import AttemptRecorder
 from tasks.agents.roles import build_roles
 from tasks.agents.vocab import stage_routes
-from tasks.mpm import side_by_side
 
 InputBuilder = Callable[[dict[str, float], str], dict[str, Any]]
 
@@ -61,22 +61,41 @@ def _with_key(state: Any, key: str | None) -> ProbeResult:
     return result
 
 
-def call_tasks(calls: Sequence[tuple[Any, dict[str, Any]]], workers: int = 1) -> list[Any]:
-    """Call each (task, inputs) of CPU MPM probes and return the results in order, up to `workers` at a time
-    (tasks.mpm.side_by_side: each in a copy of the caller's context, so inside a flow run a call is a task run of that
-    flow, as when called directly)."""
-    return side_by_side([functools.partial(t, **kw) for t, kw in calls], workers)
+def task_states(calls: Sequence[tuple[Any, dict[str, Any]]], workers: int = 1,
+                device: str | None = "cpu") -> list[Any]:
+    """Run each (Prefect task, inputs) and return the final states in call order: up to `workers` at a time through
+    Prefect's ThreadPoolTaskRunner (each a task run of the calling flow run, submitted in a copy of the caller's
+    context), else one after another on the caller's thread. device="cpu": the tasks launch CPU MPM kernels, so the
+    engine's Warp modules are loaded before they run side by side (tasks.mpm.cpu_launch.load_cpu_modules)."""
+    if workers <= 1 or len(calls) <= 1:
+        return [task(**inputs, return_state=True) for task, inputs in calls]
+    if device == "cpu":
+        from tasks.mpm.cpu_launch import load_cpu_modules
+
+        load_cpu_modules()
+    runner: ThreadPoolTaskRunner[Any]
+    with ThreadPoolTaskRunner(max_workers=workers) as runner:
+        futures: list[PrefectFuture[Any]] = [runner.submit(task, inputs) for task, inputs in calls]
+        wait(futures)  # every run ends before the runner closes (closing cancels what has not started)
+    return [future.state for future in futures]
+
+
+def call_tasks(calls: Sequence[tuple[Any, dict[str, Any]]], workers: int = 1, device: str | None = "cpu") -> list[Any]:
+    """Call each (Prefect task, inputs) of CPU MPM probes and return the results in order, up to `workers` at a time
+    (task_states); an error is raised once every call has finished (one worker: at once, as a direct call does)."""
+    if workers <= 1 or len(calls) <= 1:
+        return [task(**inputs) for task, inputs in calls]
+    return [state.result() for state in task_states(calls, workers, device)]
 
 
 def task_probe_runner(probes: Sequence[ProbeCall], parallel: bool = False) -> ProbeRunner:
     """A ProbeRunner that calls each probe task (inside the running flow: cached, a hit runs nothing); parallel: all of
-    a candidate's probes at once, in threads."""
+    a candidate's probes at once, through Prefect's thread-pool task runner (task_states)."""
 
     def run(values: dict[str, float], action: str) -> list[ProbeResult]:
         calls = [(p.task, {**p.fixed, **p.inputs(dict(values), action)}) for p in probes]
         keys = [probe_cache_key(t, kw) for t, kw in calls]
-        states = side_by_side([functools.partial(t, **kw, return_state=True) for t, kw in calls],
-                              len(calls) if parallel else 1, device=None)
+        states = task_states(calls, len(calls) if parallel else 1, device=None)
         return [_with_key(state, k) for state, k in zip(states, keys)]
 
     return run

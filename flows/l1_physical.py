@@ -6,7 +6,6 @@ Reads an L0 asset directory, writes `physical.json` (the frozen PhysicalModel, p
 
 from __future__ import annotations
 
-import json
 import shutil
 from dataclasses import dataclass
 from pathlib import Path
@@ -17,24 +16,26 @@ import numpy as np
 import cache
 from cache import cache_relative, cache_resolve, cache_root, cached_task, content_key
 from contracts.agents import AgentConfig, StageOutcome, TargetBand, TargetBehaviour
+from contracts.asset_dir import PhysicalRecord
 from contracts.errors import InputError
 from contracts.physical import PhysicalModel
 from contracts.probes import ProbeResult, ProbeSpec
-from contracts.stage import StageContract, load_contract
+from contracts.stage import L1Parameters, StageContract, load_contract
 from flows.harness import ProbeCall, run_harness, task_probe_runner
+from prefect import flow
 from tasks.agents.intent import asset_material, asset_targets, concept_of, explicit_numbers
 from tasks.agents.vocab import load_material_vocab
+from tasks.asset_dir import AssetDir, geometry_info
 from tasks.geometry.outputs import L0Asset, load_l0
 from tasks.physical.mass import MassCheck, mass_check
 from tasks.physical.model import build_physical_model, mass_plausible
 from tasks.probes import rigid
-from tasks.publish import write_json_atomic
 from tasks.record import ProbeRecording
 
 TASK_VERSION = "2"  # bump when tasks/probes/rigid.py or the metrics below change (2: asset-frame pose, inertia lock)
-PHYSICAL_JSON = "physical.json"
 RECORD_PARTICLES_MAX = 4000
 RIGID_KINDS = ("place", "drop", "slide")
+RECORDING_NAMES = {"place": "L1_place.rrd", "rigid_drop": "L1_drop.rrd", "slide": "L1_slide.rrd"}  # probe kind -> file
 
 
 def proxy_hulls(asset: L0Asset) -> list[np.ndarray]:
@@ -92,7 +93,7 @@ def _rigid_probe(kind: str, hulls: list[np.ndarray], particles_m: np.ndarray, ma
     wall = time.perf_counter() - t0
     key = content_key("l1-recording", kind, hulls, mass_kg, center_of_mass_m, friction, params)
     rrd = _write_recording(kind, key, particles_m, np.asarray(center_of_mass_m), trace, metrics)
-    spec = ProbeSpec(kind="rigid_drop" if kind == "drop" else kind, params=params)  # type: ignore[arg-type]
+    spec = ProbeSpec(kind="rigid_drop" if kind == "drop" else kind, params=params)
     return ProbeResult(spec=spec, metrics=metrics, sim_calls=2 if kind == "slide" else 1, wall_time_s=wall,
                        recording=rrd)
 
@@ -167,12 +168,11 @@ def l1_targets(asset: L0Asset, intent: str | None) -> tuple[TargetBehaviour, str
 
 def probe_settings(contract: StageContract) -> dict[str, dict[str, float]]:
     """Rigid-probe parameters from the L1 contract."""
-    p = contract.parameters
+    p = L1Parameters.of(contract)
     return {
-        "place": {"duration_s": float(p.get("place_duration_s", 3.0))},
-        "drop": {"clearance_fraction": float(p.get("drop_clearance_fraction_of_height", 0.25)),
-                 "duration_s": float(p.get("drop_duration_s", 3.0))},
-        "slide": {"margin_deg": float(p.get("slide_angle_margin_deg", 3.0)), "measure_s": float(p.get("slide_measure_s", 1.0))},
+        "place": {"duration_s": p.place_duration_s},
+        "drop": {"clearance_fraction": p.drop_clearance_fraction_of_height, "duration_s": p.drop_duration_s},
+        "slide": {"margin_deg": p.slide_angle_margin_deg, "measure_s": p.slide_measure_s},
     }
 
 
@@ -189,8 +189,10 @@ def _mass_result(phys: PhysicalModel, density_range: tuple[float, float]) -> Pro
                        metrics={"mass_kg": phys.mass_kg, "mass_plausibility": float(ok), "volume_m3": phys.volume_m3})
 
 
-def l1_runner(asset: L0Asset, contract: StageContract, category: str, density_range: tuple[float, float]):  # type: ignore[no-untyped-def]
-    """The L1 probe runner: candidate values -> [mass, place, drop, slide] results (rigid probes cached)."""
+def l1_runner(asset: L0Asset, contract: StageContract, category: str, density_range: tuple[float, float],
+              recording_kinds: dict[str, str] | None = None):
+    """The L1 probe runner: candidate values -> [mass, place, drop, slide] results (rigid probes cached);
+    recording_kinds, when given, collects each recording's probe kind (recording path -> ProbeSpec.kind)."""
     hulls, shown = proxy_hulls(asset), record_particles(asset)
     settings = probe_settings(contract)
 
@@ -207,13 +209,17 @@ def l1_runner(asset: L0Asset, contract: StageContract, category: str, density_ra
 
     def run(values: dict[str, float], action: str) -> list[ProbeResult]:
         phys = physical_from_values(asset, values, category)
-        return [_mass_result(phys, density_range), *cached(values, action)]
+        results = [_mass_result(phys, density_range), *cached(values, action)]
+        if recording_kinds is not None:
+            recording_kinds.update({r.recording: r.spec.kind for r in results if r.recording})
+        return results
 
     return run
 
 
-def _copy_recordings(outcome: StageOutcome, asset_dir: Path) -> list[str]:
-    """Copy the chosen candidate's probe recordings into the asset's recordings/ folder."""
+def _copy_recordings(outcome: StageOutcome, asset_dir: Path, kinds: dict[str, str]) -> list[str]:
+    """Copy the chosen candidate's probe recordings into the asset's recordings/ folder, named by their probe kind
+    (kinds: recording path -> ProbeSpec.kind, as the runner saw them)."""
     if outcome.best_iteration is None:
         return []
     chosen = next(a for a in outcome.attempts if a.iteration == outcome.best_iteration)
@@ -221,7 +227,7 @@ def _copy_recordings(outcome: StageOutcome, asset_dir: Path) -> list[str]:
     for src in chosen.evidence.recordings:
         p = cache_resolve(src)
         if p.suffix == ".rrd" and p.is_file():
-            dest = asset_dir / "recordings" / (p.name.split("-")[0] + ".rrd")
+            dest = asset_dir / "recordings" / RECORDING_NAMES[kinds[src]]
             dest.parent.mkdir(parents=True, exist_ok=True)
             shutil.copyfile(p, dest)
             out.append(str(dest.relative_to(asset_dir)))
@@ -230,38 +236,38 @@ def _copy_recordings(outcome: StageOutcome, asset_dir: Path) -> list[str]:
 
 def run_l1(asset_dir: Path, intent: str | None = None, agents: AgentConfig | None = None,
            contract: StageContract | None = None) -> tuple[PhysicalModel | None, StageOutcome]:
-    """Run L1 on an L0 asset directory; write physical.json; return the frozen model (None if L1 failed)."""
+    """Run L1 on an L0 asset directory (the l1-physical flow against the local Prefect runtime); write physical.json;
+    return the frozen model (None if L1 failed)."""
+    with cache.local_runtime():
+        return l1_physical(asset_dir, intent, agents, contract)
+
+
+@flow(name="l1-physical", validate_parameters=False, persist_result=False)
+def l1_physical(asset_dir: Path, intent: str | None = None, agents: AgentConfig | None = None,
+                contract: StageContract | None = None) -> tuple[PhysicalModel | None, StageOutcome]:
+    """L1: priors and mass check, the harness stage over the rigid probes (a subflow), physical.json."""
     asset_dir = Path(asset_dir)
     asset = load_l0(asset_dir)
     contract = contract or load_contract("L1")
     plan = l1_plan(asset, intent, contract)
     targets, material = plan.targets, plan.material
-    category = str(asset.record.get("info", {}).get("category", material))
-    runner = l1_runner(asset, contract, category, plan.mass.density_range_kg_per_m3)
+    category = geometry_info(asset.record).category
+    kinds: dict[str, str] = {}
+    runner = l1_runner(asset, contract, category, plan.mass.density_range_kg_per_m3, kinds)
     outcome = run_harness(contract, runner, targets, agents=agents, record_dir=asset_dir)
     phys = physical_from_values(asset, outcome.values, category) if outcome.passed and outcome.values else None
-    recordings = _copy_recordings(outcome, asset_dir) if phys is not None else []
-    record = {
-        "schema_version": 1, "stage": "L1", "passed": outcome.passed, "status": outcome.status,
-        "message": outcome.message, "material_class": material, "intent": targets.intent,
-        "mass_check": plan.mass.model_dump(mode="json"), "targets": targets.model_dump(mode="json"),
-        "physical_model": phys.model_dump(mode="json") if phys else None,
-        "metrics": outcome.metrics, "sim_calls": outcome.sim_calls, "attempts": outcome.attempts_used,
-        "recordings": recordings,
-    }
-    write_json_atomic(asset_dir / PHYSICAL_JSON, record)
+    recordings = _copy_recordings(outcome, asset_dir, kinds) if phys is not None else []
+    record = PhysicalRecord(
+        passed=outcome.passed, status=outcome.status, message=outcome.message, material_class=material,
+        intent=targets.intent, mass_check=plan.mass.model_dump(mode="json"), targets=targets, physical_model=phys,
+        metrics=outcome.metrics, sim_calls=outcome.sim_calls, attempts=outcome.attempts_used, recordings=recordings)
+    AssetDir(asset_dir).write_physical(record)
     return phys, outcome
 
 
 def load_physical(asset_dir: Path) -> PhysicalModel:
-    """The frozen L1 model of an asset directory (InputError when L1 has not run or failed)."""
-    path = Path(asset_dir) / PHYSICAL_JSON
-    if not path.is_file():
-        raise InputError(f"{asset_dir} has no {PHYSICAL_JSON}: run `deformsmith physical --asset {asset_dir}` first")
-    record = json.loads(path.read_text(encoding="utf-8"))
-    if not record.get("physical_model"):
-        raise InputError(f"{path}: L1 did not produce a valid physical model ({record.get('message', 'failed')})")
-    return PhysicalModel.model_validate(record["physical_model"])
+    """The frozen L1 model of an asset directory (InputError when L1 has not run or failed): AssetDir's."""
+    return AssetDir(asset_dir).physical_model()
 
 
 def run_rigid_probe(kind: str, asset_dir: Path, rho: float | None = None, friction: float | None = None) -> ProbeResult:
@@ -270,7 +276,7 @@ def run_rigid_probe(kind: str, asset_dir: Path, rho: float | None = None, fricti
         raise InputError(f"unknown rigid probe '{kind}'; choose one of {', '.join(RIGID_KINDS)}")
     asset = load_l0(Path(asset_dir))
     contract = load_contract("L1")
-    if (Path(asset_dir) / PHYSICAL_JSON).is_file():
+    if AssetDir(asset_dir).has("physical"):
         base = load_physical(Path(asset_dir))
         values = {"density_kg_per_m3": base.density_kg_per_m3, "ground_friction": base.ground_friction,
                   "gripper_friction": base.gripper_friction}
@@ -284,7 +290,7 @@ def run_rigid_probe(kind: str, asset_dir: Path, rho: float | None = None, fricti
         if not contract.field(name).contains(float(v)):
             f = contract.field(name)
             raise InputError(f"{name}={v} is outside the L1 contract's bounds [{f.low}, {f.high}] {f.unit}")
-    phys = physical_from_values(asset, values, str(asset.record.get("info", {}).get("category", "object")))
+    phys = physical_from_values(asset, values, geometry_info(asset.record).category)
     task = {"place": place_task, "drop": drop_task, "slide": slide_task}[kind]
     with cache.local_runtime():
         return task(hulls=proxy_hulls(asset), particles_m=record_particles(asset), mass_kg=phys.mass_kg,

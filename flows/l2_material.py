@@ -14,7 +14,6 @@ are the structural checks: their hard-gate metrics count, and their other compre
 
 from __future__ import annotations
 
-import json
 import math
 import shutil
 from pathlib import Path
@@ -25,24 +24,25 @@ import numpy as np
 import cache
 from cache import cache_relative, cache_resolve, cache_root, cached_task, content_key
 from contracts.agents import AgentConfig, StageOutcome, TargetBehaviour
+from contracts.asset_dir import MATERIAL_JSON, HeldOutSummary, MaterialRecord, SelectionSummary
 from contracts.errors import InputError
 from contracts.material import Material
 from contracts.physical import PhysicalModel
 from contracts.probes import ProbeResult
 from contracts.request import AssetRequest
 from contracts.sim import SimConfig
-from contracts.stage import StageContract, load_contract
+from contracts.stage import L2Parameters, StageContract, load_contract
 from flows.harness import call_tasks, probe_cache_key, run_harness
+from prefect import flow
 from tasks.agents.intent import asset_targets
+from tasks.asset_dir import AssetDir, geometry_info
 from tasks.geometry.outputs import L0Asset, load_l0
 from tasks.probes import deformable
-from tasks.probes.specimen import SPECIMEN_PARTICLES_PER_AXIS, specimen_particles
-from tasks.publish import write_json_atomic
+from tasks.probes.specimen import specimen_particles
 from tasks.probes.rollout import DeformableBody, plan_batches, rollouts
 from tasks.probes.workers import probe_workers
 
 TASK_VERSION = "2"  # bump when tasks/probes/{deformable,rollout,metrics}.py change what the probes return
-MATERIAL_JSON = "material.json"
 SELECTION_PROBES = ("compress", "drop", "lift", "stability", "specimen_compress", "specimen_drop")
 HELD_OUT_PROBES = ("compress", "drop", "specimen_compress", "specimen_drop")  # at the contract's held-out settings
 SPECIMEN_PROBES = {"specimen_compress": "compress", "specimen_drop": "drop"}  # specimen kind -> deformable probe
@@ -141,13 +141,12 @@ PROBE_TASKS: dict[str, Any] = {"compress": compress_task, "drop": drop_task, "li
 # -- inputs ----------------------------------------------------------------------------------------------------------
 def probe_parameters(contract: StageContract) -> dict[str, float]:
     """The contract's probe settings (selection and held-out)."""
-    p = contract.parameters
-    return {"strain": float(p.get("compression_strain", 0.1)),
-            "strain_held_out": float(p.get("compression_strain_held_out", 0.15)),
-            "height_fraction": float(p.get("drop_height_fraction_of_height", 0.25)),
-            "height_fraction_held_out": float(p.get("drop_height_fraction_held_out", 0.5)),
-            "stability_duration_s": float(p.get("stability_duration_s", 3.0)),
-            "specimen_particles_per_axis": float(p.get("specimen_particles_per_axis", SPECIMEN_PARTICLES_PER_AXIS))}
+    p = L2Parameters.of(contract)
+    return {"strain": p.compression_strain, "strain_held_out": p.compression_strain_held_out,
+            "height_fraction": p.drop_height_fraction_of_height,
+            "height_fraction_held_out": p.drop_height_fraction_held_out,
+            "stability_duration_s": p.stability_duration_s,
+            "specimen_particles_per_axis": float(p.specimen_particles_per_axis)}
 
 
 def specimen_arrays(physical: PhysicalModel, contract: StageContract,
@@ -214,27 +213,23 @@ def l2_targets(asset: L0Asset, request_or_intent: AssetRequest | str | None) -> 
 
 
 def load_physical_model(asset_dir: Path) -> PhysicalModel:
-    """The frozen L1 model of the asset (flows.l1_physical.load_physical)."""
-    from flows.l1_physical import load_physical
-
-    return load_physical(asset_dir)
+    """The frozen L1 model of the asset (tasks.asset_dir.AssetDir.physical_model)."""
+    return AssetDir(asset_dir).physical_model()
 
 
 def physical_for(asset_dir: Path, asset: L0Asset, rho: float | None = None) -> PhysicalModel:
     """The asset's L1 model, else one from the intent's priors (probing before L1 ran); rho overrides the density."""
-    from flows.l1_physical import PHYSICAL_JSON
     from tasks.physical import build_physical_model
 
-    if (Path(asset_dir) / PHYSICAL_JSON).is_file():
+    if AssetDir(asset_dir).has("physical"):
         phys = load_physical_model(asset_dir)
     else:
         from flows.l1_physical import l1_targets
 
         pri = l1_targets(asset, None)[0].priors  # L1's start values, mass check included
         phys = build_physical_model(asset.particles_m, asset.volumes_m3, asset.spacing_m,
-                                    float(pri.get("density_kg_per_m3", 100.0)), float(pri.get("ground_friction", 0.5)),
-                                    float(pri.get("gripper_friction", 0.8)),
-                                    str(asset.record.get("info", {}).get("category", "object")))
+                                    float(pri["density_kg_per_m3"]), float(pri["ground_friction"]),
+                                    float(pri["gripper_friction"]), geometry_info(asset.record).category)
     if rho is None:
         return phys
     if not (math.isfinite(rho) and rho > 0):
@@ -248,6 +243,7 @@ class _Runner:
 
     def __init__(self, asset: L0Asset, physical: PhysicalModel, contract: StageContract, sim: SimConfig) -> None:
         self.asset, self.physical, self.contract, self.sim = asset, physical, contract, sim
+        self.recording_kinds: dict[str, str] = {}  # recording path -> ProbeSpec.kind of every probe it ran
 
     def __call__(self, values: dict[str, float], action: str) -> list[ProbeResult]:
         material = Material(**values)
@@ -256,6 +252,7 @@ class _Runner:
         results: list[ProbeResult] = call_tasks(calls, probe_workers(len(calls), self.sim.device))
         out = [r if r.cache_key else r.model_copy(update={"cache_key": probe_cache_key(t, kw)})
                for r, (t, kw) in zip(results, calls)]
+        self.recording_kinds.update({r.recording: r.spec.kind for r in out if r.recording})
         return object_view(out, self.contract)
 
 
@@ -371,15 +368,24 @@ def held_out_probes(asset: L0Asset, physical: PhysicalModel, material: Material,
 def evaluate_material(asset_dir: Path, material: Material, contract: StageContract | None = None,
                       sim: SimConfig | None = None, held_out: bool = True,
                       physical: PhysicalModel | None = None) -> dict[str, Any]:
-    """Probe a material given from outside (as L3 does): the selection probes and the held-out tests, cached."""
+    """Probe a material given from outside (as L3 does): the l2-revalidation flow against the local Prefect runtime."""
+    with cache.local_runtime():
+        return l2_revalidation(asset_dir, material, contract, sim, held_out, physical)
+
+
+@flow(name="l2-revalidation", validate_parameters=False, persist_result=False)
+def l2_revalidation(asset_dir: Path, material: Material, contract: StageContract | None = None,
+                    sim: SimConfig | None = None, held_out: bool = True,
+                    physical: PhysicalModel | None = None) -> dict[str, Any]:
+    """L2's selection probes and (held_out) held-out tests of a material set from outside, cached: called from L3's
+    material revision, a subflow of l3-manipulation."""
     asset_dir = Path(asset_dir)
     asset = load_l0(asset_dir)
     physical = physical or load_physical_model(asset_dir)
     contract = contract or load_contract("L2")
     sim = sim or SimConfig()
-    with cache.local_runtime():
-        sel = _Runner(asset, physical, contract, sim)(material.model_dump(), "propose_material")
-        ho = held_out_probes(asset, physical, material, contract, sim) if held_out else []
+    sel = _Runner(asset, physical, contract, sim)(material.model_dump(), "propose_material")
+    ho = held_out_probes(asset, physical, material, contract, sim) if held_out else []
     return {"material": material, "selection": sel, "held_out": ho, "metrics": l2_metrics(sel, contract),
             "held_out_metrics": l2_metrics(ho, contract) if ho else {}}
 
@@ -387,7 +393,18 @@ def evaluate_material(asset_dir: Path, material: Material, contract: StageContra
 def run_l2(asset_dir: Path, request_or_intent: AssetRequest | str | None = None, agents: AgentConfig | None = None,
            contract: StageContract | None = None, sim: SimConfig | None = None, physical: PhysicalModel | None = None,
            screen_first: bool = True) -> tuple[Material | None, StageOutcome]:
-    """Run L2 on an asset directory holding L0 (+ L1 physical.json, or `physical` given); write material.json."""
+    """Run L2 on an asset directory holding L0 (+ L1 physical.json, or `physical` given): the l2-material flow against
+    the local Prefect runtime; write material.json."""
+    with cache.local_runtime():
+        return l2_material(asset_dir, request_or_intent, agents, contract, sim, physical, screen_first)
+
+
+@flow(name="l2-material", validate_parameters=False, persist_result=False)
+def l2_material(asset_dir: Path, request_or_intent: AssetRequest | str | None = None,
+                agents: AgentConfig | None = None, contract: StageContract | None = None, sim: SimConfig | None = None,
+                physical: PhysicalModel | None = None, screen_first: bool = True) -> tuple[Material | None, StageOutcome]:
+    """L2: targets, the screening (cached tasks), the harness stage over the MPM probes (a subflow), the held-out
+    tests of the chosen material, material.json."""
     asset_dir = Path(asset_dir)
     asset = load_l0(asset_dir)
     physical = physical or load_physical_model(asset_dir)
@@ -397,61 +414,48 @@ def run_l2(asset_dir: Path, request_or_intent: AssetRequest | str | None = None,
     from tasks.agents.orchestrator import initial_values
 
     start = initial_values(contract, targets, None)
-    with cache.local_runtime():
-        initial, screening = (screen(asset, physical, contract, targets, start, sim) if screen_first
-                              else (start, {"sim_calls": 0}))
+    initial, screening = (screen(asset, physical, contract, targets, start, sim) if screen_first
+                          else (start, {"sim_calls": 0}))
     runner = _Runner(asset, physical, contract, sim)
     outcome = run_harness(contract, runner, targets, agents=agents, record_dir=asset_dir, initial=initial)
     material = Material(**outcome.values) if outcome.passed and outcome.values else None
-    record: dict[str, Any] = {"schema_version": 1, "stage": "L2", "passed": outcome.passed, "status": outcome.status,
-                              "message": outcome.message, "intent": targets.intent,
-                              "targets": targets.model_dump(mode="json")}
     recordings: dict[str, str | None] = {}
     held: list[ProbeResult] = []
     if material is not None:
         chosen = next(a for a in outcome.attempts if a.iteration == outcome.best_iteration)
         for src in chosen.evidence.recordings:
-            kind = Path(src).name.split("-")[0].removeprefix("L2_")
+            kind = runner.recording_kinds[src]
             recordings[kind] = _copy(src, asset_dir / "recordings" / f"L2_{kind}.rrd")
-        with cache.local_runtime():
-            held = held_out_probes(asset, physical, material, contract, sim)
+        held = held_out_probes(asset, physical, material, contract, sim)
         for kind, r in zip(HELD_OUT_PROBES, held):
             recordings[f"{kind}_held_out"] = _copy(r.recording, asset_dir / "recordings" / f"L2_{kind}_held_out.rrd")
     held_metrics = l2_metrics(held, contract) if held else {}
     held_targets = targets.model_copy(update={"bands": [b for b in targets.bands if b.metric in held_metrics]})
-    sim_calls = outcome.sim_calls + int(screening.get("sim_calls", 0)) + sum(r.sim_calls for r in held)
-    record.update({
-        "material": material.model_dump(mode="json") if material else None,
-        "physical_model": physical.model_dump(mode="json"),
-        "metrics": outcome.metrics,
-        "held_out": {"metrics": held_metrics, "targets_met": held_targets.met(held_metrics) if held else None,
-                     "score": held_targets.score(held_metrics) if held else None,
-                     "bands": [b.metric for b in held_targets.bands],
-                     "probes": [r.model_dump(mode="json", exclude={"wall_time_s"}) for r in held]},
-        "selection": {"status": outcome.status, "score": outcome.score, "targets_met": targets.met(outcome.metrics),
-                      "best_iteration": outcome.best_iteration, "attempts": outcome.attempts_used,
-                      "sim_calls": outcome.sim_calls, "screening": screening,
-                      "ranking": sorted(({"iteration": a.iteration, "values": a.proposal, "score": a.score,
-                                          "verdict": a.verdict} for a in outcome.attempts if a.score is not None),
-                                        key=lambda d: -d["score"])},
-        "sim_calls": sim_calls, "recordings": recordings,  # no wall time: reruns must be content-identical
-    })
+    sim_calls = outcome.sim_calls + int(screening["sim_calls"]) + sum(r.sim_calls for r in held)
+    record = MaterialRecord(  # no wall time: reruns must be content-identical
+        passed=outcome.passed, status=outcome.status, message=outcome.message, intent=targets.intent, targets=targets,
+        material=material, physical_model=physical, metrics=outcome.metrics,
+        held_out=HeldOutSummary(metrics=held_metrics, targets_met=held_targets.met(held_metrics) if held else None,
+                                score=held_targets.score(held_metrics) if held else None,
+                                bands=[b.metric for b in held_targets.bands],
+                                probes=[r.model_dump(mode="json", exclude={"wall_time_s"}) for r in held]),
+        selection=SelectionSummary(
+            status=outcome.status, score=outcome.score, targets_met=targets.met(outcome.metrics),
+            best_iteration=outcome.best_iteration, attempts=outcome.attempts_used, sim_calls=outcome.sim_calls,
+            screening=screening,
+            ranking=sorted(({"iteration": a.iteration, "values": a.proposal, "score": a.score, "verdict": a.verdict}
+                            for a in outcome.attempts if a.score is not None), key=lambda d: -d["score"])),
+        sim_calls=sim_calls, recordings=recordings)
     (asset_dir / "evidence").mkdir(parents=True, exist_ok=True)
     lines = "".join(a.model_dump_json() + "\n" for a in outcome.attempts)
     (asset_dir / "evidence" / "L2_attempts.jsonl").write_text(lines, encoding="utf-8")
-    write_json_atomic(asset_dir / MATERIAL_JSON, record)
+    AssetDir(asset_dir).write_material(record)
     return material, outcome
 
 
 def load_material(asset_dir: Path) -> Material:
-    """The L2 material of an asset directory (InputError when L2 has not run or found no valid material)."""
-    path = Path(asset_dir) / MATERIAL_JSON
-    if not path.is_file():
-        raise InputError(f"{asset_dir} has no {MATERIAL_JSON}: run `deformsmith material --asset {asset_dir}` first")
-    record = json.loads(path.read_text(encoding="utf-8"))
-    if not record.get("material"):
-        raise InputError(f"{path}: L2 found no valid material ({record.get('message', 'failed')})")
-    return Material.model_validate(record["material"])
+    """The L2 material of an asset directory (InputError when L2 has not run or found no valid material): AssetDir's."""
+    return AssetDir(asset_dir).material_model()
 
 
 def run_probe(kind: str, asset_dir: Path, material: Material, physical: PhysicalModel | None = None,
@@ -466,5 +470,6 @@ def run_probe(kind: str, asset_dir: Path, material: Material, physical: Physical
         return PROBE_TASKS[kind](**kw)
 
 
-__all__ = ["HELD_OUT_PROBES", "MATERIAL_JSON", "PROBE_TASKS", "evaluate_material", "l2_metrics", "l2_targets",
-           "load_material", "object_view", "probe_inputs", "run_l2", "run_probe", "screen", "specimen_arrays"]
+__all__ = ["HELD_OUT_PROBES", "MATERIAL_JSON", "PROBE_TASKS", "evaluate_material", "l2_material", "l2_metrics",
+           "l2_revalidation", "l2_targets", "load_material", "object_view", "probe_inputs", "run_l2", "run_probe",
+           "screen", "specimen_arrays"]

@@ -14,13 +14,11 @@ evaluated under held-out conditions (other target positions and initial yaw), re
 
 from __future__ import annotations
 
-import functools
-import json
 import math
 import time
 from dataclasses import asdict, dataclass, field, replace
 from pathlib import Path
-from typing import Any
+from typing import Any, TypedDict
 
 import numpy as np
 import trimesh
@@ -28,24 +26,24 @@ import trimesh
 import cache
 from cache import cached_task
 from contracts.agents import AgentConfig, StageOutcome, TargetBehaviour
-from contracts.errors import InputError
+from contracts.asset_dir import ManipulationRecord, attempt_path
 from contracts.material import Material
 from contracts.physical import PhysicalModel
 from contracts.probes import ProbeResult, ProbeSpec
 from contracts.robot import ActionPlan, GraspCandidate
 from contracts.sim import SimConfig
-from contracts.stage import StageContract, load_contract
-from flows.harness import probe_cache_key, run_harness
+from contracts.stage import L3Parameters, StageContract, load_contract, packaged_parameters
+from flows.harness import call_tasks, probe_cache_key, run_harness
 from flows.l3_material import MaterialLimits, failed_gates, halfway, revalidate_in_l2, revise_material
 from flows.l3_report import (L3Progress, Progress, best_attempt, failed_gate_names, planned_trials, record_no_grasp,
                              trial_reason)
+from prefect import flow
+from tasks.asset_dir import AssetDir, geometry_info
 from tasks.manipulation.body import TrialBody, auto_trial_spacing, trial_body
-from tasks.publish import write_json_atomic
 from tasks.manipulation.data import write_attempt
 from tasks.manipulation.recordings import copy_atomic, record_attempt
-from tasks.manipulation.outcome import TrialTolerances
+from tasks.manipulation.outcome import TrialTolerances, force_budget_n
 from tasks.manipulation.trial import TrialSettings, plan_or_error, run_trial
-from tasks.mpm import side_by_side
 from tasks.probes.workers import probe_workers
 from contracts.robot import DEFAULT_GRIPPER
 from tasks.robot import NoGraspError, select_grasps
@@ -57,7 +55,6 @@ TASK_VERSION = "9"  # bump when tasks/manipulation/{trial,outcome,body,frame}.py
 # (6: settle until at rest; 7: simulated in the frame where the closing axis is at 45 degrees to the grid; 8: the
 # approach is recorded; 9: grippers as data, a force-controlled closure that keeps its target while held and skips the
 # rest of the closure, the time-step cap follows dx)
-MANIPULATION_JSON = "manipulation.json"
 LABELS = ("lifted", "transported", "released_in_target", "settled", "numerically_healthy")
 
 
@@ -95,10 +92,10 @@ class L3Options:
 
     def sim(self) -> SimConfig:
         """L2's settings for a revalidation from L3: the same device and CPU threads as the trials."""
-        return SimConfig(device=self.device, cpu_threads=self.cpu_threads)  # type: ignore[arg-type]
+        return SimConfig(device=self.device, cpu_threads=self.cpu_threads)
 
     @classmethod
-    def standard(cls, device: str = "cuda", cpu_threads: int = 1) -> "L3Options":
+    def standard(cls, device: str = "cuda", cpu_threads: int = 1) -> L3Options:
         """Standard quality: finer particles, the ActionPlan's default (slower) timing, two held-out conditions."""
         return cls(quality="standard", particle_spacing_m=0.002, closing_speed_m_per_s=0.02, lift_duration_s=1.0,
                    transport_duration_s=1.5, release_duration_s=0.5, retreat_duration_s=0.5, settle_duration_s=0.5,
@@ -158,11 +155,9 @@ def trial_task(particles_m: np.ndarray, volumes_m3: np.ndarray, spacing_m: float
 
 def tolerances_from(contract: StageContract) -> TrialTolerances:
     """Label limits from the L3 contract (parameters and the force-budget gate)."""
-    p = contract.parameters
-    budget = next((g.threshold for g in contract.hard_gates if g.metric == "max_finger_force_n"), 20.0)
-    return TrialTolerances(lift_height_m=float(p.get("lift_height_m", 0.10)),
-                           place_tolerance_m=float(p.get("place_tolerance_m", 0.03)),
-                           slip_tolerance_m=float(p.get("slip_tolerance_m", 0.01)), force_budget_n=float(budget))
+    p = L3Parameters.of(contract)
+    return TrialTolerances(lift_height_m=p.lift_height_m, place_tolerance_m=p.place_tolerance_m,
+                           slip_tolerance_m=p.slip_tolerance_m, force_budget_n=force_budget_n(contract))
 
 
 @dataclass
@@ -191,8 +186,7 @@ class L3Context:
         (tasks.robot.squeeze), else the contract's cap (None: position control)."""
         if self.squeeze is not None:
             return self.squeeze.force_target_n
-        v = self.contract.parameters.get("grip_force_limit_n")
-        return float(v) if v else None
+        return L3Parameters.of(self.contract).grip_force_limit_n or None
 
     def plan(self, values: dict[str, float], target_xy_m: tuple[float, float] | None = None,
              yaw_deg: float = 0.0) -> ActionPlan:
@@ -204,7 +198,7 @@ class L3Context:
             squeeze_depth_m=float(values["squeeze_depth_m"]),
             grip_force_limit_n=self.grip_force_limit_n,
             closing_speed_m_per_s=float(values["closing_speed_m_per_s"]),
-            lift_height_m=float(self.contract.parameters.get("lift_height_m", 0.10)),
+            lift_height_m=L3Parameters.of(self.contract).lift_height_m,
             target_xy_m=target_xy_m or o.target_xy_m, initial_yaw_deg=yaw_deg,
             closure_duration_s=0.3, lift_duration_s=float(values["lift_duration_s"]),
             transport_duration_s=float(values["transport_duration_s"]), release_duration_s=o.release_duration_s,
@@ -244,19 +238,18 @@ class L3Context:
         self.attempts.append({"attempt": n, "role": role, "action": action, "values": values,
                               "labels": probe.metrics, "cache_key": key, "recording": rrd,
                               "condition": {"target_xy_m": list(plan.target_xy_m), "yaw_deg": yaw_deg}})
-        return probe.model_copy(update={"cache_key": key, "recording": f"interaction/attempt_{n:03d}"
-                                        if n is not None else None})
+        return probe.model_copy(update={"cache_key": key, "recording": attempt_path(n) if n is not None else None})
 
     def under(self, values: dict[str, float], conditions: tuple[tuple[float, float, float], ...], role: str,
               action: str = "", material: Material | None = None) -> list[ProbeResult]:
         """One trial per condition (x [m], y [m], yaw [deg]): the robustness or the held-out conditions. The trials
-        are independent: on the CPU they run side by side (tasks.mpm.side_by_side), then are stored as attempts in the
-        order of `conditions`, as one after another would."""
+        are independent: on the CPU they run side by side (flows.harness.call_tasks: Prefect's thread-pool task
+        runner), then are stored as attempts in the order of `conditions`, as one after another would."""
         runs = [self._trial_inputs(values, material, (x, y), yaw) for x, y, yaw in conditions]
         self.progress.trials(len(self.attempts) + 1, len(runs), f"{role}, {len(runs)} conditions side by side"
                              + (f" ({action})" if action else ""))
-        outs = side_by_side([functools.partial(trial_task, **inputs) for _, inputs in runs],
-                            probe_workers(len(runs), self.options.device), self.options.device)
+        outs = call_tasks([(trial_task, inputs) for _, inputs in runs], probe_workers(len(runs), self.options.device),
+                          self.options.device)
         stored = [self._store(out, plan, inputs, values, role, action, material, yaw)
                   for (plan, inputs), out, (_, _, yaw) in zip(runs, outs, conditions)]
         for i, probe in enumerate(stored):
@@ -296,11 +289,8 @@ def initial_values(ctx: L3Context) -> dict[str, float]:
 def load_context(asset_dir: Path, options: L3Options, contract: StageContract,
                  material: Material | None = None) -> L3Context:
     """Read L0 / L1 / L2 from the asset directory, build the trial body and rank the grasps."""
-    from flows.l1_physical import load_physical
-    from tasks.geometry.outputs import load_l0
-
-    asset = load_l0(asset_dir)
-    physical = load_physical(asset_dir)
+    adir = AssetDir(asset_dir)
+    asset, physical = adir.l0, adir.physical_model()
     source = "given"
     if material is None:
         material, source = material_of(asset_dir, asset)
@@ -328,7 +318,7 @@ def load_context(asset_dir: Path, options: L3Options, contract: StageContract,
     sq = squeeze_plan(width_m=sel.candidates[0].width_m, pad_area_m2=g.pad_area_m2,
                       gripper_max_n=g.spec.max_grip_force_n, friction=physical.gripper_friction,
                       **hold)
-    if not contract.parameters.get("hold_force_margin"):  # no hold target: position control, the contract's range
+    if not L3Parameters.of(contract).hold_force_margin:  # no hold target: position control, the contract's range
         return L3Context(Path(asset_dir), body, physical, material, source, sel.candidates, options, contract,
                          gripper=name, gripper_reason=reason, gripper_options=rows)
     return L3Context(Path(asset_dir), body, physical, material, source, sel.candidates, options,
@@ -339,15 +329,28 @@ def load_context(asset_dir: Path, options: L3Options, contract: StageContract,
 SURFACE_SAMPLES = 2000  # surface points for grasp sampling (the trial body's, and the gripper choice's)
 
 
-def _hold_inputs(physical: PhysicalModel, material: Material, contract: StageContract) -> dict[str, float]:
+class HoldInputs(TypedDict):
+    """The keyword inputs that choose_gripper and squeeze_plan share (SI units)."""
+
+    youngs_modulus_pa: float
+    poisson_ratio: float
+    mass_kg: float
+    gravity_m_per_s2: float
+    budget_n: float
+    margin: float
+    floor_n: float
+
+
+def _hold_inputs(physical: PhysicalModel, material: Material, contract: StageContract) -> HoldInputs:
     """What the hold force and the squeeze estimate need: material, mass, gravity, force budget and margin."""
-    p = contract.parameters
+    p = L3Parameters.of(contract)
     budget = tolerances_from(contract).force_budget_n
-    cap = float(p.get("grip_force_limit_n") or 0.5 * budget)
+    cap = p.grip_force_limit_n or 0.5 * budget
+    # without a hold margin (position control) the squeeze estimate still needs one: the packaged contract's
+    margin = p.hold_force_margin or packaged_parameters("L3")["hold_force_margin"]
     return {"youngs_modulus_pa": material.youngs_modulus_pa, "poisson_ratio": material.poisson_ratio,
             "mass_kg": physical.mass_kg, "gravity_m_per_s2": float(np.linalg.norm(physical.gravity_m_per_s2)),
-            "budget_n": min(budget, 2.0 * cap), "margin": float(p.get("hold_force_margin") or 3.0),
-            "floor_n": float(p.get("hold_force_floor_n", 1.0))}
+            "budget_n": min(budget, 2.0 * cap), "margin": float(margin), "floor_n": p.hold_force_floor_n}
 
 
 def _with_squeeze_range(contract: StageContract, sq: SqueezePlan) -> StageContract:
@@ -363,26 +366,19 @@ def _with_squeeze_range(contract: StageContract, sq: SqueezePlan) -> StageContra
 
 
 def material_of(asset_dir: Path, asset: Any) -> tuple[Material, str]:
-    """The L2 material, else the vocabulary prior of the asset's words (until L2 has run)."""
-    try:
-        from flows.l2_material import load_material
+    """The L2 material, else (L2 has not run, or found no material) the vocabulary prior of the asset's words; an
+    unreadable material.json is an InputError naming it."""
+    adir = AssetDir(asset_dir)
+    found = adir.material().material if adir.has("material") else None
+    if found is not None:
+        return found, "L2"
+    from tasks.agents import targets_from_intent
 
-        return load_material(asset_dir), "L2"
-    except (ImportError, InputError):
-        from tasks.agents import targets_from_intent
-
-        info = asset.record.get("info", {})
-        words = " ".join(str(x) for x in (info.get("name"), info.get("category")) if x) or "foam"
-        p = targets_from_intent(words).priors
-        return Material(youngs_modulus_pa=p.get("youngs_modulus_pa", 1e5), poisson_ratio=p.get("poisson_ratio", 0.3),
-                        damping_rate_per_s=p.get("damping_rate_per_s", 5.0)), "vocabulary prior"
-
-
-def _default(o: Any) -> Any:
-    """JSON for numpy values."""
-    if hasattr(o, "tolist"):
-        return o.tolist()
-    return str(o)
+    info = geometry_info(asset.record)
+    words = " ".join(str(x) for x in (info.name, info.category) if x) or "foam"
+    p = targets_from_intent(words).priors  # the vocabulary's default material fills what the words leave out
+    return Material(youngs_modulus_pa=p["youngs_modulus_pa"], poisson_ratio=p["poisson_ratio"],
+                    damping_rate_per_s=p["damping_rate_per_s"]), "vocabulary prior"
 
 
 def _accepted(metrics: dict[str, float], contract: StageContract) -> bool:
@@ -393,7 +389,18 @@ def _accepted(metrics: dict[str, float], contract: StageContract) -> bool:
 def run_l3(asset_dir: Path, options: L3Options | None = None, agents: AgentConfig | None = None,
            contract: StageContract | None = None, material: Material | None = None,
            recordings: bool = True, progress: Progress | None = None) -> tuple[dict[str, Any], StageOutcome]:
-    """Run L3 on an asset directory (L0 + L1, L2 or a prior); write manipulation.json; return (record, outcome).
+    """Run L3 on an asset directory (L0 + L1, L2 or a prior): the l3-manipulation flow against the local Prefect
+    runtime; write manipulation.json; return (record, outcome)."""
+    with cache.local_runtime():
+        return l3_manipulation(asset_dir, options, agents, contract, material, recordings, progress)
+
+
+@flow(name="l3-manipulation", validate_parameters=False, persist_result=False)
+def l3_manipulation(asset_dir: Path, options: L3Options | None = None, agents: AgentConfig | None = None,
+                    contract: StageContract | None = None, material: Material | None = None, recordings: bool = True,
+                    progress: Progress | None = None) -> tuple[dict[str, Any], StageOutcome]:
+    """L3: grasps, the harness stage over pick-and-place trials (a subflow), robustness and held-out trials (cached
+    tasks), material revisions revalidated by L2 (the l2-revalidation subflow), manipulation.json.
 
     An object no gripper can hold is a result, not an error: manipulation.json and evidence/ record the reason as
     L3's one attempt (status 'no_grasp'). progress: a sink for 'L3 trial k of at most n: ... (elapsed)' lines."""
@@ -426,8 +433,7 @@ def run_l3(asset_dir: Path, options: L3Options | None = None, agents: AgentConfi
     if outcome.passed and chosen_values is not None and options.robustness:
         # the accepted plan under the training perturbations; a failure asks the material for margin, adopted only
         # when the revised material passes the nominal condition and strictly more perturbations
-        with cache.local_runtime():
-            rob = ctx.under(dict(chosen_values), options.robustness, "robustness")
+        rob = ctx.under(dict(chosen_values), options.robustness, "robustness")
         robustness = _conditions(options.robustness, rob, contract)
         failing = [r for r in rob if not _accepted(r.metrics, contract)]
         if failing:
@@ -450,9 +456,8 @@ def run_l3(asset_dir: Path, options: L3Options | None = None, agents: AgentConfi
     accepted = chosen_values is not None and (outcome.passed or final_material is not ctx.material)
     held: list[dict[str, Any]] = []
     if accepted and options.held_out:
-        with cache.local_runtime():
-            results = ctx.under(dict(chosen_values), options.held_out, "held_out",  # type: ignore[arg-type]
-                                material=final_material)
+        results = ctx.under(dict(chosen_values), options.held_out, "held_out",  # type: ignore[arg-type]
+                            material=final_material)
         held = _conditions(options.held_out, results, contract)["conditions"]
     chosen = _chosen_attempt(ctx, chosen_values, final_material) if accepted else None
     rec_paths = [a["recording"] for a in ctx.attempts if a.get("recording")]  # every trial's, failed ones included
@@ -463,21 +468,19 @@ def run_l3(asset_dir: Path, options: L3Options | None = None, agents: AgentConfi
                      time.perf_counter() - t0)
     report.say(f"L3 {'passed' if accepted else 'did not pass: ' + record['reason']}")
     # the file holds no wall time, so a rerun writes the same manipulation.json; the returned record reports it
-    write_json_atomic(asset_dir / MANIPULATION_JSON, {k: v for k, v in record.items() if k != "wall_time_s"},
-                      default=_default)
+    AssetDir(asset_dir).write_manipulation(ManipulationRecord.model_validate(
+        {k: v for k, v in record.items() if k != "wall_time_s"}))
     return record, outcome
 
 
 def _no_grasp(asset_dir: Path, options: L3Options, contract: StageContract, material: Material | None, reason: str,
               t0: float) -> tuple[dict[str, Any], StageOutcome]:
     """L3's record when no gripper can hold the object: no trial ran; the reason is L3's one attempt in evidence/."""
-    from flows.l1_physical import load_physical
-    from tasks.geometry.outputs import load_l0
-
-    physical = load_physical(asset_dir)
+    adir = AssetDir(asset_dir)
+    physical = adir.physical_model()
     source = "given"
     if material is None:
-        material, source = material_of(asset_dir, load_l0(asset_dir))
+        material, source = material_of(asset_dir, adir.l0)
     attempts = record_no_grasp(asset_dir, reason)
     record = {
         "schema_version": 1, "stage": "L3", "passed": False, "status": "no_grasp", "message": reason,
@@ -490,8 +493,8 @@ def _no_grasp(asset_dir: Path, options: L3Options, contract: StageContract, mate
         "numerics": {"quality": options.quality, "device": options.device}, "attempts": attempts,
         "harness_attempts": 1, "recordings": [], "wall_time_s": time.perf_counter() - t0,
     }
-    write_json_atomic(asset_dir / MANIPULATION_JSON, {k: v for k, v in record.items() if k != "wall_time_s"},
-                      default=_default)
+    AssetDir(asset_dir).write_manipulation(ManipulationRecord.model_validate(
+        {k: v for k, v in record.items() if k != "wall_time_s"}))
     return record, StageOutcome(stage="L3", status="no_valid_candidate", attempts_used=1, message=reason)
 
 
@@ -539,11 +542,10 @@ def _revise_material(ctx: L3Context, values: dict[str, float], metrics: dict[str
                            "failed_gates": failed_gates(metrics, ctx.contract), "l2_revalidation": checks[-1],
                            "l2_checks": checks, "plan_values": dict(values), "accepted": False}
     if checks[-1]["passed"]:
-        with cache.local_runtime():
-            confirm = [ctx.trial(dict(values), "confirmation", "revise_material", material=revised)]
-            rev["accepted"] = _accepted(confirm[0].metrics, ctx.contract)
-            if rev["accepted"]:  # the robustness conditions only matter for a material the nominal condition accepts
-                confirm += ctx.under(dict(values), ctx.options.robustness, "robustness", "revise_material", revised)
+        confirm = [ctx.trial(dict(values), "confirmation", "revise_material", material=revised)]
+        rev["accepted"] = _accepted(confirm[0].metrics, ctx.contract)
+        if rev["accepted"]:  # the robustness conditions only matter for a material the nominal condition accepts
+            confirm += ctx.under(dict(values), ctx.options.robustness, "robustness", "revise_material", revised)
         rev["confirmation"] = confirm[0].metrics
         rev["robustness"] = _conditions(ctx.options.robustness, confirm[1:], ctx.contract)
     return rev
@@ -612,9 +614,6 @@ def _record(ctx: L3Context, outcome: StageOutcome, accepted: bool, chosen: dict[
     }
 
 
-def load_manipulation(asset_dir: Path) -> dict[str, Any]:
-    """manipulation.json of an asset (InputError when L3 has not run)."""
-    path = Path(asset_dir) / MANIPULATION_JSON
-    if not path.is_file():
-        raise InputError(f"{asset_dir} has no {MANIPULATION_JSON}: run `deformsmith manipulate {asset_dir}` first")
-    return json.loads(path.read_text(encoding="utf-8"))
+def load_manipulation(asset_dir: Path) -> ManipulationRecord:
+    """manipulation.json of an asset (InputError when L3 has not run): AssetDir's."""
+    return AssetDir(asset_dir).manipulation()

@@ -12,7 +12,6 @@ band that held for the L2 material must still hold; a revision that leaves a ban
 
 from __future__ import annotations
 
-import json
 import math
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -42,22 +41,21 @@ class MaterialLimits:
     youngs_modulus_pa: float | None = None  # the L2 material's E, whose specimen modulus `metrics` holds
 
     @classmethod
-    def from_asset(cls, asset_dir: Path) -> "MaterialLimits":
+    def from_asset(cls, asset_dir: Path) -> MaterialLimits:
         """Read material.json (empty limits when L2 has not run: the material is a vocabulary prior)."""
-        path = Path(asset_dir) / "material.json"
-        if not path.is_file():
+        from tasks.asset_dir import AssetDir
+
+        adir = AssetDir(asset_dir)
+        if not adir.has("material"):
             return cls()
-        rec = json.loads(path.read_text(encoding="utf-8"))
-        targets = TargetBehaviour.model_validate(rec["targets"]) if rec.get("targets") else None
-        metrics = {k: float(v) for k, v in (rec.get("metrics") or {}).items() if isinstance(v, (int, float))}
-        drop = ((rec.get("selection") or {}).get("screening") or {}).get("drop") or {}
-        pairs = [(float(d), float(r)) for d, r in zip(drop.get("damping_rate_per_s", []), drop.get("rebound_ratio", []))
-                 if r is not None and math.isfinite(r)]
-        mat = rec.get("material") or {}
-        if "rebound_ratio" in metrics and "damping_rate_per_s" in mat:
-            pairs.append((float(mat["damping_rate_per_s"]), metrics["rebound_ratio"]))
-        e = mat.get("youngs_modulus_pa")
-        return cls(targets, metrics, tuple(pairs), float(e) if e else None)
+        rec = adir.material()
+        drop = rec.selection.screening.get("drop")  # absent when L2 had no rebound band to screen
+        screened = zip(drop["damping_rate_per_s"], drop["rebound_ratio"]) if drop else ()
+        pairs = [(float(d), float(r)) for d, r in screened if r is not None and math.isfinite(r)]
+        mat = rec.material
+        if "rebound_ratio" in rec.metrics and mat is not None:
+            pairs.append((mat.damping_rate_per_s, rec.metrics["rebound_ratio"]))
+        return cls(rec.targets, dict(rec.metrics), tuple(pairs), mat.youngs_modulus_pa if mat is not None else None)
 
     def held_bands(self) -> list[Any]:
         """The target bands that held for the L2 material (a revision must keep them)."""
@@ -103,7 +101,8 @@ def revise_material(material: Material, metrics: dict[str, float], contract: Sta
     limits = limits or MaterialLimits()
     failed = set(failed_gates(metrics, contract))
     if "strain_p99" in failed:
-        bound = next((g.threshold for g in contract.hard_gates if g.metric == "strain_p99"), 0.6)
+        bound = next((g.threshold for g in contract.hard_gates
+                      if g.metric == "strain_p99" and g.threshold is not None), 0.6)
         strain = float(metrics.get("strain_p99", bound))
         factor = min(10.0, max(1.5, 1.25 * strain / bound)) if math.isfinite(strain) else 2.0
         return (material.model_copy(update={"youngs_modulus_pa": material.youngs_modulus_pa * factor}),
@@ -136,8 +135,9 @@ def halfway(original: Material, revised: Material) -> Material:
 
 def revalidate_in_l2(asset_dir: Path, material: Material, physical: PhysicalModel,
                      limits: MaterialLimits | None = None, sim: SimConfig | None = None) -> dict[str, Any]:
-    """L2 revalidation of a revised material (its selection probes, cached, under `sim`: L3's device and CPU threads):
-    passes when every L2 hard gate holds and every target band that held for the L2 material still holds."""
+    """L2 revalidation of a revised material (L2's l2-revalidation flow, a subflow of l3-manipulation: its selection
+    probes, cached, under `sim`: L3's device and CPU threads): passes when every L2 hard gate holds and every target
+    band that held for the L2 material still holds."""
     from flows.l2_material import evaluate_material
 
     l2 = load_contract("L2")

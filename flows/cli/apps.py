@@ -24,7 +24,8 @@ app.add_typer(cache_app, name="cache")
 app.add_typer(bench_app, name="bench")
 app.add_typer(verify_app, name="verify")
 
-console = Console(stderr=True)  # progress and tables go to stderr; --json data goes to stdout
+# progress and tables go to stderr (--json data goes to stdout); progress lines carry the time, not the source line
+console = Console(stderr=True, log_path=False)
 
 _USER_PREFECT_LEVEL = "PREFECT_LOGGING_LEVEL" in os.environ
 

@@ -11,7 +11,7 @@ from flows.cli.apps import app, check_device, console, emit_json, fail
 from flows.cli.preflight import check_locations
 
 
-def _table(report) -> Table:  # type: ignore[no-untyped-def]
+def _table(report) -> Table:
     table = Table(title=f"batch: {report.ok} ok, {report.failed} failed, {report.wall_s:.1f} s, "
                         f"{report.assets_per_hour:.1f} assets/hour")
     for col in ("line", "name", "status", "wall [s]", "executed/cached", "reason"):
@@ -51,7 +51,7 @@ def batch(
         use_cache_root(cache_dir)
     check_locations(out_root=out)  # the batch root and the cache root are usable, before any request runs
 
-    def on_result(r) -> None:  # type: ignore[no-untyped-def]
+    def on_result(r) -> None:
         mark = "[green]ok[/green]" if r.status == "ok" else f"[red]failed[/red]: {r.reason}"
         console.log(f"{r.name} (line {r.line}) {mark} {r.wall_s:.1f} s")
 

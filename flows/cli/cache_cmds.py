@@ -6,7 +6,7 @@ import os
 import re
 import time
 from pathlib import Path
-from typing import Annotated, Any, Optional
+from typing import Annotated, Any
 
 import typer
 from rich.table import Table
@@ -16,7 +16,7 @@ from contracts.errors import DeformSmithError, InputError
 from flows.cli.apps import bench_app, cache_app, console, emit_json, fail
 
 CacheOption = Annotated[
-    Optional[Path],
+    Path | None,
     typer.Option("--cache", help=f"Cache root (default: ${ENV_VAR}, else the user cache directory).",
                  show_default=False),
 ]
@@ -120,9 +120,9 @@ def verify_cmd(
 @cache_app.command("gc")
 def gc_cmd(
     cache: CacheOption = None,
-    older_than: Annotated[Optional[str], typer.Option("--older-than", help="Remove entries unused for this long (30m, 12h, 7d).")] = None,
-    max_size: Annotated[Optional[str], typer.Option("--max-size", help="Then remove least recently used entries until the total is at most this (500MB, 2GB).")] = None,
-    outputs: Annotated[Optional[list[Path]], typer.Option("--outputs", help="A folder holding asset directories: also remove the .NAME.partial-* working directories that dead runs left in it (repeatable).")] = None,
+    older_than: Annotated[str | None, typer.Option("--older-than", help="Remove entries unused for this long (30m, 12h, 7d).")] = None,
+    max_size: Annotated[str | None, typer.Option("--max-size", help="Then remove least recently used entries until the total is at most this (500MB, 2GB).")] = None,
+    outputs: Annotated[list[Path] | None, typer.Option("--outputs", help="A folder holding asset directories: also remove the .NAME.partial-* working directories that dead runs left in it (repeatable).")] = None,
     json_out: JsonOption = False,
 ) -> None:
     """Remove old entries and/or shrink the cache to a size; also removes what dead processes left (crash leftovers:
@@ -152,7 +152,7 @@ def gc_cmd(
 
 @bench_app.command("cache")
 def bench_cache_cmd(
-    cache: Annotated[Optional[Path], typer.Option("--cache", help="Benchmark on this filesystem (a temp dir under it; default: system temp).")] = None,
+    cache: Annotated[Path | None, typer.Option("--cache", help="Benchmark on this filesystem (a temp dir under it; default: system temp).")] = None,
     particles: Annotated[int, typer.Option("--particles", min=1, help="Particles in the large entry.")] = 1_000_000,
     repeats: Annotated[int, typer.Option("--repeats", min=1, help="Repetitions per figure (median reported).")] = 3,
     compare: Annotated[bool, typer.Option("--compare/--no-compare", help="Also compare Zarr codec/chunk settings.")] = True,

@@ -1,20 +1,93 @@
-"""`deformsmith evidence ASSET_OR_RUN`: the harness's attempt history as a table (or JSON)."""
+"""`deformsmith evidence ASSET_OR_RUN`: the harness's attempt history (or JSON), and the per-stage tally table that
+`inspect` and `generate` print too (one function, `tasks.record.stage_tallies`, counts for all three)."""
 
 from __future__ import annotations
 
 from pathlib import Path
+from typing import Any
 
 import typer
 from rich.markup import escape
+from rich.padding import Padding
 from rich.table import Table
 
-from contracts.agents import StageOutcome
 from contracts.errors import InputError
+from contracts.evidence import Attempt, StageTally
 from flows.cli.apps import app, console, emit_json, fail
 
+VERDICT_STYLE = {"accepted": "green", "best_so_far": "green", "rejected": "red", "rolled_back": "yellow",
+                 "revise": "yellow", "escalated": "yellow"}
+ROLE_WORDS = {"held_out": "held-out", "other": "other"}
 
-def _fmt_values(values: dict) -> str:
-    return "\n".join(f"{k}={v:.4g}" if isinstance(v, (int, float)) else f"{k}={v}" for k, v in values.items()) or "-"
+
+def passed_word(t: StageTally) -> str:
+    """'yes', 'best valid' (a valid candidate kept, targets not all met) or 'NO'."""
+    if not t.passed:
+        return "[red]NO[/red]"
+    return "[yellow]best valid[/yellow]" if t.unmet_targets or t.status == "best_valid" else "[green]yes[/green]"
+
+
+def sims_parts(t: StageTally) -> str:
+    """'12 simulations = 6 in the harness loop + 2 screening + 4 held-out' (a stage that ran some outside it)."""
+    parts = [f"{t.loop_sim_calls} in the harness loop"] + [f"{n} {ROLE_WORDS.get(r, r)}"
+                                                             for r, n in t.extra_sim_calls.items()]
+    return f"{t.sim_calls} simulations = " + " + ".join(parts)
+
+
+def tally_table(tallies: list[StageTally], figures: dict[str, str] | None = None, title: str = "stages") -> Table:
+    """stage | passed | attempts | simulations [| key figures]: the one table of counts every command prints."""
+    table = Table(title=title, title_justify="left")
+    table.add_column("stage", no_wrap=True)
+    table.add_column("passed", no_wrap=True)
+    table.add_column("attempts", justify="right", no_wrap=True)
+    table.add_column("simulations", justify="right", no_wrap=True)
+    if figures is not None:
+        table.add_column("key figures", overflow="fold", ratio=1)
+    for t in tallies:
+        row = [t.stage, passed_word(t), str(t.attempts), str(t.sim_calls)]
+        table.add_row(*row, *([escape(figures.get(t.stage, ""))] if figures is not None else []))
+    return table
+
+
+def tally_notes(tallies: list[StageTally]) -> list[str]:
+    """Below the table, in full: where the simulations outside a harness loop went, and why a stage did not
+    simply pass."""
+    lines = [f"{t.stage}: {sims_parts(t)}" for t in tallies if t.extra_sim_calls]
+    for t in tallies:
+        if not t.passed:
+            lines.append(f"{t.stage}: NO — {t.message or t.status}")
+        elif t.unmet_targets or t.status == "best_valid":
+            unmet = ", ".join(t.unmet_targets) or "see evidence"
+            lines.append(f"{t.stage}: best valid — the best valid candidate was kept; targets not met: {unmet}")
+    return lines
+
+
+def _fmt(v: Any) -> str:
+    return f"{v:.4g}" if isinstance(v, float) else str(v)
+
+
+def attempt_block(a: Attempt) -> list[str]:
+    """An attempt as a heading line and indented detail lines (wrapped by the console, never cut)."""
+    src = a.source.backend + (f"/{a.source.model}" if a.source.model else "")
+    if a.source.retries:
+        src += f", {a.source.retries} retries"
+    style = VERDICT_STYLE.get(a.verdict)
+    verdict = f"[{style}]{a.verdict}[/{style}]" if style else a.verdict
+    score = "" if a.score is None else f", score {a.score:.3f}"
+    head = (f"[bold]{a.stage} #{a.iteration}[/bold] {escape(a.action)} ({escape(src)}): {verdict}{score}, "
+            f"{a.evidence.sim_calls} simulation{'' if a.evidence.sim_calls == 1 else 's'}")
+    failed = [g.gate for g in a.gates if not g.passed]
+    gates = ("failed gates: " + ", ".join(failed)) if failed else ("gates: all pass" if a.gates else "not probed")
+    why = a.rejected_before_probe or (f"[{a.diagnosis}] " if a.diagnosis else "") + (a.critique or a.rationale)
+    values = ", ".join(f"{k}={_fmt(v)}" for k, v in a.proposal.items()) or "-"
+    return [head, escape(values), escape(gates), escape(why or "-")]
+
+
+def print_tallies(tallies: list[StageTally], figures: dict[str, str] | None = None, title: str = "stages") -> None:
+    """The tally table and its notes."""
+    console.print(tally_table(tallies, figures, title))
+    for line in tally_notes(tallies):
+        console.print(line, markup=False, highlight=False)
 
 
 @app.command("evidence")
@@ -25,41 +98,32 @@ def evidence(
 ) -> None:
     """Print the harness's attempt history: proposal, source, evidence, gates, verdict."""
     from tasks.agents.records import find_attempt_files, read_attempts
+    from tasks.record.tally import stage_tallies
 
     try:
         files = find_attempt_files(path)
-        records = [(f, a) for f in files for a in read_attempts(f)]
+        by_file = {f: read_attempts(f) for f in files}
     except InputError as exc:
         fail(str(exc))
     if not files:
         fail(f"{path}: no evidence/attempts.jsonl found")
-    if stage:
-        records = [(f, a) for f, a in records if a.stage == stage.upper()]
+    wanted = stage.upper() if stage else None
     if as_json:
-        emit_json([{"file": str(f), **a.model_dump(mode="json")} for f, a in records])
+        emit_json([{"file": str(f), **a.model_dump(mode="json")} for f, rows in by_file.items() for a in rows
+                   if not wanted or a.stage == wanted])
         return
-    for f in files:
-        rows = [a for g, a in records if g == f]
-        table = Table(title=str(f), show_lines=True)
-        for col in ("stage", "#", "action", "source", "proposal [SI]", "score", "failed gates", "verdict", "why"):
-            table.add_column(col, overflow="fold")
+    for f, rows in by_file.items():
+        root = f.parent.parent if f.parent.name == "evidence" else f.parent
+        tallies = [t for t in stage_tallies(root, rows) if not wanted or t.stage == wanted]
+        console.print(f"[bold]{escape(str(f))}[/bold]", highlight=False)
+        print_tallies(tallies)
         for a in rows:
-            src = a.source.backend + (f"\n{a.source.model}" if a.source.model else "")
-            if a.source.retries:
-                src += f"\n({a.source.retries} retries)"
-            failed = ", ".join(g.gate for g in a.gates if not g.passed) or ("-" if a.gates else "not probed")
-            why = a.rejected_before_probe or (f"[{a.diagnosis}] " if a.diagnosis else "") + (a.critique or a.rationale)
-            style = {"accepted": "green", "rejected": "red", "rolled_back": "yellow", "revise": "yellow"}.get(a.verdict)
-            table.add_row(a.stage, str(a.iteration), a.action, escape(src), _fmt_values(a.proposal),
-                          "-" if a.score is None else f"{a.score:.3f}", failed,
-                          f"[{style}]{a.verdict}[/{style}]" if style else a.verdict, escape(why[:200]))
-        console.print(table)
-        for outcome in sorted(f.parent.glob("*_outcome.json")):
-            try:
-                o = StageOutcome.model_validate_json(outcome.read_text(encoding="utf-8"))
-            except ValueError:
+            if wanted and a.stage != wanted:
                 continue
-            if not stage or o.stage == stage.upper():
-                colour = "green" if o.passed else "red"
-                console.print(f"{o.stage}: [{colour}]{o.status}[/{colour}] ({o.attempts_used} attempts, "
-                              f"{o.sim_calls} simulations): {escape(o.message)}")
+            head, *details = attempt_block(a)
+            console.print(head, highlight=False)
+            for line in details:
+                console.print(Padding(line, (0, 0, 0, 4)), highlight=False)
+        for t in tallies:  # how each harness ended, in its own words
+            if t.message and t.stage != "L0":
+                console.print(f"[bold]{t.stage}[/bold] {t.status}: {escape(t.message)}", highlight=False)

@@ -8,10 +8,9 @@ from pathlib import Path
 import typer
 from pydantic import ValidationError
 from rich.markup import escape
-from rich.table import Table
 
 from contracts.errors import validation_message
-from flows.cli.apps import app, check_device, console, emit_json, fail
+from flows.cli.apps import app, bench_app, check_device, console, emit_json, fail
 from flows.cli.geometry_cmds import GEOMETRY_BACKEND_HELP
 from flows.cli.llm_option import LLM_FALLBACK_HELP, llm_agents
 from flows.cli.preflight import check_request
@@ -26,19 +25,40 @@ def _default_out(text: str | None, image: Path | None, mesh: Path | None) -> Pat
     return Path("out") / slug
 
 
-def _summary_table(manifest) -> Table:  # type: ignore[no-untyped-def]
-    table = Table(title="validation summary")
-    for col in ("stage", "passed", "attempts", "simulations", "key figures"):
-        table.add_column(col)
-    keys = ("mass_kg", "effective_modulus_pa", "rebound_ratio", "recovery_ratio", "sag_ratio", "volume_m3",
-            "max_finger_force_n", "place_error_m")
-    for s in manifest.validation:
-        figs = ", ".join(f"{k}={s.metrics[k]:.3g}" for k in keys if k in s.metrics)
-        why = s.reason or ", ".join(s.failed_gates)
-        why = why if len(why) <= 120 else why[:117] + "..."  # in full below the table and in asset.json
-        table.add_row(s.stage, "yes" if s.passed else f"NO — {escape(why)}" if why else "NO", str(s.attempts),
-                      str(s.sim_calls), figs)
-    return table
+KEY_FIGURES = ("mass_kg", "effective_modulus_pa", "rebound_ratio", "recovery_ratio", "sag_ratio", "volume_m3",
+               "max_finger_force_n", "place_error_m")
+
+
+def print_summary(manifest, asset_dir: Path) -> None:
+    """The validation summary: counts from the attempt records (the same tallies `evidence` prints), key figures
+    from the manifest, and why a stage did not simply pass, in full."""
+    from contracts.evidence import StageTally
+    from flows.cli.evidence_cmds import print_tallies
+    from tasks.record.tally import stage_tallies
+
+    figures = {s.stage: ", ".join(f"{k}={s.metrics[k]:.3g}" for k in KEY_FIGURES if k in s.metrics)
+               for s in manifest.validation}
+    tallies = {t.stage: t for t in stage_tallies(asset_dir)}
+    for s in manifest.validation:  # a directory without its records (copied asset.json alone): the manifest's line
+        if s.stage not in tallies:
+            tallies[s.stage] = StageTally(stage=s.stage, status="passed" if s.passed else "failed", passed=s.passed,
+                                          attempts=s.attempts, loop_sim_calls=s.sim_calls,
+                                          message=s.reason or ", ".join(s.failed_gates))
+    print_tallies(sorted(tallies.values(), key=lambda t: t.stage), figures, title="validation summary")
+
+
+def preload_layers(l3: bool) -> None:
+    """Import the layer flows now: the generate flow waits for the local Prefect server before its first step, and
+    these imports (~2-3 s on 2 cores: trimesh, Warp, rerun) would otherwise only start after that wait."""
+    import contextlib
+    import importlib
+
+    for module in ("flows.l0_geometry", "flows.l1_physical", "flows.l2_material", "flows.renders", "tasks.mpm",
+                   "tasks.record.rerun_recording", *(("flows.l3_manipulation",) if l3 else ())):
+        importlib.import_module(module)
+    for module in ("prefect.flow_engine", "prefect.task_engine"):  # what running the first flow imports
+        with contextlib.suppress(ImportError):
+            importlib.import_module(module)
 
 
 @app.command("generate")
@@ -85,7 +105,7 @@ def generate(
         request = AssetRequest(text=text, image_path=image.absolute() if image else None,
                                mesh_path=mesh.absolute() if mesh else None, size_hint_m=size_m,
                                material_intent=intent, seed=seed, quality=quality,
-                               geometry_backend=geometry_backend or None)  # type: ignore[arg-type]
+                               geometry_backend=geometry_backend or None)
     except ValidationError as exc:
         fail("invalid request: " + validation_message(exc))
     if cache_dir is not None:
@@ -96,9 +116,17 @@ def generate(
     from tasks.agents.intent import targets_from_request
 
     targets_from_request(request)  # a rigid material is one line here, before the layers are imported
-    from flows.generate import TIMINGS, generate_asset, require_l3 as check_l3
+    from tasks.geometry.catalogue import check_text_size
 
-    with console.status("starting") as status:
+    check_text_size(request)  # so is '10 km long'
+    what = text if text is not None else (image or mesh).name
+    console.log(f"[bold]generate[/bold] {escape(repr(what))} -> {escape(str(out))} ({device}, {quality})")
+
+    with console.status("loading the layers and the local Prefect server") as status:
+        from flows.generate import TIMINGS, generate_asset, require_l3 as check_l3
+
+        preload_layers(l3)  # while Prefect's local server starts in its own process (~3 s on 2 cores)
+
         def on_stage(stage: str, message: str) -> None:
             status.update(f"{stage}: {message}")
             style = "yellow" if message.startswith("warning:") else "default"
@@ -113,7 +141,7 @@ def generate(
                    "manipulation": manifest.manipulation.model_dump(mode="json") if manifest.manipulation else None,
                    "files": manifest.files, "wall_time_s": dict(TIMINGS)})
     else:
-        console.print(_summary_table(manifest))
+        print_summary(manifest, out)
         console.print("wall time: " + ", ".join(f"{k} {v:.1f} s" for k, v in TIMINGS.items()))
         console.print(f"asset published: {out}")
     l3_line = next((s for s in manifest.validation if s.stage == "L3"), None)
@@ -130,13 +158,16 @@ def inspect_asset(
     as_json: bool = typer.Option(False, "--json"),
 ) -> None:
     """Print an asset's validation summary, material and physical model."""
-    from flows.generate import load_manifest
+    from contracts.manifest import AssetManifest  # not flows.generate: no Prefect import for reading a file
 
-    manifest = load_manifest(asset)
+    path = asset / "asset.json"
+    if not path.is_file():
+        fail(f"{asset} is not an asset directory (no asset.json)")
+    manifest = AssetManifest.model_validate_json(path.read_text(encoding="utf-8"))
     if as_json:
         emit_json(manifest.model_dump(mode="json"))
         return
-    console.print(_summary_table(manifest))
+    print_summary(manifest, asset)
     if manifest.material:
         m = manifest.material
         console.print(f"material: E = {m.youngs_modulus_pa:.4g} Pa, nu = {m.poisson_ratio:.3g}, "
@@ -183,3 +214,25 @@ def view(
     if not (os.environ.get("DISPLAY") or os.environ.get("WAYLAND_DISPLAY")) and os.name == "posix":
         fail("no display to open a viewer on; copy the .rrd files to a machine with one and run: " + " ".join(command))
     subprocess.Popen(command)  # the viewer runs on after this command returns
+
+
+@bench_app.command("generate")
+def bench_generate(
+    text: str = typer.Argument("a soft plush turtle toy, about 25 cm long", help="what to make"),
+    cache: Path = typer.Option(..., "--cache", help="cache root (a cold run fills it first when empty)"),
+    out: Path = typer.Option(..., "--out", help="asset directory"),
+    runs: int = typer.Option(3, "--runs", min=1, help="fully cached reruns to time (median reported)"),
+    l3: bool = typer.Option(True, "--l3/--no-l3", help="run L3 in each generate"),
+    as_json: bool = typer.Option(False, "--json", help="print the figures as JSON"),
+) -> None:
+    """The main job rerun from a full cache: seconds per rerun and to its first progress line, and the asset's size
+    per top-level folder (each run a fresh process, as a user's)."""
+    from benchmarks.generate_rerun import run
+
+    with console.status("timing generate ..."):
+        data = run(text, out.absolute(), cache.absolute(), runs, [] if l3 else ["--no-l3"])
+    if as_json:
+        emit_json(data)
+        return
+    console.print(f"warm rerun {data['warm_wall_s_median']} s (first line {data['first_line_s_median']} s), asset "
+                  f"{data['asset']['total_mb']} MB: {data['asset']['per_entry_mb']}")

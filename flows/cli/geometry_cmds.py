@@ -22,7 +22,7 @@ GEOMETRY_BACKEND_HELP = ("reconstruction backend that makes the mesh: a Python e
                          "HTTP endpoint 'http://host:port/path' (interface: tasks/geometry/backends.py)")
 
 
-def _agents(llm: str | None, fallback: str = "rule"):  # type: ignore[no-untyped-def]
+def _agents(llm: str | None, fallback: str = "rule"):
     """Every role played by one litellm model (L0: the shape Designer and Critic), or None for the offline code."""
     return llm_agents(llm, fallback)
 
@@ -57,7 +57,7 @@ def geometry(
         request = AssetRequest(text=text, image_path=image.absolute() if image else None,
                                mesh_path=mesh.absolute() if mesh else None, size_hint_m=size_m,
                                material_intent=intent, seed=seed, quality=quality,
-                               geometry_backend=geometry_backend or None)  # type: ignore[arg-type]
+                               geometry_backend=geometry_backend or None)
     except ValidationError as exc:
         fail("invalid request: " + validation_message(exc))
     if intent is not None and not intent.strip():
@@ -70,9 +70,10 @@ def geometry(
     with console.status(f"L0 geometry ({quality})..."):
         result = run_l0(request, use_cache=not no_cache, agents=_agents(llm, llm_fallback))
         write_l0(result, out, request=request)
-    record = json.loads((out / "geometry.json").read_text(encoding="utf-8"))
     if as_json:
-        emit_json(record)
+        from tasks.asset_dir import AssetDir, document_json
+
+        emit_json(document_json(AssetDir(out).geometry()))
     m = result.checks.metrics
     console.print(
         f"[bold]{result.info.name}[/] ({result.info.source}): {m['extent_x_m']:.3f} x {m['extent_y_m']:.3f} x "
@@ -85,7 +86,7 @@ def geometry(
         fail(f"L0 hard gates failed: {', '.join(result.checks.failed)} (outputs kept in {out} as evidence)", code=1)
 
 
-def _preflight(request) -> None:  # type: ignore[no-untyped-def]
+def _preflight(request) -> None:
     """Cheap input checks before any flow starts (missing files, unsupported formats, absurd stated sizes)."""
     from tasks.geometry import catalogue
     from tasks.geometry.mesh_import import SUPPORTED

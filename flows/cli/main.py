@@ -4,23 +4,39 @@ from __future__ import annotations
 
 import logging
 import sys
+from typing import Any
 
-from contracts.errors import DeformSmithError
-from flows.cli.apps import app
-from flows.cli.preflight import filesystem_error, is_filesystem_error
+# Nothing heavy at import: main() starts the local Prefect server first, then imports the rest.
 
-# Each module registers its commands on the shared apps when imported.
-from flows.cli import schema_cmds  # noqa: E402,F401
-from flows.cli import physical_cmds  # noqa: E402,F401
-from flows.cli import material_cmds  # noqa: E402,F401
-from flows.cli import generate_cmds  # noqa: E402,F401
-from flows.cli import mpm_cmds  # noqa: E402,F401
-from flows.cli import geometry_cmds  # noqa: E402,F401
-from flows.cli import evidence_cmds  # noqa: E402,F401
-from flows.cli import cache_cmds  # noqa: E402,F401
-from flows.cli import batch_cmds  # noqa: E402,F401
-from flows.cli import manipulate_cmds  # noqa: E402,F401
-from flows.cli import eval_cmds  # noqa: E402,F401
+# The command modules register their commands on the shared apps when imported. A command line names one command:
+# only its module is imported (each pulls in its own libraries), so `generate` prints its first line sooner; --help,
+# a group (cache, bench, verify) and anything unknown import them all, in this order.
+COMMAND_MODULES = ("schema_cmds", "physical_cmds", "material_cmds", "generate_cmds", "mpm_cmds", "geometry_cmds",
+                   "evidence_cmds", "cache_cmds", "batch_cmds", "manipulate_cmds", "eval_cmds")
+MODULE_OF = {"schema": "schema_cmds", "physical": "physical_cmds", "probe": "material_cmds",
+             "material": "material_cmds", "generate": "generate_cmds", "inspect": "generate_cmds",
+             "view": "generate_cmds", "geometry": "geometry_cmds", "evidence": "evidence_cmds",
+             "batch": "batch_cmds", "manipulate": "manipulate_cmds", "replay": "manipulate_cmds",
+             "eval": "eval_cmds"}
+
+
+def register_commands(argv: list[str] | None = None) -> None:
+    """Import the command module the command line names (all of them when it names none we know)."""
+    import importlib
+
+    name = MODULE_OF.get(argv[0]) if argv else None
+    for module in (name,) if name else COMMAND_MODULES:
+        importlib.import_module(f"flows.cli.{module}")
+
+
+def __getattr__(name: str) -> Any:
+    """`from flows.cli.main import app`: the app with every command registered."""
+    if name == "app":
+        from flows.cli.apps import app
+
+        register_commands()
+        return app
+    raise AttributeError(f"module 'flows.cli.main' has no attribute {name!r}")
 
 
 # commands that run Prefect flows: their process starts Prefect's local API server first thing, in the background
@@ -40,6 +56,9 @@ class _UserErrorTracebacks(logging.Filter):
     runs' one-line 'Finished in state Failed(...)' records stay)."""
 
     def filter(self, record: logging.LogRecord) -> bool:
+        from contracts.errors import DeformSmithError
+        from flows.cli.preflight import is_filesystem_error
+
         exc = record.exc_info[1] if record.exc_info else None
         return not (isinstance(exc, DeformSmithError) or is_filesystem_error(exc))  # type: ignore[arg-type]
 
@@ -56,10 +75,15 @@ def quiet_user_error_logs() -> None:
 
 def main() -> None:
     """Run the CLI; a DeformSmithError becomes one line on stderr and its exit code."""
-    _prestart_for(sys.argv[1:])
+    _prestart_for(sys.argv[1:])  # first: the server's start overlaps the imports below
+    from contracts.errors import DeformSmithError
+    from flows.cli.apps import app
+    from flows.cli.preflight import filesystem_error, is_filesystem_error
+
+    register_commands(sys.argv[1:])
     quiet_user_error_logs()
     try:
-        app()
+        globals().get("app", app)()  # (tests set a stand-in here)
     except DeformSmithError as exc:
         sys.stderr.write(f"error: {exc}\n")
         sys.exit(exc.exit_code)

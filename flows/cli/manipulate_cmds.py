@@ -26,10 +26,11 @@ def manipulate(
     An L3 that does not pass (no grasp, no valid pick) is a result: recorded, printed with its reason, exit 0
     (exit 7 with --require-l3)."""
     from cache import use_cache_root
+    from tasks.asset_dir import AssetDir
 
-    if not (asset / "geometry.json").is_file():
+    if not AssetDir(asset).has("geometry"):
         fail(f"{asset} is not an asset directory (no geometry.json)")
-    if not (asset / "physical.json").is_file():
+    if not AssetDir(asset).has("physical"):
         fail(f"{asset} has no physical.json: run `deformsmith physical --asset {asset}` first")
     if quality not in ("draft", "standard"):
         fail(f"--quality must be draft or standard, got '{quality}'")

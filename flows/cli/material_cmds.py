@@ -19,7 +19,9 @@ KINDS = ("place", "drop", "slide", "compress", "lift", "stability")
 
 def _check_asset(asset: Path) -> None:
     """The asset directory must hold an L0 output."""
-    if not (asset / "geometry.json").is_file():
+    from tasks.asset_dir import AssetDir
+
+    if not AssetDir(asset).has("geometry"):
         fail(f"{asset} is not an asset directory (no geometry.json); run `deformsmith geometry ... --out {asset}`")
 
 
@@ -34,18 +36,18 @@ def _material_overrides(E: float | None, nu: float | None, damping: float | None
     return given
 
 
-def _material(E: float | None, nu: float | None, damping: float | None, asset: Path):  # type: ignore[no-untyped-def]
+def _material(E: float | None, nu: float | None, damping: float | None, asset: Path):
     """The material to probe: the asset's L2 material (or the intent's priors), with the given overrides."""
-    from flows.l2_material import MATERIAL_JSON, l2_targets, load_material
-    from tasks.geometry.outputs import load_l0
+    from flows.l2_material import l2_targets
+    from tasks.asset_dir import AssetDir
 
     given = _material_overrides(E, nu, damping)
-    if (asset / MATERIAL_JSON).is_file():
-        base = load_material(asset).model_dump()
-    else:
-        pri = l2_targets(load_l0(asset), None).priors
-        base = {"youngs_modulus_pa": pri.get("youngs_modulus_pa", 3e4), "poisson_ratio": pri.get("poisson_ratio", 0.3),
-                "damping_rate_per_s": pri.get("damping_rate_per_s", 5.0)}
+    adir = AssetDir(asset)
+    if adir.has("material"):
+        base = adir.material_model().model_dump()
+    else:  # the priors always hold every material field (the vocabulary's default material fills the gaps)
+        pri = l2_targets(adir.l0, None).priors
+        base = {k: pri[k] for k in ("youngs_modulus_pa", "poisson_ratio", "damping_rate_per_s")}
     return _validated({**base, **given})
 
 
@@ -53,7 +55,7 @@ _PARAMETER_NAMES = {"youngs_modulus_pa": "E (--E) [Pa]", "poisson_ratio": "nu (-
                     "damping_rate_per_s": "damping (--damping) [1/s]"}
 
 
-def _validated(values: dict[str, float]):  # type: ignore[no-untyped-def]
+def _validated(values: dict[str, float]):
     """A Material, or one clear line naming the invalid parameter and a non-zero exit."""
     from contracts.material import Material
 
@@ -123,7 +125,6 @@ def material(
     as_json: bool = typer.Option(False, "--json", help="print material.json to stdout"),
 ) -> None:
     """Run L2 on an asset: MPM probes, harness-selected neo-Hookean material -> material.json, evidence, recordings."""
-    import json
 
     from flows.cli.physical_cmds import asset_path
 
@@ -136,7 +137,8 @@ def material(
     prefect_log_level("CRITICAL")
     from contracts.agents import AgentConfig
     from contracts.sim import SimConfig
-    from flows.l2_material import MATERIAL_JSON, run_l2
+    from flows.l2_material import run_l2
+    from tasks.asset_dir import AssetDir, document_json
 
     agents = AgentConfig.llm(llm) if llm else None
     import time
@@ -145,14 +147,15 @@ def material(
     with console.status("L2 material (MPM probes)..."):
         mat, outcome = run_l2(asset, intent, agents=agents, sim=SimConfig(cpu_threads=cpu_threads))
     wall_s = time.perf_counter() - started
-    record = json.loads((asset / MATERIAL_JSON).read_text(encoding="utf-8"))
+    adir = AssetDir(asset)
+    record = adir.material()
     if as_json:
-        emit_json(record)
+        emit_json(document_json(record))
     if mat is None:
         fail(f"L2 found no valid material: {outcome.message}", code=1)
     console.print(f"[bold]material[/]: E={mat.youngs_modulus_pa:.4g} Pa, nu={mat.poisson_ratio:.3g}, "
-                  f"damping={mat.damping_rate_per_s:.3g} 1/s ({outcome.status}, {record['sim_calls']} simulation "
-                  f"calls, {wall_s:.1f} s) -> {asset / MATERIAL_JSON}")
+                  f"damping={mat.damping_rate_per_s:.3g} 1/s ({outcome.status}, {record.sim_calls} simulation "
+                  f"calls, {wall_s:.1f} s) -> {adir.file('material')}")
 
 
 @bench_app.command("l2")
@@ -185,10 +188,7 @@ def bench_l2(
         fail("need --device cpu|cuda and --repeat >= 1")
     if intent is not None and not intent.strip():
         fail("--intent is empty")
-    import warp as wp
-
-    wp.config.quiet = True
-    from tasks.probes.bench import run_l2_bench
+    from benchmarks.l2_schedule import run_l2_bench  # the lab sits on top of flows: imported by this command only
 
     with contextlib.redirect_stdout(sys.stderr), console.status("benchmarking the L2 screening ..."):
         data = run_l2_bench(asset, intent, schedules, probes, device, repeat)

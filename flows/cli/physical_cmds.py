@@ -34,17 +34,17 @@ def physical(
     asset = asset_path(asset_dir, asset)
     if intent is not None and not intent.strip():
         fail("--intent is empty")
-    if not (asset / "geometry.json").is_file():
+    from tasks.asset_dir import AssetDir
+
+    if not AssetDir(asset).has("geometry"):
         fail(f"{asset} is not an L0 asset directory (no geometry.json); run `deformsmith geometry ... --out {asset}`")
     if cache_dir is not None:
         use_cache_root(cache_dir)
     from flows.l1_physical import run_l1
 
-    import json
-
     with console.status("L1: rigid probes in pybullet"):
         phys, outcome = run_l1(asset, intent)
-    mass = json.loads((asset / "physical.json").read_text(encoding="utf-8")).get("mass_check") or {}
+    mass = AssetDir(asset).physical().mass_check  # tasks.physical.mass.MassCheck as written
     if as_json:
         emit_json({"passed": outcome.passed, "status": outcome.status, "message": outcome.message,
                    "physical_model": phys.model_dump(mode="json") if phys else None, "metrics": outcome.metrics,
@@ -63,7 +63,7 @@ def physical(
         if mass:
             lo, hi = mass["band_kg"]
             console.print(f"mass check: {lo * 1e3:.3g}-{hi * 1e3:.3g} g from {mass['source']}")
-            for note in mass.get("notes", []):
+            for note in mass["notes"]:
                 console.print(f"  {note}")
         console.print(outcome.message)
     if not outcome.passed:

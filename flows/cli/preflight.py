@@ -107,7 +107,7 @@ def check_locations(out: Path | None = None, cache: bool = True, out_root: Path 
         remove_dead_temporaries(root)  # what killed runs left in the cache (their pids are dead)
 
 
-def check_request(request, out: Path | None, cache: bool = True) -> None:  # type: ignore[no-untyped-def]
+def check_request(request, out: Path | None, cache: bool = True) -> None:
     """Every pre-flight check of a generation request: its image's header (decompression bombs) and the locations."""
     if request.image_path is not None and Path(request.image_path).is_file():
         from tasks.geometry.image_guard import check_image_size

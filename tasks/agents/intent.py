@@ -119,11 +119,11 @@ def targets_from_intent(
     name, word = _match_material(text, vocab, concept.default_material if concept else None)
     entry = vocab.materials[name]
     by_concept = word is None and concept is not None and concept.default_material == name
-    source = f"vocab:{word}" if word else f"concept:{concept.concept}({name})" if by_concept else \
+    source = f"vocab:{word}" if word else f"concept:{concept.concept}({name})" if by_concept and concept else \
         f"vocab:default({name})"
     bands: dict[str, tuple[float, float, str]] = {m: (lo, hi, source) for m, (lo, hi) in entry.bands.items()}
     matched = [word] if word else []
-    for mod_name, mod in vocab.modifiers.items():
+    for mod in vocab.modifiers.values():
         hit = next((w for w in sorted(mod.words, key=len, reverse=True) if _contains_phrase(text, w)), None)
         if hit is None:
             continue

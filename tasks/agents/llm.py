@@ -141,6 +141,7 @@ def ask(
     invalid: list[InvalidAnswer] = []  # answers the model gave that failed validation: each costs the stage budget
     transport: list[str] = []  # calls that got no answer (no key, no server, timeouts): cost nothing
     fatal: str | None = None
+    error: str | None = None
     unusable = False
     for _ in range(max(1, max_answers or cfg.max_answers)):
         kwargs: dict[str, Any] = {"model": model, "messages": list(messages), "timeout": cfg.timeout_s,

@@ -23,8 +23,9 @@ from tasks.agents.vocab import StageRoutes, stage_routes
 class ProbeRunner(Protocol):
     """The layer's Prober: runs the stage's required probes on a full candidate and returns their results."""
 
-    def __call__(self, values: dict[str, float], action: str) -> Sequence[ProbeResult]:
-        """Probe one candidate (values = every editable field) produced by one action."""
+    def __call__(self, values: dict[str, float], action: str, /) -> Sequence[ProbeResult]:
+        """Probe one candidate (values = every editable field) produced by one action (positional: any callable of
+        this shape is a ProbeRunner)."""
         ...
 
 
@@ -45,7 +46,7 @@ class Roles:
     critic: Critic
 
     @classmethod
-    def rule(cls, routes: StageRoutes | None = None) -> "Roles":
+    def rule(cls, routes: StageRoutes | None = None) -> Roles:
         """Every role played by the offline rule backend."""
         return cls(RulePlanner(routes), RuleDesigner(routes), RuleCritic(routes))
 
@@ -219,7 +220,7 @@ def run_stage(
             rationale=cand.rationale, evidence=EvidenceRecord(
                 probe_keys=[r.cache_key for r in results if r.cache_key], metrics=metrics,
                 recordings=[r.recording for r in results if r.recording], sim_calls=sum(r.sim_calls for r in results)),
-            gates=gates, score=score, verdict=verdict, diagnosis=crit.diagnosis, critique=crit.rationale + note,  # type: ignore[arg-type]
+            gates=gates, score=score, verdict=verdict, diagnosis=crit.diagnosis, critique=crit.rationale + note,
             parent_iteration=base_iteration, directions=dict(crit.directions), planner_source=plan.source,
             critic_source=judged.source))
         history.append(HistoryEntry(iteration=i, action=decision.action, values=values, metrics=metrics, valid=valid,
@@ -247,7 +248,7 @@ def run_stage(
                 f"no valid candidate: none of {len(attempts)} attempt(s) passed every hard gate"
                 + (f" (failing gates: {failing})" if failing else ""))
     return StageOutcome(
-        stage=contract.stage, status=status, values=best.values if best else None,  # type: ignore[arg-type]
+        stage=contract.stage, status=status, values=best.values if best else None,
         metrics=best.metrics if best else {}, score=best.score if best else None,
         best_iteration=best.iteration if best else None, attempts=attempts, attempts_used=len(attempts),
         sim_calls=sim_calls, escalation=escalation, message=message)

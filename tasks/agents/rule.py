@@ -204,8 +204,8 @@ class RuleCritic:
             return RoleReply(Critique(verdict="accept", diagnosis="none",
                                       rationale="every hard gate passes and every target band holds"), rule_source())
         if not failed:
-            return RoleReply(Critique(verdict="revise", diagnosis=STAGE_DIAGNOSIS.get(req.stage, "material"),  # type: ignore[arg-type]
-                                      directions=band_dirs, rationale="; ".join(band_notes),  # type: ignore[arg-type]
+            return RoleReply(Critique(verdict="revise", diagnosis=STAGE_DIAGNOSIS.get(req.stage, "material"),
+                                      directions=band_dirs, rationale="; ".join(band_notes),
                                       unmet=[b.metric for b in unmet]), rule_source())
         directions: dict[str, str] = {}
         ranks: dict[str, int] = {}
@@ -224,7 +224,7 @@ class RuleCritic:
         if diagnosis is None:
             diagnosis = "numerical" if any(g.value is None or not math.isfinite(g.value) for g in failed) else "none"
         text = "; ".join([f"gate '{g.gate}' failed ({g.metric}={g.value})" for g in failed] + band_notes)
-        return RoleReply(Critique(verdict="revise", diagnosis=diagnosis, directions=directions,  # type: ignore[arg-type]
+        return RoleReply(Critique(verdict="revise", diagnosis=diagnosis, directions=directions,
                                   rationale=text, unmet=[g.metric for g in failed] + [b.metric for b in unmet]),
                          rule_source())
 

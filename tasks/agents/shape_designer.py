@@ -64,14 +64,14 @@ def _metrics(program: ShapeProgram, mesh: trimesh.Trimesh) -> dict[str, float]:
 
 def _attempt(iteration: int, proposal: dict[str, Any], source: AgentSource, verdict: str, **kw: Any) -> Attempt:
     return Attempt(stage="L0", iteration=iteration, action=ACTION, proposal=proposal, source=source,
-                   verdict=verdict, **kw)  # type: ignore[arg-type]
+                   verdict=verdict, **kw)
 
 
 def _critique(text: str, program: ShapeProgram, mesh: trimesh.Trimesh, critic: RoleConfig,
               completion: Completion | None) -> RoleReply[ShapeCritique]:
     """The vision Critic's verdict on the rendered views (its retries cost no budget)."""
     req = ShapeCriticRequest(text=text, program=program, views=list(VIEWS),
-                             extents_m=tuple(float(v) for v in mesh.extents))  # type: ignore[arg-type]
+                             extents_m=tuple(float(v) for v in mesh.extents))
     accept = ShapeCritique(verdict="accept", rationale="the Critic gave no valid verdict: accepted on the contract "
                            "checks")
     return ask("shape_critic", critic, req, ShapeCritique, lambda c: None,
@@ -94,10 +94,11 @@ def design_shape(text: str, stated_size: str | None, designer: RoleConfig, criti
     previous: ShapeProgram | None = None
     feedback: str | None = None
     draft: tuple[ShapeProgram, trimesh.Trimesh, bool, int] | None = None
+    meshed: dict[str, tuple[trimesh.Trimesh, bool]] = {}  # the last program check() meshed, this round
     while left > 0:
         req = ShapeDesignRequest(text=text, stated_size=stated_size, bounds=bounds, previous=previous,
                                  critique=feedback, budget_left=left)
-        meshed: dict[str, tuple[trimesh.Trimesh, bool]] = {}
+        meshed.clear()
 
         def check(program: ShapeProgram) -> str | None:
             if (problem := check_program(program, bounds)) is not None:
@@ -133,15 +134,17 @@ def design_shape(text: str, stated_size: str | None, designer: RoleConfig, criti
         verdict_kw: dict[str, Any] = {}
         if critic is not None:
             crit = _critique(text, program, mesh, critic, completion)
-            verdict_kw = {"critique": crit.value.feedback() if crit.value.verdict == "revise" else crit.value.rationale,
+            verdict = crit.value
+            assert verdict is not None  # the Critic's fallback accepts
+            verdict_kw = {"critique": verdict.feedback() if verdict.verdict == "revise" else verdict.rationale,
                           "critic_source": crit.source}
-            if crit.value.verdict == "revise" and previous is None and left > 0:
+            if verdict.verdict == "revise" and previous is None and left > 0:
                 attempts.append(_attempt(it, proposal, reply.source, "revise", evidence=evidence, diagnosis="geometry",
                                          parent_iteration=parent, **verdict_kw))
-                draft, previous, feedback = (program, mesh, rotated, it), program, crit.value.feedback()
+                draft, previous, feedback = (program, mesh, rotated, it), program, verdict.feedback()
                 continue
-            if crit.value.verdict == "revise":
-                warnings.append(f"the shape Critic ({critic.model}) still asks for changes ({crit.value.feedback()}); "
+            if verdict.verdict == "revise":
+                warnings.append(f"the shape Critic ({critic.model}) still asks for changes ({verdict.feedback()}); "
                                 "kept: one revision round within the budget")
         attempts.append(_attempt(it, proposal, reply.source, "accepted", evidence=evidence, parent_iteration=parent,
                                  **verdict_kw))

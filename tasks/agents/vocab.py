@@ -97,7 +97,7 @@ class StageRoutes(Model):
     gates: dict[str, GateRoute] = Field(default_factory=dict)
 
     @model_validator(mode="after")
-    def _after_names_a_gate(self) -> "StageRoutes":
+    def _after_names_a_gate(self) -> StageRoutes:
         bad = {m: r.after for m, r in self.gates.items() if r.after is not None and (r.after not in self.gates or r.after == m)}
         if bad:
             raise ValueError(f"'after' must name another gate of the same table: {bad}")

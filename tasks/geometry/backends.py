@@ -44,7 +44,7 @@ from scipy.spatial import cKDTree
 
 from contracts.errors import InputError
 from contracts.request import AssetRequest
-from contracts.stage import load_contract
+from contracts.stage import L0Parameters, load_contract
 from tasks.geometry import catalogue
 from tasks.geometry.canonical import canonicalize
 from tasks.geometry.checks import outside_distance
@@ -95,7 +95,7 @@ def load_entry_point(spec: str) -> Callable[[dict[str, Any]], Any]:
     func = getattr(module, func_name, None)
     if not callable(func):
         raise GeometryBackendError(f"geometry backend '{spec}': module '{module_name}' has no function '{func_name}'")
-    return func  # type: ignore[no-any-return]
+    return func
 
 
 def _backend_request(request: AssetRequest) -> dict[str, Any]:
@@ -190,6 +190,7 @@ def _as_mesh(result: Any) -> trimesh.Trimesh:
         return load_mesh_file(Path(result))
     if isinstance(result, trimesh.Scene):
         result = result.to_geometry() if hasattr(result, "to_geometry") else result.dump(concatenate=True)
+    c: np.ndarray | None
     if isinstance(result, trimesh.Trimesh):
         v, f, c = result.vertices, result.faces, _vertex_colors(result)
     elif isinstance(result, dict) and {"vertices", "faces"} <= set(result):
@@ -324,8 +325,8 @@ def from_backend(request: AssetRequest, settings: Any) -> tuple[dict[str, np.nda
     from tasks.geometry import pipeline
 
     spec = str(request.geometry_backend).strip()
-    params = load_contract("L0").parameters
-    timeout_s = float(params.get("geometry_backend_timeout_s", 600))
+    params = L0Parameters.of(load_contract("L0"))
+    timeout_s = params.geometry_backend_timeout_s
     with tempfile.TemporaryDirectory(prefix="deformsmith-backend-") as tmp:
         out = call_backend(spec, request, Path(tmp), timeout_s)
     try:
@@ -334,7 +335,7 @@ def from_backend(request: AssetRequest, settings: Any) -> tuple[dict[str, np.nda
         raise GeometryBackendError(f"geometry backend '{spec}' returned a mesh that cannot be repaired: {exc}") \
             from exc
     warnings: list[str] = []
-    size, design = _target_size(request, out, float(params.get("geometry_backend_default_size_m", 0.2)),
+    size, design = _target_size(request, out, params.geometry_backend_default_size_m,
                                 warnings, notes)
     mesh, rotated = canonicalize(repaired, "most_stable", align_xy=True)
     try:
@@ -347,7 +348,7 @@ def from_backend(request: AssetRequest, settings: Any) -> tuple[dict[str, np.nda
     entry = design.entry if design is not None else None
     extra = concept_fields(design, mesh)
     info = pipeline.BuildInfo(
-        source=request.input_kind, name=name,  # type: ignore[arg-type]
+        source=request.input_kind, name=name,
         category=design.program.category if design is not None else "unknown", entry=entry, size=size,
         modifiers=design.modifiers if design is not None else [], reoriented=rotated,
         notes=[f"mesh made by the geometry backend '{spec}'", *out.notes, *notes],

@@ -15,11 +15,11 @@ from contracts.base import Model
 from contracts.concept import ConceptMatch
 from contracts.errors import InputError
 from contracts.lexicon import load_lexicon
+from contracts.request import MAX_SIZE_M, MIN_SIZE_M, AssetRequest
 from contracts.shape import ShapeProgram
 from tasks.geometry import concepts, size_words
 
 CATALOGUE_FILE = Path(__file__).with_name("catalogue.yaml")
-MIN_SIZE_M, MAX_SIZE_M = 0.01, 2.0
 
 _UNITS = {"mm": 0.001, "millimeter": 0.001, "millimetre": 0.001, "cm": 0.01, "centimeter": 0.01,
           "centimetre": 0.01, "m": 1.0, "meter": 1.0, "metre": 1.0, "in": 0.0254, "inch": 0.0254, "inches": 0.0254,
@@ -150,8 +150,7 @@ def parse_size(text: str) -> SizeSpec:
     if m:
         unit = _UNITS[_unit_key(m.group(6))]
         dims = [float(m.group(i)) * unit for i in (1, 3, 5) if m.group(i) is not None]
-        ext = tuple(dims) + (None,) * (3 - len(dims))
-        return SizeSpec(extents_m=ext, stated=m.group(0))  # type: ignore[arg-type]
+        return SizeSpec(extents_m=tuple(dims) + (None,) * (3 - len(dims)), stated=m.group(0))
     ext: list[float | None] = [None, None, None]
     stated = []
     longest = None
@@ -175,7 +174,7 @@ def parse_size(text: str) -> SizeSpec:
             return SizeSpec(longest_m=said.longest_m, stated="; ".join(said.stated))
         return SizeSpec()
     if any(v is not None for v in ext):
-        return SizeSpec(extents_m=tuple(ext), stated="; ".join(stated))  # type: ignore[arg-type]
+        return SizeSpec(extents_m=tuple(ext), stated="; ".join(stated))
     return SizeSpec(longest_m=longest, stated="; ".join(stated))
 
 
@@ -236,6 +235,13 @@ def check_size(size: SizeSpec) -> None:
                 f"requested size {v:g} m ({size.stated or 'size hint'}) is outside the supported range "
                 f"[{MIN_SIZE_M:g}, {MAX_SIZE_M:g}] m"
             )
+
+
+def check_text_size(request: AssetRequest) -> None:
+    """Refuse, before any layer runs, a size stated in the request's text outside what L0 can build (a --size-m
+    hint overrides the text's sizes and is checked by the request itself)."""
+    if request.text and request.size_hint_m is None:
+        check_size(parse_size(normalise_sizes(request.text)))
 
 
 _HYPHEN_SIZE = re.compile(r"(\d)\s*-\s*(mm|cm|m|inch|in|ft)\b(?:\s*-\s*(?=[a-z]))?", re.I)

@@ -480,7 +480,7 @@ def apply_colors(program: ShapeProgram, text: str) -> tuple[ShapeProgram, dict[s
             group_words[form] = g
     applied: dict[str, str] = {}
     primary: str | None = None
-    for start, end, word in hits:
+    for _start, end, word in hits:
         after = re.findall(r"[a-z]+", text[end:])[:3]
         if after and (after[0] in _SPOTS + _STRIPES or after[:2] == ["polka", "dots"]):
             continue  # 'black spots': the pattern's colour (apply_pattern)

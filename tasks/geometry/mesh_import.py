@@ -9,10 +9,11 @@ import trimesh
 from scipy.spatial import cKDTree
 
 from contracts.errors import InputError
+from contracts.request import MESH_SUFFIXES
 from tasks.geometry.meshing import mesh_from_field, split_largest
 from tasks.geometry.raster import lattice_winding
 
-SUPPORTED = (".obj", ".ply", ".stl", ".glb", ".gltf", ".off")
+SUPPORTED = MESH_SUFFIXES
 REMESH_RESOLUTION = 128  # voxels along the longest extent when a voxel remesh is needed
 MAX_DETACHED_SHARE = 0.05  # separate bodies beyond this share of the volume make a mesh several objects [-]
 

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import json
 import shutil
 import tempfile
 from dataclasses import dataclass
@@ -20,9 +19,10 @@ from tasks.geometry.gaussians import read_3dgs_ply, rest_covariances, write_3dgs
 from tasks.geometry.glb import write_glb
 from tasks.geometry.pipeline import Arrays, BuildInfo, arrays_to_mesh, proxy_parts
 from tasks.geometry.render import write_renders
+from contracts.asset_dir import GEOMETRY_JSON, GeometryRecord
+from tasks.asset_dir import AssetDir, document_json
 from tasks.publish import replace_directory
 
-GEOMETRY_JSON = "geometry.json"
 PARTICLES = "particles.zarr"
 
 
@@ -55,11 +55,11 @@ def write_outputs(
               "metrics": checks.metrics,
               "gates": [gr.model_dump(mode="json") for gr in checks.gates], "passed": checks.passed,
               "failed_gates": checks.failed, "warnings": info.warnings, "files": files, **(extra or {})}
-    (out_dir / GEOMETRY_JSON).write_text(json.dumps(record, indent=2, sort_keys=True) + "\n", encoding="utf-8")
+    AssetDir(out_dir).write_geometry(GeometryRecord.model_validate(record))
     return files
 
 
-def publish_dir(build, out_dir: Path) -> None:  # type: ignore[no-untyped-def]
+def publish_dir(build, out_dir: Path) -> None:
     """Run build(tmp_dir) and rename tmp_dir into out_dir; on any error nothing is left behind."""
     out_dir = Path(out_dir).resolve()
     if out_dir.exists() and any(out_dir.iterdir()) and not (out_dir / GEOMETRY_JSON).exists():
@@ -97,9 +97,7 @@ class L0Asset:
 def load_l0(out_dir: Path) -> L0Asset:
     """Load an L0 directory written by write_outputs."""
     d = Path(out_dir)
-    if not (d / GEOMETRY_JSON).is_file():
-        raise InputError(f"{d} is not an L0 output directory (no {GEOMETRY_JSON})")
-    record = json.loads((d / GEOMETRY_JSON).read_text(encoding="utf-8"))
+    record = document_json(AssetDir(d).geometry())  # validated; InputError naming geometry.json
     g = zarr.open_group(str(d / PARTICLES), mode="r")
     s = g["surface_mesh"]
     mesh = arrays_to_mesh({k: np.asarray(s[k][...]) for k in ("vertices", "faces", "colors")})

@@ -24,8 +24,8 @@ class ParticleSettings(Model):
     min_particles: int = Field(default=1000, ge=0, description="refine the lattice until at least this many [-]")
 
 
-def inside_lattice(mesh: trimesh.Trimesh, origin: np.ndarray, spacing: float, shape: tuple[int, int, int]) -> np.ndarray:
-    """Boolean occupancy of lattice points origin + i*spacing (winding number > 0)."""
+def inside_lattice(mesh: trimesh.Trimesh, origin: np.ndarray, spacing: float, shape: tuple[int, ...]) -> np.ndarray:
+    """Boolean occupancy of lattice points origin + i*spacing (winding number > 0); shape (nx, ny, nz)."""
     winding, _ = lattice_winding(mesh.vertices, mesh.faces, origin, spacing, shape)
     return winding > 0
 

@@ -15,7 +15,7 @@ from contracts.errors import InputError
 from contracts.evidence import Attempt
 from contracts.request import AssetRequest, Quality
 from contracts.shape import ShapeProgram
-from contracts.stage import StageContract, load_contract
+from contracts.stage import L0Parameters, StageContract, load_contract
 from tasks.geometry import catalogue, image as image_mod, silhouette
 from tasks.geometry.canonical import canonicalize, rest_on_ground
 from tasks.geometry.checks import GeometryChecks, evaluate, geometry_metrics
@@ -50,7 +50,8 @@ class L0Settings(Model):
 def settings_from_contract(quality: Quality, contract: StageContract | None = None, seed: int = 0,
                            coacd_overrides: dict | None = None) -> L0Settings:
     """L0 settings for a quality preset from the contract's parameters."""
-    p = (contract or load_contract("L0")).parameters
+    contract = contract or load_contract("L0")
+    p, typed = contract.parameters, L0Parameters.of(contract)
     coacd = {k[len("coacd_"):]: (v[quality] if isinstance(v, dict) else v) for k, v in p.items() if k.startswith("coacd_")}
     coacd.update(coacd_overrides or {})
     return L0Settings(
@@ -59,13 +60,13 @@ def settings_from_contract(quality: Quality, contract: StageContract | None = No
         particles=ParticleSettings(
             cells_per_longest_extent=int(p["particles_per_longest_extent"][quality]),
             max_particles=int(p["max_particles"][quality]),
-            min_particles=int(p.get("min_particles", 1000)),
-            min_cells_through_thinnest=int(p.get("min_cells_through_thinnest", 4)),
+            min_particles=typed.min_particles,
+            min_cells_through_thinnest=typed.min_cells_through_thinnest,
         ),
         coacd=CoacdSettings(**coacd),
         gaussians_per_particle=float(p["gaussians_per_particle"]),
-        gaussian_surface_fraction=float(p.get("gaussian_surface_fraction", 0.75)),
-        max_gaussians=int(p.get("max_gaussians", 400_000)),
+        gaussian_surface_fraction=typed.gaussian_surface_fraction,
+        max_gaussians=typed.max_gaussians,
         seed=seed,
     )
 
@@ -224,10 +225,10 @@ def _from_image(request: AssetRequest, settings: L0Settings) -> tuple[Arrays, Bu
     mesh, rotated = canonicalize(mesh, "keep_if_stable", align_xy=True)
     mesh = _final_size(mesh, catalogue.SizeSpec(longest_m=longest, axis_scale=size.axis_scale))
     photo = silhouette.follow_camera(photo, before, mesh.vertices)
-    name = request.image_path.stem if request.image_path else "image object"  # type: ignore[union-attr]
+    name = request.image_path.stem if request.image_path else "image object"
     depth = float(np.ptp(mesh.vertices @ np.asarray(photo.camera_forward)))
     info = BuildInfo(source="image", name=name, category=catalogue.entry_category(entry) if entry else "unknown",
-                     entry=entry, program=named.program if photo.method == "program fit" else None, size=size,
+                     entry=entry, program=named.program if named is not None and photo.method == "program fit" else None, size=size,
                      modifiers=mods,
                      segmentation=method, thickness_m=depth, reoriented=rotated, notes=notes,
                      warnings=warnings, photo=photo,

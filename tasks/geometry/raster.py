@@ -55,9 +55,10 @@ def triangle_column_pairs(
 
 
 def lattice_winding(
-    vertices: np.ndarray, faces: np.ndarray, origin: np.ndarray, spacing: float, shape: tuple[int, int, int]
+    vertices: np.ndarray, faces: np.ndarray, origin: np.ndarray, spacing: float, shape: tuple[int, ...]
 ) -> tuple[np.ndarray, float]:
-    """Winding number of an outward-oriented mesh at lattice points, and the fraction of unbalanced columns (open mesh)."""
+    """Winding number of an outward-oriented mesh at lattice points (shape (nx, ny, nz)), and the fraction of unbalanced
+    columns (open mesh)."""
     nx, ny, nz = shape
     tri = np.asarray(vertices, dtype=np.float64)[np.asarray(faces)]
     e1, e2 = tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0]

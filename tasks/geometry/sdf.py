@@ -2,6 +2,9 @@
 
 from __future__ import annotations
 
+from collections.abc import Callable
+from typing import Any
+
 import numpy as np
 from scipy.spatial.transform import Rotation
 
@@ -84,7 +87,7 @@ def sdf_cone(p: np.ndarray, prim: Cone) -> np.ndarray:
     return s * np.sqrt(np.minimum(ca_x**2 + ca_y**2, cb_x**2 + cb_y**2)) - rr
 
 
-_SDF = {
+_SDF: dict[str, Callable[[np.ndarray, Any], np.ndarray]] = {
     "ellipsoid": sdf_ellipsoid, "superellipsoid": sdf_superellipsoid, "capsule": sdf_capsule,
     "rounded_box": sdf_rounded_box, "cylinder": sdf_cylinder, "torus": sdf_torus, "cone": sdf_cone,
 }
@@ -134,7 +137,7 @@ def program_sdf(p: np.ndarray, program: ShapeProgram) -> np.ndarray:
 def primitive_half_extent(part: Part) -> np.ndarray:
     """Half extents of the untransformed primitive's bounding box [m]."""
     prim = part.primitive
-    if prim.kind in ("ellipsoid", "superellipsoid"):
+    if prim.kind == "ellipsoid" or prim.kind == "superellipsoid":
         return np.asarray(prim.radii_m, dtype=np.float64)
     if prim.kind == "capsule":
         return np.array([prim.radius_m, prim.radius_m, prim.radius_m + prim.length_m / 2.0])

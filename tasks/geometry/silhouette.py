@@ -200,10 +200,10 @@ def fitted_field(frame: PhotoFrame, program: ShapeProgram, fit: ProgramFit) -> t
     prog[near] = (program_sdf(fit.to_program(pts.reshape(-1, 3)), program) * min(fit.scale) * cells).reshape(-1, len(y))
     prog[~near] = _outline_field(m)[~near][:, None] + BLEND_CELLS
     prog = prog.transpose(0, 2, 1)
-    cover = (prog < 0).any(axis=1)
+    covered = (prog < 0).any(axis=1)
     carved = smooth_max(prog, _outline_field(m)[:, None, :], BLEND_CELLS)
     # the generic profile where the program leaves the mask uncovered (fading out under the program's silhouette)
-    gap = ndimage.gaussian_filter((m & ~cover).astype(np.float64), 1.0) * m
+    gap = ndimage.gaussian_filter((m & ~covered).astype(np.float64), 1.0) * m
     half = medial_half_depth(m) * np.clip(2.0 * gap, 0.0, 1.0)
     y_mid = 0.5 * (cam_y.min() + cam_y.max()) * cells
     height = np.where(half > 0.3, half, -0.5 - ndimage.distance_transform_edt(half <= 0.3))

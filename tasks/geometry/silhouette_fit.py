@@ -66,7 +66,7 @@ def program_silhouettes(program: ShapeProgram) -> dict[str, tuple[np.ndarray, np
 def _silhouettes(program: ShapeProgram) -> dict[str, tuple[np.ndarray, np.ndarray, float]]:
     field, origin, spacing = sample_program(program, _SRC_RES)
     occ = field < 0.0
-    out = {}
+    out: dict[str, tuple[np.ndarray, np.ndarray, float]] = {}
     for view, rot in VIEW_ROTATION.items():
         depth_axis = int(np.argmax(np.abs(rot[1])))
         right_axis, up_axis = int(np.argmax(np.abs(rot[0]))), int(np.argmax(np.abs(rot[2])))
@@ -74,7 +74,7 @@ def _silhouettes(program: ShapeProgram) -> dict[str, tuple[np.ndarray, np.ndarra
         kept = [a for a in range(3) if a != depth_axis]
         if kept != [right_axis, up_axis]:
             sil = sil.T
-        out[view] = (sil.astype(np.float32), np.array([origin[right_axis], origin[up_axis]]), spacing)
+        out[view] = (np.asarray(sil, dtype=np.float32), np.array([origin[right_axis], origin[up_axis]]), spacing)
     return out
 
 

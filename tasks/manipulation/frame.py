@@ -25,7 +25,7 @@ class SimFrame:
     yaw_rad: float = 0.0
 
     @classmethod
-    def aligned(cls, closing_axis_world: np.ndarray, closing_axis_to_grid_deg: float | None) -> "SimFrame":
+    def aligned(cls, closing_axis_world: np.ndarray, closing_axis_to_grid_deg: float | None) -> SimFrame:
         """The frame where the closing axis' horizontal part makes ``closing_axis_to_grid_deg`` with the grid's x
         axis; None (or a vertical closing axis) keeps the world frame."""
         c = np.asarray(closing_axis_world, dtype=float)

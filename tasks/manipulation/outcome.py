@@ -21,24 +21,40 @@ normal force per finger N, the mean vertical force the object puts on both finge
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
 from contracts.physical import PhysicalModel
 from contracts.robot import ActionPlan
+from contracts.stage import StageContract, load_contract, packaged_parameters
 from tasks.probes.metrics import extreme_stretches
 from tasks.robot import Trajectory
 
 
+def force_budget_n(contract: StageContract | None = None) -> float:
+    """The force budget per finger [N]: the threshold of the contract's max_finger_force_n gate (a contract without
+    that gate: the packaged L3 contract's)."""
+    for c in (contract, load_contract("L3")):
+        gate = next((g for g in c.hard_gates if g.metric == "max_finger_force_n"), None) if c is not None else None
+        if gate is not None and gate.threshold is not None:
+            return float(gate.threshold)
+    raise ValueError("the packaged L3 contract has no max_finger_force_n gate")
+
+
+def _l3_parameter(name: str) -> float:
+    """Default of a tolerance: the packaged L3 contract's parameter (the one place it is set)."""
+    return field(default_factory=lambda: float(packaged_parameters("L3")[name]))
+
+
 @dataclass(frozen=True)
 class TrialTolerances:
-    """Limits the labels use (the L3 contract's parameters)."""
+    """Limits the labels use (the L3 contract's parameters; defaults: the packaged contract's)."""
 
-    lift_height_m: float = 0.10
-    place_tolerance_m: float = 0.03
-    slip_tolerance_m: float = 0.01
-    force_budget_n: float = 20.0
+    lift_height_m: float = _l3_parameter("lift_height_m")
+    place_tolerance_m: float = _l3_parameter("place_tolerance_m")
+    slip_tolerance_m: float = _l3_parameter("slip_tolerance_m")
+    force_budget_n: float = field(default_factory=force_budget_n)
     settle_speed_m_per_s: float = 0.02
     settle_particle_speed_m_per_s: float = 0.1
 
@@ -91,7 +107,7 @@ def bulk_strain(F_frames: np.ndarray, volumes_m3: np.ndarray | None = None,
 
 def _index_at(t: np.ndarray, time_s: float) -> int:
     """Index of the first control interval starting at or after time_s (clamped)."""
-    return int(min(len(t) - 1, max(0, np.searchsorted(t, time_s - 1e-9))))
+    return int(min(len(t) - 1, max(0, int(np.searchsorted(t, time_s - 1e-9)))))
 
 
 def label_trial(arrays: dict[str, np.ndarray], traj: Trajectory, plan: ActionPlan, physical: PhysicalModel,

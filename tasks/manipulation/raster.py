@@ -70,9 +70,11 @@ def draw(cam: CamFrame, width: int, height: int, background_rgb: np.ndarray, bac
     rgb = np.ascontiguousarray(background_rgb, np.uint8).reshape(-1, 3).copy()
     label = np.ascontiguousarray(background_label, np.uint8).ravel().copy()
     # the kernels update these three in place (CPU arrays share the numpy memory)
-    zb = wp.array(zbuf, dtype=float, device=dev, copy=False)
-    out = [wp.array(rgb, dtype=wp.uint8, device=dev, copy=False),
-           wp.array(label, dtype=wp.uint8, device=dev, copy=False)]
+    zb: wp.array = wp.array(zbuf, dtype=float, device=dev, copy=False)
+    out: list[wp.array] = [wp.array(rgb, dtype=wp.uint8, device=dev, copy=False),
+                           wp.array(label, dtype=wp.uint8, device=dev, copy=False)]
+    common: list[object]  # a pass's kernel arguments: arrays and scalars
+    colour: list[object]
     passes = []
     if meshes:
         offsets = np.cumsum([0] + [len(m.vertices_m) for m in meshes])

@@ -9,10 +9,9 @@ from __future__ import annotations
 
 import warp as wp
 
-# Warp prints its banner and module loads on stdout, which belongs to --json data: warnings and errors only
-wp.config.quiet = True
-if hasattr(wp, "LOG_WARNING"):
-    wp.config.log_level = wp.LOG_WARNING
+from tasks.native_output import init_warp_quietly
+
+init_warp_quietly()  # no banner on stdout (it belongs to --json data), no CUDA-driver notice on a CPU machine
 wp.set_module_options({"enable_backward": False, "optimization_level": 3})
 
 EDGE_EPS = wp.constant(1e-7)  # barycentric tolerance: pixel centres on a shared edge belong to both triangles

@@ -51,7 +51,7 @@ def render_frames(arrays: dict[str, np.ndarray], width: int = VIDEO_SIZE[0], hei
     return AttemptRenderer(arrays, attrs, width, height).frames()
 
 
-def video_writer(path: Path, fps: float = VIDEO_FPS):  # type: ignore[no-untyped-def]
+def video_writer(path: Path, fps: float = VIDEO_FPS):
     """An imageio writer for .mp4 (H.264, yuv420p) or .gif at fps (InputError for another suffix)."""
     import imageio.v2 as imageio
 
@@ -99,7 +99,8 @@ def replay(asset_dir: Path, attempt: int | None = None, frames_dir: Path | None 
         raise
     if writer is not None:
         writer.close()
-        tmp.replace(video)  # type: ignore[union-attr]
+        assert video is not None  # a writer is opened only for a video
+        tmp.replace(video)
         out.video = video
     if rrd is not None:
         out.recording = write_rrd(arrays, attrs, Path(rrd))
@@ -195,7 +196,11 @@ def write_rrd(arrays: dict[str, np.ndarray], attrs: dict, path: Path, max_partic
             rec.set_time(i, float(t))
             robot(rec, len(a_t) + i)
             shown = i % max(1, gaussian_every) == 0 or i == len(k_frames) - 1
-            obj(rec, *(frame_gaussians(arrays, i) if shown else (None, None)), arrays["particles_x_m"][i])
+            centers: np.ndarray | None = None
+            cov: np.ndarray | None = None
+            if shown:
+                centers, cov = frame_gaussians(arrays, i)
+            obj(rec, centers, cov, arrays["particles_x_m"][i])
             k_next = int(arrays["frame_control_index"][i + 1]) if i + 1 < len(k_frames) else len(t_c)
             for kk in range(frame_k, min(k_next, len(t_c))):  # curves at the control rate
                 rec.rec.set_time("sim_time", duration=float(t_c[kk]))
@@ -205,7 +210,7 @@ def write_rrd(arrays: dict[str, np.ndarray], attrs: dict, path: Path, max_partic
                 rec.scalar("grip_opening_m", float(arrays["command_opening_m"][kk, 0]))
             frame_k = max(frame_k, k_next)
         labels = attrs.get("labels", {})
-        rec.log("L3 attempt %s (%s): " % (attrs.get("attempt"), attrs.get("role", "")) + ", ".join(
+        rec.log(f"L3 attempt {attrs.get('attempt')} ({attrs.get('role', '')}): " + ", ".join(
             f"{k}={v:.4g}" for k, v in sorted(labels.items()) if isinstance(v, (int, float))))
         rec.log("phases: " + ", ".join(PHASES))
     return path

@@ -88,9 +88,9 @@ def panda_visual_meshes(cell_m: float = CLUSTER_CELL_M) -> tuple[LinkMesh, ...]:
     for link in ET.parse(root / "panda.urdf").getroot().iter("link"):
         vis = link.find("visual")
         mesh_el = vis.find("geometry/mesh") if vis is not None else None
-        if mesh_el is None:
+        if vis is None or mesh_el is None:
             continue
-        origin = vis.find("origin")  # type: ignore[union-attr]
+        origin = vis.find("origin")
         xyz = [float(x) for x in (origin.get("xyz", "0 0 0") if origin is not None else "0 0 0").split()]
         rpy = [float(x) for x in (origin.get("rpy", "0 0 0") if origin is not None else "0 0 0").split()]
         mesh = trimesh.load(root / mesh_el.get("filename", "").replace("package://", ""), force="mesh",
@@ -106,8 +106,7 @@ def panda_visual_meshes(cell_m: float = CLUSTER_CELL_M) -> tuple[LinkMesh, ...]:
 def link_poses(q_rad: np.ndarray, opening_m: np.ndarray) -> list[dict[str, tuple[np.ndarray, np.ndarray]]]:
     """Per robot state (arm angles [rad], finger opening [m]), each Panda link's world pose (position [m], rotation)
     by pybullet FK in a private DIRECT client, the base link included."""
-    import pybullet as pb
-
+    from tasks.quiet_pybullet import pybullet as pb
     from tasks.robot import Panda
 
     poses = []
@@ -191,7 +190,9 @@ _BOX_FACES = np.array([[0, 1, 2], [0, 2, 3]])
 @lru_cache(maxsize=1)
 def _unit_box() -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """A unit box ([-1, 1]^3) with 4 vertices per face (flat normals), faces wound outward."""
-    verts, faces, normals = [], [], []
+    verts: list[np.ndarray] = []
+    faces: list[list[int]] = []
+    normals: list[np.ndarray] = []
     for axis in range(3):
         for sign in (-1.0, 1.0):
             u, w = [k for k in range(3) if k != axis]

@@ -82,9 +82,9 @@ def backdrop(cam: Camera, target_xy_m: tuple[float, float] | None = None, target
     label = np.zeros(h * w, np.uint8)
     # floor
     t_floor = _plane_hit(eye[2] - FLOOR_Z_M, d[:, 2])
-    on = t_floor < depth
-    rgb[on] = FLOOR * np.clip(1.05 - 0.12 * t_floor[on], 0.75, 1.0)[:, None]
-    depth[on] = t_floor[on]
+    on_floor = t_floor < depth
+    rgb[on_floor] = FLOOR * np.clip(1.05 - 0.12 * t_floor[on_floor], 0.75, 1.0)[:, None]
+    depth[on_floor] = t_floor[on_floor]
     # table slab (ray-box, slab method); the face hit gives the colour
     with np.errstate(divide="ignore", invalid="ignore"):
         t0, t1 = (TABLE_LO_M - eye).astype(np.float32) / d, (TABLE_HI_M - eye).astype(np.float32) / d
@@ -129,10 +129,10 @@ def attempt_camera(arrays: dict[str, np.ndarray], width: int = VIDEO_SIZE[0], he
     """A fixed camera that frames the object's path (start, lift, place target) and the hand above it."""
     rest = arrays["rest_particles_m"].astype(np.float64)
     com = arrays["object_com_m"]
-    pts = [rest, com[np.isfinite(com).all(axis=1)], arrays["finger_position_m"].reshape(-1, 3)]
+    parts = [rest, com[np.isfinite(com).all(axis=1)], arrays["finger_position_m"].reshape(-1, 3)]
     if target_xy_m is not None:
-        pts.append(np.array([[target_xy_m[0], target_xy_m[1], 0.0]]))
-    pts = np.concatenate([p for p in pts if len(p)])
+        parts.append(np.array([[target_xy_m[0], target_xy_m[1], 0.0]]))
+    pts = np.concatenate([p for p in parts if len(p)])
     lo, hi = pts.min(axis=0), pts.max(axis=0)
     lo[2] = min(lo[2], 0.0)
     hi[2] += HAND_ABOVE_PADS_M

@@ -172,7 +172,10 @@ def run_trial(body: TrialBody, physical: PhysicalModel, material: Material, plan
     cmd_open = np.zeros((n_all, 2))
     com = np.full((n_all + 1, 3), np.nan)
     phase = np.zeros(n_all, dtype=np.int8)
-    frames_t, frames_x, frames_f, frames_k = [], [], [], []
+    frames_t: list[float] = []
+    frames_x: list[np.ndarray] = []
+    frames_f: list[np.ndarray] = []
+    frames_k: list[int] = []
     steps = 0
     healthy, issue, stopped = True, "", ""
     lift_end = traj.phases["lift"][1]
@@ -192,7 +195,10 @@ def run_trial(body: TrialBody, physical: PhysicalModel, material: Material, plan
     # control_t_s is plan time, control_sim_t_s the simulated time); while the object is held (closure, lift,
     # transport) they close further at the closing speed whenever the force falls below `reclose` x the target, never
     # past the plan's deepest squeeze; they open when the plan opens them wider (release)
-    guard_n, hold_opening, guard, last_normal = plan.grip_force_limit_n, None, {}, float("nan")
+    guard_n = plan.grip_force_limit_n
+    hold_opening: float | None = None  # set only when guard_n is not None
+    guard: dict[str, float] = {}
+    last_normal = float("nan")
     axis = np.asarray(traj.closing_axis_world, dtype=float)
     n_rest = max(1, int(round(0.1 / dt_c)))  # the `settled` label's COM speed window (tasks.manipulation.outcome)
     closure_end, skipped, contact_k = traj.phases["closure"][1], 0.0, 1.0
@@ -215,7 +221,7 @@ def run_trial(body: TrialBody, physical: PhysicalModel, material: Material, plan
             frames_k.append(k)
         st = traj.state_at(t0)
         hold_end = hold_opening
-        if (hold_opening is not None and st.phase in HOLD_PHASES and np.isfinite(last_normal)
+        if (hold_opening is not None and guard_n is not None and st.phase in HOLD_PHASES and np.isfinite(last_normal)
                 and last_normal < s.reclose_fraction * float(guard_n)):
             # per finger: at the closing speed, but no further than the contact stiffness measured at the target
             # says the force deficit needs (a stiff object is not squeezed by a whole speed x interval at once)
@@ -233,9 +239,11 @@ def run_trial(body: TrialBody, physical: PhysicalModel, material: Material, plan
                                      linear_velocity_m_per_s=frame.to_sim(m.linear_velocity_m_per_s[0, f]),
                                      angular_velocity_rad_per_s=frame.to_sim(m.angular_velocity_rad_per_s[0, f]))
         cmd_q[k], cmd_qdot[k] = st.q, st.qdot
-        held = hold_opening is not None and hold_opening > st.finger_opening_m
-        cmd_open[k] = ((hold_opening, (hold_end - hold_opening) / (t1 - t0)) if held  # type: ignore[operator]
-                       else (st.finger_opening_m, st.finger_opening_rate_m_per_s))
+        # hold_end is None only when hold_opening is
+        if hold_opening is not None and hold_end is not None and hold_opening > st.finger_opening_m:
+            cmd_open[k] = (hold_opening, (hold_end - hold_opening) / (t1 - t0))
+        else:
+            cmd_open[k] = (st.finger_opening_m, st.finger_opening_rate_m_per_s)
         sim_t[k] = sim.time_s + t_start
         pad_pos[k], pad_quat[k], pad_vel[k] = m.position_m[0], m.quat_xyzw[0], m.linear_velocity_m_per_s[0]
         phase[k] = PHASES.index(st.phase)
@@ -261,6 +269,7 @@ def run_trial(body: TrialBody, physical: PhysicalModel, material: Material, plan
         if not report.health.ok:
             healthy = False
             first_issue = report.health.first()
+            assert first_issue is not None  # health.ok is False only when an issue was recorded
             issue = f"{first_issue.check} at t={first_issue.sim_time_s:.4f} s: {first_issue.detail}"
             break
         if s.stop_when_lift_fails and t1 >= lift_end - 1e-9 > t0:

@@ -63,7 +63,7 @@ def build_physical_model(
         ground_friction=float(ground_friction),
         gripper_friction=float(gripper_friction),
         gravity_m_per_s2=gravity_m_per_s2,
-        center_of_mass_m=tuple(float(c) for c in com),  # type: ignore[arg-type]
-        extents_m=tuple(float(e) for e in extents),  # type: ignore[arg-type]
+        center_of_mass_m=tuple(float(c) for c in com),
+        extents_m=tuple(float(e) for e in extents),
         category=category,
     )

@@ -11,7 +11,7 @@ ground_tunnelling_m, engine_health_ok). Metric definitions are in each probe's d
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from pathlib import Path
 
 import numpy as np
@@ -19,9 +19,9 @@ import numpy as np
 from contracts.material import Material
 from contracts.probes import ProbeResult
 from contracts.sim import SimConfig
-from tasks.mpm import SceneSpec, box_collider
+from tasks.mpm import ColliderSpec, IntervalReport, SceneSpec, box_collider
 from tasks.probes.metrics import (
-    center_of_mass, compressive_strain, cross_section_area, det_f, kinetic_energy, layer_height, top_bottom_layers,
+    center_of_mass, compressive_strain, cross_section_area, det_f, kinetic_energy, top_bottom_layers,
 )
 from tasks.probes.rollout import (
     DeformableBody, Rollout, dx_of, fundamental_period_s, make_result, run_scheduled, sample_interval_s,
@@ -85,7 +85,7 @@ def compress(body: DeformableBody, materials: Material | Sequence[Material], str
                          schedule)
 
 
-def _compress(body: DeformableBody, mats: list[Material], strain: float, sim: SimConfig,
+def _compress(body: DeformableBody, mats: Sequence[Material], strain: float, sim: SimConfig,
               paths: Sequence[Path | None], held_out: bool) -> list[ProbeResult]:
     x0, s = body.positions_m, body.spacing_m
     dx = dx_of(body, sim)
@@ -169,7 +169,7 @@ def _compress(body: DeformableBody, mats: list[Material], strain: float, sim: Si
                 run.sim.control.set_collider(i, 0, linear_velocity_m_per_s=(0.0, 0.0, 0.0))
     out = []
     params = {"strain": strain, "area_m2": area}
-    for i, m in enumerate(mats):
+    for i in range(len(mats)):
         metrics = run.gate_metrics(i)
         if run.ok and forces and h_rec:
             F = float(np.mean([f[i] for f in forces]))
@@ -212,7 +212,7 @@ def drop(body: DeformableBody, materials: Material | Sequence[Material], height_
                          body, sim, schedule)
 
 
-def _drop(body: DeformableBody, mats: list[Material], frac: float, duration: float, sim: SimConfig,
+def _drop(body: DeformableBody, mats: Sequence[Material], frac: float, duration: float, sim: SimConfig,
           paths: Sequence[Path | None], held_out: bool) -> list[ProbeResult]:
     x0 = body.positions_m
     h = frac * body.height_m
@@ -240,12 +240,16 @@ def _drop(body: DeformableBody, mats: list[Material], frac: float, duration: flo
             ss.append(float(np.percentile(compressive_strain(d["F"]), 95)))
             run.scalar(i, "impact_strain_p95", ss[-1])
             calm[i] = calm[i] + 1 if (ks[-1] < quiet_ke and fs[-1] > 0) else 0
-        z.append(zs); vz.append(vs); ke.append(ks); fg.append(fs); strain95.append(ss)
+        z.append(zs)
+        vz.append(vs)
+        ke.append(ks)
+        fg.append(fs)
+        strain95.append(ss)
         if run.time_s >= 0.6 and np.all(calm * dt_s >= 0.1):
             break
     out = []
     params = {"height_fraction": frac, "height_m": h}
-    for i, m in enumerate(mats):
+    for i in range(len(mats)):
         metrics = run.gate_metrics(i)
         if run.ok and len(t) > 4:
             metrics.update(_drop_metrics(np.array(t), np.array(z)[:, i], np.array(vz)[:, i], np.array(ke)[:, i],
@@ -308,7 +312,7 @@ def lift(body: DeformableBody, materials: Material | Sequence[Material], max_squ
                          record_paths, body, sim, schedule)
 
 
-def _lift(body: DeformableBody, mats: list[Material], squeeze: float, safety: float, sim: SimConfig,
+def _lift(body: DeformableBody, mats: Sequence[Material], squeeze: float, safety: float, sim: SimConfig,
           paths: Sequence[Path | None], held_out: bool) -> list[ProbeResult]:
     x0, s = body.positions_m, body.spacing_m
     dx = dx_of(body, sim)
@@ -331,11 +335,12 @@ def _lift(body: DeformableBody, mats: list[Material], squeeze: float, safety: fl
     half = [0.0, 0.0, pad_z]
     half[a], half[b] = pad_a, half_t
 
-    def finger(side: int) -> object:
+    def finger(side: int) -> ColliderSpec:
         pos = [0.0, 0.0, float(com[2])]
         pos[a] = c_a
         pos[b] = (b_hi + gap + half_t) if side > 0 else (b_lo - gap - half_t)
-        return box_collider(half, friction=body.gripper_friction, position_m=tuple(pos), name=f"finger_{side:+d}")
+        return box_collider(half, friction=body.gripper_friction, position_m=(pos[0], pos[1], pos[2]),
+                            name=f"finger_{side:+d}")
 
     scenes = [SceneSpec(x0, body.volumes_m3, body.density_kg_per_m3, m, ground_friction=body.ground_friction,
                         colliders=[finger(+1), finger(-1)]) for m in mats]
@@ -353,9 +358,9 @@ def _lift(body: DeformableBody, mats: list[Material], squeeze: float, safety: fl
             v[b] = sign * vb
             run.sim.control.set_collider(i, j, linear_velocity_m_per_s=tuple(v))
 
-    def normal(rep: object, i: int) -> float:
-        return 0.5 * (abs(float(rep.collider_force(run.model, i, 0)[b]))  # type: ignore[attr-defined]
-                      + abs(float(rep.collider_force(run.model, i, 1)[b])))  # type: ignore[attr-defined]
+    def normal(rep: IntervalReport, i: int) -> float:
+        return 0.5 * (abs(float(rep.collider_force(run.model, i, 0)[b]))
+                      + abs(float(rep.collider_force(run.model, i, 1)[b])))
 
     def zs(states: list[dict[str, np.ndarray]], mask: np.ndarray) -> np.ndarray:
         return np.array([float(st["x"][mask, 2].mean()) for st in states])
@@ -366,7 +371,7 @@ def _lift(body: DeformableBody, mats: list[Material], squeeze: float, safety: fl
     n_forces = []
     closing = np.zeros(B, bool)
 
-    def grip(rep: object, v_z: float) -> None:
+    def grip(rep: IntervalReport, v_z: float) -> None:
         """Force control: squeeze while the grip is below target and the squeeze below its limit."""
         for i in range(B):
             closing[i] = normal(rep, i) < n_target and travel[i] < travel_max
@@ -396,7 +401,7 @@ def _lift(body: DeformableBody, mats: list[Material], squeeze: float, safety: fl
             ze.append(zs(st, ends))
     out = []
     params = {"max_squeeze_fraction": squeeze, "safety": safety, "rise_m": rise, "length_m": L}
-    for i, m in enumerate(mats):
+    for i in range(len(mats)):
         metrics = run.gate_metrics(i)
         if run.ok and zp:
             dp = float(np.mean([z[i] for z in zp]) - z_p0[i])
@@ -430,12 +435,11 @@ def stability(body: DeformableBody, materials: Material | Sequence[Material], du
                          schedule)
 
 
-def _stability(body: DeformableBody, mats: list[Material], duration: float, sim: SimConfig,
+def _stability(body: DeformableBody, mats: Sequence[Material], duration: float, sim: SimConfig,
                paths: Sequence[Path | None], held_out: bool) -> list[ProbeResult]:
     x0, H = body.positions_m, body.height_m
     scenes = [SceneSpec(x0, body.volumes_m3, body.density_kg_per_m3, m, ground_friction=body.ground_friction)
               for m in mats]
-    B = len(mats)
     dt_s = 0.02
     run = Rollout(scenes, sim, paths, "stability", int(duration / dt_s))
     M = body.mass_kg
@@ -450,10 +454,10 @@ def _stability(body: DeformableBody, mats: list[Material], duration: float, sim:
             x_mid = [s_["x"].astype(np.float64) for s_ in st]
     out = []
     vol = body.volumes_m3
-    for i, m in enumerate(mats):
+    for i in range(len(mats)):
         metrics = run.gate_metrics(i)
         ok = run.ok and x_mid is not None and bool(st) and metrics["finite"] == 1.0
-        if ok:
+        if ok and x_mid is not None:  # (ok implies it; the test narrows its type)
             k = np.array(ke)[:, i]
             tt = np.array(t)
             late = float(k[tt > tt[-1] - 0.5].mean())
@@ -465,7 +469,7 @@ def _stability(body: DeformableBody, mats: list[Material], duration: float, sim:
                 return float(np.sqrt(np.mean(np.sum(d * d, axis=1))))
 
             ke_ratio = late / peak if peak > 0 else 0.0
-            drift = rms(x_end, x_mid[i]) / H  # type: ignore[index]
+            drift = rms(x_end, x_mid[i]) / H
             deform = rms(x_end, x0) / H
             dvol = abs(float(np.sum(det_f(st[i]["F"]) * vol) / vol.sum()) - 1.0)
             decays = kinetic_energy_settles(late, peak, M, H)
@@ -481,6 +485,8 @@ def _stability(body: DeformableBody, mats: list[Material], duration: float, sim:
     return out
 
 
-PROBES = {"compress": compress, "drop": drop, "lift": lift, "stability": stability}
+# each takes (body, materials, sim=, record_paths=, held_out=, schedule=) and its own keyword parameters
+PROBES: dict[str, Callable[..., list[ProbeResult]]] = {"compress": compress, "drop": drop, "lift": lift,
+                                                       "stability": stability}
 
 __all__ = ["DeformableBody", "PROBES", "compress", "drop", "kinetic_energy_settles", "lift", "stability"]

@@ -15,10 +15,10 @@ from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
-import pybullet as pb
 import trimesh
 
 from contracts.errors import SimulationError
+from tasks.quiet_pybullet import pybullet as pb
 
 TIME_STEP_S = 1.0 / 480.0
 SOLVER_ITERATIONS = 100
@@ -120,7 +120,7 @@ def _pose(cid: int, uid: int) -> tuple[tuple[float, float, float], tuple[float, 
     local_orn = pb.getDynamicsInfo(uid, -1, physicsClientId=cid)[4]
     _, inv_local = pb.invertTransform((0.0, 0.0, 0.0), local_orn)
     _, asset_orn = pb.multiplyTransforms((0.0, 0.0, 0.0), orn, (0.0, 0.0, 0.0), inv_local)
-    return tuple(pos), tuple(asset_orn)  # type: ignore[return-value]
+    return tuple(pos), tuple(asset_orn)
 
 
 def _penetration_m(cid: int, uid: int) -> float:
@@ -147,7 +147,7 @@ def _sample(cid: int, uid: int, trace: Trace | None, t_s: float) -> None:
     """Append the body's pose to the trace when one is being recorded."""
     if trace is not None:
         pos, orn = _pose(cid, uid)
-        trace.append((t_s, tuple(pos), tuple(orn)))  # type: ignore[arg-type]
+        trace.append((t_s, pos, orn))  # _pose returns tuples
 
 
 def _settle(cid: int, uid: int, duration_s: float, trace: Trace | None = None, t0_s: float = 0.0) -> tuple[float, float]:

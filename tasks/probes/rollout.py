@@ -35,7 +35,7 @@ class DeformableBody:
     gripper_friction: float = 0.8
 
     @classmethod
-    def from_physical(cls, positions_m: np.ndarray, volumes_m3: np.ndarray, physical: PhysicalModel) -> "DeformableBody":
+    def from_physical(cls, positions_m: np.ndarray, volumes_m3: np.ndarray, physical: PhysicalModel) -> DeformableBody:
         """A body from L0 particles and the frozen L1 model (density, friction, spacing)."""
         return cls(np.asarray(positions_m, np.float64), np.asarray(volumes_m3, np.float64),
                    float(physical.particle_spacing_m), float(physical.density_kg_per_m3),
@@ -260,7 +260,7 @@ def plan_batches(body: DeformableBody, materials: Sequence[Material], sim: SimCo
     return groups
 
 
-def run_scheduled(impl: "ProbeImpl", materials: Sequence[Material], record_paths: Sequence[Path | None] | None,
+def run_scheduled(impl: ProbeImpl, materials: Sequence[Material], record_paths: Sequence[Path | None] | None,
                   body: DeformableBody, sim: SimConfig | None = None, schedule: str = "auto") -> list[ProbeResult]:
     """Run a probe over candidates as planned by plan_batches: each group one batched rollout (run_batched), the groups
     side by side on the CPU (tasks.probes.workers; a group's result is the same as alone: deterministic). Results come
@@ -288,7 +288,7 @@ def make_result(kind: str, params: dict[str, float], metrics: dict[str, float], 
                 held_out: bool = False, duration_s: float | None = None) -> ProbeResult:
     """A ProbeResult with only finite metrics (a metric that could not be measured is left out)."""
     clean = {k: float(v) for k, v in metrics.items() if v is not None and math.isfinite(float(v))}
-    spec = ProbeSpec(kind=kind, params=dict(params), held_out=held_out, duration_s=duration_s)  # type: ignore[arg-type]
+    spec = ProbeSpec(kind=kind, params=dict(params), held_out=held_out, duration_s=duration_s)
     return ProbeResult(spec=spec, metrics=clean, health=health, sim_calls=1, wall_time_s=float(wall_s))
 
 

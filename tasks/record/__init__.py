@@ -1,15 +1,25 @@
-"""Rerun recordings: one `.rrd` per probe with fixed entity paths and timelines."""
+"""Rerun recordings (one `.rrd` per probe with fixed entity paths and timelines) and the stage tallies that `inspect`
+and `evidence` print. The recording names load rerun on first use, so reading records stays quick."""
 
-from tasks.record.rerun_recording import (
-    COLLIDERS,
-    GAUSSIANS,
-    HARNESS_LOG,
-    METRICS,
-    PARTICLES,
-    ProbeRecording,
-    RecordingSummary,
-    read_recording,
-    recording_digest,
-)
+from __future__ import annotations
 
-__all__ = ["COLLIDERS", "GAUSSIANS", "HARNESS_LOG", "METRICS", "PARTICLES", "ProbeRecording", "RecordingSummary", "read_recording", "recording_digest"]
+from typing import Any
+
+_RECORDING_NAMES = ("COLLIDERS", "GAUSSIANS", "HARNESS_LOG", "METRICS", "PARTICLES", "ProbeRecording",
+                    "RecordingSummary", "read_recording", "recording_digest")
+
+__all__ = ["COLLIDERS", "GAUSSIANS", "HARNESS_LOG", "METRICS", "PARTICLES", "ProbeRecording", "RecordingSummary",
+           "read_recording", "recording_digest", "stage_tallies"]
+
+
+def __getattr__(name: str) -> Any:
+    """Import on first use: tasks.record.rerun_recording imports rerun (~1 s), tasks.record.tally does not."""
+    if name in _RECORDING_NAMES:
+        from tasks.record import rerun_recording
+
+        return getattr(rerun_recording, name)
+    if name == "stage_tallies":
+        from tasks.record.tally import stage_tallies
+
+        return stage_tallies
+    raise AttributeError(f"module 'tasks.record' has no attribute {name!r}")

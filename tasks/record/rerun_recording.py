@@ -52,7 +52,7 @@ class ProbeRecording:
         self._tmp = self.path.with_name(self.path.name + f".{os.getpid()}.tmp")
         self.rec = rr.RecordingStream(app_id, recording_id=recording_id)
 
-    def __enter__(self) -> "ProbeRecording":
+    def __enter__(self) -> ProbeRecording:
         self.path.parent.mkdir(parents=True, exist_ok=True)
         self.rec.save(str(self._tmp))
         self.set_time(0, 0.0)
@@ -144,7 +144,7 @@ def read_recording(path: str | os.PathLike[str]) -> RecordingSummary:
 _RUN_SPECIFIC_COLUMNS = ("rerun.controls.RowId", "log_time", "log_tick")
 
 
-def _plain(column):  # type: ignore[no-untyped-def]
+def _plain(column):
     """Time columns as integer nanoseconds (pyarrow cannot turn nanosecond durations into Python objects)."""
     import pyarrow as pa
 

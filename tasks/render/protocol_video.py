@@ -43,5 +43,5 @@ def write_mp4(frames: list[np.ndarray], path: Path, fps: float) -> Path:
     path.parent.mkdir(parents=True, exist_ok=True)
     with imageio.get_writer(path, fps=fps, codec="libx264", macro_block_size=8, quality=7) as writer:
         for frame in frames:
-            writer.append_data(frame)
+            writer.append_data(frame)  # type: ignore[attr-defined]  # typed as imageio's base reader/writer
     return path

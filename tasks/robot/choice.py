@@ -114,7 +114,7 @@ def choose_gripper(points_m: np.ndarray, normals: np.ndarray, center_of_mass_m: 
     order = sorted(names, key=lambda n: (gripper(n).stroke_m, n))
     options = [judge_gripper(n, points_m, normals, com, friction, youngs_modulus_pa, poisson_ratio, mass_kg,
                              gravity_m_per_s2, budget_n, tol, margin, floor_n, seed) for n in order]
-    smaller = []
+    smaller: list[GripperOption] = []
     for o in options:
         if o.good:
             why = (f"{o.name} (stroke {o.stroke_m * 1000:.0f} mm), the smallest gripper with a grasp within "

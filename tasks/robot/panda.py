@@ -20,11 +20,11 @@ from functools import lru_cache
 from pathlib import Path
 
 import numpy as np
-import pybullet as pb
 import pybullet_data
 
 from contracts.errors import SimulationError
 from contracts.robot import DEFAULT_GRIPPER
+from tasks.quiet_pybullet import pybullet as pb
 
 URDF = "franka_panda/panda.urdf"
 ARM_JOINTS = (0, 1, 2, 3, 4, 5, 6)
@@ -44,6 +44,8 @@ ROTATION_TOL_RAD = np.radians(0.5)  # accepted IK residual [rad]
 POLISH_POSITION_M = 2e-5  # the polish stops below these
 POLISH_ROTATION_RAD = np.radians(0.02)
 LIMIT_BAND_RAD = 0.2
+
+Vec3 = Sequence[float] | np.ndarray  # a point or direction, list or array
 
 
 class UnreachableError(SimulationError):
@@ -104,7 +106,7 @@ def pad_geometry(half_thickness_m: float = 0.004) -> PadGeometry:
     return PadGeometry(
         center_left_m=(float(cx), y0 + half_thickness_m, float(cz)),
         center_right_m=(float(-cx), -(y0 + half_thickness_m), float(cz)),
-        half_extents_m=tuple(float(h) for h in half),
+        half_extents_m=(float(half[0]), float(half[1]), float(half[2])),
         finger_origin_in_hand_m=0.0584,
         tip_beyond_center_m=float(v[:, 2].max() - cz),
     )
@@ -130,7 +132,7 @@ def hand_boxes_in_hand_frame(opening_m: float) -> tuple[tuple[np.ndarray, np.nda
     return ((palm[0], palm[1]), (left_lo, left_hi), (right_lo, right_hi))
 
 
-def grasp_rotation(closing_axis: Sequence[float], approach_axis: Sequence[float]) -> np.ndarray:
+def grasp_rotation(closing_axis: Vec3, approach_axis: Vec3) -> np.ndarray:
     """End-effector rotation (columns x, y, z in the world) for a grasp: z = approach, y = -closing (left finger)."""
     a = np.asarray(approach_axis, dtype=float)
     a = a / np.linalg.norm(a)
@@ -179,8 +181,8 @@ def matrix_to_quat(r: np.ndarray) -> np.ndarray:
         q[i] = 0.25 * s
         q[j] = (m[j, i] + m[i, j]) / s
         q[k] = (m[k, i] + m[i, k]) / s
-    q = np.asarray(q)
-    return q / np.linalg.norm(q)
+    quat = np.asarray(q)
+    return quat / np.linalg.norm(quat)
 
 
 class Panda:
@@ -372,7 +374,7 @@ class Panda:
         return cache[link]
 
     # --- inverse kinematics -------------------------------------------------------------------------------------
-    def ee_target_for_grasp(self, center_m: Sequence[float], rotation: np.ndarray) -> np.ndarray:
+    def ee_target_for_grasp(self, center_m: Vec3, rotation: np.ndarray) -> np.ndarray:
         """End-effector position [m] that puts the pad centres' midpoint at a grasp centre [m]."""
         offset = self.gripper.tcp_beyond_pad_center_m
         # the pads sit symmetrically in x and y of the hand, so only the depth along the approach axis differs
@@ -415,7 +417,7 @@ class Panda:
             q = np.clip(q + dq, self.lower, self.upper)
         return q, iterations
 
-    def solve_ik(self, position_m: Sequence[float], rotation: np.ndarray, seed: np.ndarray | None = None,
+    def solve_ik(self, position_m: Vec3, rotation: np.ndarray, seed: np.ndarray | None = None,
                  rest: np.ndarray | None = None, max_iterations: int = 200) -> IKSolution:
         """Arm angles that put the end-effector at a world pose; verified by FK, or UnreachableError.
 
@@ -457,7 +459,7 @@ class Panda:
             f"{best.position_error_m * 1000:.1f} mm, {np.degrees(best.rotation_error_rad):.1f} deg "
             f"(tolerance {POSITION_TOL_M * 1000:.1f} mm, {np.degrees(ROTATION_TOL_RAD):.1f} deg)")
 
-    def track_ik(self, position_m: Sequence[float], rotation: np.ndarray, seed: np.ndarray) -> IKSolution:
+    def track_ik(self, position_m: Vec3, rotation: np.ndarray, seed: np.ndarray) -> IKSolution:
         """IK for a pose close to the one at ``seed`` (a path step): polish from the seed, falling back to solve_ik."""
         position = np.asarray(position_m, dtype=float)
         q, its = self._polish(np.asarray(seed, dtype=float), position, rotation, np.asarray(seed, dtype=float), 100)
@@ -466,8 +468,7 @@ class Panda:
             return IKSolution(q, float(np.linalg.norm(ep)), float(np.linalg.norm(er)), its)
         return self.solve_ik(position, rotation, seed=seed, rest=seed)
 
-    def solve_grasp_ik(self, center_m: Sequence[float], closing_axis: Sequence[float],
-                       approach_axis: Sequence[float], seed: np.ndarray | None = None,
+    def solve_grasp_ik(self, center_m: Vec3, closing_axis: Vec3, approach_axis: Vec3, seed: np.ndarray | None = None,
                        rest: np.ndarray | None = None) -> IKSolution:
         """Arm angles that put the pad centres' midpoint at a grasp centre [m] with the grasp's axes (world)."""
         rot = grasp_rotation(closing_axis, approach_axis)

@@ -472,7 +472,8 @@ def _plan(plan: ActionPlan, pose: ObjectPose, object_height_m: float | None, pan
         (plan.retreat_duration_s, "retreat", _path_move(retreat, plan.retreat_duration_s), _hold_fingers(w_open)),
         (plan.settle_duration_s, "settle", _hold_arm(retreat(1.0)), _hold_fingers(w_open)),
     ]
-    segments, t, phases = [], 0.0, {}
+    segments, t = [], 0.0
+    phases: dict[str, tuple[float, float]] = {}
     for dur, name, arm, fingers in pieces:
         if dur <= 0.0:
             continue

@@ -137,7 +137,7 @@ def test_ctrl_c_stops_the_batch_at_once_and_reports(tmp_path: Path, signame: str
     assert [r.attempts for r in sorted(report.results, key=lambda r: r.name)] == [1, 0, 0]
 
 
-def _start_batch(tmp_path: Path, n: int, **popen: Any) -> "subprocess.Popen[Any]":
+def _start_batch(tmp_path: Path, n: int, **popen: Any) -> subprocess.Popen[Any]:
     """run_batch in a process of its own over n requests of 60 s each (r0, r1, ...), out into tmp_path/out."""
     reqs = _write(tmp_path / "r.jsonl", [f'{{"name": "r{i}", "text": "sleep 60"}}' for i in range(n)])
     code = ("import sys; from pathlib import Path; from flows.batch import run_batch; "

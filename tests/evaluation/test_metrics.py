@@ -5,7 +5,6 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
-import pytest
 
 from contracts.evaluation import ArmResult, Condition, ConditionResult
 from tasks.evaluation.flat import flat_contract

@@ -25,9 +25,10 @@ def _flat(text: str) -> str:
 
 def test_generate_publishes_an_object_no_gripper_can_hold(tmp_path: Path, monkeypatch: pytest.MonkeyPatch,
                                                           prefect_api: str) -> None:
-    """In process, L0, L1 and L3 for real; L2 replaced by its vocabulary prior and the drop videos skipped (both run in
-    the slow CLI test below). generate_asset returns, the asset is published with L3 failed for want of a grasp, the
-    reason in the manifest and in evidence/, no plan and no outcome; require_l3 then raises exit 7, asset kept."""
+    """In process, L0, L1 and L3 for real; L2's flow body replaced by its vocabulary prior and the drop videos skipped
+    (both run in the slow CLI test below). generate_asset returns, the asset is published with L3 failed for want of a
+    grasp, the reason in the manifest and in evidence/, no plan and no outcome; require_l3 then raises exit 7, asset
+    kept. The generate flow run shows each layer as a subflow run, in order."""
     import flows.l2_material as l2
     import flows.renders as renders
     from contracts.agents import StageOutcome
@@ -37,14 +38,17 @@ def test_generate_publishes_an_object_no_gripper_can_hold(tmp_path: Path, monkey
     from flows.l3_manipulation import material_of
     from tasks.geometry.outputs import load_l0
 
-    def prior_l2(asset_dir, request, agents=None, sim=None, physical=None):  # noqa: ANN001, ANN202
+    def prior_l2(asset_dir, request, agents=None, contract=None, sim=None, physical=None,  # noqa: ANN001, ANN202
+                 screen_first=True):  # noqa: ANN001
+        from tasks.asset_dir import AssetDir
+        from tests.asset_records import material_record
+
         material, _ = material_of(Path("/nonexistent"), load_l0(asset_dir))
-        (Path(asset_dir) / "material.json").write_text(json.dumps(
-            {"stage": "L2", "passed": True, "attempts": 1, "sim_calls": 0,
-             "material": material.model_dump(mode="json")}))
+        adir = AssetDir(asset_dir)
+        adir.write_material(material_record(material, physical or adir.physical_model()))
         return material, StageOutcome(stage="L2", status="accepted")
 
-    monkeypatch.setattr(l2, "run_l2", prior_l2)
+    monkeypatch.setattr(l2.l2_material, "fn", prior_l2)  # the l2-material flow runs, with the prior as its body
     monkeypatch.setattr(renders, "render_drop_protocol", lambda *a, **k: {})
     said: list[tuple[str, str]] = []
     out = tmp_path / "ball"
@@ -67,6 +71,11 @@ def test_generate_publishes_an_object_no_gripper_can_hold(tmp_path: Path, monkey
     with pytest.raises(RequirementNotMet) as err:
         require_l3(published, out)
     assert err.value.exit_code == 7 and (out / "asset.json").is_file()
+    from tests.flow_runs import children, latest_run
+
+    layers = children(latest_run("generate").id)
+    assert [name for name, _ in layers] == ["l0-geometry", "l1-physical", "l2-material", "l3-manipulation"]
+    assert [name for name, _ in children(layers[1][1].id)] == ["harness-stage"]  # L1's harness loop
 
     # `deformsmith manipulate` on the published asset: the reason printed and recorded, exit 0; --require-l3: exit 7
     from typer.testing import CliRunner

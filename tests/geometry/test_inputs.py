@@ -9,11 +9,13 @@ import cv2
 import numpy as np
 import pybullet_data
 import pytest
+from pydantic import ValidationError
 
 from contracts.errors import InputError
 from contracts.request import AssetRequest
 from helpers import FAST_COACD, cluttered_photo, object_mask, run, settings
 from tasks.geometry import catalogue, image, pipeline
+from tasks.geometry.mesh_import import load_mesh_file
 
 DATA = Path(pybullet_data.getDataPath())
 
@@ -146,10 +148,13 @@ def test_bad_meshes_are_clear_errors(tmp_path: Path) -> None:
     trimesh.creation.icosphere(3, 0.1).slice_plane([0, 0, 0.02], [0, 0, -1]).export(bowl)
     with pytest.raises(InputError, match="open"):
         pipeline.build_mesh(AssetRequest(mesh_path=bowl), settings())
-    with pytest.raises(InputError, match="outside the supported range"):
-        pipeline.build_mesh(AssetRequest(mesh_path=DATA / "bunny.obj", size_hint_m=30.0), settings())
-    with pytest.raises(InputError, match="unsupported mesh format"):
-        pipeline.build_mesh(AssetRequest(mesh_path=Path(__file__)), settings())
+    # a size hint or a file format L0 cannot take is refused by the request itself, before any layer
+    with pytest.raises(ValidationError, match="outside the supported range"):
+        AssetRequest(mesh_path=DATA / "bunny.obj", size_hint_m=30.0)
+    with pytest.raises(ValidationError, match="unsupported mesh format"):
+        AssetRequest(mesh_path=Path(__file__))
+    with pytest.raises(InputError, match="unsupported mesh format"):  # and by the loader, for a caller without one
+        load_mesh_file(Path(__file__))
 
 
 def test_separate_bodies_are_refused_and_small_fragments_dropped(tmp_path: Path) -> None:

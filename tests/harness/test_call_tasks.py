@@ -1,30 +1,36 @@
-"""flows.harness.call_tasks and tasks.probes.workers: independent probe tasks side by side on the CPU, results in call
-order, errors raised, one at a time on CUDA, worker processes sharing the cores."""
+"""flows.harness.call_tasks and tasks.probes.workers: independent probe tasks side by side on the CPU (Prefect's
+thread-pool task runner), results in call order, errors raised, one at a time on CUDA, worker processes sharing the
+cores."""
 
 from __future__ import annotations
 
 import threading
 
 import pytest
+from prefect import task
 
-from flows.harness import call_tasks
+from flows.harness import call_tasks, task_states
 from tasks.probes.workers import PROBE_WORKERS_ENV, child_probe_workers, probe_workers
 
 
-def test_calls_run_side_by_side_and_come_back_in_order() -> None:
+def test_calls_run_side_by_side_and_come_back_in_order(prefect_api: str) -> None:
     both_in_flight = threading.Barrier(2, timeout=10)  # breaks (fails the test) unless two calls run at once
 
+    @task
     def probe(k: int) -> int:
         if k < 2:
             both_in_flight.wait()
         return k * k
 
-    assert call_tasks([(probe, {"k": k}) for k in range(5)], workers=2) == [0, 1, 4, 9, 16]
+    assert call_tasks([(probe, {"k": k}) for k in range(5)], workers=2, device=None) == [0, 1, 4, 9, 16]
+    states = task_states([(probe, {"k": k}) for k in range(3)], workers=2, device=None)
+    assert [s.is_completed() for s in states] == [True] * 3 and [s.result() for s in states] == [0, 1, 4]
 
 
-def test_one_worker_calls_in_order_on_the_callers_thread() -> None:
+def test_one_worker_calls_in_order_on_the_callers_thread(prefect_api: str) -> None:
     seen: list[tuple[int, str]] = []
 
+    @task
     def probe(k: int) -> int:
         seen.append((k, threading.current_thread().name))
         return k
@@ -33,9 +39,10 @@ def test_one_worker_calls_in_order_on_the_callers_thread() -> None:
     assert seen == [(k, threading.current_thread().name) for k in range(3)]
 
 
-def test_an_error_in_one_call_is_raised_after_the_others_finish() -> None:
+def test_an_error_in_one_call_is_raised_after_the_others_finish(prefect_api: str) -> None:
     done: list[int] = []
 
+    @task
     def probe(k: int) -> int:
         if k == 0:
             raise ValueError("probe 0 failed")
@@ -43,7 +50,7 @@ def test_an_error_in_one_call_is_raised_after_the_others_finish() -> None:
         return k
 
     with pytest.raises(ValueError, match="probe 0 failed"):
-        call_tasks([(probe, {"k": k}) for k in range(4)], workers=2)
+        call_tasks([(probe, {"k": k}) for k in range(4)], workers=2, device=None)
     assert sorted(done) == [1, 2, 3]
 
 

@@ -32,7 +32,7 @@ TYPICAL_MASS_KG = {
 FACTOR = 4.0  # the prior mass within this factor of the real one; the L1 band (density range) must contain it
 
 
-@functools.lru_cache(maxsize=None)
+@functools.cache
 def _prior(name: str) -> tuple[float, float, tuple[float, float], str]:
     """(volume, prior density, density range, material) as L1 derives them for the entry's first keyword."""
     program = catalogue.program_for(name)

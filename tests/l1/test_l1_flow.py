@@ -7,7 +7,6 @@ import subprocess
 import sys
 from pathlib import Path
 
-import numpy as np
 import pytest
 from l1_assets import write_l0_dir
 
@@ -90,5 +89,11 @@ def test_load_physical_without_l1_is_a_clear_error(sponge: Path) -> None:
     with pytest.raises(InputError, match="physical.json"):
         load_physical(sponge)
     (sponge / "physical.json").write_text(json.dumps({"physical_model": None, "message": "mass implausible"}))
+    with pytest.raises(InputError, match=r"physical\.json: not a valid physical document: passed"):
+        load_physical(sponge)  # a partial record names the file and what is missing
+    from tasks.asset_dir import AssetDir
+    from tests.asset_records import physical_record
+
+    AssetDir(sponge).write_physical(physical_record(None, "mass implausible"))
     with pytest.raises(InputError, match="mass implausible"):
         load_physical(sponge)

@@ -4,4 +4,4 @@ from __future__ import annotations
 
 import warp as wp
 
-wp.config.quiet = True
+wp.config.log_level = wp.LOG_WARNING  # no module-load lines (as tasks.mpm's import sets it)

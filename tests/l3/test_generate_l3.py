@@ -85,9 +85,12 @@ def _asset(out: Path, text: str, density: float) -> Path:
     gaussians = pipeline.build_gaussians(mesh, particles, s)
     write_l0(L0Result(mesh, proxy, particles, gaussians, info,
                       pipeline.check_geometry(mesh, proxy, particles, gaussians)), out)
+    from tasks.asset_dir import AssetDir
+    from tests.asset_records import physical_record
+
     a = load_l0(out)
     phys = build_physical_model(a.particles_m, a.volumes_m3, a.spacing_m, density, 0.6, 0.8, "foam")
-    (out / "physical.json").write_text(json.dumps({"physical_model": phys.model_dump(mode="json")}))
+    AssetDir(out).write_physical(physical_record(phys))
     return out
 
 

@@ -12,9 +12,10 @@ import pytest
 
 from cache import CacheStore
 from contracts.material import Material
-from contracts.physical import PhysicalModel
 from contracts.stage import load_contract
 from flows.l3_manipulation import L3Options, run_l3
+from tasks.asset_dir import AssetDir
+from tests.asset_records import material_record, physical_record
 
 FAST_COACD = dict(preprocess_resolution=20, max_convex_hull=8, threshold=0.15, mcts_iterations=30, mcts_nodes=8,
                   mcts_max_depth=2, resolution=500, max_input_faces=3000)
@@ -39,7 +40,7 @@ def cube_template(tmp_path_factory: pytest.TempPathFactory) -> Path:
                                                                                          gaussians)), out)
     a = load_l0(out)
     phys = build_physical_model(a.particles_m, a.volumes_m3, a.spacing_m, 86.0, 0.6, 0.8, "foam")
-    (out / "physical.json").write_text(json.dumps({"physical_model": phys.model_dump(mode="json")}))
+    AssetDir(out).write_physical(physical_record(phys))
     return out
 
 
@@ -84,11 +85,10 @@ def test_cli_rejects_a_directory_without_an_asset(tmp_path: Path) -> None:
 
 def _as_gel(asset: Path) -> Material:
     """Make the cube a soft, dense gel (E 10 kPa, 1000 kg/m^3): a 1 mm squeeze cannot carry it (2 mu N < m g)."""
-    phys_path = asset / "physical.json"
-    phys = PhysicalModel(**json.loads(phys_path.read_text())["physical_model"])
+    phys = AssetDir(asset).physical_model()
     phys = phys.model_copy(update={"density_kg_per_m3": 1000.0, "mass_kg": 1000.0 * phys.volume_m3,
                                    "category": "gel"})
-    phys_path.write_text(json.dumps({"physical_model": phys.model_dump(mode="json")}))
+    AssetDir(asset).write_physical(physical_record(phys))
     return Material(youngs_modulus_pa=1e4, poisson_ratio=0.3, damping_rate_per_s=5.0)
 
 
@@ -135,6 +135,11 @@ def test_material_revision_reexecutes_l2_probes_then_the_robot(cube_asset: Path,
     assert rev["l2_revalidation"]["passed"] and "strain_p99" in rev["confirmation"]
     confirm = next(a for a in reversed(record["attempts"]) if a["role"] == "confirmation")
     assert confirm["values"] == rev["plan_values"]
+    # the L2 probes ran as task runs of L2's revalidation flow, a subflow of l3-manipulation
+    from tests.flow_runs import flow_names
+
+    l2_runs = [str(e["flow_run_id"]) for e in events if e["task"].startswith("l2.")]
+    assert set(flow_names(l2_runs).values()) == {"l2-revalidation"}
 
 
 PASS = {"lifted": 1.0, "transported": 1.0, "released_in_target": 1.0, "settled": 1.0, "max_finger_force_n": 2.0,
@@ -148,9 +153,9 @@ def _l2_material_in_band(asset: Path, e0: float = 2.0e4):  # type: ignore[no-unt
 
     targets = TargetBehaviour(bands=[TargetBand(metric="effective_modulus_pa", unit="Pa", low=1e4, high=1e5,
                                                 scale="log")])
-    (asset / "material.json").write_text(json.dumps({
-        "passed": True, "targets": targets.model_dump(mode="json"), "metrics": {"effective_modulus_pa": e0},
-        "material": {"youngs_modulus_pa": e0, "poisson_ratio": 0.3, "damping_rate_per_s": 5.0}}))
+    AssetDir(asset).write_material(material_record(
+        Material(youngs_modulus_pa=e0, poisson_ratio=0.3, damping_rate_per_s=5.0), AssetDir(asset).physical_model(),
+        targets, metrics={"effective_modulus_pa": e0}))
     return targets
 
 
@@ -257,3 +262,32 @@ def test_conditions_side_by_side_give_what_they_give_one_after_another(cube_asse
                          [(a["attempt"], a["role"], a["condition"], a["labels"]) for a in ctx.attempts])
     assert runs["2"] == runs["1"]
     assert [a[2]["yaw_deg"] for a in runs["2"][1]] == [c[2] for c in options.robustness]
+
+
+def test_a_material_revision_runs_l2_revalidation_as_a_subflow_of_l3(cube_asset: Path, prefect_api: str,
+                                                                    monkeypatch: pytest.MonkeyPatch) -> None:
+    """The Prefect UI's L3 -> L2 edge: a plan that slips under a perturbation asks L2 for a stiffer material, so the
+    l3-manipulation run's subflows are its harness stage, then l2-revalidation, in which L2's probes run. The robot and
+    L2's probes are stand-ins (the real ones take minutes); the flows around them are the real ones."""
+    from prefect.context import FlowRunContext
+
+    import flows.l2_material as l2
+    from contracts.probes import ProbeResult, ProbeSpec
+    from flows.l3_material import revalidate_in_l2
+    from tests.flow_runs import children, latest_run
+
+    _l2_material_in_band(cube_asset)
+    probed_in: list[str] = []
+
+    def stand_in_probes(self, values, action):  # noqa: ANN001, ANN202  (L2's selection probes)
+        probed_in.append(str(FlowRunContext.get().flow_run.id))  # type: ignore[union-attr]
+        return [ProbeResult(spec=ProbeSpec(kind="compress"), metrics={"effective_modulus_pa": 1.0})]
+
+    monkeypatch.setattr(l2._Runner, "__call__", stand_in_probes)
+    _stand_in_robot(monkeypatch, lambda m, yaw: PASS if yaw == 0.0 else SLIP, revalidate_in_l2)  # the real L2 call
+    record, _ = run_l3(cube_asset, L3Options(squeeze_depth_m=0.004, held_out=()), contract=_contract(),
+                       recordings=False)
+    assert record["material_revision"]["trigger"] == "robustness"
+    subflows = children(latest_run("l3-manipulation").id)
+    assert [name for name, _ in subflows] == ["harness-stage", "l2-revalidation"]
+    assert probed_in == [str(subflows[1][1].id)]

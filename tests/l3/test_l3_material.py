@@ -3,7 +3,6 @@ object that will not come to rest for the most damping whose rebound stays in ba
 
 from __future__ import annotations
 
-import json
 import math
 from pathlib import Path
 
@@ -24,12 +23,17 @@ def _material_json(tmp_path: Path, e_pa: float, measured_pa: float, damping: flo
     targets = TargetBehaviour(bands=[
         TargetBand(metric="effective_modulus_pa", unit="Pa", low=7.0e3, high=2.28e4, scale="log"),
         TargetBand(metric="rebound_ratio", low=rebound_band[0], high=rebound_band[1])])
-    rec = {"targets": targets.model_dump(mode="json"),
-           "material": {"youngs_modulus_pa": e_pa, "poisson_ratio": 0.25, "damping_rate_per_s": damping},
-           "metrics": {"effective_modulus_pa": measured_pa, "rebound_ratio": rebound},
-           "selection": {"screening": {"drop": {"damping_rate_per_s": [0.25, 1.0, 4.5],
-                                                "rebound_ratio": [0.49, 0.465, 0.37]}}}}
-    (tmp_path / "material.json").write_text(json.dumps(rec))
+    from contracts.physical import PhysicalModel
+    from tasks.asset_dir import AssetDir
+    from tests.asset_records import material_record
+
+    screening = {"sim_calls": 1, "drop": {"damping_rate_per_s": [0.25, 1.0, 4.5], "rebound_ratio": [0.49, 0.465, 0.37]}}
+    physical = PhysicalModel(density_kg_per_m3=100.0, volume_m3=1e-3, mass_kg=0.1, particle_count=100,
+                             particle_spacing_m=0.01, ground_friction=0.5, gripper_friction=0.8,
+                             center_of_mass_m=(0.0, 0.0, 0.05), extents_m=(0.1, 0.1, 0.1), category="test")
+    AssetDir(tmp_path).write_material(material_record(
+        Material(youngs_modulus_pa=e_pa, poisson_ratio=0.25, damping_rate_per_s=damping), physical, targets,
+        metrics={"effective_modulus_pa": measured_pa, "rebound_ratio": rebound}, screening=screening))
     return tmp_path
 
 

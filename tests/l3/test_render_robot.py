@@ -136,7 +136,7 @@ def test_a_gripper_without_a_urdf_mesh_is_drawn_as_boxes_around_its_pads() -> No
     origin, rot, opening = tcp_frame(fr.pad_position_m, half, approach)
     boxes = gripper_boxes(fr.pad_position_m, half, approach, spec)
     assert len(boxes) == 3
-    for (c, r, hb, _), sign in zip(boxes[1:], (1.0, -1.0)):
+    for (c, _r, hb, _), sign in zip(boxes[1:], (1.0, -1.0)):
         inner = (rot.T @ (c - origin))[1] - sign * hb[1]  # TCP y of the finger's inner face
         assert inner == pytest.approx(sign * opening / 2, abs=1e-9)
     body = rot.T @ (boxes[0][0] - origin)

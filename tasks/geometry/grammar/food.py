@@ -148,8 +148,8 @@ def elongated(p: ElongatedParams) -> list[Part]:
         d /= np.linalg.norm(d)
         parts.append(limb("stem", end, end + d * 0.07, 0.25 * p.radius, blend=0.2 * p.radius))
     elif p.stem == "leafy":
-        for j, a in enumerate((-25, 0, 25)):
-            d = np.array([np.cos(np.radians(a)) * 0.8, np.sin(np.radians(a)) * 0.6, 0.4])
+        for j, deg in enumerate((-25, 0, 25)):
+            d = np.array([np.cos(np.radians(deg)) * 0.8, np.sin(np.radians(deg)) * 0.6, 0.4])
             parts.append(limb(f"leaf {j + 1}", end, end + d * 0.18, 0.22 * p.radius, blend=0.2 * p.radius))
     return parts
 

@@ -3,14 +3,14 @@
 from __future__ import annotations
 
 import warnings
-from typing import Sequence
+from collections.abc import Sequence
 
 import numpy as np
 from scipy.spatial.transform import Rotation
 
 from contracts.shape import Part
 
-Vec = Sequence[float]
+Vec = Sequence[float] | np.ndarray
 
 # part-name words that are positions, not what the part is ('front left leg' is a 'leg')
 SIDE_WORDS = frozenset({"front", "rear", "back", "left", "right", "upper", "lower", "middle", "inner", "outer", "top",

@@ -1,0 +1,168 @@
+"""The asset directory's JSON documents: their file names and typed models (data only; tasks/asset_dir.py reads and
+writes them).
+
+Each model holds exactly the keys its layer writes, so a document read and written back is the same JSON. Parts that
+are records of a task's own structures (a mass check, a probe dump, a trial row) stay plain JSON (`dict[str, Any]`);
+the parts later layers use are typed (PhysicalModel, Material, TargetBehaviour, ActionPlan, ...).
+"""
+
+from __future__ import annotations
+
+from typing import Any, ClassVar, Literal
+
+from pydantic import BaseModel, ConfigDict, Field
+
+from contracts.agents import OutcomeStatus, TargetBehaviour
+from contracts.base import Model
+from contracts.evidence import GateResult
+from contracts.manifest import AssetManifest
+from contracts.material import Material
+from contracts.physical import PhysicalModel
+from contracts.robot import ActionPlan, GraspCandidate
+
+GEOMETRY_JSON = "geometry.json"        # L0
+PHYSICAL_JSON = "physical.json"        # L1
+MATERIAL_JSON = "material.json"        # L2
+MANIPULATION_JSON = "manipulation.json"  # L3
+ASSET_JSON = "asset.json"              # the published manifest (contracts.manifest.AssetManifest)
+PARTICLES_ZARR = "particles.zarr"
+RECORDINGS_DIR = "recordings"
+EVIDENCE_DIR = "evidence"
+INTERACTION_DIR = "interaction"
+
+
+
+def attempt_path(attempt: int) -> str:
+    """Where L3 stores trial `attempt`'s interaction data, relative to the asset (manipulation.json's `attempt` paths)."""
+    return f"{INTERACTION_DIR}/attempt_{attempt:03d}"
+
+
+DocumentName = Literal["geometry", "physical", "material", "manipulation", "manifest"]
+DOCUMENT_FILES: dict[str, str] = {"geometry": GEOMETRY_JSON, "physical": PHYSICAL_JSON, "material": MATERIAL_JSON,
+                                  "manipulation": MANIPULATION_JSON, "manifest": ASSET_JSON}
+
+
+class GeometryInfo(BaseModel):
+    """geometry.json `info`: how L0 built the mesh (tasks.geometry.pipeline.BuildInfo as written; the fields later
+    layers read are typed, the rest is kept as written)."""
+
+    model_config = ConfigDict(extra="allow", frozen=True)
+
+    source: str
+    name: str
+    category: str
+    entry: str | None = None
+    concept: dict[str, Any] | None = None
+
+
+class GeometryRecord(Model):
+    """geometry.json: L0's checks, gates, files and build information."""
+
+    ABSENT_UNLESS_GIVEN: ClassVar[frozenset[str]] = frozenset({"request"})  # keys older records lack
+    schema_version: int = 1
+    info: GeometryInfo
+    metrics: dict[str, float]
+    gates: list[GateResult]
+    passed: bool
+    failed_gates: list[str]
+    warnings: list[str]
+    files: dict[str, str]
+    request: dict[str, Any] | None = Field(default=None, description="the whole request (records before it: absent)")
+
+
+class PhysicalRecord(Model):
+    """physical.json: L1's outcome, its targets, mass check and the frozen PhysicalModel (None when L1 failed)."""
+
+    schema_version: int = 1
+    stage: Literal["L1"] = "L1"
+    passed: bool
+    status: OutcomeStatus
+    message: str
+    material_class: str
+    intent: str
+    mass_check: dict[str, Any] = Field(description="tasks.physical.mass.MassCheck as written")
+    targets: TargetBehaviour
+    physical_model: PhysicalModel | None
+    metrics: dict[str, float]
+    sim_calls: int
+    attempts: int
+    recordings: list[str]
+
+
+class HeldOutSummary(Model):
+    """material.json `held_out`: the selected material under the contract's held-out settings."""
+
+    metrics: dict[str, float]
+    targets_met: bool | None
+    score: float | None
+    bands: list[str]
+    probes: list[dict[str, Any]] = Field(description="ProbeResult dumps without wall time")
+
+
+class SelectionSummary(Model):
+    """material.json `selection`: how the harness chose the material."""
+
+    status: OutcomeStatus
+    score: float | None
+    targets_met: bool
+    best_iteration: int | None
+    attempts: int
+    sim_calls: int
+    screening: dict[str, Any]
+    ranking: list[dict[str, Any]]
+
+
+class MaterialRecord(Model):
+    """material.json: L2's outcome, targets, the material (None when L2 found none) and its evidence."""
+
+    schema_version: int = 1
+    stage: Literal["L2"] = "L2"
+    passed: bool
+    status: OutcomeStatus
+    message: str
+    intent: str
+    targets: TargetBehaviour
+    material: Material | None
+    physical_model: PhysicalModel
+    metrics: dict[str, float]
+    held_out: HeldOutSummary
+    selection: SelectionSummary
+    sim_calls: int
+    recordings: dict[str, str | None] = Field(description="probe kind -> recording path in the asset")
+
+
+class ManipulationRecord(Model):
+    """manipulation.json: L3's outcome, the chosen plan and every trial (status 'no_grasp': no trial could run)."""
+
+    ABSENT_UNLESS_GIVEN: ClassVar[frozenset[str]] = frozenset({"best_attempt"})  # keys older records lack
+    schema_version: int = 1
+    stage: Literal["L3"] = "L3"
+    passed: bool
+    status: str = Field(description="the harness's OutcomeStatus, or 'no_grasp'")
+    message: str
+    reason: str
+    best_attempt: dict[str, Any] | None = Field(default=None, description="records before it: absent")
+    material: Material
+    material_source: str
+    physical_model: PhysicalModel
+    plan: ActionPlan | None
+    values: dict[str, float] | None
+    attempt: int | None
+    outcome: dict[str, bool]
+    labels: dict[str, float]
+    forces: dict[str, float]
+    force_budget_n: float
+    grasps: list[GraspCandidate]
+    gripper: dict[str, Any]
+    held_out: dict[str, Any]
+    robustness: dict[str, Any] | None
+    material_revision: dict[str, Any] | None
+    numerics: dict[str, Any]
+    attempts: list[dict[str, Any]]
+    harness_attempts: int
+    recordings: list[str]
+
+
+DOCUMENT_MODELS: dict[str, type[BaseModel]] = {"geometry": GeometryRecord, "physical": PhysicalRecord,
+                                               "material": MaterialRecord, "manipulation": ManipulationRecord,
+                                               "manifest": AssetManifest}

@@ -1,0 +1,117 @@
+"""One count of attempts and simulations per stage, from the attempt records: `inspect`, `evidence` and `generate`'s
+summary all print these tallies, so they cannot disagree.
+
+Sources, under an asset directory (or a run directory's folder holding ``evidence/``):
+  evidence/attempts.jsonl     every harness attempt (stage, iteration, evidence.sim_calls): attempts, loop simulations
+  evidence/<stage>_outcome.json  how the harness ended (status, message), when the attempt lines are missing
+  geometry.json / physical.json / material.json / manipulation.json
+                              the stage's record: passed, and the simulations run outside the harness loop
+                              (L2: screening and held-out probes; L3: robustness, held-out and confirmation trials)
+"""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+from typing import Any
+
+from contracts.agents import StageOutcome, TargetBehaviour
+from contracts.evidence import Attempt, StageTally
+from contracts.stage import StageName
+
+STAGE_RECORDS: dict[StageName, str] = {"L0": "geometry.json", "L1": "physical.json", "L2": "material.json",
+                                       "L3": "manipulation.json"}
+LOOP_ROLE = "selection"  # L3 trials of the harness loop itself (counted through the attempt lines)
+
+
+def _json(path: Path) -> dict[str, Any] | None:
+    try:
+        data = json.loads(path.read_text(encoding="utf-8"))
+    except (OSError, ValueError):
+        return None
+    return data if isinstance(data, dict) else None
+
+
+def _outcome(path: Path) -> StageOutcome | None:
+    try:
+        return StageOutcome.model_validate_json(path.read_text(encoding="utf-8"))
+    except (OSError, ValueError):
+        return None
+
+
+def _extra_sim_calls(stage: StageName, record: dict[str, Any], loop: int) -> dict[str, int]:
+    """Simulations a stage ran outside its harness loop, by role, from its record."""
+    extra: dict[str, int] = {}
+    if stage == "L2":
+        screening = int(((record.get("selection") or {}).get("screening") or {}).get("sim_calls", 0))
+        held = sum(int(p.get("sim_calls", 0)) for p in (record.get("held_out") or {}).get("probes") or [])
+        extra = {"screening": screening, "held_out": held}
+    elif stage == "L3":
+        for trial in record.get("attempts") or []:
+            labels = trial.get("labels") or {}
+            role = str(trial.get("role") or "other")
+            if labels and not labels.get("plan_failed") and role != LOOP_ROLE:
+                extra[role] = extra.get(role, 0) + 1
+    if "sim_calls" in record and stage != "L3":  # what the record counts beyond the parts named above
+        rest = int(record["sim_calls"]) - loop - sum(extra.values())
+        if rest > 0:
+            extra["other"] = rest
+    return {role: n for role, n in extra.items() if n > 0}
+
+
+def _unmet(record: dict[str, Any]) -> list[str]:
+    """Target bands the record's kept candidate misses (a metric not measured misses its band)."""
+    if not record.get("targets") or not isinstance(record.get("metrics"), dict):
+        return []
+    try:
+        targets = TargetBehaviour.model_validate(record["targets"])
+    except ValueError:
+        return []
+    metrics = record["metrics"]
+    return [b.metric for b in targets.bands if b.weight > 0 and not b.contains(metrics.get(b.metric))]
+
+
+def _tally(stage: StageName, attempts: list[Attempt], outcome: StageOutcome | None,
+           record: dict[str, Any] | None) -> StageTally | None:
+    if not attempts and outcome is None and record is None:
+        return None
+    if stage == "L0" and record is not None:  # no harness: one geometry pass (an LLM Designer's retries inside it)
+        passed = bool(record.get("passed"))
+        return StageTally(stage="L0", status="passed" if passed else "failed", passed=passed,
+                          attempts=int(record.get("attempts", 1)), loop_sim_calls=0,
+                          message=", ".join(record.get("failed_gates") or []))
+    if attempts:
+        n, loop = len(attempts), sum(a.evidence.sim_calls for a in attempts)
+    elif outcome is not None:
+        n, loop = outcome.attempts_used, outcome.sim_calls
+    else:
+        n = int((record or {}).get("harness_attempts", (record or {}).get("attempts", 0)) or 0)
+        loop = 0
+    status = outcome.status if outcome is not None else str((record or {}).get("status", "unknown"))
+    passed = bool(record["passed"]) if record is not None and "passed" in record else (
+        outcome.passed if outcome is not None else False)
+    message = (outcome.message if outcome is not None else "") or str((record or {}).get("message") or "")
+    if record is not None and record.get("reason") and not passed:
+        message = str(record["reason"])
+    return StageTally(stage=stage, status=status, passed=passed, attempts=n, loop_sim_calls=loop,
+                      extra_sim_calls=_extra_sim_calls(stage, record, loop) if record else {},
+                      unmet_targets=_unmet(record) if record and status != "accepted" else [], message=message)
+
+
+def stage_tallies(root: str | Path, attempts: list[Attempt] | None = None) -> list[StageTally]:
+    """The stages found under root (an asset directory, or the folder holding evidence/), in order L0..L3.
+
+    attempts: the attempt records when already read (else evidence/attempts.jsonl under root)."""
+    from tasks.agents.records import ATTEMPTS_FILE, read_attempts
+
+    root = Path(root)
+    if attempts is None:
+        path = root / ATTEMPTS_FILE
+        attempts = read_attempts(path) if path.is_file() else []
+    out = []
+    for stage, record_name in STAGE_RECORDS.items():
+        tally = _tally(stage, [a for a in attempts if a.stage == stage],
+                       _outcome(root / "evidence" / f"{stage}_outcome.json"), _json(root / record_name))
+        if tally is not None:
+            out.append(tally)
+    return out
