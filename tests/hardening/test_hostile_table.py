@@ -97,7 +97,7 @@ ROWS: list[tuple[str, list]] = [
     ("text_rigid_steel", ["generate", "a steel wrench"]),
     ("text_rigid_glass", ["generate", "a glass vase"]),
     ("text_too_long", ["generate", "a soft plush turtle " * 2000]),
-    ("text_control_chars", ["generate", "a sponge\x00\x07"]),
+    ("text_control_chars", ["generate", "a sponge\x07\x1b[2J"]),  # a NUL cannot reach argv at all
     ("text_10_km", ["generate", "a plush turtle, 10 km long"]),
     ("text_5_m", ["generate", "a sponge 5 m long"]),
     ("text_1_mm", ["generate", "a foam cube, 1 mm"]),
