@@ -8,9 +8,7 @@ working directory from hits and re-executes only what never finished. The workin
 from __future__ import annotations
 
 import json
-import os
 import shutil
-import socket
 import tempfile
 from collections.abc import Callable
 from importlib import metadata
@@ -18,7 +16,7 @@ from pathlib import Path
 from typing import Any, TypedDict
 
 import cache  # (sets the local Prefect environment before prefect is imported)
-from cache.tempfiles import pid_alive
+from cache.tempfiles import dead_partials, owner_tag, remove_paths
 from contracts.agents import AgentConfig
 from contracts.asset_dir import ASSET_JSON, attempt_path
 from contracts.errors import InputError, StageFailure
@@ -259,17 +257,7 @@ def _partial_prefix(out_dir: Path) -> str:
 
 def remove_stale_partials(out_dir: Path) -> list[Path]:
     """Remove working directories of out_dir left by a process of this host that died (SIGKILL, power loss)."""
-    host, prefix, removed = socket.gethostname(), _partial_prefix(out_dir), []
-    for path in out_dir.parent.glob(prefix + "*"):
-        try:
-            owner_host, pid, _ = path.name[len(prefix):].split("~", 2)
-            alive = pid_alive(int(pid))
-        except ValueError:
-            continue
-        if owner_host == host and not alive:
-            shutil.rmtree(path, ignore_errors=True)
-            removed.append(path)
-    return removed
+    return remove_paths(dead_partials(out_dir.parent, out_dir.name))[0]
 
 
 def _check_out_dir(out_dir: Path) -> None:
@@ -331,8 +319,7 @@ def generate(request: AssetRequest, out_dir: Path, device: Device = "cpu", agent
     _check_out_dir(out_dir)
     out_dir.parent.mkdir(parents=True, exist_ok=True)
     remove_stale_partials(out_dir)
-    owner = f"{socket.gethostname()}~{os.getpid()}~"
-    work = Path(tempfile.mkdtemp(prefix=_partial_prefix(out_dir) + owner, dir=out_dir.parent))
+    work = Path(tempfile.mkdtemp(prefix=_partial_prefix(out_dir) + owner_tag(), dir=out_dir.parent))
     try:
         note("L0", "geometry")
         l0 = run_l0(request, quality=request.quality, agents=agents)  # a litellm Designer writes the shape too

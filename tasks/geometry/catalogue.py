@@ -261,9 +261,10 @@ def design_from_text(text: str, size_hint_m: float | None = None) -> Design:
     size = parse_size(text_n)
     if size_hint_m is not None:
         size = SizeSpec(longest_m=size_hint_m, stated=f"size hint {size_hint_m:g} m")
-    reading = concepts.read_text(strip_sizes(text_n))
-    program, match, build_warnings = concepts.build(reading, strip_sizes(text_n))
-    own_name = concepts.normalise(strip_sizes(text_n))
+    stripped = strip_sizes(text_n)
+    reading = concepts.read_text(stripped)
+    program, match, build_warnings = concepts.build(reading, stripped)
+    own_name = concepts.normalise(stripped)
     if match.noun:  # 'a mini bagel' names the object; 'mini' is not a modifier there
         own_name = own_name.replace(match.noun, " ")
     mods, axis_scale = parse_modifiers(own_name)

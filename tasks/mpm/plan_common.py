@@ -8,6 +8,7 @@ here, so both plans pass the same buffers in the same order.
 
 from __future__ import annotations
 
+from abc import ABC, abstractmethod
 from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
@@ -26,7 +27,7 @@ def whole(arr: wp.array) -> wp.array:
     return arr
 
 
-class LaunchPlan:
+class LaunchPlan(ABC):
     """Base of the launch plans: argument lists of the step's kernels on the solver's buffers."""
 
     #: advance_steps may run a step's g2p fused with the next step's p2g (no re-fit between them)
@@ -53,15 +54,15 @@ class LaunchPlan:
         """A zeroed scatter buffer (momentum, mass) of `nodes` nodes."""
         return wp.zeros(nodes, dtype=wp.vec4, device=self.device)
 
+    @abstractmethod
     def record_refit(self, state: State) -> list:
         """Recorded launches of the per-scene bounds reduction and the window fit."""
-        raise NotImplementedError
 
+    @abstractmethod
     def record_step(self, state_in: State, state_out: State, control: Control, refit: bool, skip_p2g: bool = False,
                     fuse_next: bool = False) -> list:
         """Recorded launches of one step: skip_p2g = the previous step's fused g2p did this step's p2g (no re-fit in
         between); fuse_next = end with a g2p that also does the next step's p2g."""
-        raise NotImplementedError
 
     # -- shared pieces ---------------------------------------------------------------------------------------------
     def collider_motion(self, control: Control, end: bool) -> K.ColliderMotion:
