@@ -6,7 +6,6 @@ Reads an L0 asset directory, writes `physical.json` (the frozen PhysicalModel, p
 
 from __future__ import annotations
 
-import shutil
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -30,6 +29,7 @@ from tasks.geometry.outputs import L0Asset, load_l0
 from tasks.physical.mass import MassCheck, mass_check
 from tasks.physical.model import build_physical_model, mass_plausible
 from tasks.probes import rigid
+from tasks.publish import copy_file_atomic
 from tasks.record import ProbeRecording
 
 TASK_VERSION = "2"  # bump when tasks/probes/rigid.py or the metrics below change (2: asset-frame pose, inertia lock)
@@ -228,8 +228,7 @@ def _copy_recordings(outcome: StageOutcome, asset_dir: Path, kinds: dict[str, st
         p = cache_resolve(src)
         if p.suffix == ".rrd" and p.is_file():
             dest = asset_dir / "recordings" / RECORDING_NAMES[kinds[src]]
-            dest.parent.mkdir(parents=True, exist_ok=True)
-            shutil.copyfile(p, dest)
+            copy_file_atomic(p, dest)  # a new file: a hard link of a working copy (tasks.publish) is never rewritten
             out.append(str(dest.relative_to(asset_dir)))
     return out
 

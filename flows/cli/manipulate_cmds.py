@@ -8,6 +8,7 @@ import typer
 from rich.table import Table
 
 from flows.cli.apps import app, check_device, console, emit_json, fail
+from flows.cli.preflight import check_asset_dir, check_outputs
 
 
 @app.command("manipulate")
@@ -39,7 +40,9 @@ def manipulate(
         fail(f"--cpu-threads must be 1 to 64, got {cpu_threads}")
     if cache_dir is not None:
         use_cache_root(cache_dir)
+    check_asset_dir(asset)  # the asset directory, its parent and the cache root usable, before L3 runs
     from flows.l3_manipulation import L3Options, run_l3
+    from tasks.publish import staged_update
 
     options = (L3Options.standard(device, cpu_threads) if quality == "standard"
                else L3Options(device=device, cpu_threads=cpu_threads))
@@ -48,7 +51,8 @@ def manipulate(
             status.update(message)
             console.log(message, markup=False)
 
-        record, outcome = run_l3(asset, options, progress=progress)
+        with staged_update(asset) as work:  # L3 writes into a working copy, swapped in whole when it ends
+            record, outcome = run_l3(work, options, progress=progress)
     summary = {k: record.get(k) for k in ("passed", "status", "message", "reason", "outcome", "forces", "held_out",
                                           "attempt", "values", "numerics", "material_source", "recordings",
                                           "wall_time_s")}
@@ -86,6 +90,7 @@ def replay_cmd(
 
     if not (asset / "interaction").is_dir():
         fail(f"{asset} has no interaction/ data: run `deformsmith manipulate {asset}` first")
+    check_outputs(files=(video, rrd), folders=(frames,))  # where the replay is written, before rendering
     with console.status("rendering the recorded attempt"):
         out = replay(asset, attempt, frames_dir=frames, video=video, rrd=rrd)
     data = {"frames": len(out.frames), "rendered": out.n_frames, "video": str(out.video) if out.video else None,

@@ -11,6 +11,7 @@ from pydantic import ValidationError
 
 from contracts.errors import validation_message
 from flows.cli.apps import app, bench_app, console, emit_json, fail, prefect_log_level
+from flows.cli.preflight import check_asset_dir, check_locations
 
 RIGID_KINDS = ("place", "drop", "slide")  # L1 rigid probes (pybullet); `drop` is rigid unless --deformable
 DEFORMABLE_KINDS = ("compress", "lift", "stability")
@@ -84,6 +85,7 @@ def probe(
     _check_asset(asset)
     if rho is not None and not (math.isfinite(rho) and rho > 0):
         fail(f"--rho must be a positive finite density [kg/m^3], got {rho}")
+    check_locations()  # the probe's result and recording go to the cache: its root usable, before the probe runs
     prefect_log_level("CRITICAL")
     if kind in RIGID_KINDS and not (kind == "drop" and deformable):
         if any(v is not None for v in (E, nu, damping)):
@@ -122,6 +124,7 @@ def material(
                                "the request `geometry` stored (its --intent, else its text), as `generate` does"),
     llm: str = typer.Option(None, "--llm", help="litellm model playing the agent roles (default: offline rules)"),
     cpu_threads: int = typer.Option(2, "--cpu-threads", help="threads sharing each MPM rollout's particles"),
+    cache_dir: Path = typer.Option(None, "--cache", help="cache root (default: $DEFORMSMITH_CACHE or the user cache)"),
     as_json: bool = typer.Option(False, "--json", help="print material.json to stdout"),
 ) -> None:
     """Run L2 on an asset: MPM probes, harness-selected neo-Hookean material -> material.json, evidence, recordings."""
@@ -134,18 +137,25 @@ def material(
         fail("--intent is empty")
     if not 1 <= cpu_threads <= 64:
         fail(f"--cpu-threads must be 1 to 64, got {cpu_threads}")
+    if cache_dir is not None:
+        from cache import use_cache_root
+
+        use_cache_root(cache_dir)
+    check_asset_dir(asset)  # the asset directory, its parent and the cache root usable, before L2 runs
     prefect_log_level("CRITICAL")
     from contracts.agents import AgentConfig
     from contracts.sim import SimConfig
     from flows.l2_material import run_l2
     from tasks.asset_dir import AssetDir, document_json
+    from tasks.publish import staged_update
 
     agents = AgentConfig.llm(llm) if llm else None
     import time
 
     started = time.perf_counter()
-    with console.status("L2 material (MPM probes)..."):
-        mat, outcome = run_l2(asset, intent, agents=agents, sim=SimConfig(cpu_threads=cpu_threads))
+    # L2 writes into a working copy, swapped in whole when it ends: files and evidence together, or nothing
+    with console.status("L2 material (MPM probes)..."), staged_update(asset) as work:
+        mat, outcome = run_l2(work, intent, agents=agents, sim=SimConfig(cpu_threads=cpu_threads))
     wall_s = time.perf_counter() - started
     adir = AssetDir(asset)
     record = adir.material()

@@ -8,6 +8,7 @@ import typer
 from rich.table import Table
 
 from flows.cli.apps import app, console, emit_json, fail
+from flows.cli.preflight import check_asset_dir
 
 
 def asset_path(positional: Path | None, option: Path | None) -> Path:
@@ -40,10 +41,13 @@ def physical(
         fail(f"{asset} is not an L0 asset directory (no geometry.json); run `deformsmith geometry ... --out {asset}`")
     if cache_dir is not None:
         use_cache_root(cache_dir)
+    check_asset_dir(asset)  # the asset directory, its parent and the cache root usable, before L1 runs
     from flows.l1_physical import run_l1
+    from tasks.publish import staged_update
 
-    with console.status("L1: rigid probes in pybullet"):
-        phys, outcome = run_l1(asset, intent)
+    # L1 writes into a working copy, swapped in whole when it ends: files and evidence together, or nothing
+    with console.status("L1: rigid probes in pybullet"), staged_update(asset) as work:
+        phys, outcome = run_l1(work, intent)
     mass = AssetDir(asset).physical().mass_check  # tasks.physical.mass.MassCheck as written
     if as_json:
         emit_json({"passed": outcome.passed, "status": outcome.status, "message": outcome.message,

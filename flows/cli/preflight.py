@@ -11,6 +11,7 @@ import errno
 import os
 import shutil
 import tempfile
+from collections.abc import Sequence
 from pathlib import Path
 
 from contracts.errors import InputError
@@ -19,7 +20,8 @@ MIN_FREE_MB_DEFAULT = 100.0  # free space a location must have before a run star
 MIN_FREE_ENV = "DEFORMSMITH_MIN_FREE_MB"
 # errors of the place, not of the program: read-only, no permission, missing, full, not a directory
 FILESYSTEM_ERRNOS = frozenset({errno.EROFS, errno.EACCES, errno.EPERM, errno.ENOSPC, errno.EDQUOT, errno.ENOENT,
-                               errno.ENOTDIR, errno.EISDIR, errno.ENAMETOOLONG, errno.EEXIST, errno.ENOTEMPTY})
+                               errno.ENOTDIR, errno.EISDIR, errno.ENAMETOOLONG, errno.EEXIST, errno.ENOTEMPTY,
+                               errno.EIO})
 _CAUSES = {errno.EROFS: "read-only file system", errno.EACCES: "permission denied", errno.EPERM: "not permitted",
            errno.ENOSPC: "no space left on the device", errno.EDQUOT: "disk quota exceeded",
            errno.ENOENT: "no such file or directory",
@@ -105,6 +107,27 @@ def check_locations(out: Path | None = None, cache: bool = True, out_root: Path 
         from cache.tempfiles import remove_dead_temporaries
 
         remove_dead_temporaries(root)  # what killed runs left in the cache (their pids are dead)
+
+
+def check_asset_dir(asset: Path, cache: bool = True) -> None:
+    """Before a layer reruns on an asset directory (physical, material, manipulate): files can be created in the
+    directory and beside it (its working copy, tasks.publish.staged_update) with free space there; then the cache
+    root (check_locations)."""
+    asset = Path(asset).expanduser().absolute()
+    check_directory(asset, "asset directory", min_free=0)
+    check_directory(asset.parent, "asset directory")
+    check_locations(cache=cache)
+
+
+def check_outputs(files: Sequence[Path | None] = (), folders: Sequence[Path | None] = ()) -> None:
+    """Before a command writes files or folders named on its command line (replay's --video, --rrd, --frames): the
+    folder each file goes into, and each folder, is (or can become) a usable directory."""
+    for path, folder in [(f, False) for f in files] + [(f, True) for f in folders]:
+        if path is not None:
+            path = Path(path).expanduser().absolute()
+            if folder and path.exists() and not path.is_dir():
+                raise InputError(f"output: {path} is a file, not a directory")
+            check_directory(path if folder else path.parent, "output")
 
 
 def check_request(request, out: Path | None, cache: bool = True) -> None:

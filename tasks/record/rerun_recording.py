@@ -12,9 +12,11 @@ Timelines: `frame` (sequence) and `sim_time` (duration, seconds).
 from __future__ import annotations
 
 import os
+import weakref
 from dataclasses import dataclass, field
 from pathlib import Path
 from types import TracebackType
+from typing import BinaryIO
 
 import numpy as np
 import rerun as rr
@@ -43,28 +45,71 @@ def _rgba_u8(colors: np.ndarray | None) -> np.ndarray | None:
     return c
 
 
+def _remove(path: Path) -> None:
+    """Remove a temporary if it is there (a folder that never held it is no error)."""
+    try:
+        path.unlink()
+    except OSError:
+        pass
+
+
+def _write_bytes(fh: BinaryIO, data: bytes) -> None:
+    """Write the encoded recording (one place a test can make the disk full)."""
+    fh.write(data)
+
+
 class ProbeRecording:
-    """Context manager writing one `.rrd`; the file appears (atomically) only when the block ends cleanly."""
+    """Context manager writing one `.rrd`; the file appears (atomically) only when the block ends cleanly.
+
+    Rerun encodes the recording in memory (a binary stream: a few MB per probe) and this class writes it to
+    `<name>.rrd.<pid>.tmp`, then renames it. Rerun's own file writer is not used: on a full disk its thread dies and
+    every later flush, disconnect or garbage collection of the stream waits for it forever. A write that fails
+    (a full disk, a folder that cannot be written) raises an OSError naming the `.rrd` and leaves no file behind; a
+    recording never closed (its rollout raised) has its temporary removed when it is collected."""
 
     def __init__(self, path: str | os.PathLike[str], recording_id: str, app_id: str = APP_ID) -> None:
         self.path = Path(path)
         self.recording_id = recording_id
         self._tmp = self.path.with_name(self.path.name + f".{os.getpid()}.tmp")
+        self._cleanup = weakref.finalize(self, _remove, self._tmp)
         self.rec = rr.RecordingStream(app_id, recording_id=recording_id)
+        self._stream: rr.BinaryStream | None = None
+        self._fh: BinaryIO | None = None
+
+    def _failed(self, exc: OSError) -> OSError:
+        """A write's OSError naming the recording (its temporary removed)."""
+        if self._fh is not None:
+            try:
+                self._fh.close()  # (flushing what is buffered may meet the full disk again)
+            except OSError:
+                pass
+        _remove(self._tmp)
+        return OSError(exc.errno, exc.strerror, str(self.path))
 
     def __enter__(self) -> ProbeRecording:
-        self.path.parent.mkdir(parents=True, exist_ok=True)
-        self.rec.save(str(self._tmp))
+        try:
+            self.path.parent.mkdir(parents=True, exist_ok=True)
+            self._fh = open(self._tmp, "wb")  # noqa: SIM115 -- closed in __exit__; made now: an unusable folder fails first
+        except OSError as exc:
+            raise self._failed(exc) from None
+        self._stream = self.rec.binary_stream()
         self.set_time(0, 0.0)
         return self
 
     def __exit__(self, exc_type: type[BaseException] | None, exc: BaseException | None, tb: TracebackType | None) -> None:
-        self.rec.flush()
+        assert self._stream is not None and self._fh is not None, "ProbeRecording used outside its `with` block"
+        data = self._stream.read(flush=True) or b""
         self.rec.disconnect()
-        if exc_type is None:
+        if exc_type is not None:
+            self._failed(OSError())
+            return
+        try:
+            _write_bytes(self._fh, data)
+            self._fh.close()
             os.replace(self._tmp, self.path)
-        else:
-            self._tmp.unlink(missing_ok=True)
+        except OSError as err:
+            raise self._failed(err) from None
+        self._cleanup.detach()
 
     def set_time(self, frame: int, sim_time_s: float) -> None:
         """Move both timelines: frame index and simulated time [s]."""

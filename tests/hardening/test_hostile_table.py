@@ -229,3 +229,105 @@ def test_a_signal_mid_run_publishes_nothing_and_keeps_the_cache_sound(sig: int, 
     assert not [p.name for p in tmp_path.iterdir() if ".partial-" in p.name]
     if (tmp_path / "cache").exists():
         assert CacheStore(tmp_path / "cache").verify() == []
+
+
+# -- the layer commands on an existing asset directory: unusable locations refused before the layer runs -------------
+def _stub_asset(tmp: Path) -> Path:
+    """An asset directory as the layer commands first look at it (geometry.json, physical.json), not a valid one: a
+    refusal must come from the location check, before any layer reads it."""
+    asset = tmp / "asset"
+    asset.mkdir()
+    for name in ("geometry.json", "physical.json"):
+        (asset / name).write_text("{}\n")
+    (asset / "evidence").mkdir()
+    (asset / "evidence" / "attempts.jsonl").write_text("")
+    (asset / "interaction").mkdir()
+    return asset
+
+
+def _read_only(asset: Path) -> None:
+    """Make the folder holding the asset a read-only file system (a tmpfs remounted read-only; skipped without root)."""
+    holder = asset.parent / "ro"
+    holder.mkdir()
+    if subprocess.run(["mount", "-t", "tmpfs", "-o", "size=1m", "tmpfs", str(holder)], capture_output=True).returncode:
+        pytest.skip("cannot mount a tmpfs here")
+    import shutil
+
+    shutil.copytree(asset, holder / "asset")
+    subprocess.run(["mount", "-o", "remount,ro", str(holder)], check=True)
+
+
+# (id, argv with "{asset}", the `error:` line must contain; "{asset}" and "{cache}" filled in), env
+LAYER_ROWS: list[tuple[str, list[str], str, dict[str, str]]] = [
+    ("physical_cache_under_proc", ["physical", "{asset}", "--cache", "/proc/deformsmith-hostile/cache"],
+     "cache root: cannot use /proc/deformsmith-hostile/cache", {}),
+    ("material_asset_read_only", ["material", "{ro}"], "asset directory: cannot use {ro}: read-only file system", {}),
+    ("manipulate_cache_is_file", ["manipulate", "{asset}", "--cache", "{asset}/geometry.json"],
+     "cache root: cannot use {asset}/geometry.json", {}),
+    ("physical_disk_too_full", ["physical", "{asset}"], "MB needed", {"DEFORMSMITH_MIN_FREE_MB": "1e12"}),
+    ("physical_asset_read_only", ["physical", "{ro}"], "asset directory: cannot use {ro}: read-only file system", {}),
+    ("manipulate_asset_read_only", ["manipulate", "{ro}"], "asset directory: cannot use {ro}: read-only file system",
+     {}),
+    ("material_cache_under_proc", ["material", "{asset}", "--cache", "/proc/deformsmith-hostile/cache"],
+     "cache root: cannot use /proc/deformsmith-hostile/cache", {}),
+    ("material_disk_too_full", ["material", "{asset}"], "MB needed", {"DEFORMSMITH_MIN_FREE_MB": "1e12"}),
+    ("manipulate_cache_under_proc", ["manipulate", "{asset}", "--cache", "/proc/deformsmith-hostile/cache"],
+     "cache root: cannot use /proc/deformsmith-hostile/cache", {}),
+    ("probe_cache_under_proc", ["probe", "compress", "--asset", "{asset}"],
+     "cache root: cannot use /proc/deformsmith-hostile/cache", {"DEFORMSMITH_CACHE": "/proc/deformsmith-hostile/cache"}),
+    ("replay_video_under_proc", ["replay", "{asset}", "--video", "/proc/deformsmith-hostile/replay.mp4"],
+     "output: cannot use /proc/deformsmith-hostile", {}),
+    ("replay_frames_is_file", ["replay", "{asset}", "--frames", "{asset}/geometry.json"],
+     "output: {asset}/geometry.json is a file, not a directory", {}),
+]
+LAYER_FAST = ("physical_cache_under_proc", "material_asset_read_only", "manipulate_cache_is_file",
+              "physical_disk_too_full")
+
+
+def _check_layer_refused(row: tuple[str, list[str], str, dict[str, str]], tmp_path: Path) -> None:
+    from test_layer_publish import tree_digest
+
+    _, argv, want, env = row
+    asset = _stub_asset(tmp_path)
+    ro = tmp_path / "ro" / "asset"
+    if any("{ro}" in a for a in argv):
+        _read_only(asset)
+    try:
+        fill = {"{asset}": str(asset), "{ro}": str(ro), "{cache}": str(tmp_path / "cache")}
+
+        def filled(text: str) -> str:
+            for k, v in fill.items():
+                text = text.replace(k, v)
+            return text
+
+        argv = [filled(a) for a in argv]
+        target = ro if any(str(ro) in a for a in argv) else asset
+        before = tree_digest(target)
+        run_env = {**os.environ, "PYTHONPATH": str(REPO), "DEFORMSMITH_CACHE": str(tmp_path / "cache"), **env}
+        proc = subprocess.run([sys.executable, "-m", "flows.cli.main", *argv], cwd=REPO, capture_output=True,
+                              text=True, timeout=300, env=run_env)
+        assert proc.returncode == 2, proc.stderr[-3000:]
+        assert "Traceback" not in proc.stderr, proc.stderr[-3000:]
+        lines = [ln for ln in proc.stderr.splitlines() if ln.strip()]
+        assert len(lines) == 1 and lines[0].startswith("error: ") and filled(want) in lines[0], proc.stderr[-3000:]
+        assert tree_digest(target) == before
+        assert not [p.name for p in target.parent.iterdir() if ".partial-" in p.name]
+        assert not list((tmp_path / "cache").glob("entries/*")), "a cache entry was written"
+    finally:
+        if ro.exists():
+            subprocess.run(["umount", "-l", str(ro.parent)], capture_output=True)
+
+
+@pytest.mark.parametrize("row", [r for r in LAYER_ROWS if r[0] in LAYER_FAST],
+                         ids=[r[0] for r in LAYER_ROWS if r[0] in LAYER_FAST])
+def test_a_layer_command_refuses_an_unusable_location_at_once(row: tuple[str, list[str], str, dict[str, str]],
+                                                              tmp_path: Path) -> None:
+    _check_layer_refused(row, tmp_path)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("row", [r for r in LAYER_ROWS if r[0] not in LAYER_FAST],
+                         ids=[r[0] for r in LAYER_ROWS if r[0] not in LAYER_FAST])
+def test_a_layer_command_refuses_every_unusable_location(row: tuple[str, list[str], str, dict[str, str]],
+                                                         tmp_path: Path) -> None:
+    _check_layer_refused(row, tmp_path)
