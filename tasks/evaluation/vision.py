@@ -45,12 +45,17 @@ def video_frames(path: Path, n: int = FRAMES_PER_VIEW, size_px: int = FRAME_SIZE
     """n frames evenly spaced over a video, first and last included, as RGB uint8 arrays of at most size_px."""
     import imageio.v3 as iio
 
-    frames = iio.imread(Path(path), index=None)
-    if frames.ndim != 4 or len(frames) == 0:
+    small: list[np.ndarray] = []  # every frame, already downsampled: a 720p video is never held whole in memory
+    step = 1
+    for frame in iio.imiter(Path(path)):
+        if frame.ndim != 3:
+            raise ValueError(f"{path}: not a video with frames")
+        if not small:
+            step = max(1, int(np.ceil(max(frame.shape[:2]) / size_px)))
+        small.append(np.ascontiguousarray(frame[::step, ::step, :3]))
+    if not small:
         raise ValueError(f"{path}: not a video with frames")
-    picks = [frames[i] for i in np.linspace(0, len(frames) - 1, n).round().astype(int)]
-    step = max(1, int(np.ceil(max(frames.shape[1:3]) / size_px)))
-    return [np.ascontiguousarray(f[::step, ::step, :3]) for f in picks]
+    return [small[i] for i in np.linspace(0, len(small) - 1, n).round().astype(int)]
 
 
 def png_data_url(frame: np.ndarray) -> str:

@@ -1,47 +1,216 @@
-"""Render the drop protocol from two views (front, side) at 30 fps into MP4 files, from recorded particle states."""
+"""The paper's drop protocol on film: two named views (the stills' front and side) at 30 fps, 1280 x 720, rendered
+from recorded particle states with the Gaussians following the particles' deformation, encoded as H.264 MP4.
+
+The view names are the stills' (tasks.geometry.render.VIEWS): "front" looks from +x with +y to the right, "side" from
+-y with +x to the right, each a little above the table. One fixed camera per view frames the whole motion (the drop
+height, the object and the table under it), so the fall and the contact are visible. Deterministic on the CPU.
+"""
 
 from __future__ import annotations
 
+from collections.abc import Callable, Iterable, Iterator
 from pathlib import Path
+from typing import Any, Protocol
 
 import numpy as np
 
-from tasks.geometry.gaussians import deform_gaussians
-from tasks.manipulation.render import Camera, render
+from tasks.render.camera import Camera
 
-VIEWS: dict[str, np.ndarray] = {"front": np.array([0.0, -1.0, 0.35]), "side": np.array([1.0, 0.0, 0.35])}
+# (tasks.geometry's modules import trimesh: imported where used, so the card reads these names quickly)
+
+VIDEO_WIDTH_PX, VIDEO_HEIGHT_PX = 1280, 720
+VIEW_NAMES = ("front", "side")  # the stills of these names (renders/front.png, renders/side.png) show the same side
+ELEVATION_DEG = 12.0  # low enough to see the gap under the object before it lands, high enough to see the table
+FOV_DEG = 30.0  # vertical field of view
+FILL = 0.8  # the motion's box fills at most this fraction of the frame's width and height
+CARD_TIMES_S = (0.0, 0.3, 1.0, 5.0)  # the drop frames the asset card shows
+STILL_PX = 0.25  # a frame whose Gaussians moved less than this [px] repeats the last drawn one
+STILL_COV = 1e-3  # ... and whose covariances changed by less than this fraction of the largest
+CRF = 20  # H.264 constant rate factor (lower: better, larger); a 5 s 720p drop video is well under 1 MB
+STILL_SHRINK = 2  # the card's drop frames are stored at half the video's size (640 x 360)
 
 
-def view_camera(points_m: np.ndarray, direction: np.ndarray, width: int, height: int) -> Camera:
-    """A fixed camera looking at the points' centre from a direction, far enough to frame them all."""
-    lo, hi = points_m.min(axis=0), points_m.max(axis=0)
+class GaussianRenderer(Protocol):
+    """tasks.render.splats.render_gaussians's signature: an RGB frame (H, W, 3) uint8 of the Gaussians."""
+
+    def __call__(self, cam: Camera, means_m: np.ndarray, covariances_m2: np.ndarray, colors_rgb: np.ndarray,
+                 opacities: np.ndarray, *, sh_coeffs: np.ndarray | None = None, scene: str = "studio",
+                 device: str = "cpu") -> np.ndarray: ...
+
+
+def _disc_renderer(cam: Camera, means_m: np.ndarray, covariances_m2: np.ndarray, colors_rgb: np.ndarray,
+                   opacities: np.ndarray, *, sh_coeffs: np.ndarray | None = None, scene: str = "studio",
+                   device: str = "cpu") -> np.ndarray:
+    """Stand-in with the splatting renderer's signature over the disc rasteriser (when tasks.render.splats is absent)."""
+    from tasks.manipulation.render import render
+
+    return render(cam, means_m, covariances_m2, colors_rgb)
+
+
+def gaussian_renderer() -> tuple[GaussianRenderer, list[Path]]:
+    """The Gaussian splatting renderer (tasks.render.splats) when present, else the disc stand-in; with the source
+    files whose bytes decide its pictures (the render cache key is made of them)."""
+    root = Path(__file__).resolve().parent.parent
+    try:
+        from tasks.render.splats import render_gaussians
+    except ImportError:
+        return _disc_renderer, [root / "manipulation" / "render.py", Path(__file__)]
+    sources = [p for p in (root / "render").glob("*.py") if not p.name.startswith(("card", "bench"))]
+    return render_gaussians, [*sources, root / "manipulation" / "render.py"]
+
+
+def view_axes(view: str) -> tuple[np.ndarray, np.ndarray]:
+    """The still's (screen-right, towards-viewer) axes of a named view (a KeyError names an unknown view)."""
+    from tasks.geometry.render import VIEWS as STILL_VIEWS
+
+    right, _, toward = STILL_VIEWS[view]
+    return np.asarray(right, np.float64), np.asarray(toward, np.float64)
+
+
+def protocol_camera(points_m: np.ndarray, view: str, width: int, height: int) -> Camera:
+    """A fixed camera for a named view that frames the points (every particle of every frame) and the table under
+    them: looking at the box's centre from the view's side, ELEVATION_DEG above the horizon, as close as the box
+    allows with FILL of the frame (exact for the box's corners under perspective)."""
+    pts = np.asarray(points_m, np.float64).reshape(-1, 3)
+    pts = pts[np.isfinite(pts).all(axis=1)]
+    pts = pts if len(pts) else np.zeros((1, 3))
+    lo, hi = pts.min(axis=0), pts.max(axis=0)
+    lo[2] = min(lo[2], 0.0)  # the table (z = 0) is in the box: the contact is in frame
     centre = 0.5 * (lo + hi)
-    radius = max(0.03, 0.5 * float(np.linalg.norm(hi - lo)))
-    d = direction / np.linalg.norm(direction)
-    distance = 1.3 * radius / np.tan(np.radians(20.0))
-    return Camera(tuple(centre + distance * d), tuple(centre), 40.0, width, height)
+    _, toward = view_axes(view)
+    e = np.radians(ELEVATION_DEG)
+    back = np.cos(e) * toward + np.sin(e) * np.array([0.0, 0.0, 1.0])  # from the target towards the eye
+    cam0 = Camera(tuple(centre + back), tuple(centre), FOV_DEG, width, height)
+    rot, _, _ = cam0.frame()
+    tan_v = np.tan(np.radians(FOV_DEG) / 2.0) * FILL
+    tan_h = tan_v * width / height
+    corners = np.array([[x, y, z] for x in (lo[0], hi[0]) for y in (lo[1], hi[1]) for z in (lo[2], hi[2])]) - centre
+    c = corners @ rot.T  # (right, down, forward) offsets from the target
+    # a corner at depth D + c_f fits when |c_r| <= tan_h (D + c_f) and |c_d| <= tan_v (D + c_f)
+    distance = float(max(np.max(np.abs(c[:, 0]) / tan_h - c[:, 2]), np.max(np.abs(c[:, 1]) / tan_v - c[:, 2])))
+    distance = max(distance, 1e-3 + float(np.max(-c[:, 2])))
+    return Camera(tuple(centre + distance * back), tuple(centre), FOV_DEG, width, height)
 
 
-def render_protocol_frames(gaussians: dict[str, np.ndarray], rest_covariances_m2: np.ndarray, rest_particles_m: np.ndarray,
-                           x_frames: np.ndarray, F_frames: np.ndarray, view: str, width: int = 320,
-                           height: int = 240) -> list[np.ndarray]:
-    """RGB frames (H, W, 3) uint8 of the deformed Gaussians from one view (the camera frames the whole motion)."""
-    pts = np.concatenate([x_frames[0], x_frames[-1], rest_particles_m * [1, 1, 0]])
-    cam = view_camera(np.asarray(pts, np.float64), VIEWS[view], width, height)
-    frames = []
+def frame_count(n_states: int, fps: float, duration_s: float) -> int:
+    """Frames of a video of duration_s at fps from n_states recorded states (state k at t = k / fps)."""
+    return max(1, min(n_states, int(round(duration_s * fps))))
+
+
+def iter_states(renderer: GaussianRenderer, cam: Camera, gaussians: dict[str, np.ndarray],
+                rest_covariances_m2: np.ndarray, rest_particles_m: np.ndarray, x_frames: np.ndarray,
+                F_frames: np.ndarray) -> Iterator[np.ndarray]:
+    """RGB frames of the Gaussians deformed by each recorded state (positions x, deformation gradients F), one at a
+    time (a 5 s 720p video is 400 MB of frames). A state whose Gaussians lie within STILL_PX of the last drawn
+    frame's (centres, and sizes to STILL_COV) repeats that frame: a body at rest is drawn once, not 100 times."""
+    from tasks.geometry.gaussians import deform_gaussians
+
+    colors = np.clip(np.asarray(gaussians["colors"], np.float64)[:, :3], 0.0, 1.0)
+    n = len(colors)
+    opacities = np.asarray(gaussians.get("opacities", np.full(n, 0.95)), np.float64).reshape(n)
+    rot, eye, focal = cam.frame()
+    drawn: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None
     for x, F in zip(x_frames, F_frames):
         centres, cov = deform_gaussians(gaussians["positions_m"], rest_covariances_m2, gaussians["particle_index"],
                                         gaussians["particle_weight"], rest_particles_m, x, F)
-        frames.append(render(cam, centres, cov, gaussians["colors"]))
-    return frames
+        if drawn is not None and _same_picture(drawn[0], drawn[1], centres, cov, rot[2], eye, focal):
+            yield drawn[2]
+            continue
+        ok = np.isfinite(centres).all(axis=1) & np.isfinite(cov).all(axis=(1, 2))  # an exploded state: what is left
+        centres, cov = np.where(ok[:, None], centres, 0.0), np.where(ok[:, None, None], cov, 0.0)
+        image = np.ascontiguousarray(renderer(cam, centres[ok], cov[ok], colors[ok], opacities[ok], scene="studio",
+                                              device="cpu"))
+        drawn = (centres, cov, image)
+        yield image
 
 
-def write_mp4(frames: list[np.ndarray], path: Path, fps: float) -> Path:
-    """Encode frames as H.264 MP4 (imageio-ffmpeg) at fps."""
+def _same_picture(centres0: np.ndarray, cov0: np.ndarray, centres: np.ndarray, cov: np.ndarray, forward: np.ndarray,
+                  eye: np.ndarray, focal_px: float) -> bool:
+    """True when no Gaussian centre moved STILL_PX on screen (bounded by its motion at the nearest depth) and no
+    covariance changed by STILL_COV of the largest one."""
+    depth = float(((centres - eye) @ forward).min())
+    if not np.isfinite(depth) or depth <= 0.0:
+        return False
+    moved_px = float(np.sqrt(((centres - centres0) ** 2).sum(axis=1).max())) * focal_px / depth
+    scale = float(np.abs(cov0).max())
+    return moved_px < STILL_PX and float(np.abs(cov - cov0).max()) <= STILL_COV * scale
+
+
+def render_protocol_frames(gaussians: dict[str, np.ndarray], rest_covariances_m2: np.ndarray,
+                           rest_particles_m: np.ndarray, x_frames: np.ndarray, F_frames: np.ndarray, view: str,
+                           width: int = VIDEO_WIDTH_PX, height: int = VIDEO_HEIGHT_PX,
+                           renderer: GaussianRenderer | None = None) -> list[np.ndarray]:
+    """RGB frames (H, W, 3) uint8 of the deformed Gaussians from one named view, one per recorded state (the camera
+    frames the whole motion)."""
+    cam = protocol_camera(np.asarray(x_frames), view, width, height)
+    return list(iter_states(renderer or gaussian_renderer()[0], cam, gaussians, rest_covariances_m2, rest_particles_m,
+                            x_frames, F_frames))
+
+
+def write_mp4(frames: Iterable[np.ndarray], path: Path, fps: float, crf: int = CRF) -> Path:
+    """Encode frames as H.264 MP4 (imageio-ffmpeg; yuv420p, fast start, no time stamps in the file): the same frames
+    give the same bytes."""
     import imageio.v2 as imageio
 
     path.parent.mkdir(parents=True, exist_ok=True)
-    with imageio.get_writer(path, fps=fps, codec="libx264", macro_block_size=8, quality=7) as writer:
+    params = ["-crf", str(crf), "-preset", "faster", "-threads", "2", "-movflags", "+faststart",
+              "-map_metadata", "-1", "-fflags", "+bitexact", "-flags:v", "+bitexact"]
+    with imageio.get_writer(path, fps=fps, codec="libx264", macro_block_size=8, quality=None,
+                            ffmpeg_params=params, pixelformat="yuv420p") as writer:
         for frame in frames:
             writer.append_data(frame)  # type: ignore[attr-defined]  # typed as imageio's base reader/writer
     return path
+
+
+def write_png(frame: np.ndarray, path: Path, shrink: int = 1) -> Path:
+    """One frame as PNG, its size divided by shrink (each pixel the mean of a shrink x shrink block)."""
+    import imageio.v3 as iio
+
+    if shrink > 1:
+        h, w = (frame.shape[0] // shrink) * shrink, (frame.shape[1] // shrink) * shrink
+        blocks = frame[:h, :w].reshape(h // shrink, shrink, w // shrink, shrink, -1).astype(np.float64)
+        frame = np.rint(blocks.mean(axis=(1, 3))).astype(np.uint8)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    iio.imwrite(path, frame)
+    return path
+
+
+def card_still_name(view: str, t_s: float) -> str:
+    """File name (under renders/) of the drop frame at t_s seconds from a view: drop_front_t0.3s.png."""
+    return f"drop_{view}_t{t_s:.1f}s.png"
+
+
+def _keeping(frames: Iterator[np.ndarray], wanted: set[int], kept: dict[int, np.ndarray]) -> Iterator[np.ndarray]:
+    """The frames, passed on, keeping those whose index is wanted in kept."""
+    for k, frame in enumerate(frames):
+        if k in wanted:
+            kept[k] = frame
+        yield frame
+
+
+def drop_files(gaussians: dict[str, np.ndarray], rest_covariances_m2: np.ndarray, rest_particles_m: np.ndarray,
+               x_frames: np.ndarray, F_frames: np.ndarray, folder: Path, fps: float, duration_s: float,
+               width: int = VIDEO_WIDTH_PX, height: int = VIDEO_HEIGHT_PX,
+               renderer: GaussianRenderer | None = None,
+               progress: Callable[[str], Any] | None = None) -> dict[str, Path]:
+    """drop_<view>.mp4 for each named view (duration_s at fps: state k shown at t = k / fps) and the card's drop
+    frames drop_<view>_t<t>s.png at CARD_TIMES_S (the nearest recorded state), written into folder; name -> path."""
+    draw = renderer or gaussian_renderer()[0]
+    n = frame_count(len(x_frames), fps, duration_s)
+    stills = {t: min(len(x_frames) - 1, int(round(t * fps))) for t in CARD_TIMES_S}  # time -> state
+    out: dict[str, Path] = {}
+    for view in VIEW_NAMES:
+        cam = protocol_camera(np.asarray(x_frames), view, width, height)
+        kept: dict[int, np.ndarray] = {}
+        wanted = set(stills.values())
+        args = (gaussians, rest_covariances_m2, rest_particles_m)
+        out[f"drop_{view}.mp4"] = write_mp4(_keeping(iter_states(draw, cam, *args, x_frames[:n], F_frames[:n]),
+                                                     wanted, kept), folder / f"drop_{view}.mp4", fps)
+        for k in sorted(wanted - set(kept)):  # a still after the video's last frame (5 s: state 150)
+            kept[k] = next(iter_states(draw, cam, *args, x_frames[k:k + 1], F_frames[k:k + 1]))
+        for t, k in stills.items():
+            shrink = STILL_SHRINK if min(width, height) >= 360 else 1
+            out[card_still_name(view, t)] = write_png(kept[k], folder / card_still_name(view, t), shrink)
+        if progress:
+            progress(view)
+    return out

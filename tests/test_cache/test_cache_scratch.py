@@ -72,7 +72,7 @@ def test_drop_videos_leave_no_temp_folder(prefect_api: str, private_tmp: Path) -
     gaussians = {"positions_m": rest[idx[:, 0]], "colors": rng.random((30, 3)), "particle_index": idx,
                  "particle_weight": np.full((30, 4), 0.25)}
     cov = np.tile(np.eye(3) * 1e-6, (30, 1, 1))
-    videos = drop_videos_task(gaussians, cov, rest, x, F)
+    videos = drop_videos_task(gaussians, cov, rest, x, F, "", 128, 72)  # (renderer code, a small frame)
     assert list(private_tmp.glob("ds-drop-video-*")) == []
     assert all(_inside(p, cache_root()) and p.stat().st_size > 0 for p in videos.values())
-    assert drop_videos_task(gaussians, cov, rest, x, F) == videos  # a hit returns the same stored files
+    assert drop_videos_task(gaussians, cov, rest, x, F, "", 128, 72) == videos  # a hit returns the same stored files

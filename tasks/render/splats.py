@@ -1,0 +1,150 @@
+"""3D Gaussian splatting (Kerbl et al. 2023) of Gaussians given by centres and covariances, over a studio or a flat
+background: RGB uint8 images, the same Warp kernels on the CPU and on CUDA.
+
+    from tasks.render.camera import Camera
+    from tasks.render.splats import render_gaussians
+
+    img = render_gaussians(Camera(eye, target, 40.0, 1280, 720), means_m, covariances_m2, colors_rgb, opacities)
+
+The algorithm (tasks.render.splat_kernels): EWA projection of each covariance with 0.3 px² low-pass, 16 x 16 tiles,
+a stable radix sort of (tile, depth) keys, and per pixel front-to-back alpha compositing with transmittance, alpha
+clamped to 0.99, nothing beyond 3 sigma or below 1/255, early termination at T < 1e-4. ``scene="studio"``: a neutral
+backdrop, a table at z = 0 that hides what lies below it, a soft shadow under the object (tasks.render.studio);
+``"none"``: a flat light grey. On the CPU the same inputs give the same bytes on any machine (the tiles are split into
+bands drawn by up to 8 threads, one per core; no pixel's sum depends on the split). Gaussians deformed by particles:
+tasks.geometry.gaussians.deform_gaussians (covariances F Σ Fᵀ).
+"""
+
+from __future__ import annotations
+
+import math
+import os
+from concurrent.futures import ThreadPoolExecutor
+
+import numpy as np
+
+from contracts.errors import InputError
+from tasks.render.camera import Camera
+from tasks.render.sh import COEFFS_OF_DEGREE, view_colors
+from tasks.render.studio import (FLAT_RGB, HORIZON_RGB, SPOT_FALLOFF, TABLE_RGB, TOP_RGB, ShadowMap, no_shadow,
+                                 shadow_map)
+
+SCENES = ("studio", "none")
+NEAR_M = 0.01  # Gaussians nearer to the camera plane than this are dropped
+# threads that draw bands of tiles on the CPU (a Warp CPU launch runs on one core); the image does not depend on them
+CPU_BANDS = min(os.cpu_count() or 1, 8)
+
+
+def render_gaussians(cam: Camera, means_m: np.ndarray, covariances_m2: np.ndarray, colors_rgb: np.ndarray,
+                     opacities: np.ndarray, *, sh_coeffs: np.ndarray | None = None, scene: str = "studio",
+                     device: str = "cpu") -> np.ndarray:
+    """RGB uint8 image (cam.height, cam.width, 3)."""
+    means, covs, colors, opac = _checked(means_m, covariances_m2, colors_rgb, opacities, sh_coeffs, scene, device)
+    rot, eye, focal = cam.frame()
+    if sh_coeffs is not None and len(means):
+        colors = view_colors(colors, np.asarray(sh_coeffs, np.float64), means, eye)
+    shadow = shadow_map(means, covs, opac) if scene == "studio" and len(means) else no_shadow()
+    return _rasterise(cam, rot, eye, focal, means, covs, np.clip(colors, 0.0, 1.0), opac, scene, shadow, device)
+
+
+def _checked(means_m: np.ndarray, covariances_m2: np.ndarray, colors_rgb: np.ndarray, opacities: np.ndarray,
+             sh_coeffs: np.ndarray | None, scene: str, device: str
+             ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """The inputs as float64 arrays of matching shapes, or an InputError naming what is off."""
+    means = np.asarray(means_m, np.float64)
+    n = len(means)
+    covs = np.asarray(covariances_m2, np.float64)
+    colors = np.asarray(colors_rgb, np.float64)
+    opac = np.asarray(opacities, np.float64)
+    if means.shape != (n, 3) or covs.shape != (n, 3, 3) or colors.shape != (n, 3) or opac.shape != (n,):
+        raise InputError(f"render_gaussians: expected means (N, 3), covariances (N, 3, 3), colours (N, 3), "
+                         f"opacities (N,); got {means.shape}, {covs.shape}, {colors.shape}, {opac.shape}")
+    if sh_coeffs is not None:
+        shape = np.shape(sh_coeffs)
+        if len(shape) != 3 or shape[0] != n or shape[1] not in COEFFS_OF_DEGREE or shape[2] != 3:
+            raise InputError(f"render_gaussians: sh_coeffs must be (N, 3|8|15, 3) for SH degree 1..3, got {shape}")
+    if scene not in SCENES:
+        raise InputError(f"render_gaussians: scene must be one of {', '.join(SCENES)}, got '{scene}'")
+    if not (device == "cpu" or device.startswith("cuda")):
+        raise InputError(f"render_gaussians: device must be cpu or cuda, got '{device}'")
+    if not (np.all(np.isfinite(means)) and np.all(np.isfinite(covs)) and np.all(np.isfinite(opac))):
+        raise InputError("render_gaussians: non-finite centres, covariances or opacities")
+    return means, covs, colors, np.clip(opac, 0.0, 1.0)
+
+
+def _rasterise(cam: Camera, rot: np.ndarray, eye: np.ndarray, focal: float, means: np.ndarray, covs: np.ndarray,
+               colors: np.ndarray, opac: np.ndarray, scene: str, shadow: ShadowMap, device: str) -> np.ndarray:
+    """Project, bin, sort and composite on `device`; the image as a numpy array."""
+    import warp as wp
+
+    from tasks.render import splat_kernels as k
+
+    w, h = int(cam.width), int(cam.height)
+    tile = k.TILE_EDGE_PX
+    tiles_x, tiles_y = -(-w // tile), -(-h // tile)
+    n_tiles = tiles_x * tiles_y
+    ty, tx = np.divmod(np.arange(n_tiles, dtype=np.int32), np.int32(tiles_x))
+    tile_origin: wp.array = wp.array(np.stack([tx, ty], axis=1) * np.int32(tile), dtype=wp.vec2i, device=device)
+    n = max(len(means), 1)  # zero Gaussians: one dummy slot, never touched
+
+    def arr(a: np.ndarray, dtype: object) -> wp.array:
+        return wp.array(np.ascontiguousarray(a, np.float32), dtype=dtype, device=device)
+
+    if not len(means):
+        means, covs, opac, colors = np.zeros((1, 3)), np.zeros((1, 3, 3)), np.zeros(1), np.zeros((1, 3))
+    g_means, g_covs = arr(means, wp.vec3), arr(covs, wp.mat33)
+    g_opac, g_color = arr(opac, float), arr(colors, wp.vec3)
+    xy = wp.zeros(n, dtype=wp.vec2, device=device)
+    conic_o = wp.zeros(n, dtype=wp.vec4, device=device)
+    depth = wp.zeros(n, dtype=float, device=device)
+    rect = wp.zeros(n, dtype=wp.vec4i, device=device)
+    touched = wp.zeros(n, dtype=int, device=device)
+    w_rot, w_eye = wp.mat33(*rot.astype(np.float32).ravel()), wp.vec3(*eye.astype(np.float32))
+    wp.launch(k.preprocess, dim=n, device=device,
+              inputs=[g_means, g_covs, g_opac, w_rot, w_eye, focal, w, h, tile, tiles_x, tiles_y, NEAR_M],
+              outputs=[xy, conic_o, depth, rect, touched])
+    ends = wp.empty(n, dtype=int, device=device)
+    wp.utils.array_scan(touched, ends, inclusive=True)
+    total = int(ends[n - 1:n].numpy()[0])
+    keys = wp.empty(max(2 * total, 2), dtype=wp.int64, device=device)
+    values = wp.empty(max(2 * total, 2), dtype=int, device=device)
+    start = wp.zeros(n_tiles, dtype=int, device=device)
+    end = wp.zeros(n_tiles, dtype=int, device=device)
+    m = max(total, 1)
+    s_xy = wp.zeros(m, dtype=wp.vec2, device=device)
+    s_conic_o = wp.zeros(m, dtype=wp.vec4, device=device)
+    s_color = wp.zeros(m, dtype=wp.vec3, device=device)
+    s_depth = wp.zeros(m, dtype=float, device=device)
+    if total:
+        starts = wp.empty(n, dtype=int, device=device)
+        wp.utils.array_scan(touched, starts, inclusive=False)
+        wp.launch(k.duplicate, dim=n, device=device,
+                  inputs=[touched, starts, rect, xy, conic_o, depth, tile, tiles_x, n_tiles], outputs=[keys, values])
+        wp.utils.radix_sort_pairs(keys, values, total, end_bit=32 + max(1, math.ceil(math.log2(n_tiles + 1))))
+        wp.launch(k.tile_ranges, dim=total, device=device, inputs=[keys, total, n_tiles], outputs=[start, end])
+        wp.launch(k.gather, dim=total, device=device, inputs=[values, xy, conic_o, g_color, depth],
+                  outputs=[s_xy, s_conic_o, s_color, s_depth])
+    out = wp.empty(w * h * 3, dtype=wp.uint8, device=device)
+    dark = np.ascontiguousarray(shadow.darkening, np.float32)
+    target = np.asarray(cam.target, np.float32)
+    dist = float(np.linalg.norm(np.asarray(cam.target) - eye))
+    common = [start, end, s_xy, s_conic_o, s_color, s_depth, w, h, tile_origin]
+    scene_args = [w_rot, w_eye, focal, int(scene == "studio"), wp.vec3(*FLAT_RGB), wp.vec3(*TABLE_RGB),
+                  wp.vec3(*HORIZON_RGB), wp.vec3(*TOP_RGB), wp.vec2(target[0], target[1]), 0.9 * dist, SPOT_FALLOFF,
+                  3.0 * dist,
+                  wp.array(dark.ravel(), dtype=float, device=device), wp.vec2(*shadow.origin_m), shadow.cell_m,
+                  dark.shape[1], dark.shape[0], out]
+
+    def band(first_tile: int, tiles: int) -> None:
+        wp.launch(k.render_pixels, dim=tiles * tile * tile, device=device, inputs=[*common, first_tile, *scene_args])
+
+    threads = max(1, min(CPU_BANDS, n_tiles)) if device == "cpu" else 1
+    if threads == 1:
+        band(0, n_tiles)
+    else:  # 4 bands a thread, taken in turn as threads come free: the object's tiles cost more than the backdrop's
+        bands = min(4 * threads, n_tiles)
+        cuts = [n_tiles * b // bands for b in range(bands + 1)]
+        with ThreadPoolExecutor(threads) as pool:
+            for f in [pool.submit(band, a, b - a) for a, b in zip(cuts[:-1], cuts[1:])]:
+                f.result()
+    return out.numpy().reshape(h, w, 3)
