@@ -17,7 +17,8 @@ ORDER = ("contracts", "cache", "tasks", "flows", "benchmarks")  # each may impor
 
 # The one arrow up, kept narrow: `deformsmith bench l2` (a flows/cli command) imports its lab driver inside the command
 # function, so only that command loads benchmarks/. Keys: (file, imported module).
-ALLOWED_UP = {("flows/cli/material_cmds.py", "benchmarks.l2_schedule"), ("flows/cli/generate_cmds.py", "benchmarks.generate_rerun")}
+ALLOWED_UP = {("flows/cli/material_cmds.py", "benchmarks.l2_schedule"), ("flows/cli/generate_cmds.py", "benchmarks.generate_rerun"),
+              ("flows/cli/crosscheck_cmds.py", "benchmarks.crosscheck_bench")}
 
 
 def module_name(path: Path) -> str:

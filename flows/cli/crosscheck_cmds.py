@@ -1,0 +1,81 @@
+"""`deformsmith crosscheck DIR --sim mujoco|genesis` and `deformsmith bench crosscheck`: the asset in other simulators,
+measured by L2's probes beside DeformSmith's MPM values, before and after per-simulator calibration."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import typer
+
+from flows.cli.apps import app, bench_app, console, emit_json, fail
+
+
+def _fmt(v: float | None) -> str:
+    return "-" if v is None else f"{v:.4g}"
+
+
+def _pct(v: float | None) -> str:
+    return "-" if v is None else f"{100 * v:.1f}%"
+
+
+@app.command("crosscheck")
+def crosscheck_cmd(
+    asset_dir: Path = typer.Argument(..., help="a published asset directory (L2 passed: material.json)"),
+    sim: str = typer.Option("mujoco", "--sim", help="mujoco or genesis"),
+    calibrate: bool = typer.Option(True, "--calibrate/--no-calibrate", help="fit the simulator's E and damping"),
+    out: Path = typer.Option(None, "--out", help="export root (default: DIR/export); exported first if missing"),
+    cache_dir: Path = typer.Option(None, "--cache", help="cache root (default: $DEFORMSMITH_CACHE or the user cache)"),
+    as_json: bool = typer.Option(False, "--json", help="print the report as JSON"),
+) -> None:
+    """Run L2's drop and compression probes in another simulator on the exported asset and report each metric
+    (effective modulus, rebound, impact strain, settle time, recovery) beside DeformSmith's MPM value."""
+    from cache import use_cache_root
+    from contracts.errors import DeformSmithError
+    from flows.crosscheck import crosscheck_asset
+
+    if not asset_dir.is_dir():
+        fail(f"{asset_dir} is not an asset directory")
+    if cache_dir is not None:
+        use_cache_root(cache_dir)
+    try:
+        with console.status(f"probing the asset in {sim} ..."):
+            report = crosscheck_asset(asset_dir, sim, calibrate=calibrate, export_root=out)
+    except DeformSmithError as e:
+        fail(str(e))
+    if as_json:
+        emit_json(report.model_dump(mode="json"))
+        return
+    console.print(f"{report.sim} crosscheck of {report.asset} (strain {report.probes['strain']}, drop height "
+                  f"fraction {report.probes['height_fraction']})")
+    console.print(f"{'metric':24s} {'DeformSmith':>12s} {report.sim:>12s} {'err':>7s} {'calibrated':>12s} {'err':>7s}")
+    for name, row in report.metrics.items():
+        console.print(f"{name:24s} {_fmt(row.ours):>12s} {_fmt(row.theirs):>12s} {_pct(row.rel_error):>7s} "
+                      f"{_fmt(row.theirs_calibrated):>12s} {_pct(row.rel_error_calibrated):>7s}")
+    if report.calibration:
+        console.print(f"calibrated parameters: {report.calibration['parameters']}")
+        console.print(f"modulus and rebound within {100 * report.agree_within:.0f} %: {report.agrees}")
+    console.print(f"{report.sim_calls} simulations, {report.wall_time_s:.1f} s")
+
+
+@bench_app.command("crosscheck")
+def bench_crosscheck(
+    assets: list[Path] = typer.Argument(None, help="asset directories (default: see benchmarks/crosscheck_bench.py)"),
+    sims: str = typer.Option("mujoco", "--sims", help="comma list of simulators (mujoco, genesis)"),
+    out: Path = typer.Option(None, "--out", help="write the JSON here too (e.g. docs/crosscheck.json)"),
+    as_json: bool = typer.Option(False, "--json", help="print the figures as JSON"),
+) -> None:
+    """Per asset, simulator and metric: ours, theirs before calibration, theirs after (and whether the calibrated
+    modulus and rebound agree within 15 %)."""
+    from benchmarks.crosscheck_bench import run  # the lab sits on top of flows: imported by this command only
+    from contracts.errors import DeformSmithError
+
+    try:
+        data = run(assets or None, [s.strip() for s in sims.split(",") if s.strip()], out)
+    except DeformSmithError as e:
+        fail(str(e))
+    if as_json:
+        emit_json(data)
+        return
+    for row in data["rows"]:
+        console.print(f"{row['asset']:10s} {row['sim']:8s} {row['metric']:24s} ours {_fmt(row['ours']):>10s} "
+                      f"theirs {_fmt(row['theirs']):>10s} calibrated {_fmt(row['theirs_calibrated']):>10s}")

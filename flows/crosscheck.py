@@ -1,0 +1,221 @@
+"""Cross-simulator check of an exported asset: L2's object probes re-run in MuJoCo (or Genesis), then calibration.
+
+MuJoCo runs the compression and the drop and is calibrated (young, then the flex damping, then its contacts' damping
+ratio if the flex damping alone cannot reach L2's rebound). Genesis runs the drop on the exported scene.py only, with
+no calibration (GENESIS_NO_CALIBRATION).
+
+    crosscheck_asset(asset_dir, "mujoco")  # -> CrosscheckReport; DIR/export/mujoco/{<slug>_calibrated.xml,
+                                           #    calibration.json, crosscheck.json}, manifest.json's calibrated entry
+
+The export is made first when DIR/export has none for the simulator (flows.export.export_asset). Before calibration
+the simulator runs the exported parameters; calibration (tasks.export.calibrate) fits its Young's modulus to L2's
+effective modulus, then its damping to L2's rebound, and the probes run once more with the fitted values ("after").
+No Prefect flow: a handful of simulations in-process, like `deformsmith export`.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import time
+from collections.abc import Callable
+from dataclasses import dataclass
+from pathlib import Path
+
+from pydantic import ValidationError
+
+from contracts.errors import InputError
+from contracts.export import ExportManifest
+from flows.export import MANIFEST, export_asset
+from tasks.export.calibrate import Calibration, Knob, fit_modulus, fit_rebound, rel
+from tasks.export.crosscheck import (
+    AGREEMENT_TOLERANCE, CALIBRATED_METRICS, CrosscheckReport, ProbeTargets, metric_rows, probe_targets, slice_area_m2,
+)
+from tasks.export.inputs import ExportInputs, load_export_inputs
+from tasks.publish import write_text_atomic
+
+SIMULATORS = ("mujoco", "genesis")
+REPORT = "crosscheck.json"
+CALIBRATION = "calibration.json"
+GENESIS_NO_CALIBRATION = ("Genesis runs the drop only: the compression probe (a kinematic rigid plate in Genesis's MPM "
+                          "with its force read back) is not implemented, so there is no modulus to fit, and "
+                          "Genesis's MPM.Elastic has no damping parameter")
+
+
+@dataclass
+class SimRunner:
+    """A simulator's probes on one asset: params -> metrics (compress None where the simulator cannot run it);
+    knobs() the rebound search's damping knobs (None: nothing to calibrate)."""
+
+    name: str
+    initial: dict[str, float]
+    compress: Callable[[dict[str, float]], dict[str, float]] | None
+    drop: Callable[[dict[str, float]], dict[str, float]]
+    knobs: Callable[[dict[str, float]], list[Knob]] | None
+    write_calibrated: Callable[[dict[str, float], Path], list[str]] | None
+
+
+def _mujoco_runner(inputs: ExportInputs, targets: ProbeTargets, area_m2: float) -> SimRunner:
+    from tasks.export import mujoco as mj
+    from tasks.export.mujoco_probes import TetBody, compress, drop
+    from tasks.export.mujoco_scene import FlexParams
+
+    nodes, tets = inputs.tet.nodes_m, inputs.tet.tets
+    p0 = mj.flex_params(nodes, tets, inputs.material)
+    body = TetBody(nodes, tets, inputs.material.density_kg_per_m3, targets.spacing_m,
+                   inputs.material.youngs_modulus_pa)
+
+    def params(values: dict[str, float]) -> FlexParams:
+        return FlexParams(young_pa=values["young_pa"], poisson=p0.poisson, damping_s=values["damping_s"],
+                          mass_kg=p0.mass_kg, friction=p0.friction, timestep_s=p0.timestep_s,
+                          contact_timeconst_s=p0.contact_timeconst_s, contact_dampratio=values["contact_dampratio"])
+
+    def knobs(values: dict[str, float]) -> list[Knob]:
+        # the flex damping up to critical at the fundamental mode (ratio b w0 / 2 = 1): beyond it the body turns
+        # viscous and the compression no longer holds its modulus (plush turtle at 1000 x: modulus -26 %)
+        b = max(values["damping_s"], 1e-9)
+        b_critical = 2.0 * body.period_s / (2.0 * math.pi)
+        return [Knob("damping_s", b, b * 1e-3, max(b_critical, 2.0 * b)),
+                Knob("contact_dampratio", values["contact_dampratio"], 0.05, 1.0)]
+
+    def write(values: dict[str, float], folder: Path) -> list[str]:
+        name = f"{inputs.slug}{mj.CALIBRATED_SUFFIX}.xml"
+        mj.write_scene(folder / name, nodes, tets, params(values), inputs.slug,
+                       "DeformSmith export calibrated against L2's object compression and drop probes "
+                       "(deformsmith crosscheck; calibration.json)")
+        return [name]
+
+    init = {k: v for k, v in mj.parameters_dict(p0).items() if k in ("young_pa", "damping_s", "contact_dampratio")}
+    return SimRunner("mujoco", init,
+                     lambda v: compress(body, params(v), targets.strain, area_m2),
+                     lambda v: drop(body, params(v), targets.height_fraction), knobs, write)
+
+
+def _genesis_runner(inputs: ExportInputs, targets: ProbeTargets, folder: Path) -> SimRunner:
+    from tasks.export import genesis_probes
+    from tasks.export.genesis import SCENE
+
+    scene = folder / SCENE
+    return SimRunner("genesis", {"young_pa": inputs.material.youngs_modulus_pa}, None,
+                     lambda v: genesis_probes.drop(scene, targets.height_fraction, v["young_pa"]), None, None)
+
+
+def _require(sim: str) -> None:
+    """InputError naming the extra when the simulator's package is missing (checked before anything is written)."""
+    import importlib.util
+
+    if sim not in SIMULATORS:
+        raise InputError(f"unknown simulator '{sim}'; choose one of {', '.join(SIMULATORS)}")
+    if sim == "mujoco" and importlib.util.find_spec("mujoco") is None:
+        raise InputError('crosscheck --sim mujoco needs the mujoco package: pip install -e ".[export]"')
+    if sim == "genesis" and importlib.util.find_spec("genesis") is None:
+        from tasks.export.genesis import GENESIS_INSTALL
+
+        raise InputError(f"crosscheck --sim genesis needs genesis-world: {GENESIS_INSTALL}")
+
+
+def _runner(sim: str, inputs: ExportInputs, targets: ProbeTargets, area_m2: float, folder: Path) -> SimRunner:
+    return _mujoco_runner(inputs, targets, area_m2) if sim == "mujoco" else _genesis_runner(inputs, targets, folder)
+
+
+def _probe_metrics(c: dict[str, float], d: dict[str, float]) -> dict[str, float]:
+    return {**{k: float(v) for k, v in d.items()}, **{k: float(v) for k, v in c.items()}}
+
+
+def _export_folder(asset_dir: Path, sim: str, export_root: Path | None) -> tuple[Path, Path]:
+    """(export root, the simulator's folder), exporting first when it is missing."""
+    root = Path(export_root) if export_root is not None else asset_dir / "export"
+    if not (root / sim).is_dir():
+        export_asset(asset_dir, [sim], root)
+    return root, root / sim
+
+
+def _record_calibration(root: Path, sim: str, calibrated: dict) -> None:
+    """manifest.json: the simulator's TargetManifest.calibrated (left alone when there is no manifest)."""
+    path = root / MANIFEST
+    try:
+        manifest = ExportManifest.model_validate_json(path.read_text(encoding="utf-8"))
+    except (OSError, ValidationError):
+        return
+    if sim in manifest.targets:
+        t = manifest.targets[sim]
+        files = list(dict.fromkeys([*t.files, *calibrated.get("files", [])]))
+        manifest.targets[sim] = t.model_copy(update={"calibrated": calibrated, "files": files})
+        write_text_atomic(path, manifest.model_dump_json(indent=2) + "\n")
+
+
+def crosscheck_asset(asset_dir: Path, sim: str = "mujoco", calibrate: bool = True, export_root: Path | None = None,
+                     write: bool = True) -> CrosscheckReport:
+    """Run L2's object compression and drop in `sim` on the exported asset, calibrate, and report beside L2's."""
+    t_wall = time.perf_counter()
+    asset_dir = Path(asset_dir)
+    _require(sim)
+    targets = probe_targets(asset_dir)
+    inputs = load_export_inputs(asset_dir)
+    notes: list[str] = []
+    area = targets.area_m2
+    if area is None:
+        z = inputs.tet.nodes_m[:, 2]
+        area = slice_area_m2(inputs.tet.nodes_m, inputs.tet.tets, 0.5 * (z.min() + z.max()))
+        notes.append("cross-section from the tet mesh (material.json records none)")
+    root, folder = _export_folder(asset_dir, sim, export_root)
+    runner = _runner(sim, inputs, targets, area, folder)
+    calls = 0
+    values = dict(runner.initial)
+    before = _probe_metrics(runner.compress(values) if runner.compress else {}, runner.drop(values))
+    calls += 2 if runner.compress else 1
+    ours = targets.ours
+    after: dict[str, float] | None = None
+    calibration: Calibration | None = None
+    if calibrate and (runner.compress is None or runner.knobs is None):
+        notes.append(f"no calibration: {GENESIS_NO_CALIBRATION if sim == 'genesis' else 'not supported'}")
+    elif calibrate and runner.compress is not None and runner.knobs is not None:
+        compress, knobs_of = runner.compress, runner.knobs
+        e_target, r_target = ours["effective_modulus_pa"], ours["rebound_ratio"]
+
+        def modulus(e: float) -> float:
+            return float(compress({**values, "young_pa": e})["effective_modulus_pa"])
+
+        young, _, steps_e = fit_modulus(modulus, values["young_pa"], e_target,
+                                        first=before["effective_modulus_pa"])
+        values["young_pa"] = young
+
+        def rebound(v: dict[str, float]) -> float:
+            return float(runner.drop({**values, **v}).get("rebound_ratio", 0.0))
+
+        first = before.get("rebound_ratio") if young == runner.initial["young_pa"] else None
+        fitted, _, steps_r = fit_rebound(rebound, knobs_of(values), r_target, first=first)
+        values.update(fitted)
+        after = _probe_metrics(compress(values), runner.drop(values))
+        calls += len(steps_e) + len(steps_r) + 2
+        residuals = {m: rel(after[m], ours[m]) for m in CALIBRATED_METRICS if m in after}
+        calibration = Calibration(
+            sim=sim, parameters=values, initial=runner.initial, residuals=residuals,
+            residuals_before={m: rel(before[m], ours[m]) for m in CALIBRATED_METRICS if m in before},
+            probes=[f"compress (object, strain {targets.strain})",
+                    f"drop (object, height fraction {targets.height_fraction})"],
+            history=[*steps_e, *steps_r], sim_calls=len(steps_e) + len(steps_r) + 2,
+            converged=all(abs(r) <= AGREEMENT_TOLERANCE for r in residuals.values()))
+    rows = metric_rows(ours, before, after)
+    agrees = None
+    if after is not None:
+        errors = [rows[m].rel_error_calibrated for m in CALIBRATED_METRICS]
+        agrees = all(e is not None and e <= AGREEMENT_TOLERANCE for e in errors)
+    report = CrosscheckReport(asset=str(asset_dir), sim=sim,
+                              probes={"strain": targets.strain, "height_fraction": targets.height_fraction,
+                                      "area_m2": area},
+                              metrics=rows, parameters=runner.initial,
+                              calibration=calibration.model_dump() if calibration else None, agrees=agrees,
+                              sim_calls=calls, wall_time_s=time.perf_counter() - t_wall, notes=notes)
+    if write:
+        write_text_atomic(folder / REPORT, report.model_dump_json(indent=2) + "\n")
+        if calibration is not None and runner.write_calibrated is not None:
+            files = runner.write_calibrated(calibration.parameters, folder)
+            write_text_atomic(folder / CALIBRATION, calibration.model_dump_json(indent=2) + "\n")
+            entry = {**json.loads(calibration.model_dump_json(exclude={"history"})),
+                     "files": [f"{sim}/{f}" for f in (*files, CALIBRATION, REPORT)]}
+            _record_calibration(root, sim, entry)
+    return report
+
+
+__all__ = ["SIMULATORS", "crosscheck_asset"]

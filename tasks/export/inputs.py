@@ -1,0 +1,106 @@
+"""What every export target reads from an asset directory: the validated material, the tet mesh, surface, Gaussians."""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Sequence
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from contracts.errors import InputError
+from contracts.export import ExportMaterial
+from tasks.asset_dir import AssetDir
+from tasks.export.tetmesh import TetMesh, tetrahedralize, write_msh, write_vtk
+from tasks.geometry.gaussians import GaussianSet
+
+TETMESH_VERSION = "2"  # bump when tetrahedralize's output for the same surface changes
+
+
+@dataclass
+class ExportInputs:
+    """An asset as the exporters see it (asset frame: z up, resting on z = 0, metres)."""
+
+    asset_dir: Path
+    material: ExportMaterial
+    tet: TetMesh
+    surface_vertices_m: np.ndarray   # (V, 3) the L0 surface mesh (particles.zarr/surface_mesh), float64
+    surface_faces: np.ndarray        # (F, 3) int64
+    gaussians: GaussianSet | None    # rest Gaussians (positions_m, colors 0..1, ...) or None without gaussians.ply
+    surface_colors: np.ndarray | None = None  # (V, 4) uint8 vertex colours of the surface mesh
+    name: str = "asset"              # the asset's name (L0 build info), for file and body names
+    particles_m: np.ndarray | None = None         # (P, 3) L0 particle rest positions (particles.zarr)
+    particle_volumes_m3: np.ndarray | None = None  # (P,)
+
+    @property
+    def slug(self) -> str:
+        """The name as a file / body identifier: letters, digits and underscores."""
+        return re.sub(r"[^A-Za-z0-9_]+", "_", self.name).strip("_") or "asset"
+
+
+def write_tet_files(inputs: ExportInputs, out_dir: Path) -> list[str]:
+    """The tet mesh as <slug>.vtk and <slug>.msh in out_dir; their names (relative to out_dir)."""
+    out_dir.mkdir(parents=True, exist_ok=True)
+    write_vtk(inputs.tet, out_dir / f"{inputs.slug}.vtk")
+    write_msh(inputs.tet, out_dir / f"{inputs.slug}.msh")
+    return [f"{inputs.slug}.vtk", f"{inputs.slug}.msh"]
+
+
+def write_readme(out_dir: Path, target: str, load_hint: str, lines: Sequence[str] = ()) -> str:
+    """README.md of an export folder: the load line first, then notes; returns its name."""
+    body = [f"# {target} export (DeformSmith)", "", f"Load: {load_hint}", "",
+            "Units: SI (metres, kilograms, seconds, pascals); frame z up, the object resting on z = 0.", "", *lines]
+    (out_dir / "README.md").write_text("\n".join(body).rstrip() + "\n", encoding="utf-8")
+    return "README.md"
+
+
+def export_material(adir: AssetDir) -> ExportMaterial:
+    """The validated L2 material with L1's density, mass and friction (InputError when L2 did not pass)."""
+    record = adir.material()
+    if record.material is None or not record.passed:
+        raise InputError(f"{adir.file('material')}: L2 did not validate a material ({record.message or 'failed'}); "
+                         "only a validated material is exported")
+    physical = adir.physical_model()
+    m = record.material
+    return ExportMaterial(youngs_modulus_pa=m.youngs_modulus_pa, poisson_ratio=m.poisson_ratio,
+                          density_kg_per_m3=physical.density_kg_per_m3, damping_rate_per_s=m.damping_rate_per_s,
+                          ground_friction=physical.ground_friction, gripper_friction=physical.gripper_friction,
+                          mass_kg=physical.mass_kg)
+
+
+def cached_tet_mesh(vertices_m: np.ndarray, faces: np.ndarray, edge_length_m: float | None = None) -> TetMesh:
+    """tetrahedralize, cached in the content cache by the surface, the edge length and TETMESH_VERSION."""
+    from cache import CacheMiss, CacheStore, cache_root, content_key
+
+    v = np.ascontiguousarray(vertices_m, dtype=np.float64)
+    f = np.ascontiguousarray(faces, dtype=np.int64)
+    key = content_key("export.tetmesh", TETMESH_VERSION, v, f, edge_length_m)
+    store = CacheStore(cache_root())
+    try:
+        hit = store.get(key)
+        return TetMesh(nodes_m=np.asarray(hit["nodes_m"]), tets=np.asarray(hit["tets"]))
+    except CacheMiss:
+        pass
+    tet = tetrahedralize(v, f, edge_length_m=edge_length_m)
+    store.put(key, {"nodes_m": tet.nodes_m, "tets": tet.tets}, meta={"task": "export.tetmesh"})
+    return tet
+
+
+def load_export_inputs(asset_dir: Path, *, edge_length_m: float | None = None) -> ExportInputs:
+    """Read an asset directory through the typed readers and build (or fetch from the cache) its tet mesh."""
+    adir = AssetDir(Path(asset_dir))
+    if not Path(asset_dir).is_dir():
+        raise InputError(f"{asset_dir} is not a directory")
+    material = export_material(adir)
+    l0 = adir.l0
+    vertices = np.asarray(l0.mesh.vertices, dtype=np.float64)
+    faces = np.asarray(l0.mesh.faces, dtype=np.int64)
+    colors = np.asarray(l0.mesh.visual.vertex_colors, dtype=np.uint8) if hasattr(l0.mesh.visual, "vertex_colors") \
+        else None
+    gaussians = GaussianSet(l0.gaussians) if l0.gaussians else None
+    name = str((l0.record.get("info") or {}).get("name") or Path(asset_dir).resolve().name)
+    return ExportInputs(asset_dir=Path(asset_dir), material=material, tet=cached_tet_mesh(vertices, faces, edge_length_m),
+                        surface_vertices_m=vertices, surface_faces=faces, gaussians=gaussians, surface_colors=colors,
+                        name=name, particles_m=np.asarray(l0.particles_m, dtype=np.float64),
+                        particle_volumes_m3=np.asarray(l0.volumes_m3, dtype=np.float64))
