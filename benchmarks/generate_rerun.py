@@ -24,8 +24,12 @@ DEFAULT_TEXT = "a soft plush turtle toy, about 25 cm long"
 
 
 def timed_generate(text: str, out: Path, cache: Path, extra: list[str]) -> dict[str, Any]:
-    """One `deformsmith generate` in its own process: wall seconds, seconds to the first stderr line, exit code."""
+    """One `deformsmith generate` in its own process: wall seconds, seconds to the first stderr line, and the CPU
+    seconds it and its Prefect server used (steadier than the wall time on a shared machine)."""
+    import resource
+
     cmd = [sys.executable, "-m", "flows.cli.main", "generate", text, "--out", str(out), "--cache", str(cache), *extra]
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
     t0 = time.perf_counter()
     proc = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True,
                             env={**os.environ, "COLUMNS": "100"})
@@ -38,9 +42,12 @@ def timed_generate(text: str, out: Path, cache: Path, extra: list[str]) -> dict[
         tail = (tail + [line])[-20:]
     rc = proc.wait()
     wall_s = time.perf_counter() - t0
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
     if rc != 0:
         raise RuntimeError(f"generate exited {rc}:\n{''.join(tail)}")
-    return {"wall_s": round(wall_s, 2), "first_line_s": round(first_line_s or wall_s, 2)}
+    cpu_s = (after.ru_utime + after.ru_stime) - (before.ru_utime + before.ru_stime)
+    return {"wall_s": round(wall_s, 2), "first_line_s": round(first_line_s or wall_s, 2), "cpu_s": round(cpu_s, 2),
+            "load_average_1min": round(os.getloadavg()[0], 2)}
 
 
 def asset_size(asset: Path) -> dict[str, Any]:
@@ -65,6 +72,7 @@ def run(text: str, out: Path, cache: Path, runs: int, extra: list[str]) -> dict[
     result["warm_runs"] = warm
     result["warm_wall_s_median"] = statistics.median(w["wall_s"] for w in warm)
     result["first_line_s_median"] = statistics.median(w["first_line_s"] for w in warm)
+    result["cpu_s_median"] = statistics.median(w["cpu_s"] for w in warm)
     result["asset"] = asset_size(out)
     result["load_average_after"] = [round(x, 2) for x in os.getloadavg()]
     return result

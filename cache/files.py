@@ -4,6 +4,7 @@
 from __future__ import annotations
 
 import hashlib
+import os
 import shutil
 from collections.abc import Callable, Iterable
 from importlib import metadata
@@ -29,7 +30,8 @@ def source_digest(paths: Iterable[Path], distributions: Iterable[str] = ()) -> s
 
 
 def cached_file(key: str, dest: Path, make: Callable[[Path], object]) -> bool:
-    """dest copied from the cache entry `key` (True), else made by make(dest) and stored under `key` (False)."""
+    """dest (a file, or a folder such as a Zarr group) copied from the cache entry `key` (True), else made by
+    make(dest) and stored under `key` (False). The copy appears only complete (copied beside dest, then renamed)."""
     from cache.config import cache_root
     from cache.store import CacheMiss, CacheStore
 
@@ -40,10 +42,21 @@ def cached_file(key: str, dest: Path, make: Callable[[Path], object]) -> bool:
     except CacheMiss:
         src = None
     dest.parent.mkdir(parents=True, exist_ok=True)
-    if isinstance(src, Path) and src.is_file():
-        tmp = dest.with_name(f".{dest.name}.from-cache")
-        shutil.copyfile(src, tmp)
-        tmp.replace(dest)
+    if isinstance(src, Path) and src.exists():
+        tmp = dest.with_name(f".{dest.name}.from-cache-{os.getpid()}")
+        try:
+            if src.is_dir():
+                shutil.copytree(src, tmp)
+                if dest.is_dir():
+                    shutil.rmtree(dest)
+            else:
+                shutil.copyfile(src, tmp)
+            os.replace(tmp, dest)
+        finally:
+            if tmp.is_dir():
+                shutil.rmtree(tmp, ignore_errors=True)
+            else:
+                tmp.unlink(missing_ok=True)
         return True
     make(dest)
     store.put(key, dest, meta={"made": dest.name})

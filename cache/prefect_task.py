@@ -210,7 +210,7 @@ class StoreResultStorage(WritableFileSystem):
 
         return json.dumps({"metadata": metadata, "result": _handoff_put(value)}).encode()
 
-    def write_path(self, path: str, content: bytes, _sync: bool | None = None) -> str:  # type: ignore[override]
+    def write_path(self, path: str, content: bytes, _sync: bool | None = None) -> str:  # type: ignore[override]  # sync only
         """Publish the handed-off result under the key atomically."""
         import json
 

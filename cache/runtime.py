@@ -74,7 +74,11 @@ def shared_server_env() -> dict[str, str]:
 HEALTH_POLL_S = 0.05
 
 # The server process runs uvicorn behind a watchdog thread that exits it once its parent is gone: a command killed
-# (SIGKILL, a crash) or ending before the server is up must not leave it running, holding the command's stderr open
+# (SIGKILL, a crash) or ending before the server is up must not leave it running, holding the command's stderr open.
+# A write that meets SQLite's lock (a subflow's task run created while the task-run recorder writes the events of the
+# cached tasks before it: SQLITE_BUSY_SNAPSHOT) is answered 503, which Prefect's client retries after 2 s (2 ** 1, no
+# Retry-After): twice per warm `generate`. Here a 503 says Retry-After 0.1 s, three times longer for each other 503
+# of the last 5 s (0.1, 0.3, 0.9, 2.7, 8.1 s: a busy database still gets the client's retries spread over ~12 s).
 _SERVE = """
 import os, runpy, sys, threading, time
 parent = os.getppid()
@@ -83,6 +87,19 @@ def watch():
         time.sleep(0.5)
     os._exit(0)
 threading.Thread(target=watch, daemon=True).start()
+try:
+    import prefect.server.api.server as server
+    handler, busy = server.custom_internal_exception_handler, []
+    async def retry_soon(request, exc):
+        response = await handler(request, exc)
+        if response.status_code == 503 and "Retry-After" not in response.headers:
+            now = time.monotonic()
+            busy[:] = [t for t in busy if now - t < 5.0] + [now]
+            response.headers["Retry-After"] = f"{0.1 * 3 ** min(len(busy) - 1, 6):.2f}"
+        return response
+    server.custom_internal_exception_handler = retry_soon
+except Exception:
+    pass  # another Prefect: its own retry timing
 sys.argv = ["uvicorn", *sys.argv[1:]]
 runpy.run_module("uvicorn", run_name="__main__")
 """
@@ -116,6 +133,9 @@ class _Prestart:
             if _wait_healthy(proc, port):
                 self.api_url = f"http://127.0.0.1:{port}/api"
                 os.environ[LOCAL_API_ENV] = self.api_url  # and for the child processes that will share it
+                # the client's first call (its version check), made now: the server's first-request setup runs
+                # while this process may still be importing, not after
+                threading.Thread(target=_get, args=(f"{self.api_url}/admin/version",), daemon=True).start()
                 return
             self._stop(proc)
             with self.lock:
@@ -163,6 +183,13 @@ def _start_server_process(port: int) -> subprocess.Popen:
             "error", "--lifespan", "on"]
     # stdout stays clean for --json output; errors still reach stderr
     return subprocess.Popen(args, env=env, stdout=subprocess.DEVNULL, stdin=subprocess.DEVNULL)
+
+
+def _get(url: str) -> None:
+    """GET a local URL, ignoring the answer and any error."""
+    opener = urllib.request.build_opener(urllib.request.ProxyHandler({}))  # never through a proxy: it is local
+    with contextlib.suppress(OSError), opener.open(url, timeout=30):
+        pass
 
 
 def _wait_healthy(proc: subprocess.Popen, port: int) -> bool:

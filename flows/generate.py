@@ -8,22 +8,24 @@ working directory from hits and re-executes only what never finished. The workin
 from __future__ import annotations
 
 import json
+import os
 import shutil
 import tempfile
+import threading
 from collections.abc import Callable
 from importlib import metadata
 from pathlib import Path
 from typing import Any, TypedDict
 
 import cache  # (sets the local Prefect environment before prefect is imported)
+from cache.prefect_flow import lean_flow
 from cache.tempfiles import dead_partials, owner_tag, remove_paths
 from contracts.agents import AgentConfig
-from contracts.asset_dir import ASSET_JSON, attempt_path
+from contracts.asset_dir import ASSET_JSON, GeometryRecord, MaterialRecord, PhysicalRecord, attempt_path
 from contracts.errors import InputError, StageFailure
 from contracts.manifest import AssetManifest, Provenance, StageSummary
 from contracts.request import AssetRequest
 from contracts.sim import Device, KernelOptions, SimConfig
-from prefect import flow
 from tasks.publish import replace_directory
 
 LIBRARIES = ("numpy", "warp-lang", "prefect", "zarr", "trimesh", "coacd", "pybullet", "rerun-sdk", "pydantic")
@@ -65,13 +67,16 @@ def finite_metrics(values: dict[str, Any]) -> dict[str, float]:
             if isinstance(v, (int, float)) and math.isfinite(float(v))}
 
 
-def _summary(stage: str, record: dict[str, Any]) -> StageSummary:
-    """A stage's line in the manifest's validation summary, from its JSON record."""
-    metrics = finite_metrics(record.get("metrics") or {})
-    failed = record.get("failed_gates") or []
-    return StageSummary(stage=stage, passed=bool(record.get("passed")), attempts=int(record.get("attempts", 1)),
-                        sim_calls=int(record.get("sim_calls", 0)), metrics=metrics,
-                        failed_gates=[str(f) for f in failed])
+def stage_summary(record: GeometryRecord | PhysicalRecord | MaterialRecord) -> StageSummary:
+    """L0's, L1's or L2's line in the manifest's validation summary, from its typed record: L0 is one pass that
+    simulates nothing and names its failed gates; L1 counts its harness attempts; L2's line counts one (its harness
+    attempts are in evidence/ and the tallies)."""
+    if isinstance(record, GeometryRecord):
+        return StageSummary(stage="L0", passed=record.passed, attempts=1, sim_calls=0,
+                            metrics=finite_metrics(record.metrics), failed_gates=list(record.failed_gates))
+    return StageSummary(stage=record.stage, passed=record.passed,
+                        attempts=record.attempts if isinstance(record, PhysicalRecord) else 1,
+                        sim_calls=record.sim_calls, metrics=finite_metrics(record.metrics), failed_gates=[])
 
 
 def reported_labels(record: dict[str, Any]) -> dict[str, Any]:
@@ -227,7 +232,8 @@ def _files(work: Path) -> dict[str, str]:
              "material_record": "material.json", "manipulation_record": "manipulation.json",
              "physgaussian_config": "export/physgaussian_config.json",
              "drop_video_front": "renders/drop_front.mp4", "drop_video_side": "renders/drop_side.mp4",
-             "pick_and_place_video": "renders/pick_and_place.mp4"}
+             "pick_and_place_video": "renders/pick_and_place.mp4", "card_png": "renders/card.png",
+             "card_html": "renders/card.html"}
     return {role: rel for role, rel in roles.items() if (work / rel).exists() or role == "manifest"}
 
 
@@ -260,6 +266,16 @@ def remove_stale_partials(out_dir: Path) -> list[Path]:
     return remove_paths(dead_partials(out_dir.parent, out_dir.name))[0]
 
 
+def _set_aside(out_dir: Path) -> Path | None:
+    """Move a previous asset out of the way, as tasks.publish.replace_directory does (`.<name>.old-<owner>`: a dead
+    owner's is cleared by remove_stale_partials), so that removing its ~350 files does not hold up the publish."""
+    if not out_dir.exists():
+        return None
+    aside = Path(tempfile.mkdtemp(prefix=f".{out_dir.name}.old-{owner_tag()}", dir=out_dir.parent))
+    os.replace(out_dir, aside / "previous")
+    return aside
+
+
 def _check_out_dir(out_dir: Path) -> None:
     if out_dir.exists() and (not out_dir.is_dir() or (any(out_dir.iterdir()) and not (out_dir / ASSET_JSON).exists())):
         raise InputError(f"{out_dir} exists and is not an asset directory; choose a new or empty directory")
@@ -281,7 +297,7 @@ def generate_asset(request: AssetRequest, out_dir: Path, device: Device = "cpu",
         return generate(request, out_dir, device, agents, on_stage, manipulate, cpu_threads)
 
 
-@flow(name="generate", validate_parameters=False, persist_result=False)
+@lean_flow(name="generate", validate_parameters=False, persist_result=False)
 def generate(request: AssetRequest, out_dir: Path, device: Device = "cpu", agents: AgentConfig | None = None,
              on_stage: StageCallback | None = None, manipulate: bool = True, cpu_threads: int = 1) -> AssetManifest:
     """L0 -> L1 -> L2 -> drop renders (-> L3) -> publish, each layer a subflow (l0-geometry, l1-physical, l2-material,
@@ -345,11 +361,10 @@ def generate(request: AssetRequest, out_dir: Path, device: Device = "cpu", agent
         from flows.renders import render_drop_protocol
 
         protocol = render_drop_protocol(work, physical, material, sim)
-        from tasks.asset_dir import AssetDir, document_json
+        from tasks.asset_dir import AssetDir
 
         adir = AssetDir(work)  # what L0, L1 and L2 wrote, validated
-        validation = [_summary("L0", document_json(adir.geometry())), _summary("L1", document_json(adir.physical())),
-                      _summary("L2", document_json(adir.material()))]
+        validation = [stage_summary(adir.geometry()), stage_summary(adir.physical()), stage_summary(adir.material())]
         plan, outcome, l3 = None, None, None
         if manipulate:
             note("L3", "manipulation: Panda pick-and-place in the MPM")
@@ -370,10 +385,23 @@ def generate(request: AssetRequest, out_dir: Path, device: Device = "cpu", agent
                                  action_plan=plan, manipulation=outcome, provenance=prov,
                                  extra={"drop_protocol": protocol})
         write_physgaussian_export(work, manifest)
+        from flows.renders import write_card
+
+        write_card(work, manifest, out_dir.name)  # the asset card: renders/card.png, card.html (what L0-L3 found)
         manifest = manifest.model_copy(update={"files": _files(work)})
         adir.write_manifest(manifest)
         note("publish", str(out_dir))
-        replace_directory(work, out_dir)
+        previous = _set_aside(out_dir)
+        try:
+            replace_directory(work, out_dir)  # (out_dir is free: a rename)
+        except BaseException:
+            if previous is not None and not out_dir.exists():  # the previous asset stays in place
+                os.replace(previous / "previous", out_dir)
+                shutil.rmtree(previous, ignore_errors=True)
+            raise
+        if previous is not None:  # removed beside the rest of the run; the thread is joined before the process ends
+            threading.Thread(target=shutil.rmtree, args=(previous,), kwargs={"ignore_errors": True},
+                             name="remove-previous-asset").start()
         TIMINGS["publish"] = time.perf_counter() - float(clock["t"])
         return manifest
     finally:

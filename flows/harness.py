@@ -9,10 +9,10 @@ from pathlib import Path
 from typing import Any
 
 import cache  # noqa: F401  (sets the local Prefect environment before prefect is imported)
-from prefect import flow
 from prefect.futures import PrefectFuture, wait
 from prefect.task_runners import ThreadPoolTaskRunner
 
+from cache.prefect_flow import lean_flow
 from contracts.agents import AgentConfig, StageOutcome, TargetBehaviour
 from contracts.probes import ProbeResult
 from contracts.stage import StageContract, StageName, load_contract
@@ -101,7 +101,7 @@ def task_probe_runner(probes: Sequence[ProbeCall], parallel: bool = False) -> Pr
     return run
 
 
-@flow(name="harness-stage", validate_parameters=False, persist_result=False)
+@lean_flow(name="harness-stage", validate_parameters=False, persist_result=False)  # the probe runner: by name
 def harness_stage(
     contract: StageContract,
     probe_runner: Callable[[dict[str, float], str], Sequence[ProbeResult]],

@@ -15,7 +15,6 @@ are the structural checks: their hard-gate metrics count, and their other compre
 from __future__ import annotations
 
 import math
-import shutil
 from pathlib import Path
 from typing import Any
 
@@ -23,6 +22,7 @@ import numpy as np
 
 import cache
 from cache import cache_relative, cache_resolve, cache_root, cached_task, content_key
+from cache.prefect_flow import lean_flow
 from contracts.agents import AgentConfig, StageOutcome, TargetBehaviour
 from contracts.asset_dir import MATERIAL_JSON, HeldOutSummary, MaterialRecord, SelectionSummary
 from contracts.errors import InputError
@@ -41,6 +41,7 @@ from tasks.probes import deformable
 from tasks.probes.specimen import specimen_particles
 from tasks.probes.rollout import DeformableBody, plan_batches, rollouts
 from tasks.probes.workers import probe_workers
+from tasks.publish import copy_file_atomic, write_text_atomic
 
 TASK_VERSION = "2"  # bump when tasks/probes/{deformable,rollout,metrics}.py change what the probes return
 SELECTION_PROBES = ("compress", "drop", "lift", "stability", "specimen_compress", "specimen_drop")
@@ -353,8 +354,7 @@ def _copy(src: str | None, dest: Path) -> str | None:
     """Copy a recording into the asset; returns its path relative to the asset directory."""
     if not src or not cache_resolve(src).is_file():
         return None
-    dest.parent.mkdir(parents=True, exist_ok=True)
-    shutil.copyfile(cache_resolve(src), dest)
+    copy_file_atomic(cache_resolve(src), dest)  # a new file: a hard link of a working copy is never rewritten
     return str(Path("recordings") / dest.name)
 
 
@@ -367,20 +367,21 @@ def held_out_probes(asset: L0Asset, physical: PhysicalModel, material: Material,
 
 def evaluate_material(asset_dir: Path, material: Material, contract: StageContract | None = None,
                       sim: SimConfig | None = None, held_out: bool = True,
-                      physical: PhysicalModel | None = None) -> dict[str, Any]:
-    """Probe a material given from outside (as L3 does): the l2-revalidation flow against the local Prefect runtime."""
+                      physical: PhysicalModel | None = None, asset: L0Asset | None = None) -> dict[str, Any]:
+    """Probe a material given from outside (as L3 does): the l2-revalidation flow against the local Prefect runtime.
+    asset: the L0 data when the caller has it loaded (else read from asset_dir)."""
     with cache.local_runtime():
-        return l2_revalidation(asset_dir, material, contract, sim, held_out, physical)
+        return l2_revalidation(asset_dir, material, contract, sim, held_out, physical, asset)
 
 
-@flow(name="l2-revalidation", validate_parameters=False, persist_result=False)
+@lean_flow(name="l2-revalidation", validate_parameters=False, persist_result=False)  # the L0 data: by name
 def l2_revalidation(asset_dir: Path, material: Material, contract: StageContract | None = None,
                     sim: SimConfig | None = None, held_out: bool = True,
-                    physical: PhysicalModel | None = None) -> dict[str, Any]:
+                    physical: PhysicalModel | None = None, asset: L0Asset | None = None) -> dict[str, Any]:
     """L2's selection probes and (held_out) held-out tests of a material set from outside, cached: called from L3's
     material revision, a subflow of l3-manipulation."""
     asset_dir = Path(asset_dir)
-    asset = load_l0(asset_dir)
+    asset = asset if asset is not None else load_l0(asset_dir)
     physical = physical or load_physical_model(asset_dir)
     contract = contract or load_contract("L2")
     sim = sim or SimConfig()
@@ -448,7 +449,7 @@ def l2_material(asset_dir: Path, request_or_intent: AssetRequest | str | None = 
         sim_calls=sim_calls, recordings=recordings)
     (asset_dir / "evidence").mkdir(parents=True, exist_ok=True)
     lines = "".join(a.model_dump_json() + "\n" for a in outcome.attempts)
-    (asset_dir / "evidence" / "L2_attempts.jsonl").write_text(lines, encoding="utf-8")
+    write_text_atomic(asset_dir / "evidence" / "L2_attempts.jsonl", lines)
     AssetDir(asset_dir).write_material(record)
     return material, outcome
 

@@ -14,17 +14,20 @@ evaluated under held-out conditions (other target positions and initial yaw), re
 
 from __future__ import annotations
 
+import functools
 import math
+import os
 import time
 from dataclasses import asdict, dataclass, field, replace
 from pathlib import Path
-from typing import Any, TypedDict
+from typing import Any, TypedDict, cast
 
 import numpy as np
 import trimesh
 
 import cache
 from cache import cached_task
+from cache.prefect_flow import lean_flow
 from contracts.agents import AgentConfig, StageOutcome, TargetBehaviour
 from contracts.asset_dir import ManipulationRecord, attempt_path
 from contracts.material import Material
@@ -37,16 +40,17 @@ from flows.harness import call_tasks, probe_cache_key, run_harness
 from flows.l3_material import MaterialLimits, failed_gates, halfway, revalidate_in_l2, revise_material
 from flows.l3_report import (L3Progress, Progress, best_attempt, failed_gate_names, planned_trials, record_no_grasp,
                              trial_reason)
-from prefect import flow
 from tasks.asset_dir import AssetDir, geometry_info
+from tasks.geometry.outputs import L0Asset
 from tasks.manipulation.body import TrialBody, auto_trial_spacing, trial_body
-from tasks.manipulation.data import write_attempt
-from tasks.manipulation.recordings import copy_atomic, record_attempt
+from tasks.manipulation.data import attempt_indices, interaction_root, write_attempt
+from tasks.manipulation.recordings import record_attempt
 from tasks.manipulation.outcome import TrialTolerances, force_budget_n
 from tasks.manipulation.trial import TrialSettings, plan_or_error, run_trial
 from tasks.probes.workers import probe_workers
 from contracts.robot import DEFAULT_GRIPPER
 from tasks.robot import NoGraspError, select_grasps
+from tasks.robot.grasp import GraspSettings
 from tasks.robot.choice import choose_gripper, grasp_settings
 from tasks.robot.gripper import gripper
 from tasks.robot.squeeze import SqueezePlan, squeeze_plan
@@ -55,6 +59,7 @@ TASK_VERSION = "9"  # bump when tasks/manipulation/{trial,outcome,body,frame}.py
 # (6: settle until at rest; 7: simulated in the frame where the closing axis is at 45 degrees to the grid; 8: the
 # approach is recorded; 9: grippers as data, a force-controlled closure that keeps its target while held and skips the
 # rest of the closure, the time-step cap follows dx)
+PICK_AND_PLACE_RECORDING = "recordings/L3_pick_and_place.rrd"  # the chosen trial's recording
 LABELS = ("lifted", "transported", "released_in_target", "settled", "numerically_healthy")
 
 
@@ -149,8 +154,36 @@ def trial_task(particles_m: np.ndarray, volumes_m3: np.ndarray, spacing_m: float
         return {"probe": ProbeResult(spec=spec, metrics=failed_metrics(why), sim_calls=0), "arrays": {},
                 "info": {"plan_error": why}}
     r = run_trial(body, physical, material, plan, s, tol, traj)
-    probe = ProbeResult(spec=spec, metrics=r.metrics, wall_time_s=float(r.info["wall_time_s"]))  # type: ignore[arg-type]
+    probe = ProbeResult(spec=spec, metrics=r.metrics, wall_time_s=cast(float, r.info["wall_time_s"]))
     return {"probe": probe, "arrays": r.arrays, "info": r.info}
+
+
+@functools.cache
+def _attempt_code() -> str:
+    """The code part of an encoded attempt's cache key: the encoder's sources and the libraries that write it."""
+    from cache.files import source_digest
+
+    root = Path(__file__).resolve().parent.parent / "tasks" / "manipulation"
+    return source_digest([root / "data.py", root / "particle_frames.py"], ("numcodecs", "numpy", "zarr"))
+
+
+def store_attempt(asset_dir: Path, arrays: dict[str, np.ndarray], attrs: dict[str, Any]) -> int:
+    """Store a trial as the asset's next interaction attempt (tasks.manipulation.data.write_attempt) through the cache:
+    a rerun copies the attempt encoded before from the same arrays, attributes, index and encoder code instead of
+    compressing its particle frames again (~0.3-1 s a trial on two cores). Returns the attempt's index."""
+    import json
+
+    from cache import content_key
+    from cache.files import cached_file
+
+    n = max(attempt_indices(asset_dir), default=-1) + 1
+    interaction_root(asset_dir)
+    attrs_json = json.dumps({**attrs, "attempt": n}, sort_keys=True,
+                            default=lambda o: o.tolist() if hasattr(o, "tolist") else str(o))
+    key = content_key("l3.interaction_attempt/1", _attempt_code(), {k: np.asarray(v) for k, v in arrays.items()},
+                      attrs_json)
+    cached_file(key, Path(asset_dir) / attempt_path(n), lambda _: write_attempt(asset_dir, arrays, attrs, index=n))
+    return n
 
 
 def tolerances_from(contract: StageContract) -> TrialTolerances:
@@ -179,6 +212,7 @@ class L3Context:
     squeeze: SqueezePlan | None = None  # the force target and stiffness-scaled squeeze range of the best grasp
     gripper_options: list[dict[str, Any]] = field(default_factory=list)  # what choose_gripper weighed
     progress: L3Progress = field(default_factory=L3Progress)
+    l0: L0Asset | None = None  # the L0 data the body was built from (L2's revalidation probes it too)
 
     @property
     def grip_force_limit_n(self) -> float | None:
@@ -233,7 +267,7 @@ class L3Context:
                  "action": action, "values": values, "cache_key": key,
                  "material": (material or self.material).model_dump(mode="json"),
                  "physical_model": self.physical.model_dump(mode="json")}
-        n = write_attempt(self.asset_dir, out["arrays"], attrs) if out["arrays"] else None
+        n = store_attempt(self.asset_dir, out["arrays"], attrs) if out["arrays"] else None
         rrd = record_attempt(self.asset_dir, n, out["arrays"], attrs, key) if n is not None and self.recordings else None
         self.attempts.append({"attempt": n, "role": role, "action": action, "values": values,
                               "labels": probe.metrics, "cache_key": key, "recording": rrd,
@@ -300,30 +334,60 @@ def load_context(asset_dir: Path, options: L3Options, contract: StageContract,
         name, reason, rows = options.gripper, "given (L3Options.gripper)", []
     else:  # the Planner's choose_gripper action (the L3 contract): from widths, mass and stiffness
         surf, faces = trimesh.sample.sample_surface_even(asset.mesh, SURFACE_SAMPLES, seed=0)
-        choice = choose_gripper(np.asarray(surf), np.asarray(asset.mesh.face_normals[faces]), com,
-                                physical.gripper_friction, extents_m=asset.mesh.extents, **hold)
-        if choice.name is None:  # run_l3 records it as L3's outcome (no grasp is a result)
-            raise NoGraspError(choice.reason)
-        name, reason, rows = choice.name, choice.reason, choice.summary()
+        choice = gripper_choice_task(np.asarray(surf), np.asarray(asset.mesh.face_normals[faces]), com,
+                                     physical.gripper_friction, np.asarray(asset.mesh.extents), hold,
+                                     _planner_code())
+        if choice["name"] is None:  # run_l3 records it as L3's outcome (no grasp is a result)
+            raise NoGraspError(choice["reason"])
+        name, reason, rows = choice["name"], choice["reason"], choice["options"]
     g = gripper(name)
     spacing = options.particle_spacing_m or auto_trial_spacing(asset.mesh.extents, options.quality, g.pad_face_m)
     body = trial_body(asset.mesh, asset.particles_m, asset.spacing_m, asset.gaussians, spacing,
                       surface_samples=SURFACE_SAMPLES)
     nominal = squeeze_plan(width_m=g.stroke_m, pad_area_m2=g.pad_area_m2, gripper_max_n=g.spec.max_grip_force_n,
                            friction=physical.gripper_friction, **hold)
-    sel = select_grasps(body.surface_points_m, body.surface_normals, com, friction=physical.gripper_friction,
-                        settings=grasp_settings(name, nominal.soft_indent_m))
-    if not sel.ok:  # run_l3 records it as L3's outcome (no grasp is a result)
-        raise NoGraspError(f"{name}: {sel.reason}")
-    sq = squeeze_plan(width_m=sel.candidates[0].width_m, pad_area_m2=g.pad_area_m2,
+    sel = grasp_selection_task(body.surface_points_m, body.surface_normals, com, physical.gripper_friction,
+                               asdict(grasp_settings(name, nominal.soft_indent_m)), _planner_code())
+    grasps: list[GraspCandidate] = sel["candidates"]
+    if not grasps:  # run_l3 records it as L3's outcome (no grasp is a result)
+        raise NoGraspError(f"{name}: {sel['reason']}")
+    sq = squeeze_plan(width_m=grasps[0].width_m, pad_area_m2=g.pad_area_m2,
                       gripper_max_n=g.spec.max_grip_force_n, friction=physical.gripper_friction,
                       **hold)
     if not L3Parameters.of(contract).hold_force_margin:  # no hold target: position control, the contract's range
-        return L3Context(Path(asset_dir), body, physical, material, source, sel.candidates, options, contract,
-                         gripper=name, gripper_reason=reason, gripper_options=rows)
-    return L3Context(Path(asset_dir), body, physical, material, source, sel.candidates, options,
+        return L3Context(Path(asset_dir), body, physical, material, source, grasps, options, contract,
+                         gripper=name, gripper_reason=reason, gripper_options=rows, l0=asset)
+    return L3Context(Path(asset_dir), body, physical, material, source, grasps, options,
                      _with_squeeze_range(contract, sq), gripper=name, gripper_reason=reason, squeeze=sq,
-                     gripper_options=rows)
+                     gripper_options=rows, l0=asset)
+
+
+@functools.cache
+def _planner_code() -> str:
+    """The code part of the grasp planner's cache keys: tasks/robot, the gripper specs and the robot contract (an
+    edit there makes new keys; no version to bump by hand), and the libraries they compute with."""
+    from cache.files import source_digest
+
+    root = Path(__file__).resolve().parent.parent
+    return source_digest([root / "tasks" / "robot", root / "contracts" / "grippers", root / "contracts" / "robot.py"],
+                         ("numpy", "scipy", "trimesh"))
+
+
+@cached_task(version="1", name="l3.gripper_choice")
+def gripper_choice_task(points_m: np.ndarray, normals: np.ndarray, center_of_mass_m: np.ndarray, friction: float,
+                        extents_m: np.ndarray, hold: HoldInputs, code: str) -> dict[str, Any]:
+    """The Planner's choose_gripper on surface samples [m]: {'name' (None: no gripper holds it), 'reason', 'options'
+    (the rows manipulation.json records)}. code: _planner_code(), part of the key."""
+    choice = choose_gripper(points_m, normals, center_of_mass_m, friction, extents_m=extents_m, **hold)
+    return {"name": choice.name, "reason": choice.reason, "options": choice.summary()}
+
+
+@cached_task(version="1", name="l3.grasp_selection")
+def grasp_selection_task(points_m: np.ndarray, normals: np.ndarray, center_of_mass_m: np.ndarray, friction: float,
+                         settings: dict[str, Any], code: str) -> dict[str, Any]:
+    """Ranked antipodal grasps on the trial body's surface: {'candidates' (best first), 'reason' (when none)}."""
+    sel = select_grasps(points_m, normals, center_of_mass_m, friction=friction, settings=GraspSettings(**settings))
+    return {"candidates": sel.candidates, "reason": sel.reason}
 
 
 SURFACE_SAMPLES = 2000  # surface points for grasp sampling (the trial body's, and the gripper choice's)
@@ -395,7 +459,7 @@ def run_l3(asset_dir: Path, options: L3Options | None = None, agents: AgentConfi
         return l3_manipulation(asset_dir, options, agents, contract, material, recordings, progress)
 
 
-@flow(name="l3-manipulation", validate_parameters=False, persist_result=False)
+@lean_flow(name="l3-manipulation", validate_parameters=False, persist_result=False)
 def l3_manipulation(asset_dir: Path, options: L3Options | None = None, agents: AgentConfig | None = None,
                     contract: StageContract | None = None, material: Material | None = None, recordings: bool = True,
                     progress: Progress | None = None) -> tuple[dict[str, Any], StageOutcome]:
@@ -455,15 +519,13 @@ def l3_manipulation(asset_dir: Path, options: L3Options | None = None, agents: A
             robustness = material_revision.get("robustness")
     accepted = chosen_values is not None and (outcome.passed or final_material is not ctx.material)
     held: list[dict[str, Any]] = []
-    if accepted and options.held_out:
-        results = ctx.under(dict(chosen_values), options.held_out, "held_out",  # type: ignore[arg-type]
-                            material=final_material)
+    if accepted and options.held_out and chosen_values is not None:  # (accepted: chosen_values is set)
+        results = ctx.under(dict(chosen_values), options.held_out, "held_out", material=final_material)
         held = _conditions(options.held_out, results, contract)["conditions"]
     chosen = _chosen_attempt(ctx, chosen_values, final_material) if accepted else None
+    if recordings and chosen is not None:
+        name_pick_and_place(asset_dir, chosen)
     rec_paths = [a["recording"] for a in ctx.attempts if a.get("recording")]  # every trial's, failed ones included
-    if recordings and chosen is not None and chosen.get("recording"):  # the chosen trial's under its README name
-        copy_atomic(asset_dir / chosen["recording"], asset_dir / "recordings" / "L3_pick_and_place.rrd")
-        rec_paths.append("recordings/L3_pick_and_place.rrd")
     record = _record(ctx, outcome, accepted, chosen, final_material, material_revision, held, robustness, rec_paths,
                      time.perf_counter() - t0)
     report.say(f"L3 {'passed' if accepted else 'did not pass: ' + record['reason']}")
@@ -471,6 +533,15 @@ def l3_manipulation(asset_dir: Path, options: L3Options | None = None, agents: A
     AssetDir(asset_dir).write_manipulation(ManipulationRecord.model_validate(
         {k: v for k, v in record.items() if k != "wall_time_s"}))
     return record, outcome
+
+
+def name_pick_and_place(asset_dir: Path, chosen: dict[str, Any]) -> None:
+    """Give the chosen trial's recording the name users open (recordings/L3_pick_and_place.rrd): its attempt file is
+    renamed, not copied, and the attempt's row (manipulation.json `attempts`, whose `attempt` is its interaction
+    data) names the new path."""
+    if chosen.get("recording") and chosen["recording"] != PICK_AND_PLACE_RECORDING:
+        os.replace(Path(asset_dir) / chosen["recording"], Path(asset_dir) / PICK_AND_PLACE_RECORDING)
+        chosen["recording"] = PICK_AND_PLACE_RECORDING
 
 
 def _no_grasp(asset_dir: Path, options: L3Options, contract: StageContract, material: Material | None, reason: str,
@@ -532,7 +603,7 @@ def _revise_material(ctx: L3Context, values: dict[str, float], metrics: dict[str
     for _ in range(2):
         ctx.progress.say(f"L3 material revision ({trigger}): L2 revalidation of E = {revised.youngs_modulus_pa:.3g} "
                          f"Pa, damping {revised.damping_rate_per_s:.3g} 1/s")
-        l2 = revalidate_in_l2(ctx.asset_dir, revised, ctx.physical, limits, sim=ctx.options.sim())
+        l2 = revalidate_in_l2(ctx.asset_dir, revised, ctx.physical, limits, sim=ctx.options.sim(), asset=ctx.l0)
         checks.append({"material": revised.model_dump(mode="json"), **l2})
         if l2["passed"] or not all(l2["gates"].values()):
             break

@@ -15,7 +15,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -24,6 +24,9 @@ from contracts.material import Material
 from contracts.physical import PhysicalModel
 from contracts.sim import SimConfig
 from contracts.stage import StageContract, load_contract
+
+if TYPE_CHECKING:
+    from tasks.geometry.outputs import L0Asset
 
 BAND_MARGIN = 0.1  # a revision aims this fraction of the band's width (in its scale) inside the band's end
 SLIP_GATES = ("lifted", "transported")
@@ -134,14 +137,16 @@ def halfway(original: Material, revised: Material) -> Material:
 
 
 def revalidate_in_l2(asset_dir: Path, material: Material, physical: PhysicalModel,
-                     limits: MaterialLimits | None = None, sim: SimConfig | None = None) -> dict[str, Any]:
+                     limits: MaterialLimits | None = None, sim: SimConfig | None = None,
+                     asset: L0Asset | None = None) -> dict[str, Any]:
     """L2 revalidation of a revised material (L2's l2-revalidation flow, a subflow of l3-manipulation: its selection
     probes, cached, under `sim`: L3's device and CPU threads): passes when every L2 hard gate holds and every target
-    band that held for the L2 material still holds."""
+    band that held for the L2 material still holds. asset: the L0 data L3 already loaded (else read again)."""
     from flows.l2_material import evaluate_material
 
     l2 = load_contract("L2")
-    result = evaluate_material(asset_dir, material, contract=l2, sim=sim, held_out=False, physical=physical)
+    result = evaluate_material(asset_dir, material, contract=l2, sim=sim, held_out=False, physical=physical,
+                               asset=asset)
     metrics = result["metrics"]
     gates = {g.name: bool(g.passes(metrics.get(g.metric))) for g in l2.hard_gates}
     bands = {b.metric: bool(b.contains(metrics.get(b.metric))) for b in (limits.held_bands() if limits else [])}

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import re
 from pathlib import Path
+from typing import TYPE_CHECKING, cast
 
 import typer
 from pydantic import ValidationError
@@ -14,6 +15,9 @@ from flows.cli.apps import app, bench_app, check_device, console, emit_json, fai
 from flows.cli.geometry_cmds import GEOMETRY_BACKEND_HELP
 from flows.cli.llm_option import LLM_FALLBACK_HELP, llm_agents
 from flows.cli.preflight import check_request
+
+if TYPE_CHECKING:
+    from contracts.sim import Device
 
 DEFAULT_TEXT = "a soft plush turtle toy, about 25 cm long"
 
@@ -132,8 +136,8 @@ def generate(
             style = "yellow" if message.startswith("warning:") else "default"
             console.log(f"[bold]{stage}[/bold] [{style}]{escape(message)}[/{style}]")  # a reason may hold [ ]
 
-        manifest = generate_asset(request, out, device=device, agents=agents, on_stage=on_stage,  # type: ignore[arg-type]
-                                  manipulate=l3, cpu_threads=cpu_threads)
+        manifest = generate_asset(request, out, device=cast("Device", device), agents=agents, on_stage=on_stage,
+                                  manipulate=l3, cpu_threads=cpu_threads)  # (device: checked by check_device)
     if as_json:
         emit_json({"asset_dir": str(out), "validation": [s.model_dump(mode="json") for s in manifest.validation],
                    "material": manifest.material.model_dump(mode="json") if manifest.material else None,

@@ -89,13 +89,19 @@ def storage(name: str, data: np.ndarray) -> dict[str, Any]:
             "compressors": BloscCodec(cname="zstd", clevel=5, shuffle="shuffle", typesize=data.itemsize)}
 
 
-def write_attempt(asset_dir: Path, arrays: dict[str, np.ndarray], attrs: dict[str, Any],
-                  index: int | None = None) -> int:
-    """Store one attempt (atomically); returns its index (the next free one unless given)."""
+def interaction_root(asset_dir: Path) -> Path:
+    """The asset's interaction/ Zarr group, created when missing (the attempts are its subgroups)."""
     root = interaction_dir(asset_dir)
     root.mkdir(parents=True, exist_ok=True)
     if not (root / "zarr.json").is_file():
         zarr.open_group(str(root), mode="a").attrs.update({"units": "SI", "layout": "attempt_NNN groups"})
+    return root
+
+
+def write_attempt(asset_dir: Path, arrays: dict[str, np.ndarray], attrs: dict[str, Any],
+                  index: int | None = None) -> int:
+    """Store one attempt (atomically); returns its index (the next free one unless given)."""
+    root = interaction_root(asset_dir)
     n = index if index is not None else (max(attempt_indices(asset_dir), default=-1) + 1)
     dest = root / f"attempt_{n:03d}"
     tmp = Path(tempfile.mkdtemp(prefix=f".attempt_{n:03d}.tmp-", dir=root))

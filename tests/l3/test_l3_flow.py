@@ -191,8 +191,9 @@ def test_a_plan_that_slips_under_a_perturbation_gets_the_stiffest_in_band_materi
     targets = _l2_material_in_band(cube_asset, e0)
     revalidated = []
 
-    def fake_revalidate(asset_dir, material, physical, limits, sim=None):  # noqa: ANN001, ANN202
+    def fake_revalidate(asset_dir, material, physical, limits, sim=None, asset=None):  # noqa: ANN001, ANN202
         assert sim is not None and sim.device == "cpu"  # L3's own settings, not L2's default
+        assert asset is not None and len(asset.particles_m)  # the L0 data L3 loaded, not read from disk again
         revalidated.append(material.youngs_modulus_pa)
         return {"passed": True, "gates": {"finite": True}, "bands": {"effective_modulus_pa": True}, "metrics": {},
                 "probe_keys": []}
