@@ -43,16 +43,17 @@ def protocol_states(positions_m: np.ndarray, volumes_m3: np.ndarray, physical: P
 @cached_task(version=VIDEO_TASK_VERSION, name="renders.drop_videos")
 def drop_videos_task(gaussians: dict[str, np.ndarray], rest_covariances_m2: np.ndarray, rest_particles_m: np.ndarray,
                      x_frames: np.ndarray, F_frames: np.ndarray, renderer_code: str = "",
-                     width: int = VIDEO_WIDTH_PX, height: int = VIDEO_HEIGHT_PX) -> dict[str, Path]:
+                     width: int = VIDEO_WIDTH_PX, height: int = VIDEO_HEIGHT_PX, device: str = "cpu") -> dict[str, Path]:
     """Front and side MP4s (1280 x 720, 30 fps, 5 s) of the deformed Gaussians and the card's drop frames (PNG),
     file name -> the cache's copy (the scratch folder they are written to is removed once they are stored).
 
     renderer_code: the renderer's source digest (renderer_code(); render_drop_protocol passes it), so a new renderer
-    makes new pictures."""
+    makes new pictures. device: cpu or cuda (the GPU's pictures are keyed apart: within a colour level, not the same
+    bytes)."""
     folder = scratch_dir(prefix="ds-drop-video-")
     try:
         return drop_files(gaussians, rest_covariances_m2, rest_particles_m, x_frames, F_frames, folder, PROTOCOL_FPS,
-                          PROTOCOL_DURATION_S, width, height)
+                          PROTOCOL_DURATION_S, width, height, device=device)
     except BaseException:
         shutil.rmtree(folder, ignore_errors=True)
         raise
@@ -78,7 +79,7 @@ def render_drop_protocol(asset_dir: Path, physical: PhysicalModel, material: Mat
     gaussians = {k: asset.gaussians[k] for k in ("positions_m", "colors", "opacities", "particle_index",
                                                  "particle_weight")}
     files = drop_videos_task(gaussians, asset.gaussian_covariances(), asset.particles_m, arrays["x_m"], arrays["F"],
-                             renderer_code(), width, height)
+                             renderer_code(), width, height, (sim or SimConfig()).device)
     for name, src in files.items():
         dest = Path(asset_dir) / "renders" / name
         dest.parent.mkdir(parents=True, exist_ok=True)

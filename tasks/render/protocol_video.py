@@ -41,20 +41,18 @@ class GaussianRenderer(Protocol):
 def _disc_renderer(cam: Camera, means_m: np.ndarray, covariances_m2: np.ndarray, colors_rgb: np.ndarray,
                    opacities: np.ndarray, *, sh_coeffs: np.ndarray | None = None, scene: str = "studio",
                    device: str = "cpu") -> np.ndarray:
-    """Stand-in with the splatting renderer's signature over the disc rasteriser (when tasks.render.splats is absent)."""
+    """The disc rasteriser behind the splatting renderer's signature: a cheap renderer for tests of the video plumbing."""
     from tasks.manipulation.render import render
 
     return render(cam, means_m, covariances_m2, colors_rgb)
 
 
 def gaussian_renderer() -> tuple[GaussianRenderer, list[Path]]:
-    """The Gaussian splatting renderer (tasks.render.splats) when present, else the disc stand-in; with the source
-    files whose bytes decide its pictures (the render cache key is made of them)."""
+    """The Gaussian splatting renderer (tasks.render.splats), with the source files whose bytes decide its pictures
+    (the render cache key is made of them)."""
+    from tasks.render.splats import render_gaussians
+
     root = Path(__file__).resolve().parent.parent
-    try:
-        from tasks.render.splats import render_gaussians
-    except ImportError:
-        return _disc_renderer, [root / "manipulation" / "render.py", Path(__file__)]
     sources = [p for p in (root / "render").glob("*.py") if not p.name.startswith(("card", "bench"))]
     return render_gaussians, [*sources, root / "manipulation" / "render.py"]
 
@@ -99,7 +97,7 @@ def frame_count(n_states: int, fps: float, duration_s: float) -> int:
 
 def iter_states(renderer: GaussianRenderer, cam: Camera, gaussians: dict[str, np.ndarray],
                 rest_covariances_m2: np.ndarray, rest_particles_m: np.ndarray, x_frames: np.ndarray,
-                F_frames: np.ndarray) -> Iterator[np.ndarray]:
+                F_frames: np.ndarray, device: str = "cpu") -> Iterator[np.ndarray]:
     """RGB frames of the Gaussians deformed by each recorded state (positions x, deformation gradients F), one at a
     time (a 5 s 720p video is 400 MB of frames). A state whose Gaussians lie within STILL_PX of the last drawn
     frame's (centres, and sizes to STILL_COV) repeats that frame: a body at rest is drawn once, not 100 times."""
@@ -119,7 +117,7 @@ def iter_states(renderer: GaussianRenderer, cam: Camera, gaussians: dict[str, np
         ok = np.isfinite(centres).all(axis=1) & np.isfinite(cov).all(axis=(1, 2))  # an exploded state: what is left
         centres, cov = np.where(ok[:, None], centres, 0.0), np.where(ok[:, None, None], cov, 0.0)
         image = np.ascontiguousarray(renderer(cam, centres[ok], cov[ok], colors[ok], opacities[ok], scene="studio",
-                                              device="cpu"))
+                                              device=device))
         drawn = (centres, cov, image)
         yield image
 
@@ -192,9 +190,10 @@ def drop_files(gaussians: dict[str, np.ndarray], rest_covariances_m2: np.ndarray
                x_frames: np.ndarray, F_frames: np.ndarray, folder: Path, fps: float, duration_s: float,
                width: int = VIDEO_WIDTH_PX, height: int = VIDEO_HEIGHT_PX,
                renderer: GaussianRenderer | None = None,
-               progress: Callable[[str], Any] | None = None) -> dict[str, Path]:
+               progress: Callable[[str], Any] | None = None, device: str = "cpu") -> dict[str, Path]:
     """drop_<view>.mp4 for each named view (duration_s at fps: state k shown at t = k / fps) and the card's drop
-    frames drop_<view>_t<t>s.png at CARD_TIMES_S (the nearest recorded state), written into folder; name -> path."""
+    frames drop_<view>_t<t>s.png at CARD_TIMES_S (the nearest recorded state), written into folder; name -> path.
+    device: where the Gaussians are drawn (cpu: the same bytes every time; cuda: within one colour level of them)."""
     draw = renderer or gaussian_renderer()[0]
     n = frame_count(len(x_frames), fps, duration_s)
     stills = {t: min(len(x_frames) - 1, int(round(t * fps))) for t in CARD_TIMES_S}  # time -> state
@@ -204,10 +203,10 @@ def drop_files(gaussians: dict[str, np.ndarray], rest_covariances_m2: np.ndarray
         kept: dict[int, np.ndarray] = {}
         wanted = set(stills.values())
         args = (gaussians, rest_covariances_m2, rest_particles_m)
-        out[f"drop_{view}.mp4"] = write_mp4(_keeping(iter_states(draw, cam, *args, x_frames[:n], F_frames[:n]),
+        out[f"drop_{view}.mp4"] = write_mp4(_keeping(iter_states(draw, cam, *args, x_frames[:n], F_frames[:n], device),
                                                      wanted, kept), folder / f"drop_{view}.mp4", fps)
         for k in sorted(wanted - set(kept)):  # a still after the video's last frame (5 s: state 150)
-            kept[k] = next(iter_states(draw, cam, *args, x_frames[k:k + 1], F_frames[k:k + 1]))
+            kept[k] = next(iter_states(draw, cam, *args, x_frames[k:k + 1], F_frames[k:k + 1], device))
         for t, k in stills.items():
             shrink = STILL_SHRINK if min(width, height) >= 360 else 1
             out[card_still_name(view, t)] = write_png(kept[k], folder / card_still_name(view, t), shrink)
