@@ -387,7 +387,7 @@ def generate(request: AssetRequest, out_dir: Path, device: Device = "cpu", agent
         write_physgaussian_export(work, manifest)
         from flows.renders import write_card
 
-        write_card(work, manifest, out_dir.name)  # the asset card: renders/card.png, card.html (what L0-L3 found)
+        write_card(work, manifest)  # the asset card: renders/card.png, card.html (what L0-L3 found)
         manifest = manifest.model_copy(update={"files": _files(work)})
         adir.write_manifest(manifest)
         note("publish", str(out_dir))

@@ -87,9 +87,9 @@ def render_drop_protocol(asset_dir: Path, physical: PhysicalModel, material: Mat
     return metrics
 
 
-def write_card(asset_dir: Path, manifest: AssetManifest | None = None, name: str | None = None) -> tuple[Path, Path]:
+def write_card(asset_dir: Path, manifest: AssetManifest | None = None) -> tuple[Path, Path]:
     """renders/card.png and renders/card.html of an asset directory (manifest: the one about to be written, when
-    asset.json is not there yet; name: the published asset's name, when asset_dir is a working directory)."""
+    asset.json is not there yet, as in generate's working directory)."""
     from tasks.render.card import build_card
 
-    return build_card(asset_dir, manifest, name)
+    return build_card(asset_dir, manifest)

@@ -29,19 +29,16 @@ def card_png_key(card: CardData, root: Path) -> str:
     return content_key("asset_card_png", code, card.model_dump_json(), digests)
 
 
-def build_card(asset_dir: Path | str, manifest: AssetManifest | None = None,
-               name: str | None = None) -> tuple[Path, Path]:
+def build_card(asset_dir: Path | str, manifest: AssetManifest | None = None) -> tuple[Path, Path]:
     """Write renders/card.png and renders/card.html (each atomically); their paths. InputError when asset_dir is not
     an asset directory (nothing is written then).
 
-    manifest: the one about to be written, when asset.json is not there yet; name: the asset's name (default: the
-    directory's), both for generate, which builds the card in its working directory."""
+    manifest: the one about to be written, when asset.json is not there yet (generate builds the card in its working
+    directory)."""
     root = Path(asset_dir)
     if not root.is_dir():
         raise InputError(f"{root} is not an asset directory (not a directory)")
     card = card_data(root, manifest)
-    if name:
-        card = card.model_copy(update={"name": name})
     png, page = root / CARD_PNG, root / CARD_HTML
     png.parent.mkdir(parents=True, exist_ok=True)
     tmp_png = png.with_name(png.name + ".tmp.png")

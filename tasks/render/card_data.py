@@ -38,6 +38,16 @@ PROTOCOL_FIGURES = {"drop_height_m": ("drop clearance", "m"), "shape_retention":
                     "plausible": ("plausible (1 = yes)", "-")}
 
 
+def request_title(request: dict[str, Any], limit: int = 60) -> str:
+    """The card's title: the request's text, or its photo's or mesh's file name (never the asset's folder name, so an
+    asset's files do not change when it is moved or renamed)."""
+    text = str(request.get("text") or "").strip()
+    if not text:
+        source = request.get("image_path") or request.get("mesh_path") or "asset"
+        text = Path(str(source)).name
+    return text if len(text) <= limit else text[:limit - 3].rstrip() + "..."
+
+
 class Figure(BaseModel):
     """One number on the card: its value, unit, target band (when it has one) and where it came from."""
 
@@ -244,6 +254,6 @@ def card_data(asset_dir: Path | str, manifest: AssetManifest | None = None) -> C
                                             ("pick and place", "renders/pick_and_place.mp4"))
               if (adir.path / rel).is_file()}
     views = {v: f"renders/{v}.png" for v in STILL_VIEWS if (adir.path / "renders" / f"{v}.png").is_file()}
-    return CardData(name=adir.path.name, request=manifest.request.model_dump(mode="json"), views=views,
+    return CardData(name=request_title(manifest.request.model_dump(mode="json")), request=manifest.request.model_dump(mode="json"), views=views,
                     drop_frames=_drop_frames(adir), videos=videos, material=material_rows, bands=bands, l1=l1_rows,
                     protocol=protocol, l3=_l3(adir, manifest), stages=stages, sources=sources)

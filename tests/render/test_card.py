@@ -94,3 +94,17 @@ def test_card_command_on_a_non_asset_is_one_error_line_and_writes_nothing(tmp_pa
     lines = proc.stderr.strip().splitlines()
     assert len(lines) == 1 and lines[0].startswith("error:") and "asset.json" in lines[0]
     assert sorted(p.name for p in tmp_path.iterdir()) == ["notes.txt"]
+
+
+def test_card_does_not_depend_on_the_folder_name(tmp_path: Path) -> None:
+    """The same asset in two folders gets the same card (titled by its request): a renamed or moved asset, and a
+    cluster run beside a clean run of the same request, hold the same bytes."""
+    a = _asset(tmp_path / "a", "sponge")
+    b = tmp_path / "b" / "renamed_sponge"
+    shutil.copytree(a, b)
+    _, page_a = build_card(a)
+    _, page_b = build_card(b)
+    html = page_a.read_text(encoding="utf-8")
+    assert page_b.read_text(encoding="utf-8") == html
+    text = json.loads((a / "asset.json").read_text())["request"]["text"]
+    assert f"<h1>Asset card: {text}</h1>" in html and "renamed_sponge" not in html
