@@ -4,7 +4,6 @@ body, MuJoCo's probes on a small block (fast), and the sponge crosscheck with ca
 from __future__ import annotations
 
 import math
-import os
 from pathlib import Path
 
 import numpy as np
@@ -12,6 +11,7 @@ import pytest
 
 from tasks.export.calibrate import Knob, fit_modulus, fit_rebound
 from tasks.export.crosscheck import METRICS, TetKinematics, metric_rows, slice_area_m2
+from tests.export.assets import copy_sponge
 
 
 def test_fit_modulus_secant_converges_in_few_simulations() -> None:
@@ -80,19 +80,15 @@ def test_mujoco_probes_on_a_block_report_every_metric() -> None:
     assert 0.9 <= c["recovery_ratio"] <= 1.0 and 0.0 <= d["rebound_ratio"] < 1.0
 
 
-SPONGE = Path(os.environ.get("DEFORMSMITH_TEST_SPONGE", "/work/fp/after/assets/sponge"))
-
-
 @pytest.mark.slow
-@pytest.mark.skipif(not (SPONGE / "material.json").is_file(), reason="needs a generated sponge asset")
 def test_sponge_crosscheck_reports_every_metric_and_calibration_reduces_the_residuals(tmp_path: Path) -> None:
     pytest.importorskip("mujoco")
     import shutil
 
     from flows.crosscheck import crosscheck_asset
 
-    asset = tmp_path / "sponge"
-    shutil.copytree(SPONGE, asset, ignore=shutil.ignore_patterns("export", "recordings", "renders"))
+    asset = copy_sponge(tmp_path / "sponge")
+    shutil.rmtree(asset / "export")
     report = crosscheck_asset(asset, "mujoco", calibrate=True)
     for name, row in report.metrics.items():
         assert row.ours is not None and row.theirs is not None and row.theirs_calibrated is not None, name
@@ -105,23 +101,12 @@ def test_sponge_crosscheck_reports_every_metric_and_calibration_reduces_the_resi
 
 @pytest.fixture
 def grid_sponge(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> Path:
-    """A copy of the ready-made sponge meshed by test_export_cmd's stand-in grid mesher (60 nodes)."""
-    import shutil
-
+    """A copy of the committed sponge meshed by test_export_cmd's stand-in grid mesher (60 nodes)."""
     from tasks.export import inputs as export_inputs
     from tasks.export import registry
-    from tests.export.test_export_cmd import COPIED, grid_tets
+    from tests.export.test_export_cmd import grid_tets
 
-    if not (SPONGE / "material.json").is_file():
-        pytest.skip("the ready-made sponge asset is not on this machine")
-    out = tmp_path / "sponge"
-    out.mkdir()
-    for name in COPIED:
-        src = SPONGE / name
-        if src.is_dir():
-            shutil.copytree(src, out / name)
-        elif src.exists():
-            shutil.copy2(src, out / name)
+    out = copy_sponge(tmp_path / "sponge")
     monkeypatch.setattr(export_inputs, "tetrahedralize", grid_tets)
     monkeypatch.setattr(registry, "MESHER", None, raising=False)
     return out

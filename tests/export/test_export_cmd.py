@@ -7,7 +7,6 @@ test_tetmesh.py): what is checked here is the command and the files each target 
 from __future__ import annotations
 
 import json
-import shutil
 import sys
 from pathlib import Path
 from typing import Any
@@ -19,10 +18,8 @@ from contracts.export import ExportManifest
 from tasks.export import inputs as export_inputs
 from tasks.export import registry
 from tasks.export.tetmesh import TetMesh, signed_volumes_m3
+from tests.export.assets import copy_sponge
 
-SPONGE = Path("/work/fp/after/assets/sponge")
-COPIED = ("asset.json", "geometry.json", "physical.json", "material.json", "mesh.glb", "gaussians.ply",
-          "particles.zarr", "collision", "export")
 
 
 def grid_tets(vertices_m: np.ndarray, faces: np.ndarray, *, edge_length_m: float | None = None) -> TetMesh:
@@ -48,16 +45,7 @@ def grid_tets(vertices_m: np.ndarray, faces: np.ndarray, *, edge_length_m: float
 @pytest.fixture
 def asset(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> Path:
     """A copy of the sponge asset (no recordings), meshed by the stand-in."""
-    if not SPONGE.is_dir():
-        pytest.skip("the ready-made sponge asset is not on this machine")
-    out = tmp_path / "sponge"
-    out.mkdir()
-    for name in COPIED:
-        src = SPONGE / name
-        if src.is_dir():
-            shutil.copytree(src, out / name)
-        elif src.exists():
-            shutil.copy2(src, out / name)
+    out = copy_sponge(tmp_path / "sponge")
     monkeypatch.setattr(export_inputs, "tetrahedralize", grid_tets)
     monkeypatch.setattr(registry, "MESHER", None)  # the stand-in needs no pytetwild
     return out
@@ -257,16 +245,10 @@ def test_real_sponge_export_steps_one_second_in_drake(tmp_path: Path) -> None:
     """fTetWild's mesh of the sponge, exported to Drake: 1 s of simulated time (SAP, dt 10 ms) without NaN, resting
     on the ground (about 10-15 s)."""
     pytest.importorskip("pydrake")
-    if not SPONGE.is_dir():
-        pytest.skip("the ready-made sponge asset is not on this machine")
     from flows.export import export_asset
     from tasks.export.drake import load_and_step
 
-    asset = tmp_path / "sponge"
-    asset.mkdir()
-    for name in COPIED:
-        src = SPONGE / name
-        (shutil.copytree if src.is_dir() else shutil.copy2)(src, asset / name)
+    asset = copy_sponge(tmp_path / "sponge")
     manifest = export_asset(asset, "drake")
     quality = json.loads((asset / "export" / "tetmesh" / "quality.json").read_text())
     assert quality["inverted_count"] == 0 and quality["volume_error_rel"] < 0.02
