@@ -6,41 +6,26 @@ import math
 
 from pydantic import BaseModel, ConfigDict, Field, field_validator
 
+from contracts.material import Material
+
 UNITS = "SI: metres, kilograms, seconds, pascals (N/m^2), kg/m^3; frame z up, object resting on z = 0"
 
 
-class ExportMaterial(BaseModel):
-    """The validated material (L2) and physical model (L1), as exported."""
+class ExportMaterial(Material):
+    """The validated material (L2: E, nu, damping, and its Lame parameters) with what L1 adds, as exported."""
 
-    model_config = ConfigDict(extra="forbid")
-
-    youngs_modulus_pa: float = Field(gt=0, description="Young's modulus E [Pa]")
-    poisson_ratio: float = Field(ge=0.0, lt=0.5, description="Poisson's ratio nu [-]")
     density_kg_per_m3: float = Field(gt=0, description="bulk density rho [kg/m^3]")
-    damping_rate_per_s: float = Field(ge=0.0, description="velocity damping rate [1/s]: v *= exp(-rate*dt)")
     ground_friction: float = Field(ge=0, description="Coulomb friction object-table [-]")
     gripper_friction: float = Field(ge=0, description="Coulomb friction object-finger pad [-]")
     mass_kg: float = Field(gt=0, description="total mass [kg]")
     constitutive_model: str = Field(default="neo-hookean", description="the model E and nu belong to")
 
-    @field_validator("youngs_modulus_pa", "poisson_ratio", "density_kg_per_m3", "damping_rate_per_s",
-                     "ground_friction", "gripper_friction", "mass_kg")
+    @field_validator("density_kg_per_m3", "ground_friction", "gripper_friction", "mass_kg")
     @classmethod
-    def _finite(cls, v: float) -> float:
+    def _finite_physical(cls, v: float) -> float:
         if not math.isfinite(v):
             raise ValueError("must be a finite number")
         return v
-
-    @property
-    def mu_pa(self) -> float:
-        """Lame shear modulus mu = E / (2 (1 + nu)) [Pa]."""
-        return self.youngs_modulus_pa / (2.0 * (1.0 + self.poisson_ratio))
-
-    @property
-    def lambda_pa(self) -> float:
-        """Lame first parameter lambda = E nu / ((1 + nu)(1 - 2 nu)) [Pa]."""
-        e, nu = self.youngs_modulus_pa, self.poisson_ratio
-        return e * nu / ((1.0 + nu) * (1.0 - 2.0 * nu))
 
 
 class TargetManifest(BaseModel):

@@ -43,10 +43,7 @@ def replace_directory(finished: Path, dest: Path) -> None:
 
 def write_json_atomic(path: Path, record: Any, default: Callable[[Any], Any] | None = str) -> None:
     """Write a JSON record (sorted keys, indented) to a temporary name and rename it into place."""
-    path = Path(path)
-    tmp = path.with_name(path.name + ".tmp")
-    tmp.write_text(json.dumps(record, indent=2, sort_keys=True, default=default) + "\n", encoding="utf-8")
-    tmp.replace(path)
+    write_text_atomic(path, json.dumps(record, indent=2, sort_keys=True, default=default) + "\n")
 
 
 def write_text_atomic(path: Path, text: str) -> Path:

@@ -9,12 +9,12 @@ cached trial stored as another attempt reuses it.
 
 from __future__ import annotations
 
-import os
-import shutil
 from pathlib import Path
 from typing import Any
 
 import numpy as np
+
+from tasks.publish import copy_file_atomic
 
 RECORDING_VERSION = "1"  # bump when write_rrd changes what a trial's recording shows
 # what a trial's recording keeps (a deterministic stride; ~4-6 MB for the draft plush turtle's 3.8 s trial)
@@ -51,17 +51,5 @@ def record_attempt(asset_dir: Path, attempt: int, arrays: dict[str, np.ndarray],
 
         write_rrd(arrays, attrs, Path(asset_dir) / rel, MAX_PARTICLES, MAX_GAUSSIANS, GAUSSIAN_EVERY)
     else:
-        copy_atomic(cached_recording(arrays, attrs, trial_key), Path(asset_dir) / rel)
+        copy_file_atomic(cached_recording(arrays, attrs, trial_key), Path(asset_dir) / rel)
     return rel
-
-
-def copy_atomic(src: Path, dest: Path) -> Path:
-    """Copy a file so that dest appears only complete."""
-    dest.parent.mkdir(parents=True, exist_ok=True)
-    tmp = dest.with_name(f".{dest.name}.{os.getpid()}.tmp")
-    try:
-        shutil.copyfile(src, tmp)
-        os.replace(tmp, dest)
-    finally:
-        tmp.unlink(missing_ok=True)
-    return dest
