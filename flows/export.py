@@ -45,7 +45,7 @@ def _write_tetmesh_dir(inputs: ExportInputs, out_dir: Path) -> dict[str, float]:
     quality["volume_error_rel"] = abs(quality["volume_m3"] - surface_volume) / surface_volume
     (out_dir / "quality.json").write_text(json.dumps(quality, indent=2, sort_keys=True) + "\n", encoding="utf-8")
     write_readme(out_dir, "tet mesh", f"meshio.read('{inputs.slug}.msh') or meshio.read('{inputs.slug}.vtk')", [
-        "Linear tetrahedra (fTetWild via pytetwild), positively oriented; quality figures in quality.json."])
+        "Linear tetrahedra (isosurface stuffing, deterministic), positively oriented; quality figures in quality.json."])
     return quality
 
 

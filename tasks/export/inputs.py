@@ -15,7 +15,7 @@ from tasks.asset_dir import AssetDir
 from tasks.export.tetmesh import TetMesh, tetrahedralize, write_msh, write_vtk
 from tasks.geometry.gaussians import GaussianSet
 
-TETMESH_VERSION = "2"  # bump when tetrahedralize's output for the same surface changes
+TETMESH_VERSION = "3"  # bump when tetrahedralize's output for the same surface changes (3: isosurface stuffing)
 
 
 @dataclass

@@ -16,7 +16,7 @@ if TYPE_CHECKING:
     from tasks.export.inputs import ExportInputs
 
 INSTALL_HINT = 'pip install -e ".[export]"'
-MESHER = "pytetwild"  # every target needs the tet mesh
+MESHER = "igl"  # every target needs the tet mesh (isosurface stuffing on libigl's signed distance)
 
 
 @dataclass(frozen=True)

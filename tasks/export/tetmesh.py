@@ -1,23 +1,17 @@
-"""Tetrahedral volume mesh of an asset's surface (fTetWild via pytetwild), its quality, its boundary and its files.
+"""Tetrahedral volume mesh of an asset's surface (isosurface stuffing, tasks/export/stuffing.py), its quality, its
+boundary and its files.
 
 The mesh is in the asset frame (z up, resting on z = 0, metres): the frame of particles.zarr and its surface_mesh.
-Tets are positively oriented: det[b - a, c - a, d - a] > 0. Files: legacy VTK 4.2 ASCII (.vtk) and Gmsh 2.2 ASCII
-(.msh), both written here (a few lines each; meshio reads both).
+Tets are positively oriented: det[b - a, c - a, d - a] > 0. Deterministic: the same surface gives the same bytes in
+any process, with any thread count (no random numbers, no parallel reductions). Files: legacy VTK 4.2 ASCII (.vtk)
+and Gmsh 2.2 ASCII (.msh), both written here (a few lines each; meshio reads both).
 """
 
 from __future__ import annotations
 
-import contextlib
-import functools
-import glob
-import importlib.machinery
 import importlib.util
-import os
-import tempfile
-from collections.abc import Iterator
 from dataclasses import dataclass
 from pathlib import Path
-from types import ModuleType
 from typing import Any
 
 import numpy as np
@@ -25,13 +19,21 @@ import numpy as np
 from contracts.errors import InputError, SimulationError
 
 MIN_DIHEDRAL_DEG = 4.0        # a tet with a dihedral angle below this (or above MAX_DIHEDRAL_DEG) is a sliver or
-MAX_DIHEDRAL_DEG = 176.0      # a cap: the mesh is re-optimised (next attempt)
+MAX_DIHEDRAL_DEG = 176.0      # a cap (stuffing guarantees [10.7, 164.8] deg: a check, not a retry reason)
 HARD_MIN_DIHEDRAL_DEG = 2.0   # the best attempt still below this: SimulationError (no usable mesh)
-MAX_VOLUME_ERROR = 0.02       # |tet volume / surface volume - 1| above this: re-meshed (next attempt)
+MAX_VOLUME_ERROR = 0.02       # |tet volume / surface volume - 1| above this: re-meshed finer (next attempt)
 DEFAULT_EDGE_FRACTION = 0.12  # ideal edge length = this x the bounding-box diagonal when none is given
-# per attempt: (optimisation iterations, stop energy, envelope relative to the bounding-box diagonal, edge scale);
-# a quick pass (seconds on the default asset), then more thorough ones only while slivers remain
-ATTEMPTS = ((10, 20.0, 4e-3, 1.0), (30, 10.0, 3e-3, 1.0), (60, 8.0, 2e-3, 0.8))
+# lattice spacing of each attempt, x the edge length: the first that meets every bar (volume, surface deviation,
+# manifold boundary, no sliver) is kept (a coarser lattice cuts more off curved and sharp parts, or pinches thin ones)
+SPACING_SCALES = (0.75, 0.65, 0.55, 0.47, 0.4, 0.34, 0.29)
+# the meshed isosurface is the surface offset outwards by at most this x the bounding-box diagonal, chosen to give
+# the surface's volume (an inscribed mesh is smaller: its boundary vertices lie on the surface, its faces inside)
+ENVELOPE_FRACTION = 4e-3
+MAX_SURFACE_DEVIATION = 0.035  # a surface vertex farther than this x the diagonal from the mesh's boundary (a thin
+# part lost, a sharp corner cut): re-meshed finer (next attempt)
+VOLUME_TARGET = 0.002         # the offset is corrected (at most OFFSET_STEPS times) until the volume is this close
+OFFSET_STEPS = 2
+OFFSET_QUANTUM_M = 1e-9       # offsets are multiples of this, so last-bit differences of a sum cannot change them
 
 
 @dataclass(frozen=True)
@@ -40,38 +42,6 @@ class TetMesh:
 
     nodes_m: np.ndarray   # (N, 3) float64
     tets: np.ndarray      # (M, 4) int64
-
-
-@functools.cache
-def _fTetWild() -> ModuleType:
-    """pytetwild's compiled wrapper. pytetwild 0.4's package __init__ imports pyvista (an undeclared, heavy optional
-    dependency, VTK included) only for a PolyData accessor: the extension module is loaded directly instead."""
-    spec = importlib.util.find_spec("pytetwild")
-    if spec is None or spec.origin is None:
-        raise SimulationError('the tet mesh needs pytetwild: pip install -e ".[export]"')
-    found = glob.glob(os.path.join(os.path.dirname(spec.origin), "PyfTetWildWrapper*.so")) + glob.glob(
-        os.path.join(os.path.dirname(spec.origin), "PyfTetWildWrapper*.pyd"))
-    if not found:
-        raise SimulationError("pytetwild is installed without its compiled fTetWild wrapper")
-    name = "pytetwild.PyfTetWildWrapper"
-    loader = importlib.machinery.ExtensionFileLoader(name, found[0])
-    mod_spec = importlib.util.spec_from_file_location(name, found[0], loader=loader)
-    assert mod_spec is not None
-    module = importlib.util.module_from_spec(mod_spec)
-    loader.exec_module(module)
-    return module
-
-
-@contextlib.contextmanager
-def _in_scratch_dir() -> Iterator[None]:
-    """Run in a temporary working directory: fTetWild writes `__tracked_surface.stl` into the current one."""
-    old = os.getcwd()
-    with tempfile.TemporaryDirectory(prefix="deformsmith-ftetwild-") as tmp:
-        os.chdir(tmp)
-        try:
-            yield
-        finally:
-            os.chdir(old)
 
 
 def signed_volumes_m3(nodes_m: np.ndarray, tets: np.ndarray) -> np.ndarray:
@@ -118,43 +88,74 @@ def _clean(nodes_m: np.ndarray, tets: np.ndarray) -> TetMesh:
     return TetMesh(nodes_m=nodes, tets=np.ascontiguousarray(tets))
 
 
+def _boundary_is_manifold(tet: TetMesh) -> bool:
+    """Every boundary edge in exactly two boundary triangles (no pinched thin part)."""
+    f = boundary_faces(tet)
+    e = np.sort(np.concatenate([f[:, [0, 1]], f[:, [1, 2]], f[:, [2, 0]]]), axis=1)
+    _, counts = np.unique(e, axis=0, return_counts=True)
+    return bool(np.all(counts == 2))
+
+
+def surface_deviation_m(tet: TetMesh, vertices_m: np.ndarray, faces: np.ndarray) -> float:
+    """The largest distance [m] from a vertex of the surface (vertices_m, faces) to the tet mesh's boundary."""
+    import igl
+
+    sv, sf = surface_of(tet)
+    d2 = igl.point_mesh_squared_distance(np.ascontiguousarray(vertices_m, dtype=np.float64), sv, sf)[0]
+    return float(np.sqrt(np.max(d2)))
+
+
 def tetrahedralize(vertices_m: np.ndarray, faces: np.ndarray, *, edge_length_m: float | None = None) -> TetMesh:
-    """Tet mesh of a closed triangle surface (fTetWild), re-meshed while slivers (a dihedral angle under
-    MIN_DIHEDRAL_DEG or over MAX_DIHEDRAL_DEG) remain or the volume is off by over MAX_VOLUME_ERROR; the best
-    attempt is kept (SimulationError when it has
-    inverted tets or one under HARD_MIN_DIHEDRAL_DEG)."""
+    """Tet mesh of a closed, outward-oriented triangle surface by isosurface stuffing: each attempt (SPACING_SCALES)
+    offsets the surface (within ENVELOPE_FRACTION) to match its volume, and re-meshes finer while the volume is off
+    by over MAX_VOLUME_ERROR, the surface is farther than MAX_SURFACE_DEVIATION from the boundary, the boundary is
+    not a manifold or a sliver remains; the best attempt is kept (SimulationError when it has inverted tets or one
+    under HARD_MIN_DIHEDRAL_DEG)."""
     v = np.ascontiguousarray(vertices_m, dtype=np.float64)
-    f = np.ascontiguousarray(faces, dtype=np.uint32)
+    f = np.ascontiguousarray(faces, dtype=np.int64)
     if v.ndim != 2 or v.shape[1] != 3 or f.ndim != 2 or f.shape[1] != 3 or len(f) == 0:
         raise InputError("tetrahedralize needs (N, 3) vertices and (M, 3) triangle faces")
     diag = float(np.linalg.norm(v.max(axis=0) - v.min(axis=0)))
     if not diag > 0:
         raise InputError("tetrahedralize: the surface has zero extent")
     edge = float(edge_length_m) if edge_length_m else DEFAULT_EDGE_FRACTION * diag
-    p = v[f.astype(np.int64)]
+    p = v[f]
+    cross = np.cross(p[:, 1] - p[:, 0], p[:, 2] - p[:, 0])
     surface_volume = float(np.einsum("ij,ij->i", p[:, 0], np.cross(p[:, 1], p[:, 2])).sum() / 6.0)
+    surface_area = float(np.linalg.norm(cross, axis=1).sum() / 2.0)
     if not surface_volume > 0:
         raise InputError("tetrahedralize: the surface encloses no volume (open, or faces pointing inwards)")
-    wrapper = _fTetWild()
+    if importlib.util.find_spec("igl") is None:
+        raise SimulationError('the tet mesh needs libigl: pip install -e ".[export]"')
+    from tasks.export.stuffing import stuff
+
+    envelope = ENVELOPE_FRACTION * diag
     best: TetMesh | None = None
-    best_q: dict[str, float] = {}
-    for iterations, stop_energy, envelope, scale in ATTEMPTS:
-        with _in_scratch_dir():
-            nodes, tets = wrapper.tetrahedralize_mesh(
-                v, f, True, False,  # optimise, do not skip fTetWild's surface simplification
-                0.05, edge * scale, envelope, stop_energy, False,
-                2, iterations, 6, True, False, False,  # 2 threads, loglevel 6, quiet, fTetWild ordering, filtered
-                np.zeros((0, 3)), np.zeros((0, 4), np.int32), np.zeros(0))
-        if len(tets) == 0:
-            raise SimulationError("fTetWild produced no tetrahedra (is the surface closed?)")
-        mesh = _clean(nodes, tets)
-        q = tet_quality(mesh)
-        q["bad"] = q["sliver_count"] + float(abs(q["volume_m3"] / surface_volume - 1.0) > MAX_VOLUME_ERROR)
-        if best is None or (q["bad"], -q["min_dihedral_deg"]) < (best_q["bad"], -best_q["min_dihedral_deg"]):
-            best, best_q = mesh, q
-        if q["bad"] == 0:
+    best_key: tuple[float, ...] = ()
+    for scale in SPACING_SCALES:
+        offset = 0.0
+        for step in range(OFFSET_STEPS + 1):
+            nodes, tets = stuff(v, f, edge * scale, offset)
+            if len(tets) == 0:
+                break
+            mesh = _clean(nodes, tets)
+            q = tet_quality(mesh)
+            error = q["volume_m3"] / surface_volume - 1.0
+            deviation = surface_deviation_m(mesh, v, f) / diag
+            bad = (q["sliver_count"] + float(abs(error) > MAX_VOLUME_ERROR) + float(not _boundary_is_manifold(mesh))
+                   + float(deviation > MAX_SURFACE_DEVIATION))
+            key = (bad, abs(error), -q["min_dihedral_deg"])
+            if best is None or key < best_key:
+                best, best_key = mesh, key
+            if abs(error) <= VOLUME_TARGET or step == OFFSET_STEPS:
+                break
+            # the volume grows by about the surface area per unit of offset
+            offset = float(np.clip(offset - error * surface_volume / surface_area, -envelope, envelope))
+            offset = round(offset / OFFSET_QUANTUM_M) * OFFSET_QUANTUM_M
+        if best is not None and best_key[0] == 0:
             break
-    assert best is not None
+    if best is None:
+        raise SimulationError("isosurface stuffing produced no tetrahedra (is the surface closed?)")
     q = tet_quality(best)
     if q["min_volume_m3"] <= 0 or q["min_dihedral_deg"] < HARD_MIN_DIHEDRAL_DEG:
         raise SimulationError(f"tet mesh unusable: {int(q['inverted_count'])} inverted tets, minimum dihedral angle "

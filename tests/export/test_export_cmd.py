@@ -1,6 +1,6 @@
 """`deformsmith export`: target folders, manifest, README lines, the exported numbers, bad input, atomicity.
 
-The default run replaces fTetWild by a structured tet grid of the surface's box (the mesher has its own tests in
+The default run replaces the tet mesher by a structured tet grid of the surface's box (the mesher has its own tests in
 test_tetmesh.py): what is checked here is the command and the files each target writes.
 """
 
@@ -47,7 +47,7 @@ def asset(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> Path:
     """A copy of the sponge asset (no recordings), meshed by the stand-in."""
     out = copy_sponge(tmp_path / "sponge")
     monkeypatch.setattr(export_inputs, "tetrahedralize", grid_tets)
-    monkeypatch.setattr(registry, "MESHER", None)  # the stand-in needs no pytetwild
+    monkeypatch.setattr(registry, "MESHER", None)  # the stand-in needs no libigl
     return out
 
 
@@ -242,7 +242,7 @@ def test_a_failing_target_leaves_the_earlier_export(asset: Path, monkeypatch: py
 
 @pytest.mark.slow
 def test_real_sponge_export_steps_one_second_in_drake(tmp_path: Path) -> None:
-    """fTetWild's mesh of the sponge, exported to Drake: 1 s of simulated time (SAP, dt 10 ms) without NaN, resting
+    """The stuffed tet mesh of the sponge, exported to Drake: 1 s of simulated time (SAP, dt 10 ms) without NaN, resting
     on the ground (about 10-15 s)."""
     pytest.importorskip("pydrake")
     from flows.export import export_asset
