@@ -4,10 +4,12 @@ Two 1-D searches, each on a log scale:
   1. stiffness: the target's Young's modulus so that its compression probe gives L2's effective modulus. The
      effective modulus is close to proportional to E, so the first step is E * (target / measured), then secant steps
      on (log E, log measured) until within `tol` (3 compressions at most);
-  2. rebound: a damping knob (decreasing rebound) so that the drop probe gives L2's rebound ratio: bracketed on a log
-     scale from the exported value, then regula falsi inside the bracket (5 drops at most). A simulator whose damping
-     alone cannot reach the rebound (MuJoCo's contacts absorb the impact by themselves) offers a second knob, used
-     once the first is at its bound (fit_rebound's `knobs`).
+  2. rebound: knobs that lower the rebound as they grow (fit_rebound), in turn: bracketed on a log scale from the
+     current value (in one jump to the bound, or in steps of at most `max_step` for a knob whose simulations cost more
+     as it moves, such as the timestep), then regula falsi inside the bracket. A knob that cannot reach the target
+     stays at its bound and the next one moves (MuJoCo: its timestep first, whose numerical dissipation takes energy
+     from a stiff body's impact, then its flex damping).
+fit_both alternates the two until both hold: a damping fitted to the rebound can move the modulus, a timestep too.
 """
 
 from __future__ import annotations
@@ -84,13 +86,22 @@ def fit_modulus(measure: Callable[[float], float], young0: float, target: float,
 
 @dataclass
 class Knob:
-    """A damping parameter that lowers the rebound as it grows, searched on a log scale within [low, high]."""
+    """A parameter that lowers the rebound as it grows (a damping, a timestep), searched on a log scale in [low, high]."""
 
     name: str
     start: float
     low: float
     high: float
+    max_step: float | None = None  # bracketing moves at most this factor from the nearest tried value (None: bound)
     values: dict[float, float] = field(default_factory=dict)  # tried value -> rebound
+
+    def toward(self, low: bool) -> float:
+        """The next bracketing value toward the low (more rebound) or the high bound."""
+        bound = self.low if low else self.high
+        if self.max_step is None or not self.values:
+            return bound
+        near = min(self.values) if low else max(self.values)
+        return max(bound, near / self.max_step) if low else min(bound, near * self.max_step)
 
 
 def fit_rebound(measure: Callable[[dict[str, float]], float], knobs: Sequence[Knob], target: float, tol: float = 0.05,
@@ -124,16 +135,16 @@ def fit_rebound(measure: Callable[[dict[str, float]], float], knobs: Sequence[Kn
         while len(steps) < max_sims:
             above = [v for v, r in k.values.items() if r >= target]
             below = [v for v, r in k.values.items() if r <= target]
-            if above and below:
+            if (above and below) or abs(rel(best[0], target)) <= tol:
                 break
-            v = k.low if not above else k.high
+            v = k.toward(low=not above)
             if v in k.values:
                 break
             run(k, v)
         above = [v for v, r in k.values.items() if r >= target]
         below = [v for v, r in k.values.items() if r <= target]
         if not (above and below):
-            bound = k.low if not above else k.high  # the bound nearest the target; on to the next knob
+            bound = min(k.values) if not above else max(k.values)  # the tried value nearest the target; next knob
             chosen[k.name] = bound
             nxt = knobs.index(k) + 1
             if nxt < len(knobs) and bound in k.values:  # the next knob's start is this very setting
@@ -159,4 +170,33 @@ def fit_rebound(measure: Callable[[dict[str, float]], float], knobs: Sequence[Kn
     return dict(best[1]), float(best[0]), steps
 
 
-__all__ = ["Calibration", "CalibrationStep", "Knob", "fit_modulus", "fit_rebound", "rel"]
+def fit_both(modulus: Callable[[dict[str, float]], float], rebound: Callable[[dict[str, float]], float],
+             knobs_of: Callable[[dict[str, float]], list[Knob]], values: dict[str, float], e_target: float,
+             r_target: float, tol: float = 0.05, refit_tol: float = 0.10, rounds: int = 3,
+             rebound_sims: int = 6) -> tuple[dict[str, float], list[CalibrationStep]]:
+    """Young's modulus to e_target (fit_modulus), then the knobs to r_target (fit_rebound), both again while the
+    modulus misses by more than refit_tol after a round (a damping or timestep fitted to the rebound can move it; a
+    rebound still missing with the modulus in place is the knobs' best, and another round would not change it). Each
+    fit aims at tol. modulus / rebound take every parameter (values, "young_pa" among them) and should be memoized by
+    the caller: a round re-reads values it already measured. Returns (values, steps)."""
+    values = dict(values)
+    steps: list[CalibrationStep] = []
+    for _ in range(rounds):
+        m = modulus(values)
+        if abs(rel(m, e_target)) > tol:
+            young, _, s = fit_modulus(lambda e: modulus({**values, "young_pa": e}), values["young_pa"], e_target, tol,
+                                      first=m)
+            values["young_pa"] = young
+            steps += s
+        r = rebound(values)
+        if abs(rel(r, r_target)) > tol:
+            fitted, _, s = fit_rebound(lambda v: rebound({**values, **v}), knobs_of(values), r_target, tol,
+                                       max_sims=rebound_sims, first=r)
+            values.update(fitted)
+            steps += s
+        if abs(rel(modulus(values), e_target)) <= refit_tol:  # else the rebound's knobs moved it: once more
+            break
+    return values, steps
+
+
+__all__ = ["Calibration", "CalibrationStep", "Knob", "fit_both", "fit_modulus", "fit_rebound", "rel"]

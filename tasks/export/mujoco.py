@@ -69,7 +69,9 @@ def export(inputs: ExportInputs, out_dir: Path) -> TargetManifest:
         f"{inputs.material.ground_friction:.3g}, on a table plane at z = 0. Needs MuJoCo >= 3.17 (integrator "
         "'discrete': flex elasticity is integrated implicitly only there).",
         f"Mapping: {MAPPING}", f"Damping: {DAMPING}",
-        "Calibrated: `deformsmith crosscheck DIR --sim mujoco` fits young and the damping to L2's probes and writes "
+        "Calibrated: `deformsmith crosscheck DIR --sim mujoco` fits young, the timestep (finer where the discrete "
+        "integrator's numerical dissipation takes too much of the impact's energy; the contacts' time constant "
+        "follows it) and the flex damping to L2's probes and writes "
         f"{inputs.slug}{CALIBRATED_SUFFIX}.xml and calibration.json here."])
     return TargetManifest(target="mujoco", files=[xml, "parameters.json", *mesh_files, readme], load_hint=hint,
                           material=inputs.material, mapping=MAPPING, damping_mapping=DAMPING)

@@ -4,7 +4,8 @@ Same settings as L2: the drop releases the body with its lowest node height_frac
 every sixth of a fundamental period (<= 2.5 ms) for at least 0.6 s, until the body has been quiet for 0.1 s (2 s at
 most); the compression settles the body (max(0.1 s, 8 T)), lowers a frictionless mocap plate at a constant speed over
 max(0.2 s, 20 T) until e = 1 - h / h0 reaches the strain, holds (max(0.1 s, 6 T); force averaged over its last 70 %),
-withdraws it in 0.1 s and watches the recovery (max(0.2 s, 10 T); heights averaged over its last 40 %).
+withdraws it in 0.1 s and watches the recovery (max(0.2 s, 10 T); heights averaged over its last 40 %). Heights are
+L2's, taken along the body's own vertical (unrotated): a body that turns as a whole keeps its bottom layer.
 """
 
 from __future__ import annotations
@@ -112,6 +113,18 @@ class _Sim:
             raise SimulationError(f"MuJoCo diverged (non-finite state) at t = {d.time:.4f} s")
 
 
+def unrotated(x: np.ndarray, x0: np.ndarray, masses: np.ndarray) -> np.ndarray:
+    """x turned back about its centre of mass by its best-fit rotation from the rest nodes x0 (mass-weighted Kabsch):
+    L2's heights along the body's own vertical, whatever the body does as a whole (a ball spun by the plate's release
+    rolls on the frictionless table and would carry its bottom layer up its side)."""
+    w = np.asarray(masses, np.float64)[:, None]
+    c = (x * w).sum(axis=0) / w.sum()
+    c0 = (x0 * w).sum(axis=0) / w.sum()
+    u, _, vt = np.linalg.svd(((x0 - c0) * w).T @ (x - c))
+    r = vt.T @ np.diag([1.0, 1.0, float(np.sign(np.linalg.det(vt.T @ u.T)))]) @ u.T  # x - c ~ R (x0 - c0)
+    return (x - c) @ r + c
+
+
 def _scene(body: TetBody, p: FlexParams, lift_m: float, **kw: object) -> str:
     return scene_xml(body.nodes_m + np.array([0.0, 0.0, lift_m]), body.tets, p, **kw)  # type: ignore[arg-type]
 
@@ -175,7 +188,7 @@ def compress(body: TetBody, p: FlexParams, strain: float, area_m2: float) -> dic
     d = sim.data
 
     def height() -> float:
-        x = sim.x()
+        x = unrotated(sim.x(), x0, sim.masses)
         return 2.0 * float(kin.com(x, measured)[2] - x[bottom, 2].mean())
 
     def move_plate(v: float, duration: float) -> None:
@@ -229,4 +242,4 @@ def with_values(p: FlexParams, young_pa: float | None = None, damping_s: float |
                    damping_s=p.damping_s if damping_s is None else damping_s)
 
 
-__all__ = ["TetBody", "compress", "drop", "with_values"]
+__all__ = ["TetBody", "compress", "drop", "unrotated", "with_values"]

@@ -72,7 +72,8 @@ def default_params(nodes_m: np.ndarray, tets: np.ndarray, *, young_pa: float, po
     c = math.sqrt(young_pa / density_kg_per_m3)
     # the discrete integrator is implicit in the elastic forces; half a wave crossing of the mean edge resolves the
     # impact, within [0.25 ms, 1 ms] (a stiff rubber ball would ask for 0.1 ms: 2 s of drop then cost ~6 min on a
-    # shared CPU core, and the calibration absorbs the difference)
+    # shared CPU core; its numerical dissipation takes part of a stiff body's rebound, and the crosscheck's
+    # calibration refines the step only where the drop shows it)
     dt = min(1e-3, max(2.5e-4, 0.5 * mean_edge_m(nodes_m, tets) / c))
     return FlexParams(young_pa=young_pa, poisson=poisson,
                       damping_s=damping_time_s(damping_rate_per_s, height, young_pa, density_kg_per_m3),
