@@ -136,6 +136,21 @@ def drop_metrics(t: np.ndarray, z: np.ndarray, vz: np.ndarray, ke: np.ndarray, f
                          np.asarray(s95), mass_kg, height_m, dt_s)
 
 
+def compression_metrics(forces_n: list[float], h0_m: float, hold_heights_m: list[float], recovered_heights_m: list[float],
+                        area_m2: float) -> dict[str, float]:
+    """L2's compression metrics from the plate forces and equivalent heights sampled over the hold and the recovery:
+    effective_modulus_pa = (F / A) / e, e = 1 - h_l / h0; recovery_ratio = (h_r - h_l) / (h0 - h_l), capped at 1."""
+    F = float(np.mean(forces_n))
+    h_l = float(np.mean(hold_heights_m))
+    e_h = 1.0 - h_l / h0_m
+    applied = h0_m - h_l
+    return {
+        "effective_modulus_pa": (max(F, 0.0) / area_m2) / e_h if e_h > 0 and area_m2 > 0 else math.nan,
+        "compression_strain": e_h, "compression_force_n": F, "cross_section_m2": area_m2,
+        "recovery_ratio": min(1.0, (float(np.mean(recovered_heights_m)) - h_l) / applied) if applied > 0 else math.nan,
+    }
+
+
 def sample_interval_s(period_s: float, longest_s: float = 5e-3) -> float:
     """L2's sampling interval: a sixth of the fundamental period within [1 ms, longest_s]."""
     return float(min(longest_s, max(1e-3, period_s / 6.0)))
@@ -192,5 +207,5 @@ def metric_rows(ours: dict[str, float], before: dict[str, float],
 
 
 __all__ = ["AGREEMENT_TOLERANCE", "CALIBRATED_METRICS", "CrosscheckReport", "METRICS", "MetricRow", "ProbeTargets",
-           "TetKinematics", "drop_metrics", "metric_rows", "probe_targets", "rel_error", "sample_interval_s",
+           "TetKinematics", "compression_metrics", "drop_metrics", "metric_rows", "probe_targets", "rel_error", "sample_interval_s",
            "slice_area_m2"]

@@ -34,7 +34,7 @@ from typing import Any
 import numpy as np
 
 from contracts.errors import InputError, SimulationError
-from tasks.export.crosscheck import drop_metrics
+from tasks.export.crosscheck import compression_metrics, drop_metrics
 from tasks.probes.metrics import compressive_strain
 
 G = 9.81
@@ -253,15 +253,9 @@ def compress(scene_py: Path, strain: float, area_m2: float, young_pa: float | No
         x = advance(0.0)
         if (i + 1) > 0.6 * n_rec:
             h_rec.append(height(x))
-    F_plate = float(np.mean(forces))
-    h_l = float(np.mean(h_hold))
-    e_h = 1.0 - h_l / h0
-    applied = h0 - h_l
     return {
-        "effective_modulus_pa": (max(F_plate, 0.0) / area_m2) / e_h if e_h > 0 and area_m2 > 0 else math.nan,
-        "compression_strain": e_h, "compression_force_n": F_plate,
-        "compression_force_from_stress_n": float(np.mean(stress_forces)), "cross_section_m2": area_m2,
-        "recovery_ratio": min(1.0, (float(np.mean(h_rec)) - h_l) / applied) if applied > 0 else math.nan,
+        **compression_metrics(forces, h0, h_hold, h_rec, area_m2),
+        "compression_force_from_stress_n": float(np.mean(stress_forces)),
         "sim_time_s": clock[0], "wall_time_s": time.perf_counter() - t_wall, "particles": float(n),
         "damping_rate_per_s": rate,
     }

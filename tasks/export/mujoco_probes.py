@@ -10,7 +10,6 @@ L2's, taken along the body's own vertical (unrotated): a body that turns as a wh
 
 from __future__ import annotations
 
-import math
 import time
 from collections import deque
 from dataclasses import dataclass, replace
@@ -18,7 +17,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from contracts.errors import SimulationError
-from tasks.export.crosscheck import TetKinematics, drop_metrics, sample_interval_s
+from tasks.export.crosscheck import TetKinematics, compression_metrics, drop_metrics, sample_interval_s
 from tasks.export.mujoco_scene import FLEX_NAME, PLATE_NAME, TABLE_NAME, FlexParams, fundamental_period_s, scene_xml
 
 G = 9.81
@@ -224,16 +223,8 @@ def compress(body: TetBody, p: FlexParams, strain: float, area_m2: float) -> dic
         sim.advance(dt_s)
         if d.time - t2 > 0.6 * t_recover:
             h_rec.append(height())
-    F = float(np.mean(forces))
-    h_l = float(np.mean(h_hold))
-    e_h = 1.0 - h_l / h0
-    applied = h0 - h_l
-    return {
-        "effective_modulus_pa": (max(F, 0.0) / area_m2) / e_h if e_h > 0 and area_m2 > 0 else math.nan,
-        "compression_strain": e_h, "compression_force_n": F, "cross_section_m2": area_m2,
-        "recovery_ratio": min(1.0, (float(np.mean(h_rec)) - h_l) / applied) if applied > 0 else math.nan,
-        "sim_time_s": float(d.time), "wall_time_s": time.perf_counter() - t_wall,
-    }
+    return {**compression_metrics(forces, h0, h_hold, h_rec, area_m2),
+            "sim_time_s": float(d.time), "wall_time_s": time.perf_counter() - t_wall}
 
 
 def with_values(p: FlexParams, young_pa: float | None = None, damping_s: float | None = None) -> FlexParams:
