@@ -1,9 +1,11 @@
-"""Cross-simulator check of an exported asset: L2's object probes re-run in MuJoCo (or Genesis), then calibration.
+"""Cross-simulator check of an exported asset: L2's object probes re-run in MuJoCo, Genesis or Drake, then calibration.
 
 MuJoCo runs the compression and the drop and is calibrated (young, then its timestep where its integrator's numerical
 dissipation leaves less rebound than L2's, then the flex damping; alternated until both hold). Genesis runs both on
 the exported scene.py (tasks.export.genesis_probes) and is calibrated (young, then the velocity damping rate its
-scene.py applies); the calibrated scene is scene_calibrated.py.
+scene.py applies); the calibrated scene is scene_calibrated.py. Drake runs both on the exported SDFormat body
+(tasks.export.drake_probes) and is calibrated like MuJoCo (young, its timestep, then its Rayleigh mass damping); the
+calibrated body is <slug>_calibrated.sdf, the timestep to simulate it with in its comment and calibration.json.
 
     crosscheck_asset(asset_dir, "mujoco")  # -> CrosscheckReport; DIR/export/mujoco/{<slug>_calibrated.xml,
                                            #    calibration.json, crosscheck.json}, manifest.json's calibrated entry
@@ -35,7 +37,7 @@ from tasks.export.crosscheck import (
 from tasks.export.inputs import ExportInputs, load_export_inputs
 from tasks.publish import write_text_atomic
 
-SIMULATORS = ("mujoco", "genesis")
+SIMULATORS = ("mujoco", "genesis", "drake")
 REPORT = "crosscheck.json"
 CALIBRATION = "calibration.json"
 
@@ -55,8 +57,9 @@ class SimRunner:
 
 def _mujoco_runner(inputs: ExportInputs, targets: ProbeTargets, area_m2: float) -> SimRunner:
     from tasks.export import mujoco as mj
-    from tasks.export.mujoco_probes import TetBody, compress, drop
+    from tasks.export.mujoco_probes import compress, drop
     from tasks.export.mujoco_scene import FlexParams
+    from tasks.export.probe_schedule import TetBody
 
     nodes, tets = inputs.tet.nodes_m, inputs.tet.tets
     p0 = mj.flex_params(nodes, tets, inputs.material)
@@ -127,6 +130,43 @@ def _genesis_runner(inputs: ExportInputs, targets: ProbeTargets, area_m2: float,
         knobs, write)
 
 
+def _drake_runner(inputs: ExportInputs, targets: ProbeTargets, area_m2: float, folder: Path) -> SimRunner:
+    from tasks.export import drake, drake_probes
+    from tasks.export.probe_schedule import TetBody
+
+    m = inputs.material
+    body = TetBody(inputs.tet.nodes_m, inputs.tet.tets, m.density_kg_per_m3, targets.spacing_m, m.youngs_modulus_pa)
+    vtk = folder / f"{inputs.slug}.vtk"
+
+    def params(values: dict[str, float]) -> drake_probes.DrakeParams:
+        material = m.model_copy(update={"youngs_modulus_pa": values["young_pa"],
+                                        "damping_rate_per_s": values["mass_damping_per_s"]})
+        return drake_probes.DrakeParams(material, values["timestep_s"])
+
+    def knobs(values: dict[str, float]) -> list[Knob]:
+        # 1. the timestep, down to 1/16 of the exported one in halvings: Drake's first-order Newmark scheme for
+        #    deformables takes an impact's energy in proportion to w dt (kitchen sponge, T = 3.9 ms: rebound 0.009 at
+        #    1 ms against L2's 0.119); 2. the Rayleigh mass damping up to critical at the fundamental mode or 4 x
+        dt, c = values["timestep_s"], max(values["mass_damping_per_s"], 1e-3)
+        return [Knob("timestep_s", dt, drake_probes.TIME_STEP_S / 16.0, drake_probes.TIME_STEP_S, max_step=2.0),
+                Knob("mass_damping_per_s", c, c * 1e-2, max(4.0 * math.pi / body.period_s, 4.0 * c))]
+
+    def write(values: dict[str, float], out: Path) -> list[str]:
+        name = f"{inputs.slug}{drake.CALIBRATED_SUFFIX}.sdf"
+        write_text_atomic(out / name, drake.deformable_sdf(
+            inputs.slug, vtk.name, params(values).material,
+            comment=f"{drake.EXPORT_COMMENT} Calibrated against L2's object compression and drop probes (deformsmith crosscheck; "
+                    f"calibration.json): E and mass_damping are the fitted ones; simulate with "
+                    f"MultibodyPlantConfig(time_step={values['timestep_s']!r}, discrete_contact_approximation='sap')."))
+        return [name]
+
+    init = {"young_pa": m.youngs_modulus_pa, "mass_damping_per_s": m.damping_rate_per_s,
+            "timestep_s": drake_probes.TIME_STEP_S}
+    return SimRunner("drake", init,
+                     lambda v: drake_probes.compress(body, vtk, params(v), targets.strain, area_m2),
+                     lambda v: drake_probes.drop(body, vtk, params(v), targets.height_fraction), knobs, write)
+
+
 def _require(sim: str) -> None:
     """InputError naming the extra when the simulator's package is missing (checked before anything is written)."""
     import importlib.util
@@ -139,11 +179,15 @@ def _require(sim: str) -> None:
         from tasks.export.genesis import GENESIS_INSTALL
 
         raise InputError(f"crosscheck --sim genesis needs genesis-world: {GENESIS_INSTALL}")
+    if sim == "drake" and importlib.util.find_spec("pydrake") is None:
+        raise InputError('crosscheck --sim drake needs the drake package: pip install -e ".[export]"')
 
 
 def _runner(sim: str, inputs: ExportInputs, targets: ProbeTargets, area_m2: float, folder: Path) -> SimRunner:
     if sim == "mujoco":
         return _mujoco_runner(inputs, targets, area_m2)
+    if sim == "drake":
+        return _drake_runner(inputs, targets, area_m2, folder)
     return _genesis_runner(inputs, targets, area_m2, folder)
 
 

@@ -1,4 +1,4 @@
-"""`deformsmith crosscheck DIR --sim mujoco|genesis` and `deformsmith bench crosscheck`: the asset in other simulators,
+"""`deformsmith crosscheck DIR --sim mujoco|genesis|drake` and `deformsmith bench crosscheck`: the asset in other simulators,
 measured by L2's probes beside DeformSmith's MPM values, before and after per-simulator calibration."""
 
 from __future__ import annotations
@@ -21,7 +21,7 @@ def _pct(v: float | None) -> str:
 @app.command("crosscheck")
 def crosscheck_cmd(
     asset_dir: Path = typer.Argument(..., help="a published asset directory (L2 passed: material.json)"),
-    sim: str = typer.Option("mujoco", "--sim", help="mujoco or genesis"),
+    sim: str = typer.Option("mujoco", "--sim", help="mujoco, genesis or drake"),
     calibrate: bool = typer.Option(True, "--calibrate/--no-calibrate", help="fit the simulator's E and damping"),
     out: Path = typer.Option(None, "--out", help="export root (default: DIR/export); exported first if missing"),
     cache_dir: Path = typer.Option(None, "--cache", help="cache root (default: $DEFORMSMITH_CACHE or the user cache)"),
@@ -60,7 +60,7 @@ def crosscheck_cmd(
 @bench_app.command("crosscheck")
 def bench_crosscheck(
     assets: list[Path] = typer.Argument(None, help="asset directories (default: see benchmarks/crosscheck_bench.py)"),
-    sims: str = typer.Option("mujoco", "--sims", help="comma list of simulators (mujoco, genesis)"),
+    sims: str = typer.Option("mujoco", "--sims", help="comma list of simulators (mujoco, genesis, drake)"),
     out: Path = typer.Option(None, "--out", help="write the JSON here too (e.g. docs/crosscheck.json)"),
     as_json: bool = typer.Option(False, "--json", help="print the figures as JSON"),
 ) -> None:

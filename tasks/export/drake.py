@@ -20,10 +20,14 @@ GROUND_HALF_EXTENT_M = 0.5
 GROUND_THICKNESS_M = 0.05
 
 
-def deformable_sdf(model: str, vtk_name: str, m: ExportMaterial) -> str:
+CALIBRATED_SUFFIX = "_calibrated"
+EXPORT_COMMENT = "DeformSmith export. SI units (m, kg, s, Pa); frame z up, the body resting on z = 0."
+
+
+def deformable_sdf(model: str, vtk_name: str, m: ExportMaterial, comment: str = EXPORT_COMMENT) -> str:
     """SDFormat 1.9 text of a deformable body whose rest shape is the .vtk tet mesh, at the asset frame."""
     return f"""<?xml version="1.0"?>
-<!-- DeformSmith export. SI units (m, kg, s, Pa); frame z up, the body resting on z = 0. -->
+<!-- {escape(comment).replace("--", "- -")} -->
 <sdf xmlns:drake="http://drake.mit.edu" version="1.9">
   <model name="{escape(model)}">
     <link name="{escape(model)}_body">
@@ -81,13 +85,16 @@ def export(inputs: ExportInputs, out_dir: Path) -> TargetManifest:
     mesh_files = write_tet_files(inputs, out_dir)
     (out_dir / sdf_name).write_text(deformable_sdf(inputs.slug, mesh_files[0], inputs.material), encoding="utf-8")
     (out_dir / "ground.sdf").write_text(ground_sdf(inputs.material.ground_friction), encoding="utf-8")
-    hint = ("pydrake: plant, _ = AddMultibodyPlant(MultibodyPlantConfig(time_step=0.01, "
+    hint = ("pydrake: plant, _ = AddMultibodyPlant(MultibodyPlantConfig(time_step=0.001, "
             "discrete_contact_approximation='sap'), builder); Parser(plant).AddModels('ground.sdf'); "
             f"Parser(plant).AddModels('{sdf_name}'); plant.Finalize()")
     readme = write_readme(out_dir, "Drake", hint, [
         f"The deformable body ({sdf_name}) uses {mesh_files[0]} (linear tets) for dynamics and contact; "
         "ground.sdf is a static box with its top face at z = 0.",
         "Deformable bodies need a discrete MultibodyPlant with the SAP contact solver.",
+        "Drake integrates deformables with a first-order (dissipative) Newmark scheme: the larger the step against "
+        "the body's period, the less it bounces. `deformsmith crosscheck DIR --sim drake` measures it and fits E, "
+        f"the mass damping and the step ({inputs.slug}{CALIBRATED_SUFFIX}.sdf, calibration.json here).",
         "pydrake 1.51.1 logs 'SDFormat Error ... Missing element description for [drake:wall_boundary_condition]' "
         "while parsing any deformable link (its parser probing an optional tag): harmless, the body loads.",
         f"Mapping: {MAPPING} Damping: {DAMPING}"])
