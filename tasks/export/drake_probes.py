@@ -4,8 +4,9 @@ The scene is the export's: its SDFormat deformable (`drake:deformable_properties
 its ground box, parsed by pydrake into a discrete MultibodyPlant with the SAP contact solver. The compression's plate
 is a frictionless rigid box on a z prismatic joint, gravity off, whose position and velocity are set before every
 step (prescribed motion); its force is the body's deformable contact force with it (ContactResults). Drake integrates
-deformables with a first-order (dissipative) Newmark scheme, so its timestep takes impact energy the way MuJoCo's
-does: the calibration's first damping knob.
+deformables with a Newmark scheme of gamma = 1, beta = 0.5 (DeformableModel; not configurable in 1.51): first order,
+numerically dissipative like backward Euler in the velocities, so its timestep takes impact energy the way MuJoCo's
+does and is the calibration's first damping knob.
 """
 
 from __future__ import annotations

@@ -15,11 +15,12 @@ compress: L2's schedule (as tasks.export.mujoco_probes.compress): the body settl
 and velocity before every step so that the MPM coupling sees a moving wall) comes down at a constant speed over
 max(0.2 s, 20 T) until e = 1 - h / h0 in L2's equivalent heights reaches the strain; it holds (max(0.1 s, 6 T), force
 averaged over the last 70 %), withdraws in 0.1 s, and the recovery is watched (max(0.2 s, 10 T), heights averaged over
-the last 40 %). The plate force is read from Genesis's particle stresses (plate_force_from_stress_n): in equilibrium
-the body's volume integral of sigma_zz equals -F (z_top - z_bot) - W (z_com - z_bot), and Genesis's own neo-Hookean
-Kirchhoff stress tau = mu (F F^T - I) + lambda ln(J) I (genesis/engine/materials/MPM/elastic.py) gives
-integral sigma dV = sum_p V0 tau_p, V0 = particle_size^3 (the volume Genesis's p2g uses). The plate's own momentum
-change (the coupler's reaction on the free plate, compression_force_from_plate_n) is recorded beside it as a check.
+the last 40 %). Heights are taken along the body's own vertical (unrotated), as MuJoCo's and Drake's. The plate force
+is the coupler's reaction on the free plate (its mass x the velocity it gained over the step / dt). A check from
+Genesis's particle stresses is recorded beside it (compression_force_from_stress_n, plate_force_from_stress_n): in
+equilibrium the body's volume integral of sigma_zz equals -F (z_top - z_bot) - W (z_com - z_bot), and Genesis's own
+neo-Hookean Kirchhoff stress tau = mu (F F^T - I) + lambda ln(J) I (genesis/engine/materials/MPM/elastic.py) gives
+integral sigma dV = sum_p V0 tau_p, V0 = particle_size^3 (the volume Genesis's p2g uses).
 """
 
 from __future__ import annotations
@@ -35,6 +36,7 @@ import numpy as np
 
 from contracts.errors import InputError, SimulationError
 from tasks.export.crosscheck import compression_metrics, drop_metrics
+from tasks.export.probe_schedule import unrotated
 from tasks.probes.metrics import compressive_strain
 
 G = 9.81
@@ -207,7 +209,12 @@ def compress(scene_py: Path, strain: float, area_m2: float, young_pa: float | No
                           float(x[:, 2].max()), height(x)))
         return x
 
+    weights = np.ones(n)
+
     def height(x: np.ndarray) -> float:
+        # along the body's own vertical (as MuJoCo's and Drake's): a ball between frictionless plates turns freely,
+        # and its bottom layer would ride up its side (the rubber ball read e = 0.39 at the hold and recovery 0.16)
+        x = unrotated(x, x0, weights)
         return 2.0 * float(x[measured, 2].mean() - x[bottom, 2].mean())
 
     def steps(duration: float) -> int:
