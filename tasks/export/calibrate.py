@@ -55,10 +55,14 @@ def rel(measured: float, target: float) -> float:
     return (measured - target) / target if target else math.nan
 
 
+MAX_YOUNG_STEP = 4.0  # a modulus fit moves E at most this factor per simulation
+
+
 def fit_modulus(measure: Callable[[float], float], young0: float, target: float, tol: float = 0.05,
                 max_sims: int = 3, first: float | None = None) -> tuple[float, float, list[CalibrationStep]]:
-    """Secant on (log E, log effective modulus); `first` is the measurement at young0 when already made.
-    Returns (best E, its measurement, steps)."""
+    """Secant on (log E, log effective modulus), each step at most MAX_YOUNG_STEP from the last E (a probe that
+    barely responds to E, as a mis-measured one, must not send E to 1e12 Pa and the simulator's substeps with it);
+    `first` is the measurement at young0 when already made. Returns (best E, its measurement, steps)."""
     steps: list[CalibrationStep] = []
     pts: list[tuple[float, float]] = []
 
@@ -79,6 +83,7 @@ def fit_modulus(measure: Callable[[float], float], young0: float, target: float,
         else:
             slope = 1.0
         e = pts[-1][0] * math.exp((math.log(target) - math.log(pts[-1][1])) / slope)
+        e = min(pts[-1][0] * MAX_YOUNG_STEP, max(pts[-1][0] / MAX_YOUNG_STEP, e))
         pts.append((e, run(e)))
     best = min(pts, key=lambda p: abs(rel(p[1], target)) if math.isfinite(p[1]) else math.inf)
     return best[0], best[1], steps

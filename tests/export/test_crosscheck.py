@@ -25,6 +25,23 @@ def test_fit_modulus_secant_converges_in_few_simulations() -> None:
     assert abs(m / 1.2e5 - 1) <= 0.01 and len(calls) <= 3 and len(steps) == len(calls)
 
 
+def test_fit_modulus_bounds_each_step_when_the_probe_barely_responds() -> None:
+    """A probe that hardly moves with E (the rubber ball in Genesis, its heights read off a turning ball: 37.5 kPa
+    for a 483 kPa target) must not send E to 1e12 Pa: each trial stays within 4 x of the last, and the closest is kept."""
+    from tasks.export.calibrate import MAX_YOUNG_STEP
+
+    tried: list[float] = []
+
+    def measure(e: float) -> float:
+        tried.append(e)
+        return 37.5e3 * (e / 1.58e6) ** 0.05
+
+    e, m, steps = fit_modulus(measure, 1.58e6, 483e3, first=37.5e3)
+    ratios = np.array([tried[0] / 1.58e6] + [b / a for a, b in zip(tried, tried[1:], strict=False)])
+    assert len(tried) == 3 and np.all(ratios <= MAX_YOUNG_STEP * (1 + 1e-12)) and max(tried) <= 1.58e6 * 4 ** 3
+    assert e == max(tried) and m == pytest.approx(37.5e3 * (e / 1.58e6) ** 0.05)  # the closest to the target
+
+
 def test_fit_rebound_moves_to_the_second_knob_when_the_first_cannot_reach() -> None:
     """Rebound = f(damping, contact ratio): even undamped the first knob leaves it below the target; the second knob
     (the contact's own damping) must take over."""
