@@ -155,9 +155,10 @@ def _drake_runner(inputs: ExportInputs, targets: ProbeTargets, area_m2: float, f
         name = f"{inputs.slug}{drake.CALIBRATED_SUFFIX}.sdf"
         write_text_atomic(out / name, drake.deformable_sdf(
             inputs.slug, vtk.name, params(values).material,
-            comment=f"{drake.EXPORT_COMMENT} Calibrated against L2's object compression and drop probes (deformsmith crosscheck; "
-                    f"calibration.json): E and mass_damping are the fitted ones; simulate with "
-                    f"MultibodyPlantConfig(time_step={values['timestep_s']!r}, discrete_contact_approximation='sap')."))
+            comment=f"{drake.EXPORT_COMMENT} Calibrated against L2's object compression and drop probes "
+                    f"(deformsmith crosscheck; calibration.json): E and mass_damping are the fitted ones; simulate "
+                    f"with MultibodyPlantConfig(time_step={values['timestep_s']!r}, "
+                    f"discrete_contact_approximation='sap')."))
         return [name]
 
     init = {"young_pa": m.youngs_modulus_pa, "mass_damping_per_s": m.damping_rate_per_s,

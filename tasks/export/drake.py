@@ -92,9 +92,9 @@ def export(inputs: ExportInputs, out_dir: Path) -> TargetManifest:
         f"The deformable body ({sdf_name}) uses {mesh_files[0]} (linear tets) for dynamics and contact; "
         "ground.sdf is a static box with its top face at z = 0.",
         "Deformable bodies need a discrete MultibodyPlant with the SAP contact solver.",
-        "Drake integrates deformables with a first-order, dissipative Newmark scheme (gamma = 1): the larger the step against "
-        "the body's period, the less it bounces. `deformsmith crosscheck DIR --sim drake` measures it and fits E, "
-        f"the mass damping and the step ({inputs.slug}{CALIBRATED_SUFFIX}.sdf, calibration.json here).",
+        "Drake integrates deformables with a first-order, dissipative Newmark scheme (gamma = 1): the larger the "
+        "step against the body's period, the less it bounces. `deformsmith crosscheck DIR --sim drake` measures it "
+        f"and fits E, the mass damping and the step ({inputs.slug}{CALIBRATED_SUFFIX}.sdf, calibration.json here).",
         "pydrake 1.51.1 logs 'SDFormat Error ... Missing element description for [drake:wall_boundary_condition]' "
         "while parsing any deformable link (its parser probing an optional tag): harmless, the body loads.",
         f"Mapping: {MAPPING} Damping: {DAMPING}"])
