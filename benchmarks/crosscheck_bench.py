@@ -1,7 +1,7 @@
 """Cross-simulator check on a sponge, a rubber ball and a plush toy: per simulator and metric, DeformSmith's MPM
 value, the simulator's before calibration and after (flows.crosscheck).
 
-    python benchmarks/crosscheck_bench.py [ASSET_DIR ...] [--sims mujoco,genesis] [--out docs/crosscheck.json]
+    python benchmarks/crosscheck_bench.py [ASSET_DIR ...] [--sims mujoco,genesis,drake] [--out docs/crosscheck.json]
 
 Without asset directories it uses $DEFORMSMITH_CROSSCHECK_ASSETS (a colon-separated list). Each asset is copied to
 a temporary directory first (the export and calibration are written there, never into the asset). Prints JSON: one
