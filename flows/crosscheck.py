@@ -55,6 +55,13 @@ class SimRunner:
     write_calibrated: Callable[[dict[str, float], Path], list[str]] | None
 
 
+def _rate_knob(name: str, rate_per_s: float, period_s: float) -> Knob:
+    """A velocity (mass-proportional) damping rate [1/s]: from 1/100 of its value up to critical at the fundamental
+    mode (c = 2 w0 = 4 pi / T) or 4x its value."""
+    c = max(rate_per_s, 1e-3)
+    return Knob(name, c, c * 1e-2, max(4.0 * math.pi / period_s, 4.0 * c))
+
+
 def _mujoco_runner(inputs: ExportInputs, targets: ProbeTargets, area_m2: float) -> SimRunner:
     from tasks.export import mujoco as mj
     from tasks.export.mujoco_probes import compress, drop
@@ -111,9 +118,7 @@ def _genesis_runner(inputs: ExportInputs, targets: ProbeTargets, area_m2: float,
     period = fundamental_period_s(height, m.youngs_modulus_pa, m.density_kg_per_m3)
 
     def knobs(values: dict[str, float]) -> list[Knob]:
-        # scene.py's velocity damping rate, up to critical at the fundamental mode (c = 2 w0) or 4x the exported one
-        c = max(values["damping_rate_per_s"], 1e-3)
-        return [Knob("damping_rate_per_s", c, c * 1e-2, max(4.0 * math.pi / period, 4.0 * c))]
+        return [_rate_knob("damping_rate_per_s", values["damping_rate_per_s"], period)]  # scene.py's Drag rate
 
     def write(values: dict[str, float], out: Path) -> list[str]:
         params = json.loads((out / "params.json").read_text(encoding="utf-8"))
@@ -146,10 +151,10 @@ def _drake_runner(inputs: ExportInputs, targets: ProbeTargets, area_m2: float, f
     def knobs(values: dict[str, float]) -> list[Knob]:
         # 1. the timestep, down to 1/16 of the exported one in halvings: Drake's first-order Newmark scheme for
         #    deformables takes an impact's energy in proportion to w dt (kitchen sponge, T = 3.9 ms: rebound 0.009 at
-        #    1 ms against L2's 0.119); 2. the Rayleigh mass damping up to critical at the fundamental mode or 4 x
-        dt, c = values["timestep_s"], max(values["mass_damping_per_s"], 1e-3)
+        #    1 ms against L2's 0.119); 2. the Rayleigh mass damping (a velocity damping rate, as Genesis's)
+        dt = values["timestep_s"]
         return [Knob("timestep_s", dt, drake_probes.TIME_STEP_S / 16.0, drake_probes.TIME_STEP_S, max_step=2.0),
-                Knob("mass_damping_per_s", c, c * 1e-2, max(4.0 * math.pi / body.period_s, 4.0 * c))]
+                _rate_knob("mass_damping_per_s", values["mass_damping_per_s"], body.period_s)]
 
     def write(values: dict[str, float], out: Path) -> list[str]:
         name = f"{inputs.slug}{drake.CALIBRATED_SUFFIX}.sdf"

@@ -136,8 +136,8 @@ def drop_metrics(t: np.ndarray, z: np.ndarray, vz: np.ndarray, ke: np.ndarray, f
                          np.asarray(s95), mass_kg, height_m, dt_s)
 
 
-def compression_metrics(forces_n: list[float], h0_m: float, hold_heights_m: list[float], recovered_heights_m: list[float],
-                        area_m2: float) -> dict[str, float]:
+def compression_metrics(forces_n: list[float], h0_m: float, hold_heights_m: list[float],
+                        recovered_heights_m: list[float], area_m2: float) -> dict[str, float]:
     """L2's compression metrics from the plate forces and equivalent heights sampled over the hold and the recovery:
     effective_modulus_pa = (F / A) / e, e = 1 - h_l / h0; recovery_ratio = (h_r - h_l) / (h0 - h_l), capped at 1."""
     F = float(np.mean(forces_n))
@@ -207,5 +207,5 @@ def metric_rows(ours: dict[str, float], before: dict[str, float],
 
 
 __all__ = ["AGREEMENT_TOLERANCE", "CALIBRATED_METRICS", "CrosscheckReport", "METRICS", "MetricRow", "ProbeTargets",
-           "TetKinematics", "compression_metrics", "drop_metrics", "metric_rows", "probe_targets", "rel_error", "sample_interval_s",
-           "slice_area_m2"]
+           "TetKinematics", "compression_metrics", "drop_metrics", "metric_rows", "probe_targets", "rel_error",
+           "sample_interval_s", "slice_area_m2"]

@@ -6,9 +6,9 @@ the validated material unchanged. Genesis's MPM materials and MPMOptions have no
 velocity damping (v *= exp(-rate dt) on its grid velocities, every substep, after gravity) is Genesis's public
 `gs.force_fields.Drag(linear=rate)` added to the scene: Genesis's MPM grid update applies scene force fields to the
 grid velocities every substep right after gravity (acceleration -rate v, i.e. v *= 1 - rate dt_sub), the same scheme
-to O((rate dt_sub)^2) (< 1e-5 on the benchmark assets), and a plain scene.step() runs it. Genesis compiles the rate into its grid kernel,
-so each new rate costs a kernel compile (~10-30 s on a CPU; a calibration tries a handful). The ground plane's MPM
-coupling friction (coup_friction) is the asset's ground friction.
+to O((rate dt_sub)^2) (< 1e-5 on the benchmark assets), and a plain scene.step() runs it. Genesis compiles the rate
+into its grid kernel, so each new rate costs a kernel compile (~10-30 s on a CPU; a calibration tries a handful). The
+ground plane's MPM coupling friction (coup_friction) is the asset's ground friction.
 The scene file needs only genesis-world (GENESIS_INSTALL: no pip extra, its trimesh>=5 clashes with the core's
 trimesh<5); writing it needs nothing beyond the core.
 """
