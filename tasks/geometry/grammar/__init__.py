@@ -2,16 +2,19 @@
 
 from __future__ import annotations
 
+import functools
+import json
+import typing
 from collections.abc import Callable
 from typing import Any
 
 import numpy as np
-from pydantic import ValidationError
+from pydantic import Field, ValidationError
 
 from contracts.base import Model
 from contracts.errors import InputError
 from contracts.shape import Part, ShapeProgram
-from tasks.geometry.grammar import animals, food, things
+from tasks.geometry.grammar import animals, food, goods, things
 from tasks.geometry.grammar.parts import part_group
 
 RGB = tuple[float, float, float]
@@ -55,6 +58,15 @@ PLANS: dict[str, tuple[type[Model], Callable[[Any], list[Part]]]] = {
     "cloud": (things.CloudParams, things.cloud),
     "cactus": (things.CactusParams, things.cactus),
     "blob": (things.BlobParams, things.blob),
+    "sheet": (goods.SheetParams, goods.sheet),
+    "pouch": (goods.PouchParams, goods.pouch),
+    "glove": (goods.GloveParams, goods.glove),
+    "sock": (goods.SockParams, goods.sock),
+    "hat": (goods.HatParams, goods.hat),
+    "tool": (goods.ToolParams, goods.tool),
+    "mould": (goods.MouldParams, goods.mould),
+    "holey": (food.HoleyParams, food.holey),
+    "layered": (food.LayeredParams, food.layered),
 }
 
 # colours a part keeps unless the request or the entry names one (eyes and noses are dark)
@@ -144,3 +156,57 @@ def resize(program: ShapeProgram, size_m: float) -> ShapeProgram:
     """The program scaled so its longest extent is size_m [m]."""
     longest = float(program_extents(program).max())
     return program.model_copy(update={"parts": scale_parts(list(program.parts), size_m / longest)})
+
+
+def plan_states(plan: str) -> tuple[str, ...]:
+    """The states a plan's object can be in (its params model's `state` field: 'flat', 'rolled' ...); () for none."""
+    if plan not in PLANS:
+        raise InputError(f"unknown body plan '{plan}' (known: {', '.join(PLANS)})")
+    field = PLANS[plan][0].model_fields.get("state")
+    if field is None:
+        return ()
+    return tuple(typing.get_args(field.annotation))
+
+
+class StateChange(Model):
+    """How an object built in another state relates to the same object in its lexicon state (same sheet)."""
+
+    size_m: float = Field(gt=0, description="longest extent in the new state [m]")
+    density_factor: float = Field(gt=0, description="multiply the entry's density by this: the built volume of the "
+                                  "entry's state over the new state's, per sheet (thin sheets are built thicker than "
+                                  "they are when flat, at their real thickness when rolled) [-]")
+    mass_factor: float = Field(gt=0, description="objects in the new state per object in the entry's (a stack of "
+                               "`layers` sheets is that many) [-]")
+
+
+def state_change(plan: str, params: dict[str, Any] | None, size_m: float, state: str) -> StateChange:
+    """The size, density and mass factors of the object of `plan` with `params` (longest extent size_m [m]) when it is
+    built in `state` instead: e.g. a 1.83 m flat yoga mat rolled up is a 0.61 m roll of the same mass. Build it with
+    build_program(plan, {**params, 'state': state}, ..., size_m=change.size_m), give it the entry's density times
+    density_factor, and expect the entry's typical mass times mass_factor at that size."""
+    states = plan_states(plan)
+    if state not in states:
+        raise InputError(f"body plan '{plan}' has no state '{state}' (its states: {', '.join(states) or 'none'})")
+    base = plan_parameters(plan, params)
+    new = plan_parameters(plan, {**(params or {}), "state": state})
+    a, b = _unit_solid(plan, base), _unit_solid(plan, new)
+    scale = size_m / a[0]
+    layers_a = getattr(base, "layers", 1) if getattr(base, "state", "") == "stacked" else 1
+    layers_b = getattr(new, "layers", 1) if state == "stacked" else 1
+    per_sheet = (a[1] / layers_a) / (b[1] / layers_b)
+    return StateChange(size_m=b[0] * scale, density_factor=per_sheet, mass_factor=layers_b / layers_a)
+
+
+@functools.lru_cache(maxsize=256)
+def _unit_solid_cached(plan: str, params_json: str) -> tuple[float, float]:
+    from tasks.geometry.meshing import mesh_program
+
+    params = plan_parameters(plan, json.loads(params_json))
+    program = ShapeProgram(name=plan, category="state", parts=PLANS[plan][1](params))
+    mesh = mesh_program(program, 128)
+    return float(mesh.extents.max()), float(mesh.volume)
+
+
+def _unit_solid(plan: str, params: Model) -> tuple[float, float]:
+    """(longest extent, volume) of a plan's unit-frame solid."""
+    return _unit_solid_cached(plan, params.model_dump_json())

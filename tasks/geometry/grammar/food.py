@@ -299,3 +299,120 @@ def pie(p: PieParams) -> list[Part]:
 
         parts.append(torus("crust", 0.5 - p.rim, p.rim, (0, 0, h - 0.3 * p.rim), blend=0.02))
     return parts
+
+
+def _wedge_box(name: str, angle_deg: float, z0: float, thick: float, edge: float = 0.0) -> Part:
+    """The bounding box of a sector of radius 1 and `angle_deg` around +x (cut to the sector by `_wedge_cut`)."""
+    half = min(np.radians(angle_deg / 2), np.pi / 2)
+    return box(name, (1.0, 2 * np.sin(half) + 0.02, thick), (0.5, 0, z0 + thick / 2), edge=edge)
+
+
+def _wedge_cut(angle_deg: float, height: float) -> list[Part]:
+    """A cylinder of radius 1 and two half-spaces (intersected) that keep a sector of `angle_deg` around +x, its
+    point at the origin."""
+    half = np.radians(angle_deg / 2)
+    big = 4.0
+    out = [cylinder("crust cut", 1.0, 2 * height + 1, (0, 0, height / 2)).model_copy(
+        update={"operation": "intersect"})]
+    for side, s in (("left", 1), ("right", -1)):
+        phi = -s * half  # the box's inner face, rotated about z by phi, passes through the origin
+        at = (-np.sin(phi) * s * big / 2, np.cos(phi) * s * big / 2, height / 2)
+        out.append(box(f"{side} cut", (big, big, 2 * height + 1), at, rot=(0, 0, float(np.degrees(phi))))
+                   .model_copy(update={"operation": "intersect"}))
+    return out
+
+
+class HoleyParams(Model):
+    """Food with holes: a slice, wedge or block of Swiss cheese (Emmental), a crumpet-like holey slice."""
+
+    shape: Literal["slice", "wedge", "block"] = "slice"
+    width: float = Field(default=0.9, gt=0.2, le=1.0, description="width / length [-]")
+    height: float = Field(default=0.04, gt=0.02, le=1.0, description="height / length [-]")
+    holes: int = Field(default=7, ge=0, le=20)
+    hole_size: float = Field(default=0.09, gt=0.02, le=0.25, description="largest hole radius / length [-]")
+    angle_deg: float = Field(default=35.0, gt=10.0, le=120.0, description="a wedge's angle [deg]")
+
+
+def holey(p: HoleyParams) -> list[Part]:
+    """Length 1 along x. A slice's holes go through it; a wedge's or block's holes are round, some cut by its faces."""
+    h = p.height
+    rng = np.random.default_rng(7)  # fixed: the same cheese every time
+    if p.shape == "wedge":
+        parts = [_wedge_box("body", p.angle_deg, 0.0, h, edge=min(0.02, 0.3 * h))] + _wedge_cut(p.angle_deg, h)
+        tan = np.tan(np.radians(p.angle_deg / 2))
+        for i in range(p.holes):
+            x, v = rng.uniform(0.2, 0.95), rng.choice((-1.0, 1.0, rng.uniform(-0.8, 0.8)))  # most on a face
+            r = p.hole_size * (0.4 + 0.6 * rng.random()) * min(1.0, 3 * x * tan)
+            zf = rng.choice((0.0, 1.0, rng.uniform(0.2, 0.8))) if abs(v) < 1 else rng.uniform(0.2, 0.8)
+            parts.append(ellipsoid(f"hole {i + 1}", (r, r, r), (x, v * x * tan, zf * h))
+                         .model_copy(update={"operation": "subtract"}))
+        return _shift_x(parts, -0.5)
+    w = p.width
+    parts = [box("body", (1.0, w, h), (0, 0, h / 2), edge=min(0.02, 0.3 * h))]
+    for i in range(p.holes):
+        x, y = rng.uniform(-0.42, 0.42), rng.uniform(-0.42, 0.42) * w
+        r = p.hole_size * (0.35 + 0.65 * rng.random())
+        if p.shape == "slice":
+            parts.append(cylinder(f"hole {i + 1}", r, 3 * h, (x, y, h / 2), op="subtract"))
+        else:
+            parts.append(ellipsoid(f"hole {i + 1}", (r, r, r), (x, y, rng.uniform(0.1, 0.9) * h)).model_copy(
+                update={"operation": "subtract"}))
+    return parts
+
+
+class LayeredParams(Model):
+    """Food in layers: sandwich, layer-cake slice, lasagna, trifle, club sandwich, mille-feuille."""
+
+    shape: Literal["block", "wedge", "round"] = "block"
+    width: float = Field(default=0.8, gt=0.2, le=1.0, description="width / length (block) [-]")
+    height: float = Field(default=0.4, gt=0.05, le=1.5, description="height / length (or diameter) [-]")
+    layers: int = Field(default=2, ge=2, le=8, description="main layers (bread, sponge, pasta) [-]")
+    filling: float = Field(default=0.5, gt=0.05, le=2.0, description="a filling layer's thickness / a main "
+                           "layer's [-]")
+    topping: float = Field(default=0.0, ge=0.0, le=0.5, description="top coat (frosting, cheese) / main layer [-]")
+    angle_deg: float = Field(default=40.0, gt=10.0, le=120.0, description="a wedge's angle [deg]")
+    puff: float = Field(default=0.3, ge=0.0, le=1.0, description="rounding of the main layers (a bun's dome) [-]")
+
+
+def layered(p: LayeredParams) -> list[Part]:
+    """Length 1 along x (a wedge's point at x = -0.5): main layers ('layer') and fillings ('filling') alternating
+    from the bottom, a 'topping' over the top."""
+    n = p.layers
+    unit = p.height / (n + (n - 1) * p.filling + p.topping)
+    parts: list[Part] = []
+    z = 0.0
+    w = p.width
+    for i in range(n):
+        names = ("body" if i == 0 else f"layer {i + 1}", f"filling {i + 1}")
+        thick = unit
+        parts.append(_layer(names[0], p, thick, z, edge=min(p.puff * thick / 2, 0.45 * thick) if p.shape == "block"
+                            else 0.15 * thick, w=w))
+        z += thick
+        if i < n - 1:
+            ft = unit * p.filling
+            parts.append(_layer(names[1], p, ft * 1.02, z - 0.01 * ft, edge=0.3 * ft, w=w * 1.01 if
+                                p.shape == "block" else w, grow=0.01))
+            z += ft
+    if p.topping > 0:
+        tt = unit * p.topping
+        parts.append(_layer("topping", p, tt, z - 0.02 * tt, edge=0.45 * tt, w=w))
+    if p.shape == "wedge":
+        return _shift_x(parts + _wedge_cut(p.angle_deg, p.height), -0.5)
+    return parts
+
+
+def _shift_x(parts: list[Part], dx: float) -> list[Part]:
+    out = []
+    for q in parts:
+        t = q.transform.translation_m
+        out.append(q.model_copy(update={"transform": q.transform.model_copy(update={"translation_m": (t[0] + dx, t[1],
+                                                                                                     t[2])})}))
+    return out
+
+
+def _layer(name: str, p: LayeredParams, thick: float, z0: float, edge: float, w: float, grow: float = 0.0) -> Part:
+    if p.shape == "block":
+        return box(name, (1.0 + grow, w, thick), (0, 0, z0 + thick / 2), edge=edge)
+    if p.shape == "wedge":
+        return _wedge_box(name, p.angle_deg, z0, thick, edge=min(edge, 0.02))
+    return cylinder(name, 0.5 + grow, thick, (0, 0, z0 + thick / 2), edge=edge)
