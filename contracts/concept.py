@@ -9,9 +9,13 @@ from pydantic import Field
 from contracts.base import Model
 
 # How a concept was found, best first: the lexicon names the noun (or one of its synonyms); the noun is unknown but
-# the text names a body plan ("a four-legged plush", "a ring-shaped ..."); only a category ("a plush animal",
-# "a vegetable"); only a material ("a foam thing"); nothing at all (a generic soft block).
-FallbackLevel = Literal["exact", "synonym", "body_plan", "category", "material", "generic"]
+# WordNet says it is a kind of an object the lexicon knows ("spaniel" < "dog"); the text names a body plan
+# ("a four-legged plush", "a ring-shaped ..."); a category, from the text ("a plush animal", "a vegetable") or from
+# WordNet ("okapi" < ... < "mammal"); WordNet's definition gives its shape and material ("puck: a vulcanized rubber
+# disk"); only a material ("a foam thing"); nothing at all (a generic soft block). Everything after "synonym" is
+# built by analogy, and says so.
+FallbackLevel = Literal["exact", "synonym", "hypernym", "body_plan", "category", "gloss", "material", "generic"]
+NAMED_LEVELS = ("exact", "synonym")
 
 
 class ConceptMatch(Model):
@@ -44,6 +48,21 @@ class ConceptMatch(Model):
                                     "listing, a nutrition database, a standard)")
     colors: dict[str, str] = Field(default_factory=dict, description="part name -> colour word applied from the "
                                    "text")
+    analogy: list[str] = Field(default_factory=list, description="how an unknown noun was understood, step by step "
+                               "(WordNet's definition, the kind of thing it is, what lent the shape and mass)")
+    states: list[str] = Field(default_factory=list, description="states the text put the object in and the shape "
+                              "took ('rolled', 'folded', 'stacked'); states the shape cannot show are in warnings")
+
+    @property
+    def by_analogy(self) -> bool:
+        """True when the object was not found by name in the lexicon (any fallback)."""
+        return self.fallback_level not in NAMED_LEVELS
+
+    def analogy_line(self) -> str | None:
+        """One line for a person: what was built by analogy and why (None for a named object)."""
+        if not self.by_analogy:
+            return None
+        return f"built by analogy: {self.fallback_note or self.concept}"
 
     def mass_estimate_kg(self, volume_m3: float, area_m2: float) -> float | None:
         """The object's mass from its built geometry: wall area x wall thickness x density when hollow, else volume x

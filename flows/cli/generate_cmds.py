@@ -14,7 +14,7 @@ from contracts.errors import validation_message
 from flows.cli.apps import app, bench_app, check_device, console, emit_json, fail
 from flows.cli.geometry_cmds import GEOMETRY_BACKEND_HELP
 from flows.cli.llm_option import LLM_FALLBACK_HELP, llm_agents
-from flows.cli.preflight import check_request
+from flows.cli.preflight import STRICT_CONCEPT_HELP, check_request, concept_line
 
 if TYPE_CHECKING:
     from contracts.sim import Device
@@ -88,6 +88,7 @@ def generate(
     l3: bool = typer.Option(True, "--l3/--no-l3", help="run L3 (robot pick-and-place validation) after L2"),
     require_l3: bool = typer.Option(False, "--require-l3", help="exit 7 when L3 does not pass (no grasp, a failed "
                                     "pick); the asset is published either way"),
+    strict_concept: bool = typer.Option(False, "--strict-concept", help=STRICT_CONCEPT_HELP),
 ) -> None:
     """Text, image or mesh -> a published asset directory: geometry, physical model, tested material, evidence."""
     from cache import use_cache_root
@@ -123,6 +124,9 @@ def generate(
     from tasks.geometry.catalogue import check_text_size
 
     check_text_size(request)  # so is '10 km long'
+    analogy = concept_line(request, strict_concept)  # InputError under --strict-concept: before any layer
+    if analogy is not None:
+        console.print(f"[yellow]{escape(analogy)}[/yellow]", soft_wrap=True)  # the first line: a guess
     what = text if text is not None else (image or mesh).name
     console.log(f"[bold]generate[/bold] {escape(repr(what))} -> {escape(str(out))} ({device}, {quality})")
 

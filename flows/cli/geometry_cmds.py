@@ -11,11 +11,12 @@ from pathlib import Path
 
 import typer
 from pydantic import ValidationError
+from rich.markup import escape
 
 from contracts.errors import validation_message
 from flows.cli.apps import app, bench_app, console, emit_json, fail, prefect_log_level
 from flows.cli.llm_option import LLM_FALLBACK_HELP, llm_agents
-from flows.cli.preflight import check_request
+from flows.cli.preflight import STRICT_CONCEPT_HELP, check_request, concept_line
 
 QUALITIES = ("draft", "standard", "high")
 GEOMETRY_BACKEND_HELP = ("reconstruction backend that makes the mesh: a Python entry point 'module:function' or an "
@@ -45,6 +46,7 @@ def geometry(
     llm_fallback: str = typer.Option("rule", "--llm-fallback", help=LLM_FALLBACK_HELP),
     geometry_backend: str = typer.Option(None, "--geometry-backend", envvar="DEFORMSMITH_GEOMETRY_BACKEND",
                                          help=GEOMETRY_BACKEND_HELP),
+    strict_concept: bool = typer.Option(False, "--strict-concept", help=STRICT_CONCEPT_HELP),
 ) -> None:
     """Run L0 alone: text, image or mesh -> mesh.glb, collision/, particles.zarr, gaussians.ply, renders/, geometry.json."""
     if quality not in QUALITIES:
@@ -63,6 +65,9 @@ def geometry(
     if intent is not None and not intent.strip():
         fail("--intent is empty")
     _preflight(request)
+    analogy = concept_line(request, strict_concept)  # InputError under --strict-concept: nothing written
+    if analogy is not None:
+        console.print(f"[yellow]{escape(analogy)}[/yellow]", soft_wrap=True)  # the first line: a guess
     check_request(request, out, cache=not no_cache)  # image header, output parent and cache root usable
     prefect_log_level("CRITICAL")  # user errors surface as one line, not task tracebacks
     from flows.l0_geometry import run_l0, write_l0

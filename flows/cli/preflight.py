@@ -137,3 +137,21 @@ def check_request(request, out: Path | None, cache: bool = True) -> None:
 
         check_image_size(request.image_path)
     check_locations(out, cache=cache)
+
+
+STRICT_CONCEPT_HELP = ("refuse an object the lexicon does not name (exit 2, nothing written) instead of building it by "
+                       "analogy")
+
+
+def concept_line(request, strict: bool) -> str | None:
+    """The one line saying that a text request's object is built by analogy (WordNet, a category, a material, a
+    generic shape), or None when the lexicon names it; InputError with that line under --strict-concept."""
+    if request.mesh_path is not None or not (request.text and request.text.strip()):
+        return None
+    from tasks.geometry.catalogue import design_from_text
+
+    concept = design_from_text(request.text, request.size_hint_m).concept
+    line = concept.analogy_line() if concept is not None else None
+    if line is not None and strict:
+        raise InputError(f"--strict-concept: {line}")
+    return line

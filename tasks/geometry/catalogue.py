@@ -264,6 +264,10 @@ def design_from_text(text: str, size_hint_m: float | None = None) -> Design:
     stripped = strip_sizes(text_n)
     reading = concepts.read_text(stripped)
     program, match, build_warnings = concepts.build(reading, stripped)
+    if not size.explicit and match.fallback_level == "gloss" and len(match.analogy) > 1:
+        gloss_size = parse_size(match.analogy[1])  # "WordNet: puck = 'a ... disk 3 inches in diameter ...'"
+        if gloss_size.explicit:
+            size = gloss_size.model_copy(update={"stated": f"WordNet's definition: {gloss_size.stated}"})
     own_name = concepts.normalise(stripped)
     if match.noun:  # 'a mini bagel' names the object; 'mini' is not a modifier there
         own_name = own_name.replace(match.noun, " ")

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import functools
 import re
+import typing
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -12,8 +13,9 @@ import numpy as np
 from contracts.concept import ConceptMatch, FallbackLevel
 from contracts.lexicon import LexiconEntry, load_lexicon
 from contracts.shape import Part, ShapeProgram
-from tasks.geometry import grammar
+from tasks.geometry import analogy as analogy_mod, grammar, phrase as phrase_mod
 from tasks.geometry.grammar.parts import part_group
+from tasks.geometry.wordnet import wordnet
 
 # Words that say what an unknown object is like (checked only when the head noun is not in the lexicon).
 BODY_PLAN_WORDS: dict[str, str] = {
@@ -55,7 +57,18 @@ SHAPE_WORDS: dict[str, tuple[str, dict]] = {
     "cylinder": ("disc", {"height": 1.0}), "cone": ("cone", {}), "dome": ("cone", {"kind": "dome", "height": 0.5}),
     "tube": ("tube", {}), "teardrop": ("egg", {"pointiness": 0.7}), "drop": ("egg", {"pointiness": 0.7}),
     "pebble": ("egg", {"squash": 0.5, "pointiness": 0.1}), "brick": ("block", {}),
-    "bolster": ("cushion", {"shape": "bolster"}),
+    "bolster": ("cushion", {"shape": "bolster"}), "disc": ("disc", {"height": 0.3}), "disk": ("disc", {"height": 0.3}),
+    "slab": ("block", {"width": 0.7, "height": 0.25, "edge": 0.1}),
+}
+# 'a PORTION of X': the shape the portion gives X ('a slice of cheese' is a thin slab of cheese)
+PORTION_SHAPES: dict[str, tuple[str, dict]] = {
+    "slice": ("block", {"width": 0.75, "height": 0.1, "edge": 0.1}),
+    "sheet": ("block", {"width": 0.75, "height": 0.02, "edge": 0.2}),
+    "strip": ("block", {"width": 0.2, "height": 0.05, "edge": 0.2}),
+    "slab": ("block", {"width": 0.7, "height": 0.25, "edge": 0.1}),
+    "cube": ("block", {"width": 1.0, "height": 1.0, "edge": 0.12}),
+    "lump": ("blob", {}), "blob": ("blob", {}), "dollop": ("blob", {"height": 0.4}),
+    "stick": ("tube", {}), "wedge": ("cone", {"height": 0.6}),
 }
 # nouns that name a generic form: a more specific object noun before them wins ('teether ring', 'sock ball')
 GENERIC_NOUNS = frozenset({"ball", "ring", "block", "cube", "roll", "pad", "disc", "tube", "bar", "piece", "toy",
@@ -102,6 +115,8 @@ class Reading:
     donor: LexiconEntry | None = None
     donor_plan: tuple[str, dict] | None = None
     warnings: list[str] = field(default_factory=list)
+    phrase: phrase_mod.Phrase | None = None
+    size_m: float | None = None  # the size to build at when it is not the entry's (an analogy's donor)
 
 
 def normalise(text: str) -> str:
@@ -195,6 +210,7 @@ def _find(text: str, phrases: dict) -> list[tuple[int, int, str]]:
 _SHAPE_PHRASE = re.compile(r"\b(?:shaped like|in the shape of|in the form of|looks like|looking like|resembling)"
                            r"\s+(?:an? |the )?([a-z ]+?)(?=$|[,.;]| with | and | made | that | which | for )")
 _X_SHAPED = re.compile(r"\b([a-z]+(?: [a-z]+)?) shaped\b")
+_X_LIKE = re.compile(r"\b([a-z]+(?: [a-z]+)?) (?:like|ish|style)\b(?! an? | the )(?=\s+[a-z])")
 _CLAUSE_END = re.compile(r"[,.;]| with | made of | that | which | for | filled | in (?:a |an )?(?=[a-z])")
 
 
@@ -204,8 +220,10 @@ def _shape_donor(text: str) -> tuple[str, object | None, str]:
     if m is None:
         m = _X_SHAPED.search(text)
     if m is None:
+        m = _X_LIKE.search(text)
+    if m is None:
         return text, None, ""
-    words = m.group(1).strip()
+    words = re.sub(r"^(?:an?|the) ", "", m.group(1).strip())
     rest = (text[: m.start()] + " " + text[m.end():]).strip()
     hits = _find(words, noun_index())
     if hits:
@@ -213,6 +231,12 @@ def _shape_donor(text: str) -> tuple[str, object | None, str]:
     for w in reversed(words.split()):
         if w in SHAPE_WORDS:
             return rest, SHAPE_WORDS[w], w
+    found = analogy_mod.explain([words, words.split()[-1]], noun_index(), SHAPE_WORDS, _material_words(),
+                                load_lexicon().colors) if words.strip() else None
+    if found is not None and found.concept is not None and found.named_donor:
+        return rest, found.concept, words  # 'spaniel-shaped': WordNet's kind the lexicon knows
+    if found is not None and found.shape_word is not None:
+        return rest, SHAPE_WORDS[found.shape_word], words  # 'hockey-puck-like': WordNet's 'disk'
     return rest, None, words  # 'an oddly shaped sponge': no donor
 
 
@@ -273,7 +297,7 @@ def _match(entry: LexiconEntry, level: FallbackLevel, noun: str | None, note: st
            material: str | None = None) -> ConceptMatch:
     """The ConceptMatch of an entry; a material named by the text (fallbacks) replaces the entry's, and then the
     entry's density no longer applies; material-only fallbacks carry no typical mass."""
-    mat_only = level in ("material", "generic")
+    mat_only = level in ("material", "generic", "gloss")
     return ConceptMatch(
         concept=entry.key, noun=noun, body_plan=entry.plan or f"catalogue:{entry.catalogue}", category=entry.category,
         fallback_level=level, fallback_note=note, default_material=material or entry.material, hollow=entry.hollow,
@@ -313,18 +337,49 @@ def _fallback(t: str, noun: str | None, donor: LexiconEntry | None, donor_plan: 
                                     f"{what}: built a generic {key[8:].replace('_', ' ')} {why}")
 
 
+def known_noun(word: str) -> bool:
+    """True when a word names a physical thing: a lexicon noun or category, or a WordNet noun of an artifact, food,
+    animal or plant; colour and material words are modifiers, not the object."""
+    if word in noun_index():
+        return True
+    if word in load_lexicon().colors or word in _material_words() or word in STOP_WORDS - {"toy", "toys"}:
+        return False
+    return word in CATEGORY_WORDS or word in GENERIC_NOUNS or bool(wordnet().physical_senses(word))
+
+
+def modifier_word(word: str) -> bool:
+    """True for a word that qualifies an object without naming a kind of it: colours, sizes, softness, age, and
+    the stop words ('a soft pink iv fluid bag' is an 'iv fluid bag')."""
+    return word in load_lexicon().colors or (word in STOP_WORDS and word not in noun_index()) \
+        or word in phrase_mod.STATE_WORDS or any(word in p for p in PATTERN_WORDS)
+
+
 def read_text(text: str) -> Reading:
-    """The concept a description names, with its shape donor, colours and fallback level."""
+    """The concept a description names, with its shape donor, colours and fallback level.
+
+    The parse (tasks.geometry.phrase) finds the object's own noun phrase; the lexicon is searched in it, so words
+    outside it ('lying on its belly', 'rolled up') never become the object. A noun the lexicon does not know is
+    explained by WordNet (tasks.geometry.analogy) before the fallbacks by body plan, category and material."""
     lex = load_lexicon()
     t = _expand_diminutives(normalise(text))
     t_shape, donor, donor_words = _shape_donor(t)
-    main = _CLAUSE_END.split(t_shape, maxsplit=1)[0]
-    head, compound, unknown = _head(main)
-    if head is None and unknown is None:
-        head, compound, unknown = _head(t_shape)  # the object may be named after 'with' ('one with a bear face')
+    phrase = phrase_mod.parse(t_shape, known_noun, modifier_word)
+    if phrase.placeholder:
+        head, compound, unknown = None, None, None  # 'the squishy thing ...': nothing is named
+    else:
+        main = phrase.main if phrase.head else _CLAUSE_END.split(t_shape, maxsplit=1)[0]
+        head, compound, unknown = _head(main)
+        if head is None and unknown is None:
+            head, compound, unknown = _head(t_shape)  # the object may be named after 'with' ('one with a bear face')
+        if unknown is not None and phrase.head and phrase.head not in noun_index() and phrase.head in main.split() \
+                and known_noun(phrase.head):
+            unknown = phrase.head  # 'an iv fluid bag' is a bag, whatever 'fluid' is
+    if donor is None and phrase.portion in PORTION_SHAPES:
+        donor, donor_words = PORTION_SHAPES[phrase.portion], f"{phrase.portion} of"
     warnings: list[str] = []
     donor_entry = lex.entries[donor] if isinstance(donor, str) else None
     donor_plan = donor if isinstance(donor, tuple) else None
+    size_m = None
     if head is not None and unknown is None:
         key, noun, exact = noun_index()[head[2]]
         entry = lex.entries[key]
@@ -334,13 +389,106 @@ def read_text(text: str) -> Reading:
             donor_entry = lex.entries[noun_index()[compound[2]][0]]
             donor_words = compound[2]
     else:
-        entry, match = _fallback(t, unknown, donor_entry, donor_plan, donor_words)
+        shape_noun = unknown or phrase.head
+        if donor_entry is None and donor_plan is None and shape_noun in SHAPE_WORDS:
+            donor_plan, donor_words = SHAPE_WORDS[shape_noun], shape_noun  # 'a foam disc': the noun is the shape
+        explained = _by_wordnet(phrase, unknown, t, donor_entry, donor_plan, donor_words)
+        if explained is not None:
+            entry, match, donor_entry, donor_plan, size_m = explained
+        else:
+            entry, match = _fallback(t, unknown, donor_entry, donor_plan, donor_words)
         warnings.append(match.fallback_note or "")
+    if donor_plan is not None and phrase.portion and (phrase.portion in entry.key or phrase.portion in
+                                                       " ".join(entry.nouns)):
+        donor_plan = None  # 'a block of tofu' is the tofu block itself
     if donor_entry is not None and donor_entry.key != entry.key:
         match = match.model_copy(update={"shape_from": donor_entry.key})
     elif donor_plan is not None:
         match = match.model_copy(update={"shape_from": f"{donor_plan[0]}"})
-    return Reading(match=match, entry=entry, donor=donor_entry, donor_plan=donor_plan, warnings=warnings)
+    return Reading(match=match, entry=entry, donor=donor_entry, donor_plan=donor_plan, warnings=warnings,
+                   phrase=phrase, size_m=size_m)
+
+
+@dataclass
+class Bindings:
+    """What each modifier of a request is bound to, before any lexicon lookup: the object's head noun and noun
+    phrase, a portion ('slice of'), the states, the shape phrase's words, the material class, and colour words per
+    part ('body' for the object itself)."""
+
+    head: str | None
+    noun_phrase: str | None
+    portion: str | None
+    states: list[str]
+    shape: str | None
+    material: str | None
+    colors: dict[str, str]
+
+
+def bindings(text: str) -> Bindings:
+    """The bindings of a request's words (tasks.geometry.phrase's parse plus the shape, material and colour
+    vocabularies); sizes are read apart (tasks.geometry.catalogue.parse_size)."""
+    t = _expand_diminutives(normalise(text))
+    t_shape, _donor, donor_words = _shape_donor(t)
+    p = phrase_mod.parse(t_shape, known_noun, modifier_word)
+    colors: dict[str, str] = {}
+    for _start, end, word in _find(t, load_lexicon().colors):
+        after = re.findall(r"[a-z]+", t[end:])[:3]
+        before = t[:_start].split()[-3:]
+        part = next((w for w in after if w not in load_lexicon().colors and w not in ("and", "a", "an")), None)
+        if "with" in before or (part is not None and p.head is not None and part in p.outside):
+            colors.setdefault(part or "body", word)
+        else:
+            colors.setdefault("body", word)
+    return Bindings(head=p.head, noun_phrase=p.noun_phrase, portion=p.portion, states=p.states,
+                    shape=donor_words or p.shape_words or None, material=_material_in(t), colors=colors)
+
+
+def _by_wordnet(phrase: phrase_mod.Phrase, unknown: str | None, t: str, donor: LexiconEntry | None,
+                donor_plan: tuple[str, dict] | None, donor_words: str
+                ) -> tuple[LexiconEntry, ConceptMatch, LexiconEntry | None, tuple[str, dict] | None, float | None] | None:
+    """(entry, match, shape donor, shape plan, size) for an unknown noun that WordNet explains, else None. A shape the
+    text states ('shaped like a heart') keeps precedence over the analogy's shape."""
+    lex = load_lexicon()
+    noun = unknown or phrase.head
+    if noun is None or noun in SHAPE_WORDS:
+        return None  # 'a foam disc' is a disc: the shape word itself, no analogy needed
+    cands = [c for c in phrase.candidates() if c.split()[-1] == noun] or [noun]
+    found = analogy_mod.explain(cands, noun_index(), SHAPE_WORDS, _material_words(), lex.colors)
+    if found is None:
+        return None
+    material = _material_in(t) or next((_material_words()[w] for w in found.material_words), None)
+    chain = [f"'{found.noun}' is not in the lexicon", *found.chain]
+    size_m = None
+    if found.concept is not None and found.named_donor:
+        named = lex.entries[found.concept]
+        generic_key = PLAN_GENERIC.get(named.plan or "", CATEGORY_GENERIC.get(named.category, "generic_block"))
+        entry = lex.entries[generic_key]
+        what = named.key.replace("_", " ")
+        note = f"'{found.noun}' is not in the lexicon: WordNet says it is a kind of {found.chain[-1].split('knows ')[-1]}"\
+               f", so it was built by analogy with the {what}"
+        match = _match(named, "hypernym", found.noun, note, _material_in(t)).model_copy(update={
+            "concept": generic_key, "body_plan": named.plan or f"catalogue:{named.catalogue}",
+            "mass_source": f"by analogy with the lexicon's {what}: {named.mass_source}",
+            "analogy": [*chain, f"built like the lexicon's {what}: its shape, material and typical mass"]})
+        size_m = named.size_m
+        return entry, match, donor if (donor or donor_plan) else named, donor_plan, size_m
+    if found.concept is not None:
+        entry = lex.entries[found.concept]
+        note = f"'{found.noun}' is not in the lexicon: WordNet places it under '{found.chain[-1].split(chr(39))[-2]}'" \
+               f", so it was built as a generic {found.concept[8:].replace('_', ' ')}"
+        match = _match(entry, "category", found.noun, note, _material_in(t))
+        return entry, match.model_copy(update={"analogy": [*chain, f"built as the generic {found.concept}"]}), \
+            donor, donor_plan, None
+    plan = SHAPE_WORDS.get(found.shape_word or "")
+    key = PLAN_GENERIC.get(plan[0] if plan else "", MATERIAL_GENERIC.get(material or "", "generic_block"))
+    entry = lex.entries[key]
+    said = f"a {found.shape_word or key[8:]}" + (f" of {material}" if material else "")
+    note = f"'{found.noun}' is not in the lexicon: built from WordNet's definition as {said}"
+    match = _match(entry, "gloss", found.noun, note, material).model_copy(update={
+        "analogy": [*chain, f"built as {said}" + (f", coloured {found.color_words[0]}" if found.color_words else "")]})
+    if found.color_words:
+        match = match.model_copy(update={"colors": {"body": found.color_words[0]}})
+    return entry, match, donor, donor_plan or plan, None
 
 
 def _entry_program(entry: LexiconEntry, size_m: float) -> ShapeProgram:
@@ -383,24 +531,81 @@ def _color_key(name: str, colors: dict) -> str | None:
 
 
 def build(reading: Reading, text: str) -> tuple[ShapeProgram, ConceptMatch, list[str]]:
-    """The painted program of a reading at the object's typical size, with the colour and pattern words of the text
-    applied; and warnings (a pattern that could not be drawn)."""
+    """The painted program of a reading at the object's typical size, with the states, portions, colour and pattern
+    words of the text applied; and warnings (a state or pattern that could not be drawn)."""
     entry = reading.entry
-    size = entry.size_m
+    size = reading.size_m or entry.size_m
+    warnings: list[str] = []
+    states, params = _state_params(reading, warnings)
     if reading.donor is not None:
-        base = _entry_program(reading.donor, size)
+        base = _entry_program(reading.donor, size) if not params else _with_params(reading.donor, params, size)
     elif reading.donor_plan is not None:
-        plan, params = reading.donor_plan
+        plan, plan_params = reading.donor_plan
         body = lex_color(entry)
-        base = grammar.build_program(plan, params, {"body": body}, entry.key.replace("_", " "), entry.category, size)
+        base = grammar.build_program(plan, {**plan_params, **params}, {"body": body}, entry.key.replace("_", " "),
+                                     entry.category, size)
     else:
-        base = _entry_program(entry, size)
-    program = base.model_copy(update={"name": entry.key.replace("_", " "), "category": entry.category})
+        base = _entry_program(entry, size) if not params else _with_params(entry, params, size)
+    name = reading.match.noun if reading.match.by_analogy and reading.match.noun else entry.key.replace("_", " ")
+    program = base.model_copy(update={"name": name, "category": entry.category})
     program, applied = apply_colors(program, normalise(text))
+    if not applied:
+        implied = reading.match.colors.get("body") or _implied_colour(reading)
+        if implied is not None:
+            program, applied = apply_colors(program, implied)
     program, pattern, warning = apply_pattern(program, normalise(text))
     if pattern:
         applied = {**applied, **pattern}
-    return program, reading.match.model_copy(update={"colors": applied}), [warning] if warning else []
+    if warning:
+        warnings.append(warning)
+    return program, reading.match.model_copy(update={"colors": applied, "states": states}), warnings
+
+
+def _with_params(entry: LexiconEntry, params: dict, size_m: float) -> ShapeProgram:
+    """An entry's body-plan program with some parameters changed (a state: 'rolled')."""
+    colors = {k: load_lexicon().colors[v] for k, v in entry.colors.items()}
+    return grammar.build_program(entry.plan or "", {**entry.params, **params}, colors, entry.key.replace("_", " "),
+                                 entry.category, size_m)
+
+
+def _state_params(reading: Reading, warnings: list[str]) -> tuple[list[str], dict]:
+    """The states the text gives ('rolled up', 'folded') that the object's body plan can take, as plan parameters;
+    a state it cannot take is a warning, not silently dropped."""
+    phrase = reading.phrase
+    if phrase is None or not phrase.states:
+        return [], {}
+    target = reading.donor or reading.entry
+    plan = reading.donor_plan[0] if reading.donor_plan is not None and reading.donor is None else target.plan
+    can = plan_states(plan) if plan else ()
+    shown = [st for st in phrase.states if st in can]
+    shapeless = {"stuffed", "filled", "inflated", "hollow", "flat"}  # carried by the material and mass, not the shape
+    for st in phrase.states:
+        if st not in can and st not in shapeless:
+            warnings.append(f"state '{st}' is not drawn: the {target.key.replace('_', ' ')} shape has no such state")
+    return shown, ({"state": shown[0]} if shown else {})
+
+
+def plan_states(plan: str) -> tuple[str, ...]:
+    """The states a body plan can take: the values of its parameters' `state` field (() when it has none)."""
+    model = grammar.PLANS.get(plan, (None, None))[0]
+    field_ = model.model_fields.get("state") if model is not None else None
+    return tuple(str(a) for a in typing.get_args(field_.annotation)) if field_ is not None else ()
+
+
+def _implied_colour(reading: Reading) -> str | None:
+    """The colour an object implies when the text names none: a flavour or fruit before a food or sweet
+    ('a strawberry jelly' is red), from that word's lexicon entry."""
+    phrase = reading.phrase
+    if phrase is None or reading.entry.category not in ("jelly", "dessert", "candy", "food", "dairy", "bread"):
+        return None
+    lex = load_lexicon()
+    for word in reversed([*phrase.adjectives, *phrase.compounds]):
+        hit = noun_index().get(word)
+        if hit is not None and hit[0] != reading.entry.key:
+            donor = lex.entries[hit[0]]
+            if donor.category in ("fruit", "vegetable") and donor.colors.get("body"):
+                return donor.colors["body"]
+    return None
 
 
 _SPOTS = ("spotted", "spots", "spot", "polka dot", "polka dots", "dotted", "dots", "speckled")

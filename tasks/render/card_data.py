@@ -11,6 +11,7 @@ from typing import Any
 import numpy as np
 from pydantic import BaseModel, ConfigDict
 
+from contracts.concept import ConceptMatch
 from contracts.agents import TargetBehaviour
 from contracts.asset_dir import MANIPULATION_JSON, MATERIAL_JSON, PHYSICAL_JSON, attempt_path
 from contracts.evidence import Attempt
@@ -108,6 +109,8 @@ class CardData(BaseModel):
     l3: L3Card
     stages: list[str]  # one line per stage: status, attempts, simulations (tasks.record.tally)
     sources: list[str]  # probe -> cache key lines, and the records read
+    built: str | None = None  # what L0 built: "plush dog (named in the lexicon)"
+    analogy: list[str] = []  # when built by analogy: the one-line note, then the chain (geometry.json concept)
 
 
 def _short(key: str | None) -> str:
@@ -254,6 +257,22 @@ def card_data(asset_dir: Path | str, manifest: AssetManifest | None = None) -> C
                                             ("pick and place", "renders/pick_and_place.mp4"))
               if (adir.path / rel).is_file()}
     views = {v: f"renders/{v}.png" for v in STILL_VIEWS if (adir.path / "renders" / f"{v}.png").is_file()}
+    built, analogy = _built(adir)
     return CardData(name=request_title(manifest.request.model_dump(mode="json")), request=manifest.request.model_dump(mode="json"), views=views,
                     drop_frames=_drop_frames(adir), videos=videos, material=material_rows, bands=bands, l1=l1_rows,
-                    protocol=protocol, l3=_l3(adir, manifest), stages=stages, sources=sources)
+                    protocol=protocol, l3=_l3(adir, manifest), stages=stages, sources=sources, built=built,
+                    analogy=analogy)
+
+
+def _built(adir: AssetDir) -> tuple[str | None, list[str]]:
+    """(what L0 built, in words; the analogy note and chain when the object was not named in the lexicon)."""
+    if not adir.has("geometry"):
+        return None, []
+    concept = adir.geometry().info.concept
+    if not concept:
+        return None, []
+    match = ConceptMatch.model_validate(concept)
+    what = (match.noun or match.concept).replace("_", " ")
+    if not match.by_analogy:
+        return f"built: {match.concept.replace('_', ' ')} (named in the lexicon as '{what}')", []
+    return f"built: {what}, by analogy ({match.fallback_level})", [match.analogy_line() or "", *match.analogy]

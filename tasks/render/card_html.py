@@ -13,7 +13,8 @@ from tasks.render.card_text import band_text, outcome_lines, request_line, si
 STYLE = ("body{font-family:sans-serif;max-width:1320px;margin:1em auto;color:#222}"
          "table{border-collapse:collapse;margin:.5em 0}td,th{border:1px solid #ccc;padding:2px 6px;font-size:90%}"
          "th{background:#eee;text-align:left}.miss{color:#b00;font-weight:bold}.key{font-family:monospace}"
-         "video,img.still{max-width:640px;width:100%}img.frame{width:24%}figure{display:inline-block;margin:4px}")
+         "video,img.still{max-width:640px;width:100%}img.frame{width:24%}figure{display:inline-block;margin:4px}"
+         ".analogy{border:2px solid #c80;background:#fff6e5;padding:6px 10px;margin:.5em 0}")
 
 
 def _rel(asset_rel: str) -> str:
@@ -68,6 +69,9 @@ def card_html(card: CardData) -> str:
     parts = ["<!DOCTYPE html>", "<html><head><meta charset=\"utf-8\">",
              f"<title>DeformSmith asset card: {e(card.name)}</title><style>{STYLE}</style></head><body>",
              f"<h1>Asset card: {e(card.name)}</h1>", f"<p>{e(request_line(card.request))}</p>",
+             *([f"<p>{e(card.built)}</p>"] if card.built else []),
+             *([f'<div class="analogy"><b>{e(card.analogy[0])}</b><ul>'
+                + "".join(f"<li>{e(s)}</li>" for s in card.analogy[1:]) + "</ul></div>"] if card.analogy else []),
              "<ul>" + "".join(f"<li>{e(s)}</li>" for s in card.stages) + "</ul>",
              '<p><a href="card.png">card.png</a> (the same card as one picture)</p>', "<h2>Views (L0)</h2>"]
     parts += [f'<figure><img class="still" style="max-width:400px" src="{e(_rel(rel))}" alt="{e(view)}">'

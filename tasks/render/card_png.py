@@ -3,6 +3,8 @@ where each number came from. Deterministic: no time stamps in the file."""
 
 from __future__ import annotations
 
+import textwrap
+
 from pathlib import Path
 from typing import Any
 
@@ -124,6 +126,11 @@ def write_card_png(card: CardData, asset_dir: Path, path: Path) -> Path:
         stages = ["   ".join(card.stages[i:i + 2]) for i in range(0, len(card.stages), 2)]
         head.text(0.0, 0.45, "\n".join([request_line(card.request), *stages]), fontsize=FONT_PT + 1,
                   family="monospace", va="top", transform=head.transAxes)
+        if card.analogy:  # built by analogy: said in a box a reader cannot miss
+            head.text(0.62, 1.0, "\n".join(textwrap.wrap(card.analogy[0], 70)[:3]), fontsize=FONT_PT + 1, va="top",
+                      transform=head.transAxes, bbox={"boxstyle": "round", "facecolor": "#fff6e5", "edgecolor": "#c80"})
+        elif card.built:
+            head.text(0.62, 1.0, card.built, fontsize=FONT_PT + 1, va="top", transform=head.transAxes)
         import imageio.v2 as imageio
 
         for i, view in enumerate(("front", "side", "top")):

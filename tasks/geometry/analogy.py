@@ -1,0 +1,109 @@
+"""Unknown nouns by meaning: WordNet says what a noun is a kind of, and the first kind the lexicon knows lends its
+shape, material and mass; failing that, the definition's shape, material, size and colour words build it
+(contracts/vocab/wordnet.yaml). The chain of reasoning is kept, to be printed and recorded."""
+
+from __future__ import annotations
+
+import functools
+import re
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import yaml
+
+from tasks.geometry.wordnet import Sense, wordnet
+
+VOCAB_FILE = Path(__file__).resolve().parents[2] / "contracts" / "vocab" / "wordnet.yaml"
+MAX_ANCESTORS = 8  # hypernym steps walked before giving up on the lexicon and the categories
+
+
+@dataclass
+class Analogy:
+    """How WordNet explained an unknown noun: the sense used, the chain, and what it gives the build."""
+
+    noun: str
+    sense: Sense
+    chain: list[str] = field(default_factory=list)
+    concept: str | None = None  # lexicon key: a named donor (level 'hypernym') or a generic_* (level 'category')
+    named_donor: bool = False
+    shape_word: str | None = None  # a SHAPE_WORDS key read from the definition (level 'gloss')
+    material_words: list[str] = field(default_factory=list)
+    color_words: list[str] = field(default_factory=list)
+
+    @property
+    def level(self) -> str:
+        """'hypernym' (a lexicon object's kind), 'category' (a generic class), 'gloss' (the definition's words)."""
+        return "hypernym" if self.named_donor else "category" if self.concept else "gloss"
+
+
+@functools.lru_cache(maxsize=1)
+def vocab() -> dict[str, Any]:
+    """contracts/vocab/wordnet.yaml."""
+    return yaml.safe_load(VOCAB_FILE.read_text(encoding="utf-8"))
+
+
+def _words(text: str) -> list[str]:
+    return re.findall(r"[a-z]+", text.lower())
+
+
+def _best_sense(noun: str) -> Sense | None:
+    """The physical sense of a noun: one whose first word is the noun itself, else the most frequent; among those,
+    artifacts, food, animals and plants before natural objects and substances ('mould' the container, not soil)."""
+    senses = wordnet().physical_senses(noun)
+    if not senses:
+        return None
+    own = noun.replace(" ", "_").lower()
+    tier = {"noun.artifact": 0, "noun.food": 0, "noun.animal": 0, "noun.plant": 0, "noun.object": 1,
+            "noun.substance": 2}
+    ranked = sorted(enumerate(senses), key=lambda p: (p[1].lemmas[0] != own, tier.get(p[1].lexname, 3), p[0]))
+    return ranked[0][1]
+
+
+def explain(candidates: list[str], lexicon_nouns: dict[str, Any], shape_words: dict[str, Any],
+            material_words: dict[str, str], color_words: dict[str, Any]) -> Analogy | None:
+    """The analogy for the longest candidate WordNet knows (e.g. 'yoga mat', then 'mat').
+
+    lexicon_nouns: surface noun -> (concept key, ...) of the lexicon; shape_words: the shape words the grammar
+    builds; material_words: material word -> class; color_words: colour word -> RGB."""
+    v = vocab()
+    too_general = set(v["too_general"])
+    for noun in candidates:
+        sense = _best_sense(noun)
+        if sense is None:
+            continue
+        out = Analogy(noun=noun, sense=sense)
+        out.chain.append(f"WordNet: {sense.name} = '{sense.definition}'")
+        path = [s for s in wordnet().ancestors(sense, MAX_ANCESTORS)]
+        kinds: list[str] = []
+        for anc in path[:MAX_ANCESTORS]:
+            words = [w.replace("_", " ") for w in anc.lemmas]
+            if any(w in too_general for w in words):
+                continue
+            kinds.append(words[0])
+            donor = next((w for w in words if w in lexicon_nouns), None)
+            if donor is not None:
+                out.concept, out.named_donor = lexicon_nouns[donor][0], True
+                out.chain.append(f"a kind of {' < '.join(kinds)}; the lexicon knows '{donor}'")
+                break
+            generic = next((v["ancestors"][w] for w in words if w in v["ancestors"]), None)
+            if generic is not None:
+                out.concept = generic
+                out.chain.append(f"a kind of {' < '.join(kinds)}: the class '{words[0]}'")
+                break
+        gloss = _words(sense.definition)
+        out.material_words = [w for w in gloss if w in material_words]
+        out.color_words = [w for w in gloss if w in color_words]
+        shape = next((v["gloss_shapes"][w] for w in gloss if w in v["gloss_shapes"]), None)
+        if shape is not None and shape in shape_words:
+            out.shape_word = shape
+        if out.concept is None:
+            said = [f"shape '{shape}'" if out.shape_word else None,
+                    f"material '{out.material_words[0]}'" if out.material_words else None,
+                    f"colour '{out.color_words[0]}'" if out.color_words else None]
+            said_ = [s for s in said if s]
+            if not said_:
+                continue
+            out.chain.append("its definition gives " + ", ".join(said_))
+        return out
+    return None

