@@ -63,8 +63,8 @@ SHAPE_WORDS: dict[str, tuple[str, dict]] = {
 # 'a PORTION of X': the shape the portion gives X ('a slice of cheese' is a thin slab of cheese)
 PORTION_SHAPES: dict[str, tuple[str, dict]] = {
     "slice": ("block", {"width": 0.75, "height": 0.1, "edge": 0.1}),
-    "sheet": ("block", {"width": 0.75, "height": 0.02, "edge": 0.2}),
-    "strip": ("block", {"width": 0.2, "height": 0.05, "edge": 0.2}),
+    "sheet": ("sheet", {"width": 0.75, "thickness": 0.01}),
+    "strip": ("sheet", {"width": 0.2, "thickness": 0.03}),
     "slab": ("block", {"width": 0.7, "height": 0.25, "edge": 0.1}),
     "cube": ("block", {"width": 1.0, "height": 1.0, "edge": 0.12}),
     "lump": ("blob", {}), "blob": ("blob", {}), "dollop": ("blob", {"height": 0.4}),
@@ -537,6 +537,20 @@ def build(reading: Reading, text: str) -> tuple[ShapeProgram, ConceptMatch, list
     size = reading.size_m or entry.size_m
     warnings: list[str] = []
     states, params = _state_params(reading, warnings)
+    outline = _outline_param(reading)
+    if outline is not None:  # 'a baking mould shaped like a heart': the mould's own outline, not a solid heart
+        reading = Reading(**{**reading.__dict__, "donor_plan": None})
+        params = {**params, **outline}
+    match = reading.match
+    target = reading.donor or entry
+    if params and target.plan is not None and (reading.donor_plan is None or reading.donor is not None):
+        # the same object in another state: a 1.83 m yoga mat rolled up is a 0.61 m roll of the same mass
+        change = grammar.state_change(target.plan, target.params, size, params["state"])
+        size = change.size_m
+        density = match.density_kg_per_m3 * change.density_factor if match.density_kg_per_m3 else None
+        mass = match.typical_mass_kg * change.mass_factor if match.typical_mass_kg else None
+        match = match.model_copy(update={"density_kg_per_m3": density, "typical_mass_kg": mass,
+                                         "typical_size_m": change.size_m})
     if reading.donor is not None:
         base = _entry_program(reading.donor, size) if not params else _with_params(reading.donor, params, size)
     elif reading.donor_plan is not None:
@@ -558,7 +572,7 @@ def build(reading: Reading, text: str) -> tuple[ShapeProgram, ConceptMatch, list
         applied = {**applied, **pattern}
     if warning:
         warnings.append(warning)
-    return program, reading.match.model_copy(update={"colors": applied, "states": states}), warnings
+    return program, match.model_copy(update={"colors": applied, "states": states}), warnings
 
 
 def _with_params(entry: LexiconEntry, params: dict, size_m: float) -> ShapeProgram:
@@ -576,7 +590,7 @@ def _state_params(reading: Reading, warnings: list[str]) -> tuple[list[str], dic
         return [], {}
     target = reading.donor or reading.entry
     plan = reading.donor_plan[0] if reading.donor_plan is not None and reading.donor is None else target.plan
-    can = plan_states(plan) if plan else ()
+    can = grammar.plan_states(plan) if plan in grammar.PLANS else ()
     shown = [st for st in phrase.states if st in can]
     shapeless = {"stuffed", "filled", "inflated", "hollow", "flat"}  # carried by the material and mass, not the shape
     for st in phrase.states:
@@ -585,11 +599,18 @@ def _state_params(reading: Reading, warnings: list[str]) -> tuple[list[str], dic
     return shown, ({"state": shown[0]} if shown else {})
 
 
-def plan_states(plan: str) -> tuple[str, ...]:
-    """The states a body plan can take: the values of its parameters' `state` field (() when it has none)."""
-    model = grammar.PLANS.get(plan, (None, None))[0]
-    field_ = model.model_fields.get("state") if model is not None else None
-    return tuple(str(a) for a in typing.get_args(field_.annotation)) if field_ is not None else ()
+def _outline_param(reading: Reading) -> dict[str, str] | None:
+    """{field: shape word} when the object's own body plan draws the stated shape as a parameter (a mould's
+    `outline`, a cushion's `shape`), else None (the shape word's own program replaces the object's)."""
+    if reading.donor_plan is None or reading.entry.plan is None or reading.entry.plan not in grammar.PLANS:
+        return None
+    word = reading.match.shape_from or ""
+    model = grammar.PLANS[reading.entry.plan][0]
+    for name in ("outline", "shape"):
+        f = model.model_fields.get(name)
+        if f is not None and word in typing.get_args(f.annotation):
+            return {name: word}
+    return None
 
 
 def _implied_colour(reading: Reading) -> str | None:

@@ -29,7 +29,7 @@ TABLE = [
     ('a teddy bear sitting on a shelf', 'bear', 'teddy bear', None, [], None, 'plush', {}),
     ('an IV fluid bag', 'bag', 'fluid bag', None, [], None, None, {}),
     ('a saline bag hanging from a hook', 'bag', 'saline bag', None, [], None, None, {}),
-    ('a hockey-puck-like disc', 'disc', 'disc', None, [], 'puck', None, {}),
+    ('a hockey-puck-like disc', 'disc', 'disc', None, [], 'hockey puck', None, {}),
     ('a sponge-like foam block', 'block', 'foam block', None, [], 'sponge', 'pu_foam', {}),
     ('a slice of swiss cheese', 'cheese', 'swiss cheese', 'slice', [], None, None, {}),
     ('a wedge of cheddar', 'cheddar', 'cheddar', 'wedge', [], None, None, {}),
