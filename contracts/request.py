@@ -13,6 +13,7 @@ from contracts.base import Model
 
 Quality = Literal["draft", "standard", "high"]
 InputKind = Literal["text", "image", "mesh"]
+Pose = Literal["upright", "stable"]
 # 'package.module:function' (an optional '#tag' names a version: change it to rebuild cached geometry) or an HTTP URL
 GEOMETRY_BACKEND_PATTERN = r"(?:[A-Za-z_][\w]*(?:\.[A-Za-z_]\w*)*:[A-Za-z_]\w*(?:#\S*)?|https?://\S+)"
 
@@ -55,6 +56,10 @@ class AssetRequest(Model):
         "point 'module:function' or an HTTP endpoint 'http(s)://...' (tasks/geometry/backends.py); None: built in"
     )
     quality: Quality = Field(default="draft", description="resolution preset: draft | standard | high")
+    pose: Pose = Field(default="upright", exclude_if=lambda v: v == "upright",
+                       description="photo: 'upright' keeps the photo's vertical as the object's up (the table it "
+                       "stands on is the ground); 'stable' puts it in its most stable resting pose. The default is "
+                       "left out of the request's JSON, so requests that do not set it keep their cache keys")
 
     @model_validator(mode="after")
     def _exactly_one_input(self) -> AssetRequest:

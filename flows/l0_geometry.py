@@ -20,9 +20,10 @@ from tasks.geometry.particles import ParticleSettings
 from tasks.geometry.pipeline import Arrays, BuildInfo, L0Settings
 
 TASK_VERSION = "1"  # bump when tasks/geometry changes what these tasks return
-MESH_VERSION = "4"  # l0.mesh alone; 2: marching cubes no longer pinches the surface at samples on the level;
+MESH_VERSION = "5"  # l0.mesh alone; 2: marching cubes no longer pinches the surface at samples on the level;
 # 3: BuildInfo.generator / design_attempts (LLM Designer, reconstruction backends); 4: text -> lexicon concept and
-# grammar program (BuildInfo.concept), colours and shape phrases
+# grammar program (BuildInfo.concept), colours and shape phrases; 5: photos keep their upright, lathe / inflation,
+# size from the concept (#35)
 
 
 @dataclass(frozen=True)
@@ -40,7 +41,8 @@ class L0Result:
 def geometry_request(request: AssetRequest) -> AssetRequest:
     """The fields of a request that geometry depends on (material words or targets never invalidate L0)."""
     return AssetRequest(text=request.text, image_path=request.image_path, mesh_path=request.mesh_path,
-                        size_hint_m=request.size_hint_m, seed=request.seed, geometry_backend=request.geometry_backend)
+                        size_hint_m=request.size_hint_m, seed=request.seed, geometry_backend=request.geometry_backend,
+                        pose=request.pose)
 
 
 @cached_task(version=MESH_VERSION, name="l0.mesh")

@@ -47,6 +47,70 @@ def check_deformable(text: str, vocab: MaterialVocab) -> None:
         )
 
 
+# what may follow an object noun that is the head of its phrase ('a mug', 'a mug 9 cm tall', 'a mug with a handle');
+# another noun after it makes it a modifier ('pot holder', 'jar opener', 'mug rug', 'chair cushion')
+_HEAD_END = r"(?=\s*$|\s*[^\w\s]|\s+(?:of|on|in|with|and|or|from|that|which|for|at|by|is|was|to|about|\d)\b)"
+
+
+def _names_object(text: str, noun: str) -> bool:
+    """True when the text names the object noun as the head of a phrase (not as the modifier of another noun)."""
+    end = "" if noun.endswith(" of") else _HEAD_END
+    return re.search(r"(?<![a-z])" + re.escape(noun) + r"(?![a-z])" + end, text) is not None
+
+
+def rigid_object(text: str, vocab: MaterialVocab | None = None, also: tuple[str, ...] = ()) -> str | None:
+    """The rigid object noun a text (or one of the texts `also` read beside it: a photo's file name) names ('a can',
+    'teacup', 'figurine') when none of them names a deformable material, soft object word or soft word; None
+    otherwise. Each text is read on its own (a noun is the head of a phrase within its own text)."""
+    vocab = vocab or load_material_vocab()
+    texts = [" ".join(t.lower().replace("_", " ").replace("-", " ").split()) for t in (text, *also) if t]
+    rigid = [w for t in texts for w in vocab.rigid_objects if _names_object(t, w)]
+    if not rigid:
+        return None
+    soft = [w for entry in vocab.materials.values() for w in entry.words] + list(vocab.objects) + vocab.soft_words
+    if any(_contains_phrase(t, w) for t in texts for w in soft):
+        return None
+    return max(rigid, key=len)
+
+
+def check_rigid_object(text: str, vocab: MaterialVocab | None = None, where: str = "",
+                       also: tuple[str, ...] = ()) -> None:
+    """InputError (one line) when the text (or the texts `also`) names a rigid object and nothing soft (see
+    rigid_object)."""
+    vocab = vocab or load_material_vocab()
+    noun = rigid_object(text, vocab, also)
+    if noun is not None:
+        noun = noun.removeprefix("a ").removeprefix("the ").removeprefix("this ").removeprefix("one ")
+        noun = noun.removesuffix(" of")
+        soft = ", ".join(m for m in ("plush", "foam", "silicone", "rubber", "gel") if m in {
+            w for entry in vocab.materials.values() for w in entry.words}) or "plush"
+        raise InputError(
+            f"'{noun}'{where} is a rigid object as usually made (metal, glass, ceramic, wood or hard plastic): "
+            f"DeformSmith makes deformable objects. Name a deformable material (e.g. {soft}) in the text or with "
+            "--intent, e.g. 'a plush " + noun + "'"
+        )
+
+
+def image_words(request: AssetRequest) -> str:
+    """A photo's file name as words ('soda_can-2.jpg' -> 'a soda can 2'); empty for other requests."""
+    if request.image_path is None:
+        return ""
+    stem = re.sub(r"[_\-.]+", " ", request.image_path.stem).strip()
+    return f"a {stem}" if stem else ""
+
+
+def check_request_object(request: AssetRequest, vocab: MaterialVocab | None = None) -> None:
+    """The request's words (text, intent and a photo's file name together) name no rigid object, unless a soft word
+    is named among them (InputError, one line)."""
+    vocab = vocab or load_material_vocab()
+    words = " ".join(w for w in (request.text, request.material_intent) if w)
+    stem = image_words(request)
+    if stem:  # 'glass_vase.jpg' names a rigid material as the text 'a glass vase' does
+        check_deformable(" ".join(f"{words} {stem}".lower().split()), vocab)
+    check_rigid_object(words, vocab, "" if not stem or rigid_object(words, vocab) else " (the photo's file name)",
+                       also=(stem,))
+
+
 def _match_material(text: str, vocab: MaterialVocab, concept_material: str | None = None) -> tuple[str, str | None]:
     """The material named by the longest matching word (materials first, then the concept L0 built, then object
     words); the default otherwise."""
@@ -116,6 +180,7 @@ def targets_from_intent(
     vocab = vocab or load_material_vocab()
     text = " ".join(intent.lower().split())
     check_deformable(text, vocab)
+    check_rigid_object(text, vocab)
     name, word = _match_material(text, vocab, concept.default_material if concept else None)
     entry = vocab.materials[name]
     by_concept = word is None and concept is not None and concept.default_material == name
@@ -160,6 +225,7 @@ def targets_from_intent(
 def targets_from_request(request: AssetRequest, vocab: MaterialVocab | None = None) -> TargetBehaviour:
     """The target behaviour of a request: material_intent (else the text) plus target_overrides."""
     intent = request.material_intent or request.text or ""
+    check_request_object(request, vocab)  # a photo named 'teacup.jpg' is refused like the text 'a teacup'
     return targets_from_intent(intent, dict(request.target_overrides), vocab)
 
 

@@ -61,6 +61,10 @@ class MaterialVocab(Model):
     explicit_tolerance: ExplicitTolerance = Field(default_factory=ExplicitTolerance)
     objects: dict[str, str] = Field(default_factory=dict)
     rigid_words: list[str] = Field(default_factory=list)
+    rigid_objects: list[str] = Field(default_factory=list, description="nouns of objects that are rigid as usually "
+                                     "made (refused unless a soft word is named too)")
+    soft_words: list[str] = Field(default_factory=list, description="words that keep a rigid object noun allowed "
+                                  "('a foam can cooler', 'a squeezable bottle')")
 
     def metric(self, name: str) -> MetricSpec:
         """The scoring spec of a metric (linear, weight 1, unit '-' when unlisted)."""

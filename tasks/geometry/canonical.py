@@ -8,7 +8,7 @@ import numpy as np
 import trimesh
 from scipy.spatial import ConvexHull, QhullError
 
-Orientation = Literal["keep_if_stable", "most_stable"]
+Orientation = Literal["keep_if_stable", "most_stable", "keep"]
 
 
 def is_resting_stable(mesh: trimesh.Trimesh, margin_frac: float = 0.05) -> bool:
@@ -59,11 +59,13 @@ def rest_on_ground(mesh: trimesh.Trimesh) -> None:
 
 
 def canonicalize(mesh: trimesh.Trimesh, orientation: Orientation, align_xy: bool) -> tuple[trimesh.Trimesh, bool]:
-    """Return the mesh in the canonical frame and whether its orientation was changed from the input's."""
+    """Return the mesh in the canonical frame and whether its orientation was changed from the input's ('keep': z
+    stays up, only the turn about z of align_xy; 'keep_if_stable': the most stable pose when the input's is not
+    stable; 'most_stable': always the most stable pose)."""
     mesh = mesh.copy()
     rest_on_ground(mesh)
     rotated = False
-    if orientation == "most_stable" or not is_resting_stable(mesh):
+    if orientation == "most_stable" or (orientation == "keep_if_stable" and not is_resting_stable(mesh)):
         tf = most_stable_rotation(mesh)
         if not np.allclose(tf[:3, :3], np.eye(3), atol=1e-9):
             rotated = True

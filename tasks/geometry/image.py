@@ -13,28 +13,54 @@ from contracts.errors import InputError
 from tasks.geometry.image_guard import check_image_size
 
 SEG_MAX_SIDE = 400  # segmentation works on an image at most this large [px]
+PHOTO_MAX_SIDE = 1024  # a photo is reduced to at most this many pixels along a side as it is read [px]
 MIN_AREA_FRAC = 0.004
 MAX_AREA_FRAC = 0.95
 STRIP_OPEN_FRAC = 0.3  # opening radius / the mask's largest inscribed radius: cuts strips thinner than this [-]
 SHADOW_CHROMA = 10.0  # Lab a-b distance under which a darker pixel counts as the background in shade [-]
 
 
-def load_image(path: Path) -> np.ndarray:
-    """RGB or RGBA uint8 array of a PNG/JPEG (clear error when missing or unreadable)."""
+def load_image(path: Path, max_side: int | None = PHOTO_MAX_SIDE) -> np.ndarray:
+    """RGB or RGBA uint8 array of a PNG/JPEG (clear error when missing or unreadable), turned upright by its EXIF
+    orientation and reduced to at most `max_side` pixels along a side as it is read (a 12-megapixel phone photo is
+    decoded at a quarter of its size by the JPEG decoder itself, so nothing after this pays for its pixels)."""
     path = Path(path)
     if not path.is_file():
         raise InputError(f"image file not found: {path}")
-    check_image_size(path)  # refuse a decompression bomb from its header, before decoding
-    raw = cv2.imread(str(path), cv2.IMREAD_UNCHANGED)
+    width, height = check_image_size(path)  # refuse a decompression bomb from its header, before decoding
+    flag = cv2.IMREAD_UNCHANGED
+    if not _has_alpha(path):
+        flag = cv2.IMREAD_COLOR  # applies the EXIF orientation (IMREAD_UNCHANGED ignores it)
+        reduced = {2: cv2.IMREAD_REDUCED_COLOR_2, 4: cv2.IMREAD_REDUCED_COLOR_4, 8: cv2.IMREAD_REDUCED_COLOR_8}
+        for k in (8, 4, 2):
+            if max_side is not None and max(width, height) >= k * max_side:
+                flag = reduced[k]
+                break
+    raw = cv2.imread(str(path), flag)
     if raw is None or raw.size == 0:
         raise InputError(f"cannot read image {path.name}: not a valid PNG/JPEG")
     if raw.dtype == np.uint16:
         raw = (raw / 257).astype(np.uint8)
     if raw.ndim == 2:
         raw = cv2.cvtColor(raw, cv2.COLOR_GRAY2BGR)
+    if max_side is not None and max(raw.shape[:2]) > max_side:
+        k = max_side / max(raw.shape[:2])
+        size = (max(8, round(raw.shape[1] * k)), max(8, round(raw.shape[0] * k)))
+        raw = cv2.resize(raw, size, interpolation=cv2.INTER_AREA)
     if raw.shape[2] == 4:
         return cv2.cvtColor(raw, cv2.COLOR_BGRA2RGBA)
     return cv2.cvtColor(raw[:, :, :3], cv2.COLOR_BGR2RGB)
+
+
+def _has_alpha(path: Path) -> bool:
+    """True when the image's header declares transparency (an alpha channel or a transparent palette entry)."""
+    from PIL import Image
+
+    try:
+        with Image.open(path) as im:
+            return im.mode in ("RGBA", "LA", "PA", "La", "RGBa") or "transparency" in im.info
+    except (OSError, SyntaxError, ValueError):
+        return True  # let OpenCV read it unchanged and say what it finds
 
 
 def segment(image: np.ndarray, seed: int = 0) -> tuple[np.ndarray, str]:

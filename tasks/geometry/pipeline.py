@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import re
 from typing import Literal
 
 import numpy as np
@@ -172,67 +173,116 @@ def _is_named(design: catalogue.Design) -> bool:
     return getattr(design, "match_score", 0.0) > 0.0
 
 
-def _named_design(text: str | None, size_hint_m: float | None) -> catalogue.Design | None:
-    """The Designer's result for a text when it names a known object, else None."""
-    if not text or not text.strip():
+DEFAULT_PHOTO_SIZE_M = 0.2  # longest extent of a photographed object when neither a size nor any concept is known [m]
+_CAMERA_STEM = re.compile(r"^(?:img|dsc|dscn|dscf|pxl|photo|image|pic|picture|screenshot|scan|frame|p)?[\s\d]*$")
+
+
+def _stem_words(request: AssetRequest) -> str | None:
+    """The photo's file name as words ('soda_can-2.jpg' -> 'soda can 2'); None for a camera's own names (IMG_0042)."""
+    if request.image_path is None:
         return None
-    try:
-        design = catalogue.design_from_text(text, size_hint_m)
-    except InputError:
-        return None
-    return design if _is_named(design) else None
+    stem = re.sub(r"[_\-.]+", " ", request.image_path.stem).strip()
+    return None if not stem or _CAMERA_STEM.match(stem.lower()) else stem
+
+
+def _photo_concept(request: AssetRequest) -> tuple[catalogue.Design | None, catalogue.Design | None, list[str]]:
+    """(the design of a named object, the best design by analogy, notes): the text first, then the material intent,
+    then the file name; a named object is one the lexicon knows by name (exact or synonym)."""
+    notes: list[str] = []
+    best: catalogue.Design | None = None
+    rank = {"exact": 0, "synonym": 1, "body_plan": 2, "category": 3, "material": 4, "generic": 5}
+    for source, words in (("text", request.text), ("intent", request.material_intent),
+                          ("file name", _stem_words(request))):
+        if not words or not words.strip():
+            continue
+        try:
+            design = catalogue.design_from_text(words, request.size_hint_m)
+        except InputError:
+            if source == "text":
+                raise
+            continue
+        level = design.concept.fallback_level if design.concept is not None else ("exact" if _is_named(design)
+                                                                                   else "generic")
+        if source != "text" and _is_named(design):
+            notes.append(f"object '{design.entry}' named by the {source} '{words}'")
+        if _is_named(design):
+            return design, design, notes
+        cur = best.concept.fallback_level if best is not None and best.concept is not None else "generic"
+        if best is None or rank.get(level, 5) < rank.get(cur, 5):
+            best = design
+    return None, best, notes
+
+
+def _photo_size(request: AssetRequest, text_design: catalogue.Design | None, named: catalogue.Design | None,
+                analogy: catalogue.Design | None) -> tuple[catalogue.SizeSpec, str, list[str]]:
+    """The size to build a photographed object at and where it comes from: the text or --size-m, else the named
+    object's typical size (the lexicon), else the typical size of the concept found by analogy, else a default with a
+    warning. Never a silent default."""
+    if request.size_hint_m is not None:
+        size = catalogue.SizeSpec(longest_m=request.size_hint_m, stated=f"size hint {request.size_hint_m:g} m")
+        catalogue.check_size(size)
+        return size, f"stated: {request.size_hint_m:g} m", []
+    axis_scale = text_design.size.axis_scale if text_design is not None else (1.0, 1.0, 1.0)
+    if text_design is not None and text_design.size.explicit:
+        return text_design.size, f"stated: '{text_design.size.stated}'", []
+    for design, how in ((named, "typical size of a"), (analogy, "typical size of the concept built by analogy,")):
+        if design is None:
+            continue
+        concept = design.concept
+        if design is analogy and (concept is None or concept.fallback_level == "generic"):
+            continue
+        typical = concept.typical_size_m if concept is not None else None
+        if typical is None:
+            b = program_bounds(design.program)
+            typical = float((b[1] - b[0]).max())
+        size = catalogue.SizeSpec(longest_m=typical, axis_scale=axis_scale)
+        warn = [] if design is named else [f"no size given and no known object named: {how} '{design.entry}', "
+                                           f"{typical:.3g} m longest extent (state it with --size-m or in the text)"]
+        return size, f"{how} '{design.entry}' ({typical:.3g} m)", warn
+    size = catalogue.SizeSpec(longest_m=DEFAULT_PHOTO_SIZE_M, axis_scale=axis_scale)
+    return size, f"default ({DEFAULT_PHOTO_SIZE_M:g} m)", [
+        f"no size given and no object named: assuming {DEFAULT_PHOTO_SIZE_M:g} m longest extent, a guess (state the "
+        "size with --size-m or in the text, or name the object)"]
 
 
 def _from_image(request: AssetRequest, settings: L0Settings) -> tuple[Arrays, BuildInfo]:
+    from tasks.agents.intent import check_request_object
+
+    check_request_object(request)  # 'a teacup', or teacup.jpg, is refused as in the text path (unless soft words)
     img = image_mod.load_image(request.image_path)  # type: ignore[arg-type]
     mask, method = image_mod.segment(img, seed=request.seed)
-    warnings: list[str] = []
-    notes: list[str] = []
-    entry, size, mods, named, design = None, catalogue.SizeSpec(), [], None, None
-    path = request.image_path
-    stem = path.stem.replace("_", " ").replace("-", " ") if path is not None else None
+    text_design = None
     if request.text and request.text.strip():
-        design = catalogue.design_from_text(request.text, request.size_hint_m)
-        size, mods = design.size, design.modifiers
-        if _is_named(design):
-            named = design
-        else:
-            warnings += design.warnings
-    elif request.size_hint_m is not None:
-        size = catalogue.SizeSpec(longest_m=request.size_hint_m, stated=f"size hint {request.size_hint_m:g} m")
-        catalogue.check_size(size)
-    for source, words in (("intent", request.material_intent), ("file name", stem)):
-        if named is None and (found := _named_design(words, request.size_hint_m)) is not None:
-            named = found
-            notes.append(f"object '{found.entry}' named by the {source} '{words}'")
-    if named is not None:
-        entry = named.entry
-    if size.longest_m is not None:
-        longest = size.longest_m
-    elif size.extents_m[0] is not None:
-        longest = size.extents_m[0]
-    elif named is not None:
-        b = program_bounds(named.program)
-        longest = float((b[1] - b[0]).max())
-        warnings.append(f"no size given: using the '{entry}' prior, {longest:.3g} m longest extent")
-    else:
-        longest = 0.2
-        warnings.append("no size or object named: assuming a 0.2 m longest extent")
+        text_design = catalogue.design_from_text(request.text, request.size_hint_m)
+    named, analogy, notes = _photo_concept(request)
+    warnings: list[str] = []
+    size, size_from, size_warnings = _photo_size(request, text_design, named, analogy)
+    warnings += size_warnings
+    if named is None and text_design is not None:
+        warnings += text_design.warnings
+    notes.append(f"size: {size_from}")
+    entry = named.entry if named is not None else None
+    longest = size.longest_m or max((v for v in size.extents_m if v is not None), default=DEFAULT_PHOTO_SIZE_M)
     mesh, photo = silhouette.reconstruct(mask, img, longest, settings.marching_cubes_resolution,
                                          named.program if named is not None else None, entry)
     warnings += photo.notes
     before = mesh.vertices.copy()
-    mesh, rotated = canonicalize(mesh, "keep_if_stable", align_xy=True)
-    mesh = _final_size(mesh, catalogue.SizeSpec(longest_m=longest, axis_scale=size.axis_scale))
+    if request.pose == "stable":
+        mesh, rotated = canonicalize(mesh, "most_stable", align_xy=True)
+    else:  # the photo's vertical is up: the table it stands on is the ground
+        mesh, rotated = canonicalize(mesh, "keep", align_xy=False)
+    mesh = _final_size(mesh, size)
     photo = silhouette.follow_camera(photo, before, mesh.vertices)
     name = request.image_path.stem if request.image_path else "image object"
     depth = float(np.ptp(mesh.vertices @ np.asarray(photo.camera_forward)))
-    info = BuildInfo(source="image", name=name, category=catalogue.entry_category(entry) if entry else "unknown",
-                     entry=entry, program=named.program if named is not None and photo.method == "program fit" else None, size=size,
-                     modifiers=mods,
+    mods = text_design.modifiers if text_design is not None else []
+    concept = getattr(named or analogy, "concept", None)
+    info = BuildInfo(source="image", name=name, category=catalogue.entry_category(entry) if entry else
+                     (concept.category if concept is not None else "unknown"),
+                     entry=entry, program=named.program if named is not None and photo.method == "program fit" else None,
+                     size=size, modifiers=mods,
                      segmentation=method, thickness_m=depth, reoriented=rotated, notes=notes,
-                     warnings=warnings, photo=photo,
-                     concept=_sized_concept(getattr(named or design, "concept", None), mesh))
+                     warnings=warnings, photo=photo, concept=_sized_concept(concept, mesh))
     return mesh_to_arrays(mesh), info
 
 

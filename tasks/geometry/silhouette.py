@@ -9,11 +9,16 @@ Method
   maximise its IoU with the mask (bounding-box start, Nelder-Mead refinement); depth gets the geometric mean of the two
   fitted scales. The fitted program is then conformed to the photo: cut by the mask extruded along the view, and mask
   regions it does not cover are filled by the generic profile below. The IoU of the program alone is reported.
-- Nothing known: thickness from the silhouette's distance transform, one circular cross-section per part: at distance d
-  from the outline, with rho the inscribed radius at the nearest medial-axis point, the half-depth is
-  sqrt(d (2 rho - d)) (a disc becomes a ball, a bar a cylinder), symmetric front/back. A silhouette that is mirror
-  symmetric about a vertical axis (IoU >= LATHE_SYMMETRY_IOU) whose medial axis runs along that axis (a vase, a
-  bottle; not a star or a teddy from the front, whose limbs branch off) becomes a solid of revolution about it.
+- Nothing known, or a template that fits with an IoU below MIN_FIT_IOU (0.8): a silhouette whose rows are each one
+  run with their centres on one vertical axis (is_revolution: a bottle, a can, a cup, a fruit, a ball) becomes a
+  solid of revolution about that axis, its radius per row the mean of the two half-widths, a tall one standing on a
+  flat base (the ellipse of its bottom rim filled out); any other a closed inflation: at distance d from the outline,
+  with rho the inscribed radius at the nearest medial-axis point, a rounded-box cross-section of depth rho whose
+  edges round over 0.6 rho (limbs keep their own thickness), mirrored front to back, its resting rows continued below
+  it while the depth is taken so it stands on a flat patch. Both are level sets: closed, never self-intersecting.
+- Upright: the photo's vertical stays the object's z (the table it stands on is the ground); the view recorded is
+  the fitted template's, else 'front' (the photo shows the object's front; 'side' for an asymmetric silhouette whose
+  template fitted best from the side). The resting-pose step runs only on request (AssetRequest.pose='stable').
 - Colours: surface points that face the camera and are not occluded take the photo's colour at their pixel; the hidden
   side takes the mean photo colour of each program part (known object) or a strongly blurred copy of the photo
   (generic), blended by how much the normal faces the camera, so nothing is smeared across the sides.
@@ -45,9 +50,18 @@ from tasks.geometry.meshing import linear_to_srgb8, mesh_from_field
 from tasks.geometry.sdf import part_sdf, program_bounds, program_sdf, smooth_max, smooth_min
 from tasks.geometry.silhouette_fit import FIT_CELLS, VIEW_ROTATION, ProgramFit, fit_program, fitted_silhouette
 
-LATHE_SYMMETRY_IOU = 0.95  # mirror IoU above which the silhouette may be a solid of revolution [-]
-LATHE_AXIS_BAND, LATHE_AXIS_SHARE = 0.1, 0.85  # ... if this share of its medial axis is this close (x width) to the axis
-MIN_FIT_IOU = 0.55  # a program that fits worse than this is not what the photo shows: generic reconstruction [-]
+REVOLUTION_MAX_ASYMMETRY = 0.04  # row centres this far (90th percentile, x widest row) from one vertical axis [-]
+REVOLUTION_MAX_MULTI_RUN = 0.03  # share of rows split in two or more runs (ears, legs, arms apart) a lathe allows [-]
+REVOLUTION_END_TRIM = 0.04  # rows at the top and bottom left out of those two measures (segmentation ragged) [-]
+LATHE_SMOOTH = 0.006  # the radius profile is smoothed over this share of the height (ragged mask rows) [-]
+LATHE_FLAT_BASE_ASPECT = 1.2  # a lathe at least this tall for its width stands on a flat base [-]
+LATHE_BASE_BAND = 0.15  # ... found within this share of its height from the bottom [-]
+INFLATION_ROUNDNESS = 0.6  # edges of an inflated part rounded over this share of its inscribed radius [-]
+GROUND_FOOT_BAND = 0.03  # an inflation rests on the rows within this share of its height from its lowest row [-]
+GROUND_EXTEND = 0.25  # ... continued this far (x height) below it while its depth is taken [-]
+MIN_FIT_IOU = 0.8  # a program that fits worse than this is not what the photo shows: generic reconstruction [-]
+FRONT_SYMMETRY_IOU = 0.85  # a silhouette built without a template is a front view above this mirror IoU [-]
+FLAT_PROGRAM = 0.5  # a top view is fitted only to a program this flat (height / narrowest horizontal extent) [-]
 RHO_SMOOTH_CELLS = 2.0  # smoothing of the medial radius map [cells]
 BLEND_CELLS = 1.5  # smooth cut / union radius where the program meets the extruded mask and the filler [cells]
 COLOUR_MAX_SIDE = 1024  # photos are reduced to at most this many pixels along a side for the reconstruction [px]
@@ -113,18 +127,10 @@ def mirror_symmetry(mask: np.ndarray) -> tuple[float, float]:
     return float((mask & mirrored).sum() / max((mask | mirrored).sum(), 1)), axis
 
 
-def axial_skeleton(mask: np.ndarray, axis: float) -> bool:
-    """True when the medial axis runs along the vertical symmetry axis (a vase, a bottle, a ball), not out into limbs
-    or points (a teddy from the front, a star): only then is a solid of revolution a fair guess."""
-    skel, dist = medial_axis(np.pad(mask, 1), return_distance=True, rng=0)
-    major = skel & (dist > 0.35 * dist.max())  # ignore the short spurs into corners
-    xs = np.nonzero(major)[0] - 1 + 0.5
-    width = np.ptp(np.nonzero(mask)[0]) + 1
-    return bool(len(xs)) and float(np.mean(np.abs(xs - axis) <= LATHE_AXIS_BAND * width)) >= LATHE_AXIS_SHARE
-
-
-def medial_half_depth(mask: np.ndarray) -> np.ndarray:
-    """Half-depth [cells] of round cross-sections: sqrt(d (2 rho - d)), rho the nearest medial-axis radius."""
+def medial_half_depth(mask: np.ndarray, roundness: float = 1.0) -> np.ndarray:
+    """Half-depth [cells] of round cross-sections: sqrt(d (2 rho - d)), rho the nearest medial-axis radius; with
+    roundness < 1 a fuller section, rho sqrt(1 - (1 - d / (roundness rho))^2): as deep, its edges rounded over
+    roundness x rho (a cushion, a chair, a loaf are not lenses)."""
     skel, dist = medial_axis(np.pad(mask, 1), return_distance=True, rng=0)  # seeded tie-breaking: deterministic
     skel, dist = skel[1:-1, 1:-1], np.maximum(dist[1:-1, 1:-1] - 0.5, 0.0)
     d = np.maximum(ndimage.distance_transform_edt(mask) - 0.5, 0.0)  # to the outline, half a cell beyond the pixels
@@ -136,7 +142,11 @@ def medial_half_depth(mask: np.ndarray) -> np.ndarray:
     w = ndimage.gaussian_filter(mask.astype(np.float64), RHO_SMOOTH_CELLS)
     rho = ndimage.gaussian_filter(np.where(mask, rho, 0.0), RHO_SMOOTH_CELLS) / np.maximum(w, 1e-9)
     rho = np.maximum(rho, d)
-    return np.where(mask, np.sqrt(np.clip(d * (2.0 * rho - d), 0.0, None)), 0.0)
+    if roundness >= 1.0:
+        return np.where(mask, np.sqrt(np.clip(d * (2.0 * rho - d), 0.0, None)), 0.0)
+    # a rounded box: the circle's depth rho in the middle of a part, edges rounded over roundness x rho
+    t = np.clip(d / np.maximum(roundness * rho, 1e-9), 0.0, 1.0)
+    return np.where(mask, rho * np.sqrt(np.clip(1.0 - (1.0 - t) ** 2, 0.0, None)), 0.0)
 
 
 def _grid(n_x: int, n_z: int, y_lo: float, y_hi: float, cells: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -152,23 +162,113 @@ def _outline_field(mask: np.ndarray) -> np.ndarray:
     return np.where(mask, -ndimage.distance_transform_edt(mask) + 0.5, ndimage.distance_transform_edt(~mask) - 0.5)
 
 
-def generic_field(frame: PhotoFrame) -> tuple[np.ndarray, np.ndarray, str, float]:
-    """Field [x, y, z] in cells (negative inside), y axis coordinates [units], method and mirror IoU."""
-    m = frame.mask
-    sym, axis = mirror_symmetry(m)
+@dataclass(frozen=True)
+class Profile:
+    """A silhouette read row by row (rows of constant z on a [x, z] grid): its left and right ends [cells], how many
+    rows hold more than one run, and how well the rows share one vertical axis."""
+
+    rows: np.ndarray  # z indices of the rows holding the mask
+    left: np.ndarray  # first cell of each row
+    right: np.ndarray  # one past the last cell of each row
+    multi_run: float  # share of the rows (bar the ends) that hold more than one run [-]
+    axis: float  # the shared vertical axis [cells]
+    asymmetry: float  # 90th percentile of |row centre - axis| / widest row [-]
+
+
+def row_profile(mask: np.ndarray) -> Profile:
+    """The left/right profile of a [x, z] mask (see Profile)."""
+    rows = np.flatnonzero(mask.any(axis=0))
+    sub = mask[:, rows]
+    left = np.argmax(sub, axis=0)
+    right = sub.shape[0] - np.argmax(sub[::-1], axis=0)
+    runs = (np.diff(sub.astype(np.int8), axis=0) == 1).sum(axis=0) + sub[0]
+    trim = max(1, int(REVOLUTION_END_TRIM * len(rows)))
+    core = slice(trim, len(rows) - trim) if len(rows) > 2 * trim + 2 else slice(None)
+    centre = 0.5 * (left + right)
+    axis = float(np.median(centre[core]))
+    width = float((right - left).max())
+    asym = float(np.percentile(np.abs(centre[core] - axis), 90)) / max(width, 1.0)
+    return Profile(rows=rows, left=left, right=right, multi_run=float(np.mean(runs[core] > 1)), axis=axis,
+                   asymmetry=asym)
+
+
+def is_revolution(mask: np.ndarray) -> tuple[bool, Profile]:
+    """True when the silhouette is that of a solid of revolution about a vertical axis (a bottle, a can, a cup, a
+    fruit, a ball): every row one run (no limbs, ears or legs apart), the rows' centres on one vertical axis."""
+    prof = row_profile(mask)
+    ok = prof.multi_run <= REVOLUTION_MAX_MULTI_RUN and prof.asymmetry <= REVOLUTION_MAX_ASYMMETRY
+    return bool(ok and len(prof.rows) >= 8), prof
+
+
+def pixel_grid(mask: np.ndarray) -> np.ndarray:
+    """An image mask [row, col] as a [x, z] grid (x right, z up) in pixels."""
+    return np.ascontiguousarray(mask.T[:, ::-1])
+
+
+def lathe_field(frame: PhotoFrame, pix: np.ndarray, prof: Profile) -> tuple[np.ndarray, np.ndarray]:
+    """Field [x, y, z] (cells, negative inside) of the solid of revolution about the profile's vertical axis with the
+    mean of the two half-widths as radius per row (the profile `prof` of the photo's mask `pix` [x, z] in pixels,
+    sampled at the frame's cells); a tall object's base (the ellipse its bottom rim makes in a photo taken from above
+    the table) is filled out to the rim's radius, so it stands on a flat base. Also the camera-y coordinates [units]."""
+    height = len(prof.rows)
+    radius_px = ndimage.gaussian_filter1d(0.5 * (prof.right - prof.left).astype(np.float64),
+                                          max(1.0, LATHE_SMOOTH * height), mode="nearest")
+    if height >= LATHE_FLAT_BASE_ASPECT * 2.0 * radius_px.max():
+        band = max(2, int(LATHE_BASE_BAND * height))
+        r_band = radius_px[:band]
+        reach = int(np.argmax(r_band >= 0.95 * r_band.max()))  # the rim: where the base ellipse is widest
+        radius_px[:reach] = r_band[reach]
     cells = frame.cells
-    if sym >= LATHE_SYMMETRY_IOU and axial_skeleton(m, axis):
-        cols = np.arange(m.shape[0])[:, None] + 0.5
-        sym_mask = m | m[np.clip(np.round(2 * axis - 1 - np.arange(m.shape[0])).astype(int), 0, m.shape[0] - 1)]
-        radius = np.where(sym_mask, np.abs(cols - axis) + 0.5, -1.0).max(axis=0)  # per z [cells]
-        r_max = float(radius.max())
-        x, y, z = _grid(m.shape[0], m.shape[1], -r_max / cells, r_max / cells, cells)
-        dx = (np.arange(m.shape[0]) + 0.5 - axis)[:, None, None]
-        dy = (y * cells)[None, :, None]
-        field = np.sqrt(dx**2 + dy**2) - radius[None, None, :]
-        field = np.maximum(field, _outline_field(sym_mask)[:, None, :])
+    n_x, n_z = frame.mask.shape
+    z_units = (np.arange(n_z) + 0.5) / cells
+    z_pix = (pix.shape[1] - 1) - (frame.bottom_px - z_units * frame.unit_px - 0.5)  # pixel row, counted from the bottom
+    inside = (z_pix >= prof.rows[0] - 0.5) & (z_pix <= prof.rows[-1] + 0.5)
+    radius = np.where(inside, np.interp(z_pix, prof.rows, radius_px), -1.0) / frame.unit_px * cells
+    axis = (prof.axis - frame.left_px) / frame.unit_px * cells  # the axis' x [cells]
+    r_max = float(radius.max())
+    x, y, z = _grid(n_x, n_z, -r_max / cells, r_max / cells, cells)
+    dx = (np.arange(n_x) + 0.5 - axis)[:, None, None]
+    dy = (y * cells)[None, :, None]
+    field = np.sqrt(dx**2 + dy**2) - radius[None, None, :]
+    # caps: the rows above the top and below the base are outside
+    cap = np.where(inside, -np.inf, 1.0)
+    lo, hi = np.flatnonzero(inside)[[0, -1]]
+    cap = np.maximum(lo - 0.5 - np.arange(n_z), np.arange(n_z) - hi - 0.5) if inside.any() else cap
+    field = np.maximum(field, cap[None, None, :])
+    return field, y
+
+
+def grounded_half_depth(mask: np.ndarray) -> np.ndarray:
+    """medial_half_depth of a mask that stands on the table: the rows it rests on are continued below it before the
+    depth is taken, so its base is as thick as the rows above it (a flat contact patch, not a knife edge)."""
+    rows = np.flatnonzero(mask.any(axis=0))
+    z0 = int(rows[0])
+    height = int(rows[-1]) + 1 - z0
+    foot: np.ndarray = np.asarray(mask[:, z0 : z0 + max(1, int(GROUND_FOOT_BAND * height))].any(axis=1))
+    ext = max(2, int(GROUND_EXTEND * height))
+    grown = np.zeros((mask.shape[0], mask.shape[1] + ext), bool)
+    grown[:, ext:] = mask
+    grown[:, : ext + z0] |= foot[:, None]
+    half: np.ndarray = medial_half_depth(grown, INFLATION_ROUNDNESS)
+    return half[:, ext:] * mask
+
+
+def generic_field(frame: PhotoFrame, pix: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray, str, float]:
+    """Field [x, y, z] in cells (negative inside), y axis coordinates [units], method and mirror IoU: a solid of
+    revolution about the vertical axis when the silhouette is one (is_revolution, judged on the photo's mask `pix`
+    [x, z] in pixels, else on the frame's), else a closed inflation with round cross-sections per part (limbs stay
+    limbs), mirrored front to back, standing on a flat base."""
+    m = frame.mask
+    sym, _ = mirror_symmetry(m)
+    cells = frame.cells
+    if pix is None:
+        pix = m
+        frame = PhotoFrame(mask=m, cells=cells, left_px=0.0, bottom_px=float(m.shape[1]), unit_px=float(cells))
+    lathe, prof = is_revolution(pix)
+    if lathe:
+        field, y = lathe_field(frame, pix, prof)
         return field, y, "lathe", sym
-    half = medial_half_depth(m)
+    half = grounded_half_depth(m)
     h_max = float(half.max())
     x, y, z = _grid(m.shape[0], m.shape[1], -h_max / cells, h_max / cells, cells)
     height = np.where(m, half, 0.5 - ndimage.distance_transform_edt(~m))
@@ -282,18 +382,21 @@ def reconstruct(mask: np.ndarray, image: np.ndarray, longest_m: float, resolutio
     frame = photo_frame(mask, resolution)
     sym, _ = mirror_symmetry(frame.mask)
     notes: list[str] = []
-    fit = None
+    fit = rejected = None
     if program is not None:
-        fit = fit_program(program, photo_frame(mask, FIT_CELLS).mask)
+        fit = fit_program(program, photo_frame(mask, FIT_CELLS).mask, views=_views(program))
         if fit.iou < MIN_FIT_IOU:
-            notes.append(f"the photo's silhouette does not look like a '{entry}' from any view (best IoU "
-                         f"{fit.iou:.2f} < {MIN_FIT_IOU}): generic reconstruction")
-            fit = None
+            notes.append(f"the photo's silhouette does not fit a '{entry}' template well enough (best IoU "
+                         f"{fit.iou:.2f} < {MIN_FIT_IOU}, {fit.view} view): built from the silhouette instead")
+            fit, rejected = None, fit
     if fit is not None:
         field, y = fitted_field(frame, program, fit)  # type: ignore[arg-type]
-        method = "program fit"
+        method, view = "program fit", fit.view
     else:
-        field, y, method, sym = generic_field(frame)
+        field, y, method, sym = generic_field(frame, pixel_grid(mask))
+        # the photo shows the object's front, unless a template seen from the side fitted best and the silhouette
+        # has no left/right symmetry (a cat in profile)
+        view = "side" if rejected is not None and rejected.view == "side" and sym < FRONT_SYMMETRY_IOU else "front"
     spacing = 1.0 / frame.cells
     mesh = mesh_from_field(field, np.array([0.5 * spacing, float(y[0]), 0.5 * spacing]), spacing, level=0.0)
     front = _front_depth(field, y)
@@ -304,15 +407,26 @@ def reconstruct(mask: np.ndarray, image: np.ndarray, longest_m: float, resolutio
         hidden = sample_photo(image, mask, row, col, 0.12 * frame.unit_px)
     colors = _colours(mesh, frame, image, mask, front, hidden)
     mesh.vertices = mesh.vertices * longest_m
-    upright = VIEW_ROTATION[fit.view].T if fit is not None else np.eye(3)  # camera -> a frame with the program's z up
+    # camera -> the object's frame: z up (the photo's vertical), the view recorded (a photo of the object's front is
+    # seen by the 'front' render, from +x), a fitted program in its own frame
+    upright = VIEW_ROTATION[view].T
     mesh.vertices = mesh.vertices @ upright.T
     mesh.visual = trimesh.visual.ColorVisuals(mesh, vertex_colors=colors)
     cam = upright @ np.eye(3)
     info = PhotoReconstruction(
-        method=method, entry=entry if fit is not None else None, view=fit.view if fit else None,
+        method=method, entry=entry if fit is not None else None, view=view,
         fit_iou=round(fit.iou, 4) if fit else None, symmetry_iou=round(sym, 4),
         camera_right=tuple(cam[:, 0]), camera_up=tuple(cam[:, 2]), camera_forward=tuple(cam[:, 1]), notes=notes)
     return mesh, info
+
+
+def _views(program: ShapeProgram) -> tuple[str, ...]:
+    """The views a program may be fitted in: a top view only for a flat one (a disc, a mat, a slice: photographed from
+    above), so a standing object is never laid down to match a photo taken from the side."""
+    lo, hi = program_bounds(program)
+    ext = np.asarray(hi) - np.asarray(lo)
+    flat = ext[2] <= FLAT_PROGRAM * min(ext[0], ext[1])
+    return ("side", "front", "top") if flat else ("side", "front")
 
 
 def _twin(name: str) -> str:

@@ -98,8 +98,9 @@ def _render(src: tuple[np.ndarray, np.ndarray, float], flipped: bool, angle_deg:
     return cv2.warpAffine(img, m, (shape[1], shape[0]), flags=cv2.INTER_LINEAR, borderValue=0.0)
 
 
-def fit_program(program: ShapeProgram, target: np.ndarray) -> ProgramFit:
-    """Best view / flip / per-axis scale / pose of the program for a mask [x cell, z cell] at FIT_CELLS per unit."""
+def fit_program(program: ShapeProgram, target: np.ndarray, views: tuple[str, ...] = tuple(VIEW_ROTATION)) -> ProgramFit:
+    """Best view (of `views`) / flip / per-axis scale / pose of the program for a mask [x cell, z cell] at FIT_CELLS
+    per unit."""
     target = target.astype(np.float32)
     shape = target.shape
     ti, tk = np.nonzero(target > 0.5)
@@ -109,6 +110,8 @@ def fit_program(program: ShapeProgram, target: np.ndarray) -> ProgramFit:
     sources = program_silhouettes(program)
     starts = []
     for view, src in sources.items():
+        if view not in views:
+            continue
         angles = range(0, 360, 45) if view == "top" else (0.0,)
         for flipped in (False, True):
             for ang in angles:
