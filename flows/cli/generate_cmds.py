@@ -78,6 +78,8 @@ def generate(
     size_m: float = typer.Option(None, "--size-m", help="longest extent [m] (overrides sizes in the text)"),
     intent: str = typer.Option(None, "--intent", help="material words, e.g. 'firm rubber' (default: from the text)"),
     seed: int = typer.Option(0, "--seed"),
+    pose: str = typer.Option("upright", "--pose", help="photo: upright (the photo's vertical is up, default) | "
+                             "stable (the most stable resting pose)"),
     llm: str = typer.Option(None, "--llm", help="litellm model string for every agent role, L0's shape Designer "
                             "included (default: offline rule backend)"),
     llm_fallback: str = typer.Option("rule", "--llm-fallback", help=LLM_FALLBACK_HELP),
@@ -109,7 +111,7 @@ def generate(
     try:
         request = AssetRequest(text=text, image_path=image.absolute() if image else None,
                                mesh_path=mesh.absolute() if mesh else None, size_hint_m=size_m,
-                               material_intent=intent, seed=seed, quality=quality,
+                               material_intent=intent, seed=seed, quality=quality, pose=pose,
                                geometry_backend=geometry_backend or None)
     except ValidationError as exc:
         fail("invalid request: " + validation_message(exc))

@@ -37,6 +37,8 @@ def geometry(
     quality: str = typer.Option("draft", "--quality", help="draft | standard | high"),
     size_m: float = typer.Option(None, "--size-m", help="longest extent of the object [m]"),
     seed: int = typer.Option(0, "--seed", help="seed of every random choice"),
+    pose: str = typer.Option("upright", "--pose", help="photo: upright (the photo's vertical is up, default) | "
+                             "stable (the most stable resting pose)"),
     intent: str = typer.Option(None, "--intent", help="material words, e.g. 'firm rubber' (default: from the text); "
                                "stored with the request for `physical` and `material`, never changes the geometry"),
     no_cache: bool = typer.Option(False, "--no-cache", help="run the plain functions, without Prefect or the cache"),
@@ -58,7 +60,7 @@ def geometry(
     try:
         request = AssetRequest(text=text, image_path=image.absolute() if image else None,
                                mesh_path=mesh.absolute() if mesh else None, size_hint_m=size_m,
-                               material_intent=intent, seed=seed, quality=quality,
+                               material_intent=intent, seed=seed, quality=quality, pose=pose,
                                geometry_backend=geometry_backend or None)
     except ValidationError as exc:
         fail("invalid request: " + validation_message(exc))
