@@ -200,10 +200,12 @@ def state_change(plan: str, params: dict[str, Any] | None, size_m: float, state:
 @functools.lru_cache(maxsize=256)
 def _unit_solid_cached(plan: str, params_json: str) -> tuple[float, float]:
     from tasks.geometry.meshing import mesh_program
+    from tasks.geometry.sdf import program_bounds
 
     params = plan_parameters(plan, json.loads(params_json))
     program = ShapeProgram(name=plan, category="state", parts=PLANS[plan][1](params))
-    mesh = mesh_program(program, 128)
+    ext = program_bounds(program)[1] - program_bounds(program)[0]
+    mesh = mesh_program(program, int(min(1024, max(128, 6 * ext.max() / ext.min()))))  # 6 cells through a strip
     return float(mesh.extents.max()), float(mesh.volume)
 
 

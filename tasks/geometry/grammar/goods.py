@@ -41,7 +41,7 @@ class SheetParams(Model):
     state: SheetState = Field(default="flat", description="flat; rolled (a roll along the sheet's width, the layers "
                               "seen as rings at its ends); folded (halved `folds` times); stacked (`layers` sheets)")
     shape: Literal["rect", "round"] = Field(default="rect", description="a rectangle or a round sheet (tortilla, pad)")
-    width: float = Field(default=0.5, gt=0.05, le=1.0, description="width / length [-]")
+    width: float = Field(default=0.5, gt=0.002, le=1.0, description="width / length [-]")
     thickness: float = Field(default=0.005, gt=0.0, le=0.2, description="the real sheet's thickness / length [-]")
     folds: int = Field(default=1, ge=1, le=3, description="halvings when folded [-]")
     layers: int = Field(default=4, ge=2, le=12, description="sheets in a stack [-]")
@@ -116,7 +116,7 @@ def roll_radius(p: SheetParams) -> float:
     """Outer radius of the rolled sheet (unit frame): its real cross-section, loosely packed, around its hole."""
     area = 1.0 * p.thickness / p.packing  # the sheet's length x thickness, over the roll's packing
     r = float(np.sqrt(area / (np.pi * (1 - p.core**2))))
-    return max(r, 0.04 * p.width, 1.5 * MIN_LAYER)
+    return max(r, 0.04 * p.width)
 
 
 def _rolled(p: SheetParams) -> list[Part]:
@@ -128,12 +128,11 @@ def _rolled(p: SheetParams) -> list[Part]:
     if p.shape == "round":  # a rolled tortilla or pancake: a wrap, tapered at its ends
         return [_scaled(cylinder("body", R, w, (0, 0, R), edge=0.6 * R, rot=(0, 90, 0)), (1, 1, 1))]
     parts = [cylinder("body", R, w, (0, 0, R), edge=min(0.15 * R, 0.02), rot=(0, 90, 0))]
-    layer = max(p.thickness, 0.004)
-    flap = box("flap", (w, 0.5 * R, min(layer, 0.12 * R)), (0, -0.25 * R, 2 * R + min(layer, 0.12 * R) / 2 - 0.005 * R),
-               edge=0.3 * min(layer, 0.12 * R), blend=0.02 * R)
-    parts.append(flap)
+    layer = float(np.clip(p.thickness, 0.03 * R, 0.12 * R))
+    parts.append(box("flap", (w, 0.5 * R, layer), (0, -0.25 * R, 2 * R + layer / 2 - 0.005 * R), edge=0.3 * layer,
+                     blend=0.02 * R))
     # rings one sheet layer apart, as many as the mesher can see: a groove at least 2.6 % of the roll's length wide
-    g = max(0.2 * layer, 0.013 * w)
+    g = min(max(0.2 * p.thickness, 0.013 * w), 0.08 * (R - r0))
     rings = int(np.clip(np.floor((R - r0) / (5 * g)) - 1, 1, 5))
     pitch = (R - r0) / (rings + 1)
     depth = min(0.12 * w, 3 * g)
