@@ -15,7 +15,7 @@ Quality = Literal["draft", "standard", "high"]
 InputKind = Literal["text", "image", "mesh"]
 Pose = Literal["upright", "stable"]
 # 'package.module:function' (an optional '#tag' names a version: change it to rebuild cached geometry) or an HTTP URL
-GEOMETRY_BACKEND_PATTERN = r"(?:[A-Za-z_][\w]*(?:\.[A-Za-z_]\w*)*:[A-Za-z_]\w*(?:#\S*)?|https?://\S+)"
+GEOMETRY_BACKEND_PATTERN = r"(?:[A-Za-z_][\w]*(?:\.[A-Za-z_]\w*)*:[A-Za-z_]\w*(?:#\S*)?|(?:hunyuan3d\+)?https?://\S+)"
 
 
 MIN_SIZE_M, MAX_SIZE_M = 0.01, 2.0  # the longest extent L0 can build [m]
@@ -53,7 +53,8 @@ class AssetRequest(Model):
     seed: int = Field(default=0, description="seed of every random choice")
     geometry_backend: str | None = Field(
         default=None, description="reconstruction backend that makes the mesh from the text / image: a Python entry "
-        "point 'module:function' or an HTTP endpoint 'http(s)://...' (tasks/geometry/backends.py); None: built in"
+        "point 'module:function', an HTTP endpoint 'http(s)://...', or Hunyuan3D-2's API server 'hunyuan3d+http(s)://...' "
+        "(tasks/geometry/backends.py); None: built in"
     )
     quality: Quality = Field(default="draft", description="resolution preset: draft | standard | high")
     pose: Pose = Field(default="upright", exclude_if=lambda v: v == "upright",
@@ -83,7 +84,7 @@ class AssetRequest(Model):
                 raise ValueError("a geometry backend builds the mesh from text or an image: give no mesh_path")
             if not re.fullmatch(GEOMETRY_BACKEND_PATTERN, self.geometry_backend.strip()):
                 raise ValueError(f"geometry_backend '{self.geometry_backend}' is neither 'module:function' nor an "
-                                 "http(s):// URL")
+                                 "http(s):// URL (or hunyuan3d+http(s)://, Hunyuan3D-2's API server)")
         return self
 
     @property

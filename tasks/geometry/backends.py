@@ -12,6 +12,8 @@ A backend is named by `AssetRequest.geometry_backend` (CLI `--geometry-backend`,
   "size_hint_m"}`` (``image_base64``: the photo file's bytes, base64, or null) and expects status 200 with JSON
   ``{"mesh_base64": ..., "mesh_format": "glb"|"obj"|"ply"|"stl"|"off", "gaussians_ply_base64": ... (optional),
   "metric": bool (optional)}``; the wait is bounded by the L0 contract's ``geometry_backend_timeout_s``.
+- ``hunyuan3d+http(s)://host:port[?options]`` -- Tencent Hunyuan3D-2's ``api_server.py`` spoken in its own API
+  (image in, GLB out): ``tasks/geometry/backend_hunyuan3d.py``, the reference adapter for a real server.
 
 ``metric: true`` says the mesh is in metres (kept unless the text or a hint states a size); otherwise (the usual
 normalised output of image-to-3D models) it is scaled to the stated size, else the lexicon's typical size of the
@@ -26,6 +28,7 @@ which keys L0's cache: change it to rebuild after the model changed. Every failu
 from __future__ import annotations
 
 import base64
+import http.client
 import importlib
 import json
 import os
@@ -52,9 +55,11 @@ from tasks.geometry.mesh_import import SUPPORTED, _vertex_colors, load_mesh_file
 from tasks.geometry.sdf import program_bounds
 
 ENV_VAR = "DEFORMSMITH_GEOMETRY_BACKEND"
+HUNYUAN3D_PREFIX = "hunyuan3d+"  # 'hunyuan3d+http://host:port': Hunyuan3D-2's own API server (backend_hunyuan3d.py)
 GAUSSIAN_ON_MESH_FRACTION = 0.02  # backend Gaussians whose p95 distance outside the mesh exceeds this x its longest
 #                                   extent do not belong to it and are ignored [-]
 COLOR_NEIGHBOURS = 8
+Y_UP_TO_Z_UP = np.array([[1.0, 0, 0, 0], [0, 0, -1, 0], [0, 1, 0, 0], [0, 0, 0, 1]])  # +90 deg about x: +y -> +z
 
 
 class GeometryBackendError(InputError):
@@ -71,6 +76,7 @@ class BackendOutput:
     gaussian_opacities: np.ndarray | None = None   # (G,)
     metric: bool = False
     notes: list[str] = field(default_factory=list)
+    up_axis: str | None = None                     # 'y': the model's frame is y-up (glTF), kept under pose 'upright'
 
 
 def backend_from_env() -> str | None:
@@ -122,19 +128,7 @@ def call_http(spec: str, request: AssetRequest, scratch: Path, timeout_s: float)
     body = _backend_request(request)
     image = body.pop("image_path")
     body["image_base64"] = base64.b64encode(Path(image).read_bytes()).decode() if image else None
-    req = urllib.request.Request(url, data=json.dumps(body).encode(), method="POST",
-                                 headers={"Content-Type": "application/json", "Accept": "application/json"})
-    try:
-        with urllib.request.urlopen(req, timeout=timeout_s) as resp:  # noqa: S310 - the user's own endpoint
-            raw = resp.read()
-    except urllib.error.HTTPError as exc:
-        detail = exc.read()[:200].decode(errors="replace").strip().replace("\n", " ")
-        raise GeometryBackendError(f"geometry backend {url} answered HTTP {exc.code}: {detail or exc.reason}") from exc
-    except (TimeoutError, urllib.error.URLError) as exc:
-        reason = getattr(exc, "reason", exc)
-        if isinstance(reason, TimeoutError) or isinstance(exc, TimeoutError) or "timed out" in str(reason):
-            raise GeometryBackendError(f"geometry backend {url} did not answer within {timeout_s:g} s") from exc
-        raise GeometryBackendError(f"geometry backend {url} is unreachable: {reason}") from exc
+    raw = http_exchange(url, body, timeout_s)
     try:
         answer = json.loads(raw)
     except (UnicodeDecodeError, json.JSONDecodeError) as exc:
@@ -155,6 +149,31 @@ def call_http(spec: str, request: AssetRequest, scratch: Path, timeout_s: float)
         ply.write_bytes(_b64(url, answer["gaussians_ply_base64"], "gaussians_ply_base64"))
         result["gaussians_ply"] = ply
     return load_result(url, result)
+
+
+def http_exchange(url: str, body: dict[str, Any] | None, timeout_s: float, accept: str = "application/json",
+                  label: str | None = None) -> bytes:
+    """POST `body` as JSON (GET when None) and return the answer's bytes; every failure is one GeometryBackendError
+    line naming `label` (default: the URL): HTTP status with the start of the answer, unreachable, or no answer
+    within `timeout_s`."""
+    who = label or url
+    data = None if body is None else json.dumps(body).encode()
+    req = urllib.request.Request(url, data=data, method="GET" if body is None else "POST",
+                                 headers={"Content-Type": "application/json", "Accept": accept})
+    try:
+        with urllib.request.urlopen(req, timeout=timeout_s) as resp:  # noqa: S310 - the user's own endpoint
+            return bytes(resp.read())
+    except urllib.error.HTTPError as exc:
+        detail = exc.read()[:200].decode(errors="replace").strip().replace("\n", " ")
+        raise GeometryBackendError(f"geometry backend {who} answered HTTP {exc.code}: {detail or exc.reason}") from exc
+    except (TimeoutError, urllib.error.URLError) as exc:
+        reason = getattr(exc, "reason", exc)
+        if isinstance(reason, TimeoutError) or isinstance(exc, TimeoutError) or "timed out" in str(reason):
+            raise GeometryBackendError(f"geometry backend {who} did not answer within {timeout_s:g} s") from exc
+        raise GeometryBackendError(f"geometry backend {who} is unreachable: {reason}") from exc
+    except (OSError, http.client.HTTPException) as exc:  # a connection reset or closed mid-answer
+        raise GeometryBackendError(f"geometry backend {who}: connection failed: {type(exc).__name__}: {exc}"
+                                   .split("\n")[0]) from exc
 
 
 def _b64(url: str, text: str, key: str) -> bytes:
@@ -242,6 +261,10 @@ def read_gaussian_ply(path: Path) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
 
 def call_backend(spec: str, request: AssetRequest, scratch: Path, timeout_s: float) -> BackendOutput:
     """Run the backend a spec names and load its output."""
+    if spec.startswith(HUNYUAN3D_PREFIX):
+        from tasks.geometry import backend_hunyuan3d
+
+        return backend_hunyuan3d.call(spec, request, scratch, timeout_s)
     if _is_http(spec):
         return call_http(spec, request, scratch, timeout_s)
     return call_python(spec, request, scratch)
@@ -337,7 +360,11 @@ def from_backend(request: AssetRequest, settings: Any) -> tuple[dict[str, np.nda
     warnings: list[str] = []
     size, design = _target_size(request, out, params.geometry_backend_default_size_m,
                                 warnings, notes)
-    mesh, rotated = canonicalize(repaired, "most_stable", align_xy=True)
+    if out.up_axis == "y" and request.pose == "upright":  # the model's vertical stays up, as for L0's own photos
+        mesh, rotated = canonicalize(repaired.copy().apply_transform(Y_UP_TO_Z_UP), "keep", align_xy=True)
+        notes.append("the model's vertical (glTF +y) kept up (pose 'stable' for the most stable resting pose)")
+    else:
+        mesh, rotated = canonicalize(repaired, "most_stable", align_xy=True)
     try:
         mesh = pipeline._final_size(mesh, size)
     except InputError as exc:
