@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import functools
 import re
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -60,12 +61,20 @@ def _best_sense(noun: str) -> Sense | None:
     return ranked[0][1]
 
 
+def domain_of_sense(sense: Sense) -> str:
+    """'animal', 'food' or 'thing': the kind of object a WordNet sense names."""
+    return {"noun.animal": "animal", "noun.food": "food", "noun.plant": "food"}.get(sense.lexname, "thing")
+
+
 def explain(candidates: list[str], lexicon_nouns: dict[str, Any], shape_words: dict[str, Any],
-            material_words: dict[str, str], color_words: dict[str, Any]) -> Analogy | None:
+            material_words: dict[str, str], color_words: dict[str, Any],
+            lexicon_domain: Callable[[str], str] | None = None) -> Analogy | None:
     """The analogy for the longest candidate WordNet knows (e.g. 'yoga mat', then 'mat').
 
     lexicon_nouns: surface noun -> (concept key, ...) of the lexicon; shape_words: the shape words the grammar
-    builds; material_words: material word -> class; color_words: colour word -> RGB."""
+    builds; material_words: material word -> class; color_words: colour word -> RGB; lexicon_domain(key): 'animal',
+    'food' or 'thing' for a lexicon concept, so that a word of another sense lends nothing (a washer is a kind of
+    seal, the gasket, not the lexicon's plush seal)."""
     v = vocab()
     too_general = set(v["too_general"])
     for noun in candidates:
@@ -81,7 +90,8 @@ def explain(candidates: list[str], lexicon_nouns: dict[str, Any], shape_words: d
             if any(w in too_general for w in words):
                 continue
             kinds.append(words[0])
-            donor = next((w for w in words if w in lexicon_nouns), None)
+            donor = next((w for w in words if w in lexicon_nouns and (
+                lexicon_domain is None or lexicon_domain(lexicon_nouns[w][0]) == domain_of_sense(anc))), None)
             if donor is not None:
                 out.concept, out.named_donor = lexicon_nouns[donor][0], True
                 out.chain.append(f"a kind of {' < '.join(kinds)}; the lexicon knows '{donor}'")

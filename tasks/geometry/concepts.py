@@ -232,7 +232,7 @@ def _shape_donor(text: str) -> tuple[str, object | None, str]:
         if w in SHAPE_WORDS:
             return rest, SHAPE_WORDS[w], w
     found = analogy_mod.explain([words, words.split()[-1]], noun_index(), SHAPE_WORDS, _material_words(),
-                                load_lexicon().colors) if words.strip() else None
+                                load_lexicon().colors, concept_domain) if words.strip() else None
     if found is not None and found.concept is not None and found.named_donor:
         return rest, found.concept, words  # 'spaniel-shaped': WordNet's kind the lexicon knows
     if found is not None and found.shape_word is not None:
@@ -337,6 +337,32 @@ def _fallback(t: str, noun: str | None, donor: LexiconEntry | None, donor_plan: 
                                     f"{what}: built a generic {key[8:].replace('_', ' ')} {why}")
 
 
+_FUNCTION_WORDS = frozenset({"of", "au", "aux", "the", "in", "de", "du", "and", "with", "on", "la", "le", "a", "n"})
+
+
+@functools.lru_cache(maxsize=1)
+def _function_word_nouns() -> dict[str, tuple[str, str, bool]]:
+    """Lexicon nouns with a function word inside ('pain au chocolat', 'jack in the box'), which a parse splits."""
+    return {n: v for n, v in noun_index().items() if len(n.split()) > 2 and _FUNCTION_WORDS & set(n.split()[1:-1])}
+
+
+_FOOD_MATERIALS = frozenset({"fruit", "bread", "dough", "marshmallow"})
+_ANIMAL_PLANS = frozenset({"quadruped", "biped_seated", "biped_standing", "bird", "fish", "cetacean", "pinniped",
+                           "cephalopod", "turtle", "insect", "segmented", "snake"})
+
+
+def concept_domain(key: str) -> str:
+    """'animal', 'food' or 'thing': what a lexicon concept is (a plush seal is an animal's shape, a loaf food)."""
+    entry = load_lexicon().entries[key]
+    if entry.plan in _ANIMAL_PLANS or entry.category in ("plush_animal", "animal"):
+        return "animal"
+    food = ("fruit", "vegetable", "bread", "baked", "dairy", "cheese", "meat", "fish", "jelly", "candy", "dessert",
+            "food", "dough", "tofu", "egg", "marshmallow", "pastry", "snack")
+    if entry.material in _FOOD_MATERIALS or any(entry.category.startswith(f) for f in food):
+        return "food"
+    return "thing"
+
+
 def known_noun(word: str) -> bool:
     """True when a word names a physical thing: a lexicon noun or category, or a WordNet noun of an artifact, food,
     animal or plant; colour and material words are modifiers, not the object."""
@@ -368,6 +394,9 @@ def read_text(text: str) -> Reading:
         head, compound, unknown = None, None, None  # 'the squishy thing ...': nothing is named
     else:
         main = phrase.main if phrase.head else _CLAUSE_END.split(t_shape, maxsplit=1)[0]
+        joined = _find(t_shape, _function_word_nouns())
+        if joined and joined[0][2] not in main:
+            main = joined[0][2]  # 'pain au chocolat', 'sophie the giraffe': one noun whatever the parse says
         head, compound, unknown = _head(main)
         if head is None and unknown is None:
             head, compound, unknown = _head(t_shape)  # the object may be named after 'with' ('one with a bear face')
@@ -453,7 +482,7 @@ def _by_wordnet(phrase: phrase_mod.Phrase, unknown: str | None, t: str, donor: L
     if noun is None or noun in SHAPE_WORDS:
         return None  # 'a foam disc' is a disc: the shape word itself, no analogy needed
     cands = [c for c in phrase.candidates() if c.split()[-1] == noun] or [noun]
-    found = analogy_mod.explain(cands, noun_index(), SHAPE_WORDS, _material_words(), lex.colors)
+    found = analogy_mod.explain(cands, noun_index(), SHAPE_WORDS, _material_words(), lex.colors, concept_domain)
     if found is None:
         return None
     material = _material_in(t) or next((_material_words()[w] for w in found.material_words), None)
@@ -477,7 +506,8 @@ def _by_wordnet(phrase: phrase_mod.Phrase, unknown: str | None, t: str, donor: L
         note = f"'{found.noun}' is not in the lexicon: WordNet places it under '{found.chain[-1].split(chr(39))[-2]}'" \
                f", so it was built as a generic {found.concept[8:].replace('_', ' ')}"
         match = _match(entry, "category", found.noun, note, _material_in(t))
-        return entry, match.model_copy(update={"analogy": [*chain, f"built as the generic {found.concept}"]}), \
+        return entry, match.model_copy(update={"analogy": [
+            *chain, f"built as a generic {found.concept[8:].replace('_', ' ')}"]}), \
             donor, donor_plan, None
     plan = SHAPE_WORDS.get(found.shape_word or "")
     key = PLAN_GENERIC.get(plan[0] if plan else "", MATERIAL_GENERIC.get(material or "", "generic_block"))
@@ -543,7 +573,7 @@ def build(reading: Reading, text: str) -> tuple[ShapeProgram, ConceptMatch, list
         params = {**params, **outline}
     match = reading.match
     target = reading.donor or entry
-    if params and target.plan is not None and (reading.donor_plan is None or reading.donor is not None):
+    if "state" in params and target.plan is not None and (reading.donor_plan is None or reading.donor is not None):
         # the same object in another state: a 1.83 m yoga mat rolled up is a 0.61 m roll of the same mass
         change = grammar.state_change(target.plan, target.params, size, params["state"])
         size = change.size_m

@@ -32,6 +32,8 @@ PORTION_NOUNS = frozenset({"slice", "wedge", "piece", "chunk", "lump", "block", 
                            "strip", "cube", "disc", "disk", "roll", "stick", "scoop", "pair", "bunch",
                            "handful", "bundle", "pile", "stack", "coil", "skein", "wad", "blob", "dollop", "round",
                            "square", "segment", "half", "quarter", "portion", "brick", "pad"})
+# portions that are a state of their object
+PORTION_STATES = {"stack": "stacked", "pile": "stacked", "roll": "rolled", "coil": "rolled"}
 # nouns that name nothing in particular
 PLACEHOLDER_NOUNS = frozenset({"thing", "things", "object", "objects", "item", "items", "something", "stuff",
                                "one", "kind", "type", "sort", "version", "model"})
@@ -180,6 +182,8 @@ def parse(text: str, known: Callable[[str], bool] | None = None,
     phrase.compounds, phrase.adjectives, phrase.portion = words[j:-1], words[:j], portion
     phrase.noun_phrase = " ".join(words[j:])
     phrase.placeholder = phrase.head in PLACEHOLDER_NOUNS
+    if portion in PORTION_STATES:
+        phrase.states.append(PORTION_STATES[portion])  # 'a stack of towels' is towels, stacked
     for tok in doc:
         word = tok.text.lower()
         if word in STATE_WORDS and STATE_WORDS[word] not in phrase.states:

@@ -61,7 +61,7 @@ def test_the_definition_gives_shape_material_and_size() -> None:
 @pytest.mark.parametrize("text", ["a rubber thingamajig", "a soft gizmo", "a silicone wobbler", "a zorblat",
                                   "a zorblat shaped like a cat", "an exotic fruit", "a four-legged plush glorptail",
                                   "the squishy thing you squeeze", "a foam disc", "something soft and round",
-                                  "a plush spaniel-like zorblat", "a puck", "a heron plush"])
+                                  "a plush spaniel-like zorblat", "a rubber grommet", "a tenrec plush"])
 def test_no_generic_object_without_the_analogy_message(text: str) -> None:
     """Whatever was built when the lexicon does not name the object, the record says 'by analogy', the warning
     comes first and reads like the one-line note."""
@@ -123,3 +123,12 @@ def test_the_card_boxes_the_analogy() -> None:
     assert 'class="analogy"' in page and "built by analogy: &#x27;spaniel&#x27;" in page
     named = card_html(card.model_copy(update={"analogy": [], "built": "built: plush dog (named)"}))
     assert 'class="analogy"' not in named
+
+
+def test_a_word_of_another_sense_lends_nothing() -> None:
+    """A washer is 'a seal consisting of a flat disk': the gasket, not the lexicon's plush seal (an animal)."""
+    lexicon = {"seal": ("plush_seal", "seal", True)}
+    found = analogy.explain(["washer"], lexicon, SHAPE_WORDS, concepts._material_words(), load_lexicon().colors,
+                            lambda key: "animal")
+    assert found is not None and found.concept != "plush_seal" and found.shape_word == "disc"
+    assert concepts.concept_domain("plush_seal") == "animal" and concepts.concept_domain("banana") == "food"

@@ -22,7 +22,7 @@ TABLE = [
     ('a rolled up yoga mat', 'mat', 'yoga mat', None, ['rolled'], None, None, {}),
     ('a towel folded in half', 'towel', 'towel', None, ['folded'], None, 'textile', {}),
     ('a folded beach towel', 'towel', 'beach towel', None, ['folded'], None, 'textile', {}),
-    ('a stack of pancakes', 'pancakes', 'pancakes', 'stack', [], None, None, {}),
+    ('a stack of pancakes', 'pancakes', 'pancakes', 'stack', ['stacked'], None, None, {}),
     ('a stacked pile of washcloths', 'washcloths', 'washcloths', 'pile', ['stacked'], None, None, {}),
     ('a seal pup lying on its belly', 'pup', 'seal pup', None, [], None, None, {}),
     ('a sleeping puppy curled up on a cushion', 'puppy', 'puppy', None, ['curled'], None, 'pu_foam', {}),
