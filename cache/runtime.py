@@ -181,8 +181,10 @@ def _start_server_process(port: int) -> subprocess.Popen:
     args = [sys.executable, "-P", "-c", _SERVE, "--app-dir", str(app_dir), "--factory",
             "prefect.server.api.server:create_app", "--host", "127.0.0.1", "--port", str(port), "--log-level",
             "error", "--lifespan", "on"]
-    # stdout stays clean for --json output; errors still reach stderr
-    return subprocess.Popen(args, env=env, stdout=subprocess.DEVNULL, stdin=subprocess.DEVNULL)
+    # stdout stays clean for --json output; errors still reach stderr. A session of its own: a signal to the command's
+    # process group (Ctrl-C in a terminal, `timeout`) leaves the server up while the command unwinds (its client
+    # reports the runs' end to a live server, instead of retrying a dead one), and the command stops it at exit.
+    return subprocess.Popen(args, env=env, stdout=subprocess.DEVNULL, stdin=subprocess.DEVNULL, start_new_session=True)
 
 
 def _get(url: str) -> None:
@@ -239,11 +241,54 @@ def prestarted_api_url() -> str | None:
     return _PRESTART.api_url
 
 
+_CALLER_SIGTERM_HANDLER: object = None
+
+
+def leave_sigterm_to(handler: object) -> None:
+    """While `handler` is the process's SIGTERM handler (the command line's: flows.cli.stop), flows do not install
+    Prefect's SIGTERM bridge, which would turn the signal into a crash report per run before the command could stop.
+    With any other handler in place (a Prefect worker's run, a test), Prefect's bridge works as it always does."""
+    global _CALLER_SIGTERM_HANDLER
+    _CALLER_SIGTERM_HANDLER = handler
+
+
+def _caller_owns_sigterm() -> bool:
+    if _CALLER_SIGTERM_HANDLER is None or threading.current_thread() is not threading.main_thread():
+        return False
+    import signal
+
+    return signal.getsignal(signal.SIGTERM) is _CALLER_SIGTERM_HANDLER
+
+
+def _route_prefect_sigterm_bridge() -> None:
+    """Prefect's flow engine runs each flow inside `capture_sigterm()`: wrapped once, to step aside while the caller
+    owns SIGTERM (see leave_sigterm_to)."""
+    import prefect.flow_engine as engine
+
+    bridge = engine.capture_sigterm
+    if getattr(bridge, "_deformsmith", False):
+        return
+
+    @contextlib.contextmanager
+    def capture_sigterm() -> Iterator[None]:
+        if _caller_owns_sigterm():
+            yield
+            return
+        with bridge():
+            yield
+
+    capture_sigterm._deformsmith = True  # type: ignore[attr-defined]
+    engine.capture_sigterm = capture_sigterm
+
+
 @contextlib.contextmanager
 def local_runtime() -> Iterator[None]:
     """Run flows locally without the ~1 s heartbeat join per flow (left on against a user's server), against the
     prestarted local server where there is one."""
     from prefect.settings import PREFECT_API_URL, PREFECT_FLOWS_HEARTBEAT_FREQUENCY, temporary_settings
+
+    if _CALLER_SIGTERM_HANDLER is not None:
+        _route_prefect_sigterm_bridge()
 
     if uses_remote_server():
         yield

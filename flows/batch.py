@@ -392,8 +392,8 @@ def run_batch(requests_jsonl: Path, out_root: Path, concurrency: int = 1, device
 def _sigterm_as_interrupt() -> Iterator[None]:
     """In the main thread, SIGTERM (a scheduler or `kill` stopping the batch) stops it as Ctrl-C does, so that its
     children, which run in sessions of their own, do not outlive it."""
-    if threading.current_thread() is not threading.main_thread():
-        yield
+    if threading.current_thread() is not threading.main_thread() or callable(signal.getsignal(signal.SIGTERM)):
+        yield  # (a handler of the caller's own, as the command line's: it stops the batch as Ctrl-C does)
         return
 
     def interrupt(signum: int, frame: Any) -> None:

@@ -5,10 +5,13 @@ from __future__ import annotations
 import json
 import os
 import sys
+from datetime import datetime
 from typing import Any, NoReturn
 
 import typer
-from rich.console import Console
+from rich.console import Console, JustifyMethod
+from rich.style import Style
+from rich.text import Text
 
 app = typer.Typer(
     name="deformsmith",
@@ -24,8 +27,25 @@ app.add_typer(cache_app, name="cache")
 app.add_typer(bench_app, name="bench")
 app.add_typer(verify_app, name="verify")
 
-# progress and tables go to stderr (--json data goes to stdout); progress lines carry the time, not the source line
-console = Console(stderr=True, log_path=False)
+
+class ProgressConsole(Console):
+    """The stderr console: `log` prints one line, its time first, that only the terminal wraps (rich's own log
+    folds a path or a number at the width it assumes, 80 columns in a log file)."""
+
+    def log(self, *objects: Any, sep: str = " ", end: str = "\n", style: str | Style | None = None,
+            justify: JustifyMethod | None = None, emoji: bool | None = None, markup: bool | None = None,
+            highlight: bool | None = None, log_locals: bool = False, _stack_offset: int = 1) -> None:
+        stamp = Text(datetime.now().strftime("[%X]"), style="log.time")
+        self.print(stamp, *objects, sep=sep, end=end, style=style, justify=justify, emoji=emoji, markup=markup,
+                   highlight=highlight, soft_wrap=True)
+
+
+# Results go to stdout (`deformsmith inspect DIR > f` holds the table), progress, status lines and warnings to stderr;
+# --json data goes to stdout through emit_json. Neither console breaks a line inside a number, a path or a command to
+# paste (soft_wrap: a line is as long as it is; only tables are laid out at the console's width). Progress lines carry
+# the time, not the source line.
+console = ProgressConsole(stderr=True, log_path=False, soft_wrap=True)
+results = Console(soft_wrap=True)  # (sys.stdout at each write: a redirect or a test's capture sees it)
 
 _USER_PREFECT_LEVEL = "PREFECT_LOGGING_LEVEL" in os.environ
 

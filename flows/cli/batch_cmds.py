@@ -7,7 +7,7 @@ from pathlib import Path
 import typer
 from rich.table import Table
 
-from flows.cli.apps import app, check_device, console, emit_json, fail
+from flows.cli.apps import app, check_device, console, emit_json, fail, results
 from flows.cli.preflight import check_locations
 
 
@@ -66,7 +66,7 @@ def batch(
     if as_json:
         emit_json(report.model_dump(mode="json"))
     else:
-        console.print(_table(report))
-        console.print(f"report: {Path(report.out_root) / REPORT_JSON}")
+        results.print(_table(report))
+        results.print(f"report: {Path(report.out_root) / REPORT_JSON}", markup=False, highlight=False)
     if report.failed:
         raise typer.Exit(1)

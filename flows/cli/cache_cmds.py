@@ -13,7 +13,7 @@ from rich.table import Table
 
 from cache.config import ENV_VAR, use_cache_root
 from contracts.errors import DeformSmithError, InputError
-from flows.cli.apps import bench_app, cache_app, console, emit_json, fail
+from flows.cli.apps import bench_app, cache_app, console, emit_json, fail, results
 
 CacheOption = Annotated[
     Path | None,
@@ -90,7 +90,7 @@ def stats_cmd(cache: CacheOption = None, json_out: JsonOption = False) -> None:
     table.add_row("newest use", _when(data["newest_use"]))
     table.add_row("runs logged", f"{data['events']} ({data['hits']} hits, {data['misses']} executed)")
     table.add_row("temp dirs", str(data["tmp_dirs"]))
-    console.print(table)
+    results.print(table)
 
 
 @cache_app.command("verify")
@@ -111,8 +111,8 @@ def verify_cmd(
                    "corrupt": [{"key": p.key, "reason": p.reason} for p in problems]})
     else:
         for p in problems:
-            console.print(f"[red]corrupt[/red] {p.key}: {p.reason}" + (" (removed)" if remove else ""))
-        console.print(f"checked {len(keys)} entries, {len(problems)} corrupt")
+            results.print(f"[red]corrupt[/red] {p.key}: {p.reason}" + (" (removed)" if remove else ""))
+        results.print(f"checked {len(keys)} entries, {len(problems)} corrupt")
     if problems:
         raise typer.Exit(1)
 
@@ -145,7 +145,7 @@ def gc_cmd(
     if json_out:
         emit_json(result)
         return
-    console.print(f"removed {len(result['removed'])} entries ({_human(result['freed_bytes'])}); "
+    results.print(f"removed {len(result['removed'])} entries ({_human(result['freed_bytes'])}); "
                   f"{result['remaining_entries']} remain ({_human(result['remaining_bytes'])}); "
                   f"{len(dead['removed'])} temporaries of dead processes removed ({_human(dead['freed_bytes'])})")
 
@@ -176,4 +176,4 @@ def bench_cache_cmd(
             table.add_row(k, f"{v * 1e3:.2f} ms" if k.endswith("_s") else f"{v:g}")
     for name, res in data.get("codecs", {}).items():
         table.add_row(f"codec {name}", f"put {res['put_s'] * 1e3:.1f} ms / hit {res['hit_s'] * 1e3:.1f} ms")
-    console.print(table)
+    results.print(table)

@@ -6,7 +6,7 @@ from pathlib import Path
 
 import typer
 
-from flows.cli.apps import app, console
+from flows.cli.apps import app, results
 
 
 @app.command("card")
@@ -22,4 +22,4 @@ def card(
     if cache_dir is not None:
         use_cache_root(cache_dir)
     png, page = build_card(asset_dir.expanduser())  # InputError on a bad directory: one `error:` line, exit 2
-    console.print(f"card: {png}\ncard: {page}", highlight=False)
+    results.print(f"card: {png}\ncard: {page}", markup=False, highlight=False)

@@ -7,7 +7,7 @@ from pathlib import Path
 
 import typer
 
-from flows.cli.apps import app, bench_app, console, emit_json, fail
+from flows.cli.apps import app, bench_app, console, emit_json, fail, results
 
 
 def _fmt(v: float | None) -> str:
@@ -45,16 +45,16 @@ def crosscheck_cmd(
     if as_json:
         emit_json(report.model_dump(mode="json"))
         return
-    console.print(f"{report.sim} crosscheck of {report.asset} (strain {report.probes['strain']}, drop height "
+    results.print(f"{report.sim} crosscheck of {report.asset} (strain {report.probes['strain']}, drop height "
                   f"fraction {report.probes['height_fraction']})")
-    console.print(f"{'metric':24s} {'DeformSmith':>12s} {report.sim:>12s} {'err':>7s} {'calibrated':>12s} {'err':>7s}")
+    results.print(f"{'metric':24s} {'DeformSmith':>12s} {report.sim:>12s} {'err':>7s} {'calibrated':>12s} {'err':>7s}")
     for name, row in report.metrics.items():
-        console.print(f"{name:24s} {_fmt(row.ours):>12s} {_fmt(row.theirs):>12s} {_pct(row.rel_error):>7s} "
+        results.print(f"{name:24s} {_fmt(row.ours):>12s} {_fmt(row.theirs):>12s} {_pct(row.rel_error):>7s} "
                       f"{_fmt(row.theirs_calibrated):>12s} {_pct(row.rel_error_calibrated):>7s}")
     if report.calibration:
-        console.print(f"calibrated parameters: {report.calibration['parameters']}")
-        console.print(f"modulus and rebound within {100 * report.agree_within:.0f} %: {report.agrees}")
-    console.print(f"{report.sim_calls} simulations, {report.wall_time_s:.1f} s")
+        results.print(f"calibrated parameters: {report.calibration['parameters']}")
+        results.print(f"modulus and rebound within {100 * report.agree_within:.0f} %: {report.agrees}")
+    results.print(f"{report.sim_calls} simulations, {report.wall_time_s:.1f} s")
 
 
 @bench_app.command("crosscheck")
@@ -77,5 +77,5 @@ def bench_crosscheck(
         emit_json(data)
         return
     for row in data["rows"]:
-        console.print(f"{row['asset']:10s} {row['sim']:8s} {row['metric']:24s} ours {_fmt(row['ours']):>10s} "
+        results.print(f"{row['asset']:10s} {row['sim']:8s} {row['metric']:24s} ours {_fmt(row['ours']):>10s} "
                       f"theirs {_fmt(row['theirs']):>10s} calibrated {_fmt(row['theirs_calibrated']):>10s}")

@@ -6,7 +6,7 @@ from pathlib import Path
 
 import typer
 
-from flows.cli.apps import app, check_device, console, emit_json, fail
+from flows.cli.apps import app, check_device, console, emit_json, fail, results
 from flows.cli.preflight import check_locations
 
 ABLATIONS = ("hierarchy", "harness", "manipulation")
@@ -54,7 +54,7 @@ def eval_cmd(
     if as_json:
         emit_json(summary)
         return
-    console.print(f"report: {summary['report']}")
+    results.print(f"report: {summary['report']}", markup=False, highlight=False)
     for abl, arms in summary["figures"].items():
         for arm, figs in arms.items():
             parts = []
@@ -63,6 +63,6 @@ def eval_cmd(
                     continue
                 parts.append(f"{m}={100 * f['value']:.0f}% (N={f['n']})" if f["unit"] == "rate"
                              else f"{m}={f['value']:.1f} (N={f['n']})")
-            console.print(f"{abl} / {arm}: " + ", ".join(parts))
+            results.print(f"{abl} / {arm}: " + ", ".join(parts))
     if summary["failed_cases"]:
-        console.print(f"{len(summary['failed_cases'])} case(s) crashed; see the report")
+        results.print(f"{len(summary['failed_cases'])} case(s) crashed; see the report")

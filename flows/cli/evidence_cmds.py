@@ -8,12 +8,11 @@ from typing import Any
 
 import typer
 from rich.markup import escape
-from rich.padding import Padding
 from rich.table import Table
 
 from contracts.errors import InputError
 from contracts.evidence import Attempt, StageTally
-from flows.cli.apps import app, console, emit_json, fail
+from flows.cli.apps import app, emit_json, fail, results
 
 VERDICT_STYLE = {"accepted": "green", "best_so_far": "green", "rejected": "red", "rolled_back": "yellow",
                  "revise": "yellow", "escalated": "yellow"}
@@ -41,8 +40,9 @@ def tally_table(tallies: list[StageTally], figures: dict[str, str] | None = None
     table.add_column("passed", no_wrap=True)
     table.add_column("attempts", justify="right", no_wrap=True)
     table.add_column("simulations", justify="right", no_wrap=True)
-    if figures is not None:
-        table.add_column("key figures", overflow="fold", ratio=1)
+    if figures is not None:  # wrapped between figures, never inside one: as wide as the longest 'name=value,'
+        widest = max((len(word) for text in figures.values() for word in text.split()), default=0)
+        table.add_column("key figures", overflow="fold", ratio=1, min_width=widest)
     for t in tallies:
         row = [t.stage, passed_word(t), str(t.attempts), str(t.sim_calls)]
         table.add_row(*row, *([escape(figures.get(t.stage, ""))] if figures is not None else []))
@@ -67,7 +67,7 @@ def _fmt(v: Any) -> str:
 
 
 def attempt_block(a: Attempt) -> list[str]:
-    """An attempt as a heading line and indented detail lines (wrapped by the console, never cut)."""
+    """An attempt as a heading line and indented detail lines (one line each, never wrapped nor cut)."""
     src = a.source.backend + (f"/{a.source.model}" if a.source.model else "")
     if a.source.retries:
         src += f", {a.source.retries} retries"
@@ -85,9 +85,9 @@ def attempt_block(a: Attempt) -> list[str]:
 
 def print_tallies(tallies: list[StageTally], figures: dict[str, str] | None = None, title: str = "stages") -> None:
     """The tally table and its notes."""
-    console.print(tally_table(tallies, figures, title))
+    results.print(tally_table(tallies, figures, title))
     for line in tally_notes(tallies):
-        console.print(line, markup=False, highlight=False)
+        results.print(line, markup=False, highlight=False)
 
 
 @app.command("evidence")
@@ -115,15 +115,15 @@ def evidence(
     for f, rows in by_file.items():
         root = f.parent.parent if f.parent.name == "evidence" else f.parent
         tallies = [t for t in stage_tallies(root, rows) if not wanted or t.stage == wanted]
-        console.print(f"[bold]{escape(str(f))}[/bold]", highlight=False)
+        results.print(f"[bold]{escape(str(f))}[/bold]", highlight=False)
         print_tallies(tallies)
         for a in rows:
             if wanted and a.stage != wanted:
                 continue
             head, *details = attempt_block(a)
-            console.print(head, highlight=False)
+            results.print(head, highlight=False)
             for line in details:
-                console.print(Padding(line, (0, 0, 0, 4)), highlight=False)
+                results.print("    " + line, highlight=False)
         for t in tallies:  # how each harness ended, in its own words
             if t.message and t.stage != "L0":
-                console.print(f"[bold]{t.stage}[/bold] {t.status}: {escape(t.message)}", highlight=False)
+                results.print(f"[bold]{t.stage}[/bold] {t.status}: {escape(t.message)}", highlight=False)

@@ -6,7 +6,7 @@ from pathlib import Path
 
 import typer
 
-from flows.cli.apps import app, console, emit_json
+from flows.cli.apps import app, emit_json, results
 
 
 @app.command("export")
@@ -30,9 +30,10 @@ def export_cmd(
     if as_json:
         emit_json(manifest.model_dump(mode="json"))
         return
-    console.print(f"tet mesh: {root / manifest.tet_mesh}")
+    # one line each, never wrapped (a load command is pasted as it is), no markup or highlighting read into them
+    results.print(f"tet mesh: {root / manifest.tet_mesh}", markup=False, highlight=False)
     for name in (to.split(",") if to != "all" else list(manifest.targets)):
         t = manifest.targets.get(name.strip())
         if t is not None:
-            console.print(f"{t.target}: {root / t.target}/  load: {t.load_hint}")
-    console.print(f"manifest: {root / MANIFEST}")
+            results.print(f"{t.target}: {root / t.target}/  load: {t.load_hint}", markup=False, highlight=False)
+    results.print(f"manifest: {root / MANIFEST}", markup=False, highlight=False)

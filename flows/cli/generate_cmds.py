@@ -11,7 +11,7 @@ from pydantic import ValidationError
 from rich.markup import escape
 
 from contracts.errors import validation_message
-from flows.cli.apps import app, bench_app, check_device, console, emit_json, fail
+from flows.cli.apps import app, bench_app, check_device, console, emit_json, fail, results
 from flows.cli.geometry_cmds import GEOMETRY_BACKEND_HELP
 from flows.cli.llm_option import LLM_FALLBACK_HELP, llm_agents
 from flows.cli.preflight import STRICT_CONCEPT_HELP, check_request, concept_line
@@ -152,10 +152,10 @@ def generate(
                    "files": manifest.files, "wall_time_s": dict(TIMINGS)})
     else:
         print_summary(manifest, out)
-        console.print("wall time: " + ", ".join(f"{k} {v:.1f} s" for k, v in TIMINGS.items()))
-        console.print(f"asset published: {out}")
+        results.print("wall time: " + ", ".join(f"{k} {v:.1f} s" for k, v in TIMINGS.items()))
+        results.print(f"asset published: {out}", markup=False, highlight=False)
     l3_line = next((s for s in manifest.validation if s.stage == "L3"), None)
-    if l3_line is not None and not l3_line.passed:
+    if l3_line is not None and not l3_line.passed:  # on stderr: with --json, stdout holds the JSON alone
         console.print(f"L3 did not pass: {l3_line.reason or ', '.join(l3_line.failed_gates)}; the asset is published "
                       f"with this outcome" + ("" if require_l3 else " (--require-l3 makes this exit 7)"), markup=False)
     if require_l3:
@@ -180,18 +180,18 @@ def inspect_asset(
     print_summary(manifest, asset)
     if manifest.material:
         m = manifest.material
-        console.print(f"material: E = {m.youngs_modulus_pa:.4g} Pa, nu = {m.poisson_ratio:.3g}, "
+        results.print(f"material: E = {m.youngs_modulus_pa:.4g} Pa, nu = {m.poisson_ratio:.3g}, "
                       f"damping = {m.damping_rate_per_s:.3g} 1/s")
     if manifest.physical_model:
         p = manifest.physical_model
-        console.print(f"physical: rho = {p.density_kg_per_m3:.4g} kg/m^3, mass = {p.mass_kg:.4g} kg, "
+        results.print(f"physical: rho = {p.density_kg_per_m3:.4g} kg/m^3, mass = {p.mass_kg:.4g} kg, "
                       f"{p.particle_count} particles")
     for s in manifest.validation:
         if s.failed_gates:
-            console.print(f"{s.stage} failed gates: {', '.join(s.failed_gates)}")
+            results.print(f"{s.stage} failed gates: {', '.join(s.failed_gates)}")
     if manifest.manipulation:
         o = manifest.manipulation
-        console.print(f"pick-and-place: lifted {o.lifted}, transported {o.transported}, released in target "
+        results.print(f"pick-and-place: lifted {o.lifted}, transported {o.transported}, released in target "
                       f"{o.released_in_target}, slipped {o.slipped}, max finger force "
                       f"{max(o.max_finger_force_n):.3g} N, strain (1 % of volume) "
                       f"{o.strain_p99 if o.strain_p99 is not None else float('nan'):.3g}, peak particle strain "
@@ -244,5 +244,5 @@ def bench_generate(
     if as_json:
         emit_json(data)
         return
-    console.print(f"warm rerun {data['warm_wall_s_median']} s (first line {data['first_line_s_median']} s), asset "
+    results.print(f"warm rerun {data['warm_wall_s_median']} s (first line {data['first_line_s_median']} s), asset "
                   f"{data['asset']['total_mb']} MB: {data['asset']['per_entry_mb']}")

@@ -14,7 +14,7 @@ from pydantic import ValidationError
 from rich.markup import escape
 
 from contracts.errors import validation_message
-from flows.cli.apps import app, bench_app, console, emit_json, fail, prefect_log_level
+from flows.cli.apps import app, bench_app, console, emit_json, fail, prefect_log_level, results
 from flows.cli.llm_option import LLM_FALLBACK_HELP, llm_agents
 from flows.cli.preflight import STRICT_CONCEPT_HELP, check_request, concept_line
 
@@ -82,7 +82,7 @@ def geometry(
 
         emit_json(document_json(AssetDir(out).geometry()))
     m = result.checks.metrics
-    console.print(
+    (console if as_json else results).print(  # the result line; beside --json output, on stderr
         f"[bold]{result.info.name}[/] ({result.info.source}): {m['extent_x_m']:.3f} x {m['extent_y_m']:.3f} x "
         f"{m['extent_z_m']:.3f} m, {m['volume_m3'] * 1e6:.1f} cm^3, {int(m['particle_count'])} particles, "
         f"{int(m['gaussian_count'])} Gaussians, {int(m['proxy_parts'])} convex parts -> {out}"
@@ -170,9 +170,9 @@ def _bench_suite(suite: Path, quality: str, sheet: Path | None, as_json: bool) -
     for r in result["rows"]:
         mass = f"{r['mass_estimate_kg'] * 1e3:8.1f} g" if r["mass_estimate_kg"] is not None else "       -  "
         ext = " x ".join(f"{v:.3f}" for v in r["extents_m"])
-        console.print(f"{r['text'][:44]:44s} {r['concept']:20s} {r['fallback_level']:9s} {ext} m {mass} "
+        results.print(f"{r['text'][:44]:44s} {r['concept']:20s} {r['fallback_level']:9s} {ext} m {mass} "
                       f"{r['seconds']:5.1f} s")
-    console.print(result["summary"])
+    results.print(result["summary"])
 
 
 @bench_app.command("geometry")
@@ -216,9 +216,9 @@ def bench_geometry(
     for name in ("turtle", "largest_pybullet_mesh"):
         for q, f in figures[name].items():
             if isinstance(f, dict) and "total_s" in f:
-                console.print(f"{name:24s} {q:9s} total {f['total_s']:6.2f} s  coacd {f['coacd_s']:6.2f} s "
+                results.print(f"{name:24s} {q:9s} total {f['total_s']:6.2f} s  coacd {f['coacd_s']:6.2f} s "
                               f"({100 * f['coacd_fraction']:.0f}%)  peak {f['peak_rss_mb']:.0f} MB  "
                               f"{f['particles']} particles")
     if "cache" in figures["turtle"]:
         c = figures["turtle"]["cache"]
-        console.print(f"flow first run {c['first_run_s']:.2f} s, cache-hit rerun {c['cache_hit_rerun_s']:.2f} s")
+        results.print(f"flow first run {c['first_run_s']:.2f} s, cache-hit rerun {c['cache_hit_rerun_s']:.2f} s")

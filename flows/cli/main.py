@@ -75,6 +75,8 @@ def quiet_user_error_logs() -> None:
     logging.getLogger("EventsWorker").setLevel(logging.ERROR)  # "Still processing items" while draining at exit
 
 
+_OWN_SIGNALS = False  # main() run as the program: flows.cli.stop handles SIGINT and SIGTERM
+
 # flow commands whose process ends without the interpreter's teardown once their work and exit hooks are done
 FAST_EXIT_COMMANDS = frozenset({"generate", "geometry", "physical", "material", "manipulate", "probe"})
 
@@ -102,16 +104,32 @@ def _exit_now(code: int) -> NoReturn:
 
 def main() -> None:
     """Run the CLI; a DeformSmithError becomes one line on stderr and its exit code. A flow command run as the
-    program (not a test's stand-in app) ends through _exit_now."""
-    fast = bool(sys.argv[1:2]) and sys.argv[1] in FAST_EXIT_COMMANDS and "app" not in globals()
+    program (not a test's stand-in app) ends through _exit_now. Run as the program, SIGINT and SIGTERM end it with one
+    line on stderr and exit 130 / 143 (flows.cli.stop)."""
+    global _OWN_SIGNALS
+    program = _OWN_SIGNALS = "app" not in globals()
+    fast = bool(sys.argv[1:2]) and sys.argv[1] in FAST_EXIT_COMMANDS and program
+    restore = None
+    if program:
+        from flows.cli import stop
+
+        restore = stop.install(sys.argv, resumes=bool(sys.argv[1:2]) and sys.argv[1] in FLOW_COMMANDS)
     try:
         _main()
-    except SystemExit as exc:
-        if not fast:
+    except BaseException as exc:
+        if restore is not None and stop.stopped() is not None:  # unwound after a stop signal: its line is said
+            stop.leave(stop.stopped() or 130)
+        if not fast or not isinstance(exc, SystemExit):
+            if restore is not None:
+                restore()  # (main() run in a test's process)
             raise
         if isinstance(exc.code, str):  # sys.exit("message"): printed, exit 1, as Python does
             sys.stderr.write(exc.code + "\n")
         _exit_now(exc.code if isinstance(exc.code, int) else int(exc.code is not None))
+    if restore is not None:
+        if stop.stopped() is not None:  # a signal that came as the command was ending
+            stop.leave(stop.stopped() or 130)
+        restore()
     if fast:
         _exit_now(0)
 
@@ -137,7 +155,7 @@ def _main() -> None:
         sys.stderr.write(f"error: {user}\n")
         sys.exit(user.exit_code)
     except SystemExit as exc:
-        if exc.code == 130:  # Ctrl-C: Typer turns KeyboardInterrupt into a silent exit 130
+        if exc.code == 130 and not _OWN_SIGNALS:  # Ctrl-C in a test's stand-in (else flows.cli.stop says it)
             resumes = sys.argv[1:2] and sys.argv[1] in FLOW_COMMANDS
             sys.stderr.write("interrupted" + ("; finished tasks are cached: the same command resumes from them\n"
                                               if resumes else "\n"))

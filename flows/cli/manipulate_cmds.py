@@ -7,7 +7,7 @@ from pathlib import Path
 import typer
 from rich.table import Table
 
-from flows.cli.apps import app, check_device, console, emit_json, fail
+from flows.cli.apps import app, check_device, console, emit_json, fail, results
 from flows.cli.preflight import check_asset_dir, check_outputs
 
 
@@ -64,8 +64,8 @@ def manipulate(
         table.add_column("value", justify="right")
         for k, v in sorted(record["labels"].items()):
             table.add_row(k, f"{v:.4g}")
-        console.print(table)
-        console.print(record["message"])
+        results.print(table)
+        results.print(record["message"], markup=False)
     if not record["passed"]:
         console.print(f"L3 did not pass: {record.get('reason') or record['message']}; recorded in "
                       f"{asset / 'manipulation.json'}" + ("" if require_l3 else " (--require-l3 makes this exit 7)"),
@@ -98,4 +98,4 @@ def replay_cmd(
     if as_json:
         emit_json(data)
     else:
-        console.print(data)
+        results.print(data)

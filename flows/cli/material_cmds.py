@@ -10,7 +10,7 @@ import typer
 from pydantic import ValidationError
 
 from contracts.errors import validation_message
-from flows.cli.apps import app, bench_app, console, emit_json, fail, prefect_log_level
+from flows.cli.apps import app, bench_app, console, emit_json, fail, prefect_log_level, results
 from flows.cli.preflight import check_asset_dir, check_locations
 
 RIGID_KINDS = ("place", "drop", "slide")  # L1 rigid probes (pybullet); `drop` is rigid unless --deformable
@@ -107,10 +107,10 @@ def probe(
     if as_json:
         emit_json(result.model_dump(mode="json"))
     else:
-        console.print(f"[bold]{kind}[/] health ok={result.health.ok} sim_calls={result.sim_calls} "
+        results.print(f"[bold]{kind}[/] health ok={result.health.ok} sim_calls={result.sim_calls} "
                       f"wall={result.wall_time_s:.1f} s")
         for k, v in sorted(result.metrics.items()):
-            console.print(f"  {k} = {v:.6g}")
+            results.print(f"  {k} = {v:.6g}")
     if not result.health.ok:
         fail(f"probe '{kind}' failed its numerical health: {result.health.check} at t={result.health.sim_time_s} s "
              f"({result.health.detail})", code=1)
@@ -163,9 +163,10 @@ def material(
         emit_json(document_json(record))
     if mat is None:
         fail(f"L2 found no valid material: {outcome.message}", code=1)
-    console.print(f"[bold]material[/]: E={mat.youngs_modulus_pa:.4g} Pa, nu={mat.poisson_ratio:.3g}, "
-                  f"damping={mat.damping_rate_per_s:.3g} 1/s ({outcome.status}, {record.sim_calls} simulation "
-                  f"calls, {wall_s:.1f} s) -> {adir.file('material')}")
+    (console if as_json else results).print(  # the result line; beside --json output, on stderr
+        f"[bold]material[/]: E={mat.youngs_modulus_pa:.4g} Pa, nu={mat.poisson_ratio:.3g}, "
+        f"damping={mat.damping_rate_per_s:.3g} 1/s ({outcome.status}, {record.sim_calls} simulation "
+        f"calls, {wall_s:.1f} s) -> {adir.file('material')}")
 
 
 @bench_app.command("l2")
@@ -214,4 +215,4 @@ def bench_l2(
         for sched, row in rows.items():
             table.add_row(kind, sched, str(row["sim_calls"]), f"{row['wall_s']:.2f}", str(row.get("x_sequential")),
                           str(row.get("x_one_probe")), str(row.get("same_metrics_as_alone")))
-    console.print(table)
+    results.print(table)

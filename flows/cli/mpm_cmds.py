@@ -7,7 +7,7 @@ import sys
 
 import typer
 
-from flows.cli.apps import bench_app, console, emit_json, fail, verify_app
+from flows.cli.apps import bench_app, console, emit_json, fail, results, verify_app
 
 
 @verify_app.command("physics")
@@ -28,26 +28,26 @@ def verify_physics(
     unknown = [n for n in names if n not in CASES]
     if unknown:
         fail(f"unknown case(s) {', '.join(unknown)}; known: {', '.join(CASES)}")
-    results = []
+    cases = []
     with contextlib.redirect_stdout(sys.stderr):  # Warp's own messages must not mix with --json output
         wp.init()
         for name in names:
             console.print(f"[dim]running {name} ({'quick' if quick else 'full'}, {device})...[/dim]")
-            results.extend(run_case(name, quick=quick, device=device))
-    all_pass = all(r.passed for r in results)
+            cases.extend(run_case(name, quick=quick, device=device))
+    all_pass = all(r.passed for r in cases)
     if json_out:
-        emit_json({"quick": quick, "device": device, "passed": all_pass, "cases": [r.as_dict() for r in results]})
+        emit_json({"quick": quick, "device": device, "passed": all_pass, "cases": [r.as_dict() for r in cases]})
     else:
         from rich.table import Table
 
         table = Table(title=f"MPM analytic suite ({'quick' if quick else 'full'}, {device})")
         for col in ("case", "measured", "expected", "error", "tolerance", "units", "pass", "s"):
             table.add_column(col)
-        for r in results:
+        for r in cases:
             err = f"{r.error:.3g}" + (" (rel)" if r.error_kind == "relative" else " (abs)")
             table.add_row(r.name, f"{r.measured:.5g}", f"{r.expected:.5g}", err, f"{r.tolerance:g}", r.units,
                           "[green]PASS[/green]" if r.passed else "[red]FAIL[/red]", f"{r.seconds:.1f}")
-        console.print(table)
+        results.print(table)
     if not all_pass:
         raise typer.Exit(1)
 
@@ -90,11 +90,11 @@ def bench_mpm(
     else:
         for k in ("device_name", "particles", "batch", "workers", "cpu_threads", "steps", "seconds", "us_per_step",
                   "particle_steps_per_s", "peak_memory_bytes", "finite"):
-            console.print(f"{k:>22}: {res[k]}")
+            results.print(f"{k:>22}: {res[k]}")
         cmp = res["sequential_comparison"]
         if cmp:
-            console.print(f"{'one after another':>22}: {cmp['sequential_us_per_step']:.2f} us/step "
+            results.print(f"{'one after another':>22}: {cmp['sequential_us_per_step']:.2f} us/step "
                           f"(batch {cmp['batch_us_per_step']:.2f}): {cmp['ratio_per_step']:.2f}x per step; "
                           f"whole rollouts {cmp['sequential_rollouts_s']:.3f} s vs {cmp['batch_rollout_s']:.3f} s: "
                           f"{cmp['ratio_end_to_end']:.2f}x end to end")
-        console.print(f"[dim]{res['note']}[/dim]")
+        results.print(f"[dim]{res['note']}[/dim]")

@@ -7,7 +7,7 @@ from pathlib import Path
 import typer
 from rich.table import Table
 
-from flows.cli.apps import app, console, emit_json, fail
+from flows.cli.apps import app, console, emit_json, fail, results
 from flows.cli.preflight import check_asset_dir
 
 
@@ -63,12 +63,12 @@ def physical(
             table.add_row("ground / gripper friction [-]", f"{phys.ground_friction:.3g} / {phys.gripper_friction:.3g}")
         for k, v in sorted(outcome.metrics.items()):
             table.add_row(k, f"{v:.4g}")
-        console.print(table)
+        results.print(table)
         if mass:
             lo, hi = mass["band_kg"]
-            console.print(f"mass check: {lo * 1e3:.3g}-{hi * 1e3:.3g} g from {mass['source']}")
+            results.print(f"mass check: {lo * 1e3:.3g}-{hi * 1e3:.3g} g from {mass['source']}")
             for note in mass["notes"]:
-                console.print(f"  {note}")
-        console.print(outcome.message)
+                results.print(f"  {note}", markup=False)
+        results.print(outcome.message, markup=False)
     if not outcome.passed:
         raise typer.Exit(1)

@@ -7,7 +7,7 @@ from pathlib import Path
 import typer
 from rich.table import Table
 
-from flows.cli.apps import bench_app, console, emit_json, fail
+from flows.cli.apps import bench_app, console, emit_json, fail, results
 
 
 @bench_app.command("render")
@@ -46,4 +46,4 @@ def bench_render(
             table.add_row(dev, f"{res['first_call_s']:.3f} s", f"{res['steady_s']:.3f} s")
         elif res:
             table.add_row(dev, res.get("skipped", "-"), "")
-    console.print(table)
+    results.print(table)

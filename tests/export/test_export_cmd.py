@@ -106,6 +106,28 @@ def test_export_writes_each_target_folder_and_the_manifest(
     assert set(again.targets) == set(manifest.targets)
 
 
+def test_export_prints_its_load_commands_on_stdout_each_on_one_line(
+        asset: Path, monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]) -> None:
+    """The export's result (where each target went and the command that loads it) is on stdout, one line each even
+    on a narrow console, so that a load command is pasted whole; stderr stays empty."""
+    from flows.cli.apps import results
+
+    monkeypatch.setattr(results, "width", 40)
+    monkeypatch.setattr(sys, "argv", ["deformsmith", "export", str(asset), "--to", "sofa"])
+    from flows.cli import main as cli_main
+
+    with pytest.raises(SystemExit) as done:  # Typer's exit 0
+        cli_main.main()
+    out, err = capsys.readouterr()
+    assert not done.value.code, err
+    root = asset / "export"
+    manifest = ExportManifest.model_validate_json((root / "manifest.json").read_text())
+    assert err == ""
+    assert out.splitlines() == [f"tet mesh: {root / manifest.tet_mesh}",
+                                f"sofa: {root / 'sofa'}/  load: {manifest.targets['sofa'].load_hint}",
+                                f"manifest: {root / 'manifest.json'}"]
+
+
 def test_usd_opens_validates_and_reads_back(asset: Path, tmp_path: Path) -> None:
     pytest.importorskip("pxr")
     from pxr import Usd, UsdGeom, UsdPhysics, UsdValidation

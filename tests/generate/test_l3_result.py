@@ -104,7 +104,7 @@ def test_cli_no_grasp_exits_0_and_require_l3_exits_7_both_publishing(tmp_path: P
     cache = tmp_path / "cache"
     first = _generate(tmp_path / "ball", cache, UNGRASPABLE)
     assert first.returncode == 0, first.stderr[-3000:]
-    said = _flat(first.stderr)
+    said = _flat(first.stdout + first.stderr)  # the summary on stdout, the L3 line on stderr
     manifest = json.loads((tmp_path / "ball" / "asset.json").read_text())
     l3 = manifest["validation"][-1]
     assert f"L3 did not pass: {l3['reason']}" in said and "NO — " in said and "asset published" in said

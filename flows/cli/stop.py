@@ -1,0 +1,205 @@
+"""SIGINT (Ctrl-C) and SIGTERM (a scheduler's `timeout`, `kill`): one line on stderr, exit 130 / 143 within ~2 s.
+
+On the first signal the handler says so in one line, silences everything after it (Python's logging, and stderr at
+the file-descriptor level: Prefect's crash records, its API client's retries, tracebacks of threads), and raises
+KeyboardInterrupt in the main thread: the run unwinds as Ctrl-C always unwound it (a working directory removed by its
+`finally`, nothing published, finished tasks in the cache). `main` then ends the process through `leave`. A backstop
+thread ends it `BACKSTOP_S` after the signal if the unwinding has not by then (a blocking call, a library retrying a
+server that is gone); a second signal ends it at once. Ending it: the child processes (Prefect's local server, batch
+requests, evaluation workers) are stopped, this process's own working directories removed, the output flushed,
+os._exit (no interpreter teardown, no joins of threads that may never end). The cache is as a kill leaves it: its
+entries are written atomically, and what a dead writer left is tidied by the next run or `cache gc`.
+"""
+
+from __future__ import annotations
+
+import os
+import re
+import shutil
+import signal
+import socket
+import sys
+import threading
+import time
+from pathlib import Path
+from collections.abc import Callable
+from types import FrameType
+from typing import NoReturn
+
+BACKSTOP_S = 1.3  # after the signal, the process ends by this time even if its main thread has not unwound [s]
+CHILD_GRACE_S = 0.4  # children get this long to end after SIGTERM (SIGINT for a batch request) before SIGKILL [s]
+LINES = {signal.SIGINT: "interrupted", signal.SIGTERM: "stopped by SIGTERM"}
+RESUMES = "; finished tasks are cached: the same command resumes from them"
+
+
+class _State:
+    signum: int | None = None
+    resumes = False  # a command whose finished tasks are cached (the line says a rerun resumes from them)
+    argv: list[str] = []
+
+
+def install(argv: list[str], resumes: bool) -> Callable[[], None]:
+    """Take SIGTERM, and SIGINT unless it is ignored (a background job), in the main thread; returns what puts the
+    previous handlers back. `resumes`: the command runs cached tasks. Prefect's flow engine is kept from taking
+    SIGTERM over while a flow runs."""
+    if threading.current_thread() is not threading.main_thread():
+        return lambda: None
+    _State.argv, _State.resumes, _State.signum = list(argv), resumes, None
+    previous = {sig: signal.getsignal(sig) for sig in (signal.SIGTERM, signal.SIGINT)}
+    signal.signal(signal.SIGTERM, _on_signal)
+    if previous[signal.SIGINT] is not signal.SIG_IGN:
+        signal.signal(signal.SIGINT, _on_signal)
+    from cache.runtime import leave_sigterm_to
+
+    leave_sigterm_to(_on_signal)
+
+    def restore() -> None:
+        for sig, handler in previous.items():
+            if handler is not None:
+                signal.signal(sig, handler)
+
+    return restore
+
+
+def stopped() -> int | None:
+    """The exit status a stop signal asks for (130, 143), or None when none came."""
+    return None if _State.signum is None else 128 + _State.signum
+
+
+def _on_signal(signum: int, frame: FrameType | None) -> None:
+    if _State.signum is not None:  # a second signal: no more waiting
+        leave(128 + _State.signum)
+    _State.signum = signum
+    line = LINES.get(signal.Signals(signum), f"stopped by {signal.Signals(signum).name}")
+    _say(line + (RESUMES if _State.resumes else ""))
+    _silence()
+    threading.Thread(target=_backstop, name="stop-backstop", daemon=True).start()
+    raise KeyboardInterrupt
+
+
+def _say(line: str) -> None:
+    """The one line, on a line of its own (a status spinner's line cleared, the cursor it hid shown)."""
+    try:
+        sys.stderr.flush()
+    except (OSError, ValueError):
+        pass
+    try:
+        prefix = "\r\x1b[2K\x1b[?25h" if os.isatty(2) else ""
+        os.write(2, (prefix + line + "\n").encode())
+    except OSError:
+        pass
+
+
+def _silence() -> None:
+    """Nothing more on stderr: logging off, fd 2 onto /dev/null (Python's writes and native ones alike)."""
+    import logging
+
+    logging.disable(logging.CRITICAL)
+    try:
+        null = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(null, 2)
+        os.close(null)
+    except OSError:
+        pass
+
+
+def _backstop() -> None:
+    time.sleep(BACKSTOP_S)
+    leave(stopped() or 130)
+
+
+def leave(code: int) -> NoReturn:
+    """End the process now: children stopped, own working directories removed, output flushed, os._exit(code)."""
+    try:
+        _stop_children()
+        _remove_own_working_dirs()
+    finally:
+        for stream in (sys.stdout, sys.stderr):
+            try:
+                stream.flush()
+            except (OSError, ValueError):
+                pass
+        os._exit(code)
+
+
+def _children() -> list[int]:
+    """This process's child processes (Linux /proc; elsewhere those multiprocessing and the prestart know of)."""
+    me, found = os.getpid(), []
+    try:
+        for entry in os.scandir("/proc"):
+            if entry.name.isdigit():
+                try:
+                    with open(f"/proc/{entry.name}/stat", "rb") as fh:
+                        stat = fh.read()
+                except OSError:
+                    continue
+                fields = stat[stat.rfind(b")") + 2:].split()  # after "pid (comm) ": state, ppid, ...
+                if len(fields) > 1 and int(fields[1]) == me:
+                    found.append(int(entry.name))
+        return found
+    except OSError:
+        pass
+    import multiprocessing
+
+    found = [p.pid for p in multiprocessing.active_children() if p.pid]
+    server = sys.modules.get("cache.runtime")
+    proc = getattr(getattr(server, "_PRESTART", None), "process", None)
+    return found + ([proc.pid] if proc is not None and proc.poll() is None else [])
+
+
+def _stop_children() -> None:
+    """SIGINT to a child that leads a session of its own (a batch request: it removes its working directory), SIGTERM
+    to the others (Prefect's server, workers); SIGKILL to their groups after CHILD_GRACE_S. Reaped, so that none
+    holds this process's stderr open after it ends."""
+    children = _children()
+    leaders = set()
+    for pid in children:
+        try:
+            if os.getpgid(pid) == pid and os.getsid(pid) == pid:
+                leaders.add(pid)
+                os.killpg(pid, signal.SIGINT)
+            else:
+                os.kill(pid, signal.SIGTERM)
+        except OSError:
+            pass
+    left, deadline = set(children), time.monotonic() + CHILD_GRACE_S
+    while left and time.monotonic() < deadline:
+        for pid in list(left):
+            try:
+                done, _ = os.waitpid(pid, os.WNOHANG)
+            except ChildProcessError:
+                done = pid  # reaped elsewhere (its Popen object)
+            if done:
+                left.discard(pid)
+        time.sleep(0.02)
+    for pid in children:
+        try:
+            os.killpg(pid, signal.SIGKILL) if pid in leaders else os.kill(pid, signal.SIGKILL)
+        except OSError:
+            pass
+
+
+_WORKING = re.compile(r"^\..+\.(?:partial|tmp)-(?P<host>[^~]+)~(?P<pid>\d+)~")
+
+
+def _remove_own_working_dirs() -> None:
+    """This process's `.<name>.partial-` / `.tmp-` working directories (cache.tempfiles) beside the paths its command
+    line names (and in out/, generate's default parent) that its unwinding did not get to remove. A set-aside previous
+    asset (`.old-`) is left for the next run to restore or clear, as after a kill."""
+    tag = (socket.gethostname(), str(os.getpid()))
+    places: set[Path] = {Path("out").absolute()}
+    for arg in _State.argv[1:]:
+        value = arg.split("=", 1)[1] if arg.startswith("--") and "=" in arg else arg
+        if value.startswith("-") or not value:
+            continue
+        path = Path(value).expanduser().absolute()
+        places.update((path, path.parent, path / "export"))
+    for place in places:
+        try:
+            entries = list(place.iterdir()) if place.is_dir() else []
+        except OSError:
+            continue
+        for entry in entries:
+            m = _WORKING.match(entry.name)
+            if m and (m.group("host"), m.group("pid")) == tag:
+                shutil.rmtree(entry, ignore_errors=True)
