@@ -140,5 +140,6 @@ def test_a_run_that_does_not_unwind_is_ended_by_the_backstop(tmp_path: Path) -> 
     t0 = time.time()
     proc.send_signal(signal.SIGTERM)
     _, err = proc.communicate(timeout=30)
-    assert proc.returncode == 143 and time.time() - t0 < 2.5
+    took = time.time() - t0
+    assert proc.returncode == 143 and took < 3.0, (proc.returncode, took, err)  # the backstop: 1.3 s after the signal
     assert err == "stopped by SIGTERM; finished tasks are cached: the same command resumes from them\n"
