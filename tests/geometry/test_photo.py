@@ -393,3 +393,43 @@ def test_real_photo_of_a_soft_object_matches_its_mask_upright(row: dict) -> None
 def test_real_photo_of_a_rigid_object_is_refused(row: dict) -> None:
     with pytest.raises(InputError, match="rigid"):
         targets_from_request(AssetRequest(image_path=PHOTOS / row["file"], text=f"a {row['object']}"))
+
+
+# -- #35 item 5: the mask is the whole object and only it (rough hand labels, tests/geometry/photos/masks.json) --
+def _labels() -> dict:
+    path = PHOTOS / "masks.json"
+    return json.loads(path.read_text(encoding="utf-8")) if path.is_file() else {}
+
+
+# known failures of the current segmentation (benchmarks/segmentation_sheet.py --labels shows each); strict, so a fix
+# that makes one pass must remove it from here
+_MASK_KNOWN_BAD = {
+    "backpack_co3d_relpose.jpg": "the dark side panel and strap are lost (IoU 0.74)",
+    "red_apple_jetson.jpg": "the highlighted left side is cut off (IoU 0.63)",
+    "cherries_magic123.jpg": "one cherry of the two (IoU 0.43)",
+    "basketball_depthanything.jpg": "the hoop's rim and net are taken with the ball (IoU 0.75)",
+    "plastic_bottle_embodiedgen.jpg": "the white cap and the bottom are lost (IoU 0.67)",
+}
+
+
+def _mask_case(row: dict) -> object:
+    reason = _MASK_KNOWN_BAD.get(row["file"])
+    marks = [pytest.mark.xfail(reason=reason, strict=True)] if reason else []
+    return pytest.param(row, id=row["file"], marks=marks)
+
+
+@pytest.mark.skipif(not _SOFT, reason="no photos in tests/geometry/photos")
+@pytest.mark.parametrize("row", [_mask_case(r) for r in _SOFT])
+def test_real_photo_mask_is_the_whole_object(row: dict) -> None:
+    """Each soft photo's mask against a rough hand label of the object (IoU >= 0.8); a photo with transparency is
+    segmented by its own alpha."""
+    from benchmarks.segmentation_sheet import label_mask
+
+    img = image.load_image(PHOTOS / row["file"])
+    mask, method = image.segment(img)
+    shapes = _labels().get(row["file"])
+    if shapes is None:
+        assert method == "alpha", f"{row['file']}: no hand label in masks.json and no alpha"
+        return
+    label = label_mask(shapes, mask.shape)
+    assert _iou(mask, label) >= 0.8, f"{row['file']}: mask IoU {_iou(mask, label):.3f} with the hand label"
