@@ -112,9 +112,9 @@ def main() -> None:
     restore = None
     if program:
         from flows.cli import stop
-
-        restore = stop.install(sys.argv, resumes=bool(sys.argv[1:2]) and sys.argv[1] in FLOW_COMMANDS)
     try:
+        if program:  # (inside the try: a signal right after it still ends the command through stop.leave)
+            restore = stop.install(sys.argv, resumes=bool(sys.argv[1:2]) and sys.argv[1] in FLOW_COMMANDS)
         _main()
     except BaseException as exc:
         if restore is not None and stop.stopped() is not None:  # unwound after a stop signal: its line is said

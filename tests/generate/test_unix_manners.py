@@ -124,12 +124,19 @@ _SWALLOWS = """
 import sys, time
 from flows.cli import stop
 stop.install(["deformsmith", "generate"], resumes=True)
-print("ready", flush=True)
-while True:  # code that swallows KeyboardInterrupt (a retry loop, a blocking call that restarts)
-    try:
-        time.sleep(10)
-    except KeyboardInterrupt:
-        print("swallowed", file=sys.stderr, flush=True)  # after the line: silenced
+
+def swallow():  # code that swallows KeyboardInterrupt (a retry loop, a blocking call that restarts)
+    while True:
+        try:
+            time.sleep(10)
+        except KeyboardInterrupt:
+            print("swallowed", file=sys.stderr, flush=True)  # after the line: silenced
+
+try:
+    print("ready", flush=True)
+    swallow()
+except KeyboardInterrupt:  # the signal came before swallow's own `try`
+    swallow()
 """
 
 
