@@ -363,6 +363,12 @@ def concept_domain(key: str) -> str:
     return "thing"
 
 
+@functools.lru_cache(maxsize=1)
+def _multiword_nouns() -> dict[str, tuple[str, str, bool]]:
+    """Lexicon nouns of two words or more ('sea slug', 'jerusalem artichoke')."""
+    return {n: v for n, v in noun_index().items() if len(n.split()) > 1}
+
+
 def known_noun(word: str) -> bool:
     """True when a word names a physical thing: a lexicon noun or category, or a WordNet noun of an artifact, food,
     animal or plant; colour and material words are modifiers, not the object."""
@@ -397,6 +403,9 @@ def read_text(text: str) -> Reading:
         joined = _find(t_shape, _function_word_nouns())
         if joined and joined[0][2] not in main:
             main = joined[0][2]  # 'pain au chocolat', 'sophie the giraffe': one noun whatever the parse says
+        covering = [h for h in _find(t_shape, _multiword_nouns()) if phrase.head in h[2].split() and h[2] not in main]
+        if covering and not _find(main, noun_index()):
+            main = covering[0][2]  # 'a sea slug': the parse took 'sea' for the head; the lexicon knows the whole
         head, compound, unknown = _head(main)
         if head is None and unknown is None:
             head, compound, unknown = _head(t_shape)  # the object may be named after 'with' ('one with a bear face')
