@@ -76,6 +76,10 @@ class TargetBand(Model):
         return value - self.center
 
 
+def _measured(value: float | None) -> bool:
+    return value is not None and math.isfinite(value)
+
+
 class TargetBehaviour(Model):
     """What the requested material should do in the probes, plus priors that seed the first proposal."""
 
@@ -90,16 +94,37 @@ class TargetBehaviour(Model):
         """The band on a metric, if any."""
         return next((b for b in self.bands if b.metric == metric), None)
 
+    def not_measured(self, metrics: dict[str, float]) -> list[str]:
+        """The weighted bands' metrics that were not measured (absent, or not a finite number): neither met nor
+        missed (#36); contracts.probes.not_measured_reason says why."""
+        return [b.metric for b in self.bands if b.weight > 0 and not _measured(metrics.get(b.metric))]
+
+    def unmet(self, metrics: dict[str, float]) -> list[str]:
+        """The weighted bands' metrics that were measured outside their band."""
+        return [b.metric for b in self.bands
+                if b.weight > 0 and _measured(metrics.get(b.metric)) and not b.contains(metrics.get(b.metric))]
+
+    def _judged(self, metrics: dict[str, float]) -> bool:
+        """Whether there is anything to judge: no weighted band, or at least one of them measured."""
+        weighted = [b for b in self.bands if b.weight > 0]
+        return not weighted or any(_measured(metrics.get(b.metric)) for b in weighted)
+
     def met(self, metrics: dict[str, float]) -> bool:
-        """True when every weighted band holds."""
-        return all(b.contains(metrics.get(b.metric)) for b in self.bands if b.weight > 0)
+        """True when every weighted band that was measured holds (a target not measured is no miss: see
+        not_measured; the stage's hard gates and required observations decide what must be measured). False when
+        none of the weighted bands was measured."""
+        return self._judged(metrics) and not self.unmet(metrics)
 
     def score(self, metrics: dict[str, float]) -> float:
-        """Agreement in (0, 1]: weighted mean of exp(-deviation); 1.0 when every band holds (and with no bands)."""
-        total = sum(b.weight for b in self.bands)
+        """Agreement in [0, 1] over the measured bands: weighted mean of exp(-deviation); 1.0 when every measured band
+        holds (and with no bands), 0.0 when none was measured."""
+        if not self._judged(metrics):
+            return 0.0
+        bands = [b for b in self.bands if _measured(metrics.get(b.metric))]
+        total = sum(b.weight for b in bands)
         if total <= 0:
             return 1.0
-        return sum(b.weight * math.exp(-b.deviation(metrics.get(b.metric))) for b in self.bands) / total
+        return sum(b.weight * math.exp(-b.deviation(metrics.get(b.metric))) for b in bands) / total
 
 
 class HistoryEntry(Model):

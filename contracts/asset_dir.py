@@ -125,6 +125,8 @@ class MaterialRecord(Model):
     material: Material | None
     physical_model: PhysicalModel
     metrics: dict[str, float]
+    not_measured: dict[str, str] = Field(default_factory=dict, description="target metrics the selection probes did "
+                                         "not measure on the chosen material -> why (#36: neither met nor missed)")
     held_out: HeldOutSummary
     selection: SelectionSummary
     sim_calls: int

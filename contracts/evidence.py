@@ -39,6 +39,8 @@ class EvidenceRecord(Model):
     metrics: dict[str, float] = Field(default_factory=dict)
     recordings: list[str] = Field(default_factory=list, description=".rrd paths")
     sim_calls: int = 0
+    not_measured: dict[str, str] = Field(default_factory=dict,
+                                         description="target metric -> why the probes did not measure it")
 
 
 class Attempt(Model):
@@ -74,7 +76,10 @@ class StageTally(Model):
     extra_sim_calls: dict[str, int] = Field(default_factory=dict,
                                             description="simulations outside the loop by role: screening, held_out, "
                                                         "robustness, confirmation, other")
-    unmet_targets: list[str] = Field(default_factory=list, description="target bands the kept candidate misses")
+    unmet_targets: list[str] = Field(default_factory=list,
+                                     description="target bands the kept candidate was measured outside of")
+    not_measured: dict[str, str] = Field(default_factory=dict,
+                                         description="target bands not measured on the kept candidate -> why")
     message: str = ""
 
     @property

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 from typing import Literal
 
 from pydantic import Field
@@ -53,3 +54,28 @@ class ProbeResult(Model):
     wall_time_s: float = Field(default=0.0, ge=0, description="wall time of the probe [s]")
     cache_key: str | None = Field(default=None, description="content key of the probe's cached result")
     recording: str | None = Field(default=None, description="path of the probe's .rrd, relative to the asset")
+
+
+# Why a target metric can be absent from a candidate's evidence, from the metrics its probes did report (#36): a
+# target that was not measured is "not measured" with this reason, never a miss.
+def _lift_reason(metrics: dict[str, float]) -> str | None:
+    if metrics.get("lift_held") == 0.0:
+        rise = metrics.get("pinch_rise_m")
+        rose = f": the pinched part rose {rise * 1000:.0f} mm" if isinstance(rise, float) and math.isfinite(rise) else ""
+        return f"the lift probe's pinch did not hold the object{rose}, so its sag under its own weight was not seen"
+    if "lift_held" not in metrics:
+        return "the lift probe did not run for this candidate"
+    return None
+
+
+_MISSING_REASONS = {"sag_ratio": _lift_reason}
+
+
+def not_measured_reason(metric: str, metrics: dict[str, float]) -> str:
+    """Why `metric` is missing (or not finite) among a candidate's metrics, in words."""
+    value = metrics.get(metric)
+    if value is not None and not math.isfinite(value):
+        return f"the probe returned no finite value ({value})"
+    explain = _MISSING_REASONS.get(metric)
+    why = explain(metrics) if explain else None
+    return why or "no probe of this stage reported it"

@@ -28,7 +28,7 @@ from contracts.asset_dir import MATERIAL_JSON, HeldOutSummary, MaterialRecord, S
 from contracts.errors import InputError
 from contracts.material import Material
 from contracts.physical import PhysicalModel
-from contracts.probes import ProbeResult
+from contracts.probes import ProbeResult, not_measured_reason
 from contracts.request import AssetRequest
 from contracts.sim import SimConfig
 from contracts.stage import L2Parameters, StageContract, load_contract
@@ -44,6 +44,7 @@ from tasks.probes.workers import probe_workers
 from tasks.publish import copy_file_atomic, write_text_atomic
 
 TASK_VERSION = "2"  # bump when tasks/probes/{deformable,rollout,metrics}.py change what the probes return
+LIFT_TASK_VERSION = f"{TASK_VERSION}.1"  # .1: the lift probe squeezes up to 75 % of the width (#36)
 SELECTION_PROBES = ("compress", "drop", "lift", "stability", "specimen_compress", "specimen_drop")
 HELD_OUT_PROBES = ("compress", "drop", "specimen_compress", "specimen_drop")  # at the contract's held-out settings
 SPECIMEN_PROBES = {"specimen_compress": "compress", "specimen_drop": "drop"}  # specimen kind -> deformable probe
@@ -94,7 +95,7 @@ def drop_task(positions_m: np.ndarray, volumes_m3: np.ndarray, physical: Physica
                   held_out)[0]
 
 
-@cached_task(version=TASK_VERSION, name="l2.lift")
+@cached_task(version=LIFT_TASK_VERSION, name="l2.lift")
 def lift_task(positions_m: np.ndarray, volumes_m3: np.ndarray, physical: PhysicalModel, material: Material,
               sim: SimConfig) -> ProbeResult:
     """Lift/pinch probe (sag) of one material."""
@@ -436,6 +437,7 @@ def l2_material(asset_dir: Path, request_or_intent: AssetRequest | str | None = 
     record = MaterialRecord(  # no wall time: reruns must be content-identical
         passed=outcome.passed, status=outcome.status, message=outcome.message, intent=targets.intent, targets=targets,
         material=material, physical_model=physical, metrics=outcome.metrics,
+        not_measured={m: not_measured_reason(m, outcome.metrics) for m in targets.not_measured(outcome.metrics)},
         held_out=HeldOutSummary(metrics=held_metrics, targets_met=held_targets.met(held_metrics) if held else None,
                                 score=held_targets.score(held_metrics) if held else None,
                                 bands=[b.metric for b in held_targets.bands],

@@ -12,7 +12,7 @@ from contracts.agents import (
 )
 from contracts.errors import ContractError
 from contracts.evidence import AgentSource, Attempt, EvidenceRecord, GateResult
-from contracts.probes import ProbeResult
+from contracts.probes import ProbeResult, not_measured_reason
 from contracts.stage import HardGate, StageContract
 from tasks.agents.backend import Critic, Designer, InvalidAnswer, Planner, check_candidate, check_decision
 from tasks.agents.rule import RuleCritic, RuleDesigner, RulePlanner
@@ -214,12 +214,15 @@ def run_stage(
             verdict = "accepted" if (targets.met(metrics) or crit.verdict == "accept") else "best_so_far"
         else:
             verdict = "rolled_back"
+        unmeasured = {m: not_measured_reason(m, metrics) for m in targets.not_measured(metrics)}
         note = f" (missing observations: {missing})" if missing else ""
+        note += "".join(f"; {m} not measured: {why}" for m, why in unmeasured.items())
         record(Attempt(
             stage=contract.stage, iteration=i, action=decision.action, proposal=values, source=design.source,
             rationale=cand.rationale, evidence=EvidenceRecord(
                 probe_keys=[r.cache_key for r in results if r.cache_key], metrics=metrics,
-                recordings=[r.recording for r in results if r.recording], sim_calls=sum(r.sim_calls for r in results)),
+                recordings=[r.recording for r in results if r.recording], sim_calls=sum(r.sim_calls for r in results),
+                not_measured=unmeasured),
             gates=gates, score=score, verdict=verdict, diagnosis=crit.diagnosis, critique=crit.rationale + note,
             parent_iteration=base_iteration, directions=dict(crit.directions), planner_source=plan.source,
             critic_source=judged.source))

@@ -95,7 +95,7 @@ def propose_field(
 
 def _unmet(h: HistoryEntry, targets: TargetBehaviour) -> list[str]:
     """Metrics an attempt left failing: its failed gates and its unmet target bands."""
-    return h.failed_gates + [b.metric for b in targets.bands if b.weight > 0 and not b.contains(h.metrics.get(b.metric))]
+    return h.failed_gates + targets.unmet(h.metrics)
 
 
 def _progressed(a: HistoryEntry, b: HistoryEntry, targets: TargetBehaviour) -> bool:
@@ -198,11 +198,15 @@ class RuleCritic:
         routes = self.routes or stage_routes(req.stage)
         editable = {f.name for f in req.editable_fields}
         failed = [g for g in req.gates if not g.passed]
-        unmet = [b for b in req.targets.bands if b.weight > 0 and not b.contains(req.metrics.get(b.metric))]
+        missed = set(req.targets.unmet(req.metrics))  # measured outside its band; a target not measured is no miss
+        unmet = [b for b in req.targets.bands if b.metric in missed]
         band_dirs, band_notes = self._band_directions(req, unmet, routes, editable)
         if not failed and not unmet:
+            unmeasured = req.targets.not_measured(req.metrics)
+            held = (f"every measured target band holds ({', '.join(unmeasured)} not measured)" if unmeasured
+                    else "every target band holds")
             return RoleReply(Critique(verdict="accept", diagnosis="none",
-                                      rationale="every hard gate passes and every target band holds"), rule_source())
+                                      rationale=f"every hard gate passes and {held}"), rule_source())
         if not failed:
             return RoleReply(Critique(verdict="revise", diagnosis=STAGE_DIAGNOSIS.get(req.stage, "material"),
                                       directions=band_dirs, rationale="; ".join(band_notes),

@@ -293,7 +293,7 @@ def _drop_metrics(t: np.ndarray, z: np.ndarray, vz: np.ndarray, ke: np.ndarray, 
 
 
 # -- lift / pinch --------------------------------------------------------------------------------------------------
-def lift(body: DeformableBody, materials: Material | Sequence[Material], max_squeeze_fraction: float = 0.5,
+def lift(body: DeformableBody, materials: Material | Sequence[Material], max_squeeze_fraction: float = 0.75,
          safety: float = 2.5, sim: SimConfig | None = None, record_paths: Sequence[Path | None] | None = None,
          held_out: bool = False, schedule: str = "auto") -> list[ProbeResult]:
     """Two box fingers pinch the body across its narrow horizontal axis at the centre of its long axis, at the height
@@ -302,9 +302,13 @@ def lift(body: DeformableBody, materials: Material | Sequence[Material], max_squ
     (force control, re-closing if the grip relaxes), then rise by max(L/2, H) and hold.
       sag_m          rise of the pinched particles minus the mean rise of the end particles (outer 10 % of the
                      length on each side), from before the lift to the end of the hold [m]
-      sag_ratio      sag_m / L, L the length of the long horizontal axis [-] (reported only if the grasp held)
+      sag_ratio      sag_m / L, L the length of the long horizontal axis [-] (reported only if the grasp held;
+                     contracts.probes.not_measured_reason says why when it is missing)
       lift_held      1 if the pinched particles rose by >= 70 % of the finger travel [-]
       pinch_force_n  mean normal force on one finger before lifting [N]
+    The squeeze limit is 75 % of the width (was 50 %, #36): a soft body thins as it is lifted, and the fingers must be
+    able to close on it again; at 50 % the default plush turtle (E = 10 kPa, mu = 0.7) used up its travel before the
+    lift and slipped out (the pinched part rose 16 mm of 120 mm), so sag_ratio went unmeasured.
     """
     sim = sim or SimConfig()
     mats = _as_list(materials)

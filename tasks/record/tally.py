@@ -59,16 +59,31 @@ def _extra_sim_calls(stage: StageName, record: dict[str, Any], loop: int) -> dic
     return {role: n for role, n in extra.items() if n > 0}
 
 
-def _unmet(record: dict[str, Any]) -> list[str]:
-    """Target bands the record's kept candidate misses (a metric not measured misses its band)."""
+def _targets(record: dict[str, Any]) -> tuple[TargetBehaviour, dict[str, float]] | None:
     if not record.get("targets") or not isinstance(record.get("metrics"), dict):
-        return []
+        return None
     try:
-        targets = TargetBehaviour.model_validate(record["targets"])
+        return TargetBehaviour.model_validate(record["targets"]), record["metrics"]
     except ValueError:
-        return []
-    metrics = record["metrics"]
-    return [b.metric for b in targets.bands if b.weight > 0 and not b.contains(metrics.get(b.metric))]
+        return None
+
+
+def _unmet(record: dict[str, Any]) -> list[str]:
+    """Target bands the record's kept candidate was measured outside of (a target not measured is no miss)."""
+    found = _targets(record)
+    return found[0].unmet(found[1]) if found else []
+
+
+def _not_measured(record: dict[str, Any]) -> dict[str, str]:
+    """Target bands not measured on the record's kept candidate -> why (the record's words, else derived from its
+    metrics: an older record has no not_measured)."""
+    from contracts.probes import not_measured_reason
+
+    found = _targets(record)
+    if not found:
+        return {}
+    said = record.get("not_measured") or {}
+    return {m: str(said.get(m) or not_measured_reason(m, found[1])) for m in found[0].not_measured(found[1])}
 
 
 def _tally(stage: StageName, attempts: list[Attempt], outcome: StageOutcome | None,
@@ -95,7 +110,8 @@ def _tally(stage: StageName, attempts: list[Attempt], outcome: StageOutcome | No
         message = str(record["reason"])
     return StageTally(stage=stage, status=status, passed=passed, attempts=n, loop_sim_calls=loop,
                       extra_sim_calls=_extra_sim_calls(stage, record, loop) if record else {},
-                      unmet_targets=_unmet(record) if record and status != "accepted" else [], message=message)
+                      unmet_targets=_unmet(record) if record and status != "accepted" else [],
+                      not_measured=_not_measured(record) if record else {}, message=message)
 
 
 def stage_tallies(root: str | Path, attempts: list[Attempt] | None = None) -> list[StageTally]:

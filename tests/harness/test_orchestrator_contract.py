@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from harness_fakes import HEALTHY, FakeL2Probes, l2_targets
+from harness_fakes import HEALTHY, FakeL2Probes, fake_modulus_pa, fake_rebound, l2_targets
 
 from contracts import ProbeResult, ProbeSpec
 from contracts.agents import Candidate, DesignerRequest, TargetBand, TargetBehaviour
@@ -132,3 +132,32 @@ def test_metric_reported_twice_keeps_its_worst_value(l2) -> None:
 
     out = run_stage(l2.model_copy(update={"revision_budget": 0}), two, TargetBehaviour())
     assert out.attempts[0].evidence.metrics["j_min"] == 0.25 and out.status == "no_valid_candidate"
+
+
+def test_a_target_not_measured_does_not_demote_a_passing_material(l2) -> None:
+    """#36: the lift probe's pinch slips, so sag_ratio is missing; every measured target holds. The material is
+    accepted on its first attempt (not 'best_valid'), its score counts the measured bands, and the attempt records
+    sag_ratio as not measured with the lift probe's reason."""
+    probes = FakeL2Probes()
+
+    def slipping_lift(values: dict[str, float], action: str) -> list[ProbeResult]:
+        results = probes(values, action)
+        lift = ProbeResult(spec=ProbeSpec(kind="lift"), sim_calls=1,
+                           metrics={**HEALTHY, "lift_held": 0.0, "pinch_rise_m": 0.016, "sag_m": 0.0013})
+        return [*results[:2], lift]
+
+    bands = l2_targets(fake_modulus_pa(3e4), fake_rebound(5.0)).bands
+    t = TargetBehaviour(bands=[*bands, TargetBand(metric="sag_ratio", low=0.0, high=0.3, weight=0.25)],
+                        priors={"youngs_modulus_pa": 3e4, "poisson_ratio": 0.3, "damping_rate_per_s": 5.0})
+    out = run_stage(l2, slipping_lift, t)
+    assert out.status == "accepted" and out.passed and out.best_iteration == 0 and out.score == 1.0
+    a = out.attempts[0]
+    assert a.verdict == "accepted" and "sag_ratio" not in a.evidence.metrics
+    assert list(a.evidence.not_measured) == ["sag_ratio"]
+    assert a.evidence.not_measured["sag_ratio"].startswith("the lift probe's pinch did not hold the object")
+    assert t.unmet(a.evidence.metrics) == [] and t.not_measured(a.evidence.metrics) == ["sag_ratio"]
+    # a target measured outside its band still demotes: the same material with a sag far outside
+    sagging = run_stage(l2.model_copy(update={"revision_budget": 0}),
+                        lambda v, act: [*probes(v, act)[:2], ProbeResult(spec=ProbeSpec(kind="lift"), sim_calls=1,
+                                                                         metrics={**HEALTHY, "sag_ratio": 0.9})], t)
+    assert sagging.status == "best_valid" and t.unmet(sagging.metrics) == ["sag_ratio"]

@@ -1,6 +1,7 @@
 """`inspect` and `evidence` print one set of counts, derived from the attempt records (tasks.record.stage_tallies),
-and fit 80 columns. The fixture holds the records of a real default-turtle asset (its L2 kept a best valid candidate
-with sag_ratio unmet; L2 and L3 ran simulations outside their harness loops)."""
+and fit 80 columns. The fixture holds the records of a real default-turtle asset (its L2 kept a candidate that met
+every measured target, with sag_ratio not measured: the lift probe's pinch slipped, and the record, written before
+#36, called that 'best_valid'; L2 and L3 ran simulations outside their harness loops)."""
 
 from __future__ import annotations
 
@@ -48,19 +49,22 @@ def test_tallies_count_the_loop_and_the_simulations_outside_it() -> None:
     assert t["L2"].extra_sim_calls == {"screening": 2, "held_out": 4} and t["L2"].sim_calls == 12
     assert json.loads((FIXTURE / "material.json").read_text())["sim_calls"] == t["L2"].sim_calls
     assert t["L3"].extra_sim_calls == {"robustness": 2, "held_out": 1} and t["L3"].sim_calls == 4
-    assert t["L2"].status == "best_valid" and t["L2"].passed and t["L2"].unmet_targets == ["sag_ratio"]
+    assert t["L2"].status == "best_valid" and t["L2"].passed and t["L2"].unmet_targets == []
+    assert list(t["L2"].not_measured) == ["sag_ratio"] and "pinch did not hold" in t["L2"].not_measured["sag_ratio"]
 
 
 def test_inspect_and_evidence_agree_and_fit_80_columns(narrow: None) -> None:
     shown = {cmd: _run(cmd, str(FIXTURE)) for cmd in ("inspect", "evidence")}
     counts = {cmd: _counts(lines) for cmd, lines in shown.items()}
     assert counts["inspect"] == counts["evidence"] == {
-        "L0": ("yes", 1, 0), "L1": ("yes", 1, 4), "L2": ("best valid", 1, 12), "L3": ("yes", 1, 4)}
+        "L0": ("yes", 1, 0), "L1": ("yes", 1, 4), "L2": ("yes", 1, 12), "L3": ("yes", 1, 4)}
     for lines in shown.values():  # the table fits 80 columns; a line of text is never broken (the terminal wraps it)
         assert max(len(line) for line in lines if line[:1] in "┏┃┡│└") <= 80
         assert not any("…" in line for line in lines)  # folded, never cut
         assert not any(line != line.rstrip() for line in lines if line[:1] not in "┏┃┡│└")  # no padding to a width
-        assert "L2: best valid — the best valid candidate was kept; targets not met: sag_ratio" in lines
+        assert not any(line.startswith("L2: best valid") for line in lines)  # not measured is no miss
+        assert ("L2: sag_ratio not measured — the lift probe's pinch did not hold the object: the pinched part rose "
+                "16 mm, so its sag under its own weight was not seen") in lines
         assert "L2: 12 simulations = 6 in the harness loop + 2 screening + 4 held-out" in lines
 
 
