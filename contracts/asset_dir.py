@@ -136,7 +136,7 @@ class MaterialRecord(Model):
 class ManipulationRecord(Model):
     """manipulation.json: L3's outcome, the chosen plan and every trial (status 'no_grasp': no trial could run)."""
 
-    ABSENT_UNLESS_GIVEN: ClassVar[frozenset[str]] = frozenset({"best_attempt"})  # keys older records lack
+    ABSENT_UNLESS_GIVEN: ClassVar[frozenset[str]] = frozenset({"best_attempt", "trial"})  # keys older records lack
     schema_version: int = 1
     stage: Literal["L3"] = "L3"
     passed: bool
@@ -150,6 +150,8 @@ class ManipulationRecord(Model):
     plan: ActionPlan | None
     values: dict[str, float] | None
     attempt: int | None
+    trial: int | None = Field(default=None, description="the adopted trial's number (from 1, in the order run: "
+                              "tasks.record.trials); records before #36: absent")
     outcome: dict[str, bool]
     labels: dict[str, float]
     forces: dict[str, float]

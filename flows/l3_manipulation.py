@@ -645,7 +645,11 @@ def _record(ctx: L3Context, outcome: StageOutcome, accepted: bool, chosen: dict[
     plan = ctx.plan(chosen["values"]) if chosen else None
     labels = chosen["labels"] if chosen else {}
     tol = tolerances_from(ctx.contract)
-    attempts = [{**a, "reason": trial_reason(a["labels"], ctx.contract, tol)} for a in ctx.attempts]
+    # trial: the one number of a simulated pick-and-place, from 1 in the order run (tasks.record.trials; the
+    # console's 'L3 trial k'); attempt: its interaction folder
+    attempts = [{**a, "trial": i + 1, "reason": trial_reason(a["labels"], ctx.contract, tol)}
+                for i, a in enumerate(ctx.attempts)]
+    number = {id(a): i + 1 for i, a in enumerate(ctx.attempts)} | {id(a): a["trial"] for a in attempts}
     best = chosen if accepted else best_attempt(attempts, ctx.contract)
     reason = "" if accepted else (trial_reason(best["labels"], ctx.contract, tol) if best else outcome.message)
     if not accepted and material_revision is not None and not material_revision.get("accepted"):
@@ -656,7 +660,8 @@ def _record(ctx: L3Context, outcome: StageOutcome, accepted: bool, chosen: dict[
         "message": outcome.message, "reason": reason,
         # the attempt the manifest reports: the adopted one, else the best trial under the asset's own material
         "best_attempt": None if best is None else {
-            "attempt": best["attempt"], "role": best["role"], "values": best["values"], "labels": best["labels"],
+            "attempt": best["attempt"], "trial": number.get(id(best)), "role": best["role"], "values": best["values"],
+            "labels": best["labels"],
             "plan": ctx.plan(best["values"]).model_dump(mode="json"), "cache_key": best.get("cache_key"),
             "failed_gates": failed_gate_names(best["labels"], ctx.contract),
             "reason": trial_reason(best["labels"], ctx.contract, tol)},
@@ -665,6 +670,7 @@ def _record(ctx: L3Context, outcome: StageOutcome, accepted: bool, chosen: dict[
         "physical_model": ctx.physical.model_dump(mode="json"),
         "plan": plan.model_dump(mode="json") if plan else None,
         "values": chosen["values"] if chosen else None, "attempt": chosen["attempt"] if chosen else None,
+        "trial": number.get(id(chosen)) if chosen is not None else None,
         "outcome": {k: bool(labels[k]) for k in (*LABELS, "slipped", "force_budget_violated") if k in labels},
         "labels": labels, "forces": _forces(labels),
         "force_budget_n": tolerances_from(ctx.contract).force_budget_n,

@@ -3,6 +3,7 @@
 
 from __future__ import annotations
 
+import json
 from pathlib import Path
 from typing import Any
 
@@ -74,15 +75,32 @@ def _fmt(v: Any) -> str:
     return f"{v:.4g}" if isinstance(v, float) else str(v)
 
 
-def attempt_block(a: Attempt) -> list[str]:
-    """An attempt as a heading line and indented detail lines (one line each, never wrapped nor cut)."""
+def attempt_trials(root: Path, a: Attempt) -> list[int]:
+    """The trial numbers (tasks.record.trials: one numbering with the console, manipulation.json and the card) of an
+    L3 harness attempt's simulated pick-and-places, from the interaction folders its evidence names."""
+    from tasks.record.trials import trial_of_folder
+
+    if a.stage != "L3" or not (root / "manipulation.json").is_file():
+        return []
+    try:
+        record = json.loads((root / "manipulation.json").read_text(encoding="utf-8"))
+    except (OSError, ValueError):
+        return []
+    found = [trial_of_folder(record, rec) for rec in a.evidence.recordings]
+    return [n for n in found if n is not None]
+
+
+def attempt_block(a: Attempt, trials: list[int] | None = None) -> list[str]:
+    """An attempt as a heading line and indented detail lines (one line each, never wrapped nor cut); an L3 attempt
+    names its trial numbers."""
     src = a.source.backend + (f"/{a.source.model}" if a.source.model else "")
     if a.source.retries:
         src += f", {a.source.retries} retries"
     style = VERDICT_STYLE.get(a.verdict)
     verdict = f"[{style}]{a.verdict}[/{style}]" if style else a.verdict
     score = "" if a.score is None else f", score {a.score:.3f}"
-    head = (f"[bold]{a.stage} #{a.iteration}[/bold] {escape(a.action)} ({escape(src)}): {verdict}{score}, "
+    trial = (f" = trial {', '.join(map(str, trials))}" if trials else "")
+    head = (f"[bold]{a.stage} #{a.iteration}{trial}[/bold] {escape(a.action)} ({escape(src)}): {verdict}{score}, "
             f"{a.evidence.sim_calls} simulation{'' if a.evidence.sim_calls == 1 else 's'}")
     failed = [g.gate for g in a.gates if not g.passed]
     gates = ("failed gates: " + ", ".join(failed)) if failed else ("gates: all pass" if a.gates else "not probed")
@@ -128,7 +146,7 @@ def evidence(
         for a in rows:
             if wanted and a.stage != wanted:
                 continue
-            head, *details = attempt_block(a)
+            head, *details = attempt_block(a, attempt_trials(root, a))
             results.print(head, highlight=False)
             for line in details:
                 results.print("    " + line, highlight=False)

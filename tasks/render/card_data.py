@@ -5,6 +5,8 @@ came from. Pure data (no drawing): card_png and card_html draw it.
 
 from __future__ import annotations
 
+import json
+import math
 from pathlib import Path
 from typing import Any
 
@@ -14,9 +16,11 @@ from pydantic import BaseModel, ConfigDict
 from contracts.concept import ConceptMatch
 from contracts.agents import TargetBehaviour
 from contracts.asset_dir import MANIPULATION_JSON, MATERIAL_JSON, PHYSICAL_JSON, attempt_path
-from contracts.evidence import Attempt
+from contracts.evidence import Attempt, StageTally
+from contracts.probes import not_measured_reason
 from contracts.manifest import AssetManifest
 from tasks.asset_dir import AssetDir
+from tasks.record.trials import simulated_trials, trial_of_attempt
 from tasks.render.protocol_video import CARD_TIMES_S, VIEW_NAMES, card_still_name
 
 STILL_VIEWS = ("front", "side", "top")  # renders/<view>.png (L0)
@@ -34,6 +38,11 @@ L3_FIGURES = {"max_finger_force_n": ("max finger force", "N"), "hold_normal_forc
               "weight_n": ("object weight", "N"), "hold_friction_ratio": ("friction capacity / weight", "-"),
               "lift_rise_m": ("lift rise", "m"), "slip_distance_m": ("slip distance", "m"),
               "place_error_m": ("place error", "m"), "max_strain": ("max strain", "-")}
+# why an L3 figure can have no value: the labels of a trial whose object was never held hold NaN there
+L3_ABSENT = {"hold_normal_force_n": "no hold: the object was never held in the hand",
+             "hold_friction_ratio": "no hold: the object was never held in the hand",
+             "slip_distance_m": "no hold: the object was never held in the hand",
+             "place_error_m": "not placed: the object never reached the release"}
 PROTOCOL_FIGURES = {"drop_height_m": ("drop clearance", "m"), "shape_retention": ("shape retention", "-"),
                     "volume_ratio_end": ("volume ratio at 5 s", "-"), "tilt_deg_end": ("tilt at 5 s", "deg"),
                     "plausible": ("plausible (1 = yes)", "-")}
@@ -62,6 +71,27 @@ class Figure(BaseModel):
     met: bool | None = None
     source: str  # the probe / record that measured it
     key: str | None = None  # the cache key of that probe's result
+    note: str | None = None  # value None: why there is no value (never a NaN on the card)
+
+    @property
+    def state(self) -> str:
+        """'measured inside' / 'measured outside' (a band) / 'measured' (no band) / 'not measured'."""
+        if self.value is None:
+            return "not measured"
+        if self.band is None:
+            return "measured"
+        return "measured inside" if self.met else "measured outside"
+
+
+def figure(label: str, metric: str, value: float | None, unit: str, source: str, key: str | None = None,
+           band: tuple[float, float] | None = None, note: str | None = None) -> Figure:
+    """A card figure; a value that is absent or not a finite number is no value, with the reason (`note`)."""
+    measured = value is not None and math.isfinite(value)
+    why = None if measured else (note or ("the record holds no finite value" if value is not None
+                                          else "the record holds no value"))
+    met = (band[0] <= value <= band[1]) if (band is not None and measured and value is not None) else None
+    return Figure(label=label, metric=metric, value=value if measured else None, unit=unit, band=band,
+                  met=met, source=source, key=key, note=why)
 
 
 class DropFrame(BaseModel):
@@ -88,10 +118,23 @@ class L3Card(BaseModel):
     outcome: dict[str, bool] = {}
     figures: list[Figure] = []
     force_budget_n: float | None = None
-    attempt: int | None = None
+    attempt: int | None = None  # the interaction folder (interaction/attempt_NNN) of the reported trial
+    trial: int | None = None  # the reported trial's number (tasks.record.trials: from 1, in the order run)
+    trials: int = 0  # the simulated pick-and-places L3 ran
     key: str | None = None
     force_t_s: list[float] = []
     finger_force_n: list[tuple[float, float]] = []  # |force| on each finger per control step
+
+
+class LayerVerdict(BaseModel):
+    """One layer at a glance: PASSED / NOT PASSED and one plain sentence (the card's first section)."""
+
+    model_config = ConfigDict(frozen=True)
+
+    stage: str  # L0 .. L3
+    title: str  # "Shape", "Weight and contact", "Material", "Robot pick-and-place"
+    passed: bool | None  # None: the layer did not run
+    sentence: str
 
 
 class CardData(BaseModel):
@@ -111,6 +154,12 @@ class CardData(BaseModel):
     sources: list[str]  # probe -> cache key lines, and the records read
     built: str | None = None  # what L0 built: "plush dog (named in the lexicon)"
     analogy: list[str] = []  # when built by analogy: the one-line note, then the chain (geometry.json concept)
+    layers: list[LayerVerdict] = []  # L0..L3 at a glance
+    material_words: str | None = None  # "soft as a plush toy: E = 9.98 kPa"
+
+
+def _number(value: Any) -> float | None:
+    return float(value) if isinstance(value, (int, float)) and not isinstance(value, bool) else None
 
 
 def _short(key: str | None) -> str:
@@ -137,16 +186,16 @@ def _probe_keys(attempts: list[Attempt], stage: str, iteration: int | None) -> d
 
 
 def _band_figures(targets: TargetBehaviour, metrics: dict[str, float], keys: dict[str, str],
-                  record: str) -> list[Figure]:
+                  record: str, not_measured: dict[str, str]) -> list[Figure]:
     """A figure per target band: the measured value, the band, whether it holds, the probe and its cache key."""
     out = []
     for b in targets.bands:
         value = metrics.get(b.metric)
         probe = L2_BAND_PROBE.get(b.metric, "probe")
         label = b.metric.removesuffix(f"_{b.unit.lower()}").replace("_", " ")  # effective_modulus_pa: effective modulus
-        out.append(Figure(label=label, metric=b.metric, value=value, unit=b.unit, band=(b.low, b.high),
-                          met=b.contains(value),
-                          source=f"{record}: {probe} ({b.source})", key=keys.get(probe)))
+        why = not_measured.get(b.metric) or not_measured_reason(b.metric, metrics)
+        out.append(figure(label, b.metric, value, b.unit, f"{record}: {probe} ({b.source})", keys.get(probe),
+                          band=(b.low, b.high), note=why))
     return out
 
 
@@ -168,16 +217,18 @@ def _l3(adir: AssetDir, manifest: AssetManifest) -> L3Card:
     rec = adir.manipulation()
     best = rec.best_attempt or {}
     attempt = rec.attempt if rec.attempt is not None else best.get("attempt")
+    raw = json.loads((adir.path / MANIPULATION_JSON).read_text(encoding="utf-8"))
+    trial = trial_of_attempt(raw, attempt)
     labels = rec.labels or best.get("labels") or {}
     key = manifest.provenance.cache_keys.get("l3.trial") or best.get("cache_key")
-    figures = [Figure(label=label, metric=m, value=float(labels[m]), unit=unit,
-                      source=f"{MANIPULATION_JSON}: trial {attempt}", key=key)
+    figures = [figure(label, m, _number(labels.get(m)), unit, f"{MANIPULATION_JSON}: trial {trial}", key,
+                      note=L3_ABSENT.get(m))
                for m, (label, unit) in L3_FIGURES.items() if m in labels]
     gripper = rec.plan.gripper if rec.plan else rec.gripper.get("name")
     card = L3Card(ran=True, note=rec.message or rec.reason, gripper=gripper,
                   gripper_reason=rec.plan.gripper_reason if rec.plan else None, passed=rec.passed, status=rec.status,
                   outcome=dict(rec.outcome), figures=figures, force_budget_n=rec.force_budget_n, attempt=attempt,
-                  key=key)
+                  trial=trial, trials=simulated_trials(raw), key=key)
     folder = adir.path / attempt_path(attempt) if attempt is not None else None
     if folder is not None and folder.is_dir():
         curve = _force_curve(folder)
@@ -224,7 +275,8 @@ def card_data(asset_dir: Path | str, manifest: AssetManifest | None = None) -> C
                source=chosen),
         Figure(label="damping rate", metric="damping_rate_per_s", value=mat.damping_rate_per_s, unit="1/s",
                source=chosen)]
-    bands = _band_figures(material.targets, material.metrics, l2_keys, f"{MATERIAL_JSON} metrics")
+    bands = _band_figures(material.targets, material.metrics, l2_keys, f"{MATERIAL_JSON} metrics",
+                          material.not_measured)
     mass_band = {b.metric: b for b in physical.targets.bands}
     l1_rows = []
     for m, (label, unit) in L1_FIGURES.items():
@@ -232,11 +284,8 @@ def card_data(asset_dir: Path | str, manifest: AssetManifest | None = None) -> C
             continue
         probe = m.split("_")[0] if m.split("_")[0] in l1_keys else "mass check"
         band = mass_band.get(m)
-        value = float(physical.metrics[m])
-        l1_rows.append(Figure(label=label, metric=m, value=value, unit=unit,
-                              band=(band.low, band.high) if band else None,
-                              met=band.contains(value) if band else None,
-                              source=f"{PHYSICAL_JSON}: {probe}", key=l1_keys.get(probe)))
+        l1_rows.append(figure(label, m, _number(physical.metrics[m]), unit, f"{PHYSICAL_JSON}: {probe}",
+                              l1_keys.get(probe), band=(band.low, band.high) if band else None))
     pm = physical.physical_model
     if pm is not None:
         l1_rows += [Figure(label="density", metric="density_kg_per_m3", value=pm.density_kg_per_m3, unit="kg/m^3",
@@ -244,12 +293,11 @@ def card_data(asset_dir: Path | str, manifest: AssetManifest | None = None) -> C
                     Figure(label="ground friction", metric="ground_friction", value=pm.ground_friction, unit="-",
                            source=f"{PHYSICAL_JSON}: slide", key=l1_keys.get("slide"))]
     drop = (manifest.extra or {}).get("drop_protocol") or {}
-    protocol = [Figure(label=label, metric=m, value=float(drop[m]), unit=unit,
-                       source="asset.json extra.drop_protocol: task renders.drop_protocol")
+    protocol = [figure(label, m, _number(drop[m]), unit, "asset.json extra.drop_protocol: task renders.drop_protocol")
                 for m, (label, unit) in PROTOCOL_FIGURES.items() if m in drop]
-    stages = [f"{t.stage}: {t.status}, {t.attempts} attempt(s), {t.sim_calls} simulation(s)"
-              + (f", unmet: {', '.join(t.unmet_targets)}" if t.unmet_targets else "")
-              for t in stage_tallies(adir.path, attempts)]
+    tallies = stage_tallies(adir.path, attempts)
+    l3 = _l3(adir, manifest)
+    stages = [_stage_line(t, l3) for t in tallies]
     sources = [f"{name}: {_short(key)}" for name, key in sorted(manifest.provenance.cache_keys.items())]
     sources += [f"L1.{kind}: {_short(key)}" for kind, key in sorted(l1_keys.items())]
     videos = {label: rel for label, rel in (("drop, front", "renders/drop_front.mp4"),
@@ -258,10 +306,92 @@ def card_data(asset_dir: Path | str, manifest: AssetManifest | None = None) -> C
               if (adir.path / rel).is_file()}
     views = {v: f"renders/{v}.png" for v in STILL_VIEWS if (adir.path / "renders" / f"{v}.png").is_file()}
     built, analogy = _built(adir)
-    return CardData(name=request_title(manifest.request.model_dump(mode="json")), request=manifest.request.model_dump(mode="json"), views=views,
+    words = material_words(mat.youngs_modulus_pa, material.metrics.get("rebound_ratio")) if mat else None
+    layers = _layers(adir, tallies, bands, l3, words, built)
+    request = manifest.request.model_dump(mode="json")
+    return CardData(name=request_title(request), request=request, views=views,
                     drop_frames=_drop_frames(adir), videos=videos, material=material_rows, bands=bands, l1=l1_rows,
-                    protocol=protocol, l3=_l3(adir, manifest), stages=stages, sources=sources, built=built,
-                    analogy=analogy)
+                    protocol=protocol, l3=l3, stages=stages, sources=sources, built=built,
+                    analogy=analogy, layers=layers, material_words=words)
+
+
+def _stage_line(t: StageTally, l3: L3Card) -> str:
+    """The technical line of a stage: harness status, attempts, simulations; L3 in trials (tasks.record.trials)."""
+    words = {"best_valid": ("best_valid (a measured target missed)" if t.unmet_targets else
+                            "best_valid as recorded, yet every measured target was met")}
+    if t.stage == "L3" and l3.ran:
+        shown = f", reported: trial {l3.trial}" if l3.trial is not None else ""
+        line = f"L3: {t.status}, {l3.trials} trial(s) (simulated pick-and-places, numbered from 1){shown}"
+    else:
+        line = f"{t.stage}: {words.get(t.status, t.status)}, {t.attempts} attempt(s), {t.sim_calls} simulation(s)"
+    line += f"; targets missed: {', '.join(t.unmet_targets)}" if t.unmet_targets else ""
+    line += "".join(f"; {m} not measured ({why})" for m, why in t.not_measured.items())
+    return line
+
+
+# (upper bound of E [Pa], the comparison) for the material in plain words
+STIFFNESS_WORDS = ((4e3, "very soft, like a jelly"), (4e4, "soft as a plush toy"), (4e5, "squishy like a foam sponge"),
+                   (4e6, "rubbery like a rubber duck"), (4e7, "firm like a shoe sole"),
+                   (math.inf, "stiff like hard plastic"))
+
+
+def si_short(value: float, unit: str) -> str:
+    """10 kPa, 1.5 MPa: a value for a sentence."""
+    for scale, prefix in ((1e9, "G"), (1e6, "M"), (1e3, "k"), (1.0, "")):
+        if abs(value) >= scale * 0.9995:
+            return f"{value / scale:.3g} {prefix}{unit}"
+    return f"{value:.3g} {unit}"
+
+
+def material_words(youngs_modulus_pa: float, rebound: float | None) -> str:
+    """The material in plain words: 'soft as a plush toy: E = 9.98 kPa'; ', bouncy' / ', does not bounce' from the
+    measured rebound."""
+    feel = next(words for upper, words in STIFFNESS_WORDS if youngs_modulus_pa < upper)
+    bounce = ""
+    if rebound is not None and math.isfinite(rebound):
+        bounce = ", bouncy" if rebound >= 0.4 else (", hardly bounces" if rebound < 0.15 else "")
+    return f"{feel}{bounce}: E = {si_short(youngs_modulus_pa, 'Pa')}"
+
+
+def _layers(adir: AssetDir, tallies: list[StageTally], bands: list[Figure], l3: L3Card, words: str | None,
+            built: str | None) -> list[LayerVerdict]:
+    """Each layer's PASSED / NOT PASSED and one plain sentence."""
+    by = {t.stage: t for t in tallies}
+    out = []
+    t0 = by.get("L0")
+    if t0 is not None:
+        what = (built or "the object").removeprefix("built: ").split(" (named in the lexicon")[0]
+        out.append(LayerVerdict(stage="L0", title="Shape", passed=t0.passed, sentence=(
+            f"A closed 3D shape was built: {what}." if t0.passed else
+            f"The shape failed a check: {t0.message or t0.status}.")))
+    t1 = by.get("L1")
+    if t1 is not None:
+        pm = adir.physical().physical_model if t1.passed else None
+        out.append(LayerVerdict(stage="L1", title="Weight and contact", passed=t1.passed, sentence=(
+            f"It weighs {si_short(pm.mass_kg * 1000, 'g')}, a plausible mass, and it rests, drops and slides on a "
+            "table as it should." if pm is not None else f"Its weight or contact failed a check: {t1.message}.")))
+    t2 = by.get("L2")
+    if t2 is not None:
+        missed = [b.label for b in bands if b.state == "measured outside"]
+        unmeasured = [b.label for b in bands if b.state == "not measured"]
+        ok = t2.passed and not missed
+        feel = (words or "").split(":")[0]
+        sentence = f"{feel[:1].upper()}{feel[1:]}." if words else "No material was found."
+        if t2.passed:
+            sentence += (f" Measured outside its target: {', '.join(missed)}." if missed
+                         else " Every measured behaviour is inside its target.")
+            if unmeasured:
+                sentence += f" Not measured: {', '.join(unmeasured)} (see below)."
+        out.append(LayerVerdict(stage="L2", title="Material", passed=ok, sentence=sentence))
+    if not l3.ran:
+        out.append(LayerVerdict(stage="L3", title="Robot pick-and-place", passed=None,
+                                sentence="Not run for this asset (--no-l3)."))
+    else:
+        trial = f" (trial {l3.trial} of {l3.trials})" if l3.trial is not None else ""
+        out.append(LayerVerdict(stage="L3", title="Robot pick-and-place", passed=bool(l3.passed), sentence=(
+            f"A robot arm with the {l3.gripper} gripper picked it up, carried it and put it down on target{trial}."
+            if l3.passed else f"The robot did not complete the pick-and-place{trial}: {l3.note}.")))
+    return out
 
 
 def _built(adir: AssetDir) -> tuple[str | None, list[str]]:

@@ -8,13 +8,27 @@ import os
 from pathlib import Path
 
 from tasks.render.card_data import CardData, Figure
-from tasks.render.card_text import band_text, outcome_lines, request_line, si
+from tasks.render.card_text import band_text, outcome_lines, request_line, si, state_text
 
-STYLE = ("body{font-family:sans-serif;max-width:1320px;margin:1em auto;color:#222}"
-         "table{border-collapse:collapse;margin:.5em 0}td,th{border:1px solid #ccc;padding:2px 6px;font-size:90%}"
-         "th{background:#eee;text-align:left}.miss{color:#b00;font-weight:bold}.key{font-family:monospace}"
+STYLE = ("body{font-family:system-ui,-apple-system,'Segoe UI',Helvetica,Arial,sans-serif;font-size:18px;"
+         "line-height:1.45;max-width:1320px;margin:1em auto;padding:0 1em;color:#1d1d1d}"
+         "h1{font-size:32px;margin:.3em 0}h2{font-size:24px;margin-top:1.4em}h3{font-size:20px}"
+         ".request{font-size:20px;color:#444}"
+         ".verdicts{display:grid;grid-template-columns:repeat(4,1fr);gap:12px;margin:1em 0}"
+         ".verdict{border-radius:10px;padding:12px 14px;border:3px solid}"
+         ".verdict.pass{border-color:#1a7f37;background:#eaf7ee}.verdict.fail{border-color:#c62828;background:#fdecea}"
+         ".verdict.none{border-color:#999;background:#f3f3f3}"
+         ".mark{font-size:30px;font-weight:800;letter-spacing:.02em}.pass .mark{color:#1a7f37}"
+         ".fail .mark{color:#c62828}.none .mark{color:#666}.layer{font-size:16px;color:#555}"
+         ".material{font-size:22px;font-weight:600}"
+         "table{border-collapse:collapse;margin:.5em 0}td,th{border:1px solid #ccc;padding:4px 8px;font-size:16px}"
+         "th{background:#eee;text-align:left}.miss{color:#b00;font-weight:bold}.unmeasured{color:#8a5a00}"
+         ".key{font-family:monospace;font-size:14px}.technical{border-top:3px solid #ccc;margin-top:2em}"
          "video,img.still{max-width:640px;width:100%}img.frame{width:24%}figure{display:inline-block;margin:4px}"
-         ".analogy{border:2px solid #c80;background:#fff6e5;padding:6px 10px;margin:.5em 0}")
+         "figcaption{font-size:16px;color:#444}"
+         ".analogy{border:3px solid #c80;background:#fff6e5;padding:8px 12px;margin:.6em 0;font-size:18px}")
+
+PASSED, NOT_PASSED, NOT_RUN = "PASSED", "NOT PASSED", "NOT RUN"
 
 
 def _rel(asset_rel: str) -> str:
@@ -23,12 +37,14 @@ def _rel(asset_rel: str) -> str:
 
 
 def _table(figures: list[Figure]) -> str:
-    rows = ["<table><tr><th>figure</th><th>value</th><th>target band</th><th>from</th><th>cache key</th></tr>"]
+    rows = ["<table><tr><th>figure</th><th>value</th><th>target band</th><th>state</th><th>from</th>"
+            "<th>cache key</th></tr>"]
     for f in figures:
         band = band_text(f)
-        cls = ' class="miss"' if f.band is not None and not f.met else ""
+        cls = {"measured outside": ' class="miss"', "not measured": ' class="unmeasured"'}.get(f.state, "")
         rows.append(f"<tr><td>{html.escape(f.label)}</td><td>{html.escape(si(f.value, f.unit))}</td>"
-                    f"<td{cls}>{html.escape(band)}</td><td>{html.escape(f.source)}</td>"
+                    f"<td>{html.escape(band)}</td><td{cls}>{html.escape(state_text(f))}</td>"
+                    f"<td>{html.escape(f.source)}</td>"
                     f"<td class=\"key\" title=\"{html.escape(f.key or '')}\">{html.escape((f.key or '-')[:12])}</td>"
                     "</tr>")
     return "\n".join([*rows, "</table>"])
@@ -46,7 +62,7 @@ def force_svg(card: CardData, width: int = 640, height: int = 220) -> str:
     def xy(ti: float, fi: float) -> str:
         return f"{pad + (ti - t0) / (t1 - t0) * (width - 2 * pad):.1f},{height - pad - fi / top * (height - 2 * pad):.1f}"
 
-    lines = [f'<svg xmlns="http://www.w3.org/2000/svg" width="{width}" height="{height}" font-size="11">',
+    lines = [f'<svg xmlns="http://www.w3.org/2000/svg" width="{width}" height="{height}" font-size="14">',
              f'<rect x="{pad}" y="{pad}" width="{width - 2 * pad}" height="{height - 2 * pad}" fill="none" '
              'stroke="#999"/>']
     for finger, colour in ((0, "#1f77b4"), (1, "#ff7f0e")):
@@ -63,23 +79,38 @@ def force_svg(card: CardData, width: int = 640, height: int = 220) -> str:
     return "\n".join(lines)
 
 
+def verdict_mark(passed: bool | None) -> str:
+    """PASSED / NOT PASSED / NOT RUN."""
+    return NOT_RUN if passed is None else (PASSED if passed else NOT_PASSED)
+
+
+def _verdicts(card: CardData) -> str:
+    e = html.escape
+    boxes = []
+    for v in card.layers:
+        cls = "none" if v.passed is None else ("pass" if v.passed else "fail")
+        boxes.append(f'<div class="verdict {cls}"><div class="layer">{e(v.stage)} · {e(v.title)}</div>'
+                     f'<div class="mark">{verdict_mark(v.passed)}</div><div>{e(v.sentence)}</div></div>')
+    return '<div class="verdicts">' + "".join(boxes) + "</div>"
+
+
 def card_html(card: CardData) -> str:
-    """The page."""
+    """The page: first what a reader needs (the request, what was built, PASSED / NOT PASSED per layer, the material
+    in plain words, the views, the drop and the grasp), then the technical details (probes, cache keys, records)."""
     e = html.escape
     parts = ["<!DOCTYPE html>", "<html><head><meta charset=\"utf-8\">",
              f"<title>DeformSmith asset card: {e(card.name)}</title><style>{STYLE}</style></head><body>",
-             f"<h1>Asset card: {e(card.name)}</h1>", f"<p>{e(request_line(card.request))}</p>",
-             *([f"<p>{e(card.built)}</p>"] if card.built else []),
+             f"<h1>Asset card: {e(card.name)}</h1>", f'<p class="request">{e(request_line(card.request))}</p>',
+             *([f"<p><b>{e(card.built)}</b></p>"] if card.built and not card.analogy else []),
              *([f'<div class="analogy"><b>{e(card.analogy[0])}</b><ul>'
                 + "".join(f"<li>{e(s)}</li>" for s in card.analogy[1:]) + "</ul></div>"] if card.analogy else []),
-             "<ul>" + "".join(f"<li>{e(s)}</li>" for s in card.stages) + "</ul>",
-             '<p><a href="card.png">card.png</a> (the same card as one picture)</p>', "<h2>Views (L0)</h2>"]
+             _verdicts(card)]
+    if card.material_words:
+        parts.append(f'<p class="material">Material: {e(card.material_words)}</p>')
+    parts.append("<h2>What it looks like</h2>")
     parts += [f'<figure><img class="still" style="max-width:400px" src="{e(_rel(rel))}" alt="{e(view)}">'
               f"<figcaption>{e(view)}</figcaption></figure>" for view, rel in card.views.items()]
-    parts.append("<h2>Videos</h2>")
-    parts += [f'<figure><video controls muted loop playsinline preload="metadata" src="{e(_rel(rel))}"></video>'
-              f"<figcaption>{e(label)}</figcaption></figure>" for label, rel in card.videos.items()]
-    parts.append("<h2>Drop protocol frames (5 s at 30 fps from a clearance of a quarter of the height)</h2>")
+    parts.append("<h2>Dropped on a table (5 s)</h2>")
     for view in dict.fromkeys(f.view for f in card.drop_frames):
         frames = [f for f in card.drop_frames if f.view == view and f.still]
         if frames:
@@ -87,22 +118,36 @@ def card_html(card: CardData) -> str:
                 f'<img class="frame" src="{e(_rel(f.still or ""))}" alt="t = {f.t_s:.1f} s" '
                 f'title="t = {f.t_s:.1f} s">' for f in frames) + "</p>")
         else:
-            parts.append(f"<p>{e(view)} view: no drop frames stored (older asset): see the video above.</p>")
-    parts += ["<h2>L2 material</h2>", _table(card.material), "<h3>Target bands and measured values</h3>",
-              _table(card.bands), "<h2>L1 mass and contact</h2>", _table(card.l1),
-              "<h2>Drop protocol</h2>", _table(card.protocol), "<h2>L3 pick and place</h2>"]
+            parts.append(f"<p>{e(view)} view: no drop frames stored (older asset): see the video below.</p>")
+    parts += [f'<figure><video controls muted loop playsinline preload="metadata" src="{e(_rel(rel))}"></video>'
+              f"<figcaption>{e(label)}</figcaption></figure>" for label, rel in card.videos.items()]
+    parts.append("<h2>The grasp</h2>")
     l3 = card.l3
     if not l3.ran:
         parts.append(f"<p>{e(l3.note)}</p>")
     else:
+        trial = f"trial {l3.trial} of {l3.trials}" if l3.trial is not None else f"{l3.trials} trial(s)"
+        parts += [f"<p>Gripper <b>{e(str(l3.gripper))}</b>; {e(trial)}: "
+                  f"{'picked, carried and placed' if l3.passed else 'not passed: ' + e(l3.note)}.</p>",
+                  force_svg(card)]
+    parts += ['<section class="technical"><h2>Technical details</h2>',
+              "<h3>Stages (harness)</h3>", "<ul>" + "".join(f"<li>{e(s)}</li>" for s in card.stages) + "</ul>",
+              '<p><a href="card.png">card.png</a> (the same card as one picture)</p>',
+              "<h3>L2 material</h3>", _table(card.material), "<h3>Target bands and measured values</h3>",
+              _table(card.bands), "<h3>L1 mass and contact</h3>", _table(card.l1),
+              "<h3>Drop protocol (5 s at 30 fps from a clearance of a quarter of the height)</h3>",
+              _table(card.protocol), "<h3>L3 pick and place</h3>"]
+    if not l3.ran:
+        parts.append(f"<p>{e(l3.note)}</p>")
+    else:
         parts += [f"<p>gripper <b>{e(str(l3.gripper))}</b>: {e(l3.gripper_reason or '')}</p>",
-                  f"<p>{'passed' if l3.passed else 'did not pass'} ({e(str(l3.status))}), trial {l3.attempt}: "
-                  f"{e(l3.note)}</p>", "<p>" + e("; ".join(outcome_lines(l3.outcome))) + "</p>",
-                  f"<p>force budget {e(si(l3.force_budget_n, 'N'))} per finger</p>", force_svg(card),
-                  _table(l3.figures)]
-    parts += ["<h2>Where the numbers came from</h2>",
+                  f"<p>{'passed' if l3.passed else 'did not pass'} ({e(str(l3.status))}), trial {l3.trial} "
+                  f"(interaction/attempt_{l3.attempt if l3.attempt is not None else 0:03d}): {e(l3.note)}</p>",
+                  "<p>" + e("; ".join(outcome_lines(l3.outcome))) + "</p>",
+                  f"<p>force budget {e(si(l3.force_budget_n, 'N'))} per finger</p>", _table(l3.figures)]
+    parts += ["<h3>Where the numbers came from</h3>",
               "<p>Cache keys (<code>CacheStore(root).get(key)</code>); records: asset.json, physical.json, "
               "material.json, manipulation.json, evidence/attempts.jsonl.</p>",
               "<ul class=\"key\">" + "".join(f"<li>{e(s)}</li>" for s in card.sources) + "</ul>",
-              "</body></html>", ""]
+              "</section></body></html>", ""]
     return "\n".join(parts)

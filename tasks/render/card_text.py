@@ -16,7 +16,7 @@ _PREFIXES = ((1e9, "G"), (1e6, "M"), (1e3, "k"), (1.0, ""), (1e-3, "m"), (1e-6, 
 def si(value: float | None, unit: str) -> str:
     """A value with its unit, 3 significant digits: 10.4 kPa, 388 um, 0.152 kg, 26.6 deg, 0.0728 (unit '-')."""
     if value is None or not math.isfinite(value):
-        return "not measured" if value is None else str(value)
+        return "not measured"  # never 'nan' on a card (#36)
     suffix = "" if unit == "-" else f" {unit}"
     if unit in PREFIXED_UNITS and value != 0.0:
         for scale, prefix in _PREFIXES:
@@ -27,11 +27,20 @@ def si(value: float | None, unit: str) -> str:
 
 
 def band_text(fig: Figure) -> str:
-    """'in [5 kPa, 19.9 kPa]' / 'OUTSIDE [...]' / '' without a band."""
+    """'in [5 kPa, 19.9 kPa]' / 'OUTSIDE [...]' (measured) / 'target [...]' (not measured) / '' without a band."""
     if fig.band is None:
         return ""
-    word = "in" if fig.met else "OUTSIDE"
+    word = {"measured inside": "in", "measured outside": "OUTSIDE"}.get(fig.state, "target")
     return f"{word} [{si(fig.band[0], fig.unit)}, {si(fig.band[1], fig.unit)}]"
+
+
+def state_text(fig: Figure) -> str:
+    """A figure's state in words: 'measured, inside its target' / 'measured, OUTSIDE its target' / 'measured' /
+    'not measured: <why>'."""
+    if fig.state == "not measured":
+        return f"not measured: {fig.note}" if fig.note else "not measured"
+    return {"measured inside": "measured, inside its target",
+            "measured outside": "measured, OUTSIDE its target"}.get(fig.state, "measured")
 
 
 def figure_lines(fig: Figure, label_width: int = 24) -> list[str]:

@@ -108,3 +108,84 @@ def test_card_does_not_depend_on_the_folder_name(tmp_path: Path) -> None:
     assert page_b.read_text(encoding="utf-8") == html
     text = json.loads((a / "asset.json").read_text())["request"]["text"]
     assert f"<h1>Asset card: {text}</h1>" in html and "renamed_sponge" not in html
+
+
+def _card_text(root: Path) -> str:
+    """Every word the card shows: the HTML page and the PNG's text blocks (tasks.render.card_png's lines)."""
+    from tasks.render import card_png
+
+    card = card_data(root)
+    png_lines = [*card_png._material_lines(card), *card_png._l1_lines(card), *card_png._l3_lines(card),
+                 *card_png._stage_lines(card), *(v.sentence for v in card.layers), card.material_words or ""]
+    import html
+
+    return html.unescape((root / CARD_HTML).read_text(encoding="utf-8")) + "\n".join(png_lines)
+
+
+def test_no_nan_on_a_card_and_every_target_measured_or_not_with_a_reason(tmp_path: Path) -> None:
+    """#36: a failed trial's labels hold NaN where the object was never held (the duck's 'hold normal force nan'): the
+    card shows no NaN, the figure is absent with its reason; each target band is measured inside, measured outside or
+    not measured with a reason (the turtle's sag_ratio: the lift probe's pinch slipped); the L2 verdict is PASSED."""
+    root = _asset(tmp_path, "turtle")
+    record = json.loads((root / "manipulation.json").read_text())
+    for key in ("hold_normal_force_n", "hold_friction_ratio"):
+        record["labels"][key] = float("nan")
+    (root / "manipulation.json").write_text(json.dumps(record))  # NaN, as json.dumps writes it
+    build_card(root)
+    text = _card_text(root)
+    assert "nan" not in text.lower().replace("nanoseconds", "")
+    card = card_data(root)
+    hold = {f.metric: f for f in card.l3.figures}["hold_normal_force_n"]
+    assert hold.value is None and hold.state == "not measured" and "never held" in (hold.note or "")
+    states = {f.metric: f.state for f in card.bands}
+    assert set(states.values()) <= {"measured inside", "measured outside", "not measured"}
+    assert states["sag_ratio"] == "not measured" and states["effective_modulus_pa"] == "measured inside"
+    sag = {f.metric: f for f in card.bands}["sag_ratio"]
+    assert sag.note and "pinch did not hold" in sag.note and f"not measured: {sag.note}" in text
+    assert "OUTSIDE" not in text  # nothing was measured outside its band
+    verdicts = {v.stage: v for v in card.layers}
+    assert [v.stage for v in card.layers] == ["L0", "L1", "L2", "L3"]
+    assert verdicts["L2"].passed and "Not measured: sag ratio" in verdicts["L2"].sentence
+    assert card.material_words == "soft as a plush toy, hardly bounces: E = 9.98 kPa"
+
+
+def test_card_reads_in_ten_seconds_then_the_technical_details(tmp_path: Path) -> None:
+    """The page opens with the request, what was built, PASSED / NOT PASSED per layer and the material in plain
+    words; probes, cache keys and harness words come after, in a section of their own."""
+    root = _asset(tmp_path, "turtle")
+    record = json.loads((root / "manipulation.json").read_text())
+    record.update(passed=False, status="best_valid", message="not lifted: the object slipped out at lift")
+    (root / "manipulation.json").write_text(json.dumps(record))
+    _, page = build_card(root)
+    html = page.read_text(encoding="utf-8")
+    first, technical = html.split('<section class="technical">')
+    assert first.count('class="mark">PASSED<') == 3 and first.count('class="mark">NOT PASSED<') == 1
+    assert "soft as a plush toy" in first and "plush turtle" in first
+    for word in ("best_valid", "cache key", "CacheStore", 'class="key"'):
+        assert word not in first and word in technical
+    assert "font-family:monospace" not in html.split("body{")[1].split("}")[0]
+
+
+def test_one_trial_numbering_in_manipulation_json_evidence_and_the_card(tmp_path: Path) -> None:
+    """A trial is a simulated pick-and-place, numbered from 1 in the order run (the console's 'L3 trial k'):
+    manipulation.json's rows (trial_rows), `deformsmith evidence` (the harness attempt's trial) and the card name the
+    same number for the same interaction folder; never the folder index."""
+    from flows.cli.evidence_cmds import attempt_trials
+    from tasks.agents.records import read_attempts
+    from tasks.record.trials import trial_of_attempt, trial_rows
+
+    root = _asset(tmp_path, "turtle")
+    record = json.loads((root / "manipulation.json").read_text())
+    rows = trial_rows(record)
+    assert [r["trial"] for r in rows] == [1, 2, 3, 4] and [r["attempt"] for r in rows] == [0, 1, 2, 3]
+    l3 = [a for a in read_attempts(root / "evidence" / "attempts.jsonl") if a.stage == "L3"]
+    assert [attempt_trials(root, a) for a in l3] == [[1]]  # the harness's attempt #0 ran trial 1
+    card = card_data(root)
+    assert (card.l3.trial, card.l3.trials) == (trial_of_attempt(record, record["attempt"]), 4) == (1, 4)
+    _, page = build_card(root)
+    html = page.read_text(encoding="utf-8")
+    assert "trial 1 of 4" in html and "trial 0" not in html
+    assert any(s.startswith("L3: accepted, 4 trial(s)") and s.endswith("reported: trial 1") for s in card.stages)
+    record.update(attempt=2, trial=3)  # a record that reports a later trial: the card follows manipulation.json
+    (root / "manipulation.json").write_text(json.dumps(record))
+    assert card_data(root).l3.trial == 3
