@@ -73,7 +73,7 @@ class AttemptRecorder:
 
 def write_harness_log(path: Path, stage: str, attempts: list[Attempt], outcome: StageOutcome | None = None) -> Path:
     """A Rerun recording with one harness/log TextLog per attempt (frame = iteration) and the score as a scalar."""
-    from tasks.record import ProbeRecording
+    from tasks.record.rerun_recording import ProbeRecording
 
     with ProbeRecording(path, recording_id=f"harness-{stage}") as rec:
         for a in attempts:
