@@ -378,7 +378,9 @@ def test_real_photo_of_a_soft_object_matches_its_mask_upright(row: dict) -> None
     path = PHOTOS / row["file"]
     request = AssetRequest(image_path=path, text=f"a {row['object']}", size_hint_m=row.get("size_m"))
     targets_from_request(request)
-    arrays, info = pipeline.build_mesh(request, _fast())
+    # the draft contract's resolution (64), not _fast's 40: the two cherries hang on stems thinner than a voxel at 40
+    # and the mesh keeps one of them (IoU 0.41; 0.94 at 64)
+    arrays, info = pipeline.build_mesh(request, _fast().model_copy(update={"marching_cubes_resolution": 64}))
     photo = info.photo
     assert photo is not None and np.allclose(photo.camera_up, (0, 0, 1), atol=1e-6) and not info.reoriented
     mask = image.segment(image.load_image(path))[0]
@@ -404,11 +406,8 @@ def _labels() -> dict:
 # known failures of the current segmentation (benchmarks/segmentation_sheet.py --labels shows each); strict, so a fix
 # that makes one pass must remove it from here
 _MASK_KNOWN_BAD = {
-    "backpack_co3d_relpose.jpg": "the dark side panel and strap are lost (IoU 0.74)",
-    "red_apple_jetson.jpg": "the highlighted left side is cut off (IoU 0.63)",
-    "cherries_magic123.jpg": "one cherry of the two (IoU 0.43)",
-    "basketball_depthanything.jpg": "the hoop's rim and net are taken with the ball (IoU 0.75)",
-    "plastic_bottle_embodiedgen.jpg": "the white cap and the bottom are lost (IoU 0.67)",
+    "basketball_depthanything.jpg": "a ball behind the hoop's net: the rim and net strands in front of it are taken "
+                                    "with the ball (IoU 0.73)",
 }
 
 
