@@ -24,6 +24,7 @@ import numpy as np
 from contracts.errors import InputError
 from contracts.request import AssetRequest
 from flows.l1_physical import l1_plan
+from tasks.agents.intent import targets_from_request
 from tasks.geometry import pipeline
 from tasks.geometry.outputs import load_l0, write_outputs
 from tasks.geometry.suite_bench import contact_sheet
@@ -42,16 +43,28 @@ def load_jsonl(path: Path) -> list[dict]:
 
 def bench_one(prompt: dict, settings: pipeline.L0Settings, out: Path) -> dict:
     """One prompt: L0's units timed, outputs written to a temp folder, L1's mass plan, the three views kept."""
+    done = out / "rows" / f"{prompt['id']}.json"
+    if done.is_file():  # a killed run resumes: finished prompts are kept
+        return json.loads(done.read_text(encoding="utf-8"))
+    row = _bench_one(prompt, settings, out)
+    done.parent.mkdir(parents=True, exist_ok=True)
+    done.write_text(json.dumps(row), encoding="utf-8")
+    return row
+
+
+def _bench_one(prompt: dict, settings: pipeline.L0Settings, out: Path) -> dict:
     t0, c0 = time.perf_counter(), time.process_time()
     request = AssetRequest(text=prompt["text"])
     try:
+        targets_from_request(request)  # what the CLI refuses before any layer (a rigid material or object)
         mesh, info = pipeline.build_mesh(request, settings)
         proxy = pipeline.build_proxy(mesh, settings.coacd)
         particles = pipeline.build_particles(mesh, settings.particles)
         gaussians = pipeline.build_gaussians(mesh, particles, settings)
         checks = pipeline.check_geometry(mesh, proxy, particles, gaussians)
     except InputError as exc:
-        return {"id": prompt["id"], "text": prompt["text"], "object": prompt.get("object"), "error": str(exc)}
+        return {"id": prompt["id"], "text": prompt["text"], "object": prompt.get("object"), "error": str(exc),
+                "expected_mass_kg": prompt.get("mass_kg")}
     seconds, cpu_seconds = time.perf_counter() - t0, time.process_time() - c0
     with tempfile.TemporaryDirectory(prefix="ds-blind-") as tmp:
         folder = Path(tmp) / "l0"

@@ -53,8 +53,9 @@ def _mass(request, info, mesh) -> tuple[float, str]:  # noqa: ANN001
     return check.density_kg_per_m3 * volume, material
 
 
-def run_one(path: Path, text: str | None, size_m: float | None, full: bool) -> dict:
-    """One photo through L0 (mesh step, or all of L0 with full) and its figures."""
+def run_one(path: Path, text: str | None, size_m: float | None, full: bool, views: Path | None = None) -> dict:
+    """One photo through L0 (mesh step, or all of L0 with full) and its figures; with views, the mesh's front, side
+    and top renders side by side in views/<photo stem>.png (what a blind judge names the object from)."""
     from contracts.errors import InputError
     from contracts.request import AssetRequest
     from tasks.geometry import image, pipeline, silhouette
@@ -84,6 +85,14 @@ def run_one(path: Path, text: str | None, size_m: float | None, full: bool) -> d
     assert photo is not None
     mesh = pipeline.arrays_to_mesh(arrays)
     mass, material = _mass(request, info, mesh)
+    if views is not None:
+        import imageio.v3 as iio
+
+        from tasks.geometry.render import render_view
+
+        views.mkdir(parents=True, exist_ok=True)
+        iio.imwrite(views / f"{path.stem}.png", np.concatenate([render_view(mesh, v, 384) for v in
+                                                                ("front", "side", "top")], axis=1))
     row.update(
         refused=False, method=photo.method, view=photo.view, fit_iou=photo.fit_iou,
         iou=round(silhouette.silhouette_iou(arrays["vertices"], arrays["faces"], photo, mask), 3),
@@ -103,6 +112,7 @@ def main() -> None:
     ap.add_argument("--large", action="store_true", help="also time the first photo as a 12-megapixel JPEG")
     ap.add_argument("--full", action="store_true", help="time all of L0, not the mesh step alone")
     ap.add_argument("--only", nargs="*", default=None, help="file names to run")
+    ap.add_argument("--views", type=Path, default=None, help="write each built photo's front | side | top renders here")
     args = ap.parse_args()
 
     cases: list[tuple[Path, str | None, float | None, bool]] = []
@@ -119,7 +129,7 @@ def main() -> None:
         cases = [c for c in cases if c[0].name in args.only]
     rows = []
     for path, text, size_m, soft in cases:
-        row = {**run_one(path, text, size_m, args.full), "soft": soft}
+        row = {**run_one(path, text, size_m, args.full, args.views), "soft": soft}
         print(json.dumps(row), flush=True)
         rows.append(row)
     if args.large and cases:

@@ -28,6 +28,7 @@ class Analogy:
     chain: list[str] = field(default_factory=list)
     concept: str | None = None  # lexicon key: a named donor (level 'hypernym') or a generic_* (level 'category')
     named_donor: bool = False
+    kind: str | None = None  # the word of the kind that decided it ('dog' for a spaniel, 'bag' for a tote)
     shape_word: str | None = None  # a SHAPE_WORDS key read from the definition (level 'gloss')
     material_words: list[str] = field(default_factory=list)
     color_words: list[str] = field(default_factory=list)
@@ -48,16 +49,26 @@ def _words(text: str) -> list[str]:
     return re.findall(r"[a-z]+", text.lower())
 
 
-def _best_sense(noun: str) -> Sense | None:
-    """The physical sense of a noun: one whose first word is the noun itself, else the most frequent; among those,
-    artifacts, food, animals and plants before natural objects and substances ('mould' the container, not soil)."""
+def _overlap(sense: Sense, context: set[str]) -> int:
+    """Words of the request found in a sense's definition and its nearest kinds (simplified Lesk): 'an arm sling' is
+    the bandage that supports a forearm, not the drink."""
+    text = " ".join([sense.definition, *(a.name for a in wordnet().ancestors(sense, 3))]).lower()
+    return sum(1 for w in context if len(w) > 2 and w in text)
+
+
+def _best_sense(noun: str, context: set[str] | None = None) -> Sense | None:
+    """The physical sense of a noun: the one whose definition shares most words with the request, then one whose
+    first word is the noun itself, else the most frequent; artifacts, food, animals and plants before natural objects
+    and substances ('mould' the container, not soil)."""
     senses = wordnet().physical_senses(noun)
     if not senses:
         return None
     own = noun.replace(" ", "_").lower()
+    ctx = (context or set()) - set(own.split("_"))
     tier = {"noun.artifact": 0, "noun.food": 0, "noun.animal": 0, "noun.plant": 0, "noun.object": 1,
             "noun.substance": 2}
-    ranked = sorted(enumerate(senses), key=lambda p: (p[1].lemmas[0] != own, tier.get(p[1].lexname, 3), p[0]))
+    ranked = sorted(enumerate(senses), key=lambda p: (-_overlap(p[1], ctx), p[1].lemmas[0] != own,
+                                                      tier.get(p[1].lexname, 3), p[0]))
     return ranked[0][1]
 
 
@@ -68,17 +79,24 @@ def domain_of_sense(sense: Sense) -> str:
 
 def explain(candidates: list[str], lexicon_nouns: dict[str, Any], shape_words: dict[str, Any],
             material_words: dict[str, str], color_words: dict[str, Any],
-            lexicon_domain: Callable[[str], str] | None = None) -> Analogy | None:
+            lexicon_domain: Callable[[str], str] | None = None, context: str = "") -> Analogy | None:
     """The analogy for the longest candidate WordNet knows (e.g. 'yoga mat', then 'mat').
 
     lexicon_nouns: surface noun -> (concept key, ...) of the lexicon; shape_words: the shape words the grammar
     builds; material_words: material word -> class; color_words: colour word -> RGB; lexicon_domain(key): 'animal',
     'food' or 'thing' for a lexicon concept, so that a word of another sense lends nothing (a washer is a kind of
-    seal, the gasket, not the lexicon's plush seal)."""
+    seal, the gasket, not the lexicon's plush seal); context: the request, to choose among a noun's senses."""
     v = vocab()
+    context_words = set(_words(context))
     too_general = set(v["too_general"])
     for noun in candidates:
-        sense = _best_sense(noun)
+        if noun in lexicon_nouns and noun != candidates[0]:  # 'a spatula head': the part of a spatula
+            sense = _best_sense(noun, context_words) or Sense(0, (noun,), "", "noun.artifact", (), (), ())
+            out = Analogy(noun=candidates[0], sense=sense, concept=lexicon_nouns[noun][0], named_donor=True,
+                          kind=noun)
+            out.chain.append(f"a part or kind of '{noun}', which the lexicon knows")
+            return out
+        sense = _best_sense(noun, context_words)
         if sense is None:
             continue
         out = Analogy(noun=noun, sense=sense)
@@ -87,19 +105,20 @@ def explain(candidates: list[str], lexicon_nouns: dict[str, Any], shape_words: d
         kinds: list[str] = []
         for anc in path[:MAX_ANCESTORS]:
             words = [w.replace("_", " ") for w in anc.lemmas]
-            if any(w in too_general for w in words):
+            if words[0] in too_general:
                 continue
             kinds.append(words[0])
             donor = next((w for w in words if w in lexicon_nouns and (
                 lexicon_domain is None or lexicon_domain(lexicon_nouns[w][0]) == domain_of_sense(anc))), None)
             if donor is not None:
-                out.concept, out.named_donor = lexicon_nouns[donor][0], True
+                out.concept, out.named_donor, out.kind = lexicon_nouns[donor][0], True, donor
                 out.chain.append(f"a kind of {' < '.join(kinds)}; the lexicon knows '{donor}'")
                 break
             generic = next((v["ancestors"][w] for w in words if w in v["ancestors"]), None)
             if generic is not None:
-                out.concept = generic
-                out.chain.append(f"a kind of {' < '.join(kinds)}: the class '{words[0]}'")
+                out.concept, out.named_donor, out.kind = generic, not generic.startswith("generic_"), words[0]
+                out.chain.append(f"a kind of {' < '.join(kinds)}: the class '{words[0]}'"
+                                 + (f", built like the lexicon's {generic.replace('_', ' ')}" if out.named_donor else ""))
                 break
         gloss = _words(sense.definition)
         out.material_words = [w for w in gloss if w in material_words]

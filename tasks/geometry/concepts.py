@@ -101,8 +101,12 @@ PLAN_GENERIC: dict[str, str] = {
     "cephalopod": "generic_cephalopod", "insect": "generic_insect", "segmented": "generic_worm",
     "snake": "generic_worm", "round_fruit": "generic_round_fruit", "pear": "generic_round_fruit",
     "berry": "generic_berry", "elongated": "generic_vegetable", "bun": "generic_baked", "loaf": "generic_baked",
-    "cushion": "generic_cushion", "ball": "generic_ball", "blob": "generic_blob",
+    "cushion": "generic_cushion", "ball": "generic_ball", "blob": "generic_blob", "sheet": "generic_garment",
+    "pouch": "generic_bag", "glove": "generic_garment", "sock": "generic_garment", "hat": "generic_garment",
+    "disc": "generic_block", "mould": "generic_blob",
 }
+# head nouns that name a part of the object the word before them names ('a mop head' is built as a mop)
+PART_NOUNS = frozenset({"head", "top", "cover", "lid", "tip", "refill", "insert", "part", "end", "piece", "side"})
 
 
 @dataclass
@@ -490,11 +494,15 @@ def _by_wordnet(phrase: phrase_mod.Phrase, unknown: str | None, t: str, donor: L
     noun = unknown or phrase.head
     if noun is None or noun in SHAPE_WORDS:
         return None  # 'a foam disc' is a disc: the shape word itself, no analogy needed
-    cands = [c for c in phrase.candidates() if c.split()[-1] == noun] or [noun]
-    found = analogy_mod.explain(cands, noun_index(), SHAPE_WORDS, _material_words(), lex.colors, concept_domain)
+    cands = [c for c in phrase.candidates() if c.split()[-1] == noun and not modifier_word(c.split()[0])
+             and c.split()[0] not in _material_words()] or [noun]
+    if noun in PART_NOUNS and phrase.compounds:
+        cands.insert(len(cands) - 1, phrase.compounds[-1])  # 'a mop head': the mop before the head
+    found = analogy_mod.explain(cands, noun_index(), SHAPE_WORDS, _material_words(), lex.colors, concept_domain, t)
     if found is None:
         return None
-    material = _material_in(t) or next((_material_words()[w] for w in found.material_words), None)
+    said = re.sub(rf"\b{phrase.portion}\s+of\b", " ", t) if phrase.portion else t  # 'a roll of' is no bread
+    material = _material_in(said) or next((_material_words()[w] for w in found.material_words), None)
     chain = [f"'{found.noun}' is not in the lexicon", *found.chain]
     size_m = None
     if found.concept is not None and found.named_donor:
@@ -502,9 +510,9 @@ def _by_wordnet(phrase: phrase_mod.Phrase, unknown: str | None, t: str, donor: L
         generic_key = PLAN_GENERIC.get(named.plan or "", CATEGORY_GENERIC.get(named.category, "generic_block"))
         entry = lex.entries[generic_key]
         what = named.key.replace("_", " ")
-        note = f"'{found.noun}' is not in the lexicon: WordNet says it is a kind of {found.chain[-1].split('knows ')[-1]}"\
-               f", so it was built by analogy with the {what}"
-        match = _match(named, "hypernym", found.noun, note, _material_in(t)).model_copy(update={
+        note = f"'{found.noun}' is not in the lexicon: it is a kind of '{found.kind}' (WordNet), so it was built by " \
+               f"analogy with the {what}"
+        match = _match(named, "hypernym", found.noun, note, _material_in(said)).model_copy(update={
             "concept": generic_key, "body_plan": named.plan or f"catalogue:{named.catalogue}",
             "mass_source": f"by analogy with the lexicon's {what}: {named.mass_source}",
             "analogy": [*chain, f"built like the lexicon's {what}: its shape, material and typical mass"]})
@@ -512,9 +520,9 @@ def _by_wordnet(phrase: phrase_mod.Phrase, unknown: str | None, t: str, donor: L
         return entry, match, donor if (donor or donor_plan) else named, donor_plan, size_m
     if found.concept is not None:
         entry = lex.entries[found.concept]
-        note = f"'{found.noun}' is not in the lexicon: WordNet places it under '{found.chain[-1].split(chr(39))[-2]}'" \
-               f", so it was built as a generic {found.concept[8:].replace('_', ' ')}"
-        match = _match(entry, "category", found.noun, note, _material_in(t))
+        note = f"'{found.noun}' is not in the lexicon: WordNet places it under '{found.kind}', so it was built as a " \
+               f"generic {found.concept[8:].replace('_', ' ')}"
+        match = _match(entry, "category", found.noun, note, _material_in(said))
         return entry, match.model_copy(update={"analogy": [
             *chain, f"built as a generic {found.concept[8:].replace('_', ' ')}"]}), \
             donor, donor_plan, None

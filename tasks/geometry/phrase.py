@@ -152,8 +152,8 @@ def parse(text: str, known: Callable[[str], bool] | None = None,
             continue
         if word in UNIT_WORDS or tok.pos_ in ("DET", "NUM") or tok.tag_ in ("CD", "PRP$", "POS"):
             continue
-        if seen_noun and _boundary(doc, i):
-            break
+        if seen_noun and _boundary(doc, i) and not (tok.tag_ in ("VB", "VBP", "VBZ") and is_known(word)):
+            break  # (a known noun tagged a verb is still the phrase: 'a silicone loaf pan')
         if word in PLACEHOLDER_NOUNS:
             span.append(tok)
             seen_noun = True
