@@ -91,14 +91,15 @@ def explain(candidates: list[str], lexicon_nouns: dict[str, Any], shape_words: d
     too_general = set(v["too_general"])
     for noun in candidates:
         if noun in lexicon_nouns and noun != candidates[0]:  # 'a spatula head': the part of a spatula
-            sense = _best_sense(noun, context_words) or Sense(0, (noun,), "", "noun.artifact", (), (), ())
-            out = Analogy(noun=candidates[0], sense=sense, concept=lexicon_nouns[noun][0], named_donor=True,
+            own = _best_sense(noun, context_words) or Sense(0, (noun,), "", "noun.artifact", (), (), ())
+            out = Analogy(noun=candidates[0], sense=own, concept=lexicon_nouns[noun][0], named_donor=True,
                           kind=noun)
             out.chain.append(f"a part or kind of '{noun}', which the lexicon knows")
             return out
-        sense = _best_sense(noun, context_words)
-        if sense is None:
+        found = _best_sense(noun, context_words)
+        if found is None:
             continue
+        sense = found
         out = Analogy(noun=noun, sense=sense)
         out.chain.append(f"WordNet: {sense.name} = '{sense.definition}'")
         path = [s for s in wordnet().ancestors(sense, MAX_ANCESTORS)]
