@@ -47,6 +47,8 @@ class LexiconEntry(Model):
                                             "when the material class's prior does not describe it [kg/m^3]")
     takes_shape: bool = Field(default=False, description="made in any shape: 'a cat cushion' is a cushion shaped "
                               "like a cat")
+    posed_by: str | None = Field(default=None, description="a body-plan entry that shows this (hand-written) object "
+                                 "sitting or lying when asked ('a dog lying down'): its shape is used then")
 
     @model_validator(mode="after")
     def _check(self) -> LexiconEntry:

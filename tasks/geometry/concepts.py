@@ -430,6 +430,10 @@ def read_text(text: str) -> Reading:
         if compound is not None and donor is None and entry.takes_shape:
             donor_entry = lex.entries[noun_index()[compound[2]][0]]
             donor_words = compound[2]
+        poses = {"sitting", "lying", "curled", "standing"} & set(phrase.states)
+        if poses and donor is None and entry.plan is None and entry.posed_by in lex.entries:
+            donor_entry = lex.entries[entry.posed_by]  # 'a dog lying down': the posable dog's shape
+            donor_words = " ".join(sorted(poses))
     else:
         shape_noun = unknown or phrase.head
         if donor_entry is None and donor_plan is None and shape_noun in SHAPE_WORDS:
@@ -638,9 +642,11 @@ def _state_params(reading: Reading, warnings: list[str]) -> tuple[list[str], dic
     target = reading.donor or reading.entry
     plan = reading.donor_plan[0] if reading.donor_plan is not None and reading.donor is None else target.plan
     can = grammar.plan_states(plan) if plan in grammar.PLANS else ()
-    shown = [st for st in phrase.states if st in can]
-    shapeless = {"stuffed", "filled", "inflated", "hollow", "flat"}  # carried by the material and mass, not the shape
-    for st in phrase.states:
+    said = list(dict.fromkeys("lying" if st == "curled" and "lying" in can else st for st in phrase.states))
+    shown = [st for st in said if st in can]  # ('curled up' is lying, for an animal)
+    # carried by the material and mass, or a pose the shape has anyway (a teddy sits), not drawn apart
+    shapeless = {"stuffed", "filled", "inflated", "hollow", "flat", "sitting", "lying", "standing"}
+    for st in said:
         if st not in can and st not in shapeless:
             warnings.append(f"state '{st}' is not drawn: the {target.key.replace('_', ' ')} shape has no such state")
     return shown, ({"state": shown[0]} if shown else {})

@@ -26,6 +26,8 @@ STATE_WORDS: dict[str, str] = {
     "stuffed": "stuffed", "filled": "filled", "hollow": "hollow", "empty": "hollow",
     "deflated": "deflated", "inflated": "inflated", "bent": "bent", "curled": "curled",
     "flat": "flat", "unrolled": "flat", "spread": "flat", "laid": "flat",
+    "sitting": "sitting", "sits": "sitting", "seated": "sitting", "lying": "lying", "laying": "lying",
+    "lies": "lying", "asleep": "lying", "sleeping": "lying", "resting": "lying", "standing": "standing",
 }
 # nouns that measure or portion their object: 'a slice of cheese' is cheese in the shape of a slice
 PORTION_NOUNS = frozenset({"slice", "wedge", "piece", "chunk", "lump", "block", "bar", "ball", "loaf", "sheet",
@@ -186,6 +188,9 @@ def parse(text: str, known: Callable[[str], bool] | None = None,
         phrase.states.append(PORTION_STATES[portion])  # 'a stack of towels' is towels, stacked
     for tok in doc:
         word = tok.text.lower()
+        nxt = doc[tok.i + 1].text.lower() if tok.i + 1 < len(doc) else ""
+        if nxt and is_known(f"{word} {nxt}"):
+            continue  # 'a sleeping bag' is no state
         if word in STATE_WORDS and STATE_WORDS[word] not in phrase.states:
             phrase.states.append(STATE_WORDS[word])
     own = {t.i for t in span}

@@ -205,3 +205,22 @@ def test_holey_cheese_has_holes_and_layered_food_its_layers() -> None:
     cake = _build("layered", 0.12, shape="wedge", layers=3, topping=0.2)
     groups = [part_group(p.name) for p in cake.parts]
     assert groups.count("filling") == 2 and "topping" in groups
+
+
+def test_quadruped_poses_sit_and_lie() -> None:
+    """A sitting animal is taller than long with its chest up; a lying one is low, its head near the ground; both
+    are one watertight body, and 'a dog lying down' takes the posable dog's shape."""
+    from tasks.geometry.catalogue import design_from_text
+    from tasks.geometry.meshing import mesh_program
+
+    ext = {}
+    for state in ("standing", "sitting", "lying"):
+        d = design_from_text(f"a plush fox {'' if state == 'standing' else state}".strip())
+        mesh = mesh_program(d.program, 48)
+        assert mesh.is_watertight and mesh.body_count == 1, state
+        ext[state] = mesh.extents / mesh.extents.max()
+        assert d.concept.states == ([] if state == "standing" else [state])
+    assert ext["sitting"][2] > 1.15 * ext["standing"][2]  # upright chest
+    assert ext["lying"][2] < 0.8 * ext["standing"][2]  # low on the ground
+    dog = design_from_text("a floppy stuffed dog lying down with its head on its paws")
+    assert dog.concept.shape_from == "plush_labrador" and dog.concept.states == ["lying"]

@@ -24,9 +24,9 @@ TABLE = [
     ('a folded beach towel', 'towel', 'beach towel', None, ['folded'], None, 'textile', {}),
     ('a stack of pancakes', 'pancakes', 'pancakes', 'stack', ['stacked'], None, None, {}),
     ('a stacked pile of washcloths', 'washcloths', 'washcloths', 'pile', ['stacked'], None, None, {}),
-    ('a seal pup lying on its belly', 'pup', 'seal pup', None, [], None, None, {}),
-    ('a sleeping puppy curled up on a cushion', 'puppy', 'puppy', None, ['curled'], None, 'pu_foam', {}),
-    ('a teddy bear sitting on a shelf', 'bear', 'teddy bear', None, [], None, 'plush', {}),
+    ('a seal pup lying on its belly', 'pup', 'seal pup', None, ['lying'], None, None, {}),
+    ('a sleeping puppy curled up on a cushion', 'puppy', 'puppy', None, ['lying', 'curled'], None, 'pu_foam', {}),
+    ('a teddy bear sitting on a shelf', 'bear', 'teddy bear', None, ['sitting'], None, 'plush', {}),
     ('an IV fluid bag', 'bag', 'fluid bag', None, [], None, None, {}),
     ('a saline bag hanging from a hook', 'bag', 'saline bag', None, [], None, None, {}),
     ('a hockey-puck-like disc', 'disc', 'disc', None, [], 'hockey puck', None, {}),
@@ -103,7 +103,7 @@ TABLE = [
     ('a piece of bread', 'bread', 'bread', 'piece', [], None, 'bread', {}),
     ('a burrito wrapped in foil', 'burrito', 'burrito', None, [], None, None, {}),
     ('a stuffed crust pizza slice', 'slice', 'crust pizza slice', None, ['stuffed'], None, '*', {}),
-    ('a hamster lying on its back', 'hamster', 'hamster', None, [], None, None, {}),
+    ('a hamster lying on its back', 'hamster', 'hamster', None, ['lying'], None, None, {}),
 ]
 
 

@@ -113,13 +113,30 @@ class QuadrupedParams(Model):
     tail_length: float = Field(default=0.35, ge=0.0, le=2.0, description="tail length / body length")
     horns: int = Field(default=0, ge=0, le=2)
     hump: bool = False
+    state: Literal["standing", "sitting", "lying"] = Field(default="standing", description="standing on its legs; "
+                                                            "sitting on its haunches, chest up; lying down, head on "
+                                                            "its front paws")
+
+
+SIT_TILT_DEG = 40.0  # a sitting animal's body, nose up [deg]
 
 
 def quadruped(p: QuadrupedParams) -> list[Part]:
     """Body on legs, head in front (optionally on a neck), ears, face, tail."""
+    if p.state == "sitting" and p.leg_length > 0:
+        return _sitting_quadruped(p)
     bw, bh = p.body_width, p.body_height
-    zb = p.leg_length + 0.42 * bh
+    lying = p.state == "lying"
+    zb = 0.5 * bh if lying else p.leg_length + 0.42 * bh
     parts = [ellipsoid("body", (0.5, bw / 2, bh / 2), (0, 0, zb))]
+    if lying and p.leg_length > 0:
+        r = p.leg_radius
+        reach = 0.55 * p.leg_length + 0.12
+        parts += mirrored(limb, "front leg", (0.3, 0.55 * bw / 2, 0.3 * bh), (0.3 + reach, 0.5 * bw / 2, r), r,
+                          blend=0.04)
+        parts += mirrored(limb, "rear leg", (-0.3, 0.62 * bw / 2, 0.3 * bh), (-0.3 + reach, 0.8 * bw / 2, r), r,
+                          blend=0.04)
+        return [*parts, *_quadruped_head_and_tail(p, zb, lying=True, paws_x=0.3 + reach)]
     if p.hump:
         parts.append(ellipsoid("hump", (0.2, 0.2, 0.2), (-0.05, 0, zb + 0.4 * bh), blend=0.08))
     if p.leg_length > 0:
@@ -132,22 +149,50 @@ def quadruped(p: QuadrupedParams) -> list[Part]:
                               p.leg_radius, blend=0.04)
     else:
         parts.append(ellipsoid("legs", (0.42, 0.85 * bw / 2, 0.12), (0, 0, 0.12), blend=0.05))
+    return [*parts, *_quadruped_head_and_tail(p, zb)]
+
+
+def _sitting_quadruped(p: QuadrupedParams) -> list[Part]:
+    """Sitting on its haunches: the body tilted nose up, straight front legs, folded hind legs, the tail on the
+    ground behind."""
+    bw, bh, r = p.body_width, p.body_height, p.leg_radius
+    t = np.radians(SIT_TILT_DEG)
+    zc = 0.5 * np.sin(t) + 0.32 * bh
+    parts = [ellipsoid("body", (0.5, bw / 2, bh / 2), (0, 0, zc), rot=(0, -SIT_TILT_DEG, 0))]
+    chest = np.array([0.5 * np.cos(t) * 0.6, 0.0, zc + 0.5 * np.sin(t) * 0.6 - 0.3 * bh])
+    parts += mirrored(limb, "front leg", (float(chest[0]), 0.5 * bw / 2, float(chest[2])),
+                      (float(chest[0]) + 0.04, 0.55 * bw / 2, r), r, blend=0.04)
+    parts += mirrored(ellipsoid, "haunch", (0.28, 0.2 * bw, 0.22 * bh), (-0.22, 0.62 * bw / 2, 0.22 * bh), blend=0.05)
+    parts += mirrored(ellipsoid, "hind paw", (0.16, 0.09 * bw + r, r), (-0.02, 0.7 * bw / 2, r), blend=0.04)
+    top = np.array([0.5 * np.cos(t), 0.0, zc + 0.5 * np.sin(t)])
+    return [*parts, *_quadruped_head_and_tail(p, float(top[2]) - 0.15 * bh, neck_base=top - (0.08, 0, 0.05),
+                                              tail_root=np.array([-0.5 * np.cos(t), 0.0, 0.1 * bh]))]
+
+
+def _quadruped_head_and_tail(p: QuadrupedParams, zb: float, lying: bool = False, paws_x: float = 0.0,
+                             neck_base: np.ndarray | None = None, tail_root: np.ndarray | None = None) -> list[Part]:
+    """Head (on its neck), ears, face, horns and tail of a quadruped whose body centre is at height zb."""
+    bw, bh = p.body_width, p.body_height
+    parts: list[Part] = []
     hr = p.head_size / 2
     a = np.radians(p.neck_angle_deg)
-    base = np.array([0.42, 0.0, zb + 0.15 * bh])
-    if p.neck_length > 0:
+    base = np.array([0.42, 0.0, zb + 0.15 * bh]) if neck_base is None else np.asarray(neck_base, dtype=float)
+    if lying and p.neck_length == 0:
+        head = np.array([max(0.5 + 0.45 * hr, paws_x - 0.4 * hr), 0.0, 0.95 * hr + p.leg_radius])  # on its paws
+    elif p.neck_length > 0:
         tip = base + p.neck_length * np.array([np.cos(a), 0.0, np.sin(a)])
         parts.append(limb("neck", base, tip, max(0.35 * hr, 0.6 * p.leg_radius), blend=0.05))
         head = tip + np.array([0.3 * hr, 0, 0.2 * hr])
     else:
-        head = np.array([0.5 + 0.55 * hr, 0.0, zb + 0.2 * bh + 0.3 * hr])
+        head = np.array([base[0] + 0.08 + 0.55 * hr, 0.0, base[2] + 0.05 * bh + 0.3 * hr])
     parts.append(ellipsoid("head", (hr, 0.95 * hr, 0.92 * hr), head, blend=0.08))
     parts += _ears(p.ears, head, hr, p.ear_size)
     parts += _face(head, hr, p.snout)
     if p.horns:
         parts += mirrored(tapered, "horn", (head[0] - 0.1 * hr, 0.35 * hr, head[2] + 0.75 * hr),
                           (head[0] - 0.2 * hr, 0.5 * hr, head[2] + 1.45 * hr), 0.14 * hr, 0.04 * hr, blend=0.03)
-    parts += _tail(p.tail, np.array([-0.47, 0.0, zb + 0.1 * bh]), 0.1, p.tail_length)
+    root = np.array([-0.47, 0.0, zb + 0.1 * bh]) if tail_root is None else tail_root
+    parts += _tail(p.tail, root, 0.1, p.tail_length)
     return parts
 
 
