@@ -172,7 +172,7 @@ def _sitting_quadruped(p: QuadrupedParams) -> list[Part]:
 def _quadruped_head_and_tail(p: QuadrupedParams, zb: float, lying: bool = False, paws_x: float = 0.0,
                              neck_base: np.ndarray | None = None, tail_root: np.ndarray | None = None) -> list[Part]:
     """Head (on its neck), ears, face, horns and tail of a quadruped whose body centre is at height zb."""
-    bw, bh = p.body_width, p.body_height
+    bh = p.body_height
     parts: list[Part] = []
     hr = p.head_size / 2
     a = np.radians(p.neck_angle_deg)
