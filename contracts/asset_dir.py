@@ -115,6 +115,7 @@ class SelectionSummary(Model):
 class MaterialRecord(Model):
     """material.json: L2's outcome, targets, the material (None when L2 found none) and its evidence."""
 
+    ABSENT_UNLESS_GIVEN: ClassVar[frozenset[str]] = frozenset({"not_measured"})  # keys older records lack
     schema_version: int = 1
     stage: Literal["L2"] = "L2"
     passed: bool

@@ -33,7 +33,7 @@ def _generate(out: Path, cache: Path, *args: str, wait: bool = True) -> subproce
     (["a sponge", "--quality", "ultra"], "--quality must be"),
     (["a sponge", "--device", "tpu"], "--device must be"),
     (["a sponge", "--cpu-threads", "0"], "--cpu-threads must be"),
-    (["a steel wrench"], "'steel' is a rigid material"),
+    (["a steel ball"], "'steel' is a rigid material"),
     (["a sponge", "--require-l3", "--no-l3"], "--require-l3 needs L3"),
 ])
 def test_bad_input_is_one_line_and_leaves_nothing(tmp_path: Path, args: list[str], message: str) -> None:

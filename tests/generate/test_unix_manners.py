@@ -48,7 +48,7 @@ def test_evidence_redirected_writes_the_history_to_the_file(tmp_path: Path) -> N
     res = _cli("evidence", str(ASSET), "--stage", "L3", stdout=f, columns=40)
     assert res.returncode == 0 and res.stderr == "", res.stderr
     text = f.read_text()
-    assert "attempts.jsonl" in text and "L3 #0 revise_squeeze (rule): accepted" in text
+    assert "attempts.jsonl" in text and "L3 #0 = trial 1 revise_squeeze (rule): accepted" in text
     assert ("    grasp_rank=0, squeeze_depth_m=0.04187, closing_speed_m_per_s=0.04, lift_duration_s=0.5, "
             "transport_duration_s=0.6, substeps=1") in text.splitlines()  # one line at 40 columns
     as_json = _cli("evidence", str(ASSET), "--json", stdout=f)
