@@ -36,9 +36,12 @@ def _contains_phrase(text: str, phrase: str) -> bool:
 
 
 def check_deformable(text: str, vocab: MaterialVocab) -> None:
-    """InputError when the text names a rigid material (steel, glass, wood, ...) and no deformable one."""
+    """InputError when the text names a rigid material (steel, glass, wood, ...) and no deformable one. A rigid
+    material said of an attachment ('a rolled bandage with a metal clip', 'a plush toy next to a steel bowl') does not
+    make the object rigid: only the words before 'with', 'next to', 'beside' ... count."""
     named = [w for entry in vocab.materials.values() for w in entry.words if _contains_phrase(text, w)]
-    rigid = [w for w in vocab.rigid_words if _contains_phrase(text, w)]
+    own = re.split(r"\s+(?:with|next to|beside|besides|on|in|inside|under|plus|and a|and an)\s+", text, maxsplit=1)[0]
+    rigid = [w for w in vocab.rigid_words if _contains_phrase(own, w)]
     if rigid and not named:
         soft = ", ".join(sorted({entry.words[0] for entry in vocab.materials.values()})[:8])
         raise InputError(

@@ -104,3 +104,16 @@ def test_the_concept_l0_built_gives_the_material_the_words_do_not_name() -> None
     assert _band(targets_from_intent("a rubber duck", concept=plush_duck), "effective_modulus_pa") == (1e6, 2.5e6)
     unknown = plush_duck.model_copy(update={"default_material": "vinyl"})  # not a vocabulary class: ignored
     assert "duck" in targets_from_intent("a yellow duck", concept=unknown).matched_words
+
+
+def test_a_rigid_attachment_does_not_make_the_object_rigid() -> None:
+    """'a rolled elastic bandage with a metal clip' is a bandage (a blind prompt was refused for its clip); 'a steel
+    ball' is still refused."""
+    import pytest
+
+    from contracts.errors import InputError
+    from tasks.agents.intent import targets_from_intent
+
+    targets_from_intent("a rolled elastic bandage with a metal clip")
+    with pytest.raises(InputError, match="'steel' is a rigid material"):
+        targets_from_intent("a steel ball")
