@@ -1,9 +1,9 @@
 """Photos -> segmentation sheets: each photo with its mask outlined beside the mask alone, and a contact sheet.
 
-    python benchmarks/segmentation_sheet.py [--photos DIR] [--out DIR] [--only NAME ...] [--labels]
+    python benchmarks/segmentation_sheet.py [--photos DIR] --out DIR [--only NAME ...] [--labels]
 
 For each row of DIR/manifest.json (tests/geometry/photos/ by default) the photo is read as the photo path reads it
-(tasks.geometry.image.load_image) and segmented (image.segment); OUT/<stem>.png (default /tmp/seg/) shows the photo
+(tasks.geometry.image.load_image) and segmented (image.segment); OUT/<stem>.png (--out, required) shows the photo
 with the mask's outline in green (and, with --labels, the rough hand label of DIR/masks.json in magenta) beside the
 mask alone, captioned with the method, the mask's area fraction, the seconds and, where a label exists, the IoU with
 it. OUT/contact_sheet.png puts every photo's panel in a grid. One JSON line per photo on stdout.
@@ -86,7 +86,7 @@ def main() -> None:
 
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--photos", type=Path, default=ROOT / "tests" / "geometry" / "photos")
-    ap.add_argument("--out", type=Path, default=Path("/tmp/seg"))
+    ap.add_argument("--out", type=Path, required=True, help="folder for the PNGs (created)")
     ap.add_argument("--only", nargs="*", default=None, help="file names to run")
     ap.add_argument("--labels", action="store_true", help="outline the rough hand labels of masks.json too")
     args = ap.parse_args()

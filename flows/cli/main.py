@@ -87,19 +87,15 @@ def _exit_now(code: int) -> NoReturn:
     run states and events reach the API), then the exit hooks (the local server stopped, rerun and logging flushed),
     then the output flushed and os._exit."""
     import atexit
-    import os
     import threading
+
+    from flows.cli.stop import flush_and_exit
 
     shutdown = getattr(threading, "_shutdown", None)  # what Py_FinalizeEx runs first: threading's exit hooks, joins
     if shutdown is not None:
         shutdown()
     atexit._run_exitfuncs()
-    for stream in (sys.stdout, sys.stderr):
-        try:
-            stream.flush()
-        except (OSError, ValueError):
-            pass
-    os._exit(code)
+    flush_and_exit(code)
 
 
 def main() -> None:

@@ -114,12 +114,17 @@ def leave(code: int) -> NoReturn:
         _stop_children()
         _remove_own_working_dirs()
     finally:
-        for stream in (sys.stdout, sys.stderr):
-            try:
-                stream.flush()
-            except (OSError, ValueError):
-                pass
-        os._exit(code)
+        flush_and_exit(code)
+
+
+def flush_and_exit(code: int) -> NoReturn:
+    """Flush stdout and stderr (a closed or broken stream is skipped) and end the process with os._exit(code)."""
+    for stream in (sys.stdout, sys.stderr):
+        try:
+            stream.flush()
+        except (OSError, ValueError):
+            pass
+    os._exit(code)
 
 
 def _children() -> list[int]:

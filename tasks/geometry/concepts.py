@@ -563,9 +563,7 @@ def _entry_program_cached(key: str, size_m: float) -> ShapeProgram:
                 parts.append(p.model_copy(update={"color_rgb": lex.colors[entry.colors[k]]}) if k else p)
             prog = prog.model_copy(update={"parts": parts})
         return prog
-    colors = {k: lex.colors[v] for k, v in entry.colors.items()}
-    return grammar.build_program(entry.plan or "", entry.params, colors, entry.key.replace("_", " "),
-                                 entry.category, size_m)
+    return _with_params(entry, {}, size_m)
 
 
 def concept_program(key: str) -> ShapeProgram:
@@ -627,7 +625,8 @@ def build(reading: Reading, text: str) -> tuple[ShapeProgram, ConceptMatch, list
 
 
 def _with_params(entry: LexiconEntry, params: dict, size_m: float) -> ShapeProgram:
-    """An entry's body-plan program with some parameters changed (a state: 'rolled')."""
+    """An entry's body-plan program at size_m, painted with its colours, with some parameters changed (a state:
+    'rolled'; none: the entry as it is)."""
     colors = {k: load_lexicon().colors[v] for k, v in entry.colors.items()}
     return grammar.build_program(entry.plan or "", {**entry.params, **params}, colors, entry.key.replace("_", " "),
                                  entry.category, size_m)
