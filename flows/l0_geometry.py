@@ -24,6 +24,7 @@ MESH_VERSION = "5"  # l0.mesh alone; 2: marching cubes no longer pinches the sur
 # 3: BuildInfo.generator / design_attempts (LLM Designer, reconstruction backends); 4: text -> lexicon concept and
 # grammar program (BuildInfo.concept), colours and shape phrases; 5: photos keep their upright, lathe / inflation,
 # size from the concept (#35)
+GAUSSIANS_VERSION = "2"  # l0.gaussians alone; 2: surface discs dense and small for the particle spacing (#36)
 
 
 @dataclass(frozen=True)
@@ -63,7 +64,7 @@ def build_particles(mesh: Arrays, particles: ParticleSettings) -> Arrays:
     return pipeline.build_particles(mesh, particles)
 
 
-@cached_task(version=TASK_VERSION, name="l0.gaussians")
+@cached_task(version=GAUSSIANS_VERSION, name="l0.gaussians")
 def build_gaussians(mesh: Arrays, particles: Arrays, per_particle: float, surface_fraction: float,
                     max_gaussians: int, seed: int) -> Arrays:
     """Gaussians bound to the particles."""

@@ -18,7 +18,8 @@ from tasks.probes.rollout import DeformableBody
 from tasks.render.protocol_video import VIDEO_HEIGHT_PX, VIDEO_WIDTH_PX, drop_files, gaussian_renderer
 
 TASK_VERSION = "1"  # the protocol's rollout
-VIDEO_TASK_VERSION = "2"  # 2: 1280 x 720 splats, views named as the stills, framed on the fall; the card's drop frames
+VIDEO_TASK_VERSION = "3"  # 2: 1280 x 720 splats, views named as the stills, framed on the fall; the card's drop frames;
+# 3: the Gaussians lit by their normals, the clip trimmed to the motion in slow motion (#36)
 
 
 @cached_task(version=TASK_VERSION, name="renders.drop_protocol")
@@ -44,7 +45,7 @@ def protocol_states(positions_m: np.ndarray, volumes_m3: np.ndarray, physical: P
 def drop_videos_task(gaussians: dict[str, np.ndarray], rest_covariances_m2: np.ndarray, rest_particles_m: np.ndarray,
                      x_frames: np.ndarray, F_frames: np.ndarray, renderer_code: str = "",
                      width: int = VIDEO_WIDTH_PX, height: int = VIDEO_HEIGHT_PX, device: str = "cpu") -> dict[str, Path]:
-    """Front and side MP4s (1280 x 720, 30 fps, 5 s) of the deformed Gaussians and the card's drop frames (PNG),
+    """Front and side MP4s (1280 x 720, 30 fps, the motion in slow motion) of the deformed, lit Gaussians and the card's drop frames (PNG),
     file name -> the cache's copy (the scratch folder they are written to is removed once they are stored).
 
     renderer_code: the renderer's source digest (renderer_code(); render_drop_protocol passes it), so a new renderer
@@ -76,7 +77,7 @@ def render_drop_protocol(asset_dir: Path, physical: PhysicalModel, material: Mat
     renders/drop_<view>_t<t>s.png; return its metrics."""
     asset = load_l0(asset_dir)
     arrays, metrics = protocol_states(asset.particles_m, asset.volumes_m3, physical, material, sim or SimConfig())
-    gaussians = {k: asset.gaussians[k] for k in ("positions_m", "colors", "opacities", "particle_index",
+    gaussians = {k: asset.gaussians[k] for k in ("positions_m", "colors", "opacities", "normals", "particle_index",
                                                  "particle_weight")}
     files = drop_videos_task(gaussians, asset.gaussian_covariances(), asset.particles_m, arrays["x_m"], arrays["F"],
                              renderer_code(), width, height, (sim or SimConfig()).device)

@@ -12,6 +12,11 @@ from scipy.spatial.transform import Rotation
 
 SH_C0 = 0.28209479177387814
 K_NEAREST = 4
+# The surface discs are dense and small for the particle spacing: their in-plane sigma is at most this fraction of
+# it (a 25 cm turtle at draft, 12.5 mm spacing: sigma <= 1.2 mm, ~17k surface discs; standard, 6 mm: ~4x as many),
+# so a 720p video shows the object's parts and edges instead of a blur of 4 mm blobs.
+SURFACE_SIGMA_PER_SPACING = 0.1
+INTERIOR_SCALE_PER_SPACING = 0.35  # interior blobs (seen only where the surface opens), sigma / spacing
 
 
 class GaussianSet(dict):
@@ -19,17 +24,37 @@ class GaussianSet(dict):
     opacities, normals, is_surface, and the particle binding: particle_index (G, k) int32, particle_weight (G, k)."""
 
 
+def dense_count(area_m2: float, spacing_m: float, surface_fraction: float) -> int:
+    """Gaussians (surface and interior) whose surface discs have an in-plane sigma of SURFACE_SIGMA_PER_SPACING x the
+    particle spacing over a surface of area_m2."""
+    sigma = SURFACE_SIGMA_PER_SPACING * spacing_m
+    n_surf = area_m2 / (np.pi * sigma**2)
+    return int(np.ceil(n_surf / max(surface_fraction, 1e-3)))
+
+
 def make_gaussians(
     mesh: trimesh.Trimesh, particles_m: np.ndarray, spacing_m: float, count: int, seed: int,
-    surface_fraction: float = 0.75,
+    surface_fraction: float = 0.75, max_count: int = 400_000, dense: bool = True,
 ) -> GaussianSet:
-    """Sample `count` Gaussians (surface discs + interior blobs) with colours, bound to their K nearest particles."""
+    """Sample at least `count` Gaussians (surface discs + interior blobs; with dense, more where the particle spacing
+    asks for denser discs, see dense_count, at most max_count) with colours from the mesh's vertex colours (its
+    parts', a photo's), bound to their K nearest particles."""
     rng = np.random.default_rng(seed)
+    if dense:
+        count = int(min(max(count, dense_count(float(mesh.area), spacing_m, surface_fraction)), max(count, max_count)))
     n_surf = max(1, int(round(count * surface_fraction)))
     n_int = max(0, count - n_surf)
     pts, fidx = trimesh.sample.sample_surface(mesh, n_surf, seed=seed)
-    normals = mesh.face_normals[fidx]
     bary = trimesh.triangles.points_to_barycentric(mesh.triangles[fidx], pts)
+    # smooth normals (the vertex normals across the face: a marching-cubes mesh's face normals would light as
+    # blotches), but the face's own at a corner whose vertex normal turns more than ~30 degrees from it (a box's edge)
+    face_n = np.asarray(mesh.face_normals)[fidx]
+    corner_n = np.asarray(mesh.vertex_normals)[mesh.faces[fidx]]  # (n, 3, 3)
+    smooth = np.einsum("ijk,ik->ij", corner_n, face_n) > 0.85
+    corner_n = np.where(smooth[:, :, None], corner_n, face_n[:, None, :])
+    normals = np.einsum("ij,ijk->ik", np.clip(bary, 0, 1), corner_n)
+    length = np.linalg.norm(normals, axis=1, keepdims=True)
+    normals = np.where(length > 1e-9, normals / np.maximum(length, 1e-9), face_n)
     vc = np.asarray(mesh.visual.vertex_colors, dtype=np.float64)[:, :3] / 255.0
     surf_rgb = np.einsum("ij,ijk->ik", np.clip(bary, 0, 1), vc[mesh.faces[fidx]])
     sigma_t = float(np.sqrt(mesh.area / n_surf / np.pi))
@@ -37,16 +62,24 @@ def make_gaussians(
     surf_rot = _frame_quaternions(normals)
     pick = rng.integers(0, len(particles_m), n_int)
     int_pts = particles_m[pick] + rng.uniform(-0.25, 0.25, (n_int, 3)) * spacing_m
+    depth, near = cKDTree(pts).query(int_pts)
+    outside = np.einsum("ij,ij->i", int_pts - pts[near], normals[near]) > 0.0
+    int_pts[outside] = particles_m[pick][outside]  # a jitter that left the surface: back on its particle
+    depth[outside], near[outside] = cKDTree(pts).query(int_pts[outside])
     _, vi = cKDTree(mesh.vertices).query(int_pts)
     int_rgb = vc[vi]
+    # an interior blob stays inside: its 3 sigma no deeper than it lies under the surface (no halo round the object);
+    # its normal is the nearest surface disc's (lit like the surface over it, where a stretched surface opens)
+    int_sigma = np.clip(depth / 3.0, 0.05 * spacing_m, INTERIOR_SCALE_PER_SPACING * spacing_m)
+    int_normals = normals[near]
     positions = np.concatenate([pts, int_pts])
     g = GaussianSet(
         positions_m=positions.astype(np.float32),
-        scales_m=np.concatenate([surf_scales, np.full((n_int, 3), 0.5 * spacing_m)]).astype(np.float32),
+        scales_m=np.concatenate([surf_scales, np.repeat(int_sigma[:, None], 3, axis=1)]).astype(np.float32),
         rotations_wxyz=np.concatenate([surf_rot, np.tile([1.0, 0, 0, 0], (n_int, 1))]).astype(np.float32),
         colors=np.concatenate([surf_rgb, int_rgb]).clip(0, 1).astype(np.float32),
         opacities=np.full(len(positions), 0.95, np.float32),
-        normals=np.concatenate([normals, np.zeros((n_int, 3))]).astype(np.float32),
+        normals=np.concatenate([normals, int_normals]).astype(np.float32),
         is_surface=np.concatenate([np.ones(n_surf, bool), np.zeros(n_int, bool)]),
     )
     idx, w = bind_to_particles(positions, particles_m, spacing_m)

@@ -341,7 +341,7 @@ def build_gaussians(mesh: Arrays, particles: Arrays, settings: L0Settings) -> Ar
     """Gaussians bound to particles (see tasks.geometry.gaussians)."""
     n = int(min(settings.max_gaussians, round(settings.gaussians_per_particle * len(particles["positions_m"]))))
     g = make_gaussians(arrays_to_mesh(mesh), particles["positions_m"], float(particles["spacing_m"]), max(n, 16),
-                       settings.seed, settings.gaussian_surface_fraction)
+                       settings.seed, settings.gaussian_surface_fraction, settings.max_gaussians)
     return dict(g)
 
 

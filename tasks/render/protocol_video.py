@@ -1,5 +1,11 @@
 """The paper's drop protocol on film: two named views (the stills' front and side) at 30 fps, 1280 x 720, rendered
-from recorded particle states with the Gaussians following the particles' deformation, encoded as H.264 MP4.
+from recorded particle states with the Gaussians following the particles' deformation (their normals too: the discs
+are lit, tasks.render.shading), encoded as H.264 MP4.
+
+The clip is the motion, not 5 s of a body at rest (clip_states): the body held still for HOLD_BEFORE_S, the fall,
+the impact and the settle in SLOW_MOTION x slow motion (states between the recorded ones linearly interpolated, the
+recording being 30 per second), then HOLD_AFTER_S of the rest at real speed; a caption gives the simulated time and
+says when the picture is slowed. The card's drop frames (CARD_TIMES_S) come from the recorded states themselves.
 
 The view names are the stills' (tasks.geometry.render.VIEWS): "front" looks from +x with +y to the right, "side" from
 -y with +x to the right, each a little above the table. One fixed camera per view frames the whole motion (the drop
@@ -28,6 +34,10 @@ STILL_PX = 0.25  # a frame whose Gaussians moved less than this [px] repeats the
 STILL_COV = 1e-3  # ... and whose covariances changed by less than this fraction of the largest
 CRF = 20  # H.264 constant rate factor (lower: better, larger); a 5 s 720p drop video is well under 1 MB
 STILL_SHRINK = 2  # the card's drop frames are stored at half the video's size (640 x 360)
+SLOW_MOTION = 3  # the fall, the impact and the settle are shown this many times slower than they happened
+HOLD_BEFORE_S = 0.3  # the body at its release height before it falls [s of video]
+HOLD_AFTER_S = 1.0  # the body at rest after it settled [s, real speed]
+SETTLE_MOTION = 0.002  # a state is settled when no particle moves more than this fraction of the body's size by the next
 
 
 class GaussianRenderer(Protocol):
@@ -96,16 +106,19 @@ def frame_count(n_states: int, fps: float, duration_s: float) -> int:
 
 
 def iter_states(renderer: GaussianRenderer, cam: Camera, gaussians: dict[str, np.ndarray],
-                rest_covariances_m2: np.ndarray, rest_particles_m: np.ndarray, x_frames: np.ndarray,
-                F_frames: np.ndarray, device: str = "cpu") -> Iterator[np.ndarray]:
+                rest_covariances_m2: np.ndarray, rest_particles_m: np.ndarray, x_frames: Iterable[np.ndarray],
+                F_frames: Iterable[np.ndarray], device: str = "cpu") -> Iterator[np.ndarray]:
     """RGB frames of the Gaussians deformed by each recorded state (positions x, deformation gradients F), one at a
     time (a 5 s 720p video is 400 MB of frames). A state whose Gaussians lie within STILL_PX of the last drawn
     frame's (centres, and sizes to STILL_COV) repeats that frame: a body at rest is drawn once, not 100 times."""
     from tasks.geometry.gaussians import deform_gaussians
 
+    from tasks.render.shading import deformed_normals, lit_colors
+
     colors = np.clip(np.asarray(gaussians["colors"], np.float64)[:, :3], 0.0, 1.0)
     n = len(colors)
     opacities = np.asarray(gaussians.get("opacities", np.full(n, 0.95)), np.float64).reshape(n)
+    normals = gaussians.get("normals")
     rot, eye, focal = cam.frame()
     drawn: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None
     for x, F in zip(x_frames, F_frames):
@@ -116,7 +129,11 @@ def iter_states(renderer: GaussianRenderer, cam: Camera, gaussians: dict[str, np
             continue
         ok = np.isfinite(centres).all(axis=1) & np.isfinite(cov).all(axis=(1, 2))  # an exploded state: what is left
         centres, cov = np.where(ok[:, None], centres, 0.0), np.where(ok[:, None, None], cov, 0.0)
-        image = np.ascontiguousarray(renderer(cam, centres[ok], cov[ok], colors[ok], opacities[ok], scene="studio",
+        shown = colors
+        if normals is not None:  # lit by the deformed normals (tasks.render.shading)
+            shown = lit_colors(colors, deformed_normals(normals, gaussians["particle_index"],
+                                                        gaussians["particle_weight"], np.nan_to_num(F)), cam)
+        image = np.ascontiguousarray(renderer(cam, centres[ok], cov[ok], shown[ok], opacities[ok], scene="studio",
                                               device=device))
         drawn = (centres, cov, image)
         yield image
@@ -178,12 +195,42 @@ def card_still_name(view: str, t_s: float) -> str:
     return f"drop_{view}_t{t_s:.1f}s.png"
 
 
-def _keeping(frames: Iterator[np.ndarray], wanted: set[int], kept: dict[int, np.ndarray]) -> Iterator[np.ndarray]:
-    """The frames, passed on, keeping those whose index is wanted in kept."""
-    for k, frame in enumerate(frames):
-        if k in wanted:
-            kept[k] = frame
-        yield frame
+def clip_states(x_frames: np.ndarray, fps: float) -> tuple[np.ndarray, np.ndarray]:
+    """The recorded state (a fractional index: between two states, interpolated) each video frame shows, and whether
+    that frame is in slow motion: state 0 for HOLD_BEFORE_S, then every 1 / SLOW_MOTION of a state up to the settled
+    one (the first after which no particle moves SETTLE_MOTION of the body's size from one state to the next, slowed),
+    then HOLD_AFTER_S of states at real speed."""
+    x = np.asarray(x_frames, np.float64)
+    n = len(x)
+    if n < 2:
+        return np.zeros(max(n, 1)), np.zeros(max(n, 1), bool)
+    first = x[0][np.isfinite(x[0]).all(axis=1)]
+    size = float(np.ptp(first, axis=0).max()) if len(first) else 1.0
+    step = np.nan_to_num(np.abs(np.diff(x, axis=0)), nan=np.inf).max(axis=(1, 2))  # (n - 1,)
+    moving = np.flatnonzero(step > SETTLE_MOTION * max(size, 1e-6))
+    settled = int(min(n - 1, moving[-1] + 1)) if len(moving) else 0
+    before = np.zeros(int(round(HOLD_BEFORE_S * fps)))
+    motion = np.arange(settled * SLOW_MOTION + 1) / SLOW_MOTION
+    after = np.arange(settled + 1, min(n - 1, settled + int(round(HOLD_AFTER_S * fps))) + 1, dtype=np.float64)
+    slowed = np.concatenate([np.zeros(len(before), bool), np.full(len(motion), SLOW_MOTION > 1),
+                             np.zeros(len(after), bool)])
+    return np.concatenate([before, motion, after]), slowed
+
+
+def interpolated(frames: np.ndarray, k: float) -> np.ndarray:
+    """A recorded array's state at a fractional index (linear between the two nearest states)."""
+    i = int(np.floor(k))
+    if k == i or i + 1 >= len(frames):
+        return np.asarray(frames[min(i, len(frames) - 1)])
+    a = k - i
+    return ((1.0 - a) * np.asarray(frames[i], np.float64) + a * np.asarray(frames[i + 1], np.float64)).astype(np.float32)
+
+
+def drop_caption(image: np.ndarray, t_s: float, slowed: bool) -> np.ndarray:
+    """The simulated time in the top-left corner, and the slow motion while it lasts."""
+    from tasks.render.captions import caption
+
+    return caption(image, [f"t = {t_s:4.2f} s" + (f"   slow motion {SLOW_MOTION}x" if slowed else "")])
 
 
 def drop_files(gaussians: dict[str, np.ndarray], rest_covariances_m2: np.ndarray, rest_particles_m: np.ndarray,
@@ -191,25 +238,28 @@ def drop_files(gaussians: dict[str, np.ndarray], rest_covariances_m2: np.ndarray
                width: int = VIDEO_WIDTH_PX, height: int = VIDEO_HEIGHT_PX,
                renderer: GaussianRenderer | None = None,
                progress: Callable[[str], Any] | None = None, device: str = "cpu") -> dict[str, Path]:
-    """drop_<view>.mp4 for each named view (duration_s at fps: state k shown at t = k / fps) and the card's drop
-    frames drop_<view>_t<t>s.png at CARD_TIMES_S (the nearest recorded state), written into folder; name -> path.
-    device: where the Gaussians are drawn (cpu: the same bytes every time; cuda: within one colour level of them)."""
+    """drop_<view>.mp4 for each named view (the clip of clip_states, at fps; state k was recorded at t = k / fps, the
+    first duration_s of them are used) and the card's drop frames drop_<view>_t<t>s.png at CARD_TIMES_S (the nearest
+    recorded state), written into folder; name -> path. device: where the Gaussians are drawn (cpu: the same bytes
+    every time; cuda: within one colour level of them)."""
     draw = renderer or gaussian_renderer()[0]
-    n = frame_count(len(x_frames), fps, duration_s)
+    n = min(len(x_frames), frame_count(len(x_frames), fps, duration_s) + 1)
+    times, slowed = clip_states(x_frames[:n], fps)
     stills = {t: min(len(x_frames) - 1, int(round(t * fps))) for t in CARD_TIMES_S}  # time -> state
     out: dict[str, Path] = {}
+    args = (gaussians, rest_covariances_m2, rest_particles_m)
     for view in VIEW_NAMES:
         cam = protocol_camera(np.asarray(x_frames), view, width, height)
-        kept: dict[int, np.ndarray] = {}
-        wanted = set(stills.values())
-        args = (gaussians, rest_covariances_m2, rest_particles_m)
-        out[f"drop_{view}.mp4"] = write_mp4(_keeping(iter_states(draw, cam, *args, x_frames[:n], F_frames[:n], device),
-                                                     wanted, kept), folder / f"drop_{view}.mp4", fps)
-        for k in sorted(wanted - set(kept)):  # a still after the video's last frame (5 s: state 150)
-            kept[k] = next(iter_states(draw, cam, *args, x_frames[k:k + 1], F_frames[k:k + 1], device))
+        xs = (interpolated(x_frames, k) for k in times)
+        Fs = (interpolated(F_frames, k) for k in times)
+        frames = iter_states(draw, cam, *args, xs, Fs, device)
+        shown = (drop_caption(f, k / fps, bool(slow)) for k, slow, f in zip(times, slowed, frames))
+        out[f"drop_{view}.mp4"] = write_mp4(shown, folder / f"drop_{view}.mp4", fps)
+        states = sorted(set(stills.values()))
+        drawn = dict(zip(states, iter_states(draw, cam, *args, x_frames[states], F_frames[states], device)))
         for t, k in stills.items():
             shrink = STILL_SHRINK if min(width, height) >= 360 else 1
-            out[card_still_name(view, t)] = write_png(kept[k], folder / card_still_name(view, t), shrink)
+            out[card_still_name(view, t)] = write_png(drawn[k], folder / card_still_name(view, t), shrink)
         if progress:
             progress(view)
     return out

@@ -11,9 +11,13 @@ import trimesh
 from tasks.geometry.render import render_view
 from tasks.render.protocol_video import (
     CARD_TIMES_S,
+    HOLD_AFTER_S,
+    HOLD_BEFORE_S,
+    SLOW_MOTION,
     VIEW_NAMES,
     _disc_renderer,
     card_still_name,
+    clip_states,
     drop_files,
     protocol_camera,
     render_protocol_frames,
@@ -80,10 +84,11 @@ def test_video_views_show_the_side_of_the_still_with_the_same_name() -> None:
         assert abs(np.log(shown / own)) < np.log(1.6)
 
 
-def test_drop_video_is_150_frames_at_30_fps_and_the_object_visibly_falls(tmp_path: Path) -> None:
-    """5 s at 30 fps from 151 recorded states: 150 frames; the card's drop frames at 0 / 0.3 / 1 / 5 s are written;
-    the body released a quarter of its height up is lower on screen at 0.3 s by over 2 % of the frame; the same
-    states give the same bytes."""
+def test_drop_video_is_the_motion_in_slow_motion_and_the_object_visibly_falls(tmp_path: Path) -> None:
+    """151 recorded states at 30 fps of a body that falls for 0.045 s and then rests: the clip holds the start for
+    HOLD_BEFORE_S, shows the fall SLOW_MOTION x slower and HOLD_AFTER_S of the rest (not 4.9 s of a still body); the
+    card's drop frames at 0 / 0.3 / 1 / 5 s are written; the body released a quarter of its height up is lower on
+    screen at 0.3 s by over 2 % of the frame; the same states give the same bytes."""
     imageio = pytest.importorskip("imageio.v2")
     particles, _ = _bar((0.08, 0.06, 0.04), spacing_m=0.01)
     g, cov = _gaussians(particles, 0.005)
@@ -94,13 +99,19 @@ def test_drop_video_is_150_frames_at_30_fps_and_the_object_visibly_falls(tmp_pat
     reader = imageio.get_reader(files["drop_front.mp4"])
     try:
         assert reader.get_meta_data()["fps"] == 30.0
-        assert reader.count_frames() == 150
+        times, slowed = clip_states(x, 30.0)
+        assert reader.count_frames() == len(times) < 80
         assert reader.get_data(0).shape == (72, 128, 3)
     finally:
         reader.close()
     start, landed = (imageio.imread(files[card_still_name("side", t)]) for t in (0.0, 0.3))
     low = [np.nonzero(_red_mask(img))[0].max() for img in (start, landed)]  # lowest red row
     assert low[1] - low[0] > 0.02 * 72
+    settled = 2  # the fall: 10 mm in 0.045 s, between states 1 and 2
+    assert np.array_equal(times, np.concatenate([np.zeros(round(HOLD_BEFORE_S * 30)),
+                                                 np.arange(settled * SLOW_MOTION + 1) / SLOW_MOTION,
+                                                 np.arange(settled + 1, settled + 1 + round(HOLD_AFTER_S * 30))]))
+    assert slowed.sum() == settled * SLOW_MOTION + 1
     again = drop_files(g, cov, particles, x, F, tmp_path / "b", 30.0, 5.0, 128, 72, renderer=_disc_renderer)
     assert all(files[k].read_bytes() == again[k].read_bytes() for k in files)
 
@@ -116,8 +127,8 @@ def test_a_state_with_exploded_particles_still_renders_the_rest() -> None:
     assert len(frames) == 2 and _red_mask(frames[1]).sum() > 0.5 * _red_mask(frames[0]).sum()
 
 
-@pytest.mark.slow  # ~10 s on 2 busy cores: 300 frames of 1280 x 720 through the splatting renderer and H.264
-def test_full_size_drop_videos_are_1280x720_150_frames_at_30_fps(tmp_path: Path) -> None:
+@pytest.mark.slow  # ~10 s on 2 busy cores: 1280 x 720 frames through the splatting renderer and H.264
+def test_full_size_drop_videos_are_1280x720_at_30_fps(tmp_path: Path) -> None:
     imageio = pytest.importorskip("imageio.v2")
     particles, _ = _bar((0.12, 0.08, 0.05), spacing_m=0.01)
     g, cov = _gaussians(particles, 0.006)
@@ -126,7 +137,7 @@ def test_full_size_drop_videos_are_1280x720_150_frames_at_30_fps(tmp_path: Path)
     for view in VIEW_NAMES:
         reader = imageio.get_reader(files[f"drop_{view}.mp4"])
         try:
-            assert reader.get_meta_data()["fps"] == 30.0 and reader.count_frames() == 150
+            assert reader.get_meta_data()["fps"] == 30.0 and reader.count_frames() == len(clip_states(x, 30.0)[0])
             assert reader.get_data(0).shape == (720, 1280, 3)
         finally:
             reader.close()

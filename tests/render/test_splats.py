@@ -120,7 +120,7 @@ def test_squeezed_specimen_silhouette_follows_the_particles_and_has_no_holes() -
     from scipy.ndimage import binary_erosion
 
     mesh, particles, dx = _box_specimen()
-    g = make_gaussians(mesh, particles, dx, 3000, seed=0)
+    g = make_gaussians(mesh, particles, dx, 3000, seed=0, dense=False)  # 3000 large ones: F Σ Fᵀ shows
     cov0 = rest_covariances(g["scales_m"], g["rotations_wxyz"])
     F = np.diag([1.3, 1.3, 0.6])
     moved = particles @ F.T
@@ -139,7 +139,8 @@ def test_squeezed_specimen_silhouette_follows_the_particles_and_has_no_holes() -
         assert (squeezed.sum() / rest.sum()) == pytest.approx(box1.sum() / box0.sum(), rel=0.05)
         if eye[2] > 0.3:  # from the top, moved centres with rest-shape Gaussians fall short: F Σ Fᵀ matters
             centres_only = _silhouette(render_gaussians(cam, x, cov0, g["colors"], g["opacities"], scene="none"))
-            assert centres_only.sum() / rest.sum() < 0.93 * box1.sum() / box0.sum()
+            # (0.97: interior blobs no larger than their depth under the surface leave little halo to hide it)
+            assert centres_only.sum() / rest.sum() < 0.97 * box1.sum() / box0.sum()
         inner = binary_erosion(box1, iterations=2)
         assert inner.sum() > 300
         # no holes: inside the silhouette the object's colour everywhere, the background's nowhere

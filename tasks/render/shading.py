@@ -1,0 +1,53 @@
+"""Light on the Gaussians: each surface disc's colour (the mesh's part or photo colour) lit by a key light and a fill
+from the camera's side, with its normal carried by the deformation (n' ~ F^-T n), so a video shows the object's
+shape (a shell's curve, a head's eyes) and not a flat cut-out.
+
+    from tasks.render.shading import deformed_normals, lit_colors
+
+    normals = deformed_normals(rest_normals, particle_index, particle_weight, F)   # (G, 3), 0 for interior blobs
+    colors = lit_colors(albedo, normals, cam)                                      # (G, 3) in 0..1
+
+Interior blobs (normal 0) take the mean light of a surface facing the camera. Numpy only; lengths in metres.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from tasks.render.camera import Camera
+
+AMBIENT = 0.42  # light everywhere
+KEY = 0.55  # key light: above, to the camera's left, a little towards the camera
+FILL = 0.18  # fill light from the camera
+# towards the key light in the camera frame (right, down, forward): up, to the left, in front of the object
+TOWARD_KEY_IN_CAMERA = np.array([-0.45, -0.80, -0.40])
+INTERIOR_LIGHT = AMBIENT + 0.5 * KEY + FILL
+
+
+def deformed_normals(rest_normals: np.ndarray, particle_index: np.ndarray, particle_weight: np.ndarray,
+                     deformation_gradients: np.ndarray) -> np.ndarray:
+    """Unit normals (G, 3) after the deformation: F_g^-T n with F_g = sum_j w_j F_j (the Gaussian's blended gradient);
+    a zero rest normal (an interior blob) stays zero."""
+    n = np.asarray(rest_normals, np.float64)
+    F = np.asarray(deformation_gradients, np.float64)[np.asarray(particle_index)]  # (G, k, 3, 3)
+    F_g = np.einsum("gk,gkij->gij", np.asarray(particle_weight, np.float64), F)
+    det = np.linalg.det(F_g)
+    ok = np.isfinite(det) & (np.abs(det) > 1e-9)
+    out = n.copy()
+    if np.any(ok):
+        out[ok] = np.linalg.solve(np.swapaxes(F_g[ok], 1, 2), n[ok][:, :, None])[:, :, 0]
+    length = np.linalg.norm(out, axis=1, keepdims=True)
+    return np.where(length > 1e-12, out / np.maximum(length, 1e-12), 0.0)
+
+
+def lit_colors(albedo_rgb: np.ndarray, normals: np.ndarray, cam: Camera) -> np.ndarray:
+    """Colours (G, 3) in 0..1: albedo x (ambient + key (n . l) + fill (n . v)), both terms clipped at 0; interior
+    blobs (zero normal) get INTERIOR_LIGHT."""
+    rot, _, _ = cam.frame()
+    key = TOWARD_KEY_IN_CAMERA @ rot  # camera frame -> world
+    key = key / np.linalg.norm(key)
+    toward_eye = -rot[2]
+    n = np.asarray(normals, np.float64)
+    light = AMBIENT + KEY * np.clip(n @ key, 0.0, None) + FILL * np.clip(n @ toward_eye, 0.0, None)
+    light = np.where(np.linalg.norm(n, axis=1) > 0.5, light, INTERIOR_LIGHT)
+    return np.clip(np.asarray(albedo_rgb, np.float64)[:, :3] * light[:, None], 0.0, 1.0)
