@@ -57,9 +57,11 @@ def project(cam: CamFrame, width: int, height: int, points_m: np.ndarray) -> tup
 
 
 def draw(cam: CamFrame, width: int, height: int, background_rgb: np.ndarray, background_depth: np.ndarray,
-         background_label: np.ndarray, meshes: list[Mesh], discs: Discs | None = None) -> tuple[np.ndarray, np.ndarray]:
+         background_label: np.ndarray, meshes: list[Mesh], discs: Discs | None = None,
+         depth_out: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
     """The nearest of backdrop, triangles and discs at every pixel: RGB image (H, W, 3) uint8 and label map (H, W).
-    Depth passes first (triangles, discs), then colour passes: a disc wins an exact tie with a triangle."""
+    Depth passes first (triangles, discs), then colour passes: a disc wins an exact tie with a triangle. depth_out
+    (H, W) float32, when given, receives each pixel's camera depth [m] (for splats composited over the picture)."""
     import warp as wp
 
     from tasks.manipulation import raster_kernels as k
@@ -108,4 +110,6 @@ def draw(cam: CamFrame, width: int, height: int, background_rgb: np.ndarray, bac
         if n:
             wp.launch(colour_kernel, dim=n, inputs=[*common, *colour], device=dev)
     wp.synchronize_device(dev)
+    if depth_out is not None:
+        depth_out[...] = zbuf.reshape(h, w)
     return rgb.reshape(h, w, 3), label.reshape(h, w)

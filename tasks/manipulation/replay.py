@@ -1,6 +1,7 @@
-"""Replay a recorded attempt WITHOUT re-simulating: video frames of the robot (the URDF's visual meshes at the recorded
-joint states, or a box gripper around the recorded pads), the table and the object (Gaussians driven by the recorded
-particles x and F) from t = 0 to the end of the attempt (tasks.manipulation.scene), as PNG frames, an MP4 (H.264,
+"""Replay a recorded attempt WITHOUT re-simulating: video frames of the whole robot (the URDF's visual meshes at the
+recorded joint states, the 2F-85 / 2F-140 link by link), the table and the object (Gaussians driven by the recorded
+particles x and F, drawn by the splatting renderer) with a close-up of the fingers, from t = 0 to the end of the
+attempt (tasks.manipulation.video), as PNG frames, an MP4 (H.264,
 imageio-ffmpeg) or GIF at 30 fps, 1280 x 720 by default; and a Rerun .rrd with the robot's links, the finger pads,
 particles, Gaussians and the per-finger force curves.
 """
@@ -16,7 +17,8 @@ import numpy as np
 from contracts.errors import InputError
 from tasks.geometry.gaussians import deform_gaussians
 from tasks.manipulation.data import read_attempt
-from tasks.manipulation.scene import VIDEO_FPS, VIDEO_SIZE, AttemptRenderer
+from tasks.manipulation.scene import VIDEO_FPS, VIDEO_SIZE
+from tasks.manipulation.video import PickPlaceVideo
 
 ROBOT = "world/robot"
 RRD_MAX_GAUSSIANS = 20000  # a recording keeps at most this many Gaussians per frame (a deterministic stride)
@@ -48,7 +50,7 @@ def frame_gaussians(arrays: dict[str, np.ndarray], i: int) -> tuple[np.ndarray, 
 def render_frames(arrays: dict[str, np.ndarray], width: int = VIDEO_SIZE[0], height: int = VIDEO_SIZE[1],
                   attrs: dict | None = None) -> list[np.ndarray]:
     """Every video frame of an attempt (deterministic)."""
-    return AttemptRenderer(arrays, attrs, width, height).frames()
+    return PickPlaceVideo(arrays, attrs, width, height).frames()
 
 
 def video_writer(path: Path, fps: float = VIDEO_FPS):
@@ -81,7 +83,7 @@ def replay(asset_dir: Path, attempt: int | None = None, frames_dir: Path | None 
     if frames_dir is not None:
         Path(frames_dir).mkdir(parents=True, exist_ok=True)
     try:
-        renderer = AttemptRenderer(arrays, attrs, width, height)
+        renderer = PickPlaceVideo(arrays, attrs, width, height)
         out = ReplayResult(n_frames=len(renderer), size=(width, height), duration_s=len(renderer) / VIDEO_FPS)
         for i in range(len(renderer)):
             im = renderer.frame(i)

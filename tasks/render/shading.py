@@ -51,3 +51,30 @@ def lit_colors(albedo_rgb: np.ndarray, normals: np.ndarray, cam: Camera) -> np.n
     light = AMBIENT + KEY * np.clip(n @ key, 0.0, None) + FILL * np.clip(n @ toward_eye, 0.0, None)
     light = np.where(np.linalg.norm(n, axis=1) > 0.5, light, INTERIOR_LIGHT)
     return np.clip(np.asarray(albedo_rgb, np.float64)[:, :3] * light[:, None], 0.0, 1.0)
+
+
+def normals_from_covariances(positions_m: np.ndarray, covariances_m2: np.ndarray, particle_index: np.ndarray,
+                             particle_weight: np.ndarray, rest_particles_m: np.ndarray,
+                             flat_ratio: float = 0.2) -> np.ndarray:
+    """Rest normals (G, 3) of Gaussians recorded without them (a trial's): a flat disc's (smallest over middle
+    variance below flat_ratio²) is its thinnest axis, turned away from the particles it is bound to (they lie
+    inside); any other Gaussian takes its nearest disc's (none: away from the body's centre)."""
+    from scipy.spatial import cKDTree
+
+    pos = np.asarray(positions_m, np.float64)
+    if not len(pos):
+        return np.zeros((0, 3))
+    lam, vec = np.linalg.eigh(np.asarray(covariances_m2, np.float64))  # ascending eigenvalues
+    n = vec[:, :, 0]
+    inside = np.einsum("gk,gki->gi", np.asarray(particle_weight, np.float64),
+                       np.asarray(rest_particles_m, np.float64)[np.asarray(particle_index)])
+    outward = pos - inside
+    n = np.where((np.einsum("gi,gi->g", n, outward) < 0.0)[:, None], -n, n)
+    flat = lam[:, 0] < flat_ratio**2 * np.maximum(lam[:, 1], 1e-30)
+    if np.any(flat) and not np.all(flat):
+        _, near = cKDTree(pos[flat]).query(pos[~flat])
+        n[~flat] = n[flat][near]
+    elif not np.any(flat):
+        away = pos - pos.mean(axis=0)
+        n = away / np.maximum(np.linalg.norm(away, axis=1, keepdims=True), 1e-12)
+    return n

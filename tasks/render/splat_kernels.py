@@ -217,10 +217,12 @@ def render_pixels(start: wp.array(dtype=int), end: wp.array(dtype=int), xy: wp.a
                   rot: wp.mat33, eye: wp.vec3, focal: float, studio: int, flat: wp.vec3, table: wp.vec3,
                   horizon: wp.vec3, top: wp.vec3, target: wp.vec2, spot_m: float, falloff: float, fade_m: float,
                   shadow: wp.array(dtype=float), shadow_origin: wp.vec2, shadow_cell: float, shadow_nx: int,
-                  shadow_ny: int, out: wp.array(dtype=wp.uint8)):
+                  shadow_ny: int, bg_rgb: wp.array(dtype=wp.vec3), bg_depth: wp.array(dtype=float),
+                  out: wp.array(dtype=wp.uint8)):
     """One pixel: its background (and the table's depth), then its tile's Gaussians front to back. Threads run tile
     by tile (TILE² pixels each, from first_tile on), so a tile's list is read while it is in cache; tile_origin holds
-    each tile's first pixel (x, y)."""
+    each tile's first pixel (x, y). studio: 0 a flat colour, 1 the studio, 2 the given image (bg_rgb, bg_depth per
+    pixel: the Gaussians stop at its depth)."""
     t = wp.tid()
     tile_id = first_tile + t / (TILE * TILE)
     local = t % (TILE * TILE)
@@ -234,7 +236,10 @@ def render_pixels(start: wp.array(dtype=int), end: wp.array(dtype=int), xy: wp.a
     cy = float(py) + 0.5
     bg = flat
     table_z = float(1.0e30)
-    if studio != 0:
+    if studio == 2:
+        bg = bg_rgb[p]
+        table_z = bg_depth[p]
+    elif studio != 0:
         ray = wp.transpose(rot) * wp.vec3((cx - 0.5 * float(width)) / focal, (cy - 0.5 * float(height)) / focal, 1.0)
         if ray[2] >= -1.0e-6:  # the backdrop, lighter upwards
             bg = wp.lerp(horizon, top, _smooth(0.0, 0.6, ray[2] / wp.length(ray)))

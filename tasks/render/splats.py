@@ -37,14 +37,31 @@ CPU_BANDS = min(os.cpu_count() or 1, 8)
 
 def render_gaussians(cam: Camera, means_m: np.ndarray, covariances_m2: np.ndarray, colors_rgb: np.ndarray,
                      opacities: np.ndarray, *, sh_coeffs: np.ndarray | None = None, scene: str = "studio",
-                     device: str = "cpu") -> np.ndarray:
-    """RGB uint8 image (cam.height, cam.width, 3)."""
+                     device: str = "cpu", background: tuple[np.ndarray, np.ndarray] | None = None) -> np.ndarray:
+    """RGB uint8 image (cam.height, cam.width, 3). background: an image (H, W, 3) uint8 and its camera depth (H, W)
+    [m] drawn by another renderer from the same camera (a robot's triangles, a room): the Gaussians are composited
+    over it, each pixel's stopping at its depth (what lies in front hides them); scene is then not drawn."""
     means, covs, colors, opac = _checked(means_m, covariances_m2, colors_rgb, opacities, sh_coeffs, scene, device)
     rot, eye, focal = cam.frame()
     if sh_coeffs is not None and len(means):
         colors = view_colors(colors, np.asarray(sh_coeffs, np.float64), means, eye)
+    if background is not None:
+        image = _background(cam, background)
+        return _rasterise(cam, rot, eye, focal, means, covs, np.clip(colors, 0.0, 1.0), opac, "image", no_shadow(),
+                          device, image)
     shadow = shadow_map(means, covs, opac) if scene == "studio" and len(means) else no_shadow()
     return _rasterise(cam, rot, eye, focal, means, covs, np.clip(colors, 0.0, 1.0), opac, scene, shadow, device)
+
+
+def _background(cam: Camera, background: tuple[np.ndarray, np.ndarray]) -> tuple[np.ndarray, np.ndarray]:
+    """The background's colours (H * W, 3) float32 in 0..1 and depths (H * W,) float32, checked against the camera."""
+    rgb, depth = np.asarray(background[0]), np.asarray(background[1])
+    if rgb.shape != (cam.height, cam.width, 3) or depth.shape != (cam.height, cam.width):
+        raise InputError(f"render_gaussians: background must be ({cam.height}, {cam.width}, 3) and "
+                         f"({cam.height}, {cam.width}), got {rgb.shape} and {depth.shape}")
+    colours = (rgb.reshape(-1, 3).astype(np.float32) / np.float32(255.0)) if rgb.dtype == np.uint8 \
+        else np.clip(rgb.reshape(-1, 3), 0.0, 1.0).astype(np.float32)
+    return colours, np.nan_to_num(depth.reshape(-1).astype(np.float32), nan=1e30, posinf=1e30)
 
 
 def _checked(means_m: np.ndarray, covariances_m2: np.ndarray, colors_rgb: np.ndarray, opacities: np.ndarray,
@@ -73,8 +90,10 @@ def _checked(means_m: np.ndarray, covariances_m2: np.ndarray, colors_rgb: np.nda
 
 
 def _rasterise(cam: Camera, rot: np.ndarray, eye: np.ndarray, focal: float, means: np.ndarray, covs: np.ndarray,
-               colors: np.ndarray, opac: np.ndarray, scene: str, shadow: ShadowMap, device: str) -> np.ndarray:
-    """Project, bin, sort and composite on `device`; the image as a numpy array."""
+               colors: np.ndarray, opac: np.ndarray, scene: str, shadow: ShadowMap, device: str,
+               image: tuple[np.ndarray, np.ndarray] | None = None) -> np.ndarray:
+    """Project, bin, sort and composite on `device` over the scene (or, scene "image", over the given colours and
+    depths per pixel); the image as a numpy array."""
     import warp as wp
 
     from tasks.render import splat_kernels as k
@@ -129,11 +148,14 @@ def _rasterise(cam: Camera, rot: np.ndarray, eye: np.ndarray, focal: float, mean
     target = np.asarray(cam.target, np.float32)
     dist = float(np.linalg.norm(np.asarray(cam.target) - eye))
     common = [start, end, s_xy, s_conic_o, s_color, s_depth, w, h, tile_origin]
-    scene_args = [w_rot, w_eye, focal, int(scene == "studio"), wp.vec3(*FLAT_RGB), wp.vec3(*TABLE_RGB),
+    mode = {"none": 0, "studio": 1, "image": 2}[scene]
+    bg_rgb, bg_depth = image if image is not None else (np.zeros((1, 3), np.float32), np.zeros(1, np.float32))
+    scene_args = [w_rot, w_eye, focal, mode, wp.vec3(*FLAT_RGB), wp.vec3(*TABLE_RGB),
                   wp.vec3(*HORIZON_RGB), wp.vec3(*TOP_RGB), wp.vec2(target[0], target[1]), 0.9 * dist, SPOT_FALLOFF,
                   3.0 * dist,
                   wp.array(dark.ravel(), dtype=float, device=device), wp.vec2(*shadow.origin_m), shadow.cell_m,
-                  dark.shape[1], dark.shape[0], out]
+                  dark.shape[1], dark.shape[0], wp.array(bg_rgb, dtype=wp.vec3, device=device),
+                  wp.array(bg_depth, dtype=float, device=device), out]
 
     def band(first_tile: int, tiles: int) -> None:
         wp.launch(k.render_pixels, dim=tiles * tile * tile, device=device, inputs=[*common, first_tile, *scene_args])

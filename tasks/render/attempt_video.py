@@ -1,0 +1,95 @@
+"""The pick-and-place video's picture: a wide view that holds the whole robot, the object drawn by the Gaussian
+splatting renderer (tasks.render.splats) over the robot and the room, and a close-up inset of the fingers.
+
+    frame = compose(cam, room_rgb, room_depth, gaussians)            # splats over a picture with its depth buffer
+    frame = paste_inset(frame, compose(inset_cam, ...), "fingers")   # the close-up in the lower right corner
+
+The robot and the room are triangles and ray-cast planes drawn by the caller (tasks.manipulation.raster); what lies in
+front of a Gaussian (a finger, the table) hides it, per pixel, through the depth buffer. Deterministic on the CPU.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from tasks.render.camera import Camera, fit_camera, project
+from tasks.render.shading import lit_colors
+from tasks.render.splats import render_gaussians
+
+WIDE_FOV_DEG = 40.0
+WIDE_FILL = 0.88  # the robot's and the object's points within this fraction of the half-frame
+INSET_FRACTION = 0.36  # the inset's width, of the frame's
+INSET_MARGIN_PX = 16  # from the frame's lower right corner (720 lines)
+INSET_BORDER_PX = 3
+INSET_FOV_DEG = 30.0
+INSET_RADIUS = 1.3  # the inset frames a sphere this many times the grasp's half-size round the pads' midpoint
+BORDER_RGB = (40, 40, 46)
+
+
+@dataclass(frozen=True)
+class SplatSet:
+    """Gaussians to draw: centres [m] (G, 3), covariances [m^2] (G, 3, 3), albedo (G, 3) in 0..1, opacities (G,)
+    and unit normals (G, 3) for the light."""
+
+    means_m: np.ndarray
+    covariances_m2: np.ndarray
+    albedo: np.ndarray
+    opacities: np.ndarray
+    normals: np.ndarray
+
+
+def wide_camera(points_m: np.ndarray, toward_eye: np.ndarray, width: int, height: int) -> Camera:
+    """The fixed wide camera: every given point (the robot's links over the whole attempt, the object, the place
+    target) inside the frame."""
+    return fit_camera(points_m, toward_eye, WIDE_FOV_DEG, width, height, WIDE_FILL)
+
+
+def inset_size(width: int, height: int) -> tuple[int, int]:
+    """The inset's size [px] (16:9 like the frame, even)."""
+    w = int(round(INSET_FRACTION * width / 2.0)) * 2
+    return w, int(round(w * height / width / 2.0)) * 2
+
+
+def inset_camera(centre_m: np.ndarray, radius_m: float, toward_eye: np.ndarray, width: int, height: int) -> Camera:
+    """A camera looking at centre_m from along toward_eye that frames a sphere of INSET_RADIUS x radius_m."""
+    back = np.asarray(toward_eye, np.float64) / np.linalg.norm(toward_eye)
+    distance = INSET_RADIUS * radius_m / np.sin(np.radians(0.5 * INSET_FOV_DEG))
+    c = np.asarray(centre_m, np.float64)
+    return Camera(tuple(c + distance * back), tuple(c), INSET_FOV_DEG, width, height)
+
+
+def compose(cam: Camera, rgb: np.ndarray, depth: np.ndarray, splats: SplatSet | None) -> np.ndarray:
+    """The Gaussians, lit, splatted over a picture (H, W, 3) uint8 with its camera depth (H, W) [m]."""
+    if splats is None or not len(splats.means_m):
+        return np.ascontiguousarray(rgb)
+    colours = lit_colors(splats.albedo, splats.normals, cam)
+    return render_gaussians(cam, splats.means_m, splats.covariances_m2, colours, splats.opacities,
+                            background=(rgb, depth))
+
+
+def paste_inset(frame: np.ndarray, inset: np.ndarray, title: str = "") -> np.ndarray:
+    """The inset in the frame's lower right corner with a dark border (and a title over it); a copy."""
+    out = np.ascontiguousarray(frame).copy()
+    h, w = frame.shape[:2]
+    scale = h / 720.0
+    margin, border = int(round(INSET_MARGIN_PX * scale)), max(1, int(round(INSET_BORDER_PX * scale)))
+    ih, iw = inset.shape[:2]
+    y1, x1 = h - margin, w - margin
+    y0, x0 = y1 - ih, x1 - iw
+    out[y0 - border:y1 + border, x0 - border:x1 + border] = BORDER_RGB
+    out[y0:y1, x0:x1] = inset
+    if title:
+        from tasks.render.captions import caption
+
+        tag = caption(np.full((int(30 * scale), iw, 3), 245, np.uint8), [title], (8, 21), scale)
+        out[y0 - border - tag.shape[0]:y0 - border, x0:x1] = tag
+    return out
+
+
+def points_in_frame(cam: Camera, points_m: np.ndarray, margin_px: float = 0.0) -> np.ndarray:
+    """Whether each world point projects inside the frame (and in front of the camera)."""
+    u, v, z = project(cam, points_m)
+    return (z > 0) & (u >= margin_px) & (u <= cam.width - margin_px) & (v >= margin_px) & \
+        (v <= cam.height - margin_px)
