@@ -47,6 +47,9 @@ class LexiconEntry(Model):
                                             "when the material class's prior does not describe it [kg/m^3]")
     takes_shape: bool = Field(default=False, description="made in any shape: 'a cat cushion' is a cushion shaped "
                               "like a cat")
+    empty_mass_kg: float | None = Field(default=None, gt=0, le=20.0, description="mass of a filled object (a "
+                                        "hot-water bottle, a gel pack) with nothing in it [kg]; its source is in "
+                                        "mass_source")
     posed_by: str | None = Field(default=None, description="a body-plan entry that shows this (hand-written) object "
                                  "sitting or lying when asked ('a dog lying down'): its shape is used then")
 

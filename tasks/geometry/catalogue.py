@@ -274,6 +274,7 @@ def design_from_text(text: str, size_hint_m: float | None = None) -> Design:
     mods, axis_scale = parse_modifiers(own_name)
     size = size.model_copy(update={"axis_scale": axis_scale})
     check_size(size)
+    match = concepts.size_scaled(match, size.longest_m or (match.typical_size_m or 0.0) * max(axis_scale))
     said = size_words.read_size_words(_strip_numeric_sizes(text_n), frozenset(MODIFIERS))
     warnings = [w for w in said.warnings + reading.warnings + build_warnings if w]
     score = {"exact": 2.0, "synonym": 1.0}.get(match.fallback_level, 0.0)

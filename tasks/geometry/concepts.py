@@ -67,14 +67,14 @@ PORTION_SHAPES: dict[str, tuple[str, dict]] = {
     "strip": ("sheet", {"width": 0.2, "thickness": 0.03}),
     "slab": ("block", {"width": 0.7, "height": 0.25, "edge": 0.1}),
     "cube": ("block", {"width": 1.0, "height": 1.0, "edge": 0.12}),
-    "lump": ("blob", {}), "blob": ("blob", {}), "dollop": ("blob", {"height": 0.4}),
-    "stick": ("tube", {}), "wedge": ("cone", {"height": 0.6}),
-}
+    "lump": ("blob", {"height": 0.6}), "blob": ("blob", {}), "dollop": ("blob", {"height": 0.4}),
+    "stick": ("tube", {}),
+}  # 'a wedge of X' follows X's own shape (wedged)
 # nouns that name a generic form: a more specific object noun before them wins ('teether ring', 'sock ball')
 GENERIC_NOUNS = frozenset({"ball", "ring", "block", "cube", "roll", "pad", "disc", "tube", "bar", "piece", "toy",
                            "noodle", "cushion", "pillow", "roller", "bun", "bone", "loaf", "bread"})
 MEASURE_NOUNS = frozenset({"loaf", "block", "piece", "slice", "ball", "lump", "chunk", "bar", "bag", "roll", "pack",
-                           "cube", "wedge", "stick", "sheet", "bunch", "scoop", "handful", "pair"})
+                           "cube", "wedge", "stick", "sheet", "bunch", "scoop", "handful", "pair", "head", "wheel"})
 PATTERN_WORDS = ("striped", "stripes", "spotted", "spots", "polka dot", "dotted", "checked", "checkered", "plaid",
                  "tartan", "patterned", "floral", "camo", "camouflage", "rainbow", "tie dye", "speckled")
 STOP_WORDS = frozenset("""a an the of with and or in on for to from made that which is are it its one some this very
@@ -431,9 +431,16 @@ def read_text(text: str) -> Reading:
             donor_entry = lex.entries[noun_index()[compound[2]][0]]
             donor_words = compound[2]
         poses = {"sitting", "lying", "curled", "standing"} & set(phrase.states)
-        if poses and donor is None and entry.plan is None and entry.posed_by in lex.entries:
-            donor_entry = lex.entries[entry.posed_by]  # 'a dog lying down': the posable dog's shape
-            donor_words = " ".join(sorted(poses))
+        posable = lex.entries[entry.posed_by] if entry.posed_by in lex.entries else None
+        asks_plan = posable is not None and (pose_of(t) is not None or bool(ear_params(t, posable.plan)))
+        if (poses or asks_plan) and donor is None and entry.plan is None and posable is not None:
+            donor_entry = posable  # 'a dog lying down', 'a bunny with floppy ears': the posable one's shape
+            donor_words = " ".join(sorted(poses)) or "posed"
+            if posable.density_kg_per_m3 is not None:  # the posable shape's own effective density (same real mass)
+                match = match.model_copy(update={"density_kg_per_m3": posable.density_kg_per_m3})
+        if donor is None and donor_entry is None and phrase.head in SHAPE_WORDS and phrase.head not in noun.split() \
+                and not entry.takes_shape and entry.plan not in ("mould",):
+            donor_plan, donor_words = SHAPE_WORDS[phrase.head], phrase.head  # 'a jello dome', 'a cheese cube'
     else:
         shape_noun = unknown or phrase.head
         if donor_entry is None and donor_plan is None and shape_noun in SHAPE_WORDS:
@@ -586,6 +593,8 @@ def build(reading: Reading, text: str) -> tuple[ShapeProgram, ConceptMatch, list
     size = reading.size_m or entry.size_m
     warnings: list[str] = []
     states, params = _state_params(reading, warnings)
+    if reading.donor_plan is None:  # 'long floppy ears': the plan's ear parameters
+        params = {**params, **ear_params(text, (reading.donor or entry).plan)}
     outline = _outline_param(reading)
     if outline is not None:  # 'a baking mould shaped like a heart': the mould's own outline, not a solid heart
         reading = Reading(**{**reading.__dict__, "donor_plan": None})
@@ -621,6 +630,7 @@ def build(reading: Reading, text: str) -> tuple[ShapeProgram, ConceptMatch, list
         applied = {**applied, **pattern}
     if warning:
         warnings.append(warning)
+    program, match, states = _whole_object(reading, program, match, normalise(text), states, warnings)
     return program, match.model_copy(update={"colors": applied, "states": states}), warnings
 
 
@@ -642,6 +652,10 @@ def _state_params(reading: Reading, warnings: list[str]) -> tuple[list[str], dic
     plan = reading.donor_plan[0] if reading.donor_plan is not None and reading.donor is None else target.plan
     can = grammar.plan_states(plan) if plan in grammar.PLANS else ()
     said = list(dict.fromkeys("lying" if st == "curled" and "lying" in can else st for st in phrase.states))
+    if pose_of(phrase.text) is not None:  # 'lying on its side': the standing shape turned over (_whole_object)
+        said = [st for st in said if st not in ("lying", "curled")]
+    if inflatable(target):  # 'deflated', 'crumpled', 'flat': drawn by _whole_object
+        said = [st for st in said if st not in _DEFLATED and st != "deflated"]
     shown = [st for st in said if st in can]  # ('curled up' is lying, for an animal)
     # carried by the material and mass, or a pose the shape has anyway (a teddy sits), not drawn apart
     shapeless = {"stuffed", "filled", "inflated", "hollow", "flat", "sitting", "lying", "standing"}
@@ -780,3 +794,285 @@ def apply_colors(program: ShapeProgram, text: str) -> tuple[ShapeProgram, dict[s
         parts = [p.model_copy(update={"color_rgb": lex.colors[word]}) if part_group(p.name) == g
                  or part_group(p.name).split()[-1] == g.split()[-1] else p for p in parts]
     return program.model_copy(update={"parts": parts}), applied
+
+
+# ---- poses, details and states that change a built program as a whole (#35) --------------------------------------
+# 'lying on its side' / 'on its back': the whole object turned about its long (x) axis, whatever it is
+_LIE = r"\b(?:lying|laying|lies|lie|lay|laid|resting|rests|sleeping|asleep|flopped|placed|put|tipped|turned|rolled|" \
+       r"fallen|knocked|toppled|sprawled|stretched|curled)(?: [a-z]+){0,2} "
+_POSE_PATTERNS: tuple[tuple[str, re.Pattern], ...] = (
+    ("side", re.compile(_LIE + r"on (?:its|his|her|their|the|one|a) sides?\b|\b(?:tipped|knocked|keeled|toppled|"
+                        r"fallen) over\b|\b(?:laid|lying|laying) sideways\b|^on (?:its|the) side\b")),
+    ("back", re.compile(_LIE + r"on (?:its|his|her|their|the) backs?\b|\bbelly up\b|\bupside down\b|\b(?:legs|feet|"
+                        r"paws) (?:in the air|up)\b")),
+)
+POSE_TURN_DEG: dict[str, tuple[float, float, float]] = {"side": (90.0, 0.0, 0.0), "back": (180.0, 0.0, 0.0)}
+# words about ears -> the ear kind of the plans that draw ears ('floppy ears' hang down the sides of the head)
+_EAR_WORDS = re.compile(r"\b(floppy|droopy|drooping|lop|lopped|hanging|dangly|dangling|pointy|pointed|round|"
+                        r"rounded|perky|upright|tiny|small|big|huge|large|long)(?: and [a-z]+)? ?(?:eared\b|ears?\b)")
+_EAR_KIND = {"floppy": "lop", "droopy": "lop", "drooping": "lop", "lop": "lop", "lopped": "lop", "hanging": "lop",
+             "dangly": "lop", "dangling": "lop", "pointy": "pointed", "pointed": "pointed", "round": "round",
+             "rounded": "round", "perky": "long", "upright": "long", "tiny": "small", "small": "small"}
+_EAR_SIZE = {"big": 1.4, "huge": 1.7, "large": 1.4, "long": 1.3}
+# surface relief words (tasks.geometry.grammar.parts.relief) said of the object or implied by its name
+RELIEF_WORDS: dict[str, str] = {
+    "spiky": "spikes", "spikes": "spikes", "spiked": "spikes", "spike": "spikes", "prickly": "spikes",
+    "prickles": "spikes", "spines": "spikes", "spiny": "spikes", "nubby": "nubs", "nubs": "nubs", "nubbly": "nubs",
+    "nubbins": "nubs", "knobbly": "nubs", "knobby": "nubs", "knobs": "nubs", "bumpy": "nubs", "bumps": "nubs",
+    "studded": "nubs", "studs": "nubs", "brain": "folds", "yarn": "strands", "wool": "strands", "twine": "strands",
+    "string": "strands", "pouf": "ruffles", "puff": "ruffles", "ruffled": "ruffles", "frilly": "ruffles",
+    "ruffles": "ruffles", "loofah": "ruffles", "scrunchie": "ruffles", "lumpy": "lumps", "lump": "lumps",
+    "wad": "lumps", "clump": "lumps", "hunk": "lumps"}
+GOODS_PLANS = frozenset({"sheet", "pouch", "glove", "sock", "hat", "tool", "mould", "garment", "bag", "strap", "rope",
+                         "book"})
+_RELIEF_SAID = frozenset({"spikes", "nubs"})  # asked for in words: say so when it cannot be drawn
+_DEFLATED = frozenset({"deflated", "flat", "crumpled"})
+_HALF_INFLATED = re.compile(r"\b(?:half|partly|partially|semi|part) (?:inflated|deflated|blown up|full)\b")
+
+
+def pose_of(text: str) -> str | None:
+    """'side' or 'back' when the text turns the object over ('lying on its side', 'belly up'), else None."""
+    t = normalise(text)
+    return next((name for name, rx in _POSE_PATTERNS if rx.search(t)), None)
+
+
+def ear_params(text: str, plan: str | None) -> dict[str, typing.Any]:
+    """Plan parameters for ear words ('long floppy ears' -> lop ears, longer) when the plan draws ears."""
+    if plan is None or plan not in grammar.PLANS or "ears" not in grammar.PLANS[plan][0].model_fields:
+        return {}
+    words = [w for m in _EAR_WORDS.finditer(normalise(text)) for w in m.group(0).split()]
+    kind = next((_EAR_KIND[w] for w in words if w in _EAR_KIND), None)
+    size = max((_EAR_SIZE[w] for w in words if w in _EAR_SIZE), default=None)
+    out: dict[str, typing.Any] = {}
+    if kind is not None:
+        out["ears"] = kind
+    if size is not None:
+        out["ear_size"] = size
+    return out
+
+
+def relief_of(text: str, entry: LexiconEntry) -> tuple[str | None, bool]:
+    """(relief kind, said in words) from the request's words, else from the object's own first noun; none for goods
+    whose knit or fabric is their own shape (a knitted hat, a wool sock, a garment: no yarn strands over them)."""
+    if entry.plan in GOODS_PLANS:
+        return None, False
+    hits = _find(normalise(text), RELIEF_WORDS)
+    if hits:
+        kind = RELIEF_WORDS[hits[0][2]]
+        return kind, kind in _RELIEF_SAID
+    own = _find(normalise(entry.nouns[0]), RELIEF_WORDS)
+    return (RELIEF_WORDS[own[0][2]], False) if own else (None, False)
+
+
+def _body_envelope(program: ShapeProgram, resolution: int = 40) -> tuple[np.ndarray, np.ndarray]:
+    """(centre, half extents) [m] of the solid a program describes, from its signed distances on a grid."""
+    from tasks.geometry.meshing import sample_program
+
+    field_, origin, spacing = sample_program(program, resolution)
+    idx = np.argwhere(field_ < 0)
+    lo, hi = origin + idx.min(axis=0) * spacing, origin + (idx.max(axis=0) + 1) * spacing
+    return (lo + hi) / 2.0, (hi - lo) / 2.0
+
+
+def with_relief(program: ShapeProgram, kind: str) -> ShapeProgram | None:
+    """The program with surface relief over its body (spikes, nubs, folds, strands, ruffles, lumps) standing out of
+    it; None when the body is not ball-like (its shortest half extent under half its longest)."""
+    from tasks.geometry.grammar.parts import relief
+
+    centre, half = _body_envelope(program)
+    if kind != "lumps" and float(half.min()) < 0.5 * float(half.max()):
+        return None
+    budget = 64 - len(program.parts)
+    if budget < 8:
+        return None
+    if kind == "ruffles":  # a pouf is frills around a small core: the body shrinks to the core
+        core = [p.model_copy(update={"transform": p.transform.model_copy(update={"scale": (0.7, 0.7, 0.7), "translation_m": tuple(
+            float(c + 0.7 * (t - c)) for t, c in zip(p.transform.translation_m, centre))})}) for p in program.parts[:1]]
+        body = core + list(program.parts[1:])
+    else:
+        body = list(program.parts)
+    rgb = program.parts[0].color_rgb
+    extra = [p.model_copy(update={"color_rgb": rgb}) for p in relief(kind, centre, half, budget)]
+    if kind not in ("strands", "ruffles"):
+        extra = _snapped(extra, program, centre, half)
+    return program.model_copy(update={"parts": body + extra})  # a stated size still sizes the whole (pipeline)
+
+
+def posed(program: ShapeProgram, pose: str) -> ShapeProgram:
+    """The whole program turned over ('side': 90 degrees about its long x axis; 'back': 180 degrees)."""
+    from tasks.geometry.grammar.parts import rotated_parts
+
+    centre, _half = _body_envelope(program, 32)
+    return program.model_copy(update={"parts": rotated_parts(program.parts, POSE_TURN_DEG[pose], centre)})
+
+
+def inflatable(entry: LexiconEntry) -> bool:
+    """An object that holds its shape by air (an inflatable, a beach ball): it can be deflated."""
+    return entry.material == "inflatable" or entry.category == "inflatable"
+
+
+def deflated(program: ShapeProgram, half: bool = False) -> ShapeProgram:
+    """An inflatable without its air: squashed flat and spread (its skin lies in folds), with creases; half
+    inflated: squashed to about half its height and a little spread. Its longest extent grows as the skin spreads."""
+    from tasks.geometry.grammar.parts import relief, squashed_parts
+
+    factors = (1.1, 1.1, 0.55) if half else (1.25, 1.25, 0.14)
+    parts = squashed_parts(program.parts, factors)
+    flat = program.model_copy(update={"parts": parts})
+    if half or len(parts) > 48:
+        return flat
+    centre, halfext = _body_envelope(flat, 64)
+    rgb = program.parts[0].color_rgb
+    creases = [p.model_copy(update={"color_rgb": rgb}) for p in relief("crumples", centre, halfext, 12)]
+    return flat.model_copy(update={"parts": parts + creases})
+
+
+def emptied(program: ShapeProgram) -> ShapeProgram:
+    """A filled bag or bottle with nothing in it: its walls lie together (a third of the filled thickness)."""
+    from tasks.geometry.grammar.parts import squashed_parts
+
+    return program.model_copy(update={"parts": squashed_parts(program.parts, (1.0, 1.0, 0.35))})
+
+
+def _as_built_mass(match: ConceptMatch, program: ShapeProgram, mass_kg: float, why: str) -> ConceptMatch:
+    """The match with a typical mass that holds for the program as built (its longest extent is the typical size):
+    the volume no longer sets the mass (a deflated ball's skin, an empty bottle's rubber)."""
+    size = float(grammar.program_extents(program).max())
+    return match.model_copy(update={"typical_mass_kg": mass_kg, "typical_size_m": size, "density_kg_per_m3": None,
+                                    "hollow": False, "wall_thickness_m": None,
+                                    "mass_source": f"{match.mass_source} ({why})"})
+
+
+def _whole_object(reading: Reading, program: ShapeProgram, match: ConceptMatch, text: str, states: list[str],
+                  warnings: list[str]) -> tuple[ShapeProgram, ConceptMatch, list[str]]:
+    """Surface relief, deflated or empty states and a turned-over pose applied to the built program, with the typical
+    mass the state has (an inflatable's skin is all it weighs deflated; an empty bottle is its rubber)."""
+    entry = reading.entry
+    target = reading.donor or entry
+    said_states = set(reading.phrase.states) if reading.phrase is not None else set()
+    states = list(states)
+    phrase = reading.phrase
+    if phrase is not None and reading.donor_plan is None and (phrase.portion in WEDGE_WORDS or (
+            phrase.head in WEDGE_WORDS and (phrase.compounds or phrase.adjectives))):
+        program = wedged(program, target)
+        states.append("wedge")
+    kind, said = relief_of(text, target if reading.donor is not None else entry)
+    if kind is not None:
+        new = with_relief(program, kind)
+        if new is not None:
+            program = new
+            states.append(kind)
+        elif said:
+            warnings.append(f"'{kind}' are not drawn: the {entry.key.replace('_', ' ')} is not ball-like")
+    half = _HALF_INFLATED.search(text) is not None
+    if inflatable(target) and (half or said_states & (_DEFLATED | {"deflated"})):
+        program = deflated(program, half)
+        states.append("half inflated" if half else "deflated")
+        match = _as_built_mass(match, program, target.mass_kg, "the same skin, with less air: its mass is the skin's")
+    elif target.empty_mass_kg is not None and re.search(r"\bempty\b", text):
+        program = emptied(program)
+        states.append("empty")
+        match = _as_built_mass(match, program, target.empty_mass_kg, f"empty: {target.empty_mass_kg:g} kg")
+    pose = pose_of(text)
+    if pose is not None:
+        program = posed(program, pose)
+        states.append(f"on its {pose}")
+    return program, match, states
+
+
+WEDGE_WORDS = frozenset({"wedge", "wedges"})
+WEDGE_ANGLE_DEG = {"fruit": 45.0, "vegetable": 45.0}  # a lemon or melon wedge is an eighth; a cheese or pie wedge a sixth
+
+
+def _inside_rgb(program: ShapeProgram, target: LexiconEntry) -> tuple[float, float, float]:
+    """The colour of a cut face: the entry's 'inside' colour, else its body colour halfway to white."""
+    word = target.colors.get("inside")
+    if word is not None:
+        return load_lexicon().colors[word]
+    c = np.asarray(program.parts[0].color_rgb, dtype=np.float64)
+    return tuple(float(v) for v in 0.5 * c + 0.5)  # type: ignore[return-value]
+
+
+def wedged(program: ShapeProgram, target: LexiconEntry) -> ShapeProgram:
+    """A wedge cut from the whole object: a sector about its axis of turn when it is round about one (a cheese wheel,
+    a pie, a cake: a sixth about the vertical; a fruit: an eighth about its long axis, like a lemon wedge), else a
+    diagonal half (a block of cheese cut corner to corner: a triangular prism). The cut faces take the inside colour."""
+    from scipy.spatial.transform import Rotation
+
+    from tasks.geometry.grammar.parts import box
+
+    centre, half = _body_envelope(program)
+    fruit = target.category in WEDGE_ANGLE_DEG
+    if fruit:
+        axis = int(np.argmax(half))  # along the fruit's long axis
+    elif abs(half[0] - half[1]) <= 0.12 * max(half[0], half[1]):
+        axis = 2  # round in plan: about the vertical
+    else:
+        axis = None
+    big = 4.0 * float(half.max())
+    rgb = _inside_rgb(program, target)
+    if axis is None:  # corner to corner: keep the side clockwise of the diagonal
+        theta = float(np.arctan2(half[1], half[0]))
+        frame = np.eye(3)
+        cuts = [theta]
+    else:
+        theta = np.radians(WEDGE_ANGLE_DEG.get(target.category, 60.0))
+        u = np.eye(3)[(axis + 1) % 3]
+        v = np.eye(3)[(axis + 2) % 3]
+        frame = np.stack([u, v, np.eye(3)[axis]], axis=1)  # local (u, v, axis) -> world
+        cuts = [0.0, theta]
+    parts = list(program.parts)
+    for k, phi in enumerate(cuts):
+        if axis is not None and k == 0:  # keep v >= 0
+            normal_local, turn = np.array([0.0, 1.0, 0.0]), 0.0
+        else:  # keep the side clockwise of the line at angle phi
+            normal_local, turn = np.array([-np.sin(phi), np.cos(phi), 0.0]), float(phi)
+        at = centre + frame @ (normal_local * big / 2 * (1 if k == 0 and axis is not None else -1))
+        rot = Rotation.from_matrix(frame) * Rotation.from_euler("z", turn)
+        euler = tuple(float(e) for e in rot.as_euler("xyz", degrees=True))
+        parts.append(box(f"cut face {k + 1}", (big, big, big), at, rot=euler).model_copy(
+            update={"operation": "intersect", "color_rgb": rgb}))
+    return program.model_copy(update={"parts": parts})
+
+
+def _snapped(parts: list[Part], program: ShapeProgram, centre: np.ndarray, half: np.ndarray) -> list[Part]:
+    """Relief parts placed on the envelope ellipsoid moved along their ray from the centre onto the body's own surface
+    (an egg's narrow end, a cushion's flat side), by bisection on the program's signed distance (all rays at once)."""
+    from tasks.geometry.sdf import program_sdf
+
+    movable = [i for i, p in enumerate(parts) if p.operation == "union"
+               and np.linalg.norm(np.asarray(p.transform.translation_m) - centre) > 1e-9]
+    if not movable:
+        return parts
+    t = np.asarray([parts[i].transform.translation_m for i in movable], dtype=np.float64)
+    u = (t - centre) / np.linalg.norm(t - centre, axis=1, keepdims=True)
+    s_ell = 1.0 / np.linalg.norm(u / half, axis=1)  # where the envelope ellipsoid meets each ray
+    lo, hi = np.zeros(len(t)), 2.0 * s_ell
+    for _ in range(20):
+        mid = 0.5 * (lo + hi)
+        inside = program_sdf(centre + mid[:, None] * u, program) < 0
+        lo, hi = np.where(inside, mid, lo), np.where(inside, hi, mid)
+    out = list(parts)
+    for k, i in enumerate(movable):
+        moved = t[k] + (lo[k] - s_ell[k]) * u[k]
+        out[i] = parts[i].model_copy(update={"transform": parts[i].transform.model_copy(update={
+            "translation_m": tuple(float(v) for v in moved)})})
+    return out
+
+
+# A stuffed toy's mass grows about as its surface (fabric and a loft of fill that does not pack denser in a bigger
+# toy), not its volume: a plush built larger or smaller than the entry's typical size keeps mass ~ L^2, as a hollow
+# shell's does in tasks.physical.mass (HOLLOW_EXPONENT).
+PLUSH_MASS_EXPONENT = 2.0
+
+
+def size_scaled(match: ConceptMatch, final_longest_m: float) -> ConceptMatch:
+    """The match with its density scaled for a plush toy built at final_longest_m instead of its typical size, so
+    that its mass grows as length^PLUSH_MASS_EXPONENT ('a big plush unicorn' is not 1.4^3 times as heavy)."""
+    typical = match.typical_size_m
+    if match.default_material != "plush" or match.density_kg_per_m3 is None or not typical or final_longest_m <= 0:
+        return match
+    ratio = final_longest_m / typical
+    if abs(ratio - 1.0) < 0.05:
+        return match
+    return match.model_copy(update={"density_kg_per_m3": match.density_kg_per_m3 * ratio ** (PLUSH_MASS_EXPONENT - 3)})

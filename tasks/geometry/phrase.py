@@ -33,7 +33,8 @@ STATE_WORDS: dict[str, str] = {
 PORTION_NOUNS = frozenset({"slice", "wedge", "piece", "chunk", "lump", "block", "bar", "ball", "loaf", "sheet",
                            "strip", "cube", "disc", "disk", "roll", "stick", "scoop", "pair", "bunch",
                            "handful", "bundle", "pile", "stack", "coil", "skein", "wad", "blob", "dollop", "round",
-                           "square", "segment", "half", "quarter", "portion", "brick", "pad"})
+                           "square", "segment", "half", "quarter", "portion", "brick", "pad", "head", "clove", "sprig",
+                           "bulb", "ear", "wheel"})
 # portions that are a state of their object
 PORTION_STATES = {"stack": "stacked", "pile": "stacked", "roll": "rolled", "coil": "rolled"}
 # nouns that name nothing in particular

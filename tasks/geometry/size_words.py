@@ -17,6 +17,7 @@ REFERENCE_SIZES_M: dict[str, float] = {
     "fist": 0.10, "palm": 0.09, "hand": 0.19, "thumb": 0.06, "finger": 0.08, "head": 0.22, "pocket": 0.12,
     "bite": 0.03, "coin": 0.025, "marble": 0.016, "pea": 0.01, "credit card": 0.086, "card": 0.086,
     "shoe box": 0.33, "shoebox": 0.33, "phone": 0.15, "smartphone": 0.15,
+    "teacup": 0.09, "tea cup": 0.09, "mug": 0.1, "coffee mug": 0.1,  # a teacup's rim ~8-9.5 cm, a mug ~9-10 cm tall
 }
 # 'life-sized', 'full-size': the object's own typical size; nothing to change
 SAME_SIZE_WORDS = frozenset({"life", "full", "real", "normal", "regular", "standard", "medium", "mid", "average",

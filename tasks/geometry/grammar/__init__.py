@@ -67,6 +67,8 @@ PLANS: dict[str, tuple[type[Model], Callable[[Any], list[Part]]]] = {
     "mould": (goods.MouldParams, goods.mould),
     "holey": (food.HoleyParams, food.holey),
     "layered": (food.LayeredParams, food.layered),
+    "leafy_head": (food.LeafyHeadParams, food.leafy_head),
+    "collapsible": (food.CollapsibleParams, food.collapsible),
 }
 
 # colours a part keeps unless the request or the entry names one (eyes and noses are dark)

@@ -13,7 +13,7 @@ from contracts.base import Model
 from contracts.shape import Part
 from tasks.geometry.grammar.parts import cone, ellipsoid, limb, mirrored, superellipsoid, tapered
 
-Ears = Literal["none", "round", "pointed", "floppy", "long", "big", "small"]
+Ears = Literal["none", "round", "pointed", "floppy", "long", "lop", "big", "small"]
 Snout = Literal["none", "short", "long", "trunk", "beak", "flat", "duckbill"]
 Tail = Literal["none", "short", "long", "curly", "bushy", "thick", "pom"]
 
@@ -39,6 +39,9 @@ def _ears(kind: str, head: np.ndarray, r: float, size: float = 1.0) -> list[Part
     if kind == "long":
         return mirrored(ellipsoid, "ear", (0.22 * s, 0.3 * s, 1.1 * s), (hx - 0.15 * r, 0.42 * r, hz + 1.75 * r),
                         blend=0.1 * r, rot=(-10, 0, 0))
+    if kind == "lop":  # long ears hanging down the sides of the head, tips flared out (a lop rabbit, 'floppy ears')
+        return mirrored(ellipsoid, "ear", (0.3 * s, 0.13 * s, 0.95 * s),
+                        (hx - 0.1 * r, 1.0 * r + 0.12 * s, hz + 0.55 * r - 0.8 * s), blend=0.1 * r, rot=(12, 0, 0))
     # big (elephant): wide flat ears on the sides of the head
     return mirrored(ellipsoid, "ear", (0.45 * s, 0.12 * s, 0.75 * s), (hx - 0.35 * r, 0.95 * r, hz + 0.1 * r),
                     blend=0.1 * r, rot=(0, 0, 15))
@@ -113,6 +116,8 @@ class QuadrupedParams(Model):
     tail_length: float = Field(default=0.35, ge=0.0, le=2.0, description="tail length / body length")
     horns: int = Field(default=0, ge=0, le=2)
     hump: bool = False
+    mane: bool = Field(default=False, description="a crest of hair along the top of the neck and head (horse, "
+                       "unicorn, lion)")
     state: Literal["standing", "sitting", "lying"] = Field(default="standing", description="standing on its legs; "
                                                             "sitting on its haunches, chest up; lying down, head on "
                                                             "its front paws")
@@ -188,11 +193,34 @@ def _quadruped_head_and_tail(p: QuadrupedParams, zb: float, lying: bool = False,
     parts.append(ellipsoid("head", (hr, 0.95 * hr, 0.92 * hr), head, blend=0.08))
     parts += _ears(p.ears, head, hr, p.ear_size)
     parts += _face(head, hr, p.snout)
-    if p.horns:
+    if p.horns == 1:  # one long horn from the middle of the forehead, forward and up (a unicorn, a narwhal-like toy)
+        parts += [tapered("horn", (head[0] + 0.3 * hr, 0.0, head[2] + 0.7 * hr),
+                          (head[0] + 0.95 * hr, 0.0, head[2] + 2.3 * hr), 0.27 * hr, 0.03 * hr, blend=0.05 * hr)]
+    if p.mane:
+        parts += _mane(base, head, hr, p.neck_length)
+    if p.horns == 2:
         parts += mirrored(tapered, "horn", (head[0] - 0.1 * hr, 0.35 * hr, head[2] + 0.75 * hr),
                           (head[0] - 0.2 * hr, 0.5 * hr, head[2] + 1.45 * hr), 0.14 * hr, 0.04 * hr, blend=0.03)
     root = np.array([-0.47, 0.0, zb + 0.1 * bh]) if tail_root is None else tail_root
     parts += _tail(p.tail, root, 0.1, p.tail_length)
+    return parts
+
+
+def _mane(base: np.ndarray, head: np.ndarray, hr: float, neck_length: float) -> list[Part]:
+    """A crest of hair standing along the back of the neck from the withers to between the ears: lobes offset from
+    the neck line on its upper-back side."""
+    start = np.asarray(base, dtype=float)
+    end = np.asarray(head, dtype=float) + np.array([-0.35 * hr, 0.0, 0.55 * hr])
+    along = end - start
+    along = along / max(float(np.linalg.norm(along)), 1e-9)
+    back = np.array([-along[2], 0.0, along[0]])  # the neck line turned 90 degrees up and back
+    n = 5 if neck_length > 0 else 3
+    tilt = float(np.degrees(np.arctan2(along[0], along[2])))
+    parts = []
+    for i, t in enumerate(np.linspace(0.0, 1.0, n)):
+        at = (1 - t) * start + t * end + back * 0.5 * hr
+        parts.append(ellipsoid(f"mane {i + 1}", (0.28 * hr, 0.16 * hr, 0.42 * hr), at, blend=0.08 * hr,
+                               rot=(0, tilt, 0)))
     return parts
 
 

@@ -416,3 +416,111 @@ def _layer(name: str, p: LayeredParams, thick: float, z0: float, edge: float, w:
     if p.shape == "wedge":
         return _wedge_box(name, p.angle_deg, z0, thick, edge=min(edge, 0.02))
     return cylinder(name, 0.5 + grow, thick, (0, 0, z0 + thick / 2), edge=edge)
+
+
+class LeafyHeadParams(Model):
+    """A head of leaves: lettuce, cabbage, radicchio. Leaves in rings around a heart, each ring tilted further out;
+    a tight head (cabbage, iceberg) has little tilt, a loose leaf lettuce opens like a rose and its leaves are ruffled."""
+
+    rings: int = Field(default=3, ge=1, le=4, description="rings of leaves around the heart")
+    leaves: int = Field(default=6, ge=3, le=9, description="leaves per ring")
+    openness: float = Field(default=0.5, ge=0.0, le=1.0, description="0 a tight ball, 1 leaves splayed out [-]")
+    ruffle: bool = Field(default=False, description="frilled leaf edges (leaf lettuce, lollo rosso, savoy)")
+    aspect: float = Field(default=0.85, gt=0.4, le=1.3, description="height / width of the heart [-]")
+
+
+def leafy_head(p: LeafyHeadParams) -> list[Part]:
+    """Width about 1: a heart (ellipsoid) and rings of cupped leaves (thin ellipsoids whose thin axis points out from
+    the heart), tilted out by ring; ruffled leaves carry a second, offset frill at their top edge."""
+    r = 0.24
+    h = p.aspect * r
+    parts = [ellipsoid("heart", (r, r, h), (0, 0, h + 0.02))]
+    parts.append(cylinder("stem", 0.1, 0.06, (0, 0, 0.03), edge=0.02, blend=0.03))
+    for k in range(p.rings):
+        tilt = np.radians(6 + 40 * p.openness * (k + 1) / p.rings)
+        rho = r * (0.55 + 0.3 * k)
+        length = (0.6 + 0.15 * k) * p.aspect * 1.25
+        width = 0.36 + 0.06 * k
+        for i in range(p.leaves):
+            a = 2 * np.pi * (i + 0.5 * k) / p.leaves
+            radial = np.array([np.cos(a), np.sin(a), 0.0])
+            axis = np.array([np.sin(tilt) * np.cos(a), np.sin(tilt) * np.sin(a), np.cos(tilt)])  # up the leaf
+            base = radial * rho + np.array([0.0, 0.0, 0.04])
+            centre = base + axis * 0.45 * length
+            # local x across the leaf, local y up it, local z (thin) out from the heart
+            up = axis
+            thin = np.cross(up, np.array([-np.sin(a), np.cos(a), 0.0]))
+            across = np.cross(up, thin)
+            euler = _frame_euler(across, up)
+            parts.append(ellipsoid(f"leaf {k + 1} {i + 1}", (width / 2, length / 2, 0.045), centre, blend=0.025,
+                                   rot=euler))
+    if p.ruffle:  # crinkled leaf tops filling the head: wavy fins standing out of its upper surface
+        from tasks.geometry.grammar.parts import sphere_directions
+
+        top_r = r * (0.55 + 0.3 * (p.rings - 1))
+        dirs = [d for d in sphere_directions(40, seed=0.4) if d[2] > 0.15][:18]
+        for i, d in enumerate(dirs):
+            at = np.array([d[0] * top_r, d[1] * top_r, h + 0.02 + d[2] * h * 1.3])
+            tangent = np.cross(d, np.array([np.cos(1.9 * i), np.sin(1.9 * i), 0.4]))
+            parts.append(ellipsoid(f"frill {i + 1}", (0.17, 0.15, 0.035), at, blend=0.03,
+                                   rot=_frame_euler(np.cross(tangent, d), d)))
+    return parts
+
+
+def _frame_euler(x_axis: np.ndarray, y_axis: np.ndarray) -> tuple[float, float, float]:
+    """XYZ Euler angles [deg] of the rotation taking local x and y onto the given directions (y made orthogonal)."""
+    import warnings
+
+    from scipy.spatial.transform import Rotation
+
+    x = x_axis / np.linalg.norm(x_axis)
+    y = y_axis - np.dot(y_axis, x) * x
+    y = y / np.linalg.norm(y)
+    m = np.stack([x, y, np.cross(x, y)], axis=1)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", UserWarning)
+        e = Rotation.from_matrix(m).as_euler("xyz", degrees=True)
+    return (float(e[0]), float(e[1]), float(e[2]))
+
+
+class CollapsibleParams(Model):
+    """A collapsible silicone cup or bowl: stepped rings of wall that fold down into each other, a handle tab."""
+
+    rings: int = Field(default=3, ge=2, le=5, description="wall rings (steps)")
+    height: float = Field(default=0.6, gt=0.2, le=1.2, description="open height / rim diameter [-]")
+    handle: bool = True
+    state: Literal["open", "folded"] = Field(default="open", description="open as a cup; folded flat, the rings "
+                                             "nested in each other")
+
+
+def collapsible(p: CollapsibleParams) -> list[Part]:
+    """Rim diameter 1. Open: stepped frustum rings round a cavity, base closed. Folded: the base with the rings as
+    concentric ridges, each a little higher than the one inside it."""
+    from tasks.geometry.grammar.parts import torus
+
+    n, wall = p.rings, 0.035
+    r0 = 0.5 - 0.07 * n  # the base ring's radius
+    parts: list[Part] = []
+    if p.state == "open":
+        dh = p.height / n
+        for k in range(n):
+            rb, rt = r0 + 0.07 * k, r0 + 0.07 * (k + 1)
+            parts.append(cone(f"ring {k + 1}", rb, rt, dh, (0, 0, dh * (k + 0.5)), edge=0.01, blend=0.01))
+        for k in range(n):
+            rb, rt = r0 + 0.07 * k - wall, r0 + 0.07 * (k + 1) - wall
+            z0 = wall if k == 0 else 0.0
+            parts.append(cone(f"cavity {k + 1}", rb, rt, dh - z0 + (0.02 if k == n - 1 else 0.0),
+                              (0, 0, dh * k + z0 + (dh - z0 + (0.02 if k == n - 1 else 0.0)) / 2)).model_copy(
+                                  update={"operation": "subtract"}))
+        top = p.height
+        rim = 0.5
+    else:
+        parts.append(cylinder("base", r0, wall * 1.4, (0, 0, wall * 0.7), edge=0.01))
+        for k in range(n):  # each ring a standing wall, a step higher than the one inside it
+            parts.append(torus(f"ring {k + 1}", r0 + 0.07 * (k + 0.5), 0.03, (0, 0, 0.06 + 0.025 * k), blend=0.012,
+                               scale=(1.0, 1.0, 2.0)))
+        top = 0.1 + 0.025 * n
+        rim = r0 + 0.07 * n
+    if p.handle:
+        parts.append(box("handle", (0.3, 0.14, 0.045), (rim + 0.1, 0, top - 0.03), edge=0.02, blend=0.015))
+    return parts

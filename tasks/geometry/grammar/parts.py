@@ -114,3 +114,137 @@ def part_group(name: str) -> str:
     """What a part is, without its position words: 'front left leg' -> 'leg', 'leaf 2' -> 'leaf'."""
     words = [w for w in name.lower().split() if w not in SIDE_WORDS and not w.isdigit()]
     return " ".join(words) if words else name.lower()
+
+
+def rotated_parts(parts: Sequence[Part], euler_deg: Vec, centre: Vec = (0.0, 0.0, 0.0)) -> list[Part]:
+    """Parts turned as one rigid body about `centre` by extrinsic XYZ Euler angles [deg] (a pose: an animal lying on
+    its side is the standing one turned 90 degrees about its long axis); each part's own rotation is composed."""
+    turn = Rotation.from_euler("xyz", euler_deg, degrees=True)
+    c = np.asarray(centre, dtype=np.float64)
+    out = []
+    for p in parts:
+        tf = p.transform
+        own = Rotation.from_euler("xyz", tf.rotation_deg, degrees=True)
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", UserWarning)  # gimbal lock: any equal angle set will do
+            euler = (turn * own).as_euler("xyz", degrees=True)
+        at = turn.apply(np.asarray(tf.translation_m, dtype=np.float64) - c) + c
+        out.append(p.model_copy(update={"transform": tf.model_copy(update={"translation_m": _f3(at),
+                                                                           "rotation_deg": _f3(euler)})}))
+    return out
+
+
+def sphere_directions(n: int, seed: float = 0.0) -> np.ndarray:
+    """n nearly even unit directions (a Fibonacci sphere, turned by `seed` radians about z) (n, 3)."""
+    k = np.arange(n) + 0.5
+    z = 1.0 - 2.0 * k / n
+    phi = np.pi * (3.0 - np.sqrt(5.0)) * k + seed
+    r = np.sqrt(np.clip(1.0 - z * z, 0.0, 1.0))
+    return np.stack([r * np.cos(phi), r * np.sin(phi), z], axis=1)
+
+
+# surface relief a ball-like body can carry, with the words that ask for it
+RELIEF_KINDS = ("spikes", "nubs", "folds", "strands", "ruffles", "crumples", "lumps")
+
+
+def relief(kind: str, centre: Vec, radii: Vec, budget: int = 48) -> list[Part]:
+    """Raised detail over the ellipsoid (centre, radii) [m] that bounds a ball-like body, at most `budget` parts,
+    each at least ~8 % of the smallest radius thick so that it shows at draft meshing (64 cells across):
+
+    spikes: soft cones along the normals (a spiky sensory or massage ball); nubs: half-buried bumps (a knobbly ball);
+    folds: short ridges lying on the surface in every direction and a groove from front to back (a brain);
+    strands: great circles of round strand in many planes (a wound ball of yarn or string); ruffles: radial frills
+    of thin sheet around a smaller core (a mesh bath pouf); crumples: shallow creases over a flattened body (a
+    deflated inflatable); lumps: a few broad bulges (a hand-formed lump of dough or clay)."""
+    c = np.asarray(centre, dtype=np.float64)
+    r = np.asarray(radii, dtype=np.float64)
+    rmin = float(r.min())
+
+    def surface(d: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        p = c + d / np.linalg.norm(d / r)  # on the ellipsoid along direction d
+        n = d / r ** 2
+        return p, n / np.linalg.norm(n)
+
+    parts: list[Part] = []
+    if kind == "spikes":
+        for i, d in enumerate(sphere_directions(min(budget, 34))):
+            p, n = surface(d)
+            h = 0.42 * rmin
+            parts.append(cone(f"spike {i + 1}", 0.17 * rmin, 0.035 * rmin, h, p + n * (0.5 * h - 0.12 * rmin),
+                              edge=0.02 * rmin, blend=0.06 * rmin, rot=_euler_z_to(n)))
+    elif kind == "nubs":
+        for i, d in enumerate(sphere_directions(min(budget, 42))):
+            p, _n = surface(d)
+            parts.append(ellipsoid(f"nub {i + 1}", (0.13 * rmin,) * 3, p, blend=0.04 * rmin))
+    elif kind == "folds":  # winding ridges packed over the surface (loops half sunk in it) and a midline groove
+        dirs = sphere_directions(min(budget - 1, 46), seed=0.7)
+        for i, d in enumerate(dirs):
+            p, n = surface(d)
+            spin = np.array([np.cos(2.4 * i), np.sin(2.4 * i), 0.5 * np.cos(1.3 * i)])
+            x_axis = np.cross(n, spin)
+            x_axis = x_axis / max(float(np.linalg.norm(x_axis)), 1e-9)
+            rot = Rotation.align_vectors([n, x_axis], [[0.0, 0.0, 1.0], [1.0, 0.0, 0.0]])[0]
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore", UserWarning)
+                euler = rot.as_euler("xyz", degrees=True)
+            parts.append(torus(f"fold {i + 1}", 0.16 * rmin, 0.07 * rmin, p - 0.04 * rmin * n, blend=0.02 * rmin,
+                               rot=euler, scale=(2.0, 1.0, 1.0)))
+        parts.append(box("fissure", (2.2 * r[0], 0.12 * rmin, 0.6 * r[2]), c + np.array([0.0, 0.0, 1.05 * r[2]]),
+                         op="subtract", blend=0.02 * rmin))
+    elif kind == "strands":
+        for i, d in enumerate(sphere_directions(min(budget, 16), seed=0.3)):
+            rot = _euler_z_to(d)
+            parts.append(torus(f"strand {i + 1}", float(r.mean()) * 0.99, 0.085 * rmin, c, blend=0.015 * rmin,
+                               rot=rot, scale=tuple(float(x) for x in r / r.mean())))
+    elif kind == "ruffles":
+        for i, d in enumerate(sphere_directions(min(budget, 26), seed=1.1)):
+            p, n = surface(d)
+            t = np.cross(n, np.array([np.cos(1.7 * i), np.sin(1.7 * i), 0.3]))
+            t = t / max(float(np.linalg.norm(t)), 1e-9)  # the frill's thin axis: tangent, so the sheet stands radially
+            rot = Rotation.align_vectors([t, n], [[0.0, 0.0, 1.0], [1.0, 0.0, 0.0]])[0]
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore", UserWarning)
+                euler = rot.as_euler("xyz", degrees=True)
+            parts.append(ellipsoid(f"ruffle {i + 1}", (0.42 * rmin, 0.5 * rmin, 0.085 * rmin), p - 0.2 * rmin * n,
+                                   blend=0.03 * rmin, rot=euler))
+    elif kind == "crumples":  # broad low ridges of skin lying over the top in every direction
+        rmax = float(r.max())
+        for i in range(min(budget, 11)):
+            a, rho = 2.4 * i, 0.7 * rmax * np.sqrt((i + 0.5) / 11)
+            at = c + np.array([rho * np.cos(a) * r[0] / rmax, rho * np.sin(a) * r[1] / rmax, 0.55 * r[2]])
+            parts.append(ellipsoid(f"crease {i + 1}", (0.32 * rmax, 0.1 * rmax, 1.0 * rmin), at, blend=0.5 * rmin,
+                                   rot=(0.0, 0.0, float(np.degrees(1.7 * i)))))
+    elif kind == "lumps":  # a hand-formed lump: a few broad bulges, none alike
+        for i, d in enumerate(sphere_directions(7, seed=0.9)[:min(budget, 7)]):
+            p, n = surface(d * np.array([1.0, 1.0, 0.6]))
+            s = (0.55 + 0.12 * np.sin(3.1 * i)) * rmin
+            parts.append(ellipsoid(f"lump {i + 1}", (1.2 * s, s, 0.8 * s), p - 0.35 * s * n, blend=0.3 * rmin,
+                                   rot=(0.0, 0.0, float(np.degrees(2.3 * i)))))
+    else:
+        raise ValueError(f"unknown relief '{kind}' (known: {', '.join(RELIEF_KINDS)})")
+    return parts
+
+
+def squashed_parts(parts: Sequence[Part], factors: Vec) -> list[Part]:
+    """Parts scaled per world axis about the origin by `factors` (a deflated ball is the ball squashed flat and
+    spread): each part keeps its primitive and takes a local scale and rotation whose axes are the scaled images of
+    its own (exact for parts turned by multiples of 90 degrees; the nearest rotation otherwise)."""
+    f = np.diag(np.asarray(factors, dtype=np.float64))
+    out = []
+    for p in parts:
+        tf = p.transform
+        m = f @ Rotation.from_euler("xyz", tf.rotation_deg, degrees=True).as_matrix() @ np.diag(tf.scale)
+        u, _s, vt = np.linalg.svd(m)
+        rot = u @ vt
+        if np.linalg.det(rot) < 0:
+            u[:, -1] *= -1
+            rot = u @ vt
+        scale = np.clip(np.diag(rot.T @ m), 1e-3, None)
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", UserWarning)
+            euler = Rotation.from_matrix(rot).as_euler("xyz", degrees=True)
+        at = f @ np.asarray(tf.translation_m, dtype=np.float64)
+        blend = p.blend_m * float(np.asarray(factors, dtype=np.float64).min())
+        out.append(p.model_copy(update={"blend_m": blend, "transform": tf.model_copy(update={
+            "translation_m": _f3(at), "rotation_deg": _f3(euler), "scale": _f3(scale)})}))
+    return out
