@@ -43,6 +43,7 @@ from flows.l3_report import (L3Progress, Progress, best_attempt, failed_gate_nam
 from tasks.asset_dir import AssetDir, geometry_info
 from tasks.geometry.outputs import L0Asset
 from tasks.manipulation.body import TrialBody, auto_trial_spacing, trial_body
+from tasks.manipulation.diagnosis import MODES
 from tasks.manipulation.data import attempt_indices, interaction_root, write_attempt
 from tasks.manipulation.recordings import record_attempt
 from tasks.manipulation.outcome import TrialTolerances, force_budget_n
@@ -55,11 +56,14 @@ from tasks.robot.choice import choose_gripper, grasp_settings
 from tasks.robot.gripper import gripper
 from tasks.robot.squeeze import SqueezePlan, squeeze_plan
 
-TASK_VERSION = "9"  # bump when tasks/manipulation/{trial,outcome,body,frame}.py change what a trial returns
+TASK_VERSION = "10"  # bump when tasks/manipulation/{trial,outcome,body,frame}.py change what a trial returns
 # (6: settle until at rest; 7: simulated in the frame where the closing axis is at 45 degrees to the grid; 8: the
 # approach is recorded; 9: grippers as data, a force-controlled closure that keeps its target while held and skips the
-# rest of the closure, the time-step cap follows dx)
+# rest of the closure, the time-step cap follows dx; 10: the hold's contact stiffness measured from where the force
+# began to rise, what-happened metrics and failure-mode flags (tasks.manipulation.diagnosis))
 PICK_AND_PLACE_RECORDING = "recordings/L3_pick_and_place.rrd"  # the chosen trial's recording
+CORE_FIELDS = ("grasp_rank", "squeeze_depth_m", "closing_speed_m_per_s", "lift_duration_s", "transport_duration_s",
+               "substeps")  # the plan's fields every L3 contract has
 LABELS = ("lifted", "transported", "released_in_target", "settled", "numerically_healthy")
 
 
@@ -78,6 +82,7 @@ class L3Options:
     lift_duration_s: float = 0.5
     transport_duration_s: float = 0.6
     release_duration_s: float = 0.2
+    place_height_m: float = 0.01  # the object's resting pose + this when the fingers open [m]
     retreat_duration_s: float = 0.2
     settle_duration_s: float = 0.2
     target_xy_m: tuple[float, float] = (0.08, 0.06)
@@ -134,7 +139,8 @@ def failed_metrics(reason: str) -> dict[str, float]:
     """Metrics of a plan that could not be executed: every label failed, the force unknown."""
     return {"lifted": 0.0, "transported": 0.0, "released_in_target": 0.0, "settled": 0.0, "slipped": 1.0,
             "force_budget_violated": 0.0, "numerically_healthy": 1.0, "max_strain": 0.0, "strain_p99": 0.0,
-            "max_finger_force_n": math.nan, "plan_failed": 1.0}
+            "max_finger_force_n": math.nan, "plan_failed": 1.0,
+            **{f"mode_{m}": float(m == "plan_failed") for m in MODES}}
 
 
 @cached_task(version=TASK_VERSION, name="l3.trial")
@@ -206,7 +212,7 @@ class L3Context:
     options: L3Options
     contract: StageContract
     attempts: list[dict[str, Any]] = field(default_factory=list)
-    recordings: bool = True  # each stored trial also gets recordings/L3_attempt_NNN.rrd (tasks.manipulation.recordings)
+    recordings: bool = True  # each stored trial also gets recordings/L3_trial_NN.rrd (tasks.manipulation.recordings)
     gripper: str = DEFAULT_GRIPPER
     gripper_reason: str = ""
     squeeze: SqueezePlan | None = None  # the force target and stiffness-scaled squeeze range of the best grasp
@@ -222,6 +228,16 @@ class L3Context:
             return self.squeeze.force_target_n
         return L3Parameters.of(self.contract).grip_force_limit_n or None
 
+    def grip_force_n(self, scale: float = 1.0) -> float | None:
+        """The closure's force target per finger [N] for a firmer squeeze (scale >= 1: the revise_squeeze route's
+        grip_force_scale), within the contract's cap and the gripper's maximum (None: position control)."""
+        base = self.grip_force_limit_n
+        if base is None or scale <= 1.0:
+            return base
+        cap = min(L3Parameters.of(self.contract).grip_force_limit_n or math.inf,
+                  gripper(self.gripper).spec.max_grip_force_n)
+        return float(max(base, min(base * scale, cap)))
+
     def plan(self, values: dict[str, float], target_xy_m: tuple[float, float] | None = None,
              yaw_deg: float = 0.0) -> ActionPlan:
         """The ActionPlan of a candidate (editable fields) under a condition (target, initial yaw)."""
@@ -230,12 +246,14 @@ class L3Context:
         return ActionPlan(
             grasp=self.grasps[rank], gripper=self.gripper, gripper_reason=self.gripper_reason,
             squeeze_depth_m=float(values["squeeze_depth_m"]),
-            grip_force_limit_n=self.grip_force_limit_n,
+            grip_force_limit_n=self.grip_force_n(values.get("grip_force_scale", 1.0)),
             closing_speed_m_per_s=float(values["closing_speed_m_per_s"]),
             lift_height_m=L3Parameters.of(self.contract).lift_height_m,
             target_xy_m=target_xy_m or o.target_xy_m, initial_yaw_deg=yaw_deg,
             closure_duration_s=0.3, lift_duration_s=float(values["lift_duration_s"]),
-            transport_duration_s=float(values["transport_duration_s"]), release_duration_s=o.release_duration_s,
+            transport_duration_s=float(values["transport_duration_s"]),
+            release_duration_s=float(values.get("release_duration_s", o.release_duration_s)),
+            place_height_m=float(values.get("place_height_m", o.place_height_m)),
             retreat_duration_s=o.retreat_duration_s, settle_duration_s=o.settle_duration_s)
 
     def trial(self, values: dict[str, float], role: str, action: str = "", material: Material | None = None,
@@ -268,7 +286,9 @@ class L3Context:
                  "material": (material or self.material).model_dump(mode="json"),
                  "physical_model": self.physical.model_dump(mode="json")}
         n = store_attempt(self.asset_dir, out["arrays"], attrs) if out["arrays"] else None
-        rrd = record_attempt(self.asset_dir, n, out["arrays"], attrs, key) if n is not None and self.recordings else None
+        trial = len(self.attempts) + 1  # the trial's one number (tasks.record.trials)
+        rrd = (record_attempt(self.asset_dir, trial, out["arrays"], {**attrs, "trial": trial}, key)
+               if n is not None and self.recordings else None)
         self.attempts.append({"attempt": n, "role": role, "action": action, "values": values,
                               "labels": probe.metrics, "cache_key": key, "recording": rrd,
                               "condition": {"target_xy_m": list(plan.target_xy_m), "yaw_deg": yaw_deg}})
@@ -314,8 +334,12 @@ def initial_values(ctx: L3Context) -> dict[str, float]:
     squeeze = (o.squeeze_depth_m if o.squeeze_depth_m is not None else ctx.squeeze.high_m if ctx.squeeze is not None
                else o.squeeze_fraction * ctx.grasps[0].width_m)
     values = {"grasp_rank": 0.0, "squeeze_depth_m": squeeze, "closing_speed_m_per_s": o.closing_speed_m_per_s,
-              "lift_duration_s": o.lift_duration_s, "transport_duration_s": o.transport_duration_s, "substeps": 1.0}
-    for f in ctx.contract.editable_fields:
+              "lift_duration_s": o.lift_duration_s, "transport_duration_s": o.transport_duration_s, "substeps": 1.0,
+              "grip_force_scale": 1.0, "place_height_m": o.place_height_m, "release_duration_s": o.release_duration_s}
+    fields = {f.name: f for f in ctx.contract.editable_fields}
+    # a field the contract does not let L3 edit keeps its default (ActionPlan's, L3Options')
+    values = {k: v for k, v in values.items() if k in fields or k in CORE_FIELDS}
+    for f in fields.values():
         values[f.name] = min(max(values[f.name], f.low), f.high)
     return values
 

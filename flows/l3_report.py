@@ -11,10 +11,12 @@ from pathlib import Path
 from typing import Any
 
 from contracts.stage import StageContract
+from tasks.manipulation.diagnosis import diagnose
 from tasks.manipulation.outcome import TrialTolerances
 
 Progress = Callable[[str], None]
-NO_GRASP_GATE = "grasp available"  # the failed gate named in the validation summary when no grasp exists
+NO_GRASP_GATE = "grasp available"
+OUTCOME_METRICS = ("lifted", "transported", "released_in_target", "settled")  # the gates a diagnosis explains  # the failed gate named in the validation summary when no grasp exists
 
 
 def _finite(labels: dict[str, Any], key: str) -> float | None:
@@ -25,25 +27,6 @@ def _finite(labels: dict[str, Any], key: str) -> float | None:
 def failed_gate_names(labels: dict[str, Any], contract: StageContract) -> list[str]:
     """The contract's hard gates a trial's labels fail."""
     return [g.name for g in contract.hard_gates if not g.passes(labels.get(g.metric))]
-
-
-def _not_lifted(labels: dict[str, Any], tol: TrialTolerances) -> str:
-    """Why the object stayed down: the hold force against m g / (2 mu) (Coulomb friction at two pads), else the rise."""
-    weight, mu = _finite(labels, "weight_n"), _finite(labels, "gripper_friction")
-    hold = _finite(labels, "hold_normal_force_n")
-    peaks = [f for f in (_finite(labels, "max_finger_force_0_n"), _finite(labels, "max_finger_force_1_n"))
-             if f is not None]
-    force, what = (hold, "mean finger force") if hold is not None else (
-        (sum(peaks) / len(peaks), "peak finger force") if peaks else (None, ""))
-    rise = _finite(labels, "lift_rise_m")
-    rose = (f"the centre of mass rose {rise * 1000:.0f} mm of {tol.lift_height_m * 1000:.0f} mm"
-            if rise is not None else "")
-    if weight is not None and mu and force is not None:
-        need = weight / (2.0 * mu)
-        if force < need:
-            return f"not lifted: {what} {force:.2g} N < m g / (2 mu) = {need:.2g} N"
-        return f"not lifted: {rose or 'the object stayed down'} ({what} {force:.2g} N >= m g / (2 mu) = {need:.2g} N)"
-    return f"not lifted: {rose or 'the object stayed on the table'}"
 
 
 def trial_reason(labels: dict[str, Any], contract: StageContract, tol: TrialTolerances) -> str:
@@ -64,26 +47,10 @@ def trial_reason(labels: dict[str, Any], contract: StageContract, tol: TrialTole
         peak = _finite(labels, "max_finger_force_n")
         why = (f"force budget exceeded: peak finger force {peak:.3g} N > {gates[first].threshold:g} N"
                if peak is not None else "force budget: finger force not measured")
-    elif metric == "lifted":
-        why = _not_lifted(labels, tol)
-    elif metric == "transported":
-        slip = _finite(labels, "slip_distance_m")
-        err = _finite(labels, "transport_error_m")
-        if labels.get("slipped") and slip is not None:
-            why = (f"not transported: the object slipped {slip * 1000:.0f} mm in the hand "
-                   f"(tolerance {tol.slip_tolerance_m * 1000:.0f} mm)")
-        elif err is not None:
-            why = (f"not transported: {err * 1000:.0f} mm from the target "
-                   f"(tolerance {tol.place_tolerance_m * 1000:.0f} mm)")
-        else:
-            why = "not transported: the object left the hand before the release"
-    elif metric == "released_in_target":
-        err = _finite(labels, "place_error_m")
-        why = (f"not released in target: placed {err * 1000:.0f} mm from it (tolerance "
-               f"{tol.place_tolerance_m * 1000:.0f} mm)" if err is not None else "not released in target")
-    elif metric == "settled":
-        v = _finite(labels, "settle_com_speed_m_per_s")
-        why = f"not settled: still moving at {v:.2g} m/s after the release" if v is not None else "not settled"
+    elif metric in OUTCOME_METRICS:
+        # what happened, from the trial's own data (slipped at the lift, lost contact, released off target ...)
+        d = diagnose(labels, tol)
+        why = d.words if d is not None else f"failed gate: {first}"
     elif metric == "strain_p99":
         s = _finite(labels, "strain_p99")
         why = (f"deformation bound exceeded: strain (1 % of volume) {s:.2g} > {gates[first].threshold:g}"

@@ -79,21 +79,23 @@ def manipulate(
 @app.command("replay")
 def replay_cmd(
     asset: Path = typer.Argument(..., help="asset directory with interaction/ data"),
-    attempt: int = typer.Option(None, "--attempt", help="attempt index (default: the last one)"),
+    trial: int = typer.Option(None, "--trial", help="the trial to replay, numbered from 1 as the console, "
+                              "manipulation.json, evidence and the card number them (default: the trial L3 reports)"),
+    attempt: int = typer.Option(None, "--attempt", hidden=True, help="interaction folder index (attempt_NNN)"),
     video: Path = typer.Option(None, "--video", help="write an .mp4 or .gif"),
     frames: Path = typer.Option(None, "--frames", help="write PNG frames into this folder"),
     rrd: Path = typer.Option(None, "--rrd", help="write a Rerun recording (robot links, pads, particles, forces)"),
     as_json: bool = typer.Option(False, "--json", help="print what was written as JSON"),
 ) -> None:
-    """Replay a recorded attempt from its particle states (no re-simulation): frames, video, .rrd."""
+    """Replay a recorded trial from its particle states (no re-simulation): frames, video, .rrd."""
     from tasks.manipulation.replay import replay
 
     if not (asset / "interaction").is_dir():
         fail(f"{asset} has no interaction/ data: run `deformsmith manipulate {asset}` first")
     check_outputs(files=(video, rrd), folders=(frames,))  # where the replay is written, before rendering
     with console.status("rendering the recorded attempt"):
-        out = replay(asset, attempt, frames_dir=frames, video=video, rrd=rrd)
-    data = {"frames": len(out.frames), "rendered": out.n_frames, "video": str(out.video) if out.video else None,
+        out = replay(asset, attempt, frames_dir=frames, video=video, rrd=rrd, trial=trial)
+    data = {"trial": out.trial, "frames": len(out.frames), "rendered": out.n_frames, "video": str(out.video) if out.video else None,
             "recording": str(out.recording) if out.recording else None, "first_frame_sha256": out.digests[0]}
     if as_json:
         emit_json(data)

@@ -223,11 +223,20 @@ class RuleCritic:
             for f, d in route.directions.items():
                 if f in editable and route.priority > ranks.get(f, -10**9):
                     directions[f], ranks[f] = d, route.priority
+        seen = [m for m in routes.modes if req.metrics.get(m) == 1]  # the failure mode the probe diagnosed
+        mode_note = []
+        if seen and not any(g.metric in failed_metrics and routes.gates.get(g.metric) is not None
+                            and routes.gates[g.metric].priority > 1 for g in failed):
+            route = routes.modes[seen[0]]  # a hard limit's gate (force budget, health) still outranks a mode
+            diagnosis = route.diagnosis if route.diagnosis != "none" else diagnosis
+            directions = {f: d for f, d in route.directions.items() if f in editable}
+            mode_note = [f"diagnosed {seen[0]}: " + (", ".join(f"{f} {d}" for f, d in directions.items()) or
+                                                    "no field to change")]
         for f, d in band_dirs.items():  # targets still guide the fields that no failed gate speaks for (e.g. mass)
             directions.setdefault(f, d)
         if diagnosis is None:
             diagnosis = "numerical" if any(g.value is None or not math.isfinite(g.value) for g in failed) else "none"
-        text = "; ".join([f"gate '{g.gate}' failed ({g.metric}={g.value})" for g in failed] + band_notes)
+        text = "; ".join([f"gate '{g.gate}' failed ({g.metric}={g.value})" for g in failed] + mode_note + band_notes)
         return RoleReply(Critique(verdict="revise", diagnosis=diagnosis, directions=directions,
                                   rationale=text, unmet=[g.metric for g in failed] + [b.metric for b in unmet]),
                          rule_source())

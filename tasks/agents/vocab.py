@@ -99,6 +99,10 @@ class StageRoutes(Model):
     methods: dict[str, Literal["secant", "bisection", "enumerate"]] = Field(default_factory=dict)
     integers: list[str] = Field(default_factory=list)
     gates: dict[str, GateRoute] = Field(default_factory=dict)
+    # a failure mode the stage's probe diagnosed, as a 0/1 metric (e.g. L3's mode_slipped_at_lift,
+    # tasks.manipulation.diagnosis) -> its route, which replaces the failed gates' directions when the mode is seen:
+    # the same failed gate ('not lifted') is answered by what went wrong, not by one fixed direction
+    modes: dict[str, GateRoute] = Field(default_factory=dict)
 
     @model_validator(mode="after")
     def _after_names_a_gate(self) -> StageRoutes:

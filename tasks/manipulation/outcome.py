@@ -110,6 +110,67 @@ def _index_at(t: np.ndarray, time_s: float) -> int:
     return int(min(len(t) - 1, max(0, int(np.searchsorted(t, time_s - 1e-9)))))
 
 
+CONTACT_LOST_FRACTION = 0.1  # the fingers lost contact: grip force below this share of the force at the lift's start
+
+
+def _object_rotation_deg(x_ref: np.ndarray, x: np.ndarray, rot_ref: np.ndarray, rot_now: np.ndarray) -> float:
+    """The object's rotation [deg] relative to the gripper between two particle states (Kabsch fit of the particles
+    in the gripper's axes at each instant)."""
+    a = (x_ref - x_ref.mean(axis=0)) @ rot_ref
+    b = (x - x.mean(axis=0)) @ rot_now
+    u, _, vt = np.linalg.svd(a.T @ b)
+    d = np.sign(np.linalg.det(u @ vt))
+    r = u @ np.diag([1.0, 1.0, d]) @ vt
+    return float(np.degrees(np.arccos(np.clip((np.trace(r) - 1.0) / 2.0, -1.0, 1.0))))
+
+
+def _what_happened(arrays: dict[str, np.ndarray], grip_n: np.ndarray, mid: np.ndarray, rot: np.ndarray,
+                   com: np.ndarray, n_done: int, k_close: int, k_lift: int, k_rel: int, held: slice,
+                   released: bool) -> dict[str, float]:
+    """What the trial's own data say happened, for the diagnosis of a failure (tasks.manipulation.diagnosis):
+
+      grip_force_at_lift_n     mean normal force per finger over the last 0.02 s before the lift [N]
+      grip_force_min_held_n    its smallest 0.02 s running mean while held (lift start .. release start) [N]
+      contact_lost_hand_rise_m how far the hand had risen when that force first fell below CONTACT_LOST_FRACTION of
+                               its value at the lift's start (nan: contact kept) [m]
+      hand_rise_m              how far the hand rose while held [m]
+      object_rotation_deg      the object's largest rotation relative to the gripper while held [deg]
+      release_drop_m           the object's lowest point above the table when the fingers start to open [m]
+      release_drift_m          how far the centre of mass moved (xy) from the release's start to the end [m]
+    (the release figures: nan when the trial ended before the release)
+    """
+    nan = float("nan")
+    out = dict.fromkeys(("grip_force_at_lift_n", "grip_force_min_held_n", "contact_lost_hand_rise_m", "hand_rise_m",
+                         "object_rotation_deg", "release_drop_m", "release_drift_m"), nan)
+    if n_done <= k_lift:
+        return out
+    dt = float(np.mean(arrays["control_dt_s"][:n_done]))
+    w = max(1, int(round(0.02 / max(dt, 1e-6))))
+    smooth = np.convolve(np.nan_to_num(grip_n[:n_done]), np.ones(w) / w, mode="full")[:n_done]  # trailing mean
+    at_lift = float(smooth[max(k_lift - 1, 0)])
+    h = np.arange(n_done)[held]
+    rise = mid[:n_done, 2] - mid[k_close, 2]
+    out["grip_force_at_lift_n"] = at_lift
+    out["grip_force_min_held_n"] = float(np.min(smooth[h])) if len(h) else nan
+    out["hand_rise_m"] = float(np.max(rise[h])) if len(h) else nan
+    lost = h[smooth[h] < CONTACT_LOST_FRACTION * at_lift] if at_lift > 0 else h[:0]
+    out["contact_lost_hand_rise_m"] = float(rise[lost[0]]) if len(lost) else nan
+    frames_k = np.asarray(arrays["frame_control_index"])
+    x = arrays["particles_x_m"]
+    in_hold = [i for i, k in enumerate(frames_k) if k_lift <= k < min(k_rel, n_done)]
+    if in_hold:
+        i0 = in_hold[0]
+        out["object_rotation_deg"] = max(
+            _object_rotation_deg(x[i0].astype(np.float64), x[i].astype(np.float64), rot[frames_k[i0]],
+                                 rot[frames_k[i]]) for i in in_hold)
+    if released:
+        i_rel = int(np.searchsorted(frames_k, k_rel))
+        if i_rel < len(x):
+            out["release_drop_m"] = float(x[i_rel][:, 2].min()) - float(x[0][:, 2].min())
+        out["release_drift_m"] = float(np.linalg.norm(com[n_done, :2] - com[k_rel, :2]))
+    return out
+
+
 def label_trial(arrays: dict[str, np.ndarray], traj: Trajectory, plan: ActionPlan, physical: PhysicalModel,
                 tol: TrialTolerances, n_done: int, healthy: bool) -> dict[str, float]:
     """Labels and metrics of one trial (arrays are trimmed to the n_done simulated intervals)."""
@@ -164,7 +225,9 @@ def label_trial(arrays: dict[str, np.ndarray], traj: Trajectory, plan: ActionPla
     strain_bulk = bulk_strain(F_frames, arrays.get("particle_volumes_m3"), strains=strains)
 
     lifted = complete and rise >= tol.lift_height_m - tol.slip_tolerance_m
-    return {
+    released = n_done > 0 and t[-1] + 1e-9 >= ph["release"][0]
+    what = _what_happened(arrays, normal.mean(axis=1), mid, rot, com, n_done, k_close, k_lift, k_rel, held, released)
+    return {**what,
         "lifted": float(lifted),
         "transported": float(complete and lifted and in_hand and err_transport <= tol.place_tolerance_m),
         "released_in_target": float(complete and err_place <= tol.place_tolerance_m and resting),

@@ -1,4 +1,6 @@
-"""Every L3 trial as a probe recording in the asset: recordings/L3_attempt_NNN.rrd next to interaction/attempt_NNN.
+"""Every L3 trial as a probe recording in the asset: recordings/L3_trial_NN.rrd, named by the trial's one number
+(from 1, as the console, manipulation.json, evidence and the card count trials: tasks.record.trials); its states are in
+interaction/attempt_NNN (the row's `attempt`).
 
 The recording of a trial (tasks.manipulation.replay.write_rrd: robot links, pads, particles, Gaussians, per-finger
 force curves) is made once per trial cache key into the cache's recordings folder, like L1's and L2's probe
@@ -23,9 +25,9 @@ MAX_GAUSSIANS = 2000     # Gaussians per frame ...
 GAUSSIAN_EVERY = 2       # ... at every second recorded frame (15 fps)
 
 
-def attempt_recording_name(attempt: int) -> str:
-    """The asset-relative path of an attempt's recording."""
-    return f"recordings/L3_attempt_{attempt:03d}.rrd"
+def trial_recording_name(trial: int) -> str:
+    """The asset-relative path of trial `trial`'s recording (1-based)."""
+    return f"recordings/L3_trial_{trial:02d}.rrd"
 
 
 def cached_recording(arrays: dict[str, np.ndarray], attrs: dict[str, Any], trial_key: str) -> Path:
@@ -41,11 +43,11 @@ def cached_recording(arrays: dict[str, np.ndarray], attrs: dict[str, Any], trial
     return path
 
 
-def record_attempt(asset_dir: Path, attempt: int, arrays: dict[str, np.ndarray], attrs: dict[str, Any],
+def record_attempt(asset_dir: Path, trial: int, arrays: dict[str, np.ndarray], attrs: dict[str, Any],
                    trial_key: str | None) -> str:
-    """Put the trial's recording into the asset as recordings/L3_attempt_NNN.rrd; returns that relative path (a trial
-    without a cache key is recorded straight into the asset)."""
-    rel = attempt_recording_name(attempt)
+    """Put trial `trial`'s recording (1-based) into the asset as recordings/L3_trial_NN.rrd; returns that relative
+    path (a trial without a cache key is recorded straight into the asset)."""
+    rel = trial_recording_name(trial)
     if trial_key is None:
         from tasks.manipulation.replay import write_rrd
 

@@ -38,6 +38,7 @@ class ReplayResult:
     fps: float = VIDEO_FPS
     size: tuple[int, int] = VIDEO_SIZE
     duration_s: float = 0.0
+    trial: int | None = None  # the replayed trial's one number (tasks.record.trials), when manipulation.json has it
 
 
 def frame_gaussians(arrays: dict[str, np.ndarray], i: int) -> tuple[np.ndarray, np.ndarray]:
@@ -66,12 +67,18 @@ def video_writer(path: Path, fps: float = VIDEO_FPS):
 
 
 def replay(asset_dir: Path, attempt: int | None = None, frames_dir: Path | None = None, video: Path | None = None,
-           rrd: Path | None = None, width: int = VIDEO_SIZE[0], height: int = VIDEO_SIZE[1]) -> ReplayResult:
-    """Replay an attempt of an asset: PNG frames into frames_dir, an .mp4/.gif video, an .rrd (each optional).
-    Frames are rendered one at a time and streamed to the files (a long attempt never sits in memory)."""
+           rrd: Path | None = None, width: int = VIDEO_SIZE[0], height: int = VIDEO_SIZE[1],
+           trial: int | None = None) -> ReplayResult:
+    """Replay a trial of an asset: PNG frames into frames_dir, an .mp4/.gif video, an .rrd (each optional).
+    trial: the trial's one number (from 1, tasks.record.trials; default: the trial manipulation.json reports);
+    attempt: its interaction folder index instead. Frames are rendered one at a time and streamed to the files (a
+    long attempt never sits in memory)."""
     import imageio.v2 as imageio
 
+    attempt, trial = _which(Path(asset_dir), attempt, trial)
     arrays, attrs = read_attempt(Path(asset_dir), attempt)
+    if trial is not None:
+        attrs = {**attrs, "trial": trial}
     writer = None
     if video is not None:
         video = Path(video)
@@ -106,7 +113,31 @@ def replay(asset_dir: Path, attempt: int | None = None, frames_dir: Path | None 
         out.video = video
     if rrd is not None:
         out.recording = write_rrd(arrays, attrs, Path(rrd))
+    out.trial = trial
     return out
+
+
+def _which(asset_dir: Path, attempt: int | None, trial: int | None) -> tuple[int | None, int | None]:
+    """(interaction folder index, trial number) of the trial to replay: the one asked for, else the one
+    manipulation.json reports, else the last stored folder (its trial number when manipulation.json names it)."""
+    import json
+
+    from tasks.record.trials import attempt_of_trial, reported_trial, trial_of_attempt
+
+    path = asset_dir / "manipulation.json"
+    record = json.loads(path.read_text(encoding="utf-8")) if path.is_file() else {}
+    if trial is not None:
+        found = attempt_of_trial(record, trial)
+        if found is None:
+            numbers = [r.get("trial") or i + 1 for i, r in enumerate(record.get("attempts") or [])
+                       if r.get("attempt") is not None]
+            raise InputError(f"{asset_dir} has no recorded trial {trial}; recorded trials: {numbers}")
+        return found, trial
+    if attempt is None and record:
+        n = reported_trial(record)
+        if n is not None and attempt_of_trial(record, n) is not None:
+            return attempt_of_trial(record, n), n
+    return attempt, trial_of_attempt(record, attempt) if attempt is not None else None
 
 
 def _stride(n: int, cap: int | None) -> slice:
@@ -179,7 +210,8 @@ def write_rrd(arrays: dict[str, np.ndarray], attrs: dict, path: Path, max_partic
         vecs = vecs * np.where(np.linalg.det(vecs) < 0, -1.0, 1.0)[:, None, None]
         rec.gaussians(centers[gs], np.sqrt(np.clip(ev, 1e-14, None)), Rotation.from_matrix(vecs).as_quat(), colors)
 
-    with ProbeRecording(path, recording_id=f"L3-attempt-{attrs.get('attempt', 0)}") as rec:
+    name = f"trial {attrs['trial']}" if attrs.get("trial") else f"attempt {attrs.get('attempt')}"
+    with ProbeRecording(path, recording_id=f"L3-{name.replace(' ', '-')}") as rec:
         for name, m in meshes.items():
             rgba = np.rint(255 * np.append(m.rgb, 1.0)).astype(np.uint8)
             rec.rec.log(f"{ROBOT}/{name}", rr.Mesh3D(vertex_positions=m.vertices_m.astype(np.float32),
@@ -212,7 +244,7 @@ def write_rrd(arrays: dict[str, np.ndarray], attrs: dict, path: Path, max_partic
                 rec.scalar("grip_opening_m", float(arrays["command_opening_m"][kk, 0]))
             frame_k = max(frame_k, k_next)
         labels = attrs.get("labels", {})
-        rec.log(f"L3 attempt {attrs.get('attempt')} ({attrs.get('role', '')}): " + ", ".join(
+        rec.log(f"L3 {name} ({attrs.get('role', '')}): " + ", ".join(
             f"{k}={v:.4g}" for k, v in sorted(labels.items()) if isinstance(v, (int, float))))
         rec.log("phases: " + ", ".join(PHASES))
     return path

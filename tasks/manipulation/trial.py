@@ -23,6 +23,7 @@ from contracts.robot import ActionPlan
 from contracts.sim import SimConfig
 from tasks.manipulation.body import TrialBody
 from tasks.manipulation.data import approach_track
+from tasks.manipulation.diagnosis import mode_flags
 from tasks.manipulation.frame import SimFrame
 from tasks.manipulation.outcome import TrialTolerances, label_trial
 from tasks.robot import PHASES, ObjectPose, Trajectory, plan_trajectory
@@ -74,6 +75,8 @@ class TrialSettings:
     # while held, the fingers close further when the force falls below this share of the target (a force-controlled
     # gripper keeps its set force as a soft object relaxes under the pads) [-]
     reclose_fraction: float = 0.9
+    # the fingers touch the object where their mean normal force first reaches this share of the target [-]
+    touch_fraction: float = 0.05
 
 
 @dataclass
@@ -202,6 +205,7 @@ def run_trial(body: TrialBody, physical: PhysicalModel, material: Material, plan
     axis = np.asarray(traj.closing_axis_world, dtype=float)
     n_rest = max(1, int(round(0.1 / dt_c)))  # the `settled` label's COM speed window (tasks.manipulation.outcome)
     closure_end, skipped, contact_k = traj.phases["closure"][1], 0.0, 1.0
+    touch_opening: float | None = None  # the opening where the closing fingers' force began to rise [m]
     sim_t = np.zeros(n_all)
     k = -1
     while k + 1 < n_all:
@@ -257,11 +261,20 @@ def run_trial(body: TrialBody, physical: PhysicalModel, material: Material, plan
         if guard_n is not None and st.phase in HOLD_PHASES:
             normal = 0.5 * float(-(force[k, 0] @ axis) + force[k, 1] @ axis)  # mean per finger over the interval
             rise = max(0.0, normal - last_normal) if np.isfinite(last_normal) else 0.0
+            if (touch_opening is None and st.phase == "closure" and np.isfinite(normal)
+                    and normal >= s.touch_fraction * float(guard_n)):
+                touch_opening = traj.opening_at(t0)  # the force began to rise during this interval
             if hold_opening is None and st.phase == "closure" and np.isfinite(normal) and normal + rise >= guard_n:
                 hold_opening = traj.opening_at(t1)  # about to reach the target by the next interval
-                guard = {"stopped_at_s": float(t1), "opening_m": hold_opening, "normal_force_n": normal}
-                # the contact's stiffness per finger as measured: force over squeeze (at least 1 N/m)
-                contact_k = max(1.0, normal / max(1e-6, 0.5 * (traj.contact_width_m - hold_opening)))
+                # the contact's stiffness per finger as measured on the way in: the force over the squeeze since the
+                # force began to rise (not since the grasp's geometric contact width: on a grid the pads meet the
+                # object's nodes up to ~1.5 cells before its surface, so a stiff object reaches the target with the
+                # pads short of that width, and a stiffness from it would be huge and forbid any re-closing)
+                touched = touch_opening if touch_opening is not None else traj.contact_width_m
+                squeeze_in = 0.5 * (touched - hold_opening)
+                contact_k = max(1.0, normal / max(squeeze_in, 0.5 * plan.closing_speed_m_per_s * dt_c))
+                guard = {"stopped_at_s": float(t1), "opening_m": hold_opening, "normal_force_n": normal,
+                         "touch_opening_m": float(touched), "contact_stiffness_n_per_m": float(contact_k)}
                 skipped = max(0.0, closure_end - s.closure_dwell_s - t1) if s.skip_rest_of_closure else 0.0
                 if skipped > 0.0:  # the lift starts after the dwell, not at the planned (deepest) closure's end
                     t_c, dt_k, n_int, n_all = _replan_times(t_c, dt_k, k, t1 + skipped, t_end, dt_c, n_ext)
@@ -319,6 +332,7 @@ def run_trial(body: TrialBody, physical: PhysicalModel, material: Material, plan
                    "squeeze_per_finger_m": 0.5 * (traj.contact_width_m - (float(guard["min_opening_m"]) if guard
                                                                          else float(traj.closed_width_m))),
                    "grip_force_target_n": float(guard_n) if guard_n is not None else float("nan")})
+    labels.update(mode_flags(labels, tol))  # the failure mode the revision routes read (tasks.manipulation.diagnosis)
     # wall time stays in info, not in the data
     return TrialResult(labels, arrays, info)
 

@@ -1,5 +1,6 @@
 """One count of attempts and simulations per stage, from the attempt records: `inspect`, `evidence` and `generate`'s
-summary all print these tallies, so they cannot disagree.
+summary all print these tallies, so they cannot disagree. L3's attempts are its trials (manipulation.json's rows, each
+one pick-and-place, numbered from 1 as the console numbers them), so its attempts and simulations agree.
 
 Sources, under an asset directory (or a run directory's folder holding ``evidence/``):
   evidence/attempts.jsonl     every harness attempt (stage, iteration, evidence.sim_calls): attempts, loop simulations
@@ -102,6 +103,10 @@ def _tally(stage: StageName, attempts: list[Attempt], outcome: StageOutcome | No
     else:
         n = int((record or {}).get("harness_attempts", (record or {}).get("attempts", 0)) or 0)
         loop = 0
+    if stage == "L3" and record is not None and record.get("attempts"):
+        # L3 counts trials, one simulated pick-and-place each (tasks.record.trials): the console's 'L3 trial k', the
+        # rows of manipulation.json and the card count them, not the harness iterations that asked for some of them
+        n = len(record["attempts"])
     status = outcome.status if outcome is not None else str((record or {}).get("status", "unknown"))
     passed = bool(record["passed"]) if record is not None and "passed" in record else (
         outcome.passed if outcome is not None else False)

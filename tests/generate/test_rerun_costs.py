@@ -75,8 +75,8 @@ def test_the_chosen_trials_recording_is_renamed_not_copied(tmp_path: Path) -> No
     from flows.l3_manipulation import PICK_AND_PLACE_RECORDING, name_pick_and_place
 
     (tmp_path / "recordings").mkdir()
-    (tmp_path / "recordings" / "L3_attempt_001.rrd").write_bytes(b"trial 1")
-    chosen = {"attempt": 1, "recording": "recordings/L3_attempt_001.rrd"}
+    (tmp_path / "recordings" / "L3_trial_02.rrd").write_bytes(b"trial 1")
+    chosen = {"attempt": 1, "recording": "recordings/L3_trial_02.rrd"}
     name_pick_and_place(tmp_path, chosen)
     assert chosen == {"attempt": 1, "recording": PICK_AND_PLACE_RECORDING}
     assert sorted(p.name for p in (tmp_path / "recordings").iterdir()) == ["L3_pick_and_place.rrd"]

@@ -1,5 +1,5 @@
 """Every L3 trial is a probe with its Rerun recording: robot links, pads, particles, Gaussians and per-finger force
-curves, read back with rerun's own reader; stored as recordings/L3_attempt_NNN.rrd beside interaction/attempt_NNN,
+curves, read back with rerun's own reader; stored as recordings/L3_trial_NN.rrd (its states in interaction/attempt_NNN),
 made once per trial (cached) and written atomically."""
 
 from __future__ import annotations
@@ -79,8 +79,9 @@ def test_a_box_gripper_is_recorded_as_boxes(tmp_path: Path) -> None:
 
 def test_every_stored_trial_gets_its_recording_made_once(attempt: tuple, tmp_path: Path,
                                                          monkeypatch: pytest.MonkeyPatch) -> None:
-    """L3's _store: interaction/attempt_NNN and recordings/L3_attempt_NNN.rrd for each trial, failed ones included;
-    the same trial stored again reuses the cached recording (nothing is re-recorded)."""
+    """L3's _store: interaction/attempt_NNN and recordings/L3_trial_NN.rrd for each trial, failed ones included, the
+    recording named by the trial's one number (from 1, as the console and manipulation.json count); the same trial
+    stored again reuses the cached recording (nothing is re-recorded)."""
     from contracts.material import Material
     from contracts.physical import PhysicalModel
     from contracts.probes import ProbeResult, ProbeSpec
@@ -104,8 +105,8 @@ def test_every_stored_trial_gets_its_recording_made_once(attempt: tuple, tmp_pat
     out = {"probe": ProbeResult(spec=ProbeSpec(kind="pick_and_place"), metrics=failed), "arrays": arrays, "info": {}}
     inputs = {"plan": plan, "settings": {"substeps": 1}}
     ctx._store(out, plan, inputs, {"squeeze_depth_m": 0.003}, "selection", "", None, 0.0)
-    rrd0 = tmp_path / "asset" / "recordings" / "L3_attempt_000.rrd"
-    assert ctx.attempts[0]["recording"] == "recordings/L3_attempt_000.rrd" and rrd0.is_file()
+    rrd0 = tmp_path / "asset" / "recordings" / "L3_trial_01.rrd"
+    assert ctx.attempts[0]["recording"] == "recordings/L3_trial_01.rrd" and rrd0.is_file()
     assert (tmp_path / "asset" / "interaction" / "attempt_000").is_dir()
     assert set(LINKS) <= read_recording(rrd0).entity_paths
     assert not list((tmp_path / "asset" / "recordings").glob("*.tmp"))  # nothing half-written left
@@ -115,8 +116,8 @@ def test_every_stored_trial_gets_its_recording_made_once(attempt: tuple, tmp_pat
 
     monkeypatch.setattr(replay_module, "write_rrd", no_rerecording)
     ctx._store(out, plan, inputs, {"squeeze_depth_m": 0.003}, "held_out", "", None, 0.0)
-    rrd1 = tmp_path / "asset" / "recordings" / "L3_attempt_001.rrd"
-    assert ctx.attempts[1]["recording"] == "recordings/L3_attempt_001.rrd"
+    rrd1 = tmp_path / "asset" / "recordings" / "L3_trial_02.rrd"
+    assert ctx.attempts[1]["recording"] == "recordings/L3_trial_02.rrd"
     assert recording_digest(rrd1) == recording_digest(rrd0)
     ctx.recordings = False  # run_l3(recordings=False): no recordings
     ctx._store(out, plan, inputs, {"squeeze_depth_m": 0.003}, "held_out", "", None, 0.0)

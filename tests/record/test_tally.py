@@ -44,7 +44,10 @@ def _counts(lines: list[str]) -> dict[str, tuple[str, int, int]]:
 
 def test_tallies_count_the_loop_and_the_simulations_outside_it() -> None:
     t = {x.stage: x for x in stage_tallies(FIXTURE)}
-    assert [t[s].attempts for s in ("L0", "L1", "L2", "L3")] == [1, 1, 1, 1]
+    # L3 counts its trials (one harness iteration asked for the selection trial; robustness and held-out added three),
+    # as the console's 'L3 trial 1-4' and manipulation.json's rows do (#36: one numbering of trials)
+    rows = json.loads((FIXTURE / "manipulation.json").read_text())["attempts"]
+    assert [t[s].attempts for s in ("L0", "L1", "L2", "L3")] == [1, 1, 1, len(rows)] == [1, 1, 1, 4]
     assert (t["L1"].loop_sim_calls, t["L1"].sim_calls) == (4, 4)
     assert t["L2"].extra_sim_calls == {"screening": 2, "held_out": 4} and t["L2"].sim_calls == 12
     assert json.loads((FIXTURE / "material.json").read_text())["sim_calls"] == t["L2"].sim_calls
@@ -57,7 +60,7 @@ def test_inspect_and_evidence_agree_and_fit_80_columns(narrow: None) -> None:
     shown = {cmd: _run(cmd, str(FIXTURE)) for cmd in ("inspect", "evidence")}
     counts = {cmd: _counts(lines) for cmd, lines in shown.items()}
     assert counts["inspect"] == counts["evidence"] == {
-        "L0": ("yes", 1, 0), "L1": ("yes", 1, 4), "L2": ("yes", 1, 12), "L3": ("yes", 1, 4)}
+        "L0": ("yes", 1, 0), "L1": ("yes", 1, 4), "L2": ("yes", 1, 12), "L3": ("yes", 4, 4)}
     for lines in shown.values():  # the table fits 80 columns; a line of text is never broken (the terminal wraps it)
         assert max(len(line) for line in lines if line[:1] in "┏┃┡│└") <= 80
         assert not any("…" in line for line in lines)  # folded, never cut
@@ -77,5 +80,5 @@ def test_a_failed_stage_is_no_in_both_with_its_reason_in_full(tmp_path: Path, na
     (asset / "manipulation.json").write_text(json.dumps(record))
     for cmd in ("inspect", "evidence"):
         lines = _run(cmd, str(asset))
-        assert _counts(lines)["L3"] == ("NO", 1, 4)
+        assert _counts(lines)["L3"] == ("NO", 4, 4)  # four trials, four simulations
         assert ("L3:NO—" + reason.strip()).replace(" ", "") in "".join(lines).replace(" ", "")  # wrapped, whole
