@@ -109,6 +109,8 @@ class ActionPlan(Model):
     grasp: GraspCandidate
     gripper: str = Field(default=DEFAULT_GRIPPER, description="the gripper on the flange (contracts/grippers/*.yaml)")
     gripper_reason: str = Field(default="", description="why the Planner chose that gripper")
+    grasp_reason: str = Field(default="", description="the part the grasp holds and why (a soft toy or animal is "
+                              "held by its body), '' when no part preference applies")
     squeeze_depth_m: float = Field(ge=0, le=0.15, description="closure past the contact width, per finger [m]; "
                                    "with a force target, the deepest the fingers may close")
     closing_speed_m_per_s: float = Field(default=0.02, gt=0, description="finger closing speed, per finger [m/s]")

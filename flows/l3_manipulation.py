@@ -34,6 +34,7 @@ from contracts.material import Material
 from contracts.physical import PhysicalModel
 from contracts.probes import ProbeResult, ProbeSpec
 from contracts.robot import ActionPlan, GraspCandidate
+from contracts.shape import ShapeProgram
 from contracts.sim import SimConfig
 from contracts.stage import L3Parameters, StageContract, load_contract, packaged_parameters
 from flows.harness import call_tasks, probe_cache_key, run_harness
@@ -53,6 +54,7 @@ from contracts.robot import DEFAULT_GRIPPER
 from tasks.robot import NoGraspError, select_grasps
 from tasks.robot.grasp import GraspSettings
 from tasks.robot.choice import choose_gripper, grasp_settings
+from tasks.robot.grasp_parts import body_first_grasps
 from tasks.robot.gripper import gripper
 from tasks.robot.squeeze import SqueezePlan, squeeze_plan
 
@@ -215,6 +217,7 @@ class L3Context:
     recordings: bool = True  # each stored trial also gets recordings/L3_trial_NN.rrd (tasks.manipulation.recordings)
     gripper: str = DEFAULT_GRIPPER
     gripper_reason: str = ""
+    grasp_reason: str = ""  # the part the grasps hold and why (tasks.robot.grasp_parts), '' when not a toy or animal
     squeeze: SqueezePlan | None = None  # the force target and stiffness-scaled squeeze range of the best grasp
     gripper_options: list[dict[str, Any]] = field(default_factory=list)  # what choose_gripper weighed
     progress: L3Progress = field(default_factory=L3Progress)
@@ -245,6 +248,7 @@ class L3Context:
         rank = int(min(max(0, round(values["grasp_rank"])), len(self.grasps) - 1))
         return ActionPlan(
             grasp=self.grasps[rank], gripper=self.gripper, gripper_reason=self.gripper_reason,
+            grasp_reason=self.grasp_reason,
             squeeze_depth_m=float(values["squeeze_depth_m"]),
             grip_force_limit_n=self.grip_force_n(values.get("grip_force_scale", 1.0)),
             closing_speed_m_per_s=float(values["closing_speed_m_per_s"]),
@@ -370,19 +374,35 @@ def load_context(asset_dir: Path, options: L3Options, contract: StageContract,
                       surface_samples=SURFACE_SAMPLES)
     nominal = squeeze_plan(width_m=g.stroke_m, pad_area_m2=g.pad_area_m2, gripper_max_n=g.spec.max_grip_force_n,
                            friction=physical.gripper_friction, **hold)
-    sel = grasp_selection_task(body.surface_points_m, body.surface_normals, com, physical.gripper_friction,
-                               asdict(grasp_settings(name, nominal.soft_indent_m)), _planner_code())
-    grasps: list[GraspCandidate] = sel["candidates"]
+    reasons: list[str] = []
+
+    def select(settings: GraspSettings) -> list[GraspCandidate]:
+        sel = grasp_selection_task(body.surface_points_m, body.surface_normals, com, physical.gripper_friction,
+                                   asdict(settings), _planner_code())
+        reasons.append(sel["reason"])
+        return sel["candidates"]
+
+    info = asset.record["info"]  # the Planner holds a soft toy or animal by its body (tasks.robot.grasp_parts)
+    program = ShapeProgram.model_validate(info["program"]) if info.get("program") else None
+    def reachable(c: GraspCandidate) -> bool:  # at the nominal condition (the object at the origin, no yaw)
+        return plan_or_error(ActionPlan(grasp=c, gripper=name, squeeze_depth_m=0.0, target_xy_m=options.target_xy_m),
+                             body)[0] is not None
+
+    grasps, grasp_reason = body_first_grasps(select, grasp_settings(name, nominal.soft_indent_m), info["category"],
+                                             program, bool(info.get("reoriented")), asset.mesh, reachable,
+                                             asset.particles_m)
     if not grasps:  # run_l3 records it as L3's outcome (no grasp is a result)
-        raise NoGraspError(f"{name}: {sel['reason']}")
+        raise NoGraspError(f"{name}: {reasons[0]}")
     sq = squeeze_plan(width_m=grasps[0].width_m, pad_area_m2=g.pad_area_m2,
                       gripper_max_n=g.spec.max_grip_force_n, friction=physical.gripper_friction,
                       **hold)
     if not L3Parameters.of(contract).hold_force_margin:  # no hold target: position control, the contract's range
         return L3Context(Path(asset_dir), body, physical, material, source, grasps, options, contract,
-                         gripper=name, gripper_reason=reason, gripper_options=rows, l0=asset)
+                         gripper=name, gripper_reason=reason, gripper_options=rows, l0=asset,
+                         grasp_reason=grasp_reason)
     return L3Context(Path(asset_dir), body, physical, material, source, grasps, options,
                      _with_squeeze_range(contract, sq), gripper=name, gripper_reason=reason, squeeze=sq,
+                     grasp_reason=grasp_reason,
                      gripper_options=rows, l0=asset)
 
 

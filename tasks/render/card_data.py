@@ -113,6 +113,7 @@ class L3Card(BaseModel):
     note: str
     gripper: str | None = None
     gripper_reason: str | None = None
+    grasp_reason: str | None = None  # the part held and why (a soft toy by its body)
     passed: bool | None = None
     status: str | None = None
     outcome: dict[str, bool] = {}
@@ -226,7 +227,9 @@ def _l3(adir: AssetDir, manifest: AssetManifest) -> L3Card:
                for m, (label, unit) in L3_FIGURES.items() if m in labels]
     gripper = rec.plan.gripper if rec.plan else rec.gripper.get("name")
     card = L3Card(ran=True, note=rec.message or rec.reason, gripper=gripper,
-                  gripper_reason=rec.plan.gripper_reason if rec.plan else None, passed=rec.passed, status=rec.status,
+                  gripper_reason=rec.plan.gripper_reason if rec.plan else None,
+                  grasp_reason=(rec.plan.grasp_reason or None) if rec.plan else None, passed=rec.passed,
+                  status=rec.status,
                   outcome=dict(rec.outcome), figures=figures, force_budget_n=rec.force_budget_n, attempt=attempt,
                   trial=trial, trials=simulated_trials(raw), key=key)
     folder = adir.path / attempt_path(attempt) if attempt is not None else None

@@ -141,6 +141,7 @@ def card_html(card: CardData) -> str:
         parts.append(f"<p>{e(l3.note)}</p>")
     else:
         parts += [f"<p>gripper <b>{e(str(l3.gripper))}</b>: {e(l3.gripper_reason or '')}</p>",
+                  *([f"<p>grasp: {e(l3.grasp_reason)}</p>"] if l3.grasp_reason else []),
                   f"<p>{'passed' if l3.passed else 'did not pass'} ({e(str(l3.status))}), trial {l3.trial} "
                   f"(interaction/attempt_{l3.attempt if l3.attempt is not None else 0:03d}): {e(l3.note)}</p>",
                   "<p>" + e("; ".join(outcome_lines(l3.outcome))) + "</p>",

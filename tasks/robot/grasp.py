@@ -52,6 +52,8 @@ class GraspSettings:
     dedup_distance_m: float = 0.005
     dedup_angle_deg: float = 10.0
     com_scale_m: float = 0.03
+    approach_turns_deg: tuple[float, ...] = (0.0,)  # approaches tried per closing line: the most downward one turned
+    #                                                  about the closing axis by these angles (side approaches) [deg]
 
 
 @dataclass(frozen=True)
@@ -93,11 +95,15 @@ def _cone_directions(normals: np.ndarray, rng: np.random.Generator, per_point: i
     return np.stack(dirs, axis=1)
 
 
-def _approach_for(u: np.ndarray) -> np.ndarray:
-    """The approach axis closest to straight down that is perpendicular to the closing axis u."""
+def _approach_for(u: np.ndarray, turn_rad: float = 0.0) -> np.ndarray:
+    """The approach axis closest to straight down that is perpendicular to the closing axis u, turned about u by
+    ``turn_rad`` (0: the most downward; towards the side for larger turns)."""
     a = DOWN - (DOWN @ u) * u
     n = np.linalg.norm(a)
-    return a / n if n > 1e-9 else np.array([np.nan, np.nan, np.nan])
+    if n <= 1e-9:
+        return np.array([np.nan, np.nan, np.nan])
+    a = a / n
+    return a if turn_rad == 0.0 else np.cos(turn_rad) * a + np.sin(turn_rad) * np.cross(u, a)
 
 
 def _mean_normal(normals: np.ndarray, mask: np.ndarray) -> np.ndarray:
@@ -151,11 +157,12 @@ class _Line:
 
 
 def _evaluate_line(p0: np.ndarray, u: np.ndarray, pts: np.ndarray, nrm: np.ndarray, com: np.ndarray, mu: float,
-                   tube: float, s: GraspSettings, g: Gripper, counts: dict[str, int], widths: list[float]
-                   ) -> _Line | None:
-    """Tilt, friction-cone, width and table tests of the closing line p0 + t u; counts each pass."""
+                   tube: float, s: GraspSettings, g: Gripper, counts: dict[str, int], widths: list[float],
+                   turn_rad: float = 0.0) -> _Line | None:
+    """Tilt, friction-cone, width and table tests of the closing line p0 + t u with the approach turned by
+    ``turn_rad`` about it; counts each pass."""
     counts["lines"] += 1
-    a = _approach_for(u)
+    a = _approach_for(u, turn_rad)
     tilt = float(np.arccos(np.clip(a @ DOWN, -1.0, 1.0))) if np.isfinite(a).all() else np.pi / 2
     if tilt > np.radians(s.max_tilt_deg):
         return None
@@ -197,7 +204,7 @@ def _rank(lines: list[_Line], pts: np.ndarray, s: GraspSettings, g: Gripper, cou
     chosen: list[_Line] = []
     for ln in lines:
         if not all(np.linalg.norm(ln.center - c.center) > s.dedup_distance_m or abs(ln.u @ c.u) < cos_dedup
-                   for c in chosen):
+                   or ln.a @ c.a < cos_dedup for c in chosen):
             continue
         counts["collision_checked"] += 1
         if _hand_hits(pts, ln.center, ln.u, ln.a, min(_opening_limit(s, g), ln.width + 2.0 * s.open_clearance_m),
@@ -233,8 +240,10 @@ def select_grasps(points_m: np.ndarray, normals: np.ndarray, center_of_mass_m: n
     counts = dict.fromkeys(("lines", "tilt_ok", "cone_ok", "width_ok", "table_ok", "collision_checked",
                             "collision_free"), 0)
     widths: list[float] = []
-    lines = [ln for p0, line_dirs in zip(pts[idx], dirs) for u in line_dirs
-             if (ln := _evaluate_line(p0, u, pts, nrm, com, friction, tube, s, g, counts, widths)) is not None]
+    turns = [float(np.radians(t)) for t in s.approach_turns_deg]
+    lines = [ln for p0, line_dirs in zip(pts[idx], dirs) for u in line_dirs for turn in turns
+             if (ln := _evaluate_line(p0, u, pts, nrm, com, friction, tube, s, g, counts, widths, turn))
+             is not None]
     chosen = _rank(lines, pts, s, g, counts)
     candidates = [GraspCandidate(center_m=tuple(map(float, ln.center)), closing_axis=tuple(map(float, ln.u)),
                                  approach_axis=tuple(map(float, ln.a)), width_m=ln.width, friction_cone_ok=True,

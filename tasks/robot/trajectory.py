@@ -421,9 +421,10 @@ def _plan(plan: ActionPlan, pose: ObjectPose, object_height_m: float | None, pan
     if object_height_m is None:
         d_pre = 0.10
     else:
-        down = max(0.3, -float(approach[2]))
-        d_pre = (object_height_m - center[2] + pads.tip_beyond_center_m + approach_clearance_m) / down
-        d_pre = max(0.05, d_pre)
+        down = -float(approach[2])
+        above = object_height_m - center[2] + pads.tip_beyond_center_m + approach_clearance_m  # to clear the top
+        side = 0.5 * object_height_m + pads.tip_beyond_center_m + approach_clearance_m  # a side approach's reach
+        d_pre = max(0.05, min(above / down if down > 1e-6 else np.inf, side / max(1.0 - down, 1e-6)))
     c_pre = center - approach * d_pre
     c_lift = center + np.array([0.0, 0.0, plan.lift_height_m])
     shift = np.array([plan.target_xy_m[0] - pose.xy_m[0], plan.target_xy_m[1] - pose.xy_m[1], 0.0])

@@ -189,3 +189,13 @@ def test_one_trial_numbering_in_manipulation_json_evidence_and_the_card(tmp_path
     record.update(attempt=2, trial=3)  # a record that reports a later trial: the card follows manipulation.json
     (root / "manipulation.json").write_text(json.dumps(record))
     assert card_data(root).l3.trial == 3
+
+
+def test_card_says_which_part_the_grasp_holds_and_why(tmp_path: Path) -> None:
+    """The Planner's part preference (tasks.robot.grasp_parts) recorded in the plan is on the card."""
+    root = _asset(tmp_path, "turtle")
+    doc = json.loads((root / "manipulation.json").read_text())
+    doc["plan"]["grasp_reason"] = "held by the shell, the body (parts told by the shape program's parts)"
+    (root / "manipulation.json").write_text(json.dumps(doc))
+    _, page = build_card(root)
+    assert "grasp: held by the shell, the body" in page.read_text(encoding="utf-8")

@@ -1,0 +1,99 @@
+"""The Planner holds a soft toy or animal by its body: parts from the shape program (or depth), side approaches when
+the head is over the torso, and the reason in words."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+import trimesh
+
+from contracts.request import AssetRequest
+from contracts.robot import ActionPlan, GraspCandidate
+from contracts.shape import ShapeProgram
+from tasks.geometry import pipeline
+from tasks.robot.grasp import GraspSettings, select_grasps
+from tasks.robot.grasp_parts import BODY_PARTS, body_first, body_first_grasps, depth_parts, prefer_body, program_parts
+from tasks.robot.trajectory import plan_trajectory
+
+GRIPPER = "robotiq_2f140"
+
+
+def _grasp(z: float, rank: int) -> GraspCandidate:
+    return GraspCandidate(center_m=(0.0, 0.0, z), closing_axis=(1.0, 0.0, 0.0), approach_axis=(0.0, 0.0, -1.0),
+                          width_m=0.1, friction_cone_ok=True, score=-float(rank), rank=rank)
+
+
+@pytest.fixture(scope="module")
+def teddy() -> tuple[trimesh.Trimesh, ShapeProgram, str]:
+    """A sitting plush teddy bear from text, at draft (its head sits over its torso)."""
+    mesh_arrays, info = pipeline.build_mesh(AssetRequest(text="a plush teddy bear, 30 cm tall"),
+                                            pipeline.settings_from_contract("draft"))
+    assert info.program is not None and not info.reoriented
+    return pipeline.arrays_to_mesh(mesh_arrays), info.program, info.category
+
+
+def test_prefer_body_puts_body_grasps_first_and_says_why() -> None:
+    grasps = [_grasp(0.2, 0), _grasp(0.1, 1), _grasp(0.25, 2)]
+    pref = prefer_body(grasps, ["head", "body", "ear"], "the shape program's parts")
+    assert [c.center_m[2] for c in pref.candidates] == [0.1, 0.2, 0.25]
+    assert [c.rank for c in pref.candidates] == [0, 1, 2]
+    assert pref.parts == ["body", "head", "ear"]
+    assert "held by the body, not the head" in pref.reason
+    none = prefer_body(grasps[:1], ["head"], "depth below the surface")
+    assert none.candidates[0].center_m[2] == 0.2 and "no feasible grasp lies on the body" in none.reason
+
+
+def test_other_categories_keep_the_sampler_order(teddy) -> None:
+    mesh, program, _ = teddy
+    assert body_first([_grasp(0.2, 0)], "sponge", program, False, mesh) is None
+    grasps, why = body_first_grasps(lambda s: [_grasp(0.2, 0)], GraspSettings(gripper=GRIPPER), "kitchen_item",
+                                    program, False, mesh)
+    assert why == "" and grasps[0].center_m[2] == 0.2
+
+
+def test_program_parts_name_the_teddy_from_its_feet_to_its_ears(teddy) -> None:
+    mesh, program, _ = teddy
+    h = float(mesh.extents[2])
+    parts = program_parts(np.array([[0.0, 0.0, 0.3 * h], [0.0, 0.0, 0.75 * h]]), program, np.asarray(mesh.bounds))
+    assert parts == ["body", "head"]
+
+
+def test_depth_tells_a_thin_limb_from_the_torso() -> None:
+    """Without a program: a 10 cm ball with a 1.2 cm-thick arm; the arm's middle is 'end', the ball's centre 'body'."""
+    ball = trimesh.creation.icosphere(subdivisions=3, radius=0.05)
+    arm = trimesh.creation.capsule(height=0.08, radius=0.006)
+    arm.apply_transform(trimesh.transformations.rotation_matrix(np.pi / 2, [0, 1, 0]))
+    arm.apply_translation([0.09, 0.0, 0.0])
+    mesh = trimesh.boolean.union([ball, arm], engine="manifold") if trimesh.boolean.engines_available else None
+    if mesh is None:
+        pytest.skip("no boolean engine")
+    assert depth_parts(np.array([[0.0, 0.0, 0.0], [0.1, 0.0, 0.0]]), mesh) == ["body", "end"]
+
+
+def test_a_sitting_teddy_is_held_by_its_torso_from_the_side(teddy) -> None:
+    """Top-down, every feasible grasp of the sitting teddy is on its head (the head is over the torso); the Planner
+    then approaches from the side and holds the torso, with a grasp the Panda can execute."""
+    mesh, program, category = teddy
+    pts, faces = trimesh.sample.sample_surface_even(mesh, 2000, seed=0)
+    nrm = mesh.face_normals[faces]
+
+    def select(s: GraspSettings) -> list[GraspCandidate]:
+        return select_grasps(pts, nrm, mesh.center_mass, 0.8, settings=s).candidates
+
+    def reachable(c: GraspCandidate) -> bool:
+        try:
+            plan_trajectory(ActionPlan(grasp=c, gripper=GRIPPER, squeeze_depth_m=0.0, target_xy_m=(0.12, 0.15)),
+                            object_height_m=float(mesh.extents[2]))
+            return True
+        except Exception:
+            return False
+
+    settings = GraspSettings(gripper=GRIPPER, soft_indent_m=0.007)
+    top = body_first(select(settings), category, program, False, mesh)
+    assert top is not None and not any(p in BODY_PARTS for p in top.parts)
+    grasps, why = body_first_grasps(select, settings, category, program, False, mesh, reachable)
+    best = grasps[0]
+    assert program_parts(np.array([best.center_m]), program, np.asarray(mesh.bounds)) == ["body"]
+    assert best.approach_axis[2] > -0.9  # not from above
+    assert reachable(best)
+    assert why.startswith("held by the body") and "from the side" in why
