@@ -52,6 +52,12 @@ class ConceptMatch(Model):
                                "(WordNet's definition, the kind of thing it is, what lent the shape and mass)")
     states: list[str] = Field(default_factory=list, description="states the text put the object in and the shape "
                               "took ('rolled', 'folded', 'stacked'); states the shape cannot show are in warnings")
+    stated_mass_kg: float | None = Field(default=None, gt=0, description="the object's mass as the request gives "
+                                         "it: stated ('1 kg', '2 lb') or from a stated fill ('half full of rice': "
+                                         "the fill's share of the bag's capacity x its bulk density + the empty "
+                                         "bag); L1 takes it over the typical mass and the material's density [kg]")
+    stated_mass_source: str | None = Field(default=None, description="where stated_mass_kg comes from (the words "
+                                           "read, and for a fill its capacity, bulk density and source)")
 
     @property
     def by_analogy(self) -> bool:

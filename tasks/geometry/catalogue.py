@@ -262,8 +262,14 @@ def design_from_text(text: str, size_hint_m: float | None = None) -> Design:
     if size_hint_m is not None:
         size = SizeSpec(longest_m=size_hint_m, stated=f"size hint {size_hint_m:g} m")
     stripped = strip_sizes(text_n)
+    mass = size_words.read_stated_mass(stripped)  # '1 kg': the object's mass, carried to L1 (ConceptMatch)
+    if mass is not None:
+        stripped = size_words.strip_spans(stripped, [mass.span])
     reading = concepts.read_text(stripped)
     program, match, build_warnings = concepts.build(reading, stripped)
+    if mass is not None:
+        match = match.model_copy(update={"stated_mass_kg": mass.kg, "stated_mass_source": f"stated in the request: "
+                                         f"'{mass.stated}' = {mass.kg:.4g} kg"})
     if not size.explicit and match.fallback_level == "gloss" and len(match.analogy) > 1:
         gloss_size = parse_size(match.analogy[1])  # "WordNet: puck = 'a ... disk 3 inches in diameter ...'"
         if gloss_size.explicit:

@@ -13,7 +13,7 @@ import numpy as np
 from contracts.concept import ConceptMatch, FallbackLevel
 from contracts.lexicon import LexiconEntry, load_lexicon
 from contracts.shape import Part, ShapeProgram
-from tasks.geometry import analogy as analogy_mod, grammar, phrase as phrase_mod
+from tasks.geometry import analogy as analogy_mod, goods_words, grammar, phrase as phrase_mod
 from tasks.geometry.grammar.parts import part_group
 from tasks.geometry.wordnet import wordnet
 
@@ -609,6 +609,11 @@ def build(reading: Reading, text: str) -> tuple[ShapeProgram, ConceptMatch, list
         mass = match.typical_mass_kg * change.mass_factor if match.typical_mass_kg else None
         match = match.model_copy(update={"density_kg_per_m3": density, "typical_mass_kg": mass,
                                          "typical_size_m": change.size_m})
+    goods = None  # 'a pair of', 'half full of rice' (tasks.geometry.goods_words)
+    if reading.donor_plan is None or reading.donor is not None:
+        goods = goods_words.apply(target, reading.phrase.portion if reading.phrase else None, normalise(text),
+                                  params, size, match)
+        params, size, match = goods.params, goods.size_m, goods.match
     if reading.donor is not None:
         base = _entry_program(reading.donor, size) if not params else _with_params(reading.donor, params, size)
     elif reading.donor_plan is not None:
@@ -620,11 +625,15 @@ def build(reading: Reading, text: str) -> tuple[ShapeProgram, ConceptMatch, list
         base = _entry_program(entry, size) if not params else _with_params(entry, params, size)
     name = reading.match.noun if reading.match.by_analogy and reading.match.noun else entry.key.replace("_", " ")
     program = base.model_copy(update={"name": name, "category": entry.category})
+    if goods is not None and goods.duplicate:
+        program, match = goods_words.pair_up(program, match)
     program, applied = apply_colors(program, normalise(text))
     if not applied:
         implied = reading.match.colors.get("body") or _implied_colour(reading)
         if implied is not None:
             program, applied = apply_colors(program, implied)
+    if goods is not None and goods.fill_color:
+        program = goods_words.painted_fill(program, goods.fill_color)
     program, pattern, warning = apply_pattern(program, normalise(text))
     if pattern:
         applied = {**applied, **pattern}

@@ -26,6 +26,7 @@ STATE_WORDS: dict[str, str] = {
     "stuffed": "stuffed", "filled": "filled", "hollow": "hollow", "empty": "hollow",
     "deflated": "deflated", "inflated": "inflated", "bent": "bent", "curled": "curled",
     "flat": "flat", "unrolled": "flat", "spread": "flat", "laid": "flat",
+    "looped": "loop",
     "sitting": "sitting", "sits": "sitting", "seated": "sitting", "lying": "lying", "laying": "lying",
     "lies": "lying", "asleep": "lying", "sleeping": "lying", "resting": "lying", "standing": "standing",
 }
@@ -194,6 +195,12 @@ def parse(text: str, known: Callable[[str], bool] | None = None,
             continue  # 'a sleeping bag' is no state
         if word in STATE_WORDS and STATE_WORDS[word] not in phrase.states:
             phrase.states.append(STATE_WORDS[word])
+        before = [t.text.lower() for t in doc[max(0, tok.i - 3): tok.i]]
+        after = [t.text.lower() for t in doc[tok.i + 1: tok.i + 5]]
+        if word == "loop" and "in" in before and "loop" not in phrase.states:
+            phrase.states.append("loop")  # 'lying in a loose loop' (not 'a sponge with a loop')
+        if word in ("hanging", "hung", "hangs") and "hanger" in after and "hung" not in phrase.states:
+            phrase.states.append("hung")  # 'a shirt hanging on a hanger' (not 'a bag hanging from a hook')
     own = {t.i for t in span}
     phrase.outside = [t.text.lower() for t in doc if _is_noun(t) and t.i not in own and t.text.lower() != portion]
     return phrase

@@ -104,3 +104,34 @@ def strip_spans(text: str, spans: list[tuple[int, int]]) -> str:
     for a, b in spans:
         chars[a:b] = " " * (b - a)
     return "".join(chars)
+
+
+# a mass stated in a request: '1 kg', '500 g', '2 lb', '8 oz', '1.5 kilograms' -> kg
+MASS_UNITS_KG: dict[str, float] = {"kg": 1.0, "kgs": 1.0, "kilo": 1.0, "kilos": 1.0, "kilogram": 1.0, "kilograms": 1.0,
+                                   "kilogramme": 1.0, "kilogrammes": 1.0, "g": 1e-3, "gr": 1e-3, "gram": 1e-3,
+                                   "grams": 1e-3, "gramme": 1e-3, "grammes": 1e-3, "mg": 1e-6, "lb": 0.45359237,
+                                   "lbs": 0.45359237, "pound": 0.45359237, "pounds": 0.45359237,
+                                   "oz": 0.028349523125, "ounce": 0.028349523125, "ounces": 0.028349523125}
+_MASS = re.compile(r"(?<![\w.])(\d+(?:\.\d+)?|\d*\.\d+)\s*(" + "|".join(sorted(MASS_UNITS_KG, key=len, reverse=True))
+                   + r")(?![a-z])", re.I)
+
+
+@dataclass
+class StatedMass:
+    """A mass the request states: its value [kg] (SI), the words read and their span in the text."""
+
+    kg: float
+    stated: str
+    span: tuple[int, int]
+
+
+def read_stated_mass(text: str) -> StatedMass | None:
+    """The object's mass said in a request ('sand-filled ankle weight, 1 kg' -> 1.0 kg; '2 lb' -> 0.907 kg); the
+    first one wins. None when no mass is stated ('a 2 l bag' is a volume; 'weighs about' alone is no number)."""
+    m = _MASS.search(text)
+    if m is None:
+        return None
+    kg = float(m.group(1)) * MASS_UNITS_KG[m.group(2).lower()]
+    if kg <= 0:
+        return None
+    return StatedMass(kg=kg, stated=m.group(0).strip(), span=(m.start(), m.end()))

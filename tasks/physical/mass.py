@@ -15,6 +15,7 @@ from tasks.physical.model import MASS_RANGE_KG
 SOLID_EXPONENT = 3.0  # a solid's mass scales with its volume: (length ratio)^3
 HOLLOW_EXPONENT = 2.0  # a shell of fixed wall thickness scales with its area: (length ratio)^2
 CONCEPT_BAND_FACTOR = (0.5, 2.0)  # plausible mass around the typical mass at the built size, when L0 gives no range
+STATED_BAND_FACTOR = (0.9, 1.1)  # a mass the request states (or its fill gives): within 10 % of it
 
 
 class MassCheck(Model):
@@ -116,6 +117,12 @@ def mass_check(volume_m3: float, longest_m: float, area_m2: float, material: str
     dlo, dhi = density_range
     by_density = _clamp_band(dlo * volume_m3, dhi * volume_m3)
     density_check = f"density range of {material} ({dlo:g}-{dhi:g} kg/m^3)"
+    stated = getattr(concept, "stated_mass_kg", None) if concept is not None else None
+    if stated:  # the request gives the mass ('1 kg', 'half full of rice'): it binds whatever the material
+        check = f"mass given by the request ({concept.stated_mass_source or _g(stated)})"  # type: ignore[union-attr]
+        band = _clamp_band(stated * STATED_BAND_FACTOR[0], stated * STATED_BAND_FACTOR[1])
+        return _finish(band, stated, volume_m3, density_prior, None, [check], stated, True, stated_density,
+                       density_bounds, [f"the request gives {_g(stated)}: effective density = that mass / volume"])
     applies = concept_applies(concept, material)
     cband = concept_band(concept, longest_m, volume_m3, area_m2) if applies and concept is not None else None
     notes: list[str] = []

@@ -23,7 +23,7 @@ from tasks.geometry.grammar.parts import box, cone, cylinder, ellipsoid, limb, s
 MIN_LAYER = 0.025  # a built sheet layer, / the flat sheet's length [-]
 MIN_WALL = 0.03  # a built mould or hat wall, / the outline's size [-]
 
-SheetState = Literal["flat", "rolled", "folded", "stacked"]
+SheetState = Literal["flat", "rolled", "folded", "stacked", "crumpled"]
 
 
 def _op(part: Part, op: str, blend: float = 0.0) -> Part:
@@ -38,7 +38,8 @@ def _scaled(part: Part, scale: tuple[float, float, float]) -> Part:
 class SheetParams(Model):
     """A flat good: mat, towel, blanket, sheet, napkin, pad, tortilla, slice. Length 1 along x when flat."""
 
-    state: SheetState = Field(default="flat", description="flat; rolled (a roll along the sheet's width, the layers "
+    state: SheetState = Field(default="flat", description="flat; crumpled (a bunched heap); rolled (a roll along the "
+                              "sheet's width, the layers "
                               "seen as rings at its ends); folded (halved `folds` times); stacked (`layers` sheets)")
     shape: Literal["rect", "round"] = Field(default="rect", description="a rectangle or a round sheet (tortilla, pad)")
     width: float = Field(default=0.5, gt=0.002, le=1.0, description="width / length [-]")
@@ -78,6 +79,9 @@ def sheet(p: SheetParams) -> list[Part]:
         return parts
     if p.state == "folded":
         return _folded(p, t)
+    if p.state == "crumpled":
+        d, height = crumpled_size(w)
+        return heap(d, height, t, seed=0.3 + 3 * w)
     return _rolled(p)
 
 
@@ -156,6 +160,10 @@ class PouchParams(Model):
     squareness: float = Field(default=0.35, gt=0.1, le=1.0, description="1 an oval pouch, small a square one [-]")
     port: Literal["none", "iv", "cap", "spout"] = Field(default="none", description="iv: two ports at the front and "
                                                          "a hanger hole; cap: a screw neck; spout: one tube")
+    channels: int = Field(default=0, ge=0, le=8, description="stitched channels across a quilted pad (an ankle "
+                          "weight) [-]")
+    strap: float = Field(default=0.0, ge=0.0, le=1.5, description="a flat strap from the pad's +x end (velcro, a "
+                         "ring at its end) / length [-]")
 
 
 def pouch(p: PouchParams) -> list[Part]:
@@ -180,6 +188,17 @@ def pouch(p: PouchParams) -> list[Part]:
     elif p.port == "spout":
         parts.append(limb("spout", (0.42, 0, h / 2), (0.58, 0, h / 2), 0.035, blend=0.02))
         parts.append(cylinder("cap", 0.05, 0.05, (0.6, 0, h / 2), edge=0.01, rot=(0, 90, 0), blend=0.005))
+    for i in range(p.channels):  # stitched lines across the pad
+        x = -0.5 + s + (1 - 2 * s) * (i + 1) / (p.channels + 1)
+        parts.append(_op(_scaled(cylinder(f"stitch {i + 1}", 0.035, w * 1.2, (x, 0, h), rot=(90, 0, 0)),
+                                 (1, 1, 1)), "subtract", 0.02))
+    if p.strap > 0:
+        sw, st = 0.55 * w, 1.6 * MIN_LAYER
+        parts.append(box("strap", (p.strap, sw, st), (0.5 + p.strap / 2 - 0.05, 0, st / 2), edge=0.45 * st,
+                         blend=0.01))
+        parts.append(box("velcro", (0.35 * p.strap, 0.9 * sw, 0.8 * st), (0.5 + 0.55 * p.strap, 0, st * 1.2),
+                         edge=0.3 * st, blend=0.003))
+        parts.append(_scaled(torus("ring", 0.6 * sw / 2 + 0.02, 0.018, (0.5 + p.strap - 0.02, 0, 0.018)), (1, 1, 1)))
     return parts
 
 
@@ -218,7 +237,7 @@ def glove(p: GloveParams) -> list[Part]:
     fr = pw / 8.6
     if p.mitten:
         ml = 0.8 * p.finger_length * pl
-        parts.append(superellipsoid("mitt", (ml / 2 + 0.03, pw / 2, t / 2), (pl / 2 + ml / 2 - 0.05, 0, z), ns=0.7,
+        parts.append(superellipsoid("finger pocket", (ml / 2 + 0.03, pw / 2, t / 2), (pl / 2 + ml / 2 - 0.05, 0, z), ns=0.7,
                                     ew=0.9, blend=0.04))
     else:
         for i, (name, share) in enumerate(_FINGERS):
@@ -230,8 +249,8 @@ def glove(p: GloveParams) -> list[Part]:
             parts.append(_flat_limb(name, base, tip, fr, t, blend=0.02))
     ta = np.radians(40 + p.spread)
     tb = np.array([-0.05, pw / 2 - 0.02, z])
-    parts.append(_flat_limb("thumb", tb, tb + 0.6 * pl * np.array([np.cos(ta), np.sin(ta), 0.0]), 1.1 * fr, t,
-                            blend=0.03))
+    parts.append(_flat_limb("thumb", tb, tb + 0.6 * pl * np.array([np.cos(ta), np.sin(ta), 0.0]),
+                            (1.7 if p.mitten else 1.1) * fr, t, blend=0.03))
     if p.cuff > 0:
         cl = p.cuff * pl
         c = cone("cuff", pw / 2, pw / 2 * p.flare, cl + 0.04, (-pl / 2 - cl / 2 + 0.02, 0, z), edge=0.2 * t,
@@ -248,10 +267,23 @@ class SockParams(Model):
     thickness: float = Field(default=0.1, gt=0.03, le=0.5, description="thickness / foot length [-]")
     angle: float = Field(default=100.0, ge=90.0, le=150.0, description="angle between leg and foot [deg]")
     cuff: bool = Field(default=True, description="a ribbed band at the opening")
+    state: Literal["flat", "rolled"] = Field(default="flat", description="flat, or rolled up into a sock ball (the "
+                                             "cuff turned over it)")
+    pair: bool = Field(default=False, description="two socks: side by side, or rolled together into one ball")
 
 
 def sock(p: SockParams) -> list[Part]:
-    """Foot length 1 along x (heel at the origin); the leg rises towards +y."""
+    """Foot length 1 along x (heel at the origin); the leg rises towards +y. Rolled: a ball of the sock's (or the
+    pair's) volume, the turned-over cuff a ribbed band round it."""
+    if p.state == "rolled":
+        return _sock_ball(p)
+    if p.pair:
+        one = sock(p.model_copy(update={"pair": False}))  # the second over the first, shifted (one body)
+        dy, dz = 0.5 * p.width, 0.85 * p.thickness
+        other = [q.model_copy(update={"name": f"other {q.name}", "transform": q.transform.model_copy(update={
+            "translation_m": (q.transform.translation_m[0] + 0.12, q.transform.translation_m[1] - dy,
+                              q.transform.translation_m[2] + dz)})}) for q in one]
+        return one + other
     w, t = p.width, p.thickness
     z = t / 2
     r = w / 2
@@ -269,6 +301,21 @@ def sock(p: SockParams) -> list[Part]:
     return parts
 
 
+def _sock_ball(p: SockParams) -> list[Part]:
+    """A rolled sock (pair): the flat sock's volume as a slightly squashed ball, the cuff a band round its middle
+    with ribs, the toe's seam a ridge at one end."""
+    flat = p.width * p.thickness * (1.0 + p.leg_length) * 0.85 * (2 if p.pair else 1)
+    r = float((flat / (4 / 3 * np.pi * 0.8)) ** (1 / 3))
+    parts = [ellipsoid("body", (1.1 * r, r, 0.8 * r), (0, 0, 0.8 * r))]
+    parts.append(_scaled(torus("cuff", r, 0.16 * r, (0.35 * r, 0, 0.8 * r), rot=(0, 90, 0)), (0.8, 1.0, 1.6)))
+    for i in range(10):
+        a = 2 * np.pi * i / 10
+        y, z = 1.15 * r * np.cos(a), 0.8 * r + 0.93 * r * np.sin(a)
+        parts.append(_op(limb(f"rib {i + 1}", (0.12 * r, y, z), (0.58 * r, y, z), 0.05 * r), "subtract"))
+    parts.append(ellipsoid("toe", (0.3 * r, 0.55 * r, 0.45 * r), (-0.95 * r, 0, 0.8 * r), blend=0.15 * r))
+    return parts
+
+
 class HatParams(Model):
     """A soft hat: an open dome (a beanie, a bucket or sun hat with a brim, a baby bonnet), opening down."""
 
@@ -277,6 +324,7 @@ class HatParams(Model):
     cuff: float = Field(default=0.2, ge=0.0, le=0.5, description="folded-up cuff band height / crown diameter [-]")
     brim: float = Field(default=0.0, ge=0.0, le=0.6, description="brim width / crown diameter [-]")
     pompom: bool = False
+    ribs: int = Field(default=0, ge=0, le=40, description="knit ribs: vertical grooves round the crown and cuff [-]")
 
 
 def hat(p: HatParams) -> list[Part]:
@@ -290,6 +338,14 @@ def hat(p: HatParams) -> list[Part]:
         parts.append(cylinder("brim", R + p.brim, w, (0, 0, w / 2), edge=0.45 * w, blend=0.02))
     if p.pompom:
         parts.append(ellipsoid("pompom", (0.15, 0.15, 0.14), (0, 0, H + 0.08), blend=0.03))
+    for i in range(p.ribs):  # knit ribs: shallow grooves up the cuff
+        a = 2 * np.pi * i / p.ribs
+        rr = R + 0.6 * w + 0.004
+        parts.append(_op(limb(f"rib {i + 1}", (rr * np.cos(a), rr * np.sin(a), -0.05),
+                              (rr * np.cos(a), rr * np.sin(a), p.cuff - 0.03), 0.016), "subtract"))
+    if p.cuff > 0:
+        parts.append(_op(_scaled(torus("cuff edge", R + 0.6 * w + 0.01, 0.012, (0, 0, p.cuff)), (1, 1, 1)),
+                         "subtract"))
     parts.append(_op(ellipsoid("inside", (R - w, R - w, H - w), (0, 0, 0)), "subtract"))
     parts.append(_op(box("ground", (4, 4, 4), (0, 0, 2)), "intersect"))
     return parts
@@ -416,4 +472,542 @@ def mould(p: MouldParams) -> list[Part]:
             at = ((i - (p.columns - 1) / 2) * pitch, (j - (p.rows - 1) / 2) * pitch)
             cav = _outline(f"cavity {i + 1} {j + 1}", p.outline, 2 * (rb + slope * w), w, top, at, slope, 0.3 * w)
             parts += [_op(c, "subtract") for c in cav]
+    return parts
+
+
+# ------------------------------------------------------------------------------------------------- crumpled heaps
+def _rng_angles(n: int, seed: float) -> list[tuple[float, float, float]]:
+    """n deterministic (angle, radius share, turn) triples spread over a disc (a golden-angle spiral, jittered)."""
+    out = []
+    for i in range(n):
+        a = i * 2.39996 + seed
+        r = np.sqrt((i + 0.5) / n)
+        out.append((float(a), float(r), float(np.sin(3.7 * i + seed) * 70.0)))
+    return out
+
+
+def heap(diameter: float, height: float, t: float, seed: float = 0.3, folds: int = 7, flaps: int = 4,
+         name: str = "body") -> list[Part]:
+    """A crumpled, bunched heap of cloth on the ground: a low, uneven mound with broad rounded folds (ridges) over it
+    and the cloth's corners lying out flat on the floor; footprint `diameter`, top at about `height`, cloth `t`
+    thick."""
+    R = diameter / 2
+    parts = [ellipsoid(name, (0.8 * R, 0.68 * R, 0.55 * height), (0.05 * R, 0, 0.05 * height))]
+    for i, (a, r, turn) in enumerate(_rng_angles(folds, seed)):
+        rho = 0.55 * R * r
+        x, y = rho * np.cos(a), rho * np.sin(a)
+        top = 0.55 * height * np.sqrt(max(1 - (x / (0.8 * R)) ** 2 - (y / (0.68 * R)) ** 2, 0.05)) + 0.05 * height
+        length = 0.75 * R * (1.1 - 0.4 * r)
+        rad = (0.24 + 0.08 * np.sin(2.7 * i)) * height
+        d = np.degrees(a) + 90 + turn
+        lean = 35 * np.sin(1.9 * i + seed)
+        parts.append(ellipsoid(f"fold {i + 1}", (length / 2, 0.45 * rad, rad), (x, y, top - 0.2 * rad),
+                               rot=(float(lean), 0, float(d)), blend=0.45 * rad))
+    for i in range(flaps):
+        a = seed + 0.8 + i * 2 * np.pi / flaps + 0.35 * np.sin(5.0 * i)
+        rho = 0.78 * R
+        size = (0.5 + 0.12 * np.sin(2.3 * i)) * R
+        parts.append(box(f"corner {i + 1}", (size, size, t), (rho * np.cos(a), rho * np.sin(a), t / 2 + 0.04 * R *
+                                                                 (i % 2)), edge=0.45 * t,
+                         rot=(0, float(6 * np.sin(1.7 * i)), float(np.degrees(a)) + 45), blend=0.05 * R))
+    parts.append(_op(box("ground", (8, 8, 8), (0, 0, 4)), "intersect"))
+    return parts
+
+
+def crumpled_size(area: float) -> tuple[float, float]:
+    """(footprint diameter, height) of a crumpled cloth of `area` (unit frame) [-]: a loose heap about half the
+    square's side across and under half that high (a 40 x 40 cm cloth bunches to ~20 cm across, ~8 cm high)."""
+    side = float(np.sqrt(area))
+    return 0.5 * side, 0.22 * side
+
+
+# ------------------------------------------------------------------------------------------------------- garments
+class GarmentParams(Model):
+    """A garment: t-shirt, long-sleeved top, sweater, hoodie, jacket, dress, trousers; laid flat (front up), folded,
+    crumpled in a heap, or hung on a hanger. Length 1 is the body's (collar to hem) length, along x (collar at +x).
+    Laid flat with its sleeves out it is wider than long, so its built layer is `GARMENT_LAYER` of that length."""
+
+    kind: Literal["top", "trousers", "dress"] = "top"
+    state: Literal["flat", "folded", "crumpled", "hung"] = "flat"
+    sleeves: Literal["none", "short", "long"] = "long"
+    hood: bool = False
+    pocket: bool = Field(default=False, description="a front (kangaroo) pocket")
+    zip: bool = Field(default=False, description="a front zip or button placket (a jacket, a shirt)")
+    collar: bool = Field(default=False, description="a shirt collar")
+    cuffs: bool = Field(default=True, description="ribbed bands at hem and sleeve ends")
+    width: float = Field(default=0.78, gt=0.3, le=1.2, description="body width / length [-]")
+    thickness: float = Field(default=0.012, gt=0.0, le=0.1, description="real flat thickness (front and back "
+                             "layers) / length [-]")
+
+
+GARMENT_LAYER = 0.045  # a garment's (or a bag's with handles) built layer / its length: MIN_LAYER of its span [-]
+
+
+def _flat_chain(name: str, pts: list[np.ndarray], r: float, t: float, blend: float) -> list[Part]:
+    """Flat capsules along a polyline in the x-y plane (a sleeve, a strap, a handle)."""
+    return [_flat_limb(name if i == 0 else f"{name} {i + 1}", pts[i], pts[i + 1], r, t, blend)
+            for i in range(len(pts) - 1)]
+
+
+def _top_flat(p: GarmentParams, t: float) -> list[Part]:
+    w = p.width
+    z = t / 2
+    parts = [superellipsoid("body", (0.5, w / 2, t / 2), (0, 0, z), ns=0.15, ew=0.12)]
+    sr = 0.13 if p.sleeves == "long" else 0.15
+    for side in (1, -1):
+        shoulder = np.array([0.36, side * (w / 2 - 0.06), z])
+        if p.sleeves == "long":
+            tip = shoulder + np.array([-0.72, side * 0.36, 0.0])
+        elif p.sleeves == "short":
+            tip = shoulder + np.array([-0.16, side * 0.2, 0.0])
+        else:
+            continue
+        parts.append(_flat_limb(f"{'left' if side > 0 else 'right'} sleeve", shoulder, tip, sr, t, blend=0.04))
+        if p.cuffs and p.sleeves == "long":
+            d = (tip - shoulder) / np.linalg.norm(tip - shoulder)
+            parts.append(_flat_limb(f"{'left' if side > 0 else 'right'} cuff", tip - 0.1 * d, tip + 0.02 * d,
+                                    0.85 * sr, 1.25 * t, blend=0.005))
+    if p.cuffs:
+        parts.append(box("hem", (0.08, w * 0.96, 1.25 * t), (-0.46, 0, 0.625 * t), edge=0.5 * t, blend=0.005))
+    if p.hood:
+        parts.append(ellipsoid("hood", (0.24, 0.25, 1.6 * t), (0.6, 0, 0.9 * t), blend=0.03))
+        parts.append(_scaled(torus("hood rim", 0.15, 0.035, (0.58, 0, 1.9 * t)), (1.0, 1.1, 0.5)))
+        parts.append(_op(ellipsoid("hood opening", (0.14, 0.15, 0.8 * t), (0.58, 0, 2.3 * t)), "subtract", 0.01))
+        for side in (1, -1):
+            a = np.array([0.44, side * 0.05, 1.3 * t])
+            parts.append(limb(f"{'left' if side > 0 else 'right'} drawstring", a, a + np.array([-0.24, 0.015 * side,
+                                                                                               0]), 0.012,
+                              blend=0.005))
+    else:
+        parts.append(_op(_scaled(cylinder("neck", 0.1, 4 * t, (0.52, 0, z)), (0.75, 1, 1)), "subtract", 0.01))
+        parts.append(_scaled(torus("collar band", 0.105, 0.022, (0.5, 0, 0.7 * t)), (0.78, 1, 0.8)))
+    if p.pocket:
+        parts.append(superellipsoid("pocket", (0.15, 0.24 * w, 0.3 * t), (-0.2, 0, t), ns=0.2, ew=0.3, blend=0.004))
+    if p.zip:
+        parts.append(box("zip", (0.9, 0.025, 0.4 * t), (-0.02, 0, t + 0.1 * t), edge=0.1 * t, blend=0.002))
+    if p.collar:
+        for side in (1, -1):
+            parts.append(box(f"{'left' if side > 0 else 'right'} collar", (0.12, 0.12, 0.5 * t),
+                             (0.45, side * 0.07, 1.1 * t), edge=0.2 * t, rot=(0, 0, side * 30), blend=0.004))
+    return parts
+
+
+def _trousers_flat(p: GarmentParams, t: float) -> list[Part]:
+    w = p.width
+    z = t / 2
+    parts = [box("body", (0.3, w, t), (0.35, 0, z), edge=0.45 * t)]
+    for side in (1, -1):
+        a = np.array([0.3, side * w / 4, z])
+        b = np.array([-0.5, side * (w / 4 + 0.06), z])
+        parts.append(_flat_limb(f"{'left' if side > 0 else 'right'} leg", a, b, w / 4, t, blend=0.02))
+    parts.append(box("waistband", (0.07, w, 1.3 * t), (0.48, 0, 0.65 * t), edge=0.5 * t, blend=0.004))
+    return parts
+
+
+def _dress_flat(p: GarmentParams, t: float) -> list[Part]:
+    w = p.width
+    parts = [cone("body", 0.62 * w, 0.3 * w, 1.0, (0, 0, t / 2), rot=(0, 90, 0), edge=0.2 * t)]
+    parts[0] = _scaled(parts[0], (t / (0.62 * w * 2), 1, 1))
+    parts.append(_op(_scaled(cylinder("neck", 0.1, 4 * t, (0.52, 0, t / 2)), (0.75, 1, 1)), "subtract", 0.01))
+    return parts
+
+
+def _garment_flat(p: GarmentParams, t: float) -> list[Part]:
+    if p.kind == "trousers":
+        return _trousers_flat(p, t)
+    if p.kind == "dress":
+        return _dress_flat(p, t)
+    return _top_flat(p, t)
+
+
+def garment(p: GarmentParams) -> list[Part]:
+    """Flat: the garment laid out front up (sleeves, hood, pocket, cuffs drawn). Folded: a neat rectangle with the
+    collar (or hood) on top. Crumpled: a bunched heap with a sleeve or leg and the hood out of it. Hung: standing in
+    the x-z plane on a hanger's hook."""
+    t = max(p.thickness, GARMENT_LAYER)
+    w = p.width
+    if p.state == "flat":
+        return _garment_flat(p, t)
+    if p.state == "hung":
+        parts = _garment_flat(p, t)
+        rot = []
+        for part in parts:
+            tf = part.transform
+            x, y, z = tf.translation_m
+            rx, ry, rz = tf.rotation_deg
+            # lying (x along the body, z up) -> hanging (the collar up): x -> z, z -> -x
+            rot.append(part.model_copy(update={"transform": tf.model_copy(update={
+                "translation_m": (-z, y, x + 0.5), "rotation_deg": (rx, ry, rz)})}))
+        # the rotation of each part about y by -90 deg is applied through a wrapper part order: parts are rebuilt
+        # from the flat layout in the x-z plane (thin along x) by swapping their scale and radii axes
+        parts = [_swap_xz(q) for q in rot]
+        hook_z = 1.0 + 0.2 if not p.hood else 1.25
+        parts.append(_scaled(torus("hanger", 0.06, 0.012, (0, 0, hook_z + 0.05), rot=(90, 0, 0)), (1, 1, 1)))
+        parts.append(limb("hanger bar", (0, -0.38 * w, 0.97), (0, 0.38 * w, 0.97), 0.015, blend=0.005))
+        parts.append(limb("hanger neck", (0, 0, 0.97), (0, 0, hook_z), 0.012, blend=0.005))
+        return parts
+    if p.state == "folded":
+        n = 4
+        fw, fl = 0.62 * w, 0.42
+        h = n * t
+        parts = [box("body", (fl, fw, h), (0, 0, h / 2), edge=0.45 * t)]
+        for i in range(1, n):
+            parts.append(_op(box(f"fold gap {i}", (0.3 * fl, fw * 1.2, 0.18 * t), (-fl / 2, 0, i * t)), "subtract"))
+        if p.hood:
+            parts.append(ellipsoid("hood", (0.13, 0.17, 0.9 * t), (0.06, 0, h + 0.2 * t), blend=0.02))
+        else:
+            parts.append(_scaled(torus("collar band", 0.09, 0.02, (0.12, 0, h)), (0.7, 1, 0.7)))
+        if p.cuffs:
+            parts.append(box("hem", (0.05, fw, h + 0.3 * t), (-fl / 2 + 0.03, 0, (h + 0.3 * t) / 2), edge=0.5 * t,
+                             blend=0.003))
+        return parts
+    # crumpled: a heap of the body with the sleeves (legs) and the hood out of it
+    area = w + (0.5 if p.sleeves == "long" else 0.15 if p.sleeves == "short" else 0.0)
+    d, height = 1.3 * crumpled_size(area)[0], 0.22 * float(np.sqrt(area))  # front and back: a fuller heap
+    parts = heap(d, height, t, seed=1.3, folds=8, flaps=2)
+    ground = parts.pop()
+    R = d / 2
+    if p.kind == "top":
+        # one sleeve trails out over the floor, the other only shows its cuff; the hood lies over the heap's edge
+        for k, (a0, bend, ln, out) in enumerate(((0.35, 0.9, 0.42, 0.1), (2.6, -0.6, 0.06, -0.12))):
+            if p.sleeves == "none":
+                break
+            side = "left" if k == 0 else "right"
+            ln = ln if p.sleeves == "long" else min(ln, 0.16)
+            sr = 0.11 if p.sleeves == "long" else 0.13
+            start = np.array([0.6 * R * np.cos(a0), 0.6 * R * np.sin(a0), 0.3 * height])
+            mid = np.array([(R + out) * np.cos(a0), (R + out) * np.sin(a0), 1.1 * t])
+            a1 = a0 + bend
+            end = mid + ln * np.array([np.cos(a1), np.sin(a1), 0])
+            end[2] = 1.1 * t
+            parts += _flat_chain(f"{side} sleeve", [start, mid, end], sr, 2.2 * t, blend=0.04)
+            if p.cuffs and p.sleeves == "long":
+                dd = (end - mid) / np.linalg.norm(end - mid)
+                parts.append(_flat_limb(f"{side} cuff", end - 0.07 * dd, end + 0.03 * dd, 0.9 * sr, 2.5 * t, 0.005))
+        if p.hood:
+            hc = np.array([-0.5 * R, -0.45 * R, 0.6 * height])
+            parts.append(ellipsoid("hood", (0.22, 0.18, 0.12), hc, blend=0.03, rot=(0, -15, 35)))
+            parts.append(_scaled(torus("hood rim", 0.12, 0.03, hc + np.array([-0.06, -0.04, 0.07]), rot=(0, -30, 35)),
+                                 (1.25, 1, 1)))
+            parts.append(_op(ellipsoid("hood opening", (0.13, 0.1, 0.07), hc + np.array([-0.07, -0.05, 0.1]),
+                                       rot=(0, -30, 35)), "subtract", 0.01))
+            parts.append(limb("drawstring", hc + np.array([0.08, -0.1, 0.0]), hc + np.array([0.05, -0.42, -0.55 *
+                                                                                               height + 0.6 * t]),
+                              0.012, blend=0.004))
+    elif p.kind == "trousers":
+        for k, a0 in enumerate((0.3, 0.75)):
+            start = np.array([0.4 * R * np.cos(a0), 0.4 * R * np.sin(a0), 0.4 * height])
+            end = start + np.array([0.75 * np.cos(a0), 0.75 * np.sin(a0), 0])
+            end[2] = 0.6 * t
+            parts += _flat_chain(f"{'left' if k == 0 else 'right'} leg", [start, end], 0.12, 2.2 * t, blend=0.03)
+    return parts + [ground]
+
+
+def _swap_xz(part: Part) -> Part:
+    """A part of a flat layout (thin along z) stood up in the x-z plane (thin along x): its rotation composed with
+    a turn of -90 deg about y, written as XYZ Euler angles."""
+    from scipy.spatial.transform import Rotation
+
+    import warnings
+
+    r = Rotation.from_euler("y", -90, degrees=True) * Rotation.from_euler("xyz", part.transform.rotation_deg,
+                                                                          degrees=True)
+    with warnings.catch_warnings():  # a gimbal-lock case: any of its equal angle sets will do
+        warnings.simplefilter("ignore", UserWarning)
+        angles = tuple(float(a) for a in r.as_euler("xyz", degrees=True))
+    return part.model_copy(update={"transform": part.transform.model_copy(update={"rotation_deg": angles})})
+
+
+# ------------------------------------------------------------------------------------------------------------ bags
+class BagParams(Model):
+    """A bag: a tote or shopping bag with two handles, a drawstring pouch (gathered neck, cords), a zip-lock or
+    sandwich bag (zip track at its mouth), a backpack-less sack; lying flat, standing, or crumpled; optionally part
+    full of a fill (rice, sand, water) that slumps to its bottom. Height 1 (bottom to mouth) along x when lying."""
+
+    kind: Literal["tote", "drawstring", "zip", "sack"] = "tote"
+    state: Literal["flat", "standing", "crumpled"] = "flat"
+    width: float = Field(default=0.9, gt=0.3, le=1.5, description="width / height [-]")
+    gusset: float = Field(default=0.0, ge=0.0, le=0.6, description="depth of a standing bag's base / height [-]")
+    handle: float = Field(default=0.55, ge=0.0, le=1.2, description="handle loop height above the mouth / height "
+                          "(0: none) [-]")
+    handle_width: float = Field(default=0.06, gt=0.01, le=0.2, description="strap width / height [-]")
+    fill: float = Field(default=0.0, ge=0.0, le=1.0, description="share of the bag's capacity filled [-]")
+    thickness: float = Field(default=0.004, gt=0.0, le=0.1, description="real wall (two layers) / height [-]")
+
+
+# capacity of a bag filled round, / (height x width x min(height, width)): a 17.7 x 19.5 cm quart zip bag holds
+# 0.95 l (US quart), 0.155 x 0.177 x 0.195 x 0.177 m^3
+BAG_CAPACITY = 0.155
+
+
+def bag(p: BagParams) -> list[Part]:
+    """Lying flat: the mouth at +x, handles lying flat beyond it; a fill slumps towards -x. Standing: on its base
+    (z = 0), mouth up, handles above. Crumpled: a heap with a handle loop out of it."""
+    t = max(p.thickness, GARMENT_LAYER if p.handle > 0 else 1.5 * MIN_LAYER)
+    w = p.width
+    if p.state == "crumpled":
+        d, height = crumpled_size(2 * w)  # its front and back
+        heaped = heap(d, height, t, seed=0.7, folds=7, flaps=2)
+        ground = heaped.pop()
+        if p.handle > 0:
+            R = d / 2
+            arc = [np.array([0.3 * R + 0.55 * p.handle * np.sin(a) * 0.8, 0.25 * np.cos(a), 0.9 * t + 0.4 * height *
+                             np.sin(a) * 0.2]) for a in np.linspace(0, np.pi, 6)]
+            arc = [a + np.array([0.45 * R, 0, 0]) for a in arc]
+            heaped += _flat_chain("handle", arc, p.handle_width / 2, 1.6 * t, blend=0.02)
+        return heaped + [ground]
+    if p.kind == "drawstring" and p.state == "standing":
+        return _drawstring_standing(p, t)
+    standing = p.state == "standing"
+    # lying flat (standing: the same layout stood up by the caller's frame swap below)
+    fill_h = 0.0
+    parts: list[Part] = []
+    if p.kind == "drawstring":  # a sack gathered at its neck: the body, the cinched neck, a ruffle beyond it
+        parts.append(superellipsoid("body", (0.36, w / 2, t / 2 + 0.04 * (1 + 3 * p.fill)), (-0.14, 0, t / 2 + 0.04 *
+                                    (1 + 3 * p.fill)), ns=0.5, ew=0.35))
+        parts.append(_scaled(cylinder("neck", 0.09 * w + 0.02, 0.08, (0.26, 0, 0.06), rot=(0, 90, 0), edge=0.02),
+                             (1, 1, 0.6)))
+        for i, yy in enumerate(np.linspace(-0.28 * w, 0.28 * w, 5)):
+            parts.append(ellipsoid(f"ruffle {i + 1}", (0.12, 0.075 * w, 0.035), (0.36, yy, 0.045), blend=0.02,
+                                   rot=(0, 0, float(25 * np.sin(2.0 * i)))))
+        for side in (1, -1):
+            a = np.array([0.27, side * 0.05, 0.09])
+            b = a + np.array([0.3, side * 0.22, -0.06])
+            parts.append(limb(f"{'left' if side > 0 else 'right'} cord", a, b, 0.014, blend=0.01))
+            parts.append(ellipsoid(f"{'left' if side > 0 else 'right'} cord end", (0.03, 0.03, 0.03), b, blend=0.01))
+        return _stand(parts) if standing else parts
+    body_len = 1.0
+    if p.fill > 0:  # the fill slumps to the bottom: a pillow over the lower part, the film flat above it
+        volume = p.fill * BAG_CAPACITY * min(1.0, w) * w  # the fill's share of the capacity (unit frame)
+        length = float(np.clip(0.35 + 0.65 * p.fill, 0.3, 1.0))
+        fill_h = float(np.clip(volume / (0.7 * length * 0.94 * w), 2 * t, 0.45 * w))
+        parts.append(superellipsoid("fill", (length / 2, 0.47 * w, fill_h / 2), (-0.5 + length / 2, 0, fill_h / 2),
+                                    ns=0.45, ew=0.3))
+        parts.append(box("body", (body_len, w, t), (0, 0, t / 2), edge=0.45 * t, blend=0.02))
+    else:
+        parts.append(box("body", (body_len, w, t), (0, 0, t / 2), edge=0.45 * t))
+    if p.kind == "zip":
+        for i, dx in enumerate((0.0, 0.045)):
+            parts.append(box(f"zip track {i + 1}", (0.025, w, 2.2 * t), (0.43 - dx, 0, 1.1 * t), edge=0.45 * t,
+                             blend=0.004))
+    if p.kind in ("tote", "sack"):
+        parts.append(box("hem", (0.06, w, 1.5 * t), (0.47, 0, 0.75 * t), edge=0.5 * t, blend=0.004))
+    if p.handle > 0 and p.kind == "tote":
+        for k, (yc, zlift) in enumerate(((0.0, 0.0), (0.04, 1.0))):
+            span = 0.26 * w
+            pts = [np.array([0.5 - 0.06 + p.handle * np.sin(a), yc + span * np.cos(a), t / 2 + zlift * t])
+                   for a in np.linspace(0, np.pi, 7)]
+            pts[0][0] = pts[-1][0] = 0.38
+            parts += _flat_chain("handle" if k == 0 else "back handle", pts, p.handle_width / 2, t, blend=0.015)
+    return _stand(parts) if standing else parts
+
+
+def _stand(parts: list[Part]) -> list[Part]:
+    """A flat layout (mouth at +x, thin along z) stood on its bottom edge: x -> z (mouth up)."""
+    out = []
+    for part in parts:
+        tf = part.transform
+        x, y, z = tf.translation_m
+        out.append(_swap_xz(part.model_copy(update={"transform": tf.model_copy(update={
+            "translation_m": (-z, y, x + 0.5)})})))
+    return out
+
+
+def _drawstring_standing(p: BagParams, t: float) -> list[Part]:
+    """A drawstring pouch standing: a round-bottomed sack, its neck cinched, a ruffled frill above, two cords."""
+    w = p.width
+    r = w / 2
+    hb = 0.62 + 0.1 * p.fill
+    parts = [superellipsoid("body", (r, 0.8 * r, hb / 2), (0, 0, hb / 2), ns=0.55, ew=0.8)]
+    parts.append(cylinder("neck", 0.22 * r + 0.03, 0.1, (0, 0, hb + 0.02), edge=0.03, blend=0.06))
+    for i in range(7):
+        a = 2 * np.pi * i / 7
+        parts.append(ellipsoid(f"ruffle {i + 1}", (0.12, 0.06, 0.13), (0.12 * np.cos(a), 0.12 * np.sin(a), hb + 0.17),
+                               rot=(0, float(np.degrees(0.35)), float(np.degrees(a))), blend=0.03))
+    parts.append(_op(cylinder("mouth", 0.06, 0.1, (0, 0, hb + 0.3)), "subtract", 0.01))
+    for side in (1, -1):
+        top = np.array([0.1 * side, -0.2 * r, hb + 0.02])
+        end = np.array([0.28 * side, -0.9 * r, hb - 0.33])
+        parts.append(limb(f"{'left' if side > 0 else 'right'} cord", top, end, 0.018, blend=0.01))
+        parts.append(ellipsoid(f"{'left' if side > 0 else 'right'} cord end", (0.035, 0.035, 0.045), end, blend=0.01))
+    return parts
+
+
+# ------------------------------------------------------------------------------------------- straps, bands, hoses
+class StrapParams(Model):
+    """A long flat strip or cord: resistance band, strap, belt, ribbon, tie, hose, cable, skipping rope; straight,
+    lying in a loose loop, or coiled. Length 1 is the strip's full length (a closed band's circumference)."""
+
+    state: Literal["straight", "loop", "rolled"] = Field(default="straight", description="straight; loop (lying in "
+                                                          "a loose loop); rolled (coiled)")
+    closed: bool = Field(default=False, description="a closed band (a loop band): laid straight it is doubled")
+    width: float = Field(default=0.012, gt=0.0, le=0.3, description="strip width / length [-]")
+    thickness: float = Field(default=0.002, gt=0.0, le=0.1, description="strip thickness / length [-]")
+    round: bool = Field(default=False, description="a round cord or hose rather than a flat strip")
+    turns: float = Field(default=3.0, ge=1.0, le=8.0, description="turns of a coil [-]")
+    ends: Literal["none", "handles", "buckle", "ring"] = Field(default="none", description="what the ends carry")
+
+
+def _strip_dims(p: StrapParams, extent: float) -> tuple[float, float]:
+    """(built width, built thickness) of the strip: the real ones, no thinner than the mesher sees at this extent."""
+    w = max(p.width, 0.045 * extent)
+    t = max(p.thickness, 0.028 * extent) if not p.round else w
+    return w, min(t, w)
+
+
+def strap(p: StrapParams) -> list[Part]:
+    """Straight: along x. Loop: a loose, uneven closed loop on the ground. Rolled: coiled, a flat spiral of
+    `turns`."""
+    if p.state == "loop":
+        n = 18
+        r = 1.0 / (2 * np.pi)
+        a = np.linspace(0, 2 * np.pi, n + 1)
+        wob = 1 + 0.12 * np.sin(2 * a + 0.5) + 0.06 * np.sin(3 * a + 1.3)
+        xy = np.stack([1.25 * r * wob * np.cos(a), 0.8 * r * wob * np.sin(a)], axis=1)
+        xy *= 1.0 / np.sum(np.linalg.norm(np.diff(xy, axis=0), axis=1))
+        extent = float(np.ptp(xy[:, 0]))
+        w, t = _strip_dims(p, extent)
+        z = t / 2 if not p.round else w / 2
+        pts = [np.array([x, y, z]) for x, y in xy]
+        parts = _flat_chain("body", pts, w / 2, t, blend=0.3 * w)
+    elif p.state == "rolled":  # a flat spiral from radius r0 = 0.45 r1 out to r1, its length 1
+        n = int(min(40, 10 * p.turns))
+        r1 = 1.0 / (np.pi * p.turns * 1.45)
+        r0 = 0.45 * r1
+        s_ = np.linspace(0, 1, n + 1)
+        ang = 2 * np.pi * p.turns * s_
+        rad = r0 + (r1 - r0) * s_
+        xy = np.stack([rad * np.cos(ang), rad * np.sin(ang)], axis=1)
+        extent = 2 * r1
+        w, t = _strip_dims(p, extent)
+        w = min(w, 0.9 * (r1 - r0) / p.turns) if p.turns > 1.5 else w
+        t = min(t, w) if p.round else t
+        z = t / 2 if not p.round else w / 2
+        pts = [np.array([x, y, z]) for x, y in xy]
+        parts = _flat_chain("body", pts, w / 2, t, blend=0.2 * w)
+    else:
+        length = 0.5 if p.closed else 1.0
+        w, t = _strip_dims(p, length)
+        z = t / 2 if not p.round else w / 2
+        if p.closed:  # a loop band laid flat: two layers, their ends turned round
+            parts = [box("body", (length, w, 2 * t), (0, 0, t), edge=0.95 * t)]
+        else:
+            parts = [_flat_limb("body", np.array([-length / 2 + w / 2, 0, z]), np.array([length / 2 - w / 2, 0, z]),
+                                w / 2, t, blend=0.0)]
+        if p.ends == "handles":
+            for sgn in (1.0, -1.0):
+                parts.append(limb(f"{'left' if sgn > 0 else 'right'} handle", (sgn * length / 2, -0.06, 0.02),
+                                  (sgn * length / 2, 0.06, 0.02), 0.02, blend=0.01))
+        elif p.ends == "buckle":
+            parts.append(box("buckle", (0.04, 1.4 * w, 1.8 * t), (length / 2 - 0.03, 0, 0.9 * t), edge=0.4 * t,
+                             blend=0.002))
+        elif p.ends == "ring":
+            parts.append(_scaled(torus("ring", 0.7 * w, 0.12 * w, (length / 2, 0, 0.12 * w)), (1, 1, 1)))
+    return parts
+
+
+# ----------------------------------------------------------------------------------------------------- rope toys
+class RopeParams(Model):
+    """A rope toy or short rope: strands twisted round each other, a knot at each end (or one), frayed tufts beyond
+    the knots; each strand (its knots and tuft too) may take its own colour ('strand a', 'strand b' ...)."""
+
+    strands: int = Field(default=3, ge=2, le=4)
+    radius: float = Field(default=0.04, gt=0.01, le=0.15, description="rope radius / length [-]")
+    knots: int = Field(default=2, ge=0, le=3, description="knots along the rope (ends first) [-]")
+    tufts: bool = Field(default=True, description="frayed ends beyond the end knots")
+    twist: float = Field(default=2.5, ge=0.5, le=6.0, description="turns of the strands over the rope's length [-]")
+
+
+def rope(p: RopeParams) -> list[Part]:
+    """Length 1 along x, lying on the ground."""
+    R = p.radius
+    sr = 0.6 * R
+    kr = 2.3 * R
+    x0, x1 = -0.5 + 0.12, 0.5 - 0.12
+    parts: list[Part] = [limb("body", (x0, 0, R), (x1, 0, R), 0.6 * R)]
+    n = 8
+    for k in range(p.strands):
+        ph = 2 * np.pi * k / p.strands
+        xs = np.linspace(x0, x1, n + 1)
+        pts = [np.array([x, 0.5 * R * np.cos(ph + 2 * np.pi * p.twist * (x - x0)), R + 0.5 * R *
+                         np.sin(ph + 2 * np.pi * p.twist * (x - x0))]) for x in xs]
+        for i in range(n):
+            parts.append(limb(f"strand {'abcd'[k]} {i + 1}", pts[i], pts[i + 1], sr, blend=0.25 * sr))
+    at = [x0, x1, 0.0][: p.knots]
+    for j, x in enumerate(at):
+        for k in range(p.strands):
+            ph = 2 * np.pi * k / p.strands + 0.4 * j
+            c = np.array([x, 0.45 * kr * np.cos(ph), kr + 0.45 * kr * np.sin(ph) - 0.1 * kr])
+            parts.append(ellipsoid(f"strand {'abcd'[k]} {20 + j}", (0.7 * kr, 0.62 * kr, 0.62 * kr), c,
+                                   rot=(float(np.degrees(ph)), 0, 20), blend=0.2 * kr))
+    if p.tufts:
+        for j, (x, s) in enumerate(((x0, -1), (x1, 1))):
+            if j >= p.knots:
+                break
+            for k in range(p.strands):
+                ph = 2 * np.pi * k / p.strands
+                a = np.array([x + s * 0.45 * kr, 0.3 * kr * np.cos(ph), kr * 0.9 + 0.3 * kr * np.sin(ph)])
+                b = a + np.array([s * 0.16, 0.5 * kr * np.cos(ph), 0.35 * kr * np.sin(ph)])
+                b[2] = max(b[2], sr * 0.9)
+                parts.append(tapered_tuft(f"strand {'abcd'[k]} {30 + j}", a, b, 0.7 * sr))
+    return parts
+
+
+def tapered_tuft(name: str, a: np.ndarray, b: np.ndarray, r: float) -> Part:
+    """A frayed tuft: a cone widening from the knot outwards."""
+    from tasks.geometry.grammar.parts import tapered
+
+    return tapered(name, a, b, 0.6 * r, 1.3 * r, blend=0.3 * r)
+
+
+# ----------------------------------------------------------------------------------------------------------- books
+class BookParams(Model):
+    """A book lying closed: two covers, a page block (its edges striped with page lines), a rounded spine; a soft
+    cloth or crinkle book with puffy covers and ribbon tags along its edge."""
+
+    width: float = Field(default=0.75, gt=0.3, le=1.2, description="width / height [-]")
+    thickness: float = Field(default=0.12, gt=0.02, le=0.6, description="thickness / height [-]")
+    cover: float = Field(default=0.12, gt=0.02, le=0.4, description="one cover's thickness / the book's [-]")
+    soft: bool = Field(default=False, description="puffy fabric covers, rounded corners")
+    tags: int = Field(default=0, ge=0, le=6, description="ribbon tags along the fore-edge (taggie books) [-]")
+    page_lines: int = Field(default=5, ge=0, le=9, description="grooves along the page block's edges [-]")
+
+
+def book(p: BookParams) -> list[Part]:
+    """Height 1 along x, width along y (the spine at -y), lying on its back cover. A hard book: two covers over a page
+    block whose edges show page lines. A soft book: its thick fabric pages as separate puffy layers (seen stacked at
+    the edges), covers over them, an appliqué patch on the front cover and ribbon tags along the fore-edge."""
+    w, T = p.width, p.thickness
+    c = max(p.cover * T, MIN_LAYER * 0.8)
+    edge = (0.45 if p.soft else 0.2) * c
+    pages = T - 2 * c
+    if p.soft:
+        parts = [superellipsoid("body", (0.5, w / 2, c / 2), (0, 0, c / 2), ns=0.35, ew=0.2)]
+        n = max(2, min(p.page_lines, 5))
+        pt = pages / n
+        for i in range(n):
+            parts.append(superellipsoid(f"pages {i + 1}", (0.47, w / 2 - 0.03, 0.42 * pt),
+                                        (-0.005 * (i % 2), 0.02 + 0.006 * (i % 2), c + pt * (i + 0.5)), ns=0.3,
+                                        ew=0.25, blend=0.1 * pt))
+        parts.append(superellipsoid("cover", (0.5, w / 2, c / 2), (0, 0, T - c / 2), ns=0.35, ew=0.2,
+                                    blend=0.1 * pt))
+        parts.append(_scaled(cylinder("spine", T / 2, 1.0, (0, -w / 2 + 0.02, T / 2), edge=0.3 * c, rot=(0, 90, 0),
+                                      blend=0.02), (1, 0.4, 1)))
+        parts.append(_scaled(cylinder("patch", 0.22, 0.25 * c, (0.03, 0.04, T + 0.05 * c), edge=0.1 * c,
+                                      blend=0.005), (1, 1, 1)))
+    else:
+        parts = [box("body", (1.0, w, c), (0, 0, c / 2), edge=edge)]
+        parts.append(box("pages", (0.96, w - 0.03, pages + 0.01), (0, 0.01, c + pages / 2), edge=0.1 * c))
+        parts.append(box("cover", (1.0, w, c), (0, 0, T - c / 2), edge=edge, blend=0.002))
+        parts.append(_scaled(cylinder("spine", T / 2, 1.0, (0, -w / 2, T / 2), edge=0.3 * c, rot=(0, 90, 0),
+                                      blend=0.01), (1, 0.35, 1)))
+        for i in range(p.page_lines):
+            z = c + pages * (i + 1) / (p.page_lines + 1)
+            g = min(0.012, 0.25 * pages / (p.page_lines + 1))
+            parts.append(_op(box(f"page line {i + 1}", (1.2, 0.05, g), (0, w / 2 - 0.01, z)), "subtract"))
+            parts.append(_op(box(f"page line {i + 1} end", (0.05, w * 0.9, g), (0.49, 0.03, z)), "subtract"))
+    for i in range(p.tags):
+        x = -0.33 + 0.66 * i / max(p.tags - 1, 1)
+        parts.append(_scaled(torus(f"tag {i + 1}", 0.055, 0.022, (x, w / 2 + 0.02, T / 2), rot=(0, 0, 0),
+                                   blend=0.01), (0.8, 1.3, 0.6)))
     return parts

@@ -1,0 +1,98 @@
+"""What a request says a bag, pouch or sack is filled with, and how full: 'half full of rice', 'filled with sand',
+'a sand-filled ankle weight', 'an empty tote'. A fill's mass is its share of the bag's capacity times its loose bulk
+density (contracts/vocab/fills.yaml, each with its source); the shape shows it slumped to the bag's bottom."""
+
+from __future__ import annotations
+
+import functools
+import re
+from dataclasses import dataclass
+from pathlib import Path
+
+import yaml
+
+FILLS_FILE = Path(__file__).resolve().parents[2] / "contracts" / "vocab" / "fills.yaml"
+
+# how full, in words -> share of capacity [-]
+AMOUNTS: dict[str, float] = {
+    "half": 0.5, "half full": 0.5, "halfway": 0.5, "half way": 0.5, "quarter": 0.25, "a quarter": 0.25,
+    "three quarters": 0.75, "third": 0.33, "a third": 0.33, "two thirds": 0.67, "partly": 0.4, "partially": 0.4,
+    "part": 0.4, "a little": 0.2, "slightly": 0.25, "nearly": 0.85, "almost": 0.85, "mostly": 0.75,
+    "completely": 1.0, "fully": 1.0, "full": 0.9, "filled": 0.8, "stuffed": 0.9, "packed": 1.0,
+}
+
+
+@dataclass(frozen=True)
+class Fill:
+    """A stated fill: the fill's key, the words read, its share of capacity, bulk density and colour."""
+
+    key: str
+    words: str
+    fraction: float
+    bulk_density_kg_per_m3: float
+    color: str
+    source: str
+
+    def mass_kg(self, capacity_m3: float) -> float:
+        """The fill's mass in a bag of this capacity [kg]."""
+        return self.fraction * capacity_m3 * self.bulk_density_kg_per_m3
+
+
+@functools.lru_cache(maxsize=1)
+def fills() -> dict[str, dict]:
+    """Fill word -> its record (contracts/vocab/fills.yaml), longest words first."""
+    raw = yaml.safe_load(FILLS_FILE.read_text(encoding="utf-8"))["fills"]
+    table = {w: {"key": k, **v} for k, v in raw.items() for w in v["words"]}
+    return dict(sorted(table.items(), key=lambda kv: -len(kv[0])))
+
+
+def _amount(words: str) -> float | None:
+    words = " ".join(words.split())
+    if m := re.search(r"(\d{1,3})\s*%", words):
+        return min(int(m.group(1)), 100) / 100.0
+    for k in sorted(AMOUNTS, key=len, reverse=True):
+        if re.search(rf"\b{k}\b", words):
+            return AMOUNTS[k]
+    return None
+
+
+_FULL_OF = re.compile(r"\b((?:\d{1,3}\s*%|[a-z]+(?:\s+[a-z]+)?)\s+)?(full|filled|stuffed|packed|loaded)\s+"
+                      r"(?:up\s+)?(?:of|with)\s+(?:some\s+|dry\s+|loose\s+)?([a-z]+(?:\s+[a-z]+)?)")
+_X_FILLED = re.compile(r"\b([a-z]+(?:\s+[a-z]+)?)[\s-]filled\b")
+_BAG_OF = re.compile(r"\b(?:bag|pouch|sack|sachet|packet)\s+of\s+([a-z]+(?:\s+[a-z]+)?)")
+
+
+def _fill_key(words: str) -> tuple[str, dict] | None:
+    table = fills()
+    for w in table:  # longest first: 'coffee beans' before 'beans'
+        if re.search(rf"\b{re.escape(w)}\b", words):
+            return w, table[w]
+    return None
+
+
+def read_fill(text: str) -> Fill | None:
+    """The fill a request states, if any: 'half full of rice' (0.5 of rice), 'filled with sand' (0.8), 'a
+    sand-filled weight' (0.8), 'a bag of marbles' (0.8); None when no fill word of the table is named."""
+    t = " ".join(text.lower().replace("-", " ").split())
+    for m in _FULL_OF.finditer(t):
+        hit = _fill_key(m.group(3))
+        if hit is None:
+            continue
+        amount = _amount(f"{m.group(1) or ''} {m.group(2)}") or 0.8
+        w, rec = hit
+        return Fill(rec["key"], m.group(0).strip(), amount, float(rec["bulk_density_kg_per_m3"]), rec["color"],
+                    rec["source"])
+    t2 = " ".join(text.lower().split())
+    for m in _X_FILLED.finditer(t2):
+        hit = _fill_key(m.group(1))
+        if hit is not None:
+            w, rec = hit
+            return Fill(rec["key"], m.group(0).strip(), 0.8, float(rec["bulk_density_kg_per_m3"]), rec["color"],
+                        rec["source"])
+    for m in _BAG_OF.finditer(t):
+        hit = _fill_key(m.group(1))
+        if hit is not None:
+            w, rec = hit
+            return Fill(rec["key"], m.group(0).strip(), 0.8, float(rec["bulk_density_kg_per_m3"]), rec["color"],
+                        rec["source"])
+    return None
