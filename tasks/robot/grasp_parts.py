@@ -94,7 +94,8 @@ def prefer_body(candidates: list[GraspCandidate], parts: list[str], how: str) ->
                   f"picked up by its body, which does not swing or bend about a thin or end part (parts told by "
                   f"{how}; {len(body)} of {len(candidates)} feasible grasps on the body)")
     else:
-        reason = f"held by the {first}, the body (parts told by {how}; {len(body)} of {len(candidates)} on the body)"
+        what = "the body" if first == "body" else f"the {first}, the body"
+        reason = f"held by {what} (parts told by {how}; {len(body)} of {len(candidates)} feasible grasps on the body)"
     return PartPreference(ranked, [parts[i] for i in order], reason)
 
 
