@@ -5,7 +5,8 @@
 Times, per run (wall clock; and the CPU seconds of the replay, in this process and in the ffmpeg encoder, which a
 shared machine's load does not inflate): the renderer's set-up (camera, backdrop ray casting, forward kinematics of
 every frame), the frames (robot triangles and object splats rasterised by Warp CPU kernels, the caption), the H.264
-encoding (imageio-ffmpeg, its own process) and the whole `replay` call. The first run of a process also loads the
+encoding (imageio-ffmpeg, its own process) and the whole `replay` call. The renderer is replay's
+(tasks.manipulation.video.PickPlaceVideo: the whole robot, the object's splats, the fingers' close-up). The first run of a process also loads the
 Panda's meshes and Warp's kernels (compiled once per machine into Warp's kernel cache); later runs (``--repeat``) are
 warm. The 1-minute load average around each run is recorded: on a shared 2-core machine CPU timings vary with what
 else runs.
@@ -59,7 +60,7 @@ def run_once(asset: Path, attempt: int | None, width: int, height: int) -> Video
 
     from tasks.manipulation.data import read_attempt
     from tasks.manipulation.replay import replay, video_writer
-    from tasks.manipulation.scene import AttemptRenderer
+    from tasks.manipulation.video import PickPlaceVideo
 
     load0 = os.getloadavg()[0]
     with tempfile.TemporaryDirectory(prefix="ds-bench-video-") as tmp:
@@ -72,7 +73,7 @@ def run_once(asset: Path, attempt: int | None, width: int, height: int) -> Video
         meta = imageio.get_reader(Path(tmp) / "pick_and_place.mp4").get_meta_data()
         arrays, attrs = read_attempt(asset, attempt)
         t1 = time.perf_counter()
-        renderer = AttemptRenderer(arrays, attrs, width, height)
+        renderer = PickPlaceVideo(arrays, attrs, width, height)
         t2 = time.perf_counter()
         frames = [renderer.frame(i) for i in range(len(renderer))]
         t3 = time.perf_counter()

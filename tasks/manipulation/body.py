@@ -58,7 +58,7 @@ def lattice_inside(mesh: trimesh.Trimesh, spacing_m: float) -> np.ndarray:
 
 
 def trial_body(mesh: trimesh.Trimesh, l0_particles_m: np.ndarray, l0_spacing_m: float, gaussians: dict[str, np.ndarray],
-               spacing_m: float | None = None, surface_samples: int = 2000, max_gaussians: int = 20000,
+               spacing_m: float | None = None, surface_samples: int = 2000, max_gaussians: int = 100_000,
                seed: int = 0) -> TrialBody:
     """The trial's object: the L0 particles, or the mesh volume resampled at ``spacing_m`` when that differs."""
     if not mesh.is_watertight:
