@@ -660,7 +660,8 @@ def _state_params(reading: Reading, warnings: list[str]) -> tuple[list[str], dic
     target = reading.donor or reading.entry
     plan = reading.donor_plan[0] if reading.donor_plan is not None and reading.donor is None else target.plan
     can = grammar.plan_states(plan) if plan in grammar.PLANS else ()
-    said = list(dict.fromkeys("lying" if st == "curled" and "lying" in can else st for st in phrase.states))
+    said = list(dict.fromkeys("lying" if st == "curled" and "lying" in can and "curled" not in can else st
+                              for st in phrase.states))
     if pose_of(phrase.text) is not None:  # 'lying on its side': the standing shape turned over (_whole_object)
         said = [st for st in said if st not in ("lying", "curled")]
     if inflatable(target):  # 'deflated', 'crumpled', 'flat': drawn by _whole_object

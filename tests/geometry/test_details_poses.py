@@ -201,3 +201,14 @@ def test_a_big_plush_grows_in_mass_as_its_surface() -> None:
     small = catalogue.design_from_text("a plush unicorn").concept
     big = catalogue.design_from_text("a big plush unicorn").concept
     assert big.density_kg_per_m3 == pytest.approx(small.density_kg_per_m3 * 1.4 ** (PLUSH_MASS_EXPONENT - 3))
+
+
+def test_curled_up_is_a_ring_not_a_sphinx() -> None:
+    """'curled up' bends the quadruped into a ring, head by its tail: round from above, low, and unlike 'lying
+    down' (the long body with its head on its paws)."""
+    curled, info = _mesh("a plush fox curled up")
+    lying, _ = _mesh("a plush fox lying down")
+    assert "curled" in info.concept.states
+    e = curled.extents
+    assert 0.8 < e[0] / e[1] < 1.25 and e[2] < 0.6 * e[:2].max()
+    assert lying.extents[0] / lying.extents[1] > 1.6

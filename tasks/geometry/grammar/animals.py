@@ -118,9 +118,9 @@ class QuadrupedParams(Model):
     hump: bool = False
     mane: bool = Field(default=False, description="a crest of hair along the top of the neck and head (horse, "
                        "unicorn, lion)")
-    state: Literal["standing", "sitting", "lying"] = Field(default="standing", description="standing on its legs; "
-                                                            "sitting on its haunches, chest up; lying down, head on "
-                                                            "its front paws")
+    state: Literal["standing", "sitting", "lying", "curled"] = Field(
+        default="standing", description="standing on its legs; sitting on its haunches, chest up; lying down, head on "
+        "its front paws; curled up asleep, the body bent round into a ring, head on its tail")
 
 
 SIT_TILT_DEG = 40.0  # a sitting animal's body, nose up [deg]
@@ -130,6 +130,8 @@ def quadruped(p: QuadrupedParams) -> list[Part]:
     """Body on legs, head in front (optionally on a neck), ears, face, tail."""
     if p.state == "sitting" and p.leg_length > 0:
         return _sitting_quadruped(p)
+    if p.state == "curled":
+        return _curled_quadruped(p)
     bw, bh = p.body_width, p.body_height
     lying = p.state == "lying"
     zb = 0.5 * bh if lying else p.leg_length + 0.42 * bh
@@ -155,6 +157,46 @@ def quadruped(p: QuadrupedParams) -> list[Part]:
     else:
         parts.append(ellipsoid("legs", (0.42, 0.85 * bw / 2, 0.12), (0, 0, 0.12), blend=0.05))
     return [*parts, *_quadruped_head_and_tail(p, zb)]
+
+
+def _curled_quadruped(p: QuadrupedParams) -> list[Part]:
+    """Curled up asleep: the body bent into a ring (lobes along an arc), the head at the front end turned in towards
+    the rear, the front paws tucked by the chin and the tail wrapped round the outside across the gap to the nose."""
+    from tasks.geometry.grammar.parts import rotated_parts
+
+    bw, bh = p.body_width, p.body_height
+    ring = 0.27  # arc radius of the body's midline [body lengths]
+    z = 0.4 * bh
+    across = 0.34 * bw
+    parts: list[Part] = []
+    for k, deg in enumerate(np.linspace(-130.0, 80.0, 6)):
+        a = np.radians(deg)
+        parts.append(ellipsoid("body" if k == 2 else f"body {k + 1}", (0.17, across, 0.4 * bh),
+                               (ring * np.cos(a), ring * np.sin(a), z), blend=0.12, rot=(0, 0, float(deg) + 90)))
+    hr = p.head_size / 2
+    a_head = np.radians(125.0)
+    hz = 0.9 * hr + 0.02 + (0.6 * hr if p.snout == "trunk" else 0.0)
+    at = np.array([ring * np.cos(a_head), ring * np.sin(a_head), hz])
+    head = [ellipsoid("head", (hr, 0.95 * hr, 0.92 * hr), (0.0, 0.0, hz), blend=0.08)]
+    head += _ears(p.ears, np.array([0.0, 0.0, hz]), hr, p.ear_size)
+    head += _face(np.array([0.0, 0.0, hz]), hr, p.snout)
+    head = rotated_parts(head, (0.0, 0.0, 125.0 + 90.0), (0.0, 0.0, hz))  # along the ring, nose to the rear end
+    parts += [h.model_copy(update={"transform": h.transform.model_copy(update={"translation_m": tuple(
+        float(v) for v in np.asarray(h.transform.translation_m) + np.array([at[0], at[1], 0.0]))})}) for h in head]
+    r = p.leg_radius
+    for side, deg in (("left", 95.0), ("right", 112.0)):
+        a = np.radians(deg)
+        parts.append(ellipsoid(f"front {side} paw", (1.6 * r, r, r), ((ring + across) * np.cos(a),
+                                                                      (ring + across) * np.sin(a), r), blend=0.04,
+                               rot=(0, 0, deg + 90)))
+    if p.tail != "none" and p.tail_length > 0:
+        rad = max(0.1 * p.tail_length, 0.05) if p.tail in ("bushy", "thick") else 0.045
+        out = ring + across + 0.6 * rad
+        degs = np.linspace(-135.0, -135.0 - 75.0 * min(p.tail_length / 0.35, 1.3), 5)
+        pts = [np.array([out * np.cos(np.radians(d)), out * np.sin(np.radians(d)), rad]) for d in degs]
+        for k in range(len(pts) - 1):
+            parts.append(limb(f"tail {k + 1}" if k else "tail", pts[k], pts[k + 1], rad, blend=0.03))
+    return parts
 
 
 def _sitting_quadruped(p: QuadrupedParams) -> list[Part]:
