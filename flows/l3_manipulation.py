@@ -58,11 +58,11 @@ from tasks.robot.grasp_parts import body_first_grasps
 from tasks.robot.gripper import gripper
 from tasks.robot.squeeze import SqueezePlan, squeeze_plan
 
-TASK_VERSION = "10"  # bump when tasks/manipulation/{trial,outcome,body,frame}.py change what a trial returns
+TASK_VERSION = "11"  # bump when tasks/manipulation/{trial,outcome,body,frame}.py change what a trial returns
 # (6: settle until at rest; 7: simulated in the frame where the closing axis is at 45 degrees to the grid; 8: the
 # approach is recorded; 9: grippers as data, a force-controlled closure that keeps its target while held and skips the
 # rest of the closure, the time-step cap follows dx; 10: the hold's contact stiffness measured from where the force
-# began to rise, what-happened metrics and failure-mode flags (tasks.manipulation.diagnosis))
+# began to rise, what-happened metrics and failure-mode flags (tasks.manipulation.diagnosis); 11: release_rotation_deg)
 PICK_AND_PLACE_RECORDING = "recordings/L3_pick_and_place.rrd"  # the chosen trial's recording
 CORE_FIELDS = ("grasp_rank", "squeeze_depth_m", "closing_speed_m_per_s", "lift_duration_s", "transport_duration_s",
                "substeps")  # the plan's fields every L3 contract has
@@ -84,7 +84,10 @@ class L3Options:
     lift_duration_s: float = 0.5
     transport_duration_s: float = 0.6
     release_duration_s: float = 0.2
-    place_height_m: float = 0.01  # the object's resting pose + this when the fingers open [m]
+    # the object's resting pose + this when the fingers open [m]: set down on the table, not dropped (a 1 cm drop made
+    # a zero-damping rubber duck walk 70 mm and a plush penguin fall over; the revise_release route lowers it further
+    # only if a contract starts higher)
+    place_height_m: float = 0.0
     retreat_duration_s: float = 0.2
     settle_duration_s: float = 0.2
     target_xy_m: tuple[float, float] = (0.08, 0.06)

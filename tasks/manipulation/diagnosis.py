@@ -13,7 +13,8 @@ when the fingers opened and how far it moved after that. One failure mode per tr
   dropped_in_transport  the object left the hand during the transport
   slipped_in_transport  it slid in the hand beyond the slip tolerance during the transport
   carried_off_target    it stayed in the hand but arrived away from the target
-  released_off_target   carried to the target, it ended away from it after the fingers opened
+  toppled               carried to the target, it fell over when the fingers let it go
+  released_off_target   carried to the target, it ended away from it after the fingers opened (without falling over)
   not_settled           it was still moving when the trial ended
 
 `mode_flags` gives each mode as a 0/1 metric (`mode_<name>`), which is what the L3 revision routes read (the L3
@@ -30,10 +31,11 @@ from typing import Any
 from tasks.manipulation.outcome import CONTACT_LOST_FRACTION, TrialTolerances
 
 MODES = ("plan_failed", "no_grip", "lost_contact", "rotated_out", "slipped_at_lift", "dropped_in_transport",
-         "slipped_in_transport", "carried_off_target", "released_off_target", "not_settled")
+         "slipped_in_transport", "carried_off_target", "toppled", "released_off_target", "not_settled")
 ROTATED_OUT_DEG = 30.0     # the object turned this far relative to the gripper: it rotated out of the grasp
 NO_GRIP_FRACTION = 0.5     # the grip force at the lift's start below this share of its target: the fingers never gripped
 DROP_WORTH_SAYING_M = 0.002  # a fall on release shorter than this is not mentioned [m]
+TOPPLED_DEG = 30.0         # the object turned this far after the fingers opened: it fell over
 
 
 @dataclass(frozen=True)
@@ -102,15 +104,20 @@ def diagnose(labels: dict[str, Any], tol: TrialTolerances) -> Diagnosis | None:
     speed = _f(labels, "settle_com_speed_m_per_s")
     fell = (f"fell {_mm(drop)} when the fingers opened" if drop is not None and drop >= DROP_WORTH_SAYING_M
             else "")
+    fallen = _f(labels, "release_rotation_deg")
+    toppled = fallen is not None and fallen >= TOPPLED_DEG
     if not ok["released_in_target"]:
         err, carried = _f(labels, "place_error_m"), _f(labels, "transport_error_m")
         parts = [f"carried to {_mm(carried)} from the target" if carried is not None else "", fell,
-                 f"then moved {_mm(drift)} on the table" if drift is not None else "",
+                 f"then fell over (turned {fallen:.0f} deg)" if toppled else "",
+                 f"then moved {_mm(drift)} on the table" if drift is not None and not toppled else
+                 f"moving {_mm(drift)}" if drift is not None else "",
                  f"still moving at {speed:.2g} m/s at the end" if not ok["settled"] and speed is not None else ""]
         head = (f"released off target by {_mm(err)} (tolerance {_mm(tol.place_tolerance_m)})" if err is not None
                 else "not released in the target")
-        return Diagnosis("released_off_target", head + ": " + ", ".join(p for p in parts if p))
-    parts = [fell, f"still moving at {speed:.2g} m/s at the end" if speed is not None else ""]
+        return Diagnosis("toppled" if toppled else "released_off_target", head + ": " + ", ".join(p for p in parts if p))
+    parts = [fell, f"fell over (turned {fallen:.0f} deg)" if toppled else "",
+             f"still moving at {speed:.2g} m/s at the end" if speed is not None else ""]
     return Diagnosis("not_settled", "not settled after the release: " + (", ".join(p for p in parts if p)
                                                                             or "still moving"))
 

@@ -137,11 +137,12 @@ def _what_happened(arrays: dict[str, np.ndarray], grip_n: np.ndarray, mid: np.nd
       object_rotation_deg      the object's largest rotation relative to the gripper while held [deg]
       release_drop_m           the object's lowest point above the table when the fingers start to open [m]
       release_drift_m          how far the centre of mass moved (xy) from the release's start to the end [m]
+      release_rotation_deg     how far the object turned from the release's start to the end (a topple) [deg]
     (the release figures: nan when the trial ended before the release)
     """
     nan = float("nan")
     out = dict.fromkeys(("grip_force_at_lift_n", "grip_force_min_held_n", "contact_lost_hand_rise_m", "hand_rise_m",
-                         "object_rotation_deg", "release_drop_m", "release_drift_m"), nan)
+                         "object_rotation_deg", "release_drop_m", "release_drift_m", "release_rotation_deg"), nan)
     if n_done <= k_lift:
         return out
     dt = float(np.mean(arrays["control_dt_s"][:n_done]))
@@ -167,6 +168,9 @@ def _what_happened(arrays: dict[str, np.ndarray], grip_n: np.ndarray, mid: np.nd
         i_rel = int(np.searchsorted(frames_k, k_rel))
         if i_rel < len(x):
             out["release_drop_m"] = float(x[i_rel][:, 2].min()) - float(x[0][:, 2].min())
+            eye = np.eye(3)
+            out["release_rotation_deg"] = _object_rotation_deg(x[i_rel].astype(np.float64), x[-1].astype(np.float64),
+                                                               eye, eye)
         out["release_drift_m"] = float(np.linalg.norm(com[n_done, :2] - com[k_rel, :2]))
     return out
 

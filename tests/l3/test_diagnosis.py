@@ -82,6 +82,9 @@ def test_transport_and_release_failures_say_where_the_object_went() -> None:
     for part in ("carried to 2 mm from the target", "fell 6 mm when the fingers opened", "moved 104 mm",
                  "still moving at 0.085 m/s"):
         assert part in d.words, d.words
+    # the same penguin falling over as the fingers open
+    d = diagnose({**lab, "release_rotation_deg": 86.0, "settled": 1.0}, TOL)
+    assert d is not None and d.mode == "toppled" and "fell over (turned 86 deg)" in d.words, d
     d = diagnose(labels(settled=0.0, settle_com_speed_m_per_s=0.05), TOL)
     assert d is not None and d.mode == "not_settled" and "0.05 m/s" in d.words
 
@@ -146,3 +149,21 @@ def test_a_release_off_target_asks_for_a_lower_release_and_slower_opening() -> N
 def test_a_hard_limit_still_outranks_the_mode() -> None:
     crit, _, _ = _critique(_diagnosed(**NOT_LIFTED, max_finger_force_n=25.0, force_budget_violated=1.0))
     assert crit.directions.get("squeeze_depth_m") == "decrease"
+
+
+def test_an_object_that_falls_over_when_let_go_is_held_another_way_first() -> None:
+    """The plush penguin of #36: carried to 2 mm of the target, fell over (86 deg) once released; the loop tries
+    another grasp (held across the way it leans it stands), then a lower, slower release, never the same plan."""
+    crit, contract, routes = _critique(_diagnosed(released_in_target=0.0, place_error_m=0.094, release_drift_m=0.094,
+                                                  release_rotation_deg=86.0))
+    assert "mode_toppled" in crit.rationale
+    assert crit.directions == {"grasp_rank": "next", "place_height_m": "decrease", "release_duration_s": "increase"}
+    values = {f.name: (f.low + f.high) / 2 for f in contract.editable_fields}
+    tried = HistoryEntry(iteration=0, action="revise_squeeze", values=values, probed=True, valid=False,
+                         failed_gates=["released_in_target"])
+    ctx = PlannerContext(stage="L3", permitted_actions=contract.permitted_actions, iteration=1, budget_left=3,
+                         editable_fields=contract.editable_fields, current_values=values, history=[tried],
+                         last_critique=crit, targets=TargetBehaviour(),
+                         action_fields={a: routes.fields_of(a, list(values)) for a in contract.permitted_actions})
+    decision = RulePlanner(routes).plan(ctx).value
+    assert decision is not None and decision.action == "revise_grasp"
