@@ -24,7 +24,8 @@ MESH_VERSION = "5"  # l0.mesh alone; 2: marching cubes no longer pinches the sur
 # 3: BuildInfo.generator / design_attempts (LLM Designer, reconstruction backends); 4: text -> lexicon concept and
 # grammar program (BuildInfo.concept), colours and shape phrases; 5: photos keep their upright, lathe / inflation,
 # size from the concept (#35)
-GAUSSIANS_VERSION = "2"  # l0.gaussians alone; 2: surface discs dense and small for the particle spacing (#36)
+GAUSSIANS_VERSION = "3"  # l0.gaussians alone; 2: surface discs dense and small for the particle spacing (#36);
+# 3: on blue-noise surface samples
 
 
 @dataclass(frozen=True)

@@ -44,7 +44,12 @@ def make_gaussians(
         count = int(min(max(count, dense_count(float(mesh.area), spacing_m, surface_fraction)), max(count, max_count)))
     n_surf = max(1, int(round(count * surface_fraction)))
     n_int = max(0, count - n_surf)
-    pts, fidx = trimesh.sample.sample_surface(mesh, n_surf, seed=seed)
+    # blue-noise samples (no two closer than about the mean spacing): fewer clumps and holes than independent ones,
+    # topped up with independent samples where the rejection keeps fewer than asked
+    pts, fidx = trimesh.sample.sample_surface_even(mesh, n_surf, seed=seed)
+    if len(pts) < n_surf:
+        more, more_f = trimesh.sample.sample_surface(mesh, n_surf - len(pts), seed=seed + 1)
+        pts, fidx = np.concatenate([pts, more]), np.concatenate([fidx, more_f])
     bary = trimesh.triangles.points_to_barycentric(mesh.triangles[fidx], pts)
     # smooth normals (the vertex normals across the face: a marching-cubes mesh's face normals would light as
     # blotches), but the face's own at a corner whose vertex normal turns more than ~30 degrees from it (a box's edge)
