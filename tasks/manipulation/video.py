@@ -22,7 +22,8 @@ from tasks.manipulation.robot_view import (FLANGE_LINK, HAND_LINKS, gripper_boxe
                                            panda_visual_meshes, shade, tcp_frame, uses_urdf_hand)
 from tasks.manipulation.scene import (VIDEO_FPS, VIDEO_SIZE, attempt_timeline, backdrop, object_gaussians,
                                       view_direction)
-from tasks.render.attempt_video import (SplatSet, compose, inset_camera, inset_size, paste_inset, wide_camera)
+from tasks.render.attempt_video import (SplatSet, choose_corner, compose, inset_camera, inset_size, paste_inset,
+                                        wide_camera)
 from tasks.render.camera import Camera
 from tasks.render.captions import caption
 from tasks.render.gripper_model import Part, gripper_parts, robotiq_links
@@ -31,6 +32,7 @@ from tasks.render.shading import deformed_normals, normals_from_covariances
 CAMERA_EVERY = 3  # the wide camera frames the robot at every 3rd video frame (and the first and last)
 POINT_EVERY = 7  # ... through every 7th vertex of its meshes
 OPACITY = 0.95  # the trial's Gaussians are recorded without opacities
+INSET_RAISE = 0.3  # the close-up looks this many grasp radii above the pads' midpoint
 
 
 class PickPlaceVideo:
@@ -55,23 +57,29 @@ class PickPlaceVideo:
         self.toward_eye = view_direction(arrays.get("closing_axis_world"))
         rest = np.asarray(arrays["rest_particles_m"], np.float64)
         self.object_radius_m = 0.5 * float(np.ptp(rest, axis=0).max())
-        self.cam = wide_camera(self._framed_points(rest), self.toward_eye, width, height)
+        robot, path = self._framed_points(rest)
+        self.cam = wide_camera(np.concatenate([robot, path]), self.toward_eye, width, height)
         self.room = backdrop(self.cam, self.target)
         self.inset_px = inset_size(width, height)
+        # the close-up goes where it hides least: the object's path and the pads count 50 times an arm point
+        self.corner = choose_corner(self.cam, self.inset_px[::-1], np.concatenate([robot, path]),
+                                    np.concatenate([np.ones(len(robot)), np.full(len(path), 50.0)]))
 
     def __len__(self) -> int:
         return len(self.timeline)
 
-    def _framed_points(self, rest_m: np.ndarray) -> np.ndarray:
-        """What the wide camera must hold: the robot's mesh points over the attempt, the object's path, the target."""
+    def _framed_points(self, rest_m: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """What the wide camera must hold: the robot's mesh points over the attempt, and the object's path (its rest
+        particles, its centre of mass over time, the pads over time) with the place target."""
         n = len(self.timeline)
         frames = sorted({*range(0, n, CAMERA_EVERY), n - 1})
-        pts = [self.robot_points(i) for i in frames]
+        robot = np.concatenate([self.robot_points(i) for i in frames])
         com = np.asarray(self.arrays["object_com_m"], np.float64)
-        pts += [rest_m, com[np.isfinite(com).all(axis=1)]]
+        pads = np.asarray([f.pad_position_m for f in self.timeline], np.float64).reshape(-1, 3)
+        path = [rest_m[::POINT_EVERY], com[np.isfinite(com).all(axis=1)], pads]
         if self.target is not None:
-            pts.append(np.array([[self.target[0], self.target[1], 0.0]]))
-        return np.concatenate([p for p in pts if len(p)])
+            path.append(np.array([[self.target[0], self.target[1], 0.0]]))
+        return robot, np.concatenate([p for p in path if len(p)])
 
     def robot_points(self, i: int) -> np.ndarray:
         """World points [m] on the robot's links and gripper at video frame i (every POINT_EVERY-th vertex)."""
@@ -124,10 +132,12 @@ class PickPlaceVideo:
         return compose(cam, rgb, depth, splats)
 
     def inset_camera(self, i: int) -> Camera:
-        """The close-up camera of video frame i: on the pads' midpoint, framing the grasp and the fingers."""
+        """The close-up camera of video frame i: a little above the pads' midpoint, framing the grasp and the
+        fingers."""
         pads = np.asarray(self.timeline[i].pad_position_m, np.float64)
         radius = max(self.object_radius_m, 0.5 * float(np.linalg.norm(pads[0] - pads[1])) + 0.03, 0.05)
-        return inset_camera(pads.mean(axis=0), radius, self.toward_eye, *self.inset_px)
+        centre = pads.mean(axis=0) + np.array([0.0, 0.0, INSET_RAISE * radius])  # more finger, less table
+        return inset_camera(centre, radius, self.toward_eye, *self.inset_px)
 
     def frame(self, i: int) -> np.ndarray:
         """RGB image (H, W, 3) uint8 of video frame i: the wide view, the caption and the fingers' close-up."""
@@ -146,7 +156,7 @@ class PickPlaceVideo:
                 lines.append(f"finger forces {fk[0]:5.2f} N  {fk[1]:5.2f} N")
         title = getattr(self.spec, "title", None) or "Franka Hand"
         lines.append(str(title).split(" (")[0])
-        return paste_inset(caption(wide, lines), close, "fingers, close-up")
+        return paste_inset(caption(wide, lines), close, "fingers, close-up", self.corner)
 
     def frames(self) -> list[np.ndarray]:
         """Every video frame, in order."""

@@ -69,21 +69,48 @@ def compose(cam: Camera, rgb: np.ndarray, depth: np.ndarray, splats: SplatSet | 
                             background=(rgb, depth))
 
 
-def paste_inset(frame: np.ndarray, inset: np.ndarray, title: str = "") -> np.ndarray:
-    """The inset in the frame's lower right corner with a dark border (and a title over it); a copy."""
+CORNERS = ("bottom_right", "top_right", "bottom_left")  # the caption holds the top left
+
+
+def inset_rect(height: int, width: int, inset_hw: tuple[int, int], corner: str) -> tuple[int, int, int, int]:
+    """The inset's pixel rectangle (y0, x0, y1, x1) in a frame of height x width, in a corner, INSET_MARGIN_PX in
+    (scaled with the height) and below its title strip when at the top."""
+    scale = height / 720.0
+    margin = int(round(INSET_MARGIN_PX * scale))
+    ih, iw = inset_hw
+    title = int(30 * scale) + max(1, int(round(INSET_BORDER_PX * scale)))
+    y0 = margin + title if corner.startswith("top") else height - margin - ih
+    x0 = width - margin - iw if corner.endswith("right") else margin
+    return y0, x0, y0 + ih, x0 + iw
+
+
+def choose_corner(cam: Camera, inset_hw: tuple[int, int], points_m: np.ndarray, weights: np.ndarray) -> str:
+    """The corner whose inset hides the least of the given points (weighted: the object and the fingers count
+    more than the arm); the first of CORNERS on a tie."""
+    u, v, z = project(cam, points_m)
+    w = np.where(z > 0, np.asarray(weights, np.float64), 0.0)
+    hidden = []
+    for corner in CORNERS:
+        y0, x0, y1, x1 = inset_rect(cam.height, cam.width, inset_hw, corner)
+        pad = 30.0 * cam.height / 720.0  # the title strip and a little room round the inset
+        inside = (u >= x0 - pad) & (u <= x1 + pad) & (v >= y0 - pad) & (v <= y1 + pad)
+        hidden.append(float(w[inside].sum()))
+    return CORNERS[int(np.argmin(hidden))]
+
+
+def paste_inset(frame: np.ndarray, inset: np.ndarray, title: str = "", corner: str = "bottom_right") -> np.ndarray:
+    """The inset in a corner of the frame (inset_rect) with a dark border and a title strip over it; a copy."""
     out = np.ascontiguousarray(frame).copy()
-    h, w = frame.shape[:2]
+    h = frame.shape[0]
     scale = h / 720.0
-    margin, border = int(round(INSET_MARGIN_PX * scale)), max(1, int(round(INSET_BORDER_PX * scale)))
-    ih, iw = inset.shape[:2]
-    y1, x1 = h - margin, w - margin
-    y0, x0 = y1 - ih, x1 - iw
+    border = max(1, int(round(INSET_BORDER_PX * scale)))
+    y0, x0, y1, x1 = inset_rect(h, frame.shape[1], inset.shape[:2], corner)
     out[y0 - border:y1 + border, x0 - border:x1 + border] = BORDER_RGB
     out[y0:y1, x0:x1] = inset
     if title:
         from tasks.render.captions import caption
 
-        tag = caption(np.full((int(30 * scale), iw, 3), 245, np.uint8), [title], (8, 21), scale)
+        tag = caption(np.full((int(30 * scale), x1 - x0, 3), 245, np.uint8), [title], (8, 21), scale)
         out[y0 - border - tag.shape[0]:y0 - border, x0:x1] = tag
     return out
 

@@ -13,7 +13,8 @@ import tasks.render.attempt_video as attempt_video
 from contracts.robot import load_gripper
 from tasks.manipulation.scene import attempt_timeline
 from tasks.manipulation.video import PickPlaceVideo
-from tasks.render.attempt_video import inset_size, points_in_frame
+from tasks.render.attempt_video import inset_rect, inset_size, points_in_frame
+from tasks.render.camera import project
 from tasks.render.gripper_model import SILICONE, gripper_parts_local, knuckle_angle, robotiq_links
 from tasks.render.splats import render_gaussians
 from tasks.robot import PHASES
@@ -73,8 +74,11 @@ def test_the_object_is_drawn_by_the_splatting_renderer(video: PickPlaceVideo, mo
         changed = np.abs(c["image"].astype(int) - rgb.astype(int)).max(axis=-1) > 20
         assert changed.sum() > (40 if c is calls[0] else 2000)  # the cube: small in the wide view, large close up
     iw, ih = inset_size(W, H)
-    corner = frame[H - ih - 8:H - 8, W - iw - 8:W - 8]  # the close-up, pasted into the lower right corner
-    assert np.array_equal(corner, calls[1]["image"])
+    y0, x0, y1, x1 = inset_rect(H, W, (ih, iw), video.corner)
+    assert np.array_equal(frame[y0:y1, x0:x1], calls[1]["image"])  # the close-up, pasted into its corner
+    # ... where it hides none of the object's and the pads' path in the wide view
+    u, v, _ = project(video.cam, np.asarray([f.pad_position_m for f in video.timeline]).reshape(-1, 3))
+    assert not ((u >= x0) & (u <= x1) & (v >= y0) & (v <= y1)).any()
 
 
 @pytest.mark.parametrize("name", ["robotiq_2f85", "robotiq_2f140"])
