@@ -67,7 +67,7 @@ PORTION_SHAPES: dict[str, tuple[str, dict]] = {
     "strip": ("sheet", {"width": 0.2, "thickness": 0.03}),
     "slab": ("block", {"width": 0.7, "height": 0.25, "edge": 0.1}),
     "cube": ("block", {"width": 1.0, "height": 1.0, "edge": 0.12}),
-    "lump": ("blob", {"height": 0.6}), "blob": ("blob", {}), "dollop": ("blob", {"height": 0.4}),
+    "lump": ("blob", {"height": 0.6, "elongation": 1.25}), "blob": ("blob", {}), "dollop": ("blob", {"height": 0.4}),
     "stick": ("tube", {}),
 }  # 'a wedge of X' follows X's own shape (wedged)
 # nouns that name a generic form: a more specific object noun before them wins ('teether ring', 'sock ball')
@@ -426,13 +426,7 @@ def read_text(text: str) -> Reading:
         key, noun, exact = noun_index()[head[2]]
         entry = lex.entries[key]
         level: FallbackLevel = "exact" if exact else "synonym"
-        kin = None if exact else analogy_mod.kin_of(entry.nouns[0], noun)
         match = _match(entry, level, noun, None)
-        if kin is not None:  # 'a heron' from the stork's entry: a sibling kind, built by analogy and said so
-            match = _match(entry, "hypernym", noun, f"'{noun}' is not in the lexicon: built as its nearest kin "
-                           f"there, a {entry.nouns[0]} (both kinds of {kin} in WordNet)")
-            match = match.model_copy(update={"analogy": [f"{noun}: a kind of {kin} (WordNet)",
-                                                         f"nearest kin in the lexicon: {entry.nouns[0]} ({entry.key})"]})
         if compound is not None and donor is None and entry.takes_shape:
             donor_entry = lex.entries[noun_index()[compound[2]][0]]
             donor_words = compound[2]
@@ -836,7 +830,8 @@ RELIEF_WORDS: dict[str, str] = {
     "prickles": "spikes", "spines": "spikes", "spiny": "spikes", "nubby": "nubs", "nubs": "nubs", "nubbly": "nubs",
     "nubbins": "nubs", "knobbly": "nubs", "knobby": "nubs", "knobs": "nubs", "bumpy": "nubs", "bumps": "nubs",
     "studded": "nubs", "studs": "nubs", "brain": "folds", "yarn": "strands", "wool": "strands", "twine": "strands",
-    "string": "strands", "pouf": "ruffles", "puff": "ruffles", "ruffled": "ruffles", "frilly": "ruffles",
+    "string": "strands", "pouf": "ruffles", "shower puff": "ruffles", "bath puff": "ruffles",
+    "body puff": "ruffles", "mesh sponge": "ruffles", "ruffled": "ruffles", "frilly": "ruffles",
     "ruffles": "ruffles", "loofah": "ruffles", "scrunchie": "ruffles", "lumpy": "lumps", "lump": "lumps",
     "wad": "lumps", "clump": "lumps", "hunk": "lumps"}
 GOODS_PLANS = frozenset({"sheet", "pouch", "glove", "sock", "hat", "tool", "mould", "garment", "bag", "strap", "rope",
@@ -878,6 +873,14 @@ def relief_of(text: str, entry: LexiconEntry) -> tuple[str | None, bool]:
         return kind, kind in _RELIEF_SAID
     own = _find(normalise(entry.nouns[0]), RELIEF_WORDS)
     return (RELIEF_WORDS[own[0][2]], False) if own else (None, False)
+
+
+def _volume(program: ShapeProgram, resolution: int = 40) -> float:
+    """The volume of the solid a program describes [m^3], from its signed distances on a grid."""
+    from tasks.geometry.meshing import sample_program
+
+    field_, _origin, spacing = sample_program(program, resolution)
+    return float(np.count_nonzero(field_ < 0)) * spacing ** 3
 
 
 def _body_envelope(program: ShapeProgram, resolution: int = 40) -> tuple[np.ndarray, np.ndarray]:
@@ -922,6 +925,11 @@ def posed(program: ShapeProgram, pose: str) -> ShapeProgram:
     return program.model_copy(update={"parts": rotated_parts(program.parts, POSE_TURN_DEG[pose], centre)})
 
 
+# world-axis scale of a deflated inflatable (spread flat, keyed False) or a half inflated one (True), an emptied bag
+DEFLATE_FACTORS: dict[bool, tuple[float, float, float]] = {False: (1.25, 1.25, 0.14), True: (1.1, 1.1, 0.55)}
+EMPTY_FACTORS = (1.0, 1.0, 0.17)
+
+
 def inflatable(entry: LexiconEntry) -> bool:
     """An object that holds its shape by air (an inflatable, a beach ball): it can be deflated."""
     return entry.material == "inflatable" or entry.category == "inflatable"
@@ -932,8 +940,7 @@ def deflated(program: ShapeProgram, half: bool = False) -> ShapeProgram:
     inflated: squashed to about half its height and a little spread. Its longest extent grows as the skin spreads."""
     from tasks.geometry.grammar.parts import relief, squashed_parts
 
-    factors = (1.1, 1.1, 0.55) if half else (1.25, 1.25, 0.14)
-    parts = squashed_parts(program.parts, factors)
+    parts = squashed_parts(program.parts, DEFLATE_FACTORS[half])
     flat = program.model_copy(update={"parts": parts})
     if half or len(parts) > 48:
         return flat
@@ -944,16 +951,18 @@ def deflated(program: ShapeProgram, half: bool = False) -> ShapeProgram:
 
 
 def emptied(program: ShapeProgram) -> ShapeProgram:
-    """A filled bag or bottle with nothing in it: its walls lie together (a third of the filled thickness)."""
+    """A filled bag or bottle with nothing in it: its two walls lie together (a sixth of the filled thickness)."""
     from tasks.geometry.grammar.parts import squashed_parts
 
-    return program.model_copy(update={"parts": squashed_parts(program.parts, (1.0, 1.0, 0.35))})
+    return program.model_copy(update={"parts": squashed_parts(program.parts, EMPTY_FACTORS)})
 
 
-def _as_built_mass(match: ConceptMatch, program: ShapeProgram, mass_kg: float, why: str) -> ConceptMatch:
-    """The match with a typical mass that holds for the program as built (its longest extent is the typical size):
-    the volume no longer sets the mass (a deflated ball's skin, an empty bottle's rubber)."""
-    size = float(grammar.program_extents(program).max())
+def _as_built_mass(match: ConceptMatch, before: ShapeProgram, factors: tuple[float, float, float], mass_kg: float,
+                   why: str) -> ConceptMatch:
+    """The match with a typical mass that holds for the program as built from `before` squashed by `factors` (its
+    longest extent is the typical size, measured before the squash: a grid misses a flat sheet's thickness): the
+    volume no longer sets the mass (a deflated ball's skin, an empty bottle's rubber)."""
+    size = float((grammar.program_extents(before) * np.asarray(factors)).max())
     return match.model_copy(update={"typical_mass_kg": mass_kg, "typical_size_m": size, "density_kg_per_m3": None,
                                     "hollow": False, "wall_thickness_m": None,
                                     "mass_source": f"{match.mass_source} ({why})"})
@@ -976,19 +985,24 @@ def _whole_object(reading: Reading, program: ShapeProgram, match: ConceptMatch, 
     if kind is not None:
         new = with_relief(program, kind)
         if new is not None:
+            if match.density_kg_per_m3 is not None:  # the sourced mass is the real object's, relief and all
+                match = match.model_copy(update={"density_kg_per_m3": match.density_kg_per_m3 * _volume(program)
+                                                 / _volume(new)})
             program = new
             states.append(kind)
         elif said:
             warnings.append(f"'{kind}' are not drawn: the {entry.key.replace('_', ' ')} is not ball-like")
     half = _HALF_INFLATED.search(text) is not None
     if inflatable(target) and (half or said_states & (_DEFLATED | {"deflated"})):
-        program = deflated(program, half)
+        before, program = program, deflated(program, half)
         states.append("half inflated" if half else "deflated")
-        match = _as_built_mass(match, program, target.mass_kg, "the same skin, with less air: its mass is the skin's")
+        match = _as_built_mass(match, before, DEFLATE_FACTORS[half], target.mass_kg,
+                               "the same skin, with less air: its mass is the skin's")
     elif target.empty_mass_kg is not None and re.search(r"\bempty\b", text):
-        program = emptied(program)
+        before, program = program, emptied(program)
         states.append("empty")
-        match = _as_built_mass(match, program, target.empty_mass_kg, f"empty: {target.empty_mass_kg:g} kg")
+        match = _as_built_mass(match, before, EMPTY_FACTORS, target.empty_mass_kg,
+                               f"empty: {target.empty_mass_kg:g} kg")
     pose = pose_of(text)
     if pose is not None:
         program = posed(program, pose)
