@@ -137,3 +137,53 @@ def explain(candidates: list[str], lexicon_nouns: dict[str, Any], shape_words: d
             out.chain.append("its definition gives " + ", ".join(said_))
         return out
     return None
+
+
+_AGE_SEX = re.compile(r"\b(young|male|female|adult|baby|castrated|uncastrated|immature|juvenile)\b")
+
+
+def _sense_words(s: Sense) -> set[str]:
+    return {lemma.replace("_", " ").lower() for lemma in s.lemmas}
+
+
+@functools.lru_cache(maxsize=4096)
+def kin_of(first: str, noun: str) -> str | None:
+    """When a lexicon entry named ``first`` also lists ``noun`` and WordNet files the two as different kinds of one
+    thing ('heron' and 'stork', both wading birds; 'camel' and 'deer'), the nearest kind they share; None when
+    ``noun`` names the entry's object: a synonym, a kind of it or its kind, a word of it ('sea otter'), a noun whose
+    definition names it ('kitten: young domestic cat'), a listed same object, or one WordNet does not know."""
+    a, b = first.lower().strip(), noun.lower().strip()
+    pairs = {frozenset(p) for p in vocab().get("same_object", [])}
+    if a == b or set(a.split()) & set(b.split()) or frozenset((a, b)) in pairs:
+        return None
+    wn = wordnet()
+    sa, sb = wn.senses(a), wn.senses(b)
+    if not sa or not sb:
+        return None
+    a_off, b_off = {s.offset for s in sa}, {s.offset for s in sb}
+    anc_a = {s.offset: wn.ancestors(s) for s in sa}
+    anc_b = {s.offset: wn.ancestors(s) for s in sb}
+    if a_off & b_off or any(a_off & {x.offset for x in v} for v in anc_b.values()) \
+            or any(b_off & {x.offset for x in v} for v in anc_a.values()):
+        return None
+    def names(text: str, words: set[str]) -> bool:
+        return any(re.search(rf"\b{re.escape(n)}s?\b", text) for n in words)
+
+    own_a = set().union(*(_sense_words(s) for s in sa))
+    parent_a = set().union(*(_sense_words(v[0]) for v in anc_a.values() if v))
+    own_b = set().union(*(_sense_words(s) for s in sb))
+    for s in sb:  # 'kitten: young domestic cat'; 'calf: young of domestic cattle' (the young, male or female of it)
+        d = s.definition.lower()
+        if names(d, own_a) or (_AGE_SEX.search(d) and names(d, parent_a)):
+            return None
+    if any(names(s.definition.lower(), own_b) for s in sa):
+        return None
+    best: tuple[int, str] | None = None
+    for s in sb[:2]:
+        chain = [x.offset for x in anc_b[s.offset]]
+        for t in sa[:2]:
+            shared = {x.offset: x for x in anc_a[t.offset]}
+            common = next((i for i, o in enumerate(chain) if o in shared), None)
+            if common is not None and (best is None or common < best[0]):
+                best = (common, shared[chain[common]].name)
+    return best[1] if best else "thing"

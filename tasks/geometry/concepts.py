@@ -426,7 +426,13 @@ def read_text(text: str) -> Reading:
         key, noun, exact = noun_index()[head[2]]
         entry = lex.entries[key]
         level: FallbackLevel = "exact" if exact else "synonym"
+        kin = None if exact else analogy_mod.kin_of(entry.nouns[0], noun)
         match = _match(entry, level, noun, None)
+        if kin is not None:  # 'a heron' from the stork's entry: a sibling kind, built by analogy and said so
+            match = _match(entry, "hypernym", noun, f"'{noun}' is not in the lexicon: built as its nearest kin "
+                           f"there, a {entry.nouns[0]} (both kinds of {kin} in WordNet)")
+            match = match.model_copy(update={"analogy": [f"{noun}: a kind of {kin} (WordNet)",
+                                                         f"nearest kin in the lexicon: {entry.nouns[0]} ({entry.key})"]})
         if compound is not None and donor is None and entry.takes_shape:
             donor_entry = lex.entries[noun_index()[compound[2]][0]]
             donor_words = compound[2]

@@ -114,6 +114,11 @@ class WordNet:
                 return w[: -len(suffix)] + repl
         return None
 
+    def senses(self, word: str) -> list[Sense]:
+        """Every noun sense of a word, most frequent first ([] when WordNet does not have it)."""
+        lemma = self.lemma(word)
+        return [self.sense(o) for o in self._index[lemma]] if lemma is not None else []
+
     def physical_senses(self, word: str) -> list[Sense]:
         """The noun senses of a word that are physical things, most frequent first."""
         lemma = self.lemma(word)

@@ -17,7 +17,6 @@ from typing import Any
 
 import numpy as np
 
-from tasks.manipulation import raster
 from tasks.manipulation.robot_view import (FLANGE_LINK, HAND_LINKS, gripper_boxes, gripper_spec, link_poses,
                                            panda_visual_meshes, shade, tcp_frame, uses_urdf_hand)
 from tasks.manipulation.scene import (VIDEO_FPS, VIDEO_SIZE, attempt_timeline, backdrop, object_gaussians,
@@ -25,6 +24,7 @@ from tasks.manipulation.scene import (VIDEO_FPS, VIDEO_SIZE, attempt_timeline, b
 from tasks.render.attempt_video import (SplatSet, choose_corner, compose, inset_camera, inset_size, paste_inset,
                                         wide_camera)
 from tasks.render.camera import Camera
+from tasks.render import mesh_raster as raster
 from tasks.render.captions import caption
 from tasks.render.gripper_model import Part, gripper_parts, robotiq_links
 from tasks.render.shading import deformed_normals, normals_from_covariances
@@ -61,6 +61,7 @@ class PickPlaceVideo:
         self.cam = wide_camera(np.concatenate([robot, path]), self.toward_eye, width, height)
         self.room = backdrop(self.cam, self.target)
         self.inset_px = inset_size(width, height)
+        self._close_room: tuple[Camera, Any] | None = None
         # the close-up goes where it hides least: the object's path and the pads count 50 times an arm point
         self.corner = choose_corner(self.cam, self.inset_px[::-1], np.concatenate([robot, path]),
                                     np.concatenate([np.ones(len(robot)), np.full(len(path), 50.0)]))
@@ -146,7 +147,9 @@ class PickPlaceVideo:
         parts, splats = self._robot_parts(i), self._object(i)
         wide = self._draw(self.cam, self.room, parts, splats)
         close_cam = self.inset_camera(i)
-        close = self._draw(close_cam, backdrop(close_cam, self.target), parts, splats)
+        if self._close_room is None or self._close_room[0] != close_cam:  # the room ray-cast once per camera pose
+            self._close_room = (close_cam, backdrop(close_cam, self.target))
+        close = self._draw(close_cam, self._close_room[1], parts, splats)
         fr = self.timeline[i]
         phase = "approach" if fr.control_index < 0 else PHASES[int(self.arrays["phase"][fr.control_index])]
         lines = [f"t = {fr.t_s:5.2f} s   {phase}"]

@@ -4,7 +4,7 @@ splatting renderer (tasks.render.splats) over the robot and the room, and a clos
     frame = compose(cam, room_rgb, room_depth, gaussians)            # splats over a picture with its depth buffer
     frame = paste_inset(frame, compose(inset_cam, ...), "fingers")   # the close-up in the lower right corner
 
-The robot and the room are triangles and ray-cast planes drawn by the caller (tasks.manipulation.raster); what lies in
+The robot and the room are triangles and ray-cast planes drawn by the caller (tasks.render.mesh_raster); what lies in
 front of a Gaussian (a finger, the table) hides it, per pixel, through the depth buffer. Deterministic on the CPU.
 """
 

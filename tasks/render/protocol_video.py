@@ -52,7 +52,7 @@ def _disc_renderer(cam: Camera, means_m: np.ndarray, covariances_m2: np.ndarray,
                    opacities: np.ndarray, *, sh_coeffs: np.ndarray | None = None, scene: str = "studio",
                    device: str = "cpu") -> np.ndarray:
     """The disc rasteriser behind the splatting renderer's signature: a cheap renderer for tests of the video plumbing."""
-    from tasks.manipulation.render import render
+    from tasks.render.discs import render
 
     return render(cam, means_m, covariances_m2, colors_rgb)
 
@@ -64,7 +64,7 @@ def gaussian_renderer() -> tuple[GaussianRenderer, list[Path]]:
 
     root = Path(__file__).resolve().parent.parent
     sources = [p for p in (root / "render").glob("*.py") if not p.name.startswith(("card", "bench"))]
-    return render_gaussians, [*sources, root / "manipulation" / "render.py"]
+    return render_gaussians, sources
 
 
 def view_axes(view: str) -> tuple[np.ndarray, np.ndarray]:

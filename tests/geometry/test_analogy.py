@@ -132,3 +132,24 @@ def test_a_word_of_another_sense_lends_nothing() -> None:
                             lambda key: "animal")
     assert found is not None and found.concept != "plush_seal" and found.shape_word == "disc"
     assert concepts.concept_domain("plush_seal") == "animal" and concepts.concept_domain("banana") == "food"
+
+
+@pytest.mark.parametrize(("first", "noun", "kin"), [
+    ("stork", "heron", "wading bird"), ("deer", "camel", "even-toed ungulate"), ("fox", "husky", "canine"),
+    ("cat", "kitten", None), ("cow", "calf", None), ("otter", "sea otter", None), ("rabbit", "bunny", None),
+    ("trousers", "pants", None),  # listed as the same object (contracts/vocab/wordnet.yaml)
+])
+def test_a_listed_noun_that_wordnet_files_as_a_sibling_kind_is_kin(first: str, noun: str, kin: str | None) -> None:
+    assert analogy.kin_of(first, noun) == kin
+
+
+def test_a_sibling_kind_listed_under_an_entry_is_built_by_analogy_and_says_so() -> None:
+    """'a plush heron' uses the stork's entry (the lexicon lists heron there), but a heron is not a stork: the
+    concept is an analogy with its reason, not a named match; a young or a synonym stays named."""
+    heron = concepts.read_text("a plush heron").match
+    assert heron.concept == "plush_stork" and heron.by_analogy
+    assert heron.analogy_line() == ("built by analogy: 'heron' is not in the lexicon: built as its nearest kin there, "
+                                    "a stork (both kinds of wading bird in WordNet)")
+    assert any("wading bird" in step for step in heron.analogy)
+    for text in ("a plush stork", "a kitten plush toy", "a stuffed bunny"):
+        assert not concepts.read_text(text).match.by_analogy, text

@@ -1,4 +1,4 @@
-"""Warp kernels of the CPU triangle rasteriser (tasks.manipulation.raster): one thread per triangle culls it (behind
+"""Warp kernels of the CPU triangle rasteriser (tasks.render.mesh_raster): one thread per triangle culls it (behind
 the near plane, back-facing, off screen) and walks its pixel box; pass 1 takes the minimum camera depth per pixel
 (atomic min: the order does not matter), pass 2 writes the colour of the triangle whose depth is the pixel's minimum
 (on the CPU a launch runs its threads in order, so equal depths resolve the same way every time). Pixel centres are at
