@@ -670,10 +670,12 @@ def _revise_material(ctx: L3Context, values: dict[str, float], metrics: dict[str
 
 
 def _chosen_attempt(ctx: L3Context, values: dict[str, float] | None, material: Material) -> dict[str, Any] | None:
-    """The stored attempt of the chosen candidate (selection or confirmation) with the final material."""
+    """The stored attempt of the chosen candidate with the final material: a selection trial under the asset's own
+    material, a confirmation trial only when the revised material was adopted (a confirmation that was not adopted ran
+    a material the asset does not carry)."""
+    revised = material is not ctx.material
     for a in reversed(ctx.attempts):
-        if a["role"] in ("selection", "confirmation") and a["values"] == values and a["labels"] and (
-                a["role"] == "confirmation" or material is ctx.material):
+        if a["values"] == values and a["labels"] and a["role"] == ("confirmation" if revised else "selection"):
             return a
     return None
 

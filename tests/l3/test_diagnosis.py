@@ -167,3 +167,23 @@ def test_an_object_that_falls_over_when_let_go_is_held_another_way_first() -> No
                          action_fields={a: routes.fields_of(a, list(values)) for a in contract.permitted_actions})
     decision = RulePlanner(routes).plan(ctx).value
     assert decision is not None and decision.action == "revise_grasp"
+
+
+def test_the_reported_trial_ran_the_material_the_asset_carries() -> None:
+    """The penguin of #36: its plan passed (trial 3), a material revision was confirmed (trial 6) but not adopted (no
+    more robust); the trial L3 reports is trial 3, under the asset's own material, not the revision's trial 6."""
+    from types import SimpleNamespace
+
+    from contracts.material import Material
+    from flows.l3_manipulation import _chosen_attempt
+
+    own = Material(youngs_modulus_pa=1.58e4, poisson_ratio=0.3, damping_rate_per_s=21.0)
+    values = {"grasp_rank": 2.0}
+    rows = [{"role": "selection", "values": {"grasp_rank": 0.0}, "labels": {"lifted": 1.0}},
+            {"role": "selection", "values": values, "labels": {"lifted": 1.0}},
+            {"role": "robustness", "values": values, "labels": {"lifted": 1.0}},
+            {"role": "confirmation", "values": values, "labels": {"lifted": 1.0}}]
+    ctx = SimpleNamespace(attempts=rows, material=own)
+    assert _chosen_attempt(ctx, values, own) is rows[1]  # type: ignore[arg-type]
+    revised = own.model_copy(update={"damping_rate_per_s": 50.0})
+    assert _chosen_attempt(ctx, values, revised) is rows[3]  # type: ignore[arg-type]

@@ -1,5 +1,5 @@
 """The developers' plush set (not the evaluation suite): six plush animals of 15-35 cm, each generated from text at
-draft quality on the CPU (`deformsmith generate`, L0 -> L3), must pass L3 in at least 5 of 6; an object whose grasp is
+draft quality on the CPU (`deformsmith generate`, L0 -> L3), must each pass L3; an object whose grasp is
 wider than 8 cm is picked with the wide gripper. `python tests/l3/test_plush_set.py OUT.json` (PLUSH_SET_DIR: where
 the assets go) runs the set and writes the rows recorded in tasks/manipulation/BENCHMARKS.md."""
 
@@ -63,7 +63,8 @@ def run_plush(text: str, out_dir: Path, cpu_threads: int = 2) -> dict[str, Any]:
 def test_the_plush_set_passes_l3(tmp_path: Path) -> None:
     rows = [run_plush(text, tmp_path / f"plush_{i}") for i, text in enumerate(PLUSH_SET)]
     print(json.dumps(rows, indent=1))
-    assert sum(r["passed"] for r in rows) >= 5, [(r["text"], r.get("reason") or r.get("error")) for r in rows]
+    # every toy of the set (#36: the penguin, carried to its target and then falling over, included)
+    assert all(r["passed"] for r in rows), [(r["text"], r.get("reason") or r.get("error")) for r in rows if not r["passed"]]
     for r in rows:  # wider than the Franka Hand's 80 mm stroke: a wider gripper; wider than 85 mm: the 2F-140
         if r.get("grasp_width_m") and r["grasp_width_m"] > WIDE_M:
             assert r["gripper"] != "franka_hand", r
