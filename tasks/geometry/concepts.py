@@ -1106,9 +1106,16 @@ def size_scaled(match: ConceptMatch, final_longest_m: float) -> ConceptMatch:
     """The match with its density scaled for a plush toy built at final_longest_m instead of its typical size, so
     that its mass grows as length^PLUSH_MASS_EXPONENT ('a big plush unicorn' is not 1.4^3 times as heavy)."""
     typical = match.typical_size_m
-    if match.default_material != "plush" or match.density_kg_per_m3 is None or not typical or final_longest_m <= 0:
+    thin = match.body_plan in THIN_GOODS_PLANS  # a garment, bag, cloth: its mass is its fabric's area, ~ length^2
+    if (match.default_material != "plush" and not thin) or match.density_kg_per_m3 is None or not typical \
+            or final_longest_m <= 0:
         return match
     ratio = final_longest_m / typical
     if abs(ratio - 1.0) < 0.05:
         return match
-    return match.model_copy(update={"density_kg_per_m3": match.density_kg_per_m3 * ratio ** (PLUSH_MASS_EXPONENT - 3)})
+    exponent = THIN_MASS_EXPONENT if thin else PLUSH_MASS_EXPONENT
+    return match.model_copy(update={"density_kg_per_m3": match.density_kg_per_m3 * ratio ** (exponent - 3)})
+
+
+THIN_GOODS_PLANS = frozenset({"garment", "bag", "sheet", "glove", "sock", "hat", "strap"})
+THIN_MASS_EXPONENT = 2.0  # the same fabric over a larger or smaller object: mass ~ its area

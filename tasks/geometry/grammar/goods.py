@@ -818,8 +818,10 @@ def _drawstring_standing(p: BagParams, t: float) -> list[Part]:
     w = p.width
     r = w / 2
     hb = 0.62 + 0.1 * p.fill
-    parts = [superellipsoid("body", (r, 0.8 * r, hb / 2), (0, 0, hb / 2), ns=0.55, ew=0.8)]
-    parts.append(cylinder("neck", 0.22 * r + 0.03, 0.1, (0, 0, hb + 0.02), edge=0.03, blend=0.06))
+    parts = [superellipsoid("body", (r, 0.8 * r, hb / 2), (0, 0, hb / 2), ns=0.75, ew=0.85)]
+    parts.append(cone("shoulder", 0.75 * r, 0.22 * r + 0.03, 0.22, (0, 0, hb - 0.06), edge=0.02, blend=0.05,
+                      scale=(1, 0.85, 1)))
+    parts.append(cylinder("neck", 0.22 * r + 0.03, 0.1, (0, 0, hb + 0.02), edge=0.03, blend=0.04))
     for i in range(7):
         a = 2 * np.pi * i / 7
         parts.append(ellipsoid(f"ruffle {i + 1}", (0.12, 0.06, 0.13), (0.12 * np.cos(a), 0.12 * np.sin(a), hb + 0.17),
