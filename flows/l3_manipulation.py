@@ -58,11 +58,12 @@ from tasks.robot.grasp_parts import body_first_grasps
 from tasks.robot.gripper import gripper
 from tasks.robot.squeeze import SqueezePlan, squeeze_plan
 
-TASK_VERSION = "11"  # bump when tasks/manipulation/{trial,outcome,body,frame}.py change what a trial returns
+TASK_VERSION = "12"  # bump when tasks/manipulation/{trial,outcome,body,frame}.py change what a trial returns
 # (6: settle until at rest; 7: simulated in the frame where the closing axis is at 45 degrees to the grid; 8: the
 # approach is recorded; 9: grippers as data, a force-controlled closure that keeps its target while held and skips the
 # rest of the closure, the time-step cap follows dx; 10: the hold's contact stiffness measured from where the force
-# began to rise, what-happened metrics and failure-mode flags (tasks.manipulation.diagnosis); 11: release_rotation_deg)
+# began to rise, what-happened metrics and failure-mode flags (tasks.manipulation.diagnosis); 11: release_rotation_deg;
+# 12: a what-happened figure that does not exist is absent, not NaN)
 PICK_AND_PLACE_RECORDING = "recordings/L3_pick_and_place.rrd"  # the chosen trial's recording
 CORE_FIELDS = ("grasp_rank", "squeeze_depth_m", "closing_speed_m_per_s", "lift_duration_s", "transport_duration_s",
                "substeps")  # the plan's fields every L3 contract has

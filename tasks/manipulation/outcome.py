@@ -132,17 +132,15 @@ def _what_happened(arrays: dict[str, np.ndarray], grip_n: np.ndarray, mid: np.nd
       grip_force_at_lift_n     mean normal force per finger over the last 0.02 s before the lift [N]
       grip_force_min_held_n    its smallest 0.02 s running mean while held (lift start .. release start) [N]
       contact_lost_hand_rise_m how far the hand had risen when that force first fell below CONTACT_LOST_FRACTION of
-                               its value at the lift's start (nan: contact kept) [m]
+                               its value at the lift's start (absent: contact kept) [m]
       hand_rise_m              how far the hand rose while held [m]
       object_rotation_deg      the object's largest rotation relative to the gripper while held [deg]
       release_drop_m           the object's lowest point above the table when the fingers start to open [m]
       release_drift_m          how far the centre of mass moved (xy) from the release's start to the end [m]
       release_rotation_deg     how far the object turned from the release's start to the end (a topple) [deg]
-    (the release figures: nan when the trial ended before the release)
+    A figure that does not exist is absent (no contact lost, no release before the trial ended), never NaN.
     """
-    nan = float("nan")
-    out = dict.fromkeys(("grip_force_at_lift_n", "grip_force_min_held_n", "contact_lost_hand_rise_m", "hand_rise_m",
-                         "object_rotation_deg", "release_drop_m", "release_drift_m", "release_rotation_deg"), nan)
+    out: dict[str, float] = {}
     if n_done <= k_lift:
         return out
     dt = float(np.mean(arrays["control_dt_s"][:n_done]))
@@ -152,13 +150,16 @@ def _what_happened(arrays: dict[str, np.ndarray], grip_n: np.ndarray, mid: np.nd
     h = np.arange(n_done)[held]
     rise = mid[:n_done, 2] - mid[k_close, 2]
     out["grip_force_at_lift_n"] = at_lift
-    out["grip_force_min_held_n"] = float(np.min(smooth[h])) if len(h) else nan
-    out["hand_rise_m"] = float(np.max(rise[h])) if len(h) else nan
+    if len(h):
+        out["grip_force_min_held_n"] = float(np.min(smooth[h]))
+        out["hand_rise_m"] = float(np.max(rise[h]))
     lost = h[smooth[h] < CONTACT_LOST_FRACTION * at_lift] if at_lift > 0 else h[:0]
-    out["contact_lost_hand_rise_m"] = float(rise[lost[0]]) if len(lost) else nan
+    if len(lost):
+        out["contact_lost_hand_rise_m"] = float(rise[lost[0]])
     frames_k = np.asarray(arrays["frame_control_index"])
     x = arrays["particles_x_m"]
-    in_hold = [i for i, k in enumerate(frames_k) if k_lift <= k < min(k_rel, n_done)]
+    finite = [bool(np.isfinite(f).all()) for f in x]  # an unhealthy trial's frames are not fitted
+    in_hold = [i for i, k in enumerate(frames_k) if k_lift <= k < min(k_rel, n_done) and finite[i]]
     if in_hold:
         i0 = in_hold[0]
         out["object_rotation_deg"] = max(
@@ -166,12 +167,13 @@ def _what_happened(arrays: dict[str, np.ndarray], grip_n: np.ndarray, mid: np.nd
                                  rot[frames_k[i]]) for i in in_hold)
     if released:
         i_rel = int(np.searchsorted(frames_k, k_rel))
-        if i_rel < len(x):
+        if i_rel < len(x) and finite[i_rel] and finite[-1]:
             out["release_drop_m"] = float(x[i_rel][:, 2].min()) - float(x[0][:, 2].min())
             eye = np.eye(3)
             out["release_rotation_deg"] = _object_rotation_deg(x[i_rel].astype(np.float64), x[-1].astype(np.float64),
                                                                eye, eye)
-        out["release_drift_m"] = float(np.linalg.norm(com[n_done, :2] - com[k_rel, :2]))
+        if np.isfinite(com[[k_rel, n_done], :2]).all():
+            out["release_drift_m"] = float(np.linalg.norm(com[n_done, :2] - com[k_rel, :2]))
     return out
 
 
