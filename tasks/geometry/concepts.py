@@ -103,7 +103,8 @@ PLAN_GENERIC: dict[str, str] = {
     "berry": "generic_berry", "elongated": "generic_vegetable", "bun": "generic_baked", "loaf": "generic_baked",
     "cushion": "generic_cushion", "ball": "generic_ball", "blob": "generic_blob", "sheet": "generic_garment",
     "pouch": "generic_bag", "glove": "generic_garment", "sock": "generic_garment", "hat": "generic_garment",
-    "disc": "generic_block", "mould": "generic_blob",
+    "disc": "generic_block", "mould": "generic_blob", "garment": "generic_garment", "bag": "generic_bag",
+    "strap": "generic_strip", "rope": "generic_strip", "book": "generic_block",
 }
 # head nouns that name a part of the object the word before them names ('a mop head' is built as a mop)
 PART_NOUNS = frozenset({"head", "top", "cover", "lid", "tip", "refill", "insert", "part", "end", "piece", "side"})
