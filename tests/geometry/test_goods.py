@@ -199,3 +199,22 @@ def test_a_cloth_book_has_covers_pages_and_a_spine() -> None:
     assert {"cover", "pages", "spine"} <= groups
     pages = [p for p in d.program.parts if part_group(p.name) == "pages"]
     assert not np.allclose(pages[0].color_rgb, d.program.parts[0].color_rgb)  # the page block shows apart
+
+
+def test_an_unknown_garment_or_bag_is_built_by_analogy_in_the_new_plans() -> None:
+    kimono = _design("a silk kimono")
+    assert kimono.concept.by_analogy and kimono.concept.body_plan == "garment"
+    assert "sleeve" in {part_group(p.name) for p in kimono.program.parts}
+    tie = _design("a striped necktie")
+    assert tie.concept.by_analogy and tie.concept.body_plan == "strap"
+
+
+def test_a_smaller_thin_good_weighs_as_its_fabric_area() -> None:
+    """'a small drawstring pouch' is the same velvet over a smaller bag: its mass ~ length^2, not length^3."""
+    typical, small = _design("a drawstring pouch"), _design("a small drawstring pouch")
+    m_typ = mesh_program(typical.program, 64)
+    m_small = mesh_program(small.program, 64)
+    scale = small.size.axis_scale[0]
+    m_small.apply_scale(scale)  # the pipeline's final size: the modifier's scale
+    ratio = (small.concept.density_kg_per_m3 * m_small.volume) / (typical.concept.density_kg_per_m3 * m_typ.volume)
+    assert ratio == pytest.approx(scale**2, rel=0.1)
