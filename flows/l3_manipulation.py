@@ -48,7 +48,7 @@ from tasks.manipulation.diagnosis import MODES
 from tasks.manipulation.data import attempt_indices, interaction_root, write_attempt
 from tasks.manipulation.recordings import record_attempt
 from tasks.manipulation.outcome import TrialTolerances, force_budget_n
-from tasks.manipulation.trial import TrialSettings, plan_or_error, run_trial
+from tasks.manipulation.trial import TrialSettings, plan_or_error, reachable_plan, run_trial
 from tasks.probes.workers import probe_workers
 from contracts.robot import DEFAULT_GRIPPER
 from tasks.robot import NoGraspError, select_grasps
@@ -250,7 +250,7 @@ class L3Context:
         """The ActionPlan of a candidate (editable fields) under a condition (target, initial yaw)."""
         o = self.options
         rank = int(min(max(0, round(values["grasp_rank"])), len(self.grasps) - 1))
-        return ActionPlan(
+        plan = ActionPlan(
             grasp=self.grasps[rank], gripper=self.gripper, gripper_reason=self.gripper_reason,
             grasp_reason=self.grasp_reason,
             squeeze_depth_m=float(values["squeeze_depth_m"]),
@@ -263,6 +263,7 @@ class L3Context:
             release_duration_s=float(values.get("release_duration_s", o.release_duration_s)),
             place_height_m=float(values.get("place_height_m", o.place_height_m)),
             retreat_duration_s=o.retreat_duration_s, settle_duration_s=o.settle_duration_s)
+        return reachable_plan(plan, self.grasps, self.body)  # a yawed condition may turn a side grasp out of reach
 
     def trial(self, values: dict[str, float], role: str, action: str = "", material: Material | None = None,
               target_xy_m: tuple[float, float] | None = None, yaw_deg: float = 0.0) -> ProbeResult:

@@ -19,7 +19,7 @@ import numpy as np
 from contracts.errors import SimulationError
 from contracts.material import Material
 from contracts.physical import PhysicalModel
-from contracts.robot import ActionPlan
+from contracts.robot import ActionPlan, GraspCandidate
 from contracts.sim import SimConfig
 from tasks.manipulation.body import TrialBody
 from tasks.manipulation.data import approach_track
@@ -359,4 +359,18 @@ def plan_or_error(plan: ActionPlan, body: TrialBody, settings: TrialSettings | N
         return None, str(exc)
 
 
-__all__ = ["TrialSettings", "TrialResult", "run_trial", "plan_or_error", "object_pose"]
+def reachable_plan(plan: ActionPlan, grasps: list[GraspCandidate], body: TrialBody,
+                   settings: TrialSettings | None = None) -> ActionPlan:
+    """The plan, or when its grasp cannot be executed under the plan's condition (a side approach that an initial
+    yaw turns away from the arm), the same plan with the best-ranked grasp that can; unchanged when none can."""
+    if plan_or_error(plan, body, settings)[0] is not None:
+        return plan
+    for g in grasps:
+        if g.rank != plan.grasp.rank:
+            other = plan.model_copy(update={"grasp": g})
+            if plan_or_error(other, body, settings)[0] is not None:
+                return other
+    return plan
+
+
+__all__ = ["TrialSettings", "TrialResult", "run_trial", "plan_or_error", "reachable_plan", "object_pose"]

@@ -97,3 +97,26 @@ def test_a_sitting_teddy_is_held_by_its_torso_from_the_side(teddy) -> None:
     assert best.approach_axis[2] > -0.9  # not from above
     assert reachable(best)
     assert why.startswith("held by the body") and "from the side" in why
+
+
+def test_a_condition_that_turns_a_side_grasp_away_from_the_arm_takes_the_next_reachable_one(teddy) -> None:
+    """A side grasp reachable with the teddy facing one way is out of reach once the object is turned 180 deg
+    (the hand would come from beyond it): the plan under that condition takes the best-ranked grasp that is not."""
+    from types import SimpleNamespace
+
+    from tasks.manipulation.trial import plan_or_error, reachable_plan
+
+    mesh, program, category = teddy
+    pts, faces = trimesh.sample.sample_surface_even(mesh, 2000, seed=0)
+    sel = select_grasps(pts, mesh.face_normals[faces], mesh.center_mass, 0.8,
+                        settings=GraspSettings(gripper=GRIPPER, soft_indent_m=0.007, max_tilt_deg=90.0,
+                                               approach_turns_deg=(0.0, -90.0, 90.0)))
+    body = SimpleNamespace(height_m=float(mesh.extents[2]))
+    side = [c for c in sel.candidates if c.approach_axis[2] > -0.3]
+    plans = [ActionPlan(grasp=c, gripper=GRIPPER, squeeze_depth_m=0.0, target_xy_m=(0.12, 0.15),
+                        initial_yaw_deg=180.0) for c in side]
+    turned_away = next(p for p in plans if plan_or_error(p, body)[0] is None)  # type: ignore[arg-type]
+    chosen = reachable_plan(turned_away, sel.candidates, body)  # type: ignore[arg-type]
+    assert chosen.grasp.rank != turned_away.grasp.rank
+    assert plan_or_error(chosen, body)[0] is not None  # type: ignore[arg-type]
+    assert chosen.model_copy(update={"grasp": turned_away.grasp}) == turned_away  # only the grasp changed
