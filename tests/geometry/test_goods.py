@@ -4,12 +4,16 @@ mass the request gives (a stated '1 kg', a fill 'half full of rice') reaches L1.
 
 from __future__ import annotations
 
+from typing import NamedTuple
+
 import numpy as np
 import pytest
 from scipy import ndimage
 
+from contracts.concept import ConceptMatch
 from contracts.lexicon import load_lexicon
 from contracts.request import AssetRequest
+from contracts.shape import ShapeProgram
 from tasks.geometry import catalogue, grammar
 from tasks.geometry.fill_words import read_fill
 from tasks.geometry.grammar.parts import part_group
@@ -18,14 +22,23 @@ from tasks.geometry.size_words import read_stated_mass
 from tasks.physical.mass import mass_check
 
 
-def _design(text: str) -> catalogue.Design:
-    return catalogue.design_from_text(text)
+class _Built(NamedTuple):
+    entry: str
+    program: ShapeProgram
+    concept: ConceptMatch
+    size: catalogue.SizeSpec
+
+
+def _design(text: str) -> _Built:
+    d = catalogue.design_from_text(text)
+    assert d.concept is not None, text
+    return _Built(d.entry, d.program, d.concept, d.size)
 
 
 def _top_mask(program, resolution: int = 96) -> np.ndarray:  # noqa: ANN001
     """The program's silhouette seen from above (x, y), from its signed distances."""
     field, _, _ = sample_program(program, resolution)
-    return (field < 0).any(axis=2)
+    return np.asarray((field < 0).any(axis=2))
 
 
 def _runs(line: np.ndarray) -> int:
@@ -90,7 +103,8 @@ def test_crumpled_cloth_is_a_heap_not_a_flat_sheet(text: str) -> None:
     flat = _design(text.replace("crumpled", "").replace("wrinkled", "").replace(",", "") + " lying flat")
     e = load_lexicon().entries[d.entry]
     flat_mesh = mesh_program(flat.program, 64)
-    real = grammar.plan_parameters(e.plan, e.params).thickness * float(flat_mesh.extents.max())  # type: ignore[attr-defined]
+    assert e.plan is not None
+    real = float(grammar.plan_parameters(e.plan, e.params).model_dump()["thickness"]) * float(flat_mesh.extents.max())
     mesh = mesh_program(d.program, 64)
     assert mesh.extents[2] > 5 * real, (mesh.extents, real)  # the real cloth's flat thickness
     assert mesh.extents[2] > 2 * flat_mesh.extents[2], (mesh.extents, flat_mesh.extents)  # and as built, flat
@@ -127,7 +141,8 @@ def test_a_fill_gives_its_mass_and_shows_in_its_colour() -> None:
     assert fill and np.allclose(fill[0].color_rgb, load_lexicon().colors["ivory"])
     empty = _design("an empty zip-lock bag")
     assert empty.concept.stated_mass_kg is None and not any(part_group(p.name) == "fill" for p in empty.program.parts)
-    assert read_fill("a sack filled with sand").key == "sand" and read_fill("a tote bag") is None
+    sand = read_fill("a sack filled with sand")
+    assert sand is not None and sand.key == "sand" and read_fill("a tote bag") is None
 
 
 @pytest.mark.parametrize("text,kg", [("ankle weight, 1 kg", 1.0), ("a 500 g bean bag", 0.5), ("2 lb ankle weight",
@@ -162,6 +177,7 @@ def test_a_pair_of_rolled_socks_is_one_ball_of_two_and_a_pair_of_gloves_is_two()
     assert pair.entry == "crew_sock" and "rolled" in pair.concept.states
     ext = mesh_program(pair.program, 64).extents
     assert ext.min() > 0.6 * ext.max()  # a ball, not a flat sock
+    assert one.concept.typical_mass_kg is not None
     assert pair.concept.typical_mass_kg == pytest.approx(2 * one.concept.typical_mass_kg)
     m1, m2 = mesh_program(one.program, 64), mesh_program(pair.program, 64)
     assert m2.volume * pair.concept.density_kg_per_m3 == pytest.approx(
