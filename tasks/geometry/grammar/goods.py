@@ -302,17 +302,13 @@ def sock(p: SockParams) -> list[Part]:
 
 
 def _sock_ball(p: SockParams) -> list[Part]:
-    """A rolled sock (pair): the flat sock's volume as a slightly squashed ball, the cuff a band round its middle
-    with ribs, the toe's seam a ridge at one end."""
+    """A rolled sock (pair): the flat sock's volume as a slightly squashed ball, the turned-over cuff a wide band
+    round it, the toe a cap at one end."""
     # the flat sock is drawn puffier than its two knit layers (~1 cm): rolled tight, the ball holds ~0.45 of that
     flat = 0.45 * p.width * p.thickness * (1.0 + p.leg_length) * 0.85 * (2 if p.pair else 1)
     r = float((flat / (4 / 3 * np.pi * 0.8)) ** (1 / 3))
     parts = [ellipsoid("body", (1.02 * r, 0.96 * r, 0.84 * r), (0, 0, 0.84 * r))]
     parts.append(_scaled(torus("cuff", 0.93 * r, 0.15 * r, (0.3 * r, 0, 0.84 * r), rot=(0, 90, 0)), (0.86, 1.0, 2.2)))
-    for i in range(10):
-        a = 2 * np.pi * i / 10
-        y, z = 1.08 * r * np.cos(a), 0.84 * r + 0.93 * r * np.sin(a)
-        parts.append(_op(limb(f"rib {i + 1}", (0.12 * r, y, z), (0.58 * r, y, z), 0.05 * r), "subtract"))
     parts.append(ellipsoid("toe", (0.25 * r, 0.55 * r, 0.48 * r), (-0.92 * r, 0, 0.84 * r), blend=0.08 * r))
     return parts
 
