@@ -21,6 +21,17 @@ def test_default_suite_counts_and_intents() -> None:
     assert all(c.intent and c.expected_material for c in suite.cases)
 
 
+def test_manipulation_suite_is_the_plush_set_and_two_rubber_objects() -> None:
+    """Ablation C of issue 36: every toy of the developers' plush set and at least two stiff rubber objects."""
+    from tests.l3.test_plush_set import PLUSH_SET
+
+    suite, _ = load_suite("manipulation")
+    assert all(c.manipulation and c.kind == "text" for c in suite.cases)
+    assert {c.text for c in suite.cases if c.expected_material == "plush"} == set(PLUSH_SET)
+    assert sum(c.expected_material == "rubber" for c in suite.cases) >= 2
+    assert len(suite.manipulation_conditions) == 5
+
+
 def test_text_cases_build_from_the_catalogue() -> None:
     from tasks.geometry.catalogue import design_from_text
 
