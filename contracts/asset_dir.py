@@ -113,7 +113,8 @@ class SelectionSummary(Model):
 
 
 class MaterialRecord(Model):
-    """material.json: L2's outcome, targets, the material (None when L2 found none) and its evidence."""
+    """material.json: L2's outcome, targets, the material (None when L2 found none) and its evidence; L2's record, which
+    L3 never edits (the asset's final material is AdoptedMaterial: this one, or an L3 revision in manipulation.json)."""
 
     ABSENT_UNLESS_GIVEN: ClassVar[frozenset[str]] = frozenset({"not_measured"})  # keys older records lack
     schema_version: int = 1
@@ -166,6 +167,22 @@ class ManipulationRecord(Model):
     attempts: list[dict[str, Any]]
     harness_attempts: int
     recordings: list[str]
+
+
+MaterialSource = Literal["L2", "L3 revision"]
+
+
+class AdoptedMaterial(Model):
+    """The asset's one final material (tasks.asset_dir.AssetDir.adopted_material): L2's selection, or the L3 material
+    revision that L2 revalidated and the robot confirmed when L3 passed with it."""
+
+    material: Material
+    source: MaterialSource
+    document: str = Field(description="where it is recorded: material.json `material`, or manipulation.json "
+                          "`material` (its `material_revision.to`)")
+    reason: str = Field(description="why it is the asset's: L2's selection status, or the revision's trigger and reason")
+    metrics: dict[str, float] = Field(description="L2's selection probes on this material: material.json `metrics`, "
+                                      "or the revision's L2 revalidation")
 
 
 DOCUMENT_MODELS: dict[str, type[BaseModel]] = {"geometry": GeometryRecord, "physical": PhysicalRecord,

@@ -302,7 +302,7 @@ def run_manipulation(case: SuiteCase, request: AssetRequest, h: dict[str, Any], 
     _copy_asset(src, full_dir)
     _, outcome = run_l3(full_dir, opts, agents, l3c)
     record = AssetDir(full_dir).manipulation()
-    final = record.material
+    final = AssetDir(full_dir).adopted_material().material  # L2's, or the revision L3 passed with
     ok, tests = (base_ok, base_tests) if final == h["material"] else material_passes(
         full_dir, h["physical"], final, targets, sim)
     by_cond = {(round(x["target_xy_m"][0], 6), round(x["target_xy_m"][1], 6), round(x["initial_yaw_deg"], 6)): x

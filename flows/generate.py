@@ -26,6 +26,7 @@ from contracts.errors import InputError, StageFailure
 from contracts.manifest import AssetManifest, Provenance, StageSummary
 from contracts.request import AssetRequest
 from contracts.sim import Device, KernelOptions, SimConfig
+from tasks.asset_dir import AssetDir
 from tasks.publish import replace_directory
 
 LIBRARIES = ("numpy", "warp-lang", "prefect", "zarr", "trimesh", "coacd", "pybullet", "rerun-sdk", "pydantic")
@@ -134,8 +135,6 @@ def cache_keys(work: Path, l3: dict[str, Any] | None) -> dict[str, str]:
     """Task -> cache key of the results the asset carries: L2's chosen candidate's probes and its held-out probes,
     L3's reported trial and its robustness and held-out trials (`CacheStore(root).get(key)` returns each)."""
     keys: dict[str, str] = {}
-    from tasks.asset_dir import AssetDir
-
     if AssetDir(work).has("material"):
         l2 = AssetDir(work).material()
         best = l2.selection.best_iteration
@@ -238,10 +237,10 @@ def _files(work: Path) -> dict[str, str]:
     return {role: rel for role, rel in roles.items() if (work / rel).exists() or role == "manifest"}
 
 
-def write_physgaussian_export(work: Path, manifest: AssetManifest) -> Path:
-    """A PhysGaussian-style simulation config next to the Gaussians: E, nu, density and the particle file (SI)."""
-    assert manifest.material is not None and manifest.physical_model is not None
-    phys, mat = manifest.physical_model, manifest.material
+def write_physgaussian_export(adir: AssetDir) -> Path:
+    """A PhysGaussian-style simulation config next to the Gaussians: the adopted material's E, nu (AssetDir.
+    adopted_material), L1's density and the particle file (SI)."""
+    phys, mat = adir.physical_model(), adir.adopted_material().material
     config = {
         "material": "jelly",  # PhysGaussian's name for its neo-Hookean model
         "E": mat.youngs_modulus_pa, "nu": mat.poisson_ratio, "density": phys.density_kg_per_m3,
@@ -251,10 +250,23 @@ def write_physgaussian_export(work: Path, manifest: AssetManifest) -> Path:
         "units": "SI (Pa, kg/m^3, m, s); frame z up, object resting on z = 0",
         "particle_volumes": "particles.zarr/volumes_m3", "n_particles": phys.particle_count,
     }
-    path = work / "export" / "physgaussian_config.json"
+    path = adir.path / "export" / "physgaussian_config.json"
     path.parent.mkdir(parents=True, exist_ok=True)
     path.write_text(json.dumps(config, indent=2, sort_keys=True) + "\n", encoding="utf-8")
     return path
+
+
+def write_asset_records(adir: AssetDir, manifest: AssetManifest) -> AssetManifest:
+    """asset.json with the adopted material (AssetDir.adopted_material) and the file roles, and the PhysGaussian
+    config and the card that carry the same material; returns the manifest as written."""
+    from flows.renders import write_card
+
+    manifest = manifest.model_copy(update={"material": adir.adopted_material().material})
+    write_physgaussian_export(adir)
+    write_card(adir.path, manifest)  # the asset card: renders/card.png, card.html (what L0-L3 found)
+    manifest = manifest.model_copy(update={"files": _files(adir.path)})
+    adir.write_manifest(manifest)
+    return manifest
 
 
 def _partial_prefix(out_dir: Path) -> str:
@@ -362,35 +374,23 @@ def generate(request: AssetRequest, out_dir: Path, device: Device = "cpu", agent
         from flows.renders import render_drop_protocol
 
         protocol = render_drop_protocol(work, physical, material, sim)
-        from tasks.asset_dir import AssetDir
-
         adir = AssetDir(work)  # what L0, L1 and L2 wrote, validated
         validation = [stage_summary(adir.geometry()), stage_summary(adir.physical()), stage_summary(adir.material())]
         plan, outcome, l3 = None, None, None
         if manipulate:
             note("L3", "manipulation: Panda pick-and-place in the MPM")
-            from contracts.material import Material
-
             l3 = run_manipulation(work, device, request.quality, agents, cpu_threads,  # "L3 trial k of n: ..." lines
                                   progress=lambda message: report("L3", message.removeprefix("L3").lstrip(": ")))
             validation.append(l3_summary(l3))
-            if l3.get("passed"):
-                material = Material(**l3["material"])  # an L3 material revision was L2-revalidated and confirmed
             plan = reported_plan(l3)  # adopted, else the best tried under the material the asset carries
             outcome = manipulation_outcome(validation[-1].metrics)
         prov = provenance(device, agents, sim.cpu_threads, sim.kernel)
         prov = prov.model_copy(update={"cache_keys": cache_keys(work, l3),  # what made the shape (L0's generator)
                                        "backends": {**prov.backends, "geometry": l0.info.generator},
                                        "fallbacks": fallback_notes(work)})  # where the rule backend stood in
-        manifest = AssetManifest(request=request, physical_model=physical, material=material, validation=validation,
-                                 action_plan=plan, manipulation=outcome, provenance=prov,
-                                 extra={"drop_protocol": protocol})
-        write_physgaussian_export(work, manifest)
-        from flows.renders import write_card
-
-        write_card(work, manifest)  # the asset card: renders/card.png, card.html (what L0-L3 found)
-        manifest = manifest.model_copy(update={"files": _files(work)})
-        adir.write_manifest(manifest)
+        manifest = write_asset_records(adir, AssetManifest(  # the material: L2's, or the revision L3 passed with
+            request=request, physical_model=physical, validation=validation, action_plan=plan, manipulation=outcome,
+            provenance=prov, extra={"drop_protocol": protocol}))
         note("publish", str(out_dir))
         previous = _set_aside(out_dir)
         try:
@@ -437,6 +437,4 @@ def content_fingerprint(asset_dir: Path) -> dict[str, str]:
 
 def load_manifest(asset_dir: Path) -> AssetManifest:
     """The manifest of a published asset directory (InputError when there is none or it is invalid): AssetDir's."""
-    from tasks.asset_dir import AssetDir
-
     return AssetDir(asset_dir).manifest()

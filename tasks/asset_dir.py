@@ -3,6 +3,7 @@
     adir = AssetDir(path)
     adir.physical().physical_model       # validated PhysicalRecord (InputError naming the file when absent / invalid)
     adir.physical_model()                # the frozen L1 model (InputError when L1 has not run or failed)
+    adir.adopted_material().material     # the asset's one final material: L2's, or the L3 revision L3 passed with
     adir.write_physical(record)          # validated, atomically, as sorted indented JSON
 
 Documents and file names are in contracts/asset_dir.py; a document read and written back is the same JSON.
@@ -21,6 +22,9 @@ from contracts.asset_dir import (
     DOCUMENT_FILES,
     DOCUMENT_MODELS,
     GEOMETRY_JSON,
+    MANIPULATION_JSON,
+    MATERIAL_JSON,
+    AdoptedMaterial,
     DocumentName,
     GeometryInfo,
     GeometryRecord,
@@ -128,11 +132,36 @@ class AssetDir:
         return record.physical_model
 
     def material_model(self) -> Material:
-        """The L2 material (InputError when L2 has not run or found no valid material)."""
+        """L2's material, where L3 starts (InputError when L2 has not run or found none); the asset's final material
+        is adopted_material()."""
         record = self.material()
         if record.material is None:
             raise InputError(f"{self.file('material')}: L2 found no valid material ({record.message or 'failed'})")
         return record.material
+
+    def adopted_material(self) -> AdoptedMaterial:
+        """The asset's final material, which the manifest, exports, PhysGaussian config and card all carry: the L3
+        revision when L3 passed with one, else L2's (InputError when there is neither)."""
+        revision = self._l3_revision()
+        if revision is not None:
+            return revision
+        record = self.material()
+        return AdoptedMaterial(material=self.material_model(), source="L2", document=MATERIAL_JSON,
+                               reason=f"L2's selection ({record.status})", metrics=dict(record.metrics))
+
+    def _l3_revision(self) -> AdoptedMaterial | None:
+        """The material revision L3 adopted (it passed with it: manipulation.json), else None."""
+        if not self.has("manipulation"):
+            return None
+        record = self.manipulation()
+        revision = record.material_revision or {}
+        if not (record.passed and revision.get("accepted")):
+            return None
+        revalidation = revision.get("l2_revalidation") or {}
+        return AdoptedMaterial(material=record.material, source="L3 revision", document=MANIPULATION_JSON,
+                               reason=f"L3 material revision ({revision.get('trigger', '-')}; L2 revalidated, robot "
+                                      f"confirmed): {revision.get('reason', '')}",
+                               metrics=dict(revalidation.get("metrics") or {}))
 
     @cached_property
     def l0(self) -> L0Asset:

@@ -38,14 +38,15 @@ def _material_overrides(E: float | None, nu: float | None, damping: float | None
 
 
 def _material(E: float | None, nu: float | None, damping: float | None, asset: Path):
-    """The material to probe: the asset's L2 material (or the intent's priors), with the given overrides."""
+    """The material to probe: the asset's adopted material (L2's, or the L3 revision it adopted; else the intent's
+    priors), with the given overrides."""
     from flows.l2_material import l2_targets
     from tasks.asset_dir import AssetDir
 
     given = _material_overrides(E, nu, damping)
     adir = AssetDir(asset)
     if adir.has("material"):
-        base = adir.material_model().model_dump()
+        base = adir.adopted_material().material.model_dump()
     else:  # the priors always hold every material field (the vocabulary's default material fills the gaps)
         pri = l2_targets(adir.l0, None).priors
         base = {k: pri[k] for k in ("youngs_modulus_pa", "poisson_ratio", "damping_rate_per_s")}

@@ -8,8 +8,9 @@ the simulator) and the tetrahedra giving the deformation gradients (F = Ds Dm^-1
   rebound_ratio, max_impact_strain, settle_time_s
                         the drop from height_fraction x H (L2's _drop_metrics on the simulator's COM, kinetic energy,
                         ground force and 95th-percentile tet compressive strain)
-DeformSmith's values are the object probes L2 recorded in material.json (object_<metric>, the probes' selection
-settings: compression strain and drop height fraction of the L2 contract).
+DeformSmith's values are the object probes L2 measured on the asset's adopted material (AssetDir.adopted_material:
+material.json's metrics, or an adopted L3 revision's L2 revalidation; object_<metric>, the probes' selection settings:
+compression strain and drop height fraction of the L2 contract).
 """
 
 from __future__ import annotations
@@ -61,7 +62,7 @@ def probe_targets(asset_dir: Path) -> ProbeTargets:
     if not record.passed:
         raise InputError(f"{path}: L2 did not validate a material; nothing to check against")
     p = L2Parameters.of(load_contract("L2"))
-    metrics = dict(record.metrics)
+    metrics = dict(adir.adopted_material().metrics)  # measured on the material the export carries
     ours = {name: float(metrics[key]) for name, (_, key) in METRICS.items() if key in metrics}
     if "effective_modulus_pa" not in ours or "rebound_ratio" not in ours:
         raise InputError(f"{path} has no object compression/drop metrics (object_effective_modulus_pa, "

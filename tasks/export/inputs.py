@@ -56,13 +56,14 @@ def write_readme(out_dir: Path, target: str, load_hint: str, lines: Sequence[str
 
 
 def export_material(adir: AssetDir) -> ExportMaterial:
-    """The validated L2 material with L1's density, mass and friction (InputError when L2 did not pass)."""
+    """The asset's adopted material (AssetDir.adopted_material) with L1's density, mass and friction (InputError when
+    L2 did not pass)."""
     record = adir.material()
     if record.material is None or not record.passed:
         raise InputError(f"{adir.file('material')}: L2 did not validate a material ({record.message or 'failed'}); "
                          "only a validated material is exported")
     physical = adir.physical_model()
-    m = record.material
+    m = adir.adopted_material().material
     return ExportMaterial(youngs_modulus_pa=m.youngs_modulus_pa, poisson_ratio=m.poisson_ratio,
                           density_kg_per_m3=physical.density_kg_per_m3, damping_rate_per_s=m.damping_rate_per_s,
                           ground_friction=physical.ground_friction, gripper_friction=physical.gripper_friction,

@@ -156,7 +156,7 @@ def write_usd(inputs: ExportInputs, path: Path) -> Path:
     UsdShade.MaterialBindingAPI.Apply(body).Bind(material, UsdShade.Tokens.weakerThanDescendants, "physics")
     body.SetCustomDataByKey("deformsmith:units", "SI: m, kg, s, Pa")
     stage.GetRootLayer().documentation = (f"DeformSmith export of {inputs.name}: volume deformable (neo-Hookean "
-                                          "E, nu from L2), SI units, z up, resting on z = 0")
+                                          "E, nu validated by L2), SI units, z up, resting on z = 0")
     stage.GetRootLayer().Save()
     return path
 

@@ -15,7 +15,7 @@ from pydantic import BaseModel, ConfigDict
 
 from contracts.concept import ConceptMatch
 from contracts.agents import TargetBehaviour
-from contracts.asset_dir import MANIPULATION_JSON, MATERIAL_JSON, PHYSICAL_JSON, attempt_path
+from contracts.asset_dir import MANIPULATION_JSON, MATERIAL_JSON, PHYSICAL_JSON, MaterialRecord, attempt_path
 from contracts.evidence import Attempt, StageTally
 from contracts.probes import not_measured_reason
 from contracts.manifest import AssetManifest
@@ -255,6 +255,29 @@ def _force_curve(folder: Path) -> tuple[np.ndarray, np.ndarray] | None:
     return (t, f) if f.ndim == 2 and f.shape[1] == 2 and len(t) == len(f) else None
 
 
+def _material_figures(adir: AssetDir, record: MaterialRecord,
+                      attempts: list[Attempt]) -> tuple[list[Figure], list[Figure], str | None]:
+    """The adopted material's rows (AssetDir.adopted_material: L2's, or an adopted L3 revision), its target bands as
+    measured on it, and the material in words."""
+    chosen = f"{MATERIAL_JSON} ({record.status}; evidence/attempts.jsonl L2 #{record.selection.best_iteration})"
+    keys = _probe_keys(attempts, "L2", record.selection.best_iteration)
+    measured_in, not_measured = f"{MATERIAL_JSON} metrics", record.not_measured
+    if record.material is None:
+        return [], _band_figures(record.targets, record.metrics, keys, measured_in, not_measured), None
+    adopted = adir.adopted_material()
+    if adopted.source == "L3 revision":  # its probes' keys are in manipulation.json, not named by kind
+        chosen = f"{MANIPULATION_JSON} (L3 material revision, L2 revalidated)"
+        keys, measured_in, not_measured = {}, f"{MANIPULATION_JSON} material_revision l2_revalidation metrics", {}
+    mat = adopted.material
+    rows = [Figure(label="Young's modulus E", metric="youngs_modulus_pa", value=mat.youngs_modulus_pa, unit="Pa",
+                   source=chosen),
+            Figure(label="Poisson ratio nu", metric="poisson_ratio", value=mat.poisson_ratio, unit="-", source=chosen),
+            Figure(label="damping rate", metric="damping_rate_per_s", value=mat.damping_rate_per_s, unit="1/s",
+                   source=chosen)]
+    bands = _band_figures(record.targets, adopted.metrics, keys, measured_in, not_measured)
+    return rows, bands, material_words(mat.youngs_modulus_pa, adopted.metrics.get("rebound_ratio"))
+
+
 def card_data(asset_dir: Path | str, manifest: AssetManifest | None = None) -> CardData:
     """The card's content for an asset directory (InputError naming the file when a document is missing or invalid).
 
@@ -268,18 +291,7 @@ def card_data(asset_dir: Path | str, manifest: AssetManifest | None = None) -> C
     path = adir.path / ATTEMPTS_FILE
     attempts = read_attempts(path) if path.is_file() else []
     l1_keys = _probe_keys(attempts, "L1", None)
-    l2_keys = _probe_keys(attempts, "L2", material.selection.best_iteration)
-    mat = material.material
-    chosen = f"{MATERIAL_JSON} ({material.status}; evidence/attempts.jsonl L2 #{material.selection.best_iteration})"
-    material_rows = [] if mat is None else [
-        Figure(label="Young's modulus E", metric="youngs_modulus_pa", value=mat.youngs_modulus_pa, unit="Pa",
-               source=chosen),
-        Figure(label="Poisson ratio nu", metric="poisson_ratio", value=mat.poisson_ratio, unit="-",
-               source=chosen),
-        Figure(label="damping rate", metric="damping_rate_per_s", value=mat.damping_rate_per_s, unit="1/s",
-               source=chosen)]
-    bands = _band_figures(material.targets, material.metrics, l2_keys, f"{MATERIAL_JSON} metrics",
-                          material.not_measured)
+    material_rows, bands, words = _material_figures(adir, material, attempts)
     mass_band = {b.metric: b for b in physical.targets.bands}
     l1_rows = []
     for m, (label, unit) in L1_FIGURES.items():
@@ -309,7 +321,6 @@ def card_data(asset_dir: Path | str, manifest: AssetManifest | None = None) -> C
               if (adir.path / rel).is_file()}
     views = {v: f"renders/{v}.png" for v in STILL_VIEWS if (adir.path / "renders" / f"{v}.png").is_file()}
     built, analogy = _built(adir)
-    words = material_words(mat.youngs_modulus_pa, material.metrics.get("rebound_ratio")) if mat else None
     layers = _layers(adir, tallies, bands, l3, words, built)
     request = manifest.request.model_dump(mode="json")
     return CardData(name=request_title(request), request=request, views=views,
