@@ -577,11 +577,20 @@ def l3_manipulation(asset_dir: Path, options: L3Options | None = None, agents: A
     rec_paths = [a["recording"] for a in ctx.attempts if a.get("recording")]  # every trial's, failed ones included
     record = _record(ctx, outcome, accepted, chosen, final_material, material_revision, held, robustness, rec_paths,
                      time.perf_counter() - t0)
-    report.say(f"L3 {'passed' if accepted else 'did not pass: ' + record['reason']}")
+    verdict = "passed" + _conditions_summary(held, robustness) if accepted else "did not pass: " + record["reason"]
+    report.say(f"L3 {verdict}")
     # the file holds no wall time, so a rerun writes the same manipulation.json; the returned record reports it
     AssetDir(asset_dir).write_manipulation(ManipulationRecord.model_validate(
         {k: v for k, v in record.items() if k != "wall_time_s"}))
     return record, outcome
+
+
+def _conditions_summary(held: list[dict[str, Any]], robustness: dict[str, Any] | None) -> str:
+    """' (nominal condition; held out 2/3, robustness 1/2)': the pass is the nominal trial's, the rest said beside it."""
+    parts = [f"held out {sum(h['success'] for h in held)}/{len(held)}"] if held else []
+    if robustness and robustness.get("conditions"):
+        parts.append(f"robustness {robustness['passed']}/{len(robustness['conditions'])}")
+    return f" (nominal condition; {', '.join(parts)})" if parts else ""
 
 
 def name_pick_and_place(asset_dir: Path, chosen: dict[str, Any]) -> None:

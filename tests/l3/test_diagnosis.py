@@ -187,3 +187,13 @@ def test_the_reported_trial_ran_the_material_the_asset_carries() -> None:
     assert _chosen_attempt(ctx, values, own) is rows[1]  # type: ignore[arg-type]
     revised = own.model_copy(update={"damping_rate_per_s": 50.0})
     assert _chosen_attempt(ctx, values, revised) is rows[3]  # type: ignore[arg-type]
+
+
+def test_the_pass_line_says_which_conditions_held() -> None:
+    """L3's pass is the nominal trial's; the console line says how the held-out and robustness conditions went."""
+    from flows.l3_manipulation import _conditions_summary
+
+    held = [{"success": True}, {"success": False}, {"success": False}]
+    rob = {"conditions": [{}, {}], "passed": 0}
+    assert _conditions_summary(held, rob) == " (nominal condition; held out 1/3, robustness 0/2)"
+    assert _conditions_summary([], None) == ""
