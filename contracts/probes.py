@@ -3,24 +3,22 @@
 from __future__ import annotations
 
 import math
-from typing import Literal
 
-from pydantic import Field
+from pydantic import ConfigDict, Field
 
 from contracts.base import Model
 
-ProbeKind = Literal[
-    # L0 geometric checks
-    "geometry_checks",
-    # L1: the mass model (no simulation) and rigid probes (pybullet)
-    "mass", "place", "rigid_drop", "slide",
-    # L2 deformable probes (MPM)
-    "drop", "compress", "lift", "stability",
-    # L2 probes on a specimen of the material (a cube): where the target bands are measured
-    "specimen_compress", "specimen_drop",
-    # L3
-    "pick_and_place",
-]
+# What a ProbeSpec's kind names: the probes of the registry (tasks/probes/registry.py: 'place', 'rigid_drop', 'slide',
+# 'compress', 'drop', 'lift', 'stability', 'specimen_compress', 'specimen_drop', ...), the mass model ('mass'), L0's
+# 'geometry_checks' and L3's 'pick_and_place'. A new probe module adds its own kind; no list here to edit.
+ProbeKind = str
+
+
+class ProbeMetrics(Model):
+    """A probe's metrics, typed: one optional float per metric, the unit in its name. A probe module subclasses it to
+    declare what it measures; a metric it does not declare is rejected at the boundary (tasks.probes.probe)."""
+
+    model_config = ConfigDict(extra="forbid", frozen=True)
 
 
 class ProbeSpec(Model):

@@ -129,6 +129,33 @@ class StageParameters(Model):
 
 
 P = TypeVar("P", bound=StageParameters)
+
+
+class ProbeEntry(Model):
+    """A probe a stage runs (its registry name, tasks/probes/registry.py), whether it is also a held-out test, and
+    settings of its own (a probe that needs a setting no stage parameter holds)."""
+
+    name: str
+    held_out: bool = Field(default=False, description="also run at the held-out settings on the chosen candidate")
+    settings: dict[str, float] = Field(default_factory=dict, description="the probe's own settings, unit in each name")
+
+
+class StageProbes(StageParameters):
+    """The `parameters.probes` list of a stage contract: which registered probes its Prober runs, in order (none for
+    a stage whose contract lists none: L0's checks and L3's trials are not registered probes)."""
+
+    probes: list[ProbeEntry] = Field(default_factory=list)
+
+    def names(self, held_out: bool = False) -> list[str]:
+        """The probes of the selection (held_out: of the held-out tests), in the contract's order."""
+        return [e.name for e in self.probes if e.held_out or not held_out]
+
+    def entry(self, name: str) -> ProbeEntry:
+        """The entry of one probe (ContractError if the stage does not run it)."""
+        for e in self.probes:
+            if e.name == name:
+                return e
+        raise ContractError(f"the stage runs no probe '{name}'; it runs {', '.join(self.names())}")
 PerQuality = float | dict[str, float]  # one value, or one per quality preset (draft | standard | high)
 
 

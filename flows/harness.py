@@ -19,7 +19,8 @@ from contracts.stage import StageContract, StageName, load_contract
 from tasks.agents.orchestrator import ProbeRunner, run_stage
 from tasks.agents.records import AttemptRecorder
 from tasks.agents.roles import build_roles
-from tasks.agents.vocab import stage_routes
+from tasks.agents.vocab import StageRoutes, stage_routes
+from tasks.probes.registry import stage_probes
 
 InputBuilder = Callable[[dict[str, float], str], dict[str, Any]]
 
@@ -101,6 +102,21 @@ def task_probe_runner(probes: Sequence[ProbeCall], parallel: bool = False) -> Pr
     return run
 
 
+def with_probe_routes(routes: StageRoutes, contract: StageContract) -> StageRoutes:
+    """The stage's route table plus the route defaults (gate routes, couplings) of the registered probes its contract
+    runs, for the metrics routes.yaml and the contract leave out: a new probe brings its own routes."""
+    table = routes.model_dump()
+    added = False
+    for probe in stage_probes(contract):
+        own = probe.route_table()
+        for section in ("gates", "couplings"):
+            for metric, route in own[section].items():
+                if metric not in table[section]:
+                    table[section][metric] = route
+                    added = True
+    return StageRoutes.model_validate(table) if added else routes
+
+
 @lean_flow(name="harness-stage", validate_parameters=False, persist_result=False)  # the probe runner: by name
 def harness_stage(
     contract: StageContract,
@@ -113,10 +129,11 @@ def harness_stage(
     completion: Any = None,
 ) -> StageOutcome:
     """Run one stage under its contract; attempts go to record_dir/evidence/attempts.jsonl and a harness .rrd."""
-    roles = build_roles(agents, completion=completion, routes=stage_routes(contract.stage, contract.parameters))
+    routes = with_probe_routes(stage_routes(contract.stage, contract.parameters), contract)
+    roles = build_roles(agents, completion=completion, routes=routes)
     recorder = AttemptRecorder(record_dir, contract.stage) if record_dir is not None else None
     outcome = run_stage(contract, probe_runner, targets, roles=roles, initial=initial, initial_action=initial_action,
-                        recorder=recorder)
+                        recorder=recorder, routes=routes)
     if recorder is not None:
         recorder.close(outcome)
     return outcome

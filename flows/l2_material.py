@@ -21,109 +21,44 @@ from typing import Any
 import numpy as np
 
 import cache
-from cache import cache_relative, cache_resolve, cache_root, cached_task, content_key
+from cache import cache_resolve, cached_task
 from cache.prefect_flow import lean_flow
 from contracts.agents import AgentConfig, StageOutcome, TargetBehaviour
 from contracts.asset_dir import MATERIAL_JSON, HeldOutSummary, MaterialRecord, SelectionSummary
-from contracts.errors import InputError
+from contracts.errors import ContractError, InputError
 from contracts.material import Material
 from contracts.physical import PhysicalModel
 from contracts.probes import ProbeResult, not_measured_reason
 from contracts.request import AssetRequest
 from contracts.sim import SimConfig
 from contracts.stage import L2Parameters, StageContract, load_contract
-from flows.harness import call_tasks, probe_cache_key, run_harness
+from flows.harness import run_harness
+from flows.probe_tasks import probe_task, run_probes
 from prefect import flow
 from tasks.agents.intent import asset_targets
 from tasks.asset_dir import AssetDir, geometry_info
 from tasks.geometry.outputs import L0Asset, load_l0
-from tasks.probes import deformable
-from tasks.probes.specimen import specimen_particles
+from tasks.probes.probe import Probe, ProbeContext
+from tasks.probes.registry import by_kind, stage_probes
+from tasks.probes.registry import probe as find_probe
 from tasks.probes.rollout import DeformableBody, plan_batches, rollouts
 from tasks.probes.workers import probe_workers
 from tasks.publish import copy_file_atomic, write_text_atomic
 
-TASK_VERSION = "2"  # bump when tasks/probes/{deformable,rollout,metrics}.py change what the probes return
-LIFT_TASK_VERSION = f"{TASK_VERSION}.1"  # .1: the lift probe squeezes up to 75 % of the width (#36)
-SELECTION_PROBES = ("compress", "drop", "lift", "stability", "specimen_compress", "specimen_drop")
-HELD_OUT_PROBES = ("compress", "drop", "specimen_compress", "specimen_drop")  # at the contract's held-out settings
-SPECIMEN_PROBES = {"specimen_compress": "compress", "specimen_drop": "drop"}  # specimen kind -> deformable probe
-SPECIMEN_SHAPE = {"specimen_compress": "cube", "specimen_drop": "ball"}  # tasks.probes.specimen: why a ball for the drop
+TASK_VERSION = "2"  # the screening task's; each probe's own version is in its module (tasks/probes/deformable_probes/)
 OBJECT_VIEW_KINDS = ("compress", "drop")  # object probes whose non-gate metrics are reported as object_<name>
 SCREEN_SCHEDULE = "auto"  # how object candidates share rollouts (tasks.probes.rollout.plan_batches)
 SPECIMEN_SCREEN_SCHEDULE = "batch"  # the screening's three specimen candidates in one lock-step rollout
 SCREEN_KEEP_MARGIN = 0.1  # a start value is kept when its metric is inside its band less 10 % of the width at each end
 
 
-# -- cached probe tasks ----------------------------------------------------------------------------------------------
-def _recording_path(kind: str, key: str) -> Path:
-    """Where a probe's recording lives in the cache (copied into the asset for the chosen material)."""
-    return cache_root() / "recordings" / f"L2_{kind}-{key[:16]}.rrd"
-
-
-def _probe(kind: str, positions_m: np.ndarray, volumes_m3: np.ndarray, physical: PhysicalModel,
-           materials: list[Material], params: dict[str, float], sim: SimConfig, held_out: bool,
-           schedule: str = SCREEN_SCHEDULE) -> list[ProbeResult]:
-    """Run one probe kind (an object probe, or a specimen_* kind on the specimen's particles) on a batch of materials,
-    recording each scene under the cache's recordings folder."""
-    body = DeformableBody.from_physical(positions_m, volumes_m3, physical)
-    keys = [content_key("l2", kind, positions_m, volumes_m3, physical, m, params, sim, held_out) for m in materials]
-    paths = [_recording_path(kind, k) for k in keys]
-    results = deformable.PROBES[SPECIMEN_PROBES.get(kind, kind)](body, materials, sim=sim, record_paths=paths,
-                                                                 held_out=held_out, schedule=schedule, **params)
-    out = []
-    for r, p in zip(results, paths):
-        upd: dict[str, Any] = {"recording": cache_relative(p) if p.is_file() else None}
-        if kind in SPECIMEN_PROBES:
-            upd["spec"] = r.spec.model_copy(update={"kind": kind})
-        out.append(r.model_copy(update=upd))
-    return out
-
-
-@cached_task(version=TASK_VERSION, name="l2.compress")
-def compress_task(positions_m: np.ndarray, volumes_m3: np.ndarray, physical: PhysicalModel, material: Material,
-                  strain: float, sim: SimConfig, held_out: bool = False) -> ProbeResult:
-    """Compression probe (effective modulus, recovery) of one material."""
-    return _probe("compress", positions_m, volumes_m3, physical, [material], {"strain": strain}, sim, held_out)[0]
-
-
-@cached_task(version=TASK_VERSION, name="l2.drop")
-def drop_task(positions_m: np.ndarray, volumes_m3: np.ndarray, physical: PhysicalModel, material: Material,
-              height_fraction: float, sim: SimConfig, held_out: bool = False) -> ProbeResult:
-    """Drop probe (rebound, dissipation, impact strain, settle time) of one material."""
-    return _probe("drop", positions_m, volumes_m3, physical, [material], {"height_fraction": height_fraction}, sim,
-                  held_out)[0]
-
-
-@cached_task(version=LIFT_TASK_VERSION, name="l2.lift")
-def lift_task(positions_m: np.ndarray, volumes_m3: np.ndarray, physical: PhysicalModel, material: Material,
-              sim: SimConfig) -> ProbeResult:
-    """Lift/pinch probe (sag) of one material."""
-    return _probe("lift", positions_m, volumes_m3, physical, [material], {}, sim, False)[0]
-
-
-@cached_task(version=TASK_VERSION, name="l2.stability")
-def stability_task(positions_m: np.ndarray, volumes_m3: np.ndarray, physical: PhysicalModel, material: Material,
-                   duration_s: float, sim: SimConfig) -> ProbeResult:
-    """Long rest rollout (stable_long_rollout) of one material."""
-    return _probe("stability", positions_m, volumes_m3, physical, [material], {"duration_s": duration_s}, sim,
-                  False)[0]
-
-
-@cached_task(version=TASK_VERSION, name="l2.specimen_compress")
-def specimen_compress_task(positions_m: np.ndarray, volumes_m3: np.ndarray, physical: PhysicalModel,
-                           material: Material, strain: float, sim: SimConfig, held_out: bool = False) -> ProbeResult:
-    """Compression probe of the material's specimen: the modulus and recovery the target bands are about."""
-    return _probe("specimen_compress", positions_m, volumes_m3, physical, [material], {"strain": strain}, sim,
-                  held_out)[0]
-
-
-@cached_task(version=TASK_VERSION, name="l2.specimen_drop")
-def specimen_drop_task(positions_m: np.ndarray, volumes_m3: np.ndarray, physical: PhysicalModel, material: Material,
-                       height_fraction: float, sim: SimConfig, held_out: bool = False) -> ProbeResult:
-    """Drop probe of the material's specimen: the rebound the target bands are about."""
-    return _probe("specimen_drop", positions_m, volumes_m3, physical, [material], {"height_fraction": height_fraction},
-                  sim, held_out)[0]
+# -- the probes: registered in tasks/probes/deformable_probes/, listed in the contract's parameters.probes -----------
+def l2_probe(kind: str) -> Probe:
+    """The registered L2 probe `kind` (InputError naming the known ones)."""
+    try:
+        return find_probe("L2", kind)
+    except ContractError as exc:
+        raise InputError(f"unknown deformable probe '{kind}': {exc}") from None
 
 
 @cached_task(version=TASK_VERSION, name="l2.screen")
@@ -132,12 +67,10 @@ def screen_task(positions_m: np.ndarray, volumes_m3: np.ndarray, physical: Physi
                 schedule: str = SCREEN_SCHEDULE) -> list[ProbeResult]:
     """Several candidate materials of one probe, scheduled by `schedule` (tasks.probes.rollout.plan_batches);
     screen_rollouts() counts the simulation calls."""
-    return _probe(kind, positions_m, volumes_m3, physical, materials, params, sim, False, schedule)
-
-
-PROBE_TASKS: dict[str, Any] = {"compress": compress_task, "drop": drop_task, "lift": lift_task,
-                               "stability": stability_task, "specimen_compress": specimen_compress_task,
-                               "specimen_drop": specimen_drop_task}
+    batch = l2_probe(kind).batch
+    if batch is None:
+        raise InputError(f"the probe '{kind}' cannot screen several materials at once")
+    return batch(positions_m, volumes_m3, physical, materials, params, sim, False, schedule)
 
 
 # -- inputs ----------------------------------------------------------------------------------------------------------
@@ -153,10 +86,10 @@ def probe_parameters(contract: StageContract) -> dict[str, float]:
 
 def specimen_arrays(physical: PhysicalModel, contract: StageContract,
                     kind: str = "specimen_compress") -> tuple[np.ndarray, np.ndarray]:
-    """A specimen probe's rest positions [m] and volumes [m^3] at the object's particle spacing: the cube for the
-    compression, the ball inscribed in it for the drop."""
-    n = int(probe_parameters(contract)["specimen_particles_per_axis"])
-    return specimen_particles(float(physical.particle_spacing_m), n, SPECIMEN_SHAPE[kind])
+    """A specimen probe's rest positions [m] and volumes [m^3] at the object's particle spacing (its module's inputs:
+    the cube for the compression, the ball inscribed in it for the drop)."""
+    kw = l2_probe(kind).inputs(ProbeContext(asset=None, contract=contract, physical=physical))
+    return kw["positions_m"], kw["volumes_m3"]
 
 
 def object_view(results: list[ProbeResult], contract: StageContract) -> list[ProbeResult]:
@@ -182,24 +115,8 @@ def l2_metrics(results: list[ProbeResult], contract: StageContract) -> dict[str,
 
 def probe_inputs(kind: str, asset: L0Asset, physical: PhysicalModel, material: Material, contract: StageContract,
                  sim: SimConfig, held_out: bool = False) -> dict[str, Any]:
-    """Keyword inputs of one probe task (what its cache key is made of)."""
-    p = probe_parameters(contract)
-    base: dict[str, Any] = {"positions_m": np.asarray(asset.particles_m, np.float64),
-                            "volumes_m3": np.asarray(asset.volumes_m3, np.float64), "physical": physical,
-                            "material": material, "sim": sim}
-    if kind in SPECIMEN_PROBES:
-        base["positions_m"], base["volumes_m3"] = specimen_arrays(physical, contract, kind)
-        kind = SPECIMEN_PROBES[kind]
-    if kind == "compress":
-        return {**base, "strain": p["strain_held_out" if held_out else "strain"], "held_out": held_out}
-    if kind == "drop":
-        return {**base, "height_fraction": p["height_fraction_held_out" if held_out else "height_fraction"],
-                "held_out": held_out}
-    if kind == "stability":
-        return {**base, "duration_s": p["stability_duration_s"]}
-    if kind == "lift":
-        return base
-    raise InputError(f"unknown deformable probe '{kind}'; choose one of {', '.join(PROBE_TASKS)}")
+    """Keyword inputs of one probe task (what its cache key is made of): the probe module's `inputs`."""
+    return l2_probe(kind).inputs(ProbeContext(asset, contract, physical, material, sim, held_out))
 
 
 def intent_text(asset: L0Asset, intent: str | None) -> str:
@@ -248,12 +165,9 @@ class _Runner:
         self.recording_kinds: dict[str, str] = {}  # recording path -> ProbeSpec.kind of every probe it ran
 
     def __call__(self, values: dict[str, float], action: str) -> list[ProbeResult]:
-        material = Material(**values)
-        calls = [(PROBE_TASKS[kind], probe_inputs(kind, self.asset, self.physical, material, self.contract, self.sim))
-                 for kind in SELECTION_PROBES]
-        results: list[ProbeResult] = call_tasks(calls, probe_workers(len(calls), self.sim.device))
-        out = [r if r.cache_key else r.model_copy(update={"cache_key": probe_cache_key(t, kw)})
-               for r, (t, kw) in zip(results, calls)]
+        ctx = ProbeContext(self.asset, self.contract, self.physical, Material(**values), self.sim)
+        probes = stage_probes(self.contract)
+        out = run_probes(probes, ctx, probe_workers(len(probes), self.sim.device))
         self.recording_kinds.update({r.recording: r.spec.kind for r in out if r.recording})
         return object_view(out, self.contract)
 
@@ -361,9 +275,11 @@ def _copy(src: str | None, dest: Path) -> str | None:
 
 def held_out_probes(asset: L0Asset, physical: PhysicalModel, material: Material, contract: StageContract,
                     sim: SimConfig) -> list[ProbeResult]:
-    """The held-out tests of one material (HELD_OUT_PROBES order; cached tasks, run side by side on the CPU)."""
-    calls = [(PROBE_TASKS[k], probe_inputs(k, asset, physical, material, contract, sim, True)) for k in HELD_OUT_PROBES]
-    return call_tasks(calls, probe_workers(len(calls), sim.device))
+    """The held-out tests of one material (the contract's held-out probes, in its order; cached tasks, run side by side
+    on the CPU)."""
+    probes = stage_probes(contract, held_out=True)
+    ctx = ProbeContext(asset, contract, physical, material, sim, held_out=True)
+    return run_probes(probes, ctx, probe_workers(len(probes), sim.device), keys=False)
 
 
 def evaluate_material(asset_dir: Path, material: Material, contract: StageContract | None = None,
@@ -427,10 +343,10 @@ def l2_material(asset_dir: Path, request_or_intent: AssetRequest | str | None = 
         chosen = next(a for a in outcome.attempts if a.iteration == outcome.best_iteration)
         for src in chosen.evidence.recordings:
             kind = runner.recording_kinds[src]
-            recordings[kind] = _copy(src, asset_dir / "recordings" / f"L2_{kind}.rrd")
+            recordings[kind] = _copy(src, asset_dir / "recordings" / by_kind("L2", kind).recording_name())
         held = held_out_probes(asset, physical, material, contract, sim)
-        for kind, r in zip(HELD_OUT_PROBES, held):
-            recordings[f"{kind}_held_out"] = _copy(r.recording, asset_dir / "recordings" / f"L2_{kind}_held_out.rrd")
+        for p, r in zip(stage_probes(contract, held_out=True), held):
+            recordings[f"{p.kind}_held_out"] = _copy(r.recording, asset_dir / "recordings" / p.recording_name(True))
     held_metrics = l2_metrics(held, contract) if held else {}
     held_targets = targets.model_copy(update={"bands": [b for b in targets.bands if b.metric in held_metrics]})
     sim_calls = outcome.sim_calls + int(screening["sim_calls"]) + sum(r.sim_calls for r in held)
@@ -456,6 +372,16 @@ def l2_material(asset_dir: Path, request_or_intent: AssetRequest | str | None = 
     return material, outcome
 
 
+def __getattr__(name: str) -> Any:
+    """HELD_OUT_PROBES and PROBE_TASKS of the packaged contract, for flows/eval_arms.py until it reads
+    tasks.probes.registry.stage_probes itself."""
+    if name == "HELD_OUT_PROBES":
+        return tuple(p.name for p in stage_probes(load_contract("L2"), held_out=True))
+    if name == "PROBE_TASKS":
+        return {p.name: probe_task(p) for p in stage_probes(load_contract("L2"))}
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
+
 def load_material(asset_dir: Path) -> Material:
     """The L2 material of an asset directory (InputError when L2 has not run or found no valid material): AssetDir's."""
     return AssetDir(asset_dir).material_model()
@@ -470,9 +396,10 @@ def run_probe(kind: str, asset_dir: Path, material: Material, physical: Physical
     contract = load_contract("L2")
     kw = probe_inputs(kind, asset, physical, material, contract, sim or SimConfig(), held_out)
     with cache.local_runtime():
-        return PROBE_TASKS[kind](**kw)
+        return probe_task(l2_probe(kind))(**kw)
 
 
-__all__ = ["HELD_OUT_PROBES", "MATERIAL_JSON", "PROBE_TASKS", "evaluate_material", "l2_material", "l2_metrics",
-           "l2_revalidation", "l2_targets", "load_material", "object_view", "probe_inputs", "run_l2", "run_probe",
+__all__ = ["MATERIAL_JSON", "evaluate_material", "l2_material", "l2_metrics",
+           "l2_probe", "l2_revalidation", "l2_targets", "load_material", "object_view", "probe_inputs", "run_l2",
+           "run_probe",
            "screen", "specimen_arrays"]
