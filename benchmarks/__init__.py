@@ -1,7 +1,11 @@
-"""The lab on top of the product: benchmark drivers and experiments. They may import flows; nothing below imports
-them, except `deformsmith bench l2`, whose command function loads `l2_schedule`.
+"""The lab on top of the product: benchmark drivers, profiling and experiments. They may import flows; nothing in
+contracts/, cache/, tasks/ or flows/ imports them (tests/layering/test_layers.py).
 
-`l2_schedule` (`deformsmith bench l2`), `l3_trial` (`python -m benchmarks.l3_trial`), `l3_yaw_sweep`
-(`python -m benchmarks.l3_yaw_sweep`), `pick_and_place_video.py` (a script) and `engine/` (the MPM engine's GPU
-benchmark scripts).
+Each driver runs as `python -m benchmarks.<name>` (--help lists its options; --json prints its figures):
+`mpm_bench` (the MPM step on the standard cube scene), `render_bench` (seconds per frame of the splat renderer),
+`cache_bench` (cache put/hit and key latency, codec choice), `geometry_bench` (L0 per quality; --suite: a prompt
+suite), `l2_schedule` (the L2 screening candidates under each schedule), `generate_rerun` (the main job rerun from a
+full cache), `crosscheck_bench` (the asset in other simulators), `l3_trial`, `l3_yaw_sweep`, `blind_bench`,
+`photo_bench`, `drop_video_bench`, `segmentation_sheet`; `pick_and_place_video.py` (a script) and `engine/` (the MPM
+engine's GPU benchmark scripts).
 """

@@ -27,7 +27,7 @@ from flows.l1_physical import l1_plan
 from tasks.agents.intent import targets_from_request
 from tasks.geometry import pipeline
 from tasks.geometry.outputs import load_l0, write_outputs
-from tasks.geometry.suite_bench import contact_sheet
+from benchmarks.geometry_bench import contact_sheet
 
 VIEWS = ("front", "side", "top")
 

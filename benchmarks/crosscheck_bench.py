@@ -1,13 +1,13 @@
 """Cross-simulator check on a sponge, a rubber ball and a plush toy: per simulator and metric, DeformSmith's MPM
 value, the simulator's before calibration and after (flows.crosscheck).
 
-    python benchmarks/crosscheck_bench.py [ASSET_DIR ...] [--sims mujoco,genesis,drake] [--out docs/crosscheck.json]
+    python -m benchmarks.crosscheck_bench [ASSET_DIR ...] [--sims mujoco,genesis,drake] [--out docs/crosscheck.json]
 
 Without asset directories it uses $DEFORMSMITH_CROSSCHECK_ASSETS (a colon-separated list). Each asset is copied to
 a temporary directory first (the export and calibration are written there, never into the asset). Prints JSON: one
 row per (asset, simulator, metric), each simulator's calibrated parameters and residuals, whether the calibrated
 effective modulus and rebound agree within 15 %, the simulations and wall time, and the load average (a shared CPU's
-timings vary). The same as `deformsmith bench crosscheck --json`.
+timings vary). (It was also `deformsmith bench crosscheck --json` before #37.)
 """
 
 from __future__ import annotations

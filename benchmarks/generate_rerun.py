@@ -2,7 +2,6 @@
 asset it publishes, per top-level folder.
 
     python -m benchmarks.generate_rerun [TEXT] --cache DIR --out DIR [--runs 3] [--json]
-    deformsmith bench generate [TEXT] ...            (the same)
 
 A run that finds the cache empty first fills it with one cold run (timed and reported apart). Each timed run is a
 fresh process, as a user's rerun is.

@@ -1,4 +1,7 @@
-"""`deformsmith bench l2`: the L2 screening candidates under each schedule, side by side in one process.
+"""The L2 screening candidates under each schedule, side by side in one process.
+
+    python -m benchmarks.l2_schedule --asset DIR [--intent WORDS] [--schedule S ...] [--probe compress|drop ...]
+                                     [--repeat N] [--device cpu|cuda] [--json]
 
 The candidates are those of flows.l2_material.screen() for the asset and intent: compress at E = 1/3, 1, 3 x the start
 value, drop at three damping rates. Each (probe, schedule) runs once here, uncached, with recordings written to a
@@ -8,15 +11,23 @@ time and metrics, and whether the metrics equal those of the same candidate run 
 
 from __future__ import annotations
 
+import contextlib
 import os
 import platform
+import sys
 import tempfile
 import time
 from pathlib import Path
 from typing import Any
 
+import typer
+from rich.table import Table
+
 from contracts.material import Material
 from contracts.sim import SimConfig
+from flows.cli.apps import console, emit_json, fail, results
+from tasks.asset_dir import AssetDir
+from tasks.probes.rollout import SCHEDULES
 
 KEY_METRICS = {"compress": ("effective_modulus_pa", "recovery_ratio", "compression_strain"),
                "drop": ("rebound_ratio", "settle_time_s", "max_impact_strain")}
@@ -114,4 +125,51 @@ def physical_intent(asset_dir: Path) -> str | None:
     return json.loads(path.read_text(encoding="utf-8")).get("intent")
 
 
+app = typer.Typer(add_completion=False, pretty_exceptions_enable=False)
+
+
+@app.command()
+def bench_l2(
+    asset: Path = typer.Option(..., "--asset", help="asset directory holding L0 (and L1 physical.json)"),
+    intent: str = typer.Option(None, "--intent", help="material words (default: the intent L1 ran with)"),
+    schedule: list[str] = typer.Option(None, "--schedule",
+                                       help="batch | grouped | sequential | auto (repeatable; default batch, grouped, "
+                                            "sequential)"),
+    probe: list[str] = typer.Option(None, "--probe", help="compress | drop (repeatable; default both)"),
+    repeat: int = typer.Option(1, "--repeat", help="runs per schedule (>1 also checks the metrics repeat exactly)"),
+    device: str = typer.Option("cpu", "--device", help="Warp device: cpu or cuda"),
+    json_out: bool = typer.Option(False, "--json", help="print the figures as JSON on stdout"),
+) -> None:
+    """Time the L2 screening candidates (compress at 1/3, 1, 3 x E; drop at three damping rates) under each schedule,
+    side by side in one process (warm-up excluded, no cache, recordings to a temporary folder)."""
+    if not AssetDir(asset).has("geometry"):
+        fail(f"{asset} is not an asset directory (no geometry.json); run `deformsmith geometry ... --out {asset}`")
+    schedules = tuple(schedule or ("batch", "grouped", "sequential"))
+    probes = tuple(probe or ("compress", "drop"))
+    if bad := [s for s in schedules if s not in SCHEDULES]:
+        fail(f"unknown schedule(s) {', '.join(bad)}; choose from {', '.join(SCHEDULES)}")
+    if bad := [p for p in probes if p not in ("compress", "drop")]:
+        fail(f"unknown probe(s) {', '.join(bad)}; choose compress and/or drop")
+    if device not in ("cpu", "cuda") or repeat < 1:
+        fail("need --device cpu|cuda and --repeat >= 1")
+    if intent is not None and not intent.strip():
+        fail("--intent is empty")
+    with contextlib.redirect_stdout(sys.stderr), console.status("benchmarking the L2 screening ..."):
+        data = run_l2_bench(asset, intent, schedules, probes, device, repeat)
+    if json_out:
+        emit_json(data)
+        return
+    table = Table(title=f"L2 screening on {asset} ({data['particles']} particles, {data['intent']}, {device})")
+    for col in ("probe", "schedule", "sim calls", "wall [s]", "x sequential", "x one probe", "same as alone"):
+        table.add_column(col)
+    for kind, rows in data["probes"].items():
+        for sched, row in rows.items():
+            table.add_row(kind, sched, str(row["sim_calls"]), f"{row['wall_s']:.2f}", str(row.get("x_sequential")),
+                          str(row.get("x_one_probe")), str(row.get("same_metrics_as_alone")))
+    results.print(table)
+
+
 __all__ = ["physical_intent", "run_l2_bench"]
+
+if __name__ == "__main__":
+    app()

@@ -24,7 +24,7 @@ from contracts.errors import CacheError
 FORMAT = 1
 MARKER = "DEFORMSMITH_CACHE"
 ATTR = "deformsmith"
-CHUNK_BYTES = 16 << 20  # chunk target along axis 0 (chosen with `deformsmith bench cache`)
+CHUNK_BYTES = 16 << 20  # chunk target along axis 0 (chosen with `python -m benchmarks.cache_bench`)
 COMPRESSORS: Any = None  # uncompressed: simulation state is float noise, compression costs more than it saves
 STALE_TMP_S = 6 * 3600.0  # temp dirs older than this are crash leftovers that gc removes
 

@@ -3,13 +3,13 @@
     python3 -m benchmarks.engine.gpu_ab --old _old --plan PLAN [--out DIR]
 
 PLAN is a ';'-separated list of runs ``tag:tree:NAME=V,NAME=V:particles:steps:batch`` (tree: old or new; the NAME=V
-part, ``contracts.sim.KernelOptions`` fields passed as ``deformsmith bench mpm --kernel NAME=V``, may be empty; a
+part, ``contracts.sim.KernelOptions`` fields passed as ``python -m benchmarks.mpm_bench --kernel NAME=V``, may be empty; a
 tree from before KernelOptions took the same switches as DEFORMSMITH_MPM_* environment variables). The old tree is
 a ``git archive`` of the old commit extracted into a folder of the repo root (``--old``); new
 is the working tree. Prints one line per run and a JSON list of every run's figures to DIR/ab.json.
 
 Example (device machine, repo root, Warp + pydantic on PYTHONPATH; old tree from
-``git archive <commit> tasks contracts flows cache | tar -x -C _old`` made here and carried):
+``git archive <commit> tasks contracts flows cache benchmarks | tar -x -C _old`` made here and carried):
 
     python3 -m benchmarks.engine.gpu_ab --out $OUT --plan "o8:old::8000:5000:1;n8:new::8000:5000:1;\
         n16w:new:scatter=warp:8000:2000:16"
@@ -25,7 +25,8 @@ import subprocess
 import sys
 import time
 
-CLI = ('import sys, flows.cli.mpm_cmds; from flows.cli.apps import app; sys.argv[0] = "deformsmith"; app()')
+# a tree from before the benchmark moved to benchmarks/ (#37) runs it as `deformsmith bench mpm`
+OLD_CLI = ('import sys, flows.cli.mpm_cmds; from flows.cli.apps import app; sys.argv[0] = "deformsmith"; app()')
 
 
 def run_one(root: pathlib.Path, options: dict, particles: int, steps: int, batch: int) -> dict:
@@ -33,8 +34,10 @@ def run_one(root: pathlib.Path, options: dict, particles: int, steps: int, batch
     record)."""
     e = dict(os.environ)
     e["PYTHONPATH"] = f"{root}:{e.get('PYTHONPATH', '')}"
-    cmd = [sys.executable, "-c", CLI, "bench", "mpm", "--device", "cuda", "--particles", str(particles), "--steps",
-           str(steps), "--batch", str(batch), "--json"]
+    bench = ([sys.executable, "-m", "benchmarks.mpm_bench"] if (root / "benchmarks" / "mpm_bench.py").is_file()
+             else [sys.executable, "-c", OLD_CLI, "bench", "mpm"])
+    cmd = [*bench, "--device", "cuda", "--particles", str(particles), "--steps", str(steps), "--batch", str(batch),
+           "--json"]
     for name, value in options.items():
         if name.startswith("DEFORMSMITH_MPM_"):  # an old tree's switch: its environment variable
             e[name] = value

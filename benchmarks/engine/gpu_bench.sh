@@ -6,13 +6,14 @@ set -u
 OUT=${OUT:-/tmp/mpm_gpu}; mkdir -p "$OUT"
 export PYTHONPATH="$PWD:${PYTHONPATH:-}" PYTHONUNBUFFERED=1
 kopts=(); IFS=, read -ra kv <<< "${KERNEL:-}"; for o in "${kv[@]}"; do kopts+=(--kernel "$o"); done
-ds() { python3 -c 'import sys, flows.cli.mpm_cmds; from flows.cli.apps import app; sys.argv[0] = "deformsmith"; app()' "$@"; }
+ds() { python3 -m benchmarks.mpm_bench "$@"; }  # the MPM benchmark's command line
+verify() { python3 -c 'import sys, flows.cli.mpm_cmds; from flows.cli.apps import app; sys.argv[0] = "deformsmith"; app()' verify "$@"; }
 nvidia-smi --query-gpu=name,memory.total,driver_version --format=csv,noheader | tee "$OUT/gpu.txt"
-ds bench mpm --device cuda --particles 8000 --steps 5000 ${kopts[@]+"${kopts[@]}"} --json > "$OUT/bench_8k.json"; echo "8k rc=$?"
-ds bench mpm --device cuda --particles 1000000 --steps 300 ${kopts[@]+"${kopts[@]}"} --json > "$OUT/bench_1m.json"; echo "1M rc=$?"
-ds bench mpm --device cuda --particles 8000 --steps 2000 --batch 16 ${kopts[@]+"${kopts[@]}"} --json > "$OUT/bench_8k_x16.json"; echo "x16 rc=$?"
-ds bench mpm --device cuda --particles 64000 --steps 1000 ${kopts[@]+"${kopts[@]}"} --json > "$OUT/bench_64k.json"; echo "64k rc=$?"
-ds verify physics --quick --device cuda --json > "$OUT/verify_cuda_quick.json"; echo "verify rc=$?"
+ds --device cuda --particles 8000 --steps 5000 ${kopts[@]+"${kopts[@]}"} --json > "$OUT/bench_8k.json"; echo "8k rc=$?"
+ds --device cuda --particles 1000000 --steps 300 ${kopts[@]+"${kopts[@]}"} --json > "$OUT/bench_1m.json"; echo "1M rc=$?"
+ds --device cuda --particles 8000 --steps 2000 --batch 16 ${kopts[@]+"${kopts[@]}"} --json > "$OUT/bench_8k_x16.json"; echo "x16 rc=$?"
+ds --device cuda --particles 64000 --steps 1000 ${kopts[@]+"${kopts[@]}"} --json > "$OUT/bench_64k.json"; echo "64k rc=$?"
+verify physics --quick --device cuda --json > "$OUT/verify_cuda_quick.json"; echo "verify rc=$?"
 python3 -m pytest -q -p no:cacheprovider -m gpu tests/mpm/test_engine.py 2>&1 | tail -2
 python3 - "$OUT" <<'PY'
 import json, sys, pathlib

@@ -16,8 +16,7 @@ for round in 2; do   # a second round of the latency-bound sizes, alternating, t
     fast=true; [ "$mode" = old ] && fast=false
     for args in "8000 5000 1" "8000 2000 16"; do
       set -- $args
-      python3 -c 'import sys, flows.cli.mpm_cmds; from flows.cli.apps import app; sys.argv[0] = "deformsmith"; app()' \
-        bench mpm --device cuda --particles $1 --steps $2 --batch $3 --kernel cuda_fast=$fast --json \
+      python3 -m benchmarks.mpm_bench --device cuda --particles $1 --steps $2 --batch $3 --kernel cuda_fast=$fast --json \
         > "$W/$mode/r${round}_bench_$1_x$3.json"
     done
   done

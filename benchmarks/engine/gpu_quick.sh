@@ -5,10 +5,10 @@
 set -u
 variants="$*"
 export PYTHONPATH="$PWD:${PYTHONPATH:-}" PYTHONUNBUFFERED=1
-ds() { python3 -c 'import sys, flows.cli.mpm_cmds; from flows.cli.apps import app; sys.argv[0] = "deformsmith"; app()' "$@"; }
+ds() { python3 -m benchmarks.mpm_bench "$@"; }  # the MPM benchmark's command line
 for args in "8000 5000 1" "8000 2000 16" "1000000 300 1"; do
   set -- $args
-  ds bench mpm --device cuda --particles $1 --steps $2 --batch $3 --json | python3 benchmarks/engine/gpu_summary.py
+  ds --device cuda --particles $1 --steps $2 --batch $3 --json | python3 benchmarks/engine/gpu_summary.py
 done
 for args in "8000 1" "8000 16" "1000000 1"; do
   set -- $args
@@ -18,7 +18,7 @@ for var in $variants; do
   for args in "8000 5000 1" "8000 2000 16"; do
     set -- $args
     kopts=(); IFS=, read -ra kv <<< "$var"; for o in "${kv[@]}"; do kopts+=(--kernel "$o"); done
-    echo -n "$var: "; ds bench mpm --device cuda --particles $1 --steps $2 --batch $3 ${kopts[@]+"${kopts[@]}"} --json \
+    echo -n "$var: "; ds --device cuda --particles $1 --steps $2 --batch $3 ${kopts[@]+"${kopts[@]}"} --json \
       | python3 benchmarks/engine/gpu_summary.py
   done
 done

@@ -21,10 +21,8 @@ app = typer.Typer(
     pretty_exceptions_enable=False,
 )
 cache_app = typer.Typer(help="Inspect and maintain the content-addressed result cache.", no_args_is_help=True)
-bench_app = typer.Typer(help="Benchmarks that print their figures (use --json).", no_args_is_help=True)
 verify_app = typer.Typer(help="Analytic verification suites.", no_args_is_help=True)
 app.add_typer(cache_app, name="cache")
-app.add_typer(bench_app, name="bench")
 app.add_typer(verify_app, name="verify")
 
 

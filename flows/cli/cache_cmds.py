@@ -1,4 +1,4 @@
-"""`deformsmith cache stats|verify|gc` and `deformsmith bench cache`."""
+"""`deformsmith cache stats|verify|gc` (the cache benchmark is `python -m benchmarks.cache_bench`)."""
 
 from __future__ import annotations
 
@@ -13,7 +13,7 @@ from rich.table import Table
 
 from cache.config import ENV_VAR, use_cache_root
 from contracts.errors import DeformSmithError, InputError
-from flows.cli.apps import bench_app, cache_app, console, emit_json, fail, results
+from flows.cli.apps import cache_app, emit_json, fail, results
 
 CacheOption = Annotated[
     Path | None,
@@ -148,32 +148,3 @@ def gc_cmd(
     results.print(f"removed {len(result['removed'])} entries ({_human(result['freed_bytes'])}); "
                   f"{result['remaining_entries']} remain ({_human(result['remaining_bytes'])}); "
                   f"{len(dead['removed'])} temporaries of dead processes removed ({_human(dead['freed_bytes'])})")
-
-
-@bench_app.command("cache")
-def bench_cache_cmd(
-    cache: Annotated[Path | None, typer.Option("--cache", help="Benchmark on this filesystem (a temp dir under it; default: system temp).")] = None,
-    particles: Annotated[int, typer.Option("--particles", min=1, help="Particles in the large entry.")] = 1_000_000,
-    repeats: Annotated[int, typer.Option("--repeats", min=1, help="Repetitions per figure (median reported).")] = 3,
-    compare: Annotated[bool, typer.Option("--compare/--no-compare", help="Also compare Zarr codec/chunk settings.")] = True,
-    json_out: JsonOption = False,
-) -> None:
-    """Put/hit latency of a 1M-particle entry (positions, velocities, F) and a tiny one; key computation time."""
-    from cache.bench import run_bench
-
-    if cache is not None and cache.exists() and not cache.is_dir():
-        fail(f"--cache {cache} is not a directory")
-    with console.status("benchmarking the cache ..."):
-        data = run_bench(cache.absolute() if cache else None, n=particles, repeats=repeats, compare=compare)
-    if json_out:
-        emit_json(data)
-        return
-    table = Table(title=f"cache benchmark ({data['particles']} particles, {data['big_entry_mb']} MB)")
-    table.add_column("figure")
-    table.add_column("value", justify="right")
-    for k, v in data.items():
-        if isinstance(v, float):
-            table.add_row(k, f"{v * 1e3:.2f} ms" if k.endswith("_s") else f"{v:g}")
-    for name, res in data.get("codecs", {}).items():
-        table.add_row(f"codec {name}", f"put {res['put_s'] * 1e3:.1f} ms / hit {res['hit_s'] * 1e3:.1f} ms")
-    results.print(table)

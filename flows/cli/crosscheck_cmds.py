@@ -1,5 +1,6 @@
-"""`deformsmith crosscheck DIR --sim mujoco|genesis|drake` and `deformsmith bench crosscheck`: the asset in other simulators,
-measured by L2's probes beside DeformSmith's MPM values, before and after per-simulator calibration."""
+"""`deformsmith crosscheck DIR --sim mujoco|genesis|drake`: the asset in other simulators, measured by L2's probes
+beside DeformSmith's MPM values, before and after per-simulator calibration (over several assets and simulators:
+`python -m benchmarks.crosscheck_bench`)."""
 
 from __future__ import annotations
 
@@ -7,7 +8,7 @@ from pathlib import Path
 
 import typer
 
-from flows.cli.apps import app, bench_app, console, emit_json, fail, results
+from flows.cli.apps import app, console, emit_json, fail, results
 
 
 def _fmt(v: float | None) -> str:
@@ -55,27 +56,3 @@ def crosscheck_cmd(
         results.print(f"calibrated parameters: {report.calibration['parameters']}")
         results.print(f"modulus and rebound within {100 * report.agree_within:.0f} %: {report.agrees}")
     results.print(f"{report.sim_calls} simulations, {report.wall_time_s:.1f} s")
-
-
-@bench_app.command("crosscheck")
-def bench_crosscheck(
-    assets: list[Path] = typer.Argument(None, help="asset directories (default: see benchmarks/crosscheck_bench.py)"),
-    sims: str = typer.Option("mujoco", "--sims", help="comma list of simulators (mujoco, genesis, drake)"),
-    out: Path = typer.Option(None, "--out", help="write the JSON here too (e.g. docs/crosscheck.json)"),
-    as_json: bool = typer.Option(False, "--json", help="print the figures as JSON"),
-) -> None:
-    """Per asset, simulator and metric: ours, theirs before calibration, theirs after (and whether the calibrated
-    modulus and rebound agree within 15 %)."""
-    from benchmarks.crosscheck_bench import run  # the lab sits on top of flows: imported by this command only
-    from contracts.errors import DeformSmithError
-
-    try:
-        data = run(assets or None, [s.strip() for s in sims.split(",") if s.strip()], out)
-    except DeformSmithError as e:
-        fail(str(e))
-    if as_json:
-        emit_json(data)
-        return
-    for row in data["rows"]:
-        results.print(f"{row['asset']:10s} {row['sim']:8s} {row['metric']:24s} ours {_fmt(row['ours']):>10s} "
-                      f"theirs {_fmt(row['theirs']):>10s} calibrated {_fmt(row['theirs_calibrated']):>10s}")

@@ -11,7 +11,7 @@ from pydantic import ValidationError
 from rich.markup import escape
 
 from contracts.errors import validation_message
-from flows.cli.apps import app, bench_app, check_device, console, emit_json, fail, results
+from flows.cli.apps import app, check_device, console, emit_json, fail, results
 from flows.cli.geometry_cmds import GEOMETRY_BACKEND_HELP
 from flows.cli.llm_option import LLM_FALLBACK_HELP, llm_agents
 from flows.cli.preflight import STRICT_CONCEPT_HELP, check_request, concept_line
@@ -224,25 +224,3 @@ def view(
     if not (os.environ.get("DISPLAY") or os.environ.get("WAYLAND_DISPLAY")) and os.name == "posix":
         fail("no display to open a viewer on; copy the .rrd files to a machine with one and run: " + " ".join(command))
     subprocess.Popen(command)  # the viewer runs on after this command returns
-
-
-@bench_app.command("generate")
-def bench_generate(
-    text: str = typer.Argument("a soft plush turtle toy, about 25 cm long", help="what to make"),
-    cache: Path = typer.Option(..., "--cache", help="cache root (a cold run fills it first when empty)"),
-    out: Path = typer.Option(..., "--out", help="asset directory"),
-    runs: int = typer.Option(3, "--runs", min=1, help="fully cached reruns to time (median reported)"),
-    l3: bool = typer.Option(True, "--l3/--no-l3", help="run L3 in each generate"),
-    as_json: bool = typer.Option(False, "--json", help="print the figures as JSON"),
-) -> None:
-    """The main job rerun from a full cache: seconds per rerun and to its first progress line, and the asset's size
-    per top-level folder (each run a fresh process, as a user's)."""
-    from benchmarks.generate_rerun import run
-
-    with console.status("timing generate ..."):
-        data = run(text, out.absolute(), cache.absolute(), runs, [] if l3 else ["--no-l3"])
-    if as_json:
-        emit_json(data)
-        return
-    results.print(f"warm rerun {data['warm_wall_s_median']} s (first line {data['first_line_s_median']} s), asset "
-                  f"{data['asset']['total_mb']} MB: {data['asset']['per_entry_mb']}")

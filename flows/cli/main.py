@@ -10,9 +10,10 @@ from typing import Any, NoReturn
 
 # The command modules register their commands on the shared apps when imported. A command line names one command:
 # only its module is imported (each pulls in its own libraries), so `generate` prints its first line sooner; --help,
-# a group (cache, bench, verify) and anything unknown import them all, in this order.
+# a group (cache, verify) and anything unknown import them all, in this order. (The benchmarks are the lab's:
+# `python -m benchmarks.<name>`, listed in benchmarks/__init__.py.)
 COMMAND_MODULES = ("schema_cmds", "physical_cmds", "material_cmds", "generate_cmds", "mpm_cmds", "geometry_cmds",
-                   "evidence_cmds", "cache_cmds", "batch_cmds", "manipulate_cmds", "eval_cmds", "render_cmds",
+                   "evidence_cmds", "cache_cmds", "batch_cmds", "manipulate_cmds", "eval_cmds",
                    "card_cmds", "export_cmds", "crosscheck_cmds")
 MODULE_OF = {"schema": "schema_cmds", "physical": "physical_cmds", "probe": "material_cmds",
              "material": "material_cmds", "generate": "generate_cmds", "inspect": "generate_cmds",

@@ -1,5 +1,5 @@
-"""`deformsmith material` (L2 on an asset directory), `deformsmith probe KIND` (one probe, its metrics) and
-`deformsmith bench l2` (the screening candidates under each schedule)."""
+"""`deformsmith material` (L2 on an asset directory) and `deformsmith probe KIND` (one probe, its metrics); the
+screening candidates under each schedule are `python -m benchmarks.l2_schedule`."""
 
 from __future__ import annotations
 
@@ -10,7 +10,7 @@ import typer
 from pydantic import ValidationError
 
 from contracts.errors import validation_message
-from flows.cli.apps import app, bench_app, console, emit_json, fail, prefect_log_level, results
+from flows.cli.apps import app, console, emit_json, fail, prefect_log_level, results
 from flows.cli.preflight import check_asset_dir, check_locations
 
 RIGID_KINDS = ("place", "drop", "slide")  # L1 rigid probes (pybullet); `drop` is rigid unless --deformable
@@ -168,52 +168,3 @@ def material(
         f"[bold]material[/]: E={mat.youngs_modulus_pa:.4g} Pa, nu={mat.poisson_ratio:.3g}, "
         f"damping={mat.damping_rate_per_s:.3g} 1/s ({outcome.status}, {record.sim_calls} simulation "
         f"calls, {wall_s:.1f} s) -> {adir.file('material')}")
-
-
-@bench_app.command("l2")
-def bench_l2(
-    asset: Path = typer.Option(..., "--asset", help="asset directory holding L0 (and L1 physical.json)"),
-    intent: str = typer.Option(None, "--intent", help="material words (default: the intent L1 ran with)"),
-    schedule: list[str] = typer.Option(None, "--schedule",
-                                       help="batch | grouped | sequential | auto (repeatable; default batch, grouped, "
-                                            "sequential)"),
-    probe: list[str] = typer.Option(None, "--probe", help="compress | drop (repeatable; default both)"),
-    repeat: int = typer.Option(1, "--repeat", help="runs per schedule (>1 also checks the metrics repeat exactly)"),
-    device: str = typer.Option("cpu", "--device", help="Warp device: cpu or cuda"),
-    json_out: bool = typer.Option(False, "--json", help="print the figures as JSON on stdout"),
-) -> None:
-    """Time the L2 screening candidates (compress at 1/3, 1, 3 x E; drop at three damping rates) under each schedule,
-    side by side in one process (warm-up excluded, no cache, recordings to a temporary folder)."""
-    import contextlib
-    import sys
-
-    from tasks.probes.rollout import SCHEDULES
-
-    _check_asset(asset)
-    schedules = tuple(schedule or ("batch", "grouped", "sequential"))
-    probes = tuple(probe or ("compress", "drop"))
-    if bad := [s for s in schedules if s not in SCHEDULES]:
-        fail(f"unknown schedule(s) {', '.join(bad)}; choose from {', '.join(SCHEDULES)}")
-    if bad := [p for p in probes if p not in ("compress", "drop")]:
-        fail(f"unknown probe(s) {', '.join(bad)}; choose compress and/or drop")
-    if device not in ("cpu", "cuda") or repeat < 1:
-        fail("need --device cpu|cuda and --repeat >= 1")
-    if intent is not None and not intent.strip():
-        fail("--intent is empty")
-    from benchmarks.l2_schedule import run_l2_bench  # the lab sits on top of flows: imported by this command only
-
-    with contextlib.redirect_stdout(sys.stderr), console.status("benchmarking the L2 screening ..."):
-        data = run_l2_bench(asset, intent, schedules, probes, device, repeat)
-    if json_out:
-        emit_json(data)
-        return
-    from rich.table import Table
-
-    table = Table(title=f"L2 screening on {asset} ({data['particles']} particles, {data['intent']}, {device})")
-    for col in ("probe", "schedule", "sim calls", "wall [s]", "x sequential", "x one probe", "same as alone"):
-        table.add_column(col)
-    for kind, rows in data["probes"].items():
-        for sched, row in rows.items():
-            table.add_row(kind, sched, str(row["sim_calls"]), f"{row['wall_s']:.2f}", str(row.get("x_sequential")),
-                          str(row.get("x_one_probe")), str(row.get("same_metrics_as_alone")))
-    results.print(table)

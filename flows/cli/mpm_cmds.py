@@ -1,4 +1,5 @@
-"""`deformsmith verify physics` (analytic MPM suite) and `deformsmith bench mpm` (standard-scene benchmark)."""
+"""`deformsmith verify physics`: the analytic MPM suite (the standard-scene benchmark is
+`python -m benchmarks.mpm_bench`)."""
 
 from __future__ import annotations
 
@@ -7,7 +8,7 @@ import sys
 
 import typer
 
-from flows.cli.apps import bench_app, console, emit_json, fail, results, verify_app
+from flows.cli.apps import console, emit_json, fail, results, verify_app
 
 
 @verify_app.command("physics")
@@ -50,51 +51,3 @@ def verify_physics(
         results.print(table)
     if not all_pass:
         raise typer.Exit(1)
-
-
-@bench_app.command("mpm")
-def bench_mpm(
-    device: str = typer.Option("cpu", "--device", help="Warp device: cpu or cuda"),
-    particles: int = typer.Option(64000, "--particles", help="particles per scene (rounded to n^3)"),
-    steps: int = typer.Option(200, "--steps", help="timed steps"),
-    batch: int = typer.Option(1, "--batch", help="independent scenes advanced together"),
-    workers: int = typer.Option(0, "--workers", help="CPU threads sharing the batch (0 = one per core)"),
-    cpu_threads: int = typer.Option(1, "--cpu-threads", help="CPU: threads sharing each rollout's particles"),
-    compare_sequential: bool = typer.Option(
-        False, "--compare-sequential",
-        help="also run the batch's scenes one after another in this process and print both ratios"),
-    json_out: bool = typer.Option(False, "--json", help="print the figures as JSON on stdout"),
-    kernel: list[str] = typer.Option(
-        None, "--kernel", help="engine kernel option name=value (contracts.sim.KernelOptions; repeatable)"),
-) -> None:
-    """Benchmark the MPM step on the standard cube scene (warm-up/compile excluded from the timing)."""
-    if device not in ("cpu", "cuda"):
-        fail("--device must be cpu or cuda")
-    if particles < 8 or steps < 1 or batch < 1 or workers < 0 or not 1 <= cpu_threads <= 64:
-        fail("need --particles >= 8, --steps >= 1, --batch >= 1, --workers >= 0, 1 <= --cpu-threads <= 64")
-    if compare_sequential and batch < 2:
-        fail("--compare-sequential needs --batch >= 2")
-    from contracts.sim import KernelOptions
-
-    try:
-        options = KernelOptions.from_assignments(kernel or [])
-    except ValueError as exc:
-        fail(f"--kernel: {exc}")
-    from tasks.mpm.bench import run_bench
-
-    with contextlib.redirect_stdout(sys.stderr):  # Warp's own messages must not mix with --json output
-        res = run_bench(device=device, particles=particles, steps=steps, batch=batch, workers=workers or None,
-                        cpu_threads=cpu_threads, compare_sequential=compare_sequential, kernel=options)
-    if json_out:
-        emit_json(res)
-    else:
-        for k in ("device_name", "particles", "batch", "workers", "cpu_threads", "steps", "seconds", "us_per_step",
-                  "particle_steps_per_s", "peak_memory_bytes", "finite"):
-            results.print(f"{k:>22}: {res[k]}")
-        cmp = res["sequential_comparison"]
-        if cmp:
-            results.print(f"{'one after another':>22}: {cmp['sequential_us_per_step']:.2f} us/step "
-                          f"(batch {cmp['batch_us_per_step']:.2f}): {cmp['ratio_per_step']:.2f}x per step; "
-                          f"whole rollouts {cmp['sequential_rollouts_s']:.3f} s vs {cmp['batch_rollout_s']:.3f} s: "
-                          f"{cmp['ratio_end_to_end']:.2f}x end to end")
-        results.print(f"[dim]{res['note']}[/dim]")

@@ -215,7 +215,7 @@ def run_batched(impl: ProbeImpl, materials: Sequence[Material], record_paths: Se
 # for the longest duration any scene needs (the softest candidate's periods, the slowest to settle). Candidates with
 # the same time step (a damping sweep) share launches and sampling and gain from a batch; a stiffness sweep does not
 # (turtle, draft, firm rubber, 2-core CPU: E x 1/3, 1, 3 batched 50.0 s, one after another 39.3 s; three damping rates
-# batched 35.6 s, one after another 41.0 s: `deformsmith bench l2`, tasks/probes/BENCHMARKS.md). Threads do not help
+# batched 35.6 s, one after another 41.0 s: `python -m benchmarks.l2_schedule`, tasks/probes/BENCHMARKS.md). Threads do not help
 # on the CPU (two probes in two threads took 6.1 s against 4.6 s one after another); threads sharing one rollout's
 # particles do (SimConfig.cpu_threads, tasks/mpm/cpu_threads.py: 1.4-1.8x on 2 cores at 64k particles).
 SCHEDULES = ("auto", "batch", "grouped", "sequential")

@@ -41,9 +41,9 @@ def test_heldout_prompts_weigh_within_2x() -> None:
 
 
 def test_suite_files_are_read_and_bad_ones_refused(tmp_path: Path) -> None:
-    """`bench geometry --suite` reads the held-out file and an evaluation suite's text cases; bad files fail clearly."""
+    """`python -m benchmarks.geometry_bench --suite` reads the held-out file and an evaluation suite's text cases; bad files fail clearly."""
     from contracts.errors import InputError
-    from tasks.geometry.suite_bench import contact_sheet, load_prompts, summary
+    from benchmarks.geometry_bench import contact_sheet, load_prompts, summary
 
     assert len(load_prompts(Path(__file__).parent / "heldout_prompts.yaml")) == len(PROMPTS)
     suite = Path(__file__).parents[2] / "contracts" / "suites" / "default.yaml"

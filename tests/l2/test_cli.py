@@ -45,12 +45,3 @@ def test_unknown_probe_and_missing_asset(tmp_path: Path, stub_asset: Path) -> No
     assert r2.exit_code != 0 and "not an asset directory" in r2.output
     r3 = CliRunner().invoke(app, ["probe", "compress", "--asset", str(stub_asset), "--rho", "-3"])
     assert r3.exit_code != 0 and "--rho" in r3.output
-
-
-def test_bench_l2_rejects_unknown_schedules_and_probes(stub_asset: Path) -> None:
-    """`bench l2`: a bad --schedule / --probe is one clear line, before anything runs."""
-    runner = CliRunner()
-    res = runner.invoke(app, ["bench", "l2", "--asset", str(stub_asset), "--schedule", "threads", "--json"])
-    assert res.exit_code == 2 and "unknown schedule(s) threads" in res.output
-    res = runner.invoke(app, ["bench", "l2", "--asset", str(stub_asset), "--probe", "lift", "--json"])
-    assert res.exit_code == 2 and "unknown probe(s) lift" in res.output

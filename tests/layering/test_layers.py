@@ -15,11 +15,6 @@ import pytest
 ROOT = Path(__file__).resolve().parents[2]
 ORDER = ("contracts", "cache", "tasks", "flows", "benchmarks")  # each may import those before it, never those after
 
-# The one arrow up, kept narrow: `deformsmith bench l2` (a flows/cli command) imports its lab driver inside the command
-# function, so only that command loads benchmarks/. Keys: (file, imported module).
-ALLOWED_UP = {("flows/cli/material_cmds.py", "benchmarks.l2_schedule"), ("flows/cli/generate_cmds.py", "benchmarks.generate_rerun"),
-              ("flows/cli/crosscheck_cmds.py", "benchmarks.crosscheck_bench")}
-
 
 def module_name(path: Path) -> str:
     """The dotted module name of a source file under ROOT."""
@@ -59,28 +54,18 @@ def file_imports(path: Path) -> list[tuple[str, int, bool]]:
 
 @pytest.mark.parametrize("layer", ORDER[:-1])
 def test_no_import_runs_up(layer: str) -> None:
-    """No module of a layer imports a layer above it (the one allowed exception is a function-level import)."""
+    """No module of a layer imports a layer above it, not even inside a function."""
     above = set(ORDER[ORDER.index(layer) + 1:])
     files = sources(layer)
     assert files, f"no sources under {layer}/"
     bad = []
     for path in files:
         rel = path.relative_to(ROOT).as_posix()
-        for name, line, in_function in file_imports(path):
+        for name, line, _ in file_imports(path):
             if name.split(".")[0] not in above:
-                continue
-            if (rel, name) in ALLOWED_UP and in_function:
                 continue
             bad.append(f"{rel}:{line} imports {name}")
     assert not bad, "imports that run up the layers:\n" + "\n".join(bad)
-
-
-def test_allowed_exceptions_still_exist() -> None:
-    """Each allowed upward import is still there (a stale entry would hide a new one under the same name)."""
-    for rel, name in ALLOWED_UP:
-        found = [in_function for n, _, in_function in file_imports(ROOT / rel) if n == name]
-        assert found, f"{rel} no longer imports {name}: drop it from ALLOWED_UP"
-        assert all(found), f"{rel} imports {name} outside a function"
 
 
 def test_mpm_engine_has_no_prefect() -> None:

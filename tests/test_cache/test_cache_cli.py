@@ -1,4 +1,4 @@
-"""`deformsmith cache stats|verify|gc` and `bench cache`: figures, JSON, and one clear line on bad input."""
+"""`deformsmith cache stats|verify|gc`: figures, JSON, and one clear line on bad input."""
 
 from __future__ import annotations
 
@@ -90,16 +90,6 @@ def test_not_a_cache_dir_is_refused(tmp_path: Path) -> None:
 def test_parsers() -> None:
     assert parse_duration("90") == 90 and parse_duration("30m") == 1800 and parse_duration("7d") == 7 * 86400
     assert parse_size("1000") == 1000 and parse_size("2KB") == 2048 and parse_size("1.5GiB") == int(1.5 * 2**30)
-
-
-def test_bench_cache_json(tmp_path: Path) -> None:
-    code, out, _ = _invoke("bench", "cache", "--particles", "20000", "--repeats", "1", "--no-compare", "--json",
-                           "--cache", str(tmp_path))
-    data = json.loads(out)
-    assert code == 0 and data["particles"] == 20000
-    for k in ("put_1m_s", "hit_1m_s", "put_tiny_s", "hit_tiny_s", "key_1m_arrays_s", "key_model_s"):
-        assert data[k] > 0
-    assert list(tmp_path.iterdir()) == []  # the benchmark cleans up after itself
 
 
 def test_console_script_bad_root_exit_code(tmp_path: Path) -> None:

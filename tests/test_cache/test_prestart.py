@@ -106,7 +106,7 @@ def test_only_flow_commands_prestart(monkeypatch: pytest.MonkeyPatch) -> None:
     for argv in (["generate"], ["material", "--asset", "x"], ["batch", "r.jsonl"], ["eval", "--suite", "s"]):
         cli_main._prestart_for(argv)
     assert len(calls) == 4
-    for argv in ([], ["inspect", "d"], ["schema", "--list"], ["bench", "mpm"], ["generate", "--help"],
+    for argv in ([], ["inspect", "d"], ["schema", "--list"], ["cache", "stats"], ["generate", "--help"],
                  ["verify", "physics"]):
         cli_main._prestart_for(argv)
     assert len(calls) == 4

@@ -1,4 +1,7 @@
-"""Cache benchmark: put/hit latency for a 1M-particle entry and a tiny entry, key computation time, codec choice."""
+"""Cache benchmark: put/hit latency for a 1M-particle entry and a tiny entry, key computation time, codec choice.
+
+    python -m benchmarks.cache_bench [--cache DIR] [--particles N] [--repeats N] [--compare/--no-compare] [--json]
+"""
 
 from __future__ import annotations
 
@@ -9,14 +12,17 @@ import tempfile
 import time
 from collections.abc import Callable, Iterator
 from pathlib import Path
-from typing import Any
+from typing import Annotated, Any
 
 import numpy as np
+import typer
 from pydantic import BaseModel
+from rich.table import Table
 
 from cache import store as store_mod
 from cache.hashing import content_key
 from cache.store import CacheStore
+from flows.cli.apps import console, emit_json, fail, results
 
 
 class _BenchModel(BaseModel):
@@ -118,3 +124,38 @@ def run_bench(root: Path | None = None, n: int = 1_000_000, repeats: int = 3, co
         return out
     finally:
         shutil.rmtree(work, ignore_errors=True)
+
+
+app = typer.Typer(add_completion=False, pretty_exceptions_enable=False)
+JsonOption = Annotated[bool, typer.Option("--json", help="Print machine-readable JSON on stdout.")]
+
+
+@app.command()
+def bench_cache_cmd(
+    cache: Annotated[Path | None, typer.Option("--cache", help="Benchmark on this filesystem (a temp dir under it; default: system temp).")] = None,
+    particles: Annotated[int, typer.Option("--particles", min=1, help="Particles in the large entry.")] = 1_000_000,
+    repeats: Annotated[int, typer.Option("--repeats", min=1, help="Repetitions per figure (median reported).")] = 3,
+    compare: Annotated[bool, typer.Option("--compare/--no-compare", help="Also compare Zarr codec/chunk settings.")] = True,
+    json_out: JsonOption = False,
+) -> None:
+    """Put/hit latency of a 1M-particle entry (positions, velocities, F) and a tiny one; key computation time."""
+    if cache is not None and cache.exists() and not cache.is_dir():
+        fail(f"--cache {cache} is not a directory")
+    with console.status("benchmarking the cache ..."):
+        data = run_bench(cache.absolute() if cache else None, n=particles, repeats=repeats, compare=compare)
+    if json_out:
+        emit_json(data)
+        return
+    table = Table(title=f"cache benchmark ({data['particles']} particles, {data['big_entry_mb']} MB)")
+    table.add_column("figure")
+    table.add_column("value", justify="right")
+    for k, v in data.items():
+        if isinstance(v, float):
+            table.add_row(k, f"{v * 1e3:.2f} ms" if k.endswith("_s") else f"{v:g}")
+    for name, res in data.get("codecs", {}).items():
+        table.add_row(f"codec {name}", f"put {res['put_s'] * 1e3:.1f} ms / hit {res['hit_s'] * 1e3:.1f} ms")
+    results.print(table)
+
+
+if __name__ == "__main__":
+    app()
