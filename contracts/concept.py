@@ -35,6 +35,8 @@ class ConceptMatch(Model):
     hollow: bool = Field(default=False, description="a hollow object (ball, squeeze toy, bath toy): its mass is a "
                          "shell's, not the solid volume's")
     wall_thickness_m: float | None = Field(default=None, gt=0, description="shell wall of a hollow object [m]")
+    sheet: bool = Field(default=False, description="a hollow object of one layer drawn as a thin solid (a flat band, a "
+                        "sleeve): both faces of its built surface are that layer, so its shell is half the area")
     density_kg_per_m3: float | None = Field(default=None, gt=0, description="density of the object's solid volume "
                                             "(of its wall when hollow) from the lexicon: the material class's prior "
                                             "or the object's own effective density [kg/m^3]")
@@ -71,10 +73,12 @@ class ConceptMatch(Model):
         return f"built by analogy: {self.fallback_note or self.concept}"
 
     def mass_estimate_kg(self, volume_m3: float, area_m2: float) -> float | None:
-        """The object's mass from its built geometry: wall area x wall thickness x density when hollow, else volume x
-        density [kg]; None when the lexicon gave no density (a material-only fallback)."""
+        """The object's mass from its built geometry: wall area x wall thickness x density when hollow (half the area
+        for a one-layer sheet), else volume x density [kg]; None when the lexicon gave no density (a material-only
+        fallback)."""
         if self.density_kg_per_m3 is None:
             return None
         if self.hollow and self.wall_thickness_m is not None:
-            return min(area_m2 * self.wall_thickness_m, volume_m3) * self.density_kg_per_m3
+            area = area_m2 / 2.0 if self.sheet else area_m2
+            return min(area * self.wall_thickness_m, volume_m3) * self.density_kg_per_m3
         return volume_m3 * self.density_kg_per_m3

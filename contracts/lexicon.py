@@ -43,6 +43,8 @@ class LexiconEntry(Model):
     mass_source: str = Field(min_length=8, description="where mass_kg comes from (the kind of reference)")
     hollow: bool = Field(default=False, description="a hollow shell (ball, squeeze toy, bath toy, inflatable)")
     wall_m: float | None = Field(default=None, gt=0, le=0.02, description="shell wall thickness of a hollow object [m]")
+    sheet: bool = Field(default=False, description="a hollow object that is one layer drawn as a thin solid (a flat "
+                        "band, a sleeve): its built surface counts the layer twice, so its shell is half the area")
     density_kg_per_m3: float | None = Field(default=None, gt=0, description="effective density of the solid object "
                                             "when the material class's prior does not describe it [kg/m^3]")
     takes_shape: bool = Field(default=False, description="made in any shape: 'a cat cushion' is a cushion shaped "

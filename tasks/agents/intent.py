@@ -114,16 +114,29 @@ def check_request_object(request: AssetRequest, vocab: MaterialVocab | None = No
                        also=(stem,))
 
 
+# words that name a family of material classes rather than one: 'a foam kneeling pad' is the closed-cell foam of the
+# kneeling pad L0 built, 'a latex balloon' the balloon's inflated latex, 'a plush pillow' the plush toy pillow
+FAMILY_WORDS: dict[str, frozenset[str]] = {
+    "foam": frozenset({"pu_foam", "pe_foam", "sponge"}),
+    "rubber": frozenset({"rubber", "inflatable", "silicone"}),
+    "latex": frozenset({"rubber", "inflatable"}),
+}
+
+
 def _match_material(text: str, vocab: MaterialVocab, concept_material: str | None = None) -> tuple[str, str | None]:
     """The material named by the longest matching word (materials first, then the concept L0 built, then object
-    words); the default otherwise."""
+    words); the default otherwise. The concept's own material wins when the text names it too ('a plush pillow' is
+    plush, though 'pillow' is a foam word) or names only its family ('foam' for a closed-cell foam pad)."""
     best: tuple[int, str, str] | None = None
+    named: dict[str, str] = {}
     for name, entry in vocab.materials.items():
         for word in entry.words:
-            if _contains_phrase(text, word) and (best is None or len(word) > best[0]):
-                best = (len(word), name, word)
-    if best is None and concept_material in vocab.materials:
-        return str(concept_material), None
+            if _contains_phrase(text, word):
+                named.setdefault(name, word)
+                if best is None or len(word) > best[0]:
+                    best = (len(word), name, word)
+    if concept_material in vocab.materials and (best is None or _agrees(named, str(concept_material))):
+        return str(concept_material), named.get(str(concept_material))
     if best is None:
         for word, name in vocab.objects.items():
             if _contains_phrase(text, word) and (best is None or len(word) > best[0]):
@@ -131,6 +144,12 @@ def _match_material(text: str, vocab: MaterialVocab, concept_material: str | Non
     if best is None:
         return vocab.default_material, None
     return best[1], best[2]
+
+
+def _agrees(named: dict[str, str], concept_material: str) -> bool:
+    """True when the material words of a text (class -> word) include the concept's class, or every one is a family
+    word that covers it."""
+    return concept_material in named or all(concept_material in FAMILY_WORDS.get(w, ()) for w in named.values())
 
 
 def match_material(text: str, vocab: MaterialVocab | None = None, concept_material: str | None = None) -> str:

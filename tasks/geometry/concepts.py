@@ -122,6 +122,7 @@ class Reading:
     warnings: list[str] = field(default_factory=list)
     phrase: phrase_mod.Phrase | None = None
     size_m: float | None = None  # the size to build at when it is not the entry's (an analogy's donor)
+    look_only: bool = False  # the donor lends only its look ('a cat-shaped pillow' weighs what the pillow weighs)
 
 
 def normalise(text: str) -> str:
@@ -306,7 +307,7 @@ def _match(entry: LexiconEntry, level: FallbackLevel, noun: str | None, note: st
     return ConceptMatch(
         concept=entry.key, noun=noun, body_plan=entry.plan or f"catalogue:{entry.catalogue}", category=entry.category,
         fallback_level=level, fallback_note=note, default_material=material or entry.material, hollow=entry.hollow,
-        wall_thickness_m=entry.wall_m, density_kg_per_m3=entry.solid_density_kg_per_m3 if material is None else None,
+        wall_thickness_m=entry.wall_m, sheet=entry.sheet, density_kg_per_m3=entry.solid_density_kg_per_m3 if material is None else None,
         typical_mass_kg=None if mat_only else entry.mass_kg, typical_size_m=entry.size_m,
         mass_source=None if mat_only else entry.mass_source)
 
@@ -417,6 +418,7 @@ def read_text(text: str) -> Reading:
         if unknown is not None and phrase.head and phrase.head not in noun_index() and phrase.head in main.split() \
                 and known_noun(phrase.head):
             unknown = phrase.head  # 'an iv fluid bag' is a bag, whatever 'fluid' is
+    look = donor is not None  # a stated shape ('X-shaped', 'shaped like X'), not a portion ('a slice of')
     if donor is None and phrase.portion in PORTION_SHAPES:
         donor, donor_words = PORTION_SHAPES[phrase.portion], f"{phrase.portion} of"
     warnings: list[str] = []
@@ -424,7 +426,7 @@ def read_text(text: str) -> Reading:
     donor_plan = donor if isinstance(donor, tuple) else None
     size_m = None
     if head is not None and unknown is None:
-        key, noun, exact = noun_index()[head[2]]
+        key, noun, exact = noun_index()[_qualified(head[2], phrase)]
         entry = lex.entries[key]
         level: FallbackLevel = "exact" if exact else "synonym"
         kin = None if exact else analogy_mod.kin_of(entry.nouns[0], noun)
@@ -437,6 +439,7 @@ def read_text(text: str) -> Reading:
         if compound is not None and donor is None and entry.takes_shape:
             donor_entry = lex.entries[noun_index()[compound[2]][0]]
             donor_words = compound[2]
+            look = True  # 'a cat pillow'
         poses = {"sitting", "lying", "curled", "standing"} & set(phrase.states)
         posable = lex.entries[entry.posed_by] if entry.posed_by in lex.entries else None
         asks_plan = posable is not None and (pose_of(t) is not None or bool(ear_params(t, posable.plan)))
@@ -446,7 +449,7 @@ def read_text(text: str) -> Reading:
             if posable.density_kg_per_m3 is not None:  # the posable shape's own effective density (same real mass)
                 match = match.model_copy(update={"density_kg_per_m3": posable.density_kg_per_m3})
         if donor is None and donor_entry is None and phrase.head in SHAPE_WORDS and phrase.head not in noun.split() \
-                and not entry.takes_shape and entry.plan not in ("mould",):
+                and not entry.takes_shape and entry.plan not in ("mould",) and not _own_form(entry, phrase.head):
             donor_plan, donor_words = SHAPE_WORDS[phrase.head], phrase.head  # 'a jello dome', 'a cheese cube'
     else:
         shape_noun = unknown or phrase.head
@@ -466,7 +469,24 @@ def read_text(text: str) -> Reading:
     elif donor_plan is not None:
         match = match.model_copy(update={"shape_from": f"{donor_plan[0]}"})
     return Reading(match=match, entry=entry, donor=donor_entry, donor_plan=donor_plan, warnings=warnings,
-                   phrase=phrase, size_m=size_m)
+                   phrase=phrase, size_m=size_m, look_only=look and not match.by_analogy)
+
+
+def _qualified(surface: str, phrase: phrase_mod.Phrase) -> str:
+    """The lexicon noun of the head with a word of its phrase that colour or material words part from it ('a flat
+    green latex resistance band' is a flat resistance band, 'a latex blue glove' a latex glove), else the head's own."""
+    words = [w for w in [*phrase.adjectives, *phrase.compounds] if w not in surface.split()]
+    for w in reversed(words):
+        cand = f"{w} {surface}"
+        if cand in noun_index() and noun_index()[cand][0] != noun_index()[surface][0]:
+            return cand
+    return surface
+
+
+def _own_form(entry: LexiconEntry, word: str) -> bool:
+    """True when a shape word names the entry's own form (one of its nouns has it: 'a teether ring' is the teething
+    ring as drawn, not a generic ring; 'a jello dome' is jello in a dome)."""
+    return any(word in normalise(n).split() for n in entry.nouns)
 
 
 @dataclass
@@ -612,10 +632,12 @@ def build(reading: Reading, text: str) -> tuple[ShapeProgram, ConceptMatch, list
         # the same object in another state: a 1.83 m yoga mat rolled up is a 0.61 m roll of the same mass
         change = grammar.state_change(target.plan, target.params, size, params["state"])
         size = change.size_m
-        density = match.density_kg_per_m3 * change.density_factor if match.density_kg_per_m3 else None
+        shell = match.hollow and match.wall_thickness_m is not None  # a folded film's built area is not its film's
+        density = match.density_kg_per_m3 * change.density_factor if match.density_kg_per_m3 and not shell else None
         mass = match.typical_mass_kg * change.mass_factor if match.typical_mass_kg else None
         match = match.model_copy(update={"density_kg_per_m3": density, "typical_mass_kg": mass,
-                                         "typical_size_m": change.size_m})
+                                         "typical_size_m": change.size_m, "hollow": match.hollow and not shell,
+                                         "wall_thickness_m": None if shell else match.wall_thickness_m})
     goods = None  # 'a pair of', 'half full of rice' (tasks.geometry.goods_words)
     if reading.donor_plan is None or reading.donor is not None:
         goods = goods_words.apply(target, reading.phrase.portion if reading.phrase else None, normalise(text),
@@ -646,6 +668,8 @@ def build(reading: Reading, text: str) -> tuple[ShapeProgram, ConceptMatch, list
         applied = {**applied, **pattern}
     if warning:
         warnings.append(warning)
+    if reading.look_only and (reading.donor or reading.donor_plan) is not None and not match.hollow:
+        match = match.model_copy(update={"density_kg_per_m3": None})  # its typical mass at the built size (L1)
     program, match, states = _whole_object(reading, program, match, normalise(text), states, warnings)
     return program, match.model_copy(update={"colors": applied, "states": states}), warnings
 
@@ -1005,6 +1029,7 @@ def _whole_object(reading: Reading, program: ShapeProgram, match: ConceptMatch, 
         states.append("half inflated" if half else "deflated")
         match = _as_built_mass(match, before, DEFLATE_FACTORS[half], target.mass_kg,
                                "the same skin, with less air: its mass is the skin's")
+        match = match.model_copy(update={"density_kg_per_m3": target.mass_kg / _volume(program)})  # skin / body
     elif target.empty_mass_kg is not None and re.search(r"\bempty\b", text):
         before, program = program, emptied(program)
         states.append("empty")
@@ -1103,15 +1128,19 @@ def _snapped(parts: list[Part], program: ShapeProgram, centre: np.ndarray, half:
 PLUSH_MASS_EXPONENT = 2.0
 
 
-def size_scaled(match: ConceptMatch, final_longest_m: float) -> ConceptMatch:
-    """The match with its density scaled for a plush toy built at final_longest_m instead of its typical size, so
-    that its mass grows as length^PLUSH_MASS_EXPONENT ('a big plush unicorn' is not 1.4^3 times as heavy)."""
+def size_scaled(match: ConceptMatch, final_longest_m: float, stretch: float = 1.0) -> ConceptMatch:
+    """The match with its density scaled for a plush toy or thin good built at final_longest_m instead of its typical
+    size, so that its mass grows as length^PLUSH_MASS_EXPONENT ('a big plush unicorn' is not 1.4^3 times as heavy).
+    Only the uniform part of the scaling counts: a stretch along some axes (`stretch`, the longest axis's factor over
+    the shortest's: 'a long plush snake') keeps the stuffed cross-section, so its mass follows the built volume. A
+    hollow shell with its wall is weighed by its built area already (L1)."""
     typical = match.typical_size_m
     thin = match.body_plan in THIN_GOODS_PLANS  # a garment, bag, cloth: its mass is its fabric's area, ~ length^2
+    shell = match.hollow and match.wall_thickness_m is not None
     if (match.default_material != "plush" and not thin) or match.density_kg_per_m3 is None or not typical \
-            or final_longest_m <= 0:
+            or final_longest_m <= 0 or shell:
         return match
-    ratio = final_longest_m / typical
+    ratio = final_longest_m / typical / max(stretch, 1.0)
     if abs(ratio - 1.0) < 0.05:
         return match
     exponent = THIN_MASS_EXPONENT if thin else PLUSH_MASS_EXPONENT

@@ -113,15 +113,18 @@ UNIT_WORDS = frozenset({"ml", "l", "litre", "liter", "litres", "liters", "millil
                         "kilograms", "gallon", "pint", "quart", "size", "mm", "cm", "inch", "inches"})
 
 
-def _boundary(doc: Any, i: int) -> bool:
+def _boundary(doc: Any, i: int, known: Callable[[str], bool] = lambda w: False) -> bool:
     """True when token i ends the object's own noun phrase (said after its first noun): punctuation, a preposition
-    ('on its belly', 'with a green leaf'), a conjunction after a noun, a verb not followed by a noun ('lying on',
-    'rolled up', 'folded in half', 'a towel folded'), a relative word ('you squeeze')."""
+    ('on its belly', 'with a green leaf'; not a known noun the tagger took for one: 'cotton oven mitt'), an
+    infinitive ('ready to stretch'), a conjunction after a noun, a verb not followed by a noun ('lying on', 'rolled
+    up', 'folded in half', 'a towel folded'), a relative word ('you squeeze')."""
     tok = doc[i]
     word = tok.text.lower()
     nxt = doc[i + 1] if i + 1 < len(doc) else None
     prev = doc[i - 1] if i > 0 else None
-    if tok.is_punct or word in _RELATIVE or tok.pos_ in ("ADP", "SCONJ", "AUX"):
+    if tok.pos_ == "ADP" and not tok.is_stop and known(word):
+        return False
+    if tok.is_punct or word in _RELATIVE or tok.pos_ in ("ADP", "SCONJ", "AUX") or (word == "to" and tok.pos_ == "PART"):
         return True
     if tok.pos_ == "CCONJ":
         return prev is not None and _is_noun(prev)
@@ -156,7 +159,7 @@ def parse(text: str, known: Callable[[str], bool] | None = None,
             continue
         if word in UNIT_WORDS or tok.pos_ in ("DET", "NUM") or tok.tag_ in ("CD", "PRP$", "POS"):
             continue
-        if seen_noun and _boundary(doc, i) and not (tok.tag_ in ("VB", "VBP", "VBZ") and is_known(word)):
+        if seen_noun and _boundary(doc, i, is_known) and not (tok.tag_ in ("VB", "VBP", "VBZ") and is_known(word)):
             break  # (a known noun tagged a verb is still the phrase: 'a silicone loaf pan')
         if word in PLACEHOLDER_NOUNS:
             span.append(tok)
@@ -174,8 +177,9 @@ def parse(text: str, known: Callable[[str], bool] | None = None,
     heads = [k for k, t in enumerate(span) if is_known(t.text.lower()) and t.pos_ != "ADJ"] or \
         [k for k, t in enumerate(span) if _is_noun(t)] or [len(span) - 1]
     k = heads[-1]
-    if k < len(span) - 1 and _is_noun(span[-1]) and span[-1].text.lower() not in STATE_WORDS:
-        k = len(span) - 1  # an unknown noun at the end is the object ('a plush quokka'), not the known word before
+    last = span[-1].text.lower()
+    if k < len(span) - 1 and (_is_noun(span[-1]) or is_known(last)) and last not in STATE_WORDS:
+        k = len(span) - 1  # the last noun is the object ('a plush quokka'; 'butter croissant', tagged an adjective)
     words = [t.text.lower() for t in span[: k + 1]]
     phrase.head = words[-1]
     is_modifier = modifier or (lambda w: False)

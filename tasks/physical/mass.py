@@ -143,12 +143,17 @@ def mass_check(volume_m3: float, longest_m: float, area_m2: float, material: str
     typical_check = f"typical mass of {concept.concept} ({concept.mass_source or 'lexicon'})"
     notes.append(f"typical mass of {concept.concept} as built: {_g(typical)} ({how})")
     lo, hi = max(by_density[0], cband[0]), min(by_density[1], cband[1])
-    if not concept.hollow and lo <= hi:
+    own = getattr(concept, "density_kg_per_m3", None)
+    own_outside = own is not None and not dlo <= own <= dhi  # the lexicon's effective density of this object
+    if not concept.hollow and lo <= hi and not own_outside:
         band, checks, effective = (lo, hi), [density_check, typical_check], False
     else:
         band, checks, effective = _clamp_band(*cband), [typical_check], True
         if concept.hollow:
             notes.append(f"hollow {concept.concept}: effective density = shell mass / enclosed volume")
+        elif own_outside:
+            notes.append(f"{concept.concept} has its own effective density {own:g} kg/m^3, outside the {density_check}: "
+                         f"its typical mass as built")
         else:
             notes.append(f"the {density_check} gives {_g(by_density[0])}-{_g(by_density[1])} at this volume, outside "
                          f"the typical {_g(cband[0])}-{_g(cband[1])} of {concept.concept}: effective density "
