@@ -4,6 +4,7 @@ the object's body-plan parameters, its size and its mass."""
 
 from __future__ import annotations
 
+import re
 from dataclasses import dataclass
 
 import numpy as np
@@ -16,6 +17,16 @@ from tasks.geometry.grammar.goods import BAG_CAPACITY
 
 FILLABLE_PLANS = frozenset({"bag", "pouch"})
 PAIR_WORDS = frozenset({"pair"})
+# how many parts a fold makes: 'folded in half' is one halving, 'in thirds' a letter fold, 'in quarters' two halvings
+_FOLD_WORDS = re.compile(r"\b(?:in|into)\s+(half|halves|two|thirds|three|quarters|fourths|four|eighths)\b")
+_FOLDS = {"half": (1, False), "halves": (1, False), "two": (1, False), "thirds": (1, True), "three": (1, True),
+          "quarters": (2, False), "fourths": (2, False), "four": (2, False), "eighths": (3, False)}
+# words for a quilted, down-filled good: a puffer jacket, a quilted vest, a down duvet
+_PUFFY = re.compile(r"\b(?:puffy|puffer|puffa|quilted|padded|insulated|down[- ](?:filled|jacket|coat|vest|gilet|"
+                    r"parka|winter|duvet|comforter|sleeping))\b")
+PUFFER_BAFFLES = 7  # a puffer's baffles from hem to collar [-]
+PUFFER_MASS = 1.3  # a down or padded garment over the same garment unpadded (retail: puffers 0.6-1.0 kg, fleece and
+# rain jackets 0.35-0.9 kg) [-]
 
 
 @dataclass
@@ -55,7 +66,11 @@ def apply(target: LexiconEntry, portion: str | None, text: str, params: dict, si
     if plan is None or plan not in grammar.PLANS:
         return out
     fields = grammar.PLANS[plan][0].model_fields
-    if portion in PAIR_WORDS:
+    _folds(out, plan, {**target.params, **out.params}, text)
+    _puffy(out, plan, {**target.params, **out.params}, text)
+    if portion in PAIR_WORDS and _is_pair_itself(plan, {**target.params, **out.params}):
+        out.notes += ("a pair of trousers is one garment",)
+    elif portion in PAIR_WORDS:
         mass = match.typical_mass_kg * 2 if match.typical_mass_kg else None
         if "pair" in fields:  # the plan draws its pair (two socks side by side, or one ball of both when rolled)
             base = {**target.params, **out.params}
@@ -80,6 +95,47 @@ def apply(target: LexiconEntry, portion: str | None, text: str, params: dict, si
                   f"{shell * 1e3:.3g} g")
         out.match = out.match.model_copy(update={"stated_mass_kg": shell + fill_kg, "stated_mass_source": source})
     return out
+
+
+def _is_pair_itself(plan: str, params: dict) -> bool:
+    """True when 'a pair of' names one object (trousers, jeans, shorts: the pair is its two legs)."""
+    return plan == "garment" and params.get("kind") == "trousers"
+
+
+def _folds(out: GoodsChange, plan: str, params: dict, text: str) -> None:
+    """'folded in half / in thirds / in quarters': the folded sheet's layers, its size scaled to the new footprint."""
+    m = _FOLD_WORDS.search(text)
+    if m is None or params.get("state") != "folded" or "thirds" not in grammar.PLANS[plan][0].model_fields:
+        return
+    folds, thirds = _FOLDS[m.group(1)]
+    new = {**params, "folds": folds, "thirds": thirds}
+    k = _unit_longest(plan, new) / _unit_longest(plan, params)
+    out.params.update(folds=folds, thirds=thirds)
+    out.size_m *= k
+    out.match = out.match.model_copy(update={"typical_size_m": out.size_m})
+    out.notes += (f"folded in {m.group(1)}",)
+
+
+def _puffy(out: GoodsChange, plan: str, params: dict, text: str) -> None:
+    """'puffy', 'puffer', 'quilted', 'down-filled': a garment's quilted baffles (a sheet's quilting), its built layer
+    thicker and its mass a padded garment's."""
+    if _PUFFY.search(text) is None:
+        return
+    fields = grammar.PLANS[plan][0].model_fields
+    if "baffles" in fields and not params.get("baffles"):
+        out.params["baffles"] = PUFFER_BAFFLES
+        puff = grammar.goods.PUFF
+    elif "quilt" in fields and not params.get("quilt"):
+        out.params["quilt"] = 6
+        puff = grammar.goods.PUFF if params.get("state", "flat") == "flat" else 1.0
+    else:
+        return
+    density = out.match.density_kg_per_m3
+    mass = out.match.typical_mass_kg
+    out.match = out.match.model_copy(update={
+        "density_kg_per_m3": density * PUFFER_MASS / puff if density else None,
+        "typical_mass_kg": mass * PUFFER_MASS if mass else None})
+    out.notes += ("quilted: puffy baffles",)
 
 
 def duplicated(program: ShapeProgram) -> ShapeProgram | None:

@@ -23,7 +23,7 @@ from tasks.geometry.grammar.parts import box, cone, cylinder, ellipsoid, limb, s
 MIN_LAYER = 0.025  # a built sheet layer, / the flat sheet's length [-]
 MIN_WALL = 0.03  # a built mould or hat wall, / the outline's size [-]
 
-SheetState = Literal["flat", "rolled", "folded", "stacked", "crumpled"]
+SheetState = Literal["flat", "rolled", "folded", "stacked", "crumpled", "loop"]
 
 
 def _op(part: Part, op: str, blend: float = 0.0) -> Part:
@@ -49,6 +49,18 @@ class SheetParams(Model):
     core: float = Field(default=0.12, ge=0.0, le=0.6, description="a roll's hole radius / roll radius [-]")
     packing: float = Field(default=0.8, gt=0.2, le=1.0, description="share of a roll's cross-section that is sheet [-]")
     edge: float = Field(default=0.5, ge=0.0, le=1.0, description="edge rounding / half the layer [-]")
+    thirds: bool = Field(default=False, description="folded in thirds (a letter fold: three layers, a crease at each "
+                         "end) before any further halving")
+    quilt: int = Field(default=0, ge=0, le=16, description="puffy baffles across the length (a duvet, a sleeping bag, "
+                       "a quilted mat): stitched grooves between rounded channels [-]")
+    grid: bool = Field(default=False, description="quilted in squares (grooves along the length too)")
+    fringe: bool = Field(default=False, description="a fringe of tassels at both short ends (a scarf, a rug)")
+    ribs: int = Field(default=0, ge=0, le=9, description="knit ribs: shallow grooves along the length [-]")
+    zip: bool = Field(default=False, description="a zip along one long side (a sleeping bag)")
+
+
+QUILT_DEPTH = 0.45  # a baffle groove's depth / the quilted layer [-]
+PUFF = 2.2  # a quilted (down-filled) layer / the sheet's built layer [-]
 
 
 def sheet_layer(p: SheetParams) -> float:
@@ -69,7 +81,16 @@ def sheet(p: SheetParams) -> list[Part]:
     t = sheet_layer(p)
     w = p.width
     if p.state == "flat":
-        return [_slab("body", p, 1.0, w, t, (0, 0, t / 2))]
+        if p.quilt:
+            t = PUFF * t
+        parts = [_slab("body", p, 1.0, w, t, (0, 0, t / 2))]
+        parts += quilting(1.0, w, t, p.quilt, p.quilt if p.grid else 0)
+        parts += knit_ribs(1.0, w, t, p.ribs) + (fringe(1.0, w, t) if p.fringe else [])
+        if p.zip:
+            parts.append(box("zip", (0.96, 0.018, 0.5 * t), (0, -w / 2 + 0.02, t), edge=0.2 * t, blend=0.004))
+        return parts
+    if p.state == "loop":
+        return _strip_loop(p, t)
     if p.state == "stacked":
         parts = []
         for i in range(p.layers):
@@ -85,16 +106,29 @@ def sheet(p: SheetParams) -> list[Part]:
     return _rolled(p)
 
 
-def _folded(p: SheetParams, t: float) -> list[Part]:
-    """Halved `folds` times, each fold across the longer side; the last crease rounded, the layers' open edges cut."""
-    length, width = 1.0, p.width
-    last = "x"
-    for _ in range(p.folds):
+def fold_layers(p: SheetParams) -> int:
+    """Layers of a folded sheet: 3 for a letter fold, doubled by each further halving; 2 ** folds otherwise."""
+    return 3 * 2 ** (p.folds - 1) if p.thirds else 2 ** p.folds
+
+
+def folded_footprint(p: SheetParams) -> tuple[float, float, str]:
+    """(length, width, the axis of the last fold) of the folded sheet: each fold across the longer side."""
+    length, width, last = 1.0, p.width, "x"
+    for i in range(p.folds):
+        k = 3.0 if (p.thirds and i == 0) else 2.0
         if length >= width:
-            length, last = length / 2, "x"
+            length, last = length / k, "x"
         else:
-            width, last = width / 2, "y"
-    n = 2 ** p.folds
+            width, last = width / k, "y"
+    return length, width, last
+
+
+def _folded(p: SheetParams, t: float) -> list[Part]:
+    """Folded `folds` times (the first in thirds when `thirds`), each fold across the longer side: the layers stacked,
+    the creases rounded, the open edges cut apart and the top layer's open edge set back (a double layer seen from
+    any side)."""
+    length, width, last = folded_footprint(p)
+    n = fold_layers(p)
     h = n * t
     if p.shape == "round":
         parts = [_scaled(cylinder("body", p.width / 2, h, (0, 0, h / 2), edge=p.edge * t / 2), (1 / p.width, 1, 1))]
@@ -102,18 +136,100 @@ def _folded(p: SheetParams, t: float) -> list[Part]:
         if p.folds >= 2:
             parts.append(_op(box("second fold", (2, 2, 2 * h), (0, 1.0, h / 2)), "intersect"))
         return parts
-    r = h / 2
-    if last == "x":
-        parts = [box("body", (length - r, width, h), (r / 2, 0, r), edge=p.edge * t / 2),
-                 cylinder("crease", r, width, (-length / 2 + r, 0, r), edge=p.edge * t / 2, rot=(90, 0, 0),
-                          blend=0.2 * t)]
-        cut = [box(f"gap {i}", (0.3 * length, width * 1.2, 0.18 * t), (length / 2, 0, i * t)) for i in range(1, n)]
-    else:
-        parts = [box("body", (length, width - r, h), (0, r / 2, r), edge=p.edge * t / 2),
-                 cylinder("crease", r, length, (0, -width / 2 + r, r), edge=p.edge * t / 2, rot=(0, 90, 0),
-                          blend=0.2 * t)]
-        cut = [box(f"gap {i}", (length * 1.2, 0.3 * width, 0.18 * t), (0, width / 2, i * t)) for i in range(1, n)]
-    return parts + [_op(c, "subtract") for c in cut]
+    if last == "y":  # built along x, turned a quarter about z
+        q = p.model_copy(update={"width": 1.0})
+        return _turned(_folded_layers(length=width, width=length, n=n, t=t, p=q), 90.0)
+    return _folded_layers(length, width, n, t, p)
+
+
+def _folded_layers(length: float, width: float, n: int, t: float, p: SheetParams) -> list[Part]:
+    """n layers of a folded sheet along x: a crease at -x (and at +x between the layers of a letter fold), the other
+    ends open, cut apart by a gap, the top layer set back from the open edge."""
+    h = n * t
+    e = p.edge * t / 2
+    r = t  # a crease wraps two layers
+    parts = [box("body", (length - r, width, h), (r / 2, 0, h / 2), edge=e)]
+    for i in range(1, n):
+        crease_at_plus = p.thirds and n == 3 and i == 2
+        sx = 1 if crease_at_plus else -1
+        parts.append(cylinder(f"crease {i}" if i > 1 else "crease", r, width, (sx * (length / 2 - r), 0, i * t),
+                              edge=e, rot=(90, 0, 0), blend=0.2 * t))
+    for i in range(1, n):
+        open_at = -1 if (p.thirds and n == 3 and i == 2) else 1
+        parts.append(_op(box(f"gap {i}", (0.3 * length, width * 1.2, 0.22 * t),
+                             (open_at * length / 2, 0, i * t)), "subtract"))
+    inset = min(0.06 * length, 2.5 * t)  # the top layer stops short of the open edge: a step seen from above
+    top_open = -1 if (p.thirds and n == 3) else 1
+    parts.append(_op(box("top edge", (2 * inset, width * 1.2, 1.1 * t), (top_open * length / 2, 0, h - 0.45 * t)),
+                     "subtract", 0.1 * t))
+    return parts
+
+
+def _turned(parts: list[Part], deg: float) -> list[Part]:
+    """Parts turned about z by deg (their translations and rotations)."""
+    from tasks.geometry.grammar.parts import rotated_parts
+
+    return rotated_parts(parts, (0.0, 0.0, deg))
+
+
+def quilting(length: float, width: float, t: float, across: int, along: int) -> list[Part]:
+    """Stitched grooves over a puffy layer `t` thick lying on z = 0: `across` baffles across the length (grooves along
+    y), `along` across the width (grooves along x), each groove a round channel with soft edges."""
+    parts: list[Part] = []
+    r = QUILT_DEPTH * t
+    for i in range(1, across):
+        x = -length / 2 + length * i / across
+        parts.append(_op(cylinder(f"stitch {i}", r, 1.2 * width, (x, 0, t + 0.25 * r), rot=(90, 0, 0)), "subtract",
+                         0.35 * r))
+    for j in range(1, along):
+        y = -width / 2 + width * j / along
+        parts.append(_op(cylinder(f"stitch {across + j}", r, 1.2 * length, (0, y, t + 0.25 * r), rot=(0, 90, 0)),
+                         "subtract", 0.35 * r))
+    return parts
+
+
+def knit_ribs(length: float, width: float, t: float, n: int) -> list[Part]:
+    """n shallow grooves along the length of a strip lying on z = 0 (knit ribbing), stopping short of its ends."""
+    g = 0.3 * t
+    return [_op(cylinder(f"rib {j}", g, 0.9 * length, (0, -width / 2 + width * j / (n + 1), t + 0.3 * g),
+                         rot=(0, 90, 0)), "subtract", 0.3 * g) for j in range(1, n + 1)]
+
+
+def fringe(length: float, width: float, t: float, at: tuple[float, ...] = (-1.0, 1.0)) -> list[Part]:
+    """Tassels beyond the short ends (x = +-length/2) of a strip lying on z = 0, as many as fit its width."""
+    n = int(np.clip(round(width / (3.2 * t)), 3, 9))
+    tl = min(0.085 * length, 3.2 * width / 2)
+    r = 0.5 * t
+    parts: list[Part] = []
+    for s in at:
+        for j in range(n):
+            y = -width / 2 + width * (j + 0.5) / n
+            a = np.array([s * (length / 2 - 0.3 * tl), y, r])
+            b = a + np.array([s * tl, 0.15 * tl * np.sin(2.1 * j + s), 0.0])
+            parts.append(limb(f"tassel {len(parts) + 1}", a, b, r, blend=0.2 * r))
+    return parts
+
+
+def _strip_loop(p: SheetParams, t: float) -> list[Part]:
+    """A long strip (a scarf) laid on the floor in a loose U: straight arms joined by a bend, fringe at its ends."""
+    w = p.width
+    rc = 1.1 * w
+    arm = 0.5 * (1.0 - np.pi * rc)  # the arms and the half-turn of radius rc make the strip's length
+    parts = [box("body", (arm, w, t), (arm / 2, rc, t / 2), edge=p.edge * t / 2),
+             box("other arm", (arm, w, t), (arm / 2, -rc, t / 2), edge=p.edge * t / 2)]
+    for i in range(8):  # the bend: segments round a half circle at x = 0
+        a = np.pi / 2 + np.pi * (i + 0.5) / 8
+        seg = np.pi * rc / 8 * 1.1
+        parts.append(box(f"bend {i + 1}", (seg, w, t), (rc * np.cos(a), rc * np.sin(a), t / 2), edge=p.edge * t / 2,
+                         rot=(0, 0, float(np.degrees(a)) + 90), blend=0.2 * t))
+    if p.fringe:
+        for y in (rc, -rc):
+            for q in fringe(arm, w, t, at=(1.0,)):
+                tf = q.transform
+                x0, y0, z0 = tf.translation_m
+                parts.append(q.model_copy(update={"name": f"tassel {len(parts)}", "transform": tf.model_copy(
+                    update={"translation_m": (x0 + arm / 2, y0 + y, z0)})}))
+    return parts
 
 
 def roll_radius(p: SheetParams) -> float:
@@ -535,6 +651,9 @@ class GarmentParams(Model):
     width: float = Field(default=0.78, gt=0.3, le=1.2, description="body width / length [-]")
     thickness: float = Field(default=0.012, gt=0.0, le=0.1, description="real flat thickness (front and back "
                              "layers) / length [-]")
+    baffles: int = Field(default=0, ge=0, le=12, description="quilted (down-filled) baffles across the body, and "
+                         "along the sleeves in proportion: a puffy layer with stitched grooves (a puffer jacket or "
+                         "vest) [-]")
 
 
 GARMENT_LAYER = 0.045  # a garment's (or a bag's with handles) built layer / its length: MIN_LAYER of its span [-]
@@ -566,6 +685,8 @@ def _top_flat(p: GarmentParams, t: float) -> list[Part]:
                                     0.85 * sr, 1.25 * t, blend=0.005))
     if p.cuffs:
         parts.append(box("hem", (0.08, w * 0.96, 1.25 * t), (-0.46, 0, 0.625 * t), edge=0.5 * t, blend=0.005))
+    if p.baffles:  # quilted: grooves across the body and the sleeves, the zip and collar laid over them
+        parts += quilting(0.92, w + 1.0, t, p.baffles, 0)
     if p.hood:
         parts.append(ellipsoid("hood", (0.24, 0.25, 1.6 * t), (0.6, 0, 0.9 * t), blend=0.03))
         parts.append(_scaled(torus("hood rim", 0.15, 0.035, (0.58, 0, 1.9 * t)), (1.0, 1.1, 0.5)))
@@ -580,8 +701,9 @@ def _top_flat(p: GarmentParams, t: float) -> list[Part]:
         parts.append(_scaled(torus("collar band", 0.105, 0.022, (0.5, 0, 0.7 * t)), (0.78, 1, 0.8)))
     if p.pocket:
         parts.append(superellipsoid("pocket", (0.15, 0.24 * w, 0.3 * t), (-0.2, 0, t), ns=0.2, ew=0.3, blend=0.004))
-    if p.zip:
-        parts.append(box("zip", (0.9, 0.025, 0.4 * t), (-0.02, 0, t + 0.1 * t), edge=0.1 * t, blend=0.002))
+    if p.zip:  # a zip from hem to collar, its pull at the top
+        parts.append(box("zip", (0.9, 0.035, 0.6 * t), (-0.02, 0, t + 0.1 * t), edge=0.1 * t, blend=0.002))
+        parts.append(box("zip pull", (0.07, 0.028, 0.5 * t), (0.36, 0.0, t + 0.45 * t), edge=0.15 * t, blend=0.002))
     if p.collar:
         for side in (1, -1):
             parts.append(box(f"{'left' if side > 0 else 'right'} collar", (0.12, 0.12, 0.5 * t),
@@ -589,16 +711,49 @@ def _top_flat(p: GarmentParams, t: float) -> list[Part]:
     return parts
 
 
+RISE = 0.3  # the crotch below the waist / the trousers' length [-]
+
+
 def _trousers_flat(p: GarmentParams, t: float) -> list[Part]:
+    """Laid flat, waist at +x: a waistband with belt loops and a button, the seat down to the crotch, two legs
+    tapering slightly to square hems with a crotch gap between them widening towards the hems, a fly seam and the
+    front pockets' openings."""
     w = p.width
     z = t / 2
-    parts = [box("body", (0.3, w, t), (0.35, 0, z), edge=0.45 * t)]
-    for side in (1, -1):
-        a = np.array([0.3, side * w / 4, z])
-        b = np.array([-0.5, side * (w / 4 + 0.06), z])
-        parts.append(_flat_limb(f"{'left' if side > 0 else 'right'} leg", a, b, w / 4, t, blend=0.02))
-    parts.append(box("waistband", (0.07, w, 1.3 * t), (0.48, 0, 0.65 * t), edge=0.5 * t, blend=0.004))
+    xc = 0.5 - RISE
+    parts = [box("body", (RISE, w, t), (0.5 - RISE / 2, 0, z), edge=0.45 * t)]
+    gap0, gap1 = 0.04 * w, 0.16 * w  # the crotch gap at the crotch and at the hems
+    hem = 0.39 * w  # a leg's width at its hem
+    for side, name in ((1, "left"), (-1, "right")):
+        top_in, top_out = side * gap0 / 2, side * w / 2
+        bot_in, bot_out = side * gap1 / 2, side * (gap1 / 2 + hem)
+        a = np.array([xc + 0.04, (top_in + top_out) / 2, z])
+        b = np.array([-0.5, (bot_in + bot_out) / 2, z])
+        r_top, r_bot = abs(top_out - top_in) / 2, hem / 2
+        leg = _flat_frustum(f"{name} leg", a, b, r_top, r_bot, t, blend=0.004)
+        parts.append(leg)
+        d = (b - a) / np.linalg.norm(b - a)
+        parts.append(_flat_frustum(f"{name} hem", b - 0.05 * d, b + 0.004 * d, 1.02 * r_bot, 1.02 * r_bot, 1.35 * t,
+                                   blend=0.004))
+        parts.append(limb(f"{name} pocket", (0.5 - 0.05, side * 0.3 * w, 1.05 * t), (0.5 - 0.17, side * 0.5 * w,
+                                                                                     1.05 * t), 0.012, blend=0.004))
+    parts.append(box("waistband", (0.07, w, 1.4 * t), (0.5 - 0.035, 0, 0.7 * t), edge=0.5 * t, blend=0.004))
+    for i, y in enumerate(np.linspace(-0.42 * w, 0.42 * w, 5)):
+        parts.append(box(f"belt loop {i + 1}", (0.08, 0.025, 0.4 * t), (0.5 - 0.035, y, 1.35 * t), edge=0.2 * t,
+                         blend=0.003))
+    parts.append(cylinder("button", 0.022, 0.4 * t, (0.5 - 0.035, 0.0, 1.4 * t), edge=0.15 * t, blend=0.003))
+    parts.append(limb("fly", (0.5 - 0.07, 0.06 * w, 1.05 * t), (xc + 0.06, 0.06 * w, 1.05 * t), 0.01, blend=0.004))
+    parts.append(limb("fly end", (xc + 0.06, 0.06 * w, 1.05 * t), (xc + 0.03, 0.0, 1.05 * t), 0.01, blend=0.004))
     return parts
+
+
+def _flat_frustum(name: str, a: np.ndarray, b: np.ndarray, ra: float, rb: float, t: float,
+                  blend: float = 0.02) -> Part:
+    """A flat tapering panel from a (half-width ra) to b (half-width rb) in the x-y plane, `t` thick, square ends."""
+    d = b - a
+    angle = float(np.degrees(np.arctan2(d[1], d[0])))
+    c = cone(name, ra, rb, float(np.linalg.norm(d)), (a + b) / 2, edge=0.3 * t, blend=blend, rot=(0, 90, angle))
+    return _scaled(c, (t / (2 * max(ra, rb)), 1, 1))
 
 
 def _dress_flat(p: GarmentParams, t: float) -> list[Part]:
@@ -621,7 +776,7 @@ def garment(p: GarmentParams) -> list[Part]:
     """Flat: the garment laid out front up (sleeves, hood, pocket, cuffs drawn). Folded: a neat rectangle with the
     collar (or hood) on top. Crumpled: a bunched heap with a sleeve or leg and the hood out of it. Hung: standing in
     the x-z plane on a hanger's hook."""
-    t = max(p.thickness, GARMENT_LAYER)
+    t = max(p.thickness, GARMENT_LAYER) * (PUFF if p.baffles else 1.0)
     w = p.width
     if p.state == "flat":
         return _garment_flat(p, t)
@@ -644,20 +799,7 @@ def garment(p: GarmentParams) -> list[Part]:
         parts.append(limb("hanger neck", (0, 0, 0.97), (0, 0, hook_z), 0.012, blend=0.005))
         return parts
     if p.state == "folded":
-        n = 4
-        fw, fl = 0.62 * w, 0.42
-        h = n * t
-        parts = [box("body", (fl, fw, h), (0, 0, h / 2), edge=0.45 * t)]
-        for i in range(1, n):
-            parts.append(_op(box(f"fold gap {i}", (0.3 * fl, fw * 1.2, 0.18 * t), (-fl / 2, 0, i * t)), "subtract"))
-        if p.hood:
-            parts.append(ellipsoid("hood", (0.13, 0.17, 0.9 * t), (0.06, 0, h + 0.2 * t), blend=0.02))
-        else:
-            parts.append(_scaled(torus("collar band", 0.09, 0.02, (0.12, 0, h)), (0.7, 1, 0.7)))
-        if p.cuffs:
-            parts.append(box("hem", (0.05, fw, h + 0.3 * t), (-fl / 2 + 0.03, 0, (h + 0.3 * t) / 2), edge=0.5 * t,
-                             blend=0.003))
-        return parts
+        return _garment_folded(p)
     # crumpled: a heap of the body with the sleeves (legs) and the hood out of it
     area = w + (0.5 if p.sleeves == "long" else 0.15 if p.sleeves == "short" else 0.0)
     d, height = 1.3 * crumpled_size(area)[0], 0.22 * float(np.sqrt(area))  # front and back: a fuller heap
@@ -700,6 +842,36 @@ def garment(p: GarmentParams) -> list[Part]:
     return parts + [ground]
 
 
+def _garment_folded(p: GarmentParams) -> list[Part]:
+    """Folded neatly: a rectangle a little longer than wide, 8 layers of the fabric thick (front and back, folded in
+    half twice), the collar (or hood) at the top edge, the sleeves folded in as diagonal flaps at the shoulders, the
+    layers' edges seen at the folded bottom and the hem band across it."""
+    fl, fw = 0.42, 0.62 * p.width
+    t = float(np.clip(2 * p.thickness, 0.011, 0.03)) * (PUFF if p.baffles else 1.0)  # one layer (front and back)
+    n = 4
+    h = n * t
+    parts = [box("body", (fl, fw, h), (0, 0, h / 2), edge=0.4 * t)]
+    if p.kind == "top" and p.sleeves != "none":
+        for side in (1, -1):  # a sleeve folded in across the shoulder: a flap lying on top, cut to the outline
+            parts.append(box(f"{'left' if side > 0 else 'right'} sleeve", (0.2, 0.5 * fw, 0.45 * t),
+                             (0.13, side * 0.36 * fw, h + 0.15 * t), edge=0.2 * t, rot=(0, 0, side * 38), blend=0.004))
+        parts.append(_op(box("outline", (fl, fw, 4 * h), (0, 0, 0)), "intersect"))
+    for i in range(1, n):  # the folded bottom edge: the layers seen apart
+        parts.append(_op(box(f"fold gap {i}", (0.12 * fl, fw * 1.2, 0.22 * t), (-fl / 2, 0, i * t)), "subtract"))
+    if p.hood:
+        parts.append(ellipsoid("hood", (0.13, 0.17, 0.9 * t), (0.12, 0, h + 0.2 * t), blend=0.02))
+    elif p.kind == "top":  # the neckline at the top edge: a band round a dip
+        parts.append(_op(ellipsoid("neck", (0.07, 0.11, 0.6 * t), (fl / 2 - 0.01, 0, h + 0.15 * t)), "subtract",
+                         0.01))
+        parts.append(_scaled(torus("collar band", 0.1, 0.018, (fl / 2 - 0.035, 0, h + 0.1 * t)), (0.75, 1, 0.8)))
+        parts.append(_op(box("collar cut", (0.2, 0.4, 4 * h), (fl / 2 + 0.1, 0, 0)), "subtract"))
+    if p.cuffs:
+        parts.append(box("hem", (0.05, fw, 0.5 * t), (-fl / 2 + 0.04, 0, h + 0.1 * t), edge=0.2 * t, blend=0.003))
+    else:
+        parts.append(limb("hem", (-fl / 2 + 0.04, -0.48 * fw, h), (-fl / 2 + 0.04, 0.48 * fw, h), 0.012, blend=0.004))
+    return parts
+
+
 def _swap_xz(part: Part) -> Part:
     """A part of a flat layout (thin along z) stood up in the x-z plane (thin along x): its rotation composed with
     a turn of -90 deg about y, written as XYZ Euler angles."""
@@ -721,8 +893,12 @@ class BagParams(Model):
     sandwich bag (zip track at its mouth), a backpack-less sack; lying flat, standing, or crumpled; optionally part
     full of a fill (rice, sand, water) that slumps to its bottom. Height 1 (bottom to mouth) along x when lying."""
 
-    kind: Literal["tote", "drawstring", "zip", "sack"] = "tote"
+    kind: Literal["tote", "drawstring", "zip", "sack", "carrier", "backpack"] = Field(default="tote", description=(
+        "tote; drawstring (a gathered neck and cords); zip; sack; carrier (a film carrying bag: two handle loops cut "
+        "from its top, creased film); backpack (a zipped pack: shoulder straps, top handle, front pocket)"))
     state: Literal["flat", "standing", "crumpled"] = "flat"
+    straps: bool = Field(default=False, description="a drawstring bag worn on the back: its cords run down both "
+                         "sides to the bottom corners")
     width: float = Field(default=0.9, gt=0.3, le=1.5, description="width / height [-]")
     gusset: float = Field(default=0.0, ge=0.0, le=0.6, description="depth of a standing bag's base / height [-]")
     handle: float = Field(default=0.55, ge=0.0, le=1.2, description="handle loop height above the mouth / height "
@@ -740,8 +916,14 @@ BAG_CAPACITY = 0.155
 def bag(p: BagParams) -> list[Part]:
     """Lying flat: the mouth at +x, handles lying flat beyond it; a fill slumps towards -x. Standing: on its base
     (z = 0), mouth up, handles above. Crumpled: a heap with a handle loop out of it."""
-    t = max(p.thickness, GARMENT_LAYER if p.handle > 0 else 1.5 * MIN_LAYER)
+    t = max(p.thickness, GARMENT_LAYER if p.handle > 0 and p.kind != "carrier" else 1.5 * MIN_LAYER)
     w = p.width
+    if p.kind == "carrier" and p.state != "crumpled":
+        return _stand(_carrier(p, t)) if p.state == "standing" else _carrier(p, t)
+    if p.kind == "backpack":
+        return _backpack(p) if p.state == "standing" else _backpack_flat(p)
+    if p.kind == "drawstring" and p.straps and p.state != "crumpled":
+        return _stand(_drawstring_pack(p, t)) if p.state == "standing" else _drawstring_pack(p, t)
     if p.state == "crumpled":
         d, height = crumpled_size(2 * w)  # its front and back
         heaped = heap(d, height, t, seed=0.7, folds=7, flaps=2)
@@ -797,6 +979,100 @@ def bag(p: BagParams) -> list[Part]:
             pts[0][0] = pts[-1][0] = 0.38
             parts += _flat_chain("handle" if k == 0 else "back handle", pts, p.handle_width / 2, t, blend=0.015)
     return _stand(parts) if standing else parts
+
+
+def _carrier(p: BagParams, t: float) -> list[Part]:
+    """A film carrier ('T-shirt') bag lying flat, mouth at +x: the body, two handles rising from its top corners with
+    a loop cut through each, the mouth cut down between them, side gusset folds and creases over the film."""
+    w = p.width
+    hl = float(np.clip(p.handle, 0.2, 0.45))  # the handles' height above the mouth
+    x_mouth = 0.5 - hl
+    hw = 0.24 * w  # a handle's width
+    parts = [box("body", (1.0, w, t), (0, 0, t / 2), edge=0.45 * t)]
+    for side in (1, -1):  # the side gussets folded in: a pleat line along each side
+        parts.append(limb(f"{'left' if side > 0 else 'right'} gusset", (-0.47, side * (w / 2 - 0.07), t),
+                          (x_mouth - 0.02, side * (w / 2 - 0.07), t), 0.2 * t, blend=0.2 * t))
+    for i in range(9):  # creases in the film: low ridges every way over the body
+        a, rho = 2.4 * i + 0.4, 0.42 * np.sqrt((i + 0.5) / 9)
+        at = (-0.5 + 0.5 * (1 - hl) + rho * np.cos(a) * (1 - hl), 0.8 * rho * np.sin(a) * w, t)
+        parts.append(ellipsoid(f"crease {i + 1}", (0.11 + 0.04 * np.sin(1.3 * i), 0.2 * t, 0.5 * t), at,
+                               rot=(0, 0, float(np.degrees(1.9 * i))), blend=0.3 * t))
+    parts.append(_op(_scaled(cylinder("mouth", (w - 2 * hw) / 2, 4 * t, (0.5, 0, t / 2)),
+                             ((hl + 0.08) / ((w - 2 * hw) / 2), 1, 1)), "subtract", 0.01))
+    for side in (1, -1):
+        slot = _scaled(cylinder(f"{'left' if side > 0 else 'right'} handle hole", 0.2 * hw, 4 * t,
+                                (0.5 - 0.45 * hl, side * (w / 2 - 0.5 * hw), t / 2)), (0.3 * hl / (0.2 * hw), 1, 1))
+        parts.append(_op(slot, "subtract", 0.005))
+    parts.append(box("bottom seam", (0.025, w, 1.2 * t), (-0.5 + 0.03, 0, 0.6 * t), edge=0.4 * t, blend=0.004))
+    return parts
+
+
+def _drawstring_pack(p: BagParams, t: float) -> list[Part]:
+    """A drawstring backpack lying flat, mouth at +x: the body narrowing to its cinched top, pleats gathered under the
+    casing, the cords out of the casing's ends down both sides in a loose arc to the bottom corners' tabs."""
+    w = p.width
+    top = 0.6 * w  # the cinched mouth's width
+    parts = [box("body", (0.62, w, t), (-0.19, 0, t / 2), edge=0.45 * t)]
+    parts.append(_flat_frustum("shoulder", np.array([0.1, 0.0, t / 2]), np.array([0.42, 0.0, t / 2]), w / 2, top / 2,
+                               t, blend=0.01))
+    parts.append(box("casing", (0.07, top, 1.6 * t), (0.44, 0, 0.8 * t), edge=0.5 * t, blend=0.004))
+    for i, y in enumerate(np.linspace(-0.4 * top, 0.4 * top, 6)):  # pleats gathered under the casing
+        a = np.array([0.4, y, t])
+        b = np.array([0.12, y * w / top, t])
+        parts.append(limb(f"pleat {i + 1}", a, b, 0.25 * t, blend=0.2 * t))
+    r = 0.35 * t
+    for side, name in ((1, "left"), (-1, "right")):
+        a0 = np.array([0.45, side * top / 2, 0.8 * t])
+        a1 = np.array([-0.47, side * w / 2, 0.8 * t])
+        pts = [a0 + (a1 - a0) * u + np.array([0.0, side * 0.16 * np.sin(np.pi * u), 0.0]) for u in np.linspace(0, 1, 7)]
+        parts += [limb(f"{name} cord {i + 1}", pts[i], pts[i + 1], r, blend=0.3 * r) for i in range(len(pts) - 1)]
+        parts.append(limb(f"{name} cord 9", a0, a0 + np.array([0.09, side * 0.05, 0]), r, blend=0.3 * r))
+        parts.append(box(f"{name} tab", (0.07, 0.05, 1.4 * t), (-0.47, side * (w / 2 - 0.01), 0.7 * t), edge=0.4 * t,
+                         blend=0.004, rot=(0, 0, side * 40)))
+    return parts
+
+
+def _backpack_flat(p: BagParams) -> list[Part]:
+    """A zipped backpack lying on its front, its back up: the padded body, two shoulder straps arching from the top
+    down to the bottom corners, the top grab handle, the zip round the top seen at the edge."""
+    w = p.width
+    d = 0.32  # depth / height
+    parts = [superellipsoid("body", (0.5, w / 2, d / 2), (0, 0, d / 2), ns=0.35, ew=0.3)]
+    parts.append(superellipsoid("front pocket", (0.28, 0.4 * w, 0.12), (-0.15, 0, 0.08), ns=0.4, ew=0.35,
+                                blend=0.03))
+    parts.append(box("back panel", (0.8, 0.8 * w, 0.03), (0.02, 0, d + 0.005), edge=0.012, blend=0.02))
+    _straps(parts, w, d + 0.02)
+    handle = [np.array([0.46 + 0.1 * np.sin(a), 0.09 * np.cos(a), d * 0.85]) for a in np.linspace(0, np.pi, 6)]
+    parts += _flat_chain("handle", handle, 0.022, 0.03, blend=0.01)
+    zip_arc = [np.array([0.32 + 0.12 * np.sin(a), 0.45 * w * np.cos(a), 0.6 * d]) for a in np.linspace(0, np.pi, 7)]
+    parts += [limb("zip" if i == 0 else f"zip {i + 1}", zip_arc[i], zip_arc[i + 1], 0.012, blend=0.004)
+              for i in range(len(zip_arc) - 1)]
+    return parts
+
+
+def _straps(parts: list[Part], w: float, z: float) -> None:
+    """Two padded shoulder straps over a backpack's back (z up): from the top, apart, to the bottom corners."""
+    for side, name in ((1, "left"), (-1, "right")):
+        pts = [np.array([0.36 - 0.74 * u, side * (0.12 + 0.22 * u) * w, z + 0.06 * np.sin(np.pi * u)])
+               for u in np.linspace(0, 1, 5)]
+        parts += _flat_chain(f"{name} strap", pts, 0.055, 0.035, blend=0.015)
+
+
+def _backpack(p: BagParams) -> list[Part]:
+    """A zipped backpack standing: its lying layout stood up, the back at -x, the straps arching off it."""
+    return _stand_back(_backpack_flat(p))
+
+
+def _stand_back(parts: list[Part]) -> list[Part]:
+    """A layout lying on its front (top at +x, back up) stood on its bottom: x -> z, z -> -x (its back at -x)."""
+    from tasks.geometry.grammar.parts import rotated_parts
+
+    out = []
+    for part in rotated_parts(parts, (0.0, -90.0, 0.0)):
+        x, y, z = part.transform.translation_m
+        out.append(part.model_copy(update={"transform": part.transform.model_copy(update={
+            "translation_m": (x, y, z + 0.5)})}))
+    return out
 
 
 def _stand(parts: list[Part]) -> list[Part]:
