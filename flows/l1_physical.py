@@ -8,19 +8,19 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any
 
 import numpy as np
 
 import cache
-from cache import cache_relative, cache_resolve, cache_root, cached_task, content_key
+from cache import cache_resolve
 from contracts.agents import AgentConfig, StageOutcome, TargetBand, TargetBehaviour
 from contracts.asset_dir import PhysicalRecord
 from contracts.errors import InputError
 from contracts.physical import PhysicalModel
 from contracts.probes import ProbeResult, ProbeSpec
-from contracts.stage import L1Parameters, StageContract, load_contract
-from flows.harness import ProbeCall, run_harness, task_probe_runner
+from contracts.stage import StageContract, StageProbes, load_contract
+from flows.harness import run_harness
+from flows.probe_tasks import probe_task, run_probes
 from prefect import flow
 from tasks.agents.intent import asset_material, asset_targets, concept_of, explicit_numbers
 from tasks.agents.vocab import load_material_vocab
@@ -28,100 +28,10 @@ from tasks.asset_dir import AssetDir, geometry_info
 from tasks.geometry.outputs import L0Asset, load_l0
 from tasks.physical.mass import MassCheck, mass_check
 from tasks.physical.model import build_physical_model, mass_plausible
-from tasks.probes import rigid
+from tasks.probes.probe import ProbeContext
+from tasks.probes.registry import by_kind, stage_probes
+from tasks.probes.registry import probe as find_probe
 from tasks.publish import copy_file_atomic
-from tasks.record import ProbeRecording
-
-TASK_VERSION = "2"  # bump when tasks/probes/rigid.py or the metrics below change (2: asset-frame pose, inertia lock)
-RECORD_PARTICLES_MAX = 4000
-RIGID_KINDS = ("place", "drop", "slide")
-RECORDING_NAMES = {"place": "L1_place.rrd", "rigid_drop": "L1_drop.rrd", "slide": "L1_slide.rrd"}  # probe kind -> file
-
-
-def proxy_hulls(asset: L0Asset) -> list[np.ndarray]:
-    """Convex parts of the collision proxy as vertex arrays [m] (asset frame)."""
-    return [np.asarray(p.vertices, dtype=np.float64) for p in asset.proxy_parts]
-
-
-def record_particles(asset: L0Asset) -> np.ndarray:
-    """A deterministic subsample of the rest particles [m] to show the rigid motion in recordings."""
-    stride = max(1, int(np.ceil(len(asset.particles_m) / RECORD_PARTICLES_MAX)))
-    return np.asarray(asset.particles_m[::stride], dtype=np.float32)
-
-
-def _write_recording(kind: str, key: str, particles_m: np.ndarray, com_m: np.ndarray, trace: rigid.Trace,
-                     metrics: dict[str, float]) -> str:
-    """Rigid motion of the particles over the probe, into the cache's recordings folder; returns the path."""
-    path = cache_root() / "recordings" / f"L1_{kind}-{key[:16]}.rrd"
-    if path.exists():
-        return cache_relative(path)
-    rest = particles_m - com_m[None, :].astype(np.float32)
-    with ProbeRecording(path, recording_id=f"L1-{kind}-{key[:16]}") as rec:
-        for frame, (t, pos, quat) in enumerate(trace):
-            rec.set_time(frame, t)
-            rot = _quat_matrix(quat)
-            rec.particles(rest @ rot.T + np.asarray(pos, np.float32))
-            rec.scalar("com_height_m", pos[2])
-        rec.log(f"L1 {kind} probe: " + ", ".join(f"{k}={v:.4g}" for k, v in sorted(metrics.items())))
-    return cache_relative(path)
-
-
-def _quat_matrix(q: tuple[float, float, float, float]) -> np.ndarray:
-    """Rotation matrix of an xyzw quaternion."""
-    x, y, z, w = q
-    return np.array([
-        [1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
-        [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
-        [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)],
-    ], dtype=np.float32)
-
-
-def _rigid_probe(kind: str, hulls: list[np.ndarray], particles_m: np.ndarray, mass_kg: float,
-                 center_of_mass_m: tuple[float, float, float], friction: float, params: dict[str, float]) -> ProbeResult:
-    """Run one rigid probe, record it, return its metrics."""
-    import time
-
-    body = rigid.RigidBodySpec(hulls, mass_kg, np.asarray(center_of_mass_m), friction)
-    trace: rigid.Trace = []
-    t0 = time.perf_counter()
-    if kind == "place":
-        metrics = rigid.placement_probe(body, duration_s=params["duration_s"], trace=trace)
-    elif kind == "drop":
-        metrics = rigid.drop_probe(body, params["clearance_fraction"], params["duration_s"], trace=trace)
-    else:
-        metrics = rigid.slide_probe(body, params["margin_deg"], params["measure_s"], trace=trace)
-    wall = time.perf_counter() - t0
-    key = content_key("l1-recording", kind, hulls, mass_kg, center_of_mass_m, friction, params)
-    rrd = _write_recording(kind, key, particles_m, np.asarray(center_of_mass_m), trace, metrics)
-    spec = ProbeSpec(kind="rigid_drop" if kind == "drop" else kind, params=params)
-    return ProbeResult(spec=spec, metrics=metrics, sim_calls=2 if kind == "slide" else 1, wall_time_s=wall,
-                       recording=rrd)
-
-
-@cached_task(version=TASK_VERSION, name="l1.place")
-def place_task(hulls: list[np.ndarray], particles_m: np.ndarray, mass_kg: float,
-               center_of_mass_m: tuple[float, float, float], friction: float, duration_s: float) -> ProbeResult:
-    """Placement probe: settles on the ground; tilt, penetration, settle time."""
-    return _rigid_probe("place", hulls, particles_m, mass_kg, center_of_mass_m, friction, {"duration_s": duration_s})
-
-
-@cached_task(version=TASK_VERSION, name="l1.drop")
-def drop_task(hulls: list[np.ndarray], particles_m: np.ndarray, mass_kg: float,
-              center_of_mass_m: tuple[float, float, float], friction: float, clearance_fraction: float,
-              duration_s: float) -> ProbeResult:
-    """Rigid drop from a fraction of the height: penetration and rest after the bounce."""
-    return _rigid_probe("drop", hulls, particles_m, mass_kg, center_of_mass_m, friction,
-                        {"clearance_fraction": clearance_fraction, "duration_s": duration_s})
-
-
-@cached_task(version=TASK_VERSION, name="l1.slide")
-def slide_task(hulls: list[np.ndarray], particles_m: np.ndarray, mass_kg: float,
-               center_of_mass_m: tuple[float, float, float], friction: float, margin_deg: float,
-               measure_s: float) -> ProbeResult:
-    """Incline just below / above atan(mu): sticks, then slides with a = g (sin - mu cos)."""
-    return _rigid_probe("slide", hulls, particles_m, mass_kg, center_of_mass_m, friction,
-                        {"margin_deg": margin_deg, "measure_s": measure_s})
-
 
 @dataclass(frozen=True)
 class L1Plan:
@@ -166,16 +76,6 @@ def l1_targets(asset: L0Asset, intent: str | None) -> tuple[TargetBehaviour, str
     return plan.targets, plan.material, plan.mass.density_range_kg_per_m3
 
 
-def probe_settings(contract: StageContract) -> dict[str, dict[str, float]]:
-    """Rigid-probe parameters from the L1 contract."""
-    p = L1Parameters.of(contract)
-    return {
-        "place": {"duration_s": p.place_duration_s},
-        "drop": {"clearance_fraction": p.drop_clearance_fraction_of_height, "duration_s": p.drop_duration_s},
-        "slide": {"margin_deg": p.slide_angle_margin_deg, "measure_s": p.slide_measure_s},
-    }
-
-
 def physical_from_values(asset: L0Asset, values: dict[str, float], category: str) -> PhysicalModel:
     """The PhysicalModel of a candidate's density and friction."""
     return build_physical_model(asset.particles_m, asset.volumes_m3, asset.spacing_m, values["density_kg_per_m3"],
@@ -191,25 +91,14 @@ def _mass_result(phys: PhysicalModel, density_range: tuple[float, float]) -> Pro
 
 def l1_runner(asset: L0Asset, contract: StageContract, category: str, density_range: tuple[float, float],
               recording_kinds: dict[str, str] | None = None):
-    """The L1 probe runner: candidate values -> [mass, place, drop, slide] results (rigid probes cached);
-    recording_kinds, when given, collects each recording's probe kind (recording path -> ProbeSpec.kind)."""
-    hulls, shown = proxy_hulls(asset), record_particles(asset)
-    settings = probe_settings(contract)
-
-    def body_inputs(values: dict[str, float], action: str) -> dict[str, Any]:
-        phys = physical_from_values(asset, values, category)
-        return {"mass_kg": phys.mass_kg, "center_of_mass_m": phys.center_of_mass_m, "friction": phys.ground_friction}
-
-    fixed = {"hulls": hulls, "particles_m": shown}
-    cached = task_probe_runner([
-        ProbeCall(place_task, {**fixed, **settings["place"]}, body_inputs),
-        ProbeCall(drop_task, {**fixed, **settings["drop"]}, body_inputs),
-        ProbeCall(slide_task, {**fixed, **settings["slide"]}, body_inputs),
-    ])
+    """The L1 probe runner: candidate values -> [mass, the contract's rigid probes] results (probes cached, one after
+    another); recording_kinds, when given, collects each recording's probe kind (recording path -> ProbeSpec.kind)."""
+    probes = stage_probes(contract)
 
     def run(values: dict[str, float], action: str) -> list[ProbeResult]:
         phys = physical_from_values(asset, values, category)
-        results = [_mass_result(phys, density_range), *cached(values, action)]
+        ctx = ProbeContext(asset, contract, phys)
+        results = [_mass_result(phys, density_range), *run_probes(probes, ctx, device=None)]
         if recording_kinds is not None:
             recording_kinds.update({r.recording: r.spec.kind for r in results if r.recording})
         return results
@@ -227,7 +116,7 @@ def _copy_recordings(outcome: StageOutcome, asset_dir: Path, kinds: dict[str, st
     for src in chosen.evidence.recordings:
         p = cache_resolve(src)
         if p.suffix == ".rrd" and p.is_file():
-            dest = asset_dir / "recordings" / RECORDING_NAMES[kinds[src]]
+            dest = asset_dir / "recordings" / by_kind("L1", kinds[src]).recording_name()
             copy_file_atomic(p, dest)  # a new file: a hard link of a working copy (tasks.publish) is never rewritten
             out.append(str(dest.relative_to(asset_dir)))
     return out
@@ -270,11 +159,13 @@ def load_physical(asset_dir: Path) -> PhysicalModel:
 
 
 def run_rigid_probe(kind: str, asset_dir: Path, rho: float | None = None, friction: float | None = None) -> ProbeResult:
-    """Run one rigid probe (place | drop | slide) on an asset, with its L1 model or overridden density/friction."""
-    if kind not in RIGID_KINDS:
-        raise InputError(f"unknown rigid probe '{kind}'; choose one of {', '.join(RIGID_KINDS)}")
-    asset = load_l0(Path(asset_dir))
+    """Run one rigid probe of the L1 contract (place | drop | slide) on an asset, with its L1 model or overridden
+    density/friction."""
     contract = load_contract("L1")
+    kinds = StageProbes.of(contract).names()
+    if kind not in kinds:
+        raise InputError(f"unknown rigid probe '{kind}'; choose one of {', '.join(kinds)}")
+    asset = load_l0(Path(asset_dir))
     if AssetDir(asset_dir).has("physical"):
         base = load_physical(Path(asset_dir))
         values = {"density_kg_per_m3": base.density_kg_per_m3, "ground_friction": base.ground_friction,
@@ -290,8 +181,6 @@ def run_rigid_probe(kind: str, asset_dir: Path, rho: float | None = None, fricti
             f = contract.field(name)
             raise InputError(f"{name}={v} is outside the L1 contract's bounds [{f.low}, {f.high}] {f.unit}")
     phys = physical_from_values(asset, values, geometry_info(asset.record).category)
-    task = {"place": place_task, "drop": drop_task, "slide": slide_task}[kind]
+    probe = find_probe("L1", kind)
     with cache.local_runtime():
-        return task(hulls=proxy_hulls(asset), particles_m=record_particles(asset), mass_kg=phys.mass_kg,
-                    center_of_mass_m=phys.center_of_mass_m, friction=phys.ground_friction,
-                    **probe_settings(contract)[kind])
+        return probe_task(probe)(**probe.inputs(ProbeContext(asset, contract, phys)))
