@@ -2,8 +2,9 @@
 writes them).
 
 Each model holds exactly the keys its layer writes, so a document read and written back is the same JSON. Parts that
-are records of a task's own structures (a mass check, a probe dump, a trial row) stay plain JSON (`dict[str, Any]`);
-the parts later layers use are typed (PhysicalModel, Material, TargetBehaviour, ActionPlan, ...).
+are records of a task's own structures (a mass check, a probe dump) stay plain JSON (`dict[str, Any]`); the parts
+later layers use are typed (PhysicalModel, Material, TargetBehaviour, ...). L3's record is typed end to end
+(contracts.manipulation.ManipulationRecord).
 """
 
 from __future__ import annotations
@@ -16,9 +17,9 @@ from contracts.agents import OutcomeStatus, TargetBehaviour
 from contracts.base import Model
 from contracts.evidence import GateResult
 from contracts.manifest import AssetManifest
+from contracts.manipulation import ManipulationRecord
 from contracts.material import Material
 from contracts.physical import PhysicalModel
-from contracts.robot import ActionPlan, GraspCandidate
 
 GEOMETRY_JSON = "geometry.json"        # L0
 PHYSICAL_JSON = "physical.json"        # L1
@@ -133,40 +134,6 @@ class MaterialRecord(Model):
     selection: SelectionSummary
     sim_calls: int
     recordings: dict[str, str | None] = Field(description="probe kind -> recording path in the asset")
-
-
-class ManipulationRecord(Model):
-    """manipulation.json: L3's outcome, the chosen plan and every trial (status 'no_grasp': no trial could run)."""
-
-    ABSENT_UNLESS_GIVEN: ClassVar[frozenset[str]] = frozenset({"best_attempt", "trial"})  # keys older records lack
-    schema_version: int = 1
-    stage: Literal["L3"] = "L3"
-    passed: bool
-    status: str = Field(description="the harness's OutcomeStatus, or 'no_grasp'")
-    message: str
-    reason: str
-    best_attempt: dict[str, Any] | None = Field(default=None, description="records before it: absent")
-    material: Material
-    material_source: str
-    physical_model: PhysicalModel
-    plan: ActionPlan | None
-    values: dict[str, float] | None
-    attempt: int | None
-    trial: int | None = Field(default=None, description="the adopted trial's number (from 1, in the order run: "
-                              "tasks.record.trials); records before #36: absent")
-    outcome: dict[str, bool]
-    labels: dict[str, float]
-    forces: dict[str, float]
-    force_budget_n: float
-    grasps: list[GraspCandidate]
-    gripper: dict[str, Any]
-    held_out: dict[str, Any]
-    robustness: dict[str, Any] | None
-    material_revision: dict[str, Any] | None
-    numerics: dict[str, Any]
-    attempts: list[dict[str, Any]]
-    harness_attempts: int
-    recordings: list[str]
 
 
 MaterialSource = Literal["L2", "L3 revision"]

@@ -305,16 +305,16 @@ def run_manipulation(case: SuiteCase, request: AssetRequest, h: dict[str, Any], 
     final = AssetDir(full_dir).adopted_material().material  # L2's, or the revision L3 passed with
     ok, tests = (base_ok, base_tests) if final == h["material"] else material_passes(
         full_dir, h["physical"], final, targets, sim)
-    by_cond = {(round(x["target_xy_m"][0], 6), round(x["target_xy_m"][1], 6), round(x["initial_yaw_deg"], 6)): x
-               for x in record.held_out["conditions"]}
+    by_cond = {(round(x.target_xy_m[0], 6), round(x.target_xy_m[1], 6), round(x.initial_yaw_deg, 6)): x
+               for x in record.held_out.conditions}
     # a condition row names its trial by its interaction path (None: the plan failed, nothing was stored)
-    key_of = {attempt_path(a["attempt"]): a["cache_key"] for a in record.attempts if a["attempt"] is not None}
+    key_of = {attempt_path(a.attempt): a.cache_key for a in record.attempts if a.attempt is not None}
     conds = []
     for c in conditions:
         x = by_cond.get((round(c.target_xy_m[0], 6), round(c.target_xy_m[1], 6), round(c.initial_yaw_deg, 6)))
-        att = x["attempt"] if x else None
-        conds.append(ConditionResult(condition=c, task_success=bool(x and x["success"]), material_pass=ok,
-                                     labels=_finite(x["labels"]) if x else {}, attempt=att,
+        att = x.attempt if x else None
+        conds.append(ConditionResult(condition=c, task_success=bool(x and x.success), material_pass=ok,
+                                     labels=_finite(x.labels) if x else {}, attempt=att,
                                      cache_key=key_of.get(att) if att else None))
     results.append(ArmResult(ablation="manipulation", arm="full", case_id=case.id, case_kind=case.kind,
                              delivered=record.passed, conditions=conds, sim_calls=len(record.attempts),

@@ -24,7 +24,9 @@ from contracts.agents import AgentConfig
 from contracts.asset_dir import ASSET_JSON, GeometryRecord, MaterialRecord, PhysicalRecord, attempt_path
 from contracts.errors import InputError, StageFailure
 from contracts.manifest import AssetManifest, Provenance, StageSummary
+from contracts.manipulation import ManipulationRecord
 from contracts.request import AssetRequest
+from contracts.robot import ActionPlan
 from contracts.sim import Device, KernelOptions, SimConfig
 from tasks.asset_dir import AssetDir
 from tasks.publish import replace_directory
@@ -80,58 +82,45 @@ def stage_summary(record: GeometryRecord | PhysicalRecord | MaterialRecord) -> S
                         sim_calls=record.sim_calls, metrics=finite_metrics(record.metrics), failed_gates=[])
 
 
-def reported_labels(record: dict[str, Any]) -> dict[str, Any]:
-    """The labels the manifest reports: the adopted trial's, else the best trial under the asset's own material
-    (manipulation.json's best_attempt), else (a record written before best_attempt existed) the last trial."""
-    best = record.get("best_attempt") or {}
-    trials = [a for a in record.get("attempts", []) if a.get("labels") and not a["labels"].get("plan_failed")]
-    return record.get("labels") or best.get("labels") or (trials[-1]["labels"] if trials else {})
-
-
-def l3_summary(record: dict[str, Any]) -> StageSummary:
+def l3_summary(record: ManipulationRecord) -> StageSummary:
     """L3's line in the validation summary: trials run (sim calls), the reported attempt's labels, its failed gates
     and the reason in words (no grasp: the one failed gate 'grasp available')."""
     from contracts.stage import load_contract
     from flows.l3_report import NO_GRASP_GATE
 
-    trials = [a for a in record.get("attempts", []) if a.get("labels") and not a["labels"].get("plan_failed")]
-    metrics = finite_metrics(reported_labels(record))
-    passed = bool(record.get("passed"))
-    if passed:
+    trials = [a for a in record.attempts if a.labels and not a.labels.get("plan_failed")]
+    metrics = finite_metrics(record.reported_labels())
+    if record.passed:
         failed: list[str] = []
-    elif record.get("status") == "no_grasp":
+    elif record.status == "no_grasp":
         failed = [NO_GRASP_GATE]
-    elif (record.get("best_attempt") or {}).get("failed_gates") is not None:
-        failed = list(record["best_attempt"]["failed_gates"])  # judged under the contract L3 ran with
+    elif record.best_attempt is not None:
+        failed = list(record.best_attempt.failed_gates)  # judged under the contract L3 ran with
     else:
         failed = [g.name for g in load_contract("L3").hard_gates if not g.passes(metrics.get(g.metric))]
-    reason = None if passed else (record.get("reason") or record.get("message") or None)
-    attempts = int(record.get("harness_attempts") or len(record.get("attempts", [])))  # harness attempts, as evidence
-    return StageSummary(stage="L3", passed=passed, attempts=attempts,
+    reason = None if record.passed else (record.reason or record.message or None)
+    attempts = record.harness_attempts or len(record.attempts)  # harness attempts, as evidence
+    return StageSummary(stage="L3", passed=record.passed, attempts=attempts,
                         sim_calls=len(trials), metrics=metrics, failed_gates=failed, reason=reason)
 
 
-def shown_attempt(record: dict[str, Any]) -> int | None:
+def shown_attempt(record: ManipulationRecord) -> int | None:
     """The attempt the pick-and-place video shows: the accepted one, else the one the manifest reports, else the
     last trial that ran."""
-    if record.get("attempt") is not None:
-        return int(record["attempt"])
-    best = record.get("best_attempt") or {}
-    if best.get("attempt") is not None:
-        return int(best["attempt"])
-    runs = [a["attempt"] for a in record.get("attempts", []) if a.get("attempt") is not None]
-    return int(runs[-1]) if runs else None
+    if record.attempt is not None:
+        return record.attempt
+    if record.best_attempt is not None and record.best_attempt.attempt is not None:
+        return record.best_attempt.attempt
+    runs = [a.attempt for a in record.attempts if a.attempt is not None]
+    return runs[-1] if runs else None
 
 
-def reported_plan(record: dict[str, Any]) -> Any:
+def reported_plan(record: ManipulationRecord) -> ActionPlan | None:
     """The manifest's action plan: the adopted one, else the best plan tried (None when no plan was possible)."""
-    from contracts.robot import ActionPlan
-
-    plan = record.get("plan") or (record.get("best_attempt") or {}).get("plan")
-    return ActionPlan(**plan) if plan else None
+    return record.plan or (record.best_attempt.plan if record.best_attempt else None)
 
 
-def cache_keys(work: Path, l3: dict[str, Any] | None) -> dict[str, str]:
+def cache_keys(work: Path, l3: ManipulationRecord | None) -> dict[str, str]:
     """Task -> cache key of the results the asset carries: L2's chosen candidate's probes and its held-out probes,
     L3's reported trial and its robustness and held-out trials (`CacheStore(root).get(key)` returns each)."""
     keys: dict[str, str] = {}
@@ -149,17 +138,16 @@ def cache_keys(work: Path, l3: dict[str, Any] | None) -> dict[str, str]:
             if probe["cache_key"]:
                 keys[f"l2.{probe['spec']['kind']}.held_out"] = str(probe["cache_key"])
     if l3:
-        best_l3 = l3.get("best_attempt") or {}
-        if best_l3.get("cache_key"):
-            keys["l3.trial"] = str(best_l3["cache_key"])
+        if l3.best_attempt is not None and l3.best_attempt.cache_key:
+            keys["l3.trial"] = l3.best_attempt.cache_key
         # a condition row names its trial by its interaction path (None: the plan failed, nothing was stored)
-        by_path = {(attempt_path(a["attempt"]) if a.get("attempt") is not None else None): a.get("cache_key")
-                   for a in l3.get("attempts", [])}
-        for group in ("robustness", "held_out"):
-            for i, row in enumerate((l3.get(group) or {}).get("conditions", [])):
-                key = by_path.get(row.get("attempt"))
+        by_path = {(attempt_path(a.attempt) if a.attempt is not None else None): a.cache_key for a in l3.attempts}
+        groups = {"robustness": l3.robustness.conditions if l3.robustness else [], "held_out": l3.held_out.conditions}
+        for group, rows in groups.items():
+            for i, row in enumerate(rows):
+                key = by_path.get(row.attempt)
                 if key:
-                    keys[f"l3.trial.{group}.{i}"] = str(key)
+                    keys[f"l3.trial.{group}.{i}"] = key
     return keys
 
 
@@ -189,7 +177,7 @@ def manipulation_outcome(labels: dict[str, float]) -> Any:
 
 
 def run_manipulation(work: Path, device: Device, quality: str, agents: AgentConfig | None,
-                     cpu_threads: int = 1, progress: Callable[[str], None] | None = None) -> dict[str, Any]:
+                     cpu_threads: int = 1, progress: Callable[[str], None] | None = None) -> ManipulationRecord:
     """L3 on the working directory and the pick-and-place video of the shown attempt; the manipulation record."""
     from cache.files import cached_file
     from flows.l3_manipulation import L3Options, run_l3

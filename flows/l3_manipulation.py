@@ -29,7 +29,10 @@ import cache
 from cache import cached_task
 from cache.prefect_flow import lean_flow
 from contracts.agents import AgentConfig, StageOutcome, TargetBehaviour
-from contracts.asset_dir import ManipulationRecord, attempt_path
+from contracts.asset_dir import attempt_path
+from contracts.manipulation import (BestAttempt, ConditionRow, ConditionSummary, GripperChoice, GripperOption,
+                                    HeldOutConditions, L2Check, L3Numerics, ManipulationRecord, MaterialRevision,
+                                    SqueezeSummary, TrialCondition, TrialRow)
 from contracts.material import Material
 from contracts.physical import PhysicalModel
 from contracts.probes import ProbeResult, ProbeSpec
@@ -217,13 +220,13 @@ class L3Context:
     grasps: list[GraspCandidate]
     options: L3Options
     contract: StageContract
-    attempts: list[dict[str, Any]] = field(default_factory=list)
+    attempts: list[TrialRow] = field(default_factory=list)
     recordings: bool = True  # each stored trial also gets recordings/L3_trial_NN.rrd (tasks.manipulation.recordings)
     gripper: str = DEFAULT_GRIPPER
     gripper_reason: str = ""
     grasp_reason: str = ""  # the part the grasps hold and why (tasks.robot.grasp_parts), '' when not a toy or animal
     squeeze: SqueezePlan | None = None  # the force target and stiffness-scaled squeeze range of the best grasp
-    gripper_options: list[dict[str, Any]] = field(default_factory=list)  # what choose_gripper weighed
+    gripper_options: list[GripperOption] = field(default_factory=list)  # what choose_gripper weighed
     progress: L3Progress = field(default_factory=L3Progress)
     l0: L0Asset | None = None  # the L0 data the body was built from (L2's revalidation probes it too)
 
@@ -298,9 +301,9 @@ class L3Context:
         trial = len(self.attempts) + 1  # the trial's one number (tasks.record.trials)
         rrd = (record_attempt(self.asset_dir, trial, out["arrays"], {**attrs, "trial": trial}, key)
                if n is not None and self.recordings else None)
-        self.attempts.append({"attempt": n, "role": role, "action": action, "values": values,
-                              "labels": probe.metrics, "cache_key": key, "recording": rrd,
-                              "condition": {"target_xy_m": list(plan.target_xy_m), "yaw_deg": yaw_deg}})
+        self.attempts.append(TrialRow(attempt=n, role=role, action=action, values=values, labels=probe.metrics,
+                                      cache_key=key, recording=rrd,
+                                      condition=TrialCondition(target_xy_m=list(plan.target_xy_m), yaw_deg=yaw_deg)))
         return probe.model_copy(update={"cache_key": key, "recording": attempt_path(n) if n is not None else None})
 
     def under(self, values: dict[str, float], conditions: tuple[tuple[float, float, float], ...], role: str,
@@ -372,7 +375,8 @@ def load_context(asset_dir: Path, options: L3Options, contract: StageContract,
                                      _planner_code())
         if choice["name"] is None:  # run_l3 records it as L3's outcome (no grasp is a result)
             raise NoGraspError(choice["reason"])
-        name, reason, rows = choice["name"], choice["reason"], choice["options"]
+        name, reason = choice["name"], choice["reason"]
+        rows = [GripperOption.model_validate(o) for o in choice["options"]]
     g = gripper(name)
     spacing = options.particle_spacing_m or auto_trial_spacing(asset.mesh.extents, options.quality, g.pad_face_m)
     body = trial_body(asset.mesh, asset.particles_m, asset.spacing_m, asset.gaussians, spacing,
@@ -501,7 +505,7 @@ def _accepted(metrics: dict[str, float], contract: StageContract) -> bool:
 
 def run_l3(asset_dir: Path, options: L3Options | None = None, agents: AgentConfig | None = None,
            contract: StageContract | None = None, material: Material | None = None,
-           recordings: bool = True, progress: Progress | None = None) -> tuple[dict[str, Any], StageOutcome]:
+           recordings: bool = True, progress: Progress | None = None) -> tuple[ManipulationRecord, StageOutcome]:
     """Run L3 on an asset directory (L0 + L1, L2 or a prior): the l3-manipulation flow against the local Prefect
     runtime; write manipulation.json; return (record, outcome)."""
     with cache.local_runtime():
@@ -511,7 +515,7 @@ def run_l3(asset_dir: Path, options: L3Options | None = None, agents: AgentConfi
 @lean_flow(name="l3-manipulation", validate_parameters=False, persist_result=False)
 def l3_manipulation(asset_dir: Path, options: L3Options | None = None, agents: AgentConfig | None = None,
                     contract: StageContract | None = None, material: Material | None = None, recordings: bool = True,
-                    progress: Progress | None = None) -> tuple[dict[str, Any], StageOutcome]:
+                    progress: Progress | None = None) -> tuple[ManipulationRecord, StageOutcome]:
     """L3: grasps, the harness stage over pick-and-place trials (a subflow), robustness and held-out trials (cached
     tasks), material revisions revalidated by L2 (the l2-revalidation subflow), manipulation.json.
 
@@ -551,59 +555,60 @@ def l3_manipulation(asset_dir: Path, options: L3Options | None = None, agents: A
         failing = [r for r in rob if not _accepted(r.metrics, contract)]
         if failing:
             material_revision = _revise_material(ctx, dict(chosen_values), failing[0].metrics, "robustness")
-            if material_revision is not None and material_revision["accepted"] and (
-                    material_revision["robustness"]["passed"] > robustness["passed"]):
-                final_material = Material.model_validate(material_revision["to"])
-                robustness = material_revision["robustness"]
+            if material_revision is not None and material_revision.accepted and material_revision.robustness and (
+                    material_revision.robustness.passed > robustness.passed):
+                final_material = material_revision.to
+                robustness = material_revision.robustness
             elif material_revision is not None:
-                material_revision["accepted"] = False
+                material_revision = material_revision.model_copy(update={"accepted": False})
     elif escalated or (not outcome.passed and options.material_fallback):
         base = _base_attempt(ctx, outcome, escalated)
         if base is not None:
             material_revision = _revise_material(ctx, dict(base.proposal), base.evidence.metrics,
                                                  "escalation" if escalated else "no plan passed")
-        if material_revision is not None and material_revision["accepted"]:
-            chosen_values = dict(material_revision["plan_values"])
-            final_material = Material.model_validate(material_revision["to"])
-            robustness = material_revision.get("robustness")
+        if material_revision is not None and material_revision.accepted:
+            chosen_values = dict(material_revision.plan_values)
+            final_material = material_revision.to
+            robustness = material_revision.robustness
     accepted = chosen_values is not None and (outcome.passed or final_material is not ctx.material)
-    held: list[dict[str, Any]] = []
+    held: list[ConditionRow] = []
     if accepted and options.held_out and chosen_values is not None:  # (accepted: chosen_values is set)
         results = ctx.under(dict(chosen_values), options.held_out, "held_out", material=final_material)
-        held = _conditions(options.held_out, results, contract)["conditions"]
+        held = _conditions(options.held_out, results, contract).conditions
     chosen = _chosen_attempt(ctx, chosen_values, final_material) if accepted else None
     if recordings and chosen is not None:
-        name_pick_and_place(asset_dir, chosen)
-    rec_paths = [a["recording"] for a in ctx.attempts if a.get("recording")]  # every trial's, failed ones included
-    record = _record(ctx, outcome, accepted, chosen, final_material, material_revision, held, robustness, rec_paths,
-                     time.perf_counter() - t0)
-    verdict = "passed" + _conditions_summary(held, robustness) if accepted else "did not pass: " + record["reason"]
+        chosen = name_pick_and_place(asset_dir, ctx.attempts, chosen)
+    rec_paths = [a.recording for a in ctx.attempts if a.recording]  # every trial's, failed ones included
+    record = _record(ctx, outcome, accepted, chosen, final_material, material_revision, held, robustness, rec_paths)
+    verdict = "passed" + _conditions_summary(held, robustness) if accepted else "did not pass: " + record.reason
     report.say(f"L3 {verdict}")
-    # the file holds no wall time, so a rerun writes the same manipulation.json; the returned record reports it
-    AssetDir(asset_dir).write_manipulation(ManipulationRecord.model_validate(
-        {k: v for k, v in record.items() if k != "wall_time_s"}))
+    # the file holds no wall time, so a rerun writes the same manipulation.json
+    AssetDir(asset_dir).write_manipulation(record)
     return record, outcome
 
 
-def _conditions_summary(held: list[dict[str, Any]], robustness: dict[str, Any] | None) -> str:
+def _conditions_summary(held: list[ConditionRow], robustness: ConditionSummary | None) -> str:
     """' (nominal condition; held out 2/3, robustness 1/2)': the pass is the nominal trial's, the rest said beside it."""
-    parts = [f"held out {sum(h['success'] for h in held)}/{len(held)}"] if held else []
-    if robustness and robustness.get("conditions"):
-        parts.append(f"robustness {robustness['passed']}/{len(robustness['conditions'])}")
+    parts = [f"held out {sum(h.success for h in held)}/{len(held)}"] if held else []
+    if robustness and robustness.conditions:
+        parts.append(f"robustness {robustness.passed}/{len(robustness.conditions)}")
     return f" (nominal condition; {', '.join(parts)})" if parts else ""
 
 
-def name_pick_and_place(asset_dir: Path, chosen: dict[str, Any]) -> None:
+def name_pick_and_place(asset_dir: Path, attempts: list[TrialRow], chosen: TrialRow) -> TrialRow:
     """Give the chosen trial's recording the name users open (recordings/L3_pick_and_place.rrd): its attempt file is
-    renamed, not copied, and the attempt's row (manipulation.json `attempts`, whose `attempt` is its interaction
-    data) names the new path."""
-    if chosen.get("recording") and chosen["recording"] != PICK_AND_PLACE_RECORDING:
-        os.replace(Path(asset_dir) / chosen["recording"], Path(asset_dir) / PICK_AND_PLACE_RECORDING)
-        chosen["recording"] = PICK_AND_PLACE_RECORDING
+    renamed, not copied, and the attempt's row in `attempts` (manipulation.json `attempts`, whose `attempt` is its
+    interaction data) names the new path. Returns the row as it now stands."""
+    if not chosen.recording or chosen.recording == PICK_AND_PLACE_RECORDING:
+        return chosen
+    os.replace(Path(asset_dir) / chosen.recording, Path(asset_dir) / PICK_AND_PLACE_RECORDING)
+    renamed = chosen.model_copy(update={"recording": PICK_AND_PLACE_RECORDING})
+    attempts[next(i for i, a in enumerate(attempts) if a is chosen)] = renamed
+    return renamed
 
 
 def _no_grasp(asset_dir: Path, options: L3Options, contract: StageContract, material: Material | None, reason: str,
-              t0: float) -> tuple[dict[str, Any], StageOutcome]:
+              t0: float) -> tuple[ManipulationRecord, StageOutcome]:
     """L3's record when no gripper can hold the object: no trial ran; the reason is L3's one attempt in evidence/."""
     adir = AssetDir(asset_dir)
     physical = adir.physical_model()
@@ -611,28 +616,24 @@ def _no_grasp(asset_dir: Path, options: L3Options, contract: StageContract, mate
     if material is None:
         material, source = material_of(asset_dir, adir.l0)
     attempts = record_no_grasp(asset_dir, reason)
-    record = {
-        "schema_version": 1, "stage": "L3", "passed": False, "status": "no_grasp", "message": reason,
-        "reason": reason, "best_attempt": None, "material": material.model_dump(mode="json"),
-        "material_source": source, "physical_model": physical.model_dump(mode="json"), "plan": None, "values": None,
-        "attempt": None, "outcome": {}, "labels": {}, "forces": {},
-        "force_budget_n": tolerances_from(contract).force_budget_n, "grasps": [],
-        "gripper": {"name": None, "reason": reason, "options": [], "squeeze": None},
-        "held_out": {"conditions": [], "success_rate": None}, "robustness": None, "material_revision": None,
-        "numerics": {"quality": options.quality, "device": options.device}, "attempts": attempts,
-        "harness_attempts": 1, "recordings": [], "wall_time_s": time.perf_counter() - t0,
-    }
-    AssetDir(asset_dir).write_manipulation(ManipulationRecord.model_validate(
-        {k: v for k, v in record.items() if k != "wall_time_s"}))
+    record = ManipulationRecord(
+        passed=False, status="no_grasp", message=reason, reason=reason, best_attempt=None, material=material,
+        material_source=source, physical_model=physical, plan=None, values=None, attempt=None, outcome={}, labels={},
+        forces={}, force_budget_n=tolerances_from(contract).force_budget_n, grasps=[],
+        gripper=GripperChoice(name=None, reason=reason, options=[], squeeze=None),
+        held_out=HeldOutConditions(conditions=[], success_rate=None), robustness=None, material_revision=None,
+        numerics=L3Numerics(quality=options.quality, device=options.device), attempts=attempts, harness_attempts=1,
+        recordings=[])
+    AssetDir(asset_dir).write_manipulation(record)
     return record, StageOutcome(stage="L3", status="no_valid_candidate", attempts_used=1, message=reason)
 
 
 def _conditions(conditions: tuple[tuple[float, float, float], ...], results: list[ProbeResult],
-                contract: StageContract) -> dict[str, Any]:
+                contract: StageContract) -> ConditionSummary:
     """Per-condition outcome of one plan: target, yaw, success, labels; and how many passed."""
-    rows = [{"target_xy_m": [x, y], "initial_yaw_deg": yaw, "success": _accepted(r.metrics, contract),
-             "labels": r.metrics, "attempt": r.recording} for (x, y, yaw), r in zip(conditions, results)]
-    return {"conditions": rows, "passed": sum(r["success"] for r in rows)}
+    rows = [ConditionRow(target_xy_m=[x, y], initial_yaw_deg=yaw, success=_accepted(r.metrics, contract),
+                         labels=r.metrics, attempt=r.recording) for (x, y, yaw), r in zip(conditions, results)]
+    return ConditionSummary(conditions=rows, passed=sum(r.success for r in rows))
 
 
 def _base_attempt(ctx: L3Context, outcome: StageOutcome, escalated: bool) -> Any:
@@ -647,7 +648,7 @@ def _base_attempt(ctx: L3Context, outcome: StageOutcome, escalated: bool) -> Any
 
 
 def _revise_material(ctx: L3Context, values: dict[str, float], metrics: dict[str, float],
-                     trigger: str) -> dict[str, Any] | None:
+                     trigger: str) -> MaterialRevision | None:
     """Material revision asked by a trial's failed gates (flows.l3_material), L2 revalidation (one half-way retry
     when a band is left), then the robot under the same plan: the nominal condition, and the robustness conditions
     when it passes. 'accepted' when L2 passed and the nominal condition passes; None when the material has nothing to
@@ -657,36 +658,37 @@ def _revise_material(ctx: L3Context, values: dict[str, float], metrics: dict[str
     if proposal is None:
         return None
     revised, reason = proposal
-    checks = []
+    checks: list[L2Check] = []
     for _ in range(2):
         ctx.progress.say(f"L3 material revision ({trigger}): L2 revalidation of E = {revised.youngs_modulus_pa:.3g} "
                          f"Pa, damping {revised.damping_rate_per_s:.3g} 1/s")
         l2 = revalidate_in_l2(ctx.asset_dir, revised, ctx.physical, limits, sim=ctx.options.sim(), asset=ctx.l0)
-        checks.append({"material": revised.model_dump(mode="json"), **l2})
-        if l2["passed"] or not all(l2["gates"].values()):
+        checks.append(l2)
+        if l2.passed or not all(l2.gates.values()):
             break
         revised = halfway(ctx.material, revised)
-    rev: dict[str, Any] = {"trigger": trigger, "from": ctx.material.model_dump(mode="json"),
-                           "to": revised.model_dump(mode="json"), "reason": reason,
-                           "failed_gates": failed_gates(metrics, ctx.contract), "l2_revalidation": checks[-1],
-                           "l2_checks": checks, "plan_values": dict(values), "accepted": False}
-    if checks[-1]["passed"]:
+    rev = MaterialRevision.model_validate({
+        "trigger": trigger, "from": ctx.material, "to": revised, "reason": reason,
+        "failed_gates": failed_gates(metrics, ctx.contract), "l2_revalidation": checks[-1], "l2_checks": checks,
+        "plan_values": dict(values), "accepted": False})
+    if checks[-1].passed:
         confirm = [ctx.trial(dict(values), "confirmation", "revise_material", material=revised)]
-        rev["accepted"] = _accepted(confirm[0].metrics, ctx.contract)
-        if rev["accepted"]:  # the robustness conditions only matter for a material the nominal condition accepts
+        accepted = _accepted(confirm[0].metrics, ctx.contract)
+        if accepted:  # the robustness conditions only matter for a material the nominal condition accepts
             confirm += ctx.under(dict(values), ctx.options.robustness, "robustness", "revise_material", revised)
-        rev["confirmation"] = confirm[0].metrics
-        rev["robustness"] = _conditions(ctx.options.robustness, confirm[1:], ctx.contract)
+        rev = rev.model_copy(update={
+            "accepted": accepted, "confirmation": confirm[0].metrics,
+            "robustness": _conditions(ctx.options.robustness, confirm[1:], ctx.contract)})
     return rev
 
 
-def _chosen_attempt(ctx: L3Context, values: dict[str, float] | None, material: Material) -> dict[str, Any] | None:
+def _chosen_attempt(ctx: L3Context, values: dict[str, float] | None, material: Material) -> TrialRow | None:
     """The stored attempt of the chosen candidate with the final material: a selection trial under the asset's own
     material, a confirmation trial only when the revised material was adopted (a confirmation that was not adopted ran
     a material the asset does not carry)."""
     revised = material is not ctx.material
     for a in reversed(ctx.attempts):
-        if a["values"] == values and a["labels"] and a["role"] == ("confirmation" if revised else "selection"):
+        if a.values == values and a.labels and a.role == ("confirmation" if revised else "selection"):
             return a
     return None
 
@@ -698,57 +700,53 @@ def _forces(labels: dict[str, float]) -> dict[str, float]:
     return {k: labels[k] for k in keys if k in labels}
 
 
-def _record(ctx: L3Context, outcome: StageOutcome, accepted: bool, chosen: dict[str, Any] | None,
-            material: Material, material_revision: dict[str, Any] | None, held: list[dict[str, Any]],
-            robustness: dict[str, Any] | None, recordings: list[str], wall: float) -> dict[str, Any]:
+def _record(ctx: L3Context, outcome: StageOutcome, accepted: bool, chosen: TrialRow | None, material: Material,
+            material_revision: MaterialRevision | None, held: list[ConditionRow],
+            robustness: ConditionSummary | None, recordings: list[str]) -> ManipulationRecord:
     """manipulation.json."""
-    plan = ctx.plan(chosen["values"]) if chosen else None
-    labels = chosen["labels"] if chosen else {}
+    labels = chosen.labels if chosen else {}
     tol = tolerances_from(ctx.contract)
     # trial: the one number of a simulated pick-and-place, from 1 in the order run (tasks.record.trials; the
     # console's 'L3 trial k'); attempt: its interaction folder
-    attempts = [{**a, "trial": i + 1, "reason": trial_reason(a["labels"], ctx.contract, tol)}
+    attempts = [a.model_copy(update={"trial": i + 1, "reason": trial_reason(a.labels, ctx.contract, tol)})
                 for i, a in enumerate(ctx.attempts)]
-    number = {id(a): i + 1 for i, a in enumerate(ctx.attempts)} | {id(a): a["trial"] for a in attempts}
+    if chosen is not None:  # the row as numbered
+        chosen = attempts[next(i for i, a in enumerate(ctx.attempts) if a is chosen)]
     best = chosen if accepted else best_attempt(attempts, ctx.contract)
-    reason = "" if accepted else (trial_reason(best["labels"], ctx.contract, tol) if best else outcome.message)
-    if not accepted and material_revision is not None and not material_revision.get("accepted"):
-        reason += ("; the robot failed with the L2-revalidated material revision too" if material_revision.get(
-            "l2_revalidation", {}).get("passed") else "; the material revision failed L2's revalidation")
-    return {
-        "schema_version": 1, "stage": "L3", "passed": bool(accepted), "status": outcome.status,
-        "message": outcome.message, "reason": reason,
+    reason = "" if accepted else (trial_reason(best.labels, ctx.contract, tol) if best else outcome.message)
+    if not accepted and material_revision is not None and not material_revision.accepted:
+        reason += ("; the robot failed with the L2-revalidated material revision too"
+                   if material_revision.l2_revalidation.passed else "; the material revision failed L2's revalidation")
+    return ManipulationRecord(
+        passed=bool(accepted), status=outcome.status, message=outcome.message, reason=reason,
         # the attempt the manifest reports: the adopted one, else the best trial under the asset's own material
-        "best_attempt": None if best is None else {
-            "attempt": best["attempt"], "trial": number.get(id(best)), "role": best["role"], "values": best["values"],
-            "labels": best["labels"],
-            "plan": ctx.plan(best["values"]).model_dump(mode="json"), "cache_key": best.get("cache_key"),
-            "failed_gates": failed_gate_names(best["labels"], ctx.contract),
-            "reason": trial_reason(best["labels"], ctx.contract, tol)},
-        "material": material.model_dump(mode="json"),
-        "material_source": ctx.material_source if material is ctx.material else "L3 material revision (L2 revalidated)",
-        "physical_model": ctx.physical.model_dump(mode="json"),
-        "plan": plan.model_dump(mode="json") if plan else None,
-        "values": chosen["values"] if chosen else None, "attempt": chosen["attempt"] if chosen else None,
-        "trial": number.get(id(chosen)) if chosen is not None else None,
-        "outcome": {k: bool(labels[k]) for k in (*LABELS, "slipped", "force_budget_violated") if k in labels},
-        "labels": labels, "forces": _forces(labels),
-        "force_budget_n": tolerances_from(ctx.contract).force_budget_n,
-        "grasps": [g.model_dump(mode="json") for g in ctx.grasps],
+        best_attempt=None if best is None else BestAttempt(
+            attempt=best.attempt, trial=best.trial, role=best.role, values=best.values, labels=best.labels,
+            plan=ctx.plan(best.values), cache_key=best.cache_key,
+            failed_gates=failed_gate_names(best.labels, ctx.contract),
+            reason=trial_reason(best.labels, ctx.contract, tol)),
+        material=material,
+        material_source=ctx.material_source if material is ctx.material else "L3 material revision (L2 revalidated)",
+        physical_model=ctx.physical,
+        plan=ctx.plan(chosen.values) if chosen else None,
+        values=chosen.values if chosen else None, attempt=chosen.attempt if chosen else None,
+        trial=chosen.trial if chosen else None,
+        outcome={k: bool(labels[k]) for k in (*LABELS, "slipped", "force_budget_violated") if k in labels},
+        labels=labels, forces=_forces(labels), force_budget_n=tol.force_budget_n, grasps=ctx.grasps,
         # the Planner's choose_gripper: the gripper, why, what it weighed; the force target and squeeze range
-        "gripper": {"name": ctx.gripper, "reason": ctx.gripper_reason, "options": ctx.gripper_options,
-                    "squeeze": ctx.squeeze.as_dict() if ctx.squeeze else None},
-        "held_out": {"conditions": held, "success_rate": (sum(h["success"] for h in held) / len(held)) if held else None},
-        "robustness": robustness if accepted else None,
-        "material_revision": material_revision,
-        "numerics": {"quality": ctx.options.quality, "trial_particle_spacing_m": ctx.body.spacing_m,
-                     "l0_particle_spacing_m": ctx.body.source_spacing_m, "trial_particles": int(len(ctx.body.particles_m)),
-                     "grid_dx_m": 2.0 * ctx.body.spacing_m, "device": ctx.options.device,
-                     "note": "the L0 volume is resampled at the trial lattice (numerical choice); density, mass, "
-                             "friction and material are unchanged"},
-        "attempts": attempts, "harness_attempts": outcome.attempts_used, "recordings": recordings,
-        "wall_time_s": wall,
-    }
+        gripper=GripperChoice(name=ctx.gripper, reason=ctx.gripper_reason, options=ctx.gripper_options,
+                              squeeze=SqueezeSummary(**ctx.squeeze.as_dict()) if ctx.squeeze else None),
+        held_out=HeldOutConditions(conditions=held,
+                                   success_rate=(sum(h.success for h in held) / len(held)) if held else None),
+        robustness=robustness if accepted else None,
+        material_revision=material_revision,
+        numerics=L3Numerics(
+            quality=ctx.options.quality, trial_particle_spacing_m=ctx.body.spacing_m,
+            l0_particle_spacing_m=ctx.body.source_spacing_m, trial_particles=int(len(ctx.body.particles_m)),
+            grid_dx_m=2.0 * ctx.body.spacing_m, device=ctx.options.device,
+            note="the L0 volume is resampled at the trial lattice (numerical choice); density, mass, friction and "
+                 "material are unchanged"),
+        attempts=attempts, harness_attempts=outcome.attempts_used, recordings=recordings)
 
 
 def load_manipulation(asset_dir: Path) -> ManipulationRecord:

@@ -20,6 +20,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from contracts.agents import TargetBehaviour
+from contracts.manipulation import L2Check
 from contracts.material import Material
 from contracts.physical import PhysicalModel
 from contracts.sim import SimConfig
@@ -138,7 +139,7 @@ def halfway(original: Material, revised: Material) -> Material:
 
 def revalidate_in_l2(asset_dir: Path, material: Material, physical: PhysicalModel,
                      limits: MaterialLimits | None = None, sim: SimConfig | None = None,
-                     asset: L0Asset | None = None) -> dict[str, Any]:
+                     asset: L0Asset | None = None) -> L2Check:
     """L2 revalidation of a revised material (L2's l2-revalidation flow, a subflow of l3-manipulation: its selection
     probes, cached, under `sim`: L3's device and CPU threads): passes when every L2 hard gate holds and every target
     band that held for the L2 material still holds. asset: the L0 data L3 already loaded (else read again)."""
@@ -150,8 +151,8 @@ def revalidate_in_l2(asset_dir: Path, material: Material, physical: PhysicalMode
     metrics = result["metrics"]
     gates = {g.name: bool(g.passes(metrics.get(g.metric))) for g in l2.hard_gates}
     bands = {b.metric: bool(b.contains(metrics.get(b.metric))) for b in (limits.held_bands() if limits else [])}
-    return {"passed": all(gates.values()) and all(bands.values()), "gates": gates, "bands": bands,
-            "metrics": metrics, "probe_keys": [r.cache_key for r in result["selection"] if r.cache_key]}
+    return L2Check(material=material, passed=all(gates.values()) and all(bands.values()), gates=gates, bands=bands,
+                   metrics=metrics, probe_keys=[r.cache_key for r in result["selection"] if r.cache_key])
 
 
 __all__ = ["MaterialLimits", "failed_gates", "halfway", "revalidate_in_l2", "revise_material"]

@@ -10,6 +10,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+from contracts.manipulation import TrialRow
 from contracts.stage import StageContract
 from tasks.manipulation.diagnosis import diagnose
 from tasks.manipulation.outcome import TrialTolerances
@@ -60,13 +61,13 @@ def trial_reason(labels: dict[str, Any], contract: StageContract, tol: TrialTole
     return why + (f" (also failed: {', '.join(failed[1:])})" if len(failed) > 1 else "")
 
 
-def best_attempt(attempts: list[dict[str, Any]], contract: StageContract) -> dict[str, Any] | None:
+def best_attempt(attempts: list[TrialRow], contract: StageContract) -> TrialRow | None:
     """The attempt a failed L3 reports: among the selection trials (the asset's own material, the nominal condition)
     the one failing the fewest hard gates, the latest of those; a plan that never ran only when no trial ran."""
-    selection = [a for a in attempts if a.get("role") == "selection" and a.get("labels")]
-    ran = [a for a in selection if not a["labels"].get("plan_failed")]
+    selection = [a for a in attempts if a.role == "selection" and a.labels]
+    ran = [a for a in selection if not a.labels.get("plan_failed")]
     if ran:
-        return min(reversed(ran), key=lambda a: len(failed_gate_names(a["labels"], contract)))
+        return min(reversed(ran), key=lambda a: len(failed_gate_names(a.labels, contract)))
     return selection[0] if selection else None
 
 
@@ -104,7 +105,7 @@ def planned_trials(contract: StageContract, robustness: int, held_out: int, mate
     return 1 + contract.revision_budget + robustness + (1 + robustness if material_fallback else 0) + held_out
 
 
-def record_no_grasp(asset_dir: Path, reason: str) -> list[dict[str, Any]]:
+def record_no_grasp(asset_dir: Path, reason: str) -> list[TrialRow]:
     """The no-grasp outcome as L3's one harness attempt in evidence/ (attempts.jsonl, L3_outcome.json, harness_L3.rrd);
     returns the attempt as manipulation.json lists it."""
     from contracts.agents import StageOutcome
@@ -118,5 +119,5 @@ def record_no_grasp(asset_dir: Path, reason: str) -> list[dict[str, Any]]:
     recorder.record(attempt)
     recorder.close(StageOutcome(stage="L3", status="no_valid_candidate", attempts=[attempt], attempts_used=1,
                                 message=reason))
-    return [{"attempt": None, "role": "grasp_selection", "action": "select_grasp", "values": {}, "labels": {},
-             "cache_key": None, "reason": reason}]
+    return [TrialRow(attempt=None, role="grasp_selection", action="select_grasp", values={}, labels={}, cache_key=None,
+                     reason=reason)]

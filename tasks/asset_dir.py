@@ -154,14 +154,13 @@ class AssetDir:
         if not self.has("manipulation"):
             return None
         record = self.manipulation()
-        revision = record.material_revision or {}
-        if not (record.passed and revision.get("accepted")):
+        revision = record.adopted_revision()
+        if revision is None:
             return None
-        revalidation = revision.get("l2_revalidation") or {}
         return AdoptedMaterial(material=record.material, source="L3 revision", document=MANIPULATION_JSON,
-                               reason=f"L3 material revision ({revision.get('trigger', '-')}; L2 revalidated, robot "
-                                      f"confirmed): {revision.get('reason', '')}",
-                               metrics=dict(revalidation.get("metrics") or {}))
+                               reason=f"L3 material revision ({revision.trigger}; L2 revalidated, robot confirmed): "
+                                      f"{revision.reason}",
+                               metrics=dict(revision.l2_revalidation.metrics))
 
     @cached_property
     def l0(self) -> L0Asset:

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import time
 from pathlib import Path
 
 import typer
@@ -52,28 +53,31 @@ def manipulate(
             console.log(message, markup=False)
 
         with staged_update(asset) as work:  # L3 writes into a working copy, swapped in whole when it ends
+            t0 = time.perf_counter()
             record, outcome = run_l3(work, options, progress=progress)
-    summary = {k: record.get(k) for k in ("passed", "status", "message", "reason", "outcome", "forces", "held_out",
-                                          "attempt", "values", "numerics", "material_source", "recordings",
-                                          "wall_time_s")}
+            wall_time_s = time.perf_counter() - t0
+    summary = {**record.model_dump(mode="json", include={"passed", "status", "message", "reason", "outcome", "forces",
+                                                         "held_out", "attempt", "values", "numerics",
+                                                         "material_source", "recordings"}),
+               "wall_time_s": wall_time_s}
     if as_json:
         emit_json(summary)
     else:
-        table = Table(title=f"L3 manipulation: {record['status']}")
+        table = Table(title=f"L3 manipulation: {record.status}")
         table.add_column("label / figure")
         table.add_column("value", justify="right")
-        for k, v in sorted(record["labels"].items()):
+        for k, v in sorted(record.labels.items()):
             table.add_row(k, f"{v:.4g}")
         results.print(table)
-        results.print(record["message"], markup=False)
-    if not record["passed"]:
-        console.print(f"L3 did not pass: {record.get('reason') or record['message']}; recorded in "
+        results.print(record.message, markup=False)
+    if not record.passed:
+        console.print(f"L3 did not pass: {record.reason or record.message}; recorded in "
                       f"{asset / 'manipulation.json'}" + ("" if require_l3 else " (--require-l3 makes this exit 7)"),
                       markup=False)
         if require_l3:
             from contracts.errors import RequirementNotMet
 
-            raise RequirementNotMet("L3", record.get("reason") or record["message"])
+            raise RequirementNotMet("L3", record.reason or record.message)
 
 
 @app.command("replay")

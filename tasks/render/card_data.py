@@ -5,7 +5,6 @@ came from. Pure data (no drawing): card_png and card_html draw it.
 
 from __future__ import annotations
 
-import json
 import math
 from pathlib import Path
 from typing import Any
@@ -20,7 +19,6 @@ from contracts.evidence import Attempt, StageTally
 from contracts.probes import not_measured_reason
 from contracts.manifest import AssetManifest
 from tasks.asset_dir import AssetDir
-from tasks.record.trials import simulated_trials, trial_of_attempt
 from tasks.render.protocol_video import CARD_TIMES_S, VIEW_NAMES, card_still_name
 
 STILL_VIEWS = ("front", "side", "top")  # renders/<view>.png (L0)
@@ -216,22 +214,21 @@ def _l3(adir: AssetDir, manifest: AssetManifest) -> L3Card:
     if not adir.has("manipulation"):
         return L3Card(ran=False, note="L3 (robot pick-and-place) was not run for this asset (--no-l3)")
     rec = adir.manipulation()
-    best = rec.best_attempt or {}
-    attempt = rec.attempt if rec.attempt is not None else best.get("attempt")
-    raw = json.loads((adir.path / MANIPULATION_JSON).read_text(encoding="utf-8"))
-    trial = trial_of_attempt(raw, attempt)
-    labels = rec.labels or best.get("labels") or {}
-    key = manifest.provenance.cache_keys.get("l3.trial") or best.get("cache_key")
+    best = rec.best_attempt
+    attempt = rec.attempt if rec.attempt is not None else (best.attempt if best else None)
+    trial = rec.trial_of_attempt(attempt)
+    labels = rec.labels or (best.labels if best else {})
+    key = manifest.provenance.cache_keys.get("l3.trial") or (best.cache_key if best else None)
     figures = [figure(label, m, _number(labels.get(m)), unit, f"{MANIPULATION_JSON}: trial {trial}", key,
                       note=L3_ABSENT.get(m))
                for m, (label, unit) in L3_FIGURES.items() if m in labels]
-    gripper = rec.plan.gripper if rec.plan else rec.gripper.get("name")
+    gripper = rec.plan.gripper if rec.plan else rec.gripper.name
     card = L3Card(ran=True, note=rec.message or rec.reason, gripper=gripper,
                   gripper_reason=rec.plan.gripper_reason if rec.plan else None,
                   grasp_reason=(rec.plan.grasp_reason or None) if rec.plan else None, passed=rec.passed,
                   status=rec.status,
                   outcome=dict(rec.outcome), figures=figures, force_budget_n=rec.force_budget_n, attempt=attempt,
-                  trial=trial, trials=simulated_trials(raw), key=key)
+                  trial=trial, trials=rec.simulated_trials(), key=key)
     folder = adir.path / attempt_path(attempt) if attempt is not None else None
     if folder is not None and folder.is_dir():
         curve = _force_curve(folder)

@@ -72,16 +72,18 @@ def test_an_encoded_attempt_is_copied_on_a_rerun_not_compressed_again(tmp_path: 
 
 
 def test_the_chosen_trials_recording_is_renamed_not_copied(tmp_path: Path) -> None:
+    from contracts.manipulation import TrialRow
     from flows.l3_manipulation import PICK_AND_PLACE_RECORDING, name_pick_and_place
 
     (tmp_path / "recordings").mkdir()
     (tmp_path / "recordings" / "L3_trial_02.rrd").write_bytes(b"trial 1")
-    chosen = {"attempt": 1, "recording": "recordings/L3_trial_02.rrd"}
-    name_pick_and_place(tmp_path, chosen)
-    assert chosen == {"attempt": 1, "recording": PICK_AND_PLACE_RECORDING}
+    chosen = TrialRow(attempt=1, role="selection", action="", labels={}, recording="recordings/L3_trial_02.rrd")
+    attempts = [chosen]
+    named = name_pick_and_place(tmp_path, attempts, chosen)
+    assert named.recording == PICK_AND_PLACE_RECORDING and named.attempt == 1 and attempts == [named]
     assert sorted(p.name for p in (tmp_path / "recordings").iterdir()) == ["L3_pick_and_place.rrd"]
     assert (tmp_path / PICK_AND_PLACE_RECORDING).read_bytes() == b"trial 1"
-    name_pick_and_place(tmp_path, chosen)  # named already: nothing moves
+    assert name_pick_and_place(tmp_path, attempts, named) is named  # named already: nothing moves
     assert (tmp_path / PICK_AND_PLACE_RECORDING).read_bytes() == b"trial 1"
 
 

@@ -11,17 +11,18 @@ from typing import Any
 
 import pytest
 
+from contracts.manipulation import BestAttempt, ManipulationRecord, TrialRow
 from contracts.stage import load_contract
 from flows.generate import cache_keys, finite_metrics, l3_summary, manipulation_outcome, reported_plan, shown_attempt
 from flows.l3_report import best_attempt, trial_reason
 from tasks.manipulation.outcome import TrialTolerances
 from tasks.manipulation.trial import TrialResult
+from tests.asset_records import manipulation_record
 
 
-def _record(passed: bool, labels: list[dict[str, float]], chosen: int | None) -> dict:
-    attempts = [{"attempt": i, "labels": lab} for i, lab in enumerate(labels)]
-    return {"passed": passed, "attempt": chosen, "labels": labels[chosen] if chosen is not None else {},
-            "attempts": attempts}
+def _record(passed: bool, labels: list[dict[str, float]], chosen: int | None) -> ManipulationRecord:
+    attempts = [TrialRow(attempt=i, role="selection", action="", labels=lab) for i, lab in enumerate(labels)]
+    return manipulation_record(passed, attempts, attempt=chosen, labels=labels[chosen] if chosen is not None else {})
 
 
 def test_a_revised_and_accepted_l3_is_summarised_with_its_trials(firm_trial: TrialResult,
@@ -59,7 +60,7 @@ def test_a_failed_l3_summary_round_trips_through_asset_json(weak_trial: TrialRes
 
 
 def test_an_unexecutable_plan_has_no_outcome() -> None:
-    rec = {"passed": False, "attempt": None, "attempts": [{"attempt": None, "labels": {"plan_failed": 1.0}}]}
+    rec = manipulation_record(False, [TrialRow(attempt=None, role="selection", action="", labels={"plan_failed": 1.0})])
     s = l3_summary(rec)
     assert s.sim_calls == 0 and manipulation_outcome(s.metrics) is None and shown_attempt(rec) is None
 
@@ -133,18 +134,18 @@ def test_a_failed_l3_reports_its_best_trial_under_the_assets_material(cube: Any,
     the manifest its figures: the asset keeps its material, so the figures, plan and key are the selection trial's."""
     contract = load_contract("L3")
     confirm = dict(firm_trial.metrics, settled=0.0)  # fewer failed gates than the selection trial, but not adopted
-    attempts = [{"attempt": 0, "role": "selection", "values": {"squeeze_depth_m": 0.001}, "labels": weak_trial.metrics,
-                 "cache_key": "k0"},
-                {"attempt": 1, "role": "confirmation", "values": {"squeeze_depth_m": 0.001}, "labels": confirm,
-                 "cache_key": "k1"}]
+    attempts = [TrialRow(attempt=0, role="selection", action="", values={"squeeze_depth_m": 0.001},
+                         labels=weak_trial.metrics, cache_key="k0"),
+                TrialRow(attempt=1, role="confirmation", action="", values={"squeeze_depth_m": 0.001}, labels=confirm,
+                         cache_key="k1")]
     best = best_attempt(attempts, contract)
     assert best is attempts[0]
-    rec = {"passed": False, "status": "no_valid_candidate", "attempt": None, "labels": {}, "attempts": attempts,
-           "reason": trial_reason(best["labels"], contract, _tol()),
-           "best_attempt": {**best, "plan": cube.plan(0.001).model_dump(mode="json"),
-                            "failed_gates": ["lifted", "transported"]}}
+    reason = trial_reason(best.labels, contract, _tol())
+    rec = manipulation_record(False, attempts, reason=reason, best_attempt=BestAttempt(
+        attempt=best.attempt, role=best.role, values=best.values, labels=best.labels, plan=cube.plan(0.001),
+        cache_key=best.cache_key, failed_gates=["lifted", "transported"], reason=reason))
     s = l3_summary(rec)
-    assert s.metrics == finite_metrics(weak_trial.metrics) and s.reason == rec["reason"]
+    assert s.metrics == finite_metrics(weak_trial.metrics) and s.reason == rec.reason
     assert s.failed_gates == ["lifted", "transported"]
     assert shown_attempt(rec) == 0 and reported_plan(rec) is not None
     assert cache_keys(Path("/nonexistent"), rec) == {"l3.trial": "k0"}
@@ -173,9 +174,11 @@ def test_one_failed_trial_reaches_the_manifest_with_its_reason_progress_and_key(
     assert not stored["passed"] and stored["reason"].startswith("deformation bound exceeded: strain")
     trial = stored["attempts"][0]
     assert stored["best_attempt"]["attempt"] == trial["attempt"] == 0 and trial["reason"] == stored["reason"]
-    s = l3_summary(stored)
+    typed = ManipulationRecord.model_validate(stored)
+    assert typed == record  # what run_l3 returned is what manipulation.json holds
+    s = l3_summary(typed)
     assert s.metrics == finite_metrics(trial["labels"]) and s.failed_gates == ["deformation bounded"]
     assert s.reason == stored["reason"]
-    plan = reported_plan(stored)
+    plan = reported_plan(typed)
     assert plan is not None and plan.squeeze_depth_m == pytest.approx(trial["values"]["squeeze_depth_m"])
-    assert cache_keys(asset, stored)["l3.trial"] == trial["cache_key"] is not None
+    assert cache_keys(asset, typed)["l3.trial"] == trial["cache_key"] is not None

@@ -11,6 +11,7 @@ from pathlib import Path
 import pytest
 
 from cache import CacheStore
+from contracts.manipulation import ConditionSummary, L2Check, TrialCondition, TrialRow
 from contracts.material import Material
 from contracts.stage import load_contract
 from flows.l3_manipulation import L3Options, run_l3
@@ -68,8 +69,8 @@ def test_a_trial_over_the_force_budget_is_labelled_and_never_accepted(cube_asset
              for g in base.hard_gates]
     record, outcome = run_l3(cube_asset, L3Options(squeeze_depth_m=0.003, held_out=()),
                              contract=base.model_copy(update={"hard_gates": gates}), recordings=False)
-    assert not record["passed"] and outcome.status == "no_valid_candidate"
-    assert all(a["labels"]["force_budget_violated"] == 1 for a in record["attempts"])
+    assert not record.passed and outcome.status == "no_valid_candidate"
+    assert all(a.labels["force_budget_violated"] == 1 for a in record.attempts)
     assert (cube_asset / "interaction" / "attempt_000").is_dir()  # the failed attempt is kept
     lines = (cube_asset / "evidence" / "attempts.jsonl").read_text().splitlines()
     assert lines and all(json.loads(x)["verdict"] != "accepted" for x in lines)
@@ -97,11 +98,11 @@ def test_weak_squeeze_is_revised_then_held_out_and_cached(cube_asset: Path, pref
                                                           cache_dir: Path) -> None:
     gel = _as_gel(cube_asset)
     record, outcome = run_l3(cube_asset, L3Options(squeeze_depth_m=0.001), contract=_contract(), material=gel)
-    first = record["attempts"][0]
-    assert first["labels"]["slipped"] == 1 and first["values"]["squeeze_depth_m"] == pytest.approx(0.001)
-    assert record["passed"] and record["values"]["squeeze_depth_m"] > 0.001
-    assert record["outcome"]["transported"] and record["outcome"]["released_in_target"]
-    assert record["held_out"]["conditions"] and record["held_out"]["conditions"][0]["initial_yaw_deg"] == 30.0
+    first = record.attempts[0]
+    assert first.labels["slipped"] == 1 and first.values["squeeze_depth_m"] == pytest.approx(0.001)
+    assert record.passed and record.values is not None and record.values["squeeze_depth_m"] > 0.001
+    assert record.outcome["transported"] and record.outcome["released_in_target"]
+    assert record.held_out.conditions and record.held_out.conditions[0].initial_yaw_deg == 30.0
     assert (cube_asset / "recordings" / "L3_pick_and_place.rrd").is_file()
     store = CacheStore(cache_dir)
     misses = len([e for e in store.events() if e["outcome"] == "miss"])
@@ -122,8 +123,8 @@ def test_material_revision_reexecutes_l2_probes_then_the_robot(cube_asset: Path,
     record, outcome = run_l3(cube_asset, L3Options(squeeze_depth_m=0.004, held_out=()),
                              contract=base.model_copy(update={"hard_gates": gates}), recordings=False)
     assert outcome.status == "escalated" and outcome.escalation == "revise_material"
-    rev = record["material_revision"]
-    assert rev["to"]["youngs_modulus_pa"] > rev["from"]["youngs_modulus_pa"]
+    rev = record.material_revision
+    assert rev is not None and rev.to.youngs_modulus_pa > rev.from_.youngs_modulus_pa
     events = CacheStore(cache_dir).events()
     misses = [e["task"] for e in events if e["outcome"] == "miss"]
     first_l2 = next(i for i, t in enumerate(misses) if t.startswith("l2."))
@@ -132,9 +133,9 @@ def test_material_revision_reexecutes_l2_probes_then_the_robot(cube_asset: Path,
     assert {t for t in after if t.startswith("l2.")} == l2_probes
     assert after[-1] == "l3.trial" and set(after) <= {*l2_probes, "l3.trial"}
     # robot confirmation under the same plan values, physical model and force budget
-    assert rev["l2_revalidation"]["passed"] and "strain_p99" in rev["confirmation"]
-    confirm = next(a for a in reversed(record["attempts"]) if a["role"] == "confirmation")
-    assert confirm["values"] == rev["plan_values"]
+    assert rev.l2_revalidation.passed and rev.confirmation is not None and "strain_p99" in rev.confirmation
+    confirm = next(a for a in reversed(record.attempts) if a.role == "confirmation")
+    assert confirm.values == rev.plan_values
     # the L2 probes ran as task runs of L2's revalidation flow, a subflow of l3-manipulation
     from tests.flow_runs import flow_names
 
@@ -167,9 +168,9 @@ def _stand_in_robot(monkeypatch: pytest.MonkeyPatch, labels_of, revalidate=None)
 
     def fake_trial(self, values, role, action="", material=None, target_xy_m=None, yaw_deg=0.0):  # noqa: ANN001, ANN202
         labels = dict(labels_of(material or self.material, yaw_deg))
-        self.attempts.append({"attempt": None, "role": role, "action": action, "values": values, "labels": labels,
-                              "cache_key": None, "condition": {"target_xy_m": list(target_xy_m or (0.0, 0.0)),
-                                                               "yaw_deg": yaw_deg}})
+        self.attempts.append(TrialRow(attempt=None, role=role, action=action, values=values, labels=labels,
+                                      cache_key=None, condition=TrialCondition(
+                                          target_xy_m=list(target_xy_m or (0.0, 0.0)), yaw_deg=yaw_deg)))
         return ProbeResult(spec=ProbeSpec(kind="pick_and_place", params={}), metrics=labels)
 
     def fake_under(self, values, conditions, role, action="", material=None):  # noqa: ANN001, ANN202
@@ -178,8 +179,8 @@ def _stand_in_robot(monkeypatch: pytest.MonkeyPatch, labels_of, revalidate=None)
 
     monkeypatch.setattr(l3.L3Context, "trial", fake_trial)
     monkeypatch.setattr(l3.L3Context, "under", fake_under)  # the robot's conditions, one after another
-    monkeypatch.setattr(l3, "revalidate_in_l2", revalidate or (lambda *a, **k: {
-        "passed": True, "gates": {}, "bands": {}, "metrics": {}, "probe_keys": []}))
+    monkeypatch.setattr(l3, "revalidate_in_l2", revalidate or (lambda asset_dir, material, *a, **k: L2Check(
+        material=material, passed=True, gates={}, bands={}, metrics={}, probe_keys=[])))
 
 
 def test_a_plan_that_slips_under_a_perturbation_gets_the_stiffest_in_band_material(
@@ -195,21 +196,22 @@ def test_a_plan_that_slips_under_a_perturbation_gets_the_stiffest_in_band_materi
         assert sim is not None and sim.device == "cpu"  # L3's own settings, not L2's default
         assert asset is not None and len(asset.particles_m)  # the L0 data L3 loaded, not read from disk again
         revalidated.append(material.youngs_modulus_pa)
-        return {"passed": True, "gates": {"finite": True}, "bands": {"effective_modulus_pa": True}, "metrics": {},
-                "probe_keys": []}
+        return L2Check(material=material, passed=True, gates={"finite": True}, bands={"effective_modulus_pa": True},
+                       metrics={}, probe_keys=[])
 
     _stand_in_robot(monkeypatch, lambda m, yaw: PASS if yaw == 0.0 or m.youngs_modulus_pa >= 1.5 * e0 else SLIP,
                     fake_revalidate)
     record, outcome = run_l3(cube_asset, L3Options(squeeze_depth_m=0.004), contract=_contract(), recordings=False)
-    assert outcome.status == "accepted" and record["passed"]
-    rev = record["material_revision"]
+    assert outcome.status == "accepted" and record.passed
+    rev = record.material_revision
     ceiling = targets.bands[0].point(0.9)  # the specimen reads E here: 90 % up the band in log
-    assert rev["trigger"] == "robustness" and rev["accepted"] and revalidated == [pytest.approx(ceiling)]
-    assert record["material"]["youngs_modulus_pa"] == pytest.approx(ceiling)
-    assert record["material_source"].startswith("L3 material revision")
-    assert record["robustness"]["passed"] == len(L3Options().robustness)
-    assert record["held_out"]["success_rate"] == 1.0
-    roles = [a["role"] for a in record["attempts"]]
+    assert rev is not None and rev.trigger == "robustness" and rev.accepted
+    assert revalidated == [pytest.approx(ceiling)]
+    assert record.material.youngs_modulus_pa == pytest.approx(ceiling)
+    assert record.material_source.startswith("L3 material revision")
+    assert record.robustness is not None and record.robustness.passed == len(L3Options().robustness)
+    assert record.held_out.success_rate == 1.0
+    roles = [a.role for a in record.attempts]
     assert roles == ["selection", "robustness", "robustness", "confirmation", "robustness", "robustness", "held_out"]
 
 
@@ -219,9 +221,10 @@ def test_a_revision_that_is_no_more_robust_is_not_adopted(cube_asset: Path, pref
     _l2_material_in_band(cube_asset)
     _stand_in_robot(monkeypatch, lambda m, yaw: PASS if yaw in (0.0, 30.0) else SLIP)
     record, _ = run_l3(cube_asset, L3Options(squeeze_depth_m=0.004), contract=_contract(), recordings=False)
-    assert record["passed"] and record["material"]["youngs_modulus_pa"] == 2e4
-    assert record["material_revision"]["accepted"] is False and record["robustness"]["passed"] == 0
-    assert record["material_source"] == "L2"
+    assert record.passed and record.material.youngs_modulus_pa == 2e4
+    assert record.material_revision is not None and record.material_revision.accepted is False
+    assert record.robustness is not None and record.robustness.passed == 0
+    assert record.material_source == "L2"
 
 
 def test_a_revised_material_that_fails_the_nominal_condition_is_not_tried_under_the_perturbations(
@@ -232,11 +235,11 @@ def test_a_revised_material_that_fails_the_nominal_condition_is_not_tried_under_
     _l2_material_in_band(cube_asset)
     _stand_in_robot(monkeypatch, lambda m, yaw: SLIP)
     record, _ = run_l3(cube_asset, L3Options(squeeze_depth_m=0.004), contract=_contract(), recordings=False)
-    rev = record["material_revision"]
-    assert not record["passed"] and rev["trigger"] == "no plan passed" and rev["accepted"] is False
-    roles = [a["role"] for a in record["attempts"]]
+    rev = record.material_revision
+    assert not record.passed and rev is not None and rev.trigger == "no plan passed" and rev.accepted is False
+    roles = [a.role for a in record.attempts]
     assert roles[-1] == "confirmation" and "robustness" not in roles
-    assert rev["robustness"] == {"conditions": [], "passed": 0}
+    assert rev.robustness == ConditionSummary(conditions=[], passed=0)
 
 
 def test_conditions_side_by_side_give_what_they_give_one_after_another(cube_asset: Path, prefect_api: str,
@@ -260,9 +263,9 @@ def test_conditions_side_by_side_give_what_they_give_one_after_another(cube_asse
             results = ctx.under(l3.initial_values(ctx), options.robustness, "robustness")
         assert len({r.cache_key for r in results}) == 2
         runs[workers] = ([(r.metrics, r.cache_key, r.recording) for r in results],
-                         [(a["attempt"], a["role"], a["condition"], a["labels"]) for a in ctx.attempts])
+                         [(a.attempt, a.role, a.condition, a.labels) for a in ctx.attempts])
     assert runs["2"] == runs["1"]
-    assert [a[2]["yaw_deg"] for a in runs["2"][1]] == [c[2] for c in options.robustness]
+    assert [a[2].yaw_deg for a in runs["2"][1]] == [c[2] for c in options.robustness]
 
 
 def test_a_material_revision_runs_l2_revalidation_as_a_subflow_of_l3(cube_asset: Path, prefect_api: str,
@@ -288,7 +291,7 @@ def test_a_material_revision_runs_l2_revalidation_as_a_subflow_of_l3(cube_asset:
     _stand_in_robot(monkeypatch, lambda m, yaw: PASS if yaw == 0.0 else SLIP, revalidate_in_l2)  # the real L2 call
     record, _ = run_l3(cube_asset, L3Options(squeeze_depth_m=0.004, held_out=()), contract=_contract(),
                        recordings=False)
-    assert record["material_revision"]["trigger"] == "robustness"
+    assert record.material_revision is not None and record.material_revision.trigger == "robustness"
     subflows = children(latest_run("l3-manipulation").id)
     assert [name for name, _ in subflows] == ["harness-stage", "l2-revalidation"]
     assert probed_in == [str(subflows[1][1].id)]

@@ -106,7 +106,7 @@ def test_every_stored_trial_gets_its_recording_made_once(attempt: tuple, tmp_pat
     inputs = {"plan": plan, "settings": {"substeps": 1}}
     ctx._store(out, plan, inputs, {"squeeze_depth_m": 0.003}, "selection", "", None, 0.0)
     rrd0 = tmp_path / "asset" / "recordings" / "L3_trial_01.rrd"
-    assert ctx.attempts[0]["recording"] == "recordings/L3_trial_01.rrd" and rrd0.is_file()
+    assert ctx.attempts[0].recording == "recordings/L3_trial_01.rrd" and rrd0.is_file()
     assert (tmp_path / "asset" / "interaction" / "attempt_000").is_dir()
     assert set(LINKS) <= read_recording(rrd0).entity_paths
     assert not list((tmp_path / "asset" / "recordings").glob("*.tmp"))  # nothing half-written left
@@ -117,8 +117,8 @@ def test_every_stored_trial_gets_its_recording_made_once(attempt: tuple, tmp_pat
     monkeypatch.setattr(replay_module, "write_rrd", no_rerecording)
     ctx._store(out, plan, inputs, {"squeeze_depth_m": 0.003}, "held_out", "", None, 0.0)
     rrd1 = tmp_path / "asset" / "recordings" / "L3_trial_02.rrd"
-    assert ctx.attempts[1]["recording"] == "recordings/L3_trial_02.rrd"
+    assert ctx.attempts[1].recording == "recordings/L3_trial_02.rrd"
     assert recording_digest(rrd1) == recording_digest(rrd0)
     ctx.recordings = False  # run_l3(recordings=False): no recordings
     ctx._store(out, plan, inputs, {"squeeze_depth_m": 0.003}, "held_out", "", None, 0.0)
-    assert ctx.attempts[2]["recording"] is None
+    assert ctx.attempts[2].recording is None
