@@ -171,7 +171,8 @@ def cube_inputs(device: str = "cpu") -> dict[str, Any]:
 def turtle_inputs(asset_dir: Path = DEFAULT_TURTLE, quality: str = "draft", device: str = "cpu") -> dict[str, Any]:
     """The first L3 candidate of an asset (a copy of ``asset_dir`` is read; the original is never written)."""
     from contracts.stage import load_contract
-    from flows.l3_manipulation import L3Options, initial_values, load_context, tolerances_from
+    from flows.l3_manipulation import L3Options, initial_values, load_context
+    from tasks.manipulation.context import tolerances_from
 
     options = L3Options() if quality == "draft" else L3Options.standard(device=device)
     options = replace(options, device=device, settings=replace(options.settings, device=device))

@@ -35,7 +35,8 @@ def one_trial(asset_dir: str, yaw_deg: float, frame: float | None, spacing_m: fl
               values: dict[str, float] | None) -> dict[str, Any]:
     """One trial of the plan at a yaw in a frame: the lift labels and the hold force."""
     from contracts.stage import load_contract
-    from flows.l3_manipulation import L3Options, initial_values, load_context, tolerances_from
+    from flows.l3_manipulation import L3Options, initial_values, load_context
+    from tasks.manipulation.context import tolerances_from
     from tasks.manipulation.trial import plan_or_error, run_trial
 
     ctx = load_context(Path(asset_dir), L3Options(particle_spacing_m=spacing_m), load_contract("L3"))

@@ -32,7 +32,9 @@ from tasks.asset_dir import AssetDir, geometry_info
 def physics_tests(asset_dir: Path, physical: PhysicalModel, material: Material, targets: TargetBehaviour,
                   sim: SimConfig, videos: bool = False) -> dict[str, Any]:
     """Held-out probes + gates + targets and the drop protocol of one (physical, material) on an asset's L0."""
-    from flows.l2_material import HELD_OUT_PROBES, PROBE_TASKS, l2_metrics, probe_inputs
+    from flows.l2_material import l2_metrics, probe_inputs
+    from flows.probe_tasks import probe_task
+    from tasks.probes.registry import stage_probes
     from flows.renders import drop_protocol_task, protocol_states, render_drop_protocol
     from tasks.geometry.outputs import load_l0
 
@@ -40,10 +42,10 @@ def physics_tests(asset_dir: Path, physical: PhysicalModel, material: Material, 
     asset = load_l0(asset_dir)
     keys, probes = {}, []
     with cache.local_runtime():
-        for kind in HELD_OUT_PROBES:
-            kw = probe_inputs(kind, asset, physical, material, l2, sim, True)
-            keys[f"l2.{kind}.held_out"] = probe_cache_key(PROBE_TASKS[kind], kw)
-            probes.append(PROBE_TASKS[kind](**kw))
+        for probe in stage_probes(l2, held_out=True):
+            kw = probe_inputs(probe.name, asset, physical, material, l2, sim, True)
+            keys[f"l2.{probe.name}.held_out"] = probe_cache_key(probe_task(probe), kw)
+            probes.append(probe_task(probe)(**kw))
         if videos:
             protocol = render_drop_protocol(asset_dir, physical, material, sim)
         else:
@@ -263,7 +265,8 @@ def run_manipulation(case: SuiteCase, request: AssetRequest, h: dict[str, Any], 
                      quality: str) -> list[ArmResult]:
     """No feedback (the first plan under each held-out condition) vs Full (L3 harness, then the same conditions)."""
     from flows.l2_material import l2_targets
-    from flows.l3_manipulation import L3Options, _accepted, initial_values, load_context, run_l3
+    from flows.l3_manipulation import load_context, run_l3
+    from tasks.manipulation.context import L3Options, accepted, initial_values
     from tasks.geometry.outputs import load_l0
 
     if h.get("material") is None:
@@ -289,7 +292,7 @@ def run_manipulation(case: SuiteCase, request: AssetRequest, h: dict[str, Any], 
     with cache.local_runtime():
         for c in conditions:
             r = ctx.trial(dict(start), "held_out", "no_feedback", target_xy_m=c.target_xy_m, yaw_deg=c.initial_yaw_deg)
-            conds.append(ConditionResult(condition=c, task_success=_accepted(r.metrics, l3c), material_pass=base_ok,
+            conds.append(ConditionResult(condition=c, task_success=accepted(r.metrics, l3c), material_pass=base_ok,
                                          labels=_finite(r.metrics), cache_key=r.cache_key, attempt=r.recording))
     results.append(ArmResult(ablation="manipulation", arm="no_feedback", case_id=case.id, case_kind=case.kind,
                              delivered=True, conditions=conds, sim_calls=len(conds), asset_dir=str(nf_dir),

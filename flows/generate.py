@@ -86,7 +86,7 @@ def l3_summary(record: ManipulationRecord) -> StageSummary:
     """L3's line in the validation summary: trials run (sim calls), the reported attempt's labels, its failed gates
     and the reason in words (no grasp: the one failed gate 'grasp available')."""
     from contracts.stage import load_contract
-    from flows.l3_report import NO_GRASP_GATE
+    from tasks.manipulation.report import NO_GRASP_GATE
 
     trials = [a for a in record.attempts if a.labels and not a.labels.get("plan_failed")]
     metrics = finite_metrics(record.reported_labels())

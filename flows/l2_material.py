@@ -372,16 +372,6 @@ def l2_material(asset_dir: Path, request_or_intent: AssetRequest | str | None = 
     return material, outcome
 
 
-def __getattr__(name: str) -> Any:
-    """HELD_OUT_PROBES and PROBE_TASKS of the packaged contract, for flows/eval_arms.py until it reads
-    tasks.probes.registry.stage_probes itself."""
-    if name == "HELD_OUT_PROBES":
-        return tuple(p.name for p in stage_probes(load_contract("L2"), held_out=True))
-    if name == "PROBE_TASKS":
-        return {p.name: probe_task(p) for p in stage_probes(load_contract("L2"))}
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
-
-
 def load_material(asset_dir: Path) -> Material:
     """The L2 material of an asset directory (InputError when L2 has not run or found no valid material): AssetDir's."""
     return AssetDir(asset_dir).material_model()

@@ -35,7 +35,7 @@ def test_generate_publishes_an_object_no_gripper_can_hold(tmp_path: Path, monkey
     from contracts.errors import RequirementNotMet
     from contracts.request import AssetRequest
     from flows.generate import generate_asset, load_manifest, require_l3
-    from flows.l3_manipulation import material_of
+    from tasks.manipulation.context import material_of
     from tasks.geometry.outputs import load_l0
 
     def prior_l2(asset_dir, request, agents=None, contract=None, sim=None, physical=None,  # noqa: ANN001, ANN202

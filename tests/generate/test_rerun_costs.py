@@ -51,7 +51,7 @@ def _trial_arrays() -> dict[str, np.ndarray]:
 
 def test_an_encoded_attempt_is_copied_on_a_rerun_not_compressed_again(tmp_path: Path,
                                                                      monkeypatch: pytest.MonkeyPatch) -> None:
-    import flows.l3_manipulation as l3
+    import tasks.manipulation.context as l3
     from tasks.manipulation.data import read_attempt
 
     attrs = {"labels": {"lifted": 1.0, "hold_normal_force_n": float("nan")}, "role": "selection", "cache_key": "k"}
@@ -73,7 +73,7 @@ def test_an_encoded_attempt_is_copied_on_a_rerun_not_compressed_again(tmp_path: 
 
 def test_the_chosen_trials_recording_is_renamed_not_copied(tmp_path: Path) -> None:
     from contracts.manipulation import TrialRow
-    from flows.l3_manipulation import PICK_AND_PLACE_RECORDING, name_pick_and_place
+    from tasks.manipulation.l3_record import PICK_AND_PLACE_RECORDING, name_pick_and_place
 
     (tmp_path / "recordings").mkdir()
     (tmp_path / "recordings" / "L3_trial_02.rrd").write_bytes(b"trial 1")

@@ -13,7 +13,7 @@ import pytest
 from contracts.agents import CriticRequest, HistoryEntry, PlannerContext, TargetBehaviour
 from contracts.evidence import GateResult
 from contracts.stage import load_contract
-from flows.l3_report import trial_reason
+from tasks.manipulation.report import trial_reason
 from tasks.agents.rule import RuleCritic, RulePlanner
 from tasks.agents.vocab import stage_routes
 from tasks.manipulation.diagnosis import MODES, diagnose, mode_flags
@@ -174,26 +174,30 @@ def test_the_reported_trial_ran_the_material_the_asset_carries() -> None:
     more robust); the trial L3 reports is trial 3, under the asset's own material, not the revision's trial 6."""
     from types import SimpleNamespace
 
+    from contracts.manipulation import TrialRow
     from contracts.material import Material
-    from flows.l3_manipulation import _chosen_attempt
+    from tasks.manipulation.l3_record import chosen_attempt
 
     own = Material(youngs_modulus_pa=1.58e4, poisson_ratio=0.3, damping_rate_per_s=21.0)
     values = {"grasp_rank": 2.0}
-    rows = [{"role": "selection", "values": {"grasp_rank": 0.0}, "labels": {"lifted": 1.0}},
-            {"role": "selection", "values": values, "labels": {"lifted": 1.0}},
-            {"role": "robustness", "values": values, "labels": {"lifted": 1.0}},
-            {"role": "confirmation", "values": values, "labels": {"lifted": 1.0}}]
+    rows = [TrialRow(attempt=i, role=role, action="", values=v, labels={"lifted": 1.0})
+            for i, (role, v) in enumerate([("selection", {"grasp_rank": 0.0}), ("selection", values),
+                                           ("robustness", values), ("confirmation", values)])]
     ctx = SimpleNamespace(attempts=rows, material=own)
-    assert _chosen_attempt(ctx, values, own) is rows[1]  # type: ignore[arg-type]
+    assert chosen_attempt(ctx, values, own) is rows[1]  # type: ignore[arg-type]
     revised = own.model_copy(update={"damping_rate_per_s": 50.0})
-    assert _chosen_attempt(ctx, values, revised) is rows[3]  # type: ignore[arg-type]
+    assert chosen_attempt(ctx, values, revised) is rows[3]  # type: ignore[arg-type]
 
 
 def test_the_pass_line_says_which_conditions_held() -> None:
     """L3's pass is the nominal trial's; the console line says how the held-out and robustness conditions went."""
-    from flows.l3_manipulation import _conditions_summary
+    from contracts.manipulation import ConditionRow, ConditionSummary
+    from tasks.manipulation.l3_record import conditions_summary
 
-    held = [{"success": True}, {"success": False}, {"success": False}]
-    rob = {"conditions": [{}, {}], "passed": 0}
-    assert _conditions_summary(held, rob) == " (nominal condition; held out 1/3, robustness 0/2)"
-    assert _conditions_summary([], None) == ""
+    def row(success: bool) -> ConditionRow:
+        return ConditionRow(target_xy_m=[0.08, 0.06], initial_yaw_deg=0.0, success=success, labels={}, attempt=None)
+
+    held = [row(True), row(False), row(False)]
+    rob = ConditionSummary(conditions=[row(False), row(False)], passed=0)
+    assert conditions_summary(held, rob) == " (nominal condition; held out 1/3, robustness 0/2)"
+    assert conditions_summary([], None) == ""

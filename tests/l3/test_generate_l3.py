@@ -14,7 +14,7 @@ import pytest
 from contracts.manipulation import BestAttempt, ManipulationRecord, TrialRow
 from contracts.stage import load_contract
 from flows.generate import cache_keys, finite_metrics, l3_summary, manipulation_outcome, reported_plan, shown_attempt
-from flows.l3_report import best_attempt, trial_reason
+from tasks.manipulation.report import best_attempt, trial_reason
 from tasks.manipulation.outcome import TrialTolerances
 from tasks.manipulation.trial import TrialResult
 from tests.asset_records import manipulation_record
@@ -102,7 +102,7 @@ def small_cube(tmp_path_factory: pytest.TempPathFactory) -> Path:
 
 
 def _tol() -> TrialTolerances:
-    from flows.l3_manipulation import tolerances_from
+    from tasks.manipulation.context import tolerances_from
 
     return tolerances_from(load_contract("L3"))
 

@@ -11,7 +11,7 @@ import pytest
 from contracts.agents import TargetBand, TargetBehaviour
 from contracts.material import Material
 from contracts.stage import load_contract
-from flows.l3_material import MaterialLimits, halfway, revise_material
+from tasks.manipulation.material_revision import MaterialLimits, halfway, revise_material
 
 OK = {"lifted": 1.0, "transported": 1.0, "released_in_target": 1.0, "settled": 1.0, "max_finger_force_n": 2.0,
       "numerically_healthy": 1.0, "strain_p99": 0.2}

@@ -87,7 +87,7 @@ def test_every_stored_trial_gets_its_recording_made_once(attempt: tuple, tmp_pat
     from contracts.probes import ProbeResult, ProbeSpec
     from contracts.robot import ActionPlan
     from contracts.stage import load_contract
-    from flows.l3_manipulation import L3Context, L3Options
+    from flows.l3_manipulation import CachedTrials, L3Context, L3Options
     from tasks.manipulation import replay as replay_module
     from tasks.manipulation.body import box_body
 
@@ -99,7 +99,7 @@ def test_every_stored_trial_gets_its_recording_made_once(attempt: tuple, tmp_pat
                          category="foam")
     ctx = L3Context(tmp_path / "asset", body, phys, Material(youngs_modulus_pa=1e5, poisson_ratio=0.3,
                                                              damping_rate_per_s=5.0), "given", [], L3Options(),
-                    load_contract("L3"))
+                    load_contract("L3"), runner=CachedTrials())
     plan = ActionPlan.model_validate(attrs["plan"])
     failed = {"lifted": 0.0, "transported": 0.0, "released_in_target": 0.0, "settled": 1.0}
     out = {"probe": ProbeResult(spec=ProbeSpec(kind="pick_and_place"), metrics=failed), "arrays": arrays, "info": {}}

@@ -103,7 +103,7 @@ def test_single_thread_cache_keys_are_unchanged() -> None:
 
 def test_trial_settings_keep_single_thread_keys_and_pass_threads_to_the_mpm() -> None:
     """L3: one thread is left out of a trial's task inputs (earlier trials stay cache hits); two are kept and restored."""
-    from flows.l3_manipulation import settings_inputs
+    from tasks.manipulation.context import settings_inputs
     from tasks.manipulation.trial import TrialSettings
 
     assert "cpu_threads" not in settings_inputs(TrialSettings())
@@ -113,7 +113,7 @@ def test_trial_settings_keep_single_thread_keys_and_pass_threads_to_the_mpm() ->
 
 def test_l3_revalidates_in_l2_with_its_own_device_and_threads() -> None:
     """An L3 material revision's L2 probes run under the trials' device and CPU threads (not a default CPU config)."""
-    from flows.l3_manipulation import L3Options
+    from tasks.manipulation.context import L3Options
 
     assert L3Options(cpu_threads=2).sim() == SimConfig(device="cpu", cpu_threads=2)
     assert L3Options(device="cuda", cpu_threads=2).sim() == SimConfig(device="cuda")

@@ -10,14 +10,17 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+from contracts.agents import StageOutcome
+from contracts.evidence import AgentSource, Attempt
 from contracts.manipulation import TrialRow
 from contracts.stage import StageContract
+from tasks.agents.records import AttemptRecorder
 from tasks.manipulation.diagnosis import diagnose
 from tasks.manipulation.outcome import TrialTolerances
 
 Progress = Callable[[str], None]
-NO_GRASP_GATE = "grasp available"
-OUTCOME_METRICS = ("lifted", "transported", "released_in_target", "settled")  # the gates a diagnosis explains  # the failed gate named in the validation summary when no grasp exists
+NO_GRASP_GATE = "grasp available"  # the failed gate named in the validation summary when no grasp exists
+OUTCOME_METRICS = ("lifted", "transported", "released_in_target", "settled")  # the gates a diagnosis explains
 
 
 def _finite(labels: dict[str, Any], key: str) -> float | None:
@@ -108,10 +111,6 @@ def planned_trials(contract: StageContract, robustness: int, held_out: int, mate
 def record_no_grasp(asset_dir: Path, reason: str) -> list[TrialRow]:
     """The no-grasp outcome as L3's one harness attempt in evidence/ (attempts.jsonl, L3_outcome.json, harness_L3.rrd);
     returns the attempt as manipulation.json lists it."""
-    from contracts.agents import StageOutcome
-    from contracts.evidence import AgentSource, Attempt
-    from tasks.agents.records import AttemptRecorder
-
     attempt = Attempt(stage="L3", iteration=0, action="select_grasp", proposal={}, source=AgentSource(),
                       rationale="grasp selection on the object's surface (every gripper of the L3 contract)",
                       rejected_before_probe=reason, verdict="rejected", diagnosis="geometry", critique=reason)
