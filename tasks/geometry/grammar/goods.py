@@ -176,7 +176,7 @@ def quilting(length: float, width: float, t: float, across: int, along: int) -> 
     """Stitched grooves over a puffy layer `t` thick lying on z = 0: `across` baffles across the length (grooves along
     y), `along` across the width (grooves along x), each groove a round channel with soft edges."""
     parts: list[Part] = []
-    r = QUILT_DEPTH * t
+    r = QUILT_DEPTH * t * (0.5 if along else 1.0)  # squares: shallower grooves, the puffs keep their height
     for i in range(1, across):
         x = -length / 2 + length * i / across
         parts.append(_op(cylinder(f"stitch {i}", r, 1.2 * width, (x, 0, t + 0.25 * r), rot=(90, 0, 0)), "subtract",
@@ -217,11 +217,8 @@ def _strip_loop(p: SheetParams, t: float) -> list[Part]:
     arm = 0.5 * (1.0 - np.pi * rc)  # the arms and the half-turn of radius rc make the strip's length
     parts = [box("body", (arm, w, t), (arm / 2, rc, t / 2), edge=p.edge * t / 2),
              box("other arm", (arm, w, t), (arm / 2, -rc, t / 2), edge=p.edge * t / 2)]
-    for i in range(8):  # the bend: segments round a half circle at x = 0
-        a = np.pi / 2 + np.pi * (i + 0.5) / 8
-        seg = np.pi * rc / 8 * 1.1
-        parts.append(box(f"bend {i + 1}", (seg, w, t), (rc * np.cos(a), rc * np.sin(a), t / 2), edge=p.edge * t / 2,
-                         rot=(0, 0, float(np.degrees(a)) + 90), blend=0.2 * t))
+    bend = [np.array([rc * np.cos(a), rc * np.sin(a), t / 2]) for a in np.linspace(np.pi / 2, 1.5 * np.pi, 9)]
+    parts += _flat_chain("bend", bend, w / 2, t, blend=0.2 * t)  # the half-turn, smooth
     if p.fringe:
         for y in (rc, -rc):
             for q in fringe(arm, w, t, at=(1.0,)):
@@ -676,7 +673,9 @@ def _top_flat(p: GarmentParams, t: float) -> list[Part]:
             tip = shoulder + np.array([-0.72, side * 0.36, 0.0])
         elif p.sleeves == "short":
             tip = shoulder + np.array([-0.16, side * 0.2, 0.0])
-        else:
+        else:  # sleeveless (a vest, a gilet): an armhole cut into each side below the shoulder
+            parts.append(_op(ellipsoid(f"{'left' if side > 0 else 'right'} armhole", (0.17, 0.09, 3 * t),
+                                       (0.22, side * (w / 2 + 0.02), z)), "subtract", 0.02))
             continue
         parts.append(_flat_limb(f"{'left' if side > 0 else 'right'} sleeve", shoulder, tip, sr, t, blend=0.04))
         if p.cuffs and p.sleeves == "long":
@@ -853,8 +852,8 @@ def _garment_folded(p: GarmentParams) -> list[Part]:
     parts = [box("body", (fl, fw, h), (0, 0, h / 2), edge=0.4 * t)]
     if p.kind == "top" and p.sleeves != "none":
         for side in (1, -1):  # a sleeve folded in across the shoulder: a flap lying on top, cut to the outline
-            parts.append(box(f"{'left' if side > 0 else 'right'} sleeve", (0.2, 0.5 * fw, 0.45 * t),
-                             (0.13, side * 0.36 * fw, h + 0.15 * t), edge=0.2 * t, rot=(0, 0, side * 38), blend=0.004))
+            parts.append(box(f"{'left' if side > 0 else 'right'} sleeve", (0.17, 0.32 * fw, 0.45 * t),
+                             (0.13, side * 0.42 * fw, h + 0.15 * t), edge=0.2 * t, rot=(0, 0, side * 30), blend=0.004))
         parts.append(_op(box("outline", (fl, fw, 4 * h), (0, 0, 0)), "intersect"))
     for i in range(1, n):  # the folded bottom edge: the layers seen apart
         parts.append(_op(box(f"fold gap {i}", (0.12 * fl, fw * 1.2, 0.22 * t), (-fl / 2, 0, i * t)), "subtract"))
