@@ -7,11 +7,11 @@ import functools
 from pathlib import Path
 from typing import Any
 
-import yaml
 from pydantic import Field, ValidationError, model_validator
 
 from contracts.base import Model
 from contracts.errors import InputError
+from contracts.yaml_io import load_yaml
 
 LEXICON_DIR = Path(__file__).with_name("lexicon")
 MATERIALS_FILE = Path(__file__).parent / "vocab" / "materials.yaml"
@@ -21,7 +21,7 @@ COLORS_FILE = LEXICON_DIR / "colors.yaml"
 @functools.lru_cache(maxsize=1)
 def material_densities() -> dict[str, float]:
     """Vocabulary material class -> prior density [kg/m^3] (contracts/vocab/materials.yaml)."""
-    raw = yaml.safe_load(MATERIALS_FILE.read_text(encoding="utf-8"))["materials"]
+    raw = load_yaml(MATERIALS_FILE.read_text(encoding="utf-8"))["materials"]
     return {k: float(v["priors"]["density_kg_per_m3"]) for k, v in raw.items()}
 
 
@@ -79,7 +79,7 @@ class Lexicon(Model):
 
 
 def _read(path: Path) -> list[dict[str, Any]]:
-    raw = yaml.safe_load(path.read_text(encoding="utf-8")) or {}
+    raw = load_yaml(path.read_text(encoding="utf-8")) or {}
     defaults = raw.get("defaults", {})
     out = []
     for key, fields in (raw.get("entries") or {}).items():
@@ -107,7 +107,7 @@ def load_lexicon() -> Lexicon:
             if entry.key in entries:
                 raise InputError(f"{path.name}: duplicate lexicon key '{entry.key}'")
             entries[entry.key] = entry
-    colors = yaml.safe_load(COLORS_FILE.read_text(encoding="utf-8"))["colors"]
+    colors = load_yaml(COLORS_FILE.read_text(encoding="utf-8"))["colors"]
     for entry in entries.values():
         unknown = sorted(set(entry.colors.values()) - set(colors))
         if unknown:

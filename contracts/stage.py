@@ -12,6 +12,7 @@ from pydantic import ConfigDict, Field, ValidationError, model_validator
 
 from contracts.base import Model
 from contracts.errors import ContractError, validation_message
+from contracts.yaml_io import load_yaml
 
 StageName = Literal["L0", "L1", "L2", "L3"]
 STAGES_DIR = Path(__file__).parent / "stages"
@@ -230,7 +231,7 @@ def load_contract_file(path: Path) -> StageContract:
     """Read and validate one contract YAML; errors name the file and the field."""
     path = Path(path)
     try:
-        data = yaml.safe_load(path.read_text(encoding="utf-8"))
+        data = load_yaml(path.read_text(encoding="utf-8"))
     except FileNotFoundError as exc:
         raise ContractError(f"{path}: contract file not found") from exc
     except yaml.YAMLError as exc:

@@ -11,9 +11,9 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-import yaml
 
 from tasks.geometry.wordnet import Sense, wordnet
+from contracts.yaml_io import load_yaml
 
 VOCAB_FILE = Path(__file__).resolve().parents[2] / "contracts" / "vocab" / "wordnet.yaml"
 MAX_ANCESTORS = 8  # hypernym steps walked before giving up on the lexicon and the categories
@@ -42,7 +42,7 @@ class Analogy:
 @functools.lru_cache(maxsize=1)
 def vocab() -> dict[str, Any]:
     """contracts/vocab/wordnet.yaml."""
-    return yaml.safe_load(VOCAB_FILE.read_text(encoding="utf-8"))
+    return load_yaml(VOCAB_FILE.read_text(encoding="utf-8"))
 
 
 def _words(text: str) -> list[str]:

@@ -28,9 +28,30 @@ def is_resting_stable(mesh: trimesh.Trimesh, margin_frac: float = 0.05) -> bool:
     return bool(dist_inside.min() >= margin_frac * float(np.sqrt(ch.volume)))
 
 
+POSE_HULL_CELLS = 24  # a smooth body's hull is thinned to one vertex per cell of a 24^3 grid for the pose search
+
+
+def pose_hull(mesh: trimesh.Trimesh, cells: int = POSE_HULL_CELLS) -> trimesh.Trimesh:
+    """The convex hull the resting-pose search rolls over: a smooth body's hull (thousands of facets, each a node of
+    trimesh's topple graph) thinned to one vertex per grid cell of 1/cells of the longest extent; a hull with few
+    facets is kept as it is."""
+    hull = mesh.convex_hull
+    if len(hull.faces) <= 2 * cells * cells:
+        return hull
+    pitch = float(mesh.extents.max()) / cells
+    keys = np.floor((hull.vertices - hull.bounds[0]) / pitch).astype(np.int64)
+    _, first = np.unique(keys, axis=0, return_index=True)
+    return trimesh.Trimesh(hull.vertices[np.sort(first)]).convex_hull
+
+
 def most_stable_rotation(mesh: trimesh.Trimesh) -> np.ndarray:
-    """4x4 transform of the most probable resting pose (trimesh's quasi-static drop from the centre of mass)."""
-    transforms, probs = trimesh.poses.compute_stable_poses(mesh, sigma=0.0, n_samples=1)
+    """4x4 transform of the most probable resting pose (trimesh's quasi-static drop from the centre of mass, rolled
+    over the thinned hull)."""
+    com = np.asarray(mesh.center_mass)
+    hull = pose_hull(mesh)
+    if not np.all(np.einsum("ij,ij->i", com - hull.triangles_center, hull.face_normals) < 0):
+        hull = mesh.convex_hull  # the thinned hull must hold the centre of mass (trimesh loops until one does)
+    transforms, probs = trimesh.poses.compute_stable_poses(hull, center_mass=com, sigma=0.0, n_samples=1)
     if len(transforms) == 0:
         return np.eye(4)
     return np.asarray(transforms[int(np.argmax(probs))])
