@@ -29,6 +29,7 @@ from contracts.request import AssetRequest
 from contracts.robot import ActionPlan
 from contracts.sim import Device, KernelOptions, SimConfig
 from tasks.asset_dir import AssetDir
+from tasks.request import CheckedRequest, checked_request
 from tasks.publish import replace_directory
 
 LIBRARIES = ("numpy", "warp-lang", "prefect", "zarr", "trimesh", "coacd", "pybullet", "rerun-sdk", "pydantic")
@@ -282,25 +283,23 @@ def _check_out_dir(out_dir: Path) -> None:
         raise InputError(f"{out_dir} exists and is not an asset directory; choose a new or empty directory")
 
 
-def generate_asset(request: AssetRequest, out_dir: Path, device: Device = "cpu", agents: AgentConfig | None = None,
-                   on_stage: StageCallback | None = None, manipulate: bool = True,
+def generate_asset(request: AssetRequest | CheckedRequest, out_dir: Path, device: Device = "cpu",
+                   agents: AgentConfig | None = None, on_stage: StageCallback | None = None, manipulate: bool = True,
                    cpu_threads: int = 1) -> AssetManifest:
     """Run every layer for one request and publish the asset directory: the `generate` flow against the local Prefect
-    runtime. Bad input (a rigid material, a bad target override, an output that is not an asset directory) fails
-    before any flow starts."""
-    from tasks.agents.intent import targets_from_request
-    from tasks.geometry.catalogue import check_text_size
-
-    targets_from_request(request)
-    check_text_size(request)  # '10 km long' is refused here, not after the Prefect server started
+    runtime. Bad input (a rigid material, a bad target override, a size L0 cannot build, an output that is not an
+    asset directory) fails before any flow starts; the request is checked here once (tasks.request), unless the
+    caller checked it already (the CLI)."""
+    checked = checked_request(request)
     _check_out_dir(Path(out_dir).expanduser().absolute())
     with cache.local_runtime():
-        return generate(request, out_dir, device, agents, on_stage, manipulate, cpu_threads)
+        return generate(checked, out_dir, device, agents, on_stage, manipulate, cpu_threads)
 
 
 @lean_flow(name="generate", validate_parameters=False, persist_result=False)
-def generate(request: AssetRequest, out_dir: Path, device: Device = "cpu", agents: AgentConfig | None = None,
-             on_stage: StageCallback | None = None, manipulate: bool = True, cpu_threads: int = 1) -> AssetManifest:
+def generate(checked: AssetRequest | CheckedRequest, out_dir: Path, device: Device = "cpu",
+             agents: AgentConfig | None = None, on_stage: StageCallback | None = None, manipulate: bool = True,
+             cpu_threads: int = 1) -> AssetManifest:
     """L0 -> L1 -> L2 -> drop renders (-> L3) -> publish, each layer a subflow (l0-geometry, l1-physical, l2-material,
     l3-manipulation); StageFailure when L0, L1 or L2 says no.
 
@@ -326,9 +325,8 @@ def generate(request: AssetRequest, out_dir: Path, device: Device = "cpu", agent
         clock["stage"], clock["t"] = stage, now
         report(stage, message)
 
-    from tasks.agents.intent import targets_from_request
-
-    targets = targets_from_request(request)  # a rigid material or a bad target override fails before any layer runs
+    checked = checked_request(checked)  # checked at the boundary (generate_asset): not again
+    request, targets = checked.request, checked.targets
     from tasks.agents.fallbacks import fallback_notes, reset as reset_fallbacks
 
     reset_fallbacks()  # an LLM found unusable in an earlier run of this process is asked again

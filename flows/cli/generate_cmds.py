@@ -120,12 +120,9 @@ def generate(
     out = out or _default_out(text, image, mesh)
     check_request(request, out)  # image header, output parent and cache root usable, before any layer
     agents = llm_agents(llm, llm_fallback)
-    from tasks.agents.intent import targets_from_request
+    from tasks.request import checked_request
 
-    targets_from_request(request)  # a rigid material is one line here, before the layers are imported
-    from tasks.geometry.catalogue import check_text_size
-
-    check_text_size(request)  # so is '10 km long'
+    checked = checked_request(request)  # a rigid material or '10 km long' is one line here, before the layers load
     analogy = concept_line(request, strict_concept)  # InputError under --strict-concept: before any layer
     if analogy is not None:
         console.print(f"[yellow]{escape(analogy)}[/yellow]", soft_wrap=True)  # the first line: a guess
@@ -142,7 +139,7 @@ def generate(
             style = "yellow" if message.startswith("warning:") else "default"
             console.log(f"[bold]{stage}[/bold] [{style}]{escape(message)}[/{style}]")  # a reason may hold [ ]
 
-        manifest = generate_asset(request, out, device=cast("Device", device), agents=agents, on_stage=on_stage,
+        manifest = generate_asset(checked, out, device=cast("Device", device), agents=agents, on_stage=on_stage,
                                   manipulate=l3, cpu_threads=cpu_threads)  # (device: checked by check_device)
     if as_json:
         emit_json({"asset_dir": str(out), "validation": [s.model_dump(mode="json") for s in manifest.validation],
