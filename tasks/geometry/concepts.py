@@ -695,7 +695,7 @@ def _state_params(reading: Reading, warnings: list[str]) -> tuple[list[str], dic
                               for st in phrase.states))
     if pose_of(phrase.text) is not None:  # 'lying on its side': the standing shape turned over (_whole_object)
         said = [st for st in said if st not in ("lying", "curled")]
-    if inflatable(target):  # 'deflated', 'crumpled', 'flat': drawn by _whole_object
+    if inflatable(target) or dentable(target):  # 'deflated', 'crumpled', 'flat': drawn by _whole_object
         said = [st for st in said if st not in _DEFLATED and st != "deflated"]
     shown = [st for st in said if st in can]  # ('curled up' is lying, for an animal)
     # carried by the material and mass, or a pose the shape has anyway (a teddy sits), not drawn apart
@@ -981,6 +981,41 @@ def deflated(program: ShapeProgram, half: bool = False) -> ShapeProgram:
     return flat.model_copy(update={"parts": parts + creases})
 
 
+def dentable(entry: LexiconEntry) -> bool:
+    """A hollow ball held round by its air but not an inflatable (a soccer ball, a basketball): deflated, it dents."""
+    return entry.plan == "ball" and entry.hollow and not inflatable(entry)
+
+
+# (depth of the dent / height, sag: height kept) of a half deflated ball (keyed True) and a deflated one
+DENT: dict[bool, tuple[float, float]] = {True: (0.35, 0.9), False: (0.6, 0.8)}
+
+
+def dented(program: ShapeProgram, half: bool = False) -> ShapeProgram:
+    """A ball that has lost air: it sags and one side is pushed in as a dish (a third of its height when half
+    deflated, more than half when deflated); relief and panels (every part after the body) follow the dished
+    surface."""
+    from tasks.geometry.grammar.parts import ellipsoid, squashed_parts
+
+    depth, sag = DENT[half]
+    centre, halfext = _body_envelope(program, 40)
+    base = np.array([centre[0], centre[1], centre[2] - halfext[2]])
+    parts = [p.model_copy(update={"transform": p.transform.model_copy(update={
+        "translation_m": tuple(float(v) for v in np.asarray(p.transform.translation_m) - base)})})
+        for p in program.parts]
+    spread = 1.0 + 0.5 * (1.0 - sag)
+    parts = squashed_parts(parts, (spread, spread, sag))
+    rx, ry, rz = halfext[0] * spread, halfext[1] * spread, halfext[2] * sag
+    top = 2.0 * rz
+    dish = ellipsoid("dent", (0.65 * rx, 0.65 * ry, 0.6 * rz), (0.0, 0.0, top + 0.6 * rz - depth * top),
+                     blend=0.3 * rz).model_copy(update={"operation": "subtract", "color_rgb": parts[0].color_rgb})
+    centre_now = np.array([0.0, 0.0, rz])
+    banded = [p for p in parts[1:] if np.linalg.norm(np.asarray(p.transform.translation_m) - centre_now) < 0.3 * rz]
+    rest = [p for p in parts[1:] if p not in banded]  # seams round the middle are cut by the dish; pads follow it
+    dished = program.model_copy(update={"parts": parts[:1] + banded + [dish]})
+    moved = _snapped(rest, dished, centre_now, np.array([rx, ry, rz])) if rest else []
+    return program.model_copy(update={"parts": parts[:1] + banded + [dish] + moved})
+
+
 def emptied(program: ShapeProgram) -> ShapeProgram:
     """A filled bag or bottle with nothing in it: its two walls lie together (a sixth of the filled thickness)."""
     from tasks.geometry.grammar.parts import squashed_parts
@@ -1024,7 +1059,10 @@ def _whole_object(reading: Reading, program: ShapeProgram, match: ConceptMatch, 
         elif said:
             warnings.append(f"'{kind}' are not drawn: the {entry.key.replace('_', ' ')} is not ball-like")
     half = _HALF_INFLATED.search(text) is not None
-    if inflatable(target) and (half or said_states & (_DEFLATED | {"deflated"})):
+    if dentable(target) and (half or said_states & {"deflated", "flat", "crumpled"}):
+        program = dented(program, half)  # a ball with less air: its skin dished in, the same skin's mass
+        states.append("half deflated" if half else "deflated")
+    elif inflatable(target) and (half or said_states & (_DEFLATED | {"deflated"})):
         before, program = program, deflated(program, half)
         states.append("half inflated" if half else "deflated")
         match = _as_built_mass(match, before, DEFLATE_FACTORS[half], target.mass_kg,

@@ -119,12 +119,35 @@ def smooth_max(a: np.ndarray, b: np.ndarray, k: float) -> np.ndarray:
     return -smooth_min(-a, -b, k)
 
 
+def _part_box(part: Part) -> tuple[np.ndarray, np.ndarray]:
+    """(centre, half extents) [m] of a part's world bounding box."""
+    tf = part.transform
+    half = np.abs(rotation_matrix(tf) * (primitive_half_extent(part) * np.asarray(tf.scale))).sum(axis=1)
+    return np.asarray(tf.translation_m, dtype=np.float64), half
+
+
+def culled_part_sdf(p: np.ndarray, part: Part) -> np.ndarray:
+    """part_sdf near the part, the distance to its bounding box beyond its blend radius plus its size from that box
+    (a lower bound: every sign is kept, values near the combined surface move only where a part's own distance was a
+    loose bound); a program of many small parts evaluates each only around itself."""
+    centre, half = _part_box(part)
+    margin = part.blend_m + float(half.max())
+    gap = np.maximum(np.abs(p - centre) - half, 0.0)
+    near = (gap <= margin).all(axis=1)
+    if near.all():
+        return part_sdf(p, part)
+    d = np.sqrt(np.einsum("ij,ij->i", gap, gap))
+    if near.any():
+        d[near] = part_sdf(p[near], part)
+    return d
+
+
 def program_sdf(p: np.ndarray, program: ShapeProgram) -> np.ndarray:
     """Signed distance of a whole program at points p (N, 3); parts are combined in order."""
     p = np.asarray(p, dtype=np.float64)
     d = part_sdf(p, program.parts[0])
     for part in program.parts[1:]:
-        di = part_sdf(p, part)
+        di = culled_part_sdf(p, part)
         if part.operation == "union":
             d = smooth_min(d, di, part.blend_m)
         elif part.operation == "subtract":

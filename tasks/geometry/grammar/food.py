@@ -10,7 +10,7 @@ from pydantic import Field
 
 from contracts.base import Model
 from contracts.shape import Part
-from tasks.geometry.grammar.parts import box, cone, cylinder, ellipsoid, limb, superellipsoid, tapered
+from tasks.geometry.grammar.parts import box, cone, cylinder, ellipsoid, limb, smooth_path, squashed_parts, superellipsoid, swept, tapered
 
 
 def _stem_and_leaves(top: np.ndarray, r: float, stem: bool, leaves: int, stem_length: float = 1.0) -> list[Part]:
@@ -105,52 +105,105 @@ def pear(p: PearParams) -> list[Part]:
 
 
 class ElongatedParams(Model):
-    """Banana, carrot, cucumber, zucchini, corn cob, sausage, baguette: a long body along x."""
+    """Banana, carrot, cucumber, zucchini, chili, corn cob, sausage, baguette: a long smooth body along x."""
 
     radius: float = Field(default=0.1, gt=0.02, le=0.4, description="radius / length [-]")
     taper: float = Field(default=0.0, ge=0.0, le=1.0, description="radius lost towards -x (a carrot's point) [-]")
     curvature: float = Field(default=0.0, ge=0.0, le=1.5, description="bend of the body [rad / length]")
     end_tips: float = Field(default=0.0, ge=0.0, le=1.0, description="both ends narrowed (banana, croissant) [-]")
     stem: Literal["none", "stub", "leafy"] = "none"
+    stem_length: float = Field(default=0.07, gt=0.0, le=0.3, description="a stub stem's length / length [-]")
+    blossom: bool = Field(default=False, description="a dark nub at the -x end (a banana's blossom end)")
     flatten: float = Field(default=1.0, gt=0.3, le=1.0, description="height / width of the cross-section [-]")
 
 
+ELONGATED_SEGMENTS = 14
+
+
+def elongated_radius(p: ElongatedParams, t: float) -> float:
+    """Body radius at t in [-0.5, 0.5] along the length: full at +x, `taper` lost towards -x, both ends narrowed
+    to a tip by `end_tips` (a smooth profile: flat in the middle, falling fast near the ends)."""
+    f = 1.0 - p.taper * (0.5 - t)
+    f *= 1.0 - 0.9 * p.end_tips * (2 * abs(t)) ** 3
+    return max(p.radius * f, 0.01)
+
+
 def elongated(p: ElongatedParams) -> list[Part]:
-    """Five tapered segments along a circular arc in the x-z plane; the stem at +x."""
-    n = 5
+    """A smooth tube swept along a circular arc in the x-z plane (bending up at both ends), tapering as
+    `elongated_radius` says; the stem at +x, a blossom nub at -x."""
+    n = ELONGATED_SEGMENTS
     s = np.linspace(-0.5, 0.5, n + 1)
     k = p.curvature
     if k > 1e-6:
-        R = 1.0 / k
+        big_r = 1.0 / k
         ang = s * k
-        xs, zs = R * np.sin(ang), R * (1 - np.cos(ang))
+        xs, zs = big_r * np.sin(ang), big_r * (1 - np.cos(ang))
     else:
         xs, zs = s, np.zeros_like(s)
+    radii = np.array([elongated_radius(p, float(t)) for t in s])
     zs = zs - zs.min()
-    def rad(t: float) -> float:
-        f = 1.0 - p.taper * (0.5 - t)  # t in [-0.5, 0.5]: full radius at +x, tapering towards -x
-        f *= 1.0 - p.end_tips * (2 * abs(t)) ** 2 * 0.75
-        return max(p.radius * f, 0.01)
-    parts: list[Part] = []
-    r0 = rad(0.0)
-    for i in range(n):
-        a = (xs[i], 0.0, zs[i] + r0)
-        b = (xs[i + 1], 0.0, zs[i + 1] + r0)
-        name = "body" if i == n // 2 else f"segment {i + 1}"
-        part = tapered(name, a, b, rad(s[i]), rad(s[i + 1]), blend=0.3 * p.radius)
-        if p.flatten < 1.0:
-            tf = part.transform
-            part = part.model_copy(update={"transform": tf.model_copy(update={"scale": (p.flatten, 1.0, 1.0)})})
-        parts.append(part)
-    end = np.array([xs[-1], 0.0, zs[-1] + r0])
+    r0 = float(radii.max())
+    pts = np.stack([xs, np.zeros_like(xs), zs + r0], axis=1)
+    names = [f"segment {i + 1}" for i in range(n)]
+    names[n // 2] = "body"
+    parts = swept(names, pts, radii)
+    k = next(i for i, q in enumerate(parts) if q.name == "body" and q.primitive.kind == "cone")  # drawn first
+    parts = [parts[k]] + parts[:k] + parts[k + 1:]
+    if p.flatten < 1.0:  # a flat cross-section (a pea pod): the whole sweep squashed in height
+        parts = squashed_parts(parts, (1.0, 1.0, p.flatten))
+    end = pts[-1]
+    d = end - pts[-2]
+    d /= np.linalg.norm(d)
     if p.stem == "stub":
-        d = end - np.array([xs[-2], 0.0, zs[-2] + r0])
-        d /= np.linalg.norm(d)
-        parts.append(limb("stem", end, end + d * 0.07, 0.25 * p.radius, blend=0.2 * p.radius))
+        parts.append(tapered("stem", end - d * 0.5 * radii[-1], end + d * p.stem_length, 0.3 * p.radius,
+                             0.22 * p.radius, blend=0.15 * p.radius))
     elif p.stem == "leafy":
         for j, deg in enumerate((-25, 0, 25)):
-            d = np.array([np.cos(np.radians(deg)) * 0.8, np.sin(np.radians(deg)) * 0.6, 0.4])
-            parts.append(limb(f"leaf {j + 1}", end, end + d * 0.18, 0.22 * p.radius, blend=0.2 * p.radius))
+            v = np.array([np.cos(np.radians(deg)) * 0.8, np.sin(np.radians(deg)) * 0.6, 0.4])
+            parts.append(limb(f"leaf {j + 1}", end, end + v * 0.18, 0.22 * p.radius, blend=0.2 * p.radius))
+    if p.blossom:
+        back = pts[0] - pts[1]
+        back /= np.linalg.norm(back)
+        parts.append(ellipsoid("blossom end", (0.8 * radii[0],) * 3, pts[0] + back * 0.9 * radii[0],
+                               blend=0.05 * p.radius))
+    return parts
+
+
+class PretzelParams(Model):
+    """A pretzel knot lying flat: a thick belly arc, two arms that rise from it, cross in a twist and fall back onto
+    the belly's opposite sides (three holes)."""
+
+    rope: float = Field(default=0.075, gt=0.02, le=0.15, description="belly rope radius / width [-]")
+    arms: float = Field(default=0.65, gt=0.3, le=1.0, description="arm rope radius / belly's [-]")
+    salt: int = Field(default=0, ge=0, le=12, description="coarse salt grains on top [-]")
+
+
+# the knot's centre line in plan (x across, y from the belly up), from one end on the belly round to the other
+_PRETZEL_PATH = ((-0.2, -0.26), (-0.09, -0.1), (0.0, 0.02), (0.12, 0.17), (0.26, 0.3), (0.42, 0.3), (0.5, 0.14),
+                 (0.48, -0.06), (0.36, -0.24), (0.18, -0.34), (0.0, -0.37), (-0.18, -0.34), (-0.36, -0.24),
+                 (-0.48, -0.06), (-0.5, 0.14), (-0.42, 0.3), (-0.26, 0.3), (-0.12, 0.17), (0.0, 0.02),
+                 (0.09, -0.1), (0.2, -0.26))
+
+
+def pretzel(p: PretzelParams) -> list[Part]:
+    """Width 1 along x lying flat; the arms cross at the centre, one over the other (a twist)."""
+    ctrl = np.array([(x, y, 0.0) for x, y in _PRETZEL_PATH])
+    ctrl[2, 2] = 0.5 * p.rope  # the twist: one arm over the other (the other stays on the ground)
+    pts = smooth_path(ctrl, 19)
+    s = np.linspace(0.0, 1.0, len(pts))
+    belly = np.clip(1.0 - np.abs(s - 0.5) / 0.22, 0.0, 1.0)  # thickest at the bottom of the belly
+    radii = p.rope * (p.arms + (1.0 - p.arms) * np.sin(0.5 * np.pi * belly))
+    radii[[0, -1]] *= 0.85  # the ends pressed onto the belly
+    pts[:, 2] += radii  # every part of the rope rests on the ground
+    names = ["arm" if abs(t - 0.5) > 0.22 else "belly" for t in s[:-1]]
+    parts = swept(names, pts, radii)
+    k = next(i for i, q in enumerate(parts) if q.name == "belly")
+    parts = [parts[k]] + parts[:k] + parts[k + 1:]  # the belly first (patterns draw on part 0)
+    for i in range(p.salt):
+        j = int(3 + (i * 7919) % (len(pts) - 6))
+        a = 2.4 * i
+        at = pts[j] + np.array([0.4 * radii[j] * np.cos(a), 0.4 * radii[j] * np.sin(a), 0.85 * radii[j]])
+        parts.append(box(f"salt {i + 1}", (0.022, 0.018, 0.014), at, edge=0.004, rot=(0, 0, float(np.degrees(a)))))
     return parts
 
 

@@ -248,3 +248,66 @@ def squashed_parts(parts: Sequence[Part], factors: Vec) -> list[Part]:
         out.append(p.model_copy(update={"blend_m": blend, "transform": tf.model_copy(update={
             "translation_m": _f3(at), "rotation_deg": _f3(euler), "scale": _f3(scale)})}))
     return out
+
+
+def swept(names: Sequence[str], points: Vec, radii: Vec, blend: float = 0.0) -> list[Part]:
+    """A smooth tube along a polyline (points (n, 3) [m], radius per point): a sharp-edged frustum per segment and a
+    ball at every bend and at both ends (a sphere-swept cone chain: no rims, no bulges at the joints; round ends):
+    a banana, a snake, a pretzel's rope. names[i] names segment i and the ball at its start (the last name
+    repeats)."""
+    pts = np.asarray(points, dtype=np.float64)
+    rad = np.asarray(radii, dtype=np.float64)
+    parts: list[Part] = []
+    n = len(pts) - 1
+    for i in range(n + 1):
+        name = names[min(i, n - 1, len(names) - 1)]
+        if i in (0, n) or _bend(pts, i) > 1e-3:  # a straight joint needs no ball: the frustums share its rim
+            parts.append(ellipsoid(name, (float(rad[i]),) * 3, pts[i], blend=blend))
+        if i == n:
+            break
+        a, b = pts[i], pts[i + 1]
+        ra, rb = float(rad[i]), float(rad[i + 1])
+        length = float(np.linalg.norm(b - a))
+        if length < 1e-9:
+            continue
+        u, slope = (b - a) / length, (rb - ra) / length
+        if i > 0:  # reach a little into the neighbour: two caps meeting on one plane leave a crack in the field
+            e = 0.25 * ra
+            a, ra = a - u * e, ra - slope * e
+        if i < n - 1:
+            e = 0.25 * rb
+            b, rb = b + u * e, rb + slope * e
+        length = float(np.linalg.norm(b - a))
+        parts.append(Part(name=name, primitive={"kind": "cone", "radius_bottom_m": max(ra, 1e-4),
+                                                "radius_top_m": max(rb, 1e-4), "height_m": length,
+                                                "edge_radius_m": 0.0},
+                          transform={"translation_m": _f3((a + b) / 2.0), "rotation_deg": _euler_z_to(b - a)},
+                          blend_m=blend, color_rgb=DEFAULT_GREY))
+    return parts
+
+
+def _bend(pts: np.ndarray, i: int) -> float:
+    """1 - cos of the turn of the polyline at interior point i."""
+    a, b = pts[i] - pts[i - 1], pts[i + 1] - pts[i]
+    return 1.0 - float(a @ b) / max(float(np.linalg.norm(a) * np.linalg.norm(b)), 1e-12)
+
+
+def smooth_path(control: Vec, n: int, closed: bool = False) -> np.ndarray:
+    """n points (n, 3) evenly spaced by arc length along a Catmull-Rom spline through the control points (m, 3)."""
+    c = np.asarray(control, dtype=np.float64)
+    if closed:
+        c = np.vstack([c[-1:], c, c[:2]])
+    else:
+        c = np.vstack([2 * c[0] - c[1], c, 2 * c[-1] - c[-2]])
+    dense = []
+    for i in range(1, len(c) - 2):
+        p0, p1, p2, p3 = c[i - 1], c[i], c[i + 1], c[i + 2]
+        for t in np.linspace(0.0, 1.0, 24, endpoint=False):
+            t2, t3 = t * t, t * t * t
+            dense.append(0.5 * (2 * p1 + (p2 - p0) * t + (2 * p0 - 5 * p1 + 4 * p2 - p3) * t2
+                                + (3 * p1 - p0 - 3 * p2 + p3) * t3))
+    dense.append(c[-2])
+    dense_arr = np.asarray(dense)
+    s = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(dense_arr, axis=0), axis=1))])
+    target = np.linspace(0.0, s[-1], n)
+    return np.stack([np.interp(target, s, dense_arr[:, k]) for k in range(3)], axis=1)

@@ -10,13 +10,26 @@ from pydantic import Field
 
 from contracts.base import Model
 from contracts.shape import Part
-from tasks.geometry.grammar.parts import box, cone, cylinder, ellipsoid, limb, superellipsoid, tapered, torus
+from tasks.geometry.grammar.parts import (
+    _euler_z_to,
+    box,
+    cone,
+    cylinder,
+    ellipsoid,
+    limb,
+    sphere_directions,
+    squashed_parts,
+    superellipsoid,
+    swept,
+    tapered,
+    torus,
+)
 
 
 class CushionParams(Model):
     """A cushion or pillow: a puffed square, rectangle, round pad or bolster."""
 
-    shape: Literal["square", "round", "bolster"] = "square"
+    shape: Literal["square", "round", "bolster", "beanbag"] = "square"
     width: float = Field(default=1.0, gt=0.1, le=2.0, description="width / length [-]")
     thickness: float = Field(default=0.3, gt=0.05, le=1.0, description="thickness / length [-]")
     puff: float = Field(default=0.6, gt=0.1, le=1.0, description="1 a round pillow, small a boxy one [-]")
@@ -26,6 +39,8 @@ class CushionParams(Model):
 def cushion(p: CushionParams) -> list[Part]:
     """Length 1 along x, lying flat (a bolster lies along x)."""
     t = p.thickness
+    if p.shape == "beanbag":
+        return beanbag(p)
     if p.shape == "bolster":
         return [cylinder("body", t / 2, 1.0, (0, 0, t / 2), edge=0.3 * t, rot=(0, 90, 0))]
     if p.shape == "round":
@@ -38,20 +53,76 @@ def cushion(p: CushionParams) -> list[Part]:
     return parts
 
 
+def beanbag(p: CushionParams) -> list[Part]:
+    """A bean bag chair: a slumped sack (length 1 along x, the back at -x) with the seat pressed in at its front and
+    the back heaped up behind it."""
+    t, w = p.thickness, p.width
+    parts = [superellipsoid("body", (0.5, 0.5 * w, 0.42 * t), (0, 0, 0.42 * t), ns=0.8, ew=1.0),
+             ellipsoid("back", (0.28, 0.42 * w, 0.5 * t), (-0.22, 0, 0.62 * t), blend=0.15),
+             ellipsoid("seat", (0.3, 0.3 * w, 0.3 * t), (0.12, 0, 0.95 * t), blend=0.12).model_copy(
+                 update={"operation": "subtract"})]
+    return parts
+
+
 class BallParams(Model):
-    """A ball: sphere or spheroid (a rugby ball is prolate)."""
+    """A ball: sphere or spheroid (a rugby ball is prolate; `tips` makes its ends pointed, a football's)."""
 
     aspect: float = Field(default=1.0, gt=0.3, le=3.0, description="length (x) / diameter [-]")
     squash: float = Field(default=1.0, gt=0.3, le=1.0, description="height / diameter [-]")
     panels: bool = Field(default=False, description="a seam band around the equator (a second colour)")
+    tips: float = Field(default=0.0, ge=0.0, le=1.0, description="pointed ends along x: 0 a spheroid, 1 a spindle "
+                        "whose ends come to a point (an American football, a rugby ball) [-]")
+    laces: bool = Field(default=False, description="a row of stitched laces along the top (an American football)")
+    patches: int = Field(default=0, ge=0, le=32, description="panels of another colour set into the surface, evenly "
+                         "spread (a soccer ball's 12 pentagons) [-]")
+
+
+BALL_SPINDLE_POINTS = 17
+
+
+def ball_radius(p: BallParams, t: float) -> float:
+    """Cross-section radius at t in [-0.5, 0.5] along the length (diameter 1 at the middle): an ellipse's when
+    `tips` is 0, falling to a point as `tips` grows."""
+    u = min(1.0, (2.0 * abs(t)) ** 2)
+    return 0.5 * max(1.0 - u, 0.0) ** (0.5 + 0.8 * p.tips)
 
 
 def ball(p: BallParams) -> list[Part]:
-    """Diameter 1."""
+    """Diameter 1; x is the long axis of a prolate ball."""
     rz = 0.5 * p.squash
-    parts = [ellipsoid("body", (0.5 * p.aspect, 0.5, rz), (0, 0, rz))]
+    if p.tips > 0:
+        ts = np.linspace(-0.5, 0.5, BALL_SPINDLE_POINTS)
+        radii = np.array([max(ball_radius(p, float(t)), 0.035 * (0.2 + (1 - p.tips))) for t in ts])
+        pts = np.stack([ts * p.aspect, np.zeros_like(ts), np.full_like(ts, 0.5)], axis=1)
+        k = BALL_SPINDLE_POINTS // 2
+        names = ["body" if i in (k - 1, k) else ("tip" if i in (0, BALL_SPINDLE_POINTS - 2) else f"part {i}")
+                 for i in range(BALL_SPINDLE_POINTS - 1)]
+        parts = swept(names, pts, radii)
+        first = next(i for i, q in enumerate(parts) if q.name == "body" and q.primitive.kind == "cone")
+        parts = [parts[first]] + parts[:first] + parts[first + 1:]
+        if p.squash < 1.0:
+            parts = squashed_parts(parts, (1.0, 1.0, p.squash))
+    else:
+        parts = [ellipsoid("body", (0.5 * p.aspect, 0.5, rz), (0, 0, rz))]
     if p.panels:
         parts.append(ellipsoid("seam", (0.505 * p.aspect, 0.06, rz * 1.01), (0, 0, rz)))
+    if p.laces:
+        parts += _laces(p.aspect, rz)
+    if p.patches:
+        for i, d in enumerate(sphere_directions(p.patches, seed=0.4)):
+            n = d / np.linalg.norm(d)
+            parts.append(cylinder(f"patch {i + 1}", 0.2, 0.09, np.array([0, 0, rz]) + 0.5 * n * (1, 1, p.squash),
+                                  edge=0.01, rot=_euler_z_to(n), op="subtract"))  # a panel set in, its own colour
+    return parts
+
+
+def _laces(aspect: float, rz: float) -> list[Part]:
+    """A seam along the top and short stitches across it (an American football's laces), about a third of its
+    length."""
+    top = 2 * rz
+    parts = [box("lace seam", (0.34 * aspect, 0.035, 0.05), (0, 0, top - 0.012), edge=0.012)]
+    for i, x in enumerate(np.linspace(-0.14, 0.14, 7) * aspect):
+        parts.append(box(f"lace {i + 1}", (0.035, 0.14, 0.05), (float(x), 0, top - 0.01), edge=0.012))
     return parts
 
 
