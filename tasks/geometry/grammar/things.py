@@ -84,7 +84,7 @@ def ball_radius(p: BallParams, t: float) -> float:
     """Cross-section radius at t in [-0.5, 0.5] along the length (diameter 1 at the middle): an ellipse's when
     `tips` is 0, falling to a point as `tips` grows."""
     u = min(1.0, (2.0 * abs(t)) ** 2)
-    return 0.5 * max(1.0 - u, 0.0) ** (0.5 + 0.8 * p.tips)
+    return 0.5 * max(1.0 - u, 0.0) ** (0.5 + 0.5 * p.tips)
 
 
 def ball(p: BallParams) -> list[Part]:
