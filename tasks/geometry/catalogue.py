@@ -17,7 +17,7 @@ from contracts.errors import InputError
 from contracts.lexicon import load_lexicon
 from contracts.request import MAX_SIZE_M, MIN_SIZE_M, AssetRequest
 from contracts.shape import ShapeProgram
-from tasks.geometry import concepts, size_words
+from tasks.geometry import concepts, grammar, size_words
 
 CATALOGUE_FILE = Path(__file__).with_name("catalogue.yaml")
 
@@ -247,9 +247,46 @@ def check_text_size(request: AssetRequest) -> None:
 _HYPHEN_SIZE = re.compile(r"(\d)\s*-\s*(mm|cm|m|inch|in|ft)\b(?:\s*-\s*(?=[a-z]))?", re.I)
 
 
+_UNIT_WORDS = r"(?:metres?|meters?|foot|feet|yards?|inch(?:es)?|centimetres?|centimeters?|millimetres?|millimeters?)"
+_NUMBER_WORDS = {"half a": "0.5", "half an": "0.5", "a quarter": "0.25", "a": "1", "an": "1", "one": "1", "two": "2",
+                 "three": "3", "four": "4", "five": "5", "six": "6", "ten": "10", "twelve": "12"}
+_WORD_SIZE = re.compile(rf"\b({'|'.join(sorted(_NUMBER_WORDS, key=len, reverse=True))})[\s-]+"
+                        rf"(?={_UNIT_WORDS}[\s-]+(?:long|tall|wide|high|across|thick|deep|in diameter)\b)", re.I)
+
+
 def normalise_sizes(text: str) -> str:
-    """'an 8-cm-tall cat' -> 'an 8 cm tall cat' (so the size binds to its axis)."""
+    """'an 8-cm-tall cat' -> 'an 8 cm tall cat' (so the size binds to its axis); number words before a unit and a
+    dimension as digits ('about a metre long' -> 'about 1 metre long', 'half a metre wide' -> '0.5 metre wide')."""
+    text = _WORD_SIZE.sub(lambda m: f"{_NUMBER_WORDS[m.group(1).lower()]} ", text)
     return _HYPHEN_SIZE.sub(lambda m: f"{m.group(1)} {m.group(2)} ", text)
+
+
+def _final_scale(size: SizeSpec, program: ShapeProgram, typical_m: float) -> tuple[float, float]:
+    """(the longest extent the object is built at [m], its stretch: the largest per-axis scale over the smallest)."""
+    axis = np.asarray(size.axis_scale, dtype=np.float64)
+    if not any(v is not None for v in size.extents_m):
+        return size.longest_m or typical_m * float(axis.max()), float(axis.max() / axis.min())
+    ext = grammar.program_extents(program, 32)
+    factors = size.resolve(ext) / np.maximum(ext, 1e-9)
+    return float(size.resolve(ext).max()), float(factors.max() / factors.min())
+
+
+_FLAT_WORDS = frozenset({"flat", "flattened", "thin"})
+_LONG_WORDS = frozenset({"long", "elongated"})
+
+
+def _not_implied(mods: list[str], program: ShapeProgram, plan: str | None) -> list[str]:
+    """The modifiers the object does not have already: a garment, bag or sheet built flat is not flattened again by
+    'flat' or 'thin' (a state word there), a long strip (five times longer than wide) not stretched by 'long'."""
+    if not set(mods) & (_FLAT_WORDS | _LONG_WORDS):
+        return mods
+    from tasks.geometry.sdf import program_bounds
+
+    lo, hi = program_bounds(program)
+    ext = np.sort(hi - lo)[::-1]
+    flat = plan in concepts.THIN_GOODS_PLANS and ext[2] < 0.2 * ext[0]
+    long = ext[0] > 5 * ext[1]
+    return [m for m in mods if not (m in _FLAT_WORDS and flat) and not (m in _LONG_WORDS and long)]
 
 
 def design_from_text(text: str, size_hint_m: float | None = None) -> Design:
@@ -278,9 +315,12 @@ def design_from_text(text: str, size_hint_m: float | None = None) -> Design:
     if match.noun:  # 'a mini bagel' names the object; 'mini' is not a modifier there
         own_name = own_name.replace(match.noun, " ")
     mods, axis_scale = parse_modifiers(own_name)
+    kept = _not_implied(mods, program, match.body_plan)
+    if kept != mods:  # 'a long scarf', 'jeans laid flat': the object is so already, not stretched again
+        mods, axis_scale = parse_modifiers(" ".join(kept))
     size = size.model_copy(update={"axis_scale": axis_scale})
     check_size(size)
-    match = concepts.size_scaled(match, size.longest_m or (match.typical_size_m or 0.0) * max(axis_scale))
+    match = concepts.size_scaled(match, *_final_scale(size, program, match.typical_size_m or 0.0))
     said = size_words.read_size_words(_strip_numeric_sizes(text_n), frozenset(MODIFIERS))
     warnings = [w for w in said.warnings + reading.warnings + build_warnings if w]
     score = {"exact": 2.0, "synonym": 1.0}.get(match.fallback_level, 0.0)

@@ -42,6 +42,7 @@ PLANS: dict[str, tuple[type[Model], Callable[[Any], list[Part]]]] = {
     "loaf": (food.LoafParams, food.loaf),
     "bun": (food.BunParams, food.bun),
     "croissant": (food.CroissantParams, food.croissant),
+    "pretzel": (food.PretzelParams, food.pretzel),
     "muffin": (food.MuffinParams, food.muffin),
     "pie": (food.PieParams, food.pie),
     "cushion": (things.CushionParams, things.cushion),
@@ -79,6 +80,9 @@ PLANS: dict[str, tuple[type[Model], Callable[[Any], list[Part]]]] = {
 # colours a part keeps unless the request or the entry names one (eyes and noses are dark)
 _DARK = {"eye", "nose", "pupil"}
 BLACK: RGB = (0.02, 0.02, 0.02)
+# fittings a part keeps unless the entry or the request names their colour: a zip, its pull, a button, a buckle
+_HARDWARE = {"zip", "pull", "button", "buckle"}
+METAL: RGB = (0.32, 0.32, 0.34)
 
 
 def plan_names() -> list[str]:
@@ -107,6 +111,8 @@ def part_color(name: str, colors: dict[str, RGB]) -> RGB:
             return colors[key]
     if group.split()[-1] in _DARK:
         return BLACK
+    if group.split()[-1] in _HARDWARE:
+        return METAL
     for key in ("body", "main"):
         if key in colors:
             return colors[key]
@@ -212,7 +218,7 @@ def _unit_solid_cached(plan: str, params_json: str) -> tuple[float, float]:
     params = plan_parameters(plan, json.loads(params_json))
     program = ShapeProgram(name=plan, category="state", parts=PLANS[plan][1](params))
     ext = program_bounds(program)[1] - program_bounds(program)[0]
-    mesh = mesh_program(program, int(min(1024, max(128, 6 * ext.max() / ext.min()))))  # 6 cells through a strip
+    mesh = mesh_program(program, int(min(1024, max(96, 6 * ext.max() / ext.min()))))  # 6 cells through a strip
     return float(mesh.extents.max()), float(mesh.volume)
 
 

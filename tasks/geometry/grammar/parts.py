@@ -283,7 +283,17 @@ def swept(names: Sequence[str], points: Vec, radii: Vec, blend: float = 0.0) -> 
                                                 "edge_radius_m": 0.0},
                           transform={"translation_m": _f3((a + b) / 2.0), "rotation_deg": _euler_z_to(b - a)},
                           blend_m=blend, color_rgb=DEFAULT_GREY))
-    return parts
+    return _unique_names(parts)
+
+
+def _unique_names(parts: list[Part]) -> list[Part]:
+    """Every part named once: a repeated name's later parts become 'name 2', 'name 3', ... (the first keeps it)."""
+    seen: dict[str, int] = {}
+    out = []
+    for q in parts:
+        seen[q.name] = seen.get(q.name, 0) + 1
+        out.append(q if seen[q.name] == 1 else q.model_copy(update={"name": f"{q.name} {seen[q.name]}"}))
+    return out
 
 
 def _bend(pts: np.ndarray, i: int) -> float:
