@@ -253,8 +253,8 @@ def squashed_parts(parts: Sequence[Part], factors: Vec) -> list[Part]:
 def swept(names: Sequence[str], points: Vec, radii: Vec, blend: float = 0.0) -> list[Part]:
     """A smooth tube along a polyline (points (n, 3) [m], radius per point): a sharp-edged frustum per segment and a
     ball at every bend and at both ends (a sphere-swept cone chain: no rims, no bulges at the joints; round ends):
-    a banana, a snake, a pretzel's rope. names[i] names segment i and the ball at its start (the last name
-    repeats)."""
+    a banana, a snake, a pretzel's rope. names[i] names segment i ('name') and the ball at its start ('name joint');
+    a name used again gets a number ('arm 2')."""
     pts = np.asarray(points, dtype=np.float64)
     rad = np.asarray(radii, dtype=np.float64)
     parts: list[Part] = []
@@ -262,7 +262,7 @@ def swept(names: Sequence[str], points: Vec, radii: Vec, blend: float = 0.0) -> 
     for i in range(n + 1):
         name = names[min(i, n - 1, len(names) - 1)]
         if i in (0, n) or _bend(pts, i) > 1e-3:  # a straight joint needs no ball: the frustums share its rim
-            parts.append(ellipsoid(name, (float(rad[i]),) * 3, pts[i], blend=blend))
+            parts.append(ellipsoid(f"{name} joint", (float(rad[i]),) * 3, pts[i], blend=blend))
         if i == n:
             break
         a, b = pts[i], pts[i + 1]
