@@ -107,7 +107,8 @@ class CacheStore:
         """JSONL execution log: one line per cached-task run (hit or miss)."""
         return self.root / "events.jsonl"
 
-    def _init_root(self) -> None:
+    def init_root(self) -> None:
+        """Make `root` a DeformSmith cache (its folders and marker); an existing cache is left as it is."""
         for sub in ("entries", "tmp", "locks"):
             (self.root / sub).mkdir(parents=True, exist_ok=True)
         marker = self.root / MARKER
@@ -134,7 +135,7 @@ class CacheStore:
     def put(self, key: str, value: Any, meta: dict[str, Any] | None = None) -> bool:
         """Store `value` under `key` atomically; False if an intact entry was already there (kept)."""
         final = self.entry_dir(key)
-        self._init_root()
+        self.init_root()
         enc = codec.encode(value)
         tmp = self.root / "tmp" / f"{key}.{os.getpid()}.{uuid.uuid4().hex[:8]}"
         try:
@@ -378,7 +379,7 @@ class CacheStore:
     # ---- execution log ------------------------------------------------------------------------
     def record_event(self, **event: Any) -> None:
         """Append one JSON line to the execution log (single O_APPEND write: safe across processes)."""
-        self._init_root()
+        self.init_root()
         event.setdefault("time", time.time())
         event.setdefault("pid", os.getpid())
         line = (json.dumps(event, sort_keys=True, default=str) + "\n").encode()

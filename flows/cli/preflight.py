@@ -104,8 +104,10 @@ def check_locations(out: Path | None = None, cache: bool = True, out_root: Path 
         for sub in ("locks", "tmp", "entries", "recordings"):  # a fully cached request still writes its lock files
             if os.path.lexists(root / sub):
                 check_directory(root / sub, "cache root", min_free=0)
+        from cache import CacheStore
         from cache.tempfiles import remove_dead_temporaries
 
+        CacheStore(root).init_root()  # marked before any layer runs: a run stopped early leaves a sound cache
         remove_dead_temporaries(root)  # what killed runs left in the cache (their pids are dead)
 
 
