@@ -12,7 +12,6 @@ from pydantic import Field
 from contracts.base import Model
 
 NOMINAL_DENSITY_KG_PER_M3 = 100.0  # placeholder for the URDF inertial only; L1 sets the real mass
-NEARLY_CONVEX = 0.97  # a mesh filling this share of its convex hull is its own single convex part [-]
 
 
 class CoacdSettings(Model):
@@ -34,9 +33,6 @@ def convex_parts(mesh: trimesh.Trimesh, settings: CoacdSettings) -> list[trimesh
     """Convex pieces covering the mesh (CoACD, or one hull)."""
     if settings.method == "hull":
         return [mesh.convex_hull]
-    hull = mesh.convex_hull
-    if mesh.is_watertight and mesh.volume >= NEARLY_CONVEX * hull.volume:
-        return [hull]  # a ball with seams or shallow relief: its hull is what CoACD would give, without its cost
     import coacd
 
     coacd.set_log_level("error")

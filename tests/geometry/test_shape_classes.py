@@ -8,7 +8,6 @@ import trimesh
 
 from contracts.shape import ShapeProgram
 from tasks.geometry import concepts
-from tasks.geometry.collision import CoacdSettings, convex_parts
 from tasks.geometry.grammar import build_program
 from tasks.geometry.meshing import mesh_program, sample_program
 from tasks.geometry.sdf import part_sdf, program_sdf
@@ -108,9 +107,3 @@ def test_culled_part_distances_keep_every_sign() -> None:
     for part in program.parts[1:]:
         exact = smooth_min(exact, part_sdf(pts, part), part.blend_m)
     assert np.array_equal(exact < 0, program_sdf(pts, program) < 0)
-
-
-def test_a_nearly_convex_mesh_is_its_own_hull() -> None:
-    """A ball (with shallow relief) needs no decomposition: one convex part."""
-    parts = convex_parts(trimesh.creation.icosphere(subdivisions=3, radius=0.1), CoacdSettings())
-    assert len(parts) == 1
