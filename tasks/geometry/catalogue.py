@@ -149,7 +149,9 @@ def parse_size(text: str) -> SizeSpec:
     m = _DIMS_RE.search(t)
     if m:
         unit = _UNITS[_unit_key(m.group(6))]
-        dims = [float(m.group(i)) * unit for i in (1, 3, 5) if m.group(i) is not None]
+        own = {1: m.group(2), 3: m.group(4)}  # '30 cm by 1 m': a number's own unit, else the last one
+        dims = [float(m.group(i)) * (_UNITS[_unit_key(own[i])] if own.get(i) else unit) for i in (1, 3, 5)
+                if m.group(i) is not None]
         return SizeSpec(extents_m=tuple(dims) + (None,) * (3 - len(dims)), stated=m.group(0))
     ext: list[float | None] = [None, None, None]
     stated = []

@@ -112,6 +112,8 @@ def test_3dgs_ply_round_trips_through_plyfile(tmp_path: Path) -> None:
 @pytest.mark.parametrize("text, ext, longest", [
     ("a soft plush turtle toy, about 25 cm long", (0.25, None, None), None),
     ("kitchen sponge 10 x 7 x 3 cm", (0.10, 0.07, 0.03), None),
+    ("a sheet of bubble wrap, 30 cm by 1 m", (0.30, 1.0, None), None),  # each number with its own unit
+    ("a towel 50cm x 1 m x 5 mm", (0.50, 1.0, 0.005), None),
     ("a rubber ball 6 cm in diameter", (0.06, 0.06, None), None),
     ("a teddy bear 12 inches tall", (None, None, 0.3048), None),
     ("a 40mm marshmallow", (None, None, None), 0.04),
