@@ -268,7 +268,13 @@ def _final_scale(size: SizeSpec, program: ShapeProgram, typical_m: float) -> tup
     axis = np.asarray(size.axis_scale, dtype=np.float64)
     if not any(v is not None for v in size.extents_m):
         return size.longest_m or typical_m * float(axis.max()), float(axis.max() / axis.min())
-    ext = grammar.program_extents(program, 32)
+    try:
+        ext = grammar.program_extents(program, 32)
+    except InputError:  # a thin good (a tortilla, a cloth) falls between the coarse grid's points: its parts' box
+        from tasks.geometry.sdf import program_bounds
+
+        lo, hi = program_bounds(program)
+        ext = np.asarray(hi) - np.asarray(lo)
     factors = size.resolve(ext) / np.maximum(ext, 1e-9)
     return float(size.resolve(ext).max()), float(factors.max() / factors.min())
 

@@ -138,3 +138,14 @@ def test_a_shell_weighs_its_area_times_its_wall() -> None:
     """The film rule: a glove twice as long has four times the rubber (area), not eight (volume)."""
     small, large = planned_mass("a nitrile exam glove 20 cm long"), planned_mass("a nitrile exam glove 40 cm long")
     assert np.log2(large / small) == pytest.approx(2.0, abs=0.3)
+
+
+@pytest.mark.parametrize("text", ["a tortilla 20 cm across", "a cotton cloth 30 x 30 cm"])
+def test_a_thin_good_with_stated_sides_builds(text: str) -> None:
+    """A sheet 2-8 mm thick with its sides stated is built (the stretch is measured on its parts' box when the coarse
+    grid misses its thickness), not refused as having no volume."""
+    from tasks.geometry import catalogue, grammar
+
+    design = catalogue.design_from_text(text)
+    ext = grammar.program_extents(design.program, 96)
+    assert ext[2] < 0.05 * ext[0] and ext[0] > 0.15
