@@ -66,6 +66,7 @@ def test_batch_isolates_crashes_and_failures(tmp_path: Path, prefect_api: str, m
     assert saved == report
 
 
+@pytest.mark.slow  # minutes on 2 cores: the default run keeps a fast sample of the same flow
 def test_batch_generates_two_tiny_assets(tmp_path: Path, cache_dir: Path, prefect_api: str) -> None:
     """Two real draft generations (same request, two names) next to a bad line: both publish; every key runs once."""
     reqs = _write(tmp_path / "r.jsonl", [

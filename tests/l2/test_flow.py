@@ -76,6 +76,7 @@ def test_probes_side_by_side_give_what_they_give_one_after_another(tmp_path: Pat
     assert runs["2"] == runs["1"]
 
 
+@pytest.mark.slow  # minutes on 2 cores: the default run keeps a fast sample of the same flow
 def test_plush_and_rubber_intents_end_in_different_materials_that_meet_their_targets(
         tmp_path: Path, monkeypatch: pytest.MonkeyPatch, prefect_api: str) -> None:
     """Reduced version on a small box: 'soft plush' and 'firm rubber' each pass every gate and their modulus band;
