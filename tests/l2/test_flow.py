@@ -59,6 +59,7 @@ def test_material_from_outside_reexecutes_exactly_the_l2_probes(tmp_path: Path, 
     assert sorted(_misses(n2)) == sorted(L2_PROBES)
 
 
+@pytest.mark.slow  # tens of seconds on 2 cores (CI time, 2026-11-29)
 def test_probes_side_by_side_give_what_they_give_one_after_another(tmp_path: Path, monkeypatch: pytest.MonkeyPatch,
                                                                      prefect_api: str) -> None:
     """The selection probes and held-out tests run two at a time (flows.harness.call_tasks) with the same results,

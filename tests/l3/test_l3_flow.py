@@ -242,6 +242,7 @@ def test_a_revised_material_that_fails_the_nominal_condition_is_not_tried_under_
     assert rev.robustness == ConditionSummary(conditions=[], passed=0)
 
 
+@pytest.mark.slow  # tens of seconds on 2 cores (CI time, 2026-11-29)
 def test_conditions_side_by_side_give_what_they_give_one_after_another(cube_asset: Path, prefect_api: str,
                                                                         monkeypatch: pytest.MonkeyPatch,
                                                                         tmp_path: Path) -> None:

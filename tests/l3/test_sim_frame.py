@@ -45,6 +45,7 @@ def test_the_aligned_frame_puts_the_closing_axis_at_the_chosen_angle_to_the_grid
     assert SimFrame.aligned(np.array([0.0, 0.0, 1.0]), 45.0).is_identity  # no horizontal part: nothing to align
 
 
+@pytest.mark.slow  # tens of seconds on 2 cores (CI time, 2026-11-29)
 def test_a_grasp_lifts_the_same_at_every_yaw_and_reports_in_the_world_frame(cube) -> None:  # type: ignore[no-untyped-def]
     """The same grasp on the object turned by 0 and 37 degrees: in the aligned frame the grid sees the same
     contact, so the lift, the grip force and the slip agree; the recording is in the world frame."""
