@@ -297,6 +297,30 @@ def _not_implied(mods: list[str], program: ShapeProgram, plan: str | None) -> li
     return [m for m in mods if not (m in _FLAT_WORDS and flat) and not (m in _LONG_WORDS and long)]
 
 
+def _fill_sized(size: SizeSpec, program: ShapeProgram, match: ConceptMatch,
+                stated: size_words.StatedMass | None) -> tuple[SizeSpec, ConceptMatch]:
+    """A bag weighed by its fill (tasks.geometry.goods_words: fill x capacity) at the size it is built: a stated size
+    scales the fill's mass with the bag's volume; a stated mass with no size sizes the bag to hold it ('a 1 kg bag of
+    frozen peas' is a bigger bag than the typical 0.5 kg one)."""
+    source = match.stated_mass_source or ""
+    if match.stated_mass_kg is None or "capacity" not in source:
+        return size, match
+    try:
+        built = float(grammar.program_extents(program, 48).max())
+    except InputError:
+        return size, match
+    if stated is not None and not size.explicit:
+        k = (stated.kg / match.stated_mass_kg) ** (1.0 / 3.0)
+        return size.model_copy(update={"longest_m": built * k, "stated": f"sized to hold the stated {stated.stated}"}), match
+    if size.explicit and stated is None:
+        final, _stretch = _final_scale(size, program, match.typical_size_m or built)
+        k = final / built
+        if abs(k - 1.0) > 0.02:
+            return size, match.model_copy(update={"stated_mass_kg": match.stated_mass_kg * k ** 3,
+                                                  "stated_mass_source": f"{source}; x {k ** 3:.3g} for the stated size"})
+    return size, match
+
+
 def design_from_text(text: str, size_hint_m: float | None = None) -> Design:
     """Map a description to a lexicon concept's program (grammar body plan or catalogue shape), the stated size, the
     modifiers and colours; an unknown noun takes a fallback by meaning, recorded in `concept` and `warnings`."""
@@ -312,6 +336,7 @@ def design_from_text(text: str, size_hint_m: float | None = None) -> Design:
         stripped = size_words.strip_spans(stripped, [mass.span])
     reading = concepts.read_text(stripped)
     program, match, build_warnings = concepts.build(reading, stripped)
+    fill_match = match
     if mass is not None:
         match = match.model_copy(update={"stated_mass_kg": mass.kg, "stated_mass_source": f"stated in the request: "
                                          f"'{mass.stated}' = {mass.kg:.4g} kg"})
@@ -327,6 +352,9 @@ def design_from_text(text: str, size_hint_m: float | None = None) -> Design:
     if kept != mods:  # 'a long scarf', 'jeans laid flat': the object is so already, not stretched again
         mods, axis_scale = parse_modifiers(" ".join(kept))
     size = size.model_copy(update={"axis_scale": axis_scale})
+    size, fill_match = _fill_sized(size, program, fill_match, mass)
+    if mass is None:
+        match = fill_match
     check_size(size)
     match = concepts.size_scaled(match, *_final_scale(size, program, match.typical_size_m or 0.0))
     said = size_words.read_size_words(_strip_numeric_sizes(text_n), frozenset(MODIFIERS))

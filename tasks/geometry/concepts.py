@@ -13,7 +13,7 @@ import numpy as np
 from contracts.concept import ConceptMatch, FallbackLevel
 from contracts.lexicon import LexiconEntry, load_lexicon
 from contracts.shape import Part, ShapeProgram
-from tasks.geometry import analogy as analogy_mod, goods_words, grammar, phrase as phrase_mod
+from tasks.geometry import analogy as analogy_mod, fill_words, goods_words, grammar, phrase as phrase_mod, pouch_words
 from tasks.geometry.grammar.parts import part_group
 from tasks.geometry.wordnet import wordnet
 
@@ -123,6 +123,8 @@ class Reading:
     phrase: phrase_mod.Phrase | None = None
     size_m: float | None = None  # the size to build at when it is not the entry's (an analogy's donor)
     look_only: bool = False  # the donor lends only its look ('a cat-shaped pillow' weighs what the pillow weighs)
+    pouch: pouch_words.PouchOf | None = None  # 'a bag of frozen peas': a pouch of a fill (tasks.geometry.pouch_words)
+    vacuum: bool = False  # 'vacuum-packed X': X on the sealed film of a vacuum pack
 
 
 def normalise(text: str) -> str:
@@ -400,6 +402,11 @@ def read_text(text: str) -> Reading:
     explained by WordNet (tasks.geometry.analogy) before the fallbacks by body plan, category and material."""
     lex = load_lexicon()
     t = _expand_diminutives(normalise(text))
+    contents = pouch_words.vacuum_contents(t)
+    if contents is not None and contents != t:  # 'vacuum sealed pork chop': the chop, on its sealed film
+        inner = read_text(contents)
+        inner.vacuum = True
+        return inner
     t_shape, donor, donor_words = _shape_donor(t)
     phrase = phrase_mod.parse(t_shape, known_noun, modifier_word)
     if phrase.placeholder:
@@ -468,8 +475,53 @@ def read_text(text: str) -> Reading:
         match = match.model_copy(update={"shape_from": donor_entry.key})
     elif donor_plan is not None:
         match = match.model_copy(update={"shape_from": f"{donor_plan[0]}"})
+    pouch = _pouch_of(t_shape, phrase, entry, match)
+    if pouch is not None:  # 'a bag of frozen peas', 'a saline bag': a pouch of the fill, whatever the noun found
+        entry = lex.entries["generic_pouch"]
+        noun = " ".join([*phrase.compounds, phrase.head or "bag"])
+        note = f"'{phrase.noun_phrase or noun}' is built as a sealed pouch of {pouch.fill.key.replace('_', ' ')}: " \
+               f"its fill sets the mass"
+        material = "gel" if pouch.liquid else None
+        match = _match(entry, "category", noun, note, material).model_copy(update={
+            "typical_mass_kg": entry.mass_kg, "mass_source": entry.mass_source,
+            "analogy": [f"{noun}: a container noun with a fill ({pouch.fill.key}, {pouch.fill.source})",
+                        "built as a pouch of that fill (tasks.geometry.pouch_words)"]})
+        return Reading(match=match, entry=entry, warnings=[note], phrase=phrase, pouch=pouch)
     return Reading(match=match, entry=entry, donor=donor_entry, donor_plan=donor_plan, warnings=warnings,
                    phrase=phrase, size_m=size_m, look_only=look and not match.by_analogy)
+
+
+# the fraction of a piece's solid volume a loose heap of them fills (random packing of lumpy pieces) [-]
+PIECE_PACKING = 0.55
+PIECE_MAX_SIZE_M = 0.08  # a food piece small enough to be sold loose in a bag ('a bag of cherries') [m]
+
+
+def _pouch_of(t: str, phrase: phrase_mod.Phrase, entry: LexiconEntry, match: ConceptMatch
+              ) -> pouch_words.PouchOf | None:
+    """The pouch a container noun with a fill names ('a bag of frozen peas', 'a rice bag', 'a packet of
+    cherries': pieces of a small food the lexicon knows, loose), unless the lexicon's own entry is a bag or pouch
+    already ('a bag of sugar', 'an iv bag', 'a zip bag half full of rice')."""
+    if phrase.head not in pouch_words.CONTAINERS or phrase.portion is not None:
+        return None
+    noun = match.noun or ""
+    if not match.by_analogy and noun not in pouch_words.CONTAINERS and (
+            entry.plan in ("pouch", "bag") or noun.split()[-1:] == [phrase.head]):
+        return None  # the lexicon's own bag ('an ice bag', 'a zip bag'); the bare 'pouch' is no drawstring pouch
+    found = pouch_words.pouch_of(t, phrase.head, phrase.compounds)
+    if found is not None:
+        return found
+    m = pouch_words._OF.search(t)
+    hits = _find(m.group(1), noun_index()) if m is not None else []
+    if not hits:
+        return None
+    piece = load_lexicon().entries[noun_index()[hits[-1][2]][0]]
+    if concept_domain(piece.key) != "food" or piece.size_m > PIECE_MAX_SIZE_M:
+        return None
+    solid = piece.solid_density_kg_per_m3
+    color = piece.colors.get("body") or "beige"
+    fill = fill_words.Fill(f"pieces of {piece.key}", m.group(0), 0.8, PIECE_PACKING * solid, color,  # type: ignore[union-attr]
+                           f"{piece.key.replace('_', ' ')} pieces: {solid:g} kg/m^3 at {PIECE_PACKING:g} packing")
+    return pouch_words.PouchOf(fill=fill)
 
 
 def _qualified(surface: str, phrase: phrase_mod.Phrase) -> str:
@@ -622,6 +674,10 @@ def build(reading: Reading, text: str) -> tuple[ShapeProgram, ConceptMatch, list
     states, params = _state_params(reading, warnings)
     if reading.donor_plan is None:  # 'long floppy ears': the plan's ear parameters
         params = {**params, **ear_params(text, (reading.donor or entry).plan)}
+    base_target = reading.donor or entry
+    if base_target.plan == "ball" and reading.donor_plan is None and _PANEL_WORDS.search(normalise(text)) \
+            and not {**base_target.params, **params}.get("gores") and not base_target.params.get("patches"):
+        params = {**params, "gores": BALL_GORES}  # 'a ball with stitched panels'
     outline = _outline_param(reading)
     if outline is not None:  # 'a baking mould shaped like a heart': the mould's own outline, not a solid heart
         reading = Reading(**{**reading.__dict__, "donor_plan": None})
@@ -640,8 +696,10 @@ def build(reading: Reading, text: str) -> tuple[ShapeProgram, ConceptMatch, list
                                          "wall_thickness_m": None if shell else match.wall_thickness_m})
     goods = None  # 'a pair of', 'half full of rice' (tasks.geometry.goods_words)
     if reading.donor_plan is None or reading.donor is not None:
+        if reading.pouch is not None and reading.pouch.port != "none":
+            params = {**params, "port": reading.pouch.port}
         goods = goods_words.apply(target, reading.phrase.portion if reading.phrase else None, normalise(text),
-                                  params, size, match)
+                                  params, size, match, reading.pouch.fill if reading.pouch is not None else None)
         params, size, match = goods.params, goods.size_m, goods.match
     if reading.donor is not None:
         base = _entry_program(reading.donor, size) if not params else _with_params(reading.donor, params, size)
@@ -663,6 +721,11 @@ def build(reading: Reading, text: str) -> tuple[ShapeProgram, ConceptMatch, list
             program, applied = apply_colors(program, implied)
     if goods is not None and goods.fill_color:
         program = goods_words.painted_fill(program, goods.fill_color)
+        if reading.pouch is not None and "body" not in applied:  # a clear bag shows its fill (an IV bag its film)
+            see = "white" if reading.pouch.port == "iv" else goods.fill_color
+            program, _ = apply_colors(program, see)
+            program = _keep_part_colors(program, see)
+    program = _contrast_seams(program, target)
     program, pattern, warning = apply_pattern(program, normalise(text))
     if pattern:
         applied = {**applied, **pattern}
@@ -671,7 +734,23 @@ def build(reading: Reading, text: str) -> tuple[ShapeProgram, ConceptMatch, list
     if reading.look_only and (reading.donor or reading.donor_plan) is not None and not match.hollow:
         match = match.model_copy(update={"density_kg_per_m3": None})  # its typical mass at the built size (L1)
     program, match, states = _whole_object(reading, program, match, normalise(text), states, warnings)
+    if reading.vacuum:  # the piece on the flat sealed film of its vacuum pack; the film's mass is the piece's
+        before, program = program, pouch_words.film_wrapped(program)
+        piece = match.density_kg_per_m3 * _volume(before) if match.density_kg_per_m3 is not None \
+            else match.typical_mass_kg  # (built at its typical size here)
+        if piece is not None:  # the film's few grams are in the piece's mass: the density over the whole
+            match = match.model_copy(update={"density_kg_per_m3": piece / max(_volume(program), 1e-12)})
+        states = [*states, "vacuum-packed"]
     return program, match.model_copy(update={"colors": applied, "states": states}), warnings
+
+
+def _keep_part_colors(program: ShapeProgram, word: str) -> ShapeProgram:
+    """A pouch painted in its fill's colour keeps its seam, ports and cap apart: the seam a lighter film."""
+    lex = load_lexicon()
+    light = tuple(float(0.55 * v + 0.45) for v in lex.colors[word])
+    return program.model_copy(update={"parts": [p.model_copy(update={"color_rgb": light})
+                                                if part_group(p.name) in ("seam", "hanger tab") else p
+                                                for p in program.parts]})
 
 
 def _with_params(entry: LexiconEntry, params: dict, size_m: float) -> ShapeProgram:
@@ -1059,6 +1138,16 @@ def _whole_object(reading: Reading, program: ShapeProgram, match: ConceptMatch, 
         elif said:
             warnings.append(f"'{kind}' are not drawn: the {entry.key.replace('_', ' ')} is not ball-like")
     half = _HALF_INFLATED.search(text) is not None
+    keep = slump_of(text)
+    if keep is not None and not inflatable(target) and not dentable(target) \
+            and concept_domain(target.key) != "animal":
+        new = slumped(program, keep)
+        if new is not None:  # 'a proofed dough ball', 'a sagging sand-filled medicine ball': its own mass
+            if match.density_kg_per_m3 is not None:
+                match = match.model_copy(update={"density_kg_per_m3": match.density_kg_per_m3 * _volume(program)
+                                                 / max(_volume(new), 1e-12)})
+            program = new
+            states.append("slumped")
     if dentable(target) and (half or said_states & {"deflated", "flat", "crumpled"}):
         program = dented(program, half)  # a ball with less air: its skin dished in, the same skin's mass
         states.append("half deflated" if half else "deflated")
@@ -1078,6 +1167,77 @@ def _whole_object(reading: Reading, program: ShapeProgram, match: ConceptMatch, 
         program = posed(program, pose)
         states.append(f"on its {pose}")
     return program, match, states
+
+
+# words that say a soft round thing has settled under its own weight -> the height it keeps [-]
+SLUMP_WORDS: dict[str, float] = {
+    "slumped": 0.6, "slumping": 0.6, "slumps": 0.6, "slump": 0.6, "proofed": 0.62, "proved": 0.62, "proofing": 0.65,
+    "risen": 0.7, "sagging": 0.7, "saggy": 0.7, "sagged": 0.7, "sags": 0.7, "squashed": 0.7, "squished": 0.7,
+    "melting": 0.5, "melted": 0.45, "settled": 0.8, "deflated": 0.55,
+    "half deflated": 0.75, "partly deflated": 0.75, "partially deflated": 0.75, "underinflated": 0.8,
+    "under inflated": 0.8, "soft shell": 0.85, "soft shelled": 0.85, "sand filled": 0.82, "filled with sand": 0.82,
+    "bean filled": 0.82, "pellet filled": 0.85, "gel filled": 0.85, "water filled": 0.8, "wet": 0.92,
+    "slouched": 0.65, "puddled": 0.4}
+# degree words before a slump word -> how much of its slump is meant [-]
+SLUMP_DEGREE: dict[str, float] = {"slightly": 0.5, "a bit": 0.5, "a little": 0.5, "somewhat": 0.6, "partly": 0.7,
+                                  "a touch": 0.4, "gently": 0.6, "very": 1.3, "really": 1.3, "completely": 1.5,
+                                  "totally": 1.5, "fully": 1.3, "heavily": 1.3, "badly": 1.3, "well": 1.1}
+SLUMP_BASE = (0.12, 0.35)  # the flat base cut from a slumped body: this share of its height at no slump, the second
+# added at full slump (keep 0) [-]
+_PANEL_WORDS = re.compile(r"\b(?:panels?|panel(?:l)?ed|seams?|seamed|stitched|stitching|gores?|segmented|"
+                          r"quilted panels)\b")
+BALL_GORES = 6  # panels a ball 'with panels' gets (a medicine ball, a volleyball-like shell) [-]
+
+
+def slump_of(text: str) -> float | None:
+    """The height a slump word keeps ('slightly slumped' 0.8, 'proofed' 0.62, 'a sagging sand filled ball' 0.7);
+    the strongest word wins; None when no word says so."""
+    t = normalise(text)
+    best = None
+    for start, _end, word in _find(t, SLUMP_WORDS):
+        before = " ".join(t[:start].split()[-2:])
+        degree = next((v for k, v in SLUMP_DEGREE.items() if before.endswith(k)), 1.0)
+        keep = float(np.clip(1.0 - (1.0 - SLUMP_WORDS[word]) * degree, 0.3, 0.97))
+        best = keep if best is None else min(best, keep)
+    return best
+
+
+def slumped(program: ShapeProgram, keep: float) -> ShapeProgram | None:
+    """A round soft body settled under its own weight: `keep` of its height, spread to keep its volume, its underside
+    pressed flat on the table (a flat base cut, larger the more it slumped). None when the body is not ball-like
+    (its shortest half extent under half its longest: a cushion or a mat is flat already)."""
+    from tasks.geometry.grammar.parts import box, squashed_parts
+
+    centre, half = _body_envelope(program)
+    if float(half.min()) < 0.5 * float(half.max()) or len(program.parts) > 62:
+        return None
+    r0 = float(half[2]) / float(half[:2].max())  # a dome (a dough ball) is part slumped already: half of it counts
+    keep = min(1.0, keep * (1.0 + r0) / (2.0 * r0))
+    if keep > 0.97:
+        return None
+    base = np.array([centre[0], centre[1], centre[2] - half[2]])
+    parts = [p.model_copy(update={"transform": p.transform.model_copy(update={
+        "translation_m": tuple(float(v) for v in np.asarray(p.transform.translation_m) - base)})})
+        for p in program.parts]
+    spread = keep ** -0.5
+    parts = squashed_parts(parts, (spread, spread, keep))
+    height = 2.0 * float(half[2]) * keep
+    cut = (SLUMP_BASE[0] + SLUMP_BASE[1] * (1.0 - keep)) * height
+    big = 4.0 * float(half.max()) * spread
+    flat = box("flat base", (big, big, 2.0 * cut), (0.0, 0.0, 0.0), op="subtract").model_copy(
+        update={"color_rgb": parts[0].color_rgb})
+    return program.model_copy(update={"parts": [*parts, flat]})
+
+
+def _contrast_seams(program: ShapeProgram, target: LexiconEntry) -> ShapeProgram:
+    """A ball's panel seams in a colour that shows on its body when the entry names none (grey on a dark ball, dark
+    grey on a light one)."""
+    if "seam" in target.colors or not any(p.name.startswith("panel seam") for p in program.parts):
+        return program
+    body = np.asarray(program.parts[0].color_rgb, dtype=np.float64)
+    rgb = (0.55, 0.55, 0.55) if float(body.mean()) < 0.3 else (0.15, 0.15, 0.15)
+    return program.model_copy(update={"parts": [p.model_copy(update={"color_rgb": rgb})
+                                                if p.name.startswith("panel seam") else p for p in program.parts]})
 
 
 WEDGE_WORDS = frozenset({"wedge", "wedges"})

@@ -58,9 +58,15 @@ def bag_capacity_m3(plan: str, params: dict, size_m: float) -> float:
     return BAG_CAPACITY * height * width * min(height, width)
 
 
+# a pouch's empty film or fabric per area of its two faces [kg/m^2]: ~100 um PE film; a cotton-duck bean bag
+POUCH_SHELL_KG_PER_M2 = {"textile": 0.2, "default": 0.09}
+
+
 def apply(target: LexiconEntry, portion: str | None, text: str, params: dict, size_m: float,
-          match: ConceptMatch) -> GoodsChange:
-    """The change 'a pair of' and a stated fill make to the object built from `target` (its plan and params)."""
+          match: ConceptMatch, fill: fill_words.Fill | None = None) -> GoodsChange:
+    """The change 'a pair of' and a stated fill make to the object built from `target` (its plan and params);
+    `fill` is one read already (a pouch of goods, tasks.geometry.pouch_words). A stated volume ('500 ml', '1 litre')
+    of a fill sizes the bag to hold it."""
     out = GoodsChange(params=dict(params), size_m=size_m, match=match)
     plan = target.plan
     if plan is None or plan not in grammar.PLANS:
@@ -82,17 +88,39 @@ def apply(target: LexiconEntry, portion: str | None, text: str, params: dict, si
             out.duplicate = True
             out.match = match.model_copy(update={"typical_mass_kg": mass})
         out.notes += ("a pair: two of them",)
-    fill = fill_words.read_fill(text)
+    fill = fill or fill_words.read_fill(text)
+    if fill is None and plan == "pouch" and target.material == "gel" and "capacity" not in (match.stated_mass_source or ""):
+        from tasks.geometry.pouch_words import stated_volume_m3
+
+        if stated_volume_m3(text) is not None:  # 'a 2 l saline bag': the bag's own liquid, the stated volume of it
+            rec = fill_words.fills()["water"]
+            fill = fill_words.Fill("water", "its liquid", float(target.params.get("fill", 0.6)),
+                                   float(rec["bulk_density_kg_per_m3"]), rec["color"], rec["source"])
     if fill is not None and plan in FILLABLE_PLANS and "fill" in fields \
             and not any(" of " in f" {n} " for n in target.nouns):  # 'a bag of sugar' is its own entry
-        cap = bag_capacity_m3(plan, {**target.params, **out.params}, out.size_m)
-        fill_kg = fill.mass_kg(cap)
-        shell = out.match.typical_mass_kg or 0.0
+        from tasks.geometry.pouch_words import stated_volume_m3
+
         out.params["fill"] = float(np.clip(fill.fraction, 0.05, 1.0))
+        cap = bag_capacity_m3(plan, {**target.params, **out.params}, out.size_m)
+        volume = stated_volume_m3(text)
+        said = ""
+        if volume is not None:  # '500 ml of saline': the bag that holds it
+            k = (volume / max(fill.fraction * cap, 1e-12)) ** (1.0 / 3.0)
+            out.size_m *= k
+            cap = bag_capacity_m3(plan, {**target.params, **out.params}, out.size_m)
+            out.match = out.match.model_copy(update={"typical_size_m": out.size_m})
+            said = f" (sized to hold the stated {volume * 1e3:g} l)"
+        fill_kg = fill.mass_kg(cap)
+        if plan == "pouch":  # a pouch entry's typical mass is filled: its empty film or fabric by area
+            p = grammar.plan_parameters(plan, {**target.params, **out.params})
+            area = 2.0 * out.size_m ** 2 * float(getattr(p, "width", 0.6)) / _unit_longest(plan, p.model_dump()) ** 2
+            shell = area * POUCH_SHELL_KG_PER_M2.get(target.material, POUCH_SHELL_KG_PER_M2["default"])
+        else:
+            shell = out.match.typical_mass_kg or 0.0
         out.fill_color = fill.color
-        source = (f"{fill.words}: {fill.fraction:g} of a {cap * 1e3:.3g} l capacity x {fill.bulk_density_kg_per_m3:g} "
-                  f"kg/m^3 ({fill.source}) = {fill_kg * 1e3:.3g} g, plus the empty {target.key.replace('_', ' ')} "
-                  f"{shell * 1e3:.3g} g")
+        source = (f"{fill.words}: {fill.fraction:g} of a {cap * 1e3:.3g} l capacity{said} x "
+                  f"{fill.bulk_density_kg_per_m3:g} kg/m^3 ({fill.source}) = {fill_kg * 1e3:.3g} g, plus the empty "
+                  f"{target.key.replace('_', ' ')} {shell * 1e3:.3g} g")
         out.match = out.match.model_copy(update={"stated_mass_kg": shell + fill_kg, "stated_mass_source": source})
     return out
 

@@ -124,6 +124,8 @@ def _boundary(doc: Any, i: int, known: Callable[[str], bool] = lambda w: False) 
     prev = doc[i - 1] if i > 0 else None
     if tok.pos_ == "ADP" and not tok.is_stop and known(word):
         return False
+    if nxt is not None and not tok.is_stop and known(f"{word} {nxt.text.lower()}"):
+        return False  # a two-word lexicon noun the tagger split ('a saline iv bag': 'iv' tagged a preposition)
     if tok.is_punct or word in _RELATIVE or tok.pos_ in ("ADP", "SCONJ", "AUX") or (word == "to" and tok.pos_ == "PART"):
         return True
     if tok.pos_ == "CCONJ":

@@ -75,6 +75,8 @@ class BallParams(Model):
     laces: bool = Field(default=False, description="a row of stitched laces along the top (an American football)")
     patches: int = Field(default=0, ge=0, le=32, description="panels of another colour set into the surface, evenly "
                          "spread (a soccer ball's 12 pentagons) [-]")
+    gores: int = Field(default=0, ge=0, le=16, description="panels from pole to pole, their seams raised along the "
+                       "meridians (a medicine ball's or a volleyball's stitched panels) [-]")
 
 
 BALL_SPINDLE_POINTS = 17
@@ -108,6 +110,9 @@ def ball(p: BallParams) -> list[Part]:
         parts.append(ellipsoid("seam", (0.505 * p.aspect, 0.06, rz * 1.01), (0, 0, rz)))
     if p.laces:
         parts += _laces(p.aspect, rz)
+    for i in range(p.gores // 2):  # each seam a great circle through the poles: two panels' edges
+        parts.append(ellipsoid(f"panel seam {i + 1}", (0.52 * p.aspect, 0.022, rz * 1.04), (0, 0, rz),
+                               rot=(0, 0, 180.0 * i / (p.gores // 2))))
     if p.patches:
         for i, d in enumerate(sphere_directions(p.patches, seed=0.4)):
             n = d / np.linalg.norm(d)

@@ -1,0 +1,136 @@
+"""A pouch of goods (#35): 'a bag of frozen peas', 'a 500 ml bag of saline', 'a rice bag', 'a packet of pasta' is a
+flat, pillowy sealed bag whose fill sets its mass (the fill's share of the bag's capacity times its loose bulk
+density, tasks.geometry.fill_words); 'vacuum-packed X', 'X sealed in a vacuum pack' is X itself with the sealed
+film's flat border round it. A stated volume ('500 ml', '1 litre') or mass ('1 kg') sizes the bag to hold it."""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass
+
+import numpy as np
+
+from contracts.shape import Part, ShapeProgram
+from tasks.geometry import fill_words
+
+# container nouns that, with a fill, are a pouch of it ('a bag of peas', 'a saline bag'); a box or jar is rigid
+CONTAINERS = frozenset({"bag", "bags", "pouch", "pouches", "pack", "packs", "packet", "packets", "sachet", "sachets",
+                        "sack", "sacks", "baggie", "baggy", "ziploc", "ziplock", "bladder"})
+_CONTAINER_RX = "|".join(sorted(CONTAINERS, key=len, reverse=True))
+_OF = re.compile(rf"\b(?:{_CONTAINER_RX})\s+(?:of|with|containing|full of|filled with)\s+(?:some\s+)?"
+                 r"([a-z]+(?:\s+[a-z]+){0,2})")
+VACUUM = re.compile(r"\b(?:vacuum|vac|cryovac|cryovacked)[\s-]*(?:sealed|packed|packaged|pack|packs|bag|bagged|"
+                    r"seal|wrapped)?\b|\bshrink[\s-]*wrapped\b|\bsous[\s-]*vide\b|\bvacuum\b")
+# words after a vacuum phrase that are the package, not the contents ('sealed in a vacuum pack')
+_PACKAGE_WORDS = re.compile(r"\b(?:sealed|packed|packaged|wrapped|bagged)?\s*(?:in|inside|into)\s+(?:an?|the|its)?\s*"
+                            rf"(?:plastic\s+)?(?:{_CONTAINER_RX}|film|plastic|wrap)\b")
+LIQUID_FILLS = frozenset({"water", "ice_gel"})
+_IV_WORDS = re.compile(r"\b(?:iv|i v|drip|infusion|intravenous|saline|dextrose|transfusion)\b")
+_SPOUT_WORDS = re.compile(r"\b(?:spout|spouted|drink|drinking|juice|smoothie|squeeze)\b")
+# the sealed film round a vacuum-packed piece: its border beyond the piece / the piece's footprint, and its thickness
+# / the piece's height [-]
+FILM_BORDER = 0.14
+FILM_THICKNESS = 0.1
+FILM_MIN_THICKNESS = 1.0 / 36  # of the pack's longest side: two cells of L0's draft grid (64), so it is meshed [-]
+
+
+@dataclass(frozen=True)
+class PouchOf:
+    """A pouch of a fill: the fill, the words that name it, and its port ('iv', 'spout' or 'none')."""
+
+    fill: fill_words.Fill
+    port: str = "none"
+
+    @property
+    def liquid(self) -> bool:
+        return self.fill.key in LIQUID_FILLS
+
+
+def pouch_of(text: str, head: str | None, compounds: list[str]) -> PouchOf | None:
+    """The pouch a request names when its head noun is a container and its fill is one the fill table knows
+    ('a bag of frozen peas', 'a packet of dry pasta', 'a saline bag', 'a 2 litre water bladder'), else None."""
+    if head not in CONTAINERS:
+        return None
+    t = " ".join(text.lower().replace("-", " ").split())
+    fill = fill_words.read_fill(t)
+    m = _OF.search(t)
+    hit = fill_words._fill_key(m.group(1)) if fill is None and m is not None else None
+    if hit is not None:  # 'a bag of frozen mixed veg': the fill's words further after 'of'
+        fill = fill_words.Fill(hit[1]["key"], m.group(0), 0.8, float(hit[1]["bulk_density_kg_per_m3"]),  # type: ignore[union-attr]
+                               hit[1]["color"], hit[1]["source"])
+    if fill is None:
+        for w in reversed(compounds):  # 'a rice bag', 'a frozen pea bag'
+            hit = fill_words._fill_key(w) or fill_words._fill_key(f"{w}s")
+            if hit is not None:
+                words, rec = hit
+                fill = fill_words.Fill(rec["key"], f"{w} {head}", 0.8, float(rec["bulk_density_kg_per_m3"]),
+                                       rec["color"], rec["source"])
+                break
+    if fill is None:
+        return None
+    port = "none"
+    if fill.key in LIQUID_FILLS:
+        port = "iv" if _IV_WORDS.search(t) else "spout" if _SPOUT_WORDS.search(t) else "none"
+    return PouchOf(fill=fill, port=port)
+
+
+def vacuum_contents(text: str) -> str | None:
+    """The request without its vacuum-pack words when it says the object is vacuum-packed ('vacuum sealed pork chop'
+    -> 'pork chop'; 'a chicken breast sealed in a vacuum pack' -> 'a chicken breast'; 'a vacuum pack of salmon
+    fillets' -> 'salmon fillets'), else None."""
+    t = " ".join(text.lower().split())
+    if VACUUM.search(t) is None:
+        return None
+    m = _OF.search(t)
+    if m is not None and VACUUM.search(t[: m.start() + 1] + " "):
+        return m.group(1)
+    rest = VACUUM.sub(" ", t)
+    rest = _PACKAGE_WORDS.sub(" ", rest)
+    rest = re.sub(rf"\b(?:in|inside)\s+(?:an?|the)\s+(?:{_CONTAINER_RX})\b", " ", rest)
+    rest = re.sub(r"\s+", " ", rest).strip(" ,.")
+    return rest or None
+
+
+def film_wrapped(program: ShapeProgram, rgb: tuple[float, float, float] = (0.93, 0.93, 0.95)) -> ShapeProgram:
+    """The program lying on the flat sealed film of a vacuum pack: a thin rounded sheet under it, its footprint
+    FILM_BORDER wider on every side; the piece pressed a little flatter by the film (a vacuum pack flattens)."""
+    from tasks.geometry.grammar.parts import squashed_parts, superellipsoid
+    from tasks.geometry.meshing import sample_program
+    from tasks.geometry.sdf import program_bounds
+
+    pressed = program.model_copy(update={"parts": squashed_parts(program.parts, (1.0, 1.0, 0.9))})
+    field, origin, spacing = sample_program(pressed, 40)
+    idx = np.argwhere(field < 0)
+    if len(idx):  # the solid's own box (the parts' boxes overstate blends and rotations)
+        lo, hi = origin + idx.min(axis=0) * spacing, origin + (idx.max(axis=0) + 1) * spacing
+    else:
+        lo, hi = (np.asarray(v, dtype=np.float64) for v in program_bounds(pressed))
+    ext = hi - lo
+    centre = (lo + hi) / 2.0
+    film_t = max(FILM_THICKNESS * float(ext[2]), FILM_MIN_THICKNESS * float(ext[:2].max() * (1 + 2 * FILM_BORDER)))
+    half = (float(ext[0]) * (0.5 + FILM_BORDER), float(ext[1]) * (0.5 + FILM_BORDER), film_t / 2)
+    film = superellipsoid("film", half, (float(centre[0]), float(centre[1]), float(lo[2]) + film_t / 2),
+                          ns=0.2, ew=0.35).model_copy(update={"color_rgb": rgb})
+    parts: list[Part] = [*pressed.parts, film]
+    return program.model_copy(update={"parts": parts})
+
+
+_VOLUME = re.compile(r"(?<![\w.])(\d+(?:\.\d+)?)\s*(ml|millilitres?|milliliters?|cl|l|litres?|liters?|ltr|"
+                     r"fl\s*oz|fluid\s+ounces?|gallons?|gal|pints?|quarts?|cups?)(?![a-z])")
+_VOLUME_L = {"ml": 1e-3, "millilitre": 1e-3, "milliliter": 1e-3, "millilitres": 1e-3, "milliliters": 1e-3,
+             "cl": 1e-2, "l": 1.0, "litre": 1.0, "liter": 1.0, "litres": 1.0, "liters": 1.0, "ltr": 1.0,
+             "gallon": 3.785, "gallons": 3.785, "gal": 3.785, "pint": 0.473, "pints": 0.473, "quart": 0.946,
+             "quarts": 0.946, "cup": 0.237, "cups": 0.237}
+
+
+def stated_volume_m3(text: str) -> float | None:
+    """A volume the request states ('500 ml', '1 liter', '2 l', '16 fl oz') [m^3], else None."""
+    m = _VOLUME.search(text.lower())
+    if m is None:
+        return None
+    unit = re.sub(r"\s+", " ", m.group(2))
+    litres = 0.0296 if unit.startswith("fl") or unit.startswith("fluid") else _VOLUME_L.get(unit)
+    if litres is None:
+        return None
+    v = float(m.group(1)) * litres * 1e-3
+    return v if v > 0 else None
