@@ -17,7 +17,7 @@ from contracts.errors import InputError
 from contracts.lexicon import load_lexicon
 from contracts.request import MAX_SIZE_M, MIN_SIZE_M, AssetRequest
 from contracts.shape import ShapeProgram
-from tasks.geometry import concepts, grammar, size_words
+from tasks.geometry import concepts, dims_words, grammar, size_words
 
 CATALOGUE_FILE = Path(__file__).with_name("catalogue.yaml")
 
@@ -335,7 +335,19 @@ def design_from_text(text: str, size_hint_m: float | None = None) -> Design:
     if mass is not None:
         stripped = size_words.strip_spans(stripped, [mass.span])
     reading = concepts.read_text(stripped)
+    bound = dims_words.bind(text_n, reading.donor or reading.entry, reading.phrase.states if reading.phrase else []) \
+        if size_hint_m is None and reading.donor_plan is None else None
+    if bound is not None:  # '6 mm thick' of a rolled mat, '3 m of 10 mm rope': the material's sizes, its parameters
+        reading.params = bound.params
+        size = parse_size(dims_words.strip_consumed(text_n, bound.consumed))
+        if bound.longest_m is not None and not size.explicit:
+            size = SizeSpec(longest_m=bound.longest_m, stated="; ".join(bound.consumed))
     program, match, build_warnings = concepts.build(reading, stripped)
+    if bound is not None and abs(bound.mass_factor - 1.0) > 0.02 and match.typical_mass_kg is not None:
+        kg = match.typical_mass_kg * bound.mass_factor
+        match = match.model_copy(update={"stated_mass_kg": kg, "stated_mass_source": (
+            f"the lexicon's {match.concept.replace('_', ' ')} ({match.typical_mass_kg:.3g} kg) x {bound.mass_factor:.3g} "
+            f"for its stated material ({'; '.join(bound.notes)})")})
     fill_match = match
     if mass is not None:
         match = match.model_copy(update={"stated_mass_kg": mass.kg, "stated_mass_source": f"stated in the request: "

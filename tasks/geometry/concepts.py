@@ -125,6 +125,7 @@ class Reading:
     look_only: bool = False  # the donor lends only its look ('a cat-shaped pillow' weighs what the pillow weighs)
     pouch: pouch_words.PouchOf | None = None  # 'a bag of frozen peas': a pouch of a fill (tasks.geometry.pouch_words)
     vacuum: bool = False  # 'vacuum-packed X': X on the sealed film of a vacuum pack
+    params: dict = field(default_factory=dict)  # plan parameters bound from the text ('6 mm thick': the sheet's)
 
 
 def normalise(text: str) -> str:
@@ -394,7 +395,7 @@ def modifier_word(word: str) -> bool:
         or word in phrase_mod.STATE_WORDS or any(word in p for p in PATTERN_WORDS)
 
 
-def read_text(text: str) -> Reading:
+def read_text(text: str, serving: bool = True) -> Reading:
     """The concept a description names, with its shape donor, colours and fallback level.
 
     The parse (tasks.geometry.phrase) finds the object's own noun phrase; the lexicon is searched in it, so words
@@ -409,6 +410,9 @@ def read_text(text: str) -> Reading:
         return inner
     t_shape, donor, donor_words = _shape_donor(t)
     phrase = phrase_mod.parse(t_shape, known_noun, modifier_word)
+    served = _serving(t, phrase) if serving else None
+    if served is not None:  # 'a jello cup', 'a cup of strawberry jelly': one serving of the food
+        return served
     if phrase.placeholder:
         head, compound, unknown = None, None, None  # 'the squishy thing ...': nothing is named
     else:
@@ -489,6 +493,47 @@ def read_text(text: str) -> Reading:
         return Reading(match=match, entry=entry, warnings=[note], phrase=phrase, pouch=pouch)
     return Reading(match=match, entry=entry, donor=donor_entry, donor_plan=donor_plan, warnings=warnings,
                    phrase=phrase, size_m=size_m, look_only=look and not match.by_analogy)
+
+
+# one serving of a soft dessert: the snack cup's contents, turned out (#35)
+SERVING_WORDS = re.compile(r"\b(?:single serve|single serving|single portion|individual|snack cup|snack pot|"
+                           r"(?:from|in|out of) (?:an? |the )?(?:[a-z]+ ){0,2}(?:cup|pot|tub|ramekin))\b")
+SERVING_HEADS = frozenset({"cup", "cups", "pot", "pots", "tub", "ramekin"})
+SERVING_CATEGORIES = frozenset({"jelly", "dessert", "dairy"})
+SERVING_SIZE_M = 0.065  # a 4 oz (113 g) snack cup's contents turned out: ~6.5 cm across its base [m]
+
+
+def _serving(t: str, phrase: phrase_mod.Phrase) -> Reading | None:
+    """The reading of one serving of a soft dessert ('a jello cup', 'a pudding pot', 'a cup of strawberry jelly',
+    'jello from a single-serve snack cup'): the food itself, built at a snack cup's size (its typical mass scaled
+    by volume), or None."""
+    if phrase.head in SERVING_HEADS and not phrase.portion:
+        food = " ".join([*phrase.adjectives, *phrase.compounds])
+        m = re.search(r"\b(?:cup|pot|tub|ramekin)s? of ([a-z ]+?)(?=$|[,.;]| with | from | on )", t)
+        if not food.strip() and m is not None:
+            food = m.group(1)
+    elif SERVING_WORDS.search(t) is not None:
+        food = t
+    else:
+        return None
+    if not food.strip() or not _find(food, noun_index()):
+        return None
+    inner = read_text(food, serving=False)
+    if inner.match.by_analogy and food != t:  # 'a pudding snack cup': the food the lexicon knows among the words
+        inner = read_text(_find(food, noun_index())[-1][2], serving=False)
+    entry = inner.entry
+    if inner.match.by_analogy or entry.category not in SERVING_CATEGORIES or entry.size_m <= SERVING_SIZE_M * 1.15:
+        return None
+    return _served(inner, entry)
+
+
+def _served(reading: Reading, entry: LexiconEntry) -> Reading:
+    reading.size_m = SERVING_SIZE_M
+    reading.warnings = [*reading.warnings]
+    reading.match = reading.match.model_copy(update={"typical_mass_kg": (reading.match.typical_mass_kg or entry.mass_kg)
+                                                     * (SERVING_SIZE_M / entry.size_m) ** 3,
+                                                     "typical_size_m": SERVING_SIZE_M})
+    return reading
 
 
 # the fraction of a piece's solid volume a loose heap of them fills (random packing of lumpy pieces) [-]
@@ -672,6 +717,7 @@ def build(reading: Reading, text: str) -> tuple[ShapeProgram, ConceptMatch, list
     size = reading.size_m or entry.size_m
     warnings: list[str] = []
     states, params = _state_params(reading, warnings)
+    params = {**reading.params, **params}  # (tasks.geometry.dims_words: a sheet's thickness, a rope's length)
     if reading.donor_plan is None:  # 'long floppy ears': the plan's ear parameters
         params = {**params, **ear_params(text, (reading.donor or entry).plan)}
     base_target = reading.donor or entry
@@ -686,7 +732,8 @@ def build(reading: Reading, text: str) -> tuple[ShapeProgram, ConceptMatch, list
     target = reading.donor or entry
     if "state" in params and target.plan is not None and (reading.donor_plan is None or reading.donor is not None):
         # the same object in another state: a 1.83 m yoga mat rolled up is a 0.61 m roll of the same mass
-        change = grammar.state_change(target.plan, target.params, size, params["state"])
+        own = {k: v for k, v in reading.params.items() if k != "state"}
+        change = grammar.state_change(target.plan, {**target.params, **own}, size, params["state"])
         size = change.size_m
         shell = match.hollow and match.wall_thickness_m is not None  # a folded film's built area is not its film's
         density = match.density_kg_per_m3 * change.density_factor if match.density_kg_per_m3 and not shell else None

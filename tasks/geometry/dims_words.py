@@ -1,0 +1,135 @@
+"""Sizes that measure a thin good's material, not the object as built (#35): 'a yoga mat 6 mm thick, rolled up' is a
+6 mm sheet (the roll keeps its size), 'a 3 m length of 10 mm rope' is 3 m of rope 10 mm thick (coiled when it is
+longer than L0 builds), 'a 41 in resistance band loop' a band 41 in long laid flat. The bound sizes become the plan's
+own parameters (a sheet's or strip's thickness, a strip's width and length), the size the object is built at follows
+from them, and its mass is the lexicon's typical mass scaled by its material's length and cross-section."""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass, field
+
+from contracts.lexicon import LexiconEntry
+from contracts.request import MAX_SIZE_M
+from contracts.shape import ShapeProgram
+from tasks.geometry import grammar
+
+_UNITS = {"mm": 0.001, "millimeter": 0.001, "millimetre": 0.001, "millimeters": 0.001, "millimetres": 0.001,
+          "cm": 0.01, "centimeter": 0.01, "centimetre": 0.01, "centimeters": 0.01, "centimetres": 0.01, "m": 1.0,
+          "meter": 1.0, "metre": 1.0, "meters": 1.0, "metres": 1.0, "in": 0.0254, "inch": 0.0254, "inches": 0.0254,
+          '"': 0.0254, "ft": 0.3048, "foot": 0.3048, "feet": 0.3048, "yd": 0.9144, "yard": 0.9144, "yards": 0.9144}
+_MEASURE = re.compile(r"(?:\b(length|thickness|diameter|width)\s*(?:of|:|=)?\s*)?(\d+(?:\.\d+)?)\s*"
+                      r"(mm|millimet(?:er|re)s?|cm|centimet(?:er|re)s?|m|met(?:er|re)s?|inch(?:es)?|in|\"|ft|foot|"
+                      r"feet|yd|yards?)\b(?:\s*(?:in\s+)?(long|length|thick|thickness|wide|width|diameter|dia|across|"
+                      r"round|gauge))?", re.I)
+THIN_PLANS = frozenset({"sheet", "strap"})
+CROSS_SECTION_MAX = 0.06  # a bare size under this share of the good's typical size measures its cross-section [-]
+CROSS_WORDS = {"thick": "thickness", "thickness": "thickness", "diameter": "diameter", "dia": "diameter",
+               "gauge": "diameter", "wide": "width", "width": "width", "across": "diameter", "round": "diameter"}
+
+
+@dataclass
+class Bound:
+    """Sizes bound to the material: plan parameters, the longest extent to build at (None: as stated or typical),
+    the mass factor over the entry's typical mass, the size words consumed, and notes."""
+
+    params: dict = field(default_factory=dict)
+    longest_m: float | None = None
+    mass_factor: float = 1.0
+    consumed: list[str] = field(default_factory=list)
+    notes: list[str] = field(default_factory=list)
+
+
+def _unit_longest(plan: str, params: dict) -> float:
+    p = grammar.plan_parameters(plan, params)
+    return float(grammar.program_extents(ShapeProgram(name=plan, category="unit", parts=grammar.PLANS[plan][1](p)),
+                                         64).max())
+
+
+def _measures(text: str) -> list[tuple[str | None, float, str]]:
+    """(what the size measures: 'length', 'thickness', 'diameter', 'width' or None for a bare size, metres, words)."""
+    out: list[tuple[str | None, float, str]] = []
+    for m in _MEASURE.finditer(text.lower()):
+        unit = m.group(3).lower()
+        key = unit if unit in _UNITS else next((k for k in _UNITS if unit.startswith(k[:4]) and len(k) > 2), "cm")
+        metres = float(m.group(2)) * _UNITS[key]
+        prefix = (m.group(1) or "").lower()
+        if prefix and out and out[-1][2].lower().endswith(prefix):  # 'a 3 m length of 10 mm rope': 'length' is 3 m's
+            prefix = ""
+        word = (m.group(4) or prefix).lower()
+        what = CROSS_WORDS.get(word) or ("length" if word in ("long", "length") else None)
+        out.append((what, metres, m.group(0).strip()))
+    return out
+
+
+def bind(text: str, entry: LexiconEntry | None, states: list[str]) -> Bound | None:
+    """The sizes of `text` that measure the thin good `entry` (a sheet's thickness; a strip's length, width,
+    thickness or diameter) as plan parameters, or None when none does (the object is sized as built)."""
+    if entry is None or entry.plan not in THIN_PLANS or entry.plan not in grammar.PLANS:
+        return None
+    measures = _measures(text)
+    if not measures:
+        return None
+    params = dict(entry.params)
+    state = states[0] if states else params.get("state")
+    if state is not None and state in grammar.plan_states(entry.plan):
+        params["state"] = state  # (to build it in: a long rope is coiled when it is straight past L0's size)
+    typical = entry.size_m
+    base_state = {**entry.params}
+    length0 = typical / _unit_longest(entry.plan, base_state)  # the material's own length (a strip's, a flat sheet's)
+    bound = Bound()
+    cross = [(w, v, s) for w, v, s in measures
+             if (w in ("thickness", "diameter", "width") or w is None) and v < CROSS_SECTION_MAX * max(typical, length0)]
+    if entry.plan == "sheet":
+        thick = [(v, s) for w, v, s in cross if w == "thickness"]
+        if not thick:
+            return None
+        v, s = thick[0]
+        t0 = float(grammar.plan_parameters("sheet", params).thickness)  # type: ignore[attr-defined]
+        params["thickness"] = v / length0
+        bound.mass_factor = params["thickness"] / t0
+        bound.consumed.append(s)
+        bound.notes.append(f"'{s}' is the sheet's own thickness")
+    else:  # a strip, band, rope or cord
+        p0 = grammar.plan_parameters("strap", params)
+        closed = bool(getattr(p0, "closed", False))
+        lengths = [(v, s) for w, v, s in measures if (w == "length" or w is None) and (v, s) not in
+                   [(c[1], c[2]) for c in cross]]
+        length = length0
+        if lengths:
+            v, s = lengths[0]
+            length = 2.0 * v if closed else v  # a closed band's size is its length laid flat, doubled
+            bound.consumed.append(s)
+            bound.notes.append(f"'{s}' is the {'band laid flat' if closed else 'strip'}'s own length")
+        w0, t0 = float(p0.width), float(p0.thickness)  # type: ignore[attr-defined]
+        width, thickness = w0 * length0, t0 * length0
+        for w, v, s in cross:
+            if w in ("diameter",) or (w is None and p0.round) or (w == "thickness" and p0.round):  # type: ignore[attr-defined]
+                width = thickness = v
+            elif w == "thickness":
+                thickness = v
+            elif w == "width" or w is None:
+                width = v
+            bound.consumed.append(s)
+            bound.notes.append(f"'{s}' is its {w or ('diameter' if p0.round else 'width')}")  # type: ignore[attr-defined]
+        if not bound.consumed:
+            return None
+        params["width"] = min(width / length, 0.3)
+        params["thickness"] = min(thickness / length, 0.1)
+        if _unit_longest("strap", params) * length > MAX_SIZE_M and "rolled" in grammar.plan_states("strap") \
+                and params.get("state") != "loop":
+            params["state"] = "rolled"  # longer than L0 builds straight: coiled
+            bound.notes.append(f"{length:g} m of it is built coiled")
+        bound.longest_m = _unit_longest("strap", params) * length
+        bound.mass_factor = (length / length0) * (width * thickness) / (w0 * t0 * length0 ** 2)
+    if params.get("state") == (states[0] if states else entry.params.get("state")) or "state" not in params:
+        params.pop("state", None)  # the state the text or the entry gives is applied as a state (concepts.build)
+    bound.params = params
+    return bound
+
+
+def strip_consumed(text: str, consumed: list[str]) -> str:
+    """The text without the size phrases a binding consumed (so they do not size the object as built too)."""
+    for s in consumed:
+        text = re.sub(re.escape(s), " ", text, count=1, flags=re.I)
+    return re.sub(r"\s+", " ", text).strip()
