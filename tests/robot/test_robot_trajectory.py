@@ -2,7 +2,8 @@
 
 from __future__ import annotations
 
-import time
+from collections.abc import Callable
+from typing import Any
 
 import numpy as np
 import pytest
@@ -127,11 +128,49 @@ def test_pad_motion_lands_constant_velocity_colliders_on_the_plan(traj: Trajecto
         assert np.allclose(m.angular_velocity_rad_per_s, inst.angular_velocity_rad_per_s, atol=1e-2)
 
 
-def test_finger_pads_are_cheap_per_step(traj: Trajectory) -> None:
-    t0 = time.perf_counter()
-    for k in range(2000):
-        traj.finger_pads(k * 3.1e-3)
-    assert (time.perf_counter() - t0) / 2000 < 5e-4
+def test_finger_pads_are_table_lookups_without_kinematics(traj: Trajectory, monkeypatch: pytest.MonkeyPatch) -> None:
+    """The trial reads the pads every MPM step: finger_pads and pads_at interpolate the table plan_trajectory filled
+    once (pybullet FK at table_dt_s), with no pybullet call, no robot kinematics and no evaluation of the plan's
+    pieces per step. (Their seconds per step: `python -m benchmarks.pads_bench --json`.)"""
+    import inspect
+
+    from tasks.quiet_pybullet import pybullet as pb
+    from tasks.robot.panda import Panda, _quat_to_matrix
+
+    calls: list[str] = []
+
+    def counted(name: str, fn: Callable[..., Any]) -> Callable[..., Any]:
+        def call(*args: Any, **kwargs: Any) -> Any:
+            calls.append(name)
+            return fn(*args, **kwargs)
+        return call
+
+    for name in dir(pb):
+        fn = getattr(pb, name)
+        if not name.startswith("_") and callable(fn) and not isinstance(fn, type):
+            monkeypatch.setattr(pb, name, counted(f"pybullet.{name}", fn))
+    for name, fn in vars(Panda).items():
+        if inspect.isfunction(fn) and not name.startswith("__"):
+            monkeypatch.setattr(Panda, name, counted(f"Panda.{name}", fn))
+    for name in ("state_at", "_segment"):
+        monkeypatch.setattr(Trajectory, name, counted(f"Trajectory.{name}", getattr(Trajectory, name)))
+    _quat_to_matrix([0.0, 0.0, 0.0, 1.0])
+    assert calls == ["pybullet.getMatrixFromQuaternion"]  # the counting sees pybullet calls made from tasks.robot
+    calls.clear()
+
+    times = np.arange(2000) * 3.1e-3
+    pads = [traj.finger_pads(float(t)) for t in times]
+    batch = traj.pads_at(times)
+    assert calls == [], sorted(set(calls))
+    # what they return is the table, interpolated: at a sample time, the stored pad pose and velocity
+    table = traj._table
+    for k in (0, 7, len(table["t"]) // 2, len(table["t"]) - 2):
+        for f, pad in enumerate(traj.finger_pads(float(table["t"][k]))):
+            assert np.allclose(pad.position_m, table["pos"][k, f], atol=1e-12)
+            assert np.allclose(pad.linear_velocity_m_per_s, table["vel"][k, f], atol=1e-12)
+    assert calls == []
+    for k in (1, 999, 1999):
+        assert np.allclose([p.position_m for p in pads[k]], batch.position_m[k])
 
 
 def test_unreachable_target_raises_a_clear_error() -> None:
