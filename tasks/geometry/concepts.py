@@ -230,6 +230,8 @@ def _shape_donor(text: str) -> tuple[str, object | None, str]:
         m = _X_SHAPED.search(text)
     if m is None:
         m = _X_LIKE.search(text)
+        if m is not None and (m.group(1).split()[-1] in phrase_mod.STATE_WORDS or m.group(1).split()[-1].endswith("ed")):
+            m = None  # 'folded like in a shop display' compares how, it names no shape
     if m is None:
         return text, None, ""
     words = re.sub(r"^(?:an?|the) ", "", m.group(1).strip())
@@ -724,6 +726,11 @@ def build(reading: Reading, text: str) -> tuple[ShapeProgram, ConceptMatch, list
     if base_target.plan == "ball" and reading.donor_plan is None and _PANEL_WORDS.search(normalise(text)) \
             and not {**base_target.params, **params}.get("gores") and not base_target.params.get("patches"):
         params = {**params, "gores": BALL_GORES}  # 'a ball with stitched panels'
+    curl = _CURL_WORDS.search(normalise(text))
+    if base_target.plan == "sheet" and curl is not None and {**base_target.params, **params}.get("state", "flat") == "flat":
+        slight = re.search(r"\b(?:slightly|a bit|a little|a touch|gently)\b", normalise(text)) is not None
+        params = {**params, "curl": SHEET_CURL * (0.7 if slight else 1.0)}  # 'a baking mat, its corners curling up'
+        states.append("corners curling")
     outline = _outline_param(reading)
     if outline is not None:  # 'a baking mould shaped like a heart': the mould's own outline, not a solid heart
         reading = Reading(**{**reading.__dict__, "donor_plan": None})
@@ -1233,6 +1240,9 @@ SLUMP_BASE = (0.12, 0.35)  # the flat base cut from a slumped body: this share o
 # added at full slump (keep 0) [-]
 _PANEL_WORDS = re.compile(r"\b(?:panels?|panel(?:l)?ed|seams?|seamed|stitched|stitching|gores?|segmented|"
                           r"quilted panels)\b")
+_CURL_WORDS = re.compile(r"\b(?:curl(?:ing|ed|s|y)?(?: up)?(?: [a-z]+){0,3} (?:corners?|edges?)|(?:corners?|edges?)"
+                         r"(?: [a-z]+){0,2} (?:curl(?:ing|ed|s)?|turn(?:ing|ed)? up|lift(?:ing|ed)?)|dog eared)\b")
+SHEET_CURL = 0.3  # the share of a sheet's width a curling corner lifts from [-]
 BALL_GORES = 6  # panels a ball 'with panels' gets (a medicine ball, a volleyball-like shell) [-]
 
 

@@ -118,6 +118,10 @@ class QuadrupedParams(Model):
     hump: bool = False
     mane: bool = Field(default=False, description="a crest of hair along the top of the neck and head (horse, "
                        "unicorn, lion)")
+    hind: Literal["straight", "folded"] = Field(default="straight", description="folded: long hind legs folded "
+                                                 "along the body, thigh forward, shin back, a long flat foot splayed "
+                                                 "out (a frog, a toad)")
+    top_eyes: bool = Field(default=False, description="two bulging eyes on top of the head (a frog, a hippo)")
     state: Literal["standing", "sitting", "lying", "curled"] = Field(
         default="standing", description="standing on its legs; sitting on its haunches, chest up; lying down, head on "
         "its front paws; curled up asleep, the body bent round into a ring, head on its tail")
@@ -156,7 +160,40 @@ def quadruped(p: QuadrupedParams) -> list[Part]:
                               p.leg_radius, blend=0.04)
     else:
         parts.append(ellipsoid("legs", (0.42, 0.85 * bw / 2, 0.12), (0, 0, 0.12), blend=0.05))
-    return [*parts, *_quadruped_head_and_tail(p, zb)]
+    if p.hind == "folded":  # the rear pair replaced by folded jumping legs
+        parts = [q for q in parts if "rear leg" not in q.name] + _folded_hind_legs(p, zb)
+    head = _quadruped_head_and_tail(p, zb)
+    return [*parts, *head, *(_top_eyes(head, p, zb) if p.top_eyes else [])]
+
+
+def _folded_hind_legs(p: QuadrupedParams, zb: float) -> list[Part]:
+    """A frog's hind legs folded along its sides: the thigh from the hip forward and out, the shin back along the
+    flank, and a long flat webbed foot splayed out behind."""
+    bw, bh = p.body_width, p.body_height
+    r = max(p.leg_radius, 0.07)
+    hip = (-0.3, 0.6 * bw / 2, zb - 0.1 * bh)
+    knee = (0.02, bw / 2 + 1.1 * r, 1.2 * r)
+    ankle = (-0.42, bw / 2 + 1.2 * r, 0.9 * r)
+    parts = mirrored(limb, "thigh", hip, knee, 1.25 * r, blend=0.05)
+    parts += mirrored(limb, "shin", knee, ankle, 0.95 * r, blend=0.04)
+    for side, sy in (("left", 1.0), ("right", -1.0)):
+        parts.append(ellipsoid(f"{side} hind foot", (0.24, 0.11, 0.45 * r), (-0.36, sy * (bw / 2 + 2.4 * r), 0.45 * r),
+                               rot=(0, 0, sy * -35.0), blend=0.03))
+    return parts
+
+
+def _top_eyes(parts: list[Part], p: QuadrupedParams, zb: float) -> list[Part]:
+    """Two bulging eyes on top of the head, each a round bump with a dark pupil looking out."""
+    head = next((q for q in parts if q.name == "head"), None)
+    c = np.asarray(head.transform.translation_m) if head is not None else np.array([0.55, 0.0, zb + 0.2])
+    hr = p.head_size / 2
+    out: list[Part] = []
+    for side, sy in (("left", 1.0), ("right", -1.0)):
+        at = c + np.array([0.05 * hr, sy * 0.5 * hr, 0.78 * hr])
+        out.append(ellipsoid(f"{side} eye bump", (0.3 * hr, 0.3 * hr, 0.3 * hr), tuple(at), blend=0.06 * hr))
+        out.append(ellipsoid(f"{side} eye", (0.15 * hr, 0.15 * hr, 0.15 * hr),
+                             tuple(at + np.array([0.2 * hr, sy * 0.1 * hr, 0.08 * hr])), blend=0.0))
+    return out
 
 
 def _curled_quadruped(p: QuadrupedParams) -> list[Part]:

@@ -57,6 +57,40 @@ class SheetParams(Model):
     fringe: bool = Field(default=False, description="a fringe of tassels at both short ends (a scarf, a rug)")
     ribs: int = Field(default=0, ge=0, le=9, description="knit ribs: shallow grooves along the length [-]")
     zip: bool = Field(default=False, description="a zip along one long side (a sleeping bag)")
+    curl: float = Field(default=0.0, ge=0.0, le=0.45, description="flat: each corner lifted, curling up from a "
+                        "hinge across it this share of the width from the corner (a baking mat's curling corners) [-]")
+
+
+CURL_DEG = 38.0  # how far a curling corner lifts about its hinge [deg]
+
+
+def curled_corners(length: float, width: float, t: float, c: float) -> list[Part]:
+    """A flat sheet's four corners curling up: each corner's triangle (legs `c`) cut from the sheet and a flap over
+    it turned up CURL_DEG about the hinge across the corner (two short layers, the second turned further, read as a
+    curl)."""
+    from scipy.spatial.transform import Rotation
+
+    cuts: list[Part] = []
+    flaps: list[Part] = []
+    for k, (sx, sy) in enumerate(((1, 1), (-1, 1), (-1, -1), (1, -1))):
+        corner = np.array([sx * length / 2, sy * width / 2, 0.0])
+        d = np.array([sx, sy, 0.0]) / np.sqrt(2)  # outward along the corner's diagonal
+        hinge_dir = np.array([sx, -sy, 0.0]) / np.sqrt(2) * (sx * sy)  # turning d about it lifts d towards +z
+        mid = corner - np.array([sx, sy, 0.0]) * c / 2
+        cuts.append(box(f"corner cut {k + 1}", (c, c, 4 * t), (corner[0], corner[1], t / 2),
+                        rot=(0, 0, 45.0), op="subtract"))
+        yaw = Rotation.from_euler("z", np.degrees(np.arctan2(d[1], d[0])), degrees=True)
+        reach = c / np.sqrt(2)  # from the hinge to the corner
+        start = mid.copy()
+        for j, (share, angle) in enumerate(((0.55, CURL_DEG * 0.6), (0.45, CURL_DEG * 1.6))):
+            turn = Rotation.from_rotvec(np.radians(angle) * hinge_dir) * yaw
+            seg = share * reach
+            centre = start + turn.apply(np.array([seg / 2, 0.0, 0.0])) + np.array([0.0, 0.0, t / 2])
+            euler = tuple(float(e) for e in turn.as_euler("xyz", degrees=True))
+            flaps.append(box(f"corner {k + 1} curl {j + 1}", (seg * 1.06, 2 * reach, t), tuple(centre), edge=0.45 * t,
+                             rot=euler, blend=0.3 * t))
+            start = start + turn.apply(np.array([seg, 0.0, 0.0]))
+    return cuts + flaps
 
 
 QUILT_DEPTH = 0.45  # a baffle groove's depth / the quilted layer [-]
@@ -88,6 +122,8 @@ def sheet(p: SheetParams) -> list[Part]:
         parts += knit_ribs(1.0, w, t, p.ribs) + (fringe(1.0, w, t) if p.fringe else [])
         if p.zip:
             parts.append(box("zip", (0.96, 0.018, 0.5 * t), (0, -w / 2 + 0.02, t), edge=0.2 * t, blend=0.004))
+        if p.curl > 0 and p.shape == "rect":
+            parts += curled_corners(1.0, w, t, p.curl * w)
         return parts
     if p.state == "loop":
         return _strip_loop(p, t)

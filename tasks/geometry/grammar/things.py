@@ -138,12 +138,41 @@ class BlockParams(Model):
     height: float = Field(default=0.4, gt=0.02, le=1.0, description="height / length [-]")
     edge: float = Field(default=0.1, ge=0.0, le=0.5, description="edge radius / the smallest side [-]")
     layer: float = Field(default=0.0, ge=0.0, le=0.9, description="top layer share (a scrub pad on a sponge) [-]")
+    pips: bool = Field(default=False, description="a die's pips pressed into its six faces, one to six (opposite "
+                       "faces adding to seven)")
+
+
+# a die's faces: (outward axis, sign, pips) with opposite faces adding to seven
+DIE_FACES = ((2, 1, 1), (2, -1, 6), (0, 1, 2), (0, -1, 5), (1, 1, 3), (1, -1, 4))
+_PIP_LAYOUT = {1: [(0, 0)], 2: [(-1, -1), (1, 1)], 3: [(-1, -1), (0, 0), (1, 1)],
+               4: [(-1, -1), (-1, 1), (1, -1), (1, 1)], 5: [(-1, -1), (-1, 1), (0, 0), (1, -1), (1, 1)],
+               6: [(-1, -1), (-1, 0), (-1, 1), (1, -1), (1, 0), (1, 1)]}
+
+
+def die_pips(size: tuple[float, float, float], centre: tuple[float, float, float]) -> list[Part]:
+    """Dimples for a die's pips on a box of full extents `size` centred at `centre`: a small sphere cut into each
+    face at its pip's place (1 on top, 6 below, 2-5 round the sides)."""
+    side = min(size)
+    r, step = 0.085 * side, 0.26 * side
+    parts: list[Part] = []
+    for axis, sign, n in DIE_FACES:
+        u, v = [a for a in range(3) if a != axis]
+        for a, b in _PIP_LAYOUT[n]:
+            at = list(centre)
+            at[axis] += sign * (size[axis] / 2 + 0.45 * r)
+            at[u] += a * step
+            at[v] += b * step
+            parts.append(ellipsoid(f"pip {len(parts) + 1}", (r, r, r), tuple(at)).model_copy(
+                update={"operation": "subtract", "blend_m": 0.15 * r}))
+    return parts
 
 
 def block(p: BlockParams) -> list[Part]:
     """Length 1 along x."""
     w, h = p.width, p.height
     e = p.edge * min(1.0, w, h)
+    if p.pips:
+        return [box("body", (1.0, w, h), (0, 0, h / 2), edge=e), *die_pips((1.0, w, h), (0, 0, h / 2))]
     if p.layer > 0:
         hb = h * (1 - p.layer)
         return [box("body", (1.0, w, hb), (0, 0, hb / 2), edge=e),
@@ -286,15 +315,21 @@ class EggParams(Model):
     aspect: float = Field(default=0.75, gt=0.3, le=1.0, description="width / length [-]")
     pointiness: float = Field(default=0.35, ge=0.0, le=0.9, description="how much narrower the front end is [-]")
     squash: float = Field(default=1.0, gt=0.2, le=1.0, description="height / width (a pebble) [-]")
+    knot: bool = Field(default=False, description="a tied neck and knot at the narrow end (a blown-up balloon)")
 
 
 def egg(p: EggParams) -> list[Part]:
     """Length 1 along x, blunt end at -x."""
     w = p.aspect * 0.5
     h = w * p.squash
-    return [ellipsoid("body", (0.32, w, h), (-0.18, 0, h)),
-            ellipsoid("front", (0.36, w * (1 - p.pointiness), h * (1 - p.pointiness)), (0.14, 0, h),
-                      blend=0.25)]
+    parts = [ellipsoid("body", (0.32, w, h), (-0.18, 0, h)),
+             ellipsoid("front", (0.36, w * (1 - p.pointiness), h * (1 - p.pointiness)), (0.14, 0, h), blend=0.25)]
+    if p.knot:  # the neck pinched beyond the tip, a tied knot and its rolled lip
+        tip = 0.14 + 0.36
+        parts += [limb("neck", (tip - 0.03, 0, h), (tip + 0.05, 0, h), 0.022, blend=0.02),
+                  ellipsoid("knot", (0.035, 0.045, 0.045), (tip + 0.075, 0, h), blend=0.01),
+                  cylinder("knot lip", 0.04, 0.025, (tip + 0.115, 0, h), edge=0.01, rot=(0, 90, 0), blend=0.008)]
+    return parts
 
 
 class CloudParams(Model):
