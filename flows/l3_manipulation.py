@@ -57,12 +57,13 @@ from tasks.robot.grasp_parts import body_first_grasps
 from tasks.robot.gripper import gripper
 from tasks.robot.squeeze import squeeze_plan
 
-TASK_VERSION = "12"  # bump when tasks/manipulation/{trial,outcome,body,frame}.py change what a trial returns
+TASK_VERSION = "13"  # bump when tasks/manipulation/{trial,outcome,body,frame}.py change what a trial returns
 # (6: settle until at rest; 7: simulated in the frame where the closing axis is at 45 degrees to the grid; 8: the
 # approach is recorded; 9: grippers as data, a force-controlled closure that keeps its target while held and skips the
 # rest of the closure, the time-step cap follows dx; 10: the hold's contact stiffness measured from where the force
 # began to rise, what-happened metrics and failure-mode flags (tasks.manipulation.diagnosis); 11: release_rotation_deg;
-# 12: a what-happened figure that does not exist is absent, not NaN)
+# 12: a what-happened figure that does not exist is absent, not NaN; 13: `settled` also needs the body's turn rate
+# small, and the settle runs up to 2 s after the plan)
 
 
 @cached_task(version=TASK_VERSION, name="l3.trial")

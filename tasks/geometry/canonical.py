@@ -28,6 +28,55 @@ def is_resting_stable(mesh: trimesh.Trimesh, margin_frac: float = 0.05) -> bool:
     return bool(dist_inside.min() >= margin_frac * float(np.sqrt(ch.volume)))
 
 
+def tip_angle_deg(mesh: trimesh.Trimesh, contact_m: float = 0.002) -> float:
+    """How far the resting body can lean before its centre of mass leaves its base [deg]: atan(the centre of mass'
+    distance inside the support polygon of the points within contact_m of the ground / its height). 0 when it is
+    outside or there is no base polygon."""
+    z = mesh.vertices[:, 2]
+    contact = mesh.vertices[z <= z.min() + contact_m][:, :2]
+    com = mesh.center_mass if mesh.is_watertight else mesh.centroid
+    if len(contact) < 3:
+        return 0.0
+    try:
+        ch = ConvexHull(contact)
+    except QhullError:
+        return 0.0
+    inside = float(np.min(-(ch.equations[:, :2] @ com[:2] + ch.equations[:, 2])))
+    return float(np.degrees(np.arctan2(max(inside, 0.0), max(float(com[2] - z.min()), 1e-9))))
+
+
+SEAT_TIP_DEG = 15.0  # a toy that stands is given a base it can lean this far on (see seat_flat)
+SEAT_MAX_CUT = 0.06  # ... by flattening at most this share of its height
+
+
+def seat_flat(mesh: trimesh.Trimesh, min_tip_deg: float = SEAT_TIP_DEG, max_cut: float = SEAT_MAX_CUT
+              ) -> tuple[trimesh.Trimesh, float]:
+    """A standing soft toy on a rounded bottom rests on a few points and tips over when set down a few degrees off
+    (a plush penguin of 18 cm: 6 deg). A stuffed body sits on a flattened base: cut the bottom flat at the lowest
+    height (in steps of 0.5 % of the height, at most max_cut of it) where the base holds a lean of min_tip_deg.
+    Returns the mesh resting on z = 0 and the height cut [m] (0: the base was already wide enough, or a cut does not
+    widen it)."""
+    if tip_angle_deg(mesh) >= min_tip_deg or not mesh.is_watertight:
+        return mesh, 0.0
+    lo, hi = mesh.bounds
+    height = float(hi[2] - lo[2])
+    best: tuple[float, trimesh.Trimesh] | None = None
+    for k in range(1, int(round(max_cut / 0.005)) + 1):
+        cut = k * 0.005 * height
+        seated = mesh.slice_plane([0.0, 0.0, lo[2] + cut], [0.0, 0.0, 1.0], cap=True)
+        if seated is None or len(seated.faces) == 0 or not seated.is_watertight:
+            break
+        seated.apply_translation([0.0, 0.0, -float(seated.bounds[0][2])])
+        tip = tip_angle_deg(seated)
+        if best is None or tip > tip_angle_deg(best[1]) + 1e-9:
+            best = (cut, seated)
+        if tip >= min_tip_deg:
+            break
+    if best is None or tip_angle_deg(best[1]) <= tip_angle_deg(mesh) + 1.0:
+        return mesh, 0.0
+    return best[1], best[0]
+
+
 POSE_HULL_CELLS = 24  # a smooth body's hull is thinned to one vertex per cell of a 24^3 grid for the pose search
 
 

@@ -18,7 +18,7 @@ from contracts.request import AssetRequest, Quality
 from contracts.shape import ShapeProgram
 from contracts.stage import L0Parameters, StageContract, load_contract
 from tasks.geometry import catalogue, image as image_mod, silhouette
-from tasks.geometry.canonical import canonicalize, rest_on_ground
+from tasks.geometry.canonical import canonicalize, rest_on_ground, seat_flat
 from tasks.geometry.checks import GeometryChecks, evaluate, geometry_metrics
 from tasks.geometry.collision import CoacdSettings, convex_parts, union_volume
 from tasks.geometry.gaussians import make_gaussians
@@ -142,12 +142,17 @@ def build_mesh(request: AssetRequest, settings: L0Settings) -> tuple[Arrays, Bui
     return _from_mesh(request, settings)
 
 
+SEATED_CATEGORIES = frozenset({"plush_animal", "rubber_toy", "silicone_toy"})  # standing toys get a flat base
+
+
 def _from_text(request: AssetRequest, settings: L0Settings) -> tuple[Arrays, BuildInfo]:
     design = catalogue.design_from_text(request.text or "", request.size_hint_m)
     mesh = mesh_program(design.program, settings.marching_cubes_resolution)
     mesh, rotated = canonicalize(mesh, "keep_if_stable", align_xy=False)
     if rotated:
         mesh, _ = canonicalize(mesh, "keep_if_stable", align_xy=True)
+    elif design.program.category in SEATED_CATEGORIES:
+        mesh, _ = seat_flat(mesh)
     mesh = _final_size(mesh, design.size)
     program = design.program.model_copy(update={"target_extent_m": tuple(float(v) for v in mesh.extents)})
     info = BuildInfo(source="text", name=design.program.name, category=design.program.category, entry=design.entry,

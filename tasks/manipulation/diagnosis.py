@@ -116,8 +116,11 @@ def diagnose(labels: dict[str, Any], tol: TrialTolerances) -> Diagnosis | None:
         head = (f"released off target by {_mm(err)} (tolerance {_mm(tol.place_tolerance_m)})" if err is not None
                 else "not released in the target")
         return Diagnosis("toppled" if toppled else "released_off_target", head + ": " + ", ".join(p for p in parts if p))
+    turning = _f(labels, "settle_turn_rate_deg_per_s")
+    tipping = turning is not None and turning > tol.settle_turn_rate_deg_per_s
     parts = [fell, f"fell over (turned {fallen:.0f} deg)" if toppled else "",
-             f"still moving at {speed:.2g} m/s at the end" if speed is not None else ""]
+             f"still tipping over at {turning:.0f} deg/s at the end" if tipping else "",
+             f"still moving at {speed:.2g} m/s at the end" if speed is not None and not tipping else ""]
     return Diagnosis("not_settled", "not settled after the release: " + (", ".join(p for p in parts if p)
                                                                             or "still moving"))
 

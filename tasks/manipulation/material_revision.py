@@ -4,6 +4,8 @@ A failed gate that no action can fix any more goes back to the material:
 - ``strain_p99`` (deformation bound): a stiffer material, E x strain / bound (x 1.25);
 - ``lifted`` / ``transported`` with the object slipping out of a squeeze at its limit: the stiffest E whose specimen
   modulus stays inside the L2 band (less a margin): a stiffer body gives more normal force for the same squeeze;
+- ``released_in_target`` / ``settled`` with the object set down upright and then falling over (a tall plush toy too
+  soft to stand on its base: it tips from a lean of a few degrees): the stiffest E the L2 modulus band allows;
 - ``released_in_target`` / ``settled`` with the object carried there (it rolls or bounces on): more damping, up to the
   rate whose specimen rebound stays inside the L2 band (less a margin), estimated from L2's own screening rollouts.
 Every revision is then revalidated by L2 (its selection probes, cached): every hard gate must hold and every target
@@ -29,7 +31,9 @@ from contracts.material import Material
 from contracts.stage import StageContract, load_contract
 from tasks.asset_dir import AssetDir
 from tasks.manipulation.context import L3Context, accepted
+from tasks.manipulation.diagnosis import TOPPLED_DEG
 from tasks.manipulation.l3_record import conditions
+from tasks.manipulation.outcome import TrialTolerances
 
 BAND_MARGIN = 0.1  # a revision aims this fraction of the band's width (in its scale) inside the band's end
 SLIP_GATES = ("lifted", "transported")
@@ -118,6 +122,13 @@ def revise_material(material: Material, metrics: dict[str, float], contract: Sta
                     f"slip at the squeeze limit: E {material.youngs_modulus_pa:.4g} -> {ceiling:.4g} Pa, the stiffest "
                     "the L2 modulus band allows (more normal force for the same squeeze)")
         return None
+    if failed & set(REST_GATES) and not failed & set(SLIP_GATES) and fell_over(metrics):
+        ceiling = limits.modulus_ceiling()
+        if ceiling is not None and ceiling > 1.05 * material.youngs_modulus_pa:
+            return (material.model_copy(update={"youngs_modulus_pa": ceiling}),
+                    f"fell over when let go: E {material.youngs_modulus_pa:.4g} -> {ceiling:.4g} Pa, the stiffest the L2 "
+                    "modulus band allows (a firmer body stands on its base)")
+        return None
     if failed & set(REST_GATES) and not failed & set(SLIP_GATES):
         field_high = next((f.high for f in load_contract("L2").editable_fields if f.name == "damping_rate_per_s"), 50.0)
         ceiling = limits.damping_ceiling(field_high)
@@ -128,6 +139,12 @@ def revise_material(material: Material, metrics: dict[str, float], contract: Sta
                 return (material.model_copy(update={"damping_rate_per_s": target}),
                         f"not at rest in the target: damping {d:.3g} -> {target:.3g} /s, within the L2 rebound band")
     return None
+
+
+def fell_over(metrics: dict[str, float]) -> bool:
+    """The trial's object turned over after the fingers let it go, or was still tipping at the end."""
+    return (metrics.get("mode_toppled", 0.0) == 1.0 or metrics.get("release_rotation_deg", 0.0) >= TOPPLED_DEG
+            or metrics.get("settle_turn_rate_deg_per_s", 0.0) > TrialTolerances().settle_turn_rate_deg_per_s)
 
 
 def halfway(original: Material, revised: Material) -> Material:
@@ -197,5 +214,5 @@ def more_robust(revision: MaterialRevision | None, robustness: ConditionSummary)
     return revision.model_copy(update={"accepted": False})
 
 
-__all__ = ["MaterialLimits", "Revalidate", "base_attempt", "failed_gates", "halfway", "more_robust",
+__all__ = ["MaterialLimits", "Revalidate", "base_attempt", "failed_gates", "fell_over", "halfway", "more_robust",
            "revise_material", "revise_with_l2"]

@@ -3,7 +3,9 @@
   lifted              the COM rose >= lift_height - slip_tolerance while held (held = lift start .. release start)
   transported         at release start the COM is within place_tolerance (xy) of its target and still in the hand
   released_in_target  at the end the COM is within place_tolerance (xy) of the target and the object rests on the table
-  settled             at the end the COM speed and the fastest particle speed (last frame interval) are small
+  settled             at the end the COM speed, the fastest particle speed (last frame interval) and the body's turn
+                      rate (its rigid rotation over the last ~0.1 s) are small: a tall toy tipping over slowly is
+                      not at rest, though its COM moves at a few mm/s
   slipped             the COM moved > slip_tolerance relative to the gripper frame (pad midpoint, pad axes) while held
   force_budget_violated  a finger's mean reaction force over a control interval exceeded the budget
   max_strain          largest |principal stretch - 1| of any particle in any recorded frame (singular values of F)
@@ -57,6 +59,25 @@ class TrialTolerances:
     force_budget_n: float = field(default_factory=force_budget_n)
     settle_speed_m_per_s: float = 0.02
     settle_particle_speed_m_per_s: float = 0.1
+    settle_turn_rate_deg_per_s: float = 5.0
+
+
+SETTLE_WINDOW_S = 0.1  # the span over which the COM speed and the turn rate of the `settled` label are measured
+
+
+def turn_rate_deg_per_s(x_before: np.ndarray, x_now: np.ndarray, span_s: float) -> float:
+    """The body's rigid rotation rate [deg/s] between two particle states span_s apart (Kabsch fit, world axes)."""
+    if span_s <= 0.0:
+        return float("inf")
+    eye = np.eye(3)
+    return _object_rotation_deg(np.asarray(x_before, dtype=np.float64), np.asarray(x_now, dtype=np.float64),
+                                eye, eye) / span_s
+
+
+def frame_back(frame_t_s: np.ndarray, span_s: float = SETTLE_WINDOW_S) -> int:
+    """Index of the last recorded frame at least span_s before the last one (at least one frame back)."""
+    t = np.asarray(frame_t_s, dtype=float)
+    return int(max(0, min(len(t) - 2, int(np.searchsorted(t, t[-1] - span_s + 1e-9, side="right")) - 1)))
 
 
 def _rotations(quat_xyzw: np.ndarray) -> np.ndarray:
@@ -206,7 +227,12 @@ def label_trial(arrays: dict[str, np.ndarray], traj: Trajectory, plan: ActionPla
     dt_frame = float(np.diff(arrays["frame_t_s"][-2:])[0]) if len(x_frames) > 1 else 0.0
     v_particles = (float(np.max(np.linalg.norm(x_frames[-1] - x_frames[-2], axis=1))) / dt_frame
                    if dt_frame > 0 else float("inf"))
-    k_back = _index_at(t, t[-1] - 0.1)
+    i_back = frame_back(arrays["frame_t_s"]) if len(x_frames) > 1 else 0
+    turn_rate = (turn_rate_deg_per_s(x_frames[i_back], x_frames[-1],
+                                     float(arrays["frame_t_s"][-1] - arrays["frame_t_s"][i_back]))
+                 if len(x_frames) > 1 and np.isfinite(x_frames[-1]).all() and np.isfinite(x_frames[i_back]).all()
+                 else float("inf"))
+    k_back = _index_at(t, t[-1] - SETTLE_WINDOW_S)
     span = (n_done - k_back) * float(np.mean(arrays["control_dt_s"][:n_done]))
     v_com = float(np.linalg.norm(com[-1] - com[k_back]) / span) if span > 0 else float("inf")
 
@@ -238,7 +264,8 @@ def label_trial(arrays: dict[str, np.ndarray], traj: Trajectory, plan: ActionPla
         "transported": float(complete and lifted and in_hand and err_transport <= tol.place_tolerance_m),
         "released_in_target": float(complete and err_place <= tol.place_tolerance_m and resting),
         "settled": float(complete and v_com <= tol.settle_speed_m_per_s
-                         and v_particles <= tol.settle_particle_speed_m_per_s),
+                         and v_particles <= tol.settle_particle_speed_m_per_s
+                         and turn_rate <= tol.settle_turn_rate_deg_per_s),
         "slipped": float(not (slip <= tol.slip_tolerance_m)),
         "force_budget_violated": float(not bool(np.all(max_f <= tol.force_budget_n))),
         "numerically_healthy": float(healthy),
@@ -247,7 +274,7 @@ def label_trial(arrays: dict[str, np.ndarray], traj: Trajectory, plan: ActionPla
         "max_finger_force_0_n": float(max_f[0]), "max_finger_force_1_n": float(max_f[1]),
         "slip_distance_m": slip, "lift_rise_m": rise, "transport_error_m": err_transport,
         "place_error_m": err_place, "settle_com_speed_m_per_s": v_com,
-        "settle_particle_speed_m_per_s": v_particles,
+        "settle_particle_speed_m_per_s": v_particles, "settle_turn_rate_deg_per_s": turn_rate,
         "hold_normal_force_n": n_hold, "hold_vertical_force_n": v_hold, "weight_n": weight,
         "hold_friction_ratio": 2.0 * mu * n_hold / weight, "hold_vertical_ratio": v_hold / weight,
         "hold_min_capacity_ratio": cap_min, "held_airborne_s": float(np.sum(arrays["control_dt_s"][:n_done][airborne])),

@@ -25,7 +25,7 @@ from tasks.manipulation.body import TrialBody
 from tasks.manipulation.data import approach_track
 from tasks.manipulation.diagnosis import mode_flags
 from tasks.manipulation.frame import SimFrame
-from tasks.manipulation.outcome import TrialTolerances, label_trial
+from tasks.manipulation.outcome import TrialTolerances, frame_back, label_trial, turn_rate_deg_per_s
 from tasks.robot import PHASES, ObjectPose, Trajectory, plan_trajectory
 
 PAD_FACES = ("-y", "+y")  # gripping face of the left and right pad boxes in the finger links' axes
@@ -61,7 +61,7 @@ class TrialSettings:
     # after the plan's last phase the hand holds still and the simulation goes on until the object is at rest (the
     # `settled` thresholds of TrialTolerances), at most this long: a ball still rolling at 6 cm/s when a 0.2 s settle
     # phase ends has not been judged, it has been cut off [s]; 0 ends every trial with the plan
-    settle_until_rest_max_s: float = 1.0
+    settle_until_rest_max_s: float = 2.0
     # the trial is simulated in a frame turned about the vertical so that the closing axis makes this angle with the
     # MPM grid's x axis (tasks.manipulation.frame); everything recorded is in the world frame. None: the world frame,
     # where the grasp meets the grid at an angle that depends on the object's yaw, and so did the outcome at draft
@@ -110,12 +110,14 @@ def world_gaussians(body: TrialBody, pose: ObjectPose) -> dict[str, np.ndarray]:
 
 
 def _at_rest(com_m: np.ndarray, com_span_s: float, x_m: np.ndarray, x_prev_m: np.ndarray, frame_span_s: float,
-             tol: TrialTolerances) -> bool:
+             x_back_m: np.ndarray, back_span_s: float, tol: TrialTolerances) -> bool:
     """The `settled` label's condition (tasks.manipulation.outcome) if the trial ended now: the COM speed over the
-    window com_m and the fastest particle's displacement since the last recorded frame are below the thresholds."""
+    window com_m, the fastest particle's displacement since the last recorded frame and the body's turn rate since
+    x_back_m (back_span_s ago) are below the thresholds."""
     v_com = float(np.linalg.norm(com_m[-1] - com_m[0])) / com_span_s
     v_par = float(np.max(np.linalg.norm(x_m - x_prev_m, axis=1))) / frame_span_s
-    return v_com <= tol.settle_speed_m_per_s and v_par <= tol.settle_particle_speed_m_per_s
+    return (v_com <= tol.settle_speed_m_per_s and v_par <= tol.settle_particle_speed_m_per_s
+            and turn_rate_deg_per_s(x_back_m, x_m, back_span_s) <= tol.settle_turn_rate_deg_per_s)
 
 
 def run_trial(body: TrialBody, physical: PhysicalModel, material: Material, plan: ActionPlan,
@@ -214,8 +216,10 @@ def run_trial(body: TrialBody, physical: PhysicalModel, material: Material, plan
         # after the plan: stop at the end of the plan or at a frame once the object is at rest (the label's test)
         if k >= n_int and (k == n_int or k % per_frame == 0):
             lo = max(0, k - n_rest)
-            if _at_rest(com[lo:k + 1], float(t_c[k] - t_c[lo]), p["x"], frames_x[-1],
-                        float(sim.time_s + t_start - frames_t[-1]), tol):
+            now = sim.time_s + t_start
+            i_back = frame_back(np.asarray([*frames_t, now]))
+            if _at_rest(com[lo:k + 1], float(t_c[k] - t_c[lo]), p["x"], frames_x[-1], float(now - frames_t[-1]),
+                        frames_x[i_back], float(now - frames_t[i_back]), tol):
                 k -= 1
                 break
         if k % per_frame == 0:

@@ -179,6 +179,8 @@ def _evaluate_line(p0: np.ndarray, u: np.ndarray, pts: np.ndarray, nrm: np.ndarr
     counts["cone_ok"] += 1
     half = g.pad_half_extents_m
     in_pad = (np.abs(d @ np.cross(u, a)) <= half[0]) & (np.abs(d @ a) <= half[2])
+    if not in_pad.any():
+        return None  # the pads, centred on p0, cover no surface point (a line grazing an edge)
     lo, hi = along[in_pad].min(), along[in_pad].max()  # the flat pads touch the outermost points they cover
     width = float(hi - lo)
     widths.append(width)
@@ -191,9 +193,22 @@ def _evaluate_line(p0: np.ndarray, u: np.ndarray, pts: np.ndarray, nrm: np.ndarr
         return None
     counts["table_ok"] += 1
     press = max(0.0, width - usable) / (2.0 * s.soft_indent_m) if s.soft_indent_m > 0 else 0.0
-    score = -(tilt / np.radians(s.max_tilt_deg) + np.linalg.norm(center - com) / s.com_scale_m
+    score = -(tilt / np.radians(s.max_tilt_deg) + hang_offset_m(center, u, com) / s.com_scale_m
               + 0.5 * ang / max(cone, 1e-9) + press)
     return _Line(float(score), center, u, a, width)
+
+
+def hang_offset_m(center: np.ndarray, u: np.ndarray, com: np.ndarray) -> float:
+    """How far the centre of mass sits from where a two-pad grasp holds it best [m]. The pads hold the object like a
+    hinge about the closing axis u: a centre of mass off that axis sideways is a lever that turns the object in the
+    hand while it is carried (weight 1); one above the axis is an inverted pendulum that tips over (weight 1.5),
+    one below it hangs still (weight 0.5); an offset along the axis only loads one pad more (weight 0.5)."""
+    d = np.asarray(com, dtype=float) - np.asarray(center, dtype=float)
+    along = float(d @ u)
+    perp = d - along * u
+    side = float(np.linalg.norm(perp[:2]))
+    up = float(perp[2])
+    return float(np.sqrt((0.5 * along) ** 2 + side ** 2 + ((1.5 if up > 0.0 else 0.5) * up) ** 2))
 
 
 def _rank(lines: list[_Line], pts: np.ndarray, s: GraspSettings, g: Gripper, counts: dict[str, int]

@@ -87,6 +87,24 @@ def test_transport_and_release_failures_say_where_the_object_went() -> None:
     assert d is not None and d.mode == "toppled" and "fell over (turned 86 deg)" in d.words, d
     d = diagnose(labels(settled=0.0, settle_com_speed_m_per_s=0.05), TOL)
     assert d is not None and d.mode == "not_settled" and "0.05 m/s" in d.words
+    # in the target, its centre of mass nearly still, but the body still turning: a tall toy tipping over slowly
+    d = diagnose(labels(settled=0.0, settle_com_speed_m_per_s=0.012, settle_turn_rate_deg_per_s=14.0), TOL)
+    assert d is not None and d.mode == "not_settled" and "still tipping over at 14 deg/s" in d.words, d
+
+
+def test_a_body_that_turns_is_not_at_rest_though_its_centre_barely_moves() -> None:
+    """The `settled` label's turn rate: the rigid rotation of the particles over the window, about any axis."""
+    from tasks.manipulation.outcome import frame_back, turn_rate_deg_per_s
+
+    rng = np.random.default_rng(1)
+    x = rng.normal(size=(300, 3)) * [0.03, 0.03, 0.08] + [0.0, 0.0, 0.09]
+    c, s = math.cos(math.radians(1.5)), math.sin(math.radians(1.5))
+    tipped = (x - [0.03, 0.0, 0.0]) @ np.array([[c, 0.0, -s], [0.0, 1.0, 0.0], [s, 0.0, c]]).T + [0.03, 0.0, 0.0]
+    assert turn_rate_deg_per_s(x, tipped, 0.1) == pytest.approx(15.0, rel=1e-6)  # 1.5 deg in 0.1 s
+    assert turn_rate_deg_per_s(x, x + [0.001, 0.0, 0.0], 0.1) == pytest.approx(0.0, abs=1e-6)
+    assert turn_rate_deg_per_s(x, tipped, 0.0) == math.inf
+    t = np.arange(10) / 30.0
+    assert frame_back(t) == 6 and frame_back(t[:2]) == 0  # 0.1 s back at 30 fps: three frames
 
 
 def test_exactly_one_mode_flag_per_failed_trial() -> None:

@@ -65,6 +65,23 @@ def test_an_object_that_rolls_on_gets_the_damping_the_rebound_band_still_allows(
     assert revise_material(mat, OK, load_contract("L3"), limits) is None  # nothing failed: nothing to revise
 
 
+def test_a_toy_that_falls_over_when_let_go_asks_for_a_firmer_body_not_more_damping(tmp_path: Path) -> None:
+    """The plush penguin of #36: set down in the target at 2 deg off its rest pose, it tipped over on its own (the
+    fingers were 15 cm away); at E 16 kPa it cannot stand a lean of a few degrees, at 40 kPa it stands."""
+    limits = MaterialLimits.from_asset(_material_json(tmp_path, 1.2e4, 1.3e4, 20.0, 0.05, (0.0, 0.15)))
+    mat = Material(youngs_modulus_pa=1.2e4, poisson_ratio=0.3, damping_rate_per_s=20.0)
+    band = limits.targets.band("effective_modulus_pa")
+    for fell in ({"mode_toppled": 1.0, "release_rotation_deg": 85.0}, {"settle_turn_rate_deg_per_s": 14.0}):
+        down = {**OK, "released_in_target": 0.0, "settled": 0.0, **fell}
+        revised, why = revise_material(mat, down, load_contract("L3"), limits)
+        assert revised.youngs_modulus_pa * 1.3e4 / 1.2e4 == pytest.approx(band.point(0.9))
+        assert revised.damping_rate_per_s == mat.damping_rate_per_s and "fell over" in why
+    # at the top of the band: nothing left to give (damping would not make it stand)
+    top = mat.model_copy(update={"youngs_modulus_pa": 1.2e4 * band.point(0.9) / 1.3e4})
+    assert revise_material(top, {**OK, "released_in_target": 0.0, "mode_toppled": 1.0}, load_contract("L3"),
+                           limits) is None
+
+
 def test_a_strain_bound_failure_asks_for_a_stiffer_material_and_half_way_goes_back_in_log() -> None:
     mat = Material(youngs_modulus_pa=1.0e4, poisson_ratio=0.3, damping_rate_per_s=4.0)
     revised, _ = revise_material(mat, {**OK, "strain_p99": 1.2}, load_contract("L3"))

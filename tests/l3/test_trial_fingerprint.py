@@ -1,7 +1,8 @@
 """Cache fingerprints of the L3 trial task: the content keys a fixed small context gets for its first candidate,
 under the nominal, robustness and held-out conditions.
 
-The values were recorded before L3's context and record building moved from flows/ into tasks/manipulation/ (#37):
+The values were recorded before L3's context and record building moved from flows/ into tasks/manipulation/ (#37),
+and recorded again when the trial task's version went to 13 (the `settled` label's turn rate, a longer settle, #36):
 a change of the trial task's name, version, input names or input values (the body, the plan, the settings, the
 tolerances) would change them, and with them every cached trial of every user's assets. Nothing is simulated.
 """
@@ -18,10 +19,10 @@ from flows.harness import probe_cache_key
 from tests.l3.conftest import FIRM, Cube
 
 KEYS = {
-    "nominal": "be3279cbc0fb6959445611bd3fd18fa71e5661ec899ce86521779acbff6279ae",
-    "robustness_0": "bdbb0dd4002d4de971a5d1a194606468089dd56d40c2b1abd71c6e7e93f5dc93",
-    "robustness_1": "d9fff78860f6cdc610dbaf2e2e0b395ceeb1f041468ca24c8acd266f2c3a58fb",
-    "held_out_0": "5d45e77918783adbeb5e2a99c5fa7795c44810bc7395e55ca109d09ca980814d",
+    "nominal": "259a1e39ac13eb5087ad52bf5e0eaa8b756e0159e5d2aad3a87334c28820e668",
+    "robustness_0": "546549fc6db80c61a64d81b95474a184d2254c6b834332a026dc365e150feba2",
+    "robustness_1": "89db566645a3bad7d53ad86db2d7c4a7fc825ba0bc85b0274848cea89b4e60e9",
+    "held_out_0": "6b92a8385dee60d1cb827a80d4c0222e481417455aae186377ef00537239a253",
 }
 
 
