@@ -2,7 +2,8 @@
 
 Prefect reads its settings when imported, so the session-level environment is set here, before any test module
 imports prefect. Per test, `DEFORMSMITH_CACHE` points at a fresh directory (the cache root is resolved at use).
-Tests that run flows request the session-scoped `prefect_api` fixture (one temporary server per session).
+Tests that run flows request the session-scoped `prefect_api` fixture (one temporary server per session); tests
+that run a flow command as a subprocess pass it `cli_env` (the same server, so the command starts none of its own).
 """
 
 from __future__ import annotations
@@ -15,6 +16,7 @@ from pathlib import Path
 
 import pytest
 
+REPO = Path(__file__).resolve().parents[1]
 _SESSION_DIR = Path(tempfile.mkdtemp(prefix="deformsmith-tests-"))
 os.environ["PREFECT_HOME"] = str(_SESSION_DIR / "prefect-home")
 os.environ["PREFECT_RESULTS_LOCAL_STORAGE_PATH"] = str(_SESSION_DIR / "prefect-results")
@@ -57,3 +59,16 @@ def prefect_api() -> Iterator[str]:
     with prefect_test_harness(server_startup_timeout=120):
         with temporary_settings({PREFECT_FLOWS_HEARTBEAT_FREQUENCY: None}):
             yield str(PREFECT_API_URL.value())
+
+
+@pytest.fixture
+def cli_env(prefect_api: str) -> dict[str, str]:
+    """Environment for a `python -m flows.cli.main` subprocess: this process's environment (the session's Prefect
+    home, this test's cache root), the repository on PYTHONPATH, and the session's Prefect server as a local server
+    DeformSmith started (cache.runtime.local_api_env, as a batch hands its own to its workers). The command then
+    starts no server of its own: under load on 2 cores that start is ~25 s of CPU beside the command, ~50 s with a
+    new database, paid by every command. Tests of that start itself (tests/test_cache/test_prestart.py, the stop
+    signals in tests/generate/test_unix_manners.py) run the command without it."""
+    from cache.runtime import local_api_env
+
+    return {**os.environ, "PYTHONPATH": str(REPO), **local_api_env(prefect_api)}

@@ -19,9 +19,12 @@ REPO = Path(__file__).resolve().parents[2]
 SMALL = "a soft plush turtle toy, about 25 cm long"
 
 
-def _generate(out: Path, cache: Path, *args: str, wait: bool = True) -> subprocess.Popen[str] | subprocess.CompletedProcess[str]:
+def _generate(out: Path, cache: Path, *args: str, wait: bool = True,
+              env: dict[str, str] | None = None) -> subprocess.Popen[str] | subprocess.CompletedProcess[str]:
+    """`deformsmith generate ARGS --out OUT --cache CACHE`; env: the command's environment (conftest's `cli_env`: the
+    session's Prefect server), else this process's (the command starts its own server)."""
     cmd = [sys.executable, "-m", "flows.cli.main", "generate", *args, "--out", str(out), "--cache", str(cache)]
-    env = dict(os.environ, PYTHONPATH=str(REPO))
+    env = env or dict(os.environ, PYTHONPATH=str(REPO))
     if wait:
         return subprocess.run(cmd, capture_output=True, text=True, timeout=1800, env=env, cwd=REPO)
     return subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True, env=env, cwd=REPO)
@@ -36,19 +39,20 @@ def _generate(out: Path, cache: Path, *args: str, wait: bool = True) -> subproce
     (["a steel ball"], "'steel' is a rigid material"),
     (["a sponge", "--require-l3", "--no-l3"], "--require-l3 needs L3"),
 ])
-def test_bad_input_is_one_line_and_leaves_nothing(tmp_path: Path, args: list[str], message: str) -> None:
-    out = _generate(tmp_path / "asset", tmp_path / "cache", *args)
+def test_bad_input_is_one_line_and_leaves_nothing(tmp_path: Path, args: list[str], message: str,
+                                                  cli_env: dict[str, str]) -> None:
+    out = _generate(tmp_path / "asset", tmp_path / "cache", *args, env=cli_env)
     assert out.returncode != 0
     assert out.stderr.startswith("error:") and message in out.stderr and out.stderr.count("\n") == 1
     assert not (tmp_path / "asset").exists()
 
 
-def test_unusable_file_found_inside_a_flow_ends_in_its_error_line(tmp_path: Path) -> None:
+def test_unusable_file_found_inside_a_flow_ends_in_its_error_line(tmp_path: Path, cli_env: dict[str, str]) -> None:
     """A mesh file that exists but holds no triangles fails in L0's first task: the user gets its one-line error last,
     no Prefect tracebacks, no failure stored in the cache, nothing published."""
     empty = tmp_path / "empty.obj"
     empty.write_text("# no faces\n")
-    out = _generate(tmp_path / "asset", tmp_path / "cache", "--mesh", str(empty), "--no-l3")
+    out = _generate(tmp_path / "asset", tmp_path / "cache", "--mesh", str(empty), "--no-l3", env=cli_env)
     assert out.returncode == 2, out.stderr[-2000:]
     assert out.stderr.rstrip().splitlines()[-1] == "error: empty.obj holds no triangles"
     for noise in ("Traceback", "Failed to write result", "Still processing items"):
@@ -57,28 +61,34 @@ def test_unusable_file_found_inside_a_flow_ends_in_its_error_line(tmp_path: Path
     assert not list((tmp_path / "cache").glob("entries/*"))
 
 
-def test_cuda_without_a_gpu_is_refused_before_any_layer(tmp_path: Path) -> None:
+def test_cuda_without_a_gpu_is_refused_before_any_layer(tmp_path: Path, cli_env: dict[str, str]) -> None:
     import tasks.mpm  # noqa: F401
     import warp as wp
 
     if wp.is_cuda_available():
         pytest.skip("this machine has a CUDA device")
-    out = _generate(tmp_path / "asset", tmp_path / "cache", "a sponge", "--device", "cuda")
+    out = _generate(tmp_path / "asset", tmp_path / "cache", "a sponge", "--device", "cuda", env=cli_env)
     assert out.returncode == 2
     assert out.stderr.rstrip().splitlines()[-1].startswith("error: --device cuda: no CUDA device is available")
     assert "L0" not in out.stderr and not (tmp_path / "asset").exists()
 
 
-def test_ctrl_c_stops_at_once_says_so_and_publishes_nothing(tmp_path: Path) -> None:
+def test_ctrl_c_stops_at_once_says_so_and_publishes_nothing(tmp_path: Path, tmp_path_factory: pytest.TempPathFactory,
+                                                           cli_env: dict[str, str]) -> None:
     """SIGINT once L0 has run (its result is in the cache): exit 130 within seconds, a last line telling the user that
     a rerun resumes, no asset and no partial directory; the progress log holds our lines, not Prefect's INFO
-    records."""
+    records. (A sponge-sized box mesh: L0's first task is a mesh import, not a text's design. Against the session's
+    server; a stop signal to a command with its own server, the process group's as a terminal sends it:
+    tests/generate/test_unix_manners.py.)"""
+    import trimesh
+
+    sponge = tmp_path_factory.mktemp("mesh") / "sponge.obj"  # (outside tmp_path: it must hold the cache alone)
+    trimesh.creation.box(extents=(0.10, 0.07, 0.03)).export(sponge)
     cache = tmp_path / "cache"
-    cmd = [sys.executable, "-m", "flows.cli.main", "generate", "a sponge", "--no-l3", "--out", str(tmp_path / "asset"),
-           "--cache", str(cache)]
+    cmd = [sys.executable, "-m", "flows.cli.main", "generate", "--mesh", str(sponge), "--no-l3",
+           "--out", str(tmp_path / "asset"), "--cache", str(cache)]
     proc = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True, cwd=REPO,
-                            env=dict(os.environ, PYTHONPATH=str(REPO)),
-                            preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
+                            env=cli_env, preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
     events = cache / "events.jsonl"
     deadline = time.time() + 300
     while not (events.exists() and '"task": "l0.' in events.read_text()):
@@ -93,10 +103,10 @@ def test_ctrl_c_stops_at_once_says_so_and_publishes_nothing(tmp_path: Path) -> N
     assert sorted(p.name for p in tmp_path.iterdir()) == ["cache"]  # no asset, no partial working directory
 
 
-def test_out_dir_that_is_not_an_asset_is_refused(tmp_path: Path) -> None:
+def test_out_dir_that_is_not_an_asset_is_refused(tmp_path: Path, cli_env: dict[str, str]) -> None:
     (tmp_path / "asset").mkdir()
     (tmp_path / "asset" / "notes.txt").write_text("mine")
-    out = _generate(tmp_path / "asset", tmp_path / "cache", SMALL)
+    out = _generate(tmp_path / "asset", tmp_path / "cache", SMALL, env=cli_env)
     assert out.returncode != 0 and "not an asset directory" in out.stderr
     assert sorted(p.name for p in (tmp_path / "asset").iterdir()) == ["notes.txt"]
 

@@ -3,7 +3,6 @@ concept's record, the card's box, and --strict-concept refusing it with nothing 
 
 from __future__ import annotations
 
-import os
 import subprocess
 import sys
 from pathlib import Path
@@ -14,9 +13,6 @@ from contracts.lexicon import load_lexicon
 from tasks.geometry import analogy, concepts
 from tasks.geometry.catalogue import design_from_text
 from tasks.geometry.concepts import SHAPE_WORDS, noun_index
-
-REPO = Path(__file__).resolve().parents[2]
-
 
 def _explain(nouns: list[str], lexicon: dict) -> analogy.Analogy | None:
     return analogy.explain(nouns, lexicon, SHAPE_WORDS, concepts._material_words(), load_lexicon().colors)
@@ -83,26 +79,27 @@ def test_every_generic_concept_is_reported_as_an_analogy() -> None:
             assert c.by_analogy, text
 
 
-def _cli(*args: str, cwd: Path) -> subprocess.CompletedProcess[str]:
-    env = {**os.environ, "PYTHONPATH": str(REPO), "PREFECT_HOME": str(cwd / "prefect")}
+def _cli(*args: str, cwd: Path, env: dict[str, str]) -> subprocess.CompletedProcess[str]:
+    """The command in `cwd`, against the session's Prefect server (conftest's `cli_env`)."""
     return subprocess.run([sys.executable, "-m", "flows.cli.main", *args], cwd=cwd, capture_output=True, text=True,
                           env=env, timeout=300)
 
 
-def test_strict_concept_refuses_an_analogy_and_writes_nothing(tmp_path: Path) -> None:
+def test_strict_concept_refuses_an_analogy_and_writes_nothing(tmp_path: Path, cli_env: dict[str, str]) -> None:
     out = tmp_path / "thing"
     proc = _cli("geometry", "a rubber thingamajig", "--out", str(out), "--no-cache", "--strict-concept",
-                cwd=tmp_path)
+                cwd=tmp_path, env=cli_env)
     assert proc.returncode == 2, proc.stderr
     assert proc.stderr.strip().splitlines()[-1].startswith("error: --strict-concept: built by analogy:")
     assert not out.exists()
     proc = _cli("generate", "a zorblat", "--out", str(tmp_path / "z"), "--strict-concept", "--no-l3",
-                "--cache", str(tmp_path / "cache"), cwd=tmp_path)
+                "--cache", str(tmp_path / "cache"), cwd=tmp_path, env=cli_env)
     assert proc.returncode == 2 and "built by analogy" in proc.stderr and not (tmp_path / "z").exists()
 
 
-def test_the_first_line_says_built_by_analogy(tmp_path: Path) -> None:
-    proc = _cli("geometry", "a rubber thingamajig", "--out", str(tmp_path / "t"), "--no-cache", cwd=tmp_path)
+def test_the_first_line_says_built_by_analogy(tmp_path: Path, cli_env: dict[str, str]) -> None:
+    proc = _cli("geometry", "a rubber thingamajig", "--out", str(tmp_path / "t"), "--no-cache", cwd=tmp_path,
+                env=cli_env)
     assert proc.returncode == 0, proc.stderr
     assert proc.stderr.splitlines()[0].startswith("built by analogy: 'thingamajig' is not in the lexicon")
     import json

@@ -21,9 +21,11 @@ from flows.cli import preflight
 REPO = Path(__file__).resolve().parents[2]
 
 
-def _cli(*args: str, env: dict[str, str] | None = None) -> subprocess.CompletedProcess[str]:
+def _cli(*args: str, env: dict[str, str] | None = None, base: dict[str, str] | None = None
+         ) -> subprocess.CompletedProcess[str]:
+    """The command with `env` over `base` (conftest's `cli_env`: the session's Prefect server) or this process's."""
     return subprocess.run([sys.executable, "-m", "flows.cli.main", *args], cwd=REPO, capture_output=True, text=True,
-                          timeout=120, env={**os.environ, **(env or {})})
+                          timeout=120, env={**(base or os.environ), **(env or {})})
 
 
 def _one_error_line(proc: subprocess.CompletedProcess[str]) -> str:
@@ -40,7 +42,8 @@ def _snapshot(root: Path) -> list[str]:
 
 @pytest.mark.parametrize("case", ["out_under_proc", "out_parent_is_file", "cache_not_creatable", "cache_locks_file",
                                   "disk_too_full"])
-def test_unusable_location_is_one_error_line(case: str, tmp_path: Path, cache_dir: Path) -> None:
+def test_unusable_location_is_one_error_line(case: str, tmp_path: Path, cache_dir: Path,
+                                            cli_env: dict[str, str]) -> None:
     blocker = tmp_path / "plain_file"
     blocker.write_text("not a directory")
     out, env, want = tmp_path / "assets" / "duck", {}, ""
@@ -60,7 +63,7 @@ def test_unusable_location_is_one_error_line(case: str, tmp_path: Path, cache_di
     commands = [["generate", "a rubber duck", "--no-l3"]] + ([["geometry", "a rubber duck"]] if case == "out_under_proc"
                                                              or case == "cache_locks_file" else [])
     for command in commands:
-        line = _one_error_line(_cli(*command, "--out", str(out), env=env))
+        line = _one_error_line(_cli(*command, "--out", str(out), env=env, base=cli_env))
         assert want in line, line
         assert _snapshot(tmp_path) == before  # nothing written, not even a parent directory
         assert not out.exists()

@@ -251,9 +251,9 @@ def test_a_model_without_credentials_is_not_asked_and_l0_is_keyed_offline(monkey
     fallbacks.reset()
 
 
-def test_cli_with_an_unreachable_model_says_it_fell_back(tmp_path: Path) -> None:
+def test_cli_with_an_unreachable_model_says_it_fell_back(tmp_path: Path, cli_env: dict[str, str]) -> None:
     """A real litellm call to a local Ollama that is not running: one connection error, the offline build, a warning."""
-    env = {**os.environ, "PYTHONPATH": str(REPO), "OLLAMA_API_BASE": "http://127.0.0.1:9"}
+    env = {**cli_env, "OLLAMA_API_BASE": "http://127.0.0.1:9"}
     proc = subprocess.run([sys.executable, "-m", "flows.cli.main", "geometry", "a tofu block 10 x 7 x 4 cm",
                            "--out", str(tmp_path / "t"), "--no-cache", "--llm", PLAIN], cwd=REPO, capture_output=True,
                           text=True, env=env, timeout=300)

@@ -96,7 +96,7 @@ def test_an_asset_stored_without_its_request_falls_back_to_what_l0_built() -> No
     assert layer_path(asset)[1] == "sponge"
 
 
-def test_geometry_command_stores_the_request_and_physical_reads_it(tmp_path: Path) -> None:
+def test_geometry_command_stores_the_request_and_physical_reads_it(tmp_path: Path, cli_env: dict[str, str]) -> None:
     """`deformsmith geometry TEXT --intent ...` keeps the whole request (material words never key L0's cache) and L1
     on the directory derives the material generate derives (a mesh input keeps the check fast)."""
     box = tmp_path / "box.obj"
@@ -104,7 +104,7 @@ def test_geometry_command_stores_the_request_and_physical_reads_it(tmp_path: Pat
     out = tmp_path / "asset"
     cmd = [sys.executable, "-m", "flows.cli.main", "geometry", "a gel pack", "--mesh", str(box), "--size-m", "0.12",
            "--intent", "very soft gel", "--out", str(out), "--no-cache"]
-    proc = subprocess.run(cmd, capture_output=True, text=True, timeout=300)
+    proc = subprocess.run(cmd, capture_output=True, text=True, timeout=300, env=cli_env)
     assert proc.returncode == 0, proc.stderr
     stored = json.loads((out / "geometry.json").read_text(encoding="utf-8"))["request"]
     assert stored["text"] == "a gel pack" and stored["material_intent"] == "very soft gel"
