@@ -22,7 +22,7 @@ from cache.prefect_flow import lean_flow
 from cache.tempfiles import dead_partials, owner_tag, remove_paths
 from contracts.agents import AgentConfig
 from contracts.asset_dir import ASSET_JSON, GeometryRecord, MaterialRecord, PhysicalRecord, attempt_path
-from contracts.errors import InputError, StageFailure
+from contracts.errors import StageFailure
 from contracts.manifest import AssetManifest, Provenance, StageSummary
 from contracts.manipulation import ManipulationRecord
 from contracts.request import AssetRequest
@@ -30,7 +30,7 @@ from contracts.robot import ActionPlan
 from contracts.sim import Device, KernelOptions, SimConfig
 from tasks.asset_dir import AssetDir
 from tasks.request import CheckedRequest, checked_request
-from tasks.publish import replace_directory
+from tasks.publish import check_out_dir, replace_directory
 
 LIBRARIES = ("numpy", "warp-lang", "prefect", "zarr", "trimesh", "coacd", "pybullet", "rerun-sdk", "pydantic")
 StageCallback = Callable[[str, str], None]  # (stage, message)
@@ -278,11 +278,6 @@ def _set_aside(out_dir: Path) -> Path | None:
     return aside
 
 
-def _check_out_dir(out_dir: Path) -> None:
-    if out_dir.exists() and (not out_dir.is_dir() or (any(out_dir.iterdir()) and not (out_dir / ASSET_JSON).exists())):
-        raise InputError(f"{out_dir} exists and is not an asset directory; choose a new or empty directory")
-
-
 def generate_asset(request: AssetRequest | CheckedRequest, out_dir: Path, device: Device = "cpu",
                    agents: AgentConfig | None = None, on_stage: StageCallback | None = None, manipulate: bool = True,
                    cpu_threads: int = 1) -> AssetManifest:
@@ -291,7 +286,7 @@ def generate_asset(request: AssetRequest | CheckedRequest, out_dir: Path, device
     asset directory) fails before any flow starts; the request is checked here once (tasks.request), unless the
     caller checked it already (the CLI)."""
     checked = checked_request(request)
-    _check_out_dir(Path(out_dir).expanduser().absolute())
+    check_out_dir(Path(out_dir).expanduser().absolute())
     with cache.local_runtime():
         return generate(checked, out_dir, device, agents, on_stage, manipulate, cpu_threads)
 
@@ -331,7 +326,7 @@ def generate(checked: AssetRequest | CheckedRequest, out_dir: Path, device: Devi
 
     reset_fallbacks()  # an LLM found unusable in an earlier run of this process is asked again
     out_dir = Path(out_dir).expanduser().absolute()
-    _check_out_dir(out_dir)
+    check_out_dir(out_dir)
     out_dir.parent.mkdir(parents=True, exist_ok=True)
     remove_stale_partials(out_dir)
     work = Path(tempfile.mkdtemp(prefix=_partial_prefix(out_dir) + owner_tag(), dir=out_dir.parent))

@@ -29,6 +29,16 @@ _RENAME_EXCHANGE = 2  # linux/fs.h
 _AT_FDCWD = -100
 
 
+def check_out_dir(out_dir: Path) -> None:
+    """InputError unless `out_dir` is somewhere an asset may be published: absent, an empty directory, or an earlier
+    asset (its asset.json), which the publish replaces."""
+    from contracts.asset_dir import ASSET_JSON
+    from contracts.errors import InputError
+
+    if out_dir.exists() and (not out_dir.is_dir() or (any(out_dir.iterdir()) and not (out_dir / ASSET_JSON).exists())):
+        raise InputError(f"{out_dir} exists and is not an asset directory; choose a new or empty directory")
+
+
 def replace_directory(finished: Path, dest: Path) -> None:
     """Rename `finished` to `dest` (same filesystem); an existing `dest` is moved aside first, then removed."""
     finished, dest = Path(finished), Path(dest)

@@ -123,6 +123,9 @@ def generate(
     from tasks.request import checked_request
 
     checked = checked_request(request)  # a rigid material or '10 km long' is one line here, before the layers load
+    from tasks.publish import check_out_dir
+
+    check_out_dir(Path(out).expanduser().absolute())  # not an asset directory: refused before L0's words are read
     analogy = concept_line(request, strict_concept)  # InputError under --strict-concept: before any layer
     if analogy is not None:
         console.print(f"[yellow]{escape(analogy)}[/yellow]", soft_wrap=True)  # the first line: a guess
