@@ -199,14 +199,17 @@ def _expand_diminutives(text: str) -> str:
     return re.sub(r"[a-z]+", repl, text)
 
 
-def _find(text: str, phrases: dict) -> list[tuple[int, int, str]]:
+def _find(text: str, phrases: dict, rightmost: bool = False) -> list[tuple[int, int, str]]:
     """Non-overlapping phrase occurrences (longest first) as (start, end, phrase), in text order; phrases are
-    matched on whole words (word n-grams of the text looked up in the dict)."""
+    matched on whole words (word n-grams of the text looked up in the dict). Of two overlapping ones of the same
+    length the leftmost wins, or with `rightmost` the one further right (a head noun: 'raw chicken breast fillet' is
+    a chicken breast fillet, not a raw chicken breast and a 'fillet')."""
     words = [(m.start(), m.end(), m.group(0)) for m in re.finditer(r"[a-z0-9']+", text)]
     used = [False] * len(words)
     hits: list[tuple[int, int, str]] = []
     for n in range(min(5, len(words)), 0, -1):
-        for i in range(len(words) - n + 1):
+        starts = range(len(words) - n + 1)
+        for i in (reversed(starts) if rightmost else starts):
             if any(used[i : i + n]):
                 continue
             phrase = " ".join(w for _, _, w in words[i : i + n])
@@ -276,7 +279,7 @@ def _material_in(text: str) -> str | None:
 
 def _head(main: str) -> tuple[tuple[int, int, str] | None, tuple[int, int, str] | None, str | None]:
     """(head noun hit, an earlier noun hit that shapes it, an unknown trailing head word) in the main clause."""
-    hits = _find(main, noun_index())
+    hits = _find(main, noun_index(), rightmost=True)
     tail_unknown = None
     words = [(m.start(), m.group(0)) for m in re.finditer(r"[a-z]+", main)]
     last_end = hits[-1][1] if hits else -1

@@ -84,7 +84,9 @@ def vacuum_contents(text: str) -> str | None:
     m = _OF.search(t)
     if m is not None and VACUUM.search(t[: m.start() + 1] + " "):
         return m.group(1)
-    rest = VACUUM.sub(" ", t)
+    rest = re.sub(rf"\b(?:sealed|packed|packaged|wrapped|bagged)?\s*(?:in|inside|into)\s+(?:an?|the|its)?\s*"
+                  rf"(?:vacuum|vac)[\s-]*(?:sealed\s+)?(?:{_CONTAINER_RX}|film|plastic|wrap)\b", " ", t)
+    rest = VACUUM.sub(" ", rest)
     rest = _PACKAGE_WORDS.sub(" ", rest)
     rest = re.sub(rf"\b(?:in|inside)\s+(?:an?|the)\s+(?:{_CONTAINER_RX})\b", " ", rest)
     rest = re.sub(r"\s+", " ", rest).strip(" ,.")

@@ -52,6 +52,8 @@ VACUUM_PACKED: dict[str, tuple[str, float, str]] = {
                                                                 "USDA: pork loin chop, raw, 170-225 g"),
     "a chicken breast in a vacuum bag": ("chicken_breast", 0.22, "USDA: chicken breast, raw, 174-240 g"),
     "a vac-packed salmon fillet": ("salmon_fillet", 0.14, "retail salmon portions 110-170 g"),
+    "a raw chicken thigh fillet sealed in a vacuum bag": ("chicken_thigh", 0.11,
+                                                          "retail boneless chicken thighs ~100-130 g each"),
 }
 
 
@@ -158,7 +160,7 @@ def test_a_ball_without_slump_words_stays_round() -> None:
 
 
 @pytest.mark.parametrize("text", ["a slam ball with stitched panels", "a paneled leather medicine ball",
-                                  "a medicine ball with stitched seams"])
+                                  "a medicine ball with stitched seams", "a crossfit wall ball"])
 def test_panel_words_give_a_ball_seams_from_pole_to_pole(text: str) -> None:
     seams = [p for p in _design(text).program.parts if p.name.startswith("panel seam")]
     assert len(seams) >= 3, text
