@@ -37,9 +37,16 @@ print(json.dumps({"url": prestarted_api_url(), "used": used, "value": value,
 """
 
 
+@pytest.fixture(scope="module")
+def prefect_home(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    """A Prefect home of this module's own, apart from the session's: the first server started on it creates its
+    database (~25 s of migrations under load on 2 cores), the module's later servers reuse it."""
+    return tmp_path_factory.mktemp("prestart") / "prefect-home"
+
+
 def test_a_flow_runs_against_the_prestarted_server_and_the_process_never_imports_the_server_module(
-        tmp_path: Path) -> None:
-    res = subprocess.run([sys.executable, "-c", _SCRIPT], cwd=REPO, env=_env(tmp_path), capture_output=True,
+        prefect_home: Path) -> None:
+    res = subprocess.run([sys.executable, "-c", _SCRIPT], cwd=REPO, env=_env(prefect_home), capture_output=True,
                          text=True, timeout=300)
     assert res.returncode == 0, res.stderr[-2000:]
     out = json.loads(res.stdout.strip().splitlines()[-1])
@@ -59,14 +66,14 @@ time.sleep(600)
 """
 
 
-def _env(tmp_path: Path) -> dict[str, str]:
+def _env(prefect_home: Path) -> dict[str, str]:
     env = {k: v for k, v in os.environ.items() if k != "PREFECT_API_URL"}
-    env.update(PREFECT_HOME=str(tmp_path / "prefect-home"), PYTHONPATH=str(REPO))
+    env.update(PREFECT_HOME=str(prefect_home), PYTHONPATH=str(REPO))
     return env
 
 
-def test_the_server_exits_when_its_command_is_killed(tmp_path: Path) -> None:
-    proc = subprocess.Popen([sys.executable, "-c", _KILLED], cwd=REPO, env=_env(tmp_path), stdout=subprocess.PIPE,
+def test_the_server_exits_when_its_command_is_killed(prefect_home: Path) -> None:
+    proc = subprocess.Popen([sys.executable, "-c", _KILLED], cwd=REPO, env=_env(prefect_home), stdout=subprocess.PIPE,
                             stderr=subprocess.DEVNULL, text=True)
     try:
         server_pid = int(proc.stdout.readline())
@@ -82,13 +89,13 @@ def test_the_server_exits_when_its_command_is_killed(tmp_path: Path) -> None:
     assert gone, "the server outlived its command"
 
 
-def test_a_command_that_exits_at_once_is_not_held_open_by_the_server(tmp_path: Path) -> None:
+def test_a_command_that_exits_at_once_is_not_held_open_by_the_server(prefect_home: Path) -> None:
     # the server inherits stderr: a server started (or starting) after the command's exit would hold a caller's
     # pipe open, and a caller reading it to the end would wait forever (a CI hang before the atexit close)
     for _ in range(3):
         t0 = time.time()
         res = subprocess.run([sys.executable, "-m", "flows.cli.main", "generate", "a sponge", "--quality", "ultra"],
-                             cwd=REPO, env=_env(tmp_path), capture_output=True, text=True, timeout=120)
+                             cwd=REPO, env=_env(prefect_home), capture_output=True, text=True, timeout=120)
         assert res.returncode != 0 and res.stderr.startswith("error:") and time.time() - t0 < 60
 
 
