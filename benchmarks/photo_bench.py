@@ -4,7 +4,7 @@
 
 Photos: DIR/manifest.json (tests/geometry/photos/ by default: rows with file, object, soft, size_m); each photo is
 named by its object as a user would ("a teddy bear", with the stated size when the row has one) and goes through
-L0's mesh step (tasks.geometry.pipeline.build_mesh, draft quality). `--synthetic` adds the drawn scenes of
+L0's mesh step (tasks.geometry.sources.build_mesh, draft quality). `--synthetic` adds the drawn scenes of
 tests/geometry/photo_scenes.py (named by their file name only). `--large` also times the first photo upscaled to a
 12-megapixel JPEG (4032 x 3024) beside its own size. `--full` times the whole of L0 (proxy, particles, Gaussians,
 gates) instead of the mesh step alone.
@@ -58,7 +58,7 @@ def run_one(path: Path, text: str | None, size_m: float | None, full: bool, view
     and top renders side by side in views/<photo stem>.png (what a blind judge names the object from)."""
     from contracts.errors import InputError
     from contracts.request import AssetRequest
-    from tasks.geometry import image, pipeline, silhouette
+    from tasks.geometry import image, pipeline, silhouette, sources
 
     row: dict = {"file": path.name, "text": text}
     t0 = time.perf_counter()
@@ -75,7 +75,7 @@ def run_one(path: Path, text: str | None, size_m: float | None, full: bool, view
             arrays, info = result.mesh, result.info
             row["gates_passed"] = bool(result.checks.passed)
         else:
-            arrays, info = pipeline.build_mesh(request, s)
+            arrays, info = sources.build_mesh(request, s)
     except InputError as exc:
         row.update(refused=True, message=str(exc), seconds=round(time.perf_counter() - t0, 2))
         return row

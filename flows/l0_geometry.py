@@ -13,7 +13,7 @@ from cache import cached_task
 from contracts.agents import AgentConfig
 from contracts.request import AssetRequest, Quality
 from contracts.stage import StageContract, load_contract
-from tasks.geometry import pipeline
+from tasks.geometry import pipeline, sources
 from tasks.geometry.checks import GeometryChecks
 from tasks.geometry.collision import CoacdSettings
 from tasks.geometry.particles import ParticleSettings
@@ -50,7 +50,7 @@ def geometry_request(request: AssetRequest) -> AssetRequest:
 @cached_task(version=MESH_VERSION, name="l0.mesh")
 def build_mesh(request: AssetRequest, settings: L0Settings) -> tuple[Arrays, BuildInfo]:
     """Aligned, metric, watertight mesh with colours."""
-    return pipeline.build_mesh(request, settings)
+    return sources.build_mesh(request, settings)
 
 
 @cached_task(version=TASK_VERSION, name="l0.proxy")
@@ -138,7 +138,7 @@ def _run_l0(request: AssetRequest, settings: pipeline.L0Settings, contract: Stag
             use_cache: bool) -> L0Result:
     """L0 with resolved settings: the plain functions (use_cache=False) or the Prefect flow with cached tasks."""
     if not use_cache:
-        mesh, info = pipeline.build_mesh(geometry_request(request), settings)
+        mesh, info = sources.build_mesh(geometry_request(request), settings)
         proxy = pipeline.build_proxy(mesh, settings.coacd)
         particles = pipeline.build_particles(mesh, settings.particles)
         gaussians = pipeline.build_gaussians(mesh, particles, settings)

@@ -123,7 +123,7 @@ def evidence(
     as_json: bool = typer.Option(False, "--json", help="print the attempt records as JSON"),
 ) -> None:
     """Print the harness's attempt history: proposal, source, evidence, gates, verdict."""
-    from tasks.agents.records import find_attempt_files, read_attempts
+    from tasks.record.attempts import find_attempt_files, read_attempts
     from tasks.record.tally import stage_tallies
 
     try:

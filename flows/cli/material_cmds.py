@@ -42,13 +42,14 @@ def _material(E: float | None, nu: float | None, damping: float | None, asset: P
     priors), with the given overrides."""
     from flows.l2_material import l2_targets
     from tasks.asset_dir import AssetDir
+    from tasks.geometry.outputs import load_l0
 
     given = _material_overrides(E, nu, damping)
     adir = AssetDir(asset)
     if adir.has("material"):
         base = adir.adopted_material().material.model_dump()
     else:  # the priors always hold every material field (the vocabulary's default material fills the gaps)
-        pri = l2_targets(adir.l0, None).priors
+        pri = l2_targets(load_l0(adir.path), None).priors
         base = {k: pri[k] for k in ("youngs_modulus_pa", "poisson_ratio", "damping_rate_per_s")}
     return _validated({**base, **given})
 

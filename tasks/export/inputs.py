@@ -14,6 +14,7 @@ from contracts.export import ExportMaterial
 from tasks.asset_dir import AssetDir
 from tasks.export.tetmesh import TetMesh, tetrahedralize, write_msh, write_vtk
 from tasks.geometry.gaussians import GaussianSet
+from tasks.geometry.outputs import load_l0
 
 TETMESH_VERSION = "3"  # bump when tetrahedralize's output for the same surface changes (3: isosurface stuffing)
 
@@ -94,7 +95,7 @@ def load_export_inputs(asset_dir: Path, *, edge_length_m: float | None = None) -
     if not Path(asset_dir).is_dir():
         raise InputError(f"{asset_dir} is not a directory")
     material = export_material(adir)
-    l0 = adir.l0
+    l0 = load_l0(adir.path)
     vertices = np.asarray(l0.mesh.vertices, dtype=np.float64)
     faces = np.asarray(l0.mesh.faces, dtype=np.int64)
     colors = np.asarray(l0.mesh.visual.vertex_colors, dtype=np.uint8) if hasattr(l0.mesh.visual, "vertex_colors") \

@@ -48,7 +48,7 @@ from scipy.spatial import cKDTree
 from contracts.errors import InputError
 from contracts.request import AssetRequest
 from contracts.stage import L0Parameters, load_contract
-from tasks.geometry import catalogue
+from tasks.geometry import catalogue, pipeline
 from tasks.geometry.canonical import canonicalize
 from tasks.geometry.checks import outside_distance
 from tasks.geometry.mesh_import import SUPPORTED, _vertex_colors, load_mesh_file, repair_mesh
@@ -334,19 +334,15 @@ def _apply_gaussians(out: BackendOutput, repaired: trimesh.Trimesh, final: trime
 def concept_fields(design: Any, mesh: trimesh.Trimesh) -> dict[str, Any]:
     """BuildInfo's `concept` for the lexicon's reading of the text, at the size the mesh was built (empty when there
     is no design or BuildInfo has no concept)."""
-    from tasks.geometry import pipeline
-
     if design is None or "concept" not in pipeline.BuildInfo.model_fields:
         return {}
     concept = getattr(design, "concept", None)
-    sized = getattr(pipeline, "_sized_concept", None)
+    sized = getattr(pipeline, "sized_concept", None)
     return {"concept": sized(concept, mesh) if concept is not None and sized is not None else concept}
 
 
 def from_backend(request: AssetRequest, settings: Any) -> tuple[dict[str, np.ndarray], Any]:
-    """pipeline.build_mesh through a reconstruction backend: call it, then repair, canonicalise, size like a mesh."""
-    from tasks.geometry import pipeline
-
+    """sources.build_mesh through a reconstruction backend: call it, then repair, canonicalise, size like a mesh."""
     spec = str(request.geometry_backend).strip()
     params = L0Parameters.of(load_contract("L0"))
     timeout_s = params.geometry_backend_timeout_s
@@ -366,7 +362,7 @@ def from_backend(request: AssetRequest, settings: Any) -> tuple[dict[str, np.nda
     else:
         mesh, rotated = canonicalize(repaired, "most_stable", align_xy=True)
     try:
-        mesh = pipeline._final_size(mesh, size)
+        mesh = pipeline.final_size(mesh, size)
     except InputError as exc:
         raise GeometryBackendError(f"geometry backend '{spec}': {exc}") from exc
     _apply_gaussians(out, repaired, mesh, request.seed, notes, warnings)

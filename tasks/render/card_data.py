@@ -279,7 +279,7 @@ def card_data(asset_dir: Path | str, manifest: AssetManifest | None = None) -> C
     """The card's content for an asset directory (InputError naming the file when a document is missing or invalid).
 
     manifest: the manifest about to be written (generate builds the card before asset.json is published)."""
-    from tasks.agents.records import ATTEMPTS_FILE, read_attempts
+    from tasks.record.attempts import ATTEMPTS_FILE, read_attempts
     from tasks.record.tally import stage_tallies
 
     adir = AssetDir(asset_dir)
