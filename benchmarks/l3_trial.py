@@ -49,6 +49,11 @@ from typing import Any
 
 import numpy as np
 
+from contracts.material import Material
+from contracts.physical import PhysicalModel
+from contracts.robot import ActionPlan
+from contracts.stage import load_contract
+
 DEFAULT_TURTLE = Path("out/eval/cases/t01_plush_turtle/hierarchical")
 LABELS = ("lifted", "transported", "released_in_target", "settled", "slipped", "force_budget_violated",
           "numerically_healthy", "stopped_after_failed_lift", "max_finger_force_n", "max_strain",
@@ -143,9 +148,6 @@ def cube_inputs(device: str = "cpu") -> dict[str, Any]:
     """The firm cube trial of tests/l3/conftest.py (``firm_trial``): inputs of ``run_trial`` without the trajectory."""
     import numpy as np
 
-    from contracts.material import Material
-    from contracts.physical import PhysicalModel
-    from contracts.robot import ActionPlan
     from tasks.manipulation.body import box_body
     from tasks.manipulation.outcome import TrialTolerances
     from tasks.manipulation.trial import TrialSettings
@@ -170,7 +172,6 @@ def cube_inputs(device: str = "cpu") -> dict[str, Any]:
 
 def turtle_inputs(asset_dir: Path = DEFAULT_TURTLE, quality: str = "draft", device: str = "cpu") -> dict[str, Any]:
     """The first L3 candidate of an asset (a copy of ``asset_dir`` is read; the original is never written)."""
-    from contracts.stage import load_contract
     from flows.l3_manipulation import L3Options, initial_values, load_context
     from tasks.manipulation.context import tolerances_from
 

@@ -24,6 +24,8 @@ from dataclasses import replace
 from pathlib import Path
 from typing import Any
 
+from contracts.stage import load_contract
+
 TARGET_XY_M = (0.08, 0.06)
 
 
@@ -34,7 +36,6 @@ def _frame(text: str) -> float | None:
 def one_trial(asset_dir: str, yaw_deg: float, frame: float | None, spacing_m: float | None, youngs_pa: float | None,
               values: dict[str, float] | None) -> dict[str, Any]:
     """One trial of the plan at a yaw in a frame: the lift labels and the hold force."""
-    from contracts.stage import load_contract
     from flows.l3_manipulation import L3Options, initial_values, load_context
     from tasks.manipulation.context import tolerances_from
     from tasks.manipulation.trial import plan_or_error, run_trial

@@ -27,6 +27,12 @@ from pathlib import Path
 
 import numpy as np
 
+from contracts.errors import InputError
+from contracts.request import AssetRequest
+from tasks.agents.intent import asset_material, asset_targets
+from tasks.agents.vocab import load_material_vocab
+from tasks.physical.mass import mass_check
+
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 sys.path.insert(0, str(ROOT / "tests" / "geometry"))
@@ -36,10 +42,6 @@ IOU_TARGET = 0.85
 
 def _mass(request, info, mesh) -> tuple[float, str]:  # noqa: ANN001
     """L1's starting mass [kg] and material for the built mesh (tasks.physical.mass.mass_check)."""
-    from tasks.agents.intent import asset_material, asset_targets
-    from tasks.agents.vocab import load_material_vocab
-    from tasks.physical.mass import mass_check
-
     vocab = load_material_vocab()
     record = {"info": info.model_dump(mode="json"), "request": request.model_dump(mode="json")}
     targets = asset_targets(record, None, vocab)
@@ -56,8 +58,6 @@ def _mass(request, info, mesh) -> tuple[float, str]:  # noqa: ANN001
 def run_one(path: Path, text: str | None, size_m: float | None, full: bool, views: Path | None = None) -> dict:
     """One photo through L0 (mesh step, or all of L0 with full) and its figures; with views, the mesh's front, side
     and top renders side by side in views/<photo stem>.png (what a blind judge names the object from)."""
-    from contracts.errors import InputError
-    from contracts.request import AssetRequest
     from tasks.geometry import image, pipeline, silhouette, sources
 
     row: dict = {"file": path.name, "text": text}

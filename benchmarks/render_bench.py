@@ -26,7 +26,9 @@ from rich.table import Table
 
 from contracts.errors import InputError
 from flows.cli.apps import console, emit_json, fail, results
+from tasks.native_output import init_warp_quietly
 from tasks.render.camera import Camera
+from tasks.render.sh import read_sh_rest
 
 
 def load_splats(asset_dir: Path | None, synthetic: int) -> tuple[dict[str, np.ndarray], str]:
@@ -34,7 +36,6 @@ def load_splats(asset_dir: Path | None, synthetic: int) -> tuple[dict[str, np.nd
     `synthetic` Gaussians (radius 8 cm, resting on the table) when asset_dir is None; and a name for the report."""
     if asset_dir is not None:
         from tasks.geometry.gaussians import read_3dgs_ply, rest_covariances
-        from tasks.render.sh import read_sh_rest
 
         ply = asset_dir / "gaussians.ply" if asset_dir.is_dir() else asset_dir
         if not ply.is_file():
@@ -101,8 +102,6 @@ def splats_threads(device: str) -> int:
 def run(asset_dir: Path | None = None, synthetic: int = 100_000, width: int = 1280, height: int = 720,
         repeats: int = 5, devices: tuple[str, ...] = ("cpu", "cuda"), png: Path | None = None) -> dict[str, Any]:
     """The figures as a JSON-ready dict; cuda is skipped (with a reason) where Warp sees no CUDA device."""
-    from tasks.native_output import init_warp_quietly
-
     init_warp_quietly()
     import warp as wp
 

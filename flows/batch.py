@@ -26,8 +26,11 @@ from typing import Any, Literal
 
 from pydantic import BaseModel, Field, ValidationError
 
+import cache
+from cache.config import ENV_VAR
 from contracts.errors import InputError, validation_message
 from contracts.request import AssetRequest
+from tasks.probes.workers import child_probe_workers
 
 REPORT_JSON = "batch_report.json"
 LOG_DIR = "_logs"
@@ -333,9 +336,6 @@ def run_batch(requests_jsonl: Path, out_root: Path, concurrency: int = 1, device
               job: str = DEFAULT_JOB, timeout_s: float | None = None,
               on_result: ItemCallback | None = None) -> BatchReport:
     """Run every request of a JSONL file in its own process, `concurrency` at a time; write and return the report."""
-    import cache
-    from cache.config import ENV_VAR
-
     if concurrency < 1:
         raise InputError(f"concurrency must be >= 1, got {concurrency}")
     if device not in ("cpu", "cuda"):
@@ -362,8 +362,6 @@ def run_batch(requests_jsonl: Path, out_root: Path, concurrency: int = 1, device
     if runnable:
         children = Children()
         with prefect_api_for_children() as prefect_env, _sigterm_as_interrupt():
-            from tasks.probes.workers import child_probe_workers
-
             env = {**os.environ, **prefect_env, ENV_VAR: str(cache_dir),
                    **child_probe_workers(concurrency)}  # the requests' probe threads share the cores
             with ThreadPoolExecutor(max_workers=concurrency) as pool:

@@ -26,15 +26,17 @@ from contracts.request import AssetRequest
 from contracts.sim import SimConfig
 from contracts.stage import load_contract
 from flows.harness import probe_cache_key, run_harness
+from flows.probe_tasks import probe_task
+from tasks.agents.orchestrator import initial_values
 from tasks.asset_dir import AssetDir, geometry_info
+from tasks.evaluation.flat import flat_contract, split_values
+from tasks.probes.registry import stage_probes
 
 
 def physics_tests(asset_dir: Path, physical: PhysicalModel, material: Material, targets: TargetBehaviour,
                   sim: SimConfig, videos: bool = False) -> dict[str, Any]:
     """Held-out probes + gates + targets and the drop protocol of one (physical, material) on an asset's L0."""
     from flows.l2_material import l2_metrics, probe_inputs
-    from flows.probe_tasks import probe_task
-    from tasks.probes.registry import stage_probes
     from flows.renders import drop_protocol_task, protocol_states, render_drop_protocol
     from tasks.geometry.outputs import load_l0
 
@@ -168,8 +170,6 @@ def run_flat(case: SuiteCase, request: AssetRequest, l0: Any, arm_dir: Path, sim
     from flows.l0_geometry import write_l0
     from flows.l1_physical import l1_runner, l1_targets, physical_from_values
     from flows.l2_material import _Runner, l2_targets, screen
-    from tasks.agents.orchestrator import initial_values
-    from tasks.evaluation.flat import flat_contract, split_values
     from tasks.geometry.outputs import load_l0
 
     _fresh(arm_dir)
@@ -219,7 +219,6 @@ def run_one_shot(case: SuiteCase, request: AssetRequest, h: dict[str, Any], sim:
                  wall0: float) -> ArmResult:
     """The initial material proposal (priors) kept: the selection probes once, then the same independent tests."""
     from flows.l2_material import evaluate_material, l2_targets
-    from tasks.agents.orchestrator import initial_values
     from tasks.geometry.outputs import load_l0
 
     if h.get("physical") is None:

@@ -20,17 +20,22 @@ from typing import Any, TypedDict
 import cache  # (sets the local Prefect environment before prefect is imported)
 from cache.prefect_flow import lean_flow
 from cache.tempfiles import dead_partials, owner_tag, remove_paths
-from contracts.agents import AgentConfig
+from contracts.agents import AgentConfig, AgentConfig as _Config
 from contracts.asset_dir import ASSET_JSON, GeometryRecord, MaterialRecord, PhysicalRecord, attempt_path
-from contracts.errors import InputError, StageFailure
+from contracts.errors import InputError, RequirementNotMet, StageFailure
 from contracts.manifest import AssetManifest, Provenance, StageSummary
 from contracts.manipulation import ManipulationRecord
 from contracts.request import AssetRequest
-from contracts.robot import ActionPlan
+from contracts.robot import ActionPlan, ManipulationOutcome
 from contracts.sim import Device, KernelOptions, SimConfig
 from tasks.asset_dir import AssetDir
 from tasks.request import CheckedRequest, checked_request
 from tasks.publish import replace_directory
+from contracts.stage import load_contract
+from cache.files import cached_file, source_digest
+from cache import content_key
+from tasks.agents.fallbacks import fallback_notes, reset as reset_fallbacks
+from tasks.record import recording_digest
 
 LIBRARIES = ("numpy", "warp-lang", "prefect", "zarr", "trimesh", "coacd", "pybullet", "rerun-sdk", "pydantic")
 StageCallback = Callable[[str, str], None]  # (stage, message)
@@ -54,8 +59,6 @@ def _version(dist: str) -> str:
 def provenance(device: Device, agents: AgentConfig | None, cpu_threads: int = 1,
                kernel: KernelOptions | None = None) -> Provenance:
     """Versions, backends and numerics that reproduce the asset (the MPM kernel options when not the defaults)."""
-    from contracts.agents import AgentConfig as _Config
-
     return Provenance(deformsmith_version=_version("deformsmith"),
                       library_versions={lib: _version(lib) for lib in LIBRARIES},
                       backends=(agents or _Config.rule()).describe(), device=device, cpu_threads=cpu_threads,
@@ -86,7 +89,6 @@ def stage_summary(record: GeometryRecord | PhysicalRecord | MaterialRecord) -> S
 def l3_summary(record: ManipulationRecord) -> StageSummary:
     """L3's line in the validation summary: trials run (sim calls), the reported attempt's labels, its failed gates
     and the reason in words (no grasp: the one failed gate 'grasp available')."""
-    from contracts.stage import load_contract
     from tasks.manipulation.report import NO_GRASP_GATE
 
     trials = [a for a in record.attempts if a.labels and not a.labels.get("plan_failed")]
@@ -154,8 +156,6 @@ def cache_keys(work: Path, l3: ManipulationRecord | None) -> dict[str, str]:
 
 def require_l3(manifest: AssetManifest, out_dir: Path) -> None:
     """`--require-l3`: RequirementNotMet (exit 7) when L3 ran and did not pass; the asset is already published."""
-    from contracts.errors import RequirementNotMet
-
     l3 = next((s for s in manifest.validation if s.stage == "L3"), None)
     if l3 is not None and not l3.passed:
         raise RequirementNotMet("L3", l3.reason or ", ".join(l3.failed_gates), str(out_dir))
@@ -163,8 +163,6 @@ def require_l3(manifest: AssetManifest, out_dir: Path) -> None:
 
 def manipulation_outcome(labels: dict[str, float]) -> Any:
     """The manifest's ManipulationOutcome from a trial's labels (None when no trial ran)."""
-    from contracts.robot import ManipulationOutcome
-
     if not labels or labels.get("plan_failed"):
         return None
     return ManipulationOutcome(
@@ -180,7 +178,6 @@ def manipulation_outcome(labels: dict[str, float]) -> Any:
 def run_manipulation(work: Path, device: Device, quality: str, agents: AgentConfig | None,
                      cpu_threads: int = 1, progress: Callable[[str], None] | None = None) -> ManipulationRecord:
     """L3 on the working directory and the pick-and-place video of the shown attempt; the manipulation record."""
-    from cache.files import cached_file
     from flows.l3_manipulation import L3Options, run_l3
     from tasks.manipulation.replay import replay
 
@@ -198,9 +195,6 @@ def run_manipulation(work: Path, device: Device, quality: str, agents: AgentConf
 def pick_and_place_video_key(work: Path, attempt: int) -> str:
     """The video's cache key: the recorded attempt's bytes and the code and libraries that render and encode it
     (rendering it takes ~10 s on the CPU; a warm rerun copies it)."""
-    from cache import content_key
-    from cache.files import source_digest
-
     root = Path(__file__).resolve().parent.parent
     renderer = [root / "tasks" / "manipulation" / f"{m}.py" for m in
                 ("replay", "scene", "robot_view", "data", "particle_frames", "video")]
@@ -327,7 +321,6 @@ def generate(checked: AssetRequest | CheckedRequest, out_dir: Path, device: Devi
 
     checked = checked_request(checked)  # checked at the boundary (generate_asset): not again
     request, targets = checked.request, checked.targets
-    from tasks.agents.fallbacks import fallback_notes, reset as reset_fallbacks
 
     reset_fallbacks()  # an LLM found unusable in an earlier run of this process is asked again
     out_dir = Path(out_dir).expanduser().absolute()
@@ -400,8 +393,6 @@ def content_fingerprint(asset_dir: Path) -> dict[str, str]:
     """Relative path -> digest of every file: JSON canonically, `.rrd` by what it shows (Rerun stamps ids and
     wall-clock times on each write), everything else by bytes. Two runs of the same request on CPU match."""
     import hashlib
-
-    from tasks.record import recording_digest
 
     root = Path(asset_dir)
     out: dict[str, str] = {}

@@ -21,6 +21,7 @@ from tasks.agents.records import AttemptRecorder
 from tasks.agents.roles import build_roles
 from tasks.agents.vocab import StageRoutes, stage_routes
 from tasks.probes.registry import stage_probes
+from cache import content_key
 
 InputBuilder = Callable[[dict[str, float], str], dict[str, Any]]
 
@@ -41,7 +42,6 @@ class ProbeCall:
 
 def probe_cache_key(task: Any, inputs: dict[str, Any]) -> str | None:
     """The content key a `cached_task` computes for these inputs (None for a task without a content policy)."""
-    from cache import content_key
     from cache.prefect_task import KEY_SCHEMA
 
     if getattr(task, "version", None) is None or not hasattr(task, "fn"):

@@ -13,6 +13,8 @@ from cache import cached_task
 from contracts.agents import AgentConfig
 from contracts.request import AssetRequest, Quality
 from contracts.stage import StageContract, load_contract
+from tasks.agents import fallbacks
+from tasks.agents.records import AttemptRecorder
 from tasks.geometry import pipeline, sources
 from tasks.geometry.checks import GeometryChecks
 from tasks.geometry.collision import CoacdSettings
@@ -120,8 +122,6 @@ def run_l0(request: AssetRequest, quality: Quality | None = None, contract: Stag
 def _designer_without_credentials(agents: AgentConfig) -> str | None:
     """When the Designer's model has no credentials in the environment: the fallback note (the offline grammar
     stands in; L0 is keyed as offline), or LLMUnavailable under --llm-fallback fail. None when it can be asked."""
-    from tasks.agents import fallbacks
-
     model = str(agents.designer.model)
     missing = fallbacks.missing_credentials(model)
     if not missing:
@@ -163,7 +163,6 @@ def write_l0(result: L0Result, out_dir: Path, extra: dict | None = None,
         files.update(write_outputs(tmp, result.mesh, result.proxy, result.particles, result.gaussians, result.info,
                                    result.checks, extra))
         if result.info.design_attempts:  # the LLM Designer's attempts, as the other stages record theirs
-            from tasks.agents.records import AttemptRecorder
 
             recorder = AttemptRecorder(tmp, "L0")
             for attempt in result.info.design_attempts:

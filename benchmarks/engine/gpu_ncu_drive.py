@@ -12,12 +12,13 @@ from __future__ import annotations
 
 import sys
 
+from contracts.sim import KernelOptions
+
 
 def main() -> None:
     import torch  # the device image's; only for cudaProfilerStart/Stop
     import warp as wp
 
-    from contracts.sim import KernelOptions
     from tasks.mpm.scene import BENCH_DT_S, bench_cube_model
     from tasks.mpm.simulator import Simulator
 

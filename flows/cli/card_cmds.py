@@ -6,6 +6,7 @@ from pathlib import Path
 
 import typer
 
+from cache import use_cache_root
 from flows.cli.apps import app, results
 
 
@@ -16,7 +17,6 @@ def card(
 ) -> None:
     """Rebuild the asset card: request, views, drop frames, material and bands, L1, L3 and where each number came
     from (renders/card.png and renders/card.html, the videos embedded)."""
-    from cache import use_cache_root
     from tasks.render.card import build_card
 
     if cache_dir is not None:

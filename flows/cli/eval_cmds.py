@@ -6,6 +6,7 @@ from pathlib import Path
 
 import typer
 
+from cache import use_cache_root
 from flows.cli.apps import app, check_device, console, emit_json, fail, results
 from flows.cli.preflight import check_locations
 
@@ -30,8 +31,6 @@ def eval_cmd(
     as_json: bool = typer.Option(False, "--json", help="print the figures as JSON"),
 ) -> None:
     """Run (or resume) an evaluation: records per case and arm, then report.md with tables, plots and links."""
-    from cache import use_cache_root
-
     chosen = ABLATIONS if ablation == "all" else tuple(a.strip() for a in ablation.split(","))
     if not chosen or any(a not in ABLATIONS for a in chosen):
         fail(f"--ablation must be one of {', '.join(ABLATIONS)}, a comma list of them, or all; got '{ablation}'")

@@ -10,11 +10,16 @@ import typer
 from pydantic import ValidationError
 from rich.markup import escape
 
+from cache import use_cache_root
 from contracts.errors import validation_message
+from contracts.evidence import StageTally
+from contracts.request import AssetRequest
 from flows.cli.apps import app, check_device, console, emit_json, fail, results
+from flows.cli.evidence_cmds import print_tallies
 from flows.cli.geometry_cmds import GEOMETRY_BACKEND_HELP
 from flows.cli.llm_option import LLM_FALLBACK_HELP, llm_agents
 from flows.cli.preflight import STRICT_CONCEPT_HELP, check_request, concept_line
+from tasks.record.tally import stage_tallies
 
 if TYPE_CHECKING:
     from contracts.sim import Device
@@ -36,10 +41,6 @@ KEY_FIGURES = ("mass_kg", "effective_modulus_pa", "rebound_ratio", "recovery_rat
 def print_summary(manifest, asset_dir: Path) -> None:
     """The validation summary: counts from the attempt records (the same tallies `evidence` prints), key figures
     from the manifest, and why a stage did not simply pass, in full."""
-    from contracts.evidence import StageTally
-    from flows.cli.evidence_cmds import print_tallies
-    from tasks.record.tally import stage_tallies
-
     figures = {s.stage: ", ".join(f"{k}={s.metrics[k]:.3g}" for k in KEY_FIGURES if k in s.metrics)
                for s in manifest.validation}
     tallies = {t.stage: t for t in stage_tallies(asset_dir)}
@@ -93,9 +94,6 @@ def generate(
     strict_concept: bool = typer.Option(False, "--strict-concept", help=STRICT_CONCEPT_HELP),
 ) -> None:
     """Text, image or mesh -> a published asset directory: geometry, physical model, tested material, evidence."""
-    from cache import use_cache_root
-    from contracts.request import AssetRequest
-
     check_device(device)
     if quality not in ("draft", "standard", "high"):
         fail(f"--quality must be draft, standard or high, got '{quality}'")

@@ -9,9 +9,11 @@ from pydantic import ValidationError
 from rich.markup import escape
 
 from contracts.errors import validation_message
+from contracts.request import AssetRequest
 from flows.cli.apps import app, console, emit_json, fail, prefect_log_level, results
 from flows.cli.llm_option import LLM_FALLBACK_HELP, llm_agents
 from flows.cli.preflight import STRICT_CONCEPT_HELP, check_request, concept_line
+from tasks.asset_dir import AssetDir, document_json
 
 QUALITIES = ("draft", "standard", "high")
 GEOMETRY_BACKEND_HELP = ("reconstruction backend that makes the mesh: a Python entry point 'module:function' or an "
@@ -50,7 +52,6 @@ def geometry(
         fail(f"--quality must be one of {', '.join(QUALITIES)}, not '{quality}'")
     if size_m is not None and not (0.01 <= size_m <= 2.0):
         fail(f"--size-m {size_m:g} m is outside the supported range [0.01, 2] m")
-    from contracts.request import AssetRequest
 
     try:
         request = AssetRequest(text=text, image_path=image.absolute() if image else None,
@@ -73,8 +74,6 @@ def geometry(
         result = run_l0(request, use_cache=not no_cache, agents=_agents(llm, llm_fallback))
         write_l0(result, out, request=request)
     if as_json:
-        from tasks.asset_dir import AssetDir, document_json
-
         emit_json(document_json(AssetDir(out).geometry()))
     m = result.checks.metrics
     (console if as_json else results).print(  # the result line; beside --json output, on stderr

@@ -9,9 +9,16 @@ from pathlib import Path
 import typer
 from pydantic import ValidationError
 
+from cache import use_cache_root
+from contracts.agents import AgentConfig
 from contracts.errors import validation_message
+from contracts.material import Material
+from contracts.sim import SimConfig
 from flows.cli.apps import app, console, emit_json, fail, prefect_log_level, results
+from flows.cli.physical_cmds import asset_path
 from flows.cli.preflight import check_asset_dir, check_locations
+from tasks.asset_dir import AssetDir, document_json
+from tasks.publish import staged_update
 
 RIGID_KINDS = ("place", "drop", "slide")  # L1 rigid probes (pybullet); `drop` is rigid unless --deformable
 DEFORMABLE_KINDS = ("compress", "lift", "stability")
@@ -20,8 +27,6 @@ KINDS = ("place", "drop", "slide", "compress", "lift", "stability")
 
 def _check_asset(asset: Path) -> None:
     """The asset directory must hold an L0 output."""
-    from tasks.asset_dir import AssetDir
-
     if not AssetDir(asset).has("geometry"):
         fail(f"{asset} is not an asset directory (no geometry.json); run `deformsmith geometry ... --out {asset}`")
 
@@ -41,7 +46,6 @@ def _material(E: float | None, nu: float | None, damping: float | None, asset: P
     """The material to probe: the asset's adopted material (L2's, or the L3 revision it adopted; else the intent's
     priors), with the given overrides."""
     from flows.l2_material import l2_targets
-    from tasks.asset_dir import AssetDir
     from tasks.geometry.outputs import load_l0
 
     given = _material_overrides(E, nu, damping)
@@ -60,8 +64,6 @@ _PARAMETER_NAMES = {"youngs_modulus_pa": "E (--E) [Pa]", "poisson_ratio": "nu (-
 
 def _validated(values: dict[str, float]):
     """A Material, or one clear line naming the invalid parameter and a non-zero exit."""
-    from contracts.material import Material
-
     try:
         return Material(**values)
     except ValidationError as exc:
@@ -131,8 +133,6 @@ def material(
 ) -> None:
     """Run L2 on an asset: MPM probes, harness-selected neo-Hookean material -> material.json, evidence, recordings."""
 
-    from flows.cli.physical_cmds import asset_path
-
     asset = asset_path(asset_dir, asset)
     _check_asset(asset)
     if intent is not None and not intent.strip():
@@ -140,16 +140,10 @@ def material(
     if not 1 <= cpu_threads <= 64:
         fail(f"--cpu-threads must be 1 to 64, got {cpu_threads}")
     if cache_dir is not None:
-        from cache import use_cache_root
-
         use_cache_root(cache_dir)
     check_asset_dir(asset)  # the asset directory, its parent and the cache root usable, before L2 runs
     prefect_log_level("CRITICAL")
-    from contracts.agents import AgentConfig
-    from contracts.sim import SimConfig
     from flows.l2_material import run_l2
-    from tasks.asset_dir import AssetDir, document_json
-    from tasks.publish import staged_update
 
     agents = AgentConfig.llm(llm) if llm else None
     import time

@@ -7,8 +7,11 @@ from pathlib import Path
 import typer
 from rich.table import Table
 
+from cache import use_cache_root
 from flows.cli.apps import app, console, emit_json, fail, results
 from flows.cli.preflight import check_asset_dir
+from tasks.asset_dir import AssetDir
+from tasks.publish import staged_update
 
 
 def asset_path(positional: Path | None, option: Path | None) -> Path:
@@ -30,12 +33,9 @@ def physical(
     as_json: bool = typer.Option(False, "--json", help="print the physical model and metrics as JSON"),
 ) -> None:
     """L1: density and friction from the intent, mass model, rigid placement / drop / slide probes in pybullet."""
-    from cache import use_cache_root
-
     asset = asset_path(asset_dir, asset)
     if intent is not None and not intent.strip():
         fail("--intent is empty")
-    from tasks.asset_dir import AssetDir
 
     if not AssetDir(asset).has("geometry"):
         fail(f"{asset} is not an L0 asset directory (no geometry.json); run `deformsmith geometry ... --out {asset}`")
@@ -43,7 +43,6 @@ def physical(
         use_cache_root(cache_dir)
     check_asset_dir(asset)  # the asset directory, its parent and the cache root usable, before L1 runs
     from flows.l1_physical import run_l1
-    from tasks.publish import staged_update
 
     # L1 writes into a working copy, swapped in whole when it ends: files and evidence together, or nothing
     with console.status("L1: rigid probes in pybullet"), staged_update(asset) as work:

@@ -36,6 +36,7 @@ import numpy as np
 
 from contracts.errors import InputError, SimulationError
 from tasks.export.crosscheck import compression_metrics, drop_metrics
+from tasks.export.mujoco_scene import fundamental_period_s
 from tasks.export.probe_schedule import unrotated
 from tasks.probes.metrics import compressive_strain
 
@@ -95,8 +96,6 @@ def _rate(mod: ModuleType, damping_rate_per_s: float | None) -> float:
 
 
 def _period_s(p: dict[str, Any]) -> float:
-    from tasks.export.mujoco_scene import fundamental_period_s
-
     # the probes' time scales come from the exported (validated) E, as L2's do, not from a calibration's trial E
     return fundamental_period_s(float(p["height_m"]), float(p["youngs_modulus_pa"]), float(p["density_kg_per_m3"]))
 

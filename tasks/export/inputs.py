@@ -9,6 +9,7 @@ from pathlib import Path
 
 import numpy as np
 
+from cache import CacheMiss, CacheStore, cache_root, content_key
 from contracts.errors import InputError
 from contracts.export import ExportMaterial
 from tasks.asset_dir import AssetDir
@@ -73,8 +74,6 @@ def export_material(adir: AssetDir) -> ExportMaterial:
 
 def cached_tet_mesh(vertices_m: np.ndarray, faces: np.ndarray, edge_length_m: float | None = None) -> TetMesh:
     """tetrahedralize, cached in the content cache by the surface, the edge length and TETMESH_VERSION."""
-    from cache import CacheMiss, CacheStore, cache_root, content_key
-
     v = np.ascontiguousarray(vertices_m, dtype=np.float64)
     f = np.ascontiguousarray(faces, dtype=np.int64)
     key = content_key("export.tetmesh", TETMESH_VERSION, v, f, edge_length_m)

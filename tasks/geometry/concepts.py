@@ -11,10 +11,12 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from contracts.concept import ConceptMatch, FallbackLevel
-from contracts.lexicon import LexiconEntry, load_lexicon
+from contracts.lexicon import MATERIALS_FILE, LexiconEntry, load_lexicon
 from contracts.shape import Part, ShapeProgram
 from tasks.geometry import analogy as analogy_mod, goods_words, grammar, phrase as phrase_mod
-from tasks.geometry.grammar.parts import part_group
+from tasks.geometry.catalogue_programs import catalogue_program
+from tasks.geometry.grammar.parts import _euler_z_to, box, ellipsoid, part_group, relief, rotated_parts, squashed_parts
+from tasks.geometry.sdf import program_sdf
 from tasks.geometry.wordnet import wordnet
 
 # Words that say what an unknown object is like (checked only when the head noun is not in the lexicon).
@@ -257,8 +259,6 @@ def _known_word(w: str) -> bool:
 def _material_words() -> dict[str, str]:
     """Material word -> material class (contracts/vocab/materials.yaml)."""
     import yaml
-
-    from contracts.lexicon import MATERIALS_FILE
 
     raw = yaml.safe_load(MATERIALS_FILE.read_text(encoding="utf-8"))["materials"]
     return {normalise(w): name for name, m in raw.items() for w in m["words"]}
@@ -586,8 +586,6 @@ def _entry_program_cached(key: str, size_m: float) -> ShapeProgram:
     lex = load_lexicon()
     entry = lex.entries[key]
     if entry.catalogue is not None:
-        from tasks.geometry.catalogue import catalogue_program
-
         prog = catalogue_program(entry.catalogue)
         prog = grammar.resize(prog, size_m)
         if entry.colors:
@@ -785,8 +783,6 @@ def apply_pattern(program: ShapeProgram, text: str) -> tuple[ShapeProgram, dict[
 
 def _patch(name: str, at: np.ndarray, normal: np.ndarray, radius: float, thickness: float, rgb: tuple) -> Part:
     """A thin disc-like ellipsoid lying on a surface at `at` with its thin axis along `normal`."""
-    from tasks.geometry.grammar.parts import _euler_z_to
-
     return Part(name=name, primitive={"kind": "ellipsoid", "radii_m": (radius, radius, thickness)},
                 transform={"translation_m": tuple(float(v) for v in at), "rotation_deg": _euler_z_to(normal)},
                 color_rgb=rgb)
@@ -927,8 +923,6 @@ def _body_envelope(program: ShapeProgram, resolution: int = 40) -> tuple[np.ndar
 def with_relief(program: ShapeProgram, kind: str) -> ShapeProgram | None:
     """The program with surface relief over its body (spikes, nubs, folds, strands, ruffles, lumps) standing out of
     it; None when the body is not ball-like (its shortest half extent under half its longest)."""
-    from tasks.geometry.grammar.parts import relief
-
     centre, half = _body_envelope(program)
     if kind != "lumps" and float(half.min()) < 0.5 * float(half.max()):
         return None
@@ -950,8 +944,6 @@ def with_relief(program: ShapeProgram, kind: str) -> ShapeProgram | None:
 
 def posed(program: ShapeProgram, pose: str) -> ShapeProgram:
     """The whole program turned over ('side': 90 degrees about its long x axis; 'back': 180 degrees)."""
-    from tasks.geometry.grammar.parts import rotated_parts
-
     centre, _half = _body_envelope(program, 32)
     return program.model_copy(update={"parts": rotated_parts(program.parts, POSE_TURN_DEG[pose], centre)})
 
@@ -969,8 +961,6 @@ def inflatable(entry: LexiconEntry) -> bool:
 def deflated(program: ShapeProgram, half: bool = False) -> ShapeProgram:
     """An inflatable without its air: squashed flat and spread (its skin lies in folds), with creases; half
     inflated: squashed to about half its height and a little spread. Its longest extent grows as the skin spreads."""
-    from tasks.geometry.grammar.parts import relief, squashed_parts
-
     parts = squashed_parts(program.parts, DEFLATE_FACTORS[half])
     flat = program.model_copy(update={"parts": parts})
     if half or len(parts) > 48:
@@ -994,8 +984,6 @@ def dented(program: ShapeProgram, half: bool = False) -> ShapeProgram:
     """A ball that has lost air: it sags and one side is pushed in as a dish (a third of its height when half
     deflated, more than half when deflated); relief and panels (every part after the body) follow the dished
     surface."""
-    from tasks.geometry.grammar.parts import ellipsoid, squashed_parts
-
     depth, sag = DENT[half]
     centre, halfext = _body_envelope(program, 40)
     base = np.array([centre[0], centre[1], centre[2] - halfext[2]])
@@ -1018,8 +1006,6 @@ def dented(program: ShapeProgram, half: bool = False) -> ShapeProgram:
 
 def emptied(program: ShapeProgram) -> ShapeProgram:
     """A filled bag or bottle with nothing in it: its two walls lie together (a sixth of the filled thickness)."""
-    from tasks.geometry.grammar.parts import squashed_parts
-
     return program.model_copy(update={"parts": squashed_parts(program.parts, EMPTY_FACTORS)})
 
 
@@ -1099,8 +1085,6 @@ def wedged(program: ShapeProgram, target: LexiconEntry) -> ShapeProgram:
     diagonal half (a block of cheese cut corner to corner: a triangular prism). The cut faces take the inside colour."""
     from scipy.spatial.transform import Rotation
 
-    from tasks.geometry.grammar.parts import box
-
     centre, half = _body_envelope(program)
     fruit = target.category in WEDGE_ANGLE_DEG
     if fruit:
@@ -1138,8 +1122,6 @@ def wedged(program: ShapeProgram, target: LexiconEntry) -> ShapeProgram:
 def _snapped(parts: list[Part], program: ShapeProgram, centre: np.ndarray, half: np.ndarray) -> list[Part]:
     """Relief parts placed on the envelope ellipsoid moved along their ray from the centre onto the body's own surface
     (an egg's narrow end, a cushion's flat side), by bisection on the program's signed distance (all rays at once)."""
-    from tasks.geometry.sdf import program_sdf
-
     movable = [i for i, p in enumerate(parts) if p.operation == "union"
                and np.linalg.norm(np.asarray(p.transform.translation_m) - centre) > 1e-9]
     if not movable:

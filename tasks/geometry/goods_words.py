@@ -10,10 +10,11 @@ from dataclasses import dataclass
 import numpy as np
 
 from contracts.concept import ConceptMatch
-from contracts.lexicon import LexiconEntry
+from contracts.lexicon import LexiconEntry, load_lexicon
 from contracts.shape import ShapeProgram
 from tasks.geometry import fill_words, grammar
 from tasks.geometry.grammar.goods import BAG_CAPACITY
+from tasks.geometry.grammar.parts import part_group
 
 FILLABLE_PLANS = frozenset({"bag", "pouch"})
 PAIR_WORDS = frozenset({"pair"})
@@ -167,9 +168,6 @@ def pair_up(program: ShapeProgram, match: ConceptMatch) -> tuple[ShapeProgram, C
 
 def painted_fill(program: ShapeProgram, color: str) -> ShapeProgram:
     """The program with its 'fill' parts in the fill's colour (rice shows ivory through a clear bag)."""
-    from contracts.lexicon import load_lexicon
-    from tasks.geometry.grammar.parts import part_group
-
     rgb = load_lexicon().colors[color]
     return program.model_copy(update={"parts": [p.model_copy(update={"color_rgb": rgb}) if part_group(p.name) == "fill"
                                                 else p for p in program.parts]})

@@ -24,7 +24,7 @@ def build_mesh(request: AssetRequest, settings: L0Settings) -> tuple[Arrays, Bui
     if request.geometry_backend is not None:
         return from_backend(request, settings)
     if kind == "text" and settings.designer is not None:
-        from tasks.geometry.shape_designer import from_text_llm  # lazy: pulls litellm (~2 s), only with an LLM Designer
+        from tasks.geometry.shape_designer import from_text_llm  # lazy: pulls litellm (~10 s), only with an LLM Designer
 
         return from_text_llm(request, settings)
     if kind == "text":

@@ -16,6 +16,7 @@ from typing import Any
 
 import numpy as np
 
+from cache import cache_root
 from tasks.publish import copy_file_atomic
 
 RECORDING_VERSION = "1"  # bump when write_rrd changes what a trial's recording shows
@@ -32,7 +33,6 @@ def trial_recording_name(trial: int) -> str:
 
 def cached_recording(arrays: dict[str, np.ndarray], attrs: dict[str, Any], trial_key: str) -> Path:
     """The trial's recording in the cache (written there on first use, atomically)."""
-    from cache import cache_root
     from tasks.manipulation.replay import write_rrd
 
     path = cache_root() / "recordings" / f"L3_trial-{trial_key[:16]}-r{RECORDING_VERSION}.rrd"

@@ -18,6 +18,8 @@ from typing import Any
 
 import numpy as np
 
+from contracts.errors import InputError
+
 ARM_RGB = np.array([0.93, 0.93, 0.95])      # the Panda's white links
 DARK_RGB = np.array([0.20, 0.20, 0.23])     # fingers, a box gripper's body
 PAD_RGB = np.array([0.35, 0.36, 0.40])      # a box gripper's fingers
@@ -128,8 +130,6 @@ def gripper_spec(plan: dict[str, Any] | None) -> Any:
     """The GripperSpec a recorded plan names (contracts/grippers), or None (older data: the URDF's Franka Hand).
     A name this installation does not know gives a stand-in without a URDF hand: boxes from the recorded pads alone."""
     from types import SimpleNamespace
-
-    from contracts.errors import InputError
 
     name = (plan or {}).get("gripper")
     if not name:

@@ -5,6 +5,8 @@ from __future__ import annotations
 
 from typing import Any
 
+from tasks.record.tally import stage_tallies
+
 _RECORDING_NAMES = ("COLLIDERS", "GAUSSIANS", "HARNESS_LOG", "METRICS", "PARTICLES", "ProbeRecording",
                     "RecordingSummary", "read_recording", "recording_digest")
 
@@ -19,7 +21,5 @@ def __getattr__(name: str) -> Any:
 
         return getattr(rerun_recording, name)
     if name == "stage_tallies":
-        from tasks.record.tally import stage_tallies
-
         return stage_tallies
     raise AttributeError(f"module 'tasks.record' has no attribute {name!r}")

@@ -18,6 +18,7 @@ from typing import Any
 
 from contracts.agents import StageOutcome, TargetBehaviour
 from contracts.evidence import Attempt, StageTally
+from contracts.probes import not_measured_reason
 from contracts.stage import StageName
 from tasks.record.attempts import ATTEMPTS_FILE, read_attempts
 
@@ -79,8 +80,6 @@ def _unmet(record: dict[str, Any]) -> list[str]:
 def _not_measured(record: dict[str, Any]) -> dict[str, str]:
     """Target bands not measured on the record's kept candidate -> why (the record's words, else derived from its
     metrics: an older record has no not_measured)."""
-    from contracts.probes import not_measured_reason
-
     found = _targets(record)
     if not found:
         return {}

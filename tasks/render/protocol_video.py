@@ -21,6 +21,9 @@ from typing import Any, Protocol
 import numpy as np
 
 from tasks.render.camera import Camera
+from tasks.render.captions import caption
+from tasks.render.discs import render
+from tasks.render.shading import deformed_normals, lit_colors
 
 # (tasks.geometry's modules import trimesh: imported where used, so the card reads these names quickly)
 
@@ -52,8 +55,6 @@ def _disc_renderer(cam: Camera, means_m: np.ndarray, covariances_m2: np.ndarray,
                    opacities: np.ndarray, *, sh_coeffs: np.ndarray | None = None, scene: str = "studio",
                    device: str = "cpu") -> np.ndarray:
     """The disc rasteriser behind the splatting renderer's signature: a cheap renderer for tests of the video plumbing."""
-    from tasks.render.discs import render
-
     return render(cam, means_m, covariances_m2, colors_rgb)
 
 
@@ -112,8 +113,6 @@ def iter_states(renderer: GaussianRenderer, cam: Camera, gaussians: dict[str, np
     time (a 5 s 720p video is 400 MB of frames). A state whose Gaussians lie within STILL_PX of the last drawn
     frame's (centres, and sizes to STILL_COV) repeats that frame: a body at rest is drawn once, not 100 times."""
     from tasks.geometry.gaussians import deform_gaussians
-
-    from tasks.render.shading import deformed_normals, lit_colors
 
     colors = np.clip(np.asarray(gaussians["colors"], np.float64)[:, :3], 0.0, 1.0)
     n = len(colors)
@@ -228,8 +227,6 @@ def interpolated(frames: np.ndarray, k: float) -> np.ndarray:
 
 def drop_caption(image: np.ndarray, t_s: float, slowed: bool) -> np.ndarray:
     """The simulated time in the top-left corner, and the slow motion while it lasts."""
-    from tasks.render.captions import caption
-
     return caption(image, [f"t = {t_s:4.2f} s" + (f"   slow motion {SLOW_MOTION}x" if slowed else "")])
 
 

@@ -16,6 +16,7 @@ from contracts.errors import InputError
 from contracts.shape import Part, ShapeProgram
 from tasks.geometry.grammar import animals, food, goods, things
 from tasks.geometry.grammar.parts import part_group
+from tasks.geometry.sdf import program_bounds
 
 RGB = tuple[float, float, float]
 
@@ -213,7 +214,6 @@ def state_change(plan: str, params: dict[str, Any] | None, size_m: float, state:
 @functools.lru_cache(maxsize=256)
 def _unit_solid_cached(plan: str, params_json: str) -> tuple[float, float]:
     from tasks.geometry.meshing import mesh_program
-    from tasks.geometry.sdf import program_bounds
 
     params = plan_parameters(plan, json.loads(params_json))
     program = ShapeProgram(name=plan, category="state", parts=PLANS[plan][1](params))
