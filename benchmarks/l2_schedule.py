@@ -27,8 +27,10 @@ from contracts.material import Material
 from contracts.sim import SimConfig
 from contracts.stage import load_contract
 from flows.cli.apps import console, emit_json, fail, results
+from flows.l2_material import l2_targets, physical_for, probe_parameters, screen_dampings, screen_moduli
 from tasks.agents.orchestrator import initial_values
 from tasks.asset_dir import AssetDir
+from tasks.geometry.outputs import load_l0
 from tasks.probes import deformable
 from tasks.probes.rollout import SCHEDULES, DeformableBody, plan_batches, rollouts
 
@@ -41,9 +43,6 @@ def run_l2_bench(asset_dir: Path, intent: str | None = None, schedules: tuple[st
                  repeat: int = 1) -> dict[str, Any]:
     """Run the screening candidates of each probe under each schedule (`repeat` times); return the figures."""
     import warp as wp
-
-    from flows.l2_material import l2_targets, physical_for, probe_parameters, screen_dampings, screen_moduli
-    from tasks.geometry.outputs import load_l0
 
     asset_dir = Path(asset_dir)
     asset = load_l0(asset_dir)

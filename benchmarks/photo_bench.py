@@ -29,8 +29,11 @@ import numpy as np
 
 from contracts.errors import InputError
 from contracts.request import AssetRequest
-from tasks.agents.intent import asset_material, asset_targets
+from flows.l0_geometry import run_l0
+from tasks.agents.intent import asset_material, asset_targets, targets_from_request
 from tasks.agents.vocab import load_material_vocab
+from tasks.geometry import image, pipeline, silhouette, sources
+from tasks.geometry.render import render_view
 from tasks.physical.mass import mass_check
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -58,19 +61,13 @@ def _mass(request, info, mesh) -> tuple[float, str]:  # noqa: ANN001
 def run_one(path: Path, text: str | None, size_m: float | None, full: bool, views: Path | None = None) -> dict:
     """One photo through L0 (mesh step, or all of L0 with full) and its figures; with views, the mesh's front, side
     and top renders side by side in views/<photo stem>.png (what a blind judge names the object from)."""
-    from tasks.geometry import image, pipeline, silhouette, sources
-
     row: dict = {"file": path.name, "text": text}
     t0 = time.perf_counter()
     try:
         request = AssetRequest(image_path=path, text=text, size_hint_m=size_m)
-        from tasks.agents.intent import targets_from_request
-
         targets_from_request(request)  # the CLI's check before any layer (a rigid object is refused here)
         s = pipeline.settings_from_contract("draft")
         if full:
-            from flows.l0_geometry import run_l0
-
             result = run_l0(request, "draft", use_cache=False)
             arrays, info = result.mesh, result.info
             row["gates_passed"] = bool(result.checks.passed)
@@ -87,8 +84,6 @@ def run_one(path: Path, text: str | None, size_m: float | None, full: bool, view
     mass, material = _mass(request, info, mesh)
     if views is not None:
         import imageio.v3 as iio
-
-        from tasks.geometry.render import render_view
 
         views.mkdir(parents=True, exist_ok=True)
         iio.imwrite(views / f"{path.stem}.png", np.concatenate([render_view(mesh, v, 384) for v in

@@ -27,6 +27,7 @@ from typing import Any, Literal
 from pydantic import BaseModel, Field, ValidationError
 
 import cache
+from cache import runtime
 from cache.config import ENV_VAR
 from contracts.errors import InputError, validation_message
 from contracts.request import AssetRequest
@@ -310,15 +311,13 @@ def prefect_api_for_children() -> Iterator[dict[str, str]]:
     batch (marked local, so that the children's flows run without heartbeats, as against their own). The local one is
     DeformSmith's (`cache.runtime.prestart_local_server`, already started by the CLI): it exits by itself if the
     batch is killed, where Prefect's own temporary server, the fallback, would be left running."""
-    from cache.runtime import local_api_env, prestart_local_server, shared_server_env, uses_remote_server
-
-    if uses_remote_server():
+    if runtime.uses_remote_server():
         from prefect.settings import PREFECT_API_URL
 
         yield {"PREFECT_API_URL": str(PREFECT_API_URL.value())}
         return
-    prestart_local_server()
-    shared = shared_server_env()
+    runtime.prestart_local_server()
+    shared = runtime.shared_server_env()
     if shared:
         yield shared
         return
@@ -327,7 +326,7 @@ def prefect_api_for_children() -> Iterator[dict[str, str]]:
     server = SubprocessASGIServer()
     server.start(timeout=120)
     try:
-        yield local_api_env(server.api_url)
+        yield runtime.local_api_env(server.api_url)
     finally:
         server.stop()
 

@@ -37,6 +37,7 @@ from tasks.export.crosscheck import (
 )
 from tasks.export.genesis import GENESIS_INSTALL
 from tasks.export.inputs import ExportInputs, load_export_inputs
+from tasks.export.mujoco_probes import compress, drop
 from tasks.export.mujoco_scene import FlexParams, fundamental_period_s
 from tasks.export.probe_schedule import TetBody
 from tasks.publish import write_text_atomic
@@ -67,8 +68,6 @@ def _rate_knob(name: str, rate_per_s: float, period_s: float) -> Knob:
 
 
 def _mujoco_runner(inputs: ExportInputs, targets: ProbeTargets, area_m2: float) -> SimRunner:
-    from tasks.export.mujoco_probes import compress, drop
-
     nodes, tets = inputs.tet.nodes_m, inputs.tet.tets
     p0 = mj.flex_params(nodes, tets, inputs.material)
     body = TetBody(nodes, tets, inputs.material.density_kg_per_m3, targets.spacing_m,

@@ -18,6 +18,7 @@ from tasks.agents.records import AttemptRecorder
 from tasks.geometry import pipeline, sources
 from tasks.geometry.checks import GeometryChecks
 from tasks.geometry.collision import CoacdSettings
+from tasks.geometry.outputs import publish_dir, write_outputs
 from tasks.geometry.particles import ParticleSettings
 from tasks.geometry.pipeline import Arrays, BuildInfo, L0Settings
 
@@ -153,8 +154,6 @@ def write_l0(result: L0Result, out_dir: Path, extra: dict | None = None,
     """Publish an L0 result into out_dir atomically (nothing is left behind on error). `request`, the whole request
     (material intent and target overrides too, which never key L0's cache), is stored as geometry.json's `request`,
     so that `physical` and `material` run on the directory derive the material as `generate` does."""
-    from tasks.geometry.outputs import publish_dir, write_outputs
-
     if request is not None:
         extra = {**(extra or {}), "request": request.model_dump(mode="json")}
     files: dict[str, str] = {}
