@@ -51,7 +51,7 @@ def parse_size(text: str) -> int:
 
 
 def _store(cache: Path | None) -> Any:
-    from cache.store import CacheStore
+    from cache.store import CacheStore  # lazy: pulls zarr (--help imports every command module)
 
     return CacheStore(resolve_cache_option(cache))
 

@@ -32,6 +32,7 @@ def crosscheck_cmd(
 ) -> None:
     """Run L2's drop and compression probes in another simulator on the exported asset and report each metric
     (effective modulus, rebound, impact strain, settle time, recovery) beside DeformSmith's MPM value."""
+    # lazy: pulls warp, trimesh, zarr (--help imports every command module)
     from flows.crosscheck import crosscheck_asset
 
     if not asset_dir.is_dir():

@@ -21,6 +21,7 @@ def export_cmd(
     as_json: bool = typer.Option(False, "--json", help="print the export manifest as JSON"),
 ) -> None:
     """Write the validated deformable asset for other simulators (tet mesh, material, a README line to load it)."""
+    # lazy: pulls trimesh, zarr, skimage (--help imports every command module)
     from flows.export import MANIFEST, export_asset
 
     if cache_dir is not None:

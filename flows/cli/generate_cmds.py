@@ -13,6 +13,7 @@ from rich.markup import escape
 from cache import use_cache_root
 from contracts.errors import validation_message
 from contracts.evidence import StageTally
+from contracts.manifest import AssetManifest  # (not flows.generate: no Prefect import to read a file)
 from contracts.request import AssetRequest
 from flows.cli.apps import app, check_device, console, emit_json, fail, results
 from flows.cli.evidence_cmds import print_tallies
@@ -118,6 +119,7 @@ def generate(
     out = out or _default_out(text, image, mesh)
     check_request(request, out)  # image header, output parent and cache root usable, before any layer
     agents = llm_agents(llm, llm_fallback)
+    # lazy: pulls trimesh, skimage, scipy (--help imports every command module)
     from tasks.request import checked_request
 
     checked = checked_request(request)  # a rigid material or '10 km long' is one line here, before the layers load
@@ -128,6 +130,7 @@ def generate(
     console.log(f"[bold]generate[/bold] {escape(repr(what))} -> {escape(str(out))} ({device}, {quality})")
 
     with console.status("loading the layers and the local Prefect server") as status:
+        # lazy: pulls prefect, warp, pybullet (--help imports every command module)
         from flows.generate import TIMINGS, generate_asset, require_l3 as check_l3
 
         preload_layers(l3)  # while Prefect's local server starts in its own process (~3 s on 2 cores)
@@ -163,8 +166,6 @@ def inspect_asset(
     as_json: bool = typer.Option(False, "--json"),
 ) -> None:
     """Print an asset's validation summary, material and physical model."""
-    from contracts.manifest import AssetManifest  # not flows.generate: no Prefect import for reading a file
-
     path = asset / "asset.json"
     if not path.is_file():
         fail(f"{asset} is not an asset directory (no asset.json)")

@@ -68,6 +68,7 @@ def geometry(
         console.print(f"[yellow]{escape(analogy)}[/yellow]", soft_wrap=True)  # the first line: a guess
     check_request(request, out, cache=not no_cache)  # image header, output parent and cache root usable
     prefect_log_level("CRITICAL")  # user errors surface as one line, not task tracebacks
+    # lazy: pulls prefect, trimesh, zarr (--help imports every command module)
     from flows.l0_geometry import run_l0, write_l0
 
     with console.status(f"L0 geometry ({quality})..."):
@@ -89,7 +90,8 @@ def geometry(
 
 def _preflight(request) -> None:
     """Cheap input checks before any flow starts (missing files, unsupported formats, absurd stated sizes)."""
-    from tasks.geometry import catalogue
+    from tasks.geometry import catalogue  # lazy: pulls trimesh, skimage, scipy (--help imports every command module)
+    # lazy: pulls trimesh, skimage, scipy (--help imports every command module)
     from tasks.geometry.mesh_import import SUPPORTED
 
     if request.mesh_path is not None:

@@ -43,6 +43,7 @@ def manipulate(
     if cache_dir is not None:
         use_cache_root(cache_dir)
     check_asset_dir(asset)  # the asset directory, its parent and the cache root usable, before L3 runs
+    # lazy: pulls prefect, warp, pybullet (--help imports every command module)
     from flows.l3_manipulation import L3Options, run_l3
 
     options = (L3Options.standard(device, cpu_threads) if quality == "standard"
@@ -90,6 +91,7 @@ def replay_cmd(
     as_json: bool = typer.Option(False, "--json", help="print what was written as JSON"),
 ) -> None:
     """Replay a recorded trial from its particle states (no re-simulation): frames, video, .rrd."""
+    # lazy: pulls pybullet, trimesh, zarr (--help imports every command module)
     from tasks.manipulation.replay import replay
 
     if not (asset / "interaction").is_dir():

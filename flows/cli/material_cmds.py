@@ -45,7 +45,8 @@ def _material_overrides(E: float | None, nu: float | None, damping: float | None
 def _material(E: float | None, nu: float | None, damping: float | None, asset: Path):
     """The material to probe: the asset's adopted material (L2's, or the L3 revision it adopted; else the intent's
     priors), with the given overrides."""
-    from flows.l2_material import l2_targets
+    from flows.l2_material import l2_targets  # lazy: pulls prefect, warp, trimesh (--help imports every command module)
+    # lazy: pulls trimesh, zarr, skimage (--help imports every command module)
     from tasks.geometry.outputs import load_l0
 
     given = _material_overrides(E, nu, damping)
@@ -95,13 +96,16 @@ def probe(
         if any(v is not None for v in (E, nu, damping)):
             fail(f"--E/--nu/--damping apply to deformable probes; '{kind}' is a rigid L1 probe")
         try:
+            # lazy: pulls prefect, trimesh, zarr (--help imports every command module)
             from flows.l1_physical import run_rigid_probe
         except ImportError:
             fail(f"the rigid probe '{kind}' needs flows.l1_physical.run_rigid_probe, which is not available")
         with console.status(f"rigid probe {kind}..."):
             result = run_rigid_probe(kind, asset, rho=rho)
     else:
+        # lazy: pulls prefect, warp, trimesh (--help imports every command module)
         from flows.l2_material import physical_for, run_probe
+        # lazy: pulls trimesh, zarr, skimage (--help imports every command module)
         from tasks.geometry.outputs import load_l0
 
         material = _material(E, nu, damping, asset)
@@ -143,7 +147,7 @@ def material(
         use_cache_root(cache_dir)
     check_asset_dir(asset)  # the asset directory, its parent and the cache root usable, before L2 runs
     prefect_log_level("CRITICAL")
-    from flows.l2_material import run_l2
+    from flows.l2_material import run_l2  # lazy: pulls prefect, warp, trimesh (--help imports every command module)
 
     agents = AgentConfig.llm(llm) if llm else None
     import time

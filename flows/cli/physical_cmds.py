@@ -42,7 +42,7 @@ def physical(
     if cache_dir is not None:
         use_cache_root(cache_dir)
     check_asset_dir(asset)  # the asset directory, its parent and the cache root usable, before L1 runs
-    from flows.l1_physical import run_l1
+    from flows.l1_physical import run_l1  # lazy: pulls prefect, trimesh, zarr (--help imports every command module)
 
     # L1 writes into a working copy, swapped in whole when it ends: files and evidence together, or nothing
     with console.status("L1: rigid probes in pybullet"), staged_update(asset) as work:

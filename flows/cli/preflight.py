@@ -149,6 +149,7 @@ def concept_line(request, strict: bool) -> str | None:
     generic shape), or None when the lexicon names it; InputError with that line under --strict-concept."""
     if request.mesh_path is not None or not (request.text and request.text.strip()):
         return None
+    # lazy: the offline Designer pulls scipy, skimage, trimesh (~2 s at CLI start)
     from tasks.geometry.catalogue import design_from_text
 
     concept = design_from_text(request.text, request.size_hint_m).concept

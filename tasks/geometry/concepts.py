@@ -16,6 +16,7 @@ from contracts.shape import Part, ShapeProgram
 from tasks.geometry import analogy as analogy_mod, goods_words, grammar, phrase as phrase_mod
 from tasks.geometry.catalogue_programs import catalogue_program
 from tasks.geometry.grammar.parts import _euler_z_to, box, ellipsoid, part_group, relief, rotated_parts, squashed_parts
+from tasks.geometry.meshing import sample_program
 from tasks.geometry.sdf import program_sdf
 from tasks.geometry.wordnet import wordnet
 
@@ -904,16 +905,12 @@ def relief_of(text: str, entry: LexiconEntry) -> tuple[str | None, bool]:
 
 def _volume(program: ShapeProgram, resolution: int = 40) -> float:
     """The volume of the solid a program describes [m^3], from its signed distances on a grid."""
-    from tasks.geometry.meshing import sample_program
-
     field_, _origin, spacing = sample_program(program, resolution)
     return float(np.count_nonzero(field_ < 0)) * spacing ** 3
 
 
 def _body_envelope(program: ShapeProgram, resolution: int = 40) -> tuple[np.ndarray, np.ndarray]:
     """(centre, half extents) [m] of the solid a program describes, from its signed distances on a grid."""
-    from tasks.geometry.meshing import sample_program
-
     field_, origin, spacing = sample_program(program, resolution)
     idx = np.argwhere(field_ < 0)
     lo, hi = origin + idx.min(axis=0) * spacing, origin + (idx.max(axis=0) + 1) * spacing

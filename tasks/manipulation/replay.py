@@ -17,18 +17,13 @@ import numpy as np
 from contracts.errors import InputError
 from tasks.geometry.gaussians import deform_gaussians
 from tasks.manipulation.data import read_attempt
-from tasks.manipulation.robot_view import (
-    HAND_LINKS,
-    gripper_boxes,
-    gripper_spec,
-    link_poses,
-    panda_visual_meshes,
-    uses_urdf_hand,
-)
+from tasks.manipulation.robot_view import (HAND_LINKS, gripper_boxes, gripper_spec, link_poses, panda_visual_meshes,
+                                           uses_urdf_hand)
 from tasks.manipulation.scene import VIDEO_FPS, VIDEO_SIZE
 from tasks.manipulation.video import PickPlaceVideo
 from tasks.record import ProbeRecording
 from tasks.record.trials import attempt_of_trial, reported_trial, trial_of_attempt
+from tasks.robot import PHASES
 
 ROBOT = "world/robot"
 RRD_MAX_GAUSSIANS = 20000  # a recording keeps at most this many Gaussians per frame (a deterministic stride)
@@ -167,8 +162,6 @@ def write_rrd(arrays: dict[str, np.ndarray], attrs: dict, path: Path, max_partic
     """
     import rerun as rr
     from scipy.spatial.transform import Rotation
-
-    from tasks.robot import PHASES
 
     spec = gripper_spec(attrs.get("plan"))
     urdf_hand = uses_urdf_hand(spec)

@@ -17,20 +17,9 @@ from typing import Any
 
 import numpy as np
 
-from tasks.manipulation.robot_view import (
-    FLANGE_LINK,
-    HAND_LINKS,
-    box_mesh,
-    gripper_boxes,
-    gripper_spec,
-    link_poses,
-    panda_visual_meshes,
-    shade,
-    tcp_frame,
-    uses_urdf_hand,
-)
-from tasks.manipulation.scene import (VIDEO_FPS, VIDEO_SIZE, attempt_timeline, backdrop, object_gaussians,
-                                      view_direction)
+from tasks.manipulation.robot_view import (FLANGE_LINK, HAND_LINKS, box_mesh, gripper_boxes, gripper_spec, link_poses,
+                                           panda_visual_meshes, shade, tcp_frame, uses_urdf_hand)
+from tasks.manipulation.scene import VIDEO_FPS, VIDEO_SIZE, attempt_timeline, backdrop, object_gaussians, view_direction
 from tasks.render import mesh_raster as raster
 from tasks.render.attempt_video import (SplatSet, choose_corner, compose, inset_camera, inset_size, paste_inset,
                                         wide_camera)
@@ -38,6 +27,7 @@ from tasks.render.camera import Camera
 from tasks.render.captions import caption
 from tasks.render.gripper_model import Part, gripper_parts, robotiq_links
 from tasks.render.shading import deformed_normals, normals_from_covariances
+from tasks.robot import PHASES
 
 CAMERA_EVERY = 3  # the wide camera frames the robot at every 3rd video frame (and the first and last)
 POINT_EVERY = 7  # ... through every 7th vertex of its meshes
@@ -151,8 +141,6 @@ class PickPlaceVideo:
 
     def frame(self, i: int) -> np.ndarray:
         """RGB image (H, W, 3) uint8 of video frame i: the wide view, the caption and the fingers' close-up."""
-        from tasks.robot import PHASES
-
         parts, splats = self._robot_parts(i), self._object(i)
         wide = self._draw(self.cam, self.room, parts, splats)
         close_cam = self.inset_camera(i)
