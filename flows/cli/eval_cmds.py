@@ -9,7 +9,6 @@ import typer
 from cache import use_cache_root
 from flows.cli.apps import app, check_device, console, emit_json, fail, results
 from flows.cli.preflight import check_locations
-from tasks.evaluation.suite import load_suite
 
 ABLATIONS = ("hierarchy", "harness", "manipulation")
 
@@ -44,6 +43,7 @@ def eval_cmd(
         use_cache_root(cache_dir)
     check_locations(out_root=out)  # the evaluation folder and the cache root are usable, before any case runs
     from flows.evaluate import EvalOptions, evaluate  # lazy: Prefect and every layer's flow (seconds at CLI start)
+    from tasks.evaluation.suite import load_suite  # lazy: numpy and the harness's vocabulary (0.8 s at CLI start)
 
     load_suite(suite)  # a bad suite fails here, before anything runs
     opts = EvalOptions(suite=suite, ablations=tuple(a for a in ABLATIONS if a in chosen), limit=limit,

@@ -13,7 +13,6 @@ from contracts.request import AssetRequest
 from flows.cli.apps import app, console, emit_json, fail, prefect_log_level, results
 from flows.cli.llm_option import LLM_FALLBACK_HELP, llm_agents
 from flows.cli.preflight import STRICT_CONCEPT_HELP, check_request, concept_line
-from tasks.asset_dir import AssetDir, document_json
 
 QUALITIES = ("draft", "standard", "high")
 GEOMETRY_BACKEND_HELP = ("reconstruction backend that makes the mesh: a Python entry point 'module:function' or an "
@@ -48,6 +47,9 @@ def geometry(
     strict_concept: bool = typer.Option(False, "--strict-concept", help=STRICT_CONCEPT_HELP),
 ) -> None:
     """Run L0 alone: text, image or mesh -> mesh.glb, collision/, particles.zarr, gaussians.ply, renders/, geometry.json."""
+    # lazy: contracts.asset_dir's models (~0.1 s; --help imports every command module)
+    from tasks.asset_dir import AssetDir, document_json
+
     if quality not in QUALITIES:
         fail(f"--quality must be one of {', '.join(QUALITIES)}, not '{quality}'")
     if size_m is not None and not (0.01 <= size_m <= 2.0):

@@ -12,8 +12,6 @@ from cache import use_cache_root
 from contracts.errors import RequirementNotMet
 from flows.cli.apps import app, check_device, console, emit_json, fail, results
 from flows.cli.preflight import check_asset_dir, check_outputs
-from tasks.asset_dir import AssetDir
-from tasks.publish import staged_update
 
 
 @app.command("manipulate")
@@ -31,6 +29,11 @@ def manipulate(
 
     An L3 that does not pass (no grasp, no valid pick) is a result: recorded, printed with its reason, exit 0
     (exit 7 with --require-l3)."""
+    # lazy: contracts.asset_dir's models (~0.1 s; --help imports every command module)
+    from tasks.publish import staged_update  # lazy: pulls ctypes (--help imports every command module)
+
+    from tasks.asset_dir import AssetDir
+
     if not AssetDir(asset).has("geometry"):
         fail(f"{asset} is not an asset directory (no geometry.json)")
     if not AssetDir(asset).has("physical"):

@@ -17,8 +17,6 @@ from contracts.sim import SimConfig
 from flows.cli.apps import app, console, emit_json, fail, prefect_log_level, results
 from flows.cli.physical_cmds import asset_path
 from flows.cli.preflight import check_asset_dir, check_locations
-from tasks.asset_dir import AssetDir, document_json
-from tasks.publish import staged_update
 
 RIGID_KINDS = ("place", "drop", "slide")  # L1 rigid probes (pybullet); `drop` is rigid unless --deformable
 DEFORMABLE_KINDS = ("compress", "lift", "stability")
@@ -27,6 +25,9 @@ KINDS = ("place", "drop", "slide", "compress", "lift", "stability")
 
 def _check_asset(asset: Path) -> None:
     """The asset directory must hold an L0 output."""
+    # lazy: contracts.asset_dir's models (~0.1 s; --help imports every command module)
+    from tasks.asset_dir import AssetDir
+
     if not AssetDir(asset).has("geometry"):
         fail(f"{asset} is not an asset directory (no geometry.json); run `deformsmith geometry ... --out {asset}`")
 
@@ -45,6 +46,9 @@ def _material_overrides(E: float | None, nu: float | None, damping: float | None
 def _material(E: float | None, nu: float | None, damping: float | None, asset: Path):
     """The material to probe: the asset's adopted material (L2's, or the L3 revision it adopted; else the intent's
     priors), with the given overrides."""
+    # lazy: contracts.asset_dir's models (~0.1 s; --help imports every command module)
+    from tasks.asset_dir import AssetDir
+
     from flows.l2_material import l2_targets  # lazy: pulls prefect, warp, trimesh (--help imports every command module)
     # lazy: pulls trimesh, zarr, skimage (--help imports every command module)
     from tasks.geometry.outputs import load_l0
@@ -136,6 +140,11 @@ def material(
     as_json: bool = typer.Option(False, "--json", help="print material.json to stdout"),
 ) -> None:
     """Run L2 on an asset: MPM probes, harness-selected neo-Hookean material -> material.json, evidence, recordings."""
+
+    # lazy: contracts.asset_dir's models (~0.1 s; --help imports every command module)
+    from tasks.publish import staged_update  # lazy: pulls ctypes (--help imports every command module)
+
+    from tasks.asset_dir import AssetDir, document_json
 
     asset = asset_path(asset_dir, asset)
     _check_asset(asset)

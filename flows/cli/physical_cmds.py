@@ -10,8 +10,6 @@ from rich.table import Table
 from cache import use_cache_root
 from flows.cli.apps import app, console, emit_json, fail, results
 from flows.cli.preflight import check_asset_dir
-from tasks.asset_dir import AssetDir
-from tasks.publish import staged_update
 
 
 def asset_path(positional: Path | None, option: Path | None) -> Path:
@@ -33,6 +31,11 @@ def physical(
     as_json: bool = typer.Option(False, "--json", help="print the physical model and metrics as JSON"),
 ) -> None:
     """L1: density and friction from the intent, mass model, rigid placement / drop / slide probes in pybullet."""
+    # lazy: contracts.asset_dir's models (~0.1 s; --help imports every command module)
+    from tasks.publish import staged_update  # lazy: pulls ctypes (--help imports every command module)
+
+    from tasks.asset_dir import AssetDir
+
     asset = asset_path(asset_dir, asset)
     if intent is not None and not intent.strip():
         fail("--intent is empty")
