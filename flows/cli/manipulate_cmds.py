@@ -29,10 +29,8 @@ def manipulate(
 
     An L3 that does not pass (no grasp, no valid pick) is a result: recorded, printed with its reason, exit 0
     (exit 7 with --require-l3)."""
-    # lazy: contracts.asset_dir's models (~0.1 s; --help imports every command module)
+    from tasks.asset_dir import AssetDir  # lazy: contracts.asset_dir's models (~0.1 s at --help)
     from tasks.publish import staged_update  # lazy: pulls ctypes (--help imports every command module)
-
-    from tasks.asset_dir import AssetDir
 
     if not AssetDir(asset).has("geometry"):
         fail(f"{asset} is not an asset directory (no geometry.json)")

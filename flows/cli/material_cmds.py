@@ -141,10 +141,8 @@ def material(
 ) -> None:
     """Run L2 on an asset: MPM probes, harness-selected neo-Hookean material -> material.json, evidence, recordings."""
 
-    # lazy: contracts.asset_dir's models (~0.1 s; --help imports every command module)
+    from tasks.asset_dir import AssetDir, document_json  # lazy: contracts.asset_dir's models (~0.1 s at --help)
     from tasks.publish import staged_update  # lazy: pulls ctypes (--help imports every command module)
-
-    from tasks.asset_dir import AssetDir, document_json
 
     asset = asset_path(asset_dir, asset)
     _check_asset(asset)

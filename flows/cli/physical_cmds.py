@@ -31,10 +31,8 @@ def physical(
     as_json: bool = typer.Option(False, "--json", help="print the physical model and metrics as JSON"),
 ) -> None:
     """L1: density and friction from the intent, mass model, rigid placement / drop / slide probes in pybullet."""
-    # lazy: contracts.asset_dir's models (~0.1 s; --help imports every command module)
+    from tasks.asset_dir import AssetDir  # lazy: contracts.asset_dir's models (~0.1 s at --help)
     from tasks.publish import staged_update  # lazy: pulls ctypes (--help imports every command module)
-
-    from tasks.asset_dir import AssetDir
 
     asset = asset_path(asset_dir, asset)
     if intent is not None and not intent.strip():
