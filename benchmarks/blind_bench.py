@@ -25,7 +25,7 @@ from contracts.errors import InputError
 from contracts.request import AssetRequest
 from flows.l1_physical import l1_plan
 from tasks.agents.intent import targets_from_request
-from tasks.geometry import pipeline
+from tasks.geometry import pipeline, sources
 from tasks.geometry.outputs import load_l0, write_outputs
 from benchmarks.geometry_bench import contact_sheet
 
@@ -57,7 +57,7 @@ def _bench_one(prompt: dict, settings: pipeline.L0Settings, out: Path) -> dict:
     request = AssetRequest(text=prompt["text"])
     try:
         targets_from_request(request)  # what the CLI refuses before any layer (a rigid material or object)
-        mesh, info = pipeline.build_mesh(request, settings)
+        mesh, info = sources.build_mesh(request, settings)
         proxy = pipeline.build_proxy(mesh, settings.coacd)
         particles = pipeline.build_particles(mesh, settings.particles)
         gaussians = pipeline.build_gaussians(mesh, particles, settings)

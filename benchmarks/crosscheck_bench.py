@@ -22,6 +22,9 @@ import time
 from pathlib import Path
 from typing import Any
 
+from contracts.errors import InputError, SimulationError
+from flows.crosscheck import crosscheck_asset
+
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
 ASSETS_ENV = "DEFORMSMITH_CROSSCHECK_ASSETS"
@@ -29,9 +32,6 @@ ASSETS_ENV = "DEFORMSMITH_CROSSCHECK_ASSETS"
 
 def run(assets: list[Path] | None, sims: list[str], out: Path | None = None) -> dict[str, Any]:
     """Crosscheck every asset in every simulator (with calibration); the figures as a JSON-ready dict."""
-    from contracts.errors import InputError, SimulationError
-    from flows.crosscheck import crosscheck_asset
-
     if not assets:
         env = os.environ.get(ASSETS_ENV, "")
         assets = [Path(p) for p in env.split(":") if p]

@@ -19,6 +19,17 @@ import tempfile
 import time
 from pathlib import Path
 
+from cache import use_cache_root
+from contracts.manifest import AssetManifest
+from contracts.sim import SimConfig
+from flows.renders import protocol_states
+from tasks.geometry.gaussians import deform_gaussians
+from tasks.geometry.outputs import load_l0
+from tasks.probes.protocol import PROTOCOL_DURATION_S, PROTOCOL_FPS
+from tasks.render import protocol_video as pv
+from tasks.render.quality import coverage_mask, sharpness
+from tasks.render.splats import render_gaussians
+
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
 
@@ -26,18 +37,7 @@ def run(asset: Path, cache_dir: Path) -> dict:
     """Time drop_files on the asset's cached protocol states; measure the frames' sharpness."""
     import numpy as np
 
-    from cache import use_cache_root
-
     use_cache_root(str(cache_dir))
-    from contracts.manifest import AssetManifest
-    from contracts.sim import SimConfig
-    from flows.renders import protocol_states
-    from tasks.geometry.gaussians import deform_gaussians
-    from tasks.geometry.outputs import load_l0
-    from tasks.probes.protocol import PROTOCOL_DURATION_S, PROTOCOL_FPS
-    from tasks.render import protocol_video as pv
-    from tasks.render.quality import coverage_mask, sharpness
-    from tasks.render.splats import render_gaussians
 
     manifest = AssetManifest.model_validate_json((asset / "asset.json").read_text(encoding="utf-8"))
     l0 = load_l0(asset)

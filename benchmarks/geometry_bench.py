@@ -26,7 +26,7 @@ from contracts.errors import InputError
 from contracts.request import AssetRequest
 from flows.cli.apps import console, emit_json, fail, results
 from flows.cli.geometry_cmds import QUALITIES
-from tasks.geometry import pipeline
+from tasks.geometry import pipeline, sources
 from tasks.geometry.render import render_view
 
 
@@ -55,7 +55,7 @@ def bench_prompt(prompt: dict, settings: pipeline.L0Settings) -> tuple[dict, np.
     """One prompt through every L0 unit: the figures (wall and CPU seconds: on a shared machine the CPU time is the
     comparable one) and a side-view render (RGB uint8)."""
     t0, c0 = time.perf_counter(), time.process_time()
-    mesh, info = pipeline.build_mesh(AssetRequest(text=prompt["text"]), settings)
+    mesh, info = sources.build_mesh(AssetRequest(text=prompt["text"]), settings)
     proxy = pipeline.build_proxy(mesh, settings.coacd)
     particles = pipeline.build_particles(mesh, settings.particles)
     gaussians = pipeline.build_gaussians(mesh, particles, settings)
@@ -145,11 +145,11 @@ app = typer.Typer(add_completion=False, pretty_exceptions_enable=False)
 _BENCH_CASE = r"""
 import json, resource, sys, time
 from contracts.request import AssetRequest
-from tasks.geometry import pipeline
+from tasks.geometry import pipeline, sources
 req = AssetRequest(**json.loads(sys.argv[1]))
 s = pipeline.settings_from_contract(sys.argv[2], seed=0)
 t = {}
-t0 = time.perf_counter(); mesh, info = pipeline.build_mesh(req, s); t["mesh_s"] = time.perf_counter() - t0
+t0 = time.perf_counter(); mesh, info = sources.build_mesh(req, s); t["mesh_s"] = time.perf_counter() - t0
 t0 = time.perf_counter(); proxy = pipeline.build_proxy(mesh, s.coacd); t["coacd_s"] = time.perf_counter() - t0
 t0 = time.perf_counter(); parts = pipeline.build_particles(mesh, s.particles); t["particles_s"] = time.perf_counter() - t0
 t0 = time.perf_counter(); g = pipeline.build_gaussians(mesh, parts, s); t["gaussians_s"] = time.perf_counter() - t0

@@ -25,9 +25,14 @@ from rich.table import Table
 
 from contracts.material import Material
 from contracts.sim import SimConfig
+from contracts.stage import load_contract
 from flows.cli.apps import console, emit_json, fail, results
+from flows.l2_material import l2_targets, physical_for, probe_parameters, screen_dampings, screen_moduli
+from tasks.agents.orchestrator import initial_values
 from tasks.asset_dir import AssetDir
-from tasks.probes.rollout import SCHEDULES
+from tasks.geometry.outputs import load_l0
+from tasks.probes import deformable
+from tasks.probes.rollout import SCHEDULES, DeformableBody, plan_batches, rollouts
 
 KEY_METRICS = {"compress": ("effective_modulus_pa", "recovery_ratio", "compression_strain"),
                "drop": ("rebound_ratio", "settle_time_s", "max_impact_strain")}
@@ -38,13 +43,6 @@ def run_l2_bench(asset_dir: Path, intent: str | None = None, schedules: tuple[st
                  repeat: int = 1) -> dict[str, Any]:
     """Run the screening candidates of each probe under each schedule (`repeat` times); return the figures."""
     import warp as wp
-
-    from contracts.stage import load_contract
-    from flows.l2_material import l2_targets, physical_for, probe_parameters, screen_dampings, screen_moduli
-    from tasks.agents.orchestrator import initial_values
-    from tasks.geometry.outputs import load_l0
-    from tasks.probes import deformable
-    from tasks.probes.rollout import DeformableBody, plan_batches, rollouts
 
     asset_dir = Path(asset_dir)
     asset = load_l0(asset_dir)

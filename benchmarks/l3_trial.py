@@ -49,6 +49,17 @@ from typing import Any
 
 import numpy as np
 
+from contracts.material import Material
+from contracts.physical import PhysicalModel
+from contracts.robot import ActionPlan
+from contracts.stage import load_contract
+from flows.l3_manipulation import L3Options, initial_values, load_context
+from tasks.manipulation.body import box_body
+from tasks.manipulation.context import tolerances_from
+from tasks.manipulation.outcome import TrialTolerances
+from tasks.manipulation.trial import TrialSettings, plan_or_error, run_trial
+from tasks.robot import select_grasps, trajectory
+
 DEFAULT_TURTLE = Path("out/eval/cases/t01_plush_turtle/hierarchical")
 LABELS = ("lifted", "transported", "released_in_target", "settled", "slipped", "force_budget_violated",
           "numerically_healthy", "stopped_after_failed_lift", "max_finger_force_n", "max_strain",
@@ -76,8 +87,6 @@ def _stub_pybullet(force: bool = False) -> bool:
 
 def _rebuild_piece(factory: str, args: tuple[Any, ...]) -> Any:
     """A trajectory motion piece, made again by its factory in tasks.robot.trajectory."""
-    from tasks.robot import trajectory
-
     return getattr(trajectory, factory)(*args)
 
 
@@ -104,8 +113,6 @@ class _BundlePickler(pickle.Pickler):
         if isinstance(obj, types.FunctionType) and obj.__module__ == "tasks.robot.trajectory" \
                 and ".<locals>." in obj.__qualname__:
             import inspect
-
-            from tasks.robot import trajectory
 
             factory = obj.__qualname__.split(".<locals>.")[0]
             cells = dict(zip(obj.__code__.co_freevars, (c.cell_contents for c in obj.__closure__ or ())))
@@ -143,14 +150,6 @@ def cube_inputs(device: str = "cpu") -> dict[str, Any]:
     """The firm cube trial of tests/l3/conftest.py (``firm_trial``): inputs of ``run_trial`` without the trajectory."""
     import numpy as np
 
-    from contracts.material import Material
-    from contracts.physical import PhysicalModel
-    from contracts.robot import ActionPlan
-    from tasks.manipulation.body import box_body
-    from tasks.manipulation.outcome import TrialTolerances
-    from tasks.manipulation.trial import TrialSettings
-    from tasks.robot import select_grasps
-
     edge, spacing, rho = 0.03, 0.0025, 300.0
     body = box_body(edge, spacing)
     phys = PhysicalModel(density_kg_per_m3=rho, volume_m3=body.volume_m3, mass_kg=rho * body.volume_m3,
@@ -170,10 +169,6 @@ def cube_inputs(device: str = "cpu") -> dict[str, Any]:
 
 def turtle_inputs(asset_dir: Path = DEFAULT_TURTLE, quality: str = "draft", device: str = "cpu") -> dict[str, Any]:
     """The first L3 candidate of an asset (a copy of ``asset_dir`` is read; the original is never written)."""
-    from contracts.stage import load_contract
-    from flows.l3_manipulation import L3Options, initial_values, load_context
-    from tasks.manipulation.context import tolerances_from
-
     options = L3Options() if quality == "draft" else L3Options.standard(device=device)
     options = replace(options, device=device, settings=replace(options.settings, device=device))
     contract = load_contract("L3")
@@ -192,8 +187,6 @@ def turtle_inputs(asset_dir: Path = DEFAULT_TURTLE, quality: str = "draft", devi
 
 def with_trajectory(inputs: dict[str, Any]) -> dict[str, Any]:
     """Plan the trajectory (pybullet) and time it."""
-    from tasks.manipulation.trial import plan_or_error
-
     t0 = time.perf_counter()
     traj, why = plan_or_error(inputs["plan"], inputs["body"], inputs["settings"])
     if traj is None:
@@ -233,8 +226,6 @@ def _finite_or_none(v: Any) -> float | None:
 def bench(inputs: dict[str, Any], device: str = "cpu", repeat: int = 1, full: bool = False) -> dict[str, Any]:
     """Run the trial ``repeat`` times on ``device``; the figures of the last run and the wall time of each.
     ``full``: the whole plan even when the lift failed (``TrialSettings.stop_when_lift_fails`` off)."""
-    from tasks.manipulation.trial import run_trial
-
     settings = replace(inputs["settings"], device=device)
     if full:
         settings = replace(settings, stop_when_lift_fails=False)

@@ -25,6 +25,12 @@ from dataclasses import replace
 from pathlib import Path
 from typing import Any
 
+from contracts.stage import load_contract
+from flows.l3_manipulation import L3Options, initial_values, load_context
+from tasks.evaluation.suite import load_suite
+from tasks.manipulation.context import tolerances_from
+from tasks.manipulation.trial import plan_or_error, run_trial
+
 TARGET_XY_M = (0.08, 0.06)
 
 
@@ -35,11 +41,6 @@ def _frame(text: str) -> float | None:
 def one_trial(asset_dir: str, yaw_deg: float, frame: float | None, spacing_m: float | None, youngs_pa: float | None,
               values: dict[str, float] | None, target_xy_m: tuple[float, float] = TARGET_XY_M) -> dict[str, Any]:
     """One trial of the plan at a yaw in a frame: the lift labels and the hold force."""
-    from contracts.stage import load_contract
-    from flows.l3_manipulation import L3Options, initial_values, load_context
-    from tasks.manipulation.context import tolerances_from
-    from tasks.manipulation.trial import plan_or_error, run_trial
-
     ctx = load_context(Path(asset_dir), L3Options(particle_spacing_m=spacing_m), load_contract("L3"))
     material = ctx.material if youngs_pa is None else ctx.material.model_copy(update={"youngs_modulus_pa": youngs_pa})
     plan = ctx.plan(values or initial_values(ctx), target_xy_m, yaw_deg)
@@ -102,7 +103,6 @@ def main(argv: list[str] | None = None) -> int:
         return 2
     values = json.loads(Path(a.plan_from).read_text())["values"] if a.plan_from else None
     if a.conditions:
-        from tasks.evaluation.suite import load_suite
         suite, _ = load_suite(a.conditions, check_vocab=False)
         poses = [((float(c.target_xy_m[0]), float(c.target_xy_m[1])), float(c.initial_yaw_deg))
                  for c in suite.manipulation_conditions]

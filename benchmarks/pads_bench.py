@@ -26,6 +26,8 @@ from rich.table import Table
 
 from contracts.robot import ActionPlan, GraspCandidate
 from flows.cli.apps import console, emit_json, results
+from tasks.quiet_pybullet import pybullet as pb
+from tasks.robot.trajectory import plan_trajectory
 
 
 def standard_plan() -> ActionPlan:
@@ -38,8 +40,6 @@ def standard_plan() -> ActionPlan:
 
 def _pybullet_calls() -> tuple[list[str], Callable[[], None]]:
     """Count every public pybullet function called from now on: (the calls' names, a function that undoes it)."""
-    from tasks.quiet_pybullet import pybullet as pb
-
     calls: list[str] = []
     saved: dict[str, Any] = {}
     for name in dir(pb):
@@ -75,8 +75,6 @@ def _per_call(fn: Callable[[int], object], calls: int, repeats: int) -> dict[str
 
 def run(steps: int = 2000, dt_s: float = 3.1e-3, repeats: int = 5, batch: int = 64) -> dict[str, Any]:
     """The figures as a JSON-ready dict."""
-    from tasks.robot.trajectory import plan_trajectory
-
     out: dict[str, Any] = {"cpu_model": platform.processor() or platform.machine(), "cpu_count": os.cpu_count(),
                            "loadavg_1min_before": round(os.getloadavg()[0], 2), "steps": steps, "dt_s": dt_s,
                            "repeats": repeats}

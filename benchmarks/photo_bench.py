@@ -4,7 +4,7 @@
 
 Photos: DIR/manifest.json (tests/geometry/photos/ by default: rows with file, object, soft, size_m); each photo is
 named by its object as a user would ("a teddy bear", with the stated size when the row has one) and goes through
-L0's mesh step (tasks.geometry.pipeline.build_mesh, draft quality). `--synthetic` adds the drawn scenes of
+L0's mesh step (tasks.geometry.sources.build_mesh, draft quality). `--synthetic` adds the drawn scenes of
 tests/geometry/photo_scenes.py (named by their file name only). `--large` also times the first photo upscaled to a
 12-megapixel JPEG (4032 x 3024) beside its own size. `--full` times the whole of L0 (proxy, particles, Gaussians,
 gates) instead of the mesh step alone.
@@ -27,6 +27,15 @@ from pathlib import Path
 
 import numpy as np
 
+from contracts.errors import InputError
+from contracts.request import AssetRequest
+from flows.l0_geometry import run_l0
+from tasks.agents.intent import asset_material, asset_targets, targets_from_request
+from tasks.agents.vocab import load_material_vocab
+from tasks.geometry import image, pipeline, silhouette, sources
+from tasks.geometry.render import render_view
+from tasks.physical.mass import mass_check
+
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 sys.path.insert(0, str(ROOT / "tests" / "geometry"))
@@ -36,10 +45,6 @@ IOU_TARGET = 0.85
 
 def _mass(request, info, mesh) -> tuple[float, str]:  # noqa: ANN001
     """L1's starting mass [kg] and material for the built mesh (tasks.physical.mass.mass_check)."""
-    from tasks.agents.intent import asset_material, asset_targets
-    from tasks.agents.vocab import load_material_vocab
-    from tasks.physical.mass import mass_check
-
     vocab = load_material_vocab()
     record = {"info": info.model_dump(mode="json"), "request": request.model_dump(mode="json")}
     targets = asset_targets(record, None, vocab)
@@ -56,26 +61,18 @@ def _mass(request, info, mesh) -> tuple[float, str]:  # noqa: ANN001
 def run_one(path: Path, text: str | None, size_m: float | None, full: bool, views: Path | None = None) -> dict:
     """One photo through L0 (mesh step, or all of L0 with full) and its figures; with views, the mesh's front, side
     and top renders side by side in views/<photo stem>.png (what a blind judge names the object from)."""
-    from contracts.errors import InputError
-    from contracts.request import AssetRequest
-    from tasks.geometry import image, pipeline, silhouette
-
     row: dict = {"file": path.name, "text": text}
     t0 = time.perf_counter()
     try:
         request = AssetRequest(image_path=path, text=text, size_hint_m=size_m)
-        from tasks.agents.intent import targets_from_request
-
         targets_from_request(request)  # the CLI's check before any layer (a rigid object is refused here)
         s = pipeline.settings_from_contract("draft")
         if full:
-            from flows.l0_geometry import run_l0
-
             result = run_l0(request, "draft", use_cache=False)
             arrays, info = result.mesh, result.info
             row["gates_passed"] = bool(result.checks.passed)
         else:
-            arrays, info = pipeline.build_mesh(request, s)
+            arrays, info = sources.build_mesh(request, s)
     except InputError as exc:
         row.update(refused=True, message=str(exc), seconds=round(time.perf_counter() - t0, 2))
         return row
@@ -87,8 +84,6 @@ def run_one(path: Path, text: str | None, size_m: float | None, full: bool, view
     mass, material = _mass(request, info, mesh)
     if views is not None:
         import imageio.v3 as iio
-
-        from tasks.geometry.render import render_view
 
         views.mkdir(parents=True, exist_ok=True)
         iio.imwrite(views / f"{path.stem}.png", np.concatenate([render_view(mesh, v, 384) for v in

@@ -24,6 +24,10 @@ import time
 from pathlib import Path
 from typing import TypedDict
 
+from tasks.manipulation.data import read_attempt
+from tasks.manipulation.replay import replay, video_writer
+from tasks.manipulation.video import PickPlaceVideo
+
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
 
@@ -57,10 +61,6 @@ class VideoRun(TypedDict):
 def run_once(asset: Path, attempt: int | None, width: int, height: int) -> VideoRun:
     """One timed replay to a temporary MP4, with its phases timed separately on the same data."""
     import imageio.v2 as imageio
-
-    from tasks.manipulation.data import read_attempt
-    from tasks.manipulation.replay import replay, video_writer
-    from tasks.manipulation.video import PickPlaceVideo
 
     load0 = os.getloadavg()[0]
     with tempfile.TemporaryDirectory(prefix="ds-bench-video-") as tmp:

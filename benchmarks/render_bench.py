@@ -26,16 +26,18 @@ from rich.table import Table
 
 from contracts.errors import InputError
 from flows.cli.apps import console, emit_json, fail, results
+from tasks.geometry.gaussians import read_3dgs_ply, rest_covariances
+from tasks.native_output import init_warp_quietly
+from tasks.render import splats
 from tasks.render.camera import Camera
+from tasks.render.sh import read_sh_rest
+from tasks.render.splats import render_gaussians
 
 
 def load_splats(asset_dir: Path | None, synthetic: int) -> tuple[dict[str, np.ndarray], str]:
     """Centres, covariances, colours, opacities (and SH when the file has them) of an asset, or a synthetic ball of
     `synthetic` Gaussians (radius 8 cm, resting on the table) when asset_dir is None; and a name for the report."""
     if asset_dir is not None:
-        from tasks.geometry.gaussians import read_3dgs_ply, rest_covariances
-        from tasks.render.sh import read_sh_rest
-
         ply = asset_dir / "gaussians.ply" if asset_dir.is_dir() else asset_dir
         if not ply.is_file():
             raise InputError(f"{asset_dir}: no gaussians.ply (give an asset directory or a .ply file)")
@@ -73,8 +75,6 @@ def _time_device(splats: dict[str, np.ndarray], cam: Camera, device: str, repeat
     """First call and steady-state seconds per frame on one device, and a digest of the image."""
     import hashlib
 
-    from tasks.render.splats import render_gaussians
-
     t0 = time.perf_counter()
     img = render_gaussians(cam, device=device, **splats)  # type: ignore[arg-type]
     first = time.perf_counter() - t0
@@ -93,16 +93,12 @@ def _time_device(splats: dict[str, np.ndarray], cam: Camera, device: str, repeat
 
 def splats_threads(device: str) -> int:
     """Threads that draw a frame's pixels on this device (CPU bands; 1 launch on CUDA)."""
-    from tasks.render import splats
-
     return splats.CPU_BANDS if device == "cpu" else 1
 
 
 def run(asset_dir: Path | None = None, synthetic: int = 100_000, width: int = 1280, height: int = 720,
         repeats: int = 5, devices: tuple[str, ...] = ("cpu", "cuda"), png: Path | None = None) -> dict[str, Any]:
     """The figures as a JSON-ready dict; cuda is skipped (with a reason) where Warp sees no CUDA device."""
-    from tasks.native_output import init_warp_quietly
-
     init_warp_quietly()
     import warp as wp
 

@@ -20,6 +20,8 @@ from pathlib import Path
 import cv2
 import numpy as np
 
+from tasks.geometry import image
+
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
@@ -82,8 +84,6 @@ def contact_sheet(panels: list[np.ndarray], cols: int = 3) -> np.ndarray:
 
 def main() -> None:
     """Segment every photo of the manifest and write the per-photo panels and the contact sheet."""
-    from tasks.geometry import image
-
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--photos", type=Path, default=ROOT / "tests" / "geometry" / "photos")
     ap.add_argument("--out", type=Path, required=True, help="folder for the PNGs (created)")

@@ -10,6 +10,9 @@ from collections.abc import Callable, Iterable
 from importlib import metadata
 from pathlib import Path
 
+from cache.config import cache_root
+from cache.store import CacheMiss, CacheStore
+
 
 def source_digest(paths: Iterable[Path], distributions: Iterable[str] = ()) -> str:
     """Hex sha256 of the given files' bytes (directories: every file under them but __pycache__) and the installed
@@ -32,9 +35,6 @@ def source_digest(paths: Iterable[Path], distributions: Iterable[str] = ()) -> s
 def cached_file(key: str, dest: Path, make: Callable[[Path], object]) -> bool:
     """dest (a file, or a folder such as a Zarr group) copied from the cache entry `key` (True), else made by
     make(dest) and stored under `key` (False). The copy appears only complete (copied beside dest, then renamed)."""
-    from cache.config import cache_root
-    from cache.store import CacheMiss, CacheStore
-
     store = CacheStore(cache_root())
     dest = Path(dest)
     try:

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from pydantic import BaseModel
 
+from contracts.agents import AGENT_SCHEMAS
 from contracts.evidence import Attempt, EvidenceRecord
 from contracts.manifest import AssetManifest
 from contracts.material import Material
@@ -33,8 +34,6 @@ def register_schema(model: type[BaseModel]) -> type[BaseModel]:
 
 def _register_agent_schemas() -> None:
     """Add the harness's role I/O models (contracts.agents)."""
-    from contracts.agents import AGENT_SCHEMAS
-
     for model in AGENT_SCHEMAS:
         register_schema(model)
 

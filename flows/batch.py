@@ -26,8 +26,12 @@ from typing import Any, Literal
 
 from pydantic import BaseModel, Field, ValidationError
 
+import cache
+from cache import runtime
+from cache.config import ENV_VAR
 from contracts.errors import InputError, validation_message
 from contracts.request import AssetRequest
+from tasks.probes.workers import child_probe_workers
 
 REPORT_JSON = "batch_report.json"
 LOG_DIR = "_logs"
@@ -307,15 +311,13 @@ def prefect_api_for_children() -> Iterator[dict[str, str]]:
     batch (marked local, so that the children's flows run without heartbeats, as against their own). The local one is
     DeformSmith's (`cache.runtime.prestart_local_server`, already started by the CLI): it exits by itself if the
     batch is killed, where Prefect's own temporary server, the fallback, would be left running."""
-    from cache.runtime import local_api_env, prestart_local_server, shared_server_env, uses_remote_server
-
-    if uses_remote_server():
+    if runtime.uses_remote_server():
         from prefect.settings import PREFECT_API_URL
 
         yield {"PREFECT_API_URL": str(PREFECT_API_URL.value())}
         return
-    prestart_local_server()
-    shared = shared_server_env()
+    runtime.prestart_local_server()
+    shared = runtime.shared_server_env()
     if shared:
         yield shared
         return
@@ -324,7 +326,7 @@ def prefect_api_for_children() -> Iterator[dict[str, str]]:
     server = SubprocessASGIServer()
     server.start(timeout=120)
     try:
-        yield local_api_env(server.api_url)
+        yield runtime.local_api_env(server.api_url)
     finally:
         server.stop()
 
@@ -333,9 +335,6 @@ def run_batch(requests_jsonl: Path, out_root: Path, concurrency: int = 1, device
               job: str = DEFAULT_JOB, timeout_s: float | None = None,
               on_result: ItemCallback | None = None) -> BatchReport:
     """Run every request of a JSONL file in its own process, `concurrency` at a time; write and return the report."""
-    import cache
-    from cache.config import ENV_VAR
-
     if concurrency < 1:
         raise InputError(f"concurrency must be >= 1, got {concurrency}")
     if device not in ("cpu", "cuda"):
@@ -362,8 +361,6 @@ def run_batch(requests_jsonl: Path, out_root: Path, concurrency: int = 1, device
     if runnable:
         children = Children()
         with prefect_api_for_children() as prefect_env, _sigterm_as_interrupt():
-            from tasks.probes.workers import child_probe_workers
-
             env = {**os.environ, **prefect_env, ENV_VAR: str(cache_dir),
                    **child_probe_workers(concurrency)}  # the requests' probe threads share the cores
             with ThreadPoolExecutor(max_workers=concurrency) as pool:

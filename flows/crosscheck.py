@@ -30,11 +30,16 @@ from pydantic import ValidationError
 from contracts.errors import InputError
 from contracts.export import ExportManifest
 from flows.export import MANIFEST, export_asset
+from tasks.export import drake, drake_probes, genesis, genesis_probes, mujoco as mj
 from tasks.export.calibrate import Calibration, Knob, fit_both, rel
 from tasks.export.crosscheck import (
     AGREEMENT_TOLERANCE, CALIBRATED_METRICS, CrosscheckReport, ProbeTargets, metric_rows, probe_targets, slice_area_m2,
 )
+from tasks.export.genesis import GENESIS_INSTALL
 from tasks.export.inputs import ExportInputs, load_export_inputs
+from tasks.export.mujoco_probes import compress, drop
+from tasks.export.mujoco_scene import FlexParams, fundamental_period_s
+from tasks.export.probe_schedule import TetBody
 from tasks.publish import write_text_atomic
 
 SIMULATORS = ("mujoco", "genesis", "drake")
@@ -63,11 +68,6 @@ def _rate_knob(name: str, rate_per_s: float, period_s: float) -> Knob:
 
 
 def _mujoco_runner(inputs: ExportInputs, targets: ProbeTargets, area_m2: float) -> SimRunner:
-    from tasks.export import mujoco as mj
-    from tasks.export.mujoco_probes import compress, drop
-    from tasks.export.mujoco_scene import FlexParams
-    from tasks.export.probe_schedule import TetBody
-
     nodes, tets = inputs.tet.nodes_m, inputs.tet.tets
     p0 = mj.flex_params(nodes, tets, inputs.material)
     body = TetBody(nodes, tets, inputs.material.density_kg_per_m3, targets.spacing_m,
@@ -108,9 +108,6 @@ def _mujoco_runner(inputs: ExportInputs, targets: ProbeTargets, area_m2: float) 
 
 
 def _genesis_runner(inputs: ExportInputs, targets: ProbeTargets, area_m2: float, folder: Path) -> SimRunner:
-    from tasks.export import genesis, genesis_probes
-    from tasks.export.mujoco_scene import fundamental_period_s
-
     scene = folder / genesis.SCENE
     m = inputs.material
     z = inputs.tet.nodes_m[:, 2]
@@ -136,9 +133,6 @@ def _genesis_runner(inputs: ExportInputs, targets: ProbeTargets, area_m2: float,
 
 
 def _drake_runner(inputs: ExportInputs, targets: ProbeTargets, area_m2: float, folder: Path) -> SimRunner:
-    from tasks.export import drake, drake_probes
-    from tasks.export.probe_schedule import TetBody
-
     m = inputs.material
     body = TetBody(inputs.tet.nodes_m, inputs.tet.tets, m.density_kg_per_m3, targets.spacing_m, m.youngs_modulus_pa)
     vtk = folder / f"{inputs.slug}.vtk"
@@ -182,8 +176,6 @@ def _require(sim: str) -> None:
     if sim == "mujoco" and importlib.util.find_spec("mujoco") is None:
         raise InputError('crosscheck --sim mujoco needs the mujoco package: pip install -e ".[export]"')
     if sim == "genesis" and importlib.util.find_spec("genesis") is None:
-        from tasks.export.genesis import GENESIS_INSTALL
-
         raise InputError(f"crosscheck --sim genesis needs genesis-world: {GENESIS_INSTALL}")
     if sim == "drake" and importlib.util.find_spec("pydrake") is None:
         raise InputError('crosscheck --sim drake needs the drake package: pip install -e ".[export]"')

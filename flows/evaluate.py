@@ -18,8 +18,15 @@ from pathlib import Path
 from typing import Any
 
 import cache  # noqa: F401  (local Prefect environment before prefect is imported)
-from cache.runtime import set_env
+from cache.runtime import set_env, shared_server_env
 from contracts.evaluation import ARMS, ArmResult, Condition, SuiteCase
+from contracts.agents import AgentConfig
+from contracts.sim import SimConfig
+from flows import eval_arms, l0_geometry
+from tasks.evaluation.suite import load_suite, select, to_request
+from tasks.evaluation.report import write_report
+from tasks.probes.workers import child_probe_workers
+from tasks.evaluation.vision import with_ratings
 from prefect import flow
 
 ALL = ("hierarchy", "harness", "manipulation")
@@ -76,12 +83,6 @@ def _done(out: Path, case: SuiteCase, ablations: tuple[str, ...]) -> bool:
 
 def run_case(case: SuiteCase, suite_file: Path, opts: EvalOptions, conditions: list[Condition]) -> list[str]:
     """Every needed arm of one case; returns the record paths written."""
-    from contracts.agents import AgentConfig
-    from contracts.sim import SimConfig
-    from flows import eval_arms
-    from flows.l0_geometry import run_l0
-    from tasks.evaluation.suite import to_request
-
     out = Path(opts.out)
     image_dir = Path(cache.cache_root()) / "eval_images"
     request = to_request(case, suite_file.parent, image_dir, opts.quality)  # type: ignore[arg-type]
@@ -95,7 +96,7 @@ def run_case(case: SuiteCase, suite_file: Path, opts: EvalOptions, conditions: l
             written.append(str(write_record(out, r)))
 
     t0 = time.perf_counter()
-    l0 = run_l0(request, quality=request.quality)
+    l0 = l0_geometry.run_l0(request, quality=request.quality)
     base = out / "cases" / case.id
     if not l0.checks.passed:
         why = f"L0 gates failed: {', '.join(l0.checks.failed)}"
@@ -112,8 +113,6 @@ def run_case(case: SuiteCase, suite_file: Path, opts: EvalOptions, conditions: l
         ours = eval_arms.hierarchy_result(case, h, wall)
         rater = opts.vision_llm or opts.llm
         if rater and opts.videos and ours.delivered:
-            from tasks.evaluation.vision import with_ratings
-
             ours = with_ratings(ours, request.text or request.material_intent or case.id, rater)
         keep(ours)
         keep(eval_arms.harness_result(case, h, wall - l0_wall))
@@ -134,12 +133,10 @@ _set_env = set_env  # the worker initializer lives in cache.runtime: unpickling 
 
 def _case_job(case_json: str, suite_file: str, opts: EvalOptions, conditions: list[dict]) -> dict[str, Any]:
     """Process entry point: one case, errors caught (a crashed case fails alone, with its reason)."""
-    from contracts.evaluation import Condition as _C, SuiteCase as _S
-
-    case = _S.model_validate_json(case_json)
+    case = SuiteCase.model_validate_json(case_json)
     t0 = time.perf_counter()
     try:
-        paths = run_case(case, Path(suite_file), opts, [_C.model_validate(c) for c in conditions])
+        paths = run_case(case, Path(suite_file), opts, [Condition.model_validate(c) for c in conditions])
         return {"case": case.id, "ok": True, "records": paths, "wall_s": time.perf_counter() - t0}
     except Exception as exc:  # noqa: BLE001  (reported per case; the evaluation goes on)
         return {"case": case.id, "ok": False, "error": f"{type(exc).__name__}: {exc}",
@@ -148,9 +145,6 @@ def _case_job(case_json: str, suite_file: str, opts: EvalOptions, conditions: li
 
 def evaluate(opts: EvalOptions, progress: Progress | None = None) -> dict[str, Any]:
     """Run (or resume) an evaluation and write its report; returns the summary (figures, paths, wall time)."""
-    from tasks.evaluation.report import write_report
-    from tasks.evaluation.suite import load_suite, select
-
     say = progress or (lambda msg: None)
     suite, suite_file = load_suite(opts.suite)
     conditions = list(opts.conditions or suite.manipulation_conditions)
@@ -177,9 +171,6 @@ def evaluate(opts: EvalOptions, progress: Progress | None = None) -> dict[str, A
                 f"({jobs[-1]['wall_s']:.0f} s)")
     else:
         import multiprocessing as mp
-
-        from cache.runtime import shared_server_env
-        from tasks.probes.workers import child_probe_workers
 
         # the workers share this process's local Prefect server instead of each starting one
         env = {**child_probe_workers(opts.workers), **shared_server_env()}

@@ -18,19 +18,27 @@ from pathlib import Path
 from typing import Any, TypedDict
 
 import cache  # (sets the local Prefect environment before prefect is imported)
+from cache import content_key
+from cache.files import cached_file, source_digest
 from cache.prefect_flow import lean_flow
 from cache.tempfiles import dead_partials, owner_tag, remove_paths
 from contracts.agents import AgentConfig
 from contracts.asset_dir import ASSET_JSON, GeometryRecord, MaterialRecord, PhysicalRecord, attempt_path
-from contracts.errors import StageFailure
+from contracts.errors import RequirementNotMet, StageFailure
 from contracts.manifest import AssetManifest, Provenance, StageSummary
 from contracts.manipulation import ManipulationRecord
 from contracts.request import AssetRequest
-from contracts.robot import ActionPlan
+from contracts.robot import ActionPlan, ManipulationOutcome
 from contracts.sim import Device, KernelOptions, SimConfig
+from contracts.stage import load_contract
+from flows import l0_geometry, l1_physical, l2_material, l3_manipulation, renders
+from tasks.agents.fallbacks import fallback_notes, reset as reset_fallbacks
 from tasks.asset_dir import AssetDir
-from tasks.request import CheckedRequest, checked_request
+from tasks.manipulation.report import NO_GRASP_GATE
+from tasks.manipulation.replay import replay
 from tasks.publish import check_out_dir, replace_directory
+from tasks.record import recording_digest
+from tasks.request import CheckedRequest, checked_request
 
 LIBRARIES = ("numpy", "warp-lang", "prefect", "zarr", "trimesh", "coacd", "pybullet", "rerun-sdk", "pydantic")
 StageCallback = Callable[[str, str], None]  # (stage, message)
@@ -54,11 +62,9 @@ def _version(dist: str) -> str:
 def provenance(device: Device, agents: AgentConfig | None, cpu_threads: int = 1,
                kernel: KernelOptions | None = None) -> Provenance:
     """Versions, backends and numerics that reproduce the asset (the MPM kernel options when not the defaults)."""
-    from contracts.agents import AgentConfig as _Config
-
     return Provenance(deformsmith_version=_version("deformsmith"),
                       library_versions={lib: _version(lib) for lib in LIBRARIES},
-                      backends=(agents or _Config.rule()).describe(), device=device, cpu_threads=cpu_threads,
+                      backends=(agents or AgentConfig.rule()).describe(), device=device, cpu_threads=cpu_threads,
                       kernel=None if kernel is None or kernel == KernelOptions() else kernel)
 
 
@@ -86,9 +92,6 @@ def stage_summary(record: GeometryRecord | PhysicalRecord | MaterialRecord) -> S
 def l3_summary(record: ManipulationRecord) -> StageSummary:
     """L3's line in the validation summary: trials run (sim calls), the reported attempt's labels, its failed gates
     and the reason in words (no grasp: the one failed gate 'grasp available')."""
-    from contracts.stage import load_contract
-    from tasks.manipulation.report import NO_GRASP_GATE
-
     trials = [a for a in record.attempts if a.labels and not a.labels.get("plan_failed")]
     metrics = finite_metrics(record.reported_labels())
     if record.passed:
@@ -154,8 +157,6 @@ def cache_keys(work: Path, l3: ManipulationRecord | None) -> dict[str, str]:
 
 def require_l3(manifest: AssetManifest, out_dir: Path) -> None:
     """`--require-l3`: RequirementNotMet (exit 7) when L3 ran and did not pass; the asset is already published."""
-    from contracts.errors import RequirementNotMet
-
     l3 = next((s for s in manifest.validation if s.stage == "L3"), None)
     if l3 is not None and not l3.passed:
         raise RequirementNotMet("L3", l3.reason or ", ".join(l3.failed_gates), str(out_dir))
@@ -163,8 +164,6 @@ def require_l3(manifest: AssetManifest, out_dir: Path) -> None:
 
 def manipulation_outcome(labels: dict[str, float]) -> Any:
     """The manifest's ManipulationOutcome from a trial's labels (None when no trial ran)."""
-    from contracts.robot import ManipulationOutcome
-
     if not labels or labels.get("plan_failed"):
         return None
     return ManipulationOutcome(
@@ -180,13 +179,9 @@ def manipulation_outcome(labels: dict[str, float]) -> Any:
 def run_manipulation(work: Path, device: Device, quality: str, agents: AgentConfig | None,
                      cpu_threads: int = 1, progress: Callable[[str], None] | None = None) -> ManipulationRecord:
     """L3 on the working directory and the pick-and-place video of the shown attempt; the manipulation record."""
-    from cache.files import cached_file
-    from flows.l3_manipulation import L3Options, run_l3
-    from tasks.manipulation.replay import replay
-
-    options = (L3Options(device=device, cpu_threads=cpu_threads) if quality == "draft"
-               else L3Options.standard(device, cpu_threads))
-    record, _ = run_l3(work, options, agents, progress=progress)
+    options = (l3_manipulation.L3Options(device=device, cpu_threads=cpu_threads) if quality == "draft"
+               else l3_manipulation.L3Options.standard(device, cpu_threads))
+    record, _ = l3_manipulation.run_l3(work, options, agents, progress=progress)
     n = shown_attempt(record)
     if n is not None:
         video = work / "renders" / "pick_and_place.mp4"
@@ -198,9 +193,6 @@ def run_manipulation(work: Path, device: Device, quality: str, agents: AgentConf
 def pick_and_place_video_key(work: Path, attempt: int) -> str:
     """The video's cache key: the recorded attempt's bytes and the code and libraries that render and encode it
     (rendering it takes ~10 s on the CPU; a warm rerun copies it)."""
-    from cache import content_key
-    from cache.files import source_digest
-
     root = Path(__file__).resolve().parent.parent
     renderer = [root / "tasks" / "manipulation" / f"{m}.py" for m in
                 ("replay", "scene", "robot_view", "data", "particle_frames", "video")]
@@ -248,11 +240,9 @@ def write_physgaussian_export(adir: AssetDir) -> Path:
 def write_asset_records(adir: AssetDir, manifest: AssetManifest) -> AssetManifest:
     """asset.json with the adopted material (AssetDir.adopted_material) and the file roles, and the PhysGaussian
     config and the card that carry the same material; returns the manifest as written."""
-    from flows.renders import write_card
-
     manifest = manifest.model_copy(update={"material": adir.adopted_material().material})
     write_physgaussian_export(adir)
-    write_card(adir.path, manifest)  # the asset card: renders/card.png, card.html (what L0-L3 found)
+    renders.write_card(adir.path, manifest)  # the asset card: renders/card.png, card.html (what L0-L3 found)
     manifest = manifest.model_copy(update={"files": _files(adir.path)})
     adir.write_manifest(manifest)
     return manifest
@@ -303,10 +293,6 @@ def generate(checked: AssetRequest | CheckedRequest, out_dir: Path, device: Devi
     L3 (``manipulate``) validates the asset with a robot: its outcome (passed or not, with the failed gates and the
     labelled attempts) is part of the published asset, since the deformable asset itself was established by L0-L2.
     """
-    from flows.l0_geometry import run_l0, write_l0
-    from flows.l1_physical import run_l1
-    from flows.l2_material import run_l2
-
     import time
 
     report = on_stage or (lambda stage, message: None)
@@ -322,7 +308,6 @@ def generate(checked: AssetRequest | CheckedRequest, out_dir: Path, device: Devi
 
     checked = checked_request(checked)  # checked at the boundary (generate_asset): not again
     request, targets = checked.request, checked.targets
-    from tasks.agents.fallbacks import fallback_notes, reset as reset_fallbacks
 
     reset_fallbacks()  # an LLM found unusable in an earlier run of this process is asked again
     out_dir = Path(out_dir).expanduser().absolute()
@@ -332,29 +317,28 @@ def generate(checked: AssetRequest | CheckedRequest, out_dir: Path, device: Devi
     work = Path(tempfile.mkdtemp(prefix=_partial_prefix(out_dir) + owner_tag(), dir=out_dir.parent))
     try:
         note("L0", "geometry")
-        l0 = run_l0(request, quality=request.quality, agents=agents)  # a litellm Designer writes the shape too
+        l0 = l0_geometry.run_l0(request, quality=request.quality, agents=agents)  # a litellm Designer writes the shape too
         if not l0.checks.passed:
             raise StageFailure("L0", f"geometry gates failed: {', '.join(l0.checks.failed)}")
         for warning in l0.info.warnings:  # recorded in geometry.json; said here too, as the run goes
             report("L0", f"warning: {warning}")
         shutil.rmtree(work)  # write_l0 publishes into a path of its own choosing
-        write_l0(l0, work, extra={"request": request.model_dump(mode="json")})
+        l0_geometry.write_l0(l0, work, extra={"request": request.model_dump(mode="json")})
         intent = request.material_intent or request.text
         note("L1", "physical model: rigid probes")
-        physical, o1 = run_l1(work, intent, agents)
+        physical, o1 = l1_physical.run_l1(work, intent, agents)
         if physical is None:
             raise StageFailure("L1", o1.message)
         note("L2", "material: MPM probes")
         if not targets.matched_words:
             report("L2", f"warning: no material named in '{targets.intent}': using the default material's target bands")
         sim = SimConfig(device=device, cpu_threads=cpu_threads)
-        material, o2 = run_l2(work, request, agents, sim=sim, physical=physical)
+        material, o2 = l2_material.run_l2(work, request, agents, sim=sim, physical=physical)
         if material is None:
             raise StageFailure("L2", o2.message)
         note("renders", "drop protocol: 5 s drop at 30 fps, two views")
-        from flows.renders import render_drop_protocol
 
-        protocol = render_drop_protocol(work, physical, material, sim)
+        protocol = renders.render_drop_protocol(work, physical, material, sim)
         adir = AssetDir(work)  # what L0, L1 and L2 wrote, validated
         validation = [stage_summary(adir.geometry()), stage_summary(adir.physical()), stage_summary(adir.material())]
         plan, outcome, l3 = None, None, None
@@ -395,8 +379,6 @@ def content_fingerprint(asset_dir: Path) -> dict[str, str]:
     """Relative path -> digest of every file: JSON canonically, `.rrd` by what it shows (Rerun stamps ids and
     wall-clock times on each write), everything else by bytes. Two runs of the same request on CPU match."""
     import hashlib
-
-    from tasks.record import recording_digest
 
     root = Path(asset_dir)
     out: dict[str, str] = {}

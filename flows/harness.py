@@ -21,6 +21,8 @@ from tasks.agents.records import AttemptRecorder
 from tasks.agents.roles import build_roles
 from tasks.agents.vocab import StageRoutes, stage_routes
 from tasks.probes.registry import stage_probes
+from cache import content_key
+from cache.prefect_task import KEY_SCHEMA
 
 InputBuilder = Callable[[dict[str, float], str], dict[str, Any]]
 
@@ -41,9 +43,6 @@ class ProbeCall:
 
 def probe_cache_key(task: Any, inputs: dict[str, Any]) -> str | None:
     """The content key a `cached_task` computes for these inputs (None for a task without a content policy)."""
-    from cache import content_key
-    from cache.prefect_task import KEY_SCHEMA
-
     if getattr(task, "version", None) is None or not hasattr(task, "fn"):
         return None
     sig = inspect.signature(task.fn)
@@ -71,7 +70,7 @@ def task_states(calls: Sequence[tuple[Any, dict[str, Any]]], workers: int = 1,
     if workers <= 1 or len(calls) <= 1:
         return [task(**inputs, return_state=True) for task, inputs in calls]
     if device == "cpu":
-        from tasks.mpm.cpu_launch import load_cpu_modules
+        from tasks.mpm.cpu_launch import load_cpu_modules  # lazy: pulls warp (1.3 s); L0 and L1 run no MPM
 
         load_cpu_modules()
     runner: ThreadPoolTaskRunner[Any]

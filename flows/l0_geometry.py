@@ -13,9 +13,12 @@ from cache import cached_task
 from contracts.agents import AgentConfig
 from contracts.request import AssetRequest, Quality
 from contracts.stage import StageContract, load_contract
-from tasks.geometry import pipeline
+from tasks.agents import fallbacks
+from tasks.agents.records import AttemptRecorder
+from tasks.geometry import pipeline, sources
 from tasks.geometry.checks import GeometryChecks
 from tasks.geometry.collision import CoacdSettings
+from tasks.geometry.outputs import publish_dir, write_outputs
 from tasks.geometry.particles import ParticleSettings
 from tasks.geometry.pipeline import Arrays, BuildInfo, L0Settings
 
@@ -50,7 +53,7 @@ def geometry_request(request: AssetRequest) -> AssetRequest:
 @cached_task(version=MESH_VERSION, name="l0.mesh")
 def build_mesh(request: AssetRequest, settings: L0Settings) -> tuple[Arrays, BuildInfo]:
     """Aligned, metric, watertight mesh with colours."""
-    return pipeline.build_mesh(request, settings)
+    return sources.build_mesh(request, settings)
 
 
 @cached_task(version=TASK_VERSION, name="l0.proxy")
@@ -120,8 +123,6 @@ def run_l0(request: AssetRequest, quality: Quality | None = None, contract: Stag
 def _designer_without_credentials(agents: AgentConfig) -> str | None:
     """When the Designer's model has no credentials in the environment: the fallback note (the offline grammar
     stands in; L0 is keyed as offline), or LLMUnavailable under --llm-fallback fail. None when it can be asked."""
-    from tasks.agents import fallbacks
-
     model = str(agents.designer.model)
     missing = fallbacks.missing_credentials(model)
     if not missing:
@@ -138,7 +139,7 @@ def _run_l0(request: AssetRequest, settings: pipeline.L0Settings, contract: Stag
             use_cache: bool) -> L0Result:
     """L0 with resolved settings: the plain functions (use_cache=False) or the Prefect flow with cached tasks."""
     if not use_cache:
-        mesh, info = pipeline.build_mesh(geometry_request(request), settings)
+        mesh, info = sources.build_mesh(geometry_request(request), settings)
         proxy = pipeline.build_proxy(mesh, settings.coacd)
         particles = pipeline.build_particles(mesh, settings.particles)
         gaussians = pipeline.build_gaussians(mesh, particles, settings)
@@ -153,8 +154,6 @@ def write_l0(result: L0Result, out_dir: Path, extra: dict | None = None,
     """Publish an L0 result into out_dir atomically (nothing is left behind on error). `request`, the whole request
     (material intent and target overrides too, which never key L0's cache), is stored as geometry.json's `request`,
     so that `physical` and `material` run on the directory derive the material as `generate` does."""
-    from tasks.geometry.outputs import publish_dir, write_outputs
-
     if request is not None:
         extra = {**(extra or {}), "request": request.model_dump(mode="json")}
     files: dict[str, str] = {}
@@ -163,7 +162,6 @@ def write_l0(result: L0Result, out_dir: Path, extra: dict | None = None,
         files.update(write_outputs(tmp, result.mesh, result.proxy, result.particles, result.gaussians, result.info,
                                    result.checks, extra))
         if result.info.design_attempts:  # the LLM Designer's attempts, as the other stages record theirs
-            from tasks.agents.records import AttemptRecorder
 
             recorder = AttemptRecorder(tmp, "L0")
             for attempt in result.info.design_attempts:

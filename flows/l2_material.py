@@ -43,6 +43,10 @@ from tasks.probes.screening import (l2_probe, probe_parameters, screen, screen_d
                                     specimen_arrays)
 from tasks.probes.workers import probe_workers
 from tasks.publish import copy_file_atomic, write_text_atomic
+from tasks.agents import merge_metrics
+from tasks.physical import build_physical_model
+from tasks.agents.orchestrator import initial_values
+from flows.l1_physical import l1_targets
 
 OBJECT_VIEW_KINDS = ("compress", "drop")  # object probes whose non-gate metrics are reported as object_<name>
 
@@ -66,8 +70,6 @@ def object_view(results: list[ProbeResult], contract: StageContract) -> list[Pro
 
 def l2_metrics(results: list[ProbeResult], contract: StageContract) -> dict[str, float]:
     """One metrics dict of L2 probes (object view + specimen), each gate metric at its worst (merge_metrics)."""
-    from tasks.agents import merge_metrics
-
     return merge_metrics(object_view(results, contract), contract)
 
 
@@ -96,13 +98,9 @@ def load_physical_model(asset_dir: Path) -> PhysicalModel:
 
 def physical_for(asset_dir: Path, asset: L0Asset, rho: float | None = None) -> PhysicalModel:
     """The asset's L1 model, else one from the intent's priors (probing before L1 ran); rho overrides the density."""
-    from tasks.physical import build_physical_model
-
     if AssetDir(asset_dir).has("physical"):
         phys = load_physical_model(asset_dir)
     else:
-        from flows.l1_physical import l1_targets
-
         pri = l1_targets(asset, None)[0].priors  # L1's start values, mass check included
         phys = build_physical_model(asset.particles_m, asset.volumes_m3, asset.spacing_m,
                                     float(pri["density_kg_per_m3"]), float(pri["ground_friction"]),
@@ -194,7 +192,6 @@ def l2_material(asset_dir: Path, request_or_intent: AssetRequest | str | None = 
     contract = contract or load_contract("L2")
     sim = sim or SimConfig()
     targets = l2_targets(asset, request_or_intent)
-    from tasks.agents.orchestrator import initial_values
 
     start = initial_values(contract, targets, None)
     initial, screening = (screen(asset, physical, contract, targets, start, sim) if screen_first

@@ -40,6 +40,7 @@ from contracts.stage import L3Parameters, StageContract, load_contract
 from flows.harness import call_tasks, probe_cache_key, run_harness
 from flows.l3_material import revalidate_in_l2
 from tasks.asset_dir import AssetDir
+from tasks.geometry.outputs import load_l0
 from tasks.manipulation.body import auto_trial_spacing, trial_body
 from tasks.manipulation.context import (SURFACE_SAMPLES, HoldInputs, L3Context, L3Options, accepted, body_from,
                                         failed_metrics, hold_inputs, initial_values, material_of, with_squeeze_range)
@@ -102,7 +103,7 @@ def load_context(asset_dir: Path, options: L3Options, contract: StageContract,
                  material: Material | None = None) -> L3Context:
     """Read L0 / L1 / L2 from the asset directory, build the trial body and rank the grasps."""
     adir = AssetDir(asset_dir)
-    asset, physical = adir.l0, adir.physical_model()
+    asset, physical = load_l0(adir.path), adir.physical_model()
     source = "given"
     if material is None:
         material, source = material_of(asset_dir, asset)
@@ -270,7 +271,7 @@ def _no_grasp(asset_dir: Path, options: L3Options, contract: StageContract, mate
     adir = AssetDir(asset_dir)
     source = "given"
     if material is None:
-        material, source = material_of(asset_dir, adir.l0)
+        material, source = material_of(asset_dir, load_l0(adir.path))
     record = no_grasp_record(asset_dir, options, contract, adir.physical_model(), material, source, reason)
     adir.write_manipulation(record)
     return record, StageOutcome(stage="L3", status="no_valid_candidate", attempts_used=1, message=reason)

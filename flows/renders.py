@@ -8,6 +8,7 @@ from pathlib import Path
 import numpy as np
 
 from cache import cached_task, scratch_dir
+from cache.files import source_digest
 from contracts.manifest import AssetManifest
 from contracts.material import Material
 from contracts.physical import PhysicalModel
@@ -15,6 +16,7 @@ from contracts.sim import SimConfig
 from tasks.geometry.outputs import load_l0
 from tasks.probes.protocol import PROTOCOL_DURATION_S, PROTOCOL_FPS, drop_protocol, plausibility_metrics
 from tasks.probes.rollout import DeformableBody
+from tasks.render.card import build_card
 from tasks.render.protocol_video import VIDEO_HEIGHT_PX, VIDEO_WIDTH_PX, drop_files, gaussian_renderer
 
 TASK_VERSION = "1"  # the protocol's rollout
@@ -62,8 +64,6 @@ def drop_videos_task(gaussians: dict[str, np.ndarray], rest_covariances_m2: np.n
 
 def renderer_code() -> str:
     """Digest of the code and libraries that draw and encode the drop videos."""
-    from cache.files import source_digest
-
     _, sources = gaussian_renderer()
     here = Path(__file__).resolve().parent.parent
     return source_digest([*sources, here / "tasks" / "render" / "protocol_video.py",
@@ -91,6 +91,4 @@ def render_drop_protocol(asset_dir: Path, physical: PhysicalModel, material: Mat
 def write_card(asset_dir: Path, manifest: AssetManifest | None = None) -> tuple[Path, Path]:
     """renders/card.png and renders/card.html of an asset directory (manifest: the one about to be written, when
     asset.json is not there yet, as in generate's working directory)."""
-    from tasks.render.card import build_card
-
     return build_card(asset_dir, manifest)

@@ -12,9 +12,8 @@ Documents and file names are in contracts/asset_dir.py; a document read and writ
 from __future__ import annotations
 
 import json
-from functools import cached_property
 from pathlib import Path
-from typing import TYPE_CHECKING, Any, TypeVar
+from typing import Any, TypeVar
 
 from pydantic import BaseModel, ValidationError
 
@@ -37,9 +36,6 @@ from contracts.manifest import AssetManifest
 from contracts.material import Material
 from contracts.physical import PhysicalModel
 from tasks.publish import write_json_atomic
-
-if TYPE_CHECKING:
-    from tasks.geometry.outputs import L0Asset
 
 D = TypeVar("D", bound=BaseModel)
 
@@ -161,13 +157,6 @@ class AssetDir:
                                reason=f"L3 material revision ({revision.trigger}; L2 revalidated, robot confirmed): "
                                       f"{revision.reason}",
                                metrics=dict(revision.l2_revalidation.metrics))
-
-    @cached_property
-    def l0(self) -> L0Asset:
-        """The L0 arrays (mesh, particles, proxy, Gaussians) and geometry.json, loaded once per AssetDir."""
-        from tasks.geometry.outputs import load_l0
-
-        return load_l0(self.path)
 
     # -- writers -----------------------------------------------------------------------------------------------------
     def write(self, name: DocumentName, doc: BaseModel) -> Path:

@@ -22,6 +22,8 @@ from pathlib import Path
 from typing import Any
 
 from cache.tempfiles import dead_partials, owner_tag, remove_paths
+from contracts.asset_dir import ASSET_JSON
+from contracts.errors import InputError
 
 COPY_BELOW_BYTES = 1 << 20  # files smaller than this are copied into a working copy, larger ones hard-linked [B]
 COPIED_SUFFIXES = (".json", ".jsonl")  # documents and evidence: always copied (writers may rewrite them)
@@ -32,9 +34,6 @@ _AT_FDCWD = -100
 def check_out_dir(out_dir: Path) -> None:
     """InputError unless `out_dir` is somewhere an asset may be published: absent, an empty directory, or an earlier
     asset (its asset.json), which the publish replaces."""
-    from contracts.asset_dir import ASSET_JSON
-    from contracts.errors import InputError
-
     if out_dir.exists() and (not out_dir.is_dir() or (any(out_dir.iterdir()) and not (out_dir / ASSET_JSON).exists())):
         raise InputError(f"{out_dir} exists and is not an asset directory; choose a new or empty directory")
 

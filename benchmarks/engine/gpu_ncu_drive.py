@@ -12,14 +12,14 @@ from __future__ import annotations
 
 import sys
 
+from contracts.sim import KernelOptions
+from tasks.mpm.scene import BENCH_DT_S, bench_cube_model
+from tasks.mpm.simulator import Simulator
+
 
 def main() -> None:
     import torch  # the device image's; only for cudaProfilerStart/Stop
     import warp as wp
-
-    from contracts.sim import KernelOptions
-    from tasks.mpm.scene import BENCH_DT_S, bench_cube_model
-    from tasks.mpm.simulator import Simulator
 
     n, batch, warm, steps = (int(a) for a in sys.argv[1:5])
     kernel = KernelOptions.from_assignments(sys.argv[5:])

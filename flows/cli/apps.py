@@ -71,7 +71,7 @@ def check_device(device: str) -> None:
     if device not in ("cpu", "cuda"):
         fail(f"--device must be cpu or cuda, got '{device}'")
     if device == "cuda":
-        import tasks.mpm  # noqa: F401  (Warp quiet on stdout)
+        import tasks.mpm  # noqa: F401  (Warp quiet on stdout; lazy: pulls warp, 1.3 s, only for --device cuda)
         import warp as wp
 
         if not wp.is_cuda_available():

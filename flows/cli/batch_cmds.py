@@ -7,6 +7,7 @@ from pathlib import Path
 import typer
 from rich.table import Table
 
+from cache import use_cache_root
 from flows.cli.apps import app, check_device, console, emit_json, fail, results
 from flows.cli.preflight import check_locations
 
@@ -37,7 +38,7 @@ def batch(
                                     "published all the same)"),
 ) -> None:
     """Generate many assets; a bad request fails alone; exit 1 if any failed (the report is written anyway)."""
-    from cache import use_cache_root
+    # lazy: pulls concurrent.futures, ctypes (probe workers); --help imports every command module
     from flows.batch import DEFAULT_JOB, NO_L3_JOB, REPORT_JSON, REQUIRE_L3_JOB, run_batch
 
     if require_l3 and not l3:

@@ -12,6 +12,7 @@ import typer
 from rich.table import Table
 
 from cache.config import ENV_VAR, use_cache_root
+from cache.tempfiles import remove_dead_temporaries
 from contracts.errors import DeformSmithError, InputError
 from flows.cli.apps import cache_app, emit_json, fail, results
 
@@ -50,7 +51,7 @@ def parse_size(text: str) -> int:
 
 
 def _store(cache: Path | None) -> Any:
-    from cache.store import CacheStore
+    from cache.store import CacheStore  # lazy: pulls zarr (--help imports every command module)
 
     return CacheStore(resolve_cache_option(cache))
 
@@ -127,8 +128,6 @@ def gc_cmd(
 ) -> None:
     """Remove old entries and/or shrink the cache to a size; also removes what dead processes left (crash leftovers:
     recordings/*.rrd.<pid>.tmp, tmp/ entries, and with --outputs the .NAME.partial-* working directories)."""
-    from cache.tempfiles import remove_dead_temporaries
-
     try:
         age = parse_duration(older_than) if older_than is not None else None
         size = parse_size(max_size) if max_size is not None else None

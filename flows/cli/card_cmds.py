@@ -6,6 +6,7 @@ from pathlib import Path
 
 import typer
 
+from cache import use_cache_root
 from flows.cli.apps import app, results
 
 
@@ -16,8 +17,7 @@ def card(
 ) -> None:
     """Rebuild the asset card: request, views, drop frames, material and bands, L1, L3 and where each number came
     from (renders/card.png and renders/card.html, the videos embedded)."""
-    from cache import use_cache_root
-    from tasks.render.card import build_card
+    from tasks.render.card import build_card  # lazy: pulls trimesh, zarr, scipy (--help imports every command module)
 
     if cache_dir is not None:
         use_cache_root(cache_dir)

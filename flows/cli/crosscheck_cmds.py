@@ -8,6 +8,8 @@ from pathlib import Path
 
 import typer
 
+from cache import use_cache_root
+from contracts.errors import DeformSmithError
 from flows.cli.apps import app, console, emit_json, fail, results
 
 
@@ -30,8 +32,7 @@ def crosscheck_cmd(
 ) -> None:
     """Run L2's drop and compression probes in another simulator on the exported asset and report each metric
     (effective modulus, rebound, impact strain, settle time, recovery) beside DeformSmith's MPM value."""
-    from cache import use_cache_root
-    from contracts.errors import DeformSmithError
+    # lazy: pulls warp, trimesh, zarr (--help imports every command module)
     from flows.crosscheck import crosscheck_asset
 
     if not asset_dir.is_dir():

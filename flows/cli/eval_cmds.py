@@ -6,6 +6,7 @@ from pathlib import Path
 
 import typer
 
+from cache import use_cache_root
 from flows.cli.apps import app, check_device, console, emit_json, fail, results
 from flows.cli.preflight import check_locations
 
@@ -30,8 +31,6 @@ def eval_cmd(
     as_json: bool = typer.Option(False, "--json", help="print the figures as JSON"),
 ) -> None:
     """Run (or resume) an evaluation: records per case and arm, then report.md with tables, plots and links."""
-    from cache import use_cache_root
-
     chosen = ABLATIONS if ablation == "all" else tuple(a.strip() for a in ablation.split(","))
     if not chosen or any(a not in ABLATIONS for a in chosen):
         fail(f"--ablation must be one of {', '.join(ABLATIONS)}, a comma list of them, or all; got '{ablation}'")
@@ -43,8 +42,8 @@ def eval_cmd(
     if cache_dir is not None:
         use_cache_root(cache_dir)
     check_locations(out_root=out)  # the evaluation folder and the cache root are usable, before any case runs
-    from flows.evaluate import EvalOptions, evaluate
-    from tasks.evaluation.suite import load_suite
+    from flows.evaluate import EvalOptions, evaluate  # lazy: Prefect and every layer's flow (seconds at CLI start)
+    from tasks.evaluation.suite import load_suite  # lazy: numpy and the harness's vocabulary (0.8 s at CLI start)
 
     load_suite(suite)  # a bad suite fails here, before anything runs
     opts = EvalOptions(suite=suite, ablations=tuple(a for a in ABLATIONS if a in chosen), limit=limit,

@@ -14,6 +14,8 @@ from rich.table import Table
 from contracts.errors import InputError
 from contracts.evidence import Attempt, StageTally
 from flows.cli.apps import app, emit_json, fail, results
+from tasks.record.attempts import find_attempt_files, read_attempts
+from tasks.record.tally import stage_tallies
 
 VERDICT_STYLE = {"accepted": "green", "best_so_far": "green", "rejected": "red", "rolled_back": "yellow",
                  "revise": "yellow", "escalated": "yellow"}
@@ -78,6 +80,7 @@ def _fmt(v: Any) -> str:
 def attempt_trials(root: Path, a: Attempt) -> list[int]:
     """The trial numbers (tasks.record.trials: one numbering with the console, manipulation.json and the card) of an
     L3 harness attempt's simulated pick-and-places, from the interaction folders its evidence names."""
+    # lazy: contracts.asset_dir's models (~0.1 s; --help imports every command module)
     from tasks.record.trials import trial_of_folder
 
     if a.stage != "L3" or not (root / "manipulation.json").is_file():
@@ -123,9 +126,6 @@ def evidence(
     as_json: bool = typer.Option(False, "--json", help="print the attempt records as JSON"),
 ) -> None:
     """Print the harness's attempt history: proposal, source, evidence, gates, verdict."""
-    from tasks.agents.records import find_attempt_files, read_attempts
-    from tasks.record.tally import stage_tallies
-
     try:
         files = find_attempt_files(path)
         by_file = {f: read_attempts(f) for f in files}

@@ -6,6 +6,7 @@ from pathlib import Path
 
 import typer
 
+from cache import use_cache_root
 from flows.cli.apps import app, emit_json, results
 
 
@@ -20,7 +21,7 @@ def export_cmd(
     as_json: bool = typer.Option(False, "--json", help="print the export manifest as JSON"),
 ) -> None:
     """Write the validated deformable asset for other simulators (tet mesh, material, a README line to load it)."""
-    from cache import use_cache_root
+    # lazy: pulls trimesh, zarr, skimage (--help imports every command module)
     from flows.export import MANIFEST, export_asset
 
     if cache_dir is not None:

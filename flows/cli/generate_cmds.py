@@ -10,11 +10,18 @@ import typer
 from pydantic import ValidationError
 from rich.markup import escape
 
+from cache import use_cache_root
 from contracts.errors import validation_message
+from contracts.evidence import StageTally
+from contracts.manifest import AssetManifest  # (not flows.generate: no Prefect import to read a file)
+from contracts.request import AssetRequest
 from flows.cli.apps import app, check_device, console, emit_json, fail, results
+from flows.cli.evidence_cmds import print_tallies
 from flows.cli.geometry_cmds import GEOMETRY_BACKEND_HELP
 from flows.cli.llm_option import LLM_FALLBACK_HELP, llm_agents
 from flows.cli.preflight import STRICT_CONCEPT_HELP, check_request, concept_line
+from tasks.publish import check_out_dir
+from tasks.record.tally import stage_tallies
 
 if TYPE_CHECKING:
     from contracts.sim import Device
@@ -36,10 +43,6 @@ KEY_FIGURES = ("mass_kg", "effective_modulus_pa", "rebound_ratio", "recovery_rat
 def print_summary(manifest, asset_dir: Path) -> None:
     """The validation summary: counts from the attempt records (the same tallies `evidence` prints), key figures
     from the manifest, and why a stage did not simply pass, in full."""
-    from contracts.evidence import StageTally
-    from flows.cli.evidence_cmds import print_tallies
-    from tasks.record.tally import stage_tallies
-
     figures = {s.stage: ", ".join(f"{k}={s.metrics[k]:.3g}" for k in KEY_FIGURES if k in s.metrics)
                for s in manifest.validation}
     tallies = {t.stage: t for t in stage_tallies(asset_dir)}
@@ -93,9 +96,6 @@ def generate(
     strict_concept: bool = typer.Option(False, "--strict-concept", help=STRICT_CONCEPT_HELP),
 ) -> None:
     """Text, image or mesh -> a published asset directory: geometry, physical model, tested material, evidence."""
-    from cache import use_cache_root
-    from contracts.request import AssetRequest
-
     check_device(device)
     if quality not in ("draft", "standard", "high"):
         fail(f"--quality must be draft, standard or high, got '{quality}'")
@@ -120,11 +120,10 @@ def generate(
     out = out or _default_out(text, image, mesh)
     check_request(request, out)  # image header, output parent and cache root usable, before any layer
     agents = llm_agents(llm, llm_fallback)
+    # lazy: pulls trimesh, skimage, scipy (--help imports every command module)
     from tasks.request import checked_request
 
     checked = checked_request(request)  # a rigid material or '10 km long' is one line here, before the layers load
-    from tasks.publish import check_out_dir
-
     check_out_dir(Path(out).expanduser().absolute())  # not an asset directory: refused before L0's words are read
     analogy = concept_line(request, strict_concept)  # InputError under --strict-concept: before any layer
     if analogy is not None:
@@ -133,6 +132,7 @@ def generate(
     console.log(f"[bold]generate[/bold] {escape(repr(what))} -> {escape(str(out))} ({device}, {quality})")
 
     with console.status("loading the layers and the local Prefect server") as status:
+        # lazy: pulls prefect, warp, pybullet (--help imports every command module)
         from flows.generate import TIMINGS, generate_asset, require_l3 as check_l3
 
         preload_layers(l3)  # while Prefect's local server starts in its own process (~3 s on 2 cores)
@@ -168,8 +168,6 @@ def inspect_asset(
     as_json: bool = typer.Option(False, "--json"),
 ) -> None:
     """Print an asset's validation summary, material and physical model."""
-    from contracts.manifest import AssetManifest  # not flows.generate: no Prefect import for reading a file
-
     path = asset / "asset.json"
     if not path.is_file():
         fail(f"{asset} is not an asset directory (no asset.json)")

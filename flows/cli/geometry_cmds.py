@@ -9,6 +9,7 @@ from pydantic import ValidationError
 from rich.markup import escape
 
 from contracts.errors import validation_message
+from contracts.request import AssetRequest
 from flows.cli.apps import app, console, emit_json, fail, prefect_log_level, results
 from flows.cli.llm_option import LLM_FALLBACK_HELP, llm_agents
 from flows.cli.preflight import STRICT_CONCEPT_HELP, check_request, concept_line
@@ -46,11 +47,13 @@ def geometry(
     strict_concept: bool = typer.Option(False, "--strict-concept", help=STRICT_CONCEPT_HELP),
 ) -> None:
     """Run L0 alone: text, image or mesh -> mesh.glb, collision/, particles.zarr, gaussians.ply, renders/, geometry.json."""
+    # lazy: contracts.asset_dir's models (~0.1 s; --help imports every command module)
+    from tasks.asset_dir import AssetDir, document_json
+
     if quality not in QUALITIES:
         fail(f"--quality must be one of {', '.join(QUALITIES)}, not '{quality}'")
     if size_m is not None and not (0.01 <= size_m <= 2.0):
         fail(f"--size-m {size_m:g} m is outside the supported range [0.01, 2] m")
-    from contracts.request import AssetRequest
 
     try:
         request = AssetRequest(text=text, image_path=image.absolute() if image else None,
@@ -67,14 +70,13 @@ def geometry(
         console.print(f"[yellow]{escape(analogy)}[/yellow]", soft_wrap=True)  # the first line: a guess
     check_request(request, out, cache=not no_cache)  # image header, output parent and cache root usable
     prefect_log_level("CRITICAL")  # user errors surface as one line, not task tracebacks
+    # lazy: pulls prefect, trimesh, zarr (--help imports every command module)
     from flows.l0_geometry import run_l0, write_l0
 
     with console.status(f"L0 geometry ({quality})..."):
         result = run_l0(request, use_cache=not no_cache, agents=_agents(llm, llm_fallback))
         write_l0(result, out, request=request)
     if as_json:
-        from tasks.asset_dir import AssetDir, document_json
-
         emit_json(document_json(AssetDir(out).geometry()))
     m = result.checks.metrics
     (console if as_json else results).print(  # the result line; beside --json output, on stderr
@@ -90,7 +92,8 @@ def geometry(
 
 def _preflight(request) -> None:
     """Cheap input checks before any flow starts (missing files, unsupported formats, absurd stated sizes)."""
-    from tasks.geometry import catalogue
+    from tasks.geometry import catalogue  # lazy: pulls trimesh, skimage, scipy (--help imports every command module)
+    # lazy: pulls trimesh, skimage, scipy (--help imports every command module)
     from tasks.geometry.mesh_import import SUPPORTED
 
     if request.mesh_path is not None:

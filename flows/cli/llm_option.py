@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from typing import Any
 
+from contracts.agents import AgentConfig
 from flows.cli.apps import fail
 
 LLM_FALLBACK_HELP = ("when the --llm model cannot be used (no key, no server) or gives no valid answer: 'rule' "
@@ -18,6 +19,5 @@ def llm_agents(llm: str | None, fallback: str = "rule") -> Any:
         fail(f"--llm-fallback must be rule or fail, got '{fallback}'")
     if not llm:
         return None
-    from contracts.agents import AgentConfig
 
     return AgentConfig.llm(llm, on_failure=POLICIES[fallback])  # type: ignore[arg-type]

@@ -6,7 +6,11 @@ import logging
 import sys
 from typing import Any, NoReturn
 
-# Nothing heavy at import: main() starts the local Prefect server first, then imports the rest.
+from cache import runtime
+from flows.cli import stop
+
+# Nothing heavy at import (cache.runtime and flows.cli.stop are light): main() starts the local Prefect server first,
+# then imports the rest.
 
 # The command modules register their commands on the shared apps when imported. A command line names one command:
 # only its module is imported (each pulls in its own libraries), so `generate` prints its first line sooner; --help,
@@ -35,6 +39,7 @@ def register_commands(argv: list[str] | None = None) -> None:
 def __getattr__(name: str) -> Any:
     """`from flows.cli.main import app`: the app with every command registered."""
     if name == "app":
+        # lazy: after the Prefect server's prestart (pydantic, typer: ~0.5 s overlap its start)
         from flows.cli.apps import app
 
         register_commands()
@@ -49,9 +54,7 @@ FLOW_COMMANDS = frozenset({"generate", "geometry", "physical", "material", "mani
 def _prestart_for(argv: list[str]) -> None:
     """Prestart the local Prefect server when the command line runs flows (not for --help)."""
     if argv and argv[0] in FLOW_COMMANDS and not {"--help", "-h"} & set(argv):
-        from cache.runtime import prestart_local_server
-
-        prestart_local_server()
+        runtime.prestart_local_server()
 
 
 class _UserErrorTracebacks(logging.Filter):
@@ -59,7 +62,9 @@ class _UserErrorTracebacks(logging.Filter):
     runs' one-line 'Finished in state Failed(...)' records stay)."""
 
     def filter(self, record: logging.LogRecord) -> bool:
+        # lazy: after the Prefect server's prestart (pydantic, typer: ~0.5 s overlap its start)
         from contracts.errors import DeformSmithError
+        # lazy: after the Prefect server's prestart (pydantic, typer: ~0.5 s overlap its start)
         from flows.cli.preflight import is_filesystem_error
 
         exc = record.exc_info[1] if record.exc_info else None
@@ -90,13 +95,11 @@ def _exit_now(code: int) -> NoReturn:
     import atexit
     import threading
 
-    from flows.cli.stop import flush_and_exit
-
     shutdown = getattr(threading, "_shutdown", None)  # what Py_FinalizeEx runs first: threading's exit hooks, joins
     if shutdown is not None:
         shutdown()
     atexit._run_exitfuncs()
-    flush_and_exit(code)
+    stop.flush_and_exit(code)
 
 
 def main() -> None:
@@ -107,8 +110,6 @@ def main() -> None:
     program = _OWN_SIGNALS = "app" not in globals()
     fast = bool(sys.argv[1:2]) and sys.argv[1] in FAST_EXIT_COMMANDS and program
     restore = None
-    if program:
-        from flows.cli import stop
     try:
         if program:  # (inside the try: a signal right after it still ends the command through stop.leave)
             restore = stop.install(sys.argv, resumes=bool(sys.argv[1:2]) and sys.argv[1] in FLOW_COMMANDS)
@@ -134,8 +135,11 @@ def main() -> None:
 def _main() -> None:
     """The command line's command, with user errors as one line and their exit codes."""
     _prestart_for(sys.argv[1:])  # first: the server's start overlaps the imports below
+    # lazy: after the Prefect server's prestart (pydantic, typer: ~0.5 s overlap its start)
     from contracts.errors import DeformSmithError
+    # lazy: after the Prefect server's prestart (pydantic, typer: ~0.5 s overlap its start)
     from flows.cli.apps import app
+    # lazy: after the Prefect server's prestart (pydantic, typer: ~0.5 s overlap its start)
     from flows.cli.preflight import filesystem_error, is_filesystem_error
 
     register_commands(sys.argv[1:])

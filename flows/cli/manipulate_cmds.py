@@ -8,6 +8,8 @@ from pathlib import Path
 import typer
 from rich.table import Table
 
+from cache import use_cache_root
+from contracts.errors import RequirementNotMet
 from flows.cli.apps import app, check_device, console, emit_json, fail, results
 from flows.cli.preflight import check_asset_dir, check_outputs
 
@@ -27,8 +29,8 @@ def manipulate(
 
     An L3 that does not pass (no grasp, no valid pick) is a result: recorded, printed with its reason, exit 0
     (exit 7 with --require-l3)."""
-    from cache import use_cache_root
-    from tasks.asset_dir import AssetDir
+    from tasks.asset_dir import AssetDir  # lazy: contracts.asset_dir's models (~0.1 s at --help)
+    from tasks.publish import staged_update  # lazy: pulls ctypes (--help imports every command module)
 
     if not AssetDir(asset).has("geometry"):
         fail(f"{asset} is not an asset directory (no geometry.json)")
@@ -42,8 +44,8 @@ def manipulate(
     if cache_dir is not None:
         use_cache_root(cache_dir)
     check_asset_dir(asset)  # the asset directory, its parent and the cache root usable, before L3 runs
+    # lazy: pulls prefect, warp, pybullet (--help imports every command module)
     from flows.l3_manipulation import L3Options, run_l3
-    from tasks.publish import staged_update
 
     options = (L3Options.standard(device, cpu_threads) if quality == "standard"
                else L3Options(device=device, cpu_threads=cpu_threads))
@@ -75,8 +77,6 @@ def manipulate(
                       f"{asset / 'manipulation.json'}" + ("" if require_l3 else " (--require-l3 makes this exit 7)"),
                       markup=False)
         if require_l3:
-            from contracts.errors import RequirementNotMet
-
             raise RequirementNotMet("L3", record.reason or record.message)
 
 
@@ -92,6 +92,7 @@ def replay_cmd(
     as_json: bool = typer.Option(False, "--json", help="print what was written as JSON"),
 ) -> None:
     """Replay a recorded trial from its particle states (no re-simulation): frames, video, .rrd."""
+    # lazy: pulls pybullet, trimesh, zarr (--help imports every command module)
     from tasks.manipulation.replay import replay
 
     if not (asset / "interaction").is_dir():

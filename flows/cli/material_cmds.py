@@ -9,8 +9,13 @@ from pathlib import Path
 import typer
 from pydantic import ValidationError
 
+from cache import use_cache_root
+from contracts.agents import AgentConfig
 from contracts.errors import validation_message
+from contracts.material import Material
+from contracts.sim import SimConfig
 from flows.cli.apps import app, console, emit_json, fail, prefect_log_level, results
+from flows.cli.physical_cmds import asset_path
 from flows.cli.preflight import check_asset_dir, check_locations
 
 RIGID_KINDS = ("place", "drop", "slide")  # L1 rigid probes (pybullet); `drop` is rigid unless --deformable
@@ -20,6 +25,7 @@ KINDS = ("place", "drop", "slide", "compress", "lift", "stability")
 
 def _check_asset(asset: Path) -> None:
     """The asset directory must hold an L0 output."""
+    # lazy: contracts.asset_dir's models (~0.1 s; --help imports every command module)
     from tasks.asset_dir import AssetDir
 
     if not AssetDir(asset).has("geometry"):
@@ -40,15 +46,19 @@ def _material_overrides(E: float | None, nu: float | None, damping: float | None
 def _material(E: float | None, nu: float | None, damping: float | None, asset: Path):
     """The material to probe: the asset's adopted material (L2's, or the L3 revision it adopted; else the intent's
     priors), with the given overrides."""
-    from flows.l2_material import l2_targets
+    # lazy: contracts.asset_dir's models (~0.1 s; --help imports every command module)
     from tasks.asset_dir import AssetDir
+
+    from flows.l2_material import l2_targets  # lazy: pulls prefect, warp, trimesh (--help imports every command module)
+    # lazy: pulls trimesh, zarr, skimage (--help imports every command module)
+    from tasks.geometry.outputs import load_l0
 
     given = _material_overrides(E, nu, damping)
     adir = AssetDir(asset)
     if adir.has("material"):
         base = adir.adopted_material().material.model_dump()
     else:  # the priors always hold every material field (the vocabulary's default material fills the gaps)
-        pri = l2_targets(adir.l0, None).priors
+        pri = l2_targets(load_l0(adir.path), None).priors
         base = {k: pri[k] for k in ("youngs_modulus_pa", "poisson_ratio", "damping_rate_per_s")}
     return _validated({**base, **given})
 
@@ -59,8 +69,6 @@ _PARAMETER_NAMES = {"youngs_modulus_pa": "E (--E) [Pa]", "poisson_ratio": "nu (-
 
 def _validated(values: dict[str, float]):
     """A Material, or one clear line naming the invalid parameter and a non-zero exit."""
-    from contracts.material import Material
-
     try:
         return Material(**values)
     except ValidationError as exc:
@@ -92,13 +100,16 @@ def probe(
         if any(v is not None for v in (E, nu, damping)):
             fail(f"--E/--nu/--damping apply to deformable probes; '{kind}' is a rigid L1 probe")
         try:
+            # lazy: pulls prefect, trimesh, zarr (--help imports every command module)
             from flows.l1_physical import run_rigid_probe
         except ImportError:
             fail(f"the rigid probe '{kind}' needs flows.l1_physical.run_rigid_probe, which is not available")
         with console.status(f"rigid probe {kind}..."):
             result = run_rigid_probe(kind, asset, rho=rho)
     else:
+        # lazy: pulls prefect, warp, trimesh (--help imports every command module)
         from flows.l2_material import physical_for, run_probe
+        # lazy: pulls trimesh, zarr, skimage (--help imports every command module)
         from tasks.geometry.outputs import load_l0
 
         material = _material(E, nu, damping, asset)
@@ -130,7 +141,8 @@ def material(
 ) -> None:
     """Run L2 on an asset: MPM probes, harness-selected neo-Hookean material -> material.json, evidence, recordings."""
 
-    from flows.cli.physical_cmds import asset_path
+    from tasks.asset_dir import AssetDir, document_json  # lazy: contracts.asset_dir's models (~0.1 s at --help)
+    from tasks.publish import staged_update  # lazy: pulls ctypes (--help imports every command module)
 
     asset = asset_path(asset_dir, asset)
     _check_asset(asset)
@@ -139,16 +151,10 @@ def material(
     if not 1 <= cpu_threads <= 64:
         fail(f"--cpu-threads must be 1 to 64, got {cpu_threads}")
     if cache_dir is not None:
-        from cache import use_cache_root
-
         use_cache_root(cache_dir)
     check_asset_dir(asset)  # the asset directory, its parent and the cache root usable, before L2 runs
     prefect_log_level("CRITICAL")
-    from contracts.agents import AgentConfig
-    from contracts.sim import SimConfig
-    from flows.l2_material import run_l2
-    from tasks.asset_dir import AssetDir, document_json
-    from tasks.publish import staged_update
+    from flows.l2_material import run_l2  # lazy: pulls prefect, warp, trimesh (--help imports every command module)
 
     agents = AgentConfig.llm(llm) if llm else None
     import time

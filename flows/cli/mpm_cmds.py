@@ -23,7 +23,7 @@ def verify_physics(
         fail("--device must be cpu or cuda")
     import warp as wp
 
-    from tasks.mpm.verify import CASES, run_case
+    from tasks.mpm.verify import CASES, run_case  # lazy: pulls warp (--help imports every command module)
 
     names = list(case) if case else list(CASES)
     unknown = [n for n in names if n not in CASES]

@@ -7,6 +7,7 @@ from pathlib import Path
 import typer
 from rich.table import Table
 
+from cache import use_cache_root
 from flows.cli.apps import app, console, emit_json, fail, results
 from flows.cli.preflight import check_asset_dir
 
@@ -30,20 +31,19 @@ def physical(
     as_json: bool = typer.Option(False, "--json", help="print the physical model and metrics as JSON"),
 ) -> None:
     """L1: density and friction from the intent, mass model, rigid placement / drop / slide probes in pybullet."""
-    from cache import use_cache_root
+    from tasks.asset_dir import AssetDir  # lazy: contracts.asset_dir's models (~0.1 s at --help)
+    from tasks.publish import staged_update  # lazy: pulls ctypes (--help imports every command module)
 
     asset = asset_path(asset_dir, asset)
     if intent is not None and not intent.strip():
         fail("--intent is empty")
-    from tasks.asset_dir import AssetDir
 
     if not AssetDir(asset).has("geometry"):
         fail(f"{asset} is not an L0 asset directory (no geometry.json); run `deformsmith geometry ... --out {asset}`")
     if cache_dir is not None:
         use_cache_root(cache_dir)
     check_asset_dir(asset)  # the asset directory, its parent and the cache root usable, before L1 runs
-    from flows.l1_physical import run_l1
-    from tasks.publish import staged_update
+    from flows.l1_physical import run_l1  # lazy: pulls prefect, trimesh, zarr (--help imports every command module)
 
     # L1 writes into a working copy, swapped in whole when it ends: files and evidence together, or nothing
     with console.status("L1: rigid probes in pybullet"), staged_update(asset) as work:

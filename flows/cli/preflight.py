@@ -14,7 +14,10 @@ import tempfile
 from collections.abc import Sequence
 from pathlib import Path
 
+from cache import cache_root
+from cache.tempfiles import remove_dead_temporaries
 from contracts.errors import InputError
+from tasks.geometry.image_guard import check_image_size
 
 MIN_FREE_MB_DEFAULT = 100.0  # free space a location must have before a run starts [MB]
 MIN_FREE_ENV = "DEFORMSMITH_MIN_FREE_MB"
@@ -97,15 +100,13 @@ def check_locations(out: Path | None = None, cache: bool = True, out_root: Path 
             raise InputError(f"--out: {out} is a file, not a directory")
         check_directory(out.parent, "--out")
     if cache:
-        from cache import cache_root
-
         root = cache_root()
         check_directory(root, "cache root")
         for sub in ("locks", "tmp", "entries", "recordings"):  # a fully cached request still writes its lock files
             if os.path.lexists(root / sub):
                 check_directory(root / sub, "cache root", min_free=0)
-        from cache import CacheStore
-        from cache.tempfiles import remove_dead_temporaries
+
+        from cache import CacheStore  # lazy: cache.store pulls zarr (0.7 s at every CLI start)
 
         CacheStore(root).init_root()  # marked before any layer runs: a run stopped early leaves a sound cache
         remove_dead_temporaries(root)  # what killed runs left in the cache (their pids are dead)
@@ -135,8 +136,6 @@ def check_outputs(files: Sequence[Path | None] = (), folders: Sequence[Path | No
 def check_request(request, out: Path | None, cache: bool = True) -> None:
     """Every pre-flight check of a generation request: its image's header (decompression bombs) and the locations."""
     if request.image_path is not None and Path(request.image_path).is_file():
-        from tasks.geometry.image_guard import check_image_size
-
         check_image_size(request.image_path)
     check_locations(out, cache=cache)
 
@@ -150,6 +149,7 @@ def concept_line(request, strict: bool) -> str | None:
     generic shape), or None when the lexicon names it; InputError with that line under --strict-concept."""
     if request.mesh_path is not None or not (request.text and request.text.strip()):
         return None
+    # lazy: the offline Designer pulls scipy, skimage, trimesh (~2 s at CLI start)
     from tasks.geometry.catalogue import design_from_text
 
     concept = design_from_text(request.text, request.size_hint_m).concept

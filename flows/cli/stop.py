@@ -26,6 +26,8 @@ from collections.abc import Callable
 from types import FrameType
 from typing import NoReturn
 
+from cache.runtime import leave_sigterm_to
+
 BACKSTOP_S = 1.3  # after the signal, the process ends by this time even if its main thread has not unwound [s]
 CHILD_GRACE_S = 0.4  # children get this long to end after SIGTERM (SIGINT for a batch request) before SIGKILL [s]
 LINES = {signal.SIGINT: "interrupted", signal.SIGTERM: "stopped by SIGTERM"}
@@ -49,7 +51,6 @@ def install(argv: list[str], resumes: bool) -> Callable[[], None]:
     signal.signal(signal.SIGTERM, _on_signal)
     if previous[signal.SIGINT] is not signal.SIG_IGN:
         signal.signal(signal.SIGINT, _on_signal)
-    from cache.runtime import leave_sigterm_to
 
     leave_sigterm_to(_on_signal)
 

@@ -41,7 +41,7 @@ def reset() -> None:
 def missing_credentials(model: str) -> list[str]:
     """The credential variables (``*_KEY``, ``*_TOKEN``) litellm needs for a model and cannot find in the environment;
     an address with a default (``OLLAMA_API_BASE``) is not a credential."""
-    from tasks.agents.llm import litellm  # litellm only through tasks.agents.llm (it fetches its cost map otherwise)
+    from tasks.agents.litellm_client import litellm  # lazy: litellm takes ~10 s to import, only when a model is asked
 
     try:
         found = litellm.validate_environment(model)

@@ -4,32 +4,28 @@ from __future__ import annotations
 
 import base64
 import json
-import os
 import re
 import socket
 from collections.abc import Callable, Sequence
 from typing import Any, TypeVar
 
-os.environ.setdefault("LITELLM_LOCAL_MODEL_COST_MAP", "True")  # before importing litellm: no network at import
+from pydantic import BaseModel, ValidationError
 
-import litellm  # noqa: E402
-from pydantic import BaseModel, ValidationError  # noqa: E402
-
-from cache.dont_store import dont_store  # noqa: E402
-from contracts.agents import (  # noqa: E402
+from cache.dont_store import dont_store
+from contracts.agents import (
     Candidate, Critique, CriticRequest, DesignerRequest, PlannerContext, PlannerDecision, RoleConfig,
 )
-from contracts.evidence import AgentSource  # noqa: E402
-from contracts.errors import validation_message  # noqa: E402
-from tasks.agents.backend import (  # noqa: E402
+from contracts.evidence import AgentSource
+from contracts.errors import validation_message
+from tasks.agents.litellm_client import litellm  # (configured there: no network at import)
+from tasks.agents.backend import (
     AgentError, InvalidAnswer, RoleReply, check_candidate, check_critique, check_decision,
 )
-from tasks.agents import fallbacks  # noqa: E402
-from tasks.agents.prompts import load_prompt  # noqa: E402
-from tasks.agents.rule import RuleCritic, RuleDesigner, RulePlanner  # noqa: E402
-from tasks.agents.vocab import StageRoutes  # noqa: E402
+from tasks.agents import fallbacks
+from tasks.agents.prompts import load_prompt
+from tasks.agents.rule import RuleCritic, RuleDesigner, RulePlanner
+from tasks.agents.vocab import StageRoutes
 
-litellm.suppress_debug_info = True
 _LITELLM_COMPLETION = litellm.completion  # models found unusable are remembered only for real calls, not test mocks
 M = TypeVar("M", bound=BaseModel)
 Completion = Callable[..., Any]

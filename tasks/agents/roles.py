@@ -13,6 +13,7 @@ def build_roles(config: AgentConfig | None = None, completion=None, routes: Stag
     config = config or AgentConfig()
     if all(c.backend == "rule" for c in (config.planner, config.designer, config.critic)):
         return Roles.rule(routes)
+    # lazy: tasks.agents.llm pulls litellm (~10 s), only for an LLM backend
     from tasks.agents.llm import LLMCritic, LLMDesigner, LLMPlanner
 
     return Roles(

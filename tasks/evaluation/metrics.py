@@ -7,6 +7,7 @@ from collections.abc import Iterable
 from dataclasses import asdict, dataclass, field
 
 from contracts.evaluation import ARMS, ArmResult
+from tasks.evaluation.paper import LOWER_IS_BETTER, TARGETS
 
 METRICS: dict[str, tuple[str, ...]] = {
     "hierarchy": ("delivery", "physics_pass", "sim_calls"),
@@ -92,8 +93,6 @@ def aggregate(records: Iterable[ArmResult]) -> dict[str, dict[str, dict[str, Fig
 
 def direction_ok(metric: str, baseline: float | None, ours: float | None) -> bool | None:
     """True when ours is at least as good as the baseline in the metric's direction (None if unknown)."""
-    from tasks.evaluation.paper import LOWER_IS_BETTER
-
     if baseline is None or ours is None:
         return None
     return ours <= baseline if metric in LOWER_IS_BETTER else ours >= baseline
@@ -101,8 +100,6 @@ def direction_ok(metric: str, baseline: float | None, ours: float | None) -> boo
 
 def meets_target(metric: str, value: float | None) -> bool | None:
     """Whether a figure of our pipeline meets issue 9's target."""
-    from tasks.evaluation.paper import TARGETS
-
     if value is None or metric not in TARGETS:
         return None
     op, t = TARGETS[metric]

@@ -14,6 +14,7 @@ from typing import Any
 from contracts.evaluation import ARMS, ArmResult, Suite
 from tasks.evaluation.metrics import METRICS, Figure, aggregate, direction_ok, meets_target
 from tasks.evaluation.paper import PAPER, TARGETS
+from tasks.evaluation.vision import RATINGS
 
 TITLES = {"hierarchy": "A. Flat vs Hierarchical", "harness": "B. One-shot vs Harness",
           "manipulation": "C. No feedback vs Full manipulation-guided refinement"}
@@ -229,8 +230,6 @@ def write_report(report_dir: Path, records: list[ArmResult], suite: Suite, suite
 
 def _rating_rows(records: list[ArmResult], opts: Any) -> list[str]:
     """The vision LLM's 0-1 ratings of our assets' drop videos: the mean per rating, then one row per asset."""
-    from tasks.evaluation.vision import RATINGS
-
     rated = [r for r in records if r.ablation == "hierarchy" and r.arm == "hierarchical"
              and all(f"rating_{k}" in r.metrics for k in RATINGS)]
     failed = [r for r in records if r.ablation == "hierarchy" and "vision_rating_error" in r.evidence]

@@ -36,6 +36,8 @@ import contracts
 from contracts.errors import InputError, validation_message
 from contracts.evaluation import Drawing, Suite, SuiteCase
 from contracts.request import AssetRequest, Quality
+from tasks.agents.intent import match_material
+from tasks.agents.vocab import load_material_vocab
 
 SUITES_DIR = Path(contracts.__file__).resolve().parent / "suites"
 
@@ -84,9 +86,6 @@ def load_suite(name_or_file: str, check_vocab: bool = True) -> tuple[Suite, Path
 
 def check_cases(suite: Suite, base: Path) -> list[str]:
     """Problems a schema cannot see: unknown materials, intents naming another material, missing files."""
-    from tasks.agents.intent import match_material
-    from tasks.agents.vocab import load_material_vocab
-
     vocab = load_material_vocab()
     out = []
     for c in suite.cases:

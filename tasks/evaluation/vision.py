@@ -76,6 +76,7 @@ def _content(response: Any) -> str:
 def rate_videos(request_text: str, videos: dict[str, Path], model: str,
                 completion: Callable[..., Any] | None = None, retries: int = 2) -> VisionRating:
     """Ask `model` for the three ratings of the drop videos (front, side); VisionRatingError when no valid answer."""
+    # lazy: tasks.agents.llm pulls litellm (~10 s), only when a vision model rates
     from tasks.agents.llm import extract_json
 
     if completion is None:

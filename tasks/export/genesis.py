@@ -23,8 +23,11 @@ from typing import Any
 
 import numpy as np
 
+from contracts.errors import InputError
 from contracts.export import TargetManifest
+from tasks.asset_dir import AssetDir
 from tasks.export.inputs import ExportInputs, write_readme, write_tet_files
+from tasks.export.mujoco_scene import mean_edge_m
 from tasks.export.tetmesh import surface_of
 
 SCENE = "scene.py"
@@ -170,10 +173,6 @@ def write_obj(path: Path, vertices: np.ndarray, faces: np.ndarray) -> None:
 
 def particle_spacing_m(inputs: ExportInputs) -> float:
     """DeformSmith's particle spacing (physical.json), Genesis's particle size; half the mean tet edge without L1."""
-    from contracts.errors import InputError
-    from tasks.asset_dir import AssetDir
-    from tasks.export.mujoco_scene import mean_edge_m
-
     try:
         return float(AssetDir(Path(inputs.asset_dir)).physical_model().particle_spacing_m)
     except (InputError, OSError):

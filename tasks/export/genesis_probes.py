@@ -36,6 +36,8 @@ import numpy as np
 
 from contracts.errors import InputError, SimulationError
 from tasks.export.crosscheck import compression_metrics, drop_metrics
+from tasks.export.genesis import GENESIS_INSTALL
+from tasks.export.mujoco_scene import fundamental_period_s
 from tasks.export.probe_schedule import unrotated
 from tasks.probes.metrics import compressive_strain
 
@@ -45,8 +47,6 @@ G = 9.81
 def load_scene_module(scene_py: Path) -> ModuleType:
     """Import an exported scene.py (needs genesis-world)."""
     if importlib.util.find_spec("genesis") is None:
-        from tasks.export.genesis import GENESIS_INSTALL
-
         raise InputError(f"crosscheck --sim genesis needs genesis-world: {GENESIS_INSTALL}")
     spec = importlib.util.spec_from_file_location(f"deformsmith_genesis_scene_{abs(hash(str(scene_py)))}", scene_py)
     if spec is None or spec.loader is None:
@@ -95,8 +95,6 @@ def _rate(mod: ModuleType, damping_rate_per_s: float | None) -> float:
 
 
 def _period_s(p: dict[str, Any]) -> float:
-    from tasks.export.mujoco_scene import fundamental_period_s
-
     # the probes' time scales come from the exported (validated) E, as L2's do, not from a calibration's trial E
     return fundamental_period_s(float(p["height_m"]), float(p["youngs_modulus_pa"]), float(p["density_kg_per_m3"]))
 

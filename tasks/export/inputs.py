@@ -9,11 +9,13 @@ from pathlib import Path
 
 import numpy as np
 
+from cache import CacheMiss, CacheStore, cache_root, content_key
 from contracts.errors import InputError
 from contracts.export import ExportMaterial
 from tasks.asset_dir import AssetDir
 from tasks.export.tetmesh import TetMesh, tetrahedralize, write_msh, write_vtk
 from tasks.geometry.gaussians import GaussianSet
+from tasks.geometry.outputs import load_l0
 
 TETMESH_VERSION = "3"  # bump when tetrahedralize's output for the same surface changes (3: isosurface stuffing)
 
@@ -72,8 +74,6 @@ def export_material(adir: AssetDir) -> ExportMaterial:
 
 def cached_tet_mesh(vertices_m: np.ndarray, faces: np.ndarray, edge_length_m: float | None = None) -> TetMesh:
     """tetrahedralize, cached in the content cache by the surface, the edge length and TETMESH_VERSION."""
-    from cache import CacheMiss, CacheStore, cache_root, content_key
-
     v = np.ascontiguousarray(vertices_m, dtype=np.float64)
     f = np.ascontiguousarray(faces, dtype=np.int64)
     key = content_key("export.tetmesh", TETMESH_VERSION, v, f, edge_length_m)
@@ -94,7 +94,7 @@ def load_export_inputs(asset_dir: Path, *, edge_length_m: float | None = None) -
     if not Path(asset_dir).is_dir():
         raise InputError(f"{asset_dir} is not a directory")
     material = export_material(adir)
-    l0 = adir.l0
+    l0 = load_l0(adir.path)
     vertices = np.asarray(l0.mesh.vertices, dtype=np.float64)
     faces = np.asarray(l0.mesh.faces, dtype=np.int64)
     colors = np.asarray(l0.mesh.visual.vertex_colors, dtype=np.uint8) if hasattr(l0.mesh.visual, "vertex_colors") \

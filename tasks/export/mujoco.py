@@ -81,6 +81,7 @@ def load_and_step(xml_path: Path, duration_s: float = 1.0) -> dict[str, float]:
     """Load an exported MJCF with the mujoco package and step duration_s; the flex's node z range before/after."""
     import mujoco
 
+    # lazy: mujoco_probes pulls warp (1.3 s); exporting alone steps no probe
     from tasks.export.mujoco_probes import quiet_mujoco_warnings
 
     quiet_mujoco_warnings()

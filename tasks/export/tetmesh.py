@@ -17,6 +17,7 @@ from typing import Any
 import numpy as np
 
 from contracts.errors import InputError, SimulationError
+from tasks.export.stuffing import stuff
 
 MIN_DIHEDRAL_DEG = 4.0        # a tet with a dihedral angle below this (or above MAX_DIHEDRAL_DEG) is a sliver or
 MAX_DIHEDRAL_DEG = 176.0      # a cap (stuffing guarantees [10.7, 164.8] deg: a check, not a retry reason)
@@ -127,7 +128,6 @@ def tetrahedralize(vertices_m: np.ndarray, faces: np.ndarray, *, edge_length_m: 
         raise InputError("tetrahedralize: the surface encloses no volume (open, or faces pointing inwards)")
     if importlib.util.find_spec("igl") is None:
         raise SimulationError('the tet mesh needs libigl: pip install -e ".[export]"')
-    from tasks.export.stuffing import stuff
 
     envelope = ENVELOPE_FRACTION * diag
     best: TetMesh | None = None

@@ -39,7 +39,7 @@ from pathlib import Path
 from typing import Any
 
 from contracts.request import AssetRequest
-from tasks.geometry.backends import (
+from tasks.geometry.backend_io import (
     HUNYUAN3D_PREFIX,
     BackendOutput,
     GeometryBackendError,
@@ -143,7 +143,7 @@ def call(spec: str, request: AssetRequest, scratch: Path, timeout_s: float) -> B
 
 def _exchange(parsed: Hunyuan3DSpec, path: str, body: dict[str, Any] | None, timeout_s: float,
               accept: str = "application/json") -> bytes:
-    """One request to the server (backends.http_exchange: every failure one line, named by the spec)."""
+    """One request to the server (backend_io.http_exchange: every failure one line, named by the spec)."""
     return http_exchange(parsed.base + path, body, timeout_s, accept, label=f"{HUNYUAN3D_PREFIX}{parsed.base}{path}")
 
 

@@ -2,13 +2,9 @@
 
 from __future__ import annotations
 
-import functools
 import re
-from pathlib import Path
-from typing import Any
 
 import numpy as np
-import yaml
 from pydantic import Field
 
 from contracts.base import Model
@@ -18,8 +14,9 @@ from contracts.lexicon import load_lexicon
 from contracts.request import MAX_SIZE_M, MIN_SIZE_M, AssetRequest
 from contracts.shape import ShapeProgram
 from tasks.geometry import concepts, dims_words, grammar, size_words
+from tasks.geometry.catalogue_programs import catalogue_program, catalogue_yaml
+from tasks.geometry.sdf import program_bounds
 
-CATALOGUE_FILE = Path(__file__).with_name("catalogue.yaml")
 
 _UNITS = {"mm": 0.001, "millimeter": 0.001, "millimetre": 0.001, "cm": 0.01, "centimeter": 0.01,
           "centimetre": 0.01, "m": 1.0, "meter": 1.0, "metre": 1.0, "in": 0.0254, "inch": 0.0254, "inches": 0.0254,
@@ -86,25 +83,20 @@ class Design(Model):
     concept: ConceptMatch | None = Field(default=None, description="the concept understood and the fallback taken")
 
 
-@functools.lru_cache(maxsize=1)
-def _raw() -> dict[str, Any]:
-    return yaml.safe_load(CATALOGUE_FILE.read_text(encoding="utf-8"))
-
-
 def entry_names() -> list[str]:
     """All catalogue entry names."""
-    return list(_raw()["entries"])
+    return list(catalogue_yaml()["entries"])
 
 
 def entry_keywords(name: str) -> list[str]:
     """Keywords that select an entry."""
-    return list(_raw()["entries"][name]["keywords"])
+    return list(catalogue_yaml()["entries"][name]["keywords"])
 
 
 def entry_category(name: str) -> str:
     """Category of a lexicon concept or catalogue entry (used for priors downstream)."""
     entries = load_lexicon().entries
-    return entries[name].category if name in entries else str(_raw()["entries"][name]["category"])
+    return entries[name].category if name in entries else str(catalogue_yaml()["entries"][name]["category"])
 
 
 def program_for(name: str) -> ShapeProgram:
@@ -113,30 +105,6 @@ def program_for(name: str) -> ShapeProgram:
     if name in entries:
         return concepts.concept_program(name)
     return catalogue_program(name)
-
-
-def catalogue_program(name: str) -> ShapeProgram:
-    """The hand-written shape program (metres) of a catalogue entry, at the catalogue's size."""
-    raw = _raw()
-    unit = float(raw["length_unit_m"])
-    palette = raw["palette"]
-    entry = raw["entries"][name]
-    parts = []
-    for p in entry["parts"]:
-        prim = {k: (_scale(v, unit) if k.endswith("_m") else v) for k, v in p["p"].items()}
-        col = p.get("c", "grey")
-        parts.append({
-            "name": p["n"], "primitive": prim,
-            "transform": {"translation_m": _scale(p.get("t", [0, 0, 0]), unit), "rotation_deg": p.get("r", [0, 0, 0]),
-                          "scale": p.get("s", [1, 1, 1])},
-            "color_rgb": palette[col] if isinstance(col, str) else col,
-            "operation": p.get("op", "union"), "blend_m": float(p.get("b", 0.0)) * unit,
-        })
-    return ShapeProgram(name=name.replace("_", " "), category=entry["category"], parts=parts)
-
-
-def _scale(v: Any, unit: float) -> Any:
-    return [float(x) * unit for x in v] if isinstance(v, list) else float(v) * unit
 
 
 def _words(text: str) -> list[str]:
@@ -271,8 +239,6 @@ def _final_scale(size: SizeSpec, program: ShapeProgram, typical_m: float) -> tup
     try:
         ext = grammar.program_extents(program, 32)
     except InputError:  # a thin good (a tortilla, a cloth) falls between the coarse grid's points: its parts' box
-        from tasks.geometry.sdf import program_bounds
-
         lo, hi = program_bounds(program)
         ext = np.asarray(hi) - np.asarray(lo)
     factors = size.resolve(ext) / np.maximum(ext, 1e-9)
@@ -288,7 +254,6 @@ def _not_implied(mods: list[str], program: ShapeProgram, plan: str | None) -> li
     'flat' or 'thin' (a state word there), a long strip (five times longer than wide) not stretched by 'long'."""
     if not set(mods) & (_FLAT_WORDS | _LONG_WORDS):
         return mods
-    from tasks.geometry.sdf import program_bounds
 
     lo, hi = program_bounds(program)
     ext = np.sort(hi - lo)[::-1]

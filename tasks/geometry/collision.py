@@ -10,6 +10,8 @@ import trimesh
 from pydantic import Field
 
 from contracts.base import Model
+from tasks.geometry.meshing import mesh_from_field
+from tasks.geometry.particles import inside_lattice
 
 NOMINAL_DENSITY_KG_PER_M3 = 100.0  # placeholder for the URDF inertial only; L1 sets the real mass
 
@@ -52,9 +54,6 @@ def convex_parts(mesh: trimesh.Trimesh, settings: CoacdSettings) -> list[trimesh
 
 def _coarsen(mesh: trimesh.Trimesh, max_faces: int) -> trimesh.Trimesh:
     """Coarser watertight copy for CoACD (vertex clustering on a grid; falls back to the input)."""
-    from tasks.geometry.meshing import mesh_from_field
-    from tasks.geometry.particles import inside_lattice
-
     res = int(max(24, min(96, np.sqrt(max_faces / 6.0))))
     dx = float(mesh.extents.max()) / res
     lo = mesh.bounds[0] - 1.5 * dx

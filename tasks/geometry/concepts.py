@@ -11,10 +11,13 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from contracts.concept import ConceptMatch, FallbackLevel
-from contracts.lexicon import LexiconEntry, load_lexicon
+from contracts.lexicon import MATERIALS_FILE, LexiconEntry, load_lexicon
 from contracts.shape import Part, ShapeProgram
 from tasks.geometry import analogy as analogy_mod, fill_words, goods_words, grammar, phrase as phrase_mod, pouch_words
-from tasks.geometry.grammar.parts import part_group
+from tasks.geometry.catalogue_programs import catalogue_program
+from tasks.geometry.grammar.parts import _euler_z_to, box, ellipsoid, part_group, relief, rotated_parts, squashed_parts
+from tasks.geometry.meshing import sample_program
+from tasks.geometry.sdf import program_sdf
 from tasks.geometry.wordnet import wordnet
 
 # Words that say what an unknown object is like (checked only when the head noun is not in the lexicon).
@@ -265,8 +268,6 @@ def _known_word(w: str) -> bool:
 def _material_words() -> dict[str, str]:
     """Material word -> material class (contracts/vocab/materials.yaml)."""
     import yaml
-
-    from contracts.lexicon import MATERIALS_FILE
 
     raw = yaml.safe_load(MATERIALS_FILE.read_text(encoding="utf-8"))["materials"]
     return {normalise(w): name for name, m in raw.items() for w in m["words"]}
@@ -688,8 +689,6 @@ def _entry_program_cached(key: str, size_m: float) -> ShapeProgram:
     lex = load_lexicon()
     entry = lex.entries[key]
     if entry.catalogue is not None:
-        from tasks.geometry.catalogue import catalogue_program
-
         prog = catalogue_program(entry.catalogue)
         prog = grammar.resize(prog, size_m)
         if entry.colors:
@@ -921,8 +920,6 @@ def apply_pattern(program: ShapeProgram, text: str) -> tuple[ShapeProgram, dict[
 
 def _patch(name: str, at: np.ndarray, normal: np.ndarray, radius: float, thickness: float, rgb: tuple) -> Part:
     """A thin disc-like ellipsoid lying on a surface at `at` with its thin axis along `normal`."""
-    from tasks.geometry.grammar.parts import _euler_z_to
-
     return Part(name=name, primitive={"kind": "ellipsoid", "radii_m": (radius, radius, thickness)},
                 transform={"translation_m": tuple(float(v) for v in at), "rotation_deg": _euler_z_to(normal)},
                 color_rgb=rgb)
@@ -1044,16 +1041,12 @@ def relief_of(text: str, entry: LexiconEntry) -> tuple[str | None, bool]:
 
 def _volume(program: ShapeProgram, resolution: int = 40) -> float:
     """The volume of the solid a program describes [m^3], from its signed distances on a grid."""
-    from tasks.geometry.meshing import sample_program
-
     field_, _origin, spacing = sample_program(program, resolution)
     return float(np.count_nonzero(field_ < 0)) * spacing ** 3
 
 
 def _body_envelope(program: ShapeProgram, resolution: int = 40) -> tuple[np.ndarray, np.ndarray]:
     """(centre, half extents) [m] of the solid a program describes, from its signed distances on a grid."""
-    from tasks.geometry.meshing import sample_program
-
     field_, origin, spacing = sample_program(program, resolution)
     idx = np.argwhere(field_ < 0)
     lo, hi = origin + idx.min(axis=0) * spacing, origin + (idx.max(axis=0) + 1) * spacing
@@ -1063,8 +1056,6 @@ def _body_envelope(program: ShapeProgram, resolution: int = 40) -> tuple[np.ndar
 def with_relief(program: ShapeProgram, kind: str) -> ShapeProgram | None:
     """The program with surface relief over its body (spikes, nubs, folds, strands, ruffles, lumps) standing out of
     it; None when the body is not ball-like (its shortest half extent under half its longest)."""
-    from tasks.geometry.grammar.parts import relief
-
     centre, half = _body_envelope(program)
     if kind != "lumps" and float(half.min()) < 0.5 * float(half.max()):
         return None
@@ -1086,8 +1077,6 @@ def with_relief(program: ShapeProgram, kind: str) -> ShapeProgram | None:
 
 def posed(program: ShapeProgram, pose: str) -> ShapeProgram:
     """The whole program turned over ('side': 90 degrees about its long x axis; 'back': 180 degrees)."""
-    from tasks.geometry.grammar.parts import rotated_parts
-
     centre, _half = _body_envelope(program, 32)
     return program.model_copy(update={"parts": rotated_parts(program.parts, POSE_TURN_DEG[pose], centre)})
 
@@ -1105,8 +1094,6 @@ def inflatable(entry: LexiconEntry) -> bool:
 def deflated(program: ShapeProgram, half: bool = False) -> ShapeProgram:
     """An inflatable without its air: squashed flat and spread (its skin lies in folds), with creases; half
     inflated: squashed to about half its height and a little spread. Its longest extent grows as the skin spreads."""
-    from tasks.geometry.grammar.parts import relief, squashed_parts
-
     parts = squashed_parts(program.parts, DEFLATE_FACTORS[half])
     flat = program.model_copy(update={"parts": parts})
     if half or len(parts) > 48:
@@ -1130,8 +1117,6 @@ def dented(program: ShapeProgram, half: bool = False) -> ShapeProgram:
     """A ball that has lost air: it sags and one side is pushed in as a dish (a third of its height when half
     deflated, more than half when deflated); relief and panels (every part after the body) follow the dished
     surface."""
-    from tasks.geometry.grammar.parts import ellipsoid, squashed_parts
-
     depth, sag = DENT[half]
     centre, halfext = _body_envelope(program, 40)
     base = np.array([centre[0], centre[1], centre[2] - halfext[2]])
@@ -1154,8 +1139,6 @@ def dented(program: ShapeProgram, half: bool = False) -> ShapeProgram:
 
 def emptied(program: ShapeProgram) -> ShapeProgram:
     """A filled bag or bottle with nothing in it: its two walls lie together (a sixth of the filled thickness)."""
-    from tasks.geometry.grammar.parts import squashed_parts
-
     return program.model_copy(update={"parts": squashed_parts(program.parts, EMPTY_FACTORS)})
 
 
@@ -1266,8 +1249,6 @@ def slumped(program: ShapeProgram, keep: float) -> ShapeProgram | None:
     """A round soft body settled under its own weight: `keep` of its height, spread to keep its volume, its underside
     pressed flat on the table (a flat base cut, larger the more it slumped). None when the body is not ball-like
     (its shortest half extent under half its longest: a cushion or a mat is flat already)."""
-    from tasks.geometry.grammar.parts import box, squashed_parts
-
     centre, half = _body_envelope(program)
     if float(half.min()) < 0.5 * float(half.max()) or len(program.parts) > 62:
         return None
@@ -1319,8 +1300,6 @@ def wedged(program: ShapeProgram, target: LexiconEntry) -> ShapeProgram:
     diagonal half (a block of cheese cut corner to corner: a triangular prism). The cut faces take the inside colour."""
     from scipy.spatial.transform import Rotation
 
-    from tasks.geometry.grammar.parts import box
-
     centre, half = _body_envelope(program)
     fruit = target.category in WEDGE_ANGLE_DEG
     if fruit:
@@ -1358,8 +1337,6 @@ def wedged(program: ShapeProgram, target: LexiconEntry) -> ShapeProgram:
 def _snapped(parts: list[Part], program: ShapeProgram, centre: np.ndarray, half: np.ndarray) -> list[Part]:
     """Relief parts placed on the envelope ellipsoid moved along their ray from the centre onto the body's own surface
     (an egg's narrow end, a cushion's flat side), by bisection on the program's signed distance (all rays at once)."""
-    from tasks.geometry.sdf import program_sdf
-
     movable = [i for i, p in enumerate(parts) if p.operation == "union"
                and np.linalg.norm(np.asarray(p.transform.translation_m) - centre) > 1e-9]
     if not movable:

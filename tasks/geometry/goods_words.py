@@ -10,10 +10,12 @@ from dataclasses import dataclass
 import numpy as np
 
 from contracts.concept import ConceptMatch
-from contracts.lexicon import LexiconEntry
+from contracts.lexicon import LexiconEntry, load_lexicon
 from contracts.shape import ShapeProgram
 from tasks.geometry import fill_words, grammar
 from tasks.geometry.grammar.goods import BAG_CAPACITY
+from tasks.geometry.grammar.parts import part_group
+from tasks.geometry.pouch_words import stated_volume_m3
 
 FILLABLE_PLANS = frozenset({"bag", "pouch"})
 PAIR_WORDS = frozenset({"pair"})
@@ -90,16 +92,12 @@ def apply(target: LexiconEntry, portion: str | None, text: str, params: dict, si
         out.notes += ("a pair: two of them",)
     fill = fill or fill_words.read_fill(text)
     if fill is None and plan == "pouch" and target.material == "gel" and "capacity" not in (match.stated_mass_source or ""):
-        from tasks.geometry.pouch_words import stated_volume_m3
-
         if stated_volume_m3(text) is not None:  # 'a 2 l saline bag': the bag's own liquid, the stated volume of it
             rec = fill_words.fills()["water"]
             fill = fill_words.Fill("water", "its liquid", float(target.params.get("fill", 0.6)),
                                    float(rec["bulk_density_kg_per_m3"]), rec["color"], rec["source"])
     if fill is not None and plan in FILLABLE_PLANS and "fill" in fields \
             and not any(" of " in f" {n} " for n in target.nouns):  # 'a bag of sugar' is its own entry
-        from tasks.geometry.pouch_words import stated_volume_m3
-
         out.params["fill"] = float(np.clip(fill.fraction, 0.05, 1.0))
         cap = bag_capacity_m3(plan, {**target.params, **out.params}, out.size_m)
         volume = stated_volume_m3(text)
@@ -195,9 +193,6 @@ def pair_up(program: ShapeProgram, match: ConceptMatch) -> tuple[ShapeProgram, C
 
 def painted_fill(program: ShapeProgram, color: str) -> ShapeProgram:
     """The program with its 'fill' parts in the fill's colour (rice shows ivory through a clear bag)."""
-    from contracts.lexicon import load_lexicon
-    from tasks.geometry.grammar.parts import part_group
-
     rgb = load_lexicon().colors[color]
     return program.model_copy(update={"parts": [p.model_copy(update={"color_rgb": rgb}) if part_group(p.name) == "fill"
                                                 else p for p in program.parts]})

@@ -12,6 +12,9 @@ import numpy as np
 
 from contracts.shape import Part, ShapeProgram
 from tasks.geometry import fill_words
+from tasks.geometry.grammar.parts import squashed_parts, superellipsoid
+from tasks.geometry.meshing import sample_program
+from tasks.geometry.sdf import program_bounds
 
 # container nouns that, with a fill, are a pouch of it ('a bag of peas', 'a saline bag'); a box or jar is rigid
 CONTAINERS = frozenset({"bag", "bags", "pouch", "pouches", "pack", "packs", "packet", "packets", "sachet", "sachets",
@@ -96,10 +99,6 @@ def vacuum_contents(text: str) -> str | None:
 def film_wrapped(program: ShapeProgram, rgb: tuple[float, float, float] = (0.93, 0.93, 0.95)) -> ShapeProgram:
     """The program lying on the flat sealed film of a vacuum pack: a thin rounded sheet under it, its footprint
     FILM_BORDER wider on every side; the piece pressed a little flatter by the film (a vacuum pack flattens)."""
-    from tasks.geometry.grammar.parts import squashed_parts, superellipsoid
-    from tasks.geometry.meshing import sample_program
-    from tasks.geometry.sdf import program_bounds
-
     pressed = program.model_copy(update={"parts": squashed_parts(program.parts, (1.0, 1.0, 0.9))})
     field, origin, spacing = sample_program(pressed, 40)
     idx = np.argwhere(field < 0)

@@ -11,6 +11,7 @@ import re
 from dataclasses import dataclass, field
 
 from contracts.lexicon import load_lexicon
+from tasks.geometry.concepts import normalise, noun_index
 
 # Everyday references [m], longest extent (adult hand anthropometry; coin ~ 1 euro / US quarter; credit card ISO/IEC 7810)
 REFERENCE_SIZES_M: dict[str, float] = {
@@ -48,8 +49,6 @@ class SizeWords:
 
 def _lexicon_size(words: str) -> float | None:
     """Typical longest extent [m] of the lexicon object these words name (singular or plural), if any."""
-    from tasks.geometry.concepts import noun_index, normalise
-
     hit = noun_index().get(normalise(words))
     return None if hit is None else float(load_lexicon().entries[hit[0]].size_m)
 

@@ -16,6 +16,8 @@ from typing import Any
 
 import numpy as np
 
+from cache import cache_root
+from tasks.manipulation import replay
 from tasks.publish import copy_file_atomic
 
 RECORDING_VERSION = "1"  # bump when write_rrd changes what a trial's recording shows
@@ -32,14 +34,11 @@ def trial_recording_name(trial: int) -> str:
 
 def cached_recording(arrays: dict[str, np.ndarray], attrs: dict[str, Any], trial_key: str) -> Path:
     """The trial's recording in the cache (written there on first use, atomically)."""
-    from cache import cache_root
-    from tasks.manipulation.replay import write_rrd
-
     path = cache_root() / "recordings" / f"L3_trial-{trial_key[:16]}-r{RECORDING_VERSION}.rrd"
     if not path.is_file():
         shown = {"labels": attrs.get("labels", {}), "role": f"trial {trial_key[:16]}", "plan": attrs.get("plan"),
                  "attempt": trial_key[:16]}
-        write_rrd(arrays, shown, path, MAX_PARTICLES, MAX_GAUSSIANS, GAUSSIAN_EVERY)
+        replay.write_rrd(arrays, shown, path, MAX_PARTICLES, MAX_GAUSSIANS, GAUSSIAN_EVERY)
     return path
 
 
@@ -49,9 +48,7 @@ def record_attempt(asset_dir: Path, trial: int, arrays: dict[str, np.ndarray], a
     path (a trial without a cache key is recorded straight into the asset)."""
     rel = trial_recording_name(trial)
     if trial_key is None:
-        from tasks.manipulation.replay import write_rrd
-
-        write_rrd(arrays, attrs, Path(asset_dir) / rel, MAX_PARTICLES, MAX_GAUSSIANS, GAUSSIAN_EVERY)
+        replay.write_rrd(arrays, attrs, Path(asset_dir) / rel, MAX_PARTICLES, MAX_GAUSSIANS, GAUSSIAN_EVERY)
     else:
         copy_file_atomic(cached_recording(arrays, attrs, trial_key), Path(asset_dir) / rel)
     return rel

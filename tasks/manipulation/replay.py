@@ -17,8 +17,13 @@ import numpy as np
 from contracts.errors import InputError
 from tasks.geometry.gaussians import deform_gaussians
 from tasks.manipulation.data import read_attempt
+from tasks.manipulation.robot_view import (HAND_LINKS, gripper_boxes, gripper_spec, link_poses, panda_visual_meshes,
+                                           uses_urdf_hand)
 from tasks.manipulation.scene import VIDEO_FPS, VIDEO_SIZE
 from tasks.manipulation.video import PickPlaceVideo
+from tasks.record import ProbeRecording
+from tasks.record.trials import attempt_of_trial, reported_trial, trial_of_attempt
+from tasks.robot import PHASES
 
 ROBOT = "world/robot"
 RRD_MAX_GAUSSIANS = 20000  # a recording keeps at most this many Gaussians per frame (a deterministic stride)
@@ -122,8 +127,6 @@ def _which(asset_dir: Path, attempt: int | None, trial: int | None) -> tuple[int
     manipulation.json reports, else the last stored folder (its trial number when manipulation.json names it)."""
     import json
 
-    from tasks.record.trials import attempt_of_trial, reported_trial, trial_of_attempt
-
     path = asset_dir / "manipulation.json"
     record = json.loads(path.read_text(encoding="utf-8")) if path.is_file() else {}
     if trial is not None:
@@ -159,11 +162,6 @@ def write_rrd(arrays: dict[str, np.ndarray], attrs: dict, path: Path, max_partic
     """
     import rerun as rr
     from scipy.spatial.transform import Rotation
-
-    from tasks.manipulation.robot_view import (HAND_LINKS, gripper_boxes, gripper_spec, link_poses,
-                                               panda_visual_meshes, uses_urdf_hand)
-    from tasks.record import ProbeRecording
-    from tasks.robot import PHASES
 
     spec = gripper_spec(attrs.get("plan"))
     urdf_hand = uses_urdf_hand(spec)

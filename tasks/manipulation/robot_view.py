@@ -18,6 +18,11 @@ from typing import Any
 
 import numpy as np
 
+from contracts.errors import InputError
+from contracts.robot import load_gripper
+from tasks.quiet_pybullet import pybullet as pb
+from tasks.robot import Panda
+
 ARM_RGB = np.array([0.93, 0.93, 0.95])      # the Panda's white links
 DARK_RGB = np.array([0.20, 0.20, 0.23])     # fingers, a box gripper's body
 PAD_RGB = np.array([0.35, 0.36, 0.40])      # a box gripper's fingers
@@ -106,9 +111,6 @@ def panda_visual_meshes(cell_m: float = CLUSTER_CELL_M) -> tuple[LinkMesh, ...]:
 def link_poses(q_rad: np.ndarray, opening_m: np.ndarray) -> list[dict[str, tuple[np.ndarray, np.ndarray]]]:
     """Per robot state (arm angles [rad], finger opening [m]), each Panda link's world pose (position [m], rotation)
     by pybullet FK in a private DIRECT client, the base link included."""
-    from tasks.quiet_pybullet import pybullet as pb
-    from tasks.robot import Panda
-
     poses = []
     with Panda() as panda:
         names = {pb.getJointInfo(panda.body, j, physicsClientId=panda.cid)[12].decode(): j
@@ -129,14 +131,10 @@ def gripper_spec(plan: dict[str, Any] | None) -> Any:
     A name this installation does not know gives a stand-in without a URDF hand: boxes from the recorded pads alone."""
     from types import SimpleNamespace
 
-    from contracts.errors import InputError
-
     name = (plan or {}).get("gripper")
     if not name:
         return None
     try:
-        from contracts.robot import load_gripper
-
         return load_gripper(str(name))
     except (ImportError, InputError):
         return SimpleNamespace(name=str(name), urdf_hand=False)

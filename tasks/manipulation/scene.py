@@ -17,6 +17,7 @@ from tasks.geometry.gaussians import deform_gaussians
 from tasks.manipulation import raster
 from tasks.manipulation.render import Camera
 from tasks.manipulation.robot_view import gripper_spec, link_poses, robot_meshes
+from tasks.robot import PHASES
 
 VIDEO_FPS = 30.0
 VIDEO_SIZE = (1280, 720)
@@ -248,8 +249,6 @@ class AttemptRenderer:
 
     def frame_with_labels(self, i: int, with_caption: bool = True) -> tuple[np.ndarray, np.ndarray]:
         """RGB image (H, W, 3) uint8 of video frame i and what each pixel shows (raster's labels)."""
-        from tasks.robot import PHASES
-
         fr, a = self.timeline[i], self.arrays
         w, h = self.cam.width, self.cam.height
         view = self.cam_frame[0][2]

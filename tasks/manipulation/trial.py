@@ -26,6 +26,8 @@ from tasks.manipulation.data import approach_track
 from tasks.manipulation.diagnosis import mode_flags
 from tasks.manipulation.frame import SimFrame
 from tasks.manipulation.outcome import TrialTolerances, frame_back, label_trial, turn_rate_deg_per_s
+from tasks.mpm import Simulator, build_model, pad_collider
+from tasks.mpm.model import SceneSpec
 from tasks.robot import PHASES, ObjectPose, Trajectory, plan_trajectory
 
 PAD_FACES = ("-y", "+y")  # gripping face of the left and right pad boxes in the finger links' axes
@@ -125,9 +127,6 @@ def run_trial(body: TrialBody, physical: PhysicalModel, material: Material, plan
               trajectory: Trajectory | None = None) -> TrialResult:
     """Simulate the plan with the object; return labels, metrics and the recording (raises SimulationError only
     when the plan itself cannot be made: unreachable poses)."""
-    from tasks.mpm import Simulator, build_model, pad_collider
-    from tasks.mpm.model import SceneSpec
-
     s = settings or TrialSettings()
     tol = tolerances or TrialTolerances()
     wall0 = time.perf_counter()

@@ -17,17 +17,17 @@ from typing import Any
 
 import numpy as np
 
-from tasks.manipulation.robot_view import (FLANGE_LINK, HAND_LINKS, gripper_boxes, gripper_spec, link_poses,
+from tasks.manipulation.robot_view import (FLANGE_LINK, HAND_LINKS, box_mesh, gripper_boxes, gripper_spec, link_poses,
                                            panda_visual_meshes, shade, tcp_frame, uses_urdf_hand)
-from tasks.manipulation.scene import (VIDEO_FPS, VIDEO_SIZE, attempt_timeline, backdrop, object_gaussians,
-                                      view_direction)
+from tasks.manipulation.scene import VIDEO_FPS, VIDEO_SIZE, attempt_timeline, backdrop, object_gaussians, view_direction
+from tasks.render import mesh_raster as raster
 from tasks.render.attempt_video import (SplatSet, choose_corner, compose, inset_camera, inset_size, paste_inset,
                                         wide_camera)
 from tasks.render.camera import Camera
-from tasks.render import mesh_raster as raster
 from tasks.render.captions import caption
 from tasks.render.gripper_model import Part, gripper_parts, robotiq_links
 from tasks.render.shading import deformed_normals, normals_from_covariances
+from tasks.robot import PHASES
 
 CAMERA_EVERY = 3  # the wide camera frames the robot at every 3rd video frame (and the first and last)
 POINT_EVERY = 7  # ... through every 7th vertex of its meshes
@@ -105,7 +105,6 @@ class PickPlaceVideo:
             model: list[Part] = gripper_parts(self.links, pose[FLANGE_LINK][0], origin, rot, 0.5 * opening)
             parts += [(m.vertices_m, m.faces, m.normals, m.rgb) for m in model]
         else:  # a gripper this installation has no link model of: boxes round the recorded pads
-            from tasks.manipulation.robot_view import box_mesh
 
             for c, r, h, rgb in gripper_boxes(fr.pad_position_m, half, approach, self.spec):
                 v, f, nrm = box_mesh(c, r, h)
@@ -142,8 +141,6 @@ class PickPlaceVideo:
 
     def frame(self, i: int) -> np.ndarray:
         """RGB image (H, W, 3) uint8 of video frame i: the wide view, the caption and the fingers' close-up."""
-        from tasks.robot import PHASES
-
         parts, splats = self._robot_parts(i), self._object(i)
         wide = self._draw(self.cam, self.room, parts, splats)
         close_cam = self.inset_camera(i)

@@ -16,6 +16,8 @@ from typing import Any
 
 import warp as wp
 
+from tasks.mpm import cpu_threads, kernels
+
 
 def _packed_call(cmd: Any) -> Callable[[], None] | None:
     """A no-argument call that runs `cmd`'s forward kernel with a prebuilt argument struct, or None (fall back)."""
@@ -96,7 +98,6 @@ def load_cpu_modules() -> None:
     with _LOAD_LOCK:
         if _LOADED:
             return
-        from tasks.mpm import cpu_threads, kernels
 
         for module in (kernels, cpu_threads, kernels.g2p_p2g_cpu.module, kernels.grid_update_merge_cpu.module):
             wp.load_module(module, device="cpu")

@@ -13,6 +13,8 @@ import warp as wp
 from contracts.errors import InputError, SimulationError
 from contracts.material import Material
 from contracts.sim import SimConfig
+from tasks.mpm.control import Control
+from tasks.mpm.state import State
 
 if TYPE_CHECKING:
     from tasks.mpm.control import Control
@@ -405,14 +407,10 @@ class Model:
 
     def state(self) -> State:
         """A fresh State at the initial positions/velocities, F = I, C = 0."""
-        from tasks.mpm.state import State
-
         return State.initial(self)
 
     def control(self) -> Control:
         """A Control holding the colliders' initial poses/velocities and the scenes' gravity."""
-        from tasks.mpm.control import Control
-
         return Control(self)
 
 

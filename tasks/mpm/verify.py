@@ -15,7 +15,7 @@ import numpy as np
 
 from contracts.material import Material
 from contracts.sim import SimConfig
-from tasks.mpm.model import box_collider, build_model
+from tasks.mpm.model import SceneSpec, box_collider, build_model
 from tasks.mpm.scene import box_particles, box_scene
 from tasks.mpm.simulator import Simulator
 
@@ -89,7 +89,6 @@ def case_momentum(quick: bool, device: str) -> CaseResult:
     pos = np.concatenate([p1, p2])
     vel = np.concatenate([vel1, vel2])
     vol = np.concatenate([v1, v2])
-    from tasks.mpm.model import SceneSpec
 
     sc = SceneSpec(pos, vol, 400.0, mat, velocities_m_per_s=vel, ground=False, gravity_m_per_s2=(0.0, 0.0, 0.0))
     sim = Simulator(build_model([sc], _cfg(device)))
@@ -136,7 +135,6 @@ def case_bar_period(quick: bool, device: str) -> CaseResult:
     vel = np.zeros_like(pos)
     vel[:, 0] = v0 * np.sin(0.5 * math.pi * pos[:, 0] / L)
     clamp = box_collider((0.05, 0.2, 0.2), position_m=(-0.05 + 1e-6, 0.0, 0.5), bonded=True)
-    from tasks.mpm.model import SceneSpec
 
     sc = SceneSpec(pos, vol, rho, mat, colliders=[clamp], velocities_m_per_s=vel, ground=False,
                    gravity_m_per_s2=(0.0, 0.0, 0.0))

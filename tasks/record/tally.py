@@ -18,7 +18,9 @@ from typing import Any
 
 from contracts.agents import StageOutcome, TargetBehaviour
 from contracts.evidence import Attempt, StageTally
+from contracts.probes import not_measured_reason
 from contracts.stage import StageName
+from tasks.record.attempts import ATTEMPTS_FILE, read_attempts
 
 STAGE_RECORDS: dict[StageName, str] = {"L0": "geometry.json", "L1": "physical.json", "L2": "material.json",
                                        "L3": "manipulation.json"}
@@ -78,8 +80,6 @@ def _unmet(record: dict[str, Any]) -> list[str]:
 def _not_measured(record: dict[str, Any]) -> dict[str, str]:
     """Target bands not measured on the record's kept candidate -> why (the record's words, else derived from its
     metrics: an older record has no not_measured)."""
-    from contracts.probes import not_measured_reason
-
     found = _targets(record)
     if not found:
         return {}
@@ -123,8 +123,6 @@ def stage_tallies(root: str | Path, attempts: list[Attempt] | None = None) -> li
     """The stages found under root (an asset directory, or the folder holding evidence/), in order L0..L3.
 
     attempts: the attempt records when already read (else evidence/attempts.jsonl under root)."""
-    from tasks.agents.records import ATTEMPTS_FILE, read_attempts
-
     root = Path(root)
     if attempts is None:
         path = root / ATTEMPTS_FILE

@@ -15,6 +15,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from tasks.render.camera import Camera, fit_camera, project
+from tasks.render.captions import caption
 from tasks.render.shading import lit_colors
 from tasks.render.splats import render_gaussians
 
@@ -108,8 +109,6 @@ def paste_inset(frame: np.ndarray, inset: np.ndarray, title: str = "", corner: s
     out[y0 - border:y1 + border, x0 - border:x1 + border] = BORDER_RGB
     out[y0:y1, x0:x1] = inset
     if title:
-        from tasks.render.captions import caption
-
         tag = caption(np.full((int(30 * scale), x1 - x0, 3), 245, np.uint8), [title], (8, 21), scale)
         out[y0 - border - tag.shape[0]:y0 - border, x0:x1] = tag
     return out

@@ -6,7 +6,8 @@ from __future__ import annotations
 import hashlib
 from pathlib import Path
 
-from cache.files import cached_file
+from cache import content_key
+from cache.files import cached_file, source_digest
 from contracts.errors import InputError
 from contracts.manifest import AssetManifest
 from tasks.render.card_data import CardData, card_data
@@ -19,9 +20,6 @@ CARD_HTML = "renders/card.html"
 
 def card_png_key(card: CardData, root: Path) -> str:
     """The PNG's cache key: what it shows (the card's data and the pictures it draws) and the code that draws it."""
-    from cache import content_key
-    from cache.files import source_digest
-
     here = Path(__file__).resolve().parent
     code = source_digest([here / f"{m}.py" for m in ("card_png", "card_text", "card_data")], ("matplotlib", "numpy"))
     pictures = sorted({*card.views.values(), *(f.still or f.video or "" for f in card.drop_frames)} - {""})

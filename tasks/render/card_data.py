@@ -12,13 +12,15 @@ from typing import Any
 import numpy as np
 from pydantic import BaseModel, ConfigDict
 
-from contracts.concept import ConceptMatch
 from contracts.agents import TargetBehaviour
 from contracts.asset_dir import MANIPULATION_JSON, MATERIAL_JSON, PHYSICAL_JSON, MaterialRecord, attempt_path
+from contracts.concept import ConceptMatch
 from contracts.evidence import Attempt, StageTally
-from contracts.probes import not_measured_reason
 from contracts.manifest import AssetManifest
+from contracts.probes import not_measured_reason
 from tasks.asset_dir import AssetDir
+from tasks.record.attempts import ATTEMPTS_FILE, read_attempts
+from tasks.record.tally import stage_tallies
 from tasks.render.protocol_video import CARD_TIMES_S, VIEW_NAMES, card_still_name
 
 STILL_VIEWS = ("front", "side", "top")  # renders/<view>.png (L0)
@@ -279,9 +281,6 @@ def card_data(asset_dir: Path | str, manifest: AssetManifest | None = None) -> C
     """The card's content for an asset directory (InputError naming the file when a document is missing or invalid).
 
     manifest: the manifest about to be written (generate builds the card before asset.json is published)."""
-    from tasks.agents.records import ATTEMPTS_FILE, read_attempts
-    from tasks.record.tally import stage_tallies
-
     adir = AssetDir(asset_dir)
     manifest = manifest or adir.manifest()
     physical, material = adir.physical(), adir.material()

@@ -11,6 +11,7 @@ from typing import Any
 import numpy as np
 
 from tasks.render.card_data import CardData, DropFrame, Figure
+from tasks.render.card_html import verdict_mark
 from tasks.render.card_text import band_text, outcome_lines, request_line, si, wrap
 
 FONT_PT = 12.0  # the main text (sans-serif); the technical block is smaller (TECH_PT)
@@ -57,8 +58,6 @@ def _image(ax: Any, img: np.ndarray | None, title: str) -> None:
 def _verdict(ax: Any, stage: str, title: str, passed: bool | None, sentence: str) -> None:
     """One layer's box: its name, a large PASSED / NOT PASSED and one plain sentence."""
     from matplotlib.patches import FancyBboxPatch
-
-    from tasks.render.card_html import verdict_mark
 
     ax.axis("off")
     edge, face = COLOURS[passed]

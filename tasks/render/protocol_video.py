@@ -20,7 +20,13 @@ from typing import Any, Protocol
 
 import numpy as np
 
+from tasks.geometry.gaussians import deform_gaussians
+from tasks.geometry.render import VIEWS as STILL_VIEWS
 from tasks.render.camera import Camera
+from tasks.render.captions import caption
+from tasks.render.discs import render
+from tasks.render.shading import deformed_normals, lit_colors
+from tasks.render.splats import render_gaussians
 
 # (tasks.geometry's modules import trimesh: imported where used, so the card reads these names quickly)
 
@@ -52,16 +58,12 @@ def _disc_renderer(cam: Camera, means_m: np.ndarray, covariances_m2: np.ndarray,
                    opacities: np.ndarray, *, sh_coeffs: np.ndarray | None = None, scene: str = "studio",
                    device: str = "cpu") -> np.ndarray:
     """The disc rasteriser behind the splatting renderer's signature: a cheap renderer for tests of the video plumbing."""
-    from tasks.render.discs import render
-
     return render(cam, means_m, covariances_m2, colors_rgb)
 
 
 def gaussian_renderer() -> tuple[GaussianRenderer, list[Path]]:
     """The Gaussian splatting renderer (tasks.render.splats), with the source files whose bytes decide its pictures
     (the render cache key is made of them)."""
-    from tasks.render.splats import render_gaussians
-
     root = Path(__file__).resolve().parent.parent
     sources = [p for p in (root / "render").glob("*.py") if not p.name.startswith(("card", "bench"))]
     return render_gaussians, sources
@@ -69,8 +71,6 @@ def gaussian_renderer() -> tuple[GaussianRenderer, list[Path]]:
 
 def view_axes(view: str) -> tuple[np.ndarray, np.ndarray]:
     """The still's (screen-right, towards-viewer) axes of a named view (a KeyError names an unknown view)."""
-    from tasks.geometry.render import VIEWS as STILL_VIEWS
-
     right, _, toward = STILL_VIEWS[view]
     return np.asarray(right, np.float64), np.asarray(toward, np.float64)
 
@@ -111,10 +111,6 @@ def iter_states(renderer: GaussianRenderer, cam: Camera, gaussians: dict[str, np
     """RGB frames of the Gaussians deformed by each recorded state (positions x, deformation gradients F), one at a
     time (a 5 s 720p video is 400 MB of frames). A state whose Gaussians lie within STILL_PX of the last drawn
     frame's (centres, and sizes to STILL_COV) repeats that frame: a body at rest is drawn once, not 100 times."""
-    from tasks.geometry.gaussians import deform_gaussians
-
-    from tasks.render.shading import deformed_normals, lit_colors
-
     colors = np.clip(np.asarray(gaussians["colors"], np.float64)[:, :3], 0.0, 1.0)
     n = len(colors)
     opacities = np.asarray(gaussians.get("opacities", np.full(n, 0.95)), np.float64).reshape(n)
@@ -228,8 +224,6 @@ def interpolated(frames: np.ndarray, k: float) -> np.ndarray:
 
 def drop_caption(image: np.ndarray, t_s: float, slowed: bool) -> np.ndarray:
     """The simulated time in the top-left corner, and the slow motion while it lasts."""
-    from tasks.render.captions import caption
-
     return caption(image, [f"t = {t_s:4.2f} s" + (f"   slow motion {SLOW_MOTION}x" if slowed else "")])
 
 

@@ -15,6 +15,7 @@ from __future__ import annotations
 import numpy as np
 
 from tasks.render.camera import Camera
+from tasks.render.splats import FLAT_RGB, render_gaussians
 
 GREY = np.array([0.299, 0.587, 0.114])
 MASK_LEVELS = 6.0  # a pixel belongs to the object where it differs from the background by more than this (0..255)
@@ -41,8 +42,6 @@ def coverage_mask(cam: Camera, means_m: np.ndarray, covariances_m2: np.ndarray, 
                   min_alpha: float = 0.5) -> np.ndarray:
     """Pixels (H, W) bool that the Gaussians cover with at least min_alpha (black splats over the flat scene: the
     object without its shadow or the table)."""
-    from tasks.render.splats import FLAT_RGB, render_gaussians
-
     n = len(means_m)
     img = render_gaussians(cam, means_m, covariances_m2, np.zeros((n, 3)), opacities, scene="none")
     return grey(img) < (1.0 - min_alpha) * 255.0 * float(np.mean(FLAT_RGB))

@@ -96,7 +96,7 @@ def _rasterise(cam: Camera, rot: np.ndarray, eye: np.ndarray, focal: float, mean
     depths per pixel); the image as a numpy array."""
     import warp as wp
 
-    from tasks.render import splat_kernels as k
+    from tasks.render import splat_kernels as k  # lazy: Warp kernels (warp 1.3 s), only when rasterising
 
     w, h = int(cam.width), int(cam.height)
     tile = k.TILE_EDGE_PX

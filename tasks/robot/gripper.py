@@ -2,7 +2,7 @@
 
 The TCP frame is the midpoint of the two pad faces: z along the approach, y towards finger 0 (the left finger), x = y
 cross z. The Franka Hand (``urdf_hand``) is measured from the pybullet_data URDF's collision meshes
-(``tasks.robot.panda.pad_geometry`` / ``hand_boxes_in_hand_frame``); any other gripper comes from its record in
+(``tasks.robot.franka_hand.pad_geometry`` / ``hand_boxes_in_hand_frame``); any other gripper comes from its record in
 contracts/grippers/*.yaml.
 """
 
@@ -14,6 +14,7 @@ from functools import lru_cache
 import numpy as np
 
 from contracts.robot import DEFAULT_GRIPPER, GripperSpec, load_gripper
+from tasks.robot.franka_hand import hand_boxes_in_hand_frame, pad_geometry
 
 Box = tuple[np.ndarray, np.ndarray]
 
@@ -53,8 +54,6 @@ class Gripper:
 
 def _franka_boxes(opening_m: float) -> tuple[Box, ...]:
     """The Franka Hand's boxes from its meshes, moved from the hand frame to the TCP (pad-centre) frame."""
-    from tasks.robot.panda import hand_boxes_in_hand_frame, pad_geometry
-
     dz = np.array([0.0, 0.0, pad_geometry().depth_in_hand_m])
     return tuple((lo - dz, hi - dz) for lo, hi in hand_boxes_in_hand_frame(opening_m))
 
@@ -81,8 +80,6 @@ def gripper(name: str = DEFAULT_GRIPPER) -> Gripper:
     """The packaged gripper ``name`` with its geometry (InputError for an unknown name)."""
     spec = load_gripper(name)
     if spec.urdf_hand:
-        from tasks.robot.panda import pad_geometry
-
         pad = pad_geometry()
         return Gripper(spec, tuple(pad.half_extents_m), pad.tip_beyond_center_m,  # type: ignore[arg-type]
                        spec.tcp_offset_m - pad.depth_in_hand_m)

@@ -16,15 +16,14 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass
-from functools import lru_cache
-from pathlib import Path
 
 import numpy as np
-import pybullet_data
 
 from contracts.errors import SimulationError
 from contracts.robot import DEFAULT_GRIPPER
 from tasks.quiet_pybullet import pybullet as pb
+from tasks.robot.franka_hand import PadGeometry, data_path, pad_geometry
+from tasks.robot.gripper import gripper as load, lowest_box_point
 
 URDF = "franka_panda/panda.urdf"
 ARM_JOINTS = (0, 1, 2, 3, 4, 5, 6)
@@ -53,22 +52,6 @@ class UnreachableError(SimulationError):
 
 
 @dataclass(frozen=True)
-class PadGeometry:
-    """A finger pad as a box in its finger link's frame: centre [m] and half extents [m] (x, y, z of the link)."""
-
-    center_left_m: tuple[float, float, float]
-    center_right_m: tuple[float, float, float]
-    half_extents_m: tuple[float, float, float]
-    finger_origin_in_hand_m: float
-    tip_beyond_center_m: float
-
-    @property
-    def depth_in_hand_m(self) -> float:
-        """Distance of the pad centres from the hand frame along the approach axis [m]."""
-        return self.finger_origin_in_hand_m + self.center_left_m[2]
-
-
-@dataclass(frozen=True)
 class IKSolution:
     """Arm joint angles [rad] for a target pose and the FK residuals that verify them."""
 
@@ -76,60 +59,6 @@ class IKSolution:
     position_error_m: float
     rotation_error_rad: float
     iterations: int
-
-
-def _data_path() -> Path:
-    """Folder of pybullet_data."""
-    return Path(pybullet_data.getDataPath())
-
-
-@lru_cache(maxsize=1)
-def pad_geometry(half_thickness_m: float = 0.004) -> PadGeometry:
-    """Measure the finger pad from the Panda's finger collision mesh: the flat inner face at the fingertip.
-
-    The inner (gripping) face is the set of collision vertices on the plane y ~ 0 of the finger link; its x and z
-    ranges give the pad's face, and the box extends ``half_thickness_m * 2`` outward (+y of the left finger link).
-    The face is put on the finger joint's plane y = 0 (the mesh overhangs it by 0.13 mm), so the distance between the
-    two gripping faces equals the commanded opening.
-    """
-    import trimesh
-
-    mesh = trimesh.load(_data_path() / "franka_panda/meshes/collision/finger.obj", force="mesh")
-    v = np.asarray(mesh.vertices)
-    face = v[np.abs(v[:, 1] - v[:, 1].min()) < 5e-4]
-    face = face[face[:, 2] > 0.5 * v[:, 2].max()]  # the fingertip half, where the inner face is flat
-    lo, hi = face.min(axis=0), face.max(axis=0)
-    cx, cz = 0.5 * (lo[0] + hi[0]), 0.5 * (lo[2] + hi[2])
-    half = (0.5 * (hi[0] - lo[0]), half_thickness_m, 0.5 * (hi[2] - lo[2]))
-    y0 = 0.0
-    # the right finger's collision mesh is the left one turned by pi about z
-    return PadGeometry(
-        center_left_m=(float(cx), y0 + half_thickness_m, float(cz)),
-        center_right_m=(float(-cx), -(y0 + half_thickness_m), float(cz)),
-        half_extents_m=(float(half[0]), float(half[1]), float(half[2])),
-        finger_origin_in_hand_m=0.0584,
-        tip_beyond_center_m=float(v[:, 2].max() - cz),
-    )
-
-
-@lru_cache(maxsize=8)
-def hand_boxes_in_hand_frame(opening_m: float) -> tuple[tuple[np.ndarray, np.ndarray], ...]:
-    """Axis-aligned boxes (lo, hi) [m] in the hand frame that cover the palm and both fingers at an opening [m].
-
-    From the collision meshes' bounds: the palm, and each finger (conservative: the box also covers the recess of
-    the finger's inner face above the pad), the right finger mirrored in x and y.
-    """
-    import trimesh
-
-    root = _data_path() / "franka_panda/meshes/collision"
-    palm = np.asarray(trimesh.load(root / "hand.obj", force="mesh").bounds)
-    lo, hi = np.asarray(trimesh.load(root / "finger.obj", force="mesh").bounds)
-    z0 = pad_geometry().finger_origin_in_hand_m
-    left_lo = np.array([lo[0], opening_m / 2.0, lo[2] + z0])
-    left_hi = np.array([hi[0], hi[1] + opening_m / 2.0, hi[2] + z0])
-    right_lo = np.array([-left_hi[0], -left_hi[1], left_lo[2]])
-    right_hi = np.array([-left_lo[0], -left_lo[1], left_hi[2]])
-    return ((palm[0], palm[1]), (left_lo, left_hi), (right_lo, right_hi))
 
 
 def grasp_rotation(closing_axis: Vec3, approach_axis: Vec3) -> np.ndarray:
@@ -196,8 +125,6 @@ class Panda:
         thicker pad (e.g. >= the MPM grid spacing) changes no contact geometry, only what a coarse grid resolves.
         gripper: the gripper on the flange (contracts/grippers/<name>.yaml).
         """
-        from tasks.robot.gripper import gripper as load
-
         self.gripper = load(gripper)
         spec = self.gripper.spec
         self.ee_link = EE_LINK if spec.urdf_hand else FLANGE_LINK
@@ -210,7 +137,7 @@ class Panda:
         self.cid = pb.connect(pb.DIRECT)
         self.base_position_m = np.asarray(base_position_m, dtype=float)
         orn = pb.getQuaternionFromEuler((0.0, 0.0, base_yaw_rad))
-        self.body = pb.loadURDF(str(_data_path() / URDF), self.base_position_m.tolist(), orn, useFixedBase=True,
+        self.body = pb.loadURDF(str(data_path() / URDF), self.base_position_m.tolist(), orn, useFixedBase=True,
                                 physicsClientId=self.cid)
         info = [pb.getJointInfo(self.body, j, physicsClientId=self.cid) for j in ARM_JOINTS]
         self.lower = np.array([i[8] for i in info])
@@ -328,7 +255,6 @@ class Panda:
         """Lowest point [m] of the robot below the base (arm links and gripper) at the current joint state."""
         if self.gripper.spec.urdf_hand:
             return float(self.link_heights((*ARM_LINKS_WITH_COLLISION, FLANGE_LINK, *URDF_HAND_LINKS)).min())
-        from tasks.robot.gripper import lowest_box_point
 
         p, r = self.ee_pose()
         boxes = self.gripper.boxes(self.opening())

@@ -209,8 +209,9 @@ def _check_asset(asset_dir: Path) -> TetMesh:
     """An asset's mesh meets the bars, in the particles' frame (the particles inside the tet mesh's box, the same
     centre of volume within a lattice spacing)."""
     from tasks.asset_dir import AssetDir
+    from tasks.geometry.outputs import load_l0
 
-    l0 = AssetDir(asset_dir).l0
+    l0 = load_l0(AssetDir(asset_dir).path)
     tet = tetrahedralize(l0.mesh.vertices, l0.mesh.faces)
     _assert_usable(tet, l0.mesh.vertices, l0.mesh.faces, l0.mesh.volume)
     assert np.all(l0.particles_m >= tet.nodes_m.min(axis=0)) and np.all(l0.particles_m <= tet.nodes_m.max(axis=0))

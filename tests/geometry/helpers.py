@@ -6,7 +6,7 @@ import cv2
 import numpy as np
 
 from contracts.request import AssetRequest
-from tasks.geometry import pipeline
+from tasks.geometry import pipeline, sources
 
 FAST_COACD = dict(preprocess_resolution=20, max_convex_hull=8, threshold=0.15, mcts_iterations=30, mcts_nodes=8,
                   mcts_max_depth=2, resolution=500, max_input_faces=3000)
@@ -19,7 +19,7 @@ def settings(quality: str = "draft", **coacd: object) -> pipeline.L0Settings:
 
 def run(request: AssetRequest, s: pipeline.L0Settings) -> tuple:
     """All L0 units in order: (mesh, info, proxy, particles, gaussians, checks)."""
-    mesh, info = pipeline.build_mesh(request, s)
+    mesh, info = sources.build_mesh(request, s)
     proxy = pipeline.build_proxy(mesh, s.coacd)
     particles = pipeline.build_particles(mesh, s.particles)
     gaussians = pipeline.build_gaussians(mesh, particles, s)

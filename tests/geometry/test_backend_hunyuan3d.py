@@ -11,7 +11,7 @@ import pytest
 from helpers import run, settings
 
 from contracts.request import AssetRequest
-from tasks.geometry import pipeline
+from tasks.geometry import pipeline, sources
 from tasks.geometry.backend_hunyuan3d import parse_spec
 from tasks.geometry.backends import GeometryBackendError, call_backend
 from tests.geometry.fake_hunyuan3d import FakeHunyuan3D
@@ -57,7 +57,7 @@ def test_photo_through_hunyuan3d_is_a_sized_l0_mesh_and_the_server_got_its_api(p
 def test_pose_stable_lays_the_mesh_in_its_most_stable_pose(photo: Path) -> None:
     with FakeHunyuan3D() as srv:
         req = AssetRequest(image_path=photo, size_hint_m=0.2, pose="stable", geometry_backend=f"hunyuan3d+{srv.url}")
-        mesh, info = pipeline.build_mesh(req, settings(method="hull"))
+        mesh, info = sources.build_mesh(req, settings(method="hull"))
     np.testing.assert_allclose(pipeline.arrays_to_mesh(mesh).extents, [0.2, 0.12, 0.08], rtol=0.03)
     assert info.reoriented
 

@@ -19,7 +19,7 @@ import trimesh
 from helpers import run, settings
 
 from contracts.request import AssetRequest
-from tasks.geometry import pipeline
+from tasks.geometry import pipeline, sources
 from tasks.geometry.backends import GeometryBackendError, call_http
 from tests.geometry import fake_backend
 
@@ -50,11 +50,11 @@ def test_entry_point_mesh_is_canonicalised_sized_and_passes_the_gates() -> None:
 
 def test_metric_mesh_keeps_its_size_and_gaussians_colour_an_uncoloured_mesh() -> None:
     s = settings(method="hull")
-    box, info = pipeline.build_mesh(AssetRequest(text="a foam block", geometry_backend=f"{FAKE}:metric_box"), s)
+    box, info = sources.build_mesh(AssetRequest(text="a foam block", geometry_backend=f"{FAKE}:metric_box"), s)
     np.testing.assert_allclose(_mesh(box).extents, [0.12, 0.08, 0.05], rtol=0.02)
     assert any("in metres" in n for n in info.notes)
 
-    bean, info = pipeline.build_mesh(AssetRequest(text="a jelly bean", size_hint_m=0.05,
+    bean, info = sources.build_mesh(AssetRequest(text="a jelly bean", size_hint_m=0.05,
                                                   geometry_backend=f"{FAKE}:red_bean_file"), s)
     m = _mesh(bean)
     np.testing.assert_allclose(m.extents, [0.05, 0.02, 0.02], rtol=0.03)  # the hint wins; capsule 1.0 x 0.4 x 0.4
@@ -73,7 +73,7 @@ def test_metric_mesh_keeps_its_size_and_gaussians_colour_an_uncoloured_mesh() ->
 ])
 def test_entry_point_failures_are_one_clear_line(spec: str, message: str) -> None:
     with pytest.raises(GeometryBackendError) as err:
-        pipeline.build_mesh(AssetRequest(text="a ball", geometry_backend=spec), settings(method="hull"))
+        sources.build_mesh(AssetRequest(text="a ball", geometry_backend=spec), settings(method="hull"))
     assert message in str(err.value) and "\n" not in str(err.value)
     assert spec.split(":")[0] in str(err.value)
 

@@ -10,7 +10,7 @@ import pytest
 
 from contracts.lexicon import load_lexicon
 from contracts.request import AssetRequest
-from tasks.geometry import catalogue, pipeline
+from tasks.geometry import catalogue, pipeline, sources
 from tasks.geometry.concepts import PLUSH_MASS_EXPONENT
 from tasks.geometry.grammar.parts import part_group
 from tasks.geometry.render import render_view
@@ -21,7 +21,7 @@ LEX = load_lexicon().entries
 
 
 def _mesh(text: str):  # noqa: ANN202
-    mesh, info = pipeline.build_mesh(AssetRequest(text=text), SETTINGS)
+    mesh, info = sources.build_mesh(AssetRequest(text=text), SETTINGS)
     return pipeline.arrays_to_mesh(mesh), info
 
 

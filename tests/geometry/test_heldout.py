@@ -10,7 +10,7 @@ import yaml
 
 from contracts.request import AssetRequest
 from helpers import settings
-from tasks.geometry import pipeline
+from tasks.geometry import pipeline, sources
 from tasks.geometry.concepts import read_text
 
 PROMPTS = yaml.safe_load((Path(__file__).parent / "heldout_prompts.yaml").read_text(encoding="utf-8"))["prompts"]
@@ -32,7 +32,7 @@ def test_heldout_prompts_weigh_within_2x() -> None:
     s = settings("draft")
     off = []
     for p in PROMPTS:
-        mesh, info = pipeline.build_mesh(AssetRequest(text=p["text"]), s)
+        mesh, info = sources.build_mesh(AssetRequest(text=p["text"]), s)
         m = pipeline.arrays_to_mesh(mesh)
         ratio = info.concept.mass_estimate_kg(m.volume, m.area) / p["mass_kg"]
         if not 0.5 <= ratio <= 2.0:

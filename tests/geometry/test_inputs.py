@@ -14,7 +14,7 @@ from pydantic import ValidationError
 from contracts.errors import InputError
 from contracts.request import AssetRequest
 from helpers import FAST_COACD, cluttered_photo, object_mask, run, settings
-from tasks.geometry import catalogue, image, pipeline
+from tasks.geometry import catalogue, image, sources
 from tasks.geometry.mesh_import import load_mesh_file
 
 DATA = Path(pybullet_data.getDataPath())
@@ -106,13 +106,13 @@ def test_blank_and_unreadable_images_are_clear_errors(tmp_path: Path) -> None:
     blank = tmp_path / "blank.png"
     cv2.imwrite(str(blank), np.full((200, 200, 3), 128, np.uint8))
     with pytest.raises(InputError, match="no object found"):
-        pipeline.build_mesh(AssetRequest(image_path=blank), settings())
+        sources.build_mesh(AssetRequest(image_path=blank), settings())
     bad = tmp_path / "bad.png"
     bad.write_bytes(b"not a png at all")
     with pytest.raises(InputError, match="cannot read image"):
-        pipeline.build_mesh(AssetRequest(image_path=bad), settings())
+        sources.build_mesh(AssetRequest(image_path=bad), settings())
     with pytest.raises(InputError, match="not found"):
-        pipeline.build_mesh(AssetRequest(image_path=tmp_path / "missing.png"), settings())
+        sources.build_mesh(AssetRequest(image_path=tmp_path / "missing.png"), settings())
 
 
 @pytest.mark.parametrize("name", ["duck.obj", "teddy2_VHACD_CHs.obj", "bunny.obj", "torus/torus_textured.obj",
@@ -127,7 +127,7 @@ def test_pybullet_meshes_import_align_and_pass(name: str) -> None:
 
 
 def test_mesh_units_are_metres_without_a_size() -> None:
-    mesh, info = pipeline.build_mesh(AssetRequest(mesh_path=DATA / "bunny.obj"), settings())
+    mesh, info = sources.build_mesh(AssetRequest(mesh_path=DATA / "bunny.obj"), settings())
     ext = mesh["vertices"].max(axis=0) - mesh["vertices"].min(axis=0)
     assert 1.5 < ext.max() < 2.0  # the file's own units, taken as metres
 
@@ -138,16 +138,16 @@ def test_bad_meshes_are_clear_errors(tmp_path: Path) -> None:
     corrupt = tmp_path / "corrupt.stl"
     corrupt.write_bytes(os.urandom(300))
     with pytest.raises(InputError):
-        pipeline.build_mesh(AssetRequest(mesh_path=corrupt), settings())
+        sources.build_mesh(AssetRequest(mesh_path=corrupt), settings())
     flat = tmp_path / "flat.obj"
     trimesh.creation.box((1, 1, 1)).export(flat)
     flat.write_text("v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0.5 0.5 0\nf 1 2 5\nf 2 3 5\nf 3 4 5\nf 4 1 5\n")
     with pytest.raises(InputError, match="flat|no volume"):
-        pipeline.build_mesh(AssetRequest(mesh_path=flat), settings())
+        sources.build_mesh(AssetRequest(mesh_path=flat), settings())
     bowl = tmp_path / "bowl.ply"
     trimesh.creation.icosphere(3, 0.1).slice_plane([0, 0, 0.02], [0, 0, -1]).export(bowl)
     with pytest.raises(InputError, match="open"):
-        pipeline.build_mesh(AssetRequest(mesh_path=bowl), settings())
+        sources.build_mesh(AssetRequest(mesh_path=bowl), settings())
     # a size hint or a file format L0 cannot take is refused by the request itself, before any layer
     with pytest.raises(ValidationError, match="outside the supported range"):
         AssetRequest(mesh_path=DATA / "bunny.obj", size_hint_m=30.0)

@@ -78,7 +78,7 @@ def planned_mass(text: str) -> float:
     """L1's planned mass [kg] of a text as L0 builds it at draft: the mass check's density x the mesh volume, with
     the material L1 reads (tasks.agents.intent) and the L1 contract's density bounds."""
     request = AssetRequest(text=text)
-    mesh_arrays, info = pipeline._from_text(request, pipeline.settings_from_contract("draft"))
+    mesh_arrays, info = pipeline.mesh_from_text(request, pipeline.settings_from_contract("draft"))
     mesh = pipeline.arrays_to_mesh(mesh_arrays)
     record = {"info": {"concept": info.concept.model_dump(mode="json") if info.concept else None},
               "request": request.model_dump(mode="json")}

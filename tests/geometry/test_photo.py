@@ -18,7 +18,7 @@ from contracts.errors import InputError
 from contracts.request import AssetRequest
 from helpers import FAST_COACD, run, settings
 from tasks.agents.intent import targets_from_intent, targets_from_request
-from tasks.geometry import catalogue, image, pipeline, silhouette
+from tasks.geometry import catalogue, image, pipeline, silhouette, sources
 from tasks.geometry.meshing import mesh_program
 from tasks.geometry.render import render_view
 
@@ -134,7 +134,7 @@ def test_real_photo_named_disc_is_fitted_from_above(tmp_path: Path) -> None:
     path = tmp_path / "coffee.png"
     cv2.imwrite(str(path), cv2.cvtColor(data.coffee(), cv2.COLOR_RGB2BGR))
     s = settings().model_copy(update={"marching_cubes_resolution": 48})
-    arrays, info = pipeline.build_mesh(AssetRequest(image_path=path, text="a tortilla 20 cm across"), s)
+    arrays, info = sources.build_mesh(AssetRequest(image_path=path, text="a tortilla 20 cm across"), s)
     photo = info.photo
     assert photo is not None and photo.method == "program fit" and photo.view == "top"
     assert photo.fit_iou >= 0.85  # the program alone, before it is conformed to the mask
@@ -205,8 +205,8 @@ def test_generic_reconstruction_has_round_cross_sections(tmp_path: Path, shape: 
     path = tmp_path / f"{shape}_outline.png"  # 'vase.png' names a rigid object, refused (#35)
     cv2.imwrite(str(path), rgba)
     s = settings().model_copy(update={"marching_cubes_resolution": 64})
-    arrays, info = pipeline.build_mesh(AssetRequest(image_path=path, size_hint_m=0.4), s)
-    again, _ = pipeline.build_mesh(AssetRequest(image_path=path, size_hint_m=0.4), s)
+    arrays, info = sources.build_mesh(AssetRequest(image_path=path, size_hint_m=0.4), s)
+    again, _ = sources.build_mesh(AssetRequest(image_path=path, size_hint_m=0.4), s)
     assert all(np.array_equal(arrays[k], again[k]) for k in arrays)  # deterministic (seeded medial-axis ties)
     v = arrays["vertices"]
     x, d = v @ np.asarray(info.photo.camera_right), v @ np.asarray(info.photo.camera_forward)
@@ -251,7 +251,7 @@ def test_standing_bottle_is_a_solid_of_revolution_kept_upright(tmp_path: Path) -
     """No resting-pose step: the photo's vertical is up, the bottle stands on a flat base as wide as its body."""
     path = _scene(tmp_path, "squeeze_bottle")
     s = _fast().model_copy(update={"marching_cubes_resolution": 64})
-    arrays, info = pipeline.build_mesh(AssetRequest(image_path=path, size_hint_m=0.25), s)
+    arrays, info = sources.build_mesh(AssetRequest(image_path=path, size_hint_m=0.25), s)
     photo = info.photo
     assert photo is not None and photo.method == "lathe" and photo.view == "front" and not info.reoriented
     assert np.allclose(photo.camera_up, (0, 0, 1), atol=1e-6)
@@ -269,7 +269,7 @@ def test_standing_bottle_is_a_solid_of_revolution_kept_upright(tmp_path: Path) -
 def test_pose_stable_is_asked_for(tmp_path: Path) -> None:
     """--pose stable: the most stable resting pose (a tall narrow bottle lies down)."""
     path = _scene(tmp_path, "squeeze_bottle")
-    arrays, info = pipeline.build_mesh(AssetRequest(image_path=path, size_hint_m=0.25, pose="stable"), _fast())
+    arrays, info = sources.build_mesh(AssetRequest(image_path=path, size_hint_m=0.25, pose="stable"), _fast())
     assert info.reoriented and np.ptp(arrays["vertices"][:, 2]) < 0.5 * 0.25
     assert AssetRequest(text="x").canonical_json() == AssetRequest(text="x", pose="upright").canonical_json()
 
@@ -278,7 +278,7 @@ def test_frontal_figure_is_inflated_with_limbs_front_view_and_a_warned_size(tmp_
     """Nothing named (a camera's file name): a closed inflation, deeper in the body than in the ears, recorded as a
     front view, standing on the ground; no size and no object: a default size with a warning, never silently."""
     path = _scene(tmp_path, "teddy_bear", "IMG_0001.png")
-    arrays, info = pipeline.build_mesh(AssetRequest(image_path=path), _fast())
+    arrays, info = sources.build_mesh(AssetRequest(image_path=path), _fast())
     photo = info.photo
     assert photo is not None and photo.method == "medial-axis inflation" and photo.view == "front"
     assert any("no size given" in w and "assuming" in w for w in info.warnings)
@@ -297,7 +297,7 @@ def test_frontal_figure_is_inflated_with_limbs_front_view_and_a_warned_size(tmp_
 def test_named_photo_takes_the_concept_size_and_mass(tmp_path: Path) -> None:
     """'teddy_bear.png' with no size: the lexicon's typical size, the concept (and its typical mass) recorded."""
     path = _scene(tmp_path, "teddy_bear")
-    arrays, info = pipeline.build_mesh(AssetRequest(image_path=path), _fast())
+    arrays, info = sources.build_mesh(AssetRequest(image_path=path), _fast())
     c = info.concept
     assert c is not None and c.concept == "teddy_bear" and c.typical_size_m is not None
     assert np.ptp(arrays["vertices"], axis=0).max() == pytest.approx(c.typical_size_m, rel=1e-3)
@@ -316,7 +316,7 @@ def test_photo_of_a_rigid_object_is_refused_in_one_line(tmp_path: Path, text: st
         targets_from_request(request)  # the CLI's check, before any layer
     assert "\n" not in str(exc.value)
     with pytest.raises(InputError, match="rigid"):
-        pipeline.build_mesh(request, _fast())
+        sources.build_mesh(request, _fast())
 
 
 @pytest.mark.parametrize("text", ["a plush mug", "a foam can cooler", "a squeezable plastic bottle", "a drink bottle", "a silicone cup",
@@ -356,12 +356,12 @@ def test_large_photo_is_reduced_as_it_is_read(tmp_path: Path) -> None:
     truth = cv2.resize(photo_scenes.scene_mask("teddy_bear").astype(np.uint8), (768, 1024)).astype(bool)
     assert _iou(image.segment(loaded)[0], truth) > 0.9  # upright, not on its side
     s = _fast()
-    pipeline.build_mesh(AssetRequest(image_path=small, size_hint_m=0.3), s)  # warm caches
+    sources.build_mesh(AssetRequest(image_path=small, size_hint_m=0.3), s)  # warm caches
     t0 = time.perf_counter()
-    pipeline.build_mesh(AssetRequest(image_path=small, size_hint_m=0.3), s)
+    sources.build_mesh(AssetRequest(image_path=small, size_hint_m=0.3), s)
     t_small = time.perf_counter() - t0
     t0 = time.perf_counter()
-    pipeline.build_mesh(AssetRequest(image_path=big, size_hint_m=0.3), s)
+    sources.build_mesh(AssetRequest(image_path=big, size_hint_m=0.3), s)
     t_big = time.perf_counter() - t0
     assert t_big < 1.5 * t_small + 1.0, (t_big, t_small)
 
@@ -380,7 +380,7 @@ def test_real_photo_of_a_soft_object_matches_its_mask_upright(row: dict) -> None
     targets_from_request(request)
     # the draft contract's resolution (64), not _fast's 40: the two cherries hang on stems thinner than a voxel at 40
     # and the mesh keeps one of them (IoU 0.41; 0.94 at 64)
-    arrays, info = pipeline.build_mesh(request, _fast().model_copy(update={"marching_cubes_resolution": 64}))
+    arrays, info = sources.build_mesh(request, _fast().model_copy(update={"marching_cubes_resolution": 64}))
     photo = info.photo
     assert photo is not None and np.allclose(photo.camera_up, (0, 0, 1), atol=1e-6) and not info.reoriented
     mask = image.segment(image.load_image(path))[0]

@@ -7,7 +7,7 @@ import pytest
 import trimesh
 
 from contracts.request import AssetRequest
-from tasks.geometry import pipeline
+from tasks.geometry import pipeline, sources
 from tasks.geometry.canonical import SEAT_TIP_DEG, seat_flat, tip_angle_deg
 from tests.geometry.helpers import settings
 
@@ -41,7 +41,7 @@ def test_a_rounded_bottom_is_cut_flat_just_enough_and_a_wide_base_is_left_alone(
 
 @pytest.mark.parametrize("text", ["a plush penguin 18 cm", "a teddy bear 25 cm tall"])
 def test_standing_plush_toys_stand_on_a_base_and_keep_their_size(text: str) -> None:
-    mesh, info = pipeline.build_mesh(AssetRequest(text=text), settings())
+    mesh, info = sources.build_mesh(AssetRequest(text=text), settings())
     m = pipeline.arrays_to_mesh(mesh)
     assert info.category == "plush_animal"
     assert tip_angle_deg(m) >= SEAT_TIP_DEG - 0.5

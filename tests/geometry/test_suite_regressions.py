@@ -36,7 +36,8 @@ def test_the_six_cm_heart_drawing_meshes_watertight(tmp_path) -> None:  # type: 
     # suite case i05_jelly_heart: the inflated silhouette lost watertightness -> volume 0 -> four failed L0 gates
     from helpers import settings
 
-    from tasks.geometry.pipeline import arrays_to_mesh, build_mesh
+    from tasks.geometry.pipeline import arrays_to_mesh
+    from tasks.geometry.sources import build_mesh
 
     mesh = arrays_to_mesh(build_mesh(_heart_request(tmp_path), settings("draft"))[0])
     assert mesh.is_watertight and mesh.is_winding_consistent

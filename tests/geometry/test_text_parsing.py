@@ -9,7 +9,7 @@ import pytest
 from contracts.lexicon import load_lexicon
 from contracts.request import AssetRequest
 from helpers import settings
-from tasks.geometry import pipeline
+from tasks.geometry import sources
 from tasks.geometry.catalogue import design_from_text
 from tasks.geometry.concepts import noun_index
 from tasks.geometry.grammar.parts import part_group
@@ -113,7 +113,7 @@ def test_fallback_levels_follow_what_the_text_says() -> None:
     ("a plush whale 12 cm wide", 1, 0.12),
 ])
 def test_one_stated_dimension_binds_to_its_axis(text: str, axis: int, value: float) -> None:
-    mesh, info = pipeline.build_mesh(AssetRequest(text=text), settings("draft").model_copy(
+    mesh, info = sources.build_mesh(AssetRequest(text=text), settings("draft").model_copy(
         update={"marching_cubes_resolution": 40}))
     ext = np.ptp(mesh["vertices"], axis=0)
     assert ext[axis] == pytest.approx(value, rel=0.03), ext
@@ -122,14 +122,14 @@ def test_one_stated_dimension_binds_to_its_axis(text: str, axis: int, value: flo
 
 def test_box_dimensions_and_diameter() -> None:
     s = settings("draft").model_copy(update={"marching_cubes_resolution": 40})
-    mesh, _ = pipeline.build_mesh(AssetRequest(text="a yoga block 20 x 12 x 6 cm"), s)
+    mesh, _ = sources.build_mesh(AssetRequest(text="a yoga block 20 x 12 x 6 cm"), s)
     assert np.ptp(mesh["vertices"], axis=0) == pytest.approx([0.20, 0.12, 0.06], rel=0.03)
-    mesh, _ = pipeline.build_mesh(AssetRequest(text="a volleyball 21 cm in diameter"), s)
+    mesh, _ = sources.build_mesh(AssetRequest(text="a volleyball 21 cm in diameter"), s)
     assert np.ptp(mesh["vertices"], axis=0)[:2] == pytest.approx([0.21, 0.21], rel=0.03)
 
 
 def test_concept_lands_in_the_build_record_with_a_mass_range() -> None:
-    mesh, info = pipeline.build_mesh(AssetRequest(text="a tennis ball"), settings("draft").model_copy(
+    mesh, info = sources.build_mesh(AssetRequest(text="a tennis ball"), settings("draft").model_copy(
         update={"marching_cubes_resolution": 40}))
     c = info.concept
     assert c.concept == "tennis_ball" and c.hollow and "ITF" in c.mass_source

@@ -23,7 +23,7 @@ import litellm  # noqa: E402
 from contracts.agents import AgentConfig  # noqa: E402
 from contracts.request import AssetRequest  # noqa: E402
 from contracts.stage import load_contract  # noqa: E402
-from tasks.geometry import pipeline  # noqa: E402
+from tasks.geometry import pipeline, sources  # noqa: E402
 
 VISION = "openai/gpt-4o-mini"  # litellm: supports vision
 PLAIN = "ollama/llama3"        # litellm: no vision (no Critic), JSON extracted from text
@@ -77,7 +77,7 @@ def _settings(model: str) -> pipeline.L0Settings:
 
 
 def _build(text: str, model: str = PLAIN) -> tuple[dict, pipeline.BuildInfo]:
-    return pipeline.build_mesh(AssetRequest(text=text), _settings(model))
+    return sources.build_mesh(AssetRequest(text=text), _settings(model))
 
 
 def test_valid_program_is_accepted_meshed_sized_and_gated(script) -> None:  # noqa: ANN001
@@ -162,7 +162,7 @@ def test_budget_exhausted_falls_back_to_the_offline_grammar_loudly(script) -> No
     budget = 1 + load_contract("L0").revision_budget
     mock = script(["I would make a whale."] * budget)
     mesh, info = _build("a blue plush whale")
-    offline_mesh, offline = pipeline._from_text(AssetRequest(text="a blue plush whale"), _settings(PLAIN))
+    offline_mesh, offline = pipeline.mesh_from_text(AssetRequest(text="a blue plush whale"), _settings(PLAIN))
     assert len(mock.calls) == budget
     np.testing.assert_array_equal(mesh["vertices"], offline_mesh["vertices"])  # the offline build, unchanged
     assert info.generator == "offline" and info.entry == offline.entry

@@ -8,7 +8,7 @@ import numpy as np
 
 from contracts.concept import ConceptMatch
 from contracts.request import AssetRequest
-from tasks.geometry import pipeline
+from tasks.geometry import pipeline, sources
 from tasks.geometry.outputs import L0Asset
 
 
@@ -21,7 +21,7 @@ def asset_of(request: AssetRequest, concept: ConceptMatch | None | str = BUILT, 
     """An L0 asset of a request's built mesh (one particle per mesh: L1's priors and mass band need only the record,
     the mesh and the volume), its record as `write_l0(..., request=request)` writes it. concept: BUILT keeps L0's
     own info.concept, None removes it (no concept known), a ConceptMatch replaces it (a fixture)."""
-    mesh, info = pipeline.build_mesh(request, pipeline.settings_from_contract("draft"))
+    mesh, info = sources.build_mesh(request, pipeline.settings_from_contract("draft"))
     m = pipeline.arrays_to_mesh(mesh)
     record: dict = {"info": info.model_dump(mode="json", exclude={"design_attempts"})}
     if concept is None:
@@ -40,7 +40,7 @@ def write_l0_dir(request: AssetRequest, out: Path, stored: bool = True) -> Path:
     from flows.l0_geometry import L0Result, write_l0
 
     s = pipeline.settings_from_contract("draft", coacd_overrides=FAST_COACD)
-    mesh, info = pipeline.build_mesh(request, s)
+    mesh, info = sources.build_mesh(request, s)
     proxy = pipeline.build_proxy(mesh, s.coacd)
     particles = pipeline.build_particles(mesh, s.particles)
     gaussians = pipeline.build_gaussians(mesh, particles, s)

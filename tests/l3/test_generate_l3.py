@@ -75,12 +75,12 @@ def _asset(out: Path, text: str, density: float) -> Path:
     """L0 of a text request (draft, a fast convex decomposition) and an L1 physical.json of foam at `density`."""
     from contracts.request import AssetRequest
     from flows.l0_geometry import L0Result, write_l0
-    from tasks.geometry import pipeline
+    from tasks.geometry import pipeline, sources
     from tasks.geometry.outputs import load_l0
     from tasks.physical.model import build_physical_model
 
     s = pipeline.settings_from_contract("draft", coacd_overrides=FAST_COACD)
-    mesh, info = pipeline.build_mesh(AssetRequest(text=text), s)
+    mesh, info = sources.build_mesh(AssetRequest(text=text), s)
     proxy = pipeline.build_proxy(mesh, s.coacd)
     particles = pipeline.build_particles(mesh, s.particles)
     gaussians = pipeline.build_gaussians(mesh, particles, s)

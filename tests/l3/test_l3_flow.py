@@ -27,12 +27,12 @@ def cube_template(tmp_path_factory: pytest.TempPathFactory) -> Path:
     """L0 of 'a soft foam cube 3 cm' and an L1 physical.json (foam prior: density 86 kg/m^3, mu 0.8)."""
     from contracts.request import AssetRequest
     from flows.l0_geometry import L0Result, write_l0
-    from tasks.geometry import pipeline
+    from tasks.geometry import pipeline, sources
     from tasks.geometry.outputs import load_l0
     from tasks.physical.model import build_physical_model
 
     s = pipeline.settings_from_contract("draft", coacd_overrides=FAST_COACD)
-    mesh, info = pipeline.build_mesh(AssetRequest(text="a soft foam cube 3 cm"), s)
+    mesh, info = sources.build_mesh(AssetRequest(text="a soft foam cube 3 cm"), s)
     proxy = pipeline.build_proxy(mesh, s.coacd)
     particles = pipeline.build_particles(mesh, s.particles)
     gaussians = pipeline.build_gaussians(mesh, particles, s)

@@ -1,4 +1,6 @@
-"""The layers import downwards only: contracts <- cache <- tasks <- flows <- benchmarks; the MPM engine has no Prefect.
+"""The layers import downwards only: contracts <- cache <- tasks <- flows <- benchmarks (deployments above flows); the
+subpackages of tasks/ import downwards in TASKS_ORDER; the MPM engine has no Prefect; imports of our own modules are
+at module level, the few function-level ones (at most LAZY_LIMIT) each saying why on its line or the line above.
 
 A pure AST scan of the source files (every import statement, also those inside functions and under TYPE_CHECKING,
 relative ones resolved); nothing under test is imported.
@@ -8,12 +10,26 @@ from __future__ import annotations
 
 import ast
 import functools
+import io
+import re
+import tokenize
+from dataclasses import dataclass
 from pathlib import Path
 
 import pytest
 
 ROOT = Path(__file__).resolve().parents[2]
 ORDER = ("contracts", "cache", "tasks", "flows", "benchmarks")  # each may import those before it, never those after
+PRODUCT = ("contracts", "cache", "tasks", "flows")  # none of them imports deployments/ either
+OWN = (*ORDER, "deployments")  # our own top-level packages (and the deployment scripts)
+# tasks/ in layers, lowest first: a subpackage (or top-level module) of tasks/ may import those before it and itself,
+# never those after. Derived from what the code needs: the engine and the records know no layer; the harness (agents)
+# knows records; geometry builds with the harness's LLM roles (the shape Designer); the robot measures geometry's
+# meshes; probes run the engine on geometry; render, manipulation, export, evaluation and the request check sit on top.
+TASKS_ORDER = ("native_output", "quiet_pybullet", "publish", "asset_dir", "mpm", "record", "agents", "geometry",
+               "physical", "robot", "probes", "render", "manipulation", "export", "evaluation", "request")
+LAZY_LIMIT = 60  # function-level imports of our own modules, in all of OWN's sources together
+BAD_REASON = re.compile(r"\b(cycle|cyclic|circular)\b", re.I)  # a circle is fixed by moving code, not by a lazy import
 
 
 def module_name(path: Path) -> str:
@@ -55,7 +71,7 @@ def file_imports(path: Path) -> list[tuple[str, int, bool]]:
 @pytest.mark.parametrize("layer", ORDER[:-1])
 def test_no_import_runs_up(layer: str) -> None:
     """No module of a layer imports a layer above it, not even inside a function."""
-    above = set(ORDER[ORDER.index(layer) + 1:])
+    above = set(ORDER[ORDER.index(layer) + 1:]) | ({"deployments"} if layer in PRODUCT else set())
     files = sources(layer)
     assert files, f"no sources under {layer}/"
     bad = []
@@ -83,3 +99,135 @@ def test_scan_sees_nested_and_relative_imports() -> None:
     assert imports(src, "cache.sub.mod") == [("os", 1, False), ("cache.sub", 2, False), ("flows", 4, False),
                                               ("cache.flows", 6, True), ("benchmarks.x", 7, True)]
     assert imports("from .. import x\n", "tasks.geometry", is_package=True) == [("tasks", 1, False)]
+
+
+@dataclass(frozen=True)
+class ImportSite:
+    """One import statement of our own modules: the modules it names, where, and the comment that says why."""
+
+    targets: tuple[str, ...]  # absolute module names (`from tasks import geometry` -> tasks.geometry)
+    line: int
+    in_function: bool
+    reason: str  # the comment on its lines or on the line just above ('' when none)
+    text: str
+
+
+def own_imports(source: str, module: str, is_package: bool = False) -> list[ImportSite]:
+    """The import statements of `source` that name our own packages (relative ones made absolute)."""
+    package = module.split(".") if is_package else module.split(".")[:-1]
+    lines = source.splitlines()
+    comments: dict[int, str] = {}
+    for tok in tokenize.generate_tokens(io.StringIO(source).readline):
+        if tok.type == tokenize.COMMENT:
+            comments[tok.start[0]] = tok.string.lstrip("#").strip()
+    found: list[ImportSite] = []
+
+    def site(node: ast.Import | ast.ImportFrom, targets: list[str], in_function: bool) -> None:
+        own = tuple(t for t in targets if t.split(".")[0] in OWN)
+        if not own:
+            return
+        above = node.lineno - 1
+        reason = " ".join(comments[n] for n in range(node.lineno, (node.end_lineno or node.lineno) + 1)
+                          if n in comments)
+        if not reason and above in comments and lines[above - 1].lstrip().startswith("#"):
+            reason = comments[above]
+        found.append(ImportSite(own, node.lineno, in_function, reason, ast.get_source_segment(source, node) or ""))
+
+    def visit(node: ast.AST, in_function: bool) -> None:
+        if isinstance(node, ast.Import):
+            site(node, [alias.name for alias in node.names], in_function)
+        elif isinstance(node, ast.ImportFrom):
+            base = package[: len(package) - node.level + 1] if node.level else []
+            name = ".".join(base + ([node.module] if node.module else []))
+            site(node, [f"{name}.{alias.name}" for alias in node.names] if name in OWN else [name], in_function)
+        inner = in_function or isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef, ast.Lambda))
+        for child in ast.iter_child_nodes(node):
+            visit(child, inner)
+
+    visit(ast.parse(source), False)
+    return found
+
+
+def tasks_unit(name: str) -> str | None:
+    """The unit of tasks/ a module belongs to (its subpackage or top-level module); None outside tasks/."""
+    parts = name.split(".")
+    return parts[1] if parts[0] == "tasks" and len(parts) > 1 else None
+
+
+def tasks_order_violations(rel: str, source: str) -> list[str]:
+    """'file:line imports X (unit a imports unit b, which is above it)' for each import up the tasks/ order."""
+    path = ROOT / rel
+    module = module_name(path)
+    unit = tasks_unit(module)
+    if unit is None:
+        return []
+    assert unit in TASKS_ORDER, f"{rel}: tasks/{unit} has no place in TASKS_ORDER"
+    bad = []
+    for s in own_imports(source, module, path.name == "__init__.py"):
+        for target in s.targets:
+            other = tasks_unit(target)
+            if other is None or other == unit:
+                continue
+            assert other in TASKS_ORDER, f"{rel}:{s.line}: tasks/{other} has no place in TASKS_ORDER"
+            if TASKS_ORDER.index(other) > TASKS_ORDER.index(unit):
+                bad.append(f"{rel}:{s.line} imports {target} (tasks/{unit} is below tasks/{other}): {s.text}")
+    return bad
+
+
+def lazy_imports(rel: str, source: str) -> tuple[list[ImportSite], list[str]]:
+    """The function-level imports of our own modules in one file, and those that do not say why (or say 'cycle')."""
+    path = ROOT / rel
+    lazy = [s for s in own_imports(source, module_name(path), path.name == "__init__.py") if s.in_function]
+    bad = [f"{rel}:{s.line}: {s.text}" + (f"  # {s.reason}" if s.reason else "") for s in lazy
+           if not s.reason or BAD_REASON.search(s.reason)]
+    return lazy, bad
+
+
+def all_sources() -> list[Path]:
+    """The Python files of every package of OWN."""
+    return [p for layer in OWN if (ROOT / layer).is_dir() for p in sources(layer)]
+
+
+def test_tasks_subpackages_import_downwards() -> None:
+    """No module of a tasks/ subpackage imports one above it in TASKS_ORDER (inside functions too), so the subpackages
+    form no circle."""
+    bad = [v for p in sources("tasks") for v in tasks_order_violations(p.relative_to(ROOT).as_posix(),
+                                                                        p.read_text(encoding="utf-8"))]
+    assert not bad, "imports up the order of tasks/ (TASKS_ORDER):\n" + "\n".join(bad)
+
+
+def test_function_level_imports_are_few_and_say_why() -> None:
+    """Imports of our own modules are at module level; a function-level one is for start-up time or an optional
+    dependency and says so in a comment (never a circle: that is fixed by moving the shared piece down); at most
+    LAZY_LIMIT in all."""
+    lazy, bad = [], []
+    for p in all_sources():
+        found, unexplained = lazy_imports(p.relative_to(ROOT).as_posix(), p.read_text(encoding="utf-8"))
+        lazy += found
+        bad += unexplained
+    assert not bad, ("function-level imports of our own modules without a reason (a comment on the line or the line "
+                     "above, not a circle):\n" + "\n".join(bad))
+    assert len(lazy) <= LAZY_LIMIT, f"{len(lazy)} function-level imports of our own modules (at most {LAZY_LIMIT})"
+
+
+def test_the_checks_fail_on_bad_source() -> None:
+    """The checks above can fail: an import up the tasks/ order, a lazy import with no reason or a circle for one, and
+    a count over the limit are each caught, naming the file and line."""
+    up = "import numpy\n\ndef f():\n    from tasks.geometry import pipeline  # lazy: pulls trimesh\n"
+    assert tasks_order_violations("tasks/mpm/x.py", up) == [
+        "tasks/mpm/x.py:4 imports tasks.geometry (tasks/mpm is below tasks/geometry): "
+        "from tasks.geometry import pipeline"]
+    assert tasks_order_violations("tasks/probes/x.py", "from ..geometry import outputs\n") == []  # downwards: fine
+    assert tasks_order_violations("tasks/agents/x.py", "from tasks import probes\n") == [
+        "tasks/agents/x.py:1 imports tasks.probes (tasks/agents is below tasks/probes): from tasks import probes"]
+    src = ("def f():\n    from cache import store\n\n"
+           "def g():\n    # cycle: tasks.x imports this module\n    from tasks.x import y\n\n"
+           "def h():\n    import warp\n    from flows.l2_material import run_l2  # lazy: pulls warp\n"
+           "    # lazy: pulls rerun\n    from tasks.record import ProbeRecording\n")
+    lazy, bad = lazy_imports("flows/x.py", src)
+    assert [s.line for s in lazy] == [2, 6, 10, 12]
+    assert bad == ["flows/x.py:2: from cache import store",
+                   "flows/x.py:6: from tasks.x import y  # cycle: tasks.x imports this module"]
+    many = "".join(f"def f{i}():\n    from contracts import base  # lazy: test\n" for i in range(LAZY_LIMIT + 1))
+    assert len(lazy_imports("flows/x.py", many)[0]) > LAZY_LIMIT
+    assert own_imports("from . import store\n", "cache.files")[0].targets == ("cache.store",)

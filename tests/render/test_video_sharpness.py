@@ -20,7 +20,7 @@ import numpy as np
 import pytest
 
 from contracts.request import AssetRequest
-from tasks.geometry import pipeline
+from tasks.geometry import pipeline, sources
 from tasks.geometry.gaussians import deform_gaussians, rest_covariances
 from tasks.render.protocol_video import iter_states, protocol_camera
 from tasks.render.quality import coverage_mask, sharpness
@@ -33,7 +33,7 @@ TODAY = {"front": 0.5, "side": 0.4}  # the sharpness measured before the change 
 def turtle() -> tuple[dict, dict]:
     """The default turtle's L0 particles and Gaussians at draft (the grammar's mesh; ~10 s on a busy CPU)."""
     s = pipeline.settings_from_contract("draft")
-    mesh, _ = pipeline.build_mesh(AssetRequest(text="a soft plush turtle toy, about 25 cm long"), s)
+    mesh, _ = sources.build_mesh(AssetRequest(text="a soft plush turtle toy, about 25 cm long"), s)
     particles = pipeline.build_particles(mesh, s.particles)
     return particles, pipeline.build_gaussians(mesh, particles, s)
 

@@ -10,7 +10,7 @@ import trimesh
 from contracts.request import AssetRequest
 from contracts.robot import ActionPlan, GraspCandidate
 from contracts.shape import ShapeProgram
-from tasks.geometry import pipeline
+from tasks.geometry import pipeline, sources
 from tasks.robot.grasp import GraspSettings, select_grasps
 from tasks.robot.grasp_parts import BODY_PARTS, body_first, body_first_grasps, depth_parts, prefer_body, program_parts
 from tasks.robot.trajectory import plan_trajectory
@@ -26,7 +26,7 @@ def _grasp(z: float, rank: int) -> GraspCandidate:
 @pytest.fixture(scope="module")
 def teddy() -> tuple[trimesh.Trimesh, ShapeProgram, str]:
     """A sitting plush teddy bear from text, at draft (its head sits over its torso)."""
-    mesh_arrays, info = pipeline.build_mesh(AssetRequest(text="a plush teddy bear, 30 cm tall"),
+    mesh_arrays, info = sources.build_mesh(AssetRequest(text="a plush teddy bear, 30 cm tall"),
                                             pipeline.settings_from_contract("draft"))
     assert info.program is not None and not info.reoriented
     return pipeline.arrays_to_mesh(mesh_arrays), info.program, info.category

@@ -16,6 +16,8 @@ from contracts.errors import InputError
 from contracts.shape import Part, ShapeProgram
 from tasks.geometry.grammar import animals, food, goods, things
 from tasks.geometry.grammar.parts import part_group
+from tasks.geometry.meshing import mesh_program, sample_program
+from tasks.geometry.sdf import program_bounds
 
 RGB = tuple[float, float, float]
 
@@ -152,8 +154,6 @@ def build_program(plan: str, params: dict[str, Any] | None, colors: dict[str, RG
 def program_extents(program: ShapeProgram, resolution: int = 48) -> np.ndarray:
     """Extents (x, y, z) [m] of the solid a program describes, from its signed distances on a grid (within about a
     cell; the primitives' bounding boxes overstate rotated and subtracted parts)."""
-    from tasks.geometry.meshing import sample_program
-
     field, _, spacing = sample_program(program, resolution)
     inside = field < 0
     if not inside.any():
@@ -212,9 +212,6 @@ def state_change(plan: str, params: dict[str, Any] | None, size_m: float, state:
 
 @functools.lru_cache(maxsize=256)
 def _unit_solid_cached(plan: str, params_json: str) -> tuple[float, float]:
-    from tasks.geometry.meshing import mesh_program
-    from tasks.geometry.sdf import program_bounds
-
     params = plan_parameters(plan, json.loads(params_json))
     program = ShapeProgram(name=plan, category="state", parts=PLANS[plan][1](params))
     ext = program_bounds(program)[1] - program_bounds(program)[0]

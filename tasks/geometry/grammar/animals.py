@@ -11,7 +11,16 @@ from pydantic import Field
 
 from contracts.base import Model
 from contracts.shape import Part
-from tasks.geometry.grammar.parts import cone, ellipsoid, limb, mirrored, superellipsoid, tapered
+from tasks.geometry.grammar.parts import (
+    cone,
+    cylinder,
+    ellipsoid,
+    limb,
+    mirrored,
+    rotated_parts,
+    superellipsoid,
+    tapered,
+)
 
 Ears = Literal["none", "round", "pointed", "floppy", "long", "lop", "big", "small"]
 Snout = Literal["none", "short", "long", "trunk", "beak", "flat", "duckbill"]
@@ -73,8 +82,6 @@ def _face(head: np.ndarray, r: float, snout: str, forward: np.ndarray | None = N
 
 def cylinder_snout(x: float, z: float, r: float) -> Part:
     """A pig's flat round snout facing +x."""
-    from tasks.geometry.grammar.parts import cylinder
-
     return cylinder("snout", 0.38 * r, 0.45 * r, (x, 0, z), edge=0.08 * r, blend=0.08 * r, rot=(0, 90, 0))
 
 
@@ -199,8 +206,6 @@ def _top_eyes(parts: list[Part], p: QuadrupedParams, zb: float) -> list[Part]:
 def _curled_quadruped(p: QuadrupedParams) -> list[Part]:
     """Curled up asleep: the body bent into a ring (lobes along an arc), the head at the front end turned in towards
     the rear, the front paws tucked by the chin and the tail wrapped round the outside across the gap to the nose."""
-    from tasks.geometry.grammar.parts import rotated_parts
-
     bw, bh = p.body_width, p.body_height
     ring = 0.27  # arc radius of the body's midline [body lengths]
     z = 0.4 * bh

@@ -10,7 +10,20 @@ from pydantic import Field
 
 from contracts.base import Model
 from contracts.shape import Part
-from tasks.geometry.grammar.parts import box, cone, cylinder, ellipsoid, limb, smooth_path, squashed_parts, superellipsoid, swept, tapered
+from tasks.geometry.grammar.parts import (
+    box,
+    cone,
+    cylinder,
+    ellipsoid,
+    limb,
+    smooth_path,
+    sphere_directions,
+    squashed_parts,
+    superellipsoid,
+    swept,
+    tapered,
+    torus,
+)
 
 
 def _stem_and_leaves(top: np.ndarray, r: float, stem: bool, leaves: int, stem_length: float = 1.0) -> list[Part]:
@@ -348,8 +361,6 @@ def pie(p: PieParams) -> list[Part]:
     h = p.height
     parts = [cylinder("filling", 0.48, h, (0, 0, h / 2), edge=0.3 * h)]
     if p.rim > 0:
-        from tasks.geometry.grammar.parts import torus
-
         parts.append(torus("crust", 0.5 - p.rim, p.rim, (0, 0, h - 0.3 * p.rim), blend=0.02))
     return parts
 
@@ -508,7 +519,6 @@ def leafy_head(p: LeafyHeadParams) -> list[Part]:
             parts.append(ellipsoid(f"leaf {k + 1} {i + 1}", (width / 2, length / 2, 0.045), centre, blend=0.025,
                                    rot=euler))
     if p.ruffle:  # crinkled leaf tops filling the head: wavy fins standing out of its upper surface
-        from tasks.geometry.grammar.parts import sphere_directions
 
         top_r = r * (0.55 + 0.3 * (p.rings - 1))
         dirs = [d for d in sphere_directions(40, seed=0.4) if d[2] > 0.15][:18]
@@ -549,8 +559,6 @@ class CollapsibleParams(Model):
 def collapsible(p: CollapsibleParams) -> list[Part]:
     """Rim diameter 1. Open: stepped frustum rings round a cavity, base closed. Folded: the base with the rings as
     concentric ridges, each a little higher than the one inside it."""
-    from tasks.geometry.grammar.parts import torus
-
     n, wall = p.rings, 0.035
     r0 = 0.5 - 0.07 * n  # the base ring's radius
     parts: list[Part] = []

@@ -18,7 +18,17 @@ from pydantic import Field
 
 from contracts.base import Model
 from contracts.shape import Part
-from tasks.geometry.grammar.parts import box, cone, cylinder, ellipsoid, limb, superellipsoid, torus
+from tasks.geometry.grammar.parts import (
+    box,
+    cone,
+    cylinder,
+    ellipsoid,
+    limb,
+    rotated_parts,
+    superellipsoid,
+    tapered,
+    torus,
+)
 
 MIN_LAYER = 0.025  # a built sheet layer, / the flat sheet's length [-]
 MIN_WALL = 0.03  # a built mould or hat wall, / the outline's size [-]
@@ -203,8 +213,6 @@ def _folded_layers(length: float, width: float, n: int, t: float, p: SheetParams
 
 def _turned(parts: list[Part], deg: float) -> list[Part]:
     """Parts turned about z by deg (their translations and rotations)."""
-    from tasks.geometry.grammar.parts import rotated_parts
-
     return rotated_parts(parts, (0.0, 0.0, deg))
 
 
@@ -1100,8 +1108,6 @@ def _backpack(p: BagParams) -> list[Part]:
 
 def _stand_back(parts: list[Part]) -> list[Part]:
     """A layout lying on its front (top at +x, back up) stood on its bottom: x -> z, z -> -x (its back at -x)."""
-    from tasks.geometry.grammar.parts import rotated_parts
-
     out = []
     for part in rotated_parts(parts, (0.0, -90.0, 0.0)):
         x, y, z = part.transform.translation_m
@@ -1265,8 +1271,6 @@ def rope(p: RopeParams) -> list[Part]:
 
 def tapered_tuft(name: str, a: np.ndarray, b: np.ndarray, r: float) -> Part:
     """A frayed tuft: a cone widening from the knot outwards."""
-    from tasks.geometry.grammar.parts import tapered
-
     return tapered(name, a, b, 0.6 * r, 1.3 * r, blend=0.3 * r)
 
 

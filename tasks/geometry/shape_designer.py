@@ -20,7 +20,10 @@ from contracts.shape_design import ShapeBounds, ShapeCriticRequest, ShapeCritiqu
 from contracts.stage import StageContract, load_contract
 from tasks.agents.backend import RoleReply
 from tasks.agents.llm import FATAL_ERRORS, Completion, ask, litellm  # litellm as llm.py configures it (offline)
+from tasks.geometry import catalogue, pipeline
 from tasks.geometry.backends import concept_fields
+from tasks.geometry.canonical import canonicalize
+from tasks.geometry.meshing import mesh_program
 from tasks.geometry.program_checks import check_program
 from tasks.geometry.render import VIEWS, render_view
 
@@ -153,12 +156,8 @@ def design_shape(text: str, stated_size: str | None, designer: RoleConfig, criti
 
 
 def from_text_llm(request: Any, settings: Any) -> tuple[dict[str, np.ndarray], Any]:
-    """pipeline.build_mesh for a text request with an LLM Designer (settings.designer): the model's program, meshed
+    """sources.build_mesh for a text request with an LLM Designer (settings.designer): the model's program, meshed
     and sized like the offline path; the offline grammar's build (with a warning) when the model gives none."""
-    from tasks.geometry import catalogue, pipeline
-    from tasks.geometry.canonical import canonicalize
-    from tasks.geometry.meshing import mesh_program
-
     offline = catalogue.design_from_text(request.text or "", request.size_hint_m)  # stated size, lexicon concept
     size = offline.size.model_copy(update={"axis_scale": (1.0, 1.0, 1.0)})  # the model reads modifier words itself
 
@@ -167,7 +166,7 @@ def from_text_llm(request: Any, settings: Any) -> tuple[dict[str, np.ndarray], A
         mesh, rotated = canonicalize(mesh, "keep_if_stable", align_xy=False)
         if rotated:
             mesh, _ = canonicalize(mesh, "keep_if_stable", align_xy=True)
-        return pipeline._final_size(mesh, size), rotated
+        return pipeline.final_size(mesh, size), rotated
 
     designer: RoleConfig = settings.designer
     design = design_shape(request.text or "", size.stated, designer, settings.critic, mesher)
@@ -190,10 +189,8 @@ def from_text_llm(request: Any, settings: Any) -> tuple[dict[str, np.ndarray], A
 
 def _fallback(request: Any, settings: Any, design: ShapeDesign, designer: RoleConfig) -> tuple[dict, Any]:
     """The offline grammar's build, its record saying that (and why) the LLM Designer was not used."""
-    from tasks.geometry import pipeline
-
     dont_store()  # the offline build is not kept under the LLM Designer's key: a later run asks the LLM again
-    arrays, info = pipeline._from_text(request, settings)
+    arrays, info = pipeline.mesh_from_text(request, settings)
     note = (f"the LLM Designer (litellm/{designer.model}) gave no valid shape program "
             f"({design.fallback_reason}); built by the offline grammar instead")
     source = AgentSource(backend="fallback_rule", model=designer.model, retries=len(design.attempts),

@@ -1,0 +1,44 @@
+"""The catalogue's hand-written shape programs (tasks/geometry/catalogue.yaml), read once: the entries the offline
+Designer (tasks/geometry/catalogue.py) and the lexicon's concepts (tasks/geometry/concepts.py) both build from."""
+
+from __future__ import annotations
+
+import functools
+from pathlib import Path
+from typing import Any
+
+import yaml
+
+from contracts.shape import ShapeProgram
+
+CATALOGUE_FILE = Path(__file__).with_name("catalogue.yaml")
+
+
+@functools.lru_cache(maxsize=1)
+def catalogue_yaml() -> dict[str, Any]:
+    """catalogue.yaml as read (entries, palette, length unit)."""
+    return yaml.safe_load(CATALOGUE_FILE.read_text(encoding="utf-8"))
+
+
+def catalogue_program(name: str) -> ShapeProgram:
+    """The hand-written shape program (metres) of a catalogue entry, at the catalogue's size."""
+    raw = catalogue_yaml()
+    unit = float(raw["length_unit_m"])
+    palette = raw["palette"]
+    entry = raw["entries"][name]
+    parts = []
+    for p in entry["parts"]:
+        prim = {k: (_scale(v, unit) if k.endswith("_m") else v) for k, v in p["p"].items()}
+        col = p.get("c", "grey")
+        parts.append({
+            "name": p["n"], "primitive": prim,
+            "transform": {"translation_m": _scale(p.get("t", [0, 0, 0]), unit), "rotation_deg": p.get("r", [0, 0, 0]),
+                          "scale": p.get("s", [1, 1, 1])},
+            "color_rgb": palette[col] if isinstance(col, str) else col,
+            "operation": p.get("op", "union"), "blend_m": float(p.get("b", 0.0)) * unit,
+        })
+    return ShapeProgram(name=name.replace("_", " "), category=entry["category"], parts=parts)
+
+
+def _scale(v: Any, unit: float) -> Any:
+    return [float(x) * unit for x in v] if isinstance(v, list) else float(v) * unit
