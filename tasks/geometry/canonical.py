@@ -56,11 +56,12 @@ def seat_flat(mesh: trimesh.Trimesh, min_tip_deg: float = SEAT_TIP_DEG, max_cut:
     height (in steps of 0.5 % of the height, at most max_cut of it) where the base holds a lean of min_tip_deg.
     Returns the mesh resting on z = 0 and the height cut [m] (0: the base was already wide enough, or a cut does not
     widen it)."""
-    if tip_angle_deg(mesh) >= min_tip_deg or not mesh.is_watertight:
+    if not mesh.is_watertight or tip_angle_deg(mesh) >= min_tip_deg:
         return mesh, 0.0
     lo, hi = mesh.bounds
     height = float(hi[2] - lo[2])
-    best: tuple[float, trimesh.Trimesh] | None = None
+    start = tip_angle_deg(mesh)
+    best: tuple[float, float, trimesh.Trimesh] = (start, 0.0, mesh)  # (tip [deg], cut [m], mesh)
     for k in range(1, int(round(max_cut / 0.005)) + 1):
         cut = k * 0.005 * height
         seated = mesh.slice_plane([0.0, 0.0, lo[2] + cut], [0.0, 0.0, 1.0], cap=True)
@@ -68,13 +69,13 @@ def seat_flat(mesh: trimesh.Trimesh, min_tip_deg: float = SEAT_TIP_DEG, max_cut:
             break
         seated.apply_translation([0.0, 0.0, -float(seated.bounds[0][2])])
         tip = tip_angle_deg(seated)
-        if best is None or tip > tip_angle_deg(best[1]) + 1e-9:
-            best = (cut, seated)
+        if tip > best[0] + 1e-9:
+            best = (tip, cut, seated)
         if tip >= min_tip_deg:
             break
-    if best is None or tip_angle_deg(best[1]) <= tip_angle_deg(mesh) + 1.0:
+    if best[0] <= start + 1.0:
         return mesh, 0.0
-    return best[1], best[0]
+    return best[2], best[1]
 
 
 POSE_HULL_CELLS = 24  # a smooth body's hull is thinned to one vertex per cell of a 24^3 grid for the pose search

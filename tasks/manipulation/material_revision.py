@@ -116,19 +116,9 @@ def revise_material(material: Material, metrics: dict[str, float], contract: Sta
         return (material.model_copy(update={"youngs_modulus_pa": material.youngs_modulus_pa * factor}),
                 f"deformation bound: strain_p99 {strain:.3g} > {bound:.3g}, E x {factor:.3g}")
     if failed & set(SLIP_GATES) and metrics.get("plan_failed", 0.0) != 1.0:
-        ceiling = limits.modulus_ceiling()
-        if ceiling is not None and ceiling > 1.05 * material.youngs_modulus_pa:
-            return (material.model_copy(update={"youngs_modulus_pa": ceiling}),
-                    f"slip at the squeeze limit: E {material.youngs_modulus_pa:.4g} -> {ceiling:.4g} Pa, the stiffest "
-                    "the L2 modulus band allows (more normal force for the same squeeze)")
-        return None
+        return _stiffest(material, limits, "slip at the squeeze limit", "more normal force for the same squeeze")
     if failed & set(REST_GATES) and not failed & set(SLIP_GATES) and fell_over(metrics):
-        ceiling = limits.modulus_ceiling()
-        if ceiling is not None and ceiling > 1.05 * material.youngs_modulus_pa:
-            return (material.model_copy(update={"youngs_modulus_pa": ceiling}),
-                    f"fell over when let go: E {material.youngs_modulus_pa:.4g} -> {ceiling:.4g} Pa, the stiffest the L2 "
-                    "modulus band allows (a firmer body stands on its base)")
-        return None
+        return _stiffest(material, limits, "fell over when let go", "a firmer body stands on its base")
     if failed & set(REST_GATES) and not failed & set(SLIP_GATES):
         field_high = next((f.high for f in load_contract("L2").editable_fields if f.name == "damping_rate_per_s"), 50.0)
         ceiling = limits.damping_ceiling(field_high)
@@ -139,6 +129,16 @@ def revise_material(material: Material, metrics: dict[str, float], contract: Sta
                 return (material.model_copy(update={"damping_rate_per_s": target}),
                         f"not at rest in the target: damping {d:.3g} -> {target:.3g} /s, within the L2 rebound band")
     return None
+
+
+def _stiffest(material: Material, limits: MaterialLimits, trigger: str, because: str) -> tuple[Material, str] | None:
+    """The stiffest E the L2 modulus band allows, when that is meaningfully stiffer than the material's."""
+    ceiling = limits.modulus_ceiling()
+    if ceiling is None or ceiling <= 1.05 * material.youngs_modulus_pa:
+        return None
+    return (material.model_copy(update={"youngs_modulus_pa": ceiling}),
+            f"{trigger}: E {material.youngs_modulus_pa:.4g} -> {ceiling:.4g} Pa, the stiffest the L2 modulus band "
+            f"allows ({because})")
 
 
 def fell_over(metrics: dict[str, float]) -> bool:
