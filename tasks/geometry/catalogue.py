@@ -231,7 +231,7 @@ def normalise_sizes(text: str) -> str:
     return _HYPHEN_SIZE.sub(lambda m: f"{m.group(1)} {m.group(2)} ", text)
 
 
-def _final_scale(size: SizeSpec, program: ShapeProgram, typical_m: float) -> tuple[float, float]:
+def final_scale(size: SizeSpec, program: ShapeProgram, typical_m: float) -> tuple[float, float]:
     """(the longest extent the object is built at [m], its stretch: the largest per-axis scale over the smallest)."""
     axis = np.asarray(size.axis_scale, dtype=np.float64)
     if not any(v is not None for v in size.extents_m):
@@ -278,7 +278,7 @@ def _fill_sized(size: SizeSpec, program: ShapeProgram, match: ConceptMatch,
         k = (stated.kg / match.stated_mass_kg) ** (1.0 / 3.0)
         return size.model_copy(update={"longest_m": built * k, "stated": f"sized to hold the stated {stated.stated}"}), match
     if size.explicit and stated is None:
-        final, _stretch = _final_scale(size, program, match.typical_size_m or built)
+        final, _stretch = final_scale(size, program, match.typical_size_m or built)
         k = final / built
         if abs(k - 1.0) > 0.02:
             return size, match.model_copy(update={"stated_mass_kg": match.stated_mass_kg * k ** 3,
@@ -333,7 +333,7 @@ def design_from_text(text: str, size_hint_m: float | None = None) -> Design:
     if mass is None:
         match = fill_match
     check_size(size)
-    match = concepts.size_scaled(match, *_final_scale(size, program, match.typical_size_m or 0.0))
+    match = concepts.size_scaled(match, *final_scale(size, program, match.typical_size_m or 0.0))
     said = size_words.read_size_words(_strip_numeric_sizes(text_n), frozenset(MODIFIERS))
     warnings = [w for w in said.warnings + reading.warnings + build_warnings if w]
     score = {"exact": 2.0, "synonym": 1.0}.get(match.fallback_level, 0.0)

@@ -1383,4 +1383,32 @@ def size_scaled(match: ConceptMatch, final_longest_m: float, stretch: float = 1.
 
 
 THIN_GOODS_PLANS = frozenset({"garment", "bag", "sheet", "glove", "sock", "hat", "strap"})
+
+# Stuffed toys: a plush weighs its sourced mass (fabric and a loft of fill) scaled with its size, not its built
+# volume x a density: the grammar's bodies of one toy differ up to 4x in volume with their proportions and pose (a
+# 31 cm bunny with drooping ears was built at 5.3 l and weighed 0.45 kg at the plush prior; real: 0.2 kg).
+STUFFED_CATEGORIES = frozenset({"plush_animal"})
+
+
+def stuffed_as_built(match: ConceptMatch | None, longest_m: float, volume_m3: float, stretch: float = 1.0,
+                     text: str = "") -> ConceptMatch | None:
+    """A stuffed toy's concept with the effective density that gives it its typical mass at the built size: the
+    typical mass (in the state built: a curled cat is the same cat) x (uniform scale)^PLUSH_MASS_EXPONENT x the
+    stretch along its long axis (a long plush snake keeps its stuffed cross-section), over the built volume. A toy
+    whose text names a fabric ('a sock monkey', 'a fabric elephant') is the same stuffed toy in that fabric: its
+    material is the fabric's and its typical mass still holds. Other concepts, hollow toys and a stated mass are
+    returned as they are."""
+    if match is None or match.category not in STUFFED_CATEGORIES or match.hollow or match.stated_mass_kg \
+            or match.typical_mass_kg is None or not match.typical_size_m or volume_m3 <= 0 or longest_m <= 0:
+        return match
+    stretch = max(stretch, 1.0)
+    uniform = longest_m / match.typical_size_m / stretch
+    mass = match.typical_mass_kg * uniform ** PLUSH_MASS_EXPONENT * stretch
+    update: dict[str, typing.Any] = {"density_kg_per_m3": mass / volume_m3}
+    if match.default_material == "plush" and _material_in(normalise(text)) in STUFFED_FABRICS:
+        update["default_material"] = _material_in(normalise(text))
+    return match.model_copy(update=update)
+
+
+STUFFED_FABRICS = frozenset({"textile"})  # a stuffed toy sewn of these is still a stuffed toy (not 'foam', 'rubber')
 THIN_MASS_EXPONENT = 2.0  # the same fabric over a larger or smaller object: mass ~ its area

@@ -16,7 +16,7 @@ from contracts.evidence import Attempt
 from contracts.request import AssetRequest, Quality
 from contracts.shape import ShapeProgram
 from contracts.stage import L0Parameters, StageContract, load_contract
-from tasks.geometry import catalogue
+from tasks.geometry import catalogue, concepts
 from tasks.geometry.canonical import canonicalize, rest_on_ground, seat_flat
 from tasks.geometry.checks import GeometryChecks, evaluate, geometry_metrics
 from tasks.geometry.collision import CoacdSettings, convex_parts, union_volume
@@ -133,10 +133,15 @@ def mesh_from_text(request: AssetRequest, settings: L0Settings) -> tuple[Arrays,
     elif design.program.category in SEATED_CATEGORIES:
         mesh, _ = seat_flat(mesh)
     mesh = final_size(mesh, design.size)
+    concept = design.concept
+    if concept is not None and concept.category in concepts.STUFFED_CATEGORIES:
+        _final, stretch = catalogue.final_scale(design.size, design.program, concept.typical_size_m or 0.0)
+        concept = concepts.stuffed_as_built(concept, float(mesh.extents.max()), float(mesh.volume), stretch,
+                                           request.text or "")
     program = design.program.model_copy(update={"target_extent_m": tuple(float(v) for v in mesh.extents)})
     info = BuildInfo(source="text", name=design.program.name, category=design.program.category, entry=design.entry,
                      program=program, size=design.size, modifiers=design.modifiers, reoriented=rotated,
-                     warnings=design.warnings, concept=sized_concept(design.concept, mesh))
+                     warnings=design.warnings, concept=sized_concept(concept, mesh))
     return mesh_to_arrays(mesh), info
 
 
