@@ -172,9 +172,15 @@ def _assign(ext: list[float | None], word: str, val: float) -> None:
         ext[0] = ext[1] = val
 
 
+# a tube's diameters ('8 mm OD', 'ID 5 mm', '4 mm inner diameter'): stripped with their number, so 'diameter' is not
+# read as the head noun (tasks.geometry.dims_words binds them to the tube)
+_TUBE_WORDS = r"(?:(?:outer|outside|external|inner|inside|internal)\s+diam(?:eter)?|o\.?d\.?|i\.?d\.?|bore)(?![a-z])"
+_TUBE_RE = re.compile(rf"{_NUM}\s*{_UNIT_RE}\s*{_TUBE_WORDS}|\b{_TUBE_WORDS}\s*(?:of|:|=)?\s*{_NUM}\s*{_UNIT_RE}", re.I)
+
+
 def _strip_numeric_sizes(text: str) -> str:
     t = text.replace("×", "x")
-    for rx in (_DIMS_RE, _PREFIX_RE, _ONE_RE):
+    for rx in (_TUBE_RE, _DIMS_RE, _PREFIX_RE, _ONE_RE):
         t = rx.sub(" ", t)
     return t
 
@@ -221,12 +227,13 @@ _UNIT_WORDS = r"(?:metres?|meters?|foot|feet|yards?|inch(?:es)?|centimetres?|cen
 _NUMBER_WORDS = {"half a": "0.5", "half an": "0.5", "a quarter": "0.25", "a": "1", "an": "1", "one": "1", "two": "2",
                  "three": "3", "four": "4", "five": "5", "six": "6", "ten": "10", "twelve": "12"}
 _WORD_SIZE = re.compile(rf"\b({'|'.join(sorted(_NUMBER_WORDS, key=len, reverse=True))})[\s-]+"
-                        rf"(?={_UNIT_WORDS}[\s-]+(?:long|tall|wide|high|across|thick|deep|in diameter)\b)", re.I)
+                        rf"(?={_UNIT_WORDS}[\s-]+(?:long|tall|wide|high|across|thick|deep|in diameter|of)\b)", re.I)
 
 
 def normalise_sizes(text: str) -> str:
     """'an 8-cm-tall cat' -> 'an 8 cm tall cat' (so the size binds to its axis); number words before a unit and a
-    dimension as digits ('about a metre long' -> 'about 1 metre long', 'half a metre wide' -> '0.5 metre wide')."""
+    dimension as digits ('about a metre long' -> 'about 1 metre long', 'half a metre wide' -> '0.5 metre wide'), or a
+    length of a material ('one metre of tubing' -> '1 metre of tubing')."""
     text = _WORD_SIZE.sub(lambda m: f"{_NUMBER_WORDS[m.group(1).lower()]} ", text)
     return _HYPHEN_SIZE.sub(lambda m: f"{m.group(1)} {m.group(2)} ", text)
 

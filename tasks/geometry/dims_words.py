@@ -18,14 +18,25 @@ _UNITS = {"mm": 0.001, "millimeter": 0.001, "millimetre": 0.001, "millimeters": 
           "cm": 0.01, "centimeter": 0.01, "centimetre": 0.01, "centimeters": 0.01, "centimetres": 0.01, "m": 1.0,
           "meter": 1.0, "metre": 1.0, "meters": 1.0, "metres": 1.0, "in": 0.0254, "inch": 0.0254, "inches": 0.0254,
           '"': 0.0254, "ft": 0.3048, "foot": 0.3048, "feet": 0.3048, "yd": 0.9144, "yard": 0.9144, "yards": 0.9144}
-_MEASURE = re.compile(r"(?:\b(length|thickness|diameter|width)\s*(?:of|:|=)?\s*)?(\d+(?:\.\d+)?)\s*"
+# a tube's diameters: 'OD', 'outer diameter', 'ID', 'inner diameter', 'bore' ('8 mm OD 5 mm ID', 'ID 6 mm, OD 9 mm')
+_DIAMETERS = (r"(?:outer|outside|external|inner|inside|internal)\s+diam(?:eter)?|o\.?d\.?|i\.?d\.?|bore")
+_MEASURE = re.compile(r"(?:\b(length|thickness|diameter|width|" + _DIAMETERS + r")\s*(?:of|:|=)?\s*)?"
+                      r"(\d+(?:\.\d+)?)\s*"
                       r"(mm|millimet(?:er|re)s?|cm|centimet(?:er|re)s?|m|met(?:er|re)s?|inch(?:es)?|in|\"|ft|foot|"
-                      r"feet|yd|yards?)\b(?:\s*(?:in\s+)?(long|length|thick|thickness|wide|width|diameter|dia|across|"
-                      r"round|gauge))?", re.I)
+                      r"feet|yd|yards?)(?![a-z])(?:\s*(?:in\s+)?(long|length|thick|thickness|wide|width|diameter|dia|"
+                      r"across|round|gauge|" + _DIAMETERS + r")(?![a-z]))?", re.I)
 THIN_PLANS = frozenset({"sheet", "strap"})
 CROSS_SECTION_MAX = 0.06  # a bare size under this share of the good's typical size measures its cross-section [-]
 CROSS_WORDS = {"thick": "thickness", "thickness": "thickness", "diameter": "diameter", "dia": "diameter",
-               "gauge": "diameter", "wide": "width", "width": "width", "across": "diameter", "round": "diameter"}
+               "gauge": "diameter", "wide": "width", "width": "width", "across": "diameter", "round": "diameter",
+               "od": "diameter", "outer": "diameter", "outside": "diameter", "external": "diameter", "id": "inner",
+               "inner": "inner", "inside": "inner", "internal": "inner", "bore": "inner"}
+
+
+def _cross_word(word: str) -> str | None:
+    """What a size word measures ('8 mm OD' the outer diameter, '5 mm ID' the bore), None when it is no cross word."""
+    word = re.sub(r"[.\s]+", " ", word.lower()).strip()
+    return CROSS_WORDS.get(word) or CROSS_WORDS.get(word.replace(" ", "")) or CROSS_WORDS.get(word.split(" ")[0])
 
 
 @dataclass
@@ -57,7 +68,8 @@ def _measures(text: str) -> list[tuple[str | None, float, str]]:
         if prefix and out and out[-1][2].lower().endswith(prefix):  # 'a 3 m length of 10 mm rope': 'length' is 3 m's
             prefix = ""
         word = (m.group(4) or prefix).lower()
-        what = CROSS_WORDS.get(word) or ("length" if word in ("long", "length") else None)
+        what = _cross_word(word) if word else None
+        what = what or ("length" if word in ("long", "length") else None)
         out.append((what, metres, m.group(0).strip()))
     return out
 
@@ -78,8 +90,8 @@ def bind(text: str, entry: LexiconEntry | None, states: list[str]) -> Bound | No
     base_state = {**entry.params}
     length0 = typical / _unit_longest(entry.plan, base_state)  # the material's own length (a strip's, a flat sheet's)
     bound = Bound()
-    cross = [(w, v, s) for w, v, s in measures
-             if (w in ("thickness", "diameter", "width") or w is None) and v < CROSS_SECTION_MAX * max(typical, length0)]
+    cross = [(w, v, s) for w, v, s in measures if (w in ("thickness", "diameter", "width", "inner") or w is None)
+             and v < CROSS_SECTION_MAX * max(typical, length0)]
     if entry.plan == "sheet":
         thick = [(v, s) for w, v, s in cross if w == "thickness"]
         if not thick:
@@ -103,7 +115,16 @@ def bind(text: str, entry: LexiconEntry | None, states: list[str]) -> Bound | No
             bound.notes.append(f"'{s}' is the {'band laid flat' if closed else 'strip'}'s own length")
         w0, t0 = float(p0.width), float(p0.thickness)  # type: ignore[attr-defined]
         width, thickness = w0 * length0, t0 * length0
+        bore0 = float(getattr(p0, "bore", 0.0))
+        inner = [(v, s) for w, v, s in cross if w == "inner"]
+        outer = [v for w, v, _s in cross if w == "diameter"]
+        if inner and bore0 > 0 and not outer:  # '6 mm ID' alone: the wall the tube has at its own bore ratio
+            width = thickness = inner[0][0] / bore0
         for w, v, s in cross:
+            if w == "inner":
+                bound.consumed.append(s)
+                bound.notes.append(f"'{s}' is its inner diameter")
+                continue
             if w in ("diameter",) or (w is None and p0.round) or (w == "thickness" and p0.round):  # type: ignore[attr-defined]
                 width = thickness = v
             elif w == "thickness":
@@ -122,6 +143,9 @@ def bind(text: str, entry: LexiconEntry | None, states: list[str]) -> Bound | No
             bound.notes.append(f"{length:g} m of it is built coiled")
         bound.longest_m = _unit_longest("strap", params) * length
         bound.mass_factor = (length / length0) * (width * thickness) / (w0 * t0 * length0 ** 2)
+        if bore0 > 0:  # a tube weighs its wall: (OD^2 - ID^2) against the entry's own
+            bore = min(inner[0][0] / max(width, 1e-9), 0.95) if inner else bore0
+            bound.mass_factor *= (1.0 - bore ** 2) / (1.0 - bore0 ** 2)
     if params.get("state") == (states[0] if states else entry.params.get("state")) or "state" not in params:
         params.pop("state", None)  # the state the text or the entry gives is applied as a state (concepts.build)
     bound.params = params

@@ -1,6 +1,6 @@
 """Sizes that measure a thin good's material and servings of soft desserts (#35), on phrasings other than the fifth
 blind set's: a sheet's thickness binds to the sheet (a rolled mat keeps the roll's size), a rope's length and
-diameter to the rope (a long one coiled), a band's length to the band laid flat; 'a jello cup' is one snack cup's
+diameter to the rope (a long one coiled), a band's length to the band laid flat, a tube's outer and inner diameters to the tube; 'a jello cup' is one snack cup's
 jelly, not a 300 ml mould.
 
 Real masses: typical retail or reference figures for the object as described (the source in each line)."""
@@ -31,6 +31,13 @@ CASES: dict[str, tuple[str, tuple[float, float], tuple[float, float], float, str
     "a loop resistance band, 41 inches": (
         "resistance_band", (0.6, 1.1), (0.002, 0.05), 0.17,
         "retail 41 in (208 cm loop) medium pull-up bands, 2.2 cm wide: 0.15-0.2 kg"),
+    # a tube's outer and inner diameters bind to the tube; it weighs its wall
+    "50 cm of silicone tube, ID 6 mm, OD 9 mm": (
+        "tubing", (0.15, 0.3), (0.005, 0.03), 0.02, "0.5 m x pi/4 (9^2 - 6^2) mm^2 = 17.7 cm^3 of silicone at 1.15 g/cm^3"),
+    "one metre of aquarium air tubing, 4 mm inner diameter and 6 mm outer diameter": (
+        "tubing", (0.3, 0.5), (0.004, 0.03), 0.019, "1 m x pi/4 (6^2 - 4^2) mm^2 = 15.7 cm^3 of PVC / silicone"),
+    "2 m of latex tubing with a 6 mm bore": (
+        "tubing", (0.6, 1.0), (0.005, 0.05), 0.085, "2 m of 6 mm ID, ~9.5 mm OD latex tubing: 88 cm^3 at 0.95 g/cm^3"),
     "a jelly cup": ("jelly", (0.05, 0.08), (0.025, 0.06), 0.11, "retail 4 oz (113 g) gelatin snack cups"),
     "a cup of lime jello": ("jelly", (0.05, 0.08), (0.025, 0.06), 0.11, "retail 4 oz (113 g) gelatin snack cups"),
     "a pudding snack cup, turned out": ("jelly", (0.05, 0.08), (0.025, 0.06), 0.1,
@@ -67,6 +74,8 @@ def test_a_thicker_sheet_weighs_more_and_rolls_fatter() -> None:
     ("a 3 m length of 10 mm rope", [("length", 3.0), (None, 0.01)]),
     ("a mat 6mm thick", [("thickness", 0.006)]),
     ("rope, diameter 8 mm, 2 m long", [("diameter", 0.008), ("length", 2.0)]),
+    ("3 m of 10 mm OD 7 mm ID hose", [(None, 3.0), ("diameter", 0.01), ("inner", 0.007)]),
+    ("tube, I.D. 4 mm, outside diameter 7 mm", [("inner", 0.004), ("diameter", 0.007)]),
 ])
 def test_measures_say_what_they_measure(text: str, expect: list[tuple[str | None, float]]) -> None:
     got = [(w, round(v, 4)) for w, v, _s in _measures(text)]

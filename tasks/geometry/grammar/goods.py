@@ -1160,6 +1160,8 @@ class StrapParams(Model):
     width: float = Field(default=0.012, gt=0.0, le=0.3, description="strip width / length [-]")
     thickness: float = Field(default=0.002, gt=0.0, le=0.1, description="strip thickness / length [-]")
     round: bool = Field(default=False, description="a round cord or hose rather than a flat strip")
+    bore: float = Field(default=0.0, ge=0.0, lt=1.0, description="a tube's inner over outer diameter (drawn solid; "
+                        "its mass is the wall's: tasks.geometry.dims_words) [-]")
     turns: float = Field(default=3.0, ge=1.0, le=8.0, description="turns of a coil [-]")
     ends: Literal["none", "handles", "buckle", "ring"] = Field(default="none", description="what the ends carry")
 
