@@ -790,6 +790,7 @@ def build(reading: Reading, text: str) -> tuple[ShapeProgram, ConceptMatch, list
     if reading.look_only and (reading.donor or reading.donor_plan) is not None and not match.hollow:
         match = match.model_copy(update={"density_kg_per_m3": None})  # its typical mass at the built size (L1)
     program, match, states = _whole_object(reading, program, match, normalise(text), states, warnings)
+    match = graded(match, normalise(text))
     if reading.vacuum:  # the piece on the flat sealed film of its vacuum pack; the film's mass is the piece's
         before, program = program, pouch_words.film_wrapped(program)
         piece = match.density_kg_per_m3 * _volume(before) if match.density_kg_per_m3 is not None \
@@ -1383,6 +1384,45 @@ def size_scaled(match: ConceptMatch, final_longest_m: float, stretch: float = 1.
 
 
 THIN_GOODS_PLANS = frozenset({"garment", "bag", "sheet", "glove", "sock", "hat", "strap"})
+
+# Sheet goods heavier than the lined woven fabric a textile good's typical mass is for (canvas or polyester with its
+# lining, zip and trim): the whole good's mass over that one's (3 mm fabric-laminated neoprene ~0.9-1.0 kg/m^2 and
+# 1-1.4 mm leather ~1.0-1.2 kg/m^2 against ~0.3-0.5 kg/m^2 of lined canvas, the trim the same: supplier data sheets)
+SHEET_FABRICS = {"neoprene": 1.5, "leather": 2.0, "suede": 1.6}
+# Foam grades denser than the upholstery PU foam or polyester fill a foam good's typical density is for [kg/m^3]:
+# memory (visco-elastic) foam 3-5 lb/ft^3 = 48-80, latex foam 65-95, high-density PU 1.8-2.8 lb/ft^3 = 29-45
+# (foam makers' and CertiPUR-US density classes)
+FOAM_GRADES = {"memory foam": 60.0, "viscoelastic foam": 60.0, "visco elastic foam": 60.0, "latex foam": 75.0,
+               "high density foam": 40.0}
+
+
+def graded(match: ConceptMatch, text: str) -> ConceptMatch:
+    """The match weighed for a heavier grade of its material that the text names and its entry is not already made
+    of: 'a neoprene pencil case' (a textile good's fabric x SHEET_FABRICS), 'a memory foam bed pillow' (a PU-foam
+    good's density raised to FOAM_GRADES); a stated mass or a hollow shell is kept."""
+    entry = load_lexicon().entries.get(match.concept)
+    if entry is None or match.stated_mass_kg or match.hollow or match.density_kg_per_m3 is None:
+        return match
+    own = normalise(" ".join([*entry.nouns, entry.mass_source]))
+    factor, why = 1.0, ""
+    if match.category == "textile" or match.body_plan in THIN_GOODS_PLANS:
+        for word, f in SHEET_FABRICS.items():
+            if re.search(rf"\b{word}\b", text) and not re.search(rf"\b{word}\b", own):
+                factor, why = f, f"{word}: x{f:g} the areal mass of a woven fabric"
+                break
+    elif match.default_material == "pu_foam":
+        for words, rho in FOAM_GRADES.items():
+            if re.search(rf"\b{words}\b", text) and not re.search(rf"\b{words}\b", own) \
+                    and rho > match.density_kg_per_m3:
+                factor, why = rho / match.density_kg_per_m3, f"{words}: {rho:g} kg/m^3"
+                break
+    if factor == 1.0:
+        return match
+    return match.model_copy(update={
+        "density_kg_per_m3": match.density_kg_per_m3 * factor,
+        "typical_mass_kg": match.typical_mass_kg * factor if match.typical_mass_kg else None,
+        "mass_source": f"{match.mass_source or 'lexicon'}; {why}"})
+
 
 # Stuffed toys: a plush weighs its sourced mass (fabric and a loft of fill) scaled with its size, not its built
 # volume x a density: the grammar's bodies of one toy differ up to 4x in volume with their proportions and pose (a

@@ -90,8 +90,15 @@ def _nlp() -> Any:
                          f"{SPACY_MODEL}") from exc
 
 
+# a fastening said as a phrasal verb before the noun is an adjective ('a zip-up makeup bag' is a zippered bag; the
+# tagger made 'zip' the object and 'up' a preposition ending its phrase)
+_FASTENED = re.compile(r"\b(?:zip|zipper)[- ](?:up|top|around|round)\b(?=\s+[a-z])", re.I)
+_BUTTONED = re.compile(r"\bbutton[- ](?:up|down)\b(?=\s+[a-z])", re.I)
+
+
 def _prepare(text: str) -> tuple[str, str | None]:
     """(text with 'X-like' / 'X-ish' phrases taken out, the X words) and hyphens between words as spaces."""
+    text = _BUTTONED.sub("buttoned", _FASTENED.sub("zippered", text))
     like = None
     m = _LIKE.search(text)
     if m is not None:

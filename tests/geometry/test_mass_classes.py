@@ -76,6 +76,13 @@ MASSES: dict[str, tuple[float, str]] = {
     "a stuffed elephant sitting up": (0.25, "retail listings of 25 cm plush elephants (0.2-0.4 kg)"),
     "a handmade sock monkey": (0.2, "retail listings of 45-50 cm sock monkeys (0.15-0.3 kg)"),
     "a plush kitten curled up asleep": (0.2, "retail listings of 30 cm plush cats (0.15-0.3 kg)"),
+    # a heavier grade of the good's material, named before its noun
+    "a memory foam bed pillow": (1.3, "retail listings of standard 60 x 40 x 12 cm memory-foam pillows (1-1.8 kg)"),
+    "a memory foam seat cushion": (0.9, "retail listings of 45 x 35 x 7 cm memory-foam seat cushions (0.7-1.3 kg)"),
+    "a neoprene pencil case": (0.07, "retail listings of 20 cm neoprene zip pencil cases (50-90 g)"),
+    "a neoprene sleeve for a 13 inch laptop": (0.22, "retail listings of 13 in neoprene laptop sleeves (0.15-0.3 kg)"),
+    "a gel cold pack": (0.45, "retail listings of 25 x 15 cm reusable gel packs (0.35-0.55 kg)"),
+    "a zip-up toiletry bag": (0.1, "retail listings of 22 cm zipped toiletry bags (60-150 g)"),
 }
 
 

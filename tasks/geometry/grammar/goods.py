@@ -936,13 +936,15 @@ class BagParams(Model):
     sandwich bag (zip track at its mouth), a backpack-less sack; lying flat, standing, or crumpled; optionally part
     full of a fill (rice, sand, water) that slumps to its bottom. Height 1 (bottom to mouth) along x when lying."""
 
-    kind: Literal["tote", "drawstring", "zip", "sack", "carrier", "backpack"] = Field(default="tote", description=(
+    kind: Literal["tote", "drawstring", "zip", "sack", "carrier", "backpack", "pouch"] = Field(default="tote", description=(
         "tote; drawstring (a gathered neck and cords); zip; sack; carrier (a film carrying bag: two handle loops cut "
-        "from its top, creased film); backpack (a zipped pack: shoulder straps, top handle, front pocket)"))
+        "from its top, creased film); backpack (a zipped pack: shoulder straps, top handle, front pocket); pouch (a "
+        "zipped soft case: a pencil case, a make-up bag, a laptop sleeve: a padded slab with a zip and its pull along "
+        "its top edge, `gusset` its depth)"))
     state: Literal["flat", "standing", "crumpled"] = "flat"
     straps: bool = Field(default=False, description="a drawstring bag worn on the back: its cords run down both "
                          "sides to the bottom corners")
-    width: float = Field(default=0.9, gt=0.3, le=1.5, description="width / height [-]")
+    width: float = Field(default=0.9, gt=0.3, le=3.0, description="width / height [-]")
     gusset: float = Field(default=0.0, ge=0.0, le=0.6, description="depth of a standing bag's base / height [-]")
     handle: float = Field(default=0.55, ge=0.0, le=1.2, description="handle loop height above the mouth / height "
                           "(0: none) [-]")
@@ -965,6 +967,8 @@ def bag(p: BagParams) -> list[Part]:
         return _stand(_carrier(p, t)) if p.state == "standing" else _carrier(p, t)
     if p.kind == "backpack":
         return _backpack(p) if p.state == "standing" else _backpack_flat(p)
+    if p.kind == "pouch" and p.state != "crumpled":
+        return _stand(_zip_pouch(p)) if p.state == "standing" else _zip_pouch(p)
     if p.kind == "drawstring" and p.straps and p.state != "crumpled":
         return _stand(_drawstring_pack(p, t)) if p.state == "standing" else _drawstring_pack(p, t)
     if p.state == "crumpled":
@@ -1022,6 +1026,25 @@ def bag(p: BagParams) -> list[Part]:
             pts[0][0] = pts[-1][0] = 0.38
             parts += _flat_chain("handle" if k == 0 else "back handle", pts, p.handle_width / 2, t, blend=0.015)
     return _stand(parts) if standing else parts
+
+
+def _zip_pouch(p: BagParams) -> list[Part]:
+    """A zipped soft case lying flat, its zipped top edge at +x: a padded slab (depth `gusset`, at least two
+    layers), the zip's tape and teeth along the top edge, its pull tab hanging from one end, a seam round the sides."""
+    w = p.width
+    d = max(p.gusset, 2 * p.thickness, 0.04)
+    parts = [superellipsoid("body", (0.5, w / 2, d / 2), (0.0, 0.0, d / 2), ns=0.35, ew=0.2)]
+    tape = min(0.06, 0.3 * d + 0.02)
+    parts.append(box("zip tape", (2 * tape, 0.96 * w, 0.25 * d), (0.5 - 0.6 * tape, 0, 0.78 * d), edge=0.1 * d,
+                     blend=0.2 * tape))
+    parts.append(box("zip teeth", (0.35 * tape, 0.94 * w, 0.32 * d), (0.5 - 0.6 * tape, 0, 0.84 * d), edge=0.05 * d,
+                     blend=0.05 * tape))
+    y_end = 0.47 * w - 0.03
+    parts.append(box("zip slider", (0.9 * tape, 0.05, 0.36 * d), (0.5 - 0.6 * tape, y_end, 0.88 * d), edge=0.08 * d,
+                     blend=0.01))
+    parts.append(box("zip pull", (0.035, 0.11, 0.1 * d + 0.004), (0.5 - 0.6 * tape, y_end + 0.08, 0.98 * d),
+                     edge=0.003, blend=0.01, rot=(0, 0, -12)))
+    return parts
 
 
 def _carrier(p: BagParams, t: float) -> list[Part]:
