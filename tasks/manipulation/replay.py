@@ -18,12 +18,12 @@ from contracts.errors import InputError
 from tasks.asset_dir import AssetDir
 from tasks.geometry.gaussians import deform_gaussians
 from tasks.manipulation.data import read_attempt
-from tasks.manipulation.robot_view import (HAND_LINKS, gripper_boxes, gripper_spec, link_poses, panda_visual_meshes,
-                                           uses_urdf_hand)
 from tasks.manipulation.scene import VIDEO_FPS, VIDEO_SIZE
 from tasks.manipulation.video import PickPlaceVideo
 from tasks.record import ProbeRecording
 from tasks.record.trials import attempt_of_trial, recorded_trials, reported_trial, trial_of_attempt
+from tasks.render.robot_view import (HAND_LINKS, gripper_boxes, gripper_spec, link_poses, panda_visual_meshes,
+                                     uses_urdf_hand)
 from tasks.robot import PHASES
 
 ROBOT = "world/robot"
