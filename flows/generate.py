@@ -182,12 +182,21 @@ def run_manipulation(work: Path, device: Device, quality: str, agents: AgentConf
     options = (l3_manipulation.L3Options(device=device, cpu_threads=cpu_threads) if quality == "draft"
                else l3_manipulation.L3Options.standard(device, cpu_threads))
     record, _ = l3_manipulation.run_l3(work, options, agents, progress=progress)
-    n = shown_attempt(record)
-    if n is not None:
-        video = work / "renders" / "pick_and_place.mp4"
-        video.parent.mkdir(parents=True, exist_ok=True)
-        cached_file(pick_and_place_video_key(work, n), video, lambda path: replay(work, n, video=path))
+    write_pick_and_place_video(work, record)
     return record
+
+
+def write_pick_and_place_video(work: Path, record: ManipulationRecord) -> Path | None:
+    """renders/pick_and_place.mp4 of the attempt the record shows (cached by the attempt's bytes); None, and an earlier
+    L3's video removed, when the record shows no recorded trial (no grasp, or its interaction data is absent)."""
+    n = shown_attempt(record)
+    video = work / "renders" / "pick_and_place.mp4"
+    if n is None or not (work / "interaction" / f"attempt_{n:03d}").is_dir():
+        video.unlink(missing_ok=True)
+        return None
+    video.parent.mkdir(parents=True, exist_ok=True)
+    cached_file(pick_and_place_video_key(work, n), video, lambda path: replay(work, n, video=path))
+    return video
 
 
 def pick_and_place_video_key(work: Path, attempt: int) -> str:
@@ -195,7 +204,7 @@ def pick_and_place_video_key(work: Path, attempt: int) -> str:
     (rendering it takes ~10 s on the CPU; a warm rerun copies it)."""
     root = Path(__file__).resolve().parent.parent
     renderer = [root / "tasks" / "manipulation" / f"{m}.py" for m in
-                ("replay", "scene", "robot_view", "data", "particle_frames", "video")]
+                ("replay", "scene", "data", "particle_frames", "video")]  # the robot (robot_view) is under tasks/render
     renderer += sorted(p for p in (root / "tasks" / "render").glob("*.py") if not p.name.startswith(("card", "bench")))
     code = source_digest([*renderer, root / "tasks" / "geometry" / "gaussians.py", root / "tasks" / "robot" / "panda.py",
                           root / "tasks" / "robot" / "trajectory.py", root / "contracts" / "robot.py",
@@ -246,6 +255,24 @@ def write_asset_records(adir: AssetDir, manifest: AssetManifest) -> AssetManifes
     manifest = manifest.model_copy(update={"files": _files(adir.path)})
     adir.write_manifest(manifest)
     return manifest
+
+
+def refresh_after_l3(work: Path, record: ManipulationRecord) -> AssetManifest | None:
+    """After `deformsmith manipulate` re-ran L3 on a published asset (work: its staged working copy): everything that
+    carries L3's result or the adopted material, rewritten from the new manipulation.json as generate writes it:
+    asset.json (material, L3's validation line, action plan, outcome, L3's cache keys, file roles), the PhysGaussian
+    config, the card and the pick-and-place video. None (nothing rewritten) when the directory has no asset.json."""
+    adir = AssetDir(work)
+    if not adir.has("manifest"):
+        return None
+    old = adir.manifest()
+    write_pick_and_place_video(work, record)
+    l3 = l3_summary(record)
+    validation = [s for s in old.validation if s.stage != "L3"] + [l3]
+    prov = old.provenance.model_copy(update={"cache_keys": cache_keys(work, record)})
+    return write_asset_records(adir, old.model_copy(update={
+        "validation": validation, "action_plan": reported_plan(record),
+        "manipulation": manipulation_outcome(l3.metrics), "provenance": prov}))
 
 
 def _partial_prefix(out_dir: Path) -> str:

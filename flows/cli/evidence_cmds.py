@@ -3,7 +3,6 @@
 
 from __future__ import annotations
 
-import json
 from pathlib import Path
 from typing import Any
 
@@ -81,13 +80,10 @@ def attempt_trials(root: Path, a: Attempt) -> list[int]:
     """The trial numbers (tasks.record.trials: one numbering with the console, manipulation.json and the card) of an
     L3 harness attempt's simulated pick-and-places, from the interaction folders its evidence names."""
     # lazy: contracts.asset_dir's models (~0.1 s; --help imports every command module)
-    from tasks.record.trials import trial_of_folder
+    from tasks.record.trials import read_record, trial_of_folder
 
-    if a.stage != "L3" or not (root / "manipulation.json").is_file():
-        return []
-    try:
-        record = json.loads((root / "manipulation.json").read_text(encoding="utf-8"))
-    except (OSError, ValueError):
+    record = read_record(root) if a.stage == "L3" else None  # typed; None when absent or not a valid record
+    if record is None:
         return []
     found = [trial_of_folder(record, rec) for rec in a.evidence.recordings]
     return [n for n in found if n is not None]

@@ -44,6 +44,7 @@ def manipulate(
     if cache_dir is not None:
         use_cache_root(cache_dir)
     check_asset_dir(asset)  # the asset directory, its parent and the cache root usable, before L3 runs
+    from flows.generate import refresh_after_l3  # lazy: pulls every layer's flow (--help imports every command module)
     # lazy: pulls prefect, warp, pybullet (--help imports every command module)
     from flows.l3_manipulation import L3Options, run_l3
 
@@ -58,6 +59,10 @@ def manipulate(
             t0 = time.perf_counter()
             record, outcome = run_l3(work, options, progress=progress)
             wall_time_s = time.perf_counter() - t0
+            # a published asset: asset.json, the PhysGaussian config, the card and the video follow the new L3 (its
+            # adopted material, L3's line and plan), swapped in with manipulation.json
+            status.update("L3: asset.json, card and video refreshed from manipulation.json")
+            refresh_after_l3(work, record)
     summary = {**record.model_dump(mode="json", include={"passed", "status", "message", "reason", "outcome", "forces",
                                                          "held_out", "attempt", "values", "numerics",
                                                          "material_source", "recordings"}),

@@ -1,4 +1,9 @@
-"""Reference renders on the CPU without a display: orthographic z-buffer rasteriser with Lambert shading."""
+"""Reference renders on the CPU without a display: orthographic z-buffer rasteriser with Lambert shading.
+
+L0's own views stay in tasks/geometry, not tasks/render (#37): L0's writer (outputs.write_outputs) and the shape
+Designer's vision Critic (shape_designer.render_pngs) draw them, and tasks/render sits above geometry in the layering
+test's TASKS_ORDER (it deforms geometry's Gaussians and draws the robot), so a move would be an import back up.
+"""
 
 from __future__ import annotations
 

@@ -15,14 +15,15 @@ from pathlib import Path
 import numpy as np
 
 from contracts.errors import InputError
+from tasks.asset_dir import AssetDir
 from tasks.geometry.gaussians import deform_gaussians
 from tasks.manipulation.data import read_attempt
-from tasks.manipulation.robot_view import (HAND_LINKS, gripper_boxes, gripper_spec, link_poses, panda_visual_meshes,
-                                           uses_urdf_hand)
 from tasks.manipulation.scene import VIDEO_FPS, VIDEO_SIZE
 from tasks.manipulation.video import PickPlaceVideo
 from tasks.record import ProbeRecording
-from tasks.record.trials import attempt_of_trial, reported_trial, trial_of_attempt
+from tasks.record.trials import attempt_of_trial, recorded_trials, reported_trial, trial_of_attempt
+from tasks.render.robot_view import (HAND_LINKS, gripper_boxes, gripper_spec, link_poses, panda_visual_meshes,
+                                     uses_urdf_hand)
 from tasks.robot import PHASES
 
 ROBOT = "world/robot"
@@ -125,18 +126,17 @@ def replay(asset_dir: Path, attempt: int | None = None, frames_dir: Path | None 
 def _which(asset_dir: Path, attempt: int | None, trial: int | None) -> tuple[int | None, int | None]:
     """(interaction folder index, trial number) of the trial to replay: the one asked for, else the one
     manipulation.json reports, else the last stored folder (its trial number when manipulation.json names it)."""
-    import json
-
-    path = asset_dir / "manipulation.json"
-    record = json.loads(path.read_text(encoding="utf-8")) if path.is_file() else {}
+    adir = AssetDir(asset_dir)
+    record = adir.manipulation() if adir.has("manipulation") else None  # InputError when it is not a valid record
     if trial is not None:
-        found = attempt_of_trial(record, trial)
+        found = attempt_of_trial(record, trial) if record is not None else None
         if found is None:
-            numbers = [r.get("trial") or i + 1 for i, r in enumerate(record.get("attempts") or [])
-                       if r.get("attempt") is not None]
+            numbers = recorded_trials(record) if record is not None else []
             raise InputError(f"{asset_dir} has no recorded trial {trial}; recorded trials: {numbers}")
         return found, trial
-    if attempt is None and record:
+    if record is None:
+        return attempt, None
+    if attempt is None:
         n = reported_trial(record)
         if n is not None and attempt_of_trial(record, n) is not None:
             return attempt_of_trial(record, n), n

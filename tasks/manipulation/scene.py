@@ -1,6 +1,6 @@
-"""A pick-and-place attempt as video frames: the robot (tasks.manipulation.robot_view), the table on a floor before a
+"""A pick-and-place attempt as video frames: the robot (tasks.render.robot_view), the table on a floor before a
 backdrop, the deforming object (its Gaussians driven by the recorded particles) and a caption, rasterised on the CPU
-with one depth test (tasks.manipulation.raster) from a fixed camera that sees the grasp, the lift and the place.
+with one depth test (tasks.render.mesh_raster) from a fixed camera that sees the grasp, the lift and the place.
 
 `attempt_timeline` resamples an attempt at the video rate from t = 0: the recorded approach (robot only, object at
 rest), then the simulated frames. Deterministic: the same arrays give the same bytes. Lengths in metres, times in s.
@@ -14,9 +14,9 @@ from typing import Any
 import numpy as np
 
 from tasks.geometry.gaussians import deform_gaussians
-from tasks.manipulation import raster
-from tasks.manipulation.render import Camera
-from tasks.manipulation.robot_view import gripper_spec, link_poses, robot_meshes
+from tasks.render import mesh_raster as raster
+from tasks.render.camera import Camera
+from tasks.render.robot_view import gripper_spec, link_poses, robot_meshes
 from tasks.robot import PHASES
 
 VIDEO_FPS = 30.0

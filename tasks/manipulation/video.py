@@ -17,8 +17,6 @@ from typing import Any
 
 import numpy as np
 
-from tasks.manipulation.robot_view import (FLANGE_LINK, HAND_LINKS, box_mesh, gripper_boxes, gripper_spec, link_poses,
-                                           panda_visual_meshes, shade, tcp_frame, uses_urdf_hand)
 from tasks.manipulation.scene import VIDEO_FPS, VIDEO_SIZE, attempt_timeline, backdrop, object_gaussians, view_direction
 from tasks.render import mesh_raster as raster
 from tasks.render.attempt_video import (SplatSet, choose_corner, compose, inset_camera, inset_size, paste_inset,
@@ -26,6 +24,8 @@ from tasks.render.attempt_video import (SplatSet, choose_corner, compose, inset_
 from tasks.render.camera import Camera
 from tasks.render.captions import caption
 from tasks.render.gripper_model import Part, gripper_parts, robotiq_links
+from tasks.render.robot_view import (FLANGE_LINK, HAND_LINKS, box_mesh, gripper_boxes, gripper_spec, link_poses,
+                                     panda_visual_meshes, shade, tcp_frame, uses_urdf_hand)
 from tasks.render.shading import deformed_normals, normals_from_covariances
 from tasks.robot import PHASES
 

@@ -3,54 +3,80 @@ which is its row's position in manipulation.json's `attempts`. The console's pro
 manipulation.json (each row's `trial`, the reported `trial`), `deformsmith evidence` (the harness attempt's trial),
 the card, the pick-and-place video, `deformsmith replay --trial N` and the trial recordings
 (recordings/L3_trial_NN.rrd) all use this number. A row's `attempt` is not a trial number: it names the
-interaction folder (interaction/attempt_NNN, from 0) that holds the trial's states."""
+interaction folder (interaction/attempt_NNN, from 0) that holds the trial's states.
+
+Every function reads the typed record (contracts.manipulation.ManipulationRecord, as AssetDir.manipulation loads it);
+a record written before #36 lacks the rows' `trial`: a row's number is then its position, which is what the console
+printed.
+"""
 
 from __future__ import annotations
 
-from typing import Any
+from pathlib import Path
 
 from contracts.asset_dir import attempt_path
+from contracts.errors import InputError
+from contracts.manipulation import ManipulationRecord, TrialRow
+from tasks.asset_dir import AssetDir
 
 
-def trial_rows(record: dict[str, Any]) -> list[dict[str, Any]]:
-    """manipulation.json's rows, each with its `trial` number (a record written before #36 lacks the key: its
-    position then, which is what the console printed)."""
-    return [{**row, "trial": int(row.get("trial") or i + 1)} for i, row in enumerate(record.get("attempts") or [])]
-
-
-def trial_of_attempt(record: dict[str, Any], attempt: int | None) -> int | None:
-    """The trial number of the row whose interaction folder is attempt_NNN (None: no such row)."""
-    if attempt is None:
+def read_record(asset_dir: Path) -> ManipulationRecord | None:
+    """manipulation.json of an asset directory (or a run's folder), typed; None when there is none or it is not a
+    valid record (the readers that only count or number trials go on without it)."""
+    adir = AssetDir(asset_dir)
+    if not adir.has("manipulation"):
         return None
-    return next((r["trial"] for r in trial_rows(record) if r.get("attempt") == attempt), None)
+    try:
+        return adir.manipulation()
+    except InputError:
+        return None
 
 
-def trial_of_folder(record: dict[str, Any], folder: str) -> int | None:
+def _numbered(record: ManipulationRecord) -> list[tuple[int, TrialRow]]:
+    """(trial number, row) of each of manipulation.json's rows."""
+    return [(row.trial or i + 1, row) for i, row in enumerate(record.attempts)]
+
+
+def trial_rows(record: ManipulationRecord) -> list[TrialRow]:
+    """manipulation.json's rows, each with its `trial` number (a record written before #36 lacks it: its position)."""
+    return [row if row.trial == n else row.model_copy(update={"trial": n}) for n, row in _numbered(record)]
+
+
+def trial_of_attempt(record: ManipulationRecord, attempt: int | None) -> int | None:
+    """The trial number of the row whose interaction folder is attempt_NNN (None: no such row)."""
+    return record.trial_of_attempt(attempt)
+
+
+def trial_of_folder(record: ManipulationRecord, folder: str) -> int | None:
     """The trial number of an interaction folder named in the evidence (e.g. 'interaction/attempt_000')."""
-    return next((r["trial"] for r in trial_rows(record) if r.get("attempt") is not None
-                 and attempt_path(int(r["attempt"])) == folder), None)
+    return next((n for n, row in _numbered(record) if row.attempt is not None and attempt_path(row.attempt) == folder),
+                None)
 
 
-def attempt_of_trial(record: dict[str, Any], trial: int) -> int | None:
+def attempt_of_trial(record: ManipulationRecord, trial: int) -> int | None:
     """The interaction folder index (attempt_NNN) of trial `trial` (1-based); None when that trial stored no states
     (a plan that could not run) or there is no such trial."""
-    row = next((r for r in trial_rows(record) if r["trial"] == trial), None)
-    return None if row is None or row.get("attempt") is None else int(row["attempt"])
+    return next((row.attempt for n, row in _numbered(record) if n == trial), None)
 
 
-def reported_trial(record: dict[str, Any]) -> int | None:
+def recorded_trials(record: ManipulationRecord) -> list[int]:
+    """The numbers of the trials that stored states (an interaction folder), in the order run."""
+    return [n for n, row in _numbered(record) if row.attempt is not None]
+
+
+def reported_trial(record: ManipulationRecord) -> int | None:
     """The trial a record reports: the adopted one, else the best failed one, else the last that stored states."""
-    for n in (record.get("trial"), (record.get("best_attempt") or {}).get("trial")):
+    for n in (record.trial, record.best_attempt.trial if record.best_attempt else None):
         if n:
-            return int(n)
-    stored = [r["trial"] for r in trial_rows(record) if r.get("attempt") is not None]
+            return n
+    stored = recorded_trials(record)
     return stored[-1] if stored else None
 
 
-def simulated_trials(record: dict[str, Any]) -> int:
+def simulated_trials(record: ManipulationRecord) -> int:
     """How many trials simulated a pick-and-place (a plan that could not run simulated nothing)."""
-    return sum(1 for r in record.get("attempts") or [] if r.get("labels") and not r["labels"].get("plan_failed"))
+    return record.simulated_trials()
 
 
-__all__ = ["attempt_of_trial", "reported_trial", "simulated_trials", "trial_of_attempt", "trial_of_folder",
-           "trial_rows"]
+__all__ = ["attempt_of_trial", "read_record", "recorded_trials", "reported_trial", "simulated_trials",
+           "trial_of_attempt", "trial_of_folder", "trial_rows"]

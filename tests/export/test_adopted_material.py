@@ -155,3 +155,55 @@ def test_without_an_adopted_revision_the_material_is_l2s(asset: AssetDir) -> Non
     _adopt_revision(asset, passed=False)  # L3 revised, the robot did not pass with it: the asset keeps L2's
     assert asset.adopted_material().material == l2 and asset.adopted_material().source == "L2"
     assert export_inputs.export_material(asset).youngs_modulus_pa == l2.youngs_modulus_pa
+
+
+def test_a_manipulate_rerun_that_adopts_a_revision_refreshes_the_asset(asset: AssetDir, tmp_path: Path,
+                                                                       monkeypatch: pytest.MonkeyPatch) -> None:
+    """`deformsmith manipulate DIR` re-run on a published asset (L3 itself stood in for: it writes manipulation.json
+    as an L3 that adopted a revision, then as one that did not pass): asset.json (material, L3's line, plan, outcome),
+    the PhysGaussian config and the card follow manipulation.json each time, swapped in with it."""
+    from typer.testing import CliRunner
+
+    import flows.l3_manipulation as l3
+    from contracts.agents import StageOutcome
+    from flows.cli.main import app
+    from tasks.render.card_text import si
+
+    l2 = asset.material_model()
+    passed = {"now": True}
+    revised: dict[str, Material] = {}
+
+    def fake_l3(work: Path, *args: object, **kwargs: object) -> tuple[Any, StageOutcome]:
+        revised["material"] = _adopt_revision(AssetDir(work), passed=passed["now"])
+        return AssetDir(work).manipulation(), StageOutcome(stage="L3", status="accepted" if passed["now"] else
+                                                           "no_valid_candidate")
+
+    monkeypatch.setattr(l3, "run_l3", fake_l3)
+    assert asset.manifest().material == l2 and all(s.stage != "L3" for s in asset.manifest().validation)
+
+    def rerun() -> None:
+        result = CliRunner().invoke(app, ["manipulate", str(asset.path), "--cache", str(tmp_path / "cache")])
+        assert result.exit_code == 0, result.output
+
+    def e_of_config() -> float:
+        return json.loads((asset.path / "export" / "physgaussian_config.json").read_text(encoding="utf-8"))["E"]
+
+    rerun()  # L3 adopts the revision
+    manifest, record = asset.manifest(), asset.manipulation()
+    assert manifest.material == revised["material"] == asset.adopted_material().material != l2
+    line = manifest.validation[-1]
+    assert [s.stage for s in manifest.validation] == ["L0", "L1", "L2", "L3"] and line.passed
+    assert manifest.action_plan == record.plan and manifest.manipulation is not None
+    assert e_of_config() == revised["material"].youngs_modulus_pa
+    html = (asset.path / "renders" / "card.html").read_text(encoding="utf-8")
+    assert si(revised["material"].youngs_modulus_pa, "Pa") in html and si(l2.youngs_modulus_pa, "Pa") not in html
+    assert {"card_png", "card_html", "manipulation_record"} <= set(manifest.files)
+    assert (asset.path / manifest.files["card_png"]).is_file()
+
+    passed["now"] = False
+    rerun()  # L3 re-run, did not pass with its revision: the asset's material is L2's again
+    manifest = asset.manifest()
+    assert manifest.material == l2 and e_of_config() == l2.youngs_modulus_pa
+    assert [s.stage for s in manifest.validation] == ["L0", "L1", "L2", "L3"] and not manifest.validation[-1].passed
+    html = (asset.path / "renders" / "card.html").read_text(encoding="utf-8")
+    assert si(l2.youngs_modulus_pa, "Pa") in html

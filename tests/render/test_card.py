@@ -172,16 +172,19 @@ def test_one_trial_numbering_in_manipulation_json_evidence_and_the_card(tmp_path
     same number for the same interaction folder; never the folder index."""
     from flows.cli.evidence_cmds import attempt_trials
     from tasks.agents.records import read_attempts
+    from tasks.asset_dir import AssetDir
     from tasks.record.trials import trial_of_attempt, trial_rows
 
     root = _asset(tmp_path, "turtle")
     record = json.loads((root / "manipulation.json").read_text())
-    rows = trial_rows(record)
-    assert [r["trial"] for r in rows] == [1, 2, 3, 4] and [r["attempt"] for r in rows] == [0, 1, 2, 3]
+    typed = AssetDir(root).manipulation()  # a record written before #36: its rows have no `trial`
+    assert all(a.trial is None for a in typed.attempts)
+    rows = trial_rows(typed)
+    assert [r.trial for r in rows] == [1, 2, 3, 4] and [r.attempt for r in rows] == [0, 1, 2, 3]
     l3 = [a for a in read_attempts(root / "evidence" / "attempts.jsonl") if a.stage == "L3"]
     assert [attempt_trials(root, a) for a in l3] == [[1]]  # the harness's attempt #0 ran trial 1
     card = card_data(root)
-    assert (card.l3.trial, card.l3.trials) == (trial_of_attempt(record, record["attempt"]), 4) == (1, 4)
+    assert (card.l3.trial, card.l3.trials) == (trial_of_attempt(typed, typed.attempt), 4) == (1, 4)
     _, page = build_card(root)
     html = page.read_text(encoding="utf-8")
     assert "trial 1 of 4" in html and "trial 0" not in html
