@@ -140,7 +140,8 @@ def load_context(asset_dir: Path, options: L3Options, contract: StageContract,
         return plan_or_error(ActionPlan(grasp=c, gripper=name, squeeze_depth_m=0.0, target_xy_m=options.target_xy_m),
                              body)[0] is not None
 
-    grasps, grasp_reason = body_first_grasps(select, grasp_settings(name, nominal.soft_indent_m), info["category"],
+    settings = grasp_settings(name, nominal.soft_indent_m)
+    grasps, grasp_reason = body_first_grasps(select, settings, info["category"],
                                              program, bool(info.get("reoriented")), asset.mesh, reachable,
                                              asset.particles_m)
     if not grasps:  # run_l3 records it as L3's outcome (no grasp is a result)
@@ -151,10 +152,11 @@ def load_context(asset_dir: Path, options: L3Options, contract: StageContract,
     if not L3Parameters.of(contract).hold_force_margin:  # no hold target: position control, the contract's range
         return L3Context(Path(asset_dir), body, physical, material, source, grasps, options, contract,
                          gripper=name, gripper_reason=reason, gripper_options=rows, l0=asset,
-                         grasp_reason=grasp_reason, runner=CachedTrials())
+                         grasp_reason=grasp_reason, grasp_settings=settings, runner=CachedTrials())
     return L3Context(Path(asset_dir), body, physical, material, source, grasps, options,
                      with_squeeze_range(contract, sq), gripper=name, gripper_reason=reason, squeeze=sq,
-                     grasp_reason=grasp_reason, gripper_options=rows, l0=asset, runner=CachedTrials())
+                     grasp_reason=grasp_reason, gripper_options=rows, l0=asset, grasp_settings=settings,
+                     runner=CachedTrials())
 
 
 @functools.cache

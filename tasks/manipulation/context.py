@@ -38,6 +38,7 @@ from tasks.manipulation.outcome import TrialTolerances, force_budget_n
 from tasks.manipulation.recordings import record_attempt
 from tasks.manipulation.report import L3Progress, trial_reason
 from tasks.manipulation.trial import TrialSettings, reachable_plan
+from tasks.robot.grasp import GraspSettings
 from tasks.robot.gripper import gripper
 from tasks.robot.squeeze import SqueezePlan
 
@@ -182,6 +183,7 @@ class L3Context:
     grasp_reason: str = ""  # the part the grasps hold and why (tasks.robot.grasp_parts), '' when not a toy or animal
     squeeze: SqueezePlan | None = None  # the force target and stiffness-scaled squeeze range of the best grasp
     gripper_options: list[GripperOption] = field(default_factory=list)  # what choose_gripper weighed
+    grasp_settings: GraspSettings | None = None  # the sampler's (the hand's collision test of a turned approach)
     progress: L3Progress = field(default_factory=L3Progress)
     l0: L0Asset | None = None  # the L0 data the body was built from (L2's revalidation probes it too)
     runner: TrialRunner | None = None  # runs the cached trial task (the flow's); needed before the first trial
@@ -222,7 +224,8 @@ class L3Context:
             release_duration_s=float(values.get("release_duration_s", o.release_duration_s)),
             place_height_m=float(values.get("place_height_m", o.place_height_m)),
             retreat_duration_s=o.retreat_duration_s, settle_duration_s=o.settle_duration_s)
-        return reachable_plan(plan, self.grasps, self.body)  # a yawed condition may turn a side grasp out of reach
+        # a yawed condition may turn a side grasp out of reach: the same contacts from another side, else another grasp
+        return reachable_plan(plan, self.grasps, self.body, grasp_settings=self.grasp_settings)
 
     def trial(self, values: dict[str, float], role: str, action: str = "", material: Material | None = None,
               target_xy_m: tuple[float, float] | None = None, yaw_deg: float = 0.0) -> ProbeResult:

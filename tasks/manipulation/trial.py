@@ -29,6 +29,7 @@ from tasks.manipulation.outcome import TrialTolerances, frame_back, label_trial,
 from tasks.mpm import Simulator, build_model, pad_collider
 from tasks.mpm.model import SceneSpec
 from tasks.robot import PHASES, ObjectPose, Trajectory, plan_trajectory
+from tasks.robot.grasp import GraspSettings, turned_approaches
 
 PAD_FACES = ("-y", "+y")  # gripping face of the left and right pad boxes in the finger links' axes
 CARRY_PHASES = ("lift", "transport")  # the hand holds the object off the table: the grid lattice moves with it
@@ -363,16 +364,18 @@ def plan_or_error(plan: ActionPlan, body: TrialBody, settings: TrialSettings | N
 
 
 def reachable_plan(plan: ActionPlan, grasps: list[GraspCandidate], body: TrialBody,
-                   settings: TrialSettings | None = None) -> ActionPlan:
+                   settings: TrialSettings | None = None, grasp_settings: GraspSettings | None = None) -> ActionPlan:
     """The plan, or when its grasp cannot be executed under the plan's condition (a side approach that an initial
-    yaw turns away from the arm), the same plan with the best-ranked grasp that can; unchanged when none can."""
+    yaw turns away from the arm): first the same grasp approached from another side (its contacts kept: what the
+    trials tested; needs ``grasp_settings``, the sampler's, for the hand's collision test), else the same plan with
+    the best-ranked grasp that can be executed; unchanged when none can."""
     if plan_or_error(plan, body, settings)[0] is not None:
         return plan
-    for g in grasps:
-        if g.rank != plan.grasp.rank:
-            other = plan.model_copy(update={"grasp": g})
-            if plan_or_error(other, body, settings)[0] is not None:
-                return other
+    same = turned_approaches(plan.grasp, body.surface_points_m, grasp_settings) if grasp_settings is not None else []
+    for g in [*same, *(g for g in grasps if g.rank != plan.grasp.rank)]:
+        other = plan.model_copy(update={"grasp": g})
+        if plan_or_error(other, body, settings)[0] is not None:
+            return other
     return plan
 
 

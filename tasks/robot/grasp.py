@@ -198,6 +198,38 @@ def _evaluate_line(p0: np.ndarray, u: np.ndarray, pts: np.ndarray, nrm: np.ndarr
     return _Line(float(score), center, u, a, width)
 
 
+TURNED_APPROACHES_DEG = (15.0, -15.0, 30.0, -30.0, 45.0, -45.0, 60.0, -60.0, 90.0, -90.0, 120.0, -120.0, 150.0,
+                         -150.0, 180.0)  # turns of a grasp's approach about its closing axis, tried smallest first
+
+
+def turned_approaches(candidate: GraspCandidate, points_m: np.ndarray, settings: GraspSettings | None = None,
+                      turns_deg: tuple[float, ...] = TURNED_APPROACHES_DEG) -> list[GraspCandidate]:
+    """The same grasp (centre, closing axis, width: the same two contacts) reached along other approaches: its
+    approach axis turned about the closing axis, smallest turn first; only approaches that do not come up from below,
+    whose fingertips clear the table and whose open hand, swept in from the pre-grasp, clears the object's points [m].
+    A condition that turns the object so the arm cannot come in the planned way keeps the grasp the trials tested."""
+    s = settings or GraspSettings()
+    g = gripper(s.gripper)
+    pts = np.asarray(points_m, dtype=float)
+    center = np.asarray(candidate.center_m, dtype=float)
+    u = np.asarray(candidate.closing_axis, dtype=float)
+    u /= np.linalg.norm(u)
+    a0 = np.asarray(candidate.approach_axis, dtype=float)
+    a0 = a0 - (a0 @ u) * u
+    a0 /= np.linalg.norm(a0)
+    opening = min(_opening_limit(s, g), candidate.width_m + 2.0 * s.open_clearance_m)
+    out: list[GraspCandidate] = []
+    for turn in turns_deg:
+        t = np.radians(turn)
+        a = np.cos(t) * a0 + np.sin(t) * np.cross(u, a0)
+        if a[2] > 1e-6 or _lowest_finger_point(center, u, a, candidate.width_m, g) < s.table_margin_m:
+            continue
+        if _hand_hits(pts, center, u, a, opening, s, g):
+            continue
+        out.append(candidate.model_copy(update={"approach_axis": tuple(map(float, a))}))
+    return out
+
+
 def hang_offset_m(center: np.ndarray, u: np.ndarray, com: np.ndarray) -> float:
     """How far the centre of mass sits from where a two-pad grasp holds it best [m]. The pads hold the object like a
     hinge about the closing axis u: a centre of mass off that axis sideways is a lever that turns the object in the

@@ -120,3 +120,59 @@ def test_a_condition_that_turns_a_side_grasp_away_from_the_arm_takes_the_next_re
     assert chosen.grasp.rank != turned_away.grasp.rank
     assert plan_or_error(chosen, body)[0] is not None  # type: ignore[arg-type]
     assert chosen.model_copy(update={"grasp": turned_away.grasp}) == turned_away  # only the grasp changed
+
+
+def test_a_turned_away_side_grasp_keeps_its_contacts_approached_from_another_side(teddy) -> None:
+    """Under a condition that turns the planned side approach out of the arm's reach, the plan keeps the grasp the
+    trials tested (its centre, closing axis and width: the same two contacts) and comes in along another approach,
+    turned about the closing axis, that the arm reaches and that clears the object; other grasps only after that."""
+    from types import SimpleNamespace
+
+    from tasks.manipulation.trial import plan_or_error, reachable_plan
+    from tasks.robot.grasp import _hand_hits, turned_approaches
+    from tasks.robot.gripper import gripper
+
+    mesh, program, category = teddy
+    pts, faces = trimesh.sample.sample_surface_even(mesh, 2000, seed=0)
+    settings = GraspSettings(gripper=GRIPPER, soft_indent_m=0.007, max_tilt_deg=90.0,
+                             approach_turns_deg=(0.0, -90.0, 90.0))
+    sel = select_grasps(pts, mesh.face_normals[faces], mesh.center_mass, 0.8, settings=settings)
+    body = SimpleNamespace(height_m=float(mesh.extents[2]), surface_points_m=np.asarray(pts))
+    turned_away = [p for c in sel.candidates if c.approach_axis[2] > -0.3
+                   for yaw in (180.0, 135.0, -135.0, 90.0, -90.0)
+                   if plan_or_error(p := ActionPlan(grasp=c, gripper=GRIPPER, squeeze_depth_m=0.0,
+                                                    target_xy_m=(0.12, 0.15), initial_yaw_deg=yaw),
+                                    body)[0] is None]  # type: ignore[arg-type]
+    kept = 0
+    for plan in turned_away:
+        chosen = reachable_plan(plan, sel.candidates, body, grasp_settings=settings)  # type: ignore[arg-type]
+        same = turned_approaches(plan.grasp, body.surface_points_m, settings)
+        if not any(plan_or_error(plan.model_copy(update={"grasp": g}), body)[0] is not None  # type: ignore[arg-type]
+                   for g in same):
+            continue  # no other side reaches these contacts: another grasp (the test above)
+        kept += 1
+        g, g0 = chosen.grasp, plan.grasp
+        assert plan_or_error(chosen, body)[0] is not None  # type: ignore[arg-type]
+        assert (g.center_m, g.closing_axis, g.width_m, g.rank) == (g0.center_m, g0.closing_axis, g0.width_m, g0.rank)
+        a, u = np.asarray(g.approach_axis), np.asarray(g.closing_axis)
+        assert abs(a @ u) < 1e-9 and a[2] <= 1e-6 and not np.allclose(a, g0.approach_axis)
+        opening = min(gripper(GRIPPER).stroke_m, g.width_m + 2.0 * settings.open_clearance_m)
+        assert not _hand_hits(body.surface_points_m, np.asarray(g.center_m), u / np.linalg.norm(u), a, opening,
+                              settings, gripper(GRIPPER))
+    assert kept >= 1, "no turned-away side grasp of the teddy could be reached from another side"
+
+
+def test_turned_approaches_are_perpendicular_and_never_from_below() -> None:
+    """A 4 cm cube held across x: the turned approaches keep the closing axis and centre, smallest turn first, and
+    none comes up from under the table."""
+    from tasks.robot.grasp import turned_approaches
+
+    cube = trimesh.creation.box(extents=(0.04, 0.04, 0.04))
+    cube.apply_translation((0.0, 0.0, 0.02))
+    pts = trimesh.sample.sample_surface_even(cube, 1500, seed=0)[0]
+    g = GraspCandidate(center_m=(0.0, 0.0, 0.03), closing_axis=(1.0, 0.0, 0.0), approach_axis=(0.0, 0.0, -1.0),
+                       width_m=0.04, friction_cone_ok=True, score=0.0, rank=3)
+    out = turned_approaches(g, pts, GraspSettings(gripper=GRIPPER))
+    assert out and all(c.center_m == g.center_m and c.closing_axis == g.closing_axis and c.rank == 3 for c in out)
+    tilts = [np.degrees(np.arccos(-c.approach_axis[2])) for c in out]
+    assert all(t <= 90.0 + 1e-6 for t in tilts) and tilts == sorted(tilts, key=lambda t: round(t, 6))
