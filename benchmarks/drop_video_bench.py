@@ -23,12 +23,11 @@ from cache import use_cache_root
 from contracts.manifest import AssetManifest
 from contracts.sim import SimConfig
 from flows.renders import protocol_states
-from tasks.geometry.gaussians import deform_gaussians
 from tasks.geometry.outputs import load_l0
 from tasks.probes.protocol import PROTOCOL_DURATION_S, PROTOCOL_FPS
 from tasks.render import protocol_video as pv
 from tasks.render.quality import coverage_mask, sharpness
-from tasks.render.splats import render_gaussians
+from tasks.render.splats import deform_gaussians, render_gaussians
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 

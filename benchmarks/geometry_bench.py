@@ -27,7 +27,7 @@ from contracts.request import AssetRequest
 from flows.cli.apps import console, emit_json, fail, results
 from flows.cli.geometry_cmds import QUALITIES
 from tasks.geometry import pipeline, sources
-from tasks.geometry.render import render_view
+from tasks.render.views import render_view
 
 
 def load_prompts(path: Path) -> list[dict]:

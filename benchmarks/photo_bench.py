@@ -33,8 +33,8 @@ from flows.l0_geometry import run_l0
 from tasks.agents.intent import asset_material, asset_targets, targets_from_request
 from tasks.agents.vocab import load_material_vocab
 from tasks.geometry import image, pipeline, silhouette, sources
-from tasks.geometry.render import render_view
 from tasks.physical.mass import mass_check
+from tasks.render.views import render_view
 
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))

@@ -204,10 +204,10 @@ def pick_and_place_video_key(work: Path, attempt: int) -> str:
     (rendering it takes ~10 s on the CPU; a warm rerun copies it)."""
     root = Path(__file__).resolve().parent.parent
     renderer = [root / "tasks" / "manipulation" / f"{m}.py" for m in
-                ("replay", "scene", "data", "particle_frames", "video")]  # the robot (robot_view) is under tasks/render
+                ("replay", "scene", "data", "particle_frames", "video")]
     renderer += sorted(p for p in (root / "tasks" / "render").glob("*.py") if not p.name.startswith(("card", "bench")))
-    code = source_digest([*renderer, root / "tasks" / "geometry" / "gaussians.py", root / "tasks" / "robot" / "panda.py",
-                          root / "tasks" / "robot" / "trajectory.py", root / "contracts" / "robot.py",
+    renderer += [root / "tasks" / "robot" / f"{m}.py" for m in ("visual", "panda", "trajectory")]  # the robot drawn
+    code = source_digest([*renderer, root / "tasks" / "geometry" / "gaussians.py", root / "contracts" / "robot.py",
                           root / "contracts" / "grippers"],
                          ("imageio", "imageio-ffmpeg", "numpy", "opencv-python-headless", "opencv-python", "pybullet",
                           "scipy", "warp-lang"))

@@ -162,9 +162,12 @@ def load_context(asset_dir: Path, options: L3Options, contract: StageContract,
 @functools.cache
 def _planner_code() -> str:
     """The code part of the grasp planner's cache keys: tasks/robot, the gripper specs and the robot contract (an
-    edit there makes new keys; no version to bump by hand), and the libraries they compute with."""
+    edit there makes new keys; no version to bump by hand), and the libraries they compute with. The robot's visual
+    meshes (tasks/robot/visual.py) only draw it: not part of the planner's keys."""
     root = Path(__file__).resolve().parent.parent
-    return source_digest([root / "tasks" / "robot", root / "contracts" / "grippers", root / "contracts" / "robot.py"],
+    robot = [p for p in (root / "tasks" / "robot").rglob("*")
+             if p.is_file() and "__pycache__" not in p.parts and p.name != "visual.py"]
+    return source_digest([*robot, root / "contracts" / "grippers", root / "contracts" / "robot.py"],
                          ("numpy", "scipy", "trimesh"))
 
 

@@ -1,4 +1,5 @@
-"""Gaussian splats from surface and interior samples, bound to particles so they follow x_p and F_p; 3DGS .ply I/O."""
+"""Gaussian splats from surface and interior samples, bound to particles so they follow x_p and F_p (the deformation:
+tasks.render.splats.deform_gaussians); 3DGS .ply I/O."""
 
 from __future__ import annotations
 
@@ -120,23 +121,6 @@ def rest_covariances(scales_m: np.ndarray, rotations_wxyz: np.ndarray) -> np.nda
     R = Rotation.from_quat(np.concatenate([q[:, 1:], q[:, :1]], axis=1)).as_matrix()
     s2 = np.asarray(scales_m, dtype=np.float64) ** 2
     return np.einsum("gij,gj,gkj->gik", R, s2, R)
-
-
-def deform_gaussians(
-    rest_positions_m: np.ndarray, rest_covariances_m2: np.ndarray, particle_index: np.ndarray,
-    particle_weight: np.ndarray, rest_particles_m: np.ndarray, particles_m: np.ndarray, deformation_gradients: np.ndarray,
-) -> tuple[np.ndarray, np.ndarray]:
-    """Deformed Gaussian centres x_g = sum_j w_j (x_j + F_j (X_g - X_j)) and covariances F_g S F_g^T, F_g = sum_j w_j F_j."""
-    X_g = np.asarray(rest_positions_m, dtype=np.float64)
-    w = np.asarray(particle_weight, dtype=np.float64)
-    idx = np.asarray(particle_index)
-    F = np.asarray(deformation_gradients, dtype=np.float64)[idx]  # (G, k, 3, 3)
-    offset = X_g[:, None, :] - np.asarray(rest_particles_m, dtype=np.float64)[idx]  # (G, k, 3)
-    moved = np.asarray(particles_m, dtype=np.float64)[idx] + np.einsum("gkij,gkj->gki", F, offset)
-    x = np.einsum("gk,gki->gi", w, moved)
-    F_g = np.einsum("gk,gkij->gij", w, F)
-    cov = np.einsum("gij,gjk,glk->gil", F_g, rest_covariances_m2, F_g)
-    return x, cov
 
 
 def write_3dgs_ply(g: GaussianSet, path: Path) -> None:

@@ -18,10 +18,10 @@ from tasks.geometry.collision import write_collision
 from tasks.geometry.gaussians import read_3dgs_ply, rest_covariances, write_3dgs_ply
 from tasks.geometry.glb import write_glb
 from tasks.geometry.pipeline import Arrays, BuildInfo, arrays_to_mesh, proxy_parts
-from tasks.geometry.render import write_renders
 from contracts.asset_dir import GEOMETRY_JSON, GeometryRecord
 from tasks.asset_dir import AssetDir, document_json
 from tasks.publish import replace_directory
+from tasks.render.views import write_renders
 
 PARTICLES = "particles.zarr"
 

@@ -25,7 +25,7 @@ from tasks.geometry.backends import concept_fields
 from tasks.geometry.canonical import canonicalize
 from tasks.geometry.meshing import mesh_program
 from tasks.geometry.program_checks import check_program
-from tasks.geometry.render import VIEWS, render_view
+from tasks.render.views import VIEWS, render_view
 
 # an unreachable server will not answer the next time either: stop asking at once, like a refused credential
 FATAL_L0: tuple[type[Exception], ...] = (*FATAL_ERRORS, litellm.APIConnectionError)
@@ -55,7 +55,7 @@ def has_vision(model: str | None) -> bool:
 
 
 def render_pngs(mesh: trimesh.Trimesh, size_px: int = CRITIC_VIEW_PX) -> list[bytes]:
-    """PNG bytes of the front, side and top reference views (tasks.geometry.render)."""
+    """PNG bytes of the front, side and top reference views (tasks.render.views)."""
     return [iio.imwrite("<bytes>", render_view(mesh, view, size_px), extension=".png") for view in VIEWS]
 
 

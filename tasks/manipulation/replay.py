@@ -16,15 +16,15 @@ import numpy as np
 
 from contracts.errors import InputError
 from tasks.asset_dir import AssetDir
-from tasks.geometry.gaussians import deform_gaussians
 from tasks.manipulation.data import read_attempt
 from tasks.manipulation.scene import VIDEO_FPS, VIDEO_SIZE
 from tasks.manipulation.video import PickPlaceVideo
 from tasks.record import ProbeRecording
 from tasks.record.trials import attempt_of_trial, recorded_trials, reported_trial, trial_of_attempt
-from tasks.render.robot_view import (HAND_LINKS, gripper_boxes, gripper_spec, link_poses, panda_visual_meshes,
-                                     uses_urdf_hand)
+from tasks.render.splats import deform_gaussians
 from tasks.robot import PHASES
+from tasks.robot.visual import (HAND_LINKS, gripper_boxes, gripper_spec, link_poses, panda_visual_meshes,
+                                uses_urdf_hand)
 
 ROBOT = "world/robot"
 RRD_MAX_GAUSSIANS = 20000  # a recording keeps at most this many Gaussians per frame (a deterministic stride)

@@ -1,4 +1,4 @@
-"""A pick-and-place attempt as video frames: the robot (tasks.render.robot_view), the table on a floor before a
+"""A pick-and-place attempt as video frames: the robot (tasks.robot.visual), the table on a floor before a
 backdrop, the deforming object (its Gaussians driven by the recorded particles) and a caption, rasterised on the CPU
 with one depth test (tasks.render.mesh_raster) from a fixed camera that sees the grasp, the lift and the place.
 
@@ -13,11 +13,11 @@ from typing import Any
 
 import numpy as np
 
-from tasks.geometry.gaussians import deform_gaussians
 from tasks.render import mesh_raster as raster
 from tasks.render.camera import Camera
-from tasks.render.robot_view import gripper_spec, link_poses, robot_meshes
+from tasks.render.splats import deform_gaussians
 from tasks.robot import PHASES
+from tasks.robot.visual import gripper_spec, link_poses, robot_meshes
 
 VIDEO_FPS = 30.0
 VIDEO_SIZE = (1280, 720)

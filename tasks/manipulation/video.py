@@ -24,10 +24,10 @@ from tasks.render.attempt_video import (SplatSet, choose_corner, compose, inset_
 from tasks.render.camera import Camera
 from tasks.render.captions import caption
 from tasks.render.gripper_model import Part, gripper_parts, robotiq_links
-from tasks.render.robot_view import (FLANGE_LINK, HAND_LINKS, box_mesh, gripper_boxes, gripper_spec, link_poses,
-                                     panda_visual_meshes, shade, tcp_frame, uses_urdf_hand)
 from tasks.render.shading import deformed_normals, normals_from_covariances
 from tasks.robot import PHASES
+from tasks.robot.visual import (FLANGE_LINK, HAND_LINKS, box_mesh, gripper_boxes, gripper_spec, link_poses,
+                                panda_visual_meshes, shade, tcp_frame, uses_urdf_hand)
 
 CAMERA_EVERY = 3  # the wide camera frames the robot at every 3rd video frame (and the first and last)
 POINT_EVERY = 7  # ... through every 7th vertex of its meshes

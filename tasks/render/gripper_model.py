@@ -15,7 +15,7 @@ longer knuckles, pad 27 x 46 mm); no CAD file or mesh is copied. The 2F-140's kn
 its pads 140 mm with the 2F-85's pivot layout.
 
 Frame G (the gripper's): origin on the flange, z along the approach (towards the fingertips), y towards finger 0
-(the TCP frame's axes, tasks.render.robot_view.tcp_frame), x = y cross z. Numpy only.
+(the TCP frame's axes, tasks.robot.visual.tcp_frame), x = y cross z. Numpy only.
 """
 
 from __future__ import annotations

@@ -7,7 +7,7 @@ the impact and the settle in SLOW_MOTION x slow motion (states between the recor
 recording being 30 per second), then HOLD_AFTER_S of the rest at real speed; a caption gives the simulated time and
 says when the picture is slowed. The card's drop frames (CARD_TIMES_S) come from the recorded states themselves.
 
-The view names are the stills' (tasks.geometry.render.VIEWS): "front" looks from +x with +y to the right, "side" from
+The view names are the stills' (tasks.render.views.VIEWS): "front" looks from +x with +y to the right, "side" from
 -y with +x to the right, each a little above the table. One fixed camera per view frames the whole motion (the drop
 height, the object and the table under it), so the fall and the contact are visible. Deterministic on the CPU.
 """
@@ -20,15 +20,12 @@ from typing import Any, Protocol
 
 import numpy as np
 
-from tasks.geometry.gaussians import deform_gaussians
-from tasks.geometry.render import VIEWS as STILL_VIEWS
 from tasks.render.camera import Camera
 from tasks.render.captions import caption
 from tasks.render.discs import render
 from tasks.render.shading import deformed_normals, lit_colors
-from tasks.render.splats import render_gaussians
-
-# (tasks.geometry's modules import trimesh: imported where used, so the card reads these names quickly)
+from tasks.render.splats import deform_gaussians, render_gaussians
+from tasks.render.views import view_axes as still_axes
 
 VIDEO_WIDTH_PX, VIDEO_HEIGHT_PX = 1280, 720
 VIEW_NAMES = ("front", "side")  # the stills of these names (renders/front.png, renders/side.png) show the same side
@@ -71,8 +68,8 @@ def gaussian_renderer() -> tuple[GaussianRenderer, list[Path]]:
 
 def view_axes(view: str) -> tuple[np.ndarray, np.ndarray]:
     """The still's (screen-right, towards-viewer) axes of a named view (a KeyError names an unknown view)."""
-    right, _, toward = STILL_VIEWS[view]
-    return np.asarray(right, np.float64), np.asarray(toward, np.float64)
+    right, _, toward = still_axes(view)
+    return right, toward
 
 
 def protocol_camera(points_m: np.ndarray, view: str, width: int, height: int) -> Camera:

@@ -12,7 +12,7 @@ clamped to 0.99, nothing beyond 3 sigma or below 1/255, early termination at T <
 backdrop, a table at z = 0 that hides what lies below it, a soft shadow under the object (tasks.render.studio);
 ``"none"``: a flat light grey. On the CPU the same inputs give the same bytes on any machine (the tiles are split into
 bands drawn by up to 8 threads, one per core; no pixel's sum depends on the split). Gaussians deformed by particles:
-tasks.geometry.gaussians.deform_gaussians (covariances F Σ Fᵀ).
+deform_gaussians (covariances F Σ Fᵀ; the binding to particles is tasks.geometry.gaussians's).
 """
 
 from __future__ import annotations
@@ -33,6 +33,23 @@ SCENES = ("studio", "none")
 NEAR_M = 0.01  # Gaussians nearer to the camera plane than this are dropped
 # threads that draw bands of tiles on the CPU (a Warp CPU launch runs on one core); the image does not depend on them
 CPU_BANDS = min(os.cpu_count() or 1, 8)
+
+
+def deform_gaussians(
+    rest_positions_m: np.ndarray, rest_covariances_m2: np.ndarray, particle_index: np.ndarray,
+    particle_weight: np.ndarray, rest_particles_m: np.ndarray, particles_m: np.ndarray, deformation_gradients: np.ndarray,
+) -> tuple[np.ndarray, np.ndarray]:
+    """Deformed Gaussian centres x_g = sum_j w_j (x_j + F_j (X_g - X_j)) and covariances F_g S F_g^T, F_g = sum_j w_j F_j."""
+    X_g = np.asarray(rest_positions_m, dtype=np.float64)
+    w = np.asarray(particle_weight, dtype=np.float64)
+    idx = np.asarray(particle_index)
+    F = np.asarray(deformation_gradients, dtype=np.float64)[idx]  # (G, k, 3, 3)
+    offset = X_g[:, None, :] - np.asarray(rest_particles_m, dtype=np.float64)[idx]  # (G, k, 3)
+    moved = np.asarray(particles_m, dtype=np.float64)[idx] + np.einsum("gkij,gkj->gki", F, offset)
+    x = np.einsum("gk,gki->gi", w, moved)
+    F_g = np.einsum("gk,gkij->gij", w, F)
+    cov = np.einsum("gij,gjk,glk->gil", F_g, rest_covariances_m2, F_g)
+    return x, cov
 
 
 def render_gaussians(cam: Camera, means_m: np.ndarray, covariances_m2: np.ndarray, colors_rgb: np.ndarray,

@@ -13,8 +13,8 @@ from contracts.request import AssetRequest
 from tasks.geometry import catalogue, pipeline, sources
 from tasks.geometry.concepts import PLUSH_MASS_EXPONENT
 from tasks.geometry.grammar.parts import part_group
-from tasks.geometry.render import render_view
 from tasks.physical.mass import typical_mass_at_size
+from tasks.render.views import render_view
 
 SETTINGS = pipeline.settings_from_contract("draft")
 LEX = load_lexicon().entries

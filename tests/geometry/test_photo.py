@@ -20,7 +20,7 @@ from helpers import FAST_COACD, run, settings
 from tasks.agents.intent import targets_from_intent, targets_from_request
 from tasks.geometry import catalogue, image, pipeline, silhouette, sources
 from tasks.geometry.meshing import mesh_program
-from tasks.geometry.render import render_view
+from tasks.render.views import render_view
 
 
 def _ellipse(shape: tuple[int, int], centre: tuple[int, int], axes: tuple[int, int]) -> np.ndarray:

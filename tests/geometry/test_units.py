@@ -12,10 +12,11 @@ from plyfile import PlyData
 
 from contracts.shape import Ellipsoid, Part, ShapeProgram, Torus, Transform
 from tasks.geometry import catalogue
-from tasks.geometry.gaussians import deform_gaussians, make_gaussians, read_3dgs_ply, rest_covariances, write_3dgs_ply
+from tasks.geometry.gaussians import make_gaussians, read_3dgs_ply, rest_covariances, write_3dgs_ply
 from tasks.geometry.meshing import mesh_program
 from tasks.geometry.particles import ParticleSettings, sample_particles
 from tasks.geometry.raster import lattice_winding
+from tasks.render.splats import deform_gaussians
 
 
 def _sphere(r: float = 0.05) -> ShapeProgram:

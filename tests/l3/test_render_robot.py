@@ -13,8 +13,8 @@ from tasks.manipulation.data import write_attempt
 from tasks.manipulation.replay import replay
 from tasks.manipulation.scene import VIDEO_FPS, AttemptRenderer, attempt_timeline
 from tasks.render import mesh_raster as raster
-from tasks.render.robot_view import HAND_LINKS, gripper_boxes, gripper_spec, tcp_frame
 from tasks.robot import PHASES
+from tasks.robot.visual import HAND_LINKS, gripper_boxes, gripper_spec, tcp_frame
 from tests.l3.render_helpers import synthetic_attempt
 
 Attempt = tuple[dict[str, np.ndarray], dict[str, Any]]
@@ -144,7 +144,7 @@ def test_a_gripper_without_a_urdf_mesh_is_drawn_as_boxes_around_its_pads() -> No
     r = AttemptRenderer(arrays, attrs, 640, 360)
     rgb, labels = r.frame_with_labels(k)
     assert (labels == raster.GRIPPER).sum() > 500 and (labels == raster.ROBOT).sum() > 2000
-    from tasks.render.robot_view import robot_meshes
+    from tasks.robot.visual import robot_meshes
 
     parts = robot_meshes(r.poses[k], fr.pad_position_m, half, spec, np.array([1.0, 0.0, 0.0]))
     assert sum(p[3] for p in parts) == 3 and len(parts) == 3 + 8  # three gripper boxes and links 0-7, no hand

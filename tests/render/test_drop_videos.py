@@ -8,7 +8,6 @@ import numpy as np
 import pytest
 import trimesh
 
-from tasks.geometry.render import render_view
 from tasks.render.protocol_video import (
     CARD_TIMES_S,
     HOLD_AFTER_S,
@@ -23,6 +22,7 @@ from tasks.render.protocol_video import (
     render_protocol_frames,
     view_axes,
 )
+from tasks.render.views import render_view
 
 RED = np.array([0.9, 0.1, 0.1])
 

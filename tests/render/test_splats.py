@@ -8,10 +8,10 @@ import pytest
 import trimesh
 
 from contracts.errors import InputError
-from tasks.geometry.gaussians import deform_gaussians, make_gaussians, rest_covariances
+from tasks.geometry.gaussians import make_gaussians, rest_covariances
 from tasks.render import splats
 from tasks.render.camera import Camera
-from tasks.render.splats import render_gaussians
+from tasks.render.splats import deform_gaussians, render_gaussians
 from tasks.render.studio import FLAT_RGB
 
 BG = np.array(FLAT_RGB)

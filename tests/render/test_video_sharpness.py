@@ -21,10 +21,10 @@ import pytest
 
 from contracts.request import AssetRequest
 from tasks.geometry import pipeline, sources
-from tasks.geometry.gaussians import deform_gaussians, rest_covariances
+from tasks.geometry.gaussians import rest_covariances
 from tasks.render.protocol_video import iter_states, protocol_camera
 from tasks.render.quality import coverage_mask, sharpness
-from tasks.render.splats import render_gaussians
+from tasks.render.splats import deform_gaussians, render_gaussians
 
 TODAY = {"front": 0.5, "side": 0.4}  # the sharpness measured before the change (docstring)
 

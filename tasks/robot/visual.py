@@ -6,6 +6,9 @@ in their link frames (the URDF's visual origin) and coarsened by vertex clusteri
 come from pybullet's forward kinematics in a private DIRECT client (tasks.robot.Panda). A box gripper is drawn in the
 TCP frame rebuilt from the recorded pads (origin between the pad faces, y towards finger 0, z along the approach), so
 it follows what the trial simulated whatever the gripper. Lengths in metres.
+
+Robot knowledge, not drawing (#37): plain arrays out, nothing from tasks.render in; the renderers (tasks.render) sit
+below the robot and draw what this gives them.
 """
 
 from __future__ import annotations
@@ -21,7 +24,7 @@ import numpy as np
 from contracts.errors import InputError
 from contracts.robot import load_gripper
 from tasks.quiet_pybullet import pybullet as pb
-from tasks.robot import Panda
+from tasks.robot.panda import Panda
 
 ARM_RGB = np.array([0.93, 0.93, 0.95])      # the Panda's white links
 DARK_RGB = np.array([0.20, 0.20, 0.23])     # fingers, a box gripper's body

@@ -1,0 +1,101 @@
+"""L0's reference views (front, side, top) on the CPU without a display: orthographic Cameras (tasks.render.camera),
+a z-buffer over the triangle / pixel overlap (tasks.render.columns), Lambert shading.
+
+Each view is a camera looking at the centre of the mesh's bounding box: "front" from +x (looking along -x, +y to the
+right), "side" from -y (looking along +y, +x to the right), "top" from above (looking down, +x to the right, +y up the
+image); the object fills FILL of the frame. L0's writer (tasks.geometry.outputs), the shape Designer's vision Critic
+and the drop videos' view names (tasks.render.protocol_video) use them.
+"""
+
+from __future__ import annotations
+
+from dataclasses import replace
+from pathlib import Path
+from typing import TYPE_CHECKING, NamedTuple
+
+import imageio.v3 as iio
+import numpy as np
+
+from tasks.render.camera import Camera, project
+from tasks.render.columns import triangle_column_pairs
+
+if TYPE_CHECKING:  # a mesh is only read here (vertices, faces, normals, colours): the card's import stays light
+    import trimesh
+
+
+class View(NamedTuple):
+    """A named view's direction: from the object towards the camera (it looks along -toward) and the screen's up."""
+
+    toward: tuple[float, float, float]
+    up: tuple[float, float, float]
+
+
+VIEWS: dict[str, View] = {
+    "front": View((1.0, 0.0, 0.0), (0.0, 0.0, 1.0)),   # camera on +x looking back at the object
+    "side": View((0.0, -1.0, 0.0), (0.0, 0.0, 1.0)),   # camera on -y
+    "top": View((0.0, 0.0, 1.0), (0.0, 1.0, 0.0)),     # camera above, looking straight down
+}
+FILL = 0.85  # the mesh's widest extent across the frame, as a fraction of it
+LIGHT = (0.35, 0.45, 0.82)  # towards the light in the view's (screen-right, screen-up, towards-viewer) axes
+BACKGROUND = 1.0  # white
+
+
+def view_camera(view: str, centre_m: np.ndarray, height_m: float, size_px: int) -> Camera:
+    """The orthographic camera of a named view looking at centre_m, a square frame height_m high (a KeyError names an
+    unknown view)."""
+    toward, up = VIEWS[view]
+    centre = np.asarray(centre_m, np.float64)
+    return Camera(tuple(centre + np.asarray(toward)), tuple(centre), width=size_px, height=size_px, up=up,
+                  ortho_height_m=height_m)
+
+
+def view_axes(view: str) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The (screen-right, screen-up, towards-viewer) unit axes in the asset frame of a named view's camera."""
+    rot = view_camera(view, np.zeros(3), 1.0, 2).frame()[0]
+    return rot[0] + 0.0, -rot[1] + 0.0, -rot[2] + 0.0  # (+ 0.0: no negative zeros)
+
+
+def render_view(mesh: trimesh.Trimesh, view: str, size_px: int = 384) -> np.ndarray:
+    """RGB uint8 image (size_px, size_px, 3) of the mesh from a named view, object filling FILL of the frame."""
+    centre = mesh.bounds.mean(axis=0)
+    cam = view_camera(view, centre, 1.0, size_px)
+    rot = cam.frame()[0]
+    across = (np.asarray(mesh.vertices, np.float64) - centre) @ rot[:2].T  # (right, down) offsets [m]
+    cam = replace(cam, ortho_height_m=float(np.abs(across).max()) * 2.0 / FILL)
+    u, v, depth = project(cam, mesh.vertices)
+    faces = np.asarray(mesh.faces)
+    tri_px = np.stack([u, v], axis=1)[faces]
+    tri_depth = depth[faces]
+    normals = np.asarray(mesh.vertex_normals) @ rot.T  # camera frame (right, down, forward)
+    vc = np.asarray(mesh.visual.vertex_colors, dtype=np.float64)[:, :3] / 255.0 if mesh.visual.kind == "vertex" \
+        else np.full((len(mesh.vertices), 3), 0.75)
+    zbuf = np.full(size_px * size_px, np.inf)
+    color = np.full((size_px * size_px, 3), BACKGROUND)
+    light = np.array([LIGHT[0], -LIGHT[1], -LIGHT[2]])  # in the camera frame
+    light /= np.linalg.norm(light)
+    for t, ix, iy, w in triangle_column_pairs(tri_px, np.array([0.5, 0.5]), 1.0, (size_px, size_px)):
+        z = np.einsum("ij,ij->i", w, tri_depth[t])
+        pix = iy * size_px + ix  # row iy from the top
+        order = np.lexsort((z, pix))
+        pix_o, first = np.unique(pix[order], return_index=True)
+        sel = order[first]  # the nearest triangle at each pixel of this batch
+        better = z[sel] < zbuf[pix_o]
+        sel, pix_o = sel[better], pix_o[better]
+        f = faces[t[sel]]
+        n = np.einsum("ij,ijk->ik", w[sel], normals[f])
+        n /= np.maximum(np.linalg.norm(n, axis=1, keepdims=True), 1e-12)
+        c = np.einsum("ij,ijk->ik", w[sel], vc[f])
+        shade = 0.35 + 0.65 * np.clip(np.abs(n @ light), 0, 1)
+        zbuf[pix_o] = z[sel]
+        color[pix_o] = np.clip(c * shade[:, None], 0, 1)
+    return (color.reshape(size_px, size_px, 3) * 255).round().astype(np.uint8)
+
+
+def write_renders(mesh: trimesh.Trimesh, out_dir: Path, size_px: int = 384) -> dict[str, str]:
+    """front.png, side.png and top.png in out_dir; returns view -> file name."""
+    out_dir.mkdir(parents=True, exist_ok=True)
+    files = {}
+    for view in VIEWS:
+        iio.imwrite(out_dir / f"{view}.png", render_view(mesh, view, size_px))
+        files[view] = f"{view}.png"
+    return files
