@@ -15,6 +15,7 @@ from contracts.lexicon import MATERIALS_FILE, LexiconEntry, load_lexicon
 from contracts.shape import Part, ShapeProgram
 from tasks.geometry import analogy as analogy_mod, fill_words, goods_words, grammar, phrase as phrase_mod, pouch_words
 from tasks.geometry.catalogue_programs import catalogue_program
+from tasks.geometry.grammar.things import smiley
 from tasks.geometry.grammar.parts import _euler_z_to, box, ellipsoid, part_group, relief, rotated_parts, squashed_parts
 from tasks.geometry.meshing import sample_program
 from tasks.geometry.sdf import program_sdf
@@ -728,6 +729,15 @@ def build(reading: Reading, text: str) -> tuple[ShapeProgram, ConceptMatch, list
     if base_target.plan == "ball" and reading.donor_plan is None and _PANEL_WORDS.search(normalise(text)) \
             and not {**base_target.params, **params}.get("gores") and not base_target.params.get("patches"):
         params = {**params, "gores": BALL_GORES}  # 'a ball with stitched panels'
+    face = reading.donor_plan is None and _FACE_WORDS.search(normalise(text)) is not None \
+        and (base_target.plan == "ball" or (base_target.plan is None and base_target.category == "ball"))
+    if face and base_target.plan == "ball":
+        params = {**params, "face": True}  # 'a smiley stress ball', 'a ball with a happy face printed on it'
+    peel = _PEEL_WORDS.search(normalise(text))
+    if base_target.plan == "elongated" and reading.donor_plan is None and peel is not None \
+            and {**base_target.params, **params}.get("blossom"):
+        params = {**params, "peeled": 1.0 if peel.group(0) in ("peeled", "skinned") else 0.5}  # 'a half-peeled banana'
+        states.append("peeled" if peel.group(0) in ("peeled", "skinned") else "half peeled")
     curl = _CURL_WORDS.search(normalise(text))
     if base_target.plan == "sheet" and curl is not None and {**base_target.params, **params}.get("state", "flat") == "flat":
         slight = re.search(r"\b(?:slightly|a bit|a little|a touch|gently)\b", normalise(text)) is not None
@@ -768,6 +778,9 @@ def build(reading: Reading, text: str) -> tuple[ShapeProgram, ConceptMatch, list
         base = _entry_program(entry, size) if not params else _with_params(entry, params, size)
     name = reading.match.noun if reading.match.by_analogy and reading.match.noun else entry.key.replace("_", " ")
     program = base.model_copy(update={"name": name, "category": entry.category})
+    if face and base_target.plan is None:  # a hand-written ball: the face printed on its envelope
+        centre, half = _body_envelope(program)
+        program = program.model_copy(update={"parts": [*program.parts, *smiley(tuple(centre), tuple(half))]})
     if goods is not None and goods.duplicate:
         program, match = goods_words.pair_up(program, match)
     program, applied = apply_colors(program, normalise(text))
@@ -1225,6 +1238,9 @@ SLUMP_DEGREE: dict[str, float] = {"slightly": 0.5, "a bit": 0.5, "a little": 0.5
                                   "totally": 1.5, "fully": 1.3, "heavily": 1.3, "badly": 1.3, "well": 1.1}
 SLUMP_BASE = (0.12, 0.35)  # the flat base cut from a slumped body: this share of its height at no slump, the second
 # added at full slump (keep 0) [-]
+_PEEL_WORDS = re.compile(r"\b(?:(?:half|partly|partially|part|semi)\s*peeled|peel(?:ed)? (?:half |partly )?"
+                         r"(?:pulled |folded )?back|peeled halfway|half way peeled|peeled|skinned)\b")
+_FACE_WORDS = re.compile(r"\b(?:smiley|smiling|smile|smiles|happy face|smiley face|face|emoji|emoticon)\b")
 _PANEL_WORDS = re.compile(r"\b(?:panels?|panel(?:l)?ed|seams?|seamed|stitched|stitching|gores?|segmented|"
                           r"quilted panels)\b")
 _CURL_WORDS = re.compile(r"\b(?:curl(?:ing|ed|s|y)?(?: up)?(?: [a-z]+){0,3} (?:corners?|edges?)|(?:corners?|edges?)"

@@ -33,11 +33,11 @@ CASES: dict[str, tuple[str, tuple[float, float], tuple[float, float], float, str
         "retail 41 in (208 cm loop) medium pull-up bands, 2.2 cm wide: 0.15-0.2 kg"),
     # a tube's outer and inner diameters bind to the tube; it weighs its wall
     "50 cm of silicone tube, ID 6 mm, OD 9 mm": (
-        "tubing", (0.15, 0.3), (0.005, 0.03), 0.02, "0.5 m x pi/4 (9^2 - 6^2) mm^2 = 17.7 cm^3 of silicone at 1.15 g/cm^3"),
+        "tubing", (0.08, 0.16), (0.004, 0.03), 0.02, "0.5 m x pi/4 (9^2 - 6^2) mm^2 = 17.7 cm^3 of silicone at 1.15 g/cm^3"),
     "one metre of aquarium air tubing, 4 mm inner diameter and 6 mm outer diameter": (
-        "tubing", (0.3, 0.5), (0.004, 0.03), 0.019, "1 m x pi/4 (6^2 - 4^2) mm^2 = 15.7 cm^3 of PVC / silicone"),
+        "tubing", (0.15, 0.3), (0.004, 0.03), 0.019, "1 m x pi/4 (6^2 - 4^2) mm^2 = 15.7 cm^3 of PVC / silicone"),
     "2 m of latex tubing with a 6 mm bore": (
-        "tubing", (0.6, 1.0), (0.005, 0.05), 0.085, "2 m of 6 mm ID, ~9.5 mm OD latex tubing: 88 cm^3 at 0.95 g/cm^3"),
+        "tubing", (0.3, 0.6), (0.005, 0.05), 0.085, "2 m of 6 mm ID, ~9.5 mm OD latex tubing: 88 cm^3 at 0.95 g/cm^3"),
     "a jelly cup": ("jelly", (0.05, 0.08), (0.025, 0.06), 0.11, "retail 4 oz (113 g) gelatin snack cups"),
     "a cup of lime jello": ("jelly", (0.05, 0.08), (0.025, 0.06), 0.11, "retail 4 oz (113 g) gelatin snack cups"),
     "a pudding snack cup, turned out": ("jelly", (0.05, 0.08), (0.025, 0.06), 0.1,

@@ -61,6 +61,7 @@ PLANS: dict[str, tuple[type[Model], Callable[[Any], list[Part]]]] = {
     "cloud": (things.CloudParams, things.cloud),
     "cactus": (things.CactusParams, things.cactus),
     "blob": (things.BlobParams, things.blob),
+    "pouf": (things.PoufParams, things.pouf),
     "sheet": (goods.SheetParams, goods.sheet),
     "pouch": (goods.PouchParams, goods.pouch),
     "glove": (goods.GloveParams, goods.glove),
@@ -80,7 +81,7 @@ PLANS: dict[str, tuple[type[Model], Callable[[Any], list[Part]]]] = {
 }
 
 # colours a part keeps unless the request or the entry names one (eyes and noses are dark)
-_DARK = {"eye", "nose", "pupil"}
+_DARK = {"eye", "nose", "pupil", "mouth"}
 BLACK: RGB = (0.02, 0.02, 0.02)
 # fittings a part keeps unless the entry or the request names their colour: a zip, its pull, a button, a buckle
 _HARDWARE = {"zip", "pull", "button", "buckle"}

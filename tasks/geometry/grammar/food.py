@@ -128,9 +128,13 @@ class ElongatedParams(Model):
     stem_length: float = Field(default=0.07, gt=0.0, le=0.3, description="a stub stem's length / length [-]")
     blossom: bool = Field(default=False, description="a dark nub at the -x end (a banana's blossom end)")
     flatten: float = Field(default=1.0, gt=0.3, le=1.0, description="height / width of the cross-section [-]")
+    peeled: float = Field(default=0.0, ge=0.0, le=1.0, description="share of the length peeled from the stem end "
+                          "(a banana): the flesh bare there, the peel in three strips folded back from the peel line "
+                          "(none when all of it is peeled) [-]")
 
 
 ELONGATED_SEGMENTS = 14
+PEEL_STRIPS = 3
 
 
 def elongated_radius(p: ElongatedParams, t: float) -> float:
@@ -159,6 +163,12 @@ def elongated(p: ElongatedParams) -> list[Part]:
     pts = np.stack([xs, np.zeros_like(xs), zs + r0], axis=1)
     names = [f"segment {i + 1}" for i in range(n)]
     names[n // 2] = "body"
+    bare = n - int(round(p.peeled * n))  # segments from here to the stem end are peeled
+    if p.peeled > 0:
+        radii[bare:] *= 0.82  # the flesh, thinner than the fruit in its peel
+        names = [f"flesh {i + 1}" if i >= bare else nm for i, nm in enumerate(names)]
+        if bare <= n // 2:
+            names[max(bare - 1, 0)] = "body"
     parts = swept(names, pts, radii)
     k = next(i for i, q in enumerate(parts) if q.name == "body" and q.primitive.kind == "cone")  # drawn first
     parts = [parts[k]] + parts[:k] + parts[k + 1:]
@@ -167,7 +177,23 @@ def elongated(p: ElongatedParams) -> list[Part]:
     end = pts[-1]
     d = end - pts[-2]
     d /= np.linalg.norm(d)
-    if p.stem == "stub":
+    if 0 < bare < n:  # the peel's strips hang from the peel line back along the fruit, flaring out and down
+        a0 = pts[bare]
+        axis = (pts[bare] - pts[bare - 1]) / np.linalg.norm(pts[bare] - pts[bare - 1])
+        side = np.cross(axis, [0.0, 0.0, 1.0])
+        side /= np.linalg.norm(side)
+        up = np.cross(side, axis)
+        length = (n - bare) / n
+        r = float(radii[bare - 1])
+        for j in range(PEEL_STRIPS):
+            phi = np.radians(90.0 + 120.0 * j)
+            out = np.cos(phi) * up + np.sin(phi) * side
+            mid = a0 - 0.15 * length * axis + 1.7 * r * out
+            tip = a0 - 0.5 * length * axis + 2.4 * r * out
+            mid[2], tip[2] = max(0.4 * r, mid[2]), max(0.35 * r, tip[2] - 1.5 * r)
+            parts.append(limb(f"peel {j + 1}", a0 + 0.8 * r * out, mid, 0.32 * r, blend=0.2 * r))
+            parts.append(limb(f"peel {j + 1} strip", mid, tip, 0.3 * r, blend=0.2 * r))
+    if p.stem == "stub" and p.peeled == 0:
         parts.append(tapered("stem", end - d * 0.5 * radii[-1], end + d * p.stem_length, 0.3 * p.radius,
                              0.22 * p.radius, blend=0.15 * p.radius))
     elif p.stem == "leafy":

@@ -893,6 +893,8 @@ def _garment_folded(p: GarmentParams) -> list[Part]:
     t = float(np.clip(2 * p.thickness, 0.011, 0.03)) * (PUFF if p.baffles else 1.0)  # one layer (front and back)
     n = 4
     h = n * t
+    if p.kind == "trousers":
+        return _trousers_folded(p, t, n)
     parts = [box("body", (fl, fw, h), (0, 0, h / 2), edge=0.4 * t)]
     if p.kind == "top" and p.sleeves != "none":
         for side in (1, -1):  # a sleeve folded in across the shoulder: a flap lying on top, cut to the outline
@@ -912,6 +914,34 @@ def _garment_folded(p: GarmentParams) -> list[Part]:
         parts.append(box("hem", (0.05, fw, 0.5 * t), (-fl / 2 + 0.04, 0, h + 0.1 * t), edge=0.2 * t, blend=0.003))
     else:
         parts.append(limb("hem", (-fl / 2 + 0.04, -0.48 * fw, h), (-fl / 2 + 0.04, 0.48 * fw, h), 0.012, blend=0.004))
+    return parts
+
+
+def _trousers_folded(p: GarmentParams, t: float, n: int) -> list[Part]:
+    """Trousers folded as in a shop, the seat up: a rectangle `n` layers thick with the waistband along its top edge
+    (belt loops, the button at its end, a label patch), the yoke seam dipping across below it, two back pockets, and
+    the folded legs' layers seen at the bottom edge."""
+    fl, fw = 0.36, 0.5 * p.width
+    h = n * t
+    top = h + 0.15 * t
+    parts = [box("body", (fl, fw, h), (0, 0, h / 2), edge=0.4 * t)]
+    xw = fl / 2 - 0.03
+    parts.append(box("waistband", (0.055, fw, 0.5 * t), (xw, 0, h + 0.1 * t), edge=0.2 * t, blend=0.003))
+    for i, y in enumerate(np.linspace(-0.44 * fw, 0.44 * fw, 5)):
+        parts.append(box(f"belt loop {i + 1}", (0.07, 0.02, 0.5 * t), (xw - 0.005, y, h + 0.45 * t), edge=0.2 * t,
+                         blend=0.002))
+    parts.append(cylinder("button", 0.018, 0.5 * t, (xw, -0.47 * fw, h + 0.5 * t), edge=0.15 * t, blend=0.002))
+    parts.append(box("patch", (0.045, 0.12 * fw, 0.35 * t), (xw - 0.002, 0.22 * fw, h + 0.4 * t), edge=0.1 * t,
+                     blend=0.002))
+    for side in (1, -1):  # the yoke: a seam from the side dipping to the centre seam
+        parts.append(limb(f"{'left' if side > 0 else 'right'} yoke", (xw - 0.05, side * 0.5 * fw, top),
+                          (xw - 0.09, 0.0, top), 0.006, blend=0.003))
+        parts.append(box(f"{'left' if side > 0 else 'right'} back pocket", (0.13, 0.3 * fw, 0.35 * t),
+                         (xw - 0.175, side * 0.24 * fw, h + 0.1 * t), edge=0.15 * t, blend=0.003,
+                         rot=(0, 0, side * 4)))
+    parts.append(limb("centre seam", (xw - 0.09, 0.0, top), (-fl / 2 + 0.05, 0.0, top), 0.006, blend=0.003))
+    for i in range(1, n):  # the folded bottom edge: the layers seen apart
+        parts.append(_op(box(f"fold gap {i}", (0.1 * fl, fw * 1.2, 0.22 * t), (-fl / 2, 0, i * t)), "subtract"))
     return parts
 
 
@@ -1030,20 +1060,22 @@ def bag(p: BagParams) -> list[Part]:
 
 def _zip_pouch(p: BagParams) -> list[Part]:
     """A zipped soft case lying flat, its zipped top edge at +x: a padded slab (depth `gusset`, at least two
-    layers), the zip's tape and teeth along the top edge, its pull tab hanging from one end, a seam round the sides."""
+    layers), the zip's tape and teeth running along the top near that edge, its slider at one end with the pull tab
+    lying out past the case's end."""
     w = p.width
     d = max(p.gusset, 2 * p.thickness, 0.04)
     parts = [superellipsoid("body", (0.5, w / 2, d / 2), (0.0, 0.0, d / 2), ns=0.35, ew=0.2)]
-    tape = min(0.06, 0.3 * d + 0.02)
-    parts.append(box("zip tape", (2 * tape, 0.96 * w, 0.25 * d), (0.5 - 0.6 * tape, 0, 0.78 * d), edge=0.1 * d,
-                     blend=0.2 * tape))
-    parts.append(box("zip teeth", (0.35 * tape, 0.94 * w, 0.32 * d), (0.5 - 0.6 * tape, 0, 0.84 * d), edge=0.05 * d,
-                     blend=0.05 * tape))
-    y_end = 0.47 * w - 0.03
-    parts.append(box("zip slider", (0.9 * tape, 0.05, 0.36 * d), (0.5 - 0.6 * tape, y_end, 0.88 * d), edge=0.08 * d,
+    x_zip = 0.5 - 0.09 - 0.15 * d  # on the top face, inboard of the rounded edge
+    lift = 0.025 + 0.05 * d
+    parts.append(box("zip tape", (0.11, 0.92 * w, lift), (x_zip, 0, d - 0.3 * lift), edge=0.3 * lift,
+                     blend=0.02))
+    parts.append(box("zip teeth", (0.04, 0.9 * w, lift), (x_zip, 0, d + 0.15 * lift), edge=0.3 * lift,
                      blend=0.01))
-    parts.append(box("zip pull", (0.035, 0.11, 0.1 * d + 0.004), (0.5 - 0.6 * tape, y_end + 0.08, 0.98 * d),
-                     edge=0.003, blend=0.01, rot=(0, 0, -12)))
+    y_end = 0.45 * w - 0.04
+    parts.append(box("zip slider", (0.09, 0.07, 1.6 * lift), (x_zip, y_end, d + 0.3 * lift), edge=0.3 * lift,
+                     blend=0.01))
+    parts.append(box("zip pull", (0.06, 0.2, 0.8 * lift), (x_zip, y_end + 0.14, d - 0.1 * lift), edge=0.3 * lift,
+                     blend=0.015, rot=(0, 8, 0)))
     return parts
 
 
@@ -1186,7 +1218,10 @@ class StrapParams(Model):
     bore: float = Field(default=0.0, ge=0.0, lt=1.0, description="a tube's inner over outer diameter (drawn solid; "
                         "its mass is the wall's: tasks.geometry.dims_words) [-]")
     turns: float = Field(default=3.0, ge=1.0, le=8.0, description="turns of a coil [-]")
-    ends: Literal["none", "handles", "buckle", "ring"] = Field(default="none", description="what the ends carry")
+    ends: Literal["none", "handles", "buckle", "ring", "hose"] = Field(default="none", description="what the ends "
+                                                                       "carry; hose: an inflatable cuff's (a blood "
+                                                                       "pressure cuff): its rubber tube and plug out "
+                                                                       "of one face, a hook-and-loop patch")
 
 
 def _strip_dims(p: StrapParams, extent: float) -> tuple[float, float]:
@@ -1244,6 +1279,16 @@ def strap(p: StrapParams) -> list[Part]:
                              blend=0.002))
         elif p.ends == "ring":
             parts.append(_scaled(torus("ring", 0.7 * w, 0.12 * w, (length / 2, 0, 0.12 * w)), (1, 1, 1)))
+        elif p.ends == "hose":  # out of the top face near one end, curving away over the table
+            r = 0.012
+            pts = [np.array([-0.22 + 0.45 * u - 0.1 * np.sin(np.pi * u), -w / 2 - 0.28 * np.sin(0.5 * np.pi * u),
+                             r + t * (1.0 - u) ** 2]) for u in np.linspace(0.0, 1.0, 8)]
+            parts += [limb(f"hose {k + 1}", pts[k], pts[k + 1], r, blend=0.3 * r) for k in range(len(pts) - 1)]
+            parts.append(limb("hose 0", np.array([-0.22, -0.3 * w, t]), pts[0], r, blend=0.3 * r))
+            tip = pts[-1] + np.array([0.04, 0.0, 0.0])
+            parts.append(cylinder("plug", 1.8 * r, 0.05, tuple(tip), rot=(0, 90, 0), edge=0.4 * r, blend=0.005))
+            parts.append(box("fastener patch", (0.3, 0.8 * w, 0.35 * t), (0.3, 0, t * 1.05), edge=0.15 * t,
+                             blend=0.004))
     return parts
 
 

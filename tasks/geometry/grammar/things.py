@@ -11,6 +11,7 @@ from pydantic import Field
 from contracts.base import Model
 from contracts.shape import Part
 from tasks.geometry.grammar.parts import (
+    Vec,
     _euler_z_to,
     box,
     cone,
@@ -77,6 +78,8 @@ class BallParams(Model):
                          "spread (a soccer ball's 12 pentagons) [-]")
     gores: int = Field(default=0, ge=0, le=16, description="panels from pole to pole, their seams raised along the "
                        "meridians (a medicine ball's or a volleyball's stitched panels) [-]")
+    face: bool = Field(default=False, description="a printed smiley face (two eyes and a smile) on its front (+x), "
+                       "tilted up")
 
 
 BALL_SPINDLE_POINTS = 17
@@ -113,12 +116,38 @@ def ball(p: BallParams) -> list[Part]:
     for i in range(p.gores // 2):  # each seam a great circle through the poles: two panels' edges
         parts.append(ellipsoid(f"panel seam {i + 1}", (0.52 * p.aspect, 0.022, rz * 1.04), (0, 0, rz),
                                rot=(0, 0, 180.0 * i / (p.gores // 2))))
+    if p.face:
+        parts += smiley((0.0, 0.0, rz), (0.5 * p.aspect, 0.5, rz))
     if p.patches:
         for i, d in enumerate(sphere_directions(p.patches, seed=0.4)):
             n = d / np.linalg.norm(d)
             parts.append(cylinder(f"patch {i + 1}", 0.2, 0.09, np.array([0, 0, rz]) + 0.5 * n * (1, 1, p.squash),
                                   edge=0.01, rot=_euler_z_to(n), op="subtract"))  # a panel set in, its own colour
     return parts
+
+
+def smiley(centre: Vec, radii: Vec) -> list[Part]:
+    """A printed smiley face on the front of a ball-like body (centre, radii along x, y, z): two upright oval eyes and
+    a smile's arc, thin raised decals facing +x tilted 25 deg up (seen from the front and from above)."""
+    c = np.asarray(centre, dtype=np.float64)
+    rad = np.asarray(radii, dtype=np.float64)
+    k = 2.0 * float(rad[1])  # the features' sizes are for a ball of diameter 1 across y
+
+    def on(az: float, el: float, lift: float = 0.0) -> np.ndarray:
+        tilt = np.radians(25.0)
+        d = np.array([np.cos(el) * np.cos(az), np.cos(el) * np.sin(az), np.sin(el)])
+        d = np.array([d[0] * np.cos(tilt) - d[2] * np.sin(tilt), d[1], d[0] * np.sin(tilt) + d[2] * np.cos(tilt)])
+        return c + (1.0 + lift) * d * rad
+
+    parts = []
+    for side, name in ((1, "left"), (-1, "right")):
+        at = on(side * np.radians(18), np.radians(15), 0.0)
+        n = (at - c) / np.linalg.norm(at - c)
+        parts.append(ellipsoid(f"{name} eye", (0.06 * k, 0.09 * k, 0.04 * k), tuple(at), rot=_euler_z_to(n),
+                               blend=0.004 * k))
+    arc = [on(np.radians(a), np.radians(-8 - 16 * np.cos(np.radians(a) * 2.4)), 0.01) for a in np.linspace(-36, 36, 9)]
+    parts += [limb(f"mouth {m + 1}", arc[m], arc[m + 1], 0.03 * k, blend=0.005 * k) for m in range(len(arc) - 1)]
+    return [q.model_copy(update={"color_rgb": (0.02, 0.02, 0.02)}) for q in parts]  # printed black
 
 
 def _laces(aspect: float, rz: float) -> list[Part]:
@@ -380,3 +409,40 @@ def blob(p: BlobParams) -> list[Part]:
     """Width 1, flat underside."""
     h = p.height
     return [superellipsoid("body", (0.5 * p.elongation, 0.5, h / 2), (0, 0, h / 2), ns=0.55, ew=1.0)]
+
+
+# ------------------------------------------------------------------------------------------------------ bath pouf
+class PoufParams(Model):
+    """A bath pouf (shower puff): a ball of gathered nylon netting, its ruffled layers standing out all round a small
+    gathered core, a cord loop tied at the middle. Diameter 1."""
+
+    ruffles: int = Field(default=40, ge=8, le=64, description="ruffled layers of netting round the core [-]")
+    cord: bool = Field(default=True, description="the hanging cord loop")
+
+
+def pouf(p: PoufParams) -> list[Part]:
+    """A gathered core (z = 0.5) under many small ruffles; each ruffle a thin disc whose plane holds its radial
+    direction (the netting's layers fan out like a peony's petals), spread evenly (a Fibonacci sphere); the doubled
+    cord out of its side on the table."""
+    centre = np.array([0.0, 0.0, 0.5])
+    parts = [ellipsoid("core", (0.45, 0.45, 0.43), tuple(centre))]
+    n = p.ruffles
+    golden = np.pi * (3.0 - np.sqrt(5.0))
+    for i in range(n):
+        z = 1.0 - 2.0 * (i + 0.5) / n
+        r = np.sqrt(max(1.0 - z * z, 0.0))
+        d = np.array([r * np.cos(golden * i), r * np.sin(golden * i), z])
+        side = np.cross(d, [0.31, 0.52, 0.79] if abs(d[2]) < 0.9 else [1.0, 0.0, 0.0])
+        side = side / np.linalg.norm(side)
+        normal = np.cos(1.7 * i) * side + np.sin(1.7 * i) * np.cross(d, side)  # each layer turned its own way
+        rad = 0.13 + 0.02 * np.sin(3.1 * i)  # a ridge of gathered netting standing ~0.05 out of the core
+        parts.append(ellipsoid(f"ruffle {i + 1}", (rad, 0.8 * rad, 0.045), tuple(centre + (0.5 - rad) * d),
+                               blend=0.05, rot=_euler_z_to(normal)))
+    if p.cord:  # the cord, doubled, out of its side and lying on the table (no open loop: a hull would fill it)
+        a = centre + np.array([0.38, 0.0, -0.22])
+        b = np.array([0.66, 0.0, 0.025])
+        for k, dy in enumerate((-0.022, 0.022)):
+            parts.append(limb(f"cord {k + 1}", a + np.array([0.0, dy, 0.0]), b + np.array([0.0, dy, 0.0]), 0.022,
+                              blend=0.01))
+        parts.append(ellipsoid("cord knot", (0.035, 0.05, 0.03), tuple(b), blend=0.01))
+    return parts
