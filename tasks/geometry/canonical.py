@@ -6,7 +6,7 @@ from typing import Literal
 
 import numpy as np
 import trimesh
-from scipy.spatial import ConvexHull, QhullError
+from scipy.spatial import ConvexHull, QhullError, cKDTree
 
 Orientation = Literal["keep_if_stable", "most_stable", "keep"]
 
@@ -75,7 +75,13 @@ def seat_flat(mesh: trimesh.Trimesh, min_tip_deg: float = SEAT_TIP_DEG, max_cut:
             break
     if best[0] <= start + 1.0:
         return mesh, 0.0
-    return best[2], best[1]
+    seated = best[2]
+    if mesh.visual.kind == "vertex":  # slice_plane drops vertex colours: each vertex takes its nearest original's
+        where = np.asarray(seated.vertices) + np.array([0.0, 0.0, lo[2] + best[1]])  # back where it was cut
+        _, idx = cKDTree(np.asarray(mesh.vertices)).query(where)
+        colors = np.asarray(mesh.visual.vertex_colors)[idx]
+        seated.visual = trimesh.visual.ColorVisuals(seated, vertex_colors=colors)
+    return seated, best[1]
 
 
 POSE_HULL_CELLS = 24  # a smooth body's hull is thinned to one vertex per cell of a 24^3 grid for the pose search

@@ -89,3 +89,17 @@ def test_a_sock_monkey_is_its_own_toy(text: str) -> None:
     entry, _groups_ = _groups(text)
     assert entry == "sock_monkey", (text, entry)
     assert 0.5 <= planned_mass(text) / 0.2 <= 2.0  # retail 45-50 cm sock monkeys, 0.15-0.3 kg
+
+
+def test_a_seated_toy_keeps_its_colours() -> None:
+    """Cutting a standing toy's base flat (canonical.seat_flat) kept the shape but dropped its vertex colours: sealed
+    set 6's teddy, bunny and duck were judged grey."""
+    from tasks.geometry.canonical import canonicalize, seat_flat
+    from tasks.geometry.meshing import mesh_program
+
+    d = catalogue.design_from_text("a handmade sock monkey toy")
+    mesh, _ = canonicalize(mesh_program(d.program, 48), "keep_if_stable", align_xy=False)
+    seated, cut = seat_flat(mesh)
+    assert cut > 0 and seated.visual.kind == "vertex"
+    colors = np.asarray(seated.visual.vertex_colors)[:, :3].astype(int)
+    assert (colors.max(axis=1) - colors.min(axis=1)).max() > 30 and len(np.unique(colors, axis=0)) > 20  # its nose
