@@ -9,7 +9,7 @@ later layers use are typed (PhysicalModel, Material, TargetBehaviour, ...). L3's
 
 from __future__ import annotations
 
-from typing import Any, ClassVar, Literal
+from typing import Any, ClassVar, Literal, get_args
 
 from pydantic import BaseModel, ConfigDict, Field
 
@@ -31,6 +31,11 @@ RECORDINGS_DIR = "recordings"
 EVIDENCE_DIR = "evidence"
 INTERACTION_DIR = "interaction"
 
+# `--record`: what an asset keeps of the probes' and trials' recordings and of L3's trial states (#38 item 5): the
+# adopted (else reported) L3 trial's alone, the rest staying in the cache and named by the records; or all of them
+KeepTrials = Literal["adopted", "all"]
+KEEP_TRIALS: tuple[str, ...] = get_args(KeepTrials)
+DEFAULT_KEEP: KeepTrials = "adopted"
 
 
 def attempt_path(attempt: int) -> str:
@@ -74,6 +79,7 @@ class GeometryRecord(Model):
 class PhysicalRecord(Model):
     """physical.json: L1's outcome, its targets, mass check and the frozen PhysicalModel (None when L1 failed)."""
 
+    ABSENT_UNLESS_GIVEN: ClassVar[frozenset[str]] = frozenset({"cached_recordings"})  # keys older records lack
     schema_version: int = 1
     stage: Literal["L1"] = "L1"
     passed: bool
@@ -88,6 +94,11 @@ class PhysicalRecord(Model):
     sim_calls: int
     attempts: int
     recordings: list[str]
+    cached_recordings: dict[str, str] = Field(
+        default_factory=dict, description="the probe recordings the asset does not hold (#38: by default an asset "
+        "keeps the adopted L3 trial's recording alone; `--record all` copies these too): the name it would have in the "
+        "asset (recordings/<stage>_<kind>.rrd) -> its path under the cache root (recordings/<stage>_<kind>-<the "
+        "probe's cache key, first 16 hex digits>.rrd; the full key in evidence/attempts.jsonl)")
 
 
 class HeldOutSummary(Model):
@@ -117,7 +128,7 @@ class MaterialRecord(Model):
     """material.json: L2's outcome, targets, the material (None when L2 found none) and its evidence; L2's record, which
     L3 never edits (the asset's final material is AdoptedMaterial: this one, or an L3 revision in manipulation.json)."""
 
-    ABSENT_UNLESS_GIVEN: ClassVar[frozenset[str]] = frozenset({"not_measured"})  # keys older records lack
+    ABSENT_UNLESS_GIVEN: ClassVar[frozenset[str]] = frozenset({"not_measured", "cached_recordings"})  # older: none
     schema_version: int = 1
     stage: Literal["L2"] = "L2"
     passed: bool
@@ -134,6 +145,11 @@ class MaterialRecord(Model):
     selection: SelectionSummary
     sim_calls: int
     recordings: dict[str, str | None] = Field(description="probe kind -> recording path in the asset")
+    cached_recordings: dict[str, str] = Field(
+        default_factory=dict, description="the probe recordings the asset does not hold (#38: by default an asset "
+        "keeps the adopted L3 trial's recording alone; `--record all` copies these too): the name it would have in the "
+        "asset (recordings/<stage>_<kind>.rrd) -> its path under the cache root (recordings/<stage>_<kind>-<the "
+        "probe's cache key, first 16 hex digits>.rrd; the full key in evidence/attempts.jsonl)")
 
 
 MaterialSource = Literal["L2", "L3 revision"]

@@ -49,7 +49,8 @@ class TrialRow(Row):
     `attempts`."""
 
     ABSENT_UNLESS_GIVEN: ClassVar[frozenset[str]] = frozenset({"values", "cache_key", "recording", "condition",
-                                                               "trial", "reason"})
+                                                               "trial", "reason", "data_key", "kept_in",
+                                                               "recording_in_cache"})
     attempt: int | None = Field(description="its interaction folder (interaction/attempt_NNN); None: nothing stored")
     role: str = Field(description="selection, robustness, confirmation, held_out, grasp_selection")
     action: str = Field(description="the harness action that asked for it ('' for a condition trial)")
@@ -60,6 +61,14 @@ class TrialRow(Row):
     condition: TrialCondition | None = None
     trial: int | None = Field(default=None, description="its number, from 1 in the order run (tasks.record.trials)")
     reason: str = Field(default="", description="why it failed L3, in words ('' when it passed every gate)")
+    data_key: str | None = Field(default=None, description="the cache key of its interaction data: "
+                                 "CacheStore(cache root).get(data_key) is the attempt_NNN Zarr group (#38)")
+    kept_in: Literal["asset", "cache"] = Field(
+        default="asset", description="where its interaction data and recording are: the asset (interaction/"
+        "attempt_NNN, `recording`), or only the cache (data_key, recording_in_cache): by default an asset keeps the "
+        "reported trial's alone (`--record all` keeps every trial's); records before #38: absent, the asset")
+    recording_in_cache: str | None = Field(default=None, description="its Rerun recording's path under the cache "
+                                           "root (recordings/L3_trial-<key>-r<version>.rrd)")
 
 
 class ConditionRow(Row):

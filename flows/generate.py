@@ -23,7 +23,8 @@ from cache.files import cached_file, source_digest
 from cache.prefect_flow import lean_flow
 from cache.tempfiles import dead_partials, owner_tag, remove_paths
 from contracts.agents import AgentConfig
-from contracts.asset_dir import ASSET_JSON, GeometryRecord, MaterialRecord, PhysicalRecord, attempt_path
+from contracts.asset_dir import (ASSET_JSON, DEFAULT_KEEP, GeometryRecord, KeepTrials, MaterialRecord, PhysicalRecord,
+                                 attempt_path)
 from contracts.errors import RequirementNotMet, StageFailure
 from contracts.manifest import AssetManifest, Provenance, StageSummary
 from contracts.manipulation import ManipulationRecord
@@ -34,6 +35,7 @@ from contracts.stage import load_contract
 from flows import l0_geometry, l1_physical, l2_material, l3_manipulation, renders
 from tasks.agents.fallbacks import fallback_notes, reset as reset_fallbacks
 from tasks.asset_dir import AssetDir
+from tasks.record.trials import reported_attempt
 from tasks.manipulation.report import NO_GRASP_GATE
 from tasks.manipulation.replay import replay
 from tasks.publish import check_out_dir, replace_directory
@@ -110,13 +112,8 @@ def l3_summary(record: ManipulationRecord) -> StageSummary:
 
 def shown_attempt(record: ManipulationRecord) -> int | None:
     """The attempt the pick-and-place video shows: the accepted one, else the one the manifest reports, else the
-    last trial that ran."""
-    if record.attempt is not None:
-        return record.attempt
-    if record.best_attempt is not None and record.best_attempt.attempt is not None:
-        return record.best_attempt.attempt
-    runs = [a.attempt for a in record.attempts if a.attempt is not None]
-    return runs[-1] if runs else None
+    last trial that ran (the one trial whose states a default asset keeps: tasks.manipulation.keep)."""
+    return reported_attempt(record)
 
 
 def reported_plan(record: ManipulationRecord) -> ActionPlan | None:
@@ -177,11 +174,13 @@ def manipulation_outcome(labels: dict[str, float]) -> Any:
 
 
 def run_manipulation(work: Path, device: Device, quality: str, agents: AgentConfig | None,
-                     cpu_threads: int = 1, progress: Callable[[str], None] | None = None) -> ManipulationRecord:
-    """L3 on the working directory and the pick-and-place video of the shown attempt; the manipulation record."""
+                     cpu_threads: int = 1, progress: Callable[[str], None] | None = None,
+                     keep: KeepTrials = DEFAULT_KEEP) -> ManipulationRecord:
+    """L3 on the working directory and the pick-and-place video of the shown attempt; the manipulation record.
+    keep: which trials' states and recordings the asset keeps (tasks.manipulation.keep; the rest stay cached)."""
     options = (l3_manipulation.L3Options(device=device, cpu_threads=cpu_threads) if quality == "draft"
                else l3_manipulation.L3Options.standard(device, cpu_threads))
-    record, _ = l3_manipulation.run_l3(work, options, agents, progress=progress)
+    record, _ = l3_manipulation.run_l3(work, options, agents, progress=progress, keep=keep)
     write_pick_and_place_video(work, record)
     return record
 
@@ -297,7 +296,7 @@ def _set_aside(out_dir: Path) -> Path | None:
 
 def generate_asset(request: AssetRequest | CheckedRequest, out_dir: Path, device: Device = "cpu",
                    agents: AgentConfig | None = None, on_stage: StageCallback | None = None, manipulate: bool = True,
-                   cpu_threads: int = 1) -> AssetManifest:
+                   cpu_threads: int = 1, keep: KeepTrials = DEFAULT_KEEP) -> AssetManifest:
     """Run every layer for one request and publish the asset directory: the `generate` flow against the local Prefect
     runtime. Bad input (a rigid material, a bad target override, a size L0 cannot build, an output that is not an
     asset directory) fails before any flow starts; the request is checked here once (tasks.request), unless the
@@ -305,17 +304,19 @@ def generate_asset(request: AssetRequest | CheckedRequest, out_dir: Path, device
     checked = checked_request(request)
     check_out_dir(Path(out_dir).expanduser().absolute())
     with cache.local_runtime():
-        return generate(checked, out_dir, device, agents, on_stage, manipulate, cpu_threads)
+        return generate(checked, out_dir, device, agents, on_stage, manipulate, cpu_threads, keep)
 
 
 @lean_flow(name="generate", validate_parameters=False, persist_result=False)
 def generate(checked: AssetRequest | CheckedRequest, out_dir: Path, device: Device = "cpu",
              agents: AgentConfig | None = None, on_stage: StageCallback | None = None, manipulate: bool = True,
-             cpu_threads: int = 1) -> AssetManifest:
+             cpu_threads: int = 1, keep: KeepTrials = DEFAULT_KEEP) -> AssetManifest:
     """L0 -> L1 -> L2 -> drop renders (-> L3) -> publish, each layer a subflow (l0-geometry, l1-physical, l2-material,
     l3-manipulation); StageFailure when L0, L1 or L2 says no.
 
     cpu_threads: on the CPU, threads sharing each MPM rollout's particles (SimConfig.cpu_threads).
+    keep: 'adopted' (the default) publishes the reported L3 trial's states and recording alone, every other trial's
+    staying in the cache (their rows name the key); 'all' (`--record all`) publishes every trial's.
 
     L3 (``manipulate``) validates the asset with a robot: its outcome (passed or not, with the failed gates and the
     labelled attempts) is part of the published asset, since the deformable asset itself was established by L0-L2.
@@ -353,14 +354,14 @@ def generate(checked: AssetRequest | CheckedRequest, out_dir: Path, device: Devi
         l0_geometry.write_l0(l0, work, extra={"request": request.model_dump(mode="json")})
         intent = request.material_intent or request.text
         note("L1", "physical model: rigid probes")
-        physical, o1 = l1_physical.run_l1(work, intent, agents)
+        physical, o1 = l1_physical.run_l1(work, intent, agents, keep=keep)
         if physical is None:
             raise StageFailure("L1", o1.message)
         note("L2", "material: MPM probes")
         if not targets.matched_words:
             report("L2", f"warning: no material named in '{targets.intent}': using the default material's target bands")
         sim = SimConfig(device=device, cpu_threads=cpu_threads)
-        material, o2 = l2_material.run_l2(work, request, agents, sim=sim, physical=physical)
+        material, o2 = l2_material.run_l2(work, request, agents, sim=sim, physical=physical, keep=keep)
         if material is None:
             raise StageFailure("L2", o2.message)
         note("renders", "drop protocol: 5 s drop at 30 fps, two views")
@@ -372,7 +373,8 @@ def generate(checked: AssetRequest | CheckedRequest, out_dir: Path, device: Devi
         if manipulate:
             note("L3", "manipulation: Panda pick-and-place in the MPM")
             l3 = run_manipulation(work, device, request.quality, agents, cpu_threads,  # "L3 trial k of n: ..." lines
-                                  progress=lambda message: report("L3", message.removeprefix("L3").lstrip(": ")))
+                                  progress=lambda message: report("L3", message.removeprefix("L3").lstrip(": ")),
+                                  keep=keep)
             validation.append(l3_summary(l3))
             plan = reported_plan(l3)  # adopted, else the best tried under the material the asset carries
             outcome = manipulation_outcome(validation[-1].metrics)

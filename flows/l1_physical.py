@@ -12,9 +12,9 @@ from pathlib import Path
 import numpy as np
 
 import cache
-from cache import cache_resolve
+from cache import cache_relative, cache_resolve
 from contracts.agents import AgentConfig, StageOutcome, TargetBand, TargetBehaviour
-from contracts.asset_dir import PhysicalRecord
+from contracts.asset_dir import DEFAULT_KEEP, KeepTrials, PhysicalRecord
 from contracts.errors import InputError
 from contracts.physical import PhysicalModel
 from contracts.probes import ProbeResult, ProbeSpec
@@ -106,34 +106,44 @@ def l1_runner(asset: L0Asset, contract: StageContract, category: str, density_ra
     return run
 
 
-def _copy_recordings(outcome: StageOutcome, asset_dir: Path, kinds: dict[str, str]) -> list[str]:
-    """Copy the chosen candidate's probe recordings into the asset's recordings/ folder, named by their probe kind
-    (kinds: recording path -> ProbeSpec.kind, as the runner saw them)."""
+def _copy_recordings(outcome: StageOutcome, asset_dir: Path, kinds: dict[str, str],
+                     keep: KeepTrials = DEFAULT_KEEP) -> tuple[list[str], dict[str, str]]:
+    """The chosen candidate's probe recordings, named by their probe kind (kinds: recording path -> ProbeSpec.kind,
+    as the runner saw them): copied into the asset's recordings/ folder under keep 'all', else left in the cache
+    (#38: an asset a fleet can store). Returns (the asset's paths, asset name -> cache path of those left there)."""
     if outcome.best_iteration is None:
-        return []
+        return [], {}
     chosen = next(a for a in outcome.attempts if a.iteration == outcome.best_iteration)
-    out = []
+    out, cached = [], {}
     for src in chosen.evidence.recordings:
         p = cache_resolve(src)
         if p.suffix == ".rrd" and p.is_file():
             dest = asset_dir / "recordings" / by_kind("L1", kinds[src]).recording_name()
+            if keep != "all":
+                dest.unlink(missing_ok=True)  # (an earlier run's copy, on a rerun of the layer)
+                cached[str(dest.relative_to(asset_dir))] = cache_relative(p)
+                continue
             copy_file_atomic(p, dest)  # a new file: a hard link of a working copy (tasks.publish) is never rewritten
             out.append(str(dest.relative_to(asset_dir)))
-    return out
+    return out, cached
 
 
 def run_l1(asset_dir: Path, intent: str | None = None, agents: AgentConfig | None = None,
-           contract: StageContract | None = None) -> tuple[PhysicalModel | None, StageOutcome]:
+           contract: StageContract | None = None,
+           keep: KeepTrials = DEFAULT_KEEP) -> tuple[PhysicalModel | None, StageOutcome]:
     """Run L1 on an L0 asset directory (the l1-physical flow against the local Prefect runtime); write physical.json;
     return the frozen model (None if L1 failed)."""
     with cache.local_runtime():
-        return l1_physical(asset_dir, intent, agents, contract)
+        return l1_physical(asset_dir, intent, agents, contract, keep)
 
 
 @flow(name="l1-physical", validate_parameters=False, persist_result=False)
 def l1_physical(asset_dir: Path, intent: str | None = None, agents: AgentConfig | None = None,
-                contract: StageContract | None = None) -> tuple[PhysicalModel | None, StageOutcome]:
-    """L1: priors and mass check, the harness stage over the rigid probes (a subflow), physical.json."""
+                contract: StageContract | None = None,
+                keep: KeepTrials = DEFAULT_KEEP) -> tuple[PhysicalModel | None, StageOutcome]:
+    """L1: priors and mass check, the harness stage over the rigid probes (a subflow), physical.json. keep: 'all'
+    copies the chosen candidate's probe recordings into the asset; 'adopted' (the default) leaves them in the cache,
+    physical.json naming each (cached_recordings)."""
     asset_dir = Path(asset_dir)
     asset = load_l0(asset_dir)
     contract = contract or load_contract("L1")
@@ -144,11 +154,12 @@ def l1_physical(asset_dir: Path, intent: str | None = None, agents: AgentConfig 
     runner = l1_runner(asset, contract, category, plan.mass.density_range_kg_per_m3, kinds)
     outcome = run_harness(contract, runner, targets, agents=agents, record_dir=asset_dir)
     phys = physical_from_values(asset, outcome.values, category) if outcome.passed and outcome.values else None
-    recordings = _copy_recordings(outcome, asset_dir, kinds) if phys is not None else []
+    recordings, cached = _copy_recordings(outcome, asset_dir, kinds, keep) if phys is not None else ([], {})
     record = PhysicalRecord(
         passed=outcome.passed, status=outcome.status, message=outcome.message, material_class=material,
         intent=targets.intent, mass_check=plan.mass.model_dump(mode="json"), targets=targets, physical_model=phys,
-        metrics=outcome.metrics, sim_calls=outcome.sim_calls, attempts=outcome.attempts_used, recordings=recordings)
+        metrics=outcome.metrics, sim_calls=outcome.sim_calls, attempts=outcome.attempts_used, recordings=recordings,
+        **({"cached_recordings": cached} if cached else {}))
     AssetDir(asset_dir).write_physical(record)
     return phys, outcome
 

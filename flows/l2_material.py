@@ -20,10 +20,11 @@ from typing import Any
 
 
 import cache
-from cache import cache_resolve
+from cache import cache_relative, cache_resolve
 from cache.prefect_flow import lean_flow
 from contracts.agents import AgentConfig, StageOutcome, TargetBehaviour
-from contracts.asset_dir import MATERIAL_JSON, HeldOutSummary, MaterialRecord, SelectionSummary
+from contracts.asset_dir import (DEFAULT_KEEP, MATERIAL_JSON, HeldOutSummary, KeepTrials, MaterialRecord,
+                                 SelectionSummary)
 from contracts.errors import InputError
 from contracts.material import Material
 from contracts.physical import PhysicalModel
@@ -128,9 +129,15 @@ class _Runner:
         return object_view(out, self.contract)
 
 
-def _copy(src: str | None, dest: Path) -> str | None:
-    """Copy a recording into the asset; returns its path relative to the asset directory."""
+def _copy(src: str | None, dest: Path, keep: KeepTrials = "all", cached: dict[str, str] | None = None) -> str | None:
+    """Copy a recording into the asset (keep 'all'); returns its path relative to the asset directory. Under keep
+    'adopted' (#38) it stays in the cache: `cached` gets the name it would have -> its cache path; returns None."""
     if not src or not cache_resolve(src).is_file():
+        return None
+    if keep != "all":
+        dest.unlink(missing_ok=True)  # (an earlier run's copy, on a rerun of the layer)
+        if cached is not None:
+            cached[str(Path("recordings") / dest.name)] = cache_relative(cache_resolve(src))
         return None
     copy_file_atomic(cache_resolve(src), dest)  # a new file: a hard link of a working copy is never rewritten
     return str(Path("recordings") / dest.name)
@@ -173,19 +180,21 @@ def l2_revalidation(asset_dir: Path, material: Material, contract: StageContract
 
 def run_l2(asset_dir: Path, request_or_intent: AssetRequest | str | None = None, agents: AgentConfig | None = None,
            contract: StageContract | None = None, sim: SimConfig | None = None, physical: PhysicalModel | None = None,
-           screen_first: bool = True) -> tuple[Material | None, StageOutcome]:
+           screen_first: bool = True, keep: KeepTrials = DEFAULT_KEEP) -> tuple[Material | None, StageOutcome]:
     """Run L2 on an asset directory holding L0 (+ L1 physical.json, or `physical` given): the l2-material flow against
     the local Prefect runtime; write material.json."""
     with cache.local_runtime():
-        return l2_material(asset_dir, request_or_intent, agents, contract, sim, physical, screen_first)
+        return l2_material(asset_dir, request_or_intent, agents, contract, sim, physical, screen_first, keep)
 
 
 @flow(name="l2-material", validate_parameters=False, persist_result=False)
 def l2_material(asset_dir: Path, request_or_intent: AssetRequest | str | None = None,
                 agents: AgentConfig | None = None, contract: StageContract | None = None, sim: SimConfig | None = None,
-                physical: PhysicalModel | None = None, screen_first: bool = True) -> tuple[Material | None, StageOutcome]:
+                physical: PhysicalModel | None = None, screen_first: bool = True,
+                keep: KeepTrials = DEFAULT_KEEP) -> tuple[Material | None, StageOutcome]:
     """L2: targets, the screening (cached tasks), the harness stage over the MPM probes (a subflow), the held-out
-    tests of the chosen material, material.json."""
+    tests of the chosen material, material.json. keep: 'all' copies the chosen material's probe recordings into the
+    asset; 'adopted' (the default) leaves them in the cache, material.json naming each (cached_recordings)."""
     asset_dir = Path(asset_dir)
     asset = load_l0(asset_dir)
     physical = physical or load_physical_model(asset_dir)
@@ -200,15 +209,18 @@ def l2_material(asset_dir: Path, request_or_intent: AssetRequest | str | None = 
     outcome = run_harness(contract, runner, targets, agents=agents, record_dir=asset_dir, initial=initial)
     material = Material(**outcome.values) if outcome.passed and outcome.values else None
     recordings: dict[str, str | None] = {}
+    cached: dict[str, str] = {}  # keep 'adopted': the recordings left in the cache
     held: list[ProbeResult] = []
     if material is not None:
         chosen = next(a for a in outcome.attempts if a.iteration == outcome.best_iteration)
         for src in chosen.evidence.recordings:
             kind = runner.recording_kinds[src]
-            recordings[kind] = _copy(src, asset_dir / "recordings" / by_kind("L2", kind).recording_name())
+            recordings[kind] = _copy(src, asset_dir / "recordings" / by_kind("L2", kind).recording_name(), keep,
+                                     cached)
         held = held_out_probes(asset, physical, material, contract, sim)
         for p, r in zip(stage_probes(contract, held_out=True), held):
-            recordings[f"{p.kind}_held_out"] = _copy(r.recording, asset_dir / "recordings" / p.recording_name(True))
+            recordings[f"{p.kind}_held_out"] = _copy(r.recording, asset_dir / "recordings" / p.recording_name(True),
+                                                     keep, cached)
     held_metrics = l2_metrics(held, contract) if held else {}
     held_targets = targets.model_copy(update={"bands": [b for b in targets.bands if b.metric in held_metrics]})
     sim_calls = outcome.sim_calls + int(screening["sim_calls"]) + sum(r.sim_calls for r in held)
@@ -226,7 +238,8 @@ def l2_material(asset_dir: Path, request_or_intent: AssetRequest | str | None = 
             screening=screening,
             ranking=sorted(({"iteration": a.iteration, "values": a.proposal, "score": a.score, "verdict": a.verdict}
                             for a in outcome.attempts if a.score is not None), key=lambda d: -d["score"])),
-        sim_calls=sim_calls, recordings=recordings)
+        sim_calls=sim_calls, recordings={k: v for k, v in recordings.items() if v is not None or keep == "all"},
+        **({"cached_recordings": cached} if cached else {}))
     (asset_dir / "evidence").mkdir(parents=True, exist_ok=True)
     lines = "".join(a.model_dump_json() + "\n" for a in outcome.attempts)
     write_text_atomic(asset_dir / "evidence" / "L2_attempts.jsonl", lines)

@@ -30,6 +30,7 @@ from cache import cached_task
 from cache.files import source_digest
 from cache.prefect_flow import lean_flow
 from contracts.agents import AgentConfig, StageOutcome, TargetBehaviour
+from contracts.asset_dir import DEFAULT_KEEP, KeepTrials
 from contracts.manipulation import ConditionRow, GripperOption, L2Check, ManipulationRecord
 from contracts.material import Material
 from contracts.physical import PhysicalModel
@@ -44,6 +45,7 @@ from tasks.geometry.outputs import load_l0
 from tasks.manipulation.body import auto_trial_spacing, trial_body
 from tasks.manipulation.context import (SURFACE_SAMPLES, HoldInputs, L3Context, L3Options, accepted, body_from,
                                         failed_metrics, hold_inputs, initial_values, material_of, with_squeeze_range)
+from tasks.manipulation.keep import keep_trials
 from tasks.manipulation.l3_record import (build_record, chosen_attempt, conditions, conditions_summary,
                                           name_pick_and_place, no_grasp_record)
 from tasks.manipulation.material_revision import MaterialLimits, base_attempt, more_robust, revise_with_l2
@@ -190,22 +192,26 @@ def grasp_selection_task(points_m: np.ndarray, normals: np.ndarray, center_of_ma
 
 def run_l3(asset_dir: Path, options: L3Options | None = None, agents: AgentConfig | None = None,
            contract: StageContract | None = None, material: Material | None = None,
-           recordings: bool = True, progress: Progress | None = None) -> tuple[ManipulationRecord, StageOutcome]:
+           recordings: bool = True, progress: Progress | None = None,
+           keep: KeepTrials = DEFAULT_KEEP) -> tuple[ManipulationRecord, StageOutcome]:
     """Run L3 on an asset directory (L0 + L1, L2 or a prior): the l3-manipulation flow against the local Prefect
     runtime; write manipulation.json; return (record, outcome)."""
     with cache.local_runtime():
-        return l3_manipulation(asset_dir, options, agents, contract, material, recordings, progress)
+        return l3_manipulation(asset_dir, options, agents, contract, material, recordings, progress, keep)
 
 
 @lean_flow(name="l3-manipulation", validate_parameters=False, persist_result=False)
 def l3_manipulation(asset_dir: Path, options: L3Options | None = None, agents: AgentConfig | None = None,
                     contract: StageContract | None = None, material: Material | None = None, recordings: bool = True,
-                    progress: Progress | None = None) -> tuple[ManipulationRecord, StageOutcome]:
+                    progress: Progress | None = None,
+                    keep: KeepTrials = DEFAULT_KEEP) -> tuple[ManipulationRecord, StageOutcome]:
     """L3: grasps, the harness stage over pick-and-place trials (a subflow), robustness and held-out trials (cached
     tasks), material revisions revalidated by L2 (the l2-revalidation subflow), manipulation.json.
 
     An object no gripper can hold is a result, not an error: manipulation.json and evidence/ record the reason as
-    L3's one attempt (status 'no_grasp'). progress: a sink for 'L3 trial k of at most n: ... (elapsed)' lines."""
+    L3's one attempt (status 'no_grasp'). progress: a sink for 'L3 trial k of at most n: ... (elapsed)' lines.
+    keep: 'adopted' (the default) leaves the reported trial's states and recording in the asset and every other
+    trial's in the cache, its row naming the key (tasks.manipulation.keep); 'all' keeps every trial's in the asset."""
     asset_dir = Path(asset_dir)
     options = options or L3Options()
     contract = contract or load_contract("L3")
@@ -265,6 +271,7 @@ def l3_manipulation(asset_dir: Path, options: L3Options | None = None, agents: A
         chosen = name_pick_and_place(asset_dir, ctx.attempts, chosen)
     record = build_record(ctx, outcome, passed, chosen, final_material, revision, held, robustness,
                           [a.recording for a in ctx.attempts if a.recording])  # every trial's, failed ones included
+    record = keep_trials(asset_dir, record, keep)  # by default the reported trial's states alone; the rest cached
     report.say("L3 " + ("passed" + conditions_summary(held, robustness) if passed else "did not pass: " + record.reason))
     AssetDir(asset_dir).write_manipulation(record)  # no wall time in it: a rerun writes the same file
     return record, outcome

@@ -78,6 +78,19 @@ def check_device(device: str) -> None:
             fail("--device cuda: no CUDA device is available to Warp (no NVIDIA GPU or driver); use --device cpu")
 
 
+RECORD_CHOICES = ("adopted", "all")  # tasks.manipulation.keep.KEEP_TRIALS (not imported: --help stays quick)
+RECORD_HELP = ("what the asset keeps: adopted (the L3 trial L3 adopted, else the one it reports: its states in "
+               "interaction/ and its recording; every other trial's states and recording and the L1 and L2 probes' "
+               "recordings stay in the cache, named by the records: `deformsmith replay DIR --trial N` and "
+               "`deformsmith view DIR` read them there) | all (all of them in the asset, ~10-15 MB a trial)")
+
+
+def check_record(record: str) -> None:
+    """--record is adopted or all."""
+    if record not in RECORD_CHOICES:
+        fail(f"--record must be {' or '.join(RECORD_CHOICES)}, got '{record}'")
+
+
 def emit_json(data: Any) -> None:
     """Write machine-readable output to stdout."""
     sys.stdout.write(json.dumps(data, indent=2, sort_keys=True, default=str) + "\n")

@@ -89,9 +89,23 @@ def attempt_trials(root: Path, a: Attempt) -> list[int]:
     return [n for n in found if n is not None]
 
 
-def attempt_block(a: Attempt, trials: list[int] | None = None) -> list[str]:
+def trial_data(root: Path, trials: list[int]) -> str:
+    """Where the states of an L3 attempt's trials are: 'states: trial 2 interaction/attempt_001' or, for a trial the
+    asset left in the cache (tasks.manipulation.keep), 'trial 1 in the cache, key ...' ('' when none is known)."""
+    # lazy: contracts.asset_dir's models (~0.1 s; --help imports every command module)
+    from tasks.record.trials import data_location, read_record, trial_rows
+
+    record = read_record(root)
+    if record is None or not trials:
+        return ""
+    rows = {row.trial: row for row in trial_rows(record)}
+    parts = [f"trial {n} {data_location(rows[n], root)}" for n in trials if n in rows]
+    return "states: " + "; ".join(parts) if parts else ""
+
+
+def attempt_block(a: Attempt, trials: list[int] | None = None, where: str = "") -> list[str]:
     """An attempt as a heading line and indented detail lines (one line each, never wrapped nor cut); an L3 attempt
-    names its trial numbers."""
+    names its trial numbers, and `where` their states are (trial_data)."""
     src = a.source.backend + (f"/{a.source.model}" if a.source.model else "")
     if a.source.retries:
         src += f", {a.source.retries} retries"
@@ -105,7 +119,7 @@ def attempt_block(a: Attempt, trials: list[int] | None = None) -> list[str]:
     gates = ("failed gates: " + ", ".join(failed)) if failed else ("gates: all pass" if a.gates else "not probed")
     why = a.rejected_before_probe or (f"[{a.diagnosis}] " if a.diagnosis else "") + (a.critique or a.rationale)
     values = ", ".join(f"{k}={_fmt(v)}" for k, v in a.proposal.items()) or "-"
-    return [head, escape(values), escape(gates), escape(why or "-")]
+    return [head, escape(values), escape(gates), escape(why or "-"), *([escape(where)] if where else [])]
 
 
 def print_tallies(tallies: list[StageTally], figures: dict[str, str] | None = None, title: str = "stages") -> None:
@@ -142,7 +156,8 @@ def evidence(
         for a in rows:
             if wanted and a.stage != wanted:
                 continue
-            head, *details = attempt_block(a, attempt_trials(root, a))
+            trials = attempt_trials(root, a)
+            head, *details = attempt_block(a, trials, trial_data(root, trials))
             results.print(head, highlight=False)
             for line in details:
                 results.print("    " + line, highlight=False)

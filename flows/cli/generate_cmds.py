@@ -10,12 +10,12 @@ import typer
 from pydantic import ValidationError
 from rich.markup import escape
 
-from cache import use_cache_root
+from cache import cache_resolve, use_cache_root
 from contracts.errors import validation_message
 from contracts.evidence import StageTally
 from contracts.manifest import AssetManifest  # (not flows.generate: no Prefect import to read a file)
 from contracts.request import AssetRequest
-from flows.cli.apps import app, check_device, console, emit_json, fail, results
+from flows.cli.apps import RECORD_HELP, app, check_device, check_record, console, emit_json, fail, results
 from flows.cli.evidence_cmds import print_tallies
 from flows.cli.geometry_cmds import GEOMETRY_BACKEND_HELP
 from flows.cli.llm_option import LLM_FALLBACK_HELP, llm_agents
@@ -25,6 +25,7 @@ from tasks.record.tally import stage_tallies
 
 if TYPE_CHECKING:
     from contracts.sim import Device
+    from contracts.asset_dir import KeepTrials
 
 DEFAULT_TEXT = "a soft plush turtle toy, about 25 cm long"
 
@@ -94,9 +95,11 @@ def generate(
     require_l3: bool = typer.Option(False, "--require-l3", help="exit 7 when L3 does not pass (no grasp, a failed "
                                     "pick); the asset is published either way"),
     strict_concept: bool = typer.Option(False, "--strict-concept", help=STRICT_CONCEPT_HELP),
+    record: str = typer.Option("adopted", "--record", help=RECORD_HELP),
 ) -> None:
     """Text, image or mesh -> a published asset directory: geometry, physical model, tested material, evidence."""
     check_device(device)
+    check_record(record)
     if quality not in ("draft", "standard", "high"):
         fail(f"--quality must be draft, standard or high, got '{quality}'")
     if not 1 <= cpu_threads <= 64:
@@ -143,7 +146,8 @@ def generate(
             console.log(f"[bold]{stage}[/bold] [{style}]{escape(message)}[/{style}]")  # a reason may hold [ ]
 
         manifest = generate_asset(checked, out, device=cast("Device", device), agents=agents, on_stage=on_stage,
-                                  manipulate=l3, cpu_threads=cpu_threads)  # (device: checked by check_device)
+                                  manipulate=l3, cpu_threads=cpu_threads,  # (device: checked by check_device)
+                                  keep=cast("KeepTrials", record))  # (checked by check_record)
     if as_json:
         emit_json({"asset_dir": str(out), "validation": [s.model_dump(mode="json") for s in manifest.validation],
                    "material": manifest.material.model_dump(mode="json") if manifest.material else None,
@@ -196,18 +200,45 @@ def inspect_asset(
                       f"{o.max_strain:.3g}")
 
 
+def cached_recordings(asset: Path) -> tuple[list[Path], list[str]]:
+    """The L1 and L2 probe recordings an asset's records name in the cache (physical.json, material.json
+    cached_recordings: a default asset leaves them there, #38): (the files the cache holds, the names it no longer
+    holds)."""
+    import json
+
+    found: list[Path] = []
+    gone: list[str] = []
+    for doc in ("physical.json", "material.json"):
+        try:
+            named = json.loads((asset / doc).read_text(encoding="utf-8")).get("cached_recordings") or {}
+        except (OSError, ValueError, AttributeError):
+            continue
+        for name, ref in sorted(named.items()):
+            path = cache_resolve(ref)
+            if path.is_file():
+                found.append(path)
+            else:
+                gone.append(name)
+    return found, gone
+
+
 @app.command("view")
 def view(
     asset: Path = typer.Argument(..., help="asset directory"),
     dry_run: bool = typer.Option(False, "--dry-run", help="print the viewer command instead of starting it"),
 ) -> None:
-    """Open the asset's recordings (recordings/*.rrd) in the Rerun viewer."""
+    """Open the asset's recordings (recordings/*.rrd, and the probe recordings its records name in the cache) in the
+    Rerun viewer."""
     import os
     import shutil
     import subprocess
     import sys
 
     recordings = sorted((asset / "recordings").glob("*.rrd")) if asset.is_dir() else []
+    cached, gone = cached_recordings(asset) if asset.is_dir() else ([], [])
+    for name in gone:
+        console.print(f"{name}: not in the asset, and the cache no longer holds it", markup=False, highlight=False)
+    recordings += cached
     if not recordings:
         fail(f"{asset} has no recordings/*.rrd")
     beside = Path(sys.executable).parent / "rerun"  # rerun-sdk installs its viewer next to the interpreter

@@ -4,14 +4,18 @@ from __future__ import annotations
 
 import time
 from pathlib import Path
+from typing import TYPE_CHECKING, cast
 
 import typer
 from rich.table import Table
 
 from cache import use_cache_root
 from contracts.errors import RequirementNotMet
-from flows.cli.apps import app, check_device, console, emit_json, fail, results
+from flows.cli.apps import RECORD_HELP, app, check_device, check_record, console, emit_json, fail, results
 from flows.cli.preflight import check_asset_dir, check_outputs
+
+if TYPE_CHECKING:
+    from contracts.asset_dir import KeepTrials
 
 
 @app.command("manipulate")
@@ -24,6 +28,7 @@ def manipulate(
     as_json: bool = typer.Option(False, "--json", help="print manipulation.json's summary as JSON"),
     require_l3: bool = typer.Option(False, "--require-l3", help="exit 7 when L3 does not pass (no grasp, a failed "
                                     "pick); manipulation.json is written either way"),
+    record: str = typer.Option("adopted", "--record", help=RECORD_HELP),
 ) -> None:
     """L3: grasp ranking, plan, pick-and-place in the MPM, revision through the harness, held-out conditions.
 
@@ -39,6 +44,7 @@ def manipulate(
     if quality not in ("draft", "standard"):
         fail(f"--quality must be draft or standard, got '{quality}'")
     check_device(device)
+    check_record(record)
     if not 1 <= cpu_threads <= 64:
         fail(f"--cpu-threads must be 1 to 64, got {cpu_threads}")
     if cache_dir is not None:
@@ -57,32 +63,32 @@ def manipulate(
 
         with staged_update(asset) as work:  # L3 writes into a working copy, swapped in whole when it ends
             t0 = time.perf_counter()
-            record, outcome = run_l3(work, options, progress=progress)
+            result, outcome = run_l3(work, options, progress=progress, keep=cast("KeepTrials", record))
             wall_time_s = time.perf_counter() - t0
             # a published asset: asset.json, the PhysGaussian config, the card and the video follow the new L3 (its
             # adopted material, L3's line and plan), swapped in with manipulation.json
             status.update("L3: asset.json, card and video refreshed from manipulation.json")
-            refresh_after_l3(work, record)
-    summary = {**record.model_dump(mode="json", include={"passed", "status", "message", "reason", "outcome", "forces",
+            refresh_after_l3(work, result)
+    summary = {**result.model_dump(mode="json", include={"passed", "status", "message", "reason", "outcome", "forces",
                                                          "held_out", "attempt", "values", "numerics",
                                                          "material_source", "recordings"}),
                "wall_time_s": wall_time_s}
     if as_json:
         emit_json(summary)
     else:
-        table = Table(title=f"L3 manipulation: {record.status}")
+        table = Table(title=f"L3 manipulation: {result.status}")
         table.add_column("label / figure")
         table.add_column("value", justify="right")
-        for k, v in sorted(record.labels.items()):
+        for k, v in sorted(result.labels.items()):
             table.add_row(k, f"{v:.4g}")
         results.print(table)
-        results.print(record.message, markup=False)
-    if not record.passed:
-        console.print(f"L3 did not pass: {record.reason or record.message}; recorded in "
+        results.print(result.message, markup=False)
+    if not result.passed:
+        console.print(f"L3 did not pass: {result.reason or result.message}; recorded in "
                       f"{asset / 'manipulation.json'}" + ("" if require_l3 else " (--require-l3 makes this exit 7)"),
                       markup=False)
         if require_l3:
-            raise RequirementNotMet("L3", record.reason or record.message)
+            raise RequirementNotMet("L3", result.reason or result.message)
 
 
 @app.command("replay")

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import math
 from pathlib import Path
+from typing import TYPE_CHECKING, cast
 
 import typer
 from pydantic import ValidationError
@@ -14,9 +15,12 @@ from contracts.agents import AgentConfig
 from contracts.errors import validation_message
 from contracts.material import Material
 from contracts.sim import SimConfig
-from flows.cli.apps import app, console, emit_json, fail, prefect_log_level, results
+from flows.cli.apps import RECORD_HELP, app, check_record, console, emit_json, fail, prefect_log_level, results
 from flows.cli.physical_cmds import asset_path
 from flows.cli.preflight import check_asset_dir, check_locations
+
+if TYPE_CHECKING:
+    from contracts.asset_dir import KeepTrials
 
 RIGID_KINDS = ("place", "drop", "slide")  # L1 rigid probes (pybullet); `drop` is rigid unless --deformable
 DEFORMABLE_KINDS = ("compress", "lift", "stability")
@@ -138,6 +142,7 @@ def material(
     cpu_threads: int = typer.Option(2, "--cpu-threads", help="threads sharing each MPM rollout's particles"),
     cache_dir: Path = typer.Option(None, "--cache", help="cache root (default: $DEFORMSMITH_CACHE or the user cache)"),
     as_json: bool = typer.Option(False, "--json", help="print material.json to stdout"),
+    keep: str = typer.Option("adopted", "--record", help=RECORD_HELP),
 ) -> None:
     """Run L2 on an asset: MPM probes, harness-selected neo-Hookean material -> material.json, evidence, recordings."""
 
@@ -150,6 +155,7 @@ def material(
         fail("--intent is empty")
     if not 1 <= cpu_threads <= 64:
         fail(f"--cpu-threads must be 1 to 64, got {cpu_threads}")
+    check_record(keep)
     if cache_dir is not None:
         use_cache_root(cache_dir)
     check_asset_dir(asset)  # the asset directory, its parent and the cache root usable, before L2 runs
@@ -162,7 +168,8 @@ def material(
     started = time.perf_counter()
     # L2 writes into a working copy, swapped in whole when it ends: files and evidence together, or nothing
     with console.status("L2 material (MPM probes)..."), staged_update(asset) as work:
-        mat, outcome = run_l2(work, intent, agents=agents, sim=SimConfig(cpu_threads=cpu_threads))
+        mat, outcome = run_l2(work, intent, agents=agents, sim=SimConfig(cpu_threads=cpu_threads),
+                              keep=cast("KeepTrials", keep))  # (checked by check_record)
     wall_s = time.perf_counter() - started
     adir = AssetDir(asset)
     record = adir.material()

@@ -3,13 +3,17 @@
 from __future__ import annotations
 
 from pathlib import Path
+from typing import TYPE_CHECKING, cast
 
 import typer
 from rich.table import Table
 
 from cache import use_cache_root
-from flows.cli.apps import app, console, emit_json, fail, results
+from flows.cli.apps import RECORD_HELP, app, check_record, console, emit_json, fail, results
 from flows.cli.preflight import check_asset_dir
+
+if TYPE_CHECKING:
+    from contracts.asset_dir import KeepTrials
 
 
 def asset_path(positional: Path | None, option: Path | None) -> Path:
@@ -29,6 +33,7 @@ def physical(
                                "`geometry` stored (its --intent, else its text), as `generate` does"),
     cache_dir: Path = typer.Option(None, "--cache", help="cache root (default: $DEFORMSMITH_CACHE or the user cache)"),
     as_json: bool = typer.Option(False, "--json", help="print the physical model and metrics as JSON"),
+    record: str = typer.Option("adopted", "--record", help=RECORD_HELP),
 ) -> None:
     """L1: density and friction from the intent, mass model, rigid placement / drop / slide probes in pybullet."""
     from tasks.asset_dir import AssetDir  # lazy: contracts.asset_dir's models (~0.1 s at --help)
@@ -37,6 +42,7 @@ def physical(
     asset = asset_path(asset_dir, asset)
     if intent is not None and not intent.strip():
         fail("--intent is empty")
+    check_record(record)
 
     if not AssetDir(asset).has("geometry"):
         fail(f"{asset} is not an L0 asset directory (no geometry.json); run `deformsmith geometry ... --out {asset}`")
@@ -47,7 +53,7 @@ def physical(
 
     # L1 writes into a working copy, swapped in whole when it ends: files and evidence together, or nothing
     with console.status("L1: rigid probes in pybullet"), staged_update(asset) as work:
-        phys, outcome = run_l1(work, intent)
+        phys, outcome = run_l1(work, intent, keep=cast("KeepTrials", record))  # (checked by check_record)
     mass = AssetDir(asset).physical().mass_check  # tasks.physical.mass.MassCheck as written
     if as_json:
         emit_json({"passed": outcome.passed, "status": outcome.status, "message": outcome.message,

@@ -18,7 +18,7 @@ from typing import Any, Protocol, TypedDict
 
 import numpy as np
 
-from cache import content_key
+from cache import cache_relative, content_key
 from cache.files import cached_file, source_digest
 from contracts.asset_dir import attempt_path
 from contracts.manipulation import GripperOption, TrialCondition, TrialRow
@@ -35,7 +35,7 @@ from tasks.manipulation.body import TrialBody
 from tasks.manipulation.data import attempt_indices, interaction_root, write_attempt
 from tasks.manipulation.diagnosis import MODES
 from tasks.manipulation.outcome import TrialTolerances, force_budget_n
-from tasks.manipulation.recordings import record_attempt
+from tasks.manipulation.recordings import cached_recording_path, record_attempt
 from tasks.manipulation.report import L3Progress, trial_reason
 from tasks.manipulation.trial import TrialSettings, reachable_plan
 from tasks.robot.grasp import GraspSettings
@@ -147,6 +147,12 @@ def store_attempt(asset_dir: Path, arrays: dict[str, np.ndarray], attrs: dict[st
     """Store a trial as the asset's next interaction attempt (tasks.manipulation.data.write_attempt) through the cache:
     a rerun copies the attempt encoded before from the same arrays, attributes, index and encoder code instead of
     compressing its particle frames again (~0.3-1 s a trial on two cores). Returns the attempt's index."""
+    return store_attempt_keyed(asset_dir, arrays, attrs)[0]
+
+
+def store_attempt_keyed(asset_dir: Path, arrays: dict[str, np.ndarray], attrs: dict[str, Any]) -> tuple[int, str]:
+    """store_attempt, and the cache key the attempt's Zarr group is stored under (the trial row's data_key: the
+    asset may later drop the folder, tasks.manipulation.keep; CacheStore(root).get(key) gives it back)."""
     n = max(attempt_indices(asset_dir), default=-1) + 1
     interaction_root(asset_dir)
     attrs_json = json.dumps({**attrs, "attempt": n}, sort_keys=True,
@@ -154,7 +160,7 @@ def store_attempt(asset_dir: Path, arrays: dict[str, np.ndarray], attrs: dict[st
     key = content_key("l3.interaction_attempt/1", _attempt_code(), {k: np.asarray(v) for k, v in arrays.items()},
                       attrs_json)
     cached_file(key, Path(asset_dir) / attempt_path(n), lambda _: write_attempt(asset_dir, arrays, attrs, index=n))
-    return n
+    return n, key
 
 
 def tolerances_from(contract: StageContract) -> TrialTolerances:
@@ -257,13 +263,17 @@ class L3Context:
                  "role": role, "action": action, "values": values, "cache_key": key,
                  "material": (material or self.material).model_dump(mode="json"),
                  "physical_model": self.physical.model_dump(mode="json")}
-        n = store_attempt(self.asset_dir, out["arrays"], attrs) if out["arrays"] else None
+        n, data_key = store_attempt_keyed(self.asset_dir, out["arrays"], attrs) if out["arrays"] else (None, None)
         trial = len(self.attempts) + 1  # the trial's one number (tasks.record.trials)
         rrd = (record_attempt(self.asset_dir, trial, out["arrays"], {**attrs, "trial": trial}, key)
                if n is not None and self.recordings else None)
+        stored: dict[str, Any] = {"data_key": data_key} if data_key is not None else {}
+        if rrd is not None and key is not None:  # its recording as the cache holds it (the asset's copy may go)
+            stored["recording_in_cache"] = cache_relative(cached_recording_path(key))
         self.attempts.append(TrialRow(attempt=n, role=role, action=action, values=values, labels=probe.metrics,
                                       cache_key=key, recording=rrd,
-                                      condition=TrialCondition(target_xy_m=list(plan.target_xy_m), yaw_deg=yaw_deg)))
+                                      condition=TrialCondition(target_xy_m=list(plan.target_xy_m), yaw_deg=yaw_deg),
+                                      **stored))
         return probe.model_copy(update={"cache_key": key, "recording": attempt_path(n) if n is not None else None})
 
     def under(self, values: dict[str, float], conditions: tuple[tuple[float, float, float], ...], role: str,

@@ -132,7 +132,13 @@ def read_attempt(asset_dir: Path, index: int | None = None) -> tuple[dict[str, n
     n = indices[-1] if index is None else index
     if n not in indices:
         raise InputError(f"{asset_dir} has no attempt {n}; stored attempts: {indices}")
-    g = zarr.open_group(str(interaction_dir(asset_dir) / f"attempt_{n:03d}"), mode="r")
+    return read_attempt_folder(interaction_dir(asset_dir) / f"attempt_{n:03d}")
+
+
+def read_attempt_folder(folder: Path) -> tuple[dict[str, np.ndarray], dict[str, Any]]:
+    """Arrays and attributes of the attempt stored in one attempt_NNN Zarr group (an asset's, or the cache entry a
+    trial row's data_key names)."""
+    g = zarr.open_group(str(folder), mode="r")
     stored = dict(g.arrays())
     arrays = {name: np.asarray(a[...]) for name, a in stored.items()}
     encoded = {name: dict(stored[name].attrs) for name in particle_frames.ENCODED if name in stored}

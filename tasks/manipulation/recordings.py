@@ -32,9 +32,14 @@ def trial_recording_name(trial: int) -> str:
     return f"recordings/L3_trial_{trial:02d}.rrd"
 
 
+def cached_recording_path(trial_key: str) -> Path:
+    """Where the recording of the trial with cache key `trial_key` lives in the cache."""
+    return cache_root() / "recordings" / f"L3_trial-{trial_key[:16]}-r{RECORDING_VERSION}.rrd"
+
+
 def cached_recording(arrays: dict[str, np.ndarray], attrs: dict[str, Any], trial_key: str) -> Path:
     """The trial's recording in the cache (written there on first use, atomically)."""
-    path = cache_root() / "recordings" / f"L3_trial-{trial_key[:16]}-r{RECORDING_VERSION}.rrd"
+    path = cached_recording_path(trial_key)
     if not path.is_file():
         shown = {"labels": attrs.get("labels", {}), "role": f"trial {trial_key[:16]}", "plan": attrs.get("plan"),
                  "attempt": trial_key[:16]}

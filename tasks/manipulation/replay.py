@@ -14,9 +14,11 @@ from pathlib import Path
 
 import numpy as np
 
+from cache import CacheMiss, CacheStore, cache_root
+from contracts.asset_dir import attempt_path
 from contracts.errors import InputError
 from tasks.asset_dir import AssetDir
-from tasks.manipulation.data import read_attempt
+from tasks.manipulation.data import read_attempt, read_attempt_folder
 from tasks.manipulation.scene import VIDEO_FPS, VIDEO_SIZE
 from tasks.manipulation.video import PickPlaceVideo
 from tasks.record import ProbeRecording
@@ -82,7 +84,7 @@ def replay(asset_dir: Path, attempt: int | None = None, frames_dir: Path | None 
     import imageio.v2 as imageio
 
     attempt, trial = _which(Path(asset_dir), attempt, trial)
-    arrays, attrs = read_attempt(Path(asset_dir), attempt)
+    arrays, attrs = _read(Path(asset_dir), attempt, trial)
     if trial is not None:
         attrs = {**attrs, "trial": trial}
     writer = None
@@ -121,6 +123,29 @@ def replay(asset_dir: Path, attempt: int | None = None, frames_dir: Path | None 
         out.recording = write_rrd(arrays, attrs, Path(rrd))
     out.trial = trial
     return out
+
+
+def _read(asset_dir: Path, attempt: int | None, trial: int | None) -> tuple[dict[str, np.ndarray], dict]:
+    """The trial's arrays and attributes: from the asset's interaction folder, else (a trial a default asset leaves
+    in the cache: tasks.manipulation.keep) from the cache entry its row names; InputError, one line, when neither
+    holds them."""
+    if attempt is None or (asset_dir / attempt_path(attempt)).is_dir():
+        return read_attempt(asset_dir, attempt)
+    adir = AssetDir(asset_dir)
+    record = adir.manipulation() if adir.has("manipulation") else None
+    row = next((r for r in record.attempts if r.attempt == attempt), None) if record is not None else None
+    if row is None or not row.data_key:
+        return read_attempt(asset_dir, attempt)  # (its error names the stored attempts)
+    root = cache_root()
+    what = f"trial {trial}" if trial is not None else f"attempt {attempt}"
+    try:
+        folder = CacheStore(root).get(row.data_key)
+    except CacheMiss:
+        folder = None
+    if not isinstance(folder, Path) or not folder.is_dir():
+        raise InputError(f"{what}'s states are not in {asset_dir} and the cache {root} no longer holds them (key "
+                         f"{row.data_key}); `deformsmith manipulate {asset_dir} --record all` simulates them again")
+    return read_attempt_folder(folder)
 
 
 def _which(asset_dir: Path, attempt: int | None, trial: int | None) -> tuple[int | None, int | None]:

@@ -78,5 +78,27 @@ def simulated_trials(record: ManipulationRecord) -> int:
     return record.simulated_trials()
 
 
-__all__ = ["attempt_of_trial", "read_record", "recorded_trials", "reported_trial", "simulated_trials",
-           "trial_of_attempt", "trial_of_folder", "trial_rows"]
+def reported_attempt(record: ManipulationRecord) -> int | None:
+    """The interaction folder (attempt_NNN) of the trial the asset reports and shows: the adopted one, else the one
+    the manifest reports (the best under the asset's own material), else the last trial that stored states."""
+    if record.attempt is not None:
+        return record.attempt
+    if record.best_attempt is not None and record.best_attempt.attempt is not None:
+        return record.best_attempt.attempt
+    runs = [a.attempt for a in record.attempts if a.attempt is not None]
+    return runs[-1] if runs else None
+
+
+def data_location(row: TrialRow, asset_dir: Path | None = None) -> str:
+    """Where a trial's states are, in words: 'interaction/attempt_NNN' (in the asset) or 'in the cache, key
+    <first 12 hex digits>' (never a path the asset does not hold; asset_dir, when given, is checked)."""
+    if row.attempt is None:
+        return "no states stored (the plan could not run)"
+    rel = attempt_path(row.attempt)
+    if row.kept_in == "asset" and (asset_dir is None or (Path(asset_dir) / rel).is_dir()):
+        return rel
+    return f"in the cache, key {row.data_key[:12]}" if row.data_key else "not stored in this asset"
+
+
+__all__ = ["attempt_of_trial", "data_location", "read_record", "recorded_trials", "reported_attempt", "reported_trial",
+           "simulated_trials", "trial_of_attempt", "trial_of_folder", "trial_rows"]

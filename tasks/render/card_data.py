@@ -21,6 +21,7 @@ from contracts.probes import not_measured_reason
 from tasks.asset_dir import AssetDir
 from tasks.record.attempts import ATTEMPTS_FILE, read_attempts
 from tasks.record.tally import stage_tallies
+from tasks.record.trials import data_location
 from tasks.render.protocol_video import CARD_TIMES_S, VIEW_NAMES, card_still_name
 
 STILL_VIEWS = ("front", "side", "top")  # renders/<view>.png (L0)
@@ -120,6 +121,8 @@ class L3Card(BaseModel):
     figures: list[Figure] = []
     force_budget_n: float | None = None
     attempt: int | None = None  # the interaction folder (interaction/attempt_NNN) of the reported trial
+    data: str | None = None  # where its states are: 'interaction/attempt_NNN', or 'in the cache, key ...' (#38)
+    others: str | None = None  # where the other trials' states and recordings are, in words
     trial: int | None = None  # the reported trial's number (tasks.record.trials: from 1, in the order run)
     trials: int = 0  # the simulated pick-and-places L3 ran
     key: str | None = None
@@ -231,6 +234,13 @@ def _l3(adir: AssetDir, manifest: AssetManifest) -> L3Card:
                   status=rec.status,
                   outcome=dict(rec.outcome), figures=figures, force_budget_n=rec.force_budget_n, attempt=attempt,
                   trial=trial, trials=rec.simulated_trials(), key=key)
+    row = next((r for r in rec.attempts if attempt is not None and r.attempt == attempt), None)
+    cached = [r.trial or i + 1 for i, r in enumerate(rec.attempts) if r.attempt is not None and r is not row
+              and data_location(r, adir.path) != attempt_path(r.attempt)]
+    card = card.model_copy(update={
+        "data": data_location(row, adir.path) if row is not None else None,
+        "others": (f"trial{'s' if len(cached) > 1 else ''} {_ranges(cached)}: states and recordings in the cache "
+                   f"(manipulation.json attempts[].data_key; deformsmith replay DIR --trial N)") if cached else None})
     folder = adir.path / attempt_path(attempt) if attempt is not None else None
     if folder is not None and folder.is_dir():
         curve = _force_curve(folder)
@@ -238,6 +248,17 @@ def _l3(adir: AssetDir, manifest: AssetManifest) -> L3Card:
             card = card.model_copy(update={"force_t_s": curve[0].tolist(),
                                            "finger_force_n": [(float(a), float(b)) for a, b in curve[1]]})
     return card
+
+
+def _ranges(numbers: list[int]) -> str:
+    """[1, 2, 3, 5] -> '1-3, 5'."""
+    out: list[str] = []
+    for n in sorted(numbers):
+        if out and out[-1].split("-")[-1] == str(n - 1):
+            out[-1] = f"{out[-1].split('-')[0]}-{n}"
+        else:
+            out.append(str(n))
+    return ", ".join(out)
 
 
 def _force_curve(folder: Path) -> tuple[np.ndarray, np.ndarray] | None:

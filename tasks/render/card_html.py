@@ -143,7 +143,8 @@ def card_html(card: CardData) -> str:
         parts += [f"<p>gripper <b>{e(str(l3.gripper))}</b>: {e(l3.gripper_reason or '')}</p>",
                   *([f"<p>grasp: {e(l3.grasp_reason)}</p>"] if l3.grasp_reason else []),
                   f"<p>{'passed' if l3.passed else 'did not pass'} ({e(str(l3.status))}), trial {l3.trial} "
-                  f"(interaction/attempt_{l3.attempt if l3.attempt is not None else 0:03d}): {e(l3.note)}</p>",
+                  f"({e(l3.data or 'no states stored')}): {e(l3.note)}</p>",
+                  *([f"<p>{e(l3.others)}</p>"] if l3.others else []),
                   "<p>" + e("; ".join(outcome_lines(l3.outcome))) + "</p>",
                   f"<p>force budget {e(si(l3.force_budget_n, 'N'))} per finger</p>", _table(l3.figures)]
     parts += ["<h3>Where the numbers came from</h3>",

@@ -195,3 +195,22 @@ def test_prefect_log_level_is_ours_unless_the_user_set_one(monkeypatch: pytest.M
     monkeypatch.setenv("PREFECT_LOGGING_LEVEL", "INFO")
     apps.prefect_log_level("CRITICAL")
     assert os.environ["PREFECT_LOGGING_LEVEL"] == "INFO"
+
+
+def test_view_also_opens_the_probe_recordings_the_records_name_in_the_cache(tmp_path: Path) -> None:
+    """A default asset leaves its L1 and L2 probe recordings in the cache (#38 item 5): `view` opens them from there
+    beside the asset's own, and names those the cache no longer holds."""
+    import json
+
+    asset, cache = tmp_path / "asset", tmp_path / "cache"
+    (asset / "recordings").mkdir(parents=True)
+    (asset / "recordings" / "L3_pick_and_place.rrd").write_bytes(b"")
+    (cache / "recordings").mkdir(parents=True)
+    (cache / "recordings" / "L2_drop-0123456789abcdef.rrd").write_bytes(b"")
+    (asset / "material.json").write_text(json.dumps({"cached_recordings": {
+        "recordings/L2_drop.rrd": "recordings/L2_drop-0123456789abcdef.rrd",
+        "recordings/L2_lift.rrd": "recordings/L2_lift-fedcba9876543210.rrd"}}))
+    dry = _cli("view", str(asset), "--dry-run", env={"DEFORMSMITH_CACHE": str(cache)})
+    assert dry.returncode == 0, dry.stderr
+    assert "L3_pick_and_place.rrd" in dry.stdout and str(cache / "recordings" / "L2_drop-0123456789abcdef.rrd") in dry.stdout
+    assert "L2_lift" not in dry.stdout and "recordings/L2_lift.rrd: not in the asset" in dry.stderr

@@ -10,7 +10,7 @@ from pathlib import Path
 import pytest
 from l1_assets import write_l0_dir
 
-from cache import CacheStore
+from cache import CacheStore, cache_resolve
 from contracts.errors import InputError
 from contracts.request import AssetRequest
 from flows.l1_physical import load_physical, run_l1, run_rigid_probe
@@ -48,7 +48,11 @@ def test_l1_accepts_a_sponge_and_freezes_its_physical_model(sponge: Path, prefec
     assert outcome.metrics["place_penetration_m"] <= 1e-3 and outcome.metrics["place_tilt_deg"] < 5
     assert outcome.metrics["slide_below_sticks"] == 1 and outcome.metrics["slide_above_slides"] == 1
     assert load_physical(sponge) == phys
-    rec = read_recording(sponge / "recordings" / "L1_place.rrd")
+    # the probes' recordings stay in the cache by default (#38 item 5), physical.json naming each by its cache path
+    assert not list((sponge / "recordings").glob("L1_place*.rrd"))
+    cached = json.loads((sponge / "physical.json").read_text())["cached_recordings"]
+    assert "-" in Path(cached["recordings/L1_place.rrd"]).stem  # L1_place-<the probe's cache key>.rrd
+    rec = read_recording(cache_resolve(cached["recordings/L1_place.rrd"]))
     assert "world/object/particles" in rec.entity_paths and "sim_time" in rec.timelines
 
 

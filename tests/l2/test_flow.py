@@ -9,7 +9,7 @@ from pathlib import Path
 import pytest
 
 import flows.l2_material as l2
-from cache import CacheStore, cache_root
+from cache import CacheStore, cache_resolve, cache_root
 from contracts.material import Material
 from contracts.stage import load_contract
 from tests.l2.helpers import box_asset
@@ -93,7 +93,7 @@ def test_plush_and_rubber_intents_end_in_different_materials_that_meet_their_tar
         assert rec["held_out"]["metrics"]["compression_strain"] > rec["metrics"]["compression_strain"] + 0.03
         assert rec["held_out"]["probes"][0]["spec"]["held_out"] is True
         assert (d / "evidence" / "L2_attempts.jsonl").read_text().strip()
-        assert (d / "recordings" / "L2_compress.rrd").is_file()
+        assert cache_resolve(rec["cached_recordings"]["recordings/L2_compress.rrd"]).is_file()  # in the cache (#38)
         assert rec["sim_calls"] >= 4
         found[intent] = rec
     plush, rubber = found["soft plush"], found["firm rubber"]

@@ -182,3 +182,46 @@ def test_one_failed_trial_reaches_the_manifest_with_its_reason_progress_and_key(
     plan = reported_plan(typed)
     assert plan is not None and plan.squeeze_depth_m == pytest.approx(trial["values"]["squeeze_depth_m"])
     assert cache_keys(asset, typed)["l3.trial"] == trial["cache_key"] is not None
+
+
+@pytest.mark.slow  # two real trials and their revision: ~10-15 min on the loaded 2-core CPU (2026-11-29)
+@pytest.mark.timeout(1800)
+def test_a_default_l3_keeps_the_reported_trials_states_alone_and_record_all_keeps_every_trial(
+        small_cube: Path, tmp_path: Path, prefect_api: str, cache_dir: Path) -> None:
+    """#38 item 5 on real trials: two failing trials (a tightened deformation bound, one revision); by default the
+    asset holds the reported trial's interaction folder and recording alone, the other trial's are
+    in the cache under the key its row names; `keep='all'` (--record all) keeps both (the trials are cache hits)."""
+    from cache import CacheStore, cache_resolve
+    from flows.l3_manipulation import L3Options, run_l3
+    from tasks.manipulation.data import attempt_indices
+
+    base = load_contract("L3")
+    gates = [g.model_copy(update={"threshold": 1e-9}) if g.metric == "strain_p99" else g for g in base.hard_gates]
+    contract = base.model_copy(update={"hard_gates": gates, "revision_budget": 1,
+                                       "parameters": {**base.parameters, "lift_height_m": 0.05}})
+    options = L3Options(squeeze_depth_m=0.003, held_out=(), material_fallback=False)
+    runs = {}
+    for keep in ("adopted", "all"):
+        asset = shutil.copytree(small_cube, tmp_path / keep)
+        runs[keep] = (asset, run_l3(asset, options, contract=contract, keep=keep)[0])
+    asset, record = runs["adopted"]
+    assert len(record.attempts) >= 2 and not record.passed and record.best_attempt is not None
+    reported = record.best_attempt.attempt
+    assert attempt_indices(asset) == [reported]
+    assert sorted(p.name for p in (asset / "recordings").glob("L3_*.rrd")) == [f"L3_trial_{reported + 1:02d}.rrd"]
+    store = CacheStore(cache_dir)
+    for row in record.attempts:
+        if row.attempt == reported:
+            assert row.kept_in == "asset" and row.recording
+            continue
+        assert row.kept_in == "cache" and row.recording is None and row.labels  # its metrics stay
+        assert row.data_key and store.get(row.data_key).is_dir()
+        assert row.recording_in_cache and cache_resolve(row.recording_in_cache).is_file()
+    full, all_record = runs["all"]
+    assert attempt_indices(full) == [a.attempt for a in all_record.attempts if a.attempt is not None]
+    assert len(list((full / "recordings").glob("L3_trial_*.rrd"))) == len(all_record.attempts)
+    assert all(a.kept_in == "asset" for a in all_record.attempts)
+    assert json.dumps([a.labels for a in all_record.attempts]) == json.dumps([a.labels for a in record.attempts])
+    # one trial's data fewer (not under 20 MB: this 3 cm cube's draft L0 alone, particles and Gaussians, is ~11 MB)
+    size = {k: sum(p.stat().st_size for p in a.rglob("*") if p.is_file()) for k, (a, _) in runs.items()}
+    assert size["adopted"] < size["all"] - 4 * 2**20

@@ -4,6 +4,7 @@ route defaults; nothing else is edited."""
 
 from __future__ import annotations
 
+import json
 import textwrap
 from pathlib import Path
 from typing import Any
@@ -12,7 +13,7 @@ import pytest
 
 import flows.l2_material as l2
 import tasks.probes.deformable_probes as package
-from cache import CacheStore, cache_root
+from cache import CacheStore, cache_resolve, cache_root
 from contracts.stage import HardGate, load_contract
 from flows.harness import with_probe_routes
 from tasks.agents.vocab import stage_routes
@@ -112,7 +113,9 @@ def test_l2_runs_the_toy_probe_as_a_cached_task(toy_probe: Any, tmp_path: Path, 
     assert outcome.passed and material is not None
     assert outcome.metrics["wave_speed_m_per_s"] > 1.0
     assert [e["task"] for e in store.events() if e["outcome"] == "miss"] == ["l2.wave_speed"]
-    assert (d / "recordings" / "L2_wave_speed.rrd").is_file()
+    cached = json.loads((d / "material.json").read_text())["cached_recordings"]  # left in the cache by default (#38)
+    assert cache_resolve(cached["recordings/L2_wave_speed.rrd"]).is_file()
+    assert not (d / "recordings" / "L2_wave_speed.rrd").exists()
     n = len(store.events())
     l2.run_l2(d, "a rubber ball", contract=_contract(entry_only=True), physical=phys, screen_first=False)
     assert [e for e in store.events()[n:] if e["outcome"] == "miss"] == []

@@ -202,3 +202,35 @@ def test_card_says_which_part_the_grasp_holds_and_why(tmp_path: Path) -> None:
     (root / "manipulation.json").write_text(json.dumps(doc))
     _, page = build_card(root)
     assert "grasp: held by the shell, the body" in page.read_text(encoding="utf-8")
+
+
+def test_trials_left_in_the_cache_are_named_by_key_never_by_a_missing_path(tmp_path: Path) -> None:
+    """A default asset keeps the reported trial's states alone (#38 item 5): the card and `evidence` say where the
+    others are ('in the cache, key ...'), and name no interaction folder the asset does not hold."""
+    from flows.cli.evidence_cmds import attempt_trials, trial_data
+    from tasks.agents.records import read_attempts
+
+    root = _asset(tmp_path, "turtle")
+    record = json.loads((root / "manipulation.json").read_text())
+    for row in record["attempts"]:
+        row["data_key"] = f"{row['attempt']:x}" * 64
+        if row["attempt"] != record["attempt"]:
+            row.update(kept_in="cache", recording=None)
+    (root / "manipulation.json").write_text(json.dumps(record))
+    card = card_data(root)
+    assert card.l3.data == "interaction/attempt_000"
+    assert card.l3.others is not None and card.l3.others.startswith("trials 2-4: states and recordings in the cache")
+    _, page = build_card(root)
+    html = page.read_text(encoding="utf-8")
+    assert "(interaction/attempt_000)" in html and "trials 2-4: states and recordings in the cache" in html
+    assert not any(f"interaction/attempt_{n:03d}" in html for n in (1, 2, 3))
+    l3 = [a for a in read_attempts(root / "evidence" / "attempts.jsonl") if a.stage == "L3"]
+    assert trial_data(root, attempt_trials(root, l3[0])) == "states: trial 1 interaction/attempt_000"
+    record.update(attempt=2, trial=3)  # the asset reports trial 3: trial 1's states are in the cache
+    for row in record["attempts"]:
+        row["kept_in"] = "asset" if row["attempt"] == 2 else "cache"
+    (root / "manipulation.json").write_text(json.dumps(record))
+    assert trial_data(root, [1]) == f"states: trial 1 in the cache, key {'0' * 12}"
+    card = card_data(root)
+    assert card.l3.data == "in the cache, key 222222222222"  # its folder is not in this asset: no path is named
+    assert card.l3.others is not None and card.l3.others.startswith("trials 1-2, 4:")

@@ -1,0 +1,147 @@
+"""Assets a fleet can store (#38 item 5): by default an asset keeps the reported L3 trial's states and recording alone;
+every other trial's are left in the content-addressed cache, their rows in manipulation.json naming the key
+(kept_in 'cache', data_key, recording_in_cache); `deformsmith replay --trial N` reads such a trial from the cache and
+says in one line when the cache no longer has it; `--record all` keeps today's full copy."""
+
+from __future__ import annotations
+
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from contracts.errors import InputError
+from contracts.manipulation import ManipulationRecord
+from tests.asset_records import manipulation_record
+from tests.l3.render_helpers import synthetic_attempt
+
+REPO = Path(__file__).resolve().parents[2]
+LIMIT_BYTES = 20 * 2**20  # an asset by default: at most 20 MB
+
+
+@pytest.fixture(scope="module")
+def attempt() -> tuple[dict[str, np.ndarray], dict]:
+    """A short attempt (0.2 s of approach, then 0.5 s of closure and lift)."""
+    arrays, attrs = synthetic_attempt(approach_s=0.2)
+    keep = arrays["control_t_s"] < arrays["control_t_s"][0] + 0.5
+    k_frames = arrays["frame_control_index"] < keep.sum()
+    short = dict(arrays, **{k: arrays[k][keep] for k in ("control_t_s", "control_sim_t_s", "command_q_rad",
+                                                         "command_opening_m", "phase", "finger_position_m",
+                                                         "finger_quat_xyzw", "finger_force_n")},
+                 object_com_m=arrays["object_com_m"][:keep.sum() + 1],
+                 **{k: arrays[k][k_frames] for k in ("frame_t_s", "frame_control_index", "particles_x_m",
+                                                     "particles_F")})
+    return short, attrs
+
+
+def _l3_asset(root: Path, attempt: tuple) -> ManipulationRecord:
+    """Three stored trials (selection, robustness, held out) as L3's _store leaves them; the record reports trial 2."""
+    from contracts.material import Material
+    from contracts.physical import PhysicalModel
+    from contracts.probes import ProbeResult, ProbeSpec
+    from contracts.robot import ActionPlan
+    from contracts.stage import load_contract
+    from flows.l3_manipulation import CachedTrials, L3Context, L3Options
+    from tasks.manipulation.body import box_body
+
+    arrays, attrs = attempt
+    body = box_body(0.03, 0.005)
+    phys = PhysicalModel(density_kg_per_m3=300.0, volume_m3=body.volume_m3, mass_kg=300.0 * body.volume_m3,
+                         particle_count=len(body.particles_m), particle_spacing_m=0.005, ground_friction=0.5,
+                         gripper_friction=0.8, center_of_mass_m=(0.0, 0.0, 0.015), extents_m=(0.03,) * 3,
+                         category="foam")
+    ctx = L3Context(root, body, phys, Material(youngs_modulus_pa=1e5, poisson_ratio=0.3, damping_rate_per_s=5.0),
+                    "given", [], L3Options(), load_contract("L3"), runner=CachedTrials())
+    plan = ActionPlan.model_validate(attrs["plan"])
+    for i, role in enumerate(("selection", "robustness", "held_out")):
+        labels = {"lifted": 1.0, "transported": 1.0, "released_in_target": 1.0, "settled": float(i != 2)}
+        out = {"probe": ProbeResult(spec=ProbeSpec(kind="pick_and_place"), metrics=labels), "arrays": arrays,
+               "info": {}}
+        inputs = {"plan": plan, "settings": {"substeps": 1 + i}}
+        ctx._store(out, plan, inputs, {"squeeze_depth_m": 0.003 + 0.001 * i}, role, "", None, 0.0)
+    rows = [a.model_copy(update={"trial": i + 1}) for i, a in enumerate(ctx.attempts)]
+    return manipulation_record(True, rows, attempt=1, trial=2, recordings=[r.recording for r in rows])
+
+
+def _size(root: Path) -> int:
+    return sum(p.stat().st_size for p in root.rglob("*") if p.is_file())
+
+
+def test_a_default_asset_keeps_the_reported_trial_and_leaves_the_others_in_the_cache(
+        attempt: tuple, tmp_path: Path, cache_dir: Path) -> None:
+    from cache import CacheStore, cache_resolve
+    from tasks.asset_dir import AssetDir
+    from tasks.manipulation.data import attempt_indices, read_attempt, read_attempt_folder
+    from tasks.manipulation.keep import keep_trials
+    from tasks.record.trials import data_location
+
+    asset = tmp_path / "asset"
+    record = _l3_asset(asset, attempt)
+    full = shutil.copytree(asset, tmp_path / "full")  # what --record all publishes
+    assert attempt_indices(full) == [0, 1, 2] and len(list((full / "recordings").glob("L3_trial_*.rrd"))) == 3
+    assert keep_trials(full, record, "all") is record  # --record all: every trial's states and recording
+
+    kept = keep_trials(asset, record, "adopted")
+    AssetDir(asset).write_manipulation(kept)
+    assert attempt_indices(asset) == [1]  # only the reported trial's states
+    assert sorted(p.name for p in (asset / "recordings").iterdir()) == ["L3_trial_02.rrd"]
+    assert kept.recordings == ["recordings/L3_trial_02.rrd"] and AssetDir(asset).manipulation() == kept
+    assert _size(asset) < LIMIT_BYTES and _size(asset) < _size(full)
+    store = CacheStore(cache_dir)
+    for row in kept.attempts:
+        assert row.data_key and row.attempt is not None
+        if row.attempt == 1:
+            assert row.kept_in == "asset" and data_location(row, asset) == "interaction/attempt_001"
+            continue
+        # every metric stays; the states and recording are named in the cache by key, and really are there
+        assert row.kept_in == "cache" and row.recording is None and row.labels == record.attempts[row.attempt].labels
+        assert data_location(row, asset) == f"in the cache, key {row.data_key[:12]}"
+        folder = store.get(row.data_key)
+        got, attrs = read_attempt_folder(folder)
+        want, want_attrs = read_attempt(full, row.attempt)
+        assert attrs == want_attrs and got.keys() == want.keys()
+        assert all(np.array_equal(got[k], want[k]) for k in want)
+        assert row.recording_in_cache and cache_resolve(row.recording_in_cache).is_file()
+    json_text = (asset / "manipulation.json").read_text()
+    assert '"kept_in": "cache"' in json_text and '"data_key"' in json_text
+
+
+def test_a_trial_whose_data_the_cache_lacks_stays_in_the_asset(attempt: tuple, tmp_path: Path,
+                                                               cache_dir: Path) -> None:
+    from cache import CacheStore
+    from tasks.manipulation.data import attempt_indices
+    from tasks.manipulation.keep import keep_trials
+
+    asset = tmp_path / "asset"
+    record = _l3_asset(asset, attempt)
+    assert CacheStore(cache_dir).remove(record.attempts[0].data_key)
+    kept = keep_trials(asset, record, "adopted")
+    assert attempt_indices(asset) == [0, 1] and [r.kept_in for r in kept.attempts] == ["asset", "asset", "cache"]
+    assert kept.recordings == ["recordings/L3_trial_01.rrd", "recordings/L3_trial_02.rrd"]
+
+
+def test_replay_reads_a_trial_from_the_cache_and_says_in_one_line_when_it_is_gone(
+        attempt: tuple, tmp_path: Path, cache_dir: Path) -> None:
+    from cache import CacheStore
+    from tasks.asset_dir import AssetDir
+    from tasks.manipulation.keep import keep_trials
+    from tasks.manipulation.replay import replay
+
+    asset = tmp_path / "asset"
+    record = _l3_asset(asset, attempt)
+    full = shutil.copytree(asset, tmp_path / "full")
+    AssetDir(full).write_manipulation(record)
+    kept = keep_trials(asset, record, "adopted")
+    AssetDir(asset).write_manipulation(kept)
+    from_cache = replay(asset, trial=3, width=96, height=54, rrd=tmp_path / "t3.rrd")
+    assert from_cache.trial == 3 and from_cache.digests == replay(full, trial=3, width=96, height=54).digests
+    assert (tmp_path / "t3.rrd").is_file()
+    assert CacheStore(cache_dir).remove(kept.attempts[2].data_key)
+    with pytest.raises(InputError, match="trial 3's states are not in .* and the cache .* no longer holds them"):
+        replay(asset, trial=3, width=96, height=54)
+    r = subprocess.run([sys.executable, "-m", "flows.cli.main", "replay", str(asset), "--trial", "3"],
+                       capture_output=True, text=True, cwd=REPO, timeout=600)
+    assert r.returncode == 2 and r.stderr.startswith("error: trial 3's states") and r.stderr.count("\n") == 1
