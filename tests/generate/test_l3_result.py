@@ -39,7 +39,7 @@ def test_generate_publishes_an_object_no_gripper_can_hold(tmp_path: Path, monkey
     from tasks.geometry.outputs import load_l0
 
     def prior_l2(asset_dir, request, agents=None, contract=None, sim=None, physical=None,  # noqa: ANN001, ANN202
-                 screen_first=True):  # noqa: ANN001
+                 screen_first=True, keep="adopted"):  # noqa: ANN001  # the l2-material flow's signature
         from tasks.asset_dir import AssetDir
         from tests.asset_records import material_record
 
