@@ -39,8 +39,10 @@ from pathlib import Path
 
 REPO = Path(__file__).resolve().parent.parent
 OUT = REPO / ".gpuwheels"
-STAGE = Path("/var/tmp/gw")  # on the device: the parts, joined
-SITE = Path("/var/tmp/site")  # on the device: the installed packages (PYTHONPATH)
+# on the device: where the parts are joined, and where the packages go (PYTHONPATH); /var/tmp by default, the one
+# place a device machine keeps between calls; another machine sets DEFORMSMITH_WHEEL_STAGE / DEFORMSMITH_WHEEL_SITE
+STAGE = Path(os.environ.get("DEFORMSMITH_WHEEL_STAGE", "/var/tmp/gw"))
+SITE = Path(os.environ.get("DEFORMSMITH_WHEEL_SITE", "/var/tmp/site"))
 MANIFEST = "manifest.json"
 
 PYTHON = "3.12"
