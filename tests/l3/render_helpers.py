@@ -60,3 +60,17 @@ def synthetic_attempt(edge_m: float = 0.03, spacing_m: float = 0.005, approach_s
               "rest_particles_m": x0.astype(np.float32), **world_gaussians(body, pose), **approach}
     attrs = {"plan": plan.model_dump(mode="json"), "labels": {"lifted": 0.0}, "role": "selection", "attempt": 0}
     return arrays, attrs
+
+
+def short_attempt(approach_s: float, length_s: float) -> tuple[dict[str, np.ndarray], dict]:
+    """synthetic_attempt cut to its first length_s seconds of control (states and frames alike)."""
+    arrays, attrs = synthetic_attempt(approach_s=approach_s)
+    keep = arrays["control_t_s"] < arrays["control_t_s"][0] + length_s
+    k_frames = arrays["frame_control_index"] < keep.sum()
+    short = dict(arrays, **{k: arrays[k][keep] for k in ("control_t_s", "control_sim_t_s", "command_q_rad",
+                                                         "command_opening_m", "phase", "finger_position_m",
+                                                         "finger_quat_xyzw", "finger_force_n")},
+                 object_com_m=arrays["object_com_m"][:keep.sum() + 1],
+                 **{k: arrays[k][k_frames] for k in ("frame_t_s", "frame_control_index", "particles_x_m",
+                                                     "particles_F")})
+    return short, attrs

@@ -16,7 +16,7 @@ import pytest
 from contracts.errors import InputError
 from contracts.manipulation import ManipulationRecord
 from tests.asset_records import manipulation_record
-from tests.l3.render_helpers import synthetic_attempt
+from tests.l3.render_helpers import short_attempt
 
 REPO = Path(__file__).resolve().parents[2]
 LIMIT_BYTES = 20 * 2**20  # an asset by default: at most 20 MB
@@ -25,16 +25,7 @@ LIMIT_BYTES = 20 * 2**20  # an asset by default: at most 20 MB
 @pytest.fixture(scope="module")
 def attempt() -> tuple[dict[str, np.ndarray], dict]:
     """A short attempt (0.2 s of approach, then 0.5 s of closure and lift)."""
-    arrays, attrs = synthetic_attempt(approach_s=0.2)
-    keep = arrays["control_t_s"] < arrays["control_t_s"][0] + 0.5
-    k_frames = arrays["frame_control_index"] < keep.sum()
-    short = dict(arrays, **{k: arrays[k][keep] for k in ("control_t_s", "control_sim_t_s", "command_q_rad",
-                                                         "command_opening_m", "phase", "finger_position_m",
-                                                         "finger_quat_xyzw", "finger_force_n")},
-                 object_com_m=arrays["object_com_m"][:keep.sum() + 1],
-                 **{k: arrays[k][k_frames] for k in ("frame_t_s", "frame_control_index", "particles_x_m",
-                                                     "particles_F")})
-    return short, attrs
+    return short_attempt(approach_s=0.2, length_s=0.5)
 
 
 def _l3_asset(root: Path, attempt: tuple) -> ManipulationRecord:

@@ -11,7 +11,7 @@ import pytest
 
 from tasks.manipulation.replay import write_rrd
 from tasks.record import read_recording, recording_digest
-from tests.l3.render_helpers import synthetic_attempt
+from tests.l3.render_helpers import short_attempt, synthetic_attempt
 
 LINKS = [f"world/robot/panda_link{i}" for i in range(8)] + ["world/robot/panda_hand", "world/robot/panda_leftfinger",
                                                             "world/robot/panda_rightfinger"]
@@ -20,16 +20,7 @@ LINKS = [f"world/robot/panda_link{i}" for i in range(8)] + ["world/robot/panda_h
 @pytest.fixture(scope="module")
 def attempt() -> tuple[dict[str, np.ndarray], dict]:
     """A short attempt: 0.3 s of approach, then closure and lift with 2 N on each finger while holding."""
-    arrays, attrs = synthetic_attempt(approach_s=0.3)
-    keep = arrays["control_t_s"] < arrays["control_t_s"][0] + 0.8
-    k_frames = arrays["frame_control_index"] < keep.sum()
-    short = dict(arrays, **{k: arrays[k][keep] for k in ("control_t_s", "control_sim_t_s", "command_q_rad",
-                                                         "command_opening_m", "phase", "finger_position_m",
-                                                         "finger_quat_xyzw", "finger_force_n")},
-                 object_com_m=arrays["object_com_m"][:keep.sum() + 1],
-                 **{k: arrays[k][k_frames] for k in ("frame_t_s", "frame_control_index", "particles_x_m",
-                                                     "particles_F")})
-    return short, attrs
+    return short_attempt(approach_s=0.3, length_s=0.8)
 
 
 def _scalars(path: Path, entity: str) -> np.ndarray:
