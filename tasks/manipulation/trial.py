@@ -28,7 +28,7 @@ from tasks.manipulation.frame import SimFrame
 from tasks.manipulation.outcome import TrialTolerances, frame_back, label_trial, turn_rate_deg_per_s
 from tasks.mpm import Simulator, build_model, pad_collider
 from tasks.mpm.model import SceneSpec
-from tasks.robot import PHASES, ObjectPose, Trajectory, plan_trajectory
+from tasks.robot import PHASES, ObjectPose, PlaceApproach, Trajectory, plan_trajectory
 from tasks.robot.grasp import GraspSettings, turned_approaches
 
 PAD_FACES = ("-y", "+y")  # gripping face of the left and right pad boxes in the finger links' axes
@@ -80,6 +80,16 @@ class TrialSettings:
     reclose_fraction: float = 0.9
     # the fingers touch the object where their mean normal force first reaches this share of the target [-]
     touch_fraction: float = 0.05
+    # force-guarded place: while the hand lowers the object onto the target, it stops (braking over place_brake_s)
+    # once the table carries this share of the object's weight, and the fingers open there: a plan's place height
+    # assumes the object hangs in the hand as it was gripped, and an object turned in the hand (or sagging) would
+    # otherwise be pressed into the table and spring away at release. None: lower to the planned place height [-]
+    place_support_fraction: float | None = 0.5
+    # the guarded part of the lowering: the last place_guard_height_m above the place height at place_guard_speed,
+    # where the table is met slowly; the hand brakes to rest over place_brake_s when the guard trips [m, m/s, s]
+    place_guard_height_m: float = 0.03
+    place_guard_speed_m_per_s: float = 0.1
+    place_brake_s: float = 0.02
 
 
 @dataclass
@@ -132,8 +142,7 @@ def run_trial(body: TrialBody, physical: PhysicalModel, material: Material, plan
     tol = tolerances or TrialTolerances()
     wall0 = time.perf_counter()
     pose = object_pose(plan)
-    traj = trajectory or plan_trajectory(plan, object_pose=pose, object_height_m=body.height_m,
-                                         pad_half_thickness_m=s.pad_half_thickness_m)
+    traj = trajectory or trial_trajectory(plan, body, s)
     x0 = pose.point_to_world(body.particles_m)
     frame = SimFrame.aligned(traj.closing_axis_world, s.closing_axis_to_grid_deg)
     t_start = max(0.0, traj.phases["closure"][0] - s.settle_before_closure_s)
@@ -207,6 +216,8 @@ def run_trial(body: TrialBody, physical: PhysicalModel, material: Material, plan
     axis = np.asarray(traj.closing_axis_world, dtype=float)
     n_rest = max(1, int(round(0.1 / dt_c)))  # the `settled` label's COM speed window (tasks.manipulation.outcome)
     closure_end, skipped, contact_k = traj.phases["closure"][1], 0.0, 1.0
+    weight = physical.mass_kg * float(np.linalg.norm(physical.gravity_m_per_s2))
+    place_guard: dict[str, float] = {}
     touch_opening: float | None = None  # the opening where the closing fingers' force began to rise [m]
     sim_t = np.zeros(n_all)
     k = -1
@@ -283,6 +294,17 @@ def run_trial(body: TrialBody, physical: PhysicalModel, material: Material, plan
                 if skipped > 0.0:  # the lift starts after the dwell, not at the planned (deepest) closure's end
                     t_c, dt_k, n_int, n_all = _replan_times(t_c, dt_k, k, t1 + skipped, t_end, dt_c, n_ext)
             last_normal = normal
+        support = -float(ground[k, 2])  # the force the object exerts on the table, downward [N]
+        if (s.place_support_fraction is not None and not place_guard
+                and traj.lower_window_s[0] <= t0 and t1 + s.place_brake_s < traj.lower_window_s[1]
+                and support >= s.place_support_fraction * weight):
+            # the table carries the object: stop lowering here and release (the plan after t1 is re-timed)
+            planned_z = float(traj.place_center_world_m[2])
+            traj = trial_trajectory(plan, body, s, place_stop_s=float(t1))
+            place_guard = {"stopped_at_s": float(t1), "support_n": support, "weight_n": weight,
+                           "stopped_above_plan_m": float(traj.place_center_world_m[2]) - planned_z}
+            t_end = traj.duration_s
+            t_c, dt_k, n_int, n_all = _replan_times(t_c, dt_k, k, t1, t_end, dt_c, n_ext)
         if not report.health.ok:
             healthy = False
             first_issue = report.health.first()
@@ -329,9 +351,9 @@ def run_trial(body: TrialBody, physical: PhysicalModel, material: Material, plan
             "settings": asdict(s), "tolerances": asdict(tol), "phases": {k: list(v) for k, v in traj.phases.items()},
             "object_pose": {"xy_m": list(pose.xy_m), "yaw_deg": pose.yaw_deg}, "intervals": int(n_done),
             "settle_extension_s": float(max(0, n_done - n_int) * dt_c),
-            "grip_guard": guard, "sim_frame_yaw_deg": math.degrees(frame.yaw_rad)}
+            "grip_guard": guard, "place_guard": place_guard, "sim_frame_yaw_deg": math.degrees(frame.yaw_rad)}
     labels.update({"particles": float(len(x0)), "steps": float(steps), "stopped_after_failed_lift": float(bool(stopped)),
-                   "grip_guard_stopped": float(bool(guard)),
+                   "grip_guard_stopped": float(bool(guard)), "place_guard_stopped": float(bool(place_guard)),
                    "closed_width_m": float(guard["min_opening_m"]) if guard else float(traj.closed_width_m),
                    "squeeze_per_finger_m": 0.5 * (traj.contact_width_m - (float(guard["min_opening_m"]) if guard
                                                                          else float(traj.closed_width_m))),
@@ -352,13 +374,23 @@ def _replan_times(t_c: np.ndarray, dt_k: np.ndarray, k: int, t_next: float, t_en
     return t_new, dt_new, k + 1 + m, k + 1 + m + n_ext
 
 
+def trial_trajectory(plan: ActionPlan, body: TrialBody, settings: TrialSettings, place_stop_s: float | None = None
+                     ) -> Trajectory:
+    """The plan's trajectory as a trial executes it (raises UnreachableError or SimulationError); place_stop_s: where
+    a force-guarded place stopped the lowering [s]."""
+    s = settings
+    guarded = s.place_guard_height_m if s.place_support_fraction is not None else 0.0
+    place = PlaceApproach(height_m=guarded, speed_m_per_s=s.place_guard_speed_m_per_s, stop_s=place_stop_s,
+                          brake_s=s.place_brake_s)
+    return plan_trajectory(plan, object_pose=object_pose(plan), object_height_m=body.height_m,
+                           pad_half_thickness_m=s.pad_half_thickness_m, place=place)
+
+
 def plan_or_error(plan: ActionPlan, body: TrialBody, settings: TrialSettings | None = None
                   ) -> tuple[Trajectory | None, str]:
     """The plan's trajectory, or None and the reason it cannot be executed (unreachable, into the table)."""
-    s = settings or TrialSettings()
     try:
-        return plan_trajectory(plan, object_pose=object_pose(plan), object_height_m=body.height_m,
-                               pad_half_thickness_m=s.pad_half_thickness_m), ""
+        return trial_trajectory(plan, body, settings or TrialSettings()), ""
     except SimulationError as exc:
         return None, str(exc)
 
@@ -379,4 +411,4 @@ def reachable_plan(plan: ActionPlan, grasps: list[GraspCandidate], body: TrialBo
     return plan
 
 
-__all__ = ["TrialSettings", "TrialResult", "run_trial", "plan_or_error", "reachable_plan", "object_pose"]
+__all__ = ["TrialSettings", "TrialResult", "run_trial", "trial_trajectory", "plan_or_error", "reachable_plan", "object_pose"]

@@ -13,10 +13,10 @@ Typical use (asset frame = table frame at the object, metres):
 
 from tasks.robot.grasp import GraspSelection, GraspSettings, NoGraspError, select_grasps
 from tasks.robot.panda import Panda, UnreachableError, pad_geometry
-from tasks.robot.trajectory import (PHASES, FingerPad, ObjectPose, PadArrays, RobotState, Trajectory,
+from tasks.robot.trajectory import (PHASES, FingerPad, ObjectPose, PadArrays, PlaceApproach, RobotState, Trajectory,
                                     plan_trajectory)
 
 __all__ = [
     "GraspSelection", "GraspSettings", "NoGraspError", "select_grasps", "Panda", "UnreachableError", "pad_geometry",
-    "PHASES", "FingerPad", "ObjectPose", "PadArrays", "RobotState", "Trajectory", "plan_trajectory",
+    "PHASES", "FingerPad", "ObjectPose", "PadArrays", "PlaceApproach", "RobotState", "Trajectory", "plan_trajectory",
 ]

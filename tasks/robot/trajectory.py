@@ -123,6 +123,19 @@ ArmFn = Callable[[float], tuple[np.ndarray, np.ndarray]]
 FingerFn = Callable[[float], tuple[float, float]]
 
 
+@dataclass(frozen=True)
+class PlaceApproach:
+    """How the hand lowers the object onto the target: the last height_m [m] above the place height slowly, at
+    speed_m_per_s [m/s] (a guarded move: contact with the table is found at low speed), and, for a force-guarded
+    place, stopped at stop_s [s] (braking over brake_s [s]) because the table already carries the object; the
+    release, retreat and settle then start where the hand stopped. height_m 0: one min-jerk move down."""
+
+    height_m: float = 0.0
+    speed_m_per_s: float = 0.1
+    stop_s: float | None = None
+    brake_s: float = 0.02
+
+
 def _hold_arm(q: np.ndarray) -> ArmFn:
     """Arm at rest at q."""
     return lambda tau: (q.copy(), np.zeros(7))
@@ -136,14 +149,52 @@ def _joint_move(qa: np.ndarray, qb: np.ndarray, duration: float) -> ArmFn:
     return f
 
 
-def _path_move(spline: CubicSpline, duration: float) -> ArmFn:
-    """Min-jerk timing along a joint path q(s), s in [0, 1]."""
+Profile = Callable[[float], tuple[float, float]]  # local time [s] -> path parameter s in [0, 1] and ds/dt [1/s]
+
+
+def _min_jerk_profile(duration: float) -> Profile:
+    """Min-jerk timing of a path over duration [s]."""
+    def f(tau: float) -> tuple[float, float]:
+        s, ds = min_jerk(tau / duration)
+        return float(s), float(ds) / duration
+    return f
+
+
+def _ramped_profile(length_m: float, speed: float) -> Profile:
+    """Constant speed [m/s] with short ramps along a straight path of length_m [m]."""
+    def f(tau: float) -> tuple[float, float]:
+        d, rate = ramped_travel(tau, length_m, speed)
+        return float(d) / length_m, float(rate) / length_m
+    return f
+
+
+def _braked_profile(profile: Profile, tau_stop: float, brake_s: float) -> tuple[Profile, float]:
+    """The profile up to tau_stop [s], then brought to rest at constant deceleration over brake_s [s]:
+    (the new profile, the path parameter where it rests)."""
+    s_g, rate = profile(tau_stop)
+    s_end = min(1.0, s_g + 0.5 * rate * brake_s)
+
+    def f(tau: float) -> tuple[float, float]:
+        if tau <= tau_stop:
+            return profile(tau)
+        u = min(tau - tau_stop, brake_s)
+        return min(s_end, s_g + rate * u - 0.5 * rate / brake_s * u * u), rate * (1.0 - u / brake_s)
+    return f, s_end
+
+
+def _profiled_move(spline: CubicSpline, profile: Profile) -> ArmFn:
+    """The joint path q(s) timed by a profile."""
     deriv = spline.derivative()
 
     def f(tau: float) -> tuple[np.ndarray, np.ndarray]:
-        s, ds = min_jerk(tau / duration)
-        return spline(float(s)), deriv(float(s)) * float(ds) / duration
+        s, ds = profile(tau)
+        return spline(s), deriv(s) * ds
     return f
+
+
+def _path_move(spline: CubicSpline, duration: float) -> ArmFn:
+    """Min-jerk timing along a joint path q(s), s in [0, 1]."""
+    return _profiled_move(spline, _min_jerk_profile(duration))
 
 
 def _hold_fingers(w: float) -> FingerFn:
@@ -204,6 +255,9 @@ class Trajectory:
     _table: dict[str, np.ndarray] = field(default_factory=dict, repr=False)
     min_robot_height_m: float = float("nan")
     max_joint_speed_ratio: float = float("nan")
+    # the straight lowering onto the target [s]: a force-guarded place stops inside it (plan_trajectory place_stop_s)
+    lower_window_s: tuple[float, float] = (float("nan"), float("nan"))
+    place_stopped_s: float | None = None  # where a guarded place began to brake [s]; None: lowered all the way
 
     @property
     def duration_s(self) -> float:
@@ -375,7 +429,8 @@ def _choose_closing_axis(panda: Panda, closing: np.ndarray, approach: np.ndarray
 
 def plan_trajectory(plan: ActionPlan, object_pose: ObjectPose | None = None, object_height_m: float | None = None,
                     panda: Panda | None = None, open_clearance_m: float = 0.01, approach_clearance_m: float = 0.03,
-                    table_dt_s: float = 0.002, pad_half_thickness_m: float = 0.004) -> Trajectory:
+                    table_dt_s: float = 0.002, pad_half_thickness_m: float = 0.004,
+                    place: PlaceApproach | None = None) -> Trajectory:
     """Turn an ActionPlan into a Trajectory (IK verified by FK; raises UnreachableError or SimulationError).
 
     object_pose: where the asset frame is on the table (default: origin, ``plan.initial_yaw_deg``).
@@ -386,6 +441,7 @@ def plan_trajectory(plan: ActionPlan, object_pose: ObjectPose | None = None, obj
     The plan's gripper (``plan.gripper``) is mounted on the Panda; a given panda must carry the same one.
     pad_half_thickness_m: half thickness of the pad boxes [m] (outward from the gripping face), when no panda is given.
     table_dt_s: spacing of the dense pad table [s].
+    place: how the object is lowered onto the target (default: one min-jerk move down to the place height).
     """
     pose = object_pose or ObjectPose((0.0, 0.0), plan.initial_yaw_deg)
     own = panda is None
@@ -393,14 +449,15 @@ def plan_trajectory(plan: ActionPlan, object_pose: ObjectPose | None = None, obj
     if panda.gripper.name != plan.gripper:
         raise ValueError(f"the plan's gripper is {plan.gripper}, the given Panda carries {panda.gripper.name}")
     try:
-        return _plan(plan, pose, object_height_m, panda, open_clearance_m, approach_clearance_m, table_dt_s)
+        return _plan(plan, pose, object_height_m, panda, open_clearance_m, approach_clearance_m, table_dt_s,
+                     place or PlaceApproach())
     finally:
         if own:
             panda.close()
 
 
 def _plan(plan: ActionPlan, pose: ObjectPose, object_height_m: float | None, panda: Panda, open_clearance_m: float,
-          approach_clearance_m: float, table_dt_s: float) -> Trajectory:
+          approach_clearance_m: float, table_dt_s: float, place: PlaceApproach) -> Trajectory:
     """Waypoints by IK, then the timed segments, then the dense pad table."""
     g = plan.grasp
     rot_obj = pose.rotation
@@ -445,9 +502,11 @@ def _plan(plan: ActionPlan, pose: ObjectPose, object_height_m: float | None, pan
     q_grasp = descend(1.0)
     lift = _cartesian_path(panda, q_grasp, ee(center), ee(c_lift), rot, residuals)
     carry = _cartesian_path(panda, lift(1.0), ee(c_lift), ee(c_above), rot, residuals)
-    lower = _cartesian_path(panda, carry(1.0), ee(c_above), ee(c_place), rot, residuals)
-    q_place = lower(1.0)
-    retreat = _cartesian_path(panda, q_place, ee(c_place), ee(c_retreat), rot, residuals)
+    guarded_m = min(place.height_m, max(0.0, float(c_above[2] - c_place[2]) - 0.005))
+    c_guarded = c_place + np.array([0.0, 0.0, guarded_m])  # where the guarded (slow) part of the lowering begins
+    lower = _cartesian_path(panda, carry(1.0), ee(c_above), ee(c_guarded), rot, residuals)
+    slow = (_cartesian_path(panda, lower(1.0), ee(c_guarded), ee(c_place), rot, residuals) if guarded_m > 0.0
+            else None)
 
     # timing [s]; the joint move to the pre-grasp is slowed, if needed, to keep every joint within its speed limit
     t_descend = 0.4 * plan.approach_duration_s
@@ -455,11 +514,33 @@ def _plan(plan: ActionPlan, pose: ObjectPose, object_height_m: float | None, pan
                  1.875 * float(np.max(np.abs(pre.q - q_ready) / (SPEED_LIMIT_FRACTION * panda.velocity_limits))))
     t_close = max(plan.closure_duration_s,
                   ramped_travel_time((w_open - w_closed) / 2.0, plan.closing_speed_m_per_s) + 0.05)
-    l_carry, l_lower = float(np.linalg.norm(c_above - c_lift)), float(np.linalg.norm(c_place - c_above))
+    l_carry, l_lower = float(np.linalg.norm(c_above - c_lift)), float(np.linalg.norm(c_guarded - c_above))
     roots = np.sqrt([l_carry, l_lower])  # equal peak acceleration of two min-jerk moves: T ~ sqrt(L)
     if roots.sum() <= 0.0:
         roots = np.array([1.0, 0.0])
     t_carry, t_lower = plan.transport_duration_s * roots / roots.sum()
+    t_lower_start = t_join + t_descend + t_close + plan.lift_duration_s + t_carry
+    # the lowering: a min-jerk move to c_guarded, then (if any) a slow straight one to c_place; a guarded place stops
+    # it where the table took the object (place.stop_s) and everything after starts from there
+    moves: list[tuple[CubicSpline, Profile, float, np.ndarray, np.ndarray]] = [
+        (lower, _min_jerk_profile(t_lower), t_lower, c_above, c_guarded)]
+    if slow is not None:
+        moves.append((slow, _ramped_profile(guarded_m, place.speed_m_per_s),
+                      ramped_travel_time(guarded_m, place.speed_m_per_s), c_guarded, c_place))
+    lowering: list[tuple[float, ArmFn]] = []
+    t_move, stopped = t_lower_start, None
+    for spline, profile, dur, c_a, c_b in moves:
+        stop = place.stop_s
+        if stop is not None and t_move <= stop < t_move + dur:
+            braked, s_end = _braked_profile(profile, stop - t_move, place.brake_s)
+            lowering.append((stop - t_move + place.brake_s, _profiled_move(spline, braked)))
+            c_place, stopped = c_a + s_end * (c_b - c_a), stop  # each move is straight and linear in s
+            c_retreat = c_place - approach * d_pre
+            break
+        lowering.append((dur, _profiled_move(spline, profile)))
+        t_move += dur
+    q_place = lowering[-1][1](lowering[-1][0])[0]
+    retreat = _cartesian_path(panda, q_place, ee(c_place), ee(c_retreat), rot, residuals)
 
     pieces: list[tuple[float, str, ArmFn, FingerFn]] = [
         (t_join, "approach", _joint_move(q_ready, pre.q, t_join), _hold_fingers(w_open)),
@@ -467,7 +548,7 @@ def _plan(plan: ActionPlan, pose: ObjectPose, object_height_m: float | None, pan
         (t_close, "closure", _hold_arm(q_grasp), _close_fingers(w_open, w_closed, plan.closing_speed_m_per_s)),
         (plan.lift_duration_s, "lift", _path_move(lift, plan.lift_duration_s), _hold_fingers(w_closed)),
         (t_carry, "transport", _path_move(carry, t_carry), _hold_fingers(w_closed)),
-        (t_lower, "transport", _path_move(lower, t_lower), _hold_fingers(w_closed)),
+        *((dur, "transport", arm, _hold_fingers(w_closed)) for dur, arm in lowering),
         (plan.release_duration_s, "release", _hold_arm(q_place), _open_fingers(w_closed, w_open,
                                                                                plan.release_duration_s)),
         (plan.retreat_duration_s, "retreat", _path_move(retreat, plan.retreat_duration_s), _hold_fingers(w_open)),
@@ -489,7 +570,8 @@ def _plan(plan: ActionPlan, pose: ObjectPose, object_height_m: float | None, pan
         closed_width_m=w_closed, contact_time_s=phases["closure"][0] + _contact_time(w_open, contact, plan),
         ik_max_position_error_m=max(r.position_error_m for r in residuals),
         ik_max_rotation_error_rad=max(r.rotation_error_rad for r in residuals),
-        table_dt_s=table_dt_s, pad_half_extents_m=np.asarray(pads.half_extents_m))
+        table_dt_s=table_dt_s, pad_half_extents_m=np.asarray(pads.half_extents_m),
+        lower_window_s=(t_lower_start, t_lower_start + sum(d for d, _ in lowering)), place_stopped_s=stopped)
     _fill_table(traj, panda)
     return traj
 

@@ -10,7 +10,7 @@ import pytest
 
 from contracts.robot import ActionPlan, GraspCandidate
 from tasks.robot.panda import UnreachableError
-from tasks.robot.trajectory import PHASES, ObjectPose, Trajectory, plan_trajectory
+from tasks.robot.trajectory import PHASES, ObjectPose, PlaceApproach, Trajectory, plan_trajectory
 
 DT = 1e-3
 
@@ -201,3 +201,35 @@ def test_selected_grasp_runs_clear_of_the_object_until_contact() -> None:
     left, right = tr.finger_pads(tr.phases["closure"][1] - 1e-3)
     squeeze = np.linalg.norm(right.contact_point_m - left.contact_point_m)
     assert squeeze == pytest.approx(grasp.width_m - 2 * 0.003, abs=1e-4)
+
+
+def test_a_guarded_place_lowers_slowly_at_the_end_and_stops_where_the_table_took_the_object(traj: Trajectory
+                                                                                            ) -> None:
+    """PlaceApproach: the last 3 cm at 0.1 m/s; a stop inside it: the plan is unchanged up to the stop, the hand brakes
+    to rest within the brake time above the planned place height, and release, retreat and settle follow from there."""
+    guarded = plan_trajectory(_plan(), object_height_m=0.06, place=PlaceApproach(height_m=0.03, speed_m_per_s=0.1))
+    lo, hi = guarded.lower_window_s
+    t_slow = 0.03 / 0.1 + 0.02  # ramped_travel_time
+    assert guarded.phases["transport"][1] - guarded.phases["transport"][0] == pytest.approx(
+        _plan().transport_duration_s + t_slow)
+    assert np.allclose(guarded.place_center_world_m, traj.place_center_world_m, atol=1e-9)
+    pads = guarded.pads_at(np.array([hi - t_slow + 0.05, hi - 0.05]))
+    assert np.allclose(pads.linear_velocity_m_per_s[:, :, 2], -0.1, atol=0.005)  # the guarded part: 0.1 m/s down
+    t_stop = hi - 0.5 * t_slow
+    stopped = plan_trajectory(_plan(), object_height_m=0.06,
+                              place=PlaceApproach(height_m=0.03, speed_m_per_s=0.1, stop_s=t_stop, brake_s=0.02))
+    assert stopped.place_stopped_s == t_stop and guarded.place_stopped_s is None
+    for t in np.arange(0.0, t_stop, 0.05):
+        assert np.allclose(stopped.state_at(float(t)).q, guarded.state_at(float(t)).q, atol=1e-9)
+    assert stopped.lower_window_s[1] == pytest.approx(t_stop + 0.02) == pytest.approx(stopped.phases["release"][0])
+    assert np.max(np.abs(stopped.state_at(stopped.phases["release"][0]).qdot)) < 1e-9
+    speeds = [np.max(np.abs(stopped.state_at(float(t)).qdot)) for t in np.arange(t_stop, t_stop + 0.02, 0.002)]
+    assert all(b <= a + 1e-9 for a, b in zip(speeds, speeds[1:]))  # it only slows down
+    drop = stopped.place_center_world_m[2] - traj.place_center_world_m[2]
+    covered = 0.5 * 0.1 * 0.02 + 0.1 * (0.5 * t_slow - 0.02) + 0.5 * 0.1 * 0.02  # ramp, cruise, brake [m]
+    assert drop == pytest.approx(0.03 - covered, abs=5e-4)
+    rel = stopped.pads_at(np.array(stopped.phases["release"]))
+    assert np.allclose(rel.position_m[0].mean(axis=0), rel.position_m[1].mean(axis=0), atol=1e-5)  # the hand waits
+    assert stopped.duration_s < guarded.duration_s
+    late = plan_trajectory(_plan(), object_height_m=0.06, place=PlaceApproach(height_m=0.03, stop_s=hi + 0.01))
+    assert late.place_stopped_s is None and late.duration_s == pytest.approx(guarded.duration_s)
