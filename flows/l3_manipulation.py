@@ -58,7 +58,7 @@ from tasks.robot.choice import choose_gripper, grasp_settings
 from tasks.robot.grasp import GraspSettings
 from tasks.robot.grasp_parts import body_first_grasps
 from tasks.robot.gripper import gripper
-from tasks.robot.squeeze import squeeze_plan
+from tasks.robot.squeeze import squeeze_plan, torque_lever_m
 
 TASK_VERSION = "13"  # bump when tasks/manipulation/{trial,outcome,body,frame}.py change what a trial returns
 # (6: settle until at rest; 7: simulated in the frame where the closing axis is at 45 degrees to the grid; 8: the
@@ -150,6 +150,7 @@ def load_context(asset_dir: Path, options: L3Options, contract: StageContract,
         raise NoGraspError(f"{name}: {reasons[0]}")
     sq = squeeze_plan(width_m=grasps[0].width_m, pad_area_m2=g.pad_area_m2,
                       gripper_max_n=g.spec.max_grip_force_n, friction=physical.gripper_friction,
+                      lever_m=torque_lever_m(np.asarray(grasps[0].center_m), np.asarray(grasps[0].closing_axis), com),
                       **hold)
     if not L3Parameters.of(contract).hold_force_margin:  # no hold target: position control, the contract's range
         return L3Context(Path(asset_dir), body, physical, material, source, grasps, options, contract,

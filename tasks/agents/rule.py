@@ -82,8 +82,14 @@ def propose_field(
         else:
             pass_high.append(u_ref)
             one_sided = not pass_low and len(set(pass_high)) >= 2
-        if one_sided:  # moved this way before and never overshot: go straight to the bound
-            u = (hi if direction == "increase" else lo)
+        if one_sided:  # moved this way before and never overshot: go straight to the bound, or a larger step
+            u = float(hi if direction == "increase" else lo)
+            factor = routes.expansion.get(name)
+            behind = [v for v in (pass_low if direction == "increase" else pass_high) if v != u_ref]
+            if factor is not None and behind:
+                last = min(behind, key=lambda v: abs(v - u_ref))  # the step that led here
+                grown = factor * abs(u_ref - last)
+                u = min(u, u_ref + grown) if direction == "increase" else max(u, u_ref - grown)
             u = None if abs(u - u_ref) < 1e-12 * max(1.0, abs(u_ref)) else u
         else:
             u = bisect_step(pass_low, pass_high, lo, hi, u_ref, width)

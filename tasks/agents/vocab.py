@@ -98,6 +98,9 @@ class StageRoutes(Model):
     couplings: dict[str, list[Coupling]] = Field(default_factory=dict)
     methods: dict[str, Literal["secant", "bisection", "enumerate"]] = Field(default_factory=dict)
     integers: list[str] = Field(default_factory=list)
+    # a field moved the same way again without ever overshooting goes straight to its bound, unless listed here: then
+    # its step grows by this factor over the last one (a grip: a slip asks for a firmer squeeze, not the hardest one)
+    expansion: dict[str, float] = Field(default_factory=dict)
     gates: dict[str, GateRoute] = Field(default_factory=dict)
     # a failure mode the stage's probe diagnosed, as a 0/1 metric (e.g. L3's mode_slipped_at_lift,
     # tasks.manipulation.diagnosis) -> its route, which replaces the failed gates' directions when the mode is seen:

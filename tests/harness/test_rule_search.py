@@ -120,3 +120,25 @@ def test_l1_mass_gate_is_steered_by_the_mass_band() -> None:
     out = run_stage(l1, rigid, t)
     assert out.attempts[0].verdict == "revise" and out.attempts[0].directions["density_kg_per_m3"] == "increase"
     assert out.status == "accepted" and 0.2 <= out.metrics["mass_kg"] <= 0.4
+
+
+def test_a_field_with_an_expansion_grows_its_step_instead_of_jumping_to_the_bound() -> None:
+    """L3's squeeze after two slips: 5 -> 10 mm did not hold, so 10 -> 17.5 mm (1.5x the last step), not the
+    contract's deepest squeeze; without the expansion the search goes straight to the bound (as L2's fields do)."""
+    from contracts.agents import HistoryEntry
+    from contracts.stage import EditableField
+    from tasks.agents.rule import propose_field
+    from tasks.agents.vocab import stage_routes
+
+    spec = EditableField(name="squeeze_depth_m", low=0.0, high=0.04)
+    history = [HistoryEntry(iteration=i, action="revise_squeeze", values={"squeeze_depth_m": v}, valid=False,
+                            probed=True, directions={"squeeze_depth_m": "increase"})
+               for i, v in enumerate((0.005, 0.010))]
+    routes = stage_routes("L3", load_contract("L3").parameters)
+    assert routes.expansion["squeeze_depth_m"] == 1.5
+    nxt = propose_field(spec, "increase", 0.010, history, TargetBehaviour(), routes)
+    assert nxt == pytest.approx(0.0175)
+    jump = propose_field(spec, "increase", 0.010, history, TargetBehaviour(), routes.model_copy(update={"expansion": {}}))
+    assert jump == pytest.approx(0.04)
+    near = propose_field(spec, "increase", 0.035, history, TargetBehaviour(), routes)  # capped by the bound
+    assert near == pytest.approx(0.04)
