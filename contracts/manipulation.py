@@ -119,6 +119,7 @@ class SqueezeSummary(Row):
     low_m: float
     high_m: float
     soft_indent_m: float
+    torsion_force_n: float = 0.0  # the force per finger the weight's torque about the closing axis asks for [N]
 
 
 class GripperOption(Row):

@@ -300,11 +300,17 @@ def run_trial(body: TrialBody, physical: PhysicalModel, material: Material, plan
                 and support >= s.place_support_fraction * weight):
             # the table carries the object: stop lowering here and release (the plan after t1 is re-timed)
             planned_z = float(traj.place_center_world_m[2])
-            traj = trial_trajectory(plan, body, s, place_stop_s=float(t1))
-            place_guard = {"stopped_at_s": float(t1), "support_n": support, "weight_n": weight,
-                           "stopped_above_plan_m": float(traj.place_center_world_m[2]) - planned_z}
-            t_end = traj.duration_s
-            t_c, dt_k, n_int, n_all = _replan_times(t_c, dt_k, k, t1, t_end, dt_c, n_ext)
+            try:
+                stopped_traj = trial_trajectory(plan, body, s, place_stop_s=float(t1))
+            except SimulationError as exc:  # no path back from where it stopped: lower to the planned height
+                place_guard = {"stopped_at_s": float("nan"), "support_n": support, "weight_n": weight,
+                               "not_stopped": str(exc)}
+            else:
+                traj = stopped_traj
+                place_guard = {"stopped_at_s": float(t1), "support_n": support, "weight_n": weight,
+                               "stopped_above_plan_m": float(traj.place_center_world_m[2]) - planned_z}
+                t_end = traj.duration_s
+                t_c, dt_k, n_int, n_all = _replan_times(t_c, dt_k, k, t1, t_end, dt_c, n_ext)
         if not report.health.ok:
             healthy = False
             first_issue = report.health.first()
@@ -353,7 +359,8 @@ def run_trial(body: TrialBody, physical: PhysicalModel, material: Material, plan
             "settle_extension_s": float(max(0, n_done - n_int) * dt_c),
             "grip_guard": guard, "place_guard": place_guard, "sim_frame_yaw_deg": math.degrees(frame.yaw_rad)}
     labels.update({"particles": float(len(x0)), "steps": float(steps), "stopped_after_failed_lift": float(bool(stopped)),
-                   "grip_guard_stopped": float(bool(guard)), "place_guard_stopped": float(bool(place_guard)),
+                   "grip_guard_stopped": float(bool(guard)), "place_guard_stopped": float(bool(place_guard)
+                                                                                        and "not_stopped" not in place_guard),
                    "closed_width_m": float(guard["min_opening_m"]) if guard else float(traj.closed_width_m),
                    "squeeze_per_finger_m": 0.5 * (traj.contact_width_m - (float(guard["min_opening_m"]) if guard
                                                                          else float(traj.closed_width_m))),
