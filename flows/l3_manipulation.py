@@ -44,7 +44,8 @@ from tasks.asset_dir import AssetDir
 from tasks.geometry.outputs import load_l0
 from tasks.manipulation.body import auto_trial_spacing, trial_body
 from tasks.manipulation.context import (SURFACE_SAMPLES, HoldInputs, L3Context, L3Options, accepted, body_from,
-                                        failed_metrics, hold_inputs, initial_values, material_of, with_squeeze_range)
+                                        failed_metrics, hold_inputs, initial_values, material_of, plan_executable,
+                                        with_squeeze_range)
 from tasks.manipulation.keep import keep_trials
 from tasks.manipulation.l3_record import (build_record, chosen_attempt, conditions, conditions_summary,
                                           name_pick_and_place, no_grasp_record)
@@ -139,8 +140,8 @@ def load_context(asset_dir: Path, options: L3Options, contract: StageContract,
     info = asset.record["info"]  # the Planner holds a soft toy or animal by its body (tasks.robot.grasp_parts)
     program = ShapeProgram.model_validate(info["program"]) if info.get("program") else None
     def reachable(c: GraspCandidate) -> bool:  # at the nominal condition (the object at the origin, no yaw)
-        return plan_or_error(ActionPlan(grasp=c, gripper=name, squeeze_depth_m=0.0, target_xy_m=options.target_xy_m),
-                             body)[0] is not None
+        return plan_executable(ActionPlan(grasp=c, gripper=name, squeeze_depth_m=0.0, target_xy_m=options.target_xy_m),
+                               body)
 
     settings = grasp_settings(name, nominal.soft_indent_m)
     grasps, grasp_reason = body_first_grasps(select, settings, info["category"],

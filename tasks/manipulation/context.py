@@ -18,7 +18,7 @@ from typing import Any, Protocol, TypedDict
 
 import numpy as np
 
-from cache import cache_relative, content_key
+from cache import CacheMiss, CacheStore, cache_relative, cache_root, content_key
 from cache.files import cached_file, source_digest
 from contracts.asset_dir import attempt_path
 from contracts.manipulation import GripperOption, TrialCondition, TrialRow
@@ -37,7 +37,7 @@ from tasks.manipulation.diagnosis import MODES
 from tasks.manipulation.outcome import TrialTolerances, force_budget_n
 from tasks.manipulation.recordings import cached_recording_path, record_attempt
 from tasks.manipulation.report import L3Progress, trial_reason
-from tasks.manipulation.trial import TrialSettings, reachable_plan
+from tasks.manipulation.trial import TrialSettings, plan_or_error, reachable_plan
 from tasks.robot.grasp import GraspSettings
 from tasks.robot.gripper import gripper
 from tasks.robot.squeeze import SqueezePlan
@@ -143,6 +143,39 @@ def _attempt_code() -> str:
     return source_digest([root / "data.py", root / "particle_frames.py"], ("numcodecs", "numpy", "zarr"))
 
 
+PLAN_CHECK_VERSION = "1"  # bump when what plan_executable answers changes beyond the code _reach_code digests
+
+
+@functools.cache
+def _reach_code() -> str:
+    """The code part of a plan's reachability key (plan_executable): the trajectory planner and the Panda
+    (tasks/robot but its drawing), plan_or_error and the trial settings' defaults (trial.py), the gripper specs and the
+    robot contract, and the libraries they compute with (pybullet: the Panda's URDF and IK)."""
+    here = Path(__file__).resolve().parent
+    root = here.parent.parent
+    robot = [p for p in (root / "tasks" / "robot").rglob("*")
+             if p.is_file() and "__pycache__" not in p.parts and p.name != "visual.py"]
+    return source_digest([*robot, here / "trial.py", root / "tasks" / "quiet_pybullet.py", root / "contracts" / "grippers",
+                          root / "contracts" / "robot.py"], ("numpy", "pybullet", "scipy", "trimesh"))
+
+
+def plan_executable(plan: ActionPlan, body: TrialBody) -> bool:
+    """Whether the arm can execute `plan` on `body` (plan_or_error's trajectory is not None: IK, the dense pad table,
+    the table test), remembered in the content cache by the plan, the body's height and the planner's code. A trial's
+    plan is checked this way before its cached task runs (reachable_plan; the trial plans it again inside the task on a
+    miss), ~1 s on the CPU per plan: a fully cached rerun of the default turtle checked 6 plans, 6-7 s of its wall
+    time (#37)."""
+    key = content_key("l3.plan_executable", PLAN_CHECK_VERSION, _reach_code(), plan, float(body.height_m))
+    store = CacheStore(cache_root())
+    try:
+        return bool(store.get(key))
+    except CacheMiss:
+        pass
+    ok = plan_or_error(plan, body)[0] is not None
+    store.put(key, ok, meta={"task": "l3.plan_executable"})
+    return ok
+
+
 def store_attempt(asset_dir: Path, arrays: dict[str, np.ndarray], attrs: dict[str, Any]) -> int:
     """Store a trial as the asset's next interaction attempt (tasks.manipulation.data.write_attempt) through the cache:
     a rerun copies the attempt encoded before from the same arrays, attributes, index and encoder code instead of
@@ -231,7 +264,8 @@ class L3Context:
             place_height_m=float(values.get("place_height_m", o.place_height_m)),
             retreat_duration_s=o.retreat_duration_s, settle_duration_s=o.settle_duration_s)
         # a yawed condition may turn a side grasp out of reach: the same contacts from another side, else another grasp
-        return reachable_plan(plan, self.grasps, self.body, grasp_settings=self.grasp_settings)
+        return reachable_plan(plan, self.grasps, self.body, grasp_settings=self.grasp_settings,
+                              executable=lambda p: plan_executable(p, self.body))
 
     def trial(self, values: dict[str, float], role: str, action: str = "", material: Material | None = None,
               target_xy_m: tuple[float, float] | None = None, yaw_deg: float = 0.0) -> ProbeResult:

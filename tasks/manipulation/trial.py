@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import math
 import time
+from collections.abc import Callable
 from dataclasses import asdict, dataclass
 
 import numpy as np
@@ -403,17 +404,24 @@ def plan_or_error(plan: ActionPlan, body: TrialBody, settings: TrialSettings | N
 
 
 def reachable_plan(plan: ActionPlan, grasps: list[GraspCandidate], body: TrialBody,
-                   settings: TrialSettings | None = None, grasp_settings: GraspSettings | None = None) -> ActionPlan:
+                   settings: TrialSettings | None = None, grasp_settings: GraspSettings | None = None,
+                   executable: Callable[[ActionPlan], bool] | None = None) -> ActionPlan:
     """The plan, or when its grasp cannot be executed under the plan's condition (a side approach that an initial
     yaw turns away from the arm): first the same grasp approached from another side (its contacts kept: what the
     trials tested; needs ``grasp_settings``, the sampler's, for the hand's collision test), else the same plan with
-    the best-ranked grasp that can be executed; unchanged when none can."""
-    if plan_or_error(plan, body, settings)[0] is not None:
+    the best-ranked grasp that can be executed; unchanged when none can.
+    executable: whether a plan can be executed on this body (default: plan_or_error plans it; L3's context passes
+    the same answer remembered in the cache, tasks.manipulation.context.plan_executable)."""
+    def plans(p: ActionPlan) -> bool:
+        return plan_or_error(p, body, settings)[0] is not None
+
+    can = executable or plans
+    if can(plan):
         return plan
     same = turned_approaches(plan.grasp, body.surface_points_m, grasp_settings) if grasp_settings is not None else []
     for g in [*same, *(g for g in grasps if g.rank != plan.grasp.rank)]:
         other = plan.model_copy(update={"grasp": g})
-        if plan_or_error(other, body, settings)[0] is not None:
+        if can(other):
             return other
     return plan
 
