@@ -218,7 +218,7 @@ def run_trial(body: TrialBody, physical: PhysicalModel, material: Material, plan
     n_rest = max(1, int(round(0.1 / dt_c)))  # the `settled` label's COM speed window (tasks.manipulation.outcome)
     closure_end, skipped, contact_k = traj.phases["closure"][1], 0.0, 1.0
     weight = physical.mass_kg * float(np.linalg.norm(physical.gravity_m_per_s2))
-    place_guard: dict[str, float] = {}
+    place_guard: dict[str, float | str] = {}
     touch_opening: float | None = None  # the opening where the closing fingers' force began to rise [m]
     sim_t = np.zeros(n_all)
     k = -1
