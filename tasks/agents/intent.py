@@ -123,12 +123,17 @@ FAMILY_WORDS: dict[str, frozenset[str]] = {
 }
 
 
+# a measure noun before 'of' is the amount of what follows, not its material ('a roll of tape', 'rolls of wrap')
+_MEASURE_OF = re.compile(r"\b(?:roll|rolls)\s+of\b")
+
+
 def _match_material(text: str, vocab: MaterialVocab, concept_material: str | None = None) -> tuple[str, str | None]:
     """The material named by the longest matching word (materials first, then the concept L0 built, then object
     words); the default otherwise. The concept's own material wins when the text names it too ('a plush pillow' is
     plush, though 'pillow' is a foam word) or names only its family ('foam' for a closed-cell foam pad)."""
     best: tuple[int, str, str] | None = None
     named: dict[str, str] = {}
+    text = _MEASURE_OF.sub(" ", text)  # 'a roll of bubble wrap' names no bread
     for name, entry in vocab.materials.items():
         for word in entry.words:
             if _contains_phrase(text, word):

@@ -51,11 +51,21 @@ class SizeSpec(Model):
     longest_m: float | None = Field(default=None, gt=0, description="longest extent [m]")
     axis_scale: tuple[float, float, float] = Field(default=(1.0, 1.0, 1.0), description="modifier scale per axis [-]")
     stated: str | None = Field(default=None, description="the text the size was read from")
+    long: bool = Field(default=False, description="a long good (a pool noodle, a bolster): a length alone sets its "
+                       "long axis, the cross-section stays its typical one")
+    flat: bool = Field(default=False, description="a flat good (a towel, a mat, a garment laid flat): a size sets its "
+                       "outline, the thickness stays its typical one unless stated")
+    unfold: tuple[float, float] | None = Field(default=None, description="a folded sheet: its folded footprint over "
+                                               "the flat sheet's along x and y; a stated size nearer the flat "
+                                               "sheet's is the flat sheet's ('a folded towel, 70 x 140 cm') [-]")
 
     def resolve(self, current: np.ndarray) -> np.ndarray:
         """Target extents [m] for a mesh whose extents are `current` (x, y, z)."""
         ext = np.asarray(current, dtype=np.float64) * np.asarray(self.axis_scale)
         given = [(i, v) for i, v in enumerate(self.extents_m) if v is not None]
+        shaped = self._resolve_form(ext, given)
+        if shaped is not None:
+            return shaped
         if given:
             factors = [v / ext[i] for i, v in given]
             ext = ext * float(np.exp(np.mean(np.log(factors))))
@@ -69,6 +79,45 @@ class SizeSpec(Model):
     def explicit(self) -> bool:
         """True when the text or the user stated a size."""
         return self.longest_m is not None or any(v is not None for v in self.extents_m)
+
+    def _resolve_form(self, ext: np.ndarray, given: list[tuple[int, float]]) -> np.ndarray | None:
+        """A long or flat good's target extents, or None when its form does not decide them (then sizes scale the
+        object as a whole)."""
+        order = [int(i) for i in np.argsort(-ext, kind="stable")]
+        i0, i1, i2 = order
+        if self.long:  # '150 cm pool noodle', '135 cm long body pillow': the length only
+            length = self.longest_m if not given else (given[0][1] if len(given) == 1 and given[0][0] in (0, i0)
+                                                        else None)
+            if length is not None and length > 1.5 * ext[i1]:
+                out = ext.copy()
+                out[i0] = length
+                return out
+        if not self.flat or len(given) == 3 or (not given and self.longest_m is None):
+            return None
+        stated = [v for i, v in given if i != 2] or ([self.longest_m] if self.longest_m and not given else [])
+        unfold = np.array([*self.unfold, 1.0]) if self.unfold is not None else np.ones(3)
+        if stated and self.unfold is not None:  # a folded sheet: the stated size is its flat size when nearer that
+            flat_long = float((ext / unfold)[:2].max())
+            if abs(np.log(max(stated) / flat_long)) >= abs(np.log(max(stated) / ext[i0])):
+                unfold = np.ones(3)
+        base = ext / unfold
+        order = [int(i) for i in np.argsort(-base, kind="stable")]
+        i0, i1, i2 = order
+        out = base.copy()
+        outline = [(i, v) for i, v in given if i != 2]
+        if len(outline) == 2:  # '50 x 80 cm': the outline, its longer side the longer one
+            hi, lo = sorted((v for _, v in outline), reverse=True)
+            out[i0], out[i1] = hi, lo
+        elif len(outline) == 1 or (not given and self.longest_m is not None):
+            i, v = outline[0] if outline else (i0, float(self.longest_m or 0.0))
+            axis = i0 if i in (0, i0) else i1  # 'long' is the longer side, 'wide' the shorter
+            k = v / max(base[axis], 1e-12)
+            out[i0] *= k
+            out[i1] *= k
+        for i, v in given:
+            if i == 2:  # 'a bath mat 2 cm thick'
+                out[i2] = v * unfold[i2]
+        return out * unfold
 
 
 class Design(Model):
@@ -241,7 +290,7 @@ def normalise_sizes(text: str) -> str:
 def final_scale(size: SizeSpec, program: ShapeProgram, typical_m: float) -> tuple[float, float]:
     """(the longest extent the object is built at [m], its stretch: the largest per-axis scale over the smallest)."""
     axis = np.asarray(size.axis_scale, dtype=np.float64)
-    if not any(v is not None for v in size.extents_m):
+    if not any(v is not None for v in size.extents_m) and not (size.longest_m and (size.long or size.flat)):
         return size.longest_m or typical_m * float(axis.max()), float(axis.max() / axis.min())
     try:
         ext = grammar.program_extents(program, 32)
@@ -258,15 +307,55 @@ _LONG_WORDS = frozenset({"long", "elongated"})
 
 def _not_implied(mods: list[str], program: ShapeProgram, plan: str | None) -> list[str]:
     """The modifiers the object does not have already: a garment, bag or sheet built flat is not flattened again by
-    'flat' or 'thin' (a state word there), a long strip (five times longer than wide) not stretched by 'long'."""
-    if not set(mods) & (_FLAT_WORDS | _LONG_WORDS):
+    'flat' or 'thin' (a state word there), a long strip (five times longer than wide) not stretched by 'long', a
+    ring or round bed not widened by 'round'."""
+    if not set(mods) & (_FLAT_WORDS | _LONG_WORDS | {"round"}):
         return mods
 
     lo, hi = program_bounds(program)
+    xy = np.asarray(hi - lo)[:2]
     ext = np.sort(hi - lo)[::-1]
     flat = plan in concepts.THIN_GOODS_PLANS and ext[2] < 0.2 * ext[0]
     long = ext[0] > 5 * ext[1]
-    return [m for m in mods if not (m in _FLAT_WORDS and flat) and not (m in _LONG_WORDS and long)]
+    round_ = abs(float(xy[0] - xy[1])) < 0.1 * float(xy.max())  # round in plan already (a ring, a round bed)
+    return [m for m in mods if not (m in _FLAT_WORDS and flat) and not (m in _LONG_WORDS and long)
+            and not (m == "round" and round_)]
+
+
+# Kinds whose long things grow thicker as they grow longer (a big banana, a long cucumber, a plush snake): a length
+# scales them as a whole; other long goods are cut or sewn to length at their usual cross-section
+_GROWN = frozenset({"fruit", "vegetable", "meat", "plush_animal", "rubber_toy", "silicone_toy", "egg", "dairy", "dough",
+                    "jelly", "candy", "marshmallow", "tofu", "foam_toy", "balloon", "ball"})
+LONG_RATIO = 2.5  # a long good: its length over its next extent at least this [-]
+
+
+def _size_form(program: ShapeProgram, match: ConceptMatch, reading: concepts.Reading) -> dict:
+    """SizeSpec's long / flat / unfold for the object built: a long good (a pool noodle, a bolster, a draught
+    excluder) takes a length along its long axis only; a flat good (a sheet, a garment or bag laid flat) takes sizes
+    on its outline, keeping its thickness; a folded sheet knows its footprint over the flat sheet's."""
+    lo, hi = program_bounds(program)
+    e = np.sort(np.asarray(hi) - np.asarray(lo))[::-1]
+    plan = match.body_plan or ""
+    flat = bool((plan == "sheet" and e[2] < 0.5 * e[1]) or (plan in concepts.THIN_GOODS_PLANS and e[2] < 0.2 * e[1]))
+    long = bool(e[0] > LONG_RATIO * e[1] and match.category not in _GROWN and (plan != "sheet" or flat))
+    return {"long": long, "flat": flat, "unfold": concepts.sheet_fold(reading) if flat else None}
+
+
+def _rolled_sized(size: SizeSpec, program: ShapeProgram, reading: concepts.Reading) -> SizeSpec:
+    """A rolled sheet's stated length and width are the sheet's ('a roll of bubble wrap, 50 cm wide and 2 m long'):
+    the width is the roll's length, the length sets its diameter (the rolled cross-section grows with the sheet's
+    length, so the diameter as its square root)."""
+    width = concepts.sheet_roll(reading)
+    sheet_len, roll_len = size.extents_m[0], size.extents_m[1]
+    if width is None or size.extents_m[2] is not None or (sheet_len is None and roll_len is None):
+        return size
+    lo, hi = program_bounds(program)
+    ext = np.asarray(hi) - np.asarray(lo)  # the roll lies along x
+    typical_sheet = float(ext[0]) / width
+    k = float(np.sqrt((sheet_len or typical_sheet) / typical_sheet))
+    ext_m = (roll_len or float(ext[0]), float(ext[1]) * k, float(ext[2]) * k)
+    return size.model_copy(update={"extents_m": ext_m, "long": False, "flat": False,
+                                   "stated": f"{size.stated}: the sheet's length and width, rolled"})
 
 
 def _fill_sized(size: SizeSpec, program: ShapeProgram, match: ConceptMatch,
@@ -335,12 +424,16 @@ def design_from_text(text: str, size_hint_m: float | None = None) -> Design:
     kept = _not_implied(mods, program, match.body_plan)
     if kept != mods:  # 'a long scarf', 'jeans laid flat': the object is so already, not stretched again
         mods, axis_scale = parse_modifiers(" ".join(kept))
-    size = size.model_copy(update={"axis_scale": axis_scale})
+    size = size.model_copy(update={"axis_scale": axis_scale, **_size_form(program, match, reading)})
+    size = _rolled_sized(size, program, reading)
     size, fill_match = _fill_sized(size, program, fill_match, mass)
     if mass is None:
         match = fill_match
     check_size(size)
-    match = concepts.size_scaled(match, *final_scale(size, program, match.typical_size_m or 0.0))
+    # a flat good's stated sizes keep its typical thickness (or state it): its mass follows its built area
+    kept = size.flat or concepts.sheet_roll(reading) is not None  # (a roll's stated sheet: its volume follows it)
+    scaled = SizeSpec(axis_scale=size.axis_scale) if kept and size.explicit else size
+    match = concepts.size_scaled(match, *final_scale(scaled, program, match.typical_size_m or 0.0))
     said = size_words.read_size_words(_strip_numeric_sizes(text_n), frozenset(MODIFIERS))
     warnings = [w for w in said.warnings + reading.warnings + build_warnings if w]
     score = {"exact": 2.0, "synonym": 1.0}.get(match.fallback_level, 0.0)

@@ -15,6 +15,7 @@ from contracts.lexicon import MATERIALS_FILE, LexiconEntry, load_lexicon
 from contracts.shape import Part, ShapeProgram
 from tasks.geometry import analogy as analogy_mod, fill_words, goods_words, grammar, phrase as phrase_mod, pouch_words
 from tasks.geometry.catalogue_programs import catalogue_program
+from tasks.geometry.grammar.goods import SheetParams, folded_footprint
 from tasks.geometry.grammar.things import smiley
 from tasks.geometry.grammar.parts import _euler_z_to, box, ellipsoid, part_group, relief, rotated_parts, squashed_parts
 from tasks.geometry.meshing import sample_program
@@ -853,6 +854,32 @@ def _state_params(reading: Reading, warnings: list[str]) -> tuple[list[str], dic
         if st not in can and st not in shapeless:
             warnings.append(f"state '{st}' is not drawn: the {target.key.replace('_', ' ')} shape has no such state")
     return shown, ({"state": shown[0]} if shown else {})
+
+
+def sheet_fold(reading: Reading) -> tuple[float, float] | None:
+    """A folded sheet's footprint over its flat sheet's, along x and y (a bath towel folded twice: 0.25, 1); None
+    when the reading is not a folded sheet."""
+    target = reading.donor or reading.entry
+    if reading.donor_plan is not None or target.plan != "sheet":
+        return None
+    params = {**target.params, **reading.params, **_state_params(reading, [])[1]}
+    if params.get("state") != "folded":
+        return None
+    p = SheetParams(**params)
+    length, width, _last = folded_footprint(p)
+    return float(length), float(width / p.width)
+
+
+def sheet_roll(reading: Reading) -> float | None:
+    """A rolled sheet's width over its length (the roll's length over the flat sheet's); None when the reading is
+    not a rolled sheet."""
+    target = reading.donor or reading.entry
+    if reading.donor_plan is not None or target.plan != "sheet":
+        return None
+    params = {**target.params, **reading.params, **_state_params(reading, [])[1]}
+    if params.get("state") != "rolled" or params.get("shape", "rect") != "rect":
+        return None
+    return float(SheetParams(**params).width)
 
 
 def _outline_param(reading: Reading) -> dict[str, str] | None:
