@@ -19,7 +19,7 @@ from tasks.geometry.grammar.goods import SheetParams, folded_footprint
 from tasks.geometry.grammar.things import smiley
 from tasks.geometry.grammar.parts import _euler_z_to, box, ellipsoid, part_group, relief, rotated_parts, squashed_parts
 from tasks.geometry.meshing import sample_program
-from tasks.geometry.sdf import program_sdf
+from tasks.geometry.sdf import program_bounds, program_sdf
 from tasks.geometry.wordnet import wordnet
 
 # Words that say what an unknown object is like (checked only when the head noun is not in the lexicon).
@@ -498,7 +498,10 @@ def read_text(text: str, serving: bool = True) -> Reading:
             "typical_mass_kg": entry.mass_kg, "mass_source": entry.mass_source,
             "analogy": [f"{noun}: a container noun with a fill ({pouch.fill.key}, {pouch.fill.source})",
                         "built as a pouch of that fill (tasks.geometry.pouch_words)"]})
-        return Reading(match=match, entry=entry, warnings=[note], phrase=phrase, pouch=pouch)
+        size = None
+        if pouch.piece_m is not None and max(pouch.piece_m) > PACK_PIECE_M:  # 'a pack of sponges': a few side by side
+            size = PACK_PIECES_ALONG * max(pouch.piece_m)
+        return Reading(match=match, entry=entry, warnings=[note], phrase=phrase, pouch=pouch, size_m=size)
     return Reading(match=match, entry=entry, donor=donor_entry, donor_plan=donor_plan, warnings=warnings,
                    phrase=phrase, size_m=size_m, look_only=look and not match.by_analogy)
 
@@ -563,18 +566,46 @@ def _pouch_of(t: str, phrase: phrase_mod.Phrase, entry: LexiconEntry, match: Con
     found = pouch_words.pouch_of(t, phrase.head, phrase.compounds)
     if found is not None:
         return found
-    m = pouch_words._OF.search(t)
-    hits = _find(m.group(1), noun_index()) if m is not None else []
+    m = _GOODS_OF.search(t)
+    words = m.group(1) if m is not None else ""
+    hits = _find(words, noun_index(), rightmost=True)
     if not hits:
         return None
     piece = load_lexicon().entries[noun_index()[hits[-1][2]][0]]
-    if concept_domain(piece.key) != "food" or piece.size_m > PIECE_MAX_SIZE_M:
+    domain = concept_domain(piece.key)
+    if domain == "animal" or piece.size_m > (PIECE_MAX_SIZE_M if domain == "food" else GOODS_MAX_SIZE_M) \
+            or piece.plan in ("pouch", "bag"):
         return None
-    solid = piece.solid_density_kg_per_m3
+    program = concept_program(piece.key)
+    volume = _volume(program, 32)
+    solid = piece.mass_kg / volume if piece.mass_kg and volume > 0 else piece.solid_density_kg_per_m3
     color = piece.colors.get("body") or "beige"
-    fill = fill_words.Fill(f"pieces of {piece.key}", m.group(0), 0.8, PIECE_PACKING * solid, color,  # type: ignore[union-attr]
-                           f"{piece.key.replace('_', ' ')} pieces: {solid:g} kg/m^3 at {PIECE_PACKING:g} packing")
-    return pouch_words.PouchOf(fill=fill)
+    said = [w for _s, _e, w in _find(words[: hits[-1][0]], load_lexicon().colors)]
+    fill = fill_words.Fill(f"pieces of {piece.key}", m.group(0), 0.8, PIECE_PACKING * solid,  # type: ignore[union-attr]
+                           said[0] if said else color,
+                           f"{piece.key.replace('_', ' ')} pieces: {piece.mass_kg or 0:g} kg each over their "
+                           f"{volume * 1e6:.3g} cm^3 = {solid:.3g} kg/m^3 at {PIECE_PACKING:g} packing")
+    lo, hi = program_bounds(program)
+    ext = np.asarray(hi) - np.asarray(lo)
+    if float(ext.max()) > PACK_PIECE_M and piece.mass_kg:  # a pack of a few: their count, not a heap's packing
+        pack = load_lexicon().entries["generic_pouch"]
+        cap = goods_words.bag_capacity_m3("pouch", dict(pack.params), PACK_PIECES_ALONG * float(ext.max()))
+        fill = fill_words.Fill(fill.key, fill.words, fill.fraction, PACK_COUNT * piece.mass_kg / (fill.fraction * cap),
+                               fill.color, f"a pack of {PACK_COUNT}: {PACK_COUNT} x {piece.mass_kg:g} kg "
+                               f"({piece.key.replace('_', ' ')})")
+    box_fill = volume / max(float(np.prod(ext)), 1e-12)  # a ball ~0.52, a cylinder ~0.79, a block ~1
+    shape = "block" if box_fill > 0.86 else "cylinder" if box_fill > 0.66 else "ball"
+    return pouch_words.PouchOf(fill=fill, piece_m=(float(ext[0]), float(ext[1]), float(ext[2])), piece_shape=shape,
+                               piece_colors=tuple(dict.fromkeys(said)) or (color,))
+
+
+PACK_PIECE_M = 0.06  # goods this long or more come a few to a pack, the pack sized by them [m]
+PACK_PIECES_ALONG = 3.4  # such a pack's length / one piece's [-]
+PACK_COUNT = 3  # such goods to a pack (retail packs of sponges, scourers, cloths: 3-5) [-]
+# 'a bag of pink and white marshmallows': the goods' words after the container, up to the end of the clause
+_GOODS_OF = re.compile(rf"\b(?:{'|'.join(sorted(pouch_words.CONTAINERS, key=len, reverse=True))})\s+(?:of|with|"
+                       r"containing|full of|filled with)\s+((?:[a-z]+\s*){1,6}?)(?=$|[,.;]| with | from | on | in )")
+GOODS_MAX_SIZE_M = 0.15  # a good small enough to be sold several to a bag or pack ('a pack of sponges') [m]
 
 
 def _qualified(surface: str, phrase: phrase_mod.Phrase) -> str:
@@ -765,6 +796,9 @@ def build(reading: Reading, text: str) -> tuple[ShapeProgram, ConceptMatch, list
     if reading.donor_plan is None or reading.donor is not None:
         if reading.pouch is not None and reading.pouch.port != "none":
             params = {**params, "port": reading.pouch.port}
+        if reading.pouch is not None and reading.pouch.piece_m is not None:  # the goods seen through the film
+            params = {**params, "piece": tuple(v / size for v in reading.pouch.piece_m),
+                      "piece_shape": reading.pouch.piece_shape}
         goods = goods_words.apply(target, reading.phrase.portion if reading.phrase else None, normalise(text),
                                   params, size, match, reading.pouch.fill if reading.pouch is not None else None)
         params, size, match = goods.params, goods.size_m, goods.match
@@ -795,6 +829,9 @@ def build(reading: Reading, text: str) -> tuple[ShapeProgram, ConceptMatch, list
             see = "white" if reading.pouch.port == "iv" else goods.fill_color
             program, _ = apply_colors(program, see)
             program = _keep_part_colors(program, see)
+        if reading.pouch is not None and reading.pouch.piece_colors and any(
+                part_group(p.name) == "fill" for p in program.parts):
+            program = _bagged_colors(program, reading.pouch.piece_colors)
     program = _contrast_seams(program, target)
     program, pattern, warning = apply_pattern(program, normalise(text))
     if pattern:
@@ -813,6 +850,24 @@ def build(reading: Reading, text: str) -> tuple[ShapeProgram, ConceptMatch, list
             match = match.model_copy(update={"density_kg_per_m3": piece / max(_volume(program), 1e-12)})
         states = [*states, "vacuum-packed"]
     return program, match.model_copy(update={"colors": applied, "states": states}), warnings
+
+
+CLEAR_FILM = "white"  # a clear bag's film, seen over its goods
+
+
+def _bagged_colors(program: ShapeProgram, colors: tuple[str, ...]) -> ShapeProgram:
+    """A clear bag of goods: its film and seams a clear film's white, the goods in their colours in turn ('pink and
+    white marshmallows')."""
+    lex = load_lexicon()
+    film = lex.colors[CLEAR_FILM]
+    parts, k = [], 0
+    for p in program.parts:
+        if part_group(p.name) == "fill":
+            parts.append(p.model_copy(update={"color_rgb": lex.colors[colors[k % len(colors)]]}))
+            k += 1
+        else:
+            parts.append(p.model_copy(update={"color_rgb": film}))
+    return program.model_copy(update={"parts": parts})
 
 
 def _keep_part_colors(program: ShapeProgram, word: str) -> ShapeProgram:

@@ -43,6 +43,9 @@ class PouchOf:
 
     fill: fill_words.Fill
     port: str = "none"
+    piece_m: tuple[float, float, float] | None = None  # goods seen through the film: one piece's extents [m]
+    piece_shape: str = "ball"  # 'ball', 'cylinder' or 'block' (PouchParams.piece_shape)
+    piece_colors: tuple[str, ...] = ()  # colour words of the goods ('pink and white marshmallows')
 
     @property
     def liquid(self) -> bool:

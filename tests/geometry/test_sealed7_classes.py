@@ -73,6 +73,31 @@ def test_a_litre_bag_of_compost_weighs_its_volume_of_compost(text: str, real: fl
     assert 0.5 <= planned_mass(text) / real <= 2.0, text
 
 
+# ------------------------------------------------------------------------------------- 2. a bag or a pack of goods
+@pytest.mark.parametrize("text,pieces,real", [
+    ("a bag of pink and white marshmallows", 6, 0.2),  # retail 150-300 g bags
+    ("a 100 g bag of cotton balls", 6, 0.1),  # stated
+    ("a pack of kitchen sponges", 2, 0.06),  # three 10 x 7 x 3 cm sponges of 12-25 g in a film pack
+])
+def test_a_bag_of_goods_is_a_bag_showing_them(text: str, pieces: int, real: float) -> None:
+    d = catalogue.design_from_text(text)
+    assert d.entry == "generic_pouch", (text, d.entry)
+    assert sum(part_group(p.name) == "fill" for p in d.program.parts) >= pieces, text
+    assert 0.5 <= planned_mass(text) / real <= 2.0, text
+
+
+def test_a_bag_of_two_coloured_goods_shows_both_colours() -> None:
+    d = catalogue.design_from_text("a bag of pink and white marshmallows")
+    colours = {tuple(np.round(p.color_rgb, 2)) for p in d.program.parts if part_group(p.name) == "fill"}
+    assert len(colours) == 2
+
+
+def test_a_pair_of_mitts_is_two_mitts() -> None:
+    d = catalogue.design_from_text("a pair of oven mitts")
+    assert d.entry == "oven_mitt" and any(p.name.startswith("other ") for p in d.program.parts)
+    assert 0.5 <= planned_mass("a pair of oven mitts") / 0.24 <= 2.0  # two quilted mitts of 80-150 g
+
+
 # ------------------------------------------------------------------------------------------------- 4. wrong readings
 @pytest.mark.parametrize("text,real", [
     ("a roll of bubble wrap", 0.075),  # 45-55 g/m^2 small-cell wrap, 50 cm x 3 m

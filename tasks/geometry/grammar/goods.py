@@ -321,6 +321,9 @@ class PouchParams(Model):
                           "weight) [-]")
     strap: float = Field(default=0.0, ge=0.0, le=1.5, description="a flat strap from the pad's +x end (velcro, a "
                          "ring at its end) / length [-]")
+    piece: tuple[float, float, float] = Field(default=(0.0, 0.0, 0.0), description="goods seen through a clear "
+                                              "bag ('a bag of marshmallows'): one piece's extents / length; 0: none")
+    piece_shape: Literal["ball", "cylinder", "block"] = Field(default="ball", description="the pieces' form")
 
 
 def pouch(p: PouchParams) -> list[Part]:
@@ -349,6 +352,8 @@ def pouch(p: PouchParams) -> list[Part]:
         x = -0.5 + s + (1 - 2 * s) * (i + 1) / (p.channels + 1)
         parts.append(_op(_scaled(cylinder(f"stitch {i + 1}", 0.035, w * 1.2, (x, 0, h), rot=(90, 0, 0)),
                                  (1, 1, 1)), "subtract", 0.02))
+    if max(p.piece) > 0:
+        parts += bagged_pieces(p, h)
     if p.strap > 0:
         sw, st = 0.55 * w, 1.6 * MIN_LAYER
         parts.append(box("strap", (p.strap, sw, st), (0.5 + p.strap / 2 - 0.05, 0, st / 2), edge=0.45 * st,
@@ -357,6 +362,32 @@ def pouch(p: PouchParams) -> list[Part]:
                          edge=0.3 * st, blend=0.003))
         parts.append(_scaled(torus("ring", 0.6 * sw / 2 + 0.02, 0.018, (0.5 + p.strap - 0.02, 0, 0.018)), (1, 1, 1)))
     return parts
+
+
+MAX_PIECES = 28  # goods drawn pressing through a bag's film; more (rice, peas) are its fill's colour alone [-]
+
+
+def bagged_pieces(p: PouchParams, h: float) -> list[Part]:
+    """The goods of a clear bag pressing up through its film: pieces in staggered rows over the bag's top, each
+    standing half out of the filled body ('a bag of marshmallows', 'a pack of sponges'); none when they are too
+    small to tell apart (rice, peas)."""
+    a, b, c = sorted(p.piece, reverse=True)
+    a, b = a * 1.05, b * 1.05
+    inner_x, inner_y = 1.0 - 2.2 * p.seam, p.width - 2.2 * p.seam
+    nx, ny = max(1, int(inner_x // a)), max(1, int(inner_y // b))
+    if nx * ny > MAX_PIECES or a > inner_x or b > inner_y:
+        return []
+    ns, ew = {"ball": (1.0, 1.0), "cylinder": (0.2, 1.0), "block": (0.25, 0.25)}[p.piece_shape]
+    out: list[Part] = []
+    for j in range(ny):
+        for i in range(nx):
+            x = -inner_x / 2 + (i + 0.5 + (0.25 if j % 2 else -0.25) * (nx > 1)) * inner_x / nx
+            y = -inner_y / 2 + (j + 0.5) * inner_y / ny
+            x = float(np.clip(x, -inner_x / 2 + a / 2, inner_x / 2 - a / 2))
+            tilt = 9.0 * np.sin(2.7 * i + 1.3 * j)
+            out.append(superellipsoid(f"fill {len(out) + 1}", (a / 2.1, b / 2.1, c / 2), (x, y, h - 0.35 * c),
+                                      ns=ns, ew=ew, rot=(tilt, 0.6 * tilt, 1.4 * tilt), blend=0.12 * c))
+    return out
 
 
 # -------------------------------------------------------------------------------------------------- hands and feet
