@@ -429,8 +429,9 @@ def read_text(text: str, serving: bool = True) -> Reading:
         if joined and joined[0][2] not in main:
             main = joined[0][2]  # 'pain au chocolat', 'sophie the giraffe': one noun whatever the parse says
         covering = [h for h in _find(t_shape, _multiword_nouns()) if phrase.head in h[2].split() and h[2] not in main]
-        if covering and not _find(main, noun_index()):
+        if covering and (not _find(main, noun_index()) or covering[0][2].split()[-1] != phrase.head):
             main = covering[0][2]  # 'a sea slug': the parse took 'sea' for the head; the lexicon knows the whole
+            # ('a cat bed': 'cat' names a plush cat, but the lexicon's 'cat bed' ends after it)
         head, compound, unknown = _head(main)
         if head is None and unknown is None:
             head, compound, unknown = _head(t_shape)  # the object may be named after 'with' ('one with a bear face')

@@ -145,8 +145,8 @@ def _folds(out: GoodsChange, plan: str, params: dict, text: str) -> None:
 def _puffy(out: GoodsChange, plan: str, params: dict, text: str) -> None:
     """'puffy', 'puffer', 'quilted', 'down-filled': a garment's quilted baffles (a sheet's quilting), its built layer
     thicker and its mass a padded garment's."""
-    if _PUFFY.search(text) is None:
-        return
+    if _PUFFY.search(text) is None or params.get("shape") in grammar.goods.FORMED_SHEETS:
+        return  # (a padded envelope is padded already)
     fields = grammar.PLANS[plan][0].model_fields
     if "baffles" in fields and not params.get("baffles"):
         out.params["baffles"] = PUFFER_BAFFLES

@@ -66,7 +66,8 @@ def _build_and_weigh(key: str, resolution: int | None = None) -> tuple[list[str]
 
 @pytest.mark.parametrize("key", SAMPLE)
 def test_a_sample_builds_passes_l0_and_weighs_about_right(key: str) -> None:
-    failed, ratio = _build_and_weigh(key, resolution=40)
+    thin = LEX[key].plan == "sheet" and LEX[key].params.get("state", "flat") == "flat"
+    failed, ratio = _build_and_weigh(key, resolution=None if thin else 40)  # (a flat sheet: thinner than 40 cells)
     assert failed == [] and 0.5 <= ratio <= 2.0, (key, failed, ratio)
 
 

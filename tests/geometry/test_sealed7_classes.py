@@ -98,6 +98,31 @@ def test_a_pair_of_mitts_is_two_mitts() -> None:
     assert 0.5 <= planned_mass("a pair of oven mitts") / 0.24 <= 2.0  # two quilted mitts of 80-150 g
 
 
+# ------------------------------------------------------------------------------- 3. flat and thin goods in their form
+@pytest.mark.parametrize("text,entry,groups,real", [
+    ("a cotton feeding bib", "baby_bib", {"neck", "neck opening", "snap"}, 0.03),  # retail bibs 20-40 g
+    ("a disposable nappy", "diaper", {"leg opening", "tab", "core", "waistband"}, 0.035),  # dry nappies 30-40 g
+    ("a padded bubble envelope", "padded_envelope", {"flap", "seal", "peel strip"}, 0.03),  # A4 mailers 25-35 g
+    ("a plastic carrier bag, crumpled up", "carrier_bag", {"crease", "mouth", "handle"}, 0.006),  # HDPE bags 4-10 g
+    ("a kitten bed", "cat_bed", {"floor"}, 0.7),  # 50 cm donut cat beds 0.5-0.9 kg
+    ("a round dog bed", "pet_bed", {"floor"}, 1.2),  # 60 cm donut dog beds 0.9-1.6 kg
+])
+def test_flat_and_thin_goods_have_their_form(text: str, entry: str, groups: set[str], real: float) -> None:
+    got, have = _groups(text)
+    assert got == entry, (text, got)
+    assert groups <= have, (text, groups - have)
+    assert 0.5 <= planned_mass(text) / real <= 2.0, text
+
+
+def test_a_mailer_is_flat_not_a_block() -> None:
+    ext = _extents("a jiffy bag")
+    assert ext[2] < 0.05 * ext[0], ext
+
+
+def test_a_cat_bed_is_read_as_a_bed_not_a_cat() -> None:
+    assert catalogue.design_from_text("a cat bed").entry == "cat_bed"
+
+
 # ------------------------------------------------------------------------------------------------- 4. wrong readings
 @pytest.mark.parametrize("text,real", [
     ("a roll of bubble wrap", 0.075),  # 45-55 g/m^2 small-cell wrap, 50 cm x 3 m

@@ -51,7 +51,10 @@ class SheetParams(Model):
     state: SheetState = Field(default="flat", description="flat; crumpled (a bunched heap); rolled (a roll along the "
                               "sheet's width, the layers "
                               "seen as rings at its ends); folded (halved `folds` times); stacked (`layers` sheets)")
-    shape: Literal["rect", "round"] = Field(default="rect", description="a rectangle or a round sheet (tortilla, pad)")
+    shape: Literal["rect", "round", "bib", "hourglass", "envelope"] = Field(
+        default="rect", description="a rectangle or a round sheet (tortilla, pad); laid flat: a bib (its neck cut out, "
+        "the straps' snap), an hourglass (a nappy: leg cut-outs, padded core, waist tabs), an envelope (a padded "
+        "mailer: sealed edges and its flap)")
     width: float = Field(default=0.5, gt=0.002, le=1.0, description="width / length [-]")
     thickness: float = Field(default=0.005, gt=0.0, le=0.2, description="the real sheet's thickness / length [-]")
     folds: int = Field(default=1, ge=1, le=3, description="halvings when folded [-]")
@@ -124,6 +127,8 @@ def sheet(p: SheetParams) -> list[Part]:
     """Flat: length 1 along x, width along y. Rolled: the roll's axis along x (its length the sheet's width)."""
     t = sheet_layer(p)
     w = p.width
+    if p.state == "flat" and p.shape in FORMED_SHEETS:
+        return FORMED_SHEETS[p.shape](w, t)
     if p.state == "flat":
         if p.quilt:
             t = PUFF * t
@@ -150,6 +155,61 @@ def sheet(p: SheetParams) -> list[Part]:
         d, height = crumpled_size(w)
         return heap(d, height, t, seed=0.3 + 3 * w)
     return _rolled(p)
+
+
+def bib(w: float, t: float) -> list[Part]:
+    """A baby bib lying flat, length 1 along x: a rounded body, the neck cut out near +x and opened to that edge
+    between the two straps, a snap on each strap's end, a piped edge."""
+    rn = 0.2 * min(w, 1.0)  # the neck's radius
+    xn = 0.5 - 0.3 * min(w, 1.0)
+    parts = [_scaled(cylinder("body", w / 2, t, (0, 0, t / 2), edge=0.45 * t), (1.0 / w, 1, 1)),
+             _scaled(torus("piping", w / 2 - 0.4 * t, 0.7 * t, (0, 0, 0.7 * t)), (1.0 / w, 1, 0.8)),
+             _op(cylinder("neck", rn, 4 * t, (xn, 0, t / 2)), "subtract", 0.2 * t),
+             _op(box("neck opening", (0.6, 1.1 * rn, 4 * t), (xn + 0.3, 0, t / 2)), "subtract", 0.2 * t)]
+    for side, y in (("left", -1.0), ("right", 1.0)):
+        parts.append(cylinder(f"{side} snap", 0.04, 1.0 * t, (xn + 0.55 * rn, y * (rn + 0.07), 1.1 * t),
+                              edge=0.3 * t, blend=0.2 * t))
+    return parts
+
+
+def hourglass(w: float, t: float) -> list[Part]:
+    """A disposable nappy opened flat, length 1 along x: the padded core down its middle, the leg openings cut from
+    both sides, a waistband across the front (+x) and the fastening tabs out from the back (-x)."""
+    depth = 0.2 * w  # each leg cut-out's depth from the side
+    r = 0.42
+    parts = [box("body", (1.0, w, t), (0, 0, t / 2), edge=0.45 * t)]
+    for side, y in (("left", -1.0), ("right", 1.0)):
+        leg = _scaled(cylinder(f"{side} leg opening", r, 4 * t, (0.0, 0.0, t / 2)), (1.0, depth / r * 1.6, 1.0))
+        leg = leg.model_copy(update={"transform": leg.transform.model_copy(update={
+            "translation_m": (0.04, y * (w / 2 + 1.6 * depth - depth), t / 2)})})
+        parts.append(_op(leg, "subtract", 0.3 * t))
+        parts.append(box(f"{side} tab", (0.09, 0.1, 0.5 * t), (-0.4, y * (w / 2 + 0.03), 0.25 * t), edge=0.2 * t,
+                         blend=0.2 * t))
+    parts.append(superellipsoid("core", (0.38, 0.5 * (w - 2 * depth), 1.3 * t), (0.0, 0.0, t), ns=0.5, ew=0.4,
+                                blend=0.5 * t))
+    parts.append(box("waistband", (0.07, 0.96 * w, 0.4 * t), (0.45, 0, t), edge=0.2 * t, blend=0.2 * t))
+    return parts
+
+
+def envelope(w: float, t: float) -> list[Part]:
+    """A padded mailer lying flat, length 1 along x: a flat padded body, its crimped seals along both sides and the
+    closed end, the open end's flap (a trapezoid) folded over at +x with its peel strip."""
+    parts = [superellipsoid("body", (0.5, w / 2, t / 2), (0, 0, t / 2), ns=0.35, ew=0.1)]
+    for side, y in (("left", -1.0), ("right", 1.0)):
+        parts.append(box(f"{side} seal", (0.98, 0.035, 0.45 * t), (0, y * (w / 2 - 0.02), 0.75 * t), edge=0.15 * t,
+                         blend=0.1 * t))
+    parts.append(box("end seal", (0.035, w - 0.02, 0.45 * t), (-0.48, 0, 0.75 * t), edge=0.15 * t, blend=0.1 * t))
+    flap = 0.16
+    parts.append(box("flap", (flap, 0.98 * w, 0.35 * t), (0.5 - flap / 2, 0, 1.05 * t), edge=0.12 * t,
+                     blend=0.1 * t))
+    for side, y in (("left", -1.0), ("right", 1.0)):  # the flap's cut corners
+        parts.append(_op(box(f"{side} flap corner", (0.3, 0.3, 0.5 * t), (0.5 - flap - 0.02, y * (w / 2 + 0.02),
+                                                                            1.1 * t), rot=(0, 0, 45)), "subtract"))
+    parts.append(box("peel strip", (0.03, 0.8 * w, 0.2 * t), (0.5 - flap + 0.04, 0, 1.25 * t), edge=0.08 * t))
+    return parts
+
+
+FORMED_SHEETS = {"bib": bib, "hourglass": hourglass, "envelope": envelope}
 
 
 def fold_layers(p: SheetParams) -> int:
@@ -1032,6 +1092,8 @@ def bag(p: BagParams) -> list[Part]:
         return _stand(_zip_pouch(p)) if p.state == "standing" else _zip_pouch(p)
     if p.kind == "drawstring" and p.straps and p.state != "crumpled":
         return _stand(_drawstring_pack(p, t)) if p.state == "standing" else _drawstring_pack(p, t)
+    if p.state == "crumpled" and p.kind == "carrier":
+        return _crumpled_film_bag(p, t)
     if p.state == "crumpled":
         d, height = crumpled_size(2 * w)  # its front and back
         heaped = heap(d, height, t, seed=0.7, folds=7, flaps=2)
@@ -1107,6 +1169,35 @@ def _zip_pouch(p: BagParams) -> list[Part]:
                      blend=0.01))
     parts.append(box("zip pull", (0.06, 0.2, 0.8 * lift), (x_zip, y_end + 0.14, d - 0.1 * lift), edge=0.3 * lift,
                      blend=0.015, rot=(0, 8, 0)))
+    return parts
+
+
+def _crumpled_film_bag(p: BagParams, t: float) -> list[Part]:
+    """A crumpled thin-film carrier bag: an irregular mound of bunched film (lumps of different sizes, sharp
+    creases between them, not one smooth dome), its mouth open on top as a hollow, the two loop handles out of it."""
+    d, height = crumpled_size(2 * p.width)
+    R = d / 2
+    parts = [ellipsoid("body", (0.78 * R, 0.6 * R, 0.34 * height), (0, 0, 0.05 * height))]
+    for i, (a, r, _turn) in enumerate(_rng_angles(7, 0.4)):  # bunched lumps of film
+        rho = 0.5 * R * r
+        size = (0.3 + 0.1 * np.sin(2.3 * i)) * R
+        parts.append(ellipsoid(f"lump {i + 1}", (size, 0.75 * size, (0.45 + 0.2 * np.sin(1.1 * i)) * height),
+                               (rho * np.cos(a), 0.8 * rho * np.sin(a), 0.15 * height),
+                               rot=(0, float(15 * np.sin(3.1 * i)), float(np.degrees(a))), blend=0.12 * height))
+    for i, (a, r, turn) in enumerate(_rng_angles(14, 1.1)):  # creases: thin sharp ridges between the lumps
+        rho = 0.6 * R * r
+        x, y = rho * np.cos(a), 0.8 * rho * np.sin(a)
+        top = 0.5 * height * np.sqrt(max(1 - (x / (0.8 * R)) ** 2 - (y / (0.62 * R)) ** 2, 0.04)) + 0.12 * height
+        length = (0.4 + 0.15 * np.sin(1.3 * i)) * R
+        rad = (0.13 + 0.04 * np.sin(2.1 * i)) * height
+        parts.append(ellipsoid(f"crease {i + 1}", (length / 2, 0.22 * rad, rad), (x, y, top - 0.45 * rad),
+                               rot=(float(35 * np.sin(1.7 * i)), 0, float(np.degrees(a) + turn)), blend=0.15 * rad))
+    mouth = (0.1 * R, 0.0, 0.62 * height)  # the open mouth: a hollow pressed into the top
+    parts.append(_op(ellipsoid("mouth", (0.34 * R, 0.24 * R, 0.32 * height), mouth), "subtract", 0.05 * height))
+    for side, y in (("left", -1.0), ("right", 1.0)):  # the handles: flat film loops out of the mouth, fallen aside
+        parts.append(torus(f"{side} handle", 0.2 * R, 0.04 * R, (mouth[0] + 0.05 * R, y * 0.26 * R, 0.5 * height),
+                           rot=(float(y * 55), 20, 0), blend=0.02 * R))
+    parts.append(_op(box("ground", (8, 8, 8), (0, 0, 4)), "intersect"))
     return parts
 
 

@@ -232,8 +232,10 @@ class RingParams(Model):
 
     tube: float = Field(default=0.2, gt=0.05, le=0.24, description="tube radius / outer diameter; below 0.25 "
                         "the hole stays open [-]")
-    squash: float = Field(default=0.8, gt=0.3, le=1.0, description="tube height / tube width [-]")
+    squash: float = Field(default=0.8, gt=0.3, le=1.5, description="tube height / tube width (over 1: a raised rim) [-]")
     icing: bool = Field(default=False, description="a top layer of another colour (a glazed doughnut)")
+    floor: float = Field(default=0.0, ge=0.0, le=0.8, description="a padded floor across the hole (a pet bed): its "
+                         "thickness / the rim's height; 0 an open ring [-]")
 
 
 def ring(p: RingParams) -> list[Part]:
@@ -245,6 +247,12 @@ def ring(p: RingParams) -> list[Part]:
     if p.icing:
         parts.append(torus("icing", major, minor * 0.92, (0, 0, zc + 0.25 * minor * p.squash),
                            scale=(1, 1, 0.8 * p.squash)))
+    if p.floor > 0:  # a bed's cushioned floor inside its raised rim, stitched round where it meets the rim
+        fh = p.floor * 2 * zc
+        parts.append(superellipsoid("floor", (major + 0.3 * minor, major + 0.3 * minor, fh / 2), (0, 0, fh / 2),
+                                    ns=0.45, ew=1.0, blend=0.25 * minor))
+        parts.append(torus("floor seam", major - 0.45 * minor, 0.06 * minor, (0, 0, fh)).model_copy(
+            update={"operation": "subtract"}))
     return parts
 
 
