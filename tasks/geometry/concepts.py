@@ -780,6 +780,13 @@ def build(reading: Reading, text: str) -> tuple[ShapeProgram, ConceptMatch, list
     if outline is not None:  # 'a baking mould shaped like a heart': the mould's own outline, not a solid heart
         reading = Reading(**{**reading.__dict__, "donor_plan": None})
         params = {**params, **outline}
+        if SHAPE_ALIASES.get(reading.match.shape_from or "") == outline.get("shape"):
+            # the same filled pad drawn as a tube holds what it held: built at the size of the same volume
+            held = _volume(_with_params(entry, {k: v for k, v in params.items() if k != "shape"}, size), 32)
+            drawn = _volume(_with_params(entry, params, size), 32)
+            if held > 0 and drawn > 0:
+                size *= (held / drawn) ** (1.0 / 3.0)
+                reading.match = reading.match.model_copy(update={"typical_size_m": size})
     match = reading.match
     target = reading.donor or entry
     if "state" in params and target.plan is not None and (reading.donor_plan is None or reading.donor is not None):
@@ -947,9 +954,17 @@ def _outline_param(reading: Reading) -> dict[str, str] | None:
     model = grammar.PLANS[reading.entry.plan][0]
     for name in ("outline", "shape"):
         f = model.model_fields.get(name)
-        if f is not None and word in typing.get_args(f.annotation):
+        if f is None:
+            continue
+        if word in typing.get_args(f.annotation):
             return {name: word}
+        if SHAPE_ALIASES.get(word) in typing.get_args(f.annotation):  # 'a heat pack shaped like a long tube'
+            return {name: SHAPE_ALIASES[word]}
     return None
+
+
+# shape words a plan draws under another name: a filled pad 'shaped like a tube' is the plan's bolster
+SHAPE_ALIASES = {"tube": "bolster", "cylinder": "bolster"}
 
 
 def _implied_colour(reading: Reading) -> str | None:

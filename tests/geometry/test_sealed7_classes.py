@@ -137,3 +137,16 @@ def test_a_roll_of_bubble_wrap_is_a_light_roll(text: str, real: float) -> None:
 def test_a_rolled_sheets_width_is_the_rolls_length() -> None:
     ext = _extents("a roll of bubble wrap 30 cm wide and 5 m long")
     assert abs(ext[0] - 0.3) < 0.01 and ext[1] < 0.3, ext
+
+
+@pytest.mark.parametrize("text", ["a lavender heat pack", "a microwave heat bag", "a rice heat pack shaped like a tube"])
+def test_a_heat_pack_is_a_filled_fabric_pack_not_a_hot_water_bottle(text: str) -> None:
+    assert catalogue.design_from_text(text).entry == "heat_pad", text
+    assert 0.5 <= planned_mass(text) / 0.8 <= 2.0, text  # 0.6-1.0 kg of wheat, rice or lavender and grain
+
+
+def test_a_heat_pack_shaped_like_a_tube_is_a_long_stitched_tube() -> None:
+    entry, groups = _groups("a grain heat pack shaped like a long tube")
+    assert entry == "heat_pad" and "stitch" in groups
+    ext = _extents("a grain heat pack shaped like a long tube")
+    assert ext[0] > 4 * ext[1], ext

@@ -35,6 +35,8 @@ class CushionParams(Model):
     thickness: float = Field(default=0.3, gt=0.05, le=1.0, description="thickness / length [-]")
     puff: float = Field(default=0.6, gt=0.1, le=1.0, description="1 a round pillow, small a boxy one [-]")
     piping: bool = False
+    channels: int = Field(default=0, ge=0, le=8, description="stitched sections: seams across its length (a wheat "
+                          "bag's channels) [-]")
 
 
 def cushion(p: CushionParams) -> list[Part]:
@@ -43,11 +45,19 @@ def cushion(p: CushionParams) -> list[Part]:
     if p.shape == "beanbag":
         return beanbag(p)
     if p.shape == "bolster":
-        return [cylinder("body", t / 2, 1.0, (0, 0, t / 2), edge=0.3 * t, rot=(0, 90, 0))]
+        parts = [cylinder("body", t / 2, 1.0, (0, 0, t / 2), edge=0.3 * t, rot=(0, 90, 0))]
+        for i in range(p.channels):  # a seam round the tube pinches it into sections
+            x = -0.5 + (i + 1) / (p.channels + 1)
+            parts.append(torus(f"stitch {i + 1}", t / 2 + 0.02 * t, 0.09 * t, (x, 0, t / 2),
+                               rot=(0, 90, 0)).model_copy(update={"operation": "subtract"}))
+        return parts
     if p.shape == "round":
         parts = [superellipsoid("body", (0.5, 0.5 * p.width, t / 2), (0, 0, t / 2), ns=p.puff, ew=1.0)]
     else:
         parts = [superellipsoid("body", (0.5, 0.5 * p.width, t / 2), (0, 0, t / 2), ns=p.puff, ew=0.25)]
+    for i in range(p.channels):  # stitched lines across the pad
+        x = -0.5 + (i + 1) / (p.channels + 1)
+        parts.append(cylinder(f"stitch {i + 1}", 0.12 * t, 1.2 * p.width, (x, 0, t), rot=(90, 0, 0), op="subtract"))
     if p.piping:
         parts.append(superellipsoid("piping", (0.51, 0.51 * p.width, 0.04), (0, 0, t / 2), ns=0.2,
                                     ew=0.25 if p.shape == "square" else 1.0, blend=0.01))
