@@ -431,8 +431,8 @@ def design_from_text(text: str, size_hint_m: float | None = None) -> Design:
         match = fill_match
     check_size(size)
     # a flat good's stated sizes keep its typical thickness (or state it): its mass follows its built area
-    kept = size.flat or concepts.sheet_roll(reading) is not None  # (a roll's stated sheet: its volume follows it)
-    scaled = SizeSpec(axis_scale=size.axis_scale) if kept and size.explicit else size
+    as_built = size.flat or concepts.sheet_roll(reading) is not None  # (a roll's stated sheet: its volume follows it)
+    scaled = SizeSpec(axis_scale=size.axis_scale) if as_built and size.explicit else size
     match = concepts.size_scaled(match, *final_scale(scaled, program, match.typical_size_m or 0.0))
     said = size_words.read_size_words(_strip_numeric_sizes(text_n), frozenset(MODIFIERS))
     warnings = [w for w in said.warnings + reading.warnings + build_warnings if w]
