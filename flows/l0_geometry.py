@@ -29,6 +29,7 @@ MESH_VERSION = "8"  # l0.mesh alone; 2: marching cubes no longer pinches the sur
 # size from the concept (#35); 6: standing toys seated on a flat base (canonical.seat_flat), pouches and slumps (#35);
 # 7: stuffed toys weighed by their typical mass at the built size, sealed-set-6 classes (#35); 8: long and flat
 # goods keep their cross-section or thickness under a stated size, bags of goods, formed sheets (sealed set 7, #35)
+PROXY_VERSION = "2"  # l0.proxy alone; 2: CoACD's coarse copy keeps cells across a long or flat good's thinnest side
 GAUSSIANS_VERSION = "3"  # l0.gaussians alone; 2: surface discs dense and small for the particle spacing (#36);
 # 3: on blue-noise surface samples
 
@@ -58,7 +59,7 @@ def build_mesh(request: AssetRequest, settings: L0Settings) -> tuple[Arrays, Bui
     return sources.build_mesh(request, settings)
 
 
-@cached_task(version=TASK_VERSION, name="l0.proxy")
+@cached_task(version=f"{TASK_VERSION}.{PROXY_VERSION}", name="l0.proxy")
 def build_proxy(mesh: Arrays, coacd: CoacdSettings) -> Arrays:
     """CoACD convex collision proxy."""
     return pipeline.build_proxy(mesh, coacd)

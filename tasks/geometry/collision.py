@@ -52,10 +52,17 @@ def convex_parts(mesh: trimesh.Trimesh, settings: CoacdSettings) -> list[trimesh
     return [p for p in parts if p.volume > 0]
 
 
+COARSE_THINNEST = 6  # cells across the coarse copy's thinnest extent [-]
+COARSE_MAX_CELLS = 200  # cells along its longest, at most [-]
+
+
 def _coarsen(mesh: trimesh.Trimesh, max_faces: int) -> trimesh.Trimesh:
-    """Coarser watertight copy for CoACD (vertex clustering on a grid; falls back to the input)."""
+    """Coarser watertight copy for CoACD (vertex clustering on a grid; falls back to the input); the grid keeps
+    COARSE_THINNEST cells across the thinnest extent (up to COARSE_MAX_CELLS along the longest), so a long or flat
+    good (a 1.5 m pool noodle 6.5 cm across, a bath mat) is not lost between its cells."""
     res = int(max(24, min(96, np.sqrt(max_faces / 6.0))))
-    dx = float(mesh.extents.max()) / res
+    longest, thinnest = float(mesh.extents.max()), float(mesh.extents.min())
+    dx = max(min(longest / res, thinnest / COARSE_THINNEST), longest / COARSE_MAX_CELLS)
     lo = mesh.bounds[0] - 1.5 * dx
     shape = tuple(int(n) for n in np.ceil(mesh.extents / dx).astype(int) + 4)
     occ = inside_lattice(mesh, lo + 1e-4 * dx, dx, shape)

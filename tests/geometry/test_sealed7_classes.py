@@ -45,6 +45,16 @@ def test_a_length_sets_a_long_goods_length_only(text: str, entry: str, length: f
     assert 0.5 <= planned_mass(text) / real <= 2.0, text
 
 
+@pytest.mark.parametrize("text", ["a 150 cm foam pool noodle", "a 60 x 90 cm bath mat"])
+def test_a_long_or_flat_goods_proxy_hugs_it(text: str) -> None:
+    """CoACD's coarse copy keeps cells across the thin side (a 6.5 cm noodle was lost between 4.8 cm cells)."""
+    s = pipeline.settings_from_contract("draft")
+    arrays, _info = pipeline.mesh_from_text(AssetRequest(text=text), s)
+    proxy = pipeline.build_proxy(arrays, s.coacd)
+    ratio = float(proxy["union_volume_m3"]) / float(pipeline.arrays_to_mesh(arrays).volume)
+    assert 0.9 <= ratio <= 1.6, (text, ratio)
+
+
 @pytest.mark.parametrize("text,outline,thick,real", [
     # 90 x 180 cm cotton beach towels 0.55-0.9 kg; folded twice it lies 45 x 90 cm
     ("a beach towel 90 x 180 cm, folded", (0.9, 0.45), 0.3, 0.7),
