@@ -15,7 +15,7 @@ from contracts.lexicon import MATERIALS_FILE, LexiconEntry, load_lexicon
 from contracts.shape import Part, ShapeProgram
 from tasks.geometry import analogy as analogy_mod, fill_words, goods_words, grammar, phrase as phrase_mod, pouch_words
 from tasks.geometry.catalogue_programs import catalogue_program
-from tasks.geometry.grammar.goods import SheetParams, folded_footprint
+from tasks.geometry.grammar.goods import PouchParams, SheetParams, folded_footprint, piece_grid
 from tasks.geometry.grammar.things import smiley
 from tasks.geometry.grammar.parts import _euler_z_to, box, ellipsoid, part_group, relief, rotated_parts, squashed_parts
 from tasks.geometry.meshing import sample_program
@@ -588,11 +588,14 @@ def _pouch_of(t: str, phrase: phrase_mod.Phrase, entry: LexiconEntry, match: Con
                            f"{volume * 1e6:.3g} cm^3 = {solid:.3g} kg/m^3 at {PIECE_PACKING:g} packing")
     lo, hi = program_bounds(program)
     ext = np.asarray(hi) - np.asarray(lo)
-    if float(ext.max()) > PACK_PIECE_M and piece.mass_kg:  # a pack of a few: their count, not a heap's packing
+    if float(ext.max()) > PACK_PIECE_M and piece.mass_kg:  # a pack of a few: the count drawn, not a heap's packing
         pack = load_lexicon().entries["generic_pouch"]
-        cap = goods_words.bag_capacity_m3("pouch", dict(pack.params), PACK_PIECES_ALONG * float(ext.max()))
-        fill = fill_words.Fill(fill.key, fill.words, fill.fraction, PACK_COUNT * piece.mass_kg / (fill.fraction * cap),
-                               fill.color, f"a pack of {PACK_COUNT}: {PACK_COUNT} x {piece.mass_kg:g} kg "
+        size = PACK_PIECES_ALONG * float(ext.max())
+        cap = goods_words.bag_capacity_m3("pouch", dict(pack.params), size)
+        nx, ny = piece_grid(PouchParams(**{**pack.params, "piece": tuple(float(v) / size for v in ext)}))
+        count = nx * ny
+        fill = fill_words.Fill(fill.key, fill.words, fill.fraction, count * piece.mass_kg / (fill.fraction * cap),
+                               fill.color, f"a pack of {count}: {count} x {piece.mass_kg:g} kg "
                                f"({piece.key.replace('_', ' ')})")
     box_fill = volume / max(float(np.prod(ext)), 1e-12)  # a ball ~0.52, a cylinder ~0.79, a block ~1
     shape = "block" if box_fill > 0.86 else "cylinder" if box_fill > 0.66 else "ball"
@@ -601,8 +604,8 @@ def _pouch_of(t: str, phrase: phrase_mod.Phrase, entry: LexiconEntry, match: Con
 
 
 PACK_PIECE_M = 0.06  # goods this long or more come a few to a pack, the pack sized by them [m]
-PACK_PIECES_ALONG = 3.4  # such a pack's length / one piece's [-]
-PACK_COUNT = 3  # such goods to a pack (retail packs of sponges, scourers, cloths: 3-5) [-]
+PACK_PIECES_ALONG = 3.4  # such a pack's length / one piece's: 2 x 2 to 3 x 2 of them, as retail packs of sponges,
+# scourers, cloths hold 3-6 [-]
 # 'a bag of pink and white marshmallows': the goods' words after the container, up to the end of the clause
 _GOODS_OF = re.compile(rf"\b(?:{'|'.join(sorted(pouch_words.CONTAINERS, key=len, reverse=True))})\s+(?:of|with|"
                        r"containing|full of|filled with)\s+((?:[a-z]+\s*){1,6}?)(?=$|[,.;]| with | from | on | in )")

@@ -427,6 +427,13 @@ def pouch(p: PouchParams) -> list[Part]:
 MAX_PIECES = 28  # goods drawn pressing through a bag's film; more (rice, peas) are its fill's colour alone [-]
 
 
+def piece_grid(p: PouchParams) -> tuple[int, int]:
+    """(along, across) the pieces bagged_pieces draws over a pouch's top [-]."""
+    a, b, _c = sorted(p.piece, reverse=True)
+    inner_x, inner_y = 1.0 - 2.2 * p.seam, p.width - 2.2 * p.seam
+    return max(1, int(inner_x // (1.05 * a))), max(1, int(inner_y // (1.05 * b)))
+
+
 def bagged_pieces(p: PouchParams, h: float) -> list[Part]:
     """The goods of a clear bag pressing up through its film: pieces in staggered rows over the bag's top, each
     standing half out of the filled body ('a bag of marshmallows', 'a pack of sponges'); none when they are too
@@ -434,7 +441,7 @@ def bagged_pieces(p: PouchParams, h: float) -> list[Part]:
     a, b, c = sorted(p.piece, reverse=True)
     a, b = a * 1.05, b * 1.05
     inner_x, inner_y = 1.0 - 2.2 * p.seam, p.width - 2.2 * p.seam
-    nx, ny = max(1, int(inner_x // a)), max(1, int(inner_y // b))
+    nx, ny = piece_grid(p)
     if nx * ny > MAX_PIECES or a > inner_x or b > inner_y:
         return []
     ns, ew = {"ball": (1.0, 1.0), "cylinder": (0.2, 1.0), "block": (0.25, 0.25)}[p.piece_shape]
