@@ -72,6 +72,8 @@ class SheetParams(Model):
     zip: bool = Field(default=False, description="a zip along one long side (a sleeping bag)")
     curl: float = Field(default=0.0, ge=0.0, le=0.45, description="flat: each corner lifted, curling up from a "
                         "hinge across it this share of the width from the corner (a baking mat's curling corners) [-]")
+    bubbles: bool = Field(default=False, description="rolled: the outer layer's air bubbles, rows of them over the "
+                          "roll (bubble wrap)")
 
 
 CURL_DEG = 38.0  # how far a curling corner lifts about its hinge [deg]
@@ -364,6 +366,17 @@ def _rolled(p: SheetParams) -> list[Part]:
             parts.append(_op(ring, "subtract"))
     if r0 > 0:
         parts.append(_op(cylinder("hole", r0, 1.2 * w, (0, 0, R), rot=(0, 90, 0)), "subtract"))
+    if p.bubbles:  # the outer layer's bubbles: staggered rows over the roll's upper half, drawn a little large
+        rb = 0.15 * R
+        along = max(2, int(0.9 * w / (2.6 * rb)))
+        for j, ang in enumerate(np.radians([-70.0, -35.0, 0.0, 35.0, 70.0])):
+            for i in range(along):
+                x = -0.45 * w + (i + 0.5 * (j % 2)) * 0.9 * w / along
+                at = (float(x), float(R * np.sin(ang)), float(R + R * np.cos(ang)))
+                parts.append(ellipsoid(f"bubble {len(parts)}", (rb, rb, 0.6 * rb), at,
+                                       rot=(float(np.degrees(-ang)), 0, 0), blend=0.3 * rb))
+                if len(parts) >= 63:
+                    return parts
     return parts
 
 
