@@ -121,6 +121,8 @@ class SqueezeSummary(Row):
     soft_indent_m: float
     torsion_force_n: float = 0.0  # the force per finger the weight's torque about the closing axis asks for [N]
 
+    ABSENT_UNLESS_GIVEN: ClassVar[frozenset[str]] = frozenset({"torsion_force_n"})  # records before it keep their bytes
+
 
 class GripperOption(Row):
     """One gripper the Planner's choose_gripper weighed (tasks.robot.choice.GripperChoice.summary)."""

@@ -199,8 +199,13 @@ def _what_happened(arrays: dict[str, np.ndarray], grip_n: np.ndarray, mid: np.nd
 
 
 def label_trial(arrays: dict[str, np.ndarray], traj: Trajectory, plan: ActionPlan, physical: PhysicalModel,
-                tol: TrialTolerances, n_done: int, healthy: bool) -> dict[str, float]:
-    """Labels and metrics of one trial (arrays are trimmed to the n_done simulated intervals)."""
+                tol: TrialTolerances, n_done: int, healthy: bool, ground_contact_m: float = 0.0) -> dict[str, float]:
+    """Labels and metrics of one trial (arrays are trimmed to the n_done simulated intervals).
+
+    ground_contact_m: how far above its first height the lowest particle of a body lying on the table may be and
+    still count as resting there: the MPM's ground acts on grid nodes, so where the grid lattice sits after the hand
+    carried it (it moves with the hand) a body at rest on the ground can sit up to one grid cell higher than it started
+    (a 10 cm plush cube on a 16 mm grid: 11 mm). The trial passes its grid spacing; the slip tolerance is the floor."""
     t = arrays["control_t_s"][:n_done]
     com = arrays["object_com_m"][:n_done + 1]
     force = arrays["finger_force_n"][:n_done]
@@ -223,7 +228,8 @@ def label_trial(arrays: dict[str, np.ndarray], traj: Trajectory, plan: ActionPla
 
     x_frames = arrays["particles_x_m"]
     err_place = float(np.linalg.norm(com[-1, :2] - target))
-    resting = float(x_frames[-1][:, 2].min()) <= float(x_frames[0][:, 2].min()) + tol.slip_tolerance_m
+    resting = (float(x_frames[-1][:, 2].min())
+               <= float(x_frames[0][:, 2].min()) + max(tol.slip_tolerance_m, ground_contact_m))
     dt_frame = float(np.diff(arrays["frame_t_s"][-2:])[0]) if len(x_frames) > 1 else 0.0
     v_particles = (float(np.max(np.linalg.norm(x_frames[-1] - x_frames[-2], axis=1))) / dt_frame
                    if dt_frame > 0 else float("inf"))

@@ -350,7 +350,7 @@ def run_trial(body: TrialBody, physical: PhysicalModel, material: Material, plan
         "rest_particles_m": x0.astype(np.float32), "particle_volumes_m3": np.asarray(body.volumes_m3, dtype=np.float64),
         **world_gaussians(body, pose), **approach_track(traj, t_start, s.record_fps),
     }
-    labels = label_trial(arrays, traj, plan, physical, tol, n_done, healthy)
+    labels = label_trial(arrays, traj, plan, physical, tol, n_done, healthy, ground_contact_m=float(model.dx))
     wall = time.perf_counter() - wall0  # the whole trial: simulation, recording and labelling
     info = {"particles": int(len(x0)), "steps": int(steps), "wall_time_s": float(wall),
             "sim_time_s": float(sim.time_s), "dx_m": float(model.dx), "particle_spacing_m": float(body.spacing_m),

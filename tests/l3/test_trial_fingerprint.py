@@ -2,7 +2,8 @@
 under the nominal, robustness and held-out conditions.
 
 The values were recorded before L3's context and record building moved from flows/ into tasks/manipulation/ (#37),
-and recorded again when the trial task's version went to 13 (the `settled` label's turn rate, a longer settle, #36):
+recorded again when the trial task's version went to 13 (the `settled` label's turn rate, a longer settle, #36), and
+again when the trial settings gained the force-guarded place (place_support_fraction, place_guard_*, #36):
 a change of the trial task's name, version, input names or input values (the body, the plan, the settings, the
 tolerances) would change them, and with them every cached trial of every user's assets. Nothing is simulated.
 """
@@ -19,10 +20,10 @@ from flows.harness import probe_cache_key
 from tests.l3.conftest import FIRM, Cube
 
 KEYS = {
-    "nominal": "259a1e39ac13eb5087ad52bf5e0eaa8b756e0159e5d2aad3a87334c28820e668",
-    "robustness_0": "546549fc6db80c61a64d81b95474a184d2254c6b834332a026dc365e150feba2",
-    "robustness_1": "89db566645a3bad7d53ad86db2d7c4a7fc825ba0bc85b0274848cea89b4e60e9",
-    "held_out_0": "6b92a8385dee60d1cb827a80d4c0222e481417455aae186377ef00537239a253",
+    "nominal": "cbd2fb4f90c8ca941cd6639c4eac95a048e1ea781cd8467d28b09af3ccf8e2af",
+    "robustness_0": "82c63958e657d95a67feea5112bd1f59aabaec4247f33f7dc47bb891d7813d98",
+    "robustness_1": "68f9802b6f0412a315c2ff382e1adb58c7cbad93d48ac2943074161e6be5adfd",
+    "held_out_0": "c23d653d9d53bad9d349a1809106f5ae8be3be6376ae508c7359f3e1b602a7fa",
 }
 
 
