@@ -3,6 +3,7 @@ the object (a box_body cube) stays at rest; the arrays have the layout of tasks.
 
 from __future__ import annotations
 
+from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -74,3 +75,20 @@ def short_attempt(approach_s: float, length_s: float) -> tuple[dict[str, np.ndar
                  **{k: arrays[k][k_frames] for k in ("frame_t_s", "frame_control_index", "particles_x_m",
                                                      "particles_F")})
     return short, attrs
+
+
+def cube_context(root: Path) -> Any:
+    """An L3Context on the 3 cm foam cube of synthetic_attempt (no grasps, the packaged contract, cached trials), for
+    tests that store trials through L3's _store."""
+    from contracts.material import Material
+    from contracts.physical import PhysicalModel
+    from contracts.stage import load_contract
+    from flows.l3_manipulation import CachedTrials, L3Context, L3Options
+
+    body = box_body(0.03, 0.005)
+    phys = PhysicalModel(density_kg_per_m3=300.0, volume_m3=body.volume_m3, mass_kg=300.0 * body.volume_m3,
+                         particle_count=len(body.particles_m), particle_spacing_m=0.005, ground_friction=0.5,
+                         gripper_friction=0.8, center_of_mass_m=(0.0, 0.0, 0.015), extents_m=(0.03,) * 3,
+                         category="foam")
+    return L3Context(root, body, phys, Material(youngs_modulus_pa=1e5, poisson_ratio=0.3, damping_rate_per_s=5.0),
+                     "given", [], L3Options(), load_contract("L3"), runner=CachedTrials())

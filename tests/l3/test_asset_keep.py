@@ -16,7 +16,7 @@ import pytest
 from contracts.errors import InputError
 from contracts.manipulation import ManipulationRecord
 from tests.asset_records import manipulation_record
-from tests.l3.render_helpers import short_attempt
+from tests.l3.render_helpers import cube_context, short_attempt
 
 REPO = Path(__file__).resolve().parents[2]
 LIMIT_BYTES = 20 * 2**20  # an asset by default: at most 20 MB
@@ -30,22 +30,11 @@ def attempt() -> tuple[dict[str, np.ndarray], dict]:
 
 def _l3_asset(root: Path, attempt: tuple) -> ManipulationRecord:
     """Three stored trials (selection, robustness, held out) as L3's _store leaves them; the record reports trial 2."""
-    from contracts.material import Material
-    from contracts.physical import PhysicalModel
     from contracts.probes import ProbeResult, ProbeSpec
     from contracts.robot import ActionPlan
-    from contracts.stage import load_contract
-    from flows.l3_manipulation import CachedTrials, L3Context, L3Options
-    from tasks.manipulation.body import box_body
 
     arrays, attrs = attempt
-    body = box_body(0.03, 0.005)
-    phys = PhysicalModel(density_kg_per_m3=300.0, volume_m3=body.volume_m3, mass_kg=300.0 * body.volume_m3,
-                         particle_count=len(body.particles_m), particle_spacing_m=0.005, ground_friction=0.5,
-                         gripper_friction=0.8, center_of_mass_m=(0.0, 0.0, 0.015), extents_m=(0.03,) * 3,
-                         category="foam")
-    ctx = L3Context(root, body, phys, Material(youngs_modulus_pa=1e5, poisson_ratio=0.3, damping_rate_per_s=5.0),
-                    "given", [], L3Options(), load_contract("L3"), runner=CachedTrials())
+    ctx = cube_context(root)
     plan = ActionPlan.model_validate(attrs["plan"])
     for i, role in enumerate(("selection", "robustness", "held_out")):
         labels = {"lifted": 1.0, "transported": 1.0, "released_in_target": 1.0, "settled": float(i != 2)}

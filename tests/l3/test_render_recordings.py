@@ -11,7 +11,7 @@ import pytest
 
 from tasks.manipulation.replay import write_rrd
 from tasks.record import read_recording, recording_digest
-from tests.l3.render_helpers import short_attempt, synthetic_attempt
+from tests.l3.render_helpers import cube_context, short_attempt, synthetic_attempt
 
 LINKS = [f"world/robot/panda_link{i}" for i in range(8)] + ["world/robot/panda_hand", "world/robot/panda_leftfinger",
                                                             "world/robot/panda_rightfinger"]
@@ -73,24 +73,12 @@ def test_every_stored_trial_gets_its_recording_made_once(attempt: tuple, tmp_pat
     """L3's _store: interaction/attempt_NNN and recordings/L3_trial_NN.rrd for each trial, failed ones included, the
     recording named by the trial's one number (from 1, as the console and manipulation.json count); the same trial
     stored again reuses the cached recording (nothing is re-recorded)."""
-    from contracts.material import Material
-    from contracts.physical import PhysicalModel
     from contracts.probes import ProbeResult, ProbeSpec
     from contracts.robot import ActionPlan
-    from contracts.stage import load_contract
-    from flows.l3_manipulation import CachedTrials, L3Context, L3Options
     from tasks.manipulation import replay as replay_module
-    from tasks.manipulation.body import box_body
 
     arrays, attrs = attempt
-    body = box_body(0.03, 0.005)
-    phys = PhysicalModel(density_kg_per_m3=300.0, volume_m3=body.volume_m3, mass_kg=300.0 * body.volume_m3,
-                         particle_count=len(body.particles_m), particle_spacing_m=0.005, ground_friction=0.5,
-                         gripper_friction=0.8, center_of_mass_m=(0.0, 0.0, 0.015), extents_m=(0.03,) * 3,
-                         category="foam")
-    ctx = L3Context(tmp_path / "asset", body, phys, Material(youngs_modulus_pa=1e5, poisson_ratio=0.3,
-                                                             damping_rate_per_s=5.0), "given", [], L3Options(),
-                    load_contract("L3"), runner=CachedTrials())
+    ctx = cube_context(tmp_path / "asset")
     plan = ActionPlan.model_validate(attrs["plan"])
     failed = {"lifted": 0.0, "transported": 0.0, "released_in_target": 0.0, "settled": 1.0}
     out = {"probe": ProbeResult(spec=ProbeSpec(kind="pick_and_place"), metrics=failed), "arrays": arrays, "info": {}}
