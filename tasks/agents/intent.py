@@ -10,6 +10,7 @@ from pydantic import ValidationError
 from contracts.agents import TargetBand, TargetBehaviour
 from contracts.concept import ConceptMatch
 from contracts.errors import InputError, validation_message
+from contracts.lexicon import load_lexicon
 from contracts.request import AssetRequest
 from tasks.agents.vocab import MaterialVocab, load_material_vocab
 
@@ -127,15 +128,20 @@ FAMILY_WORDS: dict[str, frozenset[str]] = {
 _MEASURE_OF = re.compile(r"\b(?:roll|rolls)\s+of\b")
 
 
-def _match_material(text: str, vocab: MaterialVocab, concept_material: str | None = None) -> tuple[str, str | None]:
+def _match_material(text: str, vocab: MaterialVocab, concept_material: str | None = None,
+                    own_words: frozenset[str] = frozenset()) -> tuple[str, str | None]:
     """The material named by the longest matching word (materials first, then the concept L0 built, then object
     words); the default otherwise. The concept's own material wins when the text names it too ('a plush pillow' is
-    plush, though 'pillow' is a foam word) or names only its family ('foam' for a closed-cell foam pad)."""
+    plush, though 'pillow' is a foam word) or names only its family ('foam' for a closed-cell foam pad). A word of
+    the concept's own nouns (own_words) names that object, not a material ('an inflatable arm cuff' is the blood
+    pressure cuff's nylon sleeve, not an air-filled inflatable)."""
     best: tuple[int, str, str] | None = None
     named: dict[str, str] = {}
     text = _MEASURE_OF.sub(" ", text)  # 'a roll of bubble wrap' names no bread
     for name, entry in vocab.materials.items():
         for word in entry.words:
+            if concept_material not in (None, name) and set(word.lower().split()) <= own_words:
+                continue
             if _contains_phrase(text, word):
                 named.setdefault(name, word)
                 if best is None or len(word) > best[0]:
@@ -208,7 +214,7 @@ def targets_from_intent(
     text = " ".join(intent.lower().split())
     check_deformable(text, vocab)
     check_rigid_object(text, vocab)
-    name, word = _match_material(text, vocab, concept.default_material if concept else None)
+    name, word = _match_material(text, vocab, concept.default_material if concept else None, own_nouns(concept))
     entry = vocab.materials[name]
     by_concept = word is None and concept is not None and concept.default_material == name
     source = f"vocab:{word}" if word else f"concept:{concept.concept}({name})" if by_concept and concept else \
@@ -302,4 +308,13 @@ def asset_targets(record: dict, given: AssetRequest | str | None = None,
 def asset_material(record: dict, targets: TargetBehaviour, vocab: MaterialVocab | None = None) -> str:
     """The vocabulary material of an asset's targets (the words of targets.intent, else the concept's material)."""
     concept = concept_of(record)
-    return match_material(targets.intent, vocab, concept.default_material if concept else None)
+    return _match_material(targets.intent.lower(), vocab or load_material_vocab(),
+                           concept.default_material if concept else None, own_nouns(concept))[0]
+
+
+def own_nouns(concept: ConceptMatch | None) -> frozenset[str]:
+    """The words of the nouns of the lexicon entry a concept names (none for a concept the lexicon lacks)."""
+    entry = load_lexicon().entries.get(concept.concept) if concept is not None else None
+    if entry is None or entry.material is None:
+        return frozenset()
+    return frozenset(w for noun in entry.nouns for w in noun.lower().split())

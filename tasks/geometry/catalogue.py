@@ -241,10 +241,32 @@ def strip_sizes(text: str) -> str:
     return size_words.strip_spans(t, size_words.read_size_words(t, frozenset(MODIFIERS)).spans)
 
 
+# nouns of an object's parts: a size word before one describes the part, not the object ('a bunny with long ears')
+PART_NOUNS = frozenset("""ear ears leg legs arm arms tail tails neck necks nose snout trunk eye eyes hair mane fur
+handle handles sleeve sleeves strap straps finger fingers whisker whiskers horn horns wing wings foot feet paw paws
+tentacle tentacles beak brim visor stem stems fringe tassel tassels cord cords tube hose lace laces ribbon ribbons
+bristle bristles spike spikes fin fins tongue teeth claws claw toes antenna antennae lashes eyelashes bill mouth
+crest hood cuff cuffs collar pocket pockets zip zipper loop handle""".split())
+_PART_ADJ_SUFFIXES = ("eared", "legged", "tailed", "necked", "haired", "sleeved", "handled", "nosed", "snouted",
+                      "limbed", "armed", "winged", "brimmed", "furred")
+_LIE_WORDS = frozenset({"lying", "laying", "lies", "lie", "lay", "laid", "sprawled", "stretched", "spread"})
+
+
+def _binds_elsewhere(words: list[str], i: int) -> bool:
+    """True when the modifier at words[i] describes a part ('long ears', 'long-eared') or a pose ('lying flat')."""
+    nxt = words[i + 1:i + 3]
+    if nxt and (nxt[0] in PART_NOUNS or nxt[0].endswith(_PART_ADJ_SUFFIXES)):
+        return True
+    if nxt and nxt[0] == "and" and i + 3 < len(words) and words[i + 3] in PART_NOUNS:
+        return True  # 'long and floppy ears'
+    return words[i] in ("flat", "flattened") and i > 0 and words[i - 1] in _LIE_WORDS
+
+
 def parse_modifiers(text: str) -> tuple[list[str], tuple[float, float, float]]:
-    """Modifier words found in the text and their combined per-axis scale."""
+    """Modifier words found in the text (those of the object, not of its parts or pose) and their combined per-axis
+    scale."""
     words = _words(text)
-    found = [w for w in words if w in MODIFIERS]
+    found = [w for i, w in enumerate(words) if w in MODIFIERS and not _binds_elsewhere(words, i)]
     scale = np.ones(3)
     for w in found:
         scale *= np.asarray(MODIFIERS[w])

@@ -17,7 +17,7 @@ from tasks.geometry import analogy as analogy_mod, fill_words, goods_words, gram
 from tasks.geometry.catalogue_programs import catalogue_program
 from tasks.geometry.grammar.goods import PouchParams, SheetParams, folded_footprint, piece_grid
 from tasks.geometry.grammar.things import smiley
-from tasks.geometry.grammar.parts import _euler_z_to, box, ellipsoid, part_group, relief, rotated_parts, squashed_parts
+from tasks.geometry.grammar.parts import _euler_z_to, box, ellipsoid, part_group, relief, rotated_parts, squashed_parts, torus
 from tasks.geometry.meshing import sample_program
 from tasks.geometry.sdf import program_bounds, program_sdf
 from tasks.geometry.wordnet import wordnet
@@ -310,6 +310,20 @@ def _head(main: str) -> tuple[tuple[int, int, str] | None, tuple[int, int, str] 
     return head, donor, tail_unknown
 
 
+def _kin_in_pose(entry: LexiconEntry, posable: LexiconEntry, poses: set[str]) -> LexiconEntry:
+    """The shape that can take a pose: the entry's posable one when its plan has the pose, else the first entry of
+    the same animal whose plan has it (a seated plush bunny cannot lie down; the lexicon's lop rabbit, a quadruped,
+    can), else the posable one."""
+    if poses & set(grammar.plan_states(posable.plan or "")):
+        return posable
+    names = {normalise(n) for n in entry.nouns}
+    for other in load_lexicon().entries.values():
+        if other.plan in grammar.PLANS and poses & set(grammar.plan_states(other.plan)) \
+                and any(normalise(n).split()[-1] in names for n in other.nouns):
+            return other
+    return posable
+
+
 def _match(entry: LexiconEntry, level: FallbackLevel, noun: str | None, note: str | None,
            material: str | None = None) -> ConceptMatch:
     """The ConceptMatch of an entry; a material named by the text (fallbacks) replaces the entry's, and then the
@@ -462,6 +476,8 @@ def read_text(text: str, serving: bool = True) -> Reading:
             look = True  # 'a cat pillow'
         poses = {"sitting", "lying", "curled", "standing"} & set(phrase.states)
         posable = lex.entries[entry.posed_by] if entry.posed_by in lex.entries else None
+        if posable is not None and poses & {"lying", "curled"} and pose_of(t) is None:
+            posable = _kin_in_pose(entry, posable, poses & {"lying", "curled"})  # 'a bunny lying on its belly'
         asks_plan = posable is not None and (pose_of(t) is not None or bool(ear_params(t, posable.plan)))
         if (poses or asks_plan) and donor is None and entry.plan is None and posable is not None:
             donor_entry = posable  # 'a dog lying down', 'a bunny with floppy ears': the posable one's shape
@@ -616,11 +632,19 @@ def _qualified(surface: str, phrase: phrase_mod.Phrase) -> str:
     """The lexicon noun of the head with a word of its phrase that colour or material words part from it ('a flat
     green latex resistance band' is a flat resistance band, 'a latex blue glove' a latex glove), else the head's own."""
     words = [w for w in [*phrase.adjectives, *phrase.compounds] if w not in surface.split()]
+    stated = {_material_words()[w] for w in words if w in _material_words()}
     for w in reversed(words):
         cand = f"{w} {surface}"
         if cand in noun_index() and noun_index()[cand][0] != noun_index()[surface][0]:
+            if stated and _entry_material(cand) not in stated and _entry_material(surface) in stated:
+                continue  # 'a squishy plush octopus' is the plush one, not the squishy (rubber) one
             return cand
     return surface
+
+
+def _entry_material(noun: str) -> str | None:
+    """The material of the lexicon entry a noun names."""
+    return load_lexicon().entries[noun_index()[noun][0]].material
 
 
 def _own_form(entry: LexiconEntry, word: str) -> bool:
@@ -757,6 +781,14 @@ def build(reading: Reading, text: str) -> tuple[ShapeProgram, ConceptMatch, list
     entry = reading.entry
     size = reading.size_m or entry.size_m
     warnings: list[str] = []
+    keychain = _KEYCHAIN.search(normalise(text)) is not None and entry.category in KEYCHAIN_CATEGORIES
+    if keychain and size > KEYCHAIN_SIZE_M:  # 'a plush owl keychain': the small one, on a key ring
+        k = KEYCHAIN_SIZE_M / size
+        size = KEYCHAIN_SIZE_M
+        mass = reading.match.typical_mass_kg
+        reading.match = reading.match.model_copy(update={
+            "typical_size_m": size, "typical_mass_kg": mass * k ** 3 if mass else None,
+            "mass_source": f"{reading.match.mass_source}; a keychain one at {size:g} m" if mass else None})
     states, params = _state_params(reading, warnings)
     params = {**reading.params, **params}  # (tasks.geometry.dims_words: a sheet's thickness, a rope's length)
     if reading.donor_plan is None:  # 'long floppy ears': the plan's ear parameters
@@ -792,9 +824,13 @@ def build(reading: Reading, text: str) -> tuple[ShapeProgram, ConceptMatch, list
                 reading.match = reading.match.model_copy(update={"typical_size_m": size})
     match = reading.match
     target = reading.donor or entry
+    if params.get("state") == "crumpled" and target.plan == "garment" and not _HEAP.search(normalise(text)):
+        params = {**params, "rumpled": True}  # 'a crumpled t-shirt' still shows its outline; 'in a heap' is a heap
     if "state" in params and target.plan is not None and (reading.donor_plan is None or reading.donor is not None):
         # the same object in another state: a 1.83 m yoga mat rolled up is a 0.61 m roll of the same mass
         own = {k: v for k, v in reading.params.items() if k != "state"}
+        if params.get("rumpled"):
+            own["rumpled"] = True
         change = grammar.state_change(target.plan, {**target.params, **own}, size, params["state"])
         size = change.size_m
         shell = match.hollow and match.wall_thickness_m is not None  # a folded film's built area is not its film's
@@ -829,6 +865,9 @@ def build(reading: Reading, text: str) -> tuple[ShapeProgram, ConceptMatch, list
         program = program.model_copy(update={"parts": [*program.parts, *smiley(tuple(centre), tuple(half))]})
     if goods is not None and goods.duplicate:
         program, match = goods_words.pair_up(program, match)
+    if goods is not None and goods.bunch:  # 'a bunch of grapes': a cluster of them on a stem
+        program, match = goods_words.bunched(program, match)
+        states.append("a bunch")
     program, applied = apply_colors(program, normalise(text))
     if not applied:
         implied = reading.match.colors.get("body") or _implied_colour(reading)
@@ -844,6 +883,9 @@ def build(reading: Reading, text: str) -> tuple[ShapeProgram, ConceptMatch, list
                 part_group(p.name) == "fill" for p in program.parts):
             program = _bagged_colors(program, reading.pouch.piece_colors)
     program = _contrast_seams(program, target)
+    if keychain:
+        program = _on_key_ring(program)
+        states.append("keychain")
     program, pattern, warning = apply_pattern(program, normalise(text))
     if pattern:
         applied = {**applied, **pattern}
@@ -861,6 +903,25 @@ def build(reading: Reading, text: str) -> tuple[ShapeProgram, ConceptMatch, list
             match = match.model_copy(update={"density_kg_per_m3": piece / max(_volume(program), 1e-12)})
         states = [*states, "vacuum-packed"]
     return program, match.model_copy(update={"colors": applied, "states": states}), warnings
+
+
+_HEAP = re.compile(r"\b(?:heap|heaped|pile|piled|balled|ball|wad|wadded|scrunched|bunched|on the floor|"
+                   r"on the ground)\b")
+_KEYCHAIN = re.compile(r"\b(?:key ?chains?|key ?rings?|key ?fobs?|bag charms?|clip[- ]on)\b")
+KEYCHAIN_CATEGORIES = frozenset({"plush_animal", "rubber_toy", "silicone_toy", "foam_toy", "foam", "ball", "fruit", "food"})
+KEYCHAIN_SIZE_M = 0.11  # a plush or squishy keychain toy: ~8-12 cm (retail listings) [m]
+
+
+def _on_key_ring(program: ShapeProgram) -> ShapeProgram:
+    """The program with a metal key ring on a short loop on top of it (a keychain toy)."""
+    ext = grammar.program_extents(program, 32)
+    centre, half = _body_envelope(program, 32)
+    top = float(centre[2] + half[2])
+    r = 0.14 * float(ext.max())
+    ring = torus("keyring", r, 0.08 * r, (float(centre[0]), float(centre[1]), top + 0.9 * r), rot=(90, 0, 0))
+    loop = torus("loop", 0.45 * r, 0.12 * r, (float(centre[0]), float(centre[1]), top), rot=(90, 0, 90))
+    return program.model_copy(update={"parts": [*program.parts, loop.model_copy(update={
+        "color_rgb": program.parts[0].color_rgb}), ring.model_copy(update={"color_rgb": grammar.METAL})]})
 
 
 CLEAR_FILM = "white"  # a clear bag's film, seen over its goods

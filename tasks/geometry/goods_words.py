@@ -14,11 +14,21 @@ from contracts.lexicon import LexiconEntry, load_lexicon
 from contracts.shape import ShapeProgram
 from tasks.geometry import fill_words, grammar
 from tasks.geometry.grammar.goods import BAG_CAPACITY
-from tasks.geometry.grammar.parts import part_group
+from tasks.geometry.grammar.parts import ellipsoid, limb, part_group
+from tasks.geometry.meshing import sample_program
 from tasks.geometry.pouch_words import stated_volume_m3
 
 FILLABLE_PLANS = frozenset({"bag", "pouch"})
 PAIR_WORDS = frozenset({"pair"})
+BUNCH_WORDS = frozenset({"bunch"})
+BUNCH_PIECE_MAX_M = 0.025  # 'a bunch of' small round pieces (grapes, currants) is a cluster of them [m] (cherries
+# on their long stems are a few, not a cluster)
+BUNCH_LENGTH = 8.0  # a bunch of grapes lying on a table is ~8 grapes long (a 2.2 cm grape: ~18 cm) [-]
+BUNCH_PACKING = 0.65  # the pieces' share of the cluster's envelope (random close packing of spheres ~0.64) [-]
+BUNCHABLE_PLANS = frozenset({"round_fruit", "berry", "ball", "egg"})
+BUNCH_MAX_PIECES = 54  # pieces drawn on the cluster's surface (a program holds at most 64 parts)
+BUNCH_SEED = 7
+BUNCH_CORES = 5  # ellipsoids along the cluster that fill in under its pieces
 # how many parts a fold makes: 'folded in half' is one halving, 'in thirds' a letter fold, 'in quarters' two halvings
 _FOLD_WORDS = re.compile(r"\b(?:in|into)\s+(half|halves|two|thirds|three|quarters|fourths|four|eighths)\b")
 _FOLDS = {"half": (1, False), "halves": (1, False), "two": (1, False), "thirds": (1, True), "three": (1, True),
@@ -40,6 +50,7 @@ class GoodsChange:
     size_m: float
     match: ConceptMatch
     duplicate: bool = False
+    bunch: bool = False
     fill_color: str | None = None
     notes: tuple[str, ...] = ()
 
@@ -90,6 +101,9 @@ def apply(target: LexiconEntry, portion: str | None, text: str, params: dict, si
             out.duplicate = True
             out.match = match.model_copy(update={"typical_mass_kg": mass})
         out.notes += ("a pair: two of them",)
+    if portion in BUNCH_WORDS and plan in BUNCHABLE_PLANS and size_m <= BUNCH_PIECE_MAX_M:
+        out.bunch = True
+        out.notes += ("a bunch: a cluster of them on a stem",)
     fill = fill or fill_words.read_fill(text)
     if fill is None and plan == "pouch" and target.material == "gel" and "capacity" not in (match.stated_mass_source or ""):
         if stated_volume_m3(text) is not None:  # 'a 2 l saline bag': the bag's own liquid, the stated volume of it
@@ -196,3 +210,64 @@ def painted_fill(program: ShapeProgram, color: str) -> ShapeProgram:
     rgb = load_lexicon().colors[color]
     return program.model_copy(update={"parts": [p.model_copy(update={"color_rgb": rgb}) if part_group(p.name) == "fill"
                                                 else p for p in program.parts]})
+
+
+def bunched(program: ShapeProgram, match: ConceptMatch) -> tuple[ShapeProgram, ConceptMatch]:
+    """A bunch of small round pieces lying on a table: a tapered cluster BUNCH_LENGTH pieces long (wide at the stem's
+    shoulder, narrow at the tip), the pieces over its upper surface, a core where the inner ones are, and the stem.
+    Its typical mass is the pieces' mass at the cluster's volume (BUNCH_PACKING of it) and its typical size its
+    length."""
+    ext = grammar.program_extents(program, 32)
+    r = 0.5 * float(ext.max())
+    length = BUNCH_LENGTH * 2.0 * r
+    spots: list[tuple[float, float, float]] = []
+    jitter = np.random.default_rng(BUNCH_SEED)  # the same bunch for the same words
+    rows = max(int(length / (1.7 * r)), 3)
+    for i in range(rows):
+        x = 0.5 * length - r - i * (length - 2.0 * r) / (rows - 1)
+        u = i / (rows - 1)  # 0 at the shoulder, 1 at the tip
+        half_w = max(r, (0.3 - 0.2 * u) * length)
+        half_h = max(r, 0.7 * half_w)
+        arc = np.pi * (half_w + half_h) / 2.0  # half the ellipse's perimeter (its upper half)
+        n = max(int(arc / (1.6 * r)) + 1, 1)
+        shift = 0.5 * np.pi / max(n - 1, 1) * (i % 2)  # odd rows sit in the even rows' gaps
+        for a in np.linspace(shift, np.pi - shift, n) if n > 1 else [0.5 * np.pi]:
+            dx, dy, dz = 0.2 * r * jitter.standard_normal(3)
+            dz = abs(dz)  # (the pieces along the bottom stay on the ground)
+            spots.append((x + dx, (half_w - r) * float(np.cos(a)) + dy, r + (half_h - r) * float(np.sin(a)) + dz))
+    most = min(BUNCH_MAX_PIECES, (BUNCH_MAX_PIECES + 4) // max(len(program.parts), 1))
+    if len(spots) > most:
+        spots = [spots[int(k)] for k in np.linspace(0, len(spots) - 1, most)]
+    parts: list = []
+    c0 = program.parts[0].transform.translation_m  # the piece's body centre goes to each spot
+    for k, (x, y, z) in enumerate(spots):
+        for p in program.parts:
+            t = p.transform.translation_m
+            parts.append(p.model_copy(update={"name": f"{p.name} {k + 1}", "transform": p.transform.model_copy(
+                update={"translation_m": (t[0] - c0[0] + x, t[1] - c0[1] + y, t[2] - c0[2] + z)})}))
+    body_rgb = program.parts[0].color_rgb
+    cores = []
+    for i in range(BUNCH_CORES):
+        u = (i + 0.5) / BUNCH_CORES
+        outer_w = max(r, (0.3 - 0.2 * u) * length)
+        top = max(r, 0.7 * outer_w)  # the top pieces' centres; the core spans from just above the ground to them
+        at = (0.5 * length - r - u * (length - 2.0 * r), 0.0, 0.5 * top)
+        cores.append(ellipsoid(f"body core {i + 1}", (0.6 * length / BUNCH_CORES, outer_w - r, 0.5 * top - 0.15 * r), at,
+                               blend=0.5 * r).model_copy(update={"color_rgb": body_rgb}))
+    stem = limb("stem", (0.5 * length - r, 0.0, 2.0 * r), (0.5 * length + 2.5 * r, 0.0, 3.0 * r), 0.18 * r)
+    parts = [*cores, *parts,
+             stem.model_copy(update={"color_rgb": (0.42, 0.33, 0.2)})]
+    bunch = program.model_copy(update={"parts": parts})
+    piece_v = max(_solid_volume(program, 24), 1e-12)
+    count = BUNCH_PACKING * _solid_volume(bunch, 48) / piece_v
+    longest = float(grammar.program_extents(bunch, 48).max())
+    mass = match.typical_mass_kg * count if match.typical_mass_kg else None
+    return bunch, match.model_copy(update={"typical_mass_kg": mass, "typical_size_m": longest,
+                                           "mass_source": f"{match.mass_source}; a bunch: ~{count:.0f} of them "
+                                           f"({BUNCH_PACKING:g} of the cluster's volume)"})
+
+
+def _solid_volume(program: ShapeProgram, resolution: int) -> float:
+    """The volume of a program's solid from its signed distances on a grid [m^3]."""
+    field_, _origin, spacing = sample_program(program, resolution)
+    return float(np.count_nonzero(field_ < 0)) * spacing ** 3

@@ -85,8 +85,9 @@ def cylinder_snout(x: float, z: float, r: float) -> Part:
     return cylinder("snout", 0.38 * r, 0.45 * r, (x, 0, z), edge=0.08 * r, blend=0.08 * r, rot=(0, 90, 0))
 
 
-def _tail(kind: str, rear: np.ndarray, r: float, length: float) -> list[Part]:
-    """A tail leaving the body at `rear` (radius scale r, length in body lengths)."""
+def _tail(kind: str, rear: np.ndarray, r: float, length: float, grounded: bool = False) -> list[Part]:
+    """A tail leaving the body at `rear` (radius scale r, length in body lengths); a `grounded` thick tail ends on the
+    ground (a dinosaur on its hind legs stands on its feet and its tail)."""
     x, z = float(rear[0]), float(rear[2])
     if kind == "none":
         return []
@@ -100,8 +101,8 @@ def _tail(kind: str, rear: np.ndarray, r: float, length: float) -> list[Part]:
         return [ellipsoid("tail", (0.55 * length, 0.3 * length, 0.22 * length),
                           (x - 0.35 * length, 0, z + 0.3 * length), blend=0.15 * r, rot=(0, 40, 0))]
     if kind == "thick":
-        return [tapered("tail", (x + 0.2 * r, 0, z), (x - length, 0, max(z - 0.6 * length, 0.6 * r)), 1.2 * r,
-                        0.25 * r, blend=0.3 * r)]
+        tip_z = 0.25 * r if grounded else max(z - 0.6 * length, 0.6 * r)
+        return [tapered("tail", (x + 0.2 * r, 0, z), (x - length, 0, tip_z), 1.2 * r, 0.25 * r, blend=0.3 * r)]
     return [tapered("tail", (x, 0, z), (x - 0.8 * length, 0, z + 0.5 * length), 0.35 * r, 0.15 * r, blend=0.15 * r)]
 
 
@@ -208,21 +209,22 @@ def _curled_quadruped(p: QuadrupedParams) -> list[Part]:
     the rear, the front paws tucked by the chin and the tail wrapped round the outside across the gap to the nose."""
     bw, bh = p.body_width, p.body_height
     ring = 0.27  # arc radius of the body's midline [body lengths]
-    z = 0.4 * bh
-    across = 0.34 * bw
+    z = 0.34 * bh
+    across = 0.3 * bw
     parts: list[Part] = []
     for k, deg in enumerate(np.linspace(-130.0, 80.0, 6)):
         a = np.radians(deg)
-        parts.append(ellipsoid("body" if k == 2 else f"body {k + 1}", (0.17, across, 0.4 * bh),
-                               (ring * np.cos(a), ring * np.sin(a), z), blend=0.12, rot=(0, 0, float(deg) + 90)))
+        parts.append(ellipsoid("body" if k == 2 else f"body {k + 1}", (0.17, across, 0.34 * bh),
+                               (ring * np.cos(a), ring * np.sin(a), z), blend=0.1, rot=(0, 0, float(deg) + 90)))
     hr = p.head_size / 2
-    a_head = np.radians(125.0)
-    hz = 0.9 * hr + 0.02 + (0.6 * hr if p.snout == "trunk" else 0.0)
+    a_head = np.radians(118.0)
+    # the head rests on the front paws and the tail, raised above the ring so its ears and face show
+    hz = max(0.9 * hr + 0.02, z + 0.45 * hr) + (0.6 * hr if p.snout == "trunk" else 0.0)
     at = np.array([ring * np.cos(a_head), ring * np.sin(a_head), hz])
     head = [ellipsoid("head", (hr, 0.95 * hr, 0.92 * hr), (0.0, 0.0, hz), blend=0.08)]
     head += _ears(p.ears, np.array([0.0, 0.0, hz]), hr, p.ear_size)
     head += _face(np.array([0.0, 0.0, hz]), hr, p.snout)
-    head = rotated_parts(head, (0.0, 0.0, 125.0 + 90.0), (0.0, 0.0, hz))  # along the ring, nose to the rear end
+    head = rotated_parts(head, (0.0, 0.0, 118.0 + 90.0), (0.0, 0.0, hz))  # along the ring, nose to the rear end
     parts += [h.model_copy(update={"transform": h.transform.model_copy(update={"translation_m": tuple(
         float(v) for v in np.asarray(h.transform.translation_m) + np.array([at[0], at[1], 0.0]))})}) for h in head]
     r = p.leg_radius
@@ -374,7 +376,7 @@ def biped_standing(p: StandingBipedParams) -> list[Part]:
     if p.arm_length > 0:
         al = 0.25 * p.arm_length
         parts += mirrored(limb, "arm", (0, 0.14 * w, ll + 0.3), (0.02, 0.19 * w, ll + 0.3 - al), 0.04, blend=0.02)
-    parts += _tail(p.tail, np.array([-0.1 * d, 0.0, ll + 0.1]), 0.1, p.tail_length)
+    parts += _tail(p.tail, np.array([-0.1 * d, 0.0, ll + 0.1]), 0.1, p.tail_length, grounded=True)
     return parts
 
 
@@ -391,6 +393,8 @@ class BirdParams(Model):
     leg_length: float = Field(default=0.0, ge=0.0, le=1.5)
     crest: bool = False
     belly: bool = False
+    owl_face: bool = Field(default=False, description="an owl's face: two pale facial discs round big eyes and two "
+                           "ear tufts on top of the head")
 
 
 def bird(p: BirdParams) -> list[Part]:
@@ -409,8 +413,16 @@ def bird(p: BirdParams) -> list[Part]:
         parts.append(limb("neck", head - np.array([0, 0, 0.3 * hr]), top, 0.35 * hr, blend=0.05))
         head = top
     parts.append(ellipsoid("head", (hr, 0.95 * hr, hr), head, blend=0.06))
-    parts += mirrored(ellipsoid, "eye", (0.12 * hr, 0.12 * hr, 0.12 * hr),
-                      (head[0] + 0.7 * hr, 0.55 * hr, head[2] + 0.25 * hr))
+    if p.owl_face:  # facial discs facing forward, big eyes in them, ear tufts up and out
+        parts += mirrored(ellipsoid, "face disc", (0.12 * hr, 0.42 * hr, 0.42 * hr),
+                          (head[0] + 0.82 * hr, 0.4 * hr, head[2] + 0.1 * hr), blend=0.02)
+        parts += mirrored(ellipsoid, "eye", (0.1 * hr, 0.2 * hr, 0.2 * hr),
+                          (head[0] + 0.93 * hr, 0.4 * hr, head[2] + 0.12 * hr))
+        parts += mirrored(tapered, "ear tuft", (head[0], 0.55 * hr, head[2] + 0.7 * hr),
+                          (head[0] - 0.05 * hr, 0.8 * hr, head[2] + 1.35 * hr), 0.22 * hr, 0.04 * hr, blend=0.04)
+    else:
+        parts += mirrored(ellipsoid, "eye", (0.12 * hr, 0.12 * hr, 0.12 * hr),
+                          (head[0] + 0.7 * hr, 0.55 * hr, head[2] + 0.25 * hr))
     bx = head[0] + 0.85 * hr
     if p.beak == "duckbill":
         parts.append(ellipsoid("beak", (0.55 * hr, 0.45 * hr, 0.16 * hr), (bx + 0.35 * hr, 0, head[2] - 0.15 * hr),

@@ -590,6 +590,8 @@ class HatParams(Model):
     brim: float = Field(default=0.0, ge=0.0, le=0.6, description="brim width / crown diameter [-]")
     pompom: bool = False
     ribs: int = Field(default=0, ge=0, le=40, description="knit ribs: vertical grooves round the crown and cuff [-]")
+    visor: float = Field(default=0.0, ge=0.0, le=0.9, description="a peak (visor) out of the front of the crown, its "
+                         "length / crown diameter (a baseball cap ~0.4-0.6) [-]")
 
 
 def hat(p: HatParams) -> list[Part]:
@@ -603,6 +605,10 @@ def hat(p: HatParams) -> list[Part]:
         parts.append(cylinder("brim", R + p.brim, w, (0, 0, w / 2), edge=0.45 * w, blend=0.02))
     if p.pompom:
         parts.append(ellipsoid("pompom", (0.15, 0.15, 0.14), (0, 0, H + 0.08), blend=0.03))
+    if p.visor > 0:  # a stiffened peak: a flat half-ellipse out of the rim at the front, dipping a little
+        parts.append(ellipsoid("visor", (0.5 * p.visor + 0.25, 0.46, 1.5 * w), (R + 0.5 * p.visor - 0.25, 0, 1.5 * w),
+                               blend=0.02, rot=(0, 6, 0)))
+        parts.append(ellipsoid("button", (0.05, 0.05, 0.03), (0, 0, H), blend=0.01))
     for i in range(p.ribs):  # knit ribs: shallow grooves up the cuff
         a = 2 * np.pi * i / p.ribs
         rr = R + 0.6 * w + 0.004
@@ -800,6 +806,8 @@ class GarmentParams(Model):
     zip: bool = Field(default=False, description="a front zip or button placket (a jacket, a shirt)")
     collar: bool = Field(default=False, description="a shirt collar")
     cuffs: bool = Field(default=True, description="ribbed bands at hem and sleeve ends")
+    rumpled: bool = Field(default=False, description="crumpled but spread out (a top or dress dropped on the floor): "
+                          "its outline with wrinkles over it, not a heap")
     width: float = Field(default=0.78, gt=0.3, le=1.2, description="body width / length [-]")
     thickness: float = Field(default=0.012, gt=0.0, le=0.1, description="real flat thickness (front and back "
                              "layers) / length [-]")
@@ -954,6 +962,8 @@ def garment(p: GarmentParams) -> list[Part]:
         return parts
     if p.state == "folded":
         return _garment_folded(p)
+    if p.rumpled and p.kind in ("top", "dress"):
+        return _rumpled(_garment_flat(p, t), w, t)
     # crumpled: a heap of the body with the sleeves (legs) and the hood out of it
     area = w + (0.5 if p.sleeves == "long" else 0.15 if p.sleeves == "short" else 0.0)
     d, height = 1.3 * crumpled_size(area)[0], 0.22 * float(np.sqrt(area))  # front and back: a fuller heap
@@ -994,6 +1004,22 @@ def garment(p: GarmentParams) -> list[Part]:
             end[2] = 0.6 * t
             parts += _flat_chain(f"{'left' if k == 0 else 'right'} leg", [start, end], 0.12, 2.2 * t, blend=0.03)
     return parts + [ground]
+
+
+RUMPLE_RIDGES = ((0.25, 0.12, 35.0, 0.5), (0.0, -0.15, -20.0, 0.6), (-0.25, 0.1, 70.0, 0.45), (-0.3, -0.2, 15.0, 0.4),
+                 (0.15, -0.05, -60.0, 0.5), (-0.05, 0.25, 5.0, 0.35), (0.33, -0.28, 50.0, 0.3))  # (x, y/w, deg, length)
+
+
+def _rumpled(flat: list[Part], w: float, t: float) -> list[Part]:
+    """A crumpled top or dress that still shows its outline (a t-shirt dropped on the floor): the flat layout with
+    rounded wrinkle ridges across the body and one sleeve's end turned back over it."""
+    ridges = [ellipsoid(f"wrinkle {k + 1}", (0.5 * ln, 0.045 + 0.012 * (k % 3), (1.1 + 0.3 * (k % 2)) * t),
+                        (x, y * w, 0.6 * t), blend=0.04, rot=(0.0, 0.0, deg))
+              for k, (x, y, deg, ln) in enumerate(RUMPLE_RIDGES)]
+    bunched = [q.model_copy(update={"transform": q.transform.model_copy(update={"translation_m": (
+        q.transform.translation_m[0], q.transform.translation_m[1], q.transform.translation_m[2] + 0.4 * t)})})
+        if q.name.startswith("left sleeve") else q for q in flat]
+    return [*bunched, *ridges]
 
 
 def _garment_folded(p: GarmentParams) -> list[Part]:
