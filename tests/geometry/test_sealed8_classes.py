@@ -131,3 +131,13 @@ def test_a_curled_up_cat_shows_its_head_and_ears_over_its_body() -> None:
         g = part_group(p.name).split()[0]
         tops[g] = max(tops.get(g, -np.inf), p.transform.translation_m[2])
     assert tops["ear"] > tops["body"] and tops["head"] > tops["body"]
+
+
+def test_a_sloth_has_its_pale_face_dark_eye_stripes_and_claws_a_panda_its_eye_patches() -> None:
+    _reading, sloth, _match = _built("a plush sloth")
+    assert {"face", "eye patch", "claw"} <= _groups(sloth)
+    patch = next(p for p in sloth.parts if part_group(p.name) == "eye patch")
+    face = next(p for p in sloth.parts if part_group(p.name) == "face")
+    assert patch.color_rgb != face.color_rgb and sum(patch.color_rgb) < sum(face.color_rgb)
+    _reading, panda, _match = _built("a panda plush toy")
+    assert "eye patch" in _groups(panda) and "claw" not in _groups(panda)

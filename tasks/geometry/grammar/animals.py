@@ -322,6 +322,23 @@ class SeatedBipedParams(Model):
     snout: Snout = "short"
     tail: Tail = "none"
     belly: bool = False
+    eye_patches: Literal["none", "round", "stripe"] = Field(default="none", description="dark patches round the eyes: "
+                                                            "round ovals (a panda), stripes slanting back (a sloth)")
+    face: bool = Field(default=False, description="a pale face disc on the front of the head (a sloth, a monkey)")
+    claws: bool = Field(default=False, description="three long claws on each hand (a sloth)")
+
+
+def _eye_patches(kind: str, head: np.ndarray, r: float) -> list[Part]:
+    """Dark patches round the eyes of a head of radius r facing +x: 'round' ovals tilted out, or 'stripe' bands
+    from the eyes back to the temples."""
+    hx, hz = float(head[0]), float(head[2])
+    if kind == "round":
+        return mirrored(ellipsoid, "eye patch", (0.1 * r, 0.2 * r, 0.27 * r), (hx + 0.84 * r, 0.4 * r, hz + 0.22 * r),
+                        rot=(-30, 0, 0))
+    if kind == "stripe":
+        return mirrored(ellipsoid, "eye patch", (0.1 * r, 0.34 * r, 0.14 * r), (hx + 0.86 * r, 0.4 * r, hz + 0.2 * r),
+                        rot=(25, 0, 0))
+    return []
 
 
 def biped_seated(p: SeatedBipedParams) -> list[Part]:
@@ -334,6 +351,10 @@ def biped_seated(p: SeatedBipedParams) -> list[Part]:
     head = np.array([0.005, 0.0, 0.155 + hr * 0.9])
     parts.append(ellipsoid("head", (hr, 1.03 * hr, 0.97 * hr), head, blend=0.015))
     parts += _ears(p.ears, head, hr, p.ear_size)
+    if p.face:
+        parts.append(ellipsoid("face", (0.16 * hr, 0.78 * hr, 0.7 * hr), (head[0] + 0.7 * hr, 0, head[2] + 0.02 * hr),
+                               blend=0.002))
+    parts += _eye_patches(p.eye_patches, head, hr)
     parts += _face(head, hr, p.snout)
     if p.leg_length > 0:
         ll = 0.05 * p.leg_length
@@ -341,8 +362,12 @@ def biped_seated(p: SeatedBipedParams) -> list[Part]:
                           blend=0.01)
     if p.arm_length > 0:
         al = 0.065 * p.arm_length
-        parts += mirrored(limb, "arm", (0.005, 0.05 * w, 0.13), (0.03, 0.06 * w + 0.4 * al, 0.13 - 0.8 * al), 0.022,
-                          blend=0.01)
+        hand = (0.03, 0.06 * w + 0.4 * al, 0.13 - 0.8 * al)
+        parts += mirrored(limb, "arm", (0.005, 0.05 * w, 0.13), hand, 0.022, blend=0.01)
+        if p.claws:
+            for k, dy in enumerate((-0.012, 0.0, 0.012)):
+                parts += mirrored(tapered, f"claw {k + 1}", (hand[0] + 0.012, hand[1] + dy, hand[2] - 0.01),
+                                  (hand[0] + 0.04, hand[1] + dy, hand[2] - 0.035), 0.006, 0.002, blend=0.003)
     parts += _tail(p.tail, np.array([-0.062, 0.0, 0.04]), 0.03, 0.05)
     return parts
 
