@@ -77,7 +77,7 @@ def robotiq_links(name: str) -> RobotiqLinks | None:
 
 
 @lru_cache(maxsize=1)
-def _unit_box() -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def unit_box() -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """A box [-1, 1]^3: 4 vertices per face (flat normals), faces wound outward."""
     verts: list[np.ndarray] = []
     faces: list[list[int]] = []
@@ -141,7 +141,7 @@ def _posed(unit: tuple[np.ndarray, np.ndarray, np.ndarray], centre: np.ndarray, 
 def box(lo: ArrayLike, hi: ArrayLike, rgb: np.ndarray) -> Part:
     """An axis-aligned box of frame G."""
     lo, hi = np.asarray(lo, np.float64), np.asarray(hi, np.float64)
-    return _posed(_unit_box(), 0.5 * (lo + hi), np.eye(3), 0.5 * (hi - lo), rgb)
+    return _posed(unit_box(), 0.5 * (lo + hi), np.eye(3), 0.5 * (hi - lo), rgb)
 
 
 def bar(p: np.ndarray, q: np.ndarray, width_m: float, thickness_m: float, rgb: np.ndarray) -> Part:
@@ -154,7 +154,7 @@ def bar(p: np.ndarray, q: np.ndarray, width_m: float, thickness_m: float, rgb: n
     x = np.array([1.0, 0.0, 0.0])
     across = np.cross(along, x)
     axes = np.column_stack([x, across, along])
-    return _posed(_unit_box(), 0.5 * (p + q), axes,
+    return _posed(unit_box(), 0.5 * (p + q), axes,
                   np.array([0.5 * width_m, 0.5 * thickness_m, 0.5 * length + 0.5 * thickness_m]), rgb)
 
 

@@ -24,6 +24,7 @@ import numpy as np
 from contracts.errors import InputError
 from contracts.robot import load_gripper
 from tasks.quiet_pybullet import pybullet as pb
+from tasks.render.gripper_model import unit_box
 from tasks.robot.panda import Panda
 
 ARM_RGB = np.array([0.93, 0.93, 0.95])      # the Panda's white links
@@ -185,43 +186,10 @@ def gripper_boxes(pad_position_m: np.ndarray, pad_half_extents_m: np.ndarray, ap
     return [(origin + rot @ (0.5 * (a + b)), rot, 0.5 * (b - a), c) for a, b, c in boxes]
 
 
-_BOX_FACES = np.array([[0, 1, 2], [0, 2, 3]])
-
-
-@lru_cache(maxsize=1)
-def _unit_box() -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """A unit box ([-1, 1]^3) with 4 vertices per face (flat normals), faces wound outward."""
-    verts: list[np.ndarray] = []
-    faces: list[list[int]] = []
-    normals: list[np.ndarray] = []
-    for axis in range(3):
-        for sign in (-1.0, 1.0):
-            u, w = [k for k in range(3) if k != axis]
-            if sign < 0:
-                u, w = w, u
-            corners = []
-            for a, b in ((-1, -1), (1, -1), (1, 1), (-1, 1)):
-                p = np.zeros(3)
-                p[axis], p[u], p[w] = sign, a, b
-                corners.append(p)
-            n = len(verts)
-            verts.extend(corners)
-            faces.extend((_BOX_FACES + n).tolist())
-            nrm = np.zeros(3)
-            nrm[axis] = sign
-            normals.extend([nrm] * 4)
-    v, f, nr = np.asarray(verts), np.asarray(faces), np.asarray(normals)
-    # wind every face outward (counter-clockwise seen from outside)
-    tri = v[f]
-    outward = np.einsum("ij,ij->i", np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0]), nr[f[:, 0]]) > 0
-    f[~outward] = f[~outward][:, ::-1]
-    return v, f, nr
-
-
 def box_mesh(center_m: np.ndarray, rotation: np.ndarray, half_extents_m: np.ndarray
              ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """World vertices [m], faces and normals of a posed box."""
-    v, f, n = _unit_box()
+    v, f, n = unit_box()
     r = np.asarray(rotation)
     return (v * np.asarray(half_extents_m)) @ r.T + np.asarray(center_m), f, n @ r.T
 
