@@ -221,6 +221,7 @@ def test_calibration_runs_each_parameter_set_once_and_records_the_fit(grid_spong
     import json
 
     from flows import crosscheck as xc
+    from tasks.export.sim_runners import SimRunner
     from tasks.export.calibrate import Knob
 
     ran: list[tuple[str, tuple]] = []
@@ -234,11 +235,11 @@ def test_calibration_runs_each_parameter_set_once_and_records_the_fit(grid_spong
         return {"rebound_ratio": 0.4 / (1 + (v["damping_s"] / 4e-3) ** 2), "max_impact_strain": 0.02,
                 "settle_time_s": 0.2}
 
-    def runner(*_: object) -> xc.SimRunner:
-        return xc.SimRunner("mujoco", {"young_pa": 9e4, "damping_s": 1e-4}, compress, drop,
+    def runner(*_: object) -> SimRunner:
+        return SimRunner("mujoco", {"young_pa": 9e4, "damping_s": 1e-4}, compress, drop,
                             lambda v: [Knob("damping_s", v["damping_s"], 1e-7, 0.1)], None)
 
-    monkeypatch.setattr(xc, "_runner", runner)
+    monkeypatch.setattr(xc, "sim_runner", runner)
     report = xc.crosscheck_asset(grid_sponge, "mujoco")
     assert report.agrees is True and len(set(ran)) == len(ran) == report.sim_calls
     saved = json.loads((grid_sponge / "export" / "mujoco" / "crosscheck.json").read_text())

@@ -82,6 +82,7 @@ def test_drake_crosscheck_reports_every_metric_and_writes_a_loadable_calibrated_
     from pydrake.systems.framework import DiagramBuilder
 
     from flows import crosscheck as xc
+    from tasks.export.sim_runners import drake_runner
     from tasks.export import inputs as export_inputs
     from tasks.export import registry
     from tasks.export.crosscheck import probe_targets
@@ -101,7 +102,7 @@ def test_drake_crosscheck_reports_every_metric_and_writes_a_loadable_calibrated_
 
     inputs = export_inputs.load_export_inputs(asset)
     targets = probe_targets(asset)
-    runner = xc._drake_runner(inputs, targets, targets.area_m2 or 1e-3, folder)
+    runner = drake_runner(inputs, targets, targets.area_m2 or 1e-3, folder)
     fitted = {"young_pa": 1.23e5, "mass_damping_per_s": 4.5, "timestep_s": 2.5e-4}
     (name,) = runner.write_calibrated(fitted, folder)  # type: ignore[misc]
     text = (folder / name).read_text()
