@@ -27,7 +27,8 @@ from prefect.states import Crashed
 
 from contracts.errors import DeformSmithError
 from contracts.request import AssetRequest
-from flows.batch import DEFAULT_JOB, BatchItem, BatchReport, RequestResult, failed_result, parse_requests
+from flows.batch import DEFAULT_JOB
+from tasks.batch_requests import BatchItem, BatchReport, RequestResult, failed_result, parse_requests
 from flows.batch_job import run_request
 
 GENERATE_DEPLOYMENT = "deformsmith-generate/generate"

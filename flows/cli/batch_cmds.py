@@ -10,6 +10,7 @@ from rich.table import Table
 from cache import use_cache_root
 from flows.cli.apps import app, check_device, console, emit_json, fail, results
 from flows.cli.preflight import check_locations
+from tasks.batch_requests import REPORT_JSON
 
 
 def _table(report) -> Table:
@@ -39,7 +40,7 @@ def batch(
 ) -> None:
     """Generate many assets; a bad request fails alone; exit 1 if any failed (the report is written anyway)."""
     # lazy: pulls concurrent.futures, ctypes (probe workers); --help imports every command module
-    from flows.batch import DEFAULT_JOB, NO_L3_JOB, REPORT_JSON, REQUIRE_L3_JOB, run_batch
+    from flows.batch import DEFAULT_JOB, NO_L3_JOB, REQUIRE_L3_JOB, run_batch
 
     if require_l3 and not l3:
         fail("--require-l3 needs L3: drop --no-l3")

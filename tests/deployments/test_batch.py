@@ -15,7 +15,8 @@ from typing import Any
 import pytest
 from typer.testing import CliRunner
 
-from flows.batch import NO_L3_JOB, REPORT_JSON, BatchReport, parse_requests, run_batch
+from flows.batch import NO_L3_JOB, run_batch
+from tasks.batch_requests import REPORT_JSON, BatchReport, parse_requests
 
 REPO = Path(__file__).resolve().parents[2]
 QUICK = "tests.deployments.jobs:quick_job"

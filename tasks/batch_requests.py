@@ -1,0 +1,141 @@
+"""A batch of asset requests as data: the JSONL requests file parsed into items (a valid request with its output name,
+or the reason a line is unusable), how each request ended, and the batch report with its throughput (SI: seconds,
+assets per hour). flows.batch runs them in processes; flows.batch_flows through a Prefect work pool."""
+
+from __future__ import annotations
+
+import json
+import os
+import re
+import tempfile
+from collections.abc import Callable
+from pathlib import Path
+from typing import Any, Literal
+
+from pydantic import BaseModel, Field, ValidationError
+
+from contracts.errors import InputError, validation_message
+from contracts.request import AssetRequest
+
+REPORT_JSON = "batch_report.json"
+NAME_RE = re.compile(r"^[A-Za-z0-9][A-Za-z0-9._-]{0,95}$")
+Status = Literal["ok", "failed"]
+ItemCallback = Callable[["RequestResult"], None]
+
+
+class BatchItem(BaseModel):
+    """One line of the requests file: a valid request with its output name, or the reason it is unusable."""
+
+    line: int
+    name: str
+    request: AssetRequest | None = None
+    error: str | None = None
+    explicit_name: bool = False
+
+
+class RequestResult(BaseModel):
+    """How one request of a batch ended."""
+
+    name: str
+    line: int
+    status: Status
+    reason: str | None = None
+    asset_dir: str | None = None
+    wall_s: float = 0.0
+    attempts: int = 1
+    tasks_executed: int | None = Field(default=None, description="cached-task misses recorded by this request")
+    tasks_cached: int | None = Field(default=None, description="cached-task hits recorded by this request")
+    log: str | None = None
+
+
+class BatchReport(BaseModel):
+    """The batch report: one result per line, totals and throughput (SI: seconds; assets per hour)."""
+
+    schema_version: int = 1
+    requests_file: str
+    out_root: str
+    runner: str = "local"
+    concurrency: int | None = Field(default=None, description="requests at once (None: set by the pool)")
+    device: str
+    wall_s: float
+    requested: int
+    ok: int
+    failed: int
+    assets_per_hour: float
+    results: list[RequestResult]
+
+    @classmethod
+    def build(cls, results: list[RequestResult], wall_s: float, **fields: Any) -> BatchReport:
+        """Totals and throughput from the per-request results."""
+        results = sorted(results, key=lambda r: r.line)
+        ok = sum(r.status == "ok" for r in results)
+        return cls(results=results, wall_s=round(wall_s, 3), requested=len(results), ok=ok, failed=len(results) - ok,
+                   assets_per_hour=round(3600.0 * ok / wall_s, 2) if wall_s > 0 else 0.0, **fields)
+
+    def write(self, out_root: Path) -> Path:
+        """Write the report atomically as out_root/batch_report.json."""
+        path = Path(out_root) / REPORT_JSON
+        fd, tmp = tempfile.mkstemp(prefix=".batch_report.", dir=out_root)
+        with os.fdopen(fd, "w", encoding="utf-8") as fh:
+            fh.write(self.model_dump_json(indent=2) + "\n")
+        os.replace(tmp, path)
+        return path
+
+
+# ---- parsing ----------------------------------------------------------------------------------------
+
+
+def _slug(text: str) -> str:
+    return re.sub(r"[^a-z0-9]+", "_", text.lower()).strip("_")[:48] or "asset"
+
+
+def _default_name(request: AssetRequest) -> str:
+    src = request.mesh_path or request.image_path
+    return _slug(src.stem if src is not None else request.text or "asset")
+
+
+def parse_line(line_no: int, text: str) -> BatchItem:
+    """One JSONL line -> a BatchItem (invalid lines carry their reason instead of a request)."""
+    fallback = f"line-{line_no}"
+    try:
+        data = json.loads(text)
+    except json.JSONDecodeError as exc:
+        return BatchItem(line=line_no, name=fallback, error=f"malformed JSON: {exc}")
+    if not isinstance(data, dict):
+        return BatchItem(line=line_no, name=fallback, error="a line must be a JSON object (an AssetRequest)")
+    name = data.pop("name", None)
+    if name is not None and (not isinstance(name, str) or not NAME_RE.match(name)):
+        return BatchItem(line=line_no, name=fallback,
+                         error=f"invalid name {name!r}: letters, digits, '.', '_', '-'; no leading dot or slash")
+    try:
+        request = AssetRequest.model_validate(data)
+    except ValidationError as exc:
+        return BatchItem(line=line_no, name=name or fallback, error="invalid request: " + validation_message(exc))
+    return BatchItem(line=line_no, name=name or _default_name(request), request=request, explicit_name=bool(name))
+
+
+def parse_requests(path: Path) -> list[BatchItem]:
+    """All non-blank, non-comment lines of a JSONL file; names made unique (explicit duplicates fail)."""
+    path = Path(path)
+    if not path.is_file():
+        raise InputError(f"requests file not found: {path}")
+    items: list[BatchItem] = []
+    for no, raw in enumerate(path.read_text(encoding="utf-8").splitlines(), start=1):
+        if raw.strip() and not raw.lstrip().startswith("#"):
+            items.append(parse_line(no, raw))
+    if not items:
+        raise InputError(f"{path} holds no requests")
+    seen: set[str] = set()
+    for item in items:
+        if item.name in seen:
+            if item.explicit_name:
+                item.error, item.request = f"duplicate name {item.name!r}", None
+            else:
+                item.name = f"{item.name}-{item.line}"
+        seen.add(item.name)
+    return items
+
+
+def failed_result(item: BatchItem) -> RequestResult:
+    """The result of a line that never ran."""
+    return RequestResult(name=item.name, line=item.line, status="failed", reason=item.error, attempts=0)
