@@ -304,9 +304,10 @@ def _head(main: str) -> tuple[tuple[int, int, str] | None, tuple[int, int, str] 
     earlier = [h for h in hits[:-1] if h[2] not in load_lexicon().colors]  # 'an orange cushion' is coloured
     head_noun = noun_index()[head[2]][1]
     donor = earlier[-1] if earlier else None
-    if donor is not None and head_noun.split()[-1] in GENERIC_NOUNS \
-            and not load_lexicon().entries[noun_index()[head[2]][0]].takes_shape:
-        return donor, None, tail_unknown  # 'a teether ring' is a teether
+    head_entry = load_lexicon().entries[noun_index()[head[2]][0]]
+    if donor is not None and head_noun.split()[-1] in GENERIC_NOUNS and not head_entry.takes_shape \
+            and not any(donor[2].split()[-1] in normalise(n).split() for n in head_entry.nouns):
+        return donor, None, tail_unknown  # 'a teether ring' is a teether ('a mouse cat toy' is the cat toy mouse)
     return head, donor, tail_unknown
 
 
@@ -789,6 +790,9 @@ def build(reading: Reading, text: str) -> tuple[ShapeProgram, ConceptMatch, list
         reading.match = reading.match.model_copy(update={
             "typical_size_m": size, "typical_mass_kg": mass * k ** 3 if mass else None,
             "mass_source": f"{reading.match.mass_source}; a keychain one at {size:g} m" if mass else None})
+    if reading.donor_plan == PORTION_SHAPES["slice"] and reading.donor is None and reading.size_m is None \
+            and reading.phrase is not None and reading.phrase.portion == "slice" and entry.plan != "sheet":
+        size = _slice_of(reading, entry)  # 'a slice of sandwich bread': one slice across the loaf
     states, params = _state_params(reading, warnings)
     params = {**reading.params, **params}  # (tasks.geometry.dims_words: a sheet's thickness, a rope's length)
     if reading.donor_plan is None:  # 'long floppy ears': the plan's ear parameters
@@ -910,6 +914,23 @@ _HEAP = re.compile(r"\b(?:heap|heaped|pile|piled|balled|ball|wad|wadded|scrunche
 _KEYCHAIN = re.compile(r"\b(?:key ?chains?|key ?rings?|key ?fobs?|bag charms?|clip[- ]on)\b")
 KEYCHAIN_CATEGORIES = frozenset({"plush_animal", "rubber_toy", "silicone_toy", "foam_toy", "foam", "ball", "fruit", "food"})
 KEYCHAIN_SIZE_M = 0.11  # a plush or squishy keychain toy: ~8-12 cm (retail listings) [m]
+
+
+def _slice_of(reading: Reading, entry: LexiconEntry) -> float:
+    """The size of one slice cut across the whole object (a loaf, a block of cheese): the slice's face is the
+    whole's cross-section (its middle extent), its mass the whole's typical mass times the slice's share of the
+    whole's volume; sets the reading's typical size and mass to the slice's."""
+    whole = _entry_program(entry, entry.size_m)
+    ext = np.sort(grammar.program_extents(whole, 40))
+    size = float(ext[1])
+    plan, plan_params = PORTION_SHAPES["slice"]
+    piece = grammar.build_program(plan, plan_params, {"body": lex_color(entry)}, "slice", entry.category, size)
+    share = _volume(piece, 40) / max(_volume(whole, 40), 1e-12)
+    mass = reading.match.typical_mass_kg
+    reading.match = reading.match.model_copy(update={
+        "typical_size_m": size, "typical_mass_kg": mass * share if mass else None,
+        "mass_source": f"{reading.match.mass_source}; one slice: {share:.2g} of the whole's volume" if mass else None})
+    return size
 
 
 def _on_key_ring(program: ShapeProgram) -> ShapeProgram:

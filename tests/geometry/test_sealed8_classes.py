@@ -141,3 +141,16 @@ def test_a_sloth_has_its_pale_face_dark_eye_stripes_and_claws_a_panda_its_eye_pa
     assert patch.color_rgb != face.color_rgb and sum(patch.color_rgb) < sum(face.color_rgb)
     _reading, panda, _match = _built("a panda plush toy")
     assert "eye patch" in _groups(panda) and "claw" not in _groups(panda)
+
+
+def test_a_slice_of_a_loaf_is_one_slice_across_it_with_a_slices_mass() -> None:
+    """Set 9 (after its judging): 'a single slice of white sandwich bread' was built 24 cm across at a loaf's 350 g."""
+    _reading, program, match = _built("a single slice of white sandwich bread")
+    ext = np.sort(grammar.program_extents(program, 40))[::-1]
+    assert 0.08 <= ext[0] <= 0.16 and ext[2] < 0.02  # ~11 x 11 x 1.2 cm
+    assert 0.012 <= match.typical_mass_kg <= 0.05  # USDA: one slice of white bread ~25-29 g
+
+
+def test_a_mouse_cat_toy_is_the_cat_toy_mouse_not_a_plush_mouse() -> None:
+    assert concepts.read_text("felt mouse cat toy").match.concept == "cat_toy_mouse"
+    assert concepts.read_text("a teether ring").match.concept != "cat_toy_mouse"
