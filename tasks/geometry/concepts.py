@@ -898,6 +898,7 @@ def build(reading: Reading, text: str) -> tuple[ShapeProgram, ConceptMatch, list
     if reading.look_only and (reading.donor or reading.donor_plan) is not None and not match.hollow:
         match = match.model_copy(update={"density_kg_per_m3": None})  # its typical mass at the built size (L1)
     program, match, states = _whole_object(reading, program, match, normalise(text), states, warnings)
+    match, states = _soaked(match, target, normalise(text), states)
     match = graded(match, normalise(text))
     if reading.vacuum:  # the piece on the flat sealed film of its vacuum pack; the film's mass is the piece's
         before, program = program, pouch_words.film_wrapped(program)
@@ -914,6 +915,31 @@ _HEAP = re.compile(r"\b(?:heap|heaped|pile|piled|balled|ball|wad|wadded|scrunche
 _KEYCHAIN = re.compile(r"\b(?:key ?chains?|key ?rings?|key ?fobs?|bag charms?|clip[- ]on)\b")
 KEYCHAIN_CATEGORIES = frozenset({"plush_animal", "rubber_toy", "silicone_toy", "foam_toy", "foam", "ball", "fruit", "food"})
 KEYCHAIN_SIZE_M = 0.11  # a plush or squishy keychain toy: ~8-12 cm (retail listings) [m]
+
+
+# water an absorbent good holds, over its dry mass [-]: cotton terry holds ~2-3x its weight soaked; wrung out by hand
+# it keeps ~0.6-1x (laundry spin and wring tests); damp ~0.3-0.5x
+WET_FACTORS = ((re.compile(r"\b(?:soaked|soaking|sopping|dripping|drenched|waterlogged|saturated)\b"), 3.0),
+               (re.compile(r"\b(?:wet|wetted|soggy)\b"), 2.0), (re.compile(r"\b(?:damp|moist)\b"), 1.4))
+WRUNG_WET_FACTOR = 1.8  # wet and wrung out [-]
+ABSORBENT = frozenset({"textile", "sponge"})
+
+
+def _soaked(match: ConceptMatch, target: LexiconEntry, text: str, states: list[str]) -> tuple[ConceptMatch, list[str]]:
+    """An absorbent good said to be wet ('a wet washcloth wrung out', 'a soaked sponge'): the water it holds is in its
+    mass (its density and typical mass times the wet factor)."""
+    if target.category not in ABSORBENT and target.material not in ABSORBENT:
+        return match, states
+    factor = next((f for rx, f in WET_FACTORS if rx.search(text)), 1.0)
+    if factor > 1.0 and "twisted" in states:
+        factor = min(factor, WRUNG_WET_FACTOR)
+    if factor == 1.0:
+        return match, states
+    return match.model_copy(update={
+        "typical_mass_kg": match.typical_mass_kg * factor if match.typical_mass_kg else None,
+        "density_kg_per_m3": match.density_kg_per_m3 * factor if match.density_kg_per_m3 else None,
+        "mass_source": f"{match.mass_source}; wet: x{factor:g} for the water it holds" if match.mass_source else None,
+    }), [*states, "wet"]
 
 
 def _slice_of(reading: Reading, entry: LexiconEntry) -> float:

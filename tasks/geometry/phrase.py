@@ -26,7 +26,7 @@ STATE_WORDS: dict[str, str] = {
     "stuffed": "stuffed", "filled": "filled", "hollow": "hollow", "empty": "hollow",
     "deflated": "deflated", "inflated": "inflated", "bent": "bent", "curled": "curled",
     "flat": "flat", "unrolled": "flat", "spread": "flat", "laid": "flat",
-    "looped": "loop",
+    "looped": "loop", "wrung": "twisted", "twisted": "twisted", "wringing": "twisted",
     "sitting": "sitting", "sits": "sitting", "seated": "sitting", "lying": "lying", "laying": "lying",
     "lies": "lying", "asleep": "lying", "sleeping": "lying", "resting": "lying", "standing": "standing",
 }

@@ -33,7 +33,7 @@ from tasks.geometry.grammar.parts import (
 MIN_LAYER = 0.025  # a built sheet layer, / the flat sheet's length [-]
 MIN_WALL = 0.03  # a built mould or hat wall, / the outline's size [-]
 
-SheetState = Literal["flat", "rolled", "folded", "stacked", "crumpled", "loop"]
+SheetState = Literal["flat", "rolled", "folded", "stacked", "crumpled", "loop", "twisted"]
 
 
 def _op(part: Part, op: str, blend: float = 0.0) -> Part:
@@ -156,7 +156,32 @@ def sheet(p: SheetParams) -> list[Part]:
     if p.state == "crumpled":
         d, height = crumpled_size(w)
         return heap(d, height, t, seed=0.3 + 3 * w)
+    if p.state == "twisted":
+        return _twisted(p)
     return _rolled(p)
+
+
+TWIST_LOBES = 7  # the twisted rope's turns drawn as lobes along it [-]
+TWIST_PACKING = 0.5  # share of a wrung cloth's rope that is cloth [-]
+
+
+def _twisted(p: SheetParams) -> list[Part]:
+    """A cloth wrung out: twisted along its diagonal into a rope (0.65 of the diagonal long, its cross-section holding
+    the cloth at TWIST_PACKING), lobes turning round it, the cloth's two corners flared at the ends; along x, on the
+    ground."""
+    w = p.width
+    length = 0.65 * float(np.hypot(1.0, w))
+    r = float(np.sqrt(w * max(p.thickness, 1e-4) / (TWIST_PACKING * np.pi * length)))
+    r = max(r, 0.03 * length)
+    parts = [cylinder("body", 0.85 * r, length, (0, 0, r), edge=0.4 * r, rot=(0, 90, 0))]
+    for k in range(TWIST_LOBES):
+        x = -0.5 * length + (k + 0.5) * length / TWIST_LOBES
+        parts.append(ellipsoid(f"twist {k + 1}", (0.8 * length / TWIST_LOBES, 1.1 * r, 0.75 * r), (x, 0, r),
+                               blend=0.35 * r, rot=(45.0 * k, 0, 25.0)))
+    for side, sgn in (("left", 1.0), ("right", -1.0)):
+        parts.append(ellipsoid(f"{side} corner", (0.7 * r, 1.4 * r, 0.35 * r), (sgn * (0.5 * length + 0.3 * r), 0, 0.6 * r),
+                               blend=0.3 * r, rot=(30.0 * sgn, 0, 20.0 * sgn)))
+    return parts
 
 
 def bib(w: float, t: float) -> list[Part]:
