@@ -13,9 +13,8 @@ import shutil
 import tempfile
 import threading
 from collections.abc import Callable
-from importlib import metadata
 from pathlib import Path
-from typing import Any, TypedDict
+from typing import TypedDict
 
 import cache  # (sets the local Prefect environment before prefect is imported)
 from cache import content_key
@@ -23,26 +22,24 @@ from cache.files import cached_file, source_digest
 from cache.prefect_flow import lean_flow
 from cache.tempfiles import dead_partials, owner_tag, remove_paths
 from contracts.agents import AgentConfig
-from contracts.asset_dir import (ASSET_JSON, DEFAULT_KEEP, GeometryRecord, KeepTrials, MaterialRecord, PhysicalRecord,
-                                 attempt_path)
+from contracts.asset_dir import (ASSET_JSON, DEFAULT_KEEP, KeepTrials)
 from contracts.errors import RequirementNotMet, StageFailure
-from contracts.manifest import AssetManifest, Provenance, StageSummary
+from contracts.manifest import AssetManifest
 from contracts.manipulation import ManipulationRecord
 from contracts.request import AssetRequest
-from contracts.robot import ActionPlan, ManipulationOutcome
-from contracts.sim import Device, KernelOptions, SimConfig
-from contracts.stage import load_contract
+from contracts.sim import Device, SimConfig
 from flows import l0_geometry, l1_physical, l2_material, l3_manipulation, renders
 from tasks.agents.fallbacks import fallback_notes, reset as reset_fallbacks
 from tasks.asset_dir import AssetDir
-from tasks.record.trials import reported_attempt
-from tasks.manipulation.report import NO_GRASP_GATE
+from tasks.manifest_summary import (
+    cache_keys, l3_summary, manipulation_outcome, provenance, reported_plan, shown_attempt,
+    stage_summary,
+)
 from tasks.manipulation.replay import replay
 from tasks.publish import check_out_dir, replace_directory
 from tasks.record import recording_digest
 from tasks.request import CheckedRequest, checked_request
 
-LIBRARIES = ("numpy", "warp-lang", "prefect", "zarr", "trimesh", "coacd", "pybullet", "rerun-sdk", "pydantic")
 StageCallback = Callable[[str, str], None]  # (stage, message)
 TIMINGS: dict[str, float] = {}  # wall time per layer of the last generate_asset call in this process [s]
 
@@ -54,123 +51,11 @@ class _StageClock(TypedDict):
     t: float
 
 
-def _version(dist: str) -> str:
-    try:
-        return metadata.version(dist)
-    except metadata.PackageNotFoundError:
-        return "not installed"
-
-
-def provenance(device: Device, agents: AgentConfig | None, cpu_threads: int = 1,
-               kernel: KernelOptions | None = None) -> Provenance:
-    """Versions, backends and numerics that reproduce the asset (the MPM kernel options when not the defaults)."""
-    return Provenance(deformsmith_version=_version("deformsmith"),
-                      library_versions={lib: _version(lib) for lib in LIBRARIES},
-                      backends=(agents or AgentConfig.rule()).describe(), device=device, cpu_threads=cpu_threads,
-                      kernel=None if kernel is None or kernel == KernelOptions() else kernel)
-
-
-def finite_metrics(values: dict[str, Any]) -> dict[str, float]:
-    """The numeric, finite entries (a NaN, e.g. a hold force of a trial that never held, is written to JSON as null,
-    and asset.json would no longer load)."""
-    import math
-
-    return {k: float(v) for k, v in values.items()
-            if isinstance(v, (int, float)) and math.isfinite(float(v))}
-
-
-def stage_summary(record: GeometryRecord | PhysicalRecord | MaterialRecord) -> StageSummary:
-    """L0's, L1's or L2's line in the manifest's validation summary, from its typed record: L0 is one pass that
-    simulates nothing and names its failed gates; L1 counts its harness attempts; L2's line counts one (its harness
-    attempts are in evidence/ and the tallies)."""
-    if isinstance(record, GeometryRecord):
-        return StageSummary(stage="L0", passed=record.passed, attempts=1, sim_calls=0,
-                            metrics=finite_metrics(record.metrics), failed_gates=list(record.failed_gates))
-    return StageSummary(stage=record.stage, passed=record.passed,
-                        attempts=record.attempts if isinstance(record, PhysicalRecord) else 1,
-                        sim_calls=record.sim_calls, metrics=finite_metrics(record.metrics), failed_gates=[])
-
-
-def l3_summary(record: ManipulationRecord) -> StageSummary:
-    """L3's line in the validation summary: trials run (sim calls), the reported attempt's labels, its failed gates
-    and the reason in words (no grasp: the one failed gate 'grasp available')."""
-    trials = [a for a in record.attempts if a.labels and not a.labels.get("plan_failed")]
-    metrics = finite_metrics(record.reported_labels())
-    if record.passed:
-        failed: list[str] = []
-    elif record.status == "no_grasp":
-        failed = [NO_GRASP_GATE]
-    elif record.best_attempt is not None:
-        failed = list(record.best_attempt.failed_gates)  # judged under the contract L3 ran with
-    else:
-        failed = [g.name for g in load_contract("L3").hard_gates if not g.passes(metrics.get(g.metric))]
-    reason = None if record.passed else (record.reason or record.message or None)
-    attempts = record.harness_attempts or len(record.attempts)  # harness attempts, as evidence
-    return StageSummary(stage="L3", passed=record.passed, attempts=attempts,
-                        sim_calls=len(trials), metrics=metrics, failed_gates=failed, reason=reason)
-
-
-def shown_attempt(record: ManipulationRecord) -> int | None:
-    """The attempt the pick-and-place video shows: the accepted one, else the one the manifest reports, else the
-    last trial that ran (the one trial whose states a default asset keeps: tasks.manipulation.keep)."""
-    return reported_attempt(record)
-
-
-def reported_plan(record: ManipulationRecord) -> ActionPlan | None:
-    """The manifest's action plan: the adopted one, else the best plan tried (None when no plan was possible)."""
-    return record.plan or (record.best_attempt.plan if record.best_attempt else None)
-
-
-def cache_keys(work: Path, l3: ManipulationRecord | None) -> dict[str, str]:
-    """Task -> cache key of the results the asset carries: L2's chosen candidate's probes and its held-out probes,
-    L3's reported trial and its robustness and held-out trials (`CacheStore(root).get(key)` returns each)."""
-    keys: dict[str, str] = {}
-    if AssetDir(work).has("material"):
-        l2 = AssetDir(work).material()
-        best = l2.selection.best_iteration
-        attempts = work / "evidence" / "L2_attempts.jsonl"
-        if best is not None and attempts.is_file():
-            for line in attempts.read_text(encoding="utf-8").splitlines():
-                a = json.loads(line) if line.strip() else {}
-                if a.get("iteration") == best:
-                    for i, key in enumerate((a.get("evidence") or {}).get("probe_keys") or []):
-                        keys[f"l2.selection.{i}"] = str(key)
-        for probe in l2.held_out.probes:  # ProbeResult dumps
-            if probe["cache_key"]:
-                keys[f"l2.{probe['spec']['kind']}.held_out"] = str(probe["cache_key"])
-    if l3:
-        if l3.best_attempt is not None and l3.best_attempt.cache_key:
-            keys["l3.trial"] = l3.best_attempt.cache_key
-        # a condition row names its trial by its interaction path (None: the plan failed, nothing was stored)
-        by_path = {(attempt_path(a.attempt) if a.attempt is not None else None): a.cache_key for a in l3.attempts}
-        groups = {"robustness": l3.robustness.conditions if l3.robustness else [], "held_out": l3.held_out.conditions}
-        for group, rows in groups.items():
-            for i, row in enumerate(rows):
-                key = by_path.get(row.attempt)
-                if key:
-                    keys[f"l3.trial.{group}.{i}"] = key
-    return keys
-
-
 def require_l3(manifest: AssetManifest, out_dir: Path) -> None:
     """`--require-l3`: RequirementNotMet (exit 7) when L3 ran and did not pass; the asset is already published."""
     l3 = next((s for s in manifest.validation if s.stage == "L3"), None)
     if l3 is not None and not l3.passed:
         raise RequirementNotMet("L3", l3.reason or ", ".join(l3.failed_gates), str(out_dir))
-
-
-def manipulation_outcome(labels: dict[str, float]) -> Any:
-    """The manifest's ManipulationOutcome from a trial's labels (None when no trial ran)."""
-    if not labels or labels.get("plan_failed"):
-        return None
-    return ManipulationOutcome(
-        lifted=bool(labels["lifted"]), transported=bool(labels["transported"]),
-        released_in_target=bool(labels["released_in_target"]), settled=bool(labels["settled"]),
-        slipped=bool(labels["slipped"]), force_budget_violated=bool(labels["force_budget_violated"]),
-        numerically_healthy=bool(labels["numerically_healthy"]), max_strain=float(labels["max_strain"]),
-        strain_p99=float(labels["strain_p99"]) if "strain_p99" in labels else None,
-        max_finger_force_n=(float(labels["max_finger_force_0_n"]), float(labels["max_finger_force_1_n"])),
-        slip_distance_m=float(labels["slip_distance_m"]), place_error_m=float(labels["place_error_m"]))
 
 
 def run_manipulation(work: Path, device: Device, quality: str, agents: AgentConfig | None,

@@ -125,7 +125,7 @@ def test_default_asset_reports_the_adopted_trial_and_prints_l3_progress(tmp_path
     """The README's main job: L3 progress lines while it runs; asset.json's L3 figures, plan and material are those of
     the trial manipulation.json reports (the adopted one, else the best under the asset's own material), whatever
     L3's verdict; the provenance names that trial's cache key."""
-    from flows.generate import finite_metrics
+    from tasks.manifest_summary import finite_metrics
 
     run = _generate(tmp_path / "turtle", tmp_path / "cache")
     assert run.returncode == 0, run.stderr[-3000:]

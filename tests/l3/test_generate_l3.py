@@ -13,7 +13,9 @@ import pytest
 
 from contracts.manipulation import BestAttempt, ManipulationRecord, TrialRow
 from contracts.stage import load_contract
-from flows.generate import cache_keys, finite_metrics, l3_summary, manipulation_outcome, reported_plan, shown_attempt
+from tasks.manifest_summary import (
+    cache_keys, finite_metrics, l3_summary, manipulation_outcome, reported_plan, shown_attempt,
+)
 from tasks.manipulation.report import best_attempt, trial_reason
 from tasks.manipulation.outcome import TrialTolerances
 from tasks.manipulation.trial import TrialResult
