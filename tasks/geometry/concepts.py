@@ -92,7 +92,8 @@ feet foot meter metre meters metres millimetre millimeter centimetre centimeter 
 length width height thickness depth size sized shaped light heavy dense wobbly gooey sticky fat skinny weighted
 textured velvety knitted crocheted felt fleece minky furry hairy woolly wool cotton vinyl latex squishmallow
 squishmallows jellycat ikea giant jumbo medium pocket keychain handmade homemade kitchen bath bathroom dish thing
-things object objects item items something stuff""".split())
+things object objects item items something stuff upright sideways backwards forwards facedown faceup prone supine
+tilted leaning propped perched crouching kneeling squatting""".split())  # (the last: how it is posed, not what)
 
 
 # category of a catalogue-shaped donor -> the generic concept an unknown noun shaped like it becomes

@@ -43,3 +43,13 @@ def test_a_hacky_sack_is_a_panelled_footbag_and_a_chew_bone_is_solid_rubber() ->
 def test_a_knee_brace_is_the_neoprene_sleeve() -> None:
     match = concepts.read_text("neoprene knee brace").match
     assert match.concept == "compression_sleeve" and match.fallback_level in ("exact", "synonym")
+
+
+@pytest.mark.parametrize("text,concept", [
+    ("floppy-eared stuffed bunny sitting upright, 30cm tall", "plush_bunny"),  # set 10: 'upright' read as the noun
+    ("a teddy bear propped upright", "teddy_bear"),
+    ("a plush dog leaning sideways", "plush_dog"),
+])
+def test_a_pose_word_after_the_noun_is_not_the_object(text: str, concept: str) -> None:
+    match = concepts.read_text(text).match
+    assert match.concept == concept and not match.by_analogy
