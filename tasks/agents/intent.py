@@ -163,11 +163,12 @@ def _agrees(named: dict[str, str], concept_material: str) -> bool:
     return concept_material in named or all(concept_material in FAMILY_WORDS.get(w, ()) for w in named.values())
 
 
-def match_material(text: str, vocab: MaterialVocab | None = None, concept_material: str | None = None) -> str:
+def match_material(text: str, vocab: MaterialVocab | None = None, concept_material: str | None = None,
+                   own_words: frozenset[str] = frozenset()) -> str:
     """The vocabulary material a text names (longest matching word; else the concept's default material; else the
-    default material)."""
+    default material); own_words: the words of the concept's own nouns (see _match_material)."""
     vocab = vocab or load_material_vocab()
-    return _match_material(text.lower(), vocab, concept_material)[0]
+    return _match_material(text.lower(), vocab, concept_material, own_words)[0]
 
 
 def _narrow(low: float, high: float, frac: tuple[float, float], log: bool) -> tuple[float, float]:
@@ -308,8 +309,7 @@ def asset_targets(record: dict, given: AssetRequest | str | None = None,
 def asset_material(record: dict, targets: TargetBehaviour, vocab: MaterialVocab | None = None) -> str:
     """The vocabulary material of an asset's targets (the words of targets.intent, else the concept's material)."""
     concept = concept_of(record)
-    return _match_material(targets.intent.lower(), vocab or load_material_vocab(),
-                           concept.default_material if concept else None, own_nouns(concept))[0]
+    return match_material(targets.intent, vocab, concept.default_material if concept else None, own_nouns(concept))
 
 
 def own_nouns(concept: ConceptMatch | None) -> frozenset[str]:

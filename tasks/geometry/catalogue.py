@@ -246,7 +246,7 @@ PART_NOUNS = frozenset("""ear ears leg legs arm arms tail tails neck necks nose 
 handle handles sleeve sleeves strap straps finger fingers whisker whiskers horn horns wing wings foot feet paw paws
 tentacle tentacles beak brim visor stem stems fringe tassel tassels cord cords tube hose lace laces ribbon ribbons
 bristle bristles spike spikes fin fins tongue teeth claws claw toes antenna antennae lashes eyelashes bill mouth
-crest hood cuff cuffs collar pocket pockets zip zipper loop handle""".split())
+crest hood cuff cuffs collar pocket pockets zip zipper loop""".split())
 _PART_ADJ_SUFFIXES = ("eared", "legged", "tailed", "necked", "haired", "sleeved", "handled", "nosed", "snouted",
                       "limbed", "armed", "winged", "brimmed", "furred")
 _LIE_WORDS = frozenset({"lying", "laying", "lies", "lie", "lay", "laid", "sprawled", "stretched", "spread"})

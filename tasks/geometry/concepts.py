@@ -18,7 +18,7 @@ from tasks.geometry.catalogue_programs import catalogue_program
 from tasks.geometry.grammar.goods import PouchParams, SheetParams, folded_footprint, piece_grid
 from tasks.geometry.grammar.things import smiley
 from tasks.geometry.grammar.parts import _euler_z_to, box, ellipsoid, part_group, relief, rotated_parts, squashed_parts, torus
-from tasks.geometry.meshing import sample_program
+from tasks.geometry.meshing import program_volume, sample_program
 from tasks.geometry.sdf import program_bounds, program_sdf
 from tasks.geometry.wordnet import wordnet
 
@@ -596,7 +596,7 @@ def _pouch_of(t: str, phrase: phrase_mod.Phrase, entry: LexiconEntry, match: Con
             or piece.plan in ("pouch", "bag"):
         return None
     program = concept_program(piece.key)
-    volume = _volume(program, 32)
+    volume = program_volume(program, 32)
     solid = piece.mass_kg / volume if piece.mass_kg and volume > 0 else piece.solid_density_kg_per_m3
     color = piece.colors.get("body") or "beige"
     said = [w for _s, _e, w in _find(words[: hits[-1][0]], load_lexicon().colors)]
@@ -822,8 +822,8 @@ def build(reading: Reading, text: str) -> tuple[ShapeProgram, ConceptMatch, list
         params = {**params, **outline}
         if SHAPE_ALIASES.get(reading.match.shape_from or "") == outline.get("shape"):
             # the same filled pad drawn as a tube holds what it held: built at the size of the same volume
-            held = _volume(_with_params(entry, {k: v for k, v in params.items() if k != "shape"}, size), 32)
-            drawn = _volume(_with_params(entry, params, size), 32)
+            held = program_volume(_with_params(entry, {k: v for k, v in params.items() if k != "shape"}, size), 32)
+            drawn = program_volume(_with_params(entry, params, size), 32)
             if held > 0 and drawn > 0:
                 size *= (held / drawn) ** (1.0 / 3.0)
                 reading.match = reading.match.model_copy(update={"typical_size_m": size})
@@ -903,10 +903,10 @@ def build(reading: Reading, text: str) -> tuple[ShapeProgram, ConceptMatch, list
     match = graded(match, normalise(text))
     if reading.vacuum:  # the piece on the flat sealed film of its vacuum pack; the film's mass is the piece's
         before, program = program, pouch_words.film_wrapped(program)
-        piece = match.density_kg_per_m3 * _volume(before) if match.density_kg_per_m3 is not None \
+        piece = match.density_kg_per_m3 * program_volume(before) if match.density_kg_per_m3 is not None \
             else match.typical_mass_kg  # (built at its typical size here)
         if piece is not None:  # the film's few grams are in the piece's mass: the density over the whole
-            match = match.model_copy(update={"density_kg_per_m3": piece / max(_volume(program), 1e-12)})
+            match = match.model_copy(update={"density_kg_per_m3": piece / max(program_volume(program), 1e-12)})
         states = [*states, "vacuum-packed"]
     return program, match.model_copy(update={"colors": applied, "states": states}), warnings
 
@@ -952,7 +952,7 @@ def _slice_of(reading: Reading, entry: LexiconEntry) -> float:
     size = float(ext[1])
     plan, plan_params = PORTION_SHAPES["slice"]
     piece = grammar.build_program(plan, plan_params, {"body": lex_color(entry)}, "slice", entry.category, size)
-    share = _volume(piece, 40) / max(_volume(whole, 40), 1e-12)
+    share = program_volume(piece, 40) / max(program_volume(whole, 40), 1e-12)
     mass = reading.match.typical_mass_kg
     reading.match = reading.match.model_copy(update={
         "typical_size_m": size, "typical_mass_kg": mass * share if mass else None,
@@ -1263,12 +1263,6 @@ def relief_of(text: str, entry: LexiconEntry) -> tuple[str | None, bool]:
     return (RELIEF_WORDS[own[0][2]], False) if own else (None, False)
 
 
-def _volume(program: ShapeProgram, resolution: int = 40) -> float:
-    """The volume of the solid a program describes [m^3], from its signed distances on a grid."""
-    field_, _origin, spacing = sample_program(program, resolution)
-    return float(np.count_nonzero(field_ < 0)) * spacing ** 3
-
-
 def _body_envelope(program: ShapeProgram, resolution: int = 40) -> tuple[np.ndarray, np.ndarray]:
     """(centre, half extents) [m] of the solid a program describes, from its signed distances on a grid."""
     field_, origin, spacing = sample_program(program, resolution)
@@ -1395,8 +1389,8 @@ def _whole_object(reading: Reading, program: ShapeProgram, match: ConceptMatch, 
         new = with_relief(program, kind)
         if new is not None:
             if match.density_kg_per_m3 is not None:  # the sourced mass is the real object's, relief and all
-                match = match.model_copy(update={"density_kg_per_m3": match.density_kg_per_m3 * _volume(program)
-                                                 / _volume(new)})
+                match = match.model_copy(update={"density_kg_per_m3": match.density_kg_per_m3 * program_volume(program)
+                                                 / program_volume(new)})
             program = new
             states.append(kind)
         elif said:
@@ -1408,8 +1402,8 @@ def _whole_object(reading: Reading, program: ShapeProgram, match: ConceptMatch, 
         new = slumped(program, keep)
         if new is not None:  # 'a proofed dough ball', 'a sagging sand-filled medicine ball': its own mass
             if match.density_kg_per_m3 is not None:
-                match = match.model_copy(update={"density_kg_per_m3": match.density_kg_per_m3 * _volume(program)
-                                                 / max(_volume(new), 1e-12)})
+                match = match.model_copy(update={"density_kg_per_m3": match.density_kg_per_m3 * program_volume(program)
+                                                 / max(program_volume(new), 1e-12)})
             program = new
             states.append("slumped")
     if dentable(target) and (half or said_states & {"deflated", "flat", "crumpled"}):
@@ -1420,7 +1414,7 @@ def _whole_object(reading: Reading, program: ShapeProgram, match: ConceptMatch, 
         states.append("half inflated" if half else "deflated")
         match = _as_built_mass(match, before, DEFLATE_FACTORS[half], target.mass_kg,
                                "the same skin, with less air: its mass is the skin's")
-        match = match.model_copy(update={"density_kg_per_m3": target.mass_kg / _volume(program)})  # skin / body
+        match = match.model_copy(update={"density_kg_per_m3": target.mass_kg / program_volume(program)})  # skin / body
     elif target.empty_mass_kg is not None and re.search(r"\bempty\b", text):
         before, program = program, emptied(program)
         states.append("empty")

@@ -15,7 +15,7 @@ from contracts.shape import ShapeProgram
 from tasks.geometry import fill_words, grammar
 from tasks.geometry.grammar.goods import BAG_CAPACITY
 from tasks.geometry.grammar.parts import ellipsoid, limb, part_group
-from tasks.geometry.meshing import sample_program
+from tasks.geometry.meshing import program_volume
 from tasks.geometry.pouch_words import stated_volume_m3
 
 FILLABLE_PLANS = frozenset({"bag", "pouch"})
@@ -258,16 +258,11 @@ def bunched(program: ShapeProgram, match: ConceptMatch) -> tuple[ShapeProgram, C
     parts = [*cores, *parts,
              stem.model_copy(update={"color_rgb": (0.42, 0.33, 0.2)})]
     bunch = program.model_copy(update={"parts": parts})
-    piece_v = max(_solid_volume(program, 24), 1e-12)
-    count = BUNCH_PACKING * _solid_volume(bunch, 48) / piece_v
+    piece_v = max(program_volume(program, 24), 1e-12)
+    count = BUNCH_PACKING * program_volume(bunch, 48) / piece_v
     longest = float(grammar.program_extents(bunch, 48).max())
     mass = match.typical_mass_kg * count if match.typical_mass_kg else None
     return bunch, match.model_copy(update={"typical_mass_kg": mass, "typical_size_m": longest,
                                            "mass_source": f"{match.mass_source}; a bunch: ~{count:.0f} of them "
                                            f"({BUNCH_PACKING:g} of the cluster's volume)"})
 
-
-def _solid_volume(program: ShapeProgram, resolution: int) -> float:
-    """The volume of a program's solid from its signed distances on a grid [m^3]."""
-    field_, _origin, spacing = sample_program(program, resolution)
-    return float(np.count_nonzero(field_ < 0)) * spacing ** 3

@@ -84,6 +84,12 @@ def sample_program(program: ShapeProgram, resolution: int) -> tuple[np.ndarray, 
     return d.reshape(shape), origin, spacing
 
 
+
+def program_volume(program: ShapeProgram, resolution: int = 40) -> float:
+    """The volume of the solid a program describes [m^3], from its signed distances on a grid."""
+    field_, _origin, spacing = sample_program(program, resolution)
+    return float(np.count_nonzero(field_ < 0)) * spacing ** 3
+
 def mesh_program(program: ShapeProgram, resolution: int) -> trimesh.Trimesh:
     """Watertight, vertex-coloured mesh of a shape program (program frame, metres)."""
     field, origin, spacing = sample_program(program, resolution)
