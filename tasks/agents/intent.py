@@ -121,6 +121,9 @@ FAMILY_WORDS: dict[str, frozenset[str]] = {
     "foam": frozenset({"pu_foam", "pe_foam", "sponge"}),
     "rubber": frozenset({"rubber", "inflatable", "silicone"}),
     "latex": frozenset({"rubber", "inflatable"}),
+    # a soft surface, not a stuffing: 'a fluffy pet bed' is the foam-filled bed, 'a fluffy sock' the knit sock
+    "fluffy": frozenset({"plush", "pu_foam", "textile"}),
+    "cuddly": frozenset({"plush", "pu_foam", "textile"}),
 }
 
 

@@ -327,6 +327,9 @@ _FLAT_WORDS = frozenset({"flat", "flattened", "thin"})
 _LONG_WORDS = frozenset({"long", "elongated"})
 
 
+SMALL_BY_NATURE_M = 0.12  # 'little' on a hand-sized object (typical size at most this [m]) does not shrink it
+
+
 def _not_implied(mods: list[str], program: ShapeProgram, plan: str | None) -> list[str]:
     """The modifiers the object does not have already: a garment, bag or sheet built flat is not flattened again by
     'flat' or 'thin' (a state word there), a long strip (five times longer than wide) not stretched by 'long', a
@@ -444,6 +447,8 @@ def design_from_text(text: str, size_hint_m: float | None = None) -> Design:
         own_name = own_name.replace(match.noun, " ")
     mods, axis_scale = parse_modifiers(own_name)
     kept = _not_implied(mods, program, match.body_plan)
+    if "little" in kept and (match.typical_size_m or 1.0) <= SMALL_BY_NATURE_M:
+        kept = [m for m in kept if m != "little"]  # 'a little catnip mouse': a fond word for a small thing
     if kept != mods:  # 'a long scarf', 'jeans laid flat': the object is so already, not stretched again
         mods, axis_scale = parse_modifiers(" ".join(kept))
     size = size.model_copy(update={"axis_scale": axis_scale, **_size_form(program, match, reading)})

@@ -464,6 +464,10 @@ def read_text(text: str, serving: bool = True) -> Reading:
     if head is not None and unknown is None:
         key, noun, exact = noun_index()[_qualified(head[2], phrase)]
         entry = lex.entries[key]
+        sliced = _sliced_form(entry) if not look and donor_plan == PORTION_SHAPES["slice"] else None
+        if sliced is not None:  # 'a slice of sandwich bread': the lexicon's own slice of bread, not a cut block
+            key, noun, exact = sliced.key, sliced.nouns[0], True
+            entry, donor, donor_plan, donor_words = sliced, None, None, ""
         level: FallbackLevel = "exact" if exact else "synonym"
         kin = None if exact else analogy_mod.kin_of(entry.nouns[0], noun)
         match = _match(entry, level, noun, None)
@@ -870,6 +874,9 @@ def build(reading: Reading, text: str) -> tuple[ShapeProgram, ConceptMatch, list
         program = program.model_copy(update={"parts": [*program.parts, *smiley(tuple(centre), tuple(half))]})
     if goods is not None and goods.duplicate:
         program, match = goods_words.pair_up(program, match)
+    if goods is not None and goods.nested:  # 'a pack of 12 muffin cups': the cups nested in a stack
+        program, match = goods_words.nested_stack(program, match, goods.nested)
+        states.append(f"a stack of {goods.nested}")
     if goods is not None and goods.bunch:  # 'a bunch of grapes': a cluster of them on a stem
         program, match = goods_words.bunched(program, match)
         states.append("a bunch")
@@ -941,6 +948,16 @@ def _soaked(match: ConceptMatch, target: LexiconEntry, text: str, states: list[s
         "density_kg_per_m3": match.density_kg_per_m3 * factor if match.density_kg_per_m3 else None,
         "mass_source": f"{match.mass_source}; wet: x{factor:g} for the water it holds" if match.mass_source else None,
     }), [*states, "wet"]
+
+
+def _sliced_form(entry: LexiconEntry) -> LexiconEntry | None:
+    """The lexicon's entry for one slice of this object ('slice of bread' for the loaf), if it has one."""
+    index = noun_index()
+    for noun in entry.nouns:
+        for form in (f"slice of {noun}", f"{noun} slice"):
+            if form in index and index[form][0] != entry.key:
+                return load_lexicon().entries[index[form][0]]
+    return None
 
 
 def _slice_of(reading: Reading, entry: LexiconEntry) -> float:

@@ -41,6 +41,15 @@ PUFFER_MASS = 1.3  # a down or padded garment over the same garment unpadded (re
 # rain jackets 0.35-0.9 kg) [-]
 
 
+# 'a pack of 12 silicone muffin cups', 'a stack of cupcake liners': open cups sold nested one in another
+_NESTED = re.compile(r"\b(?:pack|packet|stack|sleeve|set|box|tube|pile)s?\s+of\s+(?:(\d+|a dozen|dozen|two|three|four|"
+                     r"five|six|seven|eight|nine|ten|twelve|twenty)\s+)?")
+_COUNT_WORDS = {"a dozen": 12, "dozen": 12, "two": 2, "three": 3, "four": 4, "five": 5, "six": 6, "seven": 7,
+                "eight": 8, "nine": 9, "ten": 10, "twelve": 12, "twenty": 20}
+NEST_DEFAULT = 6  # cups in a pack or stack that gives no count [-]
+NEST_STEP = 0.12  # the rise of each nested cup over the one below, / one cup's height [-]
+
+
 @dataclass
 class GoodsChange:
     """What the words changed: the plan parameters, the size to build at, the concept (mass), whether to build the
@@ -51,6 +60,7 @@ class GoodsChange:
     match: ConceptMatch
     duplicate: bool = False
     bunch: bool = False
+    nested: int = 0
     fill_color: str | None = None
     notes: tuple[str, ...] = ()
 
@@ -101,6 +111,12 @@ def apply(target: LexiconEntry, portion: str | None, text: str, params: dict, si
             out.duplicate = True
             out.match = match.model_copy(update={"typical_mass_kg": mass})
         out.notes += ("a pair: two of them",)
+    nest = _NESTED.search(text)
+    base = {**target.params, **out.params}
+    if nest is not None and plan == "mould" and base.get("columns", 1) == 1 and base.get("rows", 1) == 1:
+        word = nest.group(1)
+        out.nested = int(word) if word and word.isdigit() else _COUNT_WORDS.get(word or "", NEST_DEFAULT)
+        out.notes += (f"a stack of {out.nested}, nested",)
     if portion in BUNCH_WORDS and plan in BUNCHABLE_PLANS and size_m <= BUNCH_PIECE_MAX_M:
         out.bunch = True
         out.notes += ("a bunch: a cluster of them on a stem",)
@@ -203,6 +219,25 @@ def pair_up(program: ShapeProgram, match: ConceptMatch) -> tuple[ShapeProgram, C
         return program, match
     longest = float(grammar.program_extents(two, 48).max())
     return two, match.model_copy(update={"typical_size_m": longest})
+
+
+def nested_stack(program: ShapeProgram, match: ConceptMatch, count: int) -> tuple[ShapeProgram, ConceptMatch]:
+    """`count` open cups nested one in another, each NEST_STEP of a cup's height above the one below (as many as a
+    program's 64 parts hold); the concept's typical mass times the count and its typical size the stack's longest
+    extent."""
+    count = max(1, min(count, 64 // max(len(program.parts), 1)))
+    rise = NEST_STEP * float(grammar.program_extents(program, 32)[2])
+    parts = []
+    for k in range(count):
+        for part in program.parts:
+            x, y, z = part.transform.translation_m
+            moved = part.transform.model_copy(update={"translation_m": (x, y, z + k * rise)})
+            parts.append(part.model_copy(update={"transform": moved, "name": part.name if k == 0 else
+                                                 f"{part.name} {k + 1}"}))
+    stack = program.model_copy(update={"parts": parts})
+    mass = match.typical_mass_kg * count if match.typical_mass_kg else None
+    return stack, match.model_copy(update={"typical_mass_kg": mass,
+                                           "typical_size_m": float(grammar.program_extents(stack, 48).max())})
 
 
 def painted_fill(program: ShapeProgram, color: str) -> ShapeProgram:

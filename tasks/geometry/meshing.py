@@ -11,6 +11,10 @@ from contracts.shape import ShapeProgram
 from tasks.geometry.sdf import part_colors, program_bounds, program_sdf
 
 _CHUNK = 1_000_000
+# a slender object (a pool noodle, a rope) keeps at least this many cells across its middle extent, up to
+# MAX_RESOLUTION_FACTOR x the resolution along its longest (64 cells along a 1.5 m noodle left 2.7 across it)
+MIN_CELLS_ACROSS = 12
+MAX_RESOLUTION_FACTOR = 4
 _LEVEL_NUDGE = 1e-3  # field samples closer to the level than this x the largest step across it are moved off it [-]
 
 
@@ -90,9 +94,18 @@ def program_volume(program: ShapeProgram, resolution: int = 40) -> float:
     field_, _origin, spacing = sample_program(program, resolution)
     return float(np.count_nonzero(field_ < 0)) * spacing ** 3
 
+def slender_resolution(program: ShapeProgram, resolution: int) -> int:
+    """Cells along the longest extent that leave MIN_CELLS_ACROSS across the middle one (at most
+    MAX_RESOLUTION_FACTOR x resolution; a sheet's thin side is not counted)."""
+    size = np.sort(program_bounds(program)[1] - program_bounds(program)[0])
+    wanted = int(np.ceil(MIN_CELLS_ACROSS * size[2] / max(float(size[1]), 1e-12)))
+    return min(MAX_RESOLUTION_FACTOR * resolution, max(resolution, wanted))
+
+
 def mesh_program(program: ShapeProgram, resolution: int) -> trimesh.Trimesh:
-    """Watertight, vertex-coloured mesh of a shape program (program frame, metres)."""
-    field, origin, spacing = sample_program(program, resolution)
+    """Watertight, vertex-coloured mesh of a shape program (program frame, metres); `resolution` cells along its
+    longest extent, more for a slender one (slender_resolution)."""
+    field, origin, spacing = sample_program(program, slender_resolution(program, resolution))
     mesh = mesh_from_field(field, origin, spacing)
     rgb = part_colors(mesh.vertices, program, sharpness_m=1.5 * spacing)
     mesh.visual = trimesh.visual.ColorVisuals(mesh, vertex_colors=linear_to_srgb8(rgb))

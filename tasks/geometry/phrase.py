@@ -26,7 +26,7 @@ STATE_WORDS: dict[str, str] = {
     "stuffed": "stuffed", "filled": "filled", "hollow": "hollow", "empty": "hollow",
     "deflated": "deflated", "inflated": "inflated", "bent": "bent", "curled": "curled",
     "flat": "flat", "unrolled": "flat", "spread": "flat", "laid": "flat",
-    "looped": "loop", "wrung": "twisted", "twisted": "twisted", "wringing": "twisted",
+    "looped": "loop", "wrung": "twisted", "twisted": "twisted", "wringing": "twisted", "knotted": "knotted",
     "sitting": "sitting", "sits": "sitting", "seated": "sitting", "lying": "lying", "laying": "lying",
     "lies": "lying", "asleep": "lying", "sleeping": "lying", "resting": "lying", "standing": "standing",
 }
@@ -212,6 +212,8 @@ def parse(text: str, known: Callable[[str], bool] | None = None,
         after = [t.text.lower() for t in doc[tok.i + 1: tok.i + 5]]
         if word == "loop" and "in" in before and "loop" not in phrase.states:
             phrase.states.append("loop")  # 'lying in a loose loop' (not 'a sponge with a loop')
+        if word == "knot" and {"in", "into"} & set(before) and "knotted" not in phrase.states:
+            phrase.states.append("knotted")  # 'tied in a loose knot' (not 'a balloon tied with a string')
         if word in ("hanging", "hung", "hangs") and "hanger" in after and "hung" not in phrase.states:
             phrase.states.append("hung")  # 'a shirt hanging on a hanger' (not 'a bag hanging from a hook')
     own = {t.i for t in span}

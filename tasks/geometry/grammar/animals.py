@@ -12,12 +12,14 @@ from pydantic import Field
 from contracts.base import Model
 from contracts.shape import Part
 from tasks.geometry.grammar.parts import (
+    _euler_z_to,
     cone,
     cylinder,
     ellipsoid,
     limb,
     mirrored,
     rotated_parts,
+    sphere_directions,
     superellipsoid,
     tapered,
 )
@@ -130,6 +132,8 @@ class QuadrupedParams(Model):
                                                  "along the body, thigh forward, shin back, a long flat foot splayed "
                                                  "out (a frog, a toad)")
     top_eyes: bool = Field(default=False, description="two bulging eyes on top of the head (a frog, a hippo)")
+    spines: bool = Field(default=False, description="a coat of spines over the back, swept towards the tail (a "
+                         "hedgehog, a porcupine)")
     state: Literal["standing", "sitting", "lying", "curled"] = Field(
         default="standing", description="standing on its legs; sitting on its haunches, chest up; lying down, head on "
         "its front paws; curled up asleep, the body bent round into a ring, head on its tail")
@@ -171,7 +175,30 @@ def quadruped(p: QuadrupedParams) -> list[Part]:
     if p.hind == "folded":  # the rear pair replaced by folded jumping legs
         parts = [q for q in parts if "rear leg" not in q.name] + _folded_hind_legs(p, zb)
     head = _quadruped_head_and_tail(p, zb)
-    return [*parts, *head, *(_top_eyes(head, p, zb) if p.top_eyes else [])]
+    spines = _back_spines(p, zb) if p.spines else []
+    return [*parts, *head, *(_top_eyes(head, p, zb) if p.top_eyes else []), *spines]
+
+
+SPINE_COUNT = 38
+
+
+def _back_spines(p: QuadrupedParams, zb: float) -> list[Part]:
+    """Soft cones over the upper body behind the head, each along the surface normal swept back towards the tail
+    (the body ellipsoid's radii (0.5, bw / 2, bh / 2) about (0, 0, zb))."""
+    radii = np.array([0.5, p.body_width / 2, p.body_height / 2])
+    dirs = sphere_directions(4 * SPINE_COUNT, seed=0.4)
+    dirs = dirs[(dirs[:, 2] > -0.1) & (dirs[:, 0] < 0.55)][:SPINE_COUNT]  # the back and flanks, not the belly or face
+    out: list[Part] = []
+    for i, d in enumerate(dirs):
+        at = np.array([0.0, 0.0, zb]) + d / np.linalg.norm(d / radii)
+        n = d / radii ** 2
+        n = n / np.linalg.norm(n)
+        axis = n + np.array([-0.7, 0.0, 0.0])  # swept back
+        axis = axis / np.linalg.norm(axis)
+        h = 0.3 * float(radii.min()) + 0.07
+        out.append(cone(f"spine {i + 1}", 0.06, 0.008, h, at + axis * (0.5 * h - 0.05), blend=0.012,
+                        rot=_euler_z_to(axis)))
+    return out
 
 
 def _folded_hind_legs(p: QuadrupedParams, zb: float) -> list[Part]:

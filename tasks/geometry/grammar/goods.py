@@ -26,6 +26,7 @@ from tasks.geometry.grammar.parts import (
     limb,
     rotated_parts,
     superellipsoid,
+    swept,
     tapered,
     torus,
 )
@@ -33,7 +34,7 @@ from tasks.geometry.grammar.parts import (
 MIN_LAYER = 0.025  # a built sheet layer, / the flat sheet's length [-]
 MIN_WALL = 0.03  # a built mould or hat wall, / the outline's size [-]
 
-SheetState = Literal["flat", "rolled", "folded", "stacked", "crumpled", "loop", "twisted"]
+SheetState = Literal["flat", "rolled", "folded", "stacked", "crumpled", "loop", "twisted", "knotted"]
 
 
 def _op(part: Part, op: str, blend: float = 0.0) -> Part:
@@ -50,11 +51,13 @@ class SheetParams(Model):
 
     state: SheetState = Field(default="flat", description="flat; crumpled (a bunched heap); rolled (a roll along the "
                               "sheet's width, the layers "
-                              "seen as rings at its ends); folded (halved `folds` times); stacked (`layers` sheets)")
-    shape: Literal["rect", "round", "bib", "hourglass", "envelope"] = Field(
+                              "seen as rings at its ends); folded (halved `folds` times); stacked (`layers` sheets); "
+                              "knotted (tied in a loose knot at its middle, a scarf)")
+    shape: Literal["rect", "round", "bib", "hourglass", "envelope", "mask", "bread"] = Field(
         default="rect", description="a rectangle or a round sheet (tortilla, pad); laid flat: a bib (its neck cut out, "
         "the straps' snap), an hourglass (a nappy: leg cut-outs, padded core, waist tabs), an envelope (a padded "
-        "mailer: sealed edges and its flap)")
+        "mailer: sealed edges and its flap), a mask (a pleated face mask with its nose wire and ear loops), bread (a "
+        "slice of sandwich bread: a square foot, a rounded top, the crust round the crumb)")
     width: float = Field(default=0.5, gt=0.002, le=1.0, description="width / length [-]")
     thickness: float = Field(default=0.005, gt=0.0, le=0.2, description="the real sheet's thickness / length [-]")
     folds: int = Field(default=1, ge=1, le=3, description="halvings when folded [-]")
@@ -158,6 +161,8 @@ def sheet(p: SheetParams) -> list[Part]:
         return heap(d, height, t, seed=0.3 + 3 * w)
     if p.state == "twisted":
         return _twisted(p)
+    if p.state == "knotted":
+        return _knotted(p)
     return _rolled(p)
 
 
@@ -181,6 +186,33 @@ def _twisted(p: SheetParams) -> list[Part]:
     for side, sgn in (("left", 1.0), ("right", -1.0)):
         parts.append(ellipsoid(f"{side} corner", (0.7 * r, 1.4 * r, 0.35 * r), (sgn * (0.5 * length + 0.3 * r), 0, 0.6 * r),
                                blend=0.3 * r, rot=(30.0 * sgn, 0, 20.0 * sgn)))
+    return parts
+
+
+KNOT_TAIL = 0.3  # each tail of a scarf tied in a knot at its middle, / the flat scarf's length [-]
+
+
+def _knotted(p: SheetParams) -> list[Part]:
+    """A long cloth tied in a loose knot at its middle, lying on the ground along x: the knot (a lump with the band
+    wrapped round it), the two tails out of it, gathered at the knot and spreading to the cloth's full width at the
+    ends, a little curved."""
+    w = p.width
+    t = sheet_layer(p)
+    r = max(float(np.sqrt(w * max(p.thickness, 1e-4) / (TWIST_PACKING * np.pi))), 0.035)
+    parts = [ellipsoid("body", (2.0 * r, 1.7 * r, 1.0 * r), (0, 0, 1.0 * r)),
+             _scaled(torus("knot wrap", 1.25 * r, 0.6 * r, (0, 0, 1.0 * r), rot=(90, 0, 15), blend=0.3 * r),
+                     (1.0, 1.0, 0.8))]
+    seg = KNOT_TAIL / 3
+    for side, sgn in (("left", -1.0), ("right", 1.0)):
+        x, y = sgn * 1.5 * r, 0.0
+        for i, (share, high, turn) in enumerate(((0.35, 1.0, 8.0), (0.6, 0.55, -4.0), (0.9, 0.0, 10.0))):
+            yaw = sgn * turn
+            cx = x + sgn * 0.5 * seg * np.cos(np.radians(yaw))
+            cy = y + 0.5 * seg * np.sin(np.radians(yaw)) * sgn
+            thick = max(high * r, t)
+            parts.append(box(f"{side} tail" if i < 2 else f"{side} end", (seg * 1.1, share * w, thick),
+                             (cx, cy, thick / 2), edge=0.45 * thick, blend=0.5 * r, rot=(0, 0, yaw)))
+            x, y = x + sgn * seg * np.cos(np.radians(yaw)), y + seg * np.sin(np.radians(yaw)) * sgn
     return parts
 
 
@@ -236,7 +268,32 @@ def envelope(w: float, t: float) -> list[Part]:
     return parts
 
 
-FORMED_SHEETS = {"bib": bib, "hourglass": hourglass, "envelope": envelope}
+def face_mask(w: float, t: float) -> list[Part]:
+    """A pleated face mask lying flat, length 1 along x: the body, three pleats across its height (ridges along x),
+    the nose wire along the top edge, and an elastic ear loop lying flat at each short end."""
+    parts = [box("body", (1.0, w, t), (0, 0, t / 2), edge=0.3 * t)]
+    for k, y in enumerate((-0.24, 0.0, 0.24)):
+        parts.append(box(f"pleat {k + 1}", (0.97, 0.06 * w + t, 0.7 * t), (0, y * w, 1.05 * t), edge=0.3 * t,
+                         blend=0.25 * t))
+    parts.append(box("nose wire", (0.55, 0.03 + 0.5 * t, 0.5 * t), (0, w / 2 - 0.05, 1.0 * t), edge=0.2 * t))
+    loop = max(0.6 * t, 0.012)  # the elastic's radius, as thick as the body shows it at draft
+    for side, x in (("left", -1.0), ("right", 1.0)):
+        parts.append(_scaled(torus(f"{side} ear loop", 0.4 * w, loop, (x * 0.52, 0, loop)), (0.55, 1.0, 1.0)))
+    return parts
+
+
+def bread_slice(w: float, t: float) -> list[Part]:
+    """A slice of sandwich bread lying flat, length 1 along x (the loaf's height): the crumb, a square foot and a
+    rounded top a little wider than it, and the crust a rounded rim along its outline."""
+    parts = [box("body", (0.8, 0.9 * w, 0.9 * t), (-0.1, 0, t / 2), edge=0.15 * t),
+             _scaled(cylinder("top crumb", w / 2, 0.9 * t, (0.28, 0, t / 2), edge=0.15 * t), (0.44 / w, 1.0, 1.0))]
+    arc = [(0.28 + 0.22 * np.cos(a), (w / 2) * np.sin(a), t / 2) for a in np.radians(np.linspace(-100, 100, 15))]
+    outline = np.array([(-0.5, 0.45 * w, t / 2), (-0.5, -0.45 * w, t / 2), (0.2, -0.45 * w, t / 2), *arc,
+                        (0.2, 0.45 * w, t / 2), (-0.5, 0.45 * w, t / 2)])
+    return parts + swept(["crust"], outline, np.full(len(outline), 0.5 * t), blend=0.1 * t)
+
+
+FORMED_SHEETS = {"bib": bib, "hourglass": hourglass, "envelope": envelope, "mask": face_mask, "bread": bread_slice}
 
 
 def fold_layers(p: SheetParams) -> int:
@@ -413,8 +470,10 @@ class PouchParams(Model):
     fill: float = Field(default=0.6, ge=0.0, le=1.0, description="how full: 0 an empty, flat bag; 1 a round pillow [-]")
     seam: float = Field(default=0.04, ge=0.0, le=0.15, description="width of the sealed or sewn border / length [-]")
     squareness: float = Field(default=0.35, gt=0.1, le=1.0, description="1 an oval pouch, small a square one [-]")
-    port: Literal["none", "iv", "cap", "spout"] = Field(default="none", description="iv: two ports at the front and "
-                                                         "a hanger hole; cap: a screw neck; spout: one tube")
+    port: Literal["none", "iv", "cap", "spout", "tied"] = Field(default="none", description="iv: two ports at the "
+                                                                 "front and a hanger hole; cap: a screw neck; spout: "
+                                                                 "one tube; tied: a sack's neck gathered and tied, "
+                                                                 "its cloth flaring past the tie")
     channels: int = Field(default=0, ge=0, le=8, description="stitched channels across a quilted pad (an ankle "
                           "weight) [-]")
     strap: float = Field(default=0.0, ge=0.0, le=1.5, description="a flat strap from the pad's +x end (velcro, a "
@@ -443,6 +502,11 @@ def pouch(p: PouchParams) -> list[Part]:
     elif p.port == "cap":
         parts.append(cylinder("neck", 0.08, 0.12, (0.5, 0, h / 2), edge=0.01, rot=(0, 90, 0), blend=0.03))
         parts.append(cylinder("cap", 0.1, 0.08, (0.58, 0, h / 2), edge=0.015, rot=(0, 90, 0), blend=0.005))
+    elif p.port == "tied":  # the cloth gathered from the body's end into the tie, then flaring open
+        r0 = 0.8 * min(h, w) / 2
+        parts.append(tapered("neck", (0.3, 0, h / 2), (0.62, 0, h / 2), r0, 0.06, blend=0.08))
+        parts.append(torus("tie", 0.065, 0.025, (0.62, 0, h / 2), rot=(0, 90, 0), blend=0.005))
+        parts.append(cone("ruffle", 0.06, 0.14, 0.14, (0.71, 0, h / 2), edge=0.015, rot=(0, 90, 0), blend=0.03))
     elif p.port == "spout":
         parts.append(limb("spout", (0.42, 0, h / 2), (0.58, 0, h / 2), 0.035, blend=0.02))
         parts.append(cylinder("cap", 0.05, 0.05, (0.6, 0, h / 2), edge=0.01, rot=(0, 90, 0), blend=0.005))
