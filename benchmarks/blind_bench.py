@@ -23,7 +23,7 @@ import numpy as np
 
 from contracts.errors import InputError
 from contracts.request import AssetRequest
-from flows.l1_physical import l1_plan
+from tasks.physical.plan import l1_plan
 from tasks.agents.intent import targets_from_request
 from tasks.geometry import pipeline, sources
 from tasks.geometry.outputs import load_l0, write_outputs

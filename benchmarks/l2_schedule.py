@@ -27,7 +27,8 @@ from contracts.material import Material
 from contracts.sim import SimConfig
 from contracts.stage import load_contract
 from flows.cli.apps import console, emit_json, fail, results
-from flows.l2_material import l2_targets, physical_for, probe_parameters, screen_dampings, screen_moduli
+from flows.l2_material import l2_targets, probe_parameters, screen_dampings, screen_moduli
+from tasks.physical.plan import physical_for
 from tasks.agents.orchestrator import initial_values
 from tasks.asset_dir import AssetDir
 from tasks.geometry.outputs import load_l0

@@ -16,14 +16,14 @@ import re
 import shutil
 import socket
 import time
-from collections.abc import Sequence
+from collections.abc import Iterable, Sequence
 from pathlib import Path
 from typing import Any
 
 GRACE_S = 60.0  # a pid-only temporary must be untouched this long before it counts as dead [s]
 _RRD_TMP = re.compile(r"^.+\.rrd\.(\d+)\.tmp$")
 _ENTRY_TMP = re.compile(r"^[0-9a-f]{16,}\.(\d+)\.[0-9a-f]{8}$")
-_PARTIAL = re.compile(r"^\.(?P<name>.+)\.(?:partial|tmp|old)-(?P<host>[^~]+)~(?P<pid>\d+)~")
+_PARTIAL = re.compile(r"^\.(?P<name>.+)\.(?P<kind>partial|tmp|old)-(?P<host>[^~]+)~(?P<pid>\d+)~")
 
 
 def owner_tag() -> str:
@@ -77,6 +77,22 @@ def dead_partials(parent: Path, name: str | None = None) -> list[Path]:
         if m and m.group("host") == host and not pid_alive(int(m.group("pid"))) and name in (None, m.group("name")):
             found.append(path)
     return sorted(found)
+
+
+def remove_own_working_dirs(places: Iterable[Path]) -> None:
+    """Remove this process's `.<name>.partial-` / `.tmp-` working directories found in `places` (a process stopped
+    by a signal, whose unwinding did not get to them). A set-aside previous asset (`.old-`) is left for the next run
+    to restore or clear, as after a kill."""
+    host, pid = socket.gethostname(), str(os.getpid())
+    for place in places:
+        try:
+            entries = list(place.iterdir()) if place.is_dir() else []
+        except OSError:
+            continue
+        for entry in entries:
+            m = _PARTIAL.match(entry.name)
+            if m and m.group("kind") != "old" and (m.group("host"), m.group("pid")) == (host, pid):
+                shutil.rmtree(entry, ignore_errors=True)
 
 
 def remove_paths(paths: list[Path]) -> tuple[list[Path], int]:

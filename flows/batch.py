@@ -9,7 +9,6 @@ The Prefect flows that deployments run (one request per run, a batch fanned out 
 
 from __future__ import annotations
 
-import json
 import os
 import signal
 import subprocess
@@ -28,9 +27,11 @@ from cache import runtime
 from cache.config import ENV_VAR
 from contracts.errors import InputError
 from tasks.batch_requests import (
-    BatchItem, BatchReport, ItemCallback, RequestResult, failed_result, parse_requests,
+    BatchItem, BatchReport, ItemCallback, RequestResult, cache_counts, failed_result, not_started, parse_requests,
+    process_result,
 )
 from tasks.probes.workers import child_probe_workers
+from tasks.processes import Children, sigterm_as_interrupt, signal_group
 
 LOG_DIR = "_logs"
 DEFAULT_JOB = "flows.batch_job:generate_job"
@@ -41,106 +42,13 @@ REQUIRE_L3_JOB = "flows.batch_job:generate_job_requiring_l3"
 # ---- the local runner: one process per request ------------------------------------------------------
 
 
-def _cache_counts(events_file: Path, pid: int, since: int) -> tuple[int, int]:
-    """(misses, hits) of one process in the cache's execution log, reading from byte offset `since`."""
-    if not events_file.is_file():
-        return 0, 0
-    miss = hit = 0
-    with events_file.open("rb") as fh:
-        fh.seek(since)
-        for raw in fh:
-            try:
-                ev = json.loads(raw)
-            except json.JSONDecodeError:
-                continue
-            if ev.get("pid") == pid:
-                miss += ev.get("outcome") == "miss"
-                hit += ev.get("outcome") == "hit"
-    return miss, hit
-
-
-def _death(rc: int) -> str:
-    if rc < 0:
-        try:
-            return f"process died from signal {signal.Signals(-rc).name}"
-        except ValueError:
-            return f"process died from signal {-rc}"
-    return f"process exited with code {rc} without a result"
-
-
-def _last_line(log: Path) -> str:
-    try:
-        lines = [ln.strip() for ln in log.read_text(encoding="utf-8", errors="replace").splitlines() if ln.strip()]
-    except OSError:
-        return ""
-    return lines[-1][-300:] if lines else ""
-
-
-class Children:
-    """The batch's running request processes, so that an interrupted batch stops them (each runs in a session of its
-    own, out of reach of the terminal's Ctrl-C) and starts no more."""
-
-    def __init__(self) -> None:
-        self._lock = threading.Lock()
-        self._procs: set[subprocess.Popen[bytes]] = set()
-        self.stopping = threading.Event()
-
-    def start(self, cmd: list[str], **kwargs: Any) -> subprocess.Popen[bytes] | None:
-        """Start a child in a new session; None once the batch is stopping."""
-        with self._lock:
-            if self.stopping.is_set():
-                return None
-            proc = subprocess.Popen(cmd, start_new_session=True, **kwargs)
-            self._procs.add(proc)
-            return proc
-
-    def finished(self, proc: subprocess.Popen[bytes]) -> None:
-        with self._lock:
-            self._procs.discard(proc)
-
-    def stop_all(self, grace_s: float = 10.0) -> None:
-        """SIGINT to every child's process group (a request removes its working directory on the way out), SIGKILL
-        to what is left after grace_s; no child starts after this."""
-        with self._lock:
-            self.stopping.set()
-            procs = list(self._procs)
-        for proc in procs:
-            _signal_group(proc, signal.SIGINT)
-        deadline = time.monotonic() + grace_s
-        try:
-            for proc in procs:
-                try:
-                    proc.wait(timeout=max(0.0, deadline - time.monotonic()))
-                except subprocess.TimeoutExpired:
-                    pass
-        finally:
-            for proc in procs:
-                _signal_group(proc, signal.SIGKILL)  # also what the request left running in its group
-
-
-def _signal_group(proc: subprocess.Popen[bytes], sig: signal.Signals) -> None:
-    try:
-        os.killpg(proc.pid, sig)
-    except (ProcessLookupError, PermissionError):
-        pass
-
-
-INTERRUPTED = "interrupted"
-
-
-def _not_started(item: BatchItem) -> RequestResult:
-    """The result of a request that an interrupted batch never started."""
-    return RequestResult(name=item.name, line=item.line, status="failed", attempts=0,
-                         reason=f"{INTERRUPTED} before it started")
-
-
 def run_one(item: BatchItem, out_root: Path, device: str, job: str, env: dict[str, str], cache_dir: Path,
             timeout_s: float | None = None, children: Children | None = None) -> RequestResult:
     """Run one request in a child process (`python -m flows.batch_job`) and read back its result."""
     assert item.request is not None
     children = children or Children()
     if children.stopping.is_set():
-        return _not_started(item)
+        return not_started(item)
     logs = out_root / LOG_DIR
     logs.mkdir(parents=True, exist_ok=True)
     log, result_file = logs / f"{item.name}.log", logs / f"{item.name}.result.json"
@@ -157,29 +65,18 @@ def run_one(item: BatchItem, out_root: Path, device: str, job: str, env: dict[st
     with log.open("w", encoding="utf-8") as fh:
         proc = children.start(cmd, stdout=fh, stderr=subprocess.STDOUT, env=env)
         if proc is None:
-            return _not_started(item)
+            return not_started(item)
         try:
             rc = proc.wait(timeout=timeout_s)
-            reason_extra = None
+            timed_out = None
         except subprocess.TimeoutExpired:
-            _signal_group(proc, signal.SIGKILL)
+            signal_group(proc, signal.SIGKILL)
             rc = proc.wait()
-            reason_extra = f"timed out after {timeout_s:g} s"
+            timed_out = f"timed out after {timeout_s:g} s"
         finally:
             children.finished(proc)
-    wall = time.perf_counter() - t0
-    if reason_extra is None and children.stopping.is_set() and not result_file.is_file():
-        reason_extra = f"{INTERRUPTED} after {wall:.1f} s"
-    misses, hits = _cache_counts(events, proc.pid, since)
-    common = dict(name=item.name, line=item.line, wall_s=round(wall, 3), tasks_executed=misses, tasks_cached=hits,
-                  log=str(log))
-    if reason_extra is None and result_file.is_file():
-        data = json.loads(result_file.read_text(encoding="utf-8"))
-        return RequestResult(status=data["status"], reason=data.get("reason"), asset_dir=data.get("asset_dir"),
-                             **common)
-    reason = reason_extra or _death(rc)
-    tail = "" if reason.startswith(INTERRUPTED) else _last_line(log)  # its last line is the KeyboardInterrupt
-    return RequestResult(status="failed", reason=f"{reason}; last log line: {tail}" if tail else reason, **common)
+    return process_result(item, rc, time.perf_counter() - t0, result_file, log, cache_counts(events, proc.pid, since),
+                          timed_out, children.stopping.is_set())
 
 
 @contextmanager
@@ -237,7 +134,7 @@ def run_batch(requests_jsonl: Path, out_root: Path, concurrency: int = 1, device
     interrupted = False
     if runnable:
         children = Children()
-        with prefect_api_for_children() as prefect_env, _sigterm_as_interrupt():
+        with prefect_api_for_children() as prefect_env, sigterm_as_interrupt():
             env = {**os.environ, **prefect_env, ENV_VAR: str(cache_dir),
                    **child_probe_workers(concurrency)}  # the requests' probe threads share the cores
             with ThreadPoolExecutor(max_workers=concurrency) as pool:
@@ -260,21 +157,3 @@ def run_batch(requests_jsonl: Path, out_root: Path, concurrency: int = 1, device
     if interrupted:
         raise KeyboardInterrupt
     return report
-
-
-@contextmanager
-def _sigterm_as_interrupt() -> Iterator[None]:
-    """In the main thread, SIGTERM (a scheduler or `kill` stopping the batch) stops it as Ctrl-C does, so that its
-    children, which run in sessions of their own, do not outlive it."""
-    if threading.current_thread() is not threading.main_thread() or callable(signal.getsignal(signal.SIGTERM)):
-        yield  # (a handler of the caller's own, as the command line's: it stops the batch as Ctrl-C does)
-        return
-
-    def interrupt(signum: int, frame: Any) -> None:
-        raise KeyboardInterrupt
-
-    previous = signal.signal(signal.SIGTERM, interrupt)
-    try:
-        yield
-    finally:
-        signal.signal(signal.SIGTERM, previous)

@@ -13,8 +13,6 @@ import importlib
 import json
 import os
 import signal
-import threading
-import time
 import traceback
 from collections.abc import Callable
 from pathlib import Path
@@ -22,6 +20,7 @@ from typing import Any
 
 from contracts.errors import DeformSmithError
 from contracts.request import AssetRequest
+from tasks.processes import stop_when_orphaned
 
 Job = Callable[[AssetRequest, Path, str], dict[str, Any]]
 
@@ -79,23 +78,6 @@ def _write_atomic(path: Path, data: dict[str, Any]) -> None:
     tmp = path.with_name(f".{path.name}.{os.getpid()}")
     tmp.write_text(json.dumps(data, indent=2, default=str) + "\n", encoding="utf-8")
     os.replace(tmp, path)
-
-
-def stop_when_orphaned(poll_s: float = 0.5, grace_s: float = 10.0) -> None:
-    """Once the parent process is gone, interrupt the main thread as Ctrl-C would (directed at it, so that a blocking
-    call returns), and exit after grace_s if it has not stopped by then."""
-    parent = os.getppid()
-    main_thread = threading.main_thread().ident
-    assert main_thread is not None
-
-    def watch() -> None:
-        while os.getppid() == parent:
-            time.sleep(poll_s)
-        signal.pthread_kill(main_thread, signal.SIGINT)
-        time.sleep(grace_s)
-        os._exit(130)
-
-    threading.Thread(target=watch, name="orphan-watch", daemon=True).start()
 
 
 def main(argv: list[str] | None = None) -> int:

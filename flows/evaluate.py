@@ -8,77 +8,28 @@ Cases fan out over processes (``workers``); each case runs its arms in order ins
 
 from __future__ import annotations
 
-import os
 import time
 import traceback
 from collections.abc import Callable
 from concurrent.futures import ProcessPoolExecutor, as_completed
-from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
 import cache  # noqa: F401  (local Prefect environment before prefect is imported)
 from cache.runtime import set_env, shared_server_env
-from contracts.evaluation import ARMS, ArmResult, Condition, SuiteCase
+from contracts.evaluation import ArmResult, Condition, SuiteCase
 from contracts.agents import AgentConfig
 from contracts.sim import SimConfig
 from flows import eval_arms, l0_geometry
+from tasks.evaluation.arms import harness_result, hierarchy_result
+from tasks.evaluation.runs import ALL, EvalOptions, case_done, load_records, needed_arms, not_built, write_record
 from tasks.evaluation.suite import load_suite, select, to_request
 from tasks.evaluation.report import write_report
 from tasks.probes.workers import child_probe_workers
 from tasks.evaluation.vision import with_ratings
 from prefect import flow
 
-ALL = ("hierarchy", "harness", "manipulation")
 Progress = Callable[[str], None]
-
-
-@dataclass(frozen=True)
-class EvalOptions:
-    """How an evaluation runs."""
-
-    suite: str = "default"
-    ablations: tuple[str, ...] = ALL
-    limit: int | None = None
-    case_ids: tuple[str, ...] = ()
-    quality: str = "draft"
-    device: str = "cpu"
-    workers: int = 1
-    out: Path = Path("out/eval")
-    llm: str | None = None
-    videos: bool = True
-    vision_llm: str | None = None  # rates our assets' drop videos; None: the --llm model, if any
-    conditions: tuple[Condition, ...] = field(default_factory=tuple)
-
-
-def record_path(out: Path, ablation: str, arm: str, case_id: str) -> Path:
-    """Where one arm's record of one case lives."""
-    return Path(out) / "records" / ablation / arm / f"{case_id}.json"
-
-
-def write_record(out: Path, r: ArmResult) -> Path:
-    """Atomic write of a record."""
-    path = record_path(out, r.ablation, r.arm, r.case_id)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    tmp = path.with_name(f".{path.name}.{os.getpid()}.tmp")
-    tmp.write_text(r.model_dump_json(indent=2) + "\n", encoding="utf-8")
-    tmp.replace(path)
-    return path
-
-
-def load_records(out: Path) -> list[ArmResult]:
-    """Every record under OUT/records."""
-    root = Path(out) / "records"
-    return [ArmResult.model_validate_json(p.read_text(encoding="utf-8")) for p in sorted(root.rglob("*.json"))]
-
-
-def _needed(case: SuiteCase, ablations: tuple[str, ...]) -> list[tuple[str, str]]:
-    """(ablation, arm) pairs this case takes part in."""
-    return [(a, arm) for a in ablations for arm in ARMS[a] if a != "manipulation" or case.manipulation]
-
-
-def _done(out: Path, case: SuiteCase, ablations: tuple[str, ...]) -> bool:
-    return all(record_path(out, a, arm, case.id).is_file() for a, arm in _needed(case, ablations))
 
 
 def run_case(case: SuiteCase, suite_file: Path, opts: EvalOptions, conditions: list[Condition]) -> list[str]:
@@ -88,7 +39,7 @@ def run_case(case: SuiteCase, suite_file: Path, opts: EvalOptions, conditions: l
     request = to_request(case, suite_file.parent, image_dir, opts.quality)  # type: ignore[arg-type]
     sim = SimConfig(device=opts.device)
     agents = AgentConfig.llm(opts.llm) if opts.llm else None
-    needed = _needed(case, opts.ablations)
+    needed = needed_arms(case, opts.ablations)
     written: list[str] = []
 
     def keep(r: ArmResult) -> None:
@@ -99,10 +50,8 @@ def run_case(case: SuiteCase, suite_file: Path, opts: EvalOptions, conditions: l
     l0 = l0_geometry.run_l0(request, quality=request.quality)
     base = out / "cases" / case.id
     if not l0.checks.passed:
-        why = f"L0 gates failed: {', '.join(l0.checks.failed)}"
-        for ablation, arm in needed:
-            keep(ArmResult(ablation=ablation, arm=arm, case_id=case.id, case_kind=case.kind, delivered=False,
-                           hard_failure=True, failure_kinds=[why], error=why, wall_s=time.perf_counter() - t0))
+        for r in not_built(case, needed, f"L0 gates failed: {', '.join(l0.checks.failed)}", time.perf_counter() - t0):
+            keep(r)
         return written
     l0_wall = time.perf_counter() - t0
     h: dict[str, Any] | None = None
@@ -110,12 +59,12 @@ def run_case(case: SuiteCase, suite_file: Path, opts: EvalOptions, conditions: l
         t1 = time.perf_counter()
         h = eval_arms.run_hierarchical(case, request, l0, base / "hierarchical", sim, agents, videos=opts.videos)
         wall = l0_wall + time.perf_counter() - t1
-        ours = eval_arms.hierarchy_result(case, h, wall)
+        ours = hierarchy_result(case, h, wall)
         rater = opts.vision_llm or opts.llm
         if rater and opts.videos and ours.delivered:
             ours = with_ratings(ours, request.text or request.material_intent or case.id, rater)
         keep(ours)
-        keep(eval_arms.harness_result(case, h, wall - l0_wall))
+        keep(harness_result(case, h, wall - l0_wall))
     if "harness" in opts.ablations and h is not None:
         keep(eval_arms.run_one_shot(case, request, h, sim, time.perf_counter()))
     if "hierarchy" in opts.ablations:
@@ -157,7 +106,7 @@ def evaluate(opts: EvalOptions, progress: Progress | None = None) -> dict[str, A
     out = Path(opts.out).absolute()
     out.mkdir(parents=True, exist_ok=True)
     opts = EvalOptions(**{**opts.__dict__, "out": out})
-    todo = [c for c in cases if not _done(out, c, opts.ablations)]
+    todo = [c for c in cases if not case_done(out, c, opts.ablations)]
     say(f"{len(cases)} case(s), {len(cases) - len(todo)} already recorded, {len(todo)} to run "
         f"with {opts.workers} worker(s)")
     t0 = time.perf_counter()

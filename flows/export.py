@@ -9,52 +9,17 @@ written; a target that fails midway leaves the earlier export untouched.
 
 from __future__ import annotations
 
-import json
 import shutil
 import tempfile
 from pathlib import Path
 
-from pydantic import ValidationError
-
 from cache.tempfiles import dead_partials, owner_tag, remove_paths
 from contracts.errors import InputError
 from contracts.export import ExportManifest, TargetManifest
-from tasks.export.inputs import ExportInputs, load_export_inputs, write_readme, write_tet_files
+from tasks.export.inputs import load_export_inputs, write_tetmesh_dir
+from tasks.export.manifest import MANIFEST, TETMESH_DIR, read_manifest
 from tasks.export.registry import exporter, resolve_targets
-from tasks.export.tetmesh import tet_quality
 from tasks.publish import replace_directory, write_text_atomic
-
-MANIFEST = "manifest.json"
-TETMESH_DIR = "tetmesh"
-
-
-def _old_manifest(out_root: Path) -> ExportManifest | None:
-    """The manifest an earlier export left (None when absent or unreadable: it is then rewritten)."""
-    try:
-        return ExportManifest.model_validate_json((out_root / MANIFEST).read_text(encoding="utf-8"))
-    except (OSError, ValidationError):
-        return None
-
-
-def _write_tetmesh_dir(inputs: ExportInputs, out_dir: Path) -> dict[str, float]:
-    """tetmesh/: the .vtk, .msh, quality.json and a README; returns the quality figures."""
-    write_tet_files(inputs, out_dir)
-    quality = tet_quality(inputs.tet)
-    surface_volume = float(abs(_surface_volume(inputs)))
-    quality["surface_volume_m3"] = surface_volume
-    quality["volume_error_rel"] = abs(quality["volume_m3"] - surface_volume) / surface_volume
-    (out_dir / "quality.json").write_text(json.dumps(quality, indent=2, sort_keys=True) + "\n", encoding="utf-8")
-    write_readme(out_dir, "tet mesh", f"meshio.read('{inputs.slug}.msh') or meshio.read('{inputs.slug}.vtk')", [
-        "Linear tetrahedra (isosurface stuffing, deterministic), positively oriented; quality figures in quality.json."])
-    return quality
-
-
-def _surface_volume(inputs: ExportInputs) -> float:
-    """Enclosed volume of the L0 surface mesh [m^3] (divergence theorem)."""
-    import numpy as np
-
-    p = inputs.surface_vertices_m[inputs.surface_faces]
-    return float(np.einsum("ij,ij->i", p[:, 0], np.cross(p[:, 1], p[:, 2])).sum() / 6.0)
 
 
 def export_asset(asset_dir: Path, to: str | list[str], out_root: Path | None = None,
@@ -72,7 +37,7 @@ def export_asset(asset_dir: Path, to: str | list[str], out_root: Path | None = N
     remove_paths(dead_partials(out_root, "export"))  # what a killed export left
     work = Path(tempfile.mkdtemp(prefix=f".export.tmp-{owner_tag()}", dir=out_root))
     try:
-        _write_tetmesh_dir(inputs, work / TETMESH_DIR)
+        write_tetmesh_dir(inputs, work / TETMESH_DIR)
         built: dict[str, TargetManifest] = {}
         for name, export in exporters.items():
             folder = work / name
@@ -84,7 +49,7 @@ def export_asset(asset_dir: Path, to: str | list[str], out_root: Path | None = N
             built[name] = target.model_copy(update={"files": [f"{name}/{f}" for f in target.files]})
         for name in [TETMESH_DIR, *built]:
             replace_directory(work / name, out_root / name)
-        old = _old_manifest(out_root)
+        old = read_manifest(out_root)
         targets = {**(old.targets if old else {}), **built}
         manifest = ExportManifest(asset=str(asset_dir.resolve()), tet_mesh=f"{TETMESH_DIR}/{inputs.slug}.vtk",
                                   targets=targets)

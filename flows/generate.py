@@ -7,22 +7,15 @@ working directory from hits and re-executes only what never finished. The workin
 
 from __future__ import annotations
 
-import json
-import os
 import shutil
-import tempfile
-import threading
 from collections.abc import Callable
 from pathlib import Path
 from typing import TypedDict
 
 import cache  # (sets the local Prefect environment before prefect is imported)
-from cache import content_key
-from cache.files import cached_file, source_digest
 from cache.prefect_flow import lean_flow
-from cache.tempfiles import dead_partials, owner_tag, remove_paths
 from contracts.agents import AgentConfig
-from contracts.asset_dir import (ASSET_JSON, DEFAULT_KEEP, KeepTrials)
+from contracts.asset_dir import DEFAULT_KEEP, KeepTrials
 from contracts.errors import RequirementNotMet, StageFailure
 from contracts.manifest import AssetManifest
 from contracts.manipulation import ManipulationRecord
@@ -31,13 +24,12 @@ from contracts.sim import Device, SimConfig
 from flows import l0_geometry, l1_physical, l2_material, l3_manipulation, renders
 from tasks.agents.fallbacks import fallback_notes, reset as reset_fallbacks
 from tasks.asset_dir import AssetDir
+from tasks.export.physgaussian import write_physgaussian_export
 from tasks.manifest_summary import (
-    cache_keys, l3_summary, manipulation_outcome, provenance, reported_plan, shown_attempt,
-    stage_summary,
+    asset_files, cache_keys, l3_summary, manipulation_outcome, provenance, reported_plan, stage_summary,
 )
-from tasks.manipulation.replay import replay
-from tasks.publish import check_out_dir, replace_directory
-from tasks.record import recording_digest
+from tasks.manipulation.pick_place_video import write_pick_and_place_video
+from tasks.publish import check_out_dir, publish_directory, working_dir
 from tasks.request import CheckedRequest, checked_request
 
 StageCallback = Callable[[str, str], None]  # (stage, message)
@@ -70,73 +62,13 @@ def run_manipulation(work: Path, device: Device, quality: str, agents: AgentConf
     return record
 
 
-def write_pick_and_place_video(work: Path, record: ManipulationRecord) -> Path | None:
-    """renders/pick_and_place.mp4 of the attempt the record shows (cached by the attempt's bytes); None, and an earlier
-    L3's video removed, when the record shows no recorded trial (no grasp, or its interaction data is absent)."""
-    n = shown_attempt(record)
-    video = work / "renders" / "pick_and_place.mp4"
-    if n is None or not (work / "interaction" / f"attempt_{n:03d}").is_dir():
-        video.unlink(missing_ok=True)
-        return None
-    video.parent.mkdir(parents=True, exist_ok=True)
-    cached_file(pick_and_place_video_key(work, n), video, lambda path: replay(work, n, video=path))
-    return video
-
-
-def pick_and_place_video_key(work: Path, attempt: int) -> str:
-    """The video's cache key: the recorded attempt's bytes and the code and libraries that render and encode it
-    (rendering it takes ~10 s on the CPU; a warm rerun copies it)."""
-    root = Path(__file__).resolve().parent.parent
-    renderer = [root / "tasks" / "manipulation" / f"{m}.py" for m in
-                ("replay", "scene", "data", "particle_frames", "video")]
-    renderer += sorted(p for p in (root / "tasks" / "render").glob("*.py") if not p.name.startswith(("card", "bench")))
-    renderer += [root / "tasks" / "robot" / f"{m}.py" for m in ("visual", "panda", "trajectory")]  # the robot drawn
-    code = source_digest([*renderer, root / "tasks" / "geometry" / "gaussians.py", root / "contracts" / "robot.py",
-                          root / "contracts" / "grippers"],
-                         ("imageio", "imageio-ffmpeg", "numpy", "opencv-python-headless", "opencv-python", "pybullet",
-                          "scipy", "warp-lang"))
-    return content_key("pick_and_place_video", code, work / "interaction" / f"attempt_{attempt:03d}")
-
-
-def _files(work: Path) -> dict[str, str]:
-    """Role -> relative path of what the asset directory holds."""
-    roles = {"manifest": ASSET_JSON, "mesh": "mesh.glb", "collision": "collision", "particles": "particles.zarr",
-             "gaussians": "gaussians.ply", "evidence": "evidence", "recordings": "recordings", "renders": "renders",
-             "interaction": "interaction", "geometry_record": "geometry.json", "physical_record": "physical.json",
-             "material_record": "material.json", "manipulation_record": "manipulation.json",
-             "physgaussian_config": "export/physgaussian_config.json",
-             "drop_video_front": "renders/drop_front.mp4", "drop_video_side": "renders/drop_side.mp4",
-             "pick_and_place_video": "renders/pick_and_place.mp4", "card_png": "renders/card.png",
-             "card_html": "renders/card.html"}
-    return {role: rel for role, rel in roles.items() if (work / rel).exists() or role == "manifest"}
-
-
-def write_physgaussian_export(adir: AssetDir) -> Path:
-    """A PhysGaussian-style simulation config next to the Gaussians: the adopted material's E, nu (AssetDir.
-    adopted_material), L1's density and the particle file (SI)."""
-    phys, mat = adir.physical_model(), adir.adopted_material().material
-    config = {
-        "material": "jelly",  # PhysGaussian's name for its neo-Hookean model
-        "E": mat.youngs_modulus_pa, "nu": mat.poisson_ratio, "density": phys.density_kg_per_m3,
-        "damping_rate_per_s": mat.damping_rate_per_s,
-        "g": list(phys.gravity_m_per_s2), "friction_ground": phys.ground_friction,
-        "gaussians_ply": "../gaussians.ply", "particles_zarr": "../particles.zarr",
-        "units": "SI (Pa, kg/m^3, m, s); frame z up, object resting on z = 0",
-        "particle_volumes": "particles.zarr/volumes_m3", "n_particles": phys.particle_count,
-    }
-    path = adir.path / "export" / "physgaussian_config.json"
-    path.parent.mkdir(parents=True, exist_ok=True)
-    path.write_text(json.dumps(config, indent=2, sort_keys=True) + "\n", encoding="utf-8")
-    return path
-
-
 def write_asset_records(adir: AssetDir, manifest: AssetManifest) -> AssetManifest:
     """asset.json with the adopted material (AssetDir.adopted_material) and the file roles, and the PhysGaussian
     config and the card that carry the same material; returns the manifest as written."""
     manifest = manifest.model_copy(update={"material": adir.adopted_material().material})
     write_physgaussian_export(adir)
     renders.write_card(adir.path, manifest)  # the asset card: renders/card.png, card.html (what L0-L3 found)
-    manifest = manifest.model_copy(update={"files": _files(adir.path)})
+    manifest = manifest.model_copy(update={"files": asset_files(adir.path)})
     adir.write_manifest(manifest)
     return manifest
 
@@ -157,26 +89,6 @@ def refresh_after_l3(work: Path, record: ManipulationRecord) -> AssetManifest | 
     return write_asset_records(adir, old.model_copy(update={
         "validation": validation, "action_plan": reported_plan(record),
         "manipulation": manipulation_outcome(l3.metrics), "provenance": prov}))
-
-
-def _partial_prefix(out_dir: Path) -> str:
-    """Working directories are named .<name>.partial-<host>~<pid>~<random>, so a dead owner can be recognised."""
-    return f".{out_dir.name}.partial-"
-
-
-def remove_stale_partials(out_dir: Path) -> list[Path]:
-    """Remove working directories of out_dir left by a process of this host that died (SIGKILL, power loss)."""
-    return remove_paths(dead_partials(out_dir.parent, out_dir.name))[0]
-
-
-def _set_aside(out_dir: Path) -> Path | None:
-    """Move a previous asset out of the way, as tasks.publish.replace_directory does (`.<name>.old-<owner>`: a dead
-    owner's is cleared by remove_stale_partials), so that removing its ~350 files does not hold up the publish."""
-    if not out_dir.exists():
-        return None
-    aside = Path(tempfile.mkdtemp(prefix=f".{out_dir.name}.old-{owner_tag()}", dir=out_dir.parent))
-    os.replace(out_dir, aside / "previous")
-    return aside
 
 
 def generate_asset(request: AssetRequest | CheckedRequest, out_dir: Path, device: Device = "cpu",
@@ -226,8 +138,7 @@ def generate(checked: AssetRequest | CheckedRequest, out_dir: Path, device: Devi
     out_dir = Path(out_dir).expanduser().absolute()
     check_out_dir(out_dir)
     out_dir.parent.mkdir(parents=True, exist_ok=True)
-    remove_stale_partials(out_dir)
-    work = Path(tempfile.mkdtemp(prefix=_partial_prefix(out_dir) + owner_tag(), dir=out_dir.parent))
+    work = working_dir(out_dir)  # .<name>.partial-<owner>: a dead run's of out_dir are removed first
     try:
         note("L0", "geometry")
         l0 = l0_geometry.run_l0(request, quality=request.quality, agents=agents)  # a litellm Designer writes the shape too
@@ -271,45 +182,12 @@ def generate(checked: AssetRequest | CheckedRequest, out_dir: Path, device: Devi
             request=request, physical_model=physical, validation=validation, action_plan=plan, manipulation=outcome,
             provenance=prov, extra={"drop_protocol": protocol}))
         note("publish", str(out_dir))
-        previous = _set_aside(out_dir)
-        try:
-            replace_directory(work, out_dir)  # (out_dir is free: a rename)
-        except BaseException:
-            if previous is not None and not out_dir.exists():  # the previous asset stays in place
-                os.replace(previous / "previous", out_dir)
-                shutil.rmtree(previous, ignore_errors=True)
-            raise
-        if previous is not None:  # removed beside the rest of the run; the thread is joined before the process ends
-            threading.Thread(target=shutil.rmtree, args=(previous,), kwargs={"ignore_errors": True},
-                             name="remove-previous-asset").start()
+        publish_directory(work, out_dir)  # one rename; the previous asset is removed beside the rest of the run
         TIMINGS["publish"] = time.perf_counter() - float(clock["t"])
         return manifest
     finally:
         if work.exists():
             shutil.rmtree(work, ignore_errors=True)
-
-
-def content_fingerprint(asset_dir: Path) -> dict[str, str]:
-    """Relative path -> digest of every file: JSON canonically, `.rrd` by what it shows (Rerun stamps ids and
-    wall-clock times on each write), everything else by bytes. Two runs of the same request on CPU match."""
-    import hashlib
-
-    root = Path(asset_dir)
-    out: dict[str, str] = {}
-    for path in sorted(p for p in root.rglob("*") if p.is_file()):
-        rel = path.relative_to(root).as_posix()
-        if path.suffix == ".rrd":
-            out[rel] = recording_digest(path)
-        elif path.suffix == ".json":
-            doc = json.dumps(json.loads(path.read_text(encoding="utf-8")), sort_keys=True)
-            out[rel] = hashlib.sha256(doc.encode()).hexdigest()
-        elif path.suffix == ".jsonl":
-            text = path.read_text(encoding="utf-8")
-            lines = [json.dumps(json.loads(ln), sort_keys=True) for ln in text.splitlines() if ln.strip()]
-            out[rel] = hashlib.sha256("\n".join(lines).encode()).hexdigest()
-        else:
-            out[rel] = hashlib.sha256(path.read_bytes()).hexdigest()
-    return out
 
 
 def load_manifest(asset_dir: Path) -> AssetManifest:

@@ -19,8 +19,8 @@ from contracts.stage import StageContract, StageName, load_contract
 from tasks.agents.orchestrator import ProbeRunner, run_stage
 from tasks.agents.records import AttemptRecorder
 from tasks.agents.roles import build_roles
-from tasks.agents.vocab import StageRoutes, stage_routes
-from tasks.probes.registry import stage_probes
+from tasks.agents.vocab import stage_routes
+from tasks.probes.registry import with_probe_routes
 from cache import content_key
 from cache.prefect_task import KEY_SCHEMA
 
@@ -99,21 +99,6 @@ def task_probe_runner(probes: Sequence[ProbeCall], parallel: bool = False) -> Pr
         return [_with_key(state, k) for state, k in zip(states, keys)]
 
     return run
-
-
-def with_probe_routes(routes: StageRoutes, contract: StageContract) -> StageRoutes:
-    """The stage's route table plus the route defaults (gate routes, couplings) of the registered probes its contract
-    runs, for the metrics routes.yaml and the contract leave out: a new probe brings its own routes."""
-    table = routes.model_dump()
-    added = False
-    for probe in stage_probes(contract):
-        own = probe.route_table()
-        for section in ("gates", "couplings"):
-            for metric, route in own[section].items():
-                if metric not in table[section]:
-                    table[section][metric] = route
-                    added = True
-    return StageRoutes.model_validate(table) if added else routes
 
 
 @lean_flow(name="harness-stage", validate_parameters=False, persist_result=False)  # the probe runner: by name

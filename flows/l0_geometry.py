@@ -13,7 +13,7 @@ from cache import cached_task
 from contracts.agents import AgentConfig
 from contracts.request import AssetRequest, Quality
 from contracts.stage import StageContract, load_contract
-from tasks.agents import fallbacks
+from tasks.agents.fallbacks import l0_designer_stand_in
 from tasks.agents.records import AttemptRecorder
 from tasks.geometry import pipeline, sources
 from tasks.geometry.checks import GeometryChecks
@@ -118,7 +118,7 @@ def run_l0(request: AssetRequest, quality: Quality | None = None, contract: Stag
     stood_in: str | None = None
     if agents is not None and agents.designer.backend == "litellm" and request.input_kind == "text" \
             and request.geometry_backend is None:
-        stood_in = _designer_without_credentials(agents)
+        stood_in = l0_designer_stand_in(agents)
         if stood_in is None:
             critic = agents.critic if agents.critic.backend == "litellm" else None
             settings = settings.model_copy(update={"designer": agents.designer, "critic": critic})
@@ -127,21 +127,6 @@ def run_l0(request: AssetRequest, quality: Quality | None = None, contract: Stag
         info = result.info.model_copy(update={"warnings": [*result.info.warnings, stood_in]})
         result = L0Result(result.mesh, result.proxy, result.particles, result.gaussians, info, result.checks)
     return result
-
-
-def _designer_without_credentials(agents: AgentConfig) -> str | None:
-    """When the Designer's model has no credentials in the environment: the fallback note (the offline grammar
-    stands in; L0 is keyed as offline), or LLMUnavailable under --llm-fallback fail. None when it can be asked."""
-    model = str(agents.designer.model)
-    missing = fallbacks.missing_credentials(model)
-    if not missing:
-        return None
-    reason = f"no credentials for {model}: {', '.join(missing)} not set"
-    if agents.designer.on_failure == "fail":
-        raise fallbacks.LLMUnavailable(f"L0 designer: {reason} (--llm-fallback fail)")
-    fallbacks.UNAVAILABLE[model] = reason
-    fallbacks.announce(f"the offline rule backend stands in for litellm/{model} at L0 shape_designer: {reason}")
-    return f"L0 designer: the offline grammar stood in for litellm/{model} ({reason})"
 
 
 def _run_l0(request: AssetRequest, settings: pipeline.L0Settings, contract: StageContract,

@@ -1,92 +1,32 @@
 """L1 physical model flow: density + friction (Designer) -> mass model -> rigid probes in pybullet -> gates.
 
 Reads an L0 asset directory, writes `physical.json` (the frozen PhysicalModel, probe metrics and gates),
-`evidence/attempts.jsonl` (L1 lines) and `recordings/L1_*.rrd` into it. Each probe is a content-cached task.
+`evidence/attempts.jsonl` (L1 lines) and `recordings/L1_*.rrd` into it. Each probe is a content-cached task. The
+priors, the mass check and a candidate's physical model: tasks.physical.plan.
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass
 from pathlib import Path
 
-import numpy as np
-
 import cache
-from cache import cache_relative, cache_resolve
-from contracts.agents import AgentConfig, StageOutcome, TargetBand, TargetBehaviour
+from cache import cache_resolve
+from contracts.agents import AgentConfig, StageOutcome
 from contracts.asset_dir import DEFAULT_KEEP, KeepTrials, PhysicalRecord
 from contracts.errors import InputError
 from contracts.physical import PhysicalModel
-from contracts.probes import ProbeResult, ProbeSpec
+from contracts.probes import ProbeResult
 from contracts.stage import StageContract, StageProbes, load_contract
 from flows.harness import run_harness
 from flows.probe_tasks import probe_task, run_probes
 from prefect import flow
-from tasks.agents.intent import asset_material, asset_targets, concept_of, explicit_numbers
-from tasks.agents.vocab import load_material_vocab
 from tasks.asset_dir import AssetDir, geometry_info
 from tasks.geometry.outputs import L0Asset, load_l0
-from tasks.physical.mass import MassCheck, mass_check
-from tasks.physical.model import build_physical_model, mass_plausible
+from tasks.physical.plan import l1_plan, mass_result, physical_from_values, rigid_probe_values
 from tasks.probes.probe import ProbeContext
 from tasks.probes.registry import by_kind, stage_probes
 from tasks.probes.registry import probe as find_probe
-from tasks.publish import copy_file_atomic
-
-@dataclass(frozen=True)
-class L1Plan:
-    """What L1 starts from: target behaviour and priors, the material class and the mass check."""
-
-    targets: TargetBehaviour
-    material: str
-    mass: MassCheck
-
-
-def longest_extent_m(asset: L0Asset) -> float:
-    """Longest side of the asset's bounding box [m] (the size a typical mass is scaled to)."""
-    return float(np.max(asset.mesh.extents))
-
-
-def l1_plan(asset: L0Asset, intent: str | None, contract: StageContract | None = None) -> L1Plan:
-    """Priors (density, friction) from the asset's request (or the intent given) and its mass check: the material's
-    density range x volume, and the typical mass of the concept L0 built when it has one (tasks.physical.mass)."""
-    vocab = load_material_vocab()
-    contract = contract or load_contract("L1")
-    words = asset_targets(asset.record, intent, vocab)
-    material = asset_material(asset.record, words, vocab)
-    entry = vocab.materials[material]
-    priors = {k: words.priors[k] for k in ("density_kg_per_m3", "ground_friction", "gripper_friction")
-              if k in words.priors}
-    rho = priors["density_kg_per_m3"]
-    drange = entry.prior_ranges.get("density_kg_per_m3", (rho / 2, rho * 2))
-    field = contract.field("density_kg_per_m3")
-    mass = mass_check(float(np.sum(asset.volumes_m3)), longest_extent_m(asset), float(asset.mesh.area), material,
-                      rho, drange, concept_of(asset.record), entry.shell_wall_thickness_m,
-                      "density_kg_per_m3" in explicit_numbers(words.intent)[1], (field.low, field.high))
-    priors["density_kg_per_m3"] = mass.density_kg_per_m3
-    lo, hi = mass.band_kg
-    bands = [TargetBand(metric="mass_kg", unit="kg", low=lo, high=hi, scale="log", source=mass.source)]
-    targets = TargetBehaviour(bands=bands, priors=priors, matched_words=words.matched_words, intent=words.intent)
-    return L1Plan(targets, material, mass)
-
-
-def l1_targets(asset: L0Asset, intent: str | None) -> tuple[TargetBehaviour, str, tuple[float, float]]:
-    """Priors, the material class and the density range the mass gate admits (l1_plan without the mass record)."""
-    plan = l1_plan(asset, intent)
-    return plan.targets, plan.material, plan.mass.density_range_kg_per_m3
-
-
-def physical_from_values(asset: L0Asset, values: dict[str, float], category: str) -> PhysicalModel:
-    """The PhysicalModel of a candidate's density and friction."""
-    return build_physical_model(asset.particles_m, asset.volumes_m3, asset.spacing_m, values["density_kg_per_m3"],
-                                values["ground_friction"], values["gripper_friction"], category)
-
-
-def _mass_result(phys: PhysicalModel, density_range: tuple[float, float]) -> ProbeResult:
-    """The mass model's observations (no simulation)."""
-    ok = mass_plausible(phys.mass_kg, phys.density_kg_per_m3, density_range)
-    return ProbeResult(spec=ProbeSpec(kind="mass"), sim_calls=0,
-                       metrics={"mass_kg": phys.mass_kg, "mass_plausibility": float(ok), "volume_m3": phys.volume_m3})
+from tasks.record.keep import keep_recording
 
 
 def l1_runner(asset: L0Asset, contract: StageContract, category: str, density_range: tuple[float, float],
@@ -98,7 +38,7 @@ def l1_runner(asset: L0Asset, contract: StageContract, category: str, density_ra
     def run(values: dict[str, float], action: str) -> list[ProbeResult]:
         phys = physical_from_values(asset, values, category)
         ctx = ProbeContext(asset, contract, phys)
-        results = [_mass_result(phys, density_range), *run_probes(probes, ctx, device=None)]
+        results = [mass_result(phys, density_range), *run_probes(probes, ctx, device=None)]
         if recording_kinds is not None:
             recording_kinds.update({r.recording: r.spec.kind for r in results if r.recording})
         return results
@@ -114,17 +54,12 @@ def _copy_recordings(outcome: StageOutcome, asset_dir: Path, kinds: dict[str, st
     if outcome.best_iteration is None:
         return [], {}
     chosen = next(a for a in outcome.attempts if a.iteration == outcome.best_iteration)
-    out, cached = [], {}
+    out: list[str] = []
+    cached: dict[str, str] = {}
     for src in chosen.evidence.recordings:
-        p = cache_resolve(src)
-        if p.suffix == ".rrd" and p.is_file():
-            dest = asset_dir / "recordings" / by_kind("L1", kinds[src]).recording_name()
-            if keep != "all":
-                dest.unlink(missing_ok=True)  # (an earlier run's copy, on a rerun of the layer)
-                cached[str(dest.relative_to(asset_dir))] = cache_relative(p)
-                continue
-            copy_file_atomic(p, dest)  # a new file: a hard link of a working copy (tasks.publish) is never rewritten
-            out.append(str(dest.relative_to(asset_dir)))
+        if cache_resolve(src).suffix == ".rrd":
+            kept = keep_recording(src, asset_dir, by_kind("L1", kinds[src]).recording_name(), keep, cached)
+            out += [kept] if kept else []
     return out, cached
 
 
@@ -177,20 +112,7 @@ def run_rigid_probe(kind: str, asset_dir: Path, rho: float | None = None, fricti
     if kind not in kinds:
         raise InputError(f"unknown rigid probe '{kind}'; choose one of {', '.join(kinds)}")
     asset = load_l0(Path(asset_dir))
-    if AssetDir(asset_dir).has("physical"):
-        base = load_physical(Path(asset_dir))
-        values = {"density_kg_per_m3": base.density_kg_per_m3, "ground_friction": base.ground_friction,
-                  "gripper_friction": base.gripper_friction}
-    else:
-        values = dict(l1_targets(asset, None)[0].priors)
-    if rho is not None:
-        values["density_kg_per_m3"] = rho
-    if friction is not None:
-        values["ground_friction"] = friction
-    for name, v in values.items():
-        if not contract.field(name).contains(float(v)):
-            f = contract.field(name)
-            raise InputError(f"{name}={v} is outside the L1 contract's bounds [{f.low}, {f.high}] {f.unit}")
+    values = rigid_probe_values(contract, Path(asset_dir), asset, rho, friction)
     phys = physical_from_values(asset, values, geometry_info(asset.record).category)
     probe = find_probe("L1", kind)
     with cache.local_runtime():

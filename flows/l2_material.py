@@ -14,21 +14,17 @@ are the structural checks: their hard-gate metrics count, and their other compre
 
 from __future__ import annotations
 
-import math
 from pathlib import Path
 from typing import Any
 
 
 import cache
-from cache import cache_relative, cache_resolve
 from cache.prefect_flow import lean_flow
 from contracts.agents import AgentConfig, StageOutcome, TargetBehaviour
-from contracts.asset_dir import (DEFAULT_KEEP, MATERIAL_JSON, HeldOutSummary, KeepTrials, MaterialRecord,
-                                 SelectionSummary)
-from contracts.errors import InputError
+from contracts.asset_dir import DEFAULT_KEEP, MATERIAL_JSON, KeepTrials
 from contracts.material import Material
 from contracts.physical import PhysicalModel
-from contracts.probes import ProbeResult, not_measured_reason
+from contracts.probes import ProbeResult
 from contracts.request import AssetRequest
 from contracts.sim import SimConfig
 from contracts.stage import StageContract, load_contract
@@ -36,44 +32,22 @@ from flows.harness import run_harness
 from flows.probe_tasks import probe_task, run_probes
 from prefect import flow
 from tasks.agents.intent import asset_targets
-from tasks.asset_dir import AssetDir, geometry_info
+from tasks.asset_dir import AssetDir
 from tasks.geometry.outputs import L0Asset, load_l0
+from tasks.physical.plan import physical_for
+from tasks.probes.l2_record import l2_metrics, material_record, object_view
 from tasks.probes.probe import ProbeContext
 from tasks.probes.registry import by_kind, stage_probes
 from tasks.probes.screening import (l2_probe, probe_parameters, screen, screen_dampings, screen_moduli,
                                     specimen_arrays)
 from tasks.probes.workers import probe_workers
-from tasks.publish import copy_file_atomic, write_text_atomic
-from tasks.agents import merge_metrics
-from tasks.physical import build_physical_model
+from tasks.publish import write_text_atomic
+from tasks.record.keep import keep_recording
 from tasks.agents.orchestrator import initial_values
-from flows.l1_physical import l1_targets
-
-OBJECT_VIEW_KINDS = ("compress", "drop")  # object probes whose non-gate metrics are reported as object_<name>
-
 
 # -- the probes: registered in tasks/probes/deformable_probes/, listed in the contract's parameters.probes; the
 # screening and its cached task: tasks/probes/screening.py ------------------------------------------------------------
 # -- inputs ----------------------------------------------------------------------------------------------------------
-def object_view(results: list[ProbeResult], contract: StageContract) -> list[ProbeResult]:
-    """The object's compression / drop metrics renamed object_<name> except the hard-gate ones: the band metrics come
-    from the specimen (the object's effective modulus is its structure's, e.g. 0.024 x E for a dog on four legs).
-    Idempotent: a result already in this view is returned as it is."""
-    gates = {g.metric for g in contract.hard_gates}
-    out = []
-    for r in results:
-        if r.spec.kind in OBJECT_VIEW_KINDS:
-            r = r.model_copy(update={"metrics": {(k if k in gates or k.startswith("object_") else f"object_{k}"): v
-                                                 for k, v in r.metrics.items()}})
-        out.append(r)
-    return out
-
-
-def l2_metrics(results: list[ProbeResult], contract: StageContract) -> dict[str, float]:
-    """One metrics dict of L2 probes (object view + specimen), each gate metric at its worst (merge_metrics)."""
-    return merge_metrics(object_view(results, contract), contract)
-
-
 def probe_inputs(kind: str, asset: L0Asset, physical: PhysicalModel, material: Material, contract: StageContract,
                  sim: SimConfig, held_out: bool = False) -> dict[str, Any]:
     """Keyword inputs of one probe task (what its cache key is made of): the probe module's `inputs`."""
@@ -97,22 +71,6 @@ def load_physical_model(asset_dir: Path) -> PhysicalModel:
     return AssetDir(asset_dir).physical_model()
 
 
-def physical_for(asset_dir: Path, asset: L0Asset, rho: float | None = None) -> PhysicalModel:
-    """The asset's L1 model, else one from the intent's priors (probing before L1 ran); rho overrides the density."""
-    if AssetDir(asset_dir).has("physical"):
-        phys = load_physical_model(asset_dir)
-    else:
-        pri = l1_targets(asset, None)[0].priors  # L1's start values, mass check included
-        phys = build_physical_model(asset.particles_m, asset.volumes_m3, asset.spacing_m,
-                                    float(pri["density_kg_per_m3"]), float(pri["ground_friction"]),
-                                    float(pri["gripper_friction"]), geometry_info(asset.record).category)
-    if rho is None:
-        return phys
-    if not (math.isfinite(rho) and rho > 0):
-        raise InputError(f"density must be a positive finite number of kg/m^3, got {rho}")
-    return phys.model_copy(update={"density_kg_per_m3": float(rho), "mass_kg": float(rho) * phys.volume_m3})
-
-
 # -- harness pieces --------------------------------------------------------------------------------------------------
 class _Runner:
     """The L2 Prober: every selection probe of one candidate as cached tasks; counts simulation calls and misses."""
@@ -127,20 +85,6 @@ class _Runner:
         out = run_probes(probes, ctx, probe_workers(len(probes), self.sim.device))
         self.recording_kinds.update({r.recording: r.spec.kind for r in out if r.recording})
         return object_view(out, self.contract)
-
-
-def _copy(src: str | None, dest: Path, keep: KeepTrials = "all", cached: dict[str, str] | None = None) -> str | None:
-    """Copy a recording into the asset (keep 'all'); returns its path relative to the asset directory. Under keep
-    'adopted' (#38) it stays in the cache: `cached` gets the name it would have -> its cache path; returns None."""
-    if not src or not cache_resolve(src).is_file():
-        return None
-    if keep != "all":
-        dest.unlink(missing_ok=True)  # (an earlier run's copy, on a rerun of the layer)
-        if cached is not None:
-            cached[str(Path("recordings") / dest.name)] = cache_relative(cache_resolve(src))
-        return None
-    copy_file_atomic(cache_resolve(src), dest)  # a new file: a hard link of a working copy is never rewritten
-    return str(Path("recordings") / dest.name)
 
 
 def held_out_probes(asset: L0Asset, physical: PhysicalModel, material: Material, contract: StageContract,
@@ -215,31 +159,13 @@ def l2_material(asset_dir: Path, request_or_intent: AssetRequest | str | None = 
         chosen = next(a for a in outcome.attempts if a.iteration == outcome.best_iteration)
         for src in chosen.evidence.recordings:
             kind = runner.recording_kinds[src]
-            recordings[kind] = _copy(src, asset_dir / "recordings" / by_kind("L2", kind).recording_name(), keep,
-                                     cached)
+            recordings[kind] = keep_recording(src, asset_dir, by_kind("L2", kind).recording_name(), keep, cached)
         held = held_out_probes(asset, physical, material, contract, sim)
         for p, r in zip(stage_probes(contract, held_out=True), held):
-            recordings[f"{p.kind}_held_out"] = _copy(r.recording, asset_dir / "recordings" / p.recording_name(True),
-                                                     keep, cached)
-    held_metrics = l2_metrics(held, contract) if held else {}
-    held_targets = targets.model_copy(update={"bands": [b for b in targets.bands if b.metric in held_metrics]})
-    sim_calls = outcome.sim_calls + int(screening["sim_calls"]) + sum(r.sim_calls for r in held)
-    record = MaterialRecord(  # no wall time: reruns must be content-identical
-        passed=outcome.passed, status=outcome.status, message=outcome.message, intent=targets.intent, targets=targets,
-        material=material, physical_model=physical, metrics=outcome.metrics,
-        not_measured={m: not_measured_reason(m, outcome.metrics) for m in targets.not_measured(outcome.metrics)},
-        held_out=HeldOutSummary(metrics=held_metrics, targets_met=held_targets.met(held_metrics) if held else None,
-                                score=held_targets.score(held_metrics) if held else None,
-                                bands=[b.metric for b in held_targets.bands],
-                                probes=[r.model_dump(mode="json", exclude={"wall_time_s"}) for r in held]),
-        selection=SelectionSummary(
-            status=outcome.status, score=outcome.score, targets_met=targets.met(outcome.metrics),
-            best_iteration=outcome.best_iteration, attempts=outcome.attempts_used, sim_calls=outcome.sim_calls,
-            screening=screening,
-            ranking=sorted(({"iteration": a.iteration, "values": a.proposal, "score": a.score, "verdict": a.verdict}
-                            for a in outcome.attempts if a.score is not None), key=lambda d: -d["score"])),
-        sim_calls=sim_calls, recordings={k: v for k, v in recordings.items() if v is not None or keep == "all"},
-        **({"cached_recordings": cached} if cached else {}))
+            recordings[f"{p.kind}_held_out"] = keep_recording(r.recording, asset_dir, p.recording_name(True), keep,
+                                                              cached)
+    record = material_record(outcome, targets, material, physical, contract, screening, held, recordings, cached,
+                             keep)
     (asset_dir / "evidence").mkdir(parents=True, exist_ok=True)
     lines = "".join(a.model_dump_json() + "\n" for a in outcome.attempts)
     write_text_atomic(asset_dir / "evidence" / "L2_attempts.jsonl", lines)
@@ -264,7 +190,9 @@ def run_probe(kind: str, asset_dir: Path, material: Material, physical: Physical
         return probe_task(l2_probe(kind))(**kw)
 
 
-__all__ = ["MATERIAL_JSON", "evaluate_material", "l2_material", "l2_metrics", "l2_revalidation", "l2_targets",
-           "load_material", "object_view", "probe_inputs", "run_l2", "run_probe",
+__all__ = ["MATERIAL_JSON", "evaluate_material", "l2_material", "l2_revalidation", "l2_targets", "load_material",
+           "probe_inputs", "run_l2", "run_probe",
            # the screening's, served here too (benchmarks/l2_schedule.py, eval_arms, tests): tasks/probes/screening.py
-           "l2_probe", "probe_parameters", "screen", "screen_dampings", "screen_moduli", "specimen_arrays"]
+           "l2_probe", "probe_parameters", "screen", "screen_dampings", "screen_moduli", "specimen_arrays",
+           # the physical model `deformsmith probe` runs a probe with: tasks/physical/plan.py
+           "physical_for"]

@@ -43,13 +43,13 @@ from flows.l3_material import revalidate_in_l2
 from tasks.asset_dir import AssetDir
 from tasks.geometry.outputs import load_l0
 from tasks.manipulation.body import auto_trial_spacing, trial_body
-from tasks.manipulation.context import (SURFACE_SAMPLES, HoldInputs, L3Context, L3Options, accepted, body_from,
+from tasks.manipulation.context import (SURFACE_SAMPLES, HoldInputs, L3Context, L3Options, body_from,
                                         failed_metrics, hold_inputs, initial_values, material_of, plan_executable,
                                         with_squeeze_range)
 from tasks.manipulation.keep import keep_trials
 from tasks.manipulation.l3_record import (build_record, chosen_attempt, conditions, conditions_summary,
-                                          name_pick_and_place, no_grasp_record)
-from tasks.manipulation.material_revision import MaterialLimits, base_attempt, more_robust, revise_with_l2
+                                          name_pick_and_place, no_grasp_outcome)
+from tasks.manipulation.material_revision import MaterialLimits, robustness_and_revision
 from tasks.manipulation.outcome import TrialTolerances
 from tasks.manipulation.report import L3Progress, Progress, planned_trials
 from tasks.manipulation.trial import TrialSettings, plan_or_error, run_trial
@@ -225,7 +225,7 @@ def l3_manipulation(asset_dir: Path, options: L3Options | None = None, agents: A
         ctx = load_context(asset_dir, options, contract, material)
     except NoGraspError as exc:
         report.say(f"L3: {exc}")
-        return _no_grasp(asset_dir, options, contract, material, str(exc))
+        return no_grasp_outcome(asset_dir, options, contract, material, str(exc))
     ctx.progress, ctx.recordings = report, recordings
     report.say(f"L3: {len(ctx.grasps)} grasp candidates, the best {ctx.grasps[0].width_m * 1000:.0f} mm wide; "
                f"{len(ctx.body.particles_m)} particles per trial")
@@ -236,31 +236,14 @@ def l3_manipulation(asset_dir: Path, options: L3Options | None = None, agents: A
 
     outcome = run_harness(contract, runner, TargetBehaviour(), agents=agents, record_dir=asset_dir,
                           initial=initial_values(ctx), initial_action="revise_squeeze")
-    chosen_values, final_material, revision, robustness = outcome.values, ctx.material, None, None
-    escalated = outcome.status == "escalated" and outcome.escalation == "revise_material"
 
     def revalidate(revised: Material, limits: MaterialLimits) -> L2Check:  # the L3 -> L2 edge (a subflow)
         return revalidate_in_l2(asset_dir, revised, ctx.physical, limits, sim=options.sim(), asset=ctx.l0)
 
-    if outcome.passed and chosen_values is not None and options.robustness:
-        # 3. the accepted plan under the training perturbations; 4. a failure asks the material for margin, adopted
-        # only when the revised material passes the nominal condition and strictly more perturbations
-        rob = ctx.under(dict(chosen_values), options.robustness, "robustness")
-        robustness = conditions(options.robustness, rob, contract)
-        failing = [r for r in rob if not accepted(r.metrics, contract)]
-        if failing:
-            revision = more_robust(revise_with_l2(ctx, dict(chosen_values), failing[0].metrics, "robustness",
-                                                  revalidate), robustness)
-            if revision is not None and revision.accepted:
-                final_material, robustness = revision.to, revision.robustness
-    elif escalated or (not outcome.passed and options.material_fallback):
-        # 4. no plan passed: a material revision from the attempt that came closest (or the escalating one)
-        base = base_attempt(ctx, outcome, escalated)
-        if base is not None and base.evidence is not None:
-            revision = revise_with_l2(ctx, dict(base.proposal), base.evidence.metrics,
-                                      "escalation" if escalated else "no plan passed", revalidate)
-        if revision is not None and revision.accepted:
-            chosen_values, final_material, robustness = dict(revision.plan_values), revision.to, revision.robustness
+    # 3. the accepted plan under the training perturbations; 4. material revision: for margin when one fails, or
+    # from the attempt that came closest when no plan passed
+    after = robustness_and_revision(ctx, outcome, contract, revalidate)
+    chosen_values, final_material, revision, robustness = after.values, after.material, after.revision, after.robustness
     passed = chosen_values is not None and (outcome.passed or final_material is not ctx.material)
     # 5. the final plan under the held-out conditions (recorded apart)
     held: list[ConditionRow] = []
@@ -277,18 +260,6 @@ def l3_manipulation(asset_dir: Path, options: L3Options | None = None, agents: A
     report.say("L3 " + ("passed" + conditions_summary(held, robustness) if passed else "did not pass: " + record.reason))
     AssetDir(asset_dir).write_manipulation(record)  # no wall time in it: a rerun writes the same file
     return record, outcome
-
-
-def _no_grasp(asset_dir: Path, options: L3Options, contract: StageContract, material: Material | None,
-              reason: str) -> tuple[ManipulationRecord, StageOutcome]:
-    """L3's record when no gripper can hold the object: no trial ran; the reason is L3's one attempt in evidence/."""
-    adir = AssetDir(asset_dir)
-    source = "given"
-    if material is None:
-        material, source = material_of(asset_dir, load_l0(adir.path))
-    record = no_grasp_record(asset_dir, options, contract, adir.physical_model(), material, source, reason)
-    adir.write_manipulation(record)
-    return record, StageOutcome(stage="L3", status="no_valid_candidate", attempts_used=1, message=reason)
 
 
 def load_manipulation(asset_dir: Path) -> ManipulationRecord:

@@ -1,12 +1,14 @@
 """A batch of asset requests as data: the JSONL requests file parsed into items (a valid request with its output name,
 or the reason a line is unusable), how each request ended, and the batch report with its throughput (SI: seconds,
-assets per hour). flows.batch runs them in processes; flows.batch_flows through a Prefect work pool."""
+assets per hour), and how a request's process ended read from what it left (its result file, exit status, log and
+the cache's event log). flows.batch runs them in processes; flows.batch_flows through a Prefect work pool."""
 
 from __future__ import annotations
 
 import json
 import os
 import re
+import signal
 import tempfile
 from collections.abc import Callable
 from pathlib import Path
@@ -21,6 +23,7 @@ REPORT_JSON = "batch_report.json"
 NAME_RE = re.compile(r"^[A-Za-z0-9][A-Za-z0-9._-]{0,95}$")
 Status = Literal["ok", "failed"]
 ItemCallback = Callable[["RequestResult"], None]
+INTERRUPTED = "interrupted"
 
 
 class BatchItem(BaseModel):
@@ -85,13 +88,14 @@ class BatchReport(BaseModel):
 # ---- parsing ----------------------------------------------------------------------------------------
 
 
-def _slug(text: str) -> str:
+def slug(text: str) -> str:
+    """A name for a folder: lower-case letters and digits joined by '_', at most 48 characters ('asset' when empty)."""
     return re.sub(r"[^a-z0-9]+", "_", text.lower()).strip("_")[:48] or "asset"
 
 
 def _default_name(request: AssetRequest) -> str:
     src = request.mesh_path or request.image_path
-    return _slug(src.stem if src is not None else request.text or "asset")
+    return slug(src.stem if src is not None else request.text or "asset")
 
 
 def parse_line(line_no: int, text: str) -> BatchItem:
@@ -139,3 +143,67 @@ def parse_requests(path: Path) -> list[BatchItem]:
 def failed_result(item: BatchItem) -> RequestResult:
     """The result of a line that never ran."""
     return RequestResult(name=item.name, line=item.line, status="failed", reason=item.error, attempts=0)
+
+
+# ---- a request's process, ended -----------------------------------------------------------------------
+
+
+def not_started(item: BatchItem) -> RequestResult:
+    """The result of a request that an interrupted batch never started."""
+    return RequestResult(name=item.name, line=item.line, status="failed", attempts=0,
+                         reason=f"{INTERRUPTED} before it started")
+
+
+def cache_counts(events_file: Path, pid: int, since: int) -> tuple[int, int]:
+    """(misses, hits) of one process in the cache's execution log, reading from byte offset `since`."""
+    if not events_file.is_file():
+        return 0, 0
+    miss = hit = 0
+    with events_file.open("rb") as fh:
+        fh.seek(since)
+        for raw in fh:
+            try:
+                ev = json.loads(raw)
+            except json.JSONDecodeError:
+                continue
+            if ev.get("pid") == pid:
+                miss += ev.get("outcome") == "miss"
+                hit += ev.get("outcome") == "hit"
+    return miss, hit
+
+
+def death_reason(rc: int) -> str:
+    """Why a process that wrote no result ended: the signal that killed it, or its exit code."""
+    if rc < 0:
+        try:
+            return f"process died from signal {signal.Signals(-rc).name}"
+        except ValueError:
+            return f"process died from signal {-rc}"
+    return f"process exited with code {rc} without a result"
+
+
+def last_log_line(log: Path) -> str:
+    """The last non-blank line of a log (its last 300 characters; '' when unreadable or empty)."""
+    try:
+        lines = [ln.strip() for ln in log.read_text(encoding="utf-8", errors="replace").splitlines() if ln.strip()]
+    except OSError:
+        return ""
+    return lines[-1][-300:] if lines else ""
+
+
+def process_result(item: BatchItem, rc: int, wall_s: float, result_file: Path, log: Path, counts: tuple[int, int],
+                   reason: str | None = None, stopping: bool = False) -> RequestResult:
+    """How a request's process ended: its result file, else why it has none (`reason`: a timeout; `stopping`: the
+    batch was interrupted; else the signal or exit code, with the log's last line). counts: its cache (misses, hits)."""
+    if reason is None and stopping and not result_file.is_file():
+        reason = f"{INTERRUPTED} after {wall_s:.1f} s"
+    misses, hits = counts
+    common: dict[str, Any] = dict(name=item.name, line=item.line, wall_s=round(wall_s, 3), tasks_executed=misses,
+                                  tasks_cached=hits, log=str(log))
+    if reason is None and result_file.is_file():
+        data = json.loads(result_file.read_text(encoding="utf-8"))
+        return RequestResult(status=data["status"], reason=data.get("reason"), asset_dir=data.get("asset_dir"),
+                             **common)
+    reason = reason or death_reason(rc)
+    tail = "" if reason.startswith(INTERRUPTED) else last_log_line(log)  # its last line is the KeyboardInterrupt
+    return RequestResult(status="failed", reason=f"{reason}; last log line: {tail}" if tail else reason, **common)

@@ -1,6 +1,7 @@
 """What the manifest says of a generated asset, from its typed records: each layer's line in the validation summary,
 the pick-and-place outcome of the reported trial, the attempt the video shows and the plan reported, the cache keys
-of the results it carries, and the provenance that reproduces it (flows.generate writes them)."""
+of the results it carries, the files it holds by role, and the provenance that reproduces it (flows.generate writes
+them)."""
 
 from __future__ import annotations
 
@@ -11,7 +12,7 @@ from pathlib import Path
 from typing import Any
 
 from contracts.agents import AgentConfig
-from contracts.asset_dir import GeometryRecord, MaterialRecord, PhysicalRecord, attempt_path
+from contracts.asset_dir import ASSET_JSON, GeometryRecord, MaterialRecord, PhysicalRecord, attempt_path
 from contracts.manifest import Provenance, StageSummary
 from contracts.manipulation import ManipulationRecord
 from contracts.robot import ActionPlan, ManipulationOutcome
@@ -76,6 +77,21 @@ def l3_summary(record: ManipulationRecord) -> StageSummary:
     attempts = record.harness_attempts or len(record.attempts)  # harness attempts, as evidence
     return StageSummary(stage="L3", passed=record.passed, attempts=attempts,
                         sim_calls=len(trials), metrics=metrics, failed_gates=failed, reason=reason)
+
+
+FILE_ROLES = {"manifest": ASSET_JSON, "mesh": "mesh.glb", "collision": "collision", "particles": "particles.zarr",
+              "gaussians": "gaussians.ply", "evidence": "evidence", "recordings": "recordings", "renders": "renders",
+              "interaction": "interaction", "geometry_record": "geometry.json", "physical_record": "physical.json",
+              "material_record": "material.json", "manipulation_record": "manipulation.json",
+              "physgaussian_config": "export/physgaussian_config.json",
+              "drop_video_front": "renders/drop_front.mp4", "drop_video_side": "renders/drop_side.mp4",
+              "pick_and_place_video": "renders/pick_and_place.mp4", "card_png": "renders/card.png",
+              "card_html": "renders/card.html"}  # the manifest's `files`: role -> path in the asset directory
+
+
+def asset_files(work: Path) -> dict[str, str]:
+    """Role -> relative path of what the asset directory holds (the manifest always)."""
+    return {role: rel for role, rel in FILE_ROLES.items() if (work / rel).exists() or role == "manifest"}
 
 
 def shown_attempt(record: ManipulationRecord) -> int | None:

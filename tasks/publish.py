@@ -1,5 +1,8 @@
 """Publish a finished directory in place of another with renames, so readers never see a half-written one.
 
+`generate` builds an asset in a private working directory beside its output (`working_dir`) and publishes it with
+one rename (`publish_directory`).
+
 `staged_update(asset)` is how a layer rerun (`deformsmith physical | material | manipulate DIR`) publishes: the layer
 writes into a working copy beside the asset (`.NAME.partial-<host>~<pid>~*`: small files copied, the others hard
 links, which writers replace and never rewrite), and the copy is swapped in for the asset in one atomic rename
@@ -16,6 +19,7 @@ import os
 import shutil
 import stat
 import tempfile
+import threading
 from collections.abc import Callable, Iterator
 from contextlib import contextmanager
 from pathlib import Path
@@ -38,16 +42,53 @@ def check_out_dir(out_dir: Path) -> None:
         raise InputError(f"{out_dir} exists and is not an asset directory; choose a new or empty directory")
 
 
+def remove_stale_partials(dest: Path) -> list[Path]:
+    """Remove the working directories of `dest` beside it (`.<name>.{partial,tmp,old}-<host>~<pid>~*`) that a process
+    of this host left when it died (SIGKILL, power loss); returns those removed."""
+    return remove_paths(dead_partials(dest.parent, dest.name))[0]
+
+
+def working_dir(dest: Path) -> Path:
+    """A private working directory beside `dest`, `.<name>.partial-<host>~<pid>~<random>`, so that a dead owner can be
+    recognised; those a dead process left for `dest` are removed first (remove_stale_partials)."""
+    remove_stale_partials(dest)
+    return Path(tempfile.mkdtemp(prefix=f".{dest.name}.partial-{owner_tag()}", dir=dest.parent))
+
+
+def set_aside(dest: Path) -> Path | None:
+    """Move `dest` out of the way, to `previous` in a new `.<name>.old-<owner>` folder beside it (a dead owner's is
+    cleared by remove_stale_partials); returns that folder, None when `dest` does not exist."""
+    if not dest.exists():
+        return None
+    aside = Path(tempfile.mkdtemp(prefix=f".{dest.name}.old-{owner_tag()}", dir=dest.parent))
+    os.replace(dest, aside / "previous")
+    return aside
+
+
 def replace_directory(finished: Path, dest: Path) -> None:
     """Rename `finished` to `dest` (same filesystem); an existing `dest` is moved aside first, then removed."""
     finished, dest = Path(finished), Path(dest)
-    if dest.exists():
-        aside = Path(tempfile.mkdtemp(prefix=f".{dest.name}.old-{owner_tag()}", dir=dest.parent))
-        os.replace(dest, aside / "previous")
-        os.replace(finished, dest)
+    aside = set_aside(dest)
+    os.replace(finished, dest)
+    if aside is not None:
         shutil.rmtree(aside, ignore_errors=True)
-    else:
-        os.replace(finished, dest)
+
+
+def publish_directory(work: Path, dest: Path) -> None:
+    """Publish the finished `work` as `dest`: a previous `dest` is set aside first, so that removing its ~350 files does
+    not hold up the rename, and is removed by a thread beside the rest of the run (joined before the process ends);
+    when the rename fails, it is put back."""
+    previous = set_aside(dest)
+    try:
+        replace_directory(work, dest)  # (dest is free: a rename)
+    except BaseException:
+        if previous is not None and not dest.exists():  # the previous directory stays in place
+            os.replace(previous / "previous", dest)
+            shutil.rmtree(previous, ignore_errors=True)
+        raise
+    if previous is not None:
+        threading.Thread(target=shutil.rmtree, args=(previous,), kwargs={"ignore_errors": True},
+                         name="remove-previous-asset").start()
 
 
 def write_json_atomic(path: Path, record: Any, default: Callable[[Any], Any] | None = str) -> None:
@@ -152,8 +193,7 @@ def staged_update(dest: Path) -> Iterator[Path]:
     """A working copy of the directory `dest` to write into; swapped in for `dest` when the block ends cleanly, removed
     (and `dest` untouched) when it raises or the process dies (the next staged update removes a dead one's copy)."""
     shown, dest = Path(dest).absolute(), Path(dest).resolve()  # a link to the directory: the directory is swapped
-    remove_paths(dead_partials(dest.parent, dest.name))
-    work = Path(tempfile.mkdtemp(prefix=f".{dest.name}.partial-{owner_tag()}", dir=dest.parent))
+    work = working_dir(dest)
     try:
         mirror_tree(dest, work)
         yield work

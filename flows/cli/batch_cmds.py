@@ -5,24 +5,12 @@ from __future__ import annotations
 from pathlib import Path
 
 import typer
-from rich.table import Table
 
 from cache import use_cache_root
 from flows.cli.apps import app, check_device, console, emit_json, fail, results
-from flows.cli.preflight import check_locations
+from tasks.preflight import check_locations
 from tasks.batch_requests import REPORT_JSON
-
-
-def _table(report) -> Table:
-    table = Table(title=f"batch: {report.ok} ok, {report.failed} failed, {report.wall_s:.1f} s, "
-                        f"{report.assets_per_hour:.1f} assets/hour")
-    for col in ("line", "name", "status", "wall [s]", "executed/cached", "reason"):
-        table.add_column(col)
-    for r in report.results:
-        counts = "-" if r.tasks_executed is None else f"{r.tasks_executed}/{r.tasks_cached}"
-        table.add_row(str(r.line), r.name, "ok" if r.status == "ok" else "[red]failed[/red]", f"{r.wall_s:.1f}",
-                      counts, (r.reason or "")[:100])
-    return table
+from tasks.report.tables import batch_table
 
 
 @app.command("batch")
@@ -68,7 +56,7 @@ def batch(
     if as_json:
         emit_json(report.model_dump(mode="json"))
     else:
-        results.print(_table(report))
+        results.print(batch_table(report))
         results.print(f"report: {Path(report.out_root) / REPORT_JSON}", markup=False, highlight=False)
     if report.failed:
         raise typer.Exit(1)

@@ -11,14 +11,7 @@ import typer
 from cache import use_cache_root
 from contracts.errors import DeformSmithError
 from flows.cli.apps import app, console, emit_json, fail, results
-
-
-def _fmt(v: float | None) -> str:
-    return "-" if v is None else f"{v:.4g}"
-
-
-def _pct(v: float | None) -> str:
-    return "-" if v is None else f"{100 * v:.1f}%"
+from tasks.report.tables import crosscheck_lines
 
 
 @app.command("crosscheck")
@@ -47,13 +40,5 @@ def crosscheck_cmd(
     if as_json:
         emit_json(report.model_dump(mode="json"))
         return
-    results.print(f"{report.sim} crosscheck of {report.asset} (strain {report.probes['strain']}, drop height "
-                  f"fraction {report.probes['height_fraction']})")
-    results.print(f"{'metric':24s} {'DeformSmith':>12s} {report.sim:>12s} {'err':>7s} {'calibrated':>12s} {'err':>7s}")
-    for name, row in report.metrics.items():
-        results.print(f"{name:24s} {_fmt(row.ours):>12s} {_fmt(row.theirs):>12s} {_pct(row.rel_error):>7s} "
-                      f"{_fmt(row.theirs_calibrated):>12s} {_pct(row.rel_error_calibrated):>7s}")
-    if report.calibration:
-        results.print(f"calibrated parameters: {report.calibration['parameters']}")
-        results.print(f"modulus and rebound within {100 * report.agree_within:.0f} %: {report.agrees}")
-    results.print(f"{report.sim_calls} simulations, {report.wall_time_s:.1f} s")
+    for line in crosscheck_lines(report):
+        results.print(line)

@@ -8,7 +8,8 @@ import typer
 
 from cache import use_cache_root
 from flows.cli.apps import app, check_device, console, emit_json, fail, results
-from flows.cli.preflight import check_locations
+from tasks.preflight import check_locations
+from tasks.report.tables import eval_figure_lines
 
 ABLATIONS = ("hierarchy", "harness", "manipulation")
 
@@ -54,14 +55,7 @@ def eval_cmd(
         emit_json(summary)
         return
     results.print(f"report: {summary['report']}", markup=False, highlight=False)
-    for abl, arms in summary["figures"].items():
-        for arm, figs in arms.items():
-            parts = []
-            for m, f in figs.items():
-                if f["value"] is None:
-                    continue
-                parts.append(f"{m}={100 * f['value']:.0f}% (N={f['n']})" if f["unit"] == "rate"
-                             else f"{m}={f['value']:.1f} (N={f['n']})")
-            results.print(f"{abl} / {arm}: " + ", ".join(parts))
+    for line in eval_figure_lines(summary["figures"]):
+        results.print(line)
     if summary["failed_cases"]:
         results.print(f"{len(summary['failed_cases'])} case(s) crashed; see the report")

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import re
 from pathlib import Path
 from typing import TYPE_CHECKING, cast
 
@@ -10,18 +9,20 @@ import typer
 from pydantic import ValidationError
 from rich.markup import escape
 
-from cache import cache_resolve, use_cache_root
+from cache import use_cache_root
 from contracts.errors import validation_message
-from contracts.evidence import StageTally
 from contracts.manifest import AssetManifest  # (not flows.generate: no Prefect import to read a file)
 from contracts.request import AssetRequest
 from flows.cli.apps import RECORD_HELP, app, check_device, check_record, console, emit_json, fail, results
 from flows.cli.evidence_cmds import print_tallies
-from flows.cli.geometry_cmds import GEOMETRY_BACKEND_HELP
+from flows.cli.geometry_cmds import GEOMETRY_BACKEND_HELP, STRICT_CONCEPT_HELP
 from flows.cli.llm_option import LLM_FALLBACK_HELP, llm_agents
-from flows.cli.preflight import STRICT_CONCEPT_HELP, check_request, concept_line
+from tasks.preflight import check_request, concept_line
+from tasks.batch_requests import slug
 from tasks.publish import check_out_dir
-from tasks.record.tally import stage_tallies
+from tasks.record.viewer import asset_recordings, has_display, viewer_command
+from tasks.report.evidence import validation_tallies
+from tasks.report.layers import generate_summary, inspect_lines, wall_time_line
 
 if TYPE_CHECKING:
     from contracts.sim import Device
@@ -32,27 +33,14 @@ DEFAULT_TEXT = "a soft plush turtle toy, about 25 cm long"
 
 def _default_out(text: str | None, image: Path | None, mesh: Path | None) -> Path:
     """out/<slug of the input>."""
-    name = text or (image.stem if image else mesh.stem if mesh else "asset")
-    slug = re.sub(r"[^a-z0-9]+", "_", name.lower()).strip("_")[:48] or "asset"
-    return Path("out") / slug
-
-
-KEY_FIGURES = ("mass_kg", "effective_modulus_pa", "rebound_ratio", "recovery_ratio", "sag_ratio", "volume_m3",
-               "max_finger_force_n", "place_error_m")
+    return Path("out") / slug(text or (image.stem if image else mesh.stem if mesh else "asset"))
 
 
 def print_summary(manifest, asset_dir: Path) -> None:
     """The validation summary: counts from the attempt records (the same tallies `evidence` prints), key figures
     from the manifest, and why a stage did not simply pass, in full."""
-    figures = {s.stage: ", ".join(f"{k}={s.metrics[k]:.3g}" for k in KEY_FIGURES if k in s.metrics)
-               for s in manifest.validation}
-    tallies = {t.stage: t for t in stage_tallies(asset_dir)}
-    for s in manifest.validation:  # a directory without its records (copied asset.json alone): the manifest's line
-        if s.stage not in tallies:
-            tallies[s.stage] = StageTally(stage=s.stage, status="passed" if s.passed else "failed", passed=s.passed,
-                                          attempts=s.attempts, loop_sim_calls=s.sim_calls,
-                                          message=s.reason or ", ".join(s.failed_gates))
-    print_tallies(sorted(tallies.values(), key=lambda t: t.stage), figures, title="validation summary")
+    tallies, figures = validation_tallies(manifest, asset_dir)
+    print_tallies(tallies, figures, title="validation summary")
 
 
 def preload_layers(l3: bool) -> None:
@@ -149,14 +137,10 @@ def generate(
                                   manipulate=l3, cpu_threads=cpu_threads,  # (device: checked by check_device)
                                   keep=cast("KeepTrials", record))  # (checked by check_record)
     if as_json:
-        emit_json({"asset_dir": str(out), "validation": [s.model_dump(mode="json") for s in manifest.validation],
-                   "material": manifest.material.model_dump(mode="json") if manifest.material else None,
-                   "physical_model": manifest.physical_model.model_dump(mode="json") if manifest.physical_model else None,
-                   "manipulation": manifest.manipulation.model_dump(mode="json") if manifest.manipulation else None,
-                   "files": manifest.files, "wall_time_s": dict(TIMINGS)})
+        emit_json(generate_summary(out, manifest, TIMINGS))
     else:
         print_summary(manifest, out)
-        results.print("wall time: " + ", ".join(f"{k} {v:.1f} s" for k, v in TIMINGS.items()))
+        results.print(wall_time_line(TIMINGS))
         results.print(f"asset published: {out}", markup=False, highlight=False)
     l3_line = next((s for s in manifest.validation if s.stage == "L3"), None)
     if l3_line is not None and not l3_line.passed:  # on stderr: with --json, stdout holds the JSON alone
@@ -180,46 +164,8 @@ def inspect_asset(
         emit_json(manifest.model_dump(mode="json"))
         return
     print_summary(manifest, asset)
-    if manifest.material:
-        m = manifest.material
-        results.print(f"material: E = {m.youngs_modulus_pa:.4g} Pa, nu = {m.poisson_ratio:.3g}, "
-                      f"damping = {m.damping_rate_per_s:.3g} 1/s")
-    if manifest.physical_model:
-        p = manifest.physical_model
-        results.print(f"physical: rho = {p.density_kg_per_m3:.4g} kg/m^3, mass = {p.mass_kg:.4g} kg, "
-                      f"{p.particle_count} particles")
-    for s in manifest.validation:
-        if s.failed_gates:
-            results.print(f"{s.stage} failed gates: {', '.join(s.failed_gates)}")
-    if manifest.manipulation:
-        o = manifest.manipulation
-        results.print(f"pick-and-place: lifted {o.lifted}, transported {o.transported}, released in target "
-                      f"{o.released_in_target}, slipped {o.slipped}, max finger force "
-                      f"{max(o.max_finger_force_n):.3g} N, strain (1 % of volume) "
-                      f"{o.strain_p99 if o.strain_p99 is not None else float('nan'):.3g}, peak particle strain "
-                      f"{o.max_strain:.3g}")
-
-
-def cached_recordings(asset: Path) -> tuple[list[Path], list[str]]:
-    """The L1 and L2 probe recordings an asset's records name in the cache (physical.json, material.json
-    cached_recordings: a default asset leaves them there, #38): (the files the cache holds, the names it no longer
-    holds)."""
-    import json
-
-    found: list[Path] = []
-    gone: list[str] = []
-    for doc in ("physical.json", "material.json"):
-        try:
-            named = json.loads((asset / doc).read_text(encoding="utf-8")).get("cached_recordings") or {}
-        except (OSError, ValueError, AttributeError):
-            continue
-        for name, ref in sorted(named.items()):
-            path = cache_resolve(ref)
-            if path.is_file():
-                found.append(path)
-            else:
-                gone.append(name)
-    return found, gone
+    for line in inspect_lines(manifest):
+        results.print(line)
 
 
 @app.command("view")
@@ -229,27 +175,20 @@ def view(
 ) -> None:
     """Open the asset's recordings (recordings/*.rrd, and the probe recordings its records name in the cache) in the
     Rerun viewer."""
-    import os
-    import shutil
     import subprocess
-    import sys
 
-    recordings = sorted((asset / "recordings").glob("*.rrd")) if asset.is_dir() else []
-    cached, gone = cached_recordings(asset) if asset.is_dir() else ([], [])
+    recordings, gone = asset_recordings(asset)
     for name in gone:
         console.print(f"{name}: not in the asset, and the cache no longer holds it", markup=False, highlight=False)
-    recordings += cached
     if not recordings:
         fail(f"{asset} has no recordings/*.rrd")
-    beside = Path(sys.executable).parent / "rerun"  # rerun-sdk installs its viewer next to the interpreter
-    viewer = str(beside) if beside.is_file() else shutil.which("rerun")
-    command = [viewer or "rerun", *map(str, recordings)]
+    viewer, command = viewer_command(recordings)
     if dry_run:
         typer.echo(" ".join(command))
         return
     if viewer is None:
         fail("the Rerun viewer is not installed (it ships with rerun-sdk: pip install rerun-sdk); "
              "then run: " + " ".join(command))
-    if not (os.environ.get("DISPLAY") or os.environ.get("WAYLAND_DISPLAY")) and os.name == "posix":
+    if not has_display():
         fail("no display to open a viewer on; copy the .rrd files to a machine with one and run: " + " ".join(command))
     subprocess.Popen(command)  # the viewer runs on after this command returns

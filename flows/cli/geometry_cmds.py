@@ -12,11 +12,14 @@ from contracts.errors import validation_message
 from contracts.request import AssetRequest
 from flows.cli.apps import app, console, emit_json, fail, prefect_log_level, results
 from flows.cli.llm_option import LLM_FALLBACK_HELP, llm_agents
-from flows.cli.preflight import STRICT_CONCEPT_HELP, check_request, concept_line
+from tasks.preflight import check_request, concept_line
+from tasks.report.layers import geometry_line
 
 QUALITIES = ("draft", "standard", "high")
 GEOMETRY_BACKEND_HELP = ("reconstruction backend that makes the mesh: a Python entry point 'module:function' or an "
                          "HTTP endpoint 'http://host:port/path' (interface: tasks/geometry/backends.py)")
+STRICT_CONCEPT_HELP = ("refuse an object the lexicon does not name (exit 2, nothing written) instead of building it by "
+                       "analogy")
 
 
 def _agents(llm: str | None, fallback: str = "rule"):
@@ -78,12 +81,8 @@ def geometry(
         write_l0(result, out, request=request)
     if as_json:
         emit_json(document_json(AssetDir(out).geometry()))
-    m = result.checks.metrics
-    (console if as_json else results).print(  # the result line; beside --json output, on stderr
-        f"[bold]{result.info.name}[/] ({result.info.source}): {m['extent_x_m']:.3f} x {m['extent_y_m']:.3f} x "
-        f"{m['extent_z_m']:.3f} m, {m['volume_m3'] * 1e6:.1f} cm^3, {int(m['particle_count'])} particles, "
-        f"{int(m['gaussian_count'])} Gaussians, {int(m['proxy_parts'])} convex parts -> {out}"
-    )
+    # the result line; beside --json output, on stderr
+    (console if as_json else results).print(geometry_line(result.info, result.checks, out))
     for w in result.info.warnings:
         console.print(f"[yellow]warning:[/] {w}")
     if not result.checks.passed:

@@ -65,7 +65,7 @@ class _UserErrorTracebacks(logging.Filter):
         # lazy: after the Prefect server's prestart (pydantic, typer: ~0.5 s overlap its start)
         from contracts.errors import DeformSmithError
         # lazy: after the Prefect server's prestart (pydantic, typer: ~0.5 s overlap its start)
-        from flows.cli.preflight import is_filesystem_error
+        from tasks.preflight import is_filesystem_error
 
         exc = record.exc_info[1] if record.exc_info else None
         return not (exc is not None and (isinstance(exc, DeformSmithError) or is_filesystem_error(exc)))
@@ -140,7 +140,7 @@ def _main() -> None:
     # lazy: after the Prefect server's prestart (pydantic, typer: ~0.5 s overlap its start)
     from flows.cli.apps import app
     # lazy: after the Prefect server's prestart (pydantic, typer: ~0.5 s overlap its start)
-    from flows.cli.preflight import filesystem_error, is_filesystem_error
+    from tasks.preflight import filesystem_error, is_filesystem_error
 
     register_commands(sys.argv[1:])
     quiet_user_error_logs()

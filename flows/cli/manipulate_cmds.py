@@ -7,12 +7,12 @@ from pathlib import Path
 from typing import TYPE_CHECKING, cast
 
 import typer
-from rich.table import Table
 
 from cache import use_cache_root
 from contracts.errors import RequirementNotMet
 from flows.cli.apps import RECORD_HELP, app, check_device, check_record, console, emit_json, fail, results
-from flows.cli.preflight import check_asset_dir, check_outputs
+from tasks.preflight import check_asset_dir, check_outputs
+from tasks.report.layers import manipulation_summary, manipulation_table
 
 if TYPE_CHECKING:
     from contracts.asset_dir import KeepTrials
@@ -69,19 +69,10 @@ def manipulate(
             # adopted material, L3's line and plan), swapped in with manipulation.json
             status.update("L3: asset.json, card and video refreshed from manipulation.json")
             refresh_after_l3(work, result)
-    summary = {**result.model_dump(mode="json", include={"passed", "status", "message", "reason", "outcome", "forces",
-                                                         "held_out", "attempt", "values", "numerics",
-                                                         "material_source", "recordings"}),
-               "wall_time_s": wall_time_s}
     if as_json:
-        emit_json(summary)
+        emit_json(manipulation_summary(result, wall_time_s))
     else:
-        table = Table(title=f"L3 manipulation: {result.status}")
-        table.add_column("label / figure")
-        table.add_column("value", justify="right")
-        for k, v in sorted(result.labels.items()):
-            table.add_row(k, f"{v:.4g}")
-        results.print(table)
+        results.print(manipulation_table(result))
         results.print(result.message, markup=False)
     if not result.passed:
         console.print(f"L3 did not pass: {result.reason or result.message}; recorded in "

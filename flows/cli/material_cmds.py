@@ -17,7 +17,8 @@ from contracts.material import Material
 from contracts.sim import SimConfig
 from flows.cli.apps import RECORD_HELP, app, check_record, console, emit_json, fail, prefect_log_level, results
 from flows.cli.physical_cmds import asset_path
-from flows.cli.preflight import check_asset_dir, check_locations
+from tasks.preflight import check_asset_dir, check_locations
+from tasks.report.layers import material_line
 
 if TYPE_CHECKING:
     from contracts.asset_dir import KeepTrials
@@ -177,7 +178,5 @@ def material(
         emit_json(document_json(record))
     if mat is None:
         fail(f"L2 found no valid material: {outcome.message}", code=1)
-    (console if as_json else results).print(  # the result line; beside --json output, on stderr
-        f"[bold]material[/]: E={mat.youngs_modulus_pa:.4g} Pa, nu={mat.poisson_ratio:.3g}, "
-        f"damping={mat.damping_rate_per_s:.3g} 1/s ({outcome.status}, {record.sim_calls} simulation "
-        f"calls, {wall_s:.1f} s) -> {adir.file('material')}")
+    # the result line; beside --json output, on stderr
+    (console if as_json else results).print(material_line(mat, outcome, record, wall_s, adir.file("material")))

@@ -9,6 +9,7 @@ import sys
 import typer
 
 from flows.cli.apps import console, emit_json, fail, results, verify_app
+from tasks.report.tables import verify_table
 
 
 @verify_app.command("physics")
@@ -39,15 +40,6 @@ def verify_physics(
     if json_out:
         emit_json({"quick": quick, "device": device, "passed": all_pass, "cases": [r.as_dict() for r in cases]})
     else:
-        from rich.table import Table
-
-        table = Table(title=f"MPM analytic suite ({'quick' if quick else 'full'}, {device})")
-        for col in ("case", "measured", "expected", "error", "tolerance", "units", "pass", "s"):
-            table.add_column(col)
-        for r in cases:
-            err = f"{r.error:.3g}" + (" (rel)" if r.error_kind == "relative" else " (abs)")
-            table.add_row(r.name, f"{r.measured:.5g}", f"{r.expected:.5g}", err, f"{r.tolerance:g}", r.units,
-                          "[green]PASS[/green]" if r.passed else "[red]FAIL[/red]", f"{r.seconds:.1f}")
-        results.print(table)
+        results.print(verify_table(cases, quick, device))
     if not all_pass:
         raise typer.Exit(1)

@@ -6,11 +6,11 @@ from pathlib import Path
 from typing import TYPE_CHECKING, cast
 
 import typer
-from rich.table import Table
 
 from cache import use_cache_root
 from flows.cli.apps import RECORD_HELP, app, check_record, console, emit_json, fail, results
-from flows.cli.preflight import check_asset_dir
+from tasks.preflight import check_asset_dir
+from tasks.report.layers import mass_check_lines, physical_table
 
 if TYPE_CHECKING:
     from contracts.asset_dir import KeepTrials
@@ -60,21 +60,12 @@ def physical(
                    "physical_model": phys.model_dump(mode="json") if phys else None, "metrics": outcome.metrics,
                    "sim_calls": outcome.sim_calls, "attempts": outcome.attempts_used, "mass_check": mass})
     else:
-        table = Table(title=f"L1 physical model: {outcome.status}")
-        table.add_column("metric")
-        table.add_column("value", justify="right")
-        if phys:
-            table.add_row("density [kg/m^3]", f"{phys.density_kg_per_m3:.4g}")
-            table.add_row("mass [kg]", f"{phys.mass_kg:.4g}")
-            table.add_row("ground / gripper friction [-]", f"{phys.ground_friction:.3g} / {phys.gripper_friction:.3g}")
-        for k, v in sorted(outcome.metrics.items()):
-            table.add_row(k, f"{v:.4g}")
-        results.print(table)
+        results.print(physical_table(outcome, phys))
         if mass:
-            lo, hi = mass["band_kg"]
-            results.print(f"mass check: {lo * 1e3:.3g}-{hi * 1e3:.3g} g from {mass['source']}")
-            for note in mass["notes"]:
-                results.print(f"  {note}", markup=False)
+            head, *notes = mass_check_lines(mass)
+            results.print(head)
+            for note in notes:
+                results.print(note, markup=False)
         results.print(outcome.message, markup=False)
     if not outcome.passed:
         raise typer.Exit(1)

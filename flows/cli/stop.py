@@ -14,10 +14,7 @@ entries are written atomically, and what a dead writer left is tidied by the nex
 from __future__ import annotations
 
 import os
-import re
-import shutil
 import signal
-import socket
 import sys
 import threading
 import time
@@ -27,6 +24,8 @@ from types import FrameType
 from typing import NoReturn
 
 from cache.runtime import leave_sigterm_to
+from cache.tempfiles import remove_own_working_dirs
+from tasks.processes import stop_children
 
 BACKSTOP_S = 1.3  # after the signal, the process ends by this time even if its main thread has not unwound [s]
 CHILD_GRACE_S = 0.4  # children get this long to end after SIGTERM (SIGINT for a batch request) before SIGKILL [s]
@@ -112,7 +111,7 @@ def _backstop() -> None:
 def leave(code: int) -> NoReturn:
     """End the process now: children stopped, own working directories removed, output flushed, os._exit(code)."""
     try:
-        _stop_children()
+        stop_children(CHILD_GRACE_S)
         _remove_own_working_dirs()
     finally:
         flush_and_exit(code)
@@ -128,71 +127,9 @@ def flush_and_exit(code: int) -> NoReturn:
     os._exit(code)
 
 
-def _children() -> list[int]:
-    """This process's child processes (Linux /proc; elsewhere those multiprocessing and the prestart know of)."""
-    me, found = os.getpid(), []
-    try:
-        for entry in os.scandir("/proc"):
-            if entry.name.isdigit():
-                try:
-                    with open(f"/proc/{entry.name}/stat", "rb") as fh:
-                        stat = fh.read()
-                except OSError:
-                    continue
-                fields = stat[stat.rfind(b")") + 2:].split()  # after "pid (comm) ": state, ppid, ...
-                if len(fields) > 1 and int(fields[1]) == me:
-                    found.append(int(entry.name))
-        return found
-    except OSError:
-        pass
-    import multiprocessing
-
-    found = [p.pid for p in multiprocessing.active_children() if p.pid]
-    server = sys.modules.get("cache.runtime")
-    proc = getattr(getattr(server, "_PRESTART", None), "process", None)
-    return found + ([proc.pid] if proc is not None and proc.poll() is None else [])
-
-
-def _stop_children() -> None:
-    """SIGINT to a child that leads a session of its own (a batch request: it removes its working directory), SIGTERM
-    to the others (Prefect's server, workers); SIGKILL to their groups after CHILD_GRACE_S. Reaped, so that none
-    holds this process's stderr open after it ends."""
-    children = _children()
-    leaders = set()
-    for pid in children:
-        try:
-            if os.getpgid(pid) == pid and os.getsid(pid) == pid:
-                leaders.add(pid)
-                os.killpg(pid, signal.SIGINT)
-            else:
-                os.kill(pid, signal.SIGTERM)
-        except OSError:
-            pass
-    left, deadline = set(children), time.monotonic() + CHILD_GRACE_S
-    while left and time.monotonic() < deadline:
-        for pid in list(left):
-            try:
-                done, _ = os.waitpid(pid, os.WNOHANG)
-            except ChildProcessError:
-                done = pid  # reaped elsewhere (its Popen object)
-            if done:
-                left.discard(pid)
-        time.sleep(0.02)
-    for pid in children:
-        try:
-            os.killpg(pid, signal.SIGKILL) if pid in leaders else os.kill(pid, signal.SIGKILL)
-        except OSError:
-            pass
-
-
-_WORKING = re.compile(r"^\..+\.(?:partial|tmp)-(?P<host>[^~]+)~(?P<pid>\d+)~")
-
-
 def _remove_own_working_dirs() -> None:
-    """This process's `.<name>.partial-` / `.tmp-` working directories (cache.tempfiles) beside the paths its command
-    line names (and in out/, generate's default parent) that its unwinding did not get to remove. A set-aside previous
-    asset (`.old-`) is left for the next run to restore or clear, as after a kill."""
-    tag = (socket.gethostname(), str(os.getpid()))
+    """This process's working directories (cache.tempfiles.remove_own_working_dirs) beside the paths its command line
+    names (and in out/, generate's default parent) that its unwinding did not get to remove."""
     places: set[Path] = {Path("out").absolute()}
     for arg in _State.argv[1:]:
         value = arg.split("=", 1)[1] if arg.startswith("--") and "=" in arg else arg
@@ -200,12 +137,4 @@ def _remove_own_working_dirs() -> None:
             continue
         path = Path(value).expanduser().absolute()
         places.update((path, path.parent, path / "export"))
-    for place in places:
-        try:
-            entries = list(place.iterdir()) if place.is_dir() else []
-        except OSError:
-            continue
-        for entry in entries:
-            m = _WORKING.match(entry.name)
-            if m and (m.group("host"), m.group("pid")) == tag:
-                shutil.rmtree(entry, ignore_errors=True)
+    remove_own_working_dirs(places)

@@ -1,5 +1,6 @@
 """When the rule backend stands in for an LLM: the models found unusable this run, the warning said on the console,
-and the error raised under `--llm-fallback fail`; `fallback_notes` reads where it happened back from the evidence."""
+and the error raised under `--llm-fallback fail`; `fallback_notes` reads where it happened back from the evidence.
+L0's shape Designer is asked only with credentials for its model (`l0_designer_stand_in`)."""
 
 from __future__ import annotations
 
@@ -8,6 +9,7 @@ import re
 import sys
 from pathlib import Path
 
+from contracts.agents import AgentConfig
 from contracts.errors import InputError
 
 UNAVAILABLE: dict[str, str] = {}  # model string -> why it is unusable this run (no key, no server, no such model)
@@ -70,3 +72,18 @@ def fallback_notes(asset_dir: Path) -> list[str]:
                 if note not in notes:
                     notes.append(note)
     return notes
+
+
+def l0_designer_stand_in(agents: AgentConfig) -> str | None:
+    """When L0's shape Designer's model has no credentials in the environment: the fallback note (the offline grammar
+    stands in; L0 is keyed as offline), or LLMUnavailable under --llm-fallback fail. None when it can be asked."""
+    model = str(agents.designer.model)
+    missing = missing_credentials(model)
+    if not missing:
+        return None
+    reason = f"no credentials for {model}: {', '.join(missing)} not set"
+    if agents.designer.on_failure == "fail":
+        raise LLMUnavailable(f"L0 designer: {reason} (--llm-fallback fail)")
+    UNAVAILABLE[model] = reason
+    announce(f"the offline rule backend stands in for litellm/{model} at L0 shape_designer: {reason}")
+    return f"L0 designer: the offline grammar stood in for litellm/{model} ({reason})"

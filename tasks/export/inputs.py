@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import json
 import re
 from collections.abc import Sequence
 from dataclasses import dataclass
@@ -13,7 +14,7 @@ from cache import CacheMiss, CacheStore, cache_root, content_key
 from contracts.errors import InputError
 from contracts.export import ExportMaterial
 from tasks.asset_dir import AssetDir
-from tasks.export.tetmesh import TetMesh, tetrahedralize, write_msh, write_vtk
+from tasks.export.tetmesh import TetMesh, enclosed_volume_m3, tet_quality, tetrahedralize, write_msh, write_vtk
 from tasks.geometry.gaussians import GaussianSet
 from tasks.geometry.outputs import load_l0
 
@@ -47,6 +48,20 @@ def write_tet_files(inputs: ExportInputs, out_dir: Path) -> list[str]:
     write_vtk(inputs.tet, out_dir / f"{inputs.slug}.vtk")
     write_msh(inputs.tet, out_dir / f"{inputs.slug}.msh")
     return [f"{inputs.slug}.vtk", f"{inputs.slug}.msh"]
+
+
+def write_tetmesh_dir(inputs: ExportInputs, out_dir: Path) -> dict[str, float]:
+    """The export's tetmesh/ folder: the .vtk, .msh, quality.json (tet_quality and the volume against the surface's)
+    and a README; returns the quality figures."""
+    write_tet_files(inputs, out_dir)
+    quality = tet_quality(inputs.tet)
+    surface_volume = abs(enclosed_volume_m3(inputs.surface_vertices_m, inputs.surface_faces))
+    quality["surface_volume_m3"] = surface_volume
+    quality["volume_error_rel"] = abs(quality["volume_m3"] - surface_volume) / surface_volume
+    (out_dir / "quality.json").write_text(json.dumps(quality, indent=2, sort_keys=True) + "\n", encoding="utf-8")
+    write_readme(out_dir, "tet mesh", f"meshio.read('{inputs.slug}.msh') or meshio.read('{inputs.slug}.vtk')", [
+        "Linear tetrahedra (isosurface stuffing, deterministic), positively oriented; quality figures in quality.json."])
+    return quality
 
 
 def write_readme(out_dir: Path, target: str, load_hint: str, lines: Sequence[str] = ()) -> str:

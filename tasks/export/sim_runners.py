@@ -1,6 +1,6 @@
 """The simulators' probe runners for `deformsmith crosscheck`: L2's object compression and drop probes on an exported
-asset in MuJoCo, Genesis or Drake, with each one's calibration knobs and its calibrated-file writer (used by
-flows.crosscheck, which fits and records)."""
+asset in MuJoCo, Genesis or Drake, with each one's calibration knobs and its calibrated-file writer, and the
+calibration that fits them (used by flows.crosscheck, which records it)."""
 
 from __future__ import annotations
 
@@ -13,8 +13,8 @@ from pathlib import Path
 
 from contracts.errors import InputError
 from tasks.export import drake, drake_probes, genesis, genesis_probes, mujoco as mj
-from tasks.export.calibrate import Knob
-from tasks.export.crosscheck import ProbeTargets
+from tasks.export.calibrate import Calibration, Knob, fit_both, rel
+from tasks.export.crosscheck import AGREEMENT_TOLERANCE, CALIBRATED_METRICS, ProbeTargets
 from tasks.export.genesis import GENESIS_INSTALL
 from tasks.export.inputs import ExportInputs
 from tasks.export.mujoco_probes import compress, drop
@@ -36,6 +36,43 @@ class SimRunner:
     drop: Callable[[dict[str, float]], dict[str, float]]
     knobs: Callable[[dict[str, float]], list[Knob]] | None
     write_calibrated: Callable[[dict[str, float], Path], list[str]] | None
+
+
+def probe_metrics(compress: dict[str, float], drop: dict[str, float]) -> dict[str, float]:
+    """A compression's and a drop's metrics as one dict of floats (the compression's where both name one)."""
+    return {**{k: float(v) for k, v in drop.items()}, **{k: float(v) for k, v in compress.items()}}
+
+
+def calibrate(sim: str, runner: SimRunner, targets: ProbeTargets, before: dict[str, float]
+              ) -> tuple[dict[str, float], Calibration]:
+    """Fit the simulator `sim`'s Young's modulus to L2's effective modulus, then its damping knobs to L2's rebound
+    (fit_both), from its exported parameters, whose probes measured `before`; every probe runs once per parameter set
+    (the fits re-read what they measured). Returns the probes' metrics with the fitted parameters ("after") and the
+    calibration (its sim_calls: the simulations beyond the exported parameters' two). Needs runner.compress and
+    runner.knobs."""
+    assert runner.compress is not None and runner.knobs is not None
+    ours, values = targets.ours, dict(runner.initial)
+    probes = {"compress": runner.compress, "drop": runner.drop}
+    runs: dict[tuple, dict[str, float]] = {(kind, *sorted(values.items())): before for kind in probes}
+
+    def probe(kind: str, v: dict[str, float]) -> dict[str, float]:
+        key = (kind, *sorted(v.items()))
+        if key not in runs:
+            runs[key] = probes[kind](v)
+        return runs[key]
+
+    values, steps = fit_both(lambda v: float(probe("compress", v)["effective_modulus_pa"]),
+                             lambda v: float(probe("drop", v).get("rebound_ratio", 0.0)), runner.knobs, values,
+                             ours["effective_modulus_pa"], ours["rebound_ratio"])
+    after = probe_metrics(probe("compress", values), probe("drop", values))
+    residuals = {m: rel(after[m], ours[m]) for m in CALIBRATED_METRICS if m in after}
+    return after, Calibration(
+        sim=sim, parameters=values, initial=runner.initial, residuals=residuals,
+        residuals_before={m: rel(before[m], ours[m]) for m in CALIBRATED_METRICS if m in before},
+        probes=[f"compress (object, strain {targets.strain})",
+                f"drop (object, height fraction {targets.height_fraction})"],
+        history=steps, sim_calls=len(runs) - len(probes),
+        converged=all(abs(r) <= AGREEMENT_TOLERANCE for r in residuals.values()))
 
 
 def rate_knob(name: str, rate_per_s: float, period_s: float) -> Knob:

@@ -51,6 +51,12 @@ def signed_volumes_m3(nodes_m: np.ndarray, tets: np.ndarray) -> np.ndarray:
     return np.einsum("ij,ij->i", np.cross(p[:, 1] - p[:, 0], p[:, 2] - p[:, 0]), p[:, 3] - p[:, 0]) / 6.0
 
 
+def enclosed_volume_m3(vertices_m: np.ndarray, faces: np.ndarray) -> float:
+    """The signed volume [m^3] a closed triangle surface encloses (divergence theorem; positive for outward faces)."""
+    p = vertices_m[faces]
+    return float(np.einsum("ij,ij->i", p[:, 0], np.cross(p[:, 1], p[:, 2])).sum() / 6.0)
+
+
 def dihedral_angles_deg(nodes_m: np.ndarray, tets: np.ndarray) -> np.ndarray:
     """The six interior dihedral angles of each tet [deg], shape (M, 6)."""
     p = nodes_m[tets]
@@ -122,7 +128,7 @@ def tetrahedralize(vertices_m: np.ndarray, faces: np.ndarray, *, edge_length_m: 
     edge = float(edge_length_m) if edge_length_m else DEFAULT_EDGE_FRACTION * diag
     p = v[f]
     cross = np.cross(p[:, 1] - p[:, 0], p[:, 2] - p[:, 0])
-    surface_volume = float(np.einsum("ij,ij->i", p[:, 0], np.cross(p[:, 1], p[:, 2])).sum() / 6.0)
+    surface_volume = enclosed_volume_m3(v, f)
     surface_area = float(np.linalg.norm(cross, axis=1).sum() / 2.0)
     if not surface_volume > 0:
         raise InputError("tetrahedralize: the surface encloses no volume (open, or faces pointing inwards)")

@@ -14,7 +14,9 @@ from contracts.material import Material
 from contracts.physical import PhysicalModel
 from contracts.probes import ProbeResult
 from contracts.stage import StageContract
-from tasks.manipulation.context import L3Context, L3Options, accepted, tolerances_from
+from tasks.asset_dir import AssetDir
+from tasks.geometry.outputs import load_l0
+from tasks.manipulation.context import L3Context, L3Options, accepted, material_of, tolerances_from
 from tasks.manipulation.report import best_attempt, failed_gate_names, record_no_grasp, trial_reason
 
 PICK_AND_PLACE_RECORDING = "recordings/L3_pick_and_place.rrd"  # the chosen trial's recording
@@ -62,6 +64,19 @@ def no_grasp_record(asset_dir: Path, options: L3Options, contract: StageContract
         held_out=HeldOutConditions(conditions=[], success_rate=None), robustness=None, material_revision=None,
         numerics=L3Numerics(quality=options.quality, device=options.device), attempts=attempts, harness_attempts=1,
         recordings=[])
+
+
+def no_grasp_outcome(asset_dir: Path, options: L3Options, contract: StageContract, material: Material | None,
+                     reason: str) -> tuple[ManipulationRecord, StageOutcome]:
+    """L3's outcome when no gripper can hold the object, its record written (manipulation.json, and the reason as
+    L3's one attempt in evidence/): the given material, else the one the asset carries (material_of)."""
+    adir = AssetDir(asset_dir)
+    source = "given"
+    if material is None:
+        material, source = material_of(asset_dir, load_l0(adir.path))
+    record = no_grasp_record(asset_dir, options, contract, adir.physical_model(), material, source, reason)
+    adir.write_manipulation(record)
+    return record, StageOutcome(stage="L3", status="no_valid_candidate", attempts_used=1, message=reason)
 
 
 def chosen_attempt(ctx: L3Context, values: dict[str, float] | None, material: Material) -> TrialRow | None:

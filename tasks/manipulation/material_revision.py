@@ -214,5 +214,47 @@ def more_robust(revision: MaterialRevision | None, robustness: ConditionSummary)
     return revision.model_copy(update={"accepted": False})
 
 
-__all__ = ["MaterialLimits", "Revalidate", "base_attempt", "failed_gates", "fell_over", "halfway", "more_robust",
-           "revise_material", "revise_with_l2"]
+@dataclass(frozen=True)
+class AfterHarness:
+    """What L3 holds after robustness and material revision: the plan's values (None: no plan), the final material
+    (the context's own object unless a revision was adopted), the revision tried (if any) and the robustness
+    conditions of the final plan (None when they did not run)."""
+
+    values: dict[str, float] | None
+    material: Material
+    revision: MaterialRevision | None
+    robustness: ConditionSummary | None
+
+
+def robustness_and_revision(ctx: L3Context, outcome: StageOutcome, contract: StageContract,
+                            revalidate: Revalidate) -> AfterHarness:
+    """L3's steps after its harness stage (`outcome`). 3: an accepted plan under the training perturbations
+    (ctx.options.robustness); 4: a failing one asks the material for margin, adopted only when the revised material
+    passes the nominal condition and strictly more perturbations (more_robust). When no plan passed (or the harness
+    escalated to revise_material) and options.material_fallback: a material revision from the attempt that came
+    closest (base_attempt), adopted with its plan when the robot then passes. `contract`: the stage's contract as
+    given (the gates the conditions are judged by)."""
+    options = ctx.options
+    values, material, revision, robustness = outcome.values, ctx.material, None, None
+    escalated = outcome.status == "escalated" and outcome.escalation == "revise_material"
+    if outcome.passed and values is not None and options.robustness:
+        rob = ctx.under(dict(values), options.robustness, "robustness")
+        robustness = conditions(options.robustness, rob, contract)
+        failing = [r for r in rob if not accepted(r.metrics, contract)]
+        if failing:
+            revision = more_robust(revise_with_l2(ctx, dict(values), failing[0].metrics, "robustness", revalidate),
+                                   robustness)
+            if revision is not None and revision.accepted:
+                material, robustness = revision.to, revision.robustness
+    elif escalated or (not outcome.passed and options.material_fallback):
+        base = base_attempt(ctx, outcome, escalated)
+        if base is not None and base.evidence is not None:
+            revision = revise_with_l2(ctx, dict(base.proposal), base.evidence.metrics,
+                                      "escalation" if escalated else "no plan passed", revalidate)
+        if revision is not None and revision.accepted:
+            values, material, robustness = dict(revision.plan_values), revision.to, revision.robustness
+    return AfterHarness(values, material, revision, robustness)
+
+
+__all__ = ["AfterHarness", "MaterialLimits", "Revalidate", "base_attempt", "failed_gates", "fell_over", "halfway",
+           "more_robust", "revise_material", "revise_with_l2", "robustness_and_revision"]

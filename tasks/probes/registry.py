@@ -14,6 +14,7 @@ from functools import cache
 
 from contracts.errors import ContractError
 from contracts.stage import StageContract, StageProbes
+from tasks.agents.vocab import StageRoutes
 from tasks.probes.probe import Probe
 
 PACKAGES = ("tasks.probes.rigid_probes", "tasks.probes.deformable_probes")
@@ -67,4 +68,19 @@ def by_kind(stage: str, kind: str) -> Probe:
     raise ContractError(f"no {stage} probe reports the kind '{kind}'")
 
 
-__all__ = ["PACKAGES", "by_kind", "probe", "registry", "reset", "stage_probes"]
+def with_probe_routes(routes: StageRoutes, contract: StageContract) -> StageRoutes:
+    """The stage's route table plus the route defaults (gate routes, couplings) of the registered probes its contract
+    runs, for the metrics routes.yaml and the contract leave out: a new probe brings its own routes."""
+    table = routes.model_dump()
+    added = False
+    for p in stage_probes(contract):
+        own = p.route_table()
+        for section in ("gates", "couplings"):
+            for metric, route in own[section].items():
+                if metric not in table[section]:
+                    table[section][metric] = route
+                    added = True
+    return StageRoutes.model_validate(table) if added else routes
+
+
+__all__ = ["PACKAGES", "by_kind", "probe", "registry", "reset", "stage_probes", "with_probe_routes"]

@@ -61,7 +61,7 @@ def test_thirty_requests_on_postgres_survive_a_killed_worker(tmp_path: Path) -> 
     import local_cluster as lc
     from local_postgres import LocalPostgres
 
-    from flows.generate import content_fingerprint
+    from tasks.record.fingerprint import content_fingerprint
     from test_cluster_integration import _victim  # type: ignore[import-not-found]
 
     cache, out = tmp_path / "cache", tmp_path / "out"

@@ -62,7 +62,7 @@ def test_wilson_bounds() -> None:
 
 def test_report_is_traceable(tmp_path: Path) -> None:
     from contracts.evaluation import Suite, SuiteCase
-    from flows.evaluate import EvalOptions, write_record
+    from tasks.evaluation.runs import EvalOptions, write_record
     from tasks.evaluation.report import write_report
 
     recs = [_rec("harness", "one_shot", "a", delivered=True, target_satisfied=False, hard_failure=True, sim_calls=4),
@@ -96,7 +96,8 @@ def test_flat_contract_joins_l1_and_l2() -> None:
 
 
 def test_resume_skips_recorded_cases_inside_the_prefect_flow(tmp_path: Path, prefect_api: str) -> None:
-    from flows.evaluate import EvalOptions, evaluation_flow, write_record
+    from flows.evaluate import evaluation_flow
+    from tasks.evaluation.runs import EvalOptions, write_record
 
     suite = tmp_path / "s.json"
     suite.write_text(json.dumps({"name": "s", "cases": [{"id": "a", "kind": "text", "text": "a sponge 10 cm",

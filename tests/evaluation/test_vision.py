@@ -69,7 +69,7 @@ def test_a_bad_answer_is_fed_back_and_out_of_range_ratings_are_refused(tmp_path:
 
 
 def test_ratings_reach_the_record_and_the_report(tmp_path: Path) -> None:
-    from flows.evaluate import EvalOptions
+    from tasks.evaluation.runs import EvalOptions
     from tasks.evaluation.report import write_report
 
     asset = tmp_path / "cases" / "a" / "hierarchical"

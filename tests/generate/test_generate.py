@@ -11,7 +11,7 @@ from pathlib import Path
 
 import pytest
 
-from flows.generate import content_fingerprint
+from tasks.record.fingerprint import content_fingerprint
 
 REPO = Path(__file__).resolve().parents[2]
 # The default asset is also the cheapest to simulate at draft: draft fixes ~20 cells along the longest extent, so a
@@ -170,7 +170,7 @@ def test_inspect_a_non_asset_is_one_clear_error(tmp_path: Path) -> None:
 def test_stale_working_directories_of_dead_processes_are_removed(tmp_path: Path) -> None:
     import socket
 
-    from flows.generate import remove_stale_partials
+    from tasks.publish import remove_stale_partials
 
     dead = subprocess.run([sys.executable, "-c", "import os; print(os.getpid())"], capture_output=True, text=True)
     host = socket.gethostname()

@@ -16,7 +16,7 @@ import pytest
 
 from contracts.errors import InputError
 from flows.cli import main as cli_main
-from flows.cli import preflight
+from tasks import preflight
 
 REPO = Path(__file__).resolve().parents[2]
 

@@ -15,7 +15,7 @@ import pytest
 
 from cache.store import CacheStore
 from cache.tempfiles import dead_cache_temporaries, pid_alive
-from flows.cli import preflight
+from tasks import preflight
 
 REPO = Path(__file__).resolve().parents[2]
 

@@ -17,7 +17,7 @@ from l1_assets import asset_of
 from contracts.agents import TargetBehaviour
 from contracts.concept import ConceptMatch
 from contracts.request import AssetRequest
-from flows.l1_physical import l1_plan, l1_targets
+from tasks.physical.plan import l1_plan, l1_targets
 from flows.l2_material import l2_targets
 from tasks.agents.vocab import load_material_vocab
 from tasks.geometry.outputs import L0Asset, load_l0

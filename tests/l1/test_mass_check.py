@@ -20,7 +20,8 @@ from l1_assets import asset_of, write_l0_dir
 from contracts.concept import ConceptMatch
 from contracts.errors import InputError
 from contracts.request import AssetRequest
-from flows.l1_physical import L1Plan, l1_plan, run_l1
+from flows.l1_physical import run_l1
+from tasks.physical.plan import L1Plan, l1_plan
 from tasks.geometry.outputs import load_l0
 from tasks.physical.mass import concept_band, mass_check, typical_mass_at_size
 

@@ -8,7 +8,8 @@ import pytest
 from contracts.errors import InputError
 from contracts.material import Material
 from contracts.stage import load_contract
-from flows.l2_material import l2_metrics, object_view, specimen_arrays
+from tasks.probes.l2_record import l2_metrics, object_view
+from tasks.probes.screening import specimen_arrays
 from tasks.probes.deformable import compress
 from tasks.probes.rollout import DeformableBody
 from tasks.probes.specimen import specimen_particles

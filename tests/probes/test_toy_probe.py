@@ -15,7 +15,7 @@ import flows.l2_material as l2
 import tasks.probes.deformable_probes as package
 from cache import CacheStore, cache_resolve, cache_root
 from contracts.stage import HardGate, load_contract
-from flows.harness import with_probe_routes
+from tasks.probes.registry import with_probe_routes
 from tasks.agents.vocab import stage_routes
 from tasks.probes import registry
 from tests.l2.helpers import box_asset

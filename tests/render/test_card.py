@@ -170,7 +170,7 @@ def test_one_trial_numbering_in_manipulation_json_evidence_and_the_card(tmp_path
     """A trial is a simulated pick-and-place, numbered from 1 in the order run (the console's 'L3 trial k'):
     manipulation.json's rows (trial_rows), `deformsmith evidence` (the harness attempt's trial) and the card name the
     same number for the same interaction folder; never the folder index."""
-    from flows.cli.evidence_cmds import attempt_trials
+    from tasks.report.evidence import attempt_trials
     from tasks.agents.records import read_attempts
     from tasks.asset_dir import AssetDir
     from tasks.record.trials import trial_of_attempt, trial_rows
@@ -207,7 +207,7 @@ def test_card_says_which_part_the_grasp_holds_and_why(tmp_path: Path) -> None:
 def test_trials_left_in_the_cache_are_named_by_key_never_by_a_missing_path(tmp_path: Path) -> None:
     """A default asset keeps the reported trial's states alone (#38 item 5): the card and `evidence` say where the
     others are ('in the cache, key ...'), and name no interaction folder the asset does not hold."""
-    from flows.cli.evidence_cmds import attempt_trials, trial_data
+    from tasks.report.evidence import attempt_trials, trial_data
     from tasks.agents.records import read_attempts
 
     root = _asset(tmp_path, "turtle")

@@ -16,7 +16,7 @@ from typer.testing import CliRunner
 from cache import CacheStore, content_key
 from flows.cli import cache_cmds  # noqa: F401  (registers the commands)
 from flows.cli.apps import app
-from flows.cli.cache_cmds import parse_duration, parse_size
+from tasks.report.units import parse_duration, parse_size
 
 REPO = Path(__file__).resolve().parents[2]
 

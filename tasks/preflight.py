@@ -1,6 +1,8 @@
-"""Pre-flight checks of the places a command writes (output parent, cache root) and one-line filesystem errors.
+"""Pre-flight checks, run by the commands before any layer: the places a command writes (output parent, cache root),
+a generation request's inputs (its image's header; an object the lexicon does not name, under --strict-concept), and
+one-line filesystem errors.
 
-Run before any layer: each location must exist or be creatable, be a directory a file can be created in, and have at
+Each location must exist or be creatable, be a directory a file can be created in, and have at
 least `DEFORMSMITH_MIN_FREE_MB` megabytes free (default 100 MB). `filesystem_error` turns an OSError met anywhere
 later (read-only, missing, full) into the InputError the CLI prints as one `error:` line with the path and the cause.
 """
@@ -138,10 +140,6 @@ def check_request(request, out: Path | None, cache: bool = True) -> None:
     if request.image_path is not None and Path(request.image_path).is_file():
         check_image_size(request.image_path)
     check_locations(out, cache=cache)
-
-
-STRICT_CONCEPT_HELP = ("refuse an object the lexicon does not name (exit 2, nothing written) instead of building it by "
-                       "analogy")
 
 
 def concept_line(request, strict: bool) -> str | None:

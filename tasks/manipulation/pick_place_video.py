@@ -1,0 +1,46 @@
+"""renders/pick_and_place.mp4: the video of the trial an L3 record shows, rendered by tasks.manipulation.replay and
+cached as a file by what it shows (the recorded attempt's bytes) and the code and libraries that draw and encode it."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from cache import content_key
+from cache.files import cached_file, source_digest
+from contracts.manipulation import ManipulationRecord
+from tasks.manipulation.replay import replay
+from tasks.record.trials import reported_attempt
+
+ROOT = Path(__file__).resolve().parents[2]  # the repository: the renderer's sources are named from it
+
+
+def write_pick_and_place_video(work: Path, record: ManipulationRecord) -> Path | None:
+    """renders/pick_and_place.mp4 of the attempt the record shows (cached by the attempt's bytes); None, and an earlier
+    L3's video removed, when the record shows no recorded trial (no grasp, or its interaction data is absent)."""
+    n = reported_attempt(record)
+    video = work / "renders" / "pick_and_place.mp4"
+    if n is None or not (work / "interaction" / f"attempt_{n:03d}").is_dir():
+        video.unlink(missing_ok=True)
+        return None
+    video.parent.mkdir(parents=True, exist_ok=True)
+    cached_file(pick_and_place_video_key(work, n), video, lambda path: replay(work, n, video=path))
+    return video
+
+
+def renderer_sources() -> list[Path]:
+    """The code that renders and encodes the video: the replay and its scene, the render package (but the card's and
+    the benchmarks' modules), the robot drawn, the Gaussians, the robot contract and the grippers."""
+    renderer = [ROOT / "tasks" / "manipulation" / f"{m}.py" for m in
+                ("replay", "scene", "data", "particle_frames", "video")]
+    renderer += sorted(p for p in (ROOT / "tasks" / "render").glob("*.py") if not p.name.startswith(("card", "bench")))
+    renderer += [ROOT / "tasks" / "robot" / f"{m}.py" for m in ("visual", "panda", "trajectory")]  # the robot drawn
+    return [*renderer, ROOT / "tasks" / "geometry" / "gaussians.py", ROOT / "contracts" / "robot.py",
+            ROOT / "contracts" / "grippers"]
+
+
+def pick_and_place_video_key(work: Path, attempt: int) -> str:
+    """The video's cache key: the recorded attempt's bytes and the code and libraries that render and encode it
+    (rendering it takes ~10 s on the CPU; a warm rerun copies it)."""
+    code = source_digest(renderer_sources(), ("imageio", "imageio-ffmpeg", "numpy", "opencv-python-headless",
+                                              "opencv-python", "pybullet", "scipy", "warp-lang"))
+    return content_key("pick_and_place_video", code, work / "interaction" / f"attempt_{attempt:03d}")
