@@ -452,6 +452,11 @@ def design_from_text(text: str, size_hint_m: float | None = None) -> Design:
     if kept != mods:  # 'a long scarf', 'jeans laid flat': the object is so already, not stretched again
         mods, axis_scale = parse_modifiers(" ".join(kept))
     size = size.model_copy(update={"axis_scale": axis_scale, **_size_form(program, match, reading)})
+    if "a pair" in match.states and size.longest_m is not None and re.search(r"\beach\b", text_n):
+        one = program.model_copy(update={"parts": [p for p in program.parts if not p.name.startswith("other ")]})
+        # '20 cm each': the size of one of the pair
+        size = size.model_copy(update={"longest_m": size.longest_m * float(
+            grammar.program_extents(program, 48).max() / grammar.program_extents(one, 48).max())})
     size = _rolled_sized(size, program, reading)
     size, fill_match = _fill_sized(size, program, fill_match, mass)
     if mass is None:

@@ -84,7 +84,8 @@ PATTERN_WORDS = ("striped", "stripes", "spotted", "spots", "polka dot", "dotted"
                  "tartan", "patterned", "floral", "camo", "camouflage", "rainbow", "tie dye", "speckled")
 STOP_WORDS = frozenset("""a an the of with and or in on for to from made that which is are it its one some this very
 really super extra about around approximately roughly approx like shaped shape form looks looking resembling cute
-little small big large tiny mini huge giant soft squishy fluffy fuzzy furry cuddly stuffed plush plushie toy squeezable
+little small big large tiny mini huge giant soft squishy fluffy fuzzy furry cuddly stuffed plush plushie plushies plushy
+plushes toy squeezable
 squeeze squeezy firm stiff hard bouncy floppy smooth ripe fresh baked sweet round flat thin thick long short tall wide
 narrow chubby fat slim elongated flattened realistic cartoon kawaii happy sleeping sitting standing lying baby adult
 kids kid childs child children pet dog cat new old toy toys piece whole half sliced cut mm cm m inch inches in ft
@@ -522,7 +523,9 @@ def read_text(text: str, serving: bool = True) -> Reading:
             "analogy": [f"{noun}: a container noun with a fill ({pouch.fill.key}, {pouch.fill.source})",
                         "built as a pouch of that fill (tasks.geometry.pouch_words)"]})
         size = None
-        if pouch.piece_m is not None and max(pouch.piece_m) > PACK_PIECE_M:  # 'a pack of sponges': a few side by side
+        if pouch.size_m is not None:  # 'a bag with six oranges inside': sized to show them
+            size = pouch.size_m
+        elif pouch.piece_m is not None and max(pouch.piece_m) > PACK_PIECE_M:  # 'a pack of sponges': a few
             size = PACK_PIECES_ALONG * max(pouch.piece_m)
         return Reading(match=match, entry=entry, warnings=[note], phrase=phrase, pouch=pouch, size_m=size)
     return Reading(match=match, entry=entry, donor=donor_entry, donor_plan=donor_plan, warnings=warnings,
@@ -583,7 +586,8 @@ def _pouch_of(t: str, phrase: phrase_mod.Phrase, entry: LexiconEntry, match: Con
     if phrase.head not in pouch_words.CONTAINERS or phrase.portion is not None:
         return None
     noun = match.noun or ""
-    if not match.by_analogy and noun not in pouch_words.CONTAINERS and (
+    holds = _HOLDS.search(t) is not None  # 'a grocery bag with six oranges inside': the bag holds them
+    if not match.by_analogy and noun not in pouch_words.CONTAINERS and not holds and (
             entry.plan in ("pouch", "bag") or noun.split()[-1:] == [phrase.head]):
         return None  # the lexicon's own bag ('an ice bag', 'a zip bag'); the bare 'pouch' is no drawstring pouch
     found = pouch_words.pouch_of(t, phrase.head, phrase.compounds)
@@ -610,21 +614,39 @@ def _pouch_of(t: str, phrase: phrase_mod.Phrase, entry: LexiconEntry, match: Con
                            f"{volume * 1e6:.3g} cm^3 = {solid:.3g} kg/m^3 at {PIECE_PACKING:g} packing")
     lo, hi = program_bounds(program)
     ext = np.asarray(hi) - np.asarray(lo)
-    if float(ext.max()) > PACK_PIECE_M and piece.mass_kg:  # a pack of a few: the count drawn, not a heap's packing
+    stated = _COUNT.search(words[: hits[-1][0]])
+    if (stated is not None or float(ext.max()) > PACK_PIECE_M) and piece.mass_kg:
+        # a pack of a few: the count drawn (or the count said: 'with six oranges inside'), not a heap's packing
         pack = load_lexicon().entries["generic_pouch"]
         size = PACK_PIECES_ALONG * float(ext.max())
         cap = goods_words.bag_capacity_m3("pouch", dict(pack.params), size)
         nx, ny = piece_grid(PouchParams(**{**pack.params, "piece": tuple(float(v) / size for v in ext)}))
         count = nx * ny
+        if stated is not None:  # the pack grows until its grid shows at least that many
+            said_count = int(stated.group(1)) if stated.group(1).isdigit() else _COUNTS[stated.group(1)]
+            base = size
+            for k in np.arange(1.0, 3.01, 0.05):
+                size = base * float(k)
+                grid = piece_grid(PouchParams(**{**pack.params, "piece": tuple(float(v) / size for v in ext)}))
+                if grid[0] * grid[1] >= said_count:
+                    break
+            cap = goods_words.bag_capacity_m3("pouch", dict(pack.params), size)
+            count = said_count
         fill = fill_words.Fill(fill.key, fill.words, fill.fraction, count * piece.mass_kg / (fill.fraction * cap),
                                fill.color, f"a pack of {count}: {count} x {piece.mass_kg:g} kg "
                                f"({piece.key.replace('_', ' ')})")
     box_fill = volume / max(float(np.prod(ext)), 1e-12)  # a ball ~0.52, a cylinder ~0.79, a block ~1
     shape = "block" if box_fill > 0.86 else "cylinder" if box_fill > 0.66 else "ball"
     return pouch_words.PouchOf(fill=fill, piece_m=(float(ext[0]), float(ext[1]), float(ext[2])), piece_shape=shape,
-                               piece_colors=tuple(dict.fromkeys(said)) or (color,))
+                               piece_colors=tuple(dict.fromkeys(said)) or (color,),
+                               size_m=size if stated is not None else None)
 
 
+_HOLDS = re.compile(r"\b(?:bag|bags|pouch|sack|pack|packet|box)\s+(?:with|containing|holding)\s+(?:\w+\s+){1,4}?"
+                    r"(?:inside|in it|in them|within)\b|\b(?:bag|pouch|sack)\s+(?:containing|holding|full of)\b")
+_COUNTS = {"two": 2, "three": 3, "four": 4, "five": 5, "six": 6, "seven": 7, "eight": 8, "nine": 9, "ten": 10,
+           "eleven": 11, "twelve": 12, "a dozen": 12, "dozen": 12, "twenty": 20}
+_COUNT = re.compile(r"\b(\d+|" + "|".join(sorted(_COUNTS, key=len, reverse=True)) + r")\s+(?:\w+\s+){0,2}$")
 PACK_PIECE_M = 0.06  # goods this long or more come a few to a pack, the pack sized by them [m]
 PACK_PIECES_ALONG = 3.4  # such a pack's length / one piece's: 2 x 2 to 3 x 2 of them, as retail packs of sponges,
 # scourers, cloths hold 3-6 [-]
@@ -874,6 +896,7 @@ def build(reading: Reading, text: str) -> tuple[ShapeProgram, ConceptMatch, list
         program = program.model_copy(update={"parts": [*program.parts, *smiley(tuple(centre), tuple(half))]})
     if goods is not None and goods.duplicate:
         program, match = goods_words.pair_up(program, match)
+        states.append("a pair")
     if goods is not None and goods.nested:  # 'a pack of 12 muffin cups': the cups nested in a stack
         program, match = goods_words.nested_stack(program, match, goods.nested)
         states.append(f"a stack of {goods.nested}")
@@ -906,6 +929,7 @@ def build(reading: Reading, text: str) -> tuple[ShapeProgram, ConceptMatch, list
     if reading.look_only and (reading.donor or reading.donor_plan) is not None and not match.hollow:
         match = match.model_copy(update={"density_kg_per_m3": None})  # its typical mass at the built size (L1)
     program, match, states = _whole_object(reading, program, match, normalise(text), states, warnings)
+    program, match, states = _eaten(entry, program, match, normalise(text), states)
     match, states = _soaked(match, target, normalise(text), states)
     match = graded(match, normalise(text))
     if reading.vacuum:  # the piece on the flat sealed film of its vacuum pack; the film's mass is the piece's
@@ -916,6 +940,32 @@ def build(reading: Reading, text: str) -> tuple[ShapeProgram, ConceptMatch, list
             match = match.model_copy(update={"density_kg_per_m3": piece / max(program_volume(program), 1e-12)})
         states = [*states, "vacuum-packed"]
     return program, match.model_copy(update={"colors": applied, "states": states}), warnings
+
+
+_HALF_EATEN = re.compile(r"\b(?:half eaten|partly eaten|partially eaten|half finished)\b")
+_BITTEN = re.compile(r"\b(?:bitten|a bite (?:taken )?out|bite taken|with a bite|one bite)\b")
+
+
+def _eaten(entry: LexiconEntry, program: ShapeProgram, match: ConceptMatch, text: str,
+           states: list[str]) -> tuple[ShapeProgram, ConceptMatch, list[str]]:
+    """A food half eaten (about half of it taken away from one end) or bitten (a bite out of its edge): the cut
+    made by a subtracted ball, its typical mass scaled by the volume left."""
+    half = _HALF_EATEN.search(text) is not None
+    if not (half or _BITTEN.search(text)) or concept_domain(entry.key) != "food" or len(program.parts) > 62:
+        return program, match, states
+    centre, radii = _body_envelope(program, 32)
+    axis = int(np.argmax(radii[:2]))
+    r = float(radii.max()) * (1.15 if half else 0.35)
+    at = centre.copy()
+    at[axis] += radii[axis] if half else radii[axis] - 0.45 * r  # half: the ball's centre on the far edge
+    rgb = load_lexicon().colors.get(entry.colors.get("flesh", ""), program.parts[0].color_rgb)
+    cut = ellipsoid("bite", (r, r, r * 1.5), tuple(float(v) for v in at)).model_copy(
+        update={"operation": "subtract", "color_rgb": rgb})
+    before = program_volume(program, 40)
+    eaten = program.model_copy(update={"parts": [*program.parts, cut]})
+    left = program_volume(eaten, 40) / max(before, 1e-12)
+    mass = match.typical_mass_kg * left if match.typical_mass_kg else None
+    return eaten, match.model_copy(update={"typical_mass_kg": mass}), [*states, "half eaten" if half else "bitten"]
 
 
 _HEAP = re.compile(r"\b(?:heap|heaped|pile|piled|balled|ball|wad|wadded|scrunched|bunched|on the floor|"
@@ -1599,6 +1649,10 @@ def _snapped(parts: list[Part], program: ShapeProgram, centre: np.ndarray, half:
 # toy), not its volume: a plush built larger or smaller than the entry's typical size keeps mass ~ L^2, as a hollow
 # shell's does in tasks.physical.mass (HOLLOW_EXPONENT).
 PLUSH_MASS_EXPONENT = 2.0
+# built larger than typical, less than that: big and giant plush are stuffed looser (retail: a 100 cm plush shark
+# 0.66 kg against 55 cm 0.3 kg, ~L^1.3; teddies 30 -> 100 cm 0.2 -> 1.2-1.6 kg, ~L^1.6); sealed sets 10 and 11 found
+# a 1 m shark and a 4 ft unicorn 2.4-2.5x too heavy at L^2
+PLUSH_MASS_EXPONENT_UP = 1.5
 
 
 def size_scaled(match: ConceptMatch, final_longest_m: float, stretch: float = 1.0) -> ConceptMatch:
@@ -1616,7 +1670,7 @@ def size_scaled(match: ConceptMatch, final_longest_m: float, stretch: float = 1.
     ratio = final_longest_m / typical / max(stretch, 1.0)
     if abs(ratio - 1.0) < 0.05:
         return match
-    exponent = THIN_MASS_EXPONENT if thin else PLUSH_MASS_EXPONENT
+    exponent = THIN_MASS_EXPONENT if thin else PLUSH_MASS_EXPONENT_UP if ratio > 1.0 else PLUSH_MASS_EXPONENT
     return match.model_copy(update={"density_kg_per_m3": match.density_kg_per_m3 * ratio ** (exponent - 3)})
 
 
@@ -1670,7 +1724,8 @@ STUFFED_CATEGORIES = frozenset({"plush_animal"})
 def stuffed_as_built(match: ConceptMatch | None, longest_m: float, volume_m3: float, stretch: float = 1.0,
                      text: str = "") -> ConceptMatch | None:
     """A stuffed toy's concept with the effective density that gives it its typical mass at the built size: the
-    typical mass (in the state built: a curled cat is the same cat) x (uniform scale)^PLUSH_MASS_EXPONENT x the
+    typical mass (in the state built: a curled cat is the same cat) x (uniform scale)^PLUSH_MASS_EXPONENT (_UP when
+    larger) x the
     stretch along its long axis (a long plush snake keeps its stuffed cross-section), over the built volume. A toy
     whose text names a fabric ('a sock monkey', 'a fabric elephant') is the same stuffed toy in that fabric: its
     material is the fabric's and its typical mass still holds. Other concepts, hollow toys and a stated mass are
@@ -1680,7 +1735,8 @@ def stuffed_as_built(match: ConceptMatch | None, longest_m: float, volume_m3: fl
         return match
     stretch = max(stretch, 1.0)
     uniform = longest_m / match.typical_size_m / stretch
-    mass = match.typical_mass_kg * uniform ** PLUSH_MASS_EXPONENT * stretch
+    mass = match.typical_mass_kg * uniform ** (PLUSH_MASS_EXPONENT_UP if uniform > 1.0 else PLUSH_MASS_EXPONENT) \
+        * stretch
     update: dict[str, typing.Any] = {"density_kg_per_m3": mass / volume_m3}
     if match.default_material == "plush" and _material_in(normalise(text)) in STUFFED_FABRICS:
         update["default_material"] = _material_in(normalise(text))

@@ -93,8 +93,8 @@ def bind(text: str, entry: LexiconEntry | None, states: list[str]) -> Bound | No
     cross = [(w, v, s) for w, v, s in measures if (w in ("thickness", "diameter", "width", "inner") or w is None)
              and v < CROSS_SECTION_MAX * max(typical, length0)]
     if entry.plan == "sheet":
-        thick = [(v, s) for w, v, s in cross if w == "thickness"]
-        if not thick:
+        thick = [(v, s) for w, v, s in cross if w == "thickness"] or [(v, s) for w, v, s in cross if w is None]
+        if not thick:  # (a bare size far smaller than the sheet, 'a 6 mm yoga mat', is its thickness too)
             return None
         v, s = thick[0]
         t0 = float(grammar.plan_parameters("sheet", params).thickness)  # type: ignore[attr-defined]

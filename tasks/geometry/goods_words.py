@@ -93,6 +93,11 @@ def apply(target: LexiconEntry, portion: str | None, text: str, params: dict, si
     out = GoodsChange(params=dict(params), size_m=size_m, match=match)
     plan = target.plan
     if plan is None or plan not in grammar.PLANS:
+        if portion in PAIR_WORDS:  # a hand-written object ('a pair of plush bunnies'): two of it side by side
+            out.duplicate = True
+            out.match = match.model_copy(update={"typical_mass_kg": match.typical_mass_kg * 2
+                                                 if match.typical_mass_kg else None})
+            out.notes += ("a pair: two of them",)
         return out
     fields = grammar.PLANS[plan][0].model_fields
     _folds(out, plan, {**target.params, **out.params}, text)
@@ -195,15 +200,17 @@ def _puffy(out: GoodsChange, plan: str, params: dict, text: str) -> None:
 
 
 def duplicated(program: ShapeProgram) -> ShapeProgram | None:
-    """The program twice: the second lying over the first, shifted half its width along its shorter horizontal axis
-    (a pair of gloves laid one on the other: one body, as the mesher keeps one), or None past the part limit."""
+    """The program twice: a flat one (a glove) lying over the first, shifted half its width along its shorter
+    horizontal axis (one body, as the mesher keeps one); a standing one (a toy) beside it, just touching; None past
+    the part limit."""
     parts = list(program.parts)
     if 2 * len(parts) > 64 or any(p.operation != "union" for p in parts):
         return None
     ext = grammar.program_extents(program, 48)
     axis = 1 if ext[1] <= ext[0] else 0
-    shift = [0.0, 0.0, 0.85 * float(ext[2])]
-    shift[axis] = 0.45 * float(ext[axis])
+    flat = float(ext[2]) < 0.3 * float(max(ext[0], ext[1]))
+    shift = [0.0, 0.0, 0.85 * float(ext[2]) if flat else 0.0]
+    shift[axis] = (0.45 if flat else 0.97) * float(ext[axis])
     other = []
     for p in parts:
         t = p.transform.translation_m

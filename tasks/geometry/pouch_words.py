@@ -46,6 +46,7 @@ class PouchOf:
     piece_m: tuple[float, float, float] | None = None  # goods seen through the film: one piece's extents [m]
     piece_shape: str = "ball"  # 'ball', 'cylinder' or 'block' (PouchParams.piece_shape)
     piece_colors: tuple[str, ...] = ()  # colour words of the goods ('pink and white marshmallows')
+    size_m: float | None = None  # the pack's size when the request says how many it holds ('six oranges inside') [m]
 
     @property
     def liquid(self) -> bool:

@@ -124,10 +124,21 @@ class StatedMass:
     span: tuple[int, int]
 
 
+# a fraction in words before a mass unit: 'a quarter-pound bag', 'half a pound of', 'a half kilo'
+_FRACTION_MASS = re.compile(r"(?<![\w.])(quarter|half|three quarters?|three quarter)(?:\s*a)?[\s-]+(" +
+                            "|".join(sorted(MASS_UNITS_KG, key=len, reverse=True)) + r")(?![a-z])", re.I)
+_FRACTIONS = {"quarter": 0.25, "half": 0.5, "three quarter": 0.75, "three quarters": 0.75}
+
+
 def read_stated_mass(text: str) -> StatedMass | None:
-    """The object's mass said in a request ('sand-filled ankle weight, 1 kg' -> 1.0 kg; '2 lb' -> 0.907 kg); the
-    first one wins. None when no mass is stated ('a 2 l bag' is a volume; 'weighs about' alone is no number)."""
+    """The object's mass said in a request ('sand-filled ankle weight, 1 kg' -> 1.0 kg; '2 lb' -> 0.907 kg;
+    'a quarter-pound bag' -> 0.113 kg); the first one wins. None when no mass is stated ('a 2 l bag' is a volume;
+    'weighs about' alone is no number)."""
     m = _MASS.search(text)
+    f = _FRACTION_MASS.search(text)
+    if f is not None and (m is None or f.start() < m.start()):
+        kg = _FRACTIONS[" ".join(f.group(1).lower().split())] * MASS_UNITS_KG[f.group(2).lower()]
+        return StatedMass(kg=kg, stated=f.group(0).strip(), span=(f.start(), f.end()))
     if m is None:
         return None
     kg = float(m.group(1)) * MASS_UNITS_KG[m.group(2).lower()]

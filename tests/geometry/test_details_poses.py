@@ -11,7 +11,7 @@ import pytest
 from contracts.lexicon import load_lexicon
 from contracts.request import AssetRequest
 from tasks.geometry import catalogue, pipeline, sources
-from tasks.geometry.concepts import PLUSH_MASS_EXPONENT
+from tasks.geometry.concepts import PLUSH_MASS_EXPONENT_UP
 from tasks.geometry.grammar.parts import part_group
 from tasks.physical.mass import typical_mass_at_size
 from tasks.render.views import render_view
@@ -200,7 +200,7 @@ def test_unicorn_has_one_horn_above_its_head_and_a_mane_and_a_pony_none() -> Non
 def test_a_big_plush_grows_in_mass_as_its_surface() -> None:
     small = catalogue.design_from_text("a plush unicorn").concept
     big = catalogue.design_from_text("a big plush unicorn").concept
-    assert big.density_kg_per_m3 == pytest.approx(small.density_kg_per_m3 * 1.4 ** (PLUSH_MASS_EXPONENT - 3))
+    assert big.density_kg_per_m3 == pytest.approx(small.density_kg_per_m3 * 1.4 ** (PLUSH_MASS_EXPONENT_UP - 3))
 
 
 def test_curled_up_is_a_ring_not_a_sphinx() -> None:
