@@ -30,7 +30,7 @@ OWN = (*ORDER, "deployments")  # our own top-level packages (and the deployment 
 # top.
 TASKS_ORDER = ("native_output", "quiet_pybullet", "publish", "asset_dir", "mpm", "record", "render", "agents",
                "geometry", "physical", "robot", "probes", "manipulation", "manifest_summary", "export", "evaluation",
-               "request", "batch_requests")
+               "request", "batch_requests", "throughput")
 LAZY_LIMIT = 60  # function-level imports of our own modules, in all of OWN's sources together
 BAD_REASON = re.compile(r"\b(cycle|cyclic|circular)\b", re.I)  # a circle is fixed by moving code, not by a lazy import
 
