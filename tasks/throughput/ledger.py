@@ -126,8 +126,10 @@ class Ledger:
                     host_memory: HostMemoryStats | None = None) -> Session:
         """Record the session's end and what its samplers saw."""
         with self._lock:
-            session = session.model_copy(update={"ended_at": time.time(), "gpu": gpu, "host_memory": host_memory})
-            self._write_sessions([s if s.index != session.index else session for s in self.sessions()])
+            sessions = self.sessions()
+            stored = next((s for s in sessions if s.index == session.index), session)  # (its last beat kept)
+            session = stored.model_copy(update={"ended_at": time.time(), "gpu": gpu, "host_memory": host_memory})
+            self._write_sessions([s if s.index != session.index else session for s in sessions])
         return session
 
     # -- records --

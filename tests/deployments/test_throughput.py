@@ -243,6 +243,8 @@ def test_sessions_and_request_files(tmp_path: Path, monkeypatch: pytest.MonkeyPa
     halt()
     alive = ledger.sessions()[1].alive_at
     assert alive is not None and s1.started_at < alive <= time.time() and ledger.sessions()[1].ended_at is None
+    ledger.end_session(s1)
+    assert ledger.sessions()[1].alive_at == alive and ledger.sessions()[1].ended_at is not None  # the beat kept
     items = _items(tmp_path, ["a plush koala", "a kitchen sponge 10 x 7 x 3 cm"])
     again = parse_requests(ledger.write_requests(items[1:], s1.index))
     assert items[1].request is not None
