@@ -6,6 +6,7 @@ Each driver runs as `python -m benchmarks.<name>` (--help lists its options; --j
 `cache_bench` (cache put/hit and key latency, codec choice), `geometry_bench` (L0 per quality; --suite: a prompt
 suite), `l2_schedule` (the L2 screening candidates under each schedule), `generate_rerun` (the main job rerun from a
 full cache), `crosscheck_bench` (the asset in other simulators), `l3_trial`, `l3_yaw_sweep`, `blind_bench`,
-`photo_bench`, `drop_video_bench`, `segmentation_sheet`; `pick_and_place_video.py` (a script) and `engine/` (the MPM
-engine's GPU benchmark scripts).
+`photo_bench`, `drop_video_bench`, `segmentation_sheet`, `make_throughput_requests` (writes the default request set
+of `deformsmith bench throughput`, throughput_requests.jsonl); `pick_and_place_video.py` (a script) and `engine/`
+(the MPM engine's GPU benchmark scripts).
 """

@@ -10,6 +10,7 @@ The Prefect flows that deployments run (one request per run, a batch fanned out 
 from __future__ import annotations
 
 import os
+import queue
 import signal
 import subprocess
 import sys
@@ -107,10 +108,17 @@ def prefect_api_for_children() -> Iterator[dict[str, str]]:
 
 def run_batch(requests_jsonl: Path, out_root: Path, concurrency: int = 1, device: str = "cpu",
               job: str = DEFAULT_JOB, timeout_s: float | None = None,
-              on_result: ItemCallback | None = None) -> BatchReport:
-    """Run every request of a JSONL file in its own process, `concurrency` at a time; write and return the report."""
+              on_result: ItemCallback | None = None, worker_envs: list[dict[str, str]] | None = None) -> BatchReport:
+    """Run every request of a JSONL file in its own process, `concurrency` at a time; write and return the report.
+    worker_envs: one environment overlay per worker (`concurrency` of them), a request process running under a free
+    one (the throughput benchmark pins each worker to a GPU this way: CUDA_VISIBLE_DEVICES)."""
     if concurrency < 1:
         raise InputError(f"concurrency must be >= 1, got {concurrency}")
+    if worker_envs is not None and len(worker_envs) != concurrency:
+        raise InputError(f"{len(worker_envs)} worker environments for {concurrency} workers")
+    free: queue.SimpleQueue[dict[str, str]] = queue.SimpleQueue()
+    for overlay in worker_envs or [{}] * concurrency:
+        free.put(overlay)
     if device not in ("cpu", "cuda"):
         raise InputError(f"device must be cpu or cuda, got '{device}'")
     requests_jsonl, out_root = Path(requests_jsonl).absolute(), Path(out_root).absolute()
@@ -138,8 +146,14 @@ def run_batch(requests_jsonl: Path, out_root: Path, concurrency: int = 1, device
             env = {**os.environ, **prefect_env, ENV_VAR: str(cache_dir),
                    **child_probe_workers(concurrency)}  # the requests' probe threads share the cores
             with ThreadPoolExecutor(max_workers=concurrency) as pool:
-                futures = [pool.submit(run_one, item, out_root, device, job, env, cache_dir, timeout_s, children)
-                           for item in runnable]
+                def run_in_slot(item: BatchItem) -> RequestResult:  # (at most `concurrency` run: one is free)
+                    overlay = free.get()
+                    try:
+                        return run_one(item, out_root, device, job, {**env, **overlay}, cache_dir, timeout_s, children)
+                    finally:
+                        free.put(overlay)
+
+                futures = [pool.submit(run_in_slot, item) for item in runnable]
                 handled: set[Any] = set()
                 try:
                     for fut in as_completed(futures):

@@ -26,30 +26,33 @@ Job = Callable[[AssetRequest, Path, str], dict[str, Any]]
 
 
 def generate_job(request: AssetRequest, out_dir: Path, device: str) -> dict[str, Any]:
-    """The default job: `generate_asset` for one request; returns a short summary."""
-    from flows.generate import generate_asset  # lazy: after main() starts the orphan watch (the layers take seconds)
+    """The default job: `generate_asset` for one request; returns a short summary (with generate's wall time per stage,
+    which the throughput benchmark reads from the result file)."""
+    # lazy: after main() starts the orphan watch (the layers take seconds)
+    from flows.generate import TIMINGS, generate_asset
 
     manifest = generate_asset(request, out_dir, device=device)  # type: ignore[arg-type]
-    return {"asset_dir": str(out_dir), "stages": [s.stage for s in manifest.validation]}
+    return {"asset_dir": str(out_dir), "stages": [s.stage for s in manifest.validation], "wall_time_s": dict(TIMINGS)}
 
 
 def generate_job_requiring_l3(request: AssetRequest, out_dir: Path, device: str) -> dict[str, Any]:
     """`deformsmith batch --require-l3`: `generate_asset`, then RequirementNotMet when L3 did not pass (the request
     fails with L3's reason; its asset is published all the same)."""
     # lazy: after main() starts the orphan watch (importing the layers takes seconds)
-    from flows.generate import generate_asset, require_l3
+    from flows.generate import TIMINGS, generate_asset, require_l3
 
     manifest = generate_asset(request, out_dir, device=device)  # type: ignore[arg-type]
     require_l3(manifest, out_dir)
-    return {"asset_dir": str(out_dir), "stages": [s.stage for s in manifest.validation]}
+    return {"asset_dir": str(out_dir), "stages": [s.stage for s in manifest.validation], "wall_time_s": dict(TIMINGS)}
 
 
 def generate_job_without_l3(request: AssetRequest, out_dir: Path, device: str) -> dict[str, Any]:
     """`generate_asset` through L2 only (no robot validation): `deformsmith batch --no-l3`."""
-    from flows.generate import generate_asset  # lazy: after main() starts the orphan watch (the layers take seconds)
+    # lazy: after main() starts the orphan watch (the layers take seconds)
+    from flows.generate import TIMINGS, generate_asset
 
     manifest = generate_asset(request, out_dir, device=device, manipulate=False)  # type: ignore[arg-type]
-    return {"asset_dir": str(out_dir), "stages": [s.stage for s in manifest.validation]}
+    return {"asset_dir": str(out_dir), "stages": [s.stage for s in manifest.validation], "wall_time_s": dict(TIMINGS)}
 
 
 def resolve_job(spec: str) -> Job:

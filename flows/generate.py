@@ -52,12 +52,15 @@ def require_l3(manifest: AssetManifest, out_dir: Path) -> None:
 
 def run_manipulation(work: Path, device: Device, quality: str, agents: AgentConfig | None,
                      cpu_threads: int = 1, progress: Callable[[str], None] | None = None,
-                     keep: KeepTrials = DEFAULT_KEEP) -> ManipulationRecord:
+                     keep: KeepTrials = DEFAULT_KEEP, on_video: Callable[[], None] | None = None) -> ManipulationRecord:
     """L3 on the working directory and the pick-and-place video of the shown attempt; the manipulation record.
-    keep: which trials' states and recordings the asset keeps (tasks.manipulation.keep; the rest stay cached)."""
+    keep: which trials' states and recordings the asset keeps (tasks.manipulation.keep; the rest stay cached).
+    on_video: called as the video starts (generate times it apart)."""
     options = (l3_manipulation.L3Options(device=device, cpu_threads=cpu_threads) if quality == "draft"
                else l3_manipulation.L3Options.standard(device, cpu_threads))
     record, _ = l3_manipulation.run_l3(work, options, agents, progress=progress, keep=keep)
+    if on_video is not None:
+        on_video()
     write_pick_and_place_video(work, record)
     return record
 
@@ -124,12 +127,13 @@ def generate(checked: AssetRequest | CheckedRequest, out_dir: Path, device: Devi
     clock: _StageClock = {"stage": "", "t": time.perf_counter()}
     TIMINGS.clear()
 
-    def note(stage: str, message: str) -> None:
+    def note(stage: str, message: str | None = None) -> None:  # no message: a stage timed apart, not said
         now = time.perf_counter()
         if clock["stage"]:
             TIMINGS[str(clock["stage"])] = now - float(clock["t"])
         clock["stage"], clock["t"] = stage, now
-        report(stage, message)
+        if message is not None:
+            report(stage, message)
 
     checked = checked_request(checked)  # checked at the boundary (generate_asset): not again
     request, targets = checked.request, checked.targets
@@ -170,10 +174,11 @@ def generate(checked: AssetRequest | CheckedRequest, out_dir: Path, device: Devi
             note("L3", "manipulation: Panda pick-and-place in the MPM")
             l3 = run_manipulation(work, device, request.quality, agents, cpu_threads,  # "L3 trial k of n: ..." lines
                                   progress=lambda message: report("L3", message.removeprefix("L3").lstrip(": ")),
-                                  keep=keep)
+                                  keep=keep, on_video=lambda: note("pick_and_place_video"))
             validation.append(l3_summary(l3))
             plan = reported_plan(l3)  # adopted, else the best tried under the material the asset carries
             outcome = manipulation_outcome(validation[-1].metrics)
+        note("card")  # the card, the PhysGaussian config and asset.json
         prov = provenance(device, agents, sim.cpu_threads, sim.kernel)
         prov = prov.model_copy(update={"cache_keys": cache_keys(work, l3),  # what made the shape (L0's generator)
                                        "backends": {**prov.backends, "geometry": l0.info.generator},

@@ -22,8 +22,11 @@ app = typer.Typer(
 )
 cache_app = typer.Typer(help="Inspect and maintain the content-addressed result cache.", no_args_is_help=True)
 verify_app = typer.Typer(help="Analytic verification suites.", no_args_is_help=True)
+bench_app = typer.Typer(help="Measure the real job (the lab's benchmarks: python -m benchmarks.<name>).",
+                        no_args_is_help=True)
 app.add_typer(cache_app, name="cache")
 app.add_typer(verify_app, name="verify")
+app.add_typer(bench_app, name="bench")
 
 
 class ProgressConsole(Console):

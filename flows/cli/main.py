@@ -14,17 +14,18 @@ from flows.cli import stop
 
 # The command modules register their commands on the shared apps when imported. A command line names one command:
 # only its module is imported (each pulls in its own libraries), so `generate` prints its first line sooner; --help,
-# a group (cache, verify) and anything unknown import them all, in this order. (The benchmarks are the lab's:
-# `python -m benchmarks.<name>`, listed in benchmarks/__init__.py.)
+# a group (cache, verify) and anything unknown import them all, in this order. (The lab's benchmarks are
+# `python -m benchmarks.<name>`, listed in benchmarks/__init__.py; `bench throughput` times the product's own batch
+# job, tasks.throughput, and imports none of them.)
 COMMAND_MODULES = ("schema_cmds", "physical_cmds", "material_cmds", "generate_cmds", "mpm_cmds", "geometry_cmds",
                    "evidence_cmds", "cache_cmds", "batch_cmds", "manipulate_cmds", "eval_cmds",
-                   "card_cmds", "export_cmds", "crosscheck_cmds")
+                   "card_cmds", "export_cmds", "crosscheck_cmds", "throughput_cmds")
 MODULE_OF = {"schema": "schema_cmds", "physical": "physical_cmds", "probe": "material_cmds",
              "material": "material_cmds", "generate": "generate_cmds", "inspect": "generate_cmds",
              "view": "generate_cmds", "geometry": "geometry_cmds", "evidence": "evidence_cmds",
              "batch": "batch_cmds", "manipulate": "manipulate_cmds", "replay": "manipulate_cmds",
              "eval": "eval_cmds", "card": "card_cmds", "export": "export_cmds",
-             "crosscheck": "crosscheck_cmds"}
+             "crosscheck": "crosscheck_cmds", "bench": "throughput_cmds"}
 
 
 def register_commands(argv: list[str] | None = None) -> None:
@@ -48,7 +49,8 @@ def __getattr__(name: str) -> Any:
 
 
 # commands that run Prefect flows: their process starts Prefect's local API server first thing, in the background
-FLOW_COMMANDS = frozenset({"generate", "geometry", "physical", "material", "manipulate", "probe", "eval", "batch"})
+FLOW_COMMANDS = frozenset({"generate", "geometry", "physical", "material", "manipulate", "probe", "eval", "batch",
+                           "bench"})
 
 
 def _prestart_for(argv: list[str]) -> None:

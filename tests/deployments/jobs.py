@@ -25,3 +25,29 @@ def quick_job(request: AssetRequest, out_dir: Path, device: str) -> dict[str, An
     out_dir.mkdir(parents=True, exist_ok=True)
     (out_dir / "asset.json").write_text(json.dumps({"request": request.model_dump(mode="json")}), encoding="utf-8")
     return {"asset_dir": str(out_dir)}
+
+
+RUNS_ENV = "DEFORMSMITH_TEST_RUNS"  # a file each timed_job run appends its request's text to
+
+
+def timed_job(request: AssetRequest, out_dir: Path, device: str) -> dict[str, Any]:
+    """quick_job's behaviours, and a publish that looks like generate's to the throughput benchmark: the run noted in
+    $DEFORMSMITH_TEST_RUNS, asset.json with the request, the GPU it was pinned to and L3's verdict ('no-l3' in the
+    text: none), 1000 bytes of payload, and generate's per-stage wall times in the summary."""
+    text = request.text or ""
+    runs = os.environ.get(RUNS_ENV)
+    if runs:
+        with open(runs, "a", encoding="utf-8") as fh:
+            fh.write(text + "\n")
+    if text == "stage-fail":
+        raise StageFailure("L2", "no material passed the gates")
+    t0 = time.perf_counter()
+    if text.startswith("sleep"):
+        time.sleep(float(text.split()[1]))
+    out_dir.mkdir(parents=True, exist_ok=True)
+    validation = [] if "no-l3" in text else [{"stage": "L3", "passed": "l3-fails" not in text}]
+    (out_dir / "asset.json").write_text(json.dumps({
+        "request": request.model_dump(mode="json"), "validation": validation,
+        "gpu": os.environ.get("CUDA_VISIBLE_DEVICES")}), encoding="utf-8")
+    (out_dir / "payload.bin").write_bytes(b"x" * 1000)
+    return {"asset_dir": str(out_dir), "wall_time_s": {"L0": 0.01, "L2": time.perf_counter() - t0}}

@@ -27,10 +27,11 @@ OWN = (*ORDER, "deployments")  # our own top-level packages (and the deployment 
 # render (one camera model for every image and video) draws arrays and knows records (the card); the harness (agents)
 # knows records; geometry builds with the harness's LLM roles (the shape Designer) and draws its reference views; the
 # robot measures geometry's meshes; probes run the engine on geometry; manipulation, export, evaluation, the request
-# check and the commands' pre-flight checks sit on top; report (what the command line shows of results) reads them all.
+# check, the commands' pre-flight checks, the batch's requests and its throughput figures sit on top; report (what the
+# command line shows of results) reads them all.
 TASKS_ORDER = ("native_output", "quiet_pybullet", "processes", "publish", "asset_dir", "mpm", "record", "render",
                "agents", "geometry", "physical", "robot", "probes", "manipulation", "manifest_summary", "export",
-               "evaluation", "request", "preflight", "batch_requests", "report")
+               "evaluation", "request", "preflight", "batch_requests", "throughput", "report")
 LAZY_LIMIT = 60  # function-level imports of our own modules, in all of OWN's sources together
 BAD_REASON = re.compile(r"\b(cycle|cyclic|circular)\b", re.I)  # a circle is fixed by moving code, not by a lazy import
 

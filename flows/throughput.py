@@ -1,0 +1,61 @@
+"""`deformsmith bench throughput`: distinct requests end to end through the batch runner (flows.batch), on the CPU or
+on GPUs with each worker pinned to one, sampled in the background, resumed where a killed run left off. The report's
+model, the samplers and the resume records are tasks.throughput's."""
+
+from __future__ import annotations
+
+import os
+from pathlib import Path
+
+import cache
+from flows.batch import DEFAULT_JOB, LOG_DIR, NO_L3_JOB, run_batch
+from tasks.batch_requests import ItemCallback, RequestResult
+from tasks.throughput.ledger import Ledger, benchmark_items, gpu_slots
+from tasks.throughput.report import RunConfig, ThroughputReport, build_report
+from tasks.throughput.samplers import GpuSampler, HostMemorySampler, nvidia_smi_available
+
+SAMPLE_S = 1.0  # how often the GPUs and the workers' memory are sampled [s]
+
+
+def run_throughput(requests_jsonl: Path, out_root: Path, gpus: list[str] | None = None, workers_per_gpu: int = 1,
+                   concurrency: int = 1, l3: bool = True, limit: int | None = None, timeout_s: float | None = None,
+                   job: str | None = None, on_result: ItemCallback | None = None) -> ThroughputReport:
+    """Run the benchmark's requests not yet done in out_root (gpus: pin workers_per_gpu workers to each, on CUDA;
+    None: `concurrency` workers on the CPU), then write and return the report of every session in out_root. An
+    interrupted run records what finished and re-raises; the same command resumes it."""
+    requests_jsonl, out_root = Path(requests_jsonl).absolute(), Path(out_root).absolute()
+    items = benchmark_items(requests_jsonl, limit)
+    workers = len(gpus) * workers_per_gpu if gpus else concurrency
+    config = RunConfig(device="cuda" if gpus else "cpu", gpus=gpus, workers_per_gpu=workers_per_gpu if gpus else None,
+                       workers=workers, l3=l3)
+    ledger = Ledger(out_root)
+    session = ledger.start_session(config)
+    todo, _ = ledger.plan(items, session.index)
+    by_name = {item.name: item for item in todo}
+
+    def record(result: RequestResult) -> None:
+        ledger.record(result, by_name[result.name], session.index, out_root / LOG_DIR)
+        if on_result is not None:
+            on_result(result)
+
+    gpu_sampler = GpuSampler(gpus, SAMPLE_S) if nvidia_smi_available() else None
+    host_sampler = HostMemorySampler(os.getpid(), SAMPLE_S)
+    for sampler in (gpu_sampler, host_sampler):
+        if sampler is not None:
+            sampler.start()
+    stop_heartbeat = ledger.heartbeat(session)  # a killed run's wall time ends at its last beat
+    try:
+        if todo:
+            run_batch(ledger.write_requests(todo, session.index), out_root, concurrency=workers,
+                      device=config.device, job=job or (DEFAULT_JOB if l3 else NO_L3_JOB), timeout_s=timeout_s,
+                      on_result=record, worker_envs=gpu_slots(gpus, workers_per_gpu) if gpus else None)
+    finally:  # also when interrupted: the session's end and samples are recorded, and the report written
+        stop_heartbeat()
+        for sampler in (gpu_sampler, host_sampler):
+            if sampler is not None:
+                sampler.stop()
+        ledger.end_session(session, gpu_sampler.stats() if gpu_sampler is not None else None, host_sampler.stats())
+        report = build_report(ledger.current(items), ledger.sessions(), len(items), requests_file=str(requests_jsonl),
+                              out_root=str(out_root), cache_root=str(cache.cache_root()))
+        report.write(out_root)
+    return report
