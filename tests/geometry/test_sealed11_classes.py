@@ -67,7 +67,7 @@ def test_a_whole_raw_fish_is_food_not_a_plush() -> None:
 def test_food_half_eaten_or_bitten_loses_what_was_eaten() -> None:
     whole = concepts.build(concepts.read_text("a jam doughnut"), "a jam doughnut")[1]
     half = concepts.build(concepts.read_text("a half-eaten jam doughnut"), "a half-eaten jam doughnut")
-    assert whole.concept == "filled_doughnut" and "half eaten" in half[1].states
+    assert whole.concept == "donut_filled" and "half eaten" in half[1].states
     assert 0.3 < half[1].typical_mass_kg / whole.typical_mass_kg < 0.75
     bitten = concepts.build(concepts.read_text("a bitten apple"), "a bitten apple")
     assert "bitten" in bitten[1].states and any(p.operation == "subtract" for p in bitten[0].parts)
