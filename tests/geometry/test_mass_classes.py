@@ -16,6 +16,7 @@ from tasks.agents.intent import asset_material, asset_targets, concept_of
 from tasks.agents.vocab import load_material_vocab
 from tasks.geometry import catalogue, pipeline
 from tasks.geometry.catalogue import normalise_sizes, parse_size
+from tasks.geometry.concepts import PLUSH_MASS_EXPONENT_UP
 from tasks.physical.mass import mass_check
 
 # phrase -> the lexicon concept it builds
@@ -135,7 +136,8 @@ def test_number_words_before_a_unit_are_sizes(text: str, metres: float | None) -
 
 def test_a_stretched_plush_keeps_its_density_and_a_bigger_one_scales_as_its_area() -> None:
     """'a long plush snake' is stretched along its length: the same stuffing per length, so its mass follows the
-    built volume; a snake scaled up evenly grows as length^2 (retail plush), not length^3."""
+    built volume; a snake scaled up evenly grows as length^1.5 (retail plush: big ones are stuffed looser), not
+    length^3."""
     typical = catalogue.design_from_text("a plush snake")
     long_ = catalogue.design_from_text("a long plush snake")
     big = catalogue.design_from_text("a plush snake 1.2 m long")
@@ -143,7 +145,8 @@ def test_a_stretched_plush_keeps_its_density_and_a_bigger_one_scales_as_its_area
     assert long_.concept.density_kg_per_m3 == pytest.approx(typical.concept.density_kg_per_m3)
     ratio = 1.2 / (typical.concept.typical_size_m or 1.0)
     assert typical.concept.density_kg_per_m3 is not None
-    assert big.concept.density_kg_per_m3 == pytest.approx(typical.concept.density_kg_per_m3 / ratio, rel=0.05)
+    assert big.concept.density_kg_per_m3 == pytest.approx(
+        typical.concept.density_kg_per_m3 * ratio ** (PLUSH_MASS_EXPONENT_UP - 3), rel=0.05)
 
 
 def test_a_shell_weighs_its_area_times_its_wall() -> None:
