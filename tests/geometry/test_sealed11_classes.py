@@ -75,3 +75,11 @@ def test_food_half_eaten_or_bitten_loses_what_was_eaten() -> None:
     assert "half eaten" not in plush.states  # a toy is not eaten
     # USDA FoodData Central: jelly-filled doughnut 85 g; half of it ~40-45 g
     assert 0.5 <= planned_mass("half-eaten jelly doughnut") / 0.045 <= 2.0
+
+
+def test_a_pack_of_a_number_of_goods_holds_that_many() -> None:
+    reading = concepts.read_text("a pack of 3 yellow-green kitchen sponges")
+    assert reading.pouch is not None and reading.entry.key == "generic_pouch"
+    assert "3 x" in reading.pouch.fill.source  # three of them weighed, not a heap's packing
+    # retail 3-packs of 9 x 6 cm cellulose kitchen sponges: 40-90 g
+    assert 0.5 <= planned_mass("a pack of 3 yellow-green kitchen sponges") / 0.06 <= 2.0
