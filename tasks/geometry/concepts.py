@@ -601,7 +601,7 @@ def _pouch_of(t: str, phrase: phrase_mod.Phrase, entry: LexiconEntry, match: Con
     piece = load_lexicon().entries[noun_index()[hits[-1][2]][0]]
     domain = concept_domain(piece.key)
     if domain == "animal" or piece.size_m > (PIECE_MAX_SIZE_M if domain == "food" else GOODS_MAX_SIZE_M) \
-            or piece.plan in ("pouch", "bag"):
+            or piece.plan in ("pouch", "bag", "mould"):  # (cups and moulds come nested: goods_words.nested_stack)
         return None
     program = concept_program(piece.key)
     volume = program_volume(program, 32)
