@@ -10,7 +10,7 @@ import re
 from dataclasses import dataclass, field
 
 from contracts.lexicon import LexiconEntry
-from contracts.request import MAX_SIZE_M
+from contracts.request import MAX_SIZE_M, MIN_SIZE_M
 from contracts.shape import ShapeProgram
 from tasks.geometry import grammar
 
@@ -93,9 +93,10 @@ def bind(text: str, entry: LexiconEntry | None, states: list[str]) -> Bound | No
     cross = [(w, v, s) for w, v, s in measures if (w in ("thickness", "diameter", "width", "inner") or w is None)
              and v < CROSS_SECTION_MAX * max(typical, length0)]
     if entry.plan == "sheet":
-        thick = [(v, s) for w, v, s in cross if w == "thickness"] or [(v, s) for w, v, s in cross if w is None]
-        if not thick:  # (a bare size far smaller than the sheet, 'a 6 mm yoga mat', is its thickness too)
-            return None
+        thick = [(v, s) for w, v, s in cross if w == "thickness"] or [(v, s) for w, v, s in cross
+                                                                       if w is None and v < MIN_SIZE_M]
+        if not thick:  # (a bare size too small for any object L0 builds, 'a 6 mm yoga mat', is its thickness too;
+            return None  # '4 inch' on a bandage is its width)
         v, s = thick[0]
         t0 = float(grammar.plan_parameters("sheet", params).thickness)  # type: ignore[attr-defined]
         params["thickness"] = v / length0

@@ -83,3 +83,8 @@ def test_a_pack_of_a_number_of_goods_holds_that_many() -> None:
     assert "3 x" in reading.pouch.fill.source  # three of them weighed, not a heap's packing
     # retail 3-packs of 9 x 6 cm cellulose kitchen sponges: 40-90 g
     assert 0.5 <= planned_mass("a pack of 3 yellow-green kitchen sponges") / 0.06 <= 2.0
+
+
+def test_a_bare_size_on_a_sheet_is_its_thickness_only_when_no_object_is_that_small() -> None:
+    # retail 4 in x 4.5 m elastic bandages, rolled: 40-60 g (a '4 inch' read as the thickness weighed 4x)
+    assert 0.5 <= planned_mass("rolled-up 4 inch elastic compression bandage, beige") / 0.05 <= 2.0
