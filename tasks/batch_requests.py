@@ -6,10 +6,8 @@ the cache's event log). flows.batch runs them in processes; flows.batch_flows th
 from __future__ import annotations
 
 import json
-import os
 import re
 import signal
-import tempfile
 from collections.abc import Callable
 from pathlib import Path
 from typing import Any, Literal
@@ -18,6 +16,7 @@ from pydantic import BaseModel, Field, ValidationError
 
 from contracts.errors import InputError, validation_message
 from contracts.request import AssetRequest
+from tasks.publish import write_text_atomic
 
 REPORT_JSON = "batch_report.json"
 NAME_RE = re.compile(r"^[A-Za-z0-9][A-Za-z0-9._-]{0,95}$")
@@ -77,12 +76,7 @@ class BatchReport(BaseModel):
 
     def write(self, out_root: Path) -> Path:
         """Write the report atomically as out_root/batch_report.json."""
-        path = Path(out_root) / REPORT_JSON
-        fd, tmp = tempfile.mkstemp(prefix=".batch_report.", dir=out_root)
-        with os.fdopen(fd, "w", encoding="utf-8") as fh:
-            fh.write(self.model_dump_json(indent=2) + "\n")
-        os.replace(tmp, path)
-        return path
+        return write_text_atomic(Path(out_root) / REPORT_JSON, self.model_dump_json(indent=2) + "\n")
 
 
 # ---- parsing ----------------------------------------------------------------------------------------

@@ -8,7 +8,6 @@ from __future__ import annotations
 import hashlib
 import json
 import os
-import tempfile
 import threading
 import time
 from collections.abc import Callable
@@ -20,6 +19,7 @@ from contracts.asset_dir import ASSET_JSON
 from contracts.errors import InputError
 from contracts.request import AssetRequest
 from tasks.batch_requests import BatchItem, RequestResult, parse_requests
+from tasks.publish import write_text_atomic
 from tasks.throughput.report import RequestRecord, RunConfig, Session, dir_bytes, l3_verdict, stage_times
 from tasks.throughput.samplers import GpuStats, HostMemoryStats
 
@@ -80,10 +80,7 @@ class Ledger:
 
     def _write_sessions(self, sessions: list[Session]) -> None:
         self.dir.mkdir(parents=True, exist_ok=True)
-        fd, tmp = tempfile.mkstemp(prefix=".sessions.", dir=self.dir)
-        with os.fdopen(fd, "wb") as fh:
-            fh.write(_sessions.dump_json(sessions, indent=2))
-        os.replace(tmp, self.dir / SESSIONS)
+        write_text_atomic(self.dir / SESSIONS, _sessions.dump_json(sessions, indent=2).decode("utf-8"))
 
     def start_session(self, config: RunConfig) -> Session:
         """A new session; InputError when the output root holds a run with another configuration."""

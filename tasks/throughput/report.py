@@ -9,13 +9,13 @@ import json
 import os
 import re
 import statistics
-import tempfile
 from pathlib import Path
 from typing import Any
 
 from pydantic import BaseModel, Field
 
 from contracts.asset_dir import ASSET_JSON
+from tasks.publish import write_text_atomic
 from tasks.throughput.samplers import GpuStats, GpuUse, HostMemoryStats
 
 REPORT_JSON = "throughput_report.json"
@@ -122,12 +122,7 @@ class ThroughputReport(BaseModel):
 
     def write(self, out_root: Path) -> Path:
         """Write the report atomically as out_root/throughput_report.json."""
-        path = Path(out_root) / REPORT_JSON
-        fd, tmp = tempfile.mkstemp(prefix=".throughput_report.", dir=out_root)
-        with os.fdopen(fd, "w", encoding="utf-8") as fh:
-            fh.write(self.model_dump_json(indent=2) + "\n")
-        os.replace(tmp, path)
-        return path
+        return write_text_atomic(Path(out_root) / REPORT_JSON, self.model_dump_json(indent=2) + "\n")
 
 
 # ---- what a request left ----------------------------------------------------------------------------
