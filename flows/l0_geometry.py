@@ -23,7 +23,7 @@ from tasks.geometry.particles import ParticleSettings
 from tasks.geometry.pipeline import Arrays, BuildInfo, L0Settings
 
 TASK_VERSION = "1"  # bump when tasks/geometry changes what these tasks return
-MESH_VERSION = "14"  # l0.mesh alone; 2: marching cubes no longer pinches the surface at samples on the level;
+MESH_VERSION = "15"  # l0.mesh alone; 2: marching cubes no longer pinches the surface at samples on the level;
 # 3: BuildInfo.generator / design_attempts (LLM Designer, reconstruction backends); 4: text -> lexicon concept and
 # grammar program (BuildInfo.concept), colours and shape phrases; 5: photos keep their upright, lathe / inflation,
 # size from the concept (#35); 6: standing toys seated on a flat base (canonical.seat_flat), pouches and slumps (#35);
@@ -35,7 +35,9 @@ MESH_VERSION = "14"  # l0.mesh alone; 2: marching cubes no longer pinches the su
 # 12: pose adverbs after the noun ('sitting upright') are not the object; 13: set 10's classes (a hedgehog's spines,
 # a pleated face mask, a slice of bread, a tied sack, a felt mouse, nested cups, a sticky hand, a 1.5 m pool noodle;
 # slender objects meshed with 12 cells across); 14: set 11's (a bare small size is a sheet's thickness, a pair of a
-# hand-written toy, bags holding a stated number of goods, a whole raw fish, filled doughnuts, food half eaten)
+# hand-written toy, bags holding a stated number of goods, a whole raw fish, filled doughnuts, food half eaten);
+# 15: dev set 12's (bags of unknown goods as pouches, goods bulging a bag's film, compound heads, garment sizes, 'w/',
+# a pair said after the goods, folded and rolled sheets' stated flat size, squid, swim rings, sleep masks, ...)
 PROXY_VERSION = "2"  # l0.proxy alone; 2: CoACD's coarse copy keeps cells across a long or flat good's thinnest side
 GAUSSIANS_VERSION = "3"  # l0.gaussians alone; 2: surface discs dense and small for the particle spacing (#36);
 # 3: on blue-noise surface samples

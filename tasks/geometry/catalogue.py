@@ -92,7 +92,7 @@ class SizeSpec(Model):
                 out = ext.copy()
                 out[i0] = length
                 return out
-        if not self.flat or len(given) == 3 or (not given and self.longest_m is None):
+        if not (self.flat or self.unfold is not None) or len(given) == 3 or (not given and self.longest_m is None):
             return None
         stated = [v for i, v in given if i != 2] or ([self.longest_m] if self.longest_m and not given else [])
         unfold = np.array([*self.unfold, 1.0]) if self.unfold is not None else np.ones(3)
@@ -306,7 +306,19 @@ def normalise_sizes(text: str) -> str:
     dimension as digits ('about a metre long' -> 'about 1 metre long', 'half a metre wide' -> '0.5 metre wide'), or a
     length of a material ('one metre of tubing' -> '1 metre of tubing')."""
     text = _WORD_SIZE.sub(lambda m: f"{_NUMBER_WORDS[m.group(1).lower()]} ", text)
+    text = _WITH_SLASH.sub(lambda m: " without " if m.group(1) else " with ", text)
+    text = _GARMENT_SIZE.sub(" ", text)
     return _HYPHEN_SIZE.sub(lambda m: f"{m.group(1)} {m.group(2)} ", text)
+
+
+# 'w/ ribbon tentacles', 'w/o a lid': with / without (the slash would part 'w' from its phrase)
+_WITH_SLASH = re.compile(r"(?<![a-z0-9])w/(o\b)?\s*", re.IGNORECASE)
+# a garment's or shoe's size label ('size M', "women's size 8", 'adult XL', 'size 3 nappy'): a fit, not a length
+# (a ball's 'size 5' stays: size_words reads it)
+_GARMENT_SIZE = re.compile(r"\b(?:(?:adult|kids?|child(?:ren)?'?s?|youth|toddler|men'?s|women'?s|ladies'?|unisex)\s+)?"
+                           r"size\s+(?:x{0,3}s|x{0,3}l|m|small|medium|large|\d{1,2}(?:\.5)?(?!\s+(?:[a-z]+\s+){0,2}[a-z]*ball))\b"
+                           r"|\b(?:adult|kids?|men'?s|women'?s)\s+(?:x{0,3}s|x{0,3}l|m)\b(?![a-z])",
+                           re.IGNORECASE)
 
 
 def final_scale(size: SizeSpec, program: ShapeProgram, typical_m: float) -> tuple[float, float]:
@@ -363,7 +375,7 @@ def _size_form(program: ShapeProgram, match: ConceptMatch, reading: concepts.Rea
     plan = match.body_plan or ""
     flat = bool((plan == "sheet" and e[2] < 0.5 * e[1]) or (plan in concepts.THIN_GOODS_PLANS and e[2] < 0.2 * e[1]))
     long = bool(e[0] > LONG_RATIO * e[1] and match.category not in _GROWN and (plan != "sheet" or flat))
-    return {"long": long, "flat": flat, "unfold": concepts.sheet_fold(reading) if flat else None}
+    return {"long": long, "flat": flat, "unfold": concepts.sheet_fold(reading) if flat or plan == "sheet" else None}
 
 
 def _rolled_sized(size: SizeSpec, program: ShapeProgram, reading: concepts.Reading) -> SizeSpec:
@@ -374,6 +386,8 @@ def _rolled_sized(size: SizeSpec, program: ShapeProgram, reading: concepts.Readi
     sheet_len, roll_len = size.extents_m[0], size.extents_m[1]
     if width is None or size.extents_m[2] is not None or (sheet_len is None and roll_len is None):
         return size
+    if sheet_len is not None and roll_len is not None and roll_len > sheet_len and width <= 1.0:
+        sheet_len, roll_len = roll_len, sheet_len  # '70 x 140 cm' rolled: rolled along its length, as the typical one
     lo, hi = program_bounds(program)
     ext = np.asarray(hi) - np.asarray(lo)  # the roll lies along x
     typical_sheet = float(ext[0]) / width
@@ -381,6 +395,31 @@ def _rolled_sized(size: SizeSpec, program: ShapeProgram, reading: concepts.Readi
     ext_m = (roll_len or float(ext[0]), float(ext[1]) * k, float(ext[2]) * k)
     return size.model_copy(update={"extents_m": ext_m, "long": False, "flat": False,
                                    "stated": f"{size.stated}: the sheet's length and width, rolled"})
+
+
+_TRAILING_PAIR = re.compile(r"(?:\s*,\s*|\s+|\()(?:a\s+)?pair\b\)?(?!\s+of\b)", re.IGNORECASE)
+
+
+def _pair_first(text: str) -> str:
+    """'kids fleece mittens, pair', 'arm floaties (pair)' -> 'a pair of ...' (the pair said after the goods)."""
+    if re.search(r"\bpairs?\s+of\b", text, re.IGNORECASE) or not _TRAILING_PAIR.search(text):
+        return text
+    return "a pair of " + _TRAILING_PAIR.sub("", text, count=1).strip()
+
+
+def _piece_sized(size: SizeSpec, reading: concepts.Reading) -> SizeSpec:
+    """A size no bigger than a piece's in a pack of a stated number of goods is the pieces' ('a bag of 100 craft pom
+    poms 1-2.5 cm'): the pack, drawn to show them, scales with them (and its mass as the cube); with no count it is
+    the typical pack."""
+    pouch = reading.pouch
+    stated = size.longest_m or max((v for v in size.extents_m if v is not None), default=None)
+    if pouch is None or pouch.piece_m is None or stated is None or reading.size_m is None:
+        return size
+    piece = max(pouch.piece_m)
+    if stated > 1.5 * piece:
+        return size
+    k = stated / piece
+    return SizeSpec(longest_m=reading.size_m * k, stated=f"{size.stated}: one piece's size (the pack scaled with it)")
 
 
 def _fill_sized(size: SizeSpec, program: ShapeProgram, match: ConceptMatch,
@@ -412,7 +451,7 @@ def design_from_text(text: str, size_hint_m: float | None = None) -> Design:
     modifiers and colours; an unknown noun takes a fallback by meaning, recorded in `concept` and `warnings`."""
     if not text or not text.strip():
         raise InputError("the description is empty")
-    text_n = normalise_sizes(text)
+    text_n = _pair_first(normalise_sizes(text))
     size = parse_size(text_n)
     if size_hint_m is not None:
         size = SizeSpec(longest_m=size_hint_m, stated=f"size hint {size_hint_m:g} m")
@@ -421,6 +460,7 @@ def design_from_text(text: str, size_hint_m: float | None = None) -> Design:
     if mass is not None:
         stripped = size_words.strip_spans(stripped, [mass.span])
     reading = concepts.read_text(stripped)
+    size = _piece_sized(size, reading)
     bound = dims_words.bind(text_n, reading.donor or reading.entry, reading.phrase.states if reading.phrase else []) \
         if size_hint_m is None and reading.donor_plan is None else None
     if bound is not None:  # '6 mm thick' of a rolled mat, '3 m of 10 mm rope': the material's sizes, its parameters

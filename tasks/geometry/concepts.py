@@ -291,8 +291,9 @@ def _head(main: str) -> tuple[tuple[int, int, str] | None, tuple[int, int, str] 
     for start, w in reversed(words):
         if start < last_end:
             break
-        if w in ("thing", "things", "object", "objects", "item", "items", "something", "stuff"):
-            break
+        if w in ("thing", "things", "object", "objects", "item", "items", "something", "stuff", "cutout", "cutouts",
+                 "shape", "shapes", "figure", "figures", "piece", "pieces", "version", "kind", "type"):
+            break  # 'a foam star cutout', 'a heart shape': the form word after a named object is that object
         if not _known_word(w) and len(w) > 2:
             tail_unknown = w
             break
@@ -307,9 +308,13 @@ def _head(main: str) -> tuple[tuple[int, int, str] | None, tuple[int, int, str] 
     head_noun = noun_index()[head[2]][1]
     donor = earlier[-1] if earlier else None
     head_entry = load_lexicon().entries[noun_index()[head[2]][0]]
-    if donor is not None and head_noun.split()[-1] in GENERIC_NOUNS and not head_entry.takes_shape \
+    qualifiers = head[2].split()[:-1]  # 'knee' of 'knee pads': a compound the lexicon knows as one object
+    specific = bool(qualifiers) and not any(w in noun_index() for w in qualifiers) and head_noun.split()[-1] != "toy" \
+        and donor is not None and concept_domain(noun_index()[donor[2]][0]) != "animal"  # ('a duck bath toy': a duck)
+    if donor is not None and head_noun.split()[-1] in GENERIC_NOUNS and not head_entry.takes_shape and not specific \
             and not any(donor[2].split()[-1] in normalise(n).split() for n in head_entry.nouns):
-        return donor, None, tail_unknown  # 'a teether ring' is a teether ('a mouse cat toy' is the cat toy mouse)
+        return donor, None, tail_unknown  # 'a teether ring' is a teether ('a mouse cat toy' is the cat toy mouse;
+        # 'volleyball knee pads' are knee pads)
     return head, donor, tail_unknown
 
 
@@ -369,6 +374,22 @@ def _fallback(t: str, noun: str | None, donor: LexiconEntry | None, donor_plan: 
     level_: FallbackLevel = level  # type: ignore[assignment]
     return lex.entries[key], _match(lex.entries[key], level_, noun,
                                     f"{what}: built a generic {key[8:].replace('_', ' ')} {why}")
+
+
+def _unknown_container(t: str, unknown: str | None, phrase: phrase_mod.Phrase
+                       ) -> tuple[LexiconEntry, ConceptMatch] | None:
+    """A bag, pack or pouch of goods the lexicon does not know ('a bag of baby spinach', 'a bag of cotton rags'): a
+    sealed pouch of them (the stated mass, else a typical 0.5 kg bag's); a bare 'bag' is a fabric bag."""
+    word = next((w for w in (unknown, phrase.head) if w and w in pouch_words.CONTAINERS), None)
+    if word is None:
+        return None
+    lex = load_lexicon()
+    goods = _GOODS_OF.search(t)
+    key = "generic_pouch" if goods is not None else "generic_bag"
+    held = f"a {word} of {goods.group(1).strip()}" if goods is not None else f"a {word}"
+    what = "a sealed pouch (what it holds is not in the lexicon)" if goods is not None else "a fabric bag"
+    note = f"'{held}' is built as {what}: its mass is the stated one or a typical {word}'s"
+    return lex.entries[key], _match(lex.entries[key], "category", word, note, _material_in(t))
 
 
 _FUNCTION_WORDS = frozenset({"of", "au", "aux", "the", "in", "de", "du", "and", "with", "on", "la", "le", "a", "n"})
@@ -498,8 +519,11 @@ def read_text(text: str, serving: bool = True) -> Reading:
         shape_noun = unknown or phrase.head
         if donor_entry is None and donor_plan is None and shape_noun in SHAPE_WORDS:
             donor_plan, donor_words = SHAPE_WORDS[shape_noun], shape_noun  # 'a foam disc': the noun is the shape
-        explained = _by_wordnet(phrase, unknown, t, donor_entry, donor_plan, donor_words)
-        if explained is not None:
+        container = _unknown_container(t_shape, unknown, phrase) if donor_entry is None and donor_plan is None else None
+        explained = None if container else _by_wordnet(phrase, unknown, t, donor_entry, donor_plan, donor_words)
+        if container is not None:
+            entry, match = container
+        elif explained is not None:
             entry, match, donor_entry, donor_plan, size_m = explained
         else:
             entry, match = _fallback(t, unknown, donor_entry, donor_plan, donor_words)
@@ -1042,18 +1066,22 @@ def _on_key_ring(program: ShapeProgram) -> ShapeProgram:
 CLEAR_FILM = "white"  # a clear bag's film, seen over its goods
 
 
+FILM_SHOW_THROUGH = 0.6  # how much of the goods' colour a clear bag's body shows [-]
+
+
 def _bagged_colors(program: ShapeProgram, colors: tuple[str, ...]) -> ShapeProgram:
     """A clear bag of goods: its film and seams a clear film's white, the goods in their colours in turn ('pink and
     white marshmallows')."""
     lex = load_lexicon()
     film = lex.colors[CLEAR_FILM]
+    seen = tuple(float(FILM_SHOW_THROUGH * g + (1 - FILM_SHOW_THROUGH) * f) for g, f in zip(lex.colors[colors[0]], film))
     parts, k = [], 0
     for p in program.parts:
         if part_group(p.name) == "fill":
             parts.append(p.model_copy(update={"color_rgb": lex.colors[colors[k % len(colors)]]}))
             k += 1
-        else:
-            parts.append(p.model_copy(update={"color_rgb": film}))
+        else:  # the body the goods' colour through the film; seams, ports and tabs the film's
+            parts.append(p.model_copy(update={"color_rgb": seen if p.name == "body" else film}))
     return program.model_copy(update={"parts": parts})
 
 

@@ -488,6 +488,8 @@ def pouch(p: PouchParams) -> list[Part]:
     w = p.width
     s = p.seam
     h = max(MIN_LAYER * 1.6, p.fill * 0.42 * w)
+    if max(p.piece) > 0:  # a bag of goods is as deep as they are thick: they bulge its film, not stand on a tray
+        h = max(h, BAG_DEPTH_OVER_PIECE * sorted(p.piece)[0])
     st = MIN_LAYER
     parts = [superellipsoid("body", (0.5 - s, w / 2 - s, h / 2), (0, 0, h / 2), ns=0.55 + 0.3 * p.fill,
                             ew=p.squareness)]
@@ -526,6 +528,7 @@ def pouch(p: PouchParams) -> list[Part]:
     return parts
 
 
+BAG_DEPTH_OVER_PIECE = 0.9  # a bag of goods' depth over one piece's thickness (the goods press up its film) [-]
 MAX_PIECES = 28  # goods drawn pressing through a bag's film; more (rice, peas) are its fill's colour alone [-]
 
 
@@ -554,8 +557,9 @@ def bagged_pieces(p: PouchParams, h: float) -> list[Part]:
             y = -inner_y / 2 + (j + 0.5) * inner_y / ny
             x = float(np.clip(x, -inner_x / 2 + a / 2, inner_x / 2 - a / 2))
             tilt = 9.0 * np.sin(2.7 * i + 1.3 * j)
-            out.append(superellipsoid(f"fill {len(out) + 1}", (a / 2.1, b / 2.1, c / 2), (x, y, h - 0.35 * c),
-                                      ns=ns, ew=ew, rot=(tilt, 0.6 * tilt, 1.4 * tilt), blend=0.12 * c))
+            # each sunk in the bag to just under its top, the film drawn over it: bumps in a pillow, not goods on a tray
+            out.append(superellipsoid(f"fill {len(out) + 1}", (a / 2.1, b / 2.1, c / 2), (x, y, h - 0.5 * c),
+                                      ns=ns, ew=ew, rot=(tilt, 0.6 * tilt, 1.4 * tilt), blend=0.3 * c))
     return out
 
 
