@@ -96,10 +96,23 @@ def test_a_piece_size_in_a_pack_of_a_number_of_them_sizes_the_pieces() -> None:
     ("a baby food squeeze pouch", "yogurt_pouch", 0.11),  # retail: 90-113 g pouches
     ("a spray mop pad", "mop_pad", 0.06),  # retail: 40-80 g
     ("a silicone pocket bib", "silicone_bib", 0.075),  # retail: 60-90 g
+    ("a cotton bbq apron", "apron", 0.3),  # retail: canvas bib aprons 0.2-0.4 kg
+    ("a tube of hand cream", "toothpaste_tube", 0.13),  # retail: 75-100 ml tubes 0.1-0.17 kg full
 ])
 def test_new_everyday_entries_are_named_and_weighed(text: str, entry: str, kg: float) -> None:
     assert catalogue.design_from_text(text).entry == entry
     assert 0.5 <= planned_mass(text) / kg <= 2.0
+
+
+def test_a_nursing_pillow_is_an_open_c() -> None:
+    d = catalogue.design_from_text("a breastfeeding pillow")
+    assert d.entry == "nursing_pillow" and any(p.name == "opening" and p.operation == "subtract"
+                                               for p in d.program.parts)
+
+
+def test_an_animal_hand_puppet_takes_the_animals_shape() -> None:
+    d = catalogue.design_from_text("a bear hand puppet")
+    assert d.entry == "hand_puppet" and d.concept.shape_from is not None
 
 
 def test_a_foam_shape_cutout_is_the_shape_named() -> None:

@@ -246,6 +246,8 @@ class RingParams(Model):
     icing: bool = Field(default=False, description="a top layer of another colour (a glazed doughnut)")
     floor: float = Field(default=0.0, ge=0.0, le=0.8, description="a padded floor across the hole (a pet bed): its "
                          "thickness / the rim's height; 0 an open ring [-]")
+    gap: float = Field(default=0.0, ge=0.0, le=0.4, description="an open C: the gap's width at the rim / the outer "
+                       "diameter (a nursing pillow's, a horseshoe cushion's opening), its ends rounded; 0 closed [-]")
 
 
 def ring(p: RingParams) -> list[Part]:
@@ -263,6 +265,9 @@ def ring(p: RingParams) -> list[Part]:
                                     ns=0.45, ew=1.0, blend=0.25 * minor))
         parts.append(torus("floor seam", major - 0.45 * minor, 0.06 * minor, (0, 0, fh)).model_copy(
             update={"operation": "subtract"}))
+    if p.gap > 0:  # the opening at +x, its cut ends rounded off by the subtraction's blend
+        parts.append(box("opening", (minor * 2.6, p.gap, 4 * zc), (0.5 - minor, 0, zc), op="subtract",
+                         blend=0.6 * minor))
     return parts
 
 
