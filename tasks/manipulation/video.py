@@ -8,7 +8,8 @@ fingers. The picture is composed in tasks.render.attempt_video; this module read
     for i in range(len(video)):
         frame = video.frame(i)                     # RGB (720, 1280, 3) uint8
 
-Deterministic on the CPU: the same attempt gives the same bytes.
+Drawn on the run's device (`device`: cpu or cuda, as the drop videos are). Deterministic on the CPU: the same attempt
+gives the same bytes; on a GPU, within a colour level of them.
 """
 
 from __future__ import annotations
@@ -39,8 +40,10 @@ class PickPlaceVideo:
     """The frames of one recorded attempt (the room and the cameras are set up once)."""
 
     def __init__(self, arrays: dict[str, np.ndarray], attrs: dict[str, Any] | None = None,
-                 width: int = VIDEO_SIZE[0], height: int = VIDEO_SIZE[1], fps: float = VIDEO_FPS) -> None:
+                 width: int = VIDEO_SIZE[0], height: int = VIDEO_SIZE[1], fps: float = VIDEO_FPS,
+                 device: str = "cpu") -> None:
         self.arrays, self.attrs = arrays, attrs or {}
+        self.device = device  # where the triangles and the splats are drawn
         plan = self.attrs.get("plan") or {}
         target = plan.get("target_xy_m")
         self.target = (float(target[0]), float(target[1])) if target else None
@@ -128,8 +131,8 @@ class PickPlaceVideo:
         meshes = [raster.Mesh(v, f, shade(n, rgb, view), raster.ROBOT) for v, f, n, rgb in parts]
         depth = np.empty((cam.height, cam.width), np.float32)
         rgb, _ = raster.draw(cam.frame(), cam.width, cam.height, room.rgb, room.depth, room.label, meshes,
-                             depth_out=depth)
-        return compose(cam, rgb, depth, splats)
+                             depth_out=depth, device=self.device)
+        return compose(cam, rgb, depth, splats, self.device)
 
     def inset_camera(self, i: int) -> Camera:
         """The close-up camera of video frame i: a little above the pads' midpoint, framing the grasp and the

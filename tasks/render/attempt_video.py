@@ -61,13 +61,14 @@ def inset_camera(centre_m: np.ndarray, radius_m: float, toward_eye: np.ndarray, 
     return Camera(tuple(c + distance * back), tuple(c), INSET_FOV_DEG, width, height)
 
 
-def compose(cam: Camera, rgb: np.ndarray, depth: np.ndarray, splats: SplatSet | None) -> np.ndarray:
-    """The Gaussians, lit, splatted over a picture (H, W, 3) uint8 with its camera depth (H, W) [m]."""
+def compose(cam: Camera, rgb: np.ndarray, depth: np.ndarray, splats: SplatSet | None, device: str = "cpu"
+            ) -> np.ndarray:
+    """The Gaussians, lit, splatted (on `device`) over a picture (H, W, 3) uint8 with its camera depth (H, W) [m]."""
     if splats is None or not len(splats.means_m):
         return np.ascontiguousarray(rgb)
     colours = lit_colors(splats.albedo, splats.normals, cam)
     return render_gaussians(cam, splats.means_m, splats.covariances_m2, colours, splats.opacities,
-                            background=(rgb, depth))
+                            background=(rgb, depth), device=device)
 
 
 CORNERS = ("bottom_right", "top_right", "bottom_left")  # the caption holds the top left
