@@ -22,10 +22,11 @@ from tasks.manipulation.scene import VIDEO_FPS, VIDEO_SIZE, attempt_timeline, ba
 from tasks.render import mesh_raster as raster
 from tasks.render.attempt_video import (SplatSet, choose_corner, compose, inset_camera, inset_size, paste_inset,
                                         wide_camera)
+from tasks.render.binding import Binding
 from tasks.render.camera import Camera
 from tasks.render.captions import caption
 from tasks.render.gripper_model import Part, gripper_parts, robotiq_links
-from tasks.render.shading import deformed_normals, normals_from_covariances
+from tasks.render.shading import deformed_normals, normals_from_covariances, normals_under
 from tasks.robot import PHASES
 from tasks.robot.visual import (FLANGE_LINK, HAND_LINKS, box_mesh, gripper_boxes, gripper_spec, link_poses,
                                 panda_visual_meshes, shade, tcp_frame, uses_urdf_hand)
@@ -57,6 +58,9 @@ class PickPlaceVideo:
         self.rest_normals = normals_from_covariances(arrays["gaussian_positions_m"], arrays["gaussian_covariances_m2"],
                                                      arrays["gaussian_particle_index"],
                                                      arrays["gaussian_particle_weight"], arrays["rest_particles_m"])
+        self.binding = Binding.of(arrays["gaussian_positions_m"], arrays["gaussian_covariances_m2"],
+                                  arrays["gaussian_particle_index"], arrays["gaussian_particle_weight"],
+                                  arrays["rest_particles_m"])  # the Gaussians follow the recorded particles
         self.toward_eye = view_direction(arrays.get("closing_axis_world"))
         rest = np.asarray(arrays["rest_particles_m"], np.float64)
         self.object_radius_m = 0.5 * float(np.ptp(rest, axis=0).max())
@@ -117,11 +121,16 @@ class PickPlaceVideo:
     def _object(self, i: int) -> SplatSet:
         """The object's Gaussians at video frame i, their normals carried by the recorded deformation."""
         fr, a = self.timeline[i], self.arrays
-        centres, cov = object_gaussians(a, fr.particle_frame)
         normals = self.rest_normals
-        if fr.particle_frame >= 0:
-            normals = deformed_normals(self.rest_normals, a["gaussian_particle_index"], a["gaussian_particle_weight"],
-                                       np.nan_to_num(a["particles_F"][fr.particle_frame]))
+        if fr.particle_frame < 0:  # at rest, before the simulation
+            centres, cov = object_gaussians(a, fr.particle_frame)
+        else:
+            F = a["particles_F"][fr.particle_frame]
+            state = self.binding.deform(a["particles_x_m"][fr.particle_frame], F)
+            centres, cov = state.centres_m, state.covariances_m2
+            normals = normals_under(self.rest_normals, state.gradients) if np.isfinite(F).all() else \
+                deformed_normals(self.rest_normals, a["gaussian_particle_index"], a["gaussian_particle_weight"],
+                                 np.nan_to_num(F))
         ok = np.isfinite(centres).all(axis=1) & np.isfinite(cov).all(axis=(1, 2))
         return SplatSet(centres[ok], cov[ok], self.albedo[ok], np.full(int(ok.sum()), OPACITY), normals[ok])
 
