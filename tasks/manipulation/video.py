@@ -22,11 +22,11 @@ from tasks.manipulation.scene import VIDEO_FPS, VIDEO_SIZE, attempt_timeline, ba
 from tasks.render import mesh_raster as raster
 from tasks.render.attempt_video import (SplatSet, choose_corner, compose, inset_camera, inset_size, paste_inset,
                                         wide_camera)
-from tasks.render.binding import Binding
+from tasks.render.binding import Binding, blended_gradients
 from tasks.render.camera import Camera
 from tasks.render.captions import caption
 from tasks.render.gripper_model import Part, gripper_parts, robotiq_links
-from tasks.render.shading import deformed_normals, normals_from_covariances, normals_under
+from tasks.render.shading import normals_from_covariances
 from tasks.robot import PHASES
 from tasks.robot.visual import (FLANGE_LINK, HAND_LINKS, box_mesh, gripper_boxes, gripper_spec, link_poses,
                                 panda_visual_meshes, shade, tcp_frame, uses_urdf_hand)
@@ -128,9 +128,9 @@ class PickPlaceVideo:
             F = a["particles_F"][fr.particle_frame]
             state = self.binding.deform(a["particles_x_m"][fr.particle_frame], F)
             centres, cov = state.centres_m, state.covariances_m2
-            normals = normals_under(self.rest_normals, state.gradients) if np.isfinite(F).all() else \
-                deformed_normals(self.rest_normals, a["gaussian_particle_index"], a["gaussian_particle_weight"],
-                                 np.nan_to_num(F))
+            F_g = state.gradients if np.isfinite(F).all() else \
+                blended_gradients(a["gaussian_particle_index"], a["gaussian_particle_weight"], np.nan_to_num(F))
+            normals = self.binding.normals(self.rest_normals, F_g)
         ok = np.isfinite(centres).all(axis=1) & np.isfinite(cov).all(axis=(1, 2))
         return SplatSet(centres[ok], cov[ok], self.albedo[ok], np.full(int(ok.sum()), OPACITY), normals[ok])
 

@@ -24,7 +24,7 @@ from tasks.render.camera import Camera
 from tasks.render.captions import caption
 from tasks.render.discs import render
 from tasks.render.binding import Binding, blended_gradients
-from tasks.render.shading import lit_colors, normals_under
+from tasks.render.shading import lit_colors
 from tasks.render.splats import render_gaussians
 from tasks.render.views import view_axes as still_axes
 
@@ -157,7 +157,7 @@ def iter_states(renderer: GaussianRenderer, cam: Camera, gaussians: dict[str, np
         if normals is not None:  # lit by the deformed normals (tasks.render.shading), a non-finite F taken as 0
             F_g = state.gradients if np.isfinite(F).all() else \
                 blended_gradients(gaussians["particle_index"], gaussians["particle_weight"], np.nan_to_num(F))
-            shown = lit_colors(colors, normals_under(normals, F_g), cam)
+            shown = lit_colors(colors, binding.normals(normals, F_g), cam)
         image = np.ascontiguousarray(renderer(cam, centres[ok], cov[ok], shown[ok], opacities[ok], scene="studio",
                                               device=device))
         drawn = (centres, cov, image)
