@@ -1,6 +1,7 @@
 """Wall time of renders/pick_and_place.mp4: `replay` of a stored L3 attempt to an MP4 (1280 x 720, 30 fps by default).
 
-    python benchmarks/pick_and_place_video.py ASSET_DIR [--attempt N] [--width 1280 --height 720] [--repeat 2] --json
+    python benchmarks/pick_and_place_video.py ASSET_DIR [--attempt N] [--width 1280 --height 720] [--repeat 2]
+        [--device cpu|cuda] --json
 
 Times, per run (wall clock; and the CPU seconds of the replay, in this process and in the ffmpeg encoder, which a
 shared machine's load does not inflate): the renderer's set-up (camera, backdrop ray casting, forward kinematics of
@@ -58,7 +59,7 @@ class VideoRun(TypedDict):
     loadavg_1min_after: float
 
 
-def run_once(asset: Path, attempt: int | None, width: int, height: int) -> VideoRun:
+def run_once(asset: Path, attempt: int | None, width: int, height: int, device: str = "cpu") -> VideoRun:
     """One timed replay to a temporary MP4, with its phases timed separately on the same data."""
     import imageio.v2 as imageio
 
@@ -66,14 +67,15 @@ def run_once(asset: Path, attempt: int | None, width: int, height: int) -> Video
     with tempfile.TemporaryDirectory(prefix="ds-bench-video-") as tmp:
         c0 = _cpu()
         t0 = time.perf_counter()
-        out = replay(asset, attempt, video=Path(tmp) / "pick_and_place.mp4", width=width, height=height)
+        out = replay(asset, attempt, video=Path(tmp) / "pick_and_place.mp4", width=width, height=height,
+                     device=device)
         total = time.perf_counter() - t0
         c1 = _cpu()
         size_mb = (Path(tmp) / "pick_and_place.mp4").stat().st_size / 1e6
         meta = imageio.get_reader(Path(tmp) / "pick_and_place.mp4").get_meta_data()
         arrays, attrs = read_attempt(asset, attempt)
         t1 = time.perf_counter()
-        renderer = PickPlaceVideo(arrays, attrs, width, height)
+        renderer = PickPlaceVideo(arrays, attrs, width, height, device=device)
         t2 = time.perf_counter()
         frames = [renderer.frame(i) for i in range(len(renderer))]
         t3 = time.perf_counter()
@@ -96,10 +98,11 @@ def main(argv: list[str] | None = None) -> int:
     p.add_argument("--width", type=int, default=1280)
     p.add_argument("--height", type=int, default=720)
     p.add_argument("--repeat", type=int, default=2, help="runs in one process (the first is cold)")
+    p.add_argument("--device", default="cpu", help="cpu | cuda: where the frames are drawn")
     p.add_argument("--json", action="store_true", help="print the figures as JSON")
     a = p.parse_args(argv)
-    runs = [run_once(a.asset, a.attempt, a.width, a.height) for _ in range(max(1, a.repeat))]
-    report = {"asset": str(a.asset), "attempt": a.attempt, "runs": runs, "cpu_count": os.cpu_count(),
+    runs = [run_once(a.asset, a.attempt, a.width, a.height, a.device) for _ in range(max(1, a.repeat))]
+    report = {"asset": str(a.asset), "attempt": a.attempt, "device": a.device, "runs": runs, "cpu_count": os.cpu_count(),
               "machine": platform.processor() or platform.machine(), "python": platform.python_version()}
     if a.json:
         print(json.dumps(report, indent=1))

@@ -16,7 +16,7 @@ import subprocess
 import sys
 import threading
 import time
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from concurrent.futures import ThreadPoolExecutor, as_completed
 from contextlib import contextmanager
 from pathlib import Path
@@ -108,10 +108,13 @@ def prefect_api_for_children() -> Iterator[dict[str, str]]:
 
 def run_batch(requests_jsonl: Path, out_root: Path, concurrency: int = 1, device: str = "cpu",
               job: str = DEFAULT_JOB, timeout_s: float | None = None,
-              on_result: ItemCallback | None = None, worker_envs: list[dict[str, str]] | None = None) -> BatchReport:
+              on_result: ItemCallback | None = None, worker_envs: list[dict[str, str]] | None = None,
+              on_interrupt: Callable[[], None] | None = None) -> BatchReport:
     """Run every request of a JSONL file in its own process, `concurrency` at a time; write and return the report.
     worker_envs: one environment overlay per worker (`concurrency` of them), a request process running under a free
-    one (the throughput benchmark pins each worker to a GPU this way: CUDA_VISIBLE_DEVICES)."""
+    one (the throughput benchmark pins each worker to a GPU this way: CUDA_VISIBLE_DEVICES). on_interrupt: called at
+    once on Ctrl-C or SIGTERM, before the children are stopped (which may outlast the command line's ~1.3 s backstop;
+    the throughput benchmark records its session's end there)."""
     if concurrency < 1:
         raise InputError(f"concurrency must be >= 1, got {concurrency}")
     if worker_envs is not None and len(worker_envs) != concurrency:
@@ -161,6 +164,11 @@ def run_batch(requests_jsonl: Path, out_root: Path, concurrency: int = 1, device
                         handled.add(fut)
                 except KeyboardInterrupt:  # Ctrl-C (or SIGTERM): stop the children, report every request, re-raise
                     interrupted = True
+                    if on_interrupt is not None:
+                        try:
+                            on_interrupt()
+                        except Exception:  # (the children are stopped whatever it does)
+                            pass
                     children.stop_all()
                     for fut in futures:
                         if fut not in handled:

@@ -61,7 +61,7 @@ def run_manipulation(work: Path, device: Device, quality: str, agents: AgentConf
     record, _ = l3_manipulation.run_l3(work, options, agents, progress=progress, keep=keep)
     if on_video is not None:
         on_video()
-    write_pick_and_place_video(work, record)
+    write_pick_and_place_video(work, record, device)
     return record
 
 
@@ -76,16 +76,17 @@ def write_asset_records(adir: AssetDir, manifest: AssetManifest) -> AssetManifes
     return manifest
 
 
-def refresh_after_l3(work: Path, record: ManipulationRecord) -> AssetManifest | None:
+def refresh_after_l3(work: Path, record: ManipulationRecord, device: Device = "cpu") -> AssetManifest | None:
     """After `deformsmith manipulate` re-ran L3 on a published asset (work: its staged working copy): everything that
     carries L3's result or the adopted material, rewritten from the new manipulation.json as generate writes it:
     asset.json (material, L3's validation line, action plan, outcome, L3's cache keys, file roles), the PhysGaussian
-    config, the card and the pick-and-place video. None (nothing rewritten) when the directory has no asset.json."""
+    config, the card and the pick-and-place video (drawn on `device`, L3's). None (nothing rewritten) when the
+    directory has no asset.json."""
     adir = AssetDir(work)
     if not adir.has("manifest"):
         return None
     old = adir.manifest()
-    write_pick_and_place_video(work, record)
+    write_pick_and_place_video(work, record, device)
     l3 = l3_summary(record)
     validation = [s for s in old.validation if s.stage != "L3"] + [l3]
     prov = old.provenance.model_copy(update={"cache_keys": cache_keys(work, record)})

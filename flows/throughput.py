@@ -10,11 +10,12 @@ from pathlib import Path
 import cache
 from flows.batch import DEFAULT_JOB, LOG_DIR, NO_L3_JOB, run_batch
 from tasks.batch_requests import ItemCallback, RequestResult
-from tasks.throughput.ledger import Ledger, benchmark_items, gpu_slots
+from tasks.throughput.ledger import Ledger, SamplerStats, benchmark_items, gpu_slots
 from tasks.throughput.report import RunConfig, ThroughputReport, build_report
 from tasks.throughput.samplers import GpuSampler, HostMemorySampler, nvidia_smi_available
 
 SAMPLE_S = 1.0  # how often the GPUs and the workers' memory are sampled [s]
+BEAT_S = 5.0  # how often the session's entry in the ledger says it runs, with the samples so far [s]
 
 
 def run_throughput(requests_jsonl: Path, out_root: Path, gpus: list[str] | None = None, workers_per_gpu: int = 1,
@@ -43,18 +44,28 @@ def run_throughput(requests_jsonl: Path, out_root: Path, gpus: list[str] | None 
     for sampler in (gpu_sampler, host_sampler):
         if sampler is not None:
             sampler.start()
-    stop_heartbeat = ledger.heartbeat(session)  # a killed run's wall time ends at its last beat
+
+    def stats() -> SamplerStats:
+        return gpu_sampler.stats() if gpu_sampler is not None else None, host_sampler.stats()
+
+    def end() -> None:
+        ledger.end_session(session, *stats())
+
+    # a killed run's wall time ends at its last beat, and its samples are those of that beat
+    stop_heartbeat = ledger.heartbeat(session, BEAT_S, stats)
     try:
-        if todo:
+        if todo:  # (stopped: the session's end is recorded at once, as the command line may end the process
+            # before its children have stopped and this `finally` has run)
             run_batch(ledger.write_requests(todo, session.index), out_root, concurrency=workers,
                       device=config.device, job=job or (DEFAULT_JOB if l3 else NO_L3_JOB), timeout_s=timeout_s,
-                      on_result=record, worker_envs=gpu_slots(gpus, workers_per_gpu) if gpus else None)
+                      on_result=record, worker_envs=gpu_slots(gpus, workers_per_gpu) if gpus else None,
+                      on_interrupt=end)
     finally:  # also when interrupted: the session's end and samples are recorded, and the report written
         stop_heartbeat()
         for sampler in (gpu_sampler, host_sampler):
             if sampler is not None:
                 sampler.stop()
-        ledger.end_session(session, gpu_sampler.stats() if gpu_sampler is not None else None, host_sampler.stats())
+        end()
         report = build_report(ledger.current(items), ledger.sessions(), len(items), requests_file=str(requests_jsonl),
                               out_root=str(out_root), cache_root=str(cache.cache_root()))
         report.write(out_root)

@@ -16,6 +16,7 @@ from tasks.report.layers import manipulation_summary, manipulation_table
 
 if TYPE_CHECKING:
     from contracts.asset_dir import KeepTrials
+    from contracts.sim import Device
 
 
 @app.command("manipulate")
@@ -68,7 +69,7 @@ def manipulate(
             # a published asset: asset.json, the PhysGaussian config, the card and the video follow the new L3 (its
             # adopted material, L3's line and plan), swapped in with manipulation.json
             status.update("L3: asset.json, card and video refreshed from manipulation.json")
-            refresh_after_l3(work, result)
+            refresh_after_l3(work, result, cast("Device", device))
     if as_json:
         emit_json(manipulation_summary(result, wall_time_s))
     else:
@@ -91,6 +92,7 @@ def replay_cmd(
     video: Path = typer.Option(None, "--video", help="write an .mp4 or .gif"),
     frames: Path = typer.Option(None, "--frames", help="write PNG frames into this folder"),
     rrd: Path = typer.Option(None, "--rrd", help="write a Rerun recording (robot links, pads, particles, forces)"),
+    device: str = typer.Option("cpu", "--device", help="cpu | cuda: where the frames are drawn"),
     as_json: bool = typer.Option(False, "--json", help="print what was written as JSON"),
 ) -> None:
     """Replay a recorded trial from its particle states (no re-simulation): frames, video, .rrd."""
@@ -99,9 +101,10 @@ def replay_cmd(
 
     if not (asset / "interaction").is_dir():
         fail(f"{asset} has no interaction/ data: run `deformsmith manipulate {asset}` first")
+    check_device(device)
     check_outputs(files=(video, rrd), folders=(frames,))  # where the replay is written, before rendering
     with console.status("rendering the recorded attempt"):
-        out = replay(asset, attempt, frames_dir=frames, video=video, rrd=rrd, trial=trial)
+        out = replay(asset, attempt, frames_dir=frames, video=video, rrd=rrd, trial=trial, device=device)
     data = {"trial": out.trial, "frames": len(out.frames), "rendered": out.n_frames, "video": str(out.video) if out.video else None,
             "recording": str(out.recording) if out.recording else None, "first_frame_sha256": out.digests[0]}
     if as_json:

@@ -14,16 +14,18 @@ from tasks.record.trials import reported_attempt
 ROOT = Path(__file__).resolve().parents[2]  # the repository: the renderer's sources are named from it
 
 
-def write_pick_and_place_video(work: Path, record: ManipulationRecord) -> Path | None:
-    """renders/pick_and_place.mp4 of the attempt the record shows (cached by the attempt's bytes); None, and an earlier
-    L3's video removed, when the record shows no recorded trial (no grasp, or its interaction data is absent)."""
+def write_pick_and_place_video(work: Path, record: ManipulationRecord, device: str = "cpu") -> Path | None:
+    """renders/pick_and_place.mp4 of the attempt the record shows, drawn on the run's device (cached by the attempt's
+    bytes and the device); None, and an earlier L3's video removed, when the record shows no recorded trial (no grasp,
+    or its interaction data is absent)."""
     n = reported_attempt(record)
     video = work / "renders" / "pick_and_place.mp4"
     if n is None or not (work / "interaction" / f"attempt_{n:03d}").is_dir():
         video.unlink(missing_ok=True)
         return None
     video.parent.mkdir(parents=True, exist_ok=True)
-    cached_file(pick_and_place_video_key(work, n), video, lambda path: replay(work, n, video=path))
+    cached_file(pick_and_place_video_key(work, n, device), video,
+                lambda path: replay(work, n, video=path, device=device))
     return video
 
 
@@ -38,9 +40,10 @@ def renderer_sources() -> list[Path]:
             ROOT / "contracts" / "grippers"]
 
 
-def pick_and_place_video_key(work: Path, attempt: int) -> str:
-    """The video's cache key: the recorded attempt's bytes and the code and libraries that render and encode it
-    (rendering it takes ~10 s on the CPU; a warm rerun copies it)."""
+def pick_and_place_video_key(work: Path, attempt: int, device: str = "cpu") -> str:
+    """The video's cache key: the recorded attempt's bytes, the code and libraries that render and encode it and the
+    device that draws it (a GPU's pictures are keyed apart: within a colour level, not the same bytes; rendering it
+    takes ~10 s on the CPU; a warm rerun copies it)."""
     code = source_digest(renderer_sources(), ("imageio", "imageio-ffmpeg", "numpy", "opencv-python-headless",
                                               "opencv-python", "pybullet", "scipy", "warp-lang"))
-    return content_key("pick_and_place_video", code, work / "interaction" / f"attempt_{attempt:03d}")
+    return content_key("pick_and_place_video", code, work / "interaction" / f"attempt_{attempt:03d}", device)

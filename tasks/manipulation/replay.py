@@ -57,9 +57,9 @@ def frame_gaussians(arrays: dict[str, np.ndarray], i: int) -> tuple[np.ndarray, 
 
 
 def render_frames(arrays: dict[str, np.ndarray], width: int = VIDEO_SIZE[0], height: int = VIDEO_SIZE[1],
-                  attrs: dict | None = None) -> list[np.ndarray]:
-    """Every video frame of an attempt (deterministic)."""
-    return PickPlaceVideo(arrays, attrs, width, height).frames()
+                  attrs: dict | None = None, device: str = "cpu") -> list[np.ndarray]:
+    """Every video frame of an attempt (deterministic on the CPU)."""
+    return PickPlaceVideo(arrays, attrs, width, height, device=device).frames()
 
 
 def video_writer(path: Path, fps: float = VIDEO_FPS):
@@ -76,8 +76,9 @@ def video_writer(path: Path, fps: float = VIDEO_FPS):
 
 def replay(asset_dir: Path, attempt: int | None = None, frames_dir: Path | None = None, video: Path | None = None,
            rrd: Path | None = None, width: int = VIDEO_SIZE[0], height: int = VIDEO_SIZE[1],
-           trial: int | None = None) -> ReplayResult:
-    """Replay a trial of an asset: PNG frames into frames_dir, an .mp4/.gif video, an .rrd (each optional).
+           trial: int | None = None, device: str = "cpu") -> ReplayResult:
+    """Replay a trial of an asset: PNG frames into frames_dir, an .mp4/.gif video, an .rrd (each optional), the
+    frames drawn on `device` (cpu or cuda).
     trial: the trial's one number (from 1, tasks.record.trials; default: the trial manipulation.json reports);
     attempt: its interaction folder index instead. Frames are rendered one at a time and streamed to the files (a
     long attempt never sits in memory)."""
@@ -98,7 +99,7 @@ def replay(asset_dir: Path, attempt: int | None = None, frames_dir: Path | None 
     if frames_dir is not None:
         Path(frames_dir).mkdir(parents=True, exist_ok=True)
     try:
-        renderer = PickPlaceVideo(arrays, attrs, width, height)
+        renderer = PickPlaceVideo(arrays, attrs, width, height, device=device)
         out = ReplayResult(n_frames=len(renderer), size=(width, height), duration_s=len(renderer) / VIDEO_FPS)
         for i in range(len(renderer)):
             im = renderer.frame(i)

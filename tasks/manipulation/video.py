@@ -8,7 +8,8 @@ fingers. The picture is composed in tasks.render.attempt_video; this module read
     for i in range(len(video)):
         frame = video.frame(i)                     # RGB (720, 1280, 3) uint8
 
-Deterministic on the CPU: the same attempt gives the same bytes.
+Drawn on the run's device (`device`: cpu or cuda, as the drop videos are). Deterministic on the CPU: the same attempt
+gives the same bytes; on a GPU, within a colour level of them.
 """
 
 from __future__ import annotations
@@ -21,10 +22,11 @@ from tasks.manipulation.scene import VIDEO_FPS, VIDEO_SIZE, attempt_timeline, ba
 from tasks.render import mesh_raster as raster
 from tasks.render.attempt_video import (SplatSet, choose_corner, compose, inset_camera, inset_size, paste_inset,
                                         wide_camera)
+from tasks.render.binding import Binding, blended_gradients
 from tasks.render.camera import Camera
 from tasks.render.captions import caption
 from tasks.render.gripper_model import Part, gripper_parts, robotiq_links
-from tasks.render.shading import deformed_normals, normals_from_covariances
+from tasks.render.shading import normals_from_covariances
 from tasks.robot import PHASES
 from tasks.robot.visual import (FLANGE_LINK, HAND_LINKS, box_mesh, gripper_boxes, gripper_spec, link_poses,
                                 panda_visual_meshes, shade, tcp_frame, uses_urdf_hand)
@@ -39,8 +41,10 @@ class PickPlaceVideo:
     """The frames of one recorded attempt (the room and the cameras are set up once)."""
 
     def __init__(self, arrays: dict[str, np.ndarray], attrs: dict[str, Any] | None = None,
-                 width: int = VIDEO_SIZE[0], height: int = VIDEO_SIZE[1], fps: float = VIDEO_FPS) -> None:
+                 width: int = VIDEO_SIZE[0], height: int = VIDEO_SIZE[1], fps: float = VIDEO_FPS,
+                 device: str = "cpu") -> None:
         self.arrays, self.attrs = arrays, attrs or {}
+        self.device = device  # where the triangles and the splats are drawn
         plan = self.attrs.get("plan") or {}
         target = plan.get("target_xy_m")
         self.target = (float(target[0]), float(target[1])) if target else None
@@ -54,6 +58,9 @@ class PickPlaceVideo:
         self.rest_normals = normals_from_covariances(arrays["gaussian_positions_m"], arrays["gaussian_covariances_m2"],
                                                      arrays["gaussian_particle_index"],
                                                      arrays["gaussian_particle_weight"], arrays["rest_particles_m"])
+        self.binding = Binding.of(arrays["gaussian_positions_m"], arrays["gaussian_covariances_m2"],
+                                  arrays["gaussian_particle_index"], arrays["gaussian_particle_weight"],
+                                  arrays["rest_particles_m"])  # the Gaussians follow the recorded particles
         self.toward_eye = view_direction(arrays.get("closing_axis_world"))
         rest = np.asarray(arrays["rest_particles_m"], np.float64)
         self.object_radius_m = 0.5 * float(np.ptp(rest, axis=0).max())
@@ -114,11 +121,16 @@ class PickPlaceVideo:
     def _object(self, i: int) -> SplatSet:
         """The object's Gaussians at video frame i, their normals carried by the recorded deformation."""
         fr, a = self.timeline[i], self.arrays
-        centres, cov = object_gaussians(a, fr.particle_frame)
         normals = self.rest_normals
-        if fr.particle_frame >= 0:
-            normals = deformed_normals(self.rest_normals, a["gaussian_particle_index"], a["gaussian_particle_weight"],
-                                       np.nan_to_num(a["particles_F"][fr.particle_frame]))
+        if fr.particle_frame < 0:  # at rest, before the simulation
+            centres, cov = object_gaussians(a, fr.particle_frame)
+        else:
+            F = a["particles_F"][fr.particle_frame]
+            state = self.binding.deform(a["particles_x_m"][fr.particle_frame], F)
+            centres, cov = state.centres_m, state.covariances_m2
+            F_g = state.gradients if np.isfinite(F).all() else \
+                blended_gradients(a["gaussian_particle_index"], a["gaussian_particle_weight"], np.nan_to_num(F))
+            normals = self.binding.normals(self.rest_normals, F_g)
         ok = np.isfinite(centres).all(axis=1) & np.isfinite(cov).all(axis=(1, 2))
         return SplatSet(centres[ok], cov[ok], self.albedo[ok], np.full(int(ok.sum()), OPACITY), normals[ok])
 
@@ -128,8 +140,8 @@ class PickPlaceVideo:
         meshes = [raster.Mesh(v, f, shade(n, rgb, view), raster.ROBOT) for v, f, n, rgb in parts]
         depth = np.empty((cam.height, cam.width), np.float32)
         rgb, _ = raster.draw(cam.frame(), cam.width, cam.height, room.rgb, room.depth, room.label, meshes,
-                             depth_out=depth)
-        return compose(cam, rgb, depth, splats)
+                             depth_out=depth, device=self.device)
+        return compose(cam, rgb, depth, splats, self.device)
 
     def inset_camera(self, i: int) -> Camera:
         """The close-up camera of video frame i: a little above the pads' midpoint, framing the grasp and the

@@ -58,20 +58,22 @@ def project(cam: CamFrame, width: int, height: int, points_m: np.ndarray) -> tup
 
 def draw(cam: CamFrame, width: int, height: int, background_rgb: np.ndarray, background_depth: np.ndarray,
          background_label: np.ndarray, meshes: list[Mesh], discs: Discs | None = None,
-         depth_out: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
+         depth_out: np.ndarray | None = None, device: str = "cpu") -> tuple[np.ndarray, np.ndarray]:
     """The nearest of backdrop, triangles and discs at every pixel: RGB image (H, W, 3) uint8 and label map (H, W).
     Depth passes first (triangles, discs), then colour passes: a disc wins an exact tie with a triangle. depth_out
-    (H, W) float32, when given, receives each pixel's camera depth [m] (for splats composited over the picture)."""
+    (H, W) float32, when given, receives each pixel's camera depth [m] (for splats composited over the picture).
+    device: where the kernels run (cpu: the same bytes every time; cuda: two triangles at exactly the same depth may
+    take a pixel in either order)."""
     import warp as wp
 
     from tasks.render import mesh_raster_kernels as k  # lazy: Warp kernels (warp 1.3 s), only when rasterising
 
-    dev = "cpu"
+    dev = device
     h, w = background_depth.shape
     zbuf = np.ascontiguousarray(background_depth, np.float32).ravel().copy()
     rgb = np.ascontiguousarray(background_rgb, np.uint8).reshape(-1, 3).copy()
     label = np.ascontiguousarray(background_label, np.uint8).ravel().copy()
-    # the kernels update these three in place (CPU arrays share the numpy memory)
+    # the kernels update these three in place (CPU arrays share the numpy memory; a GPU's are copied back below)
     zb: wp.array = wp.array(zbuf, dtype=float, device=dev, copy=False)
     out: list[wp.array] = [wp.array(rgb, dtype=wp.uint8, device=dev, copy=False),
                            wp.array(label, dtype=wp.uint8, device=dev, copy=False)]
@@ -110,6 +112,8 @@ def draw(cam: CamFrame, width: int, height: int, background_rgb: np.ndarray, bac
         if n:
             wp.launch(colour_kernel, dim=n, inputs=[*common, *colour], device=dev)
     wp.synchronize_device(dev)
+    if wp.get_device(dev).is_cuda:
+        zbuf, rgb, label = zb.numpy(), out[0].numpy(), out[1].numpy()
     if depth_out is not None:
         depth_out[...] = zbuf.reshape(h, w)
     return rgb.reshape(h, w, 3), label.reshape(h, w)

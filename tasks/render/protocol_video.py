@@ -23,8 +23,9 @@ import numpy as np
 from tasks.render.camera import Camera
 from tasks.render.captions import caption
 from tasks.render.discs import render
-from tasks.render.shading import deformed_normals, lit_colors
-from tasks.render.splats import deform_gaussians, render_gaussians
+from tasks.render.binding import Binding, blended_gradients
+from tasks.render.shading import lit_colors
+from tasks.render.splats import render_gaussians
 from tasks.render.views import view_axes as still_axes
 
 VIDEO_WIDTH_PX, VIDEO_HEIGHT_PX = 1280, 720
@@ -49,6 +50,34 @@ class GaussianRenderer(Protocol):
     def __call__(self, cam: Camera, means_m: np.ndarray, covariances_m2: np.ndarray, colors_rgb: np.ndarray,
                  opacities: np.ndarray, *, sh_coeffs: np.ndarray | None = None, scene: str = "studio",
                  device: str = "cpu") -> np.ndarray: ...
+
+
+class KeptPictures:
+    """A renderer that keeps what it draws while `keeping` and, asked later to draw the very same Gaussians (equal
+    arrays, the same camera and options), hands the kept picture back instead of drawing it again: drop_files draws
+    the card's drop frames first, and the video's frames of the same recorded states reuse them."""
+
+    def __init__(self, draw: GaussianRenderer) -> None:
+        self.draw = draw
+        self.keeping = True
+        self.kept: list[tuple[Camera, tuple[np.ndarray, ...], tuple[Any, ...], np.ndarray]] = []
+        self.reused = 0
+
+    def __call__(self, cam: Camera, means_m: np.ndarray, covariances_m2: np.ndarray, colors_rgb: np.ndarray,
+                 opacities: np.ndarray, *, sh_coeffs: np.ndarray | None = None, scene: str = "studio",
+                 device: str = "cpu") -> np.ndarray:
+        inputs = (means_m, covariances_m2, colors_rgb, opacities)
+        options = (scene, device)
+        if sh_coeffs is None:
+            for c, arrays, opts, picture in self.kept:
+                if c == cam and opts == options and all(np.array_equal(a, b) for a, b in zip(arrays, inputs)):
+                    self.reused += 1
+                    return picture
+        picture = self.draw(cam, means_m, covariances_m2, colors_rgb, opacities, sh_coeffs=sh_coeffs, scene=scene,
+                            device=device)
+        if self.keeping and sh_coeffs is None:
+            self.kept.append((cam, tuple(np.array(a) for a in inputs), options, picture))
+        return picture
 
 
 def _disc_renderer(cam: Camera, means_m: np.ndarray, covariances_m2: np.ndarray, colors_rgb: np.ndarray,
@@ -113,19 +142,22 @@ def iter_states(renderer: GaussianRenderer, cam: Camera, gaussians: dict[str, np
     opacities = np.asarray(gaussians.get("opacities", np.full(n, 0.95)), np.float64).reshape(n)
     normals = gaussians.get("normals")
     rot, eye, focal = cam.frame()
+    binding = Binding.of(gaussians["positions_m"], rest_covariances_m2, gaussians["particle_index"],
+                         gaussians["particle_weight"], rest_particles_m)  # set up once for every state
     drawn: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None
     for x, F in zip(x_frames, F_frames):
-        centres, cov = deform_gaussians(gaussians["positions_m"], rest_covariances_m2, gaussians["particle_index"],
-                                        gaussians["particle_weight"], rest_particles_m, x, F)
+        state = binding.deform(x, F)
+        centres, cov = state.centres_m, state.covariances_m2
         if drawn is not None and _same_picture(drawn[0], drawn[1], centres, cov, rot[2], eye, focal):
             yield drawn[2]
             continue
         ok = np.isfinite(centres).all(axis=1) & np.isfinite(cov).all(axis=(1, 2))  # an exploded state: what is left
         centres, cov = np.where(ok[:, None], centres, 0.0), np.where(ok[:, None, None], cov, 0.0)
         shown = colors
-        if normals is not None:  # lit by the deformed normals (tasks.render.shading)
-            shown = lit_colors(colors, deformed_normals(normals, gaussians["particle_index"],
-                                                        gaussians["particle_weight"], np.nan_to_num(F)), cam)
+        if normals is not None:  # lit by the deformed normals (tasks.render.shading), a non-finite F taken as 0
+            F_g = state.gradients if np.isfinite(F).all() else \
+                blended_gradients(gaussians["particle_index"], gaussians["particle_weight"], np.nan_to_num(F))
+            shown = lit_colors(colors, binding.normals(normals, F_g), cam)
         image = np.ascontiguousarray(renderer(cam, centres[ok], cov[ok], shown[ok], opacities[ok], scene="studio",
                                               device=device))
         drawn = (centres, cov, image)
@@ -176,8 +208,11 @@ def write_png(frame: np.ndarray, path: Path, shrink: int = 1) -> Path:
 
     if shrink > 1:
         h, w = (frame.shape[0] // shrink) * shrink, (frame.shape[1] // shrink) * shrink
-        blocks = frame[:h, :w].reshape(h // shrink, shrink, w // shrink, shrink, -1).astype(np.float64)
-        frame = np.rint(blocks.mean(axis=(1, 3))).astype(np.uint8)
+        total = np.zeros((h // shrink, w // shrink, *frame.shape[2:]), np.uint32)  # (integer sums: exact)
+        for dy in range(shrink):
+            for dx in range(shrink):
+                total += frame[dy:h:shrink, dx:w:shrink]
+        frame = np.rint(total / float(shrink * shrink)).astype(np.uint8)
     path.parent.mkdir(parents=True, exist_ok=True)
     iio.imwrite(path, frame)
     return path
@@ -233,7 +268,6 @@ def drop_files(gaussians: dict[str, np.ndarray], rest_covariances_m2: np.ndarray
     first duration_s of them are used) and the card's drop frames drop_<view>_t<t>s.png at CARD_TIMES_S (the nearest
     recorded state), written into folder; name -> path. device: where the Gaussians are drawn (cpu: the same bytes
     every time; cuda: within one colour level of them)."""
-    draw = renderer or gaussian_renderer()[0]
     n = min(len(x_frames), frame_count(len(x_frames), fps, duration_s) + 1)
     times, slowed = clip_states(x_frames[:n], fps)
     stills = {t: min(len(x_frames) - 1, int(round(t * fps))) for t in CARD_TIMES_S}  # time -> state
@@ -241,13 +275,15 @@ def drop_files(gaussians: dict[str, np.ndarray], rest_covariances_m2: np.ndarray
     args = (gaussians, rest_covariances_m2, rest_particles_m)
     for view in VIEW_NAMES:
         cam = protocol_camera(np.asarray(x_frames), view, width, height)
+        draw = KeptPictures(renderer or gaussian_renderer()[0])  # the stills first: the video reuses their pictures
+        states = sorted(set(stills.values()))
+        drawn = dict(zip(states, iter_states(draw, cam, *args, x_frames[states], F_frames[states], device)))
+        draw.keeping = False
         xs = (interpolated(x_frames, k) for k in times)
         Fs = (interpolated(F_frames, k) for k in times)
         frames = iter_states(draw, cam, *args, xs, Fs, device)
         shown = (drop_caption(f, k / fps, bool(slow)) for k, slow, f in zip(times, slowed, frames))
         out[f"drop_{view}.mp4"] = write_mp4(shown, folder / f"drop_{view}.mp4", fps)
-        states = sorted(set(stills.values()))
-        drawn = dict(zip(states, iter_states(draw, cam, *args, x_frames[states], F_frames[states], device)))
         for t, k in stills.items():
             shrink = STILL_SHRINK if min(width, height) >= 360 else 1
             out[card_still_name(view, t)] = write_png(drawn[k], folder / card_still_name(view, t), shrink)

@@ -5,6 +5,7 @@ shape (a shell's curve, a head's eyes) and not a flat cut-out.
     from tasks.render.shading import deformed_normals, lit_colors
 
     normals = deformed_normals(rest_normals, particle_index, particle_weight, F)   # (G, 3), 0 for interior blobs
+    normals = normals_under(rest_normals, F_g)     # the same from the Gaussians' blended gradients (binding.py)
     colors = lit_colors(albedo, normals, cam)                                      # (G, 3) in 0..1
 
 Interior blobs (normal 0) take the mean light of a surface facing the camera. Numpy only; lengths in metres.
@@ -14,6 +15,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from tasks.render.binding import blended_gradients
 from tasks.render.camera import Camera
 
 AMBIENT = 0.42  # light everywhere
@@ -28,9 +30,14 @@ def deformed_normals(rest_normals: np.ndarray, particle_index: np.ndarray, parti
                      deformation_gradients: np.ndarray) -> np.ndarray:
     """Unit normals (G, 3) after the deformation: F_g^-T n with F_g = sum_j w_j F_j (the Gaussian's blended gradient);
     a zero rest normal (an interior blob) stays zero."""
+    return normals_under(rest_normals, blended_gradients(particle_index, particle_weight, deformation_gradients))
+
+
+def normals_under(rest_normals: np.ndarray, blended: np.ndarray) -> np.ndarray:
+    """Unit normals (G, 3) F_g^-T n under each Gaussian's blended gradient F_g (G, 3, 3); a zero rest normal stays
+    zero (an interior blob), and a singular F_g leaves the rest normal as it was."""
     n = np.asarray(rest_normals, np.float64)
-    F = np.asarray(deformation_gradients, np.float64)[np.asarray(particle_index)]  # (G, k, 3, 3)
-    F_g = np.einsum("gk,gkij->gij", np.asarray(particle_weight, np.float64), F)
+    F_g = np.asarray(blended, np.float64)
     det = np.linalg.det(F_g)
     ok = np.isfinite(det) & (np.abs(det) > 1e-9)
     out = n.copy()

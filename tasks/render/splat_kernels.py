@@ -8,8 +8,8 @@ One pass per stage, the same kernels on the CPU and on CUDA:
 2. ``duplicate``: one (tile, depth) key per tile reached, at offsets from an exclusive scan; the keys are radix-sorted
    (stable: equal keys keep the Gaussians' order); ``gather`` lays the Gaussians out in that order;
 3. ``tile_ranges``: each tile's slice of the sorted list;
-4. ``render_pixels`` (a thread per pixel): the studio backdrop (or a flat colour) and the front-to-back compositing
-   of the tile's Gaussians: alpha = min(0.99, o exp(-d²/2)) inside 3 sigma, skipped below 1/255, stopped when the
+4. ``render_pixels`` (a thread per pixel of the tiles listed): the studio backdrop (or a flat colour, or a given
+   picture) and the front-to-back compositing of the tile's Gaussians: alpha = min(0.99, o exp(-d²/2)) inside 3 sigma, skipped below 1/255, stopped when the
    transmittance would fall below 1e-4 or at the table's depth; C + T * background, rounded to 8 bits.
 
 Pixel centres are at (x + 0.5, y + 0.5); the camera frame is tasks.render.camera.Camera.frame() (rows right, down,
@@ -25,8 +25,7 @@ from tasks.native_output import init_warp_quietly
 init_warp_quietly()  # no banner on stdout (it belongs to --json data), no CUDA-driver notice on a CPU machine
 wp.set_module_options({"enable_backward": False, "optimization_level": 3})
 
-TILE_EDGE_PX = 16  # square tiles: the pixels that share one sorted list
-TILE = wp.constant(TILE_EDGE_PX)
+TILE_EDGE_PX = 16  # square tiles: the pixels that share one sorted list (the default; each launch names its own)
 LOW_PASS_PX2 = wp.constant(0.3)  # added to the projected covariance's diagonal (3DGS's screen-space low-pass)
 ALPHA_MAX = wp.constant(0.99)
 ALPHA_MIN = wp.constant(1.0 / 255.0)
@@ -213,22 +212,23 @@ def _smooth(e0: float, e1: float, x: float) -> float:
 @wp.kernel
 def render_pixels(start: wp.array(dtype=int), end: wp.array(dtype=int), xy: wp.array(dtype=wp.vec2),
                   conic_o: wp.array(dtype=wp.vec4), color: wp.array(dtype=wp.vec3), depth: wp.array(dtype=float),
-                  width: int, height: int, tile_origin: wp.array(dtype=wp.vec2i), first_tile: int,
+                  width: int, height: int, tile: int, tile_origin: wp.array(dtype=wp.vec2i),
+                  tiles: wp.array(dtype=int), first: int,
                   rot: wp.mat33, eye: wp.vec3, focal: float, studio: int, flat: wp.vec3, table: wp.vec3,
                   horizon: wp.vec3, top: wp.vec3, target: wp.vec2, spot_m: float, falloff: float, fade_m: float,
                   shadow: wp.array(dtype=float), shadow_origin: wp.vec2, shadow_cell: float, shadow_nx: int,
                   shadow_ny: int, bg_rgb: wp.array(dtype=wp.vec3), bg_depth: wp.array(dtype=float),
                   out: wp.array(dtype=wp.uint8)):
     """One pixel: its background (and the table's depth), then its tile's Gaussians front to back. Threads run tile
-    by tile (TILE² pixels each, from first_tile on), so a tile's list is read while it is in cache; tile_origin holds
-    each tile's first pixel (x, y). studio: 0 a flat colour, 1 the studio, 2 the given image (bg_rgb, bg_depth per
-    pixel: the Gaussians stop at its depth)."""
+    by tile (tile² pixels each) through the listed tiles from tiles[first] on, so a tile's list is read while it is in
+    cache; tile_origin holds each tile's first pixel (x, y). studio: 0 a flat colour, 1 the studio, 2 the given image
+    (bg_rgb, bg_depth per pixel: the Gaussians stop at its depth)."""
     t = wp.tid()
-    tile_id = first_tile + t / (TILE * TILE)
-    local = t % (TILE * TILE)
+    tile_id = tiles[first + t / (tile * tile)]
+    local = t % (tile * tile)
     origin = tile_origin[tile_id]
-    px = origin[0] + local % TILE
-    py = origin[1] + local / TILE
+    px = origin[0] + local % tile
+    py = origin[1] + local / tile
     if px >= width or py >= height:
         return
     p = py * width + px

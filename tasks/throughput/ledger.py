@@ -27,6 +27,7 @@ DIR = "_throughput"
 RECORDS = "records.jsonl"
 SESSIONS = "sessions.json"
 _sessions = TypeAdapter(list[Session])
+SamplerStats = tuple[GpuStats | None, HostMemoryStats | None]  # what the GPU and host-memory samplers saw so far
 
 
 def request_digest(request: AssetRequest) -> str:
@@ -93,22 +94,28 @@ class Ledger:
         self._write_sessions([*sessions, session])
         return session
 
-    def alive(self, session: Session) -> None:
-        """Note that the session is running (its end, should it be killed)."""
+    def alive(self, session: Session, stats: SamplerStats | None = None) -> None:
+        """Note that the session is running (its end, should it be killed) and, given, what its samplers saw so far
+        (so that a killed session keeps them)."""
+        update: dict[str, object] = {"alive_at": time.time()}
+        if stats is not None:
+            update.update({k: v for k, v in zip(("gpu", "host_memory"), stats) if v is not None})
         with self._lock:
-            self._write_sessions([s if s.index != session.index else s.model_copy(update={"alive_at": time.time()})
+            self._write_sessions([s if s.index != session.index else s.model_copy(update=update)
                                   for s in self.sessions()])
 
-    def heartbeat(self, session: Session, interval_s: float = 5.0) -> Callable[[], None]:
-        """Note the session running every interval_s in a daemon thread; returns what stops it."""
+    def heartbeat(self, session: Session, interval_s: float = 5.0,
+                  stats: Callable[[], SamplerStats] | None = None) -> Callable[[], None]:
+        """Note the session running, with its samplers' stats so far (`stats()`), every interval_s in a daemon
+        thread; returns what stops it."""
         stop = threading.Event()
 
         def beat() -> None:
             while not stop.wait(interval_s):
                 try:
-                    self.alive(session)
-                except OSError:  # (a full disk: the run goes on; its wall time may end short)
-                    pass
+                    self.alive(session, stats() if stats is not None else None)
+                except (OSError, ValueError):  # (a full disk, a sessions file cut short: the run goes on; its wall
+                    pass  # time and samples may end short)
 
         thread = threading.Thread(target=beat, name="throughput-heartbeat", daemon=True)
         thread.start()
@@ -121,11 +128,13 @@ class Ledger:
 
     def end_session(self, session: Session, gpu: GpuStats | None = None,
                     host_memory: HostMemoryStats | None = None) -> Session:
-        """Record the session's end and what its samplers saw."""
+        """Record the session's end and what its samplers saw (a sampler's None keeps what its last beat wrote)."""
         with self._lock:
             sessions = self.sessions()
             stored = next((s for s in sessions if s.index == session.index), session)  # (its last beat kept)
-            session = stored.model_copy(update={"ended_at": time.time(), "gpu": gpu, "host_memory": host_memory})
+            session = stored.model_copy(update={"ended_at": time.time(), "gpu": stored.gpu if gpu is None else gpu,
+                                                "host_memory": stored.host_memory if host_memory is None
+                                                else host_memory})
             self._write_sessions([s if s.index != session.index else session for s in sessions])
         return session
 

@@ -108,12 +108,14 @@ def _mean(values: list[float]) -> float:
 
 
 class _Sampler:
-    """A daemon thread that calls `sample()` every interval_s until stopped (once more at the stop)."""
+    """A daemon thread that calls `sample()` every interval_s until stopped (once more at the stop). Its `stats()` may
+    be read while it runs (the heartbeat writes them with each beat): a sample's result is added under `_lock`."""
 
     def __init__(self, interval_s: float) -> None:
         self.interval_s = interval_s
         self._stop = threading.Event()
         self._thread: threading.Thread | None = None
+        self._lock = threading.Lock()
 
     def sample(self) -> None:  # pragma: no cover - overridden
         raise NotImplementedError
@@ -131,10 +133,11 @@ class _Sampler:
         self._thread = threading.Thread(target=self._loop, name=type(self).__name__, daemon=True)
         self._thread.start()
 
-    def stop(self) -> None:
+    def stop(self, timeout_s: float = 10.0) -> None:
+        """Stop sampling; wait up to timeout_s for a sample under way (its stats are whole either way)."""
         self._stop.set()
         if self._thread is not None:
-            self._thread.join(timeout=10.0)
+            self._thread.join(timeout=timeout_s)
 
 
 class GpuSampler(_Sampler):
@@ -149,34 +152,38 @@ class GpuSampler(_Sampler):
         self.rows: list[list[tuple[float | None, float | None]]] = []
 
     def sample(self) -> None:
-        rows = parse_gpu_query(self.query())
+        rows = parse_gpu_query(self.query())  # (outside the lock: nvidia-smi may take a second)
         if rows:
-            self.rows.append(rows)
+            with self._lock:
+                self.rows.append(rows)
 
-    def _column(self, gpu: int, field: int) -> list[float]:
+    @staticmethod
+    def _column(samples: list[list[tuple[float | None, float | None]]], gpu: int, field: int) -> list[float]:
         """The readable values of one field (0: utilisation, 1: memory) of one GPU over the samples."""
         out = []
-        for rows in self.rows:
+        for rows in samples:
             value = rows[gpu][field] if gpu < len(rows) else None
             if value is not None:
                 out.append(value)
         return out
 
     def stats(self) -> GpuStats | None:
-        """The summary; None when no sample was read."""
-        if not self.rows:
+        """The summary (of the samples so far, while it runs); None when no sample was read."""
+        with self._lock:
+            samples = list(self.rows)
+        if not samples:
             return None
-        n = max(len(r) for r in self.rows)
+        n = max(len(r) for r in samples)
         names = self.gpus if self.gpus and len(self.gpus) == n else [str(i) for i in range(n)]
         per: list[GpuUse] = []
         all_util: list[float] = []
         for i, name in enumerate(names):
-            util, mem = self._column(i, 0), self._column(i, 1)
+            util, mem = self._column(samples, i, 0), self._column(samples, i, 1)
             all_util += util
             per.append(GpuUse(gpu=name, samples=len(util), util_percent_mean=_mean(util),
                               util_percent_max=max(util, default=0.0),
                               peak_memory_bytes=int(max(mem, default=0.0) * MIB)))
-        return GpuStats(samples=len(self.rows), interval_s=self.interval_s,
+        return GpuStats(samples=len(samples), interval_s=self.interval_s,
                         util_percent_mean=_mean(all_util),
                         peak_memory_bytes=max(g.peak_memory_bytes for g in per), gpus=per)
 
@@ -269,14 +276,17 @@ class HostMemorySampler(_Sampler):
     def sample(self) -> None:
         total, largest = worker_rss(process_table(self.proc_root, self.page_bytes), self.root_pid)
         used = host_used_bytes(self.proc_root / "meminfo")
-        self.samples += 1
-        self.peak_sum, self.peak_one = max(self.peak_sum, total), max(self.peak_one, largest)
-        if used is not None:
-            self.peak_host = max(self.peak_host or 0, used)
+        with self._lock:
+            self.samples += 1
+            self.peak_sum, self.peak_one = max(self.peak_sum, total), max(self.peak_one, largest)
+            if used is not None:
+                self.peak_host = max(self.peak_host or 0, used)
 
     def stats(self) -> HostMemoryStats | None:
-        """The summary; None when nothing was sampled."""
-        if not self.samples:
-            return None
-        return HostMemoryStats(samples=self.samples, interval_s=self.interval_s, peak_workers_rss_bytes=self.peak_sum,
-                               peak_worker_rss_bytes=self.peak_one, peak_host_used_bytes=self.peak_host)
+        """The summary (of the samples so far, while it runs); None when nothing was sampled."""
+        with self._lock:
+            if not self.samples:
+                return None
+            return HostMemoryStats(samples=self.samples, interval_s=self.interval_s,
+                                   peak_workers_rss_bytes=self.peak_sum, peak_worker_rss_bytes=self.peak_one,
+                                   peak_host_used_bytes=self.peak_host)

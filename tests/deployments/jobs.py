@@ -33,8 +33,11 @@ RUNS_ENV = "DEFORMSMITH_TEST_RUNS"  # a file each timed_job run appends its requ
 def timed_job(request: AssetRequest, out_dir: Path, device: str) -> dict[str, Any]:
     """quick_job's behaviours, and a publish that looks like generate's to the throughput benchmark: the run noted in
     $DEFORMSMITH_TEST_RUNS, asset.json with the request, the GPU it was pinned to and L3's verdict ('no-l3' in the
-    text: none), 1000 bytes of payload, and generate's per-stage wall times in the summary."""
+    text: none), 1000 bytes of payload, and generate's per-stage wall times in the summary. 'stubborn' in the text:
+    SIGINT is ignored (a request slow to unwind when its batch stops it: SIGKILL ends it)."""
     text = request.text or ""
+    if "stubborn" in text:
+        signal.signal(signal.SIGINT, signal.SIG_IGN)
     runs = os.environ.get(RUNS_ENV)
     if runs:
         with open(runs, "a", encoding="utf-8") as fh:

@@ -11,6 +11,7 @@ import signal
 import subprocess
 import sys
 import time
+from collections.abc import Callable
 from contextlib import nullcontext
 from pathlib import Path
 
@@ -327,6 +328,92 @@ def test_a_killed_run_resumes_where_it_left_off(tmp_path: Path) -> None:
     assert (report.ok, report.pending, len(report.sessions)) == (3, 0, 2)
     assert [r.session for r in report.records] == [0, 1, 1]
     assert report.sessions[0].ended_at is None and report.wall_s > 0
+
+
+def _fake_nvidia_smi(tmp_path: Path) -> tuple[Path, Path]:
+    """A directory with an `nvidia-smi` that notes each call in a file and reports one GPU at 37 % and 2048 MiB."""
+    bin_dir, calls = tmp_path / "bin", tmp_path / "smi-calls.txt"
+    bin_dir.mkdir()
+    smi = bin_dir / "nvidia-smi"
+    smi.write_text(f"#!/bin/sh\necho x >> '{calls}'\necho '37, 2048'\n", encoding="utf-8")
+    smi.chmod(0o755)
+    return bin_dir, calls
+
+
+def _throughput_process(tmp_path: Path, texts: list[str], beat_s: float, cli_stop: bool) -> tuple[
+        subprocess.Popen[bytes], Path, Path]:
+    """The benchmark in a child process with a fake nvidia-smi, sampling every 0.05 s and beating every beat_s
+    (cli_stop: SIGTERM and SIGINT taken as the command line takes them, flows.cli.stop: the process ends ~1.3 s
+    after the signal whether or not its requests have stopped); returns (it, the output root, the nvidia-smi calls)."""
+    bin_dir, calls = _fake_nvidia_smi(tmp_path)
+    reqs = _write(tmp_path / "r.jsonl", [json.dumps({"name": f"r{i}", "text": t}) for i, t in enumerate(texts)])
+    out = tmp_path / "out"
+    code = ("import sys, contextlib; from pathlib import Path; import flows.batch, flows.throughput; "
+            "from flows.cli import stop; "
+            "flows.batch.prefect_api_for_children = lambda: contextlib.nullcontext({}); "
+            f"flows.throughput.SAMPLE_S = 0.05; flows.throughput.BEAT_S = {beat_s!r}\n"
+            + ("stop.install(sys.argv, resumes=True)\n" if cli_stop else "")
+            + "try:\n"
+            f"    flows.throughput.run_throughput(Path(sys.argv[1]), Path(sys.argv[2]), job={TIMED!r})\n"
+            "except BaseException:\n"
+            "    if stop.stopped() is None:\n"
+            "        raise\n"
+            "    stop.leave(stop.stopped() or 130)\n")
+    env = dict(os.environ, PYTHONPATH=str(REPO), PATH=f"{bin_dir}{os.pathsep}{os.environ['PATH']}",
+               **{RUNS_ENV: str(tmp_path / "runs.txt")})
+    proc = subprocess.Popen([sys.executable, "-c", code, str(reqs), str(out)], cwd=REPO, env=env,
+                            stderr=subprocess.DEVNULL)
+    return proc, out, calls
+
+
+def _wait_for(proc: subprocess.Popen[bytes], ready: Callable[[], bool], timeout_s: float = 60.0) -> None:
+    """Until ready(); the process killed (its requests end when orphaned) if it ends or the time runs out first."""
+    deadline = time.time() + timeout_s
+    while not ready():
+        if proc.poll() is not None or time.time() > deadline:
+            proc.kill()
+            proc.wait()
+            pytest.fail(f"not ready after {time.time() - deadline + timeout_s:.1f} s (rc {proc.returncode})")
+        time.sleep(0.1)
+
+
+def _sampled(session: Session) -> None:
+    """The fake nvidia-smi's figures and the host sampler's, as the session keeps them."""
+    assert session.gpu is not None and session.gpu.samples >= 1, session
+    assert session.gpu.util_percent_mean == 37.0 and session.gpu.peak_memory_bytes == 2048 * MIB
+    assert session.host_memory is not None and session.host_memory.samples >= 1
+
+
+def test_a_sigterm_stopped_run_keeps_its_end_and_samples(tmp_path: Path) -> None:
+    """SIGTERM as the command line takes it while a request slow to stop runs (it ignores SIGINT: the command line's
+    backstop ends the benchmark before its children have stopped and its `finally` has run), with no heartbeat
+    written yet: the session keeps its end and what the samplers saw (s25's first session kept neither)."""
+    proc, out, calls = _throughput_process(tmp_path, ["sleep 300 stubborn"], beat_s=600.0, cli_stop=True)
+    runs = tmp_path / "runs.txt"
+    _wait_for(proc, lambda: runs.is_file() and "stubborn" in runs.read_text()
+              and calls.is_file() and len(calls.read_text().split()) >= 2)
+    t_signal = time.time()
+    proc.send_signal(signal.SIGTERM)
+    assert proc.wait(timeout=30) == 143
+    session = Ledger(out).sessions()[0]
+    assert session.ended_at is not None and t_signal <= session.ended_at <= t_signal + 1.3
+    _sampled(session)
+
+
+def test_a_killed_run_keeps_the_samples_of_its_last_beat(tmp_path: Path) -> None:
+    """SIGKILL: nothing runs at the end, and the session keeps what its last heartbeat wrote: its time and the
+    samples so far, which the report takes."""
+    proc, out, calls = _throughput_process(tmp_path, ["sleep 300"], beat_s=0.1, cli_stop=False)
+    ledger, runs = Ledger(out), tmp_path / "runs.txt"
+    # (the request running first: a request orphaned before it watches its parent would not stop)
+    _wait_for(proc, lambda: runs.is_file() and bool(ledger.sessions()) and ledger.sessions()[0].gpu is not None)
+    proc.send_signal(signal.SIGKILL)
+    proc.wait(timeout=30)
+    session = ledger.sessions()[0]
+    assert session.ended_at is None and session.alive_at is not None
+    _sampled(session)
+    report = build_report([], ledger.sessions(), 1, requests_file="r", out_root=str(out), cache_root="c")
+    assert report.gpu is not None and report.gpu.util_percent_mean == 37.0 and report.host_memory is not None
 
 
 # ---- the command --------------------------------------------------------------------------------------

@@ -1,13 +1,17 @@
-"""The pick-and-place video's cache key (tasks.manipulation.pick_place_video): made of the recorded attempt's bytes
-and the renderer's sources, every one of which exists; a record that shows no recorded trial leaves no video."""
+"""The pick-and-place video's cache key (tasks.manipulation.pick_place_video): made of the recorded attempt's bytes,
+the renderer's sources, every one of which exists, and the device that draws it; a record that shows no recorded
+trial leaves no video; the run's device reaches the renderer."""
 
 from __future__ import annotations
 
 from pathlib import Path
 from types import SimpleNamespace
-from typing import cast
+from typing import Any, cast
+
+import pytest
 
 from contracts.manipulation import ManipulationRecord
+import tasks.manipulation.pick_place_video as ppv
 from tasks.manipulation.pick_place_video import (
     ROOT, pick_and_place_video_key, renderer_sources, write_pick_and_place_video,
 )
@@ -32,3 +36,45 @@ def test_no_recorded_trial_no_video(tmp_path: Path) -> None:
     stale.write_bytes(b"old")
     record = cast(ManipulationRecord, SimpleNamespace(passed=False, attempt=None, best_attempt=None, attempts=[]))
     assert write_pick_and_place_video(tmp_path, record) is None and not stale.exists()
+
+
+def test_the_device_keys_the_video_apart_and_reaches_replay(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    """A GPU's video is cached apart from the CPU's (within a colour level, not the same bytes), and the run's device
+    is what replay draws on."""
+    data = tmp_path / "interaction" / "attempt_001"
+    data.mkdir(parents=True)
+    (data / "x").write_bytes(b"\x00")
+    assert pick_and_place_video_key(tmp_path, 1) == pick_and_place_video_key(tmp_path, 1, "cpu")
+    assert pick_and_place_video_key(tmp_path, 1, "cuda") != pick_and_place_video_key(tmp_path, 1, "cpu")
+    drawn: list[str] = []
+
+    def fake_replay(work: Path, attempt: int, video: Path, device: str = "cpu", **kw: Any) -> None:
+        drawn.append(device)
+        Path(video).write_bytes(device.encode())
+
+    monkeypatch.setattr(ppv, "replay", fake_replay)
+    record = cast(ManipulationRecord, SimpleNamespace(attempt=1))
+    for device in ("cuda", "cpu", "cuda"):  # the second cuda run: the cache's copy
+        video = write_pick_and_place_video(tmp_path, record, device)
+        assert video is not None and video.read_bytes() == device.encode()
+    assert drawn == ["cuda", "cpu"]
+
+
+def test_generate_draws_the_video_on_the_runs_device(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    """flows.generate.run_manipulation (generate's L3 stage) hands its device to the video, as to the trials."""
+    import flows.generate as generate
+
+    record = SimpleNamespace(attempt=0)
+    seen: dict[str, Any] = {}
+
+    def run_l3(work: Path, options: Any, agents: Any, **kw: Any) -> tuple[Any, None]:
+        seen["l3"] = options.device
+        return record, None
+
+    def video(work: Path, rec: Any, device: str = "cpu") -> None:
+        seen["video"] = device
+
+    monkeypatch.setattr(generate.l3_manipulation, "run_l3", run_l3)
+    monkeypatch.setattr(generate, "write_pick_and_place_video", video)
+    assert generate.run_manipulation(tmp_path, "cuda", "draft", None) is record
+    assert seen == {"l3": "cuda", "video": "cuda"}

@@ -142,3 +142,33 @@ def test_full_size_drop_videos_are_1280x720_at_30_fps(tmp_path: Path) -> None:
         finally:
             reader.close()
         assert files[f"drop_{view}.mp4"].stat().st_size < 3e6
+
+
+def test_the_video_reuses_the_card_frames_pictures_and_writes_the_same_files(tmp_path: Path,
+                                                                            monkeypatch: pytest.MonkeyPatch) -> None:
+    """drop_files draws the card's drop frames first and the video's frames of the same recorded states hand their
+    pictures back instead of drawing them again: fewer pictures drawn, the same bytes in every file."""
+    import tasks.render.protocol_video as pv
+
+    particles, _ = _bar((0.08, 0.06, 0.04), spacing_m=0.01)
+    g, cov = _gaussians(particles, 0.005)
+    x, F = _falling(particles, 0.25 * 0.04)
+    calls: list[int] = []
+
+    def counting(*args, **kwargs):  # type: ignore[no-untyped-def]
+        calls.append(1)
+        return _disc_renderer(*args, **kwargs)
+
+    files = drop_files(g, cov, particles, x, F, tmp_path / "a", 30.0, 5.0, 128, 72, renderer=counting)
+    reusing = len(calls)
+
+    class Drawing(pv.KeptPictures):  # keeps nothing: every picture drawn
+        def __call__(self, cam, *args, **kwargs):  # type: ignore[no-untyped-def]
+            self.kept.clear()
+            return super().__call__(cam, *args, **kwargs)
+
+    monkeypatch.setattr(pv, "KeptPictures", Drawing)
+    calls.clear()
+    again = drop_files(g, cov, particles, x, F, tmp_path / "b", 30.0, 5.0, 128, 72, renderer=counting)
+    assert reusing < len(calls)
+    assert all(files[k].read_bytes() == again[k].read_bytes() for k in files)

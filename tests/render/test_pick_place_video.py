@@ -110,3 +110,31 @@ def test_the_2f140_is_drawn_from_its_links_not_boxes() -> None:
     k = _frame_in(arrays, "closure", 0.9)
     n_links = len(v._robot_parts(k))
     assert n_links >= 8 + 4 + 2 * 10  # Panda links 0-7, coupling and housing, 2 x (3 links, finger, pad, 4 pins...)
+
+
+def test_the_runs_device_reaches_both_renderers(monkeypatch: pytest.MonkeyPatch) -> None:
+    """PickPlaceVideo(device="cuda") draws the robot's triangles (mesh_raster.draw) and the object's splats
+    (render_gaussians) on that device, in the wide view and the close-up; here on the CPU, each spy drawing what it was
+    asked on the CPU."""
+    import tasks.render.mesh_raster as raster
+
+    devices: list[tuple[str, str]] = []
+    real_draw = raster.draw
+
+    def draw(*args: Any, device: str = "cpu", **kw: Any) -> Any:
+        devices.append(("triangles", device))
+        return real_draw(*args, **kw)
+
+    def splats(*args: Any, device: str = "cpu", **kw: Any) -> np.ndarray:
+        devices.append(("splats", device))
+        return render_gaussians(*args, **kw)
+
+    monkeypatch.setattr(raster, "draw", draw)
+    monkeypatch.setattr(attempt_video, "render_gaussians", splats)
+    arrays, attrs = synthetic_attempt(edge_m=0.06, spacing_m=0.006, gripper="robotiq_2f85", approach_s=0.2)
+    video = PickPlaceVideo(arrays, attrs, W, H, device="cuda")
+    assert video.frame(_frame_in(arrays, "lift")).shape == (H, W, 3)
+    assert devices == [("triangles", "cuda"), ("splats", "cuda")] * 2
+    devices.clear()
+    PickPlaceVideo(arrays, attrs, W, H).frame(0)
+    assert {d for _, d in devices} == {"cpu"}

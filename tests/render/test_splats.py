@@ -214,3 +214,43 @@ def test_tile_ranges_skip_the_placeholder_keys_past_the_last_tile() -> None:
     start, end = wp.zeros(4, dtype=int, device="cpu"), wp.zeros(4, dtype=int, device="cpu")
     wp.launch(k.tile_ranges, dim=len(tiles), inputs=[keys, len(tiles), 4], outputs=[start, end], device="cpu")
     assert start.numpy().tolist() == [0, 0, 2, 3] and end.numpy().tolist() == [2, 0, 3, 6]
+
+
+@pytest.mark.parametrize("scene", ["studio", "none", "image"])
+def test_drawing_only_the_reached_tiles_gives_every_tiles_picture(scene: str, monkeypatch: pytest.MonkeyPatch
+                                                                  ) -> None:
+    """A small object in a corner of the frame: on the CPU the pixel kernel runs on the tiles its Gaussians (and in
+    the studio, its shadow) reach, the rest showing the background (the empty scene, kept per camera, or the given
+    picture) unchanged; the picture is byte for byte the one every tile's drawing gives, at 16- and 8-pixel tiles."""
+    import warp as wp
+
+    rng = np.random.default_rng(5)
+    n = 300
+    means = rng.normal(0.0, 0.01, (n, 3)) + [0.09, 0.0, 0.03]
+    a = rng.normal(0.0, 0.004, (n, 3, 3))
+    covs = a @ a.transpose(0, 2, 1) + np.eye(3) * 1e-7
+    colors, opac = rng.uniform(0, 1, (n, 3)), rng.uniform(0.2, 1.0, n)
+    cam = Camera((0.0, -0.6, 0.3), (0.0, 0.0, 0.05), 40.0, 192, 128)
+    kw: dict = {"scene": scene}
+    if scene == "image":  # a picture with its depth: far, but nearer than the object on the frame's right
+        depth = np.full((128, 192), 2.0, np.float32)
+        depth[:, 122:] = 0.3
+        kw = {"background": (rng.integers(0, 256, (128, 192, 3), dtype=np.uint8), depth)}
+    drawn: list[int] = []
+    launch = wp.launch
+
+    def counting(kernel, dim, *args, **kwargs):  # type: ignore[no-untyped-def]
+        if kernel.key == "render_pixels":
+            drawn.append(int(dim))
+        return launch(kernel, dim, *args, **kwargs)
+
+    monkeypatch.setattr(wp, "launch", counting)
+    part = [render_gaussians(cam, means, covs, colors, opac, tile_px=t, **kw) for t in (16, 8)]
+    part.append(render_gaussians(cam, means, covs, colors, opac, **kw))  # (the empty scene now kept)
+    assert 0 < sum(drawn[:1]) < 0.6 * 192 * 128  # the object's tiles (and its shadow's), not the frame's
+    monkeypatch.setattr(splats, "_base", lambda *args: None)  # every tile drawn, as a GPU draws them
+    drawn.clear()
+    every = render_gaussians(cam, means, covs, colors, opac, **kw)
+    assert sum(drawn) >= 192 * 128
+    assert all(p.tobytes() == every.tobytes() for p in part)
+    assert np.any(every != render_gaussians(cam, means[:0], covs[:0], colors[:0], opac[:0], **kw))
