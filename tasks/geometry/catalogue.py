@@ -41,7 +41,10 @@ MODIFIERS: dict[str, tuple[float, float, float]] = {
     "long": (1.5, 1.0, 1.0), "elongated": (1.5, 0.9, 0.9), "short": (0.7, 1.0, 1.0), "tall": (1.0, 1.0, 1.4),
     "round": (1.0, 1.15, 1.15), "chubby": (1.0, 1.2, 1.2), "fat": (1.0, 1.2, 1.2), "wide": (1.0, 1.3, 1.0),
     "narrow": (1.0, 0.75, 1.0), "slim": (1.0, 0.8, 0.9),
+    # a garment's wearer: a newborn's head is ~35 cm round against an adult's ~57 (WHO growth standards)
+    "newborn": (0.6, 0.6, 0.6), "infant": (0.65, 0.65, 0.65), "toddler": (0.75, 0.75, 0.75),
 }
+WEARER_WORDS = frozenset({"newborn", "infant", "toddler"})  # they size garments only ('a newborn puppy plush' is not)
 
 
 class SizeSpec(Model):
@@ -487,6 +490,8 @@ def design_from_text(text: str, size_hint_m: float | None = None) -> Design:
         own_name = own_name.replace(match.noun, " ")
     mods, axis_scale = parse_modifiers(own_name)
     kept = _not_implied(mods, program, match.body_plan)
+    if match.category != "textile" or match.noun and any(w in match.noun for w in ("baby", "infant")):
+        kept = [m for m in kept if m not in WEARER_WORDS]  # ('a baby sock' is a baby's size already)
     if "little" in kept and (match.typical_size_m or 1.0) <= SMALL_BY_NATURE_M:
         kept = [m for m in kept if m != "little"]  # 'a little catnip mouse': a fond word for a small thing
     if kept != mods:  # 'a long scarf', 'jeans laid flat': the object is so already, not stretched again

@@ -294,6 +294,8 @@ def _head(main: str) -> tuple[tuple[int, int, str] | None, tuple[int, int, str] 
         if w in ("thing", "things", "object", "objects", "item", "items", "something", "stuff", "cutout", "cutouts",
                  "shape", "shapes", "figure", "figures", "piece", "pieces", "version", "kind", "type"):
             break  # 'a foam star cutout', 'a heart shape': the form word after a named object is that object
+        if w in phrase_mod.STATE_WORDS:
+            continue  # 'burp cloths, folded and stacked': a state, not an unknown object
         if not _known_word(w) and len(w) > 2:
             tail_unknown = w
             break
@@ -625,7 +627,8 @@ def _pouch_of(t: str, phrase: phrase_mod.Phrase, entry: LexiconEntry, match: Con
     piece = load_lexicon().entries[noun_index()[hits[-1][2]][0]]
     domain = concept_domain(piece.key)
     if domain == "animal" or piece.size_m > (PIECE_MAX_SIZE_M if domain == "food" else GOODS_MAX_SIZE_M) \
-            or piece.plan in ("pouch", "bag", "mould"):  # (cups and moulds come nested: goods_words.nested_stack)
+            or piece.plan in ("pouch", "bag", "mould", "sheet"):  # (cups and moulds come nested:
+        # goods_words.nested_stack; sheets stacked: _state_params)
         return None
     program = concept_program(piece.key)
     volume = program_volume(program, 32)
@@ -1106,10 +1109,10 @@ def _state_params(reading: Reading, warnings: list[str]) -> tuple[list[str], dic
     """The states the text gives ('rolled up', 'folded') that the object's body plan can take, as plan parameters;
     a state it cannot take is a warning, not silently dropped."""
     phrase = reading.phrase
-    if phrase is None or not phrase.states:
-        return [], {}
     target = reading.donor or reading.entry
     plan = reading.donor_plan[0] if reading.donor_plan is not None and reading.donor is None else target.plan
+    if phrase is None or not (phrase.states or plan == "sheet" and _sheet_count(phrase.text) is not None):
+        return [], {}
     can = grammar.plan_states(plan) if plan in grammar.PLANS else ()
     said = list(dict.fromkeys("lying" if st == "curled" and "lying" in can and "curled" not in can else st
                               for st in phrase.states))
@@ -1117,13 +1120,33 @@ def _state_params(reading: Reading, warnings: list[str]) -> tuple[list[str], dic
         said = [st for st in said if st not in ("lying", "curled")]
     if inflatable(target) or dentable(target):  # 'deflated', 'crumpled', 'flat': drawn by _whole_object
         said = [st for st in said if st not in _DEFLATED and st != "deflated"]
+    count = _sheet_count(phrase.text) if plan == "sheet" else None
+    if count is not None and "rolled" not in said:  # 'a pack of 10 felt sheets', '3 burp cloths folded and stacked'
+        said = ["stacked", *(st for st in said if st != "stacked")]
     shown = [st for st in said if st in can]  # ('curled up' is lying, for an animal)
     # carried by the material and mass, or a pose the shape has anyway (a teddy sits), not drawn apart
     shapeless = {"stuffed", "filled", "inflated", "hollow", "flat", "sitting", "lying", "standing"}
     for st in said:
         if st not in can and st not in shapeless:
             warnings.append(f"state '{st}' is not drawn: the {target.key.replace('_', ' ')} shape has no such state")
-    return shown, ({"state": shown[0]} if shown else {})
+    params: dict = {"state": shown[0]} if shown else {}
+    if count is not None and shown[:1] == ["stacked"]:
+        params["layers"] = int(min(max(count, 2), MAX_STACKED))
+    return shown, params
+
+
+MAX_STACKED = 12  # sheets drawn in a stack (SheetParams.layers) [-]
+_SHEET_COUNT = re.compile(r"\b(?:pack|packet|set|bundle|stack|pile|box)\s+of\s+(\d+|[a-z]+)\b|^\s*(\d+|[a-z]+)\s+(?!cm\b|mm\b|m\b|in\b|inch)")
+
+
+def _sheet_count(text: str) -> int | None:
+    """The number of sheets a text stacks ('a pack of 10 felt sheets', 'three tea towels'), at least 2; else None."""
+    for m in _SHEET_COUNT.finditer(text):
+        word = m.group(1) or m.group(2)
+        n = int(word) if word.isdigit() else _COUNTS.get(word)
+        if n is not None and n >= 2:
+            return n
+    return None
 
 
 def sheet_fold(reading: Reading) -> tuple[float, float] | None:
