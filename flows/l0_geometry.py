@@ -37,7 +37,8 @@ MESH_VERSION = "15"  # l0.mesh alone; 2: marching cubes no longer pinches the su
 # slender objects meshed with 12 cells across); 14: set 11's (a bare small size is a sheet's thickness, a pair of a
 # hand-written toy, bags holding a stated number of goods, a whole raw fish, filled doughnuts, food half eaten);
 # 15: dev set 12's (bags of unknown goods as pouches, goods bulging a bag's film, compound heads, garment sizes, 'w/',
-# a pair said after the goods, folded and rolled sheets' stated flat size, squid, swim rings, sleep masks, ...)
+# a pair said after the goods, folded and rolled sheets' stated flat size, squid, swim rings, sleep masks, ...; and
+# sealed set 12's: a pack of N sheets stacked, newborn garments, memory foam bath mats, an open C ring)
 PROXY_VERSION = "2"  # l0.proxy alone; 2: CoACD's coarse copy keeps cells across a long or flat good's thinnest side
 GAUSSIANS_VERSION = "3"  # l0.gaussians alone; 2: surface discs dense and small for the particle spacing (#36);
 # 3: on blue-noise surface samples
