@@ -74,6 +74,7 @@ PORTION_SHAPES: dict[str, tuple[str, dict]] = {
     "cube": ("block", {"width": 1.0, "height": 1.0, "edge": 0.12}),
     "lump": ("blob", {"height": 0.6, "elongation": 1.25}), "blob": ("blob", {}), "dollop": ("blob", {"height": 0.4}),
     "stick": ("tube", {}),
+    "ball": ("ball", {"squash": 0.92}),  # 'a ball of play-doh' (a ball the lexicon's own entry is stays itself)
 }  # 'a wedge of X' follows X's own shape (wedged)
 # nouns that name a generic form: a more specific object noun before them wins ('teether ring', 'sock ball')
 GENERIC_NOUNS = frozenset({"ball", "ring", "block", "cube", "roll", "pad", "disc", "tube", "bar", "piece", "toy",

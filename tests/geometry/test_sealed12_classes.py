@@ -48,3 +48,25 @@ def test_sealed12_masses(text: str, entry: str, kg: float) -> None:
 
 def test_a_bike_inner_tube_is_not_a_swim_ring() -> None:
     assert catalogue.design_from_text("a bike inner tube").entry != "swim_ring"
+
+
+def test_a_ball_of_dough_is_a_ball() -> None:
+    d = catalogue.design_from_text("a ball of modelling clay")
+    assert d.entry == "play_dough" and d.concept.shape_from == "ball"
+    assert catalogue.design_from_text("a ball of yarn").entry == "yarn_ball"  # a ball the lexicon's entry is
+
+
+def test_a_flat_egg_rests_on_the_table_along_its_length() -> None:
+    d = catalogue.design_from_text("a raw chicken fillet")
+    body, front = d.program.parts[0], d.program.parts[1]
+    bottom = [p.transform.translation_m[2] - p.primitive.radii_m[2] for p in (body, front)]
+    assert abs(bottom[0] - bottom[1]) < 0.02 * d.program.parts[0].primitive.radii_m[0]  # no step under it
+
+
+@pytest.mark.parametrize("text,entry,kg", [
+    ("a fabric arm sling", "arm_sling", 0.15),  # medical supply: 0.1-0.2 kg
+    ("a bicycle inner tube", "bike_inner_tube", 0.1),  # retail 700c butyl tubes 90-120 g
+])
+def test_sealed12_entries(text: str, entry: str, kg: float) -> None:
+    assert catalogue.design_from_text(text).entry == entry
+    assert 0.5 <= planned_mass(text) / kg <= 2.0

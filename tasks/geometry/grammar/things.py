@@ -370,12 +370,21 @@ class EggParams(Model):
     knot: bool = Field(default=False, description="a tied neck and knot at the narrow end (a blown-up balloon)")
 
 
+FLAT_EGG_SQUASH = 0.5  # an egg plan flatter than this lies on the table along its length [-]
+
+
 def egg(p: EggParams) -> list[Part]:
     """Length 1 along x, blunt end at -x."""
     w = p.aspect * 0.5
     h = w * p.squash
+    # a flattened one (a fillet, a pebble) lies on the table along its length, its narrow end thinning a little and
+    # resting on it too (held up at the blunt end's mid-height and thinned as much as narrowed, it left a step, read
+    # as a seam); a round egg's axis stays level
+    flat = p.squash < FLAT_EGG_SQUASH
+    hf = h * (1 - (0.35 if flat else 1.0) * p.pointiness)
+    zf = hf if flat else h
     parts = [ellipsoid("body", (0.32, w, h), (-0.18, 0, h)),
-             ellipsoid("front", (0.36, w * (1 - p.pointiness), h * (1 - p.pointiness)), (0.14, 0, h), blend=0.25)]
+             ellipsoid("front", (0.36, w * (1 - p.pointiness), hf), (0.14, 0, zf), blend=0.25)]
     if p.knot:  # the neck pinched beyond the tip, a tied knot and its rolled lip
         tip = 0.14 + 0.36
         parts += [limb("neck", (tip - 0.03, 0, h), (tip + 0.05, 0, h), 0.022, blend=0.02),
