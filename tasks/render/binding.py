@@ -36,6 +36,13 @@ def blended_gradients(particle_index: np.ndarray, particle_weight: np.ndarray,
     return np.einsum("gk,gkij->gij", np.asarray(particle_weight, np.float64), F)
 
 
+def _kernels() -> Any:
+    """tasks.render.binding_kernels, on first use."""
+    from tasks.render import binding_kernels  # lazy: Warp (1.3 s), only when a video is drawn
+
+    return binding_kernels
+
+
 def _f64(a: np.ndarray, shape: tuple[int, ...]) -> np.ndarray:
     return np.ascontiguousarray(np.asarray(a, np.float64).reshape(shape))
 
@@ -81,7 +88,7 @@ class Binding:
         """The Gaussians in the state of particles at particles_m [m] (N, 3) with gradients F (N, 3, 3)."""
         import warp as wp
 
-        from tasks.render import binding_kernels as kern  # lazy: Warp (1.3 s), only when a video is drawn
+        kern = _kernels()
 
         g = len(self)
         x = _f64(particles_m, (-1, 3))
@@ -104,7 +111,7 @@ class Binding:
         stays zero (an interior blob), and a singular or non-finite F_g leaves the rest normal as it was."""
         import warp as wp
 
-        from tasks.render import binding_kernels as kern
+        kern = _kernels()
 
         n = _f64(rest_normals, (-1, 3))
         out = np.empty_like(n)
