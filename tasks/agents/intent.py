@@ -118,7 +118,7 @@ def check_request_object(request: AssetRequest, vocab: MaterialVocab | None = No
 # words that name a family of material classes rather than one: 'a foam kneeling pad' is the closed-cell foam of the
 # kneeling pad L0 built, 'a latex balloon' the balloon's inflated latex, 'a plush pillow' the plush toy pillow
 FAMILY_WORDS: dict[str, frozenset[str]] = {
-    "foam": frozenset({"pu_foam", "pe_foam", "sponge"}),
+    "foam": frozenset({"pu_foam", "pe_foam", "sponge", "slow_rise_foam"}),
     "rubber": frozenset({"rubber", "inflatable", "silicone"}),
     "latex": frozenset({"rubber", "inflatable"}),
     # a soft surface, not a stuffing: 'a fluffy pet bed' is the foam-filled bed, 'a fluffy sock' the knit sock

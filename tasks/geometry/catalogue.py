@@ -381,12 +381,19 @@ def _size_form(program: ShapeProgram, match: ConceptMatch, reading: concepts.Rea
     return {"long": long, "flat": flat, "unfold": concepts.sheet_fold(reading) if flat or plan == "sheet" else None}
 
 
+UNROLLED_OVER_ROLL = 8.0  # a bare length this many times a rolled sheet's typical roll is the sheet's length [-]
+
+
 def _rolled_sized(size: SizeSpec, program: ShapeProgram, reading: concepts.Reading) -> SizeSpec:
     """A rolled sheet's stated length and width are the sheet's ('a roll of bubble wrap, 50 cm wide and 2 m long'):
     the width is the roll's length, the length sets its diameter (the rolled cross-section grows with the sheet's
     length, so the diameter as its square root)."""
     width = concepts.sheet_roll(reading)
     sheet_len, roll_len = size.extents_m[0], size.extents_m[1]
+    if width is not None and sheet_len is None and roll_len is None and size.longest_m is not None \
+            and size.longest_m > UNROLLED_OVER_ROLL * (reading.entry.size_m or 1.0):
+        sheet_len = size.longest_m  # 'boxing hand wraps, rolled, 180 inch': the strip's length, not the roll's
+        size = size.model_copy(update={"longest_m": None, "extents_m": (sheet_len, None, None)})
     if width is None or size.extents_m[2] is not None or (sheet_len is None and roll_len is None):
         return size
     if sheet_len is not None and roll_len is not None and roll_len > sheet_len and width <= 1.0:

@@ -70,3 +70,21 @@ def test_a_flat_egg_rests_on_the_table_along_its_length() -> None:
 def test_sealed12_entries(text: str, entry: str, kg: float) -> None:
     assert catalogue.design_from_text(text).entry == entry
     assert 0.5 <= planned_mass(text) / kg <= 2.0
+
+
+@pytest.mark.parametrize("text,kg", [("a slow-rise squishy peach toy, 9 cm", 0.025),  # retail squishies 15-40 g
+                                     ("slow rising squishy donut, 10 cm", 0.03)])
+def test_a_slow_rising_squishy_is_its_shape_in_squishy_foam(text: str, kg: float) -> None:
+    assert 0.5 <= planned_mass(text) / kg <= 2.0
+
+
+def test_a_plain_squishy_fruit_stays_fruit() -> None:
+    assert planned_mass("a squishy ripe peach") > 0.1  # a ripe peach ~150 g, not a foam toy
+
+
+def test_a_rolled_strip_stated_by_its_unrolled_length_is_built_not_refused() -> None:
+    d = catalogue.design_from_text("a black boxing hand wrap, rolled up, 120 inches")
+    assert d.entry == "hand_wrap" and "the sheet's length" in (d.size.stated or "")
+    assert max(v for v in d.size.extents_m if v is not None) < 0.15  # a roll of a few cm, not a 3 m object
+    # retail 180 in hand wraps 50-70 g each; a 120 in one 2/3 of that
+    assert 0.5 <= planned_mass("a black boxing hand wrap, rolled up, 120 inches") / 0.04 <= 2.0
