@@ -1112,7 +1112,8 @@ def _state_params(reading: Reading, warnings: list[str]) -> tuple[list[str], dic
     phrase = reading.phrase
     target = reading.donor or reading.entry
     plan = reading.donor_plan[0] if reading.donor_plan is not None and reading.donor is None else target.plan
-    if phrase is None or not (phrase.states or plan == "sheet" and _sheet_count(phrase.text) is not None):
+    count = _sheet_count(phrase.text) if phrase is not None and plan == "sheet" else None
+    if phrase is None or not (phrase.states or count is not None):
         return [], {}
     can = grammar.plan_states(plan) if plan in grammar.PLANS else ()
     said = list(dict.fromkeys("lying" if st == "curled" and "lying" in can and "curled" not in can else st
@@ -1121,7 +1122,6 @@ def _state_params(reading: Reading, warnings: list[str]) -> tuple[list[str], dic
         said = [st for st in said if st not in ("lying", "curled")]
     if inflatable(target) or dentable(target):  # 'deflated', 'crumpled', 'flat': drawn by _whole_object
         said = [st for st in said if st not in _DEFLATED and st != "deflated"]
-    count = _sheet_count(phrase.text) if plan == "sheet" else None
     if count is not None and "rolled" not in said:  # 'a pack of 10 felt sheets', '3 burp cloths folded and stacked'
         said = ["stacked", *(st for st in said if st != "stacked")]
     shown = [st for st in said if st in can]  # ('curled up' is lying, for an animal)

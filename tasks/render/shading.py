@@ -2,11 +2,10 @@
 from the camera's side, with its normal carried by the deformation (n' ~ F^-T n), so a video shows the object's
 shape (a shell's curve, a head's eyes) and not a flat cut-out.
 
-    from tasks.render.shading import deformed_normals, lit_colors
+    from tasks.render.shading import lit_colors
 
-    normals = deformed_normals(rest_normals, particle_index, particle_weight, F)   # (G, 3), 0 for interior blobs
-    normals = normals_under(rest_normals, F_g)     # the same from the Gaussians' blended gradients (binding.py)
-    colors = lit_colors(albedo, normals, cam)                                      # (G, 3) in 0..1
+    normals = binding.normals(rest_normals, state.gradients)   # (G, 3) F_g^-T n, 0 for interior blobs (binding.py)
+    colors = lit_colors(albedo, normals, cam)                   # (G, 3) in 0..1
 
 Interior blobs (normal 0) take the mean light of a surface facing the camera. Numpy only; lengths in metres.
 """
@@ -15,7 +14,6 @@ from __future__ import annotations
 
 import numpy as np
 
-from tasks.render.binding import blended_gradients
 from tasks.render.camera import Camera
 
 AMBIENT = 0.42  # light everywhere
@@ -24,27 +22,6 @@ FILL = 0.18  # fill light from the camera
 # towards the key light in the camera frame (right, down, forward): up, to the left, in front of the object
 TOWARD_KEY_IN_CAMERA = np.array([-0.45, -0.80, -0.40])
 INTERIOR_LIGHT = AMBIENT + 0.5 * KEY + FILL
-
-
-def deformed_normals(rest_normals: np.ndarray, particle_index: np.ndarray, particle_weight: np.ndarray,
-                     deformation_gradients: np.ndarray) -> np.ndarray:
-    """Unit normals (G, 3) after the deformation: F_g^-T n with F_g = sum_j w_j F_j (the Gaussian's blended gradient);
-    a zero rest normal (an interior blob) stays zero."""
-    return normals_under(rest_normals, blended_gradients(particle_index, particle_weight, deformation_gradients))
-
-
-def normals_under(rest_normals: np.ndarray, blended: np.ndarray) -> np.ndarray:
-    """Unit normals (G, 3) F_g^-T n under each Gaussian's blended gradient F_g (G, 3, 3); a zero rest normal stays
-    zero (an interior blob), and a singular F_g leaves the rest normal as it was."""
-    n = np.asarray(rest_normals, np.float64)
-    F_g = np.asarray(blended, np.float64)
-    det = np.linalg.det(F_g)
-    ok = np.isfinite(det) & (np.abs(det) > 1e-9)
-    out = n.copy()
-    if np.any(ok):
-        out[ok] = np.linalg.solve(np.swapaxes(F_g[ok], 1, 2), n[ok][:, :, None])[:, :, 0]
-    length = np.linalg.norm(out, axis=1, keepdims=True)
-    return np.where(length > 1e-12, out / np.maximum(length, 1e-12), 0.0)
 
 
 def lit_colors(albedo_rgb: np.ndarray, normals: np.ndarray, cam: Camera) -> np.ndarray:

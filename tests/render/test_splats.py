@@ -148,13 +148,18 @@ def test_squeezed_specimen_silhouette_follows_the_particles_and_has_no_holes() -
         assert np.abs(red - 30.0).max() < 0.25 * (BG[0] * 255.0 - 30.0), red.max()
 
 
+def _random_cloud(seed: int, n: int, centre: tuple[float, float, float], spread_m: float, size_m: float,
+                  floor_m2: float) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """n random Gaussians (means, covariances, colours, opacities) around centre: a reproducible test scene."""
+    rng = np.random.default_rng(seed)
+    means = rng.normal(0.0, spread_m, (n, 3)) + np.asarray(centre)
+    a = rng.normal(0.0, size_m, (n, 3, 3))
+    covs = a @ a.transpose(0, 2, 1) + np.eye(3) * floor_m2
+    return means, covs, rng.uniform(0, 1, (n, 3)), rng.uniform(0.2, 1.0, n)
+
+
 def test_cpu_render_is_deterministic_and_independent_of_the_bands(monkeypatch: pytest.MonkeyPatch) -> None:
-    rng = np.random.default_rng(3)
-    n = 400
-    means = rng.normal(0.0, 0.05, (n, 3)) + [0.0, 0.0, 0.08]
-    a = rng.normal(0.0, 0.012, (n, 3, 3))
-    covs = a @ a.transpose(0, 2, 1) + np.eye(3) * 1e-6
-    colors, opac = rng.uniform(0, 1, (n, 3)), rng.uniform(0.2, 1.0, n)
+    means, covs, colors, opac = _random_cloud(3, 400, (0.0, 0.0, 0.08), 0.05, 0.012, 1e-6)
     cam = Camera((0.3, -0.5, 0.35), (0.0, 0.0, 0.06), 40.0, 80, 60)
     one = render_gaussians(cam, means, covs, colors, opac)
     assert one.shape == (60, 80, 3) and one.dtype == np.uint8
@@ -224,18 +229,13 @@ def test_drawing_only_the_reached_tiles_gives_every_tiles_picture(scene: str, mo
     picture) unchanged; the picture is byte for byte the one every tile's drawing gives, at 16- and 8-pixel tiles."""
     import warp as wp
 
-    rng = np.random.default_rng(5)
-    n = 300
-    means = rng.normal(0.0, 0.01, (n, 3)) + [0.09, 0.0, 0.03]
-    a = rng.normal(0.0, 0.004, (n, 3, 3))
-    covs = a @ a.transpose(0, 2, 1) + np.eye(3) * 1e-7
-    colors, opac = rng.uniform(0, 1, (n, 3)), rng.uniform(0.2, 1.0, n)
+    means, covs, colors, opac = _random_cloud(5, 300, (0.09, 0.0, 0.03), 0.01, 0.004, 1e-7)
     cam = Camera((0.0, -0.6, 0.3), (0.0, 0.0, 0.05), 40.0, 192, 128)
     kw: dict = {"scene": scene}
     if scene == "image":  # a picture with its depth: far, but nearer than the object on the frame's right
         depth = np.full((128, 192), 2.0, np.float32)
         depth[:, 122:] = 0.3
-        kw = {"background": (rng.integers(0, 256, (128, 192, 3), dtype=np.uint8), depth)}
+        kw = {"background": (np.random.default_rng(6).integers(0, 256, (128, 192, 3), dtype=np.uint8), depth)}
     drawn: list[int] = []
     launch = wp.launch
 
