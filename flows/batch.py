@@ -61,7 +61,7 @@ def run_one(item: BatchItem, out_root: Path, device: str, job: str, env: dict[st
     # -P: the working directory is not put on sys.path, so a folder there named like one of our packages (a user's
     # `cache/` or `tasks/`) cannot shadow it in the child (it would, under an editable install)
     cmd = [sys.executable, "-P", "-m", "flows.batch_job", "--request", str(request_file), "--out", str(out_root / item.name),
-           "--device", device, "--job", job, "--result", str(result_file)]
+           "--device", device, "--job", job, "--result", str(result_file), "--parent-pid", str(os.getpid())]
     t0 = time.perf_counter()
     with log.open("w", encoding="utf-8") as fh:
         proc = children.start(cmd, stdout=fh, stderr=subprocess.STDOUT, env=env)

@@ -140,10 +140,12 @@ def sigterm_as_interrupt() -> Iterator[None]:
         signal.signal(signal.SIGTERM, previous)
 
 
-def stop_when_orphaned(poll_s: float = 0.5, grace_s: float = 10.0) -> None:
+def stop_when_orphaned(parent: int | None = None, poll_s: float = 0.5, grace_s: float = 10.0) -> None:
     """Once the parent process is gone, interrupt the main thread as Ctrl-C would (directed at it, so that a blocking
-    call returns), and exit after grace_s if it has not stopped by then."""
-    parent = os.getppid()
+    call returns), and exit after grace_s if it has not stopped by then. `parent`: the PID the parent passed down (a
+    child reading its own parent's PID would read its adopter's when the parent died before it started watching, and
+    never stop); by default the PID of the parent now."""
+    parent = os.getppid() if parent is None else parent
     main_thread = threading.main_thread().ident
     assert main_thread is not None
 

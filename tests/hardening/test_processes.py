@@ -62,6 +62,35 @@ def test_sigterm_stops_the_main_thread_as_ctrl_c_does() -> None:
         signal.signal(signal.SIGTERM, previous)
 
 
+# a batch's request whose batch died before the request started watching it (the race of a killed batch)
+ORPHANED_EARLY = '''
+import subprocess, sys, os
+child = """
+import signal, sys, time
+signal.signal(signal.SIGINT, signal.default_int_handler)  # as flows.batch_job (SIGINT may be ignored in the test's)
+time.sleep(1.0)  # the parent is gone by now
+from tasks.processes import stop_when_orphaned
+try:
+    stop_when_orphaned(int(sys.argv[1]), poll_s=0.05, grace_s=5.0)
+    time.sleep(60)
+except KeyboardInterrupt:
+    open(sys.argv[2], 'w').write('stopped')
+"""
+subprocess.Popen([sys.executable, '-c', child, str(os.getpid()), sys.argv[1]], start_new_session=True)
+'''
+
+
+def test_a_request_orphaned_before_it_watches_stops(tmp_path: Path) -> None:
+    """The PID the parent passed down is compared, not the adopter's that a late watcher would read as its parent's."""
+    flag = tmp_path / "stopped"
+    subprocess.run([sys.executable, "-c", ORPHANED_EARLY, str(flag)], cwd=REPO, timeout=60,
+                   env={**os.environ, "PYTHONPATH": str(REPO)}, check=True)
+    deadline = time.monotonic() + 20.0
+    while not flag.is_file() and time.monotonic() < deadline:
+        time.sleep(0.1)
+    assert flag.is_file() and flag.read_text() == "stopped"
+
+
 def test_only_this_process_working_directories_are_removed(tmp_path: Path) -> None:
     host = socket.gethostname()
     mine = [tmp_path / f".duck.partial-{owner_tag()}abc", tmp_path / f".duck.tmp-{owner_tag()}def"]
