@@ -35,18 +35,18 @@ def convex_parts(mesh: trimesh.Trimesh, settings: CoacdSettings) -> list[trimesh
     """Convex pieces covering the mesh (CoACD, or one hull)."""
     if settings.method == "hull":
         return [mesh.convex_hull]
-    hull = _near_convex_hull(mesh)
-    if hull is not None:
-        return [hull]
     import coacd
 
     coacd.set_log_level("error")
+    # a mesh that hugs its hull: CoACD's root hull only (on its own remeshed copy: faceted as its parts always are;
+    # a smooth hull of every vertex of a ball rolls in pybullet and never settles)
+    root_only = _hugs_hull(mesh)
     src = mesh
     if len(mesh.faces) > settings.max_input_faces:
         src = _coarsen(mesh, settings.max_input_faces)
     cm = coacd.Mesh(np.asarray(src.vertices, dtype=np.float64), np.asarray(src.faces, dtype=np.int32))
     raw = coacd.run_coacd(
-        cm, threshold=settings.threshold, max_convex_hull=settings.max_convex_hull,
+        cm, threshold=1.0 if root_only else settings.threshold, max_convex_hull=1 if root_only else settings.max_convex_hull,
         preprocess_resolution=settings.preprocess_resolution, resolution=settings.resolution,
         mcts_iterations=settings.mcts_iterations, mcts_nodes=settings.mcts_nodes,
         mcts_max_depth=settings.mcts_max_depth, seed=settings.seed,
@@ -55,7 +55,7 @@ def convex_parts(mesh: trimesh.Trimesh, settings: CoacdSettings) -> list[trimesh
     return [p for p in parts if p.volume > 0]
 
 
-# A mesh within a few percent of its convex hull everywhere is its own hull's proxy: the shallow grooves of a yarn ball
+# A mesh within a few percent of its convex hull everywhere is proxied by CoACD's root hull alone: the shallow grooves of a yarn ball
 # or a pom-pom (volume 0.95 of the hull, the gap's 95th percentile 2.3-2.5 % of the longest extent) kept CoACD
 # splitting into its 16-part budget for 38-41 s on one core, to cover the same volume; a strawberry (0.93, 4.4 %),
 # a brain stress ball (0.92) or a rubber duck (0.85) still go through CoACD (3-4 s).
@@ -64,14 +64,14 @@ NEAR_CONVEX_GAP_P95 = 0.03  # 95th percentile hull-to-mesh distance / longest ex
 NEAR_CONVEX_SAMPLES = 600
 
 
-def _near_convex_hull(mesh: trimesh.Trimesh) -> trimesh.Trimesh | None:
-    """The mesh's convex hull when it hugs the mesh (NEAR_CONVEX_*), else None."""
+def _hugs_hull(mesh: trimesh.Trimesh) -> bool:
+    """True when the mesh's convex hull hugs it (NEAR_CONVEX_*)."""
     hull = mesh.convex_hull
     if hull.volume <= 0 or mesh.volume / hull.volume < NEAR_CONVEX_VOLUME_RATIO:
-        return None
+        return False
     points, _ = trimesh.sample.sample_surface_even(hull, NEAR_CONVEX_SAMPLES, seed=0)
     _, gap, _ = trimesh.proximity.closest_point(mesh, points)
-    return hull if float(np.percentile(gap, 95)) <= NEAR_CONVEX_GAP_P95 * float(mesh.extents.max()) else None
+    return float(np.percentile(gap, 95)) <= NEAR_CONVEX_GAP_P95 * float(mesh.extents.max())
 
 
 COARSE_THINNEST = 6  # cells across the coarse copy's thinnest extent [-]

@@ -5,11 +5,14 @@ Real masses: typical retail or rule figures (the source in each line)."""
 
 from __future__ import annotations
 
+import numpy as np
 import pytest
 import trimesh
 
 from contracts.request import AssetRequest
-from tasks.geometry.collision import NEAR_CONVEX_VOLUME_RATIO, convex_parts
+from tasks.geometry.collision import convex_parts
+from tasks.geometry.pipeline import proxy_parts
+from tasks.probes.rigid import RigidBodySpec, placement_probe
 from tests.geometry.helpers import run, settings
 
 
@@ -19,7 +22,21 @@ def test_a_grooved_near_convex_object_is_proxied_by_its_hull(text: str) -> None:
     s = settings("draft")
     mesh, _info, proxy, _p, _g, checks = run(AssetRequest(text=text), s)
     assert len(proxy["part_vertex_count"]) == 1
-    assert 1.0 <= checks.metrics["proxy_volume_ratio"] <= 1.0 / NEAR_CONVEX_VOLUME_RATIO
+    # the hull's own excess (<= 1/0.93) and CoACD's remeshing (a few percent: its voxel copy is slightly fuller)
+    assert 1.0 <= checks.metrics["proxy_volume_ratio"] <= 1.15
+
+
+@pytest.mark.parametrize("text", ["a stress ball", "a peach"])
+def test_a_round_object_proxied_by_one_hull_settles_on_the_table(text: str) -> None:
+    """The hull is CoACD's faceted root hull: the smooth hull of every vertex of a ball kept rolling in pybullet and
+    failed L1's settle gate (11 of 40 throughput requests in one run)."""
+    _mesh, _info, proxy, particles, _g, _c = run(AssetRequest(text=text), settings("draft"))
+    hulls = proxy_parts(proxy)
+    assert len(hulls) == 1
+    body = RigidBodySpec(hulls_m=[h.vertices for h in hulls], mass_kg=0.1,
+                         center_of_mass_m=np.asarray(hulls[0].center_mass), friction=0.6)
+    m = placement_probe(body, duration_s=3.0)
+    assert m["place_settle_time_s"] < 2.0
 
 
 def test_a_concave_object_is_still_decomposed() -> None:
