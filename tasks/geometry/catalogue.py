@@ -309,9 +309,21 @@ def normalise_sizes(text: str) -> str:
     dimension as digits ('about a metre long' -> 'about 1 metre long', 'half a metre wide' -> '0.5 metre wide'), or a
     length of a material ('one metre of tubing' -> '1 metre of tubing')."""
     text = _WORD_SIZE.sub(lambda m: f"{_NUMBER_WORDS[m.group(1).lower()]} ", text)
+    text = _FRACTION_SIZE.sub(_fraction_decimal, text)
     text = _WITH_SLASH.sub(lambda m: " without " if m.group(1) else " with ", text)
     text = _GARMENT_SIZE.sub(" ", text)
     return _HYPHEN_SIZE.sub(lambda m: f"{m.group(1)} {m.group(2)} ", text)
+
+
+# a fraction before a unit ('5/8" x 50 ft hose', '1 1/2 in foam', '3/4-inch rope'): a decimal (the bare '8"' was read)
+_FRACTION_SIZE = re.compile(r"(?<![\d./])(?:(\d+)[\s-]+)?(\d+)/(\d+)(?=\s*-?\s*(?:\"|''|in\b|inch|ft\b|foot|feet|cm\b|mm\b|m\b))",
+                            re.IGNORECASE)
+
+
+def _fraction_decimal(m: re.Match[str]) -> str:
+    whole = float(m.group(1) or 0.0)
+    den = float(m.group(3))
+    return m.group(0) if den == 0 else f"{whole + float(m.group(2)) / den:g}"
 
 
 # 'w/ ribbon tentacles', 'w/o a lid': with / without (the slash would part 'w' from its phrase)
@@ -432,6 +444,24 @@ def _piece_sized(size: SizeSpec, reading: concepts.Reading) -> SizeSpec:
     return SizeSpec(longest_m=reading.size_m * k, stated=f"{size.stated}: one piece's size (the pack scaled with it)")
 
 
+MASS_SIZED_MAX = 3.0  # a stated mass scales the typical size by at most this factor either way [-]
+
+
+def _mass_sized(size: SizeSpec, program: ShapeProgram, match: ConceptMatch,
+                stated: size_words.StatedMass) -> SizeSpec:
+    """A stated mass and no stated size: the object at the size that weighs it at the concept's own density (typical
+    mass at typical size, the size by the cube root of the masses' ratio, within MASS_SIZED_MAX): a '50 lb sack of
+    horse feed' is a big sack, not a typical one at 7x a material's densest (bags of known goods: _fill_sized)."""
+    if size.explicit or "capacity" in (match.stated_mass_source or "") or not match.typical_mass_kg \
+            or not match.typical_size_m:
+        return size
+    k = float(np.clip((stated.kg / match.typical_mass_kg) ** (1.0 / 3.0), 1.0 / MASS_SIZED_MAX, MASS_SIZED_MAX))
+    if abs(k - 1.0) <= 0.05:
+        return size
+    return size.model_copy(update={"longest_m": match.typical_size_m * k,
+                                   "stated": f"sized to weigh the stated {stated.stated} at its typical density"})
+
+
 def _fill_sized(size: SizeSpec, program: ShapeProgram, match: ConceptMatch,
                 stated: size_words.StatedMass | None) -> tuple[SizeSpec, ConceptMatch]:
     """A bag weighed by its fill (tasks.geometry.goods_words: fill x capacity) at the size it is built: a stated size
@@ -513,6 +543,8 @@ def design_from_text(text: str, size_hint_m: float | None = None) -> Design:
     size, fill_match = _fill_sized(size, program, fill_match, mass)
     if mass is None:
         match = fill_match
+    else:
+        size = _mass_sized(size, program, fill_match, mass)
     check_size(size)
     # a flat good's stated sizes keep its typical thickness (or state it): its mass follows its built area
     as_built = size.flat or concepts.sheet_roll(reading) is not None  # (a roll's stated sheet: its volume follows it)

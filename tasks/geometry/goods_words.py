@@ -46,6 +46,18 @@ _NESTED = re.compile(r"\b(?:pack|packet|stack|sleeve|set|box|tube|pile)s?\s+of\s
                      r"five|six|seven|eight|nine|ten|twelve|twenty)\s+)?")
 _COUNT_WORDS = {"a dozen": 12, "dozen": 12, "two": 2, "three": 3, "four": 4, "five": 5, "six": 6, "seven": 7,
                 "eight": 8, "nine": 9, "ten": 10, "twelve": 12, "twenty": 20}
+# a number that makes a compound adjective ('two-tone', 'three-layer', '2 ply'), not a count
+_COMPOUND_AFTER = ("tone|toned|sided|layer|layered|ply|way|piece|seater|handed|legged|headed|colou?r|colou?red|step|"
+                   "tier|tiered|wheeled|part|eyed|armed|pronged|lobed|fingered|toed|pointed|tailed")
+# 'two overripe bananas', '3 tennis balls', 'a pack of 6 sponges', 'a 3-pack of scrub sponges': that many pieces
+_GROUP_COUNT = re.compile(r"\b(?:pack|packet|set|bundle|box|bag|net|tray|punnet|carton)\s+of\s+(\d+|[a-z]+)\s+(?!" +
+                          r"(?:cm|mm|m|in|inch|inches|ft|feet|lb|lbs|kg|g|oz|l|ml|x|%)\b)|^\s*(?:a\s+)?(\d+|[a-z]+)\s+"
+                          r"(?!(?:cm|mm|m|in|inch|inches|ft|feet|lb|lbs|kg|g|oz|l|ml|x|%|pack|pair|pairs|piece|" + _COMPOUND_AFTER + r")\b)|"
+                          r"\b(\d+|[a-z]+)[- ]pack\b")
+GROUP_MAX = 12  # pieces drawn side by side at most [-]
+GROUP_PER_ROW = 4  # pieces in a row before the next row [-]
+GROUP_PITCH = 0.9  # the pieces' spacing / one piece's extent: touching, as the mesher keeps one body (as duplicated)
+UNGROUPED_PLANS = frozenset({"sheet", "mould", "pouch", "bag", "garment", "strap", "glove", "sock"})
 NEST_DEFAULT = 6  # cups in a pack or stack that gives no count [-]
 NEST_STEP = 0.12  # the rise of each nested cup over the one below, / one cup's height [-]
 
@@ -59,6 +71,7 @@ class GoodsChange:
     size_m: float
     match: ConceptMatch
     duplicate: bool = False
+    count: int = 0
     bunch: bool = False
     nested: int = 0
     fill_color: str | None = None
@@ -98,6 +111,9 @@ def apply(target: LexiconEntry, portion: str | None, text: str, params: dict, si
             out.match = match.model_copy(update={"typical_mass_kg": match.typical_mass_kg * 2
                                                  if match.typical_mass_kg else None})
             out.notes += ("a pair: two of them",)
+        elif portion not in BUNCH_WORDS and (count := group_count(text)) is not None:
+            out.count = count
+            out.notes += (f"{count} of them side by side",)
         return out
     fields = grammar.PLANS[plan][0].model_fields
     _folds(out, plan, {**target.params, **out.params}, text)
@@ -122,6 +138,10 @@ def apply(target: LexiconEntry, portion: str | None, text: str, params: dict, si
         word = nest.group(1)
         out.nested = int(word) if word and word.isdigit() else _COUNT_WORDS.get(word or "", NEST_DEFAULT)
         out.notes += (f"a stack of {out.nested}, nested",)
+    count = group_count(text) if plan not in UNGROUPED_PLANS and portion not in PAIR_WORDS | BUNCH_WORDS else None
+    if count is not None:
+        out.count = count
+        out.notes += (f"{count} of them side by side",)
     if portion in BUNCH_WORDS and plan in BUNCHABLE_PLANS and size_m <= BUNCH_PIECE_MAX_M:
         out.bunch = True
         out.notes += ("a bunch: a cluster of them on a stem",)
@@ -197,6 +217,44 @@ def _puffy(out: GoodsChange, plan: str, params: dict, text: str) -> None:
         "density_kg_per_m3": density * PUFFER_MASS / puff if density else None,
         "typical_mass_kg": mass * PUFFER_MASS if mass else None})
     out.notes += ("quilted: puffy baffles",)
+
+
+def group_count(text: str) -> int | None:
+    """The number of pieces a text asks for ('two bananas', 'a pack of 6 sponges', '3-pack'), 2..GROUP_MAX; else None."""
+    for m in _GROUP_COUNT.finditer(text):
+        word = m.group(1) or m.group(2) or m.group(3)
+        n = int(word) if word.isdigit() else _COUNT_WORDS.get(word)
+        if n is not None and n >= 2:
+            return min(n, GROUP_MAX)
+    return None
+
+
+def grouped(program: ShapeProgram, match: ConceptMatch, count: int) -> tuple[ShapeProgram, ConceptMatch]:
+    """`count` copies lying side by side, just touching (GROUP_PER_ROW along the shorter horizontal axis, then further
+    rows along the longer; as many as a program's 64 parts hold): the typical mass times the count, the typical size
+    the group's longest extent."""
+    parts = list(program.parts)  # (a copy's carved parts, a peach's crease, carve only its own)
+    if any(p.operation not in ("union", "subtract") for p in parts):
+        return program, match
+    count = max(1, min(count, 64 // max(len(parts), 1)))
+    if count < 2:
+        return program, match
+    ext = grammar.program_extents(program, 48)
+    short, long_ = (1, 0) if ext[1] <= ext[0] else (0, 1)
+    out = []
+    for k in range(count):
+        shift = [0.0, 0.0, 0.0]
+        shift[short] = GROUP_PITCH * float(ext[short]) * (k % GROUP_PER_ROW)
+        shift[long_] = GROUP_PITCH * float(ext[long_]) * (k // GROUP_PER_ROW)
+        for p in parts:
+            t = p.transform.translation_m
+            out.append(p.model_copy(update={"name": p.name if k == 0 else f"{p.name} {k + 1}", "transform":
+                                            p.transform.model_copy(update={"translation_m": (
+                                                t[0] + shift[0], t[1] + shift[1], t[2] + shift[2])})}))
+    group = program.model_copy(update={"parts": out})
+    mass = match.typical_mass_kg * count if match.typical_mass_kg else None
+    return group, match.model_copy(update={"typical_mass_kg": mass,
+                                           "typical_size_m": float(grammar.program_extents(group, 48).max())})
 
 
 def duplicated(program: ShapeProgram) -> ShapeProgram | None:

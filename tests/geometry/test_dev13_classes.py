@@ -10,10 +10,12 @@ import pytest
 import trimesh
 
 from contracts.request import AssetRequest
+from tasks.geometry import catalogue
 from tasks.geometry.collision import convex_parts
 from tasks.geometry.pipeline import proxy_parts
 from tasks.probes.rigid import RigidBodySpec, placement_probe
 from tests.geometry.helpers import run, settings
+from tests.geometry.test_mass_classes import planned_mass
 
 
 @pytest.mark.parametrize("text", ["a ball of chunky yarn", "a yarn pom pom"])
@@ -46,3 +48,38 @@ def test_a_concave_object_is_still_decomposed() -> None:
     parts = convex_parts(half, settings("draft").coacd)
     assert len(parts) > 1
     assert sum(p.volume for p in parts) < 1.3 * half.volume
+
+
+def test_a_fraction_before_a_unit_is_its_value() -> None:
+    """'5/8" x 50 ft garden hose': the hose is 5/8 inch across (was read as 8 inches: 172 kg of hose)."""
+    assert catalogue.normalise_sizes('5/8" x 50 ft garden hose').startswith('0.625"')
+    assert catalogue.normalise_sizes("1 1/2 in thick foam pad").startswith("1.5 in")
+    assert catalogue.normalise_sizes("a 1/2 lb bag of rice") == "a 1/2 lb bag of rice"  # a mass: size_words reads it
+    d = catalogue.design_from_text('5/8" x 50 ft garden hose')
+    assert "'0.625\"' is its diameter" in (d.concept.stated_mass_source or "")
+    assert 0.5 < d.concept.stated_mass_kg < 4.0  # retail: 15 m of 5/8 in hose 1.5-4.5 kg
+
+
+@pytest.mark.parametrize("text, kg", [("a full 50 lb sack of horse feed", 22.68), ("a bag of chicken feed, 25 kg", 25.0)])
+def test_a_stated_mass_with_no_size_sizes_the_object(text: str, kg: float) -> None:
+    """The object is built at the size that weighs the stated mass at its own density (a 50 lb feed sack is ~90 cm;
+    it was built at the typical 30 cm and weighed 3 kg, its density clamped)."""
+    d = catalogue.design_from_text(text)
+    assert d.size.longest_m is not None and d.size.longest_m > 0.6
+    assert 0.7 * kg < planned_mass(text) < 1.4 * kg
+
+
+@pytest.mark.parametrize("text, one, n", [("two overripe bananas", "an overripe banana", 2),
+                                           ("3 tennis balls", "a tennis ball", 3),
+                                           ("two ripe peaches", "a ripe peach", 2)])
+def test_a_count_of_goods_builds_that_many(text: str, one: str, n: int) -> None:
+    """'two bananas' was one banana (half the mass); the pieces lie side by side, the mass n times one's."""
+    many, single = catalogue.design_from_text(text), catalogue.design_from_text(one)
+    assert f"{n} of them" in many.concept.states
+    assert len(many.program.parts) == n * len(single.program.parts)
+    assert planned_mass(text) == pytest.approx(n * planned_mass(one), rel=0.15)
+
+
+@pytest.mark.parametrize("text", ["a 2 m long pool noodle", "two-tone plush bunny", "a 10 cm stress ball"])
+def test_sizes_and_compounds_are_no_count(text: str) -> None:
+    assert not any(s.endswith("of them") for s in catalogue.design_from_text(text).concept.states)
