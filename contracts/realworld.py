@@ -157,10 +157,14 @@ class OurFigures(Model):
     damping_rate_per_s: float | None = None
     effective_modulus_pa: float | None = Field(default=None, description="L2's specimen compression (the material)")
     object_effective_modulus_pa: float | None = Field(default=None, description="L2's compression of the object")
-    impact_speed_m_per_s: float | None = Field(default=None, description="rule drop: speed at impact, in air")
+    impact_speed_m_per_s: float | None = Field(default=None, description="rule drop: speed at impact after the fall "
+                                               "under the material's damping (the engine's) [m/s]")
     restitution: float | None = Field(default=None, description="rule drop: COM speed out / in at the ground [-]")
     rebound_ratio_vacuum: float | None = Field(default=None, description="rule drop: restitution^2 [-]")
-    rebound_ratio: float | None = Field(default=None, description="rule drop: rebound height in air / drop height")
+    rebound_ratio: float | None = Field(default=None, description="rule drop as the asset does it in our engine: "
+                                        "rise / drop height, fall and rise under the material's damping [-]")
+    rebound_ratio_air: float | None = Field(default=None, description="rule drop: the impact's restitution with a "
+                                            "fall and rise through air instead (what the material alone gives) [-]")
     rebound_sim: dict[str, float] = Field(default_factory=dict, description="the impact probe's raw figures")
 
 

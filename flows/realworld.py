@@ -25,7 +25,8 @@ from tasks.asset_dir import AssetDir
 from tasks.geometry.outputs import L0Asset, load_l0
 from tasks.realworld.compare import compare, summarise
 from tasks.realworld.impact import impact
-from tasks.realworld.physics import impact_speed_m_per_s, rise_height_m, terminal_speed_m_per_s
+from tasks.realworld.physics import (damped_impact_speed_m_per_s, damped_rise_height_m, impact_speed_m_per_s,
+                                     rise_height_m, terminal_speed_m_per_s)
 
 
 def slug(name: str) -> str:
@@ -35,16 +36,21 @@ def slug(name: str) -> str:
 
 def rule_rebound(rule: RuleDrop, asset: L0Asset, physical: PhysicalModel, material: Material,
                  sim: SimConfig) -> dict[str, Any]:
-    """The rule's drop: the fall through air (closed form, the built object's mass over the rule's diameter), the
-    impact at that speed in the MPM (tasks.realworld.impact), the rise through air; rebound ratio = rise / drop."""
-    vt = terminal_speed_m_per_s(physical.mass_kg, rule.diameter_m)
-    v_in = impact_speed_m_per_s(rule.drop_height_m, vt)
+    """The rule's drop as the asset does it in our engine: the fall under the material's damping (closed form, the
+    engine's world-frame velocity decay), the impact at that speed in the MPM (tasks.realworld.impact), the rise under
+    the same damping; rebound ratio = rise / drop. Beside it, the impact's restitution as a real ball would show it
+    (rebound_ratio_air: the same restitution with a fall and rise through air, no engine damping)."""
+    d = material.damping_rate_per_s
+    v_in = damped_impact_speed_m_per_s(rule.drop_height_m, d)
     raw = impact(asset.particles_m, asset.volumes_m3, physical, material, v_in, sim)
     e = raw.get("restitution", math.nan)
     ok = math.isfinite(e) and raw["finite"] == 1.0
+    vt = terminal_speed_m_per_s(physical.mass_kg, rule.diameter_m)
+    v_air = impact_speed_m_per_s(rule.drop_height_m, vt)
     return {"impact_speed_m_per_s": v_in, "restitution": e if ok else None,
             "rebound_ratio_vacuum": e * e if ok else None,
-            "rebound_ratio": rise_height_m(e * v_in, vt) / rule.drop_height_m if ok else None,
+            "rebound_ratio": damped_rise_height_m(e * v_in, d) / rule.drop_height_m if ok else None,
+            "rebound_ratio_air": rise_height_m(e * v_air, vt) / rule.drop_height_m if ok else None,
             "rebound_sim": {k: float(v) for k, v in raw.items() if math.isfinite(v)}}
 
 

@@ -48,3 +48,25 @@ def rise_height_m(speed_m_per_s: float, terminal_m_per_s: float | None) -> float
         return speed_m_per_s ** 2 / (2.0 * G_M_PER_S2)
     vt2 = terminal_m_per_s ** 2
     return vt2 / (2.0 * G_M_PER_S2) * math.log1p(speed_m_per_s ** 2 / vt2)
+
+
+def damped_impact_speed_m_per_s(drop_height_m: float, damping_rate_per_s: float) -> float:
+    """Speed at the floor after a fall from rest through `drop_height_m` under the engine's damping (a velocity
+    decay at `damping_rate_per_s` in the world frame: v(t) = g/d (1 - e^-dt)), as the asset falls in our MPM [m/s]."""
+    d, g = damping_rate_per_s, G_M_PER_S2
+    if d <= 1e-9:
+        return math.sqrt(2.0 * g * drop_height_m)
+    t = math.sqrt(2.0 * drop_height_m / g)
+    for _ in range(50):  # Newton on z(t) = g/d t - g/d^2 (1 - e^-dt) = h; z' = v > 0, z convex: converges from below
+        v = g / d * (1.0 - math.exp(-d * t))
+        z = g / d * t - g / d ** 2 * (1.0 - math.exp(-d * t))
+        t -= (z - drop_height_m) / v
+    return g / d * (1.0 - math.exp(-d * t))
+
+
+def damped_rise_height_m(speed_m_per_s: float, damping_rate_per_s: float) -> float:
+    """Height a body thrown up at `speed_m_per_s` rises under the engine's damping, v0/d - g/d^2 ln(1 + d v0 / g) [m]."""
+    d, g, v0 = damping_rate_per_s, G_M_PER_S2, speed_m_per_s
+    if d * v0 / g < 1e-6:
+        return v0 ** 2 / (2.0 * g)
+    return v0 / d - g / d ** 2 * math.log1p(d * v0 / g)

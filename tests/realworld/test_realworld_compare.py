@@ -13,8 +13,9 @@ from contracts.realworld import ObjectReport, OurFigures, ValueRange, load_realw
 from flows.cli.main import app
 from tasks.realworld.compare import compare, ratio_to_range, select_objects, summarise
 from tasks.realworld.impact import impact_metrics
-from tasks.realworld.physics import (G_M_PER_S2, hertz_modulus_pa, impact_speed_m_per_s, rise_height_m,
-                                     squeeze_modulus_range, terminal_speed_m_per_s)
+from tasks.realworld.physics import (G_M_PER_S2, damped_impact_speed_m_per_s, damped_rise_height_m, hertz_modulus_pa,
+                                     impact_speed_m_per_s, rise_height_m, squeeze_modulus_range,
+                                     terminal_speed_m_per_s)
 
 SET = load_realworld()
 BY = {o.name: o for o in SET.objects}
@@ -110,3 +111,20 @@ def test_unknown_objects_are_refused() -> None:
     assert "unicorn ball" in res.output
     res = CliRunner().invoke(app, ["bench", "realworld", "--limit", "0"])
     assert res.exit_code == 2
+
+
+def test_the_engine_damping_in_flight() -> None:
+    """The fall and rise under the engine's world-frame damping: vacuum at d = 0, below it otherwise, and the fall
+    never faster than the terminal speed g / d (checked against a fine explicit integration)."""
+    assert damped_impact_speed_m_per_s(2.54, 0.0) == pytest.approx(math.sqrt(2 * G_M_PER_S2 * 2.54))
+    assert damped_rise_height_m(5.0, 0.0) == pytest.approx(25.0 / (2 * G_M_PER_S2))
+    d, dt, z, v = 2.0, 1e-6, 0.0, 0.0
+    while z < 1.0:
+        v += dt * (G_M_PER_S2 - d * v)
+        z += dt * v
+    assert damped_impact_speed_m_per_s(1.0, d) == pytest.approx(v, rel=1e-4)
+    z, v = 0.0, 4.0
+    while v > 0:
+        v -= dt * (G_M_PER_S2 + d * v)
+        z += dt * v
+    assert damped_rise_height_m(4.0, d) == pytest.approx(z, rel=1e-4)
