@@ -40,7 +40,8 @@ MESH_VERSION = "16"  # l0.mesh alone; 2: marching cubes no longer pinches the su
 # a pair said after the goods, folded and rolled sheets' stated flat size, squid, swim rings, sleep masks, ...; and
 # sealed set 12's: a pack of N sheets stacked, newborn garments, memory foam bath mats, an open C ring);
 # 16: dev set 13's (a count of goods built that many side by side, a stated mass sizes the object, fractions of an
-# inch before a unit)
+# inch before a unit, gauze rolls, rubber boots, bulb syringes, saddle and Thai pads, suction lids, crib sheets,
+# underpads, radiator hoses; a grooved near-convex mesh's proxy is CoACD's root hull)
 PROXY_VERSION = "3"  # l0.proxy alone; 2: CoACD's coarse copy keeps cells across a long or flat good's thinnest side;
 # 3: a mesh that hugs its convex hull is proxied by CoACD's root hull (collision.NEAR_CONVEX_*: a yarn ball 40 s -> 0.3 s)
 GAUSSIANS_VERSION = "3"  # l0.gaussians alone; 2: surface discs dense and small for the particle spacing (#36);
