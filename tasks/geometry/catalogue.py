@@ -287,10 +287,25 @@ def check_size(size: SizeSpec) -> None:
             )
 
 
+def _folded_size(size: SizeSpec, fold: tuple[float, float]) -> SizeSpec:
+    """A folded sheet's stated flat size as the folded footprint L0 builds, what must be in range (a 9 x 12 ft drop
+    cloth folded twice is 1.8 x 1.4 m)."""
+    ext = list(size.extents_m)
+    stated = sorted((i for i, v in enumerate(ext) if v is not None), key=lambda i: -float(ext[i]))  # type: ignore[arg-type]
+    for i, f in zip(stated, fold):  # the sheet's length is its longest stated side, its width the next
+        ext[i] = float(ext[i]) * f  # type: ignore[arg-type]
+    longest = size.longest_m * max(fold) if size.longest_m is not None else None
+    return size.model_copy(update={"extents_m": tuple(ext), "longest_m": longest})
+
+
+_FOLD_STATE = re.compile(r"\bfold(?:ed|ing)?\b", re.IGNORECASE)
+
+
 def check_text_size(request: AssetRequest) -> None:
     """Refuse, before any layer runs, a size stated in the request's text outside what L0 can build (a --size-m
-    hint overrides the text's sizes and is checked by the request itself)."""
-    if request.text and request.size_hint_m is None:
+    hint overrides the text's sizes and is checked by the request itself). A folded good's stated size is its flat
+    size: design_from_text checks the folded footprint it builds."""
+    if request.text and request.size_hint_m is None and not _FOLD_STATE.search(request.text):
         check_size(parse_size(normalise_sizes(request.text)))
 
 
@@ -508,6 +523,9 @@ def design_from_text(text: str, size_hint_m: float | None = None) -> Design:
         size = parse_size(dims_words.strip_consumed(text_n, bound.consumed))
         if bound.longest_m is not None and not size.explicit:
             size = SizeSpec(longest_m=bound.longest_m, stated="; ".join(bound.consumed))
+    stated = size.longest_m or max((v for v in size.extents_m if v is not None), default=None)
+    if stated is not None and stated > MAX_SIZE_M and size_hint_m is None:  # a big sheet said folded: folded to fit
+        concepts.fold_to_fit(reading, stated, MAX_SIZE_M)
     program, match, build_warnings = concepts.build(reading, stripped)
     if bound is not None and abs(bound.mass_factor - 1.0) > 0.02 and match.typical_mass_kg is not None:
         kg = match.typical_mass_kg * bound.mass_factor
@@ -545,7 +563,8 @@ def design_from_text(text: str, size_hint_m: float | None = None) -> Design:
         match = fill_match
     else:
         size = _mass_sized(size, program, fill_match, mass)
-    check_size(size)
+    fold = concepts.sheet_fold(reading) if size.explicit else None
+    check_size(size if fold is None else _folded_size(size, fold))
     # a flat good's stated sizes keep its typical thickness (or state it): its mass follows its built area
     as_built = size.flat or concepts.sheet_roll(reading) is not None  # (a roll's stated sheet: its volume follows it)
     scaled = SizeSpec(axis_scale=size.axis_scale) if as_built and size.explicit else size

@@ -1157,6 +1157,29 @@ def _sheet_count(text: str) -> int | None:
     return None
 
 
+MAX_FOLDS = 3  # SheetParams.folds' bound
+
+
+def fold_to_fit(reading: Reading, flat_longest_m: float, max_m: float) -> None:
+    """A sheet said folded with no count ('a 9 x 12 ft drop cloth, folded') whose stated flat size folds fewer times
+    than it takes to fit max_m: folded more (each fold across the longer side, as folded_footprint), up to MAX_FOLDS;
+    the count goes into reading.params. 'Folded in half / in quarters' keeps its count."""
+    target = reading.donor or reading.entry
+    if sheet_fold(reading) is None or "folds" in reading.params:
+        return
+    said = goods_words.stated_folds(normalise(reading.phrase.text if reading.phrase else ""))
+    if said is not None:  # its own count ('in quarters'), so that the footprint checked is the one built
+        reading.params = {**reading.params, "folds": said[0], "thirds": said[1]}
+        return
+    p = SheetParams(**{**target.params, **reading.params, **_state_params(reading, [])[1]})
+    unit = flat_longest_m / max(1.0, p.width)  # the flat sheet's length [m] (its longest side is the stated size)
+    n = p.folds
+    while n < MAX_FOLDS and unit * max(folded_footprint(p.model_copy(update={"folds": n}))[:2]) > max_m:
+        n += 1
+    if n != p.folds:
+        reading.params = {**reading.params, "folds": n}
+
+
 def sheet_fold(reading: Reading) -> tuple[float, float] | None:
     """A folded sheet's footprint over its flat sheet's, along x and y (a bath towel folded twice: 0.25, 1); None
     when the reading is not a folded sheet."""

@@ -183,6 +183,12 @@ def _is_pair_itself(plan: str, params: dict) -> bool:
     return plan == "garment" and params.get("kind") == "trousers"
 
 
+def stated_folds(text: str) -> tuple[int, bool] | None:
+    """(halvings, the first in thirds) a text states ('folded in quarters': 2, False), else None."""
+    m = _FOLD_WORDS.search(text)
+    return _FOLDS[m.group(1)] if m is not None else None
+
+
 def _folds(out: GoodsChange, plan: str, params: dict, text: str) -> None:
     """'folded in half / in thirds / in quarters': the folded sheet's layers, its size scaled to the new footprint."""
     m = _FOLD_WORDS.search(text)

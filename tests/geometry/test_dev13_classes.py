@@ -9,8 +9,10 @@ import numpy as np
 import pytest
 import trimesh
 
+from contracts.errors import InputError
 from contracts.request import AssetRequest
 from tasks.geometry import catalogue, fill_words, pipeline
+from tasks.geometry.catalogue import check_text_size
 from tasks.geometry.collision import convex_parts
 from tasks.geometry.pipeline import proxy_parts
 from tasks.probes.rigid import RigidBodySpec, placement_probe
@@ -106,3 +108,24 @@ def test_new_entries_build_their_object_at_its_mass(text: str, entry: str, kg: f
 def test_stuffed_with_clothes_is_a_fill() -> None:
     fill = fill_words.read_fill("a duffel bag stuffed with dirty laundry")
     assert fill is not None and fill.key == "clothes" and 100.0 <= fill.bulk_density_kg_per_m3 <= 200.0
+
+
+@pytest.mark.parametrize("text, longest_m", [
+    ("a canvas drop cloth, 9 x 12 ft, folded", 2.0),  # folded twice: 1.8 x 1.4 m
+    ("king size duvet, 264 x 229 cm, folded in quarters", 1.4),  # its own count: 1.32 x 1.15 m
+    ("4 x 8 ft folding gym mat, folded up", 1.3),  # once: 4 x 4 ft
+])
+def test_a_big_sheet_said_folded_is_built_folded_to_fit(text: str, longest_m: float) -> None:
+    """A folded sheet's stated size is its flat size: one larger than L0 builds is refused only if its folded
+    footprint is (a 9 x 12 ft drop cloth 'folded' was refused as a 3.7 m object)."""
+    check_text_size(AssetRequest(text=text))
+    d = catalogue.design_from_text(text)
+    assert "folded" in d.concept.states
+    mesh = pipeline.arrays_to_mesh(pipeline.mesh_from_text(AssetRequest(text=text), settings("draft"))[0])
+    assert float(mesh.extents.max()) <= longest_m
+
+
+@pytest.mark.parametrize("text", ["an 8 x 10 ft tarp", "a 3 m long pool noodle"])
+def test_a_big_object_not_folded_is_still_refused(text: str) -> None:
+    with pytest.raises(InputError, match="outside the supported range"):
+        check_text_size(AssetRequest(text=text))
