@@ -32,7 +32,7 @@ TABLE = [
     ('a hockey-puck-like disc', 'disc', 'disc', None, [], 'hockey puck', None, {}),
     ('a sponge-like foam block', 'block', 'foam block', None, [], 'sponge', 'pu_foam', {}),
     ('a slice of swiss cheese', 'cheese', 'swiss cheese', 'slice', [], None, None, {}),
-    ('a wedge of cheddar', 'cheddar', 'cheddar', 'wedge', [], None, None, {}),
+    ('a wedge of cheddar', 'cheddar', 'cheddar', 'wedge', [], None, 'cheese', {}),  # the cheese class (#39)
     ('a sheet of felt', 'felt', 'felt', 'sheet', [], None, None, {}),
     ('a strip of bacon', 'bacon', 'bacon', 'strip', [], None, None, {}),
     ('a lump of clay', 'clay', 'clay', 'lump', [], None, None, {}),
