@@ -49,11 +49,15 @@ _COUNT_WORDS = {"a dozen": 12, "dozen": 12, "two": 2, "three": 3, "four": 4, "fi
 # a number that makes a compound adjective ('two-tone', 'three-layer', '2 ply'), not a count
 _COMPOUND_AFTER = ("tone|toned|sided|layer|layered|ply|way|piece|seater|handed|legged|headed|colou?r|colou?red|step|"
                    "tier|tiered|wheeled|part|eyed|armed|pronged|lobed|fingered|toed|pointed|tailed")
+# units and ages after a number: a size, a mass or a volume, not a count ('2 metre pool noodle', '5 pound bag')
+_NOT_COUNTED = (r"(?:mm|cm|m|km|in|inch|inches|ft|foot|feet|yd|yards?|met(?:re|er)s?|\w*met(?:re|er)s?|lbs?|pounds?|"
+                r"kg|kilos?|kilograms?|g|grams?|oz|ounces?|l|lit(?:re|er)s?|ml|\w*lit(?:re|er)s?|quarts?|qt|gallons?|"
+                r"cups?|x|%|years?|months?|weeks?|days?|pack|pair|pairs|piece|pin|" + _COMPOUND_AFTER + r")\b")
 # 'two overripe bananas', '3 tennis balls', 'a pack of 6 sponges', 'a 3-pack of scrub sponges': that many pieces
-_GROUP_COUNT = re.compile(r"\b(?:pack|packet|set|bundle|box|bag|net|tray|punnet|carton)\s+of\s+(\d+|[a-z]+)\s+(?!" +
-                          r"(?:cm|mm|m|in|inch|inches|ft|feet|lb|lbs|kg|g|oz|l|ml|x|%)\b)|^\s*(?:a\s+)?(\d+|[a-z]+)\s+"
-                          r"(?!(?:cm|mm|m|in|inch|inches|ft|feet|lb|lbs|kg|g|oz|l|ml|x|%|pack|pair|pairs|piece|" + _COMPOUND_AFTER + r")\b)|"
-                          r"\b(\d+|[a-z]+)[- ]pack\b")
+_COUNT = r"(\d+|" + "|".join(sorted(_COUNT_WORDS, key=len, reverse=True)) + r")"
+_GROUP_COUNT = re.compile(r"\b(?:pack|packet|set|bundle|box|bag|net|tray|punnet|carton)\s+of\s+" + _COUNT + r"\s+(?!"
+                          + _NOT_COUNTED + r")|^\s*(?:a\s+)?" + _COUNT + r"\s+(?!" + _NOT_COUNTED + r")|"
+                          r"\b" + _COUNT + r"[- ]pack\b")
 GROUP_MAX = 12  # pieces drawn side by side at most [-]
 GROUP_PER_ROW = 4  # pieces in a row before the next row [-]
 GROUP_PITCH = 0.9  # the pieces' spacing / one piece's extent: touching, as the mesher keeps one body (as duplicated)

@@ -11,7 +11,7 @@ import trimesh
 
 from contracts.errors import InputError
 from contracts.request import AssetRequest
-from tasks.geometry import catalogue, fill_words, pipeline
+from tasks.geometry import catalogue, fill_words, goods_words, pipeline
 from tasks.geometry.catalogue import check_text_size
 from tasks.geometry.collision import convex_parts
 from tasks.geometry.pipeline import proxy_parts
@@ -134,3 +134,11 @@ def test_a_big_sheet_said_folded_is_built_folded_to_fit(text: str, longest_m: fl
 def test_a_big_object_not_folded_is_still_refused(text: str) -> None:
     with pytest.raises(InputError, match="outside the supported range"):
         check_text_size(AssetRequest(text=text))
+
+
+@pytest.mark.parametrize("text, n", [("2 metre long pool noodle", None), ("5 pound bag of rice", None),
+                                     ("a 2 year old's teddy", None), ("ten pin bowling pin plush", None),
+                                     ("a 3-pack of sponges", 3), ("a dozen eggs", 12), ("a bag of 4 tennis balls", 4),
+                                     ("two-tone bunny", None), ("four teddy bears", 4)])
+def test_group_count_reads_counts_not_units(text: str, n: int | None) -> None:
+    assert goods_words.group_count(catalogue.normalise_sizes(text)) == n
