@@ -5,7 +5,9 @@ from __future__ import annotations
 import json
 import os
 import sys
+from collections.abc import Iterable
 from datetime import datetime
+from pathlib import Path
 from typing import Any, NoReturn
 
 import typer
@@ -97,3 +99,13 @@ def check_record(record: str) -> None:
 def emit_json(data: Any) -> None:
     """Write machine-readable output to stdout."""
     sys.stdout.write(json.dumps(data, indent=2, sort_keys=True, default=str) + "\n")
+
+
+def emit_report(data: Any, lines: Iterable[str], path: Path, as_json: bool) -> None:
+    """A benchmark's report on stdout: its JSON with --json, else its summary lines and where the report file is."""
+    if as_json:
+        emit_json(data)
+        return
+    for line in lines:
+        results.print(line, markup=False, highlight=False)
+    results.print(f"report: {path}", markup=False, highlight=False)

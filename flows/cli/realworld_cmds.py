@@ -13,7 +13,7 @@ from cache import use_cache_root
 from contracts.errors import DeformSmithError
 from contracts.sim import Device
 from contracts.realworld import REALWORLD_YAML, ObjectReport, RealWorldReport, load_realworld
-from flows.cli.apps import bench_app, check_device, console, emit_json, fail, results
+from flows.cli.apps import bench_app, check_device, console, emit_report, fail
 from tasks.preflight import check_locations
 from tasks.publish import write_text_atomic
 from tasks.realworld.compare import select_objects
@@ -83,9 +83,4 @@ def realworld(
     with console.status(f"{len(objects)} objects on {device}"):
         report = run_realworld(objects, out, cast("Device", device), priors_only, on_result)
     write_text_atomic(out / REPORT_JSON, json.dumps(report.model_dump(mode="json"), indent=2) + "\n")
-    if as_json:
-        emit_json(report.model_dump(mode="json"))
-    else:
-        for line in summary_lines(report):
-            results.print(line, markup=False, highlight=False)
-        results.print(f"report: {out / REPORT_JSON}", markup=False, highlight=False)
+    emit_report(report.model_dump(mode="json"), summary_lines(report), out / REPORT_JSON, as_json)

@@ -9,7 +9,7 @@ import typer
 
 from cache import use_cache_root
 from contracts.errors import DeformSmithError
-from flows.cli.apps import bench_app, check_device, console, emit_json, fail, results
+from flows.cli.apps import bench_app, check_device, console, emit_report, fail
 from tasks.preflight import check_locations
 from tasks.throughput.ledger import DIR, benchmark_items
 from tasks.throughput.report import REPORT_JSON, summary_lines
@@ -91,9 +91,4 @@ def throughput(
         raise
     except DeformSmithError as exc:  # a run of another configuration in --out
         fail(str(exc), exc.exit_code)
-    if as_json:
-        emit_json(report.model_dump(mode="json"))
-    else:
-        for line in summary_lines(report):
-            results.print(line, markup=False, highlight=False)
-        results.print(f"report: {Path(report.out_root) / REPORT_JSON}", markup=False, highlight=False)
+    emit_report(report.model_dump(mode="json"), summary_lines(report), Path(report.out_root) / REPORT_JSON, as_json)

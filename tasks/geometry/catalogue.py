@@ -287,17 +287,6 @@ def check_size(size: SizeSpec) -> None:
             )
 
 
-def _folded_size(size: SizeSpec, fold: tuple[float, float]) -> SizeSpec:
-    """A folded sheet's stated flat size as the folded footprint L0 builds, what must be in range (a 9 x 12 ft drop
-    cloth folded twice is 1.8 x 1.4 m)."""
-    ext = list(size.extents_m)
-    stated = sorted((i for i, v in enumerate(ext) if v is not None), key=lambda i: -float(ext[i]))  # type: ignore[arg-type]
-    for i, f in zip(stated, fold):  # the sheet's length is its longest stated side, its width the next
-        ext[i] = float(ext[i]) * f  # type: ignore[arg-type]
-    longest = size.longest_m * max(fold) if size.longest_m is not None else None
-    return size.model_copy(update={"extents_m": tuple(ext), "longest_m": longest})
-
-
 _FOLD_STATE = re.compile(r"\bfold(?:ed|ing)?\b", re.IGNORECASE)
 
 
@@ -462,8 +451,7 @@ def _piece_sized(size: SizeSpec, reading: concepts.Reading) -> SizeSpec:
 MASS_SIZED_MAX = 3.0  # a stated mass scales the typical size by at most this factor either way [-]
 
 
-def _mass_sized(size: SizeSpec, program: ShapeProgram, match: ConceptMatch,
-                stated: size_words.StatedMass) -> SizeSpec:
+def _mass_sized(size: SizeSpec, match: ConceptMatch, stated: size_words.StatedMass) -> SizeSpec:
     """A stated mass and no stated size: the object at the size that weighs it at the concept's own density (typical
     mass at typical size, the size by the cube root of the masses' ratio, within MASS_SIZED_MAX): a '50 lb sack of
     horse feed' is a big sack, not a typical one at 7x a material's densest (bags of known goods: _fill_sized)."""
@@ -562,9 +550,11 @@ def design_from_text(text: str, size_hint_m: float | None = None) -> Design:
     if mass is None:
         match = fill_match
     else:
-        size = _mass_sized(size, program, fill_match, mass)
-    fold = concepts.sheet_fold(reading) if size.explicit else None
-    check_size(size if fold is None else _folded_size(size, fold))
+        size = _mass_sized(size, fill_match, mass)
+    if size.unfold is not None and size.explicit:  # a folded sheet's stated size is its flat one: check what is built
+        check_size(SizeSpec(longest_m=final_scale(size, program, 0.0)[0], stated=size.stated))
+    else:
+        check_size(size)
     # a flat good's stated sizes keep its typical thickness (or state it): its mass follows its built area
     as_built = size.flat or concepts.sheet_roll(reading) is not None  # (a roll's stated sheet: its volume follows it)
     scaled = SizeSpec(axis_scale=size.axis_scale) if as_built and size.explicit else size

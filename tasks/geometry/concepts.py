@@ -928,10 +928,10 @@ def build(reading: Reading, text: str) -> tuple[ShapeProgram, ConceptMatch, list
     # 'two bananas', '3 tennis balls': that many side by side (not yet stuffed toys: L1 weighs a stuffed toy by its
     # typical mass at its built size and stretch, which a row of them reads as one long toy)
     if goods is not None and goods.count and match.category not in STUFFED_CATEGORIES:
-        grouped, match = goods_words.grouped(program, match, goods.count)
-        if grouped is not program:
-            program = grouped
-            states.append(f"{len(program.parts) // max(len(base.parts), 1)} of them")
+        group, match = goods_words.grouped(program, match, goods.count)
+        if group is not program:
+            states.append(f"{len(group.parts) // len(program.parts)} of them")
+            program = group
     if goods is not None and goods.nested:  # 'a pack of 12 muffin cups': the cups nested in a stack
         program, match = goods_words.nested_stack(program, match, goods.nested)
         states.append(f"a stack of {goods.nested}")

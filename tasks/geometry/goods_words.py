@@ -5,13 +5,14 @@ the object's body-plan parameters, its size and its mass."""
 from __future__ import annotations
 
 import re
+from collections.abc import Sequence
 from dataclasses import dataclass
 
 import numpy as np
 
 from contracts.concept import ConceptMatch
 from contracts.lexicon import LexiconEntry, load_lexicon
-from contracts.shape import ShapeProgram
+from contracts.shape import Part, ShapeProgram
 from tasks.geometry import fill_words, grammar
 from tasks.geometry.grammar.goods import BAG_CAPACITY
 from tasks.geometry.grammar.parts import ellipsoid, limb, part_group
@@ -251,20 +252,20 @@ def grouped(program: ShapeProgram, match: ConceptMatch, count: int) -> tuple[Sha
         return program, match
     ext = grammar.program_extents(program, 48)
     short, long_ = (1, 0) if ext[1] <= ext[0] else (0, 1)
-    out = []
+    shifts = []
     for k in range(count):
         shift = [0.0, 0.0, 0.0]
         shift[short] = GROUP_PITCH * float(ext[short]) * (k % GROUP_PER_ROW)
         shift[long_] = GROUP_PITCH * float(ext[long_]) * (k // GROUP_PER_ROW)
-        for p in parts:
-            t = p.transform.translation_m
-            out.append(p.model_copy(update={"name": p.name if k == 0 else f"{p.name} {k + 1}", "transform":
-                                            p.transform.model_copy(update={"translation_m": (
-                                                t[0] + shift[0], t[1] + shift[1], t[2] + shift[2])})}))
-    group = program.model_copy(update={"parts": out})
-    mass = match.typical_mass_kg * count if match.typical_mass_kg else None
-    return group, match.model_copy(update={"typical_mass_kg": mass,
-                                           "typical_size_m": float(grammar.program_extents(group, 48).max())})
+        shifts.append(shift)
+    return copies(program, match, shifts)
+
+
+def moved(part: Part, shift: Sequence[float], name: str) -> Part:
+    """A copy of a part translated by shift [m], under another name (the copies of a pair, a group, a stack)."""
+    x, y, z = part.transform.translation_m
+    return part.model_copy(update={"name": name, "transform": part.transform.model_copy(update={
+        "translation_m": (x + shift[0], y + shift[1], z + shift[2])})})
 
 
 def duplicated(program: ShapeProgram) -> ShapeProgram | None:
@@ -279,12 +280,7 @@ def duplicated(program: ShapeProgram) -> ShapeProgram | None:
     flat = float(ext[2]) < 0.3 * float(max(ext[0], ext[1]))
     shift = [0.0, 0.0, 0.85 * float(ext[2]) if flat else 0.0]
     shift[axis] = (0.45 if flat else 0.97) * float(ext[axis])
-    other = []
-    for p in parts:
-        t = p.transform.translation_m
-        other.append(p.model_copy(update={"name": f"other {p.name}", "transform": p.transform.model_copy(update={
-            "translation_m": (t[0] + shift[0], t[1] + shift[1], t[2] + shift[2])})}))
-    return program.model_copy(update={"parts": parts + other})
+    return program.model_copy(update={"parts": parts + [moved(p, shift, f"other {p.name}") for p in parts]})
 
 
 def pair_up(program: ShapeProgram, match: ConceptMatch) -> tuple[ShapeProgram, ConceptMatch]:
@@ -302,17 +298,19 @@ def nested_stack(program: ShapeProgram, match: ConceptMatch, count: int) -> tupl
     extent."""
     count = max(1, min(count, 64 // max(len(program.parts), 1)))
     rise = NEST_STEP * float(grammar.program_extents(program, 32)[2])
-    parts = []
-    for k in range(count):
-        for part in program.parts:
-            x, y, z = part.transform.translation_m
-            moved = part.transform.model_copy(update={"translation_m": (x, y, z + k * rise)})
-            parts.append(part.model_copy(update={"transform": moved, "name": part.name if k == 0 else
-                                                 f"{part.name} {k + 1}"}))
-    stack = program.model_copy(update={"parts": parts})
-    mass = match.typical_mass_kg * count if match.typical_mass_kg else None
-    return stack, match.model_copy(update={"typical_mass_kg": mass,
-                                           "typical_size_m": float(grammar.program_extents(stack, 48).max())})
+    return copies(program, match, [(0.0, 0.0, k * rise) for k in range(count)])
+
+
+def copies(program: ShapeProgram, match: ConceptMatch, shifts: Sequence[Sequence[float]]
+           ) -> tuple[ShapeProgram, ConceptMatch]:
+    """The program once per shift [m] (the first copy keeps its parts' names, the k-th adds ' k'); the concept's
+    typical mass times the number of copies and its typical size the copies' longest extent."""
+    parts = [moved(p, shift, p.name if k == 0 else f"{p.name} {k + 1}")
+             for k, shift in enumerate(shifts) for p in program.parts]
+    many = program.model_copy(update={"parts": parts})
+    mass = match.typical_mass_kg * len(shifts) if match.typical_mass_kg else None
+    return many, match.model_copy(update={"typical_mass_kg": mass,
+                                          "typical_size_m": float(grammar.program_extents(many, 48).max())})
 
 
 def painted_fill(program: ShapeProgram, color: str) -> ShapeProgram:
