@@ -4,7 +4,7 @@ built volume) against the prompt's sourced real mass.
 
     python -m benchmarks.blind_bench tests/geometry/blind_prompts.jsonl --out docs/blind/set1 [--json] [--limit N]
 
-Writes OUT/views/<id>.png (front | side | top), OUT/judge.jsonl (id, prompt, image: what a judge sees),
+Writes OUT/views/<id>.png (iso | front | side), OUT/judge.jsonl (id, prompt, image: what a judge sees),
 OUT/table.json (every figure) and OUT/contact_sheet.png; prints the table (or JSON with --json). L0 seconds are the
 CPU seconds of L0's units (mesh, proxy, particles, Gaussians, checks), comparable on a shared machine; run it under
 `taskset -c 0` for the one-core figure."""
@@ -29,7 +29,7 @@ from tasks.geometry import pipeline, sources
 from tasks.geometry.outputs import load_l0, write_outputs
 from benchmarks.geometry_bench import contact_sheet
 
-VIEWS = ("front", "side", "top")
+VIEWS = ("iso", "front", "side")  # a three-quarter view first: what a person names an object from
 
 
 def load_jsonl(path: Path) -> list[dict]:

@@ -56,6 +56,12 @@ def _overlap(sense: Sense, context: set[str]) -> int:
     return sum(1 for w in context if len(w) > 2 and w in text)
 
 
+# words that say a noun is eaten: 'ground beef on a foam tray', 'a raw whole chicken' are meat, not the animal
+FOOD_CUES = frozenset({"raw", "cooked", "ground", "minced", "mince", "frozen", "thawed", "sliced", "diced", "roast",
+                       "roasted", "grilled", "fried", "boiled", "smoked", "marinated", "tray", "deli", "butcher",
+                       "fillet", "fillets", "boneless", "skinless", "plucked", "shrink", "wrapped", "lb", "pound"})
+
+
 def _best_sense(noun: str, context: set[str] | None = None) -> Sense | None:
     """The physical sense of a noun: the one whose definition shares most words with the request, then one whose
     first word is the noun itself, else the most frequent; artifacts, food, animals and plants before natural objects
@@ -65,8 +71,8 @@ def _best_sense(noun: str, context: set[str] | None = None) -> Sense | None:
         return None
     own = noun.replace(" ", "_").lower()
     ctx = (context or set()) - set(own.split("_"))
-    tier = {"noun.artifact": 0, "noun.food": 0, "noun.animal": 0, "noun.plant": 0, "noun.object": 1,
-            "noun.substance": 2}
+    tier = {"noun.artifact": 0, "noun.food": -1 if ctx & FOOD_CUES else 0, "noun.animal": 0, "noun.plant": 0,
+            "noun.object": 1, "noun.substance": 2}
     ranked = sorted(enumerate(senses), key=lambda p: (-_overlap(p[1], ctx), p[1].lemmas[0] != own,
                                                       tier.get(p[1].lexname, 3), p[0]))
     return ranked[0][1]

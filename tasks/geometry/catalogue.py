@@ -14,6 +14,7 @@ from contracts.lexicon import load_lexicon
 from contracts.request import MAX_SIZE_M, MIN_SIZE_M, AssetRequest
 from contracts.shape import ShapeProgram
 from tasks.geometry import concepts, dims_words, grammar, size_words
+from tasks.geometry.analogy import FOOD_CUES
 from tasks.geometry.catalogue_programs import catalogue_program, catalogue_yaml
 from tasks.geometry.sdf import program_bounds
 
@@ -397,26 +398,27 @@ def _size_form(program: ShapeProgram, match: ConceptMatch, reading: concepts.Rea
     return {"long": long, "flat": flat, "unfold": concepts.sheet_fold(reading) if flat or plan == "sheet" else None}
 
 
-UNROLLED_OVER_ROLL = 8.0  # a bare length this many times a rolled sheet's typical roll is the sheet's length [-]
-
-
 def _rolled_sized(size: SizeSpec, program: ShapeProgram, reading: concepts.Reading) -> SizeSpec:
     """A rolled sheet's stated length and width are the sheet's ('a roll of bubble wrap, 50 cm wide and 2 m long'):
     the width is the roll's length, the length sets its diameter (the rolled cross-section grows with the sheet's
     length, so the diameter as its square root)."""
     width = concepts.sheet_roll(reading)
-    sheet_len, roll_len = size.extents_m[0], size.extents_m[1]
-    if width is not None and sheet_len is None and roll_len is None and size.longest_m is not None \
-            and size.longest_m > UNROLLED_OVER_ROLL * (reading.entry.size_m or 1.0):
-        sheet_len = size.longest_m  # 'boxing hand wraps, rolled, 180 inch': the strip's length, not the roll's
-        size = size.model_copy(update={"longest_m": None, "extents_m": (sheet_len, None, None)})
-    if width is None or size.extents_m[2] is not None or (sheet_len is None and roll_len is None):
+    if width is None:
         return size
-    if sheet_len is not None and roll_len is not None and roll_len > sheet_len and width <= 1.0:
-        sheet_len, roll_len = roll_len, sheet_len  # '70 x 140 cm' rolled: rolled along its length, as the typical one
     lo, hi = program_bounds(program)
     ext = np.asarray(hi) - np.asarray(lo)  # the roll lies along x
     typical_sheet = float(ext[0]) / width
+    sheet_len, roll_len = size.extents_m[0], size.extents_m[1]
+    said = size.longest_m
+    if sheet_len is None and roll_len is None and said is not None \
+            and abs(np.log(said / typical_sheet)) < abs(np.log(said / float(ext.max()))):
+        sheet_len = said  # nearer the flat sheet's length than the roll's ('a 183 cm foam sleeping mat, rolled',
+        # 'boxing hand wraps, rolled, 180 inch'): the sheet's length, not the roll's
+        size = size.model_copy(update={"longest_m": None, "extents_m": (sheet_len, None, None)})
+    if size.extents_m[2] is not None or (sheet_len is None and roll_len is None):
+        return size
+    if sheet_len is not None and roll_len is not None and roll_len > sheet_len and width <= 1.0:
+        sheet_len, roll_len = roll_len, sheet_len  # '70 x 140 cm' rolled: rolled along its length, as the typical one
     k = float(np.sqrt((sheet_len or typical_sheet) / typical_sheet))
     ext_m = (roll_len or float(ext[0]), float(ext[1]) * k, float(ext[2]) * k)
     return size.model_copy(update={"extents_m": ext_m, "long": False, "flat": False,
@@ -424,6 +426,17 @@ def _rolled_sized(size: SizeSpec, program: ShapeProgram, reading: concepts.Readi
 
 
 _TRAILING_PAIR = re.compile(r"(?:\s*,\s*|\s+|\()(?:a\s+)?pair\b\)?(?!\s+of\b)", re.IGNORECASE)
+
+
+_PURPOSE = re.compile(r"^(?P<object>.*\w.*?)\s*,?\s+\bfor\s+(?:(?:an?|the|your|my|our|his|her|their|small|large|"
+                      r"big|little|pet)\s+)*(?:[\w'-]+\s*){1,3}$", re.IGNORECASE)
+
+
+def _purpose_stripped(text: str) -> str:
+    """'a bag of timothy hay for rabbits', 'a fleece hammock for ferrets', 'a foam tube for 22mm pipe' -> the object
+    without whom or what it is for (the rabbit is not built, the pipe's size is not the tube's)."""
+    m = _PURPOSE.match(text.strip())
+    return m.group("object").strip() if m is not None else text
 
 
 def _pair_first(text: str) -> str:
@@ -489,12 +502,55 @@ def _fill_sized(size: SizeSpec, program: ShapeProgram, match: ConceptMatch,
     return size, match
 
 
+_STUFFED_IN = re.compile(r"^(?P<goods>.*\w.*?)\s*,?\s+(?:(?:stuffed|packed|compressed|rolled|folded|squashed)\s+(?:up\s+|"
+                         r"away\s+)?in(?:to|side)?\s+(?:its|a|an|the|their|his|her)\s+(?:own\s+)?(?P<sack>(?:[\w-]+\s+)"
+                         r"{0,2}?(?:stuff\s+sack|sack|stuff\s+bag|bag|pouch|carry\s+bag|case|pocket))|in(?:side)?\s+(?:its|a|an|"
+                         r"the)\s+(?:own\s+)?(?P<named>stuff\s+sack|compression\s+(?:sack|bag)|stuff\s+bag|dry\s+bag))\s*$",
+                         re.IGNORECASE)
+
+
+def _stuffed_in_sack(text: str) -> tuple[str, str] | None:
+    """'a sleeping bag stuffed in a compression sack', 'a hammock stuffed in its pouch': (the request for the packed
+    sack, weighing the goods, and a note), else None. What is seen is the sack, full; its mass is the goods'."""
+    m = _STUFFED_IN.match(text.strip())
+    if m is None:
+        return None
+    goods = design_from_text(m.group("goods"))
+    c = goods.concept
+    kg = (c.stated_mass_kg or c.typical_mass_kg) if c is not None else None
+    if kg is None or c is None or c.by_analogy:
+        return None
+    note = (f"'{m.group('goods').strip()}' packed in {m.group('sack') or m.group('named')}: built as the full stuff "
+            f"sack, weighing the "
+            f"{c.concept.replace('_', ' ')} ({kg:.3g} kg)")
+    return f"a compression sack, {kg * 1000:.4g} g", note
+
+
+_TOY_WORDS = re.compile(r"\b(?:plush|toy|toys|stuffed|squeaky|squeaker|rubber|figurine|puppet|costume|felt|knitted|"
+                        r"crochet(?:ed)?|silicone|cuddly|soft toy|teddy|doll|pillow|cushion|slippers?)\b", re.I)
+
+
+def _as_meat(text: str, reading: concepts.Reading) -> str | None:
+    """The text with an animal's name made 'meat' when the words say it is eaten (raw, ground, cooked, a tray, a
+    pound) and nothing says it is a toy; else None."""
+    noun = reading.match.noun
+    if noun is None or concepts.concept_domain(reading.entry.key) != "animal" or _TOY_WORDS.search(text) \
+            or not FOOD_CUES & set(re.findall(r"[a-z]+", text.lower())):
+        return None
+    swapped = re.sub(rf"\b{re.escape(noun)}\b", "meat", text, count=1, flags=re.I)
+    return swapped if swapped != text else None
+
+
 def design_from_text(text: str, size_hint_m: float | None = None) -> Design:
     """Map a description to a lexicon concept's program (grammar body plan or catalogue shape), the stated size, the
     modifiers and colours; an unknown noun takes a fallback by meaning, recorded in `concept` and `warnings`."""
     if not text or not text.strip():
         raise InputError("the description is empty")
-    text_n = _pair_first(normalise_sizes(text))
+    packed = _stuffed_in_sack(_purpose_stripped(normalise_sizes(text)))
+    if packed is not None:
+        design = design_from_text(packed[0], size_hint_m)
+        return design.model_copy(update={"warnings": [packed[1], *design.warnings]})
+    text_n = _purpose_stripped(_pair_first(normalise_sizes(text)))
     size = parse_size(text_n)
     if size_hint_m is not None:
         size = SizeSpec(longest_m=size_hint_m, stated=f"size hint {size_hint_m:g} m")
@@ -503,6 +559,11 @@ def design_from_text(text: str, size_hint_m: float | None = None) -> Design:
     if mass is not None:
         stripped = size_words.strip_spans(stripped, [mass.span])
     reading = concepts.read_text(stripped)
+    meat = _as_meat(stripped, reading)
+    if meat is not None:  # 'a pound of ground lamb', 'a whole raw chicken': the meat, not the animal
+        reading = concepts.read_text(meat)
+        reading.warnings.insert(0, f"'{reading.phrase.text if reading.phrase else stripped}': said raw, ground or "
+                                   f"cooked, so meat, not the animal")
     size = _piece_sized(size, reading)
     bound = dims_words.bind(text_n, reading.donor or reading.entry, reading.phrase.states if reading.phrase else []) \
         if size_hint_m is None and reading.donor_plan is None else None

@@ -953,6 +953,7 @@ def build(reading: Reading, text: str) -> tuple[ShapeProgram, ConceptMatch, list
                 part_group(p.name) == "fill" for p in program.parts):
             program = _bagged_colors(program, reading.pouch.piece_colors)
     program = _contrast_seams(program, target)
+    program = _label_colored(program)
     if keychain:
         program = _on_key_ring(program)
         states.append("keychain")
@@ -1094,6 +1095,23 @@ def _bagged_colors(program: ShapeProgram, colors: tuple[str, ...]) -> ShapeProgr
         else:  # the body the goods' colour through the film; seams, ports and tabs the film's
             parts.append(p.model_copy(update={"color_rgb": seen if p.name == "body" else film}))
     return program.model_copy(update={"parts": parts})
+
+
+LABEL_COLORS = ("red", "dark green", "navy", "orange")  # a pack's printed label on a light film (one by its fill)
+
+
+def _label_colored(program: ShapeProgram) -> ShapeProgram:
+    """A pack's label in a colour that stands out from its film: a strong colour on a light film (chosen by the
+    film's colour, so the same request is the same pack), white on a dark one."""
+    body = next((p.color_rgb for p in program.parts if part_group(p.name) == "body"), None)
+    if body is None or not any(part_group(p.name) == "label" for p in program.parts):
+        return program
+    lex = load_lexicon()
+    light = 0.2126 * body[0] + 0.7152 * body[1] + 0.0722 * body[2] > 0.25  # (linear RGB)
+    word = LABEL_COLORS[int(sum(body) * 1000) % len(LABEL_COLORS)] if light else "white"
+    rgb = lex.colors[word]
+    return program.model_copy(update={"parts": [p.model_copy(update={"color_rgb": rgb})
+                                                if part_group(p.name) == "label" else p for p in program.parts]})
 
 
 def _keep_part_colors(program: ShapeProgram, word: str) -> ShapeProgram:
@@ -1561,9 +1579,11 @@ def _whole_object(reading: Reading, program: ShapeProgram, match: ConceptMatch, 
     elif inflatable(target) and (half or said_states & (_DEFLATED | {"deflated"})):
         before, program = program, deflated(program, half)
         states.append("half inflated" if half else "deflated")
-        match = _as_built_mass(match, before, DEFLATE_FACTORS[half], target.mass_kg,
+        skin = target.empty_mass_kg if target.empty_mass_kg is not None and re.search(r"\bempty\b", text) \
+            else target.mass_kg  # 'a crumpled empty chip bag': the film alone
+        match = _as_built_mass(match, before, DEFLATE_FACTORS[half], skin,
                                "the same skin, with less air: its mass is the skin's")
-        match = match.model_copy(update={"density_kg_per_m3": target.mass_kg / program_volume(program)})  # skin / body
+        match = match.model_copy(update={"density_kg_per_m3": skin / program_volume(program)})  # skin / body
     elif target.empty_mass_kg is not None and re.search(r"\bempty\b", text):
         before, program = program, emptied(program)
         states.append("empty")

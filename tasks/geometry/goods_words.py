@@ -143,7 +143,9 @@ def apply(target: LexiconEntry, portion: str | None, text: str, params: dict, si
         word = nest.group(1)
         out.nested = int(word) if word and word.isdigit() else _COUNT_WORDS.get(word or "", NEST_DEFAULT)
         out.notes += (f"a stack of {out.nested}, nested",)
-    count = group_count(text) if plan not in UNGROUPED_PLANS and portion not in PAIR_WORDS | BUNCH_WORDS else None
+    goods = plan not in UNGROUPED_PLANS or (plan == "pouch" and fill is None and not target.key.startswith("generic"))
+    # (a pouch is a good of its own, 'three juggling beanbags', unless it is the pack the count is inside of)
+    count = group_count(text) if goods and portion not in PAIR_WORDS | BUNCH_WORDS else None
     if count is not None:
         out.count = count
         out.notes += (f"{count} of them side by side",)

@@ -24,7 +24,7 @@ from tasks.record.tally import stage_tallies
 from tasks.record.trials import data_location
 from tasks.render.protocol_video import CARD_TIMES_S, VIEW_NAMES, card_still_name
 
-STILL_VIEWS = ("front", "side", "top")  # renders/<view>.png (L0)
+STILL_VIEWS = ("iso", "front", "side", "top")  # renders/<view>.png (L0; iso since mesh version 17)
 PROTOCOL_FPS = 30.0  # the drop videos' frame rate (tasks.probes.protocol.PROTOCOL_FPS)
 # L2 band metric -> the selection probe that measures it (flows.l2_material: the bands come from the specimen)
 L2_BAND_PROBE = {"effective_modulus_pa": "specimen_compress", "recovery_ratio": "specimen_compress",

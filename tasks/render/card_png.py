@@ -10,7 +10,7 @@ from typing import Any
 
 import numpy as np
 
-from tasks.render.card_data import CardData, DropFrame, Figure
+from tasks.render.card_data import STILL_VIEWS, CardData, DropFrame, Figure
 from tasks.render.card_html import verdict_mark
 from tasks.render.card_text import band_text, outcome_lines, request_line, si, wrap
 
@@ -166,7 +166,7 @@ def write_card_png(card: CardData, asset_dir: Path, path: Path) -> Path:
             _verdict(fig.add_subplot(gs[1, 3 * i:3 * i + 3]), v.stage, v.title, v.passed, v.sentence)
         import imageio.v2 as imageio
 
-        for i, view in enumerate(("front", "side", "top")):
+        for i, view in enumerate([v for v in STILL_VIEWS if v in card.views][:3] or ["front", "side", "top"]):
             rel = card.views.get(view)
             img = np.asarray(imageio.imread(asset_dir / rel))[..., :3] if rel else None
             _image(fig.add_subplot(gs[2, 2 * i:2 * i + 2]), img, view)

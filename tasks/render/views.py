@@ -3,7 +3,8 @@ a z-buffer over the triangle / pixel overlap (tasks.render.columns), Lambert sha
 
 Each view is a camera looking at the centre of the mesh's bounding box: "front" from +x (looking along -x, +y to the
 right), "side" from -y (looking along +y, +x to the right), "top" from above (looking down, +x to the right, +y up the
-image); the object fills FILL of the frame. L0's writer (tasks.geometry.outputs), the shape Designer's vision Critic
+image), "iso" from the front, the side and above at once (a three-quarter view 26 deg above the ground: what a person
+names an object from; a long tube seen end-on in "front" reads as a washer); the object fills FILL of the frame. L0's writer (tasks.geometry.outputs), the shape Designer's vision Critic
 and the drop videos' view names (tasks.render.protocol_video) use them.
 """
 
@@ -34,6 +35,7 @@ VIEWS: dict[str, View] = {
     "front": View((1.0, 0.0, 0.0), (0.0, 0.0, 1.0)),   # camera on +x looking back at the object
     "side": View((0.0, -1.0, 0.0), (0.0, 0.0, 1.0)),   # camera on -y
     "top": View((0.0, 0.0, 1.0), (0.0, 1.0, 0.0)),     # camera above, looking straight down
+    "iso": View((1.0, -0.75, 0.6), (0.0, 0.0, 1.0)),   # camera front-right (37 deg round from the front), 26 deg up
 }
 FILL = 0.85  # the mesh's widest extent across the frame, as a fraction of it
 LIGHT = (0.35, 0.45, 0.82)  # towards the light in the view's (screen-right, screen-up, towards-viewer) axes

@@ -51,13 +51,26 @@ def test_an_orthographic_camera_looking_straight_down_maps_offsets_linearly() ->
     assert z == pytest.approx([2.0, 2.0, 2.0, 5.0])
 
 
-@pytest.mark.parametrize("view", list(VIEWS))
+@pytest.mark.parametrize("view", list(OLD_AXES))
 def test_each_view_has_the_axes_it_had(view: str) -> None:
     """Screen-right, screen-up and towards-viewer of each view's camera are the old table's (no mirrored image)."""
     for got, want in zip(view_axes(view), OLD_AXES[view]):
         assert np.array_equal(got, np.asarray(want, float))
     cam = view_camera(view, np.array([0.1, 0.2, 0.3]), 0.5, 64)
     assert cam.ortho_height_m == 0.5 and cam.width == cam.height == 64
+
+
+def test_the_iso_view_shows_front_side_and_top_with_the_vertical_up() -> None:
+    """The three-quarter view looks at the +x front, the -y side and the top at once, keeps the vertical on screen-up
+    (no roll), and an x-long bar is drawn long: a pool noodle is not read end-on as a washer."""
+    right, up, toward = view_axes("iso")
+    assert toward[0] > 0.5 and toward[1] < -0.3 and 0.3 < toward[2] < 0.6  # front, side, ~26 deg above
+    assert abs(right[2]) < 1e-12 and up[2] > 0.85  # the vertical is screen-up, the horizon level
+    bar = trimesh.creation.box((1.0, 0.05, 0.05))
+    img = render_view(bar, "iso", 96)
+    pix = np.argwhere(img.min(axis=2) < 250).astype(float)
+    spread = np.sqrt(np.linalg.eigvalsh(np.cov(pix.T)))
+    assert spread[1] > 5 * spread[0] and spread[1] > 15  # drawn long (pixels along its axis), not a square end
 
 
 def test_the_views_of_a_mesh_are_the_pixels_they_were(tmp_path: Path) -> None:

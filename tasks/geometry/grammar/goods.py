@@ -481,6 +481,11 @@ class PouchParams(Model):
     piece: tuple[float, float, float] = Field(default=(0.0, 0.0, 0.0), description="goods seen through a clear "
                                               "bag ('a bag of marshmallows'): one piece's extents / length; 0: none")
     piece_shape: Literal["ball", "cylinder", "block"] = Field(default="ball", description="the pieces' form")
+    label: bool = Field(default=False, description="a printed label on its top (a sack of rice, a bag of dog food): "
+                        "what tells a pack of goods from a pillow")
+
+
+LABEL_SIZE = (0.46, 0.62)  # a pack's printed label over its top: / length, / width [-]
 
 
 def pouch(p: PouchParams) -> list[Part]:
@@ -518,6 +523,9 @@ def pouch(p: PouchParams) -> list[Part]:
                                  (1, 1, 1)), "subtract", 0.02))
     if max(p.piece) > 0:
         parts += bagged_pieces(p, h)
+    elif p.label:  # printed on the film: a flat panel just proud of the filled top, its own colour
+        parts.append(box("label", (LABEL_SIZE[0], LABEL_SIZE[1] * (w - 2 * s), st), (0.0, 0.0, h), edge=0.45 * st,
+                         blend=0.1 * st))
     if p.strap > 0:
         sw, st = 0.55 * w, 1.6 * MIN_LAYER
         parts.append(box("strap", (p.strap, sw, st), (0.5 + p.strap / 2 - 0.05, 0, st / 2), edge=0.45 * st,
