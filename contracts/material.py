@@ -62,6 +62,14 @@ class Material(Model):
         """Dilatational wave speed c_p = sqrt((lambda + 2 mu) / rho) [m/s]."""
         return math.sqrt((self.lambda_pa + 2.0 * self.mu_pa) / density_kg_per_m3)
 
+    @property
+    def stiffness_damping_s(self) -> float:
+        """The Kelvin-Voigt viscosity as a stiffness-proportional (Rayleigh beta) damping time eta / mu [s]: the
+        deviatoric stress rate 2 eta D equals beta times the elastic 2 mu D (the volumetric part then carries
+        beta K instead of 2 eta / 3: more loss in compression than ours). How exports that know only Rayleigh damping
+        carry it."""
+        return self.viscosity_pa_s / self.mu_pa
+
     def viscous_time_step_s(self, density_kg_per_m3: float, dx_m: float) -> float:
         """Largest stable explicit time step of the viscous stress, VISCOUS_DT_FACTOR rho dx^2 / eta [s] (inf when
         eta = 0)."""
