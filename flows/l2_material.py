@@ -157,6 +157,7 @@ def l2_material(asset_dir: Path, request_or_intent: AssetRequest | str | None = 
                           else (start, dict[str, Any](sim_calls=0)))
     if loss:
         screening["restitution_loss"] = loss
+        screening["sim_calls"] += int(loss.get("impacts", 1))  # the calibration's impacts are simulation calls too
     runner = _Runner(asset, physical, contract, sim, fixed)
     outcome = run_harness(contract, runner, targets, agents=agents, record_dir=asset_dir, initial=initial)
     material = Material(**outcome.values, **fixed) if outcome.passed and outcome.values else None
