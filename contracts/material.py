@@ -4,13 +4,20 @@ from __future__ import annotations
 
 import math
 
-from pydantic import Field, field_validator
+from pydantic import Field, field_validator, model_serializer
 
 from contracts.base import Model
 
 
+#: explicit Kelvin-Voigt viscosity in MLS-MPM (quadratic B-splines, 2 particles per cell per axis) is stable for
+#: dt <= k rho dx^2 / eta: a block of random velocities stayed bounded at k = 0.35 and blew up at k = 0.4 (session 28,
+#: tests/mpm/test_viscosity.py); the engine takes k = 0.15, a safety factor of ~2.5 (the elastic CFL step binds too).
+VISCOUS_DT_FACTOR = 0.15
+
+
 class Material(Model):
-    """Neo-Hookean material; the density lives in the PhysicalModel (L1 owns mass)."""
+    """Neo-Hookean material with an optional Kelvin-Voigt viscosity (the loss in the material: hysteresis); the
+    density lives in the PhysicalModel (L1 owns mass)."""
 
     youngs_modulus_pa: float = Field(gt=0, description="Young's modulus E [Pa]")
     poisson_ratio: float = Field(ge=0.0, lt=0.5, description="Poisson's ratio nu [-], 0 <= nu < 0.5")
@@ -18,12 +25,27 @@ class Material(Model):
         default=0.0, ge=0.0, description="velocity damping rate [1/s], dt-independent: v *= exp(-rate*dt)"
     )
 
-    @field_validator("youngs_modulus_pa", "poisson_ratio", "damping_rate_per_s")
+    viscosity_pa_s: float = Field(
+        default=0.0, ge=0.0,
+        description="Kelvin-Voigt viscosity eta [Pa s]: Cauchy stress eta (L + L^T) added to the elastic one, L the "
+                    "velocity gradient; a loss in the material (impacts, vibration), none in rigid motion",
+    )
+
+    @field_validator("youngs_modulus_pa", "poisson_ratio", "damping_rate_per_s", "viscosity_pa_s")
     @classmethod
     def _finite(cls, v: float) -> float:
         if not math.isfinite(v):
             raise ValueError("must be a finite number")
         return v
+
+    @model_serializer(mode="wrap")
+    def _omit_zero_viscosity(self, handler):
+        """viscosity_pa_s = 0 (the default, the engine before it existed) is left out of the dump, so the cache keys
+        of materials from before the field existed still name the same results; any other value is in it."""
+        out = handler(self)
+        if isinstance(out, dict) and out.get("viscosity_pa_s") == 0.0:
+            out.pop("viscosity_pa_s")
+        return out
 
     @property
     def mu_pa(self) -> float:
@@ -39,3 +61,18 @@ class Material(Model):
     def p_wave_speed_m_per_s(self, density_kg_per_m3: float) -> float:
         """Dilatational wave speed c_p = sqrt((lambda + 2 mu) / rho) [m/s]."""
         return math.sqrt((self.lambda_pa + 2.0 * self.mu_pa) / density_kg_per_m3)
+
+    @property
+    def stiffness_damping_s(self) -> float:
+        """The Kelvin-Voigt viscosity as a stiffness-proportional (Rayleigh beta) damping time eta / mu [s]: the
+        deviatoric stress rate 2 eta D equals beta times the elastic 2 mu D (the volumetric part then carries
+        beta K instead of 2 eta / 3: more loss in compression than ours). How exports that know only Rayleigh damping
+        carry it."""
+        return self.viscosity_pa_s / self.mu_pa
+
+    def viscous_time_step_s(self, density_kg_per_m3: float, dx_m: float) -> float:
+        """Largest stable explicit time step of the viscous stress, VISCOUS_DT_FACTOR rho dx^2 / eta [s] (inf when
+        eta = 0)."""
+        if self.viscosity_pa_s <= 0.0:
+            return math.inf
+        return VISCOUS_DT_FACTOR * density_kg_per_m3 * dx_m * dx_m / self.viscosity_pa_s

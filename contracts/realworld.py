@@ -155,6 +155,8 @@ class OurFigures(Model):
     youngs_modulus_pa: float | None = None
     poisson_ratio: float | None = None
     damping_rate_per_s: float | None = None
+    viscosity_pa_s: float | None = Field(default=None, description="L2's Kelvin-Voigt viscosity: the loss in the "
+                                         "material a rule drop's impact takes [Pa s]")
     effective_modulus_pa: float | None = Field(default=None, description="L2's specimen compression (the material)")
     object_effective_modulus_pa: float | None = Field(default=None, description="L2's compression of the object")
     impact_speed_m_per_s: float | None = Field(default=None, description="rule drop: speed at impact after the fall "

@@ -41,6 +41,7 @@ from tasks.probes.registry import by_kind, stage_probes
 from tasks.probes.screening import (l2_probe, probe_parameters, screen, screen_dampings, screen_moduli,
                                     specimen_arrays)
 from tasks.probes.workers import probe_workers
+from tasks.realworld.loss import material_loss
 from tasks.publish import write_text_atomic
 from tasks.record.keep import keep_recording
 from tasks.agents.orchestrator import initial_values
@@ -75,12 +76,14 @@ def load_physical_model(asset_dir: Path) -> PhysicalModel:
 class _Runner:
     """The L2 Prober: every selection probe of one candidate as cached tasks; counts simulation calls and misses."""
 
-    def __init__(self, asset: L0Asset, physical: PhysicalModel, contract: StageContract, sim: SimConfig) -> None:
+    def __init__(self, asset: L0Asset, physical: PhysicalModel, contract: StageContract, sim: SimConfig,
+                 fixed: dict[str, float] | None = None) -> None:
         self.asset, self.physical, self.contract, self.sim = asset, physical, contract, sim
+        self.fixed = dict(fixed or {})  # material fields L2 sets but does not edit (the class's viscosity)
         self.recording_kinds: dict[str, str] = {}  # recording path -> ProbeSpec.kind of every probe it ran
 
     def __call__(self, values: dict[str, float], action: str) -> list[ProbeResult]:
-        ctx = ProbeContext(self.asset, self.contract, self.physical, Material(**values), self.sim)
+        ctx = ProbeContext(self.asset, self.contract, self.physical, Material(**{**values, **self.fixed}), self.sim)
         probes = stage_probes(self.contract)
         out = run_probes(probes, ctx, probe_workers(len(probes), self.sim.device))
         self.recording_kinds.update({r.recording: r.spec.kind for r in out if r.recording})
@@ -147,11 +150,17 @@ def l2_material(asset_dir: Path, request_or_intent: AssetRequest | str | None = 
     targets = l2_targets(asset, request_or_intent)
 
     start = initial_values(contract, targets, None)
-    initial, screening = (screen(asset, physical, contract, targets, start, sim) if screen_first
-                          else (start, {"sim_calls": 0}))
-    runner = _Runner(asset, physical, contract, sim)
+    # a bouncy class's loss in the material: its prior restitution as a Kelvin-Voigt viscosity, calibrated on this
+    # object's impact at the reference speed with the start E and nu (tasks.realworld.loss); fixed through L2
+    fixed, loss = material_loss(asset.particles_m, asset.volumes_m3, physical, Material(**start), targets.priors, sim)
+    initial, screening = (screen(asset, physical, contract, targets, start, sim, fixed) if screen_first
+                          else (start, dict[str, Any](sim_calls=0)))
+    if loss:
+        screening["restitution_loss"] = loss
+        screening["sim_calls"] += int(loss.get("impacts", 1))  # the calibration's impacts are simulation calls too
+    runner = _Runner(asset, physical, contract, sim, fixed)
     outcome = run_harness(contract, runner, targets, agents=agents, record_dir=asset_dir, initial=initial)
-    material = Material(**outcome.values) if outcome.passed and outcome.values else None
+    material = Material(**outcome.values, **fixed) if outcome.passed and outcome.values else None
     recordings: dict[str, str | None] = {}
     cached: dict[str, str] = {}  # keep 'adopted': the recordings left in the cache
     held: list[ProbeResult] = []

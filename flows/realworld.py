@@ -37,8 +37,8 @@ def slug(name: str) -> str:
 def rule_rebound(rule: RuleDrop, asset: L0Asset, physical: PhysicalModel, material: Material,
                  sim: SimConfig) -> dict[str, Any]:
     """The rule's drop as the asset does it in our engine: the fall under the material's damping (closed form, the
-    engine's world-frame velocity decay), the impact at that speed in the MPM (tasks.realworld.impact), the rise under
-    the same damping; rebound ratio = rise / drop. Beside it, the impact's restitution as a real ball would show it
+    engine's world-frame velocity decay), the impact at that speed in the MPM (tasks.realworld.impact: the loss in the
+    material, its Kelvin-Voigt viscosity, acts here), the rise under the same damping; rebound ratio = rise / drop. Beside it, the impact's restitution as a real ball would show it
     (rebound_ratio_air: the same restitution with a fall and rise through air, no engine damping)."""
     d = material.damping_rate_per_s
     v_in = damped_impact_speed_m_per_s(rule.drop_height_m, d)
@@ -84,6 +84,7 @@ def build_figures(obj: RealWorldObject, work: Path, sim: SimConfig, priors_only:
     figures: dict[str, Any] = {**base, "youngs_modulus_pa": material.youngs_modulus_pa,
                                "poisson_ratio": material.poisson_ratio,
                                "damping_rate_per_s": material.damping_rate_per_s,
+                               "viscosity_pa_s": material.viscosity_pa_s,
                                "effective_modulus_pa": metrics.get("effective_modulus_pa"),
                                "object_effective_modulus_pa": metrics.get("object_effective_modulus_pa")}
     if obj.rebound is not None:

@@ -46,7 +46,7 @@ def deformable_sdf(model: str, vtk_name: str, m: ExportMaterial, comment: str = 
         <drake:mass_density>{m.density_kg_per_m3!r}</drake:mass_density>
         <drake:material_model>neohookean</drake:material_model>
         <drake:mass_damping>{m.damping_rate_per_s!r}</drake:mass_damping>
-        <drake:stiffness_damping>0.0</drake:stiffness_damping>
+        <drake:stiffness_damping>{m.stiffness_damping_s!r}</drake:stiffness_damping>
       </drake:deformable_properties>
     </link>
   </model>

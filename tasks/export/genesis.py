@@ -153,6 +153,7 @@ def scene_params(inputs: ExportInputs, spacing_m: float) -> dict[str, object]:
         "youngs_modulus_pa": m.youngs_modulus_pa, "poisson_ratio": m.poisson_ratio,
         "density_kg_per_m3": m.density_kg_per_m3, "mass_kg": m.mass_kg, "ground_friction": m.ground_friction,
         "damping_rate_per_s": m.damping_rate_per_s,
+        "viscosity_pa_s": m.viscosity_pa_s,  # recorded, not applied: Genesis's elastic MPM has no viscous stress
         "particle_size_m": spacing_m, "grid_density_per_m": round(1.0 / dx, 6),
         # Genesis keeps its MPM particles 3 grid cells inside the domain: the floor of that box sits half a cell
         # under the ground plane, which is the contact

@@ -83,6 +83,7 @@ def export_material(adir: AssetDir) -> ExportMaterial:
     m = adir.adopted_material().material
     return ExportMaterial(youngs_modulus_pa=m.youngs_modulus_pa, poisson_ratio=m.poisson_ratio,
                           density_kg_per_m3=physical.density_kg_per_m3, damping_rate_per_s=m.damping_rate_per_s,
+                          viscosity_pa_s=m.viscosity_pa_s,
                           ground_friction=physical.ground_friction, gripper_friction=physical.gripper_friction,
                           mass_kg=physical.mass_kg)
 

@@ -31,7 +31,7 @@ def flex_params(nodes_m: np.ndarray, tets: np.ndarray, material: ExportMaterial)
     return default_params(nodes_m, tets, young_pa=material.youngs_modulus_pa, poisson=material.poisson_ratio,
                           density_kg_per_m3=material.density_kg_per_m3,
                           damping_rate_per_s=material.damping_rate_per_s, mass_kg=material.mass_kg,
-                          friction=material.ground_friction)
+                          friction=material.ground_friction, stiffness_damping_s=material.stiffness_damping_s)
 
 
 def parameters_dict(p: FlexParams) -> dict[str, float]:

@@ -66,8 +66,11 @@ def mean_edge_m(nodes_m: np.ndarray, tets: np.ndarray) -> float:
 
 
 def default_params(nodes_m: np.ndarray, tets: np.ndarray, *, young_pa: float, poisson: float, density_kg_per_m3: float,
-                   damping_rate_per_s: float, mass_kg: float, friction: float) -> FlexParams:
-    """The export's MuJoCo parameters: the validated E and nu, the mapped damping, a stable step for the mesh."""
+                   damping_rate_per_s: float, mass_kg: float, friction: float,
+                   stiffness_damping_s: float = 0.0) -> FlexParams:
+    """The export's MuJoCo parameters: the validated E and nu, the mapped damping (the velocity damping rate's and
+    the viscosity's stiffness-proportional time eta / mu, both MuJoCo's one flex damping time), a stable step for
+    the mesh."""
     height = float(np.ptp(np.asarray(nodes_m)[:, 2]))
     c = math.sqrt(young_pa / density_kg_per_m3)
     # the discrete integrator is implicit in the elastic forces; half a wave crossing of the mean edge resolves the
@@ -76,7 +79,8 @@ def default_params(nodes_m: np.ndarray, tets: np.ndarray, *, young_pa: float, po
     # calibration refines the step only where the drop shows it)
     dt = min(1e-3, max(2.5e-4, 0.5 * mean_edge_m(nodes_m, tets) / c))
     return FlexParams(young_pa=young_pa, poisson=poisson,
-                      damping_s=damping_time_s(damping_rate_per_s, height, young_pa, density_kg_per_m3),
+                      damping_s=damping_time_s(damping_rate_per_s, height, young_pa, density_kg_per_m3)
+                      + stiffness_damping_s,
                       mass_kg=mass_kg, friction=friction, timestep_s=dt, contact_timeconst_s=2.0 * dt)
 
 

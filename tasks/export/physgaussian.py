@@ -19,6 +19,8 @@ def write_physgaussian_export(adir: AssetDir) -> Path:
         "material": "jelly",  # PhysGaussian's name for its neo-Hookean model
         "E": mat.youngs_modulus_pa, "nu": mat.poisson_ratio, "density": phys.density_kg_per_m3,
         "damping_rate_per_s": mat.damping_rate_per_s,
+        # Kelvin-Voigt viscosity [Pa s]: recorded, not applied (PhysGaussian's jelly has no viscous stress)
+        "viscosity_pa_s": mat.viscosity_pa_s,
         "g": list(phys.gravity_m_per_s2), "friction_ground": phys.ground_friction,
         "gaussians_ply": "../gaussians.ply", "particles_zarr": "../particles.zarr",
         "units": "SI (Pa, kg/m^3, m, s); frame z up, object resting on z = 0",

@@ -17,7 +17,8 @@ MAPPING = ("SOFA NeoHookean is the decoupled (isochoric + volumetric) form: Para
            "modulus E / (2 (1 + nu)) and k = the bulk modulus lambda + 2 mu / 3 = E / (3 (1 - 2 nu)); the same "
            "small-strain response (E, nu), different at large volume change.")
 DAMPING = ("EulerImplicitSolver rayleighMass = our velocity damping rate [1/s] (mass-proportional damping, "
-           "dv/dt = -rate v), rayleighStiffness = 0.")
+           "dv/dt = -rate v), rayleighStiffness = our Kelvin-Voigt viscosity as eta / mu [s] (stiffness-proportional: "
+           "the same deviatoric loss, more in volume change).")
 TIME_STEP_S = 0.005
 SCENE = "scene.py"
 
@@ -32,6 +33,7 @@ POISSON_RATIO = {nu!r}
 DENSITY_KG_PER_M3 = {rho!r}
 MASS_KG = {mass!r}
 DAMPING_RATE_PER_S = {damping!r}
+STIFFNESS_DAMPING_S = {beta!r}  # Kelvin-Voigt viscosity eta / mu (Rayleigh stiffness damping)
 FRICTION = {friction!r}
 MU_PA = {mu!r}          # shear modulus E / (2 (1 + nu))
 BULK_PA = {bulk!r}      # bulk modulus E / (3 (1 - 2 nu))
@@ -62,7 +64,7 @@ def createScene(root):
     root.addObject("CollisionResponse", response="FrictionContactConstraint", responseParams=f"mu={{FRICTION}}")
 
     body = root.addChild({slug!r})
-    body.addObject("EulerImplicitSolver", rayleighMass=DAMPING_RATE_PER_S, rayleighStiffness=0.0)
+    body.addObject("EulerImplicitSolver", rayleighMass=DAMPING_RATE_PER_S, rayleighStiffness=STIFFNESS_DAMPING_S)
     body.addObject("SparseLDLSolver", template="CompressedRowSparseMatrixMat3x3d")
     body.addObject("MeshVTKLoader", name="loader", filename=os.path.join(here, VTK))
     body.addObject("TetrahedronSetTopologyContainer", name="topology", src="@loader")
@@ -95,7 +97,8 @@ def scene_text(inputs: ExportInputs, vtk_name: str) -> str:
     bulk = m.youngs_modulus_pa / (3.0 * (1.0 - 2.0 * m.poisson_ratio))
     return _TEMPLATE.format(name=inputs.name, slug=inputs.slug, vtk=vtk_name, E=m.youngs_modulus_pa,
                             nu=m.poisson_ratio, rho=m.density_kg_per_m3, mass=m.mass_kg,
-                            damping=m.damping_rate_per_s, friction=m.ground_friction, mu=m.mu_pa, bulk=bulk,
+                            damping=m.damping_rate_per_s, beta=m.stiffness_damping_s, friction=m.ground_friction,
+                            mu=m.mu_pa, bulk=bulk,
                             dt=TIME_STEP_S)
 
 

@@ -60,6 +60,7 @@ def _physics_material(stage: Any, path: str, m: ExportMaterial) -> Any:
     # the validated values at full precision, in our own namespace (USD floats are 32-bit)
     for name, value in (("youngsModulusPa", m.youngs_modulus_pa), ("poissonRatio", m.poisson_ratio),
                         ("densityKgPerM3", m.density_kg_per_m3), ("dampingRatePerS", m.damping_rate_per_s),
+                        ("viscosityPaS", m.viscosity_pa_s),
                         ("groundFriction", m.ground_friction), ("gripperFriction", m.gripper_friction),
                         ("massKg", m.mass_kg)):
         prim.CreateAttribute(f"deformsmith:{name}", Sdf.ValueTypeNames.Double).Set(float(value))

@@ -1,8 +1,9 @@
 """MPM engine (NVIDIA Warp): 3D MLS-MPM, quadratic B-splines, neo-Hookean, grid Coulomb contact. SI units.
 
-Physics: Kirchhoff stress tau = mu (F F^T - I) + lambda ln(J) I; damping as a rate (v *= exp(-rate dt), relative
-to the scene's lattice velocity: zero unless set); gravity per scene; adaptive dt = min(dt_max, C dx / (c_p + |v|max
-+ collider speed)) or SimConfig.dt_fixed_s; a dense grid window per scene fitted to the particles (bounds + margin),
+Physics: Kirchhoff stress tau = mu (F F^T - I) + lambda ln(J) I + J eta (C + C^T) (neo-Hookean + Kelvin-Voigt
+viscosity eta, C the APIC velocity gradient: the loss in the material); damping as a rate (v *= exp(-rate dt),
+relative to the scene's lattice velocity: zero unless set); gravity per scene; adaptive dt = min(dt_max, C dx / (c_p
++ |v|max + collider speed), 0.15 rho dx^2 / eta) or SimConfig.dt_fixed_s; a dense grid window per scene fitted to the particles (bounds + margin),
 re-centred on the device every few steps and enlarged when the body outgrows it. The lattice is the world lattice
 unless ``Control.set_grid_velocity`` moves it (a gripper carrying the object: pads crossing lattice planes would
 release and re-grip node layers and the squeeze would leak away). Contact on grid nodes (ground plane + kinematic box / capsule / half-space / finger-pad /

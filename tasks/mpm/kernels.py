@@ -396,17 +396,21 @@ def update_collider_poses(
 
 
 @wp.func
-def apic_momentum(Fp: wp.mat33, Cp: wp.mat33, vp: wp.vec3, m: float, vol: float, mu: float, lam: float, dt: float,
-                  dx: float, fx: wp.vec3) -> wp.mat44:
-    """What a particle scatters (MLS-MPM, APIC, neo-Hookean): rows (q0, a0, a1, a2) such that the momentum + mass it
-    gives the node at stencil offset (i, j, k) is w_ijk (q0 + i a0 + j a1 + k a2); fx = position in cells from the
-    stencil base."""
+def apic_momentum(Fp: wp.mat33, Cp: wp.mat33, vp: wp.vec3, m: float, vol: float, mu: float, lam: float,
+                  eta: float, dt: float, dx: float, fx: wp.vec3) -> wp.mat44:
+    """What a particle scatters (MLS-MPM, APIC, neo-Hookean + Kelvin-Voigt viscosity eta [Pa s]): rows (q0, a0, a1,
+    a2) such that the momentum + mass it gives the node at stencil offset (i, j, k) is w_ijk (q0 + i a0 + j a1 + k
+    a2); fx = position in cells from the stencil base."""
     inv_dx = 1.0 / dx
     J = wp.determinant(Fp)
     # Kirchhoff stress tau = mu (F F^T - I) + lambda ln(J) I  (neo-Hookean)
     tau = mu * (Fp * wp.transpose(Fp) - wp.identity(n=3, dtype=float)) + lam * wp.log(
         wp.max(J, 1.0e-6)
     ) * wp.identity(n=3, dtype=float)
+    if eta > 0.0:
+        # Kelvin-Voigt: Cauchy sigma_v = eta (C + C^T), C the APIC affine velocity gradient; Kirchhoff tau_v = J sigma_v
+        # (eta = 0 skips it: the neo-Hookean arithmetic bit for bit)
+        tau = tau + (eta * J) * (Cp + wp.transpose(Cp))
     affine = (-dt * vol * 4.0 * inv_dx * inv_dx) * tau + m * Cp
     # momentum at node offset (i,j,k): w * (m v + A (ijk - fx) dx) = w * (q0 + i a0 + j a1 + k a2)
     q0v = m * vp - affine * (fx * dx)
@@ -460,6 +464,7 @@ def p2g_particle(
     pl: int,
     mu: float,
     lam: float,
+    eta: float,
     o: wp.vec3,
     nx: int,
     ny: int,
@@ -489,7 +494,7 @@ def p2g_particle(
     wy = quadratic_weights(fx[1])
     wz = quadratic_weights(fx[2])
 
-    q = apic_momentum(Fp, Cp, vp, m, vol, mu, lam, dt, dx, fx)
+    q = apic_momentum(Fp, Cp, vp, m, vol, mu, lam, eta, dt, dx, fx)
     q0 = q[0]
     a0 = q[1]
     a1 = q[2]
@@ -522,6 +527,7 @@ def p2g_apic_neohookean(
     scene_start: wp.array(dtype=wp.int32),
     scene_mu: wp.array(dtype=float),
     scene_lambda: wp.array(dtype=float),
+    scene_eta: wp.array(dtype=float),
     grid_origin: wp.array(dtype=wp.vec3),
     nx: int,
     ny: int,
@@ -540,8 +546,8 @@ def p2g_apic_neohookean(
     for p in range(t * per_thread, wp.min((t + 1) * per_thread, n_items)):
         s = particle_scene[p]
         p2g_particle(x[p], v[p], C[p], F[p], particle_mass[p], particle_vol[p], s, p - scene_start[s], scene_mu[s],
-                     scene_lambda[s], grid_origin[s], nx, ny, nz, dx, dt_arr[0], clock_step[0] + 1, grid_mvm,
-                     fail_step, fail_particle)
+                     scene_lambda[s], scene_eta[s], grid_origin[s], nx, ny, nz, dx, dt_arr[0], clock_step[0] + 1,
+                     grid_mvm, fail_step, fail_particle)
 
 
 def make_grid_update(colliders: bool = True, agg: bool = False, module: str | None = None, lazy: bool = False,
@@ -858,6 +864,7 @@ def make_g2p(colliders: bool = True, coop: bool = False, agg: bool = False, modu
         particle_vol: wp.array(dtype=float),
         scene_mu: wp.array(dtype=float),
         scene_lambda: wp.array(dtype=float),
+        scene_eta: wp.array(dtype=float),
         grid_mvm: wp.array(dtype=wp.vec4),
         per_thread: int,
         n_items: int,
@@ -921,8 +928,8 @@ def make_g2p(colliders: bool = True, coop: bool = False, agg: bool = False, modu
                 C_out[p] = Cn
                 F_out[p] = Fn
             if wp.static(scatter_next):
-                p2g_particle(xn, vn, Cn, Fn, m, particle_vol[p], s, pl, scene_mu[s], scene_lambda[s], o, nx, ny, nz,
-                             dx, dt, step + 1, grid_mvm, fail_step, fail_particle)
+                p2g_particle(xn, vn, Cn, Fn, m, particle_vol[p], s, pl, scene_mu[s], scene_lambda[s], scene_eta[s], o,
+                             nx, ny, nz, dx, dt, step + 1, grid_mvm, fail_step, fail_particle)
         if wp.static(agg):
             warp_add_vec3(ground_impulse, g_scene, g_imp, g_has)  # every lane of the warp (whole-warp launches)
         if wp.static(coop):

@@ -355,6 +355,7 @@ def make_p2g_warp(coop: bool = False, module: str | None = None, scatter: int = 
         scene_start: wp.array(dtype=wp.int32),
         scene_mu: wp.array(dtype=float),
         scene_lambda: wp.array(dtype=float),
+        scene_eta: wp.array(dtype=float),
         grid_origin: wp.array(dtype=wp.vec3),
         nx: int,
         ny: int,
@@ -406,8 +407,8 @@ def make_p2g_warp(coop: bool = False, module: str | None = None, scatter: int = 
         wx = K.quadratic_weights(fx[0])
         wy = K.quadratic_weights(fx[1])
         wz = K.quadratic_weights(fx[2])
-        q = K.apic_momentum(Fp, Cp, vp, particle_mass[p], particle_vol[p], scene_mu[s], scene_lambda[s], dt_arr[0], dx,
-                            fx)
+        q = K.apic_momentum(Fp, Cp, vp, particle_mass[p], particle_vol[p], scene_mu[s], scene_lambda[s], scene_eta[s],
+                            dt_arr[0], dx, fx)
         nyz = ny * nz
         base = s * nx * nyz + bx * nyz + by * nz + bz
         ok_i = int(0)
@@ -486,6 +487,7 @@ def make_g2p2g(colliders: bool, coop: bool, agg: bool, scatter: int = SCATTER_WA
         particle_vol: wp.array(dtype=float),
         scene_mu: wp.array(dtype=float),
         scene_lambda: wp.array(dtype=float),
+        scene_eta: wp.array(dtype=float),
         grid_mvm: wp.array(dtype=wp.vec4),
         n_items: int,
     ):
@@ -576,7 +578,8 @@ def make_g2p2g(colliders: bool, coop: bool, agg: bool, scatter: int = SCATTER_WA
         ux = K.quadratic_weights(f2[0])
         uy = K.quadratic_weights(f2[1])
         uz = K.quadratic_weights(f2[2])
-        qm = K.apic_momentum(Fn, Cn, vn, m, particle_vol[p], scene_mu[s], scene_lambda[s], dt, dx, f2)
+        qm = K.apic_momentum(Fn, Cn, vn, m, particle_vol[p], scene_mu[s], scene_lambda[s], scene_eta[s], dt, dx,
+                                 f2)
         nyz2 = ny * nz
         base2 = s * nx * nyz2 + cx * nyz2 + cy * nz + cz
         if wp.static(scatter == SCATTER_SCAN):

@@ -168,7 +168,16 @@ def _vec3_array(a: np.ndarray, device: str) -> wp.array:
 
 
 def _check_time_step(model: Model, config: SimConfig) -> None:
-    """SimulationError when a scene's material alone needs CFL steps below config.dt_min_s (explicit MPM)."""
+    """SimulationError when a scene's material alone needs CFL (or viscous) steps below config.dt_min_s (explicit
+    MPM)."""
+    if model.viscous_dt_s / config.substeps < config.dt_min_s:
+        k = int(np.argmin(model.viscous_dt_np))
+        raise SimulationError(
+            f"the material is too viscous for explicit MPM at dx = {model.dx:.3g} m: eta = "
+            f"{model.materials[k].viscosity_pa_s:.3g} Pa s, density {model.densities[k]:.4g} kg/m^3 give viscous time "
+            f"steps of {model.viscous_dt_s / config.substeps:.2g} s, below the {config.dt_min_s:g} s floor "
+            "(SimConfig.dt_min_s): lower the viscosity, or coarsen the grid"
+        )
     worst = int(np.argmax(model.p_wave_speed))
     c = float(model.p_wave_speed[worst])
     dt = config.cfl * model.dx / c / config.substeps
@@ -245,9 +254,15 @@ class Model:
         self.mu_np = np.asarray([m.mu_pa for m in self.materials], dtype=np.float32)
         self.lambda_np = np.asarray([m.lambda_pa for m in self.materials], dtype=np.float32)
         self.damping_np = np.asarray([m.damping_rate_per_s for m in self.materials], dtype=np.float32)
+        self.eta_np = np.asarray([m.viscosity_pa_s for m in self.materials], dtype=np.float32)
         self.p_wave_speed = np.asarray(
             [m.p_wave_speed_m_per_s(r) for m, r in zip(self.materials, self.densities)], dtype=np.float64
         )
+        # the explicit viscous stress's own step limit (Material.viscous_time_step_s; inf without viscosity)
+        self.viscous_dt_np = np.asarray(
+            [m.viscous_time_step_s(r, self.dx) for m, r in zip(self.materials, self.densities)], dtype=np.float64
+        )
+        self.viscous_dt_s = float(np.min(self.viscous_dt_np))
         if config.dt_fixed_s is None:
             _check_time_step(self, config)
 
@@ -356,6 +371,7 @@ class Model:
         self.scene_mu: wp.array = wp.array(self.mu_np, dtype=float, device=d)
         self.scene_lambda: wp.array = wp.array(self.lambda_np, dtype=float, device=d)
         self.scene_damping: wp.array = wp.array(self.damping_np, dtype=float, device=d)
+        self.scene_eta: wp.array = wp.array(self.eta_np, dtype=float, device=d)
         self.ground_enabled: wp.array = wp.array(self.ground_enabled_np, dtype=wp.int32, device=d)
         self.ground_height: wp.array = wp.array(self.ground_height_np, dtype=float, device=d)
         self.ground_mu: wp.array = wp.array(self.ground_mu_np, dtype=float, device=d)

@@ -95,7 +95,7 @@ class LaunchPlan(ABC):
                         (own["grid"], own["fail_step"], own["fail_particle"]))
         return [sl(state.x), sl(state.v), sl(state.C), sl(state.F), sl(m.particle_mass), sl(m.particle_vol),
                 sl(m.particle_scene), m.scene_start if scene_start is None else scene_start, m.scene_mu,
-                m.scene_lambda, s.grid_origin, nx, ny, nz, m.dx, s.dt_arr, s.clock_step, grid, fs, fp, per_thread, n]
+                m.scene_lambda, m.scene_eta, s.grid_origin, nx, ny, nz, m.dx, s.dt_arr, s.clock_step, grid, fs, fp, per_thread, n]
 
     def grid_update_inputs(self, control: Control, scatter: wp.array, per_thread: int) -> list:
         """Arguments of the grid update kernels (scatter: the buffer it reads and clears)."""
@@ -125,4 +125,4 @@ class LaunchPlan(ABC):
         s, m = self.solver, self.model
         grid = s.grid_mvm if own is None else own["grid"]
         return [sl(state_out.x), sl(state_out.v), sl(state_out.C), sl(state_out.F), sl(m.particle_vol), m.scene_mu,
-                m.scene_lambda, grid]
+                m.scene_lambda, m.scene_eta, grid]

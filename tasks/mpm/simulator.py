@@ -85,12 +85,13 @@ class Simulator:
         return self.solver.steps
 
     def stable_dt(self) -> float:
-        """Time step [s]: fixed if configured, else min(dt_max, C dx / (c_p + |v|max + collider speed)) / substeps."""
+        """Time step [s]: fixed if configured, else min(dt_max, C dx / (c_p + |v|max + collider speed), the viscous
+        limit k rho dx^2 / eta) / substeps."""
         cfg = self.config
         if cfg.dt_fixed_s is not None:
             return cfg.dt_fixed_s / cfg.substeps
         speed = self.model.max_wave_speed() + self._vmax + self.control.max_collider_speed(self._reach)
-        return min(cfg.dt_max_s, cfg.cfl * self.model.dx / speed) / cfg.substeps
+        return min(cfg.dt_max_s, cfg.cfl * self.model.dx / speed, self.model.viscous_dt_s) / cfg.substeps
 
     def advance(self, duration_s: float, max_steps: int | None = None) -> IntervalReport:
         """Advance by duration_s [s] (the last step is shortened to land on it); stops early on a fatal issue."""

@@ -158,6 +158,68 @@ def case_bar_period(quick: bool, device: str) -> CaseResult:
     return res
 
 
+def _extrema(t: np.ndarray, u: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Times and absolute values of the interior local extrema of u(t), refined by a parabola through 3 samples."""
+    ts, amps = [], []
+    for i in range(1, len(u) - 1):
+        if (u[i] - u[i - 1]) * (u[i + 1] - u[i]) < 0.0 and abs(u[i]) >= max(abs(u[i - 1]), abs(u[i + 1])):
+            a = 0.5 * (u[i - 1] + u[i + 1]) - u[i]
+            b = 0.5 * (u[i + 1] - u[i - 1])
+            s = -b / (2.0 * a) if a != 0.0 else 0.0
+            ts.append(t[i] + s * (t[i + 1] - t[i]))
+            amps.append(abs(u[i] + b * s + a * s * s))
+    return np.asarray(ts), np.asarray(amps)
+
+
+def bar_viscous_decay(eta_pa_s: float, quick: bool, device: str, periods: float = 2.0) -> dict:
+    """A fixed-free bar (nu = 0) in its first mode with Kelvin-Voigt viscosity eta: rho u_tt = E u_xx + 2 eta u_xxt
+    (axial Cauchy stress E eps + 2 eta eps_dot), so the mode q(t) sin(k x), k = pi / (2 L), decays at the amplitude
+    rate gamma = eta k^2 / rho. Returns the measured rate (a line through log |tip extrema|), the expected one, the
+    damping ratio and the run's health and time step."""
+    L = 0.4
+    cells = 20 if quick else 32
+    dx = L / cells
+    E, rho = 1e5, 100.0
+    c = math.sqrt(E / rho)
+    k = 0.5 * math.pi / L
+    mat = Material(youngs_modulus_pa=E, poisson_ratio=0.0, viscosity_pa_s=eta_pa_s)
+    pos, vol = box_particles((0, 0, 0.5), (L, 2 * dx, 0.5 + 2 * dx), dx / 2)
+    vel = np.zeros_like(pos)
+    vel[:, 0] = 0.005 * c * np.sin(k * pos[:, 0])
+    clamp = box_collider((0.05, 0.2, 0.2), position_m=(-0.05 + 1e-6, 0.0, 0.5), bonded=True)
+    sc = SceneSpec(pos, vol, rho, mat, colliders=[clamp], velocities_m_per_s=vel, ground=False,
+                   gravity_m_per_s2=(0.0, 0.0, 0.0))
+    sim = Simulator(build_model([sc], _cfg(device, dx)))
+    dt = sim.stable_dt()
+    tip = pos[:, 0] > L - dx / 2
+    x0 = pos[tip, 0].mean()
+    T = 4 * L / c
+    ts, us = [0.0], [0.0]
+    nsamp = int(80 * periods)
+    ok = True
+    for _ in range(nsamp):
+        ok = ok and sim.advance(periods * T / nsamp).health.ok
+        ts.append(sim.time_s)
+        us.append(float(sim.particles(0)["x"][tip, 0].mean() - x0))
+    te, ae = _extrema(np.asarray(ts), np.asarray(us))
+    rate = float(-np.polyfit(te, np.log(ae), 1)[0]) if len(te) >= 2 else float("nan")
+    gamma = eta_pa_s * k * k / rho
+    return {"rate_per_s": rate, "expected_rate_per_s": gamma, "damping_ratio": gamma / (k * c), "health_ok": ok,
+            "dt_s": dt, "extrema_s": te.tolist(), "extrema_m": ae.tolist()}
+
+
+def case_viscous_decay(quick: bool, device: str) -> CaseResult:
+    """Kelvin-Voigt viscosity: a fixed-free bar's first mode decays at gamma = eta k^2 / rho (damping ratio 0.05)."""
+    k, rho, c = 0.5 * math.pi / 0.4, 100.0, math.sqrt(1e3)
+    eta = 0.05 * k * c * rho / (k * k)  # damping ratio gamma / omega = 0.05
+    out = bar_viscous_decay(eta, quick, device)
+    res = _result("viscous_decay", "amplitude decay rate of a viscous bar's first mode", "1/s", out["rate_per_s"],
+                  out["expected_rate_per_s"], 0.15)
+    res.passed = res.passed and out["health_ok"]
+    res.details = out
+    return res
+
+
 def case_column_settlement(quick: bool, device: str) -> CaseResult:
     """Column under its own weight on a frictionless ground, free sides (nu = 0): settlement rho g H^2 / (2E)."""
     H, W = 0.2, 0.05
@@ -365,6 +427,7 @@ CASES: dict[str, Callable[[bool, str], CaseResult | list[CaseResult]]] = {
     "free_fall": case_free_fall,
     "momentum_conservation": case_momentum,
     "bar_period": case_bar_period,
+    "viscous_decay": case_viscous_decay,
     "column_settlement": case_column_settlement,
     "uniaxial_compression": case_uniaxial_compression,
     "cantilever": case_cantilever,

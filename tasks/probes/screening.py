@@ -112,10 +112,13 @@ def screen_rollouts(physical: PhysicalModel, positions_m: np.ndarray, volumes_m3
 
 
 def screen(asset: L0Asset, physical: PhysicalModel, contract: StageContract, targets: TargetBehaviour,
-           start: dict[str, float], sim: SimConfig) -> tuple[dict[str, float], dict[str, Any]]:
+           start: dict[str, float], sim: SimConfig,
+           fixed: dict[str, float] | None = None) -> tuple[dict[str, float], dict[str, Any]]:
     """Screening on the material's specimen: compress three stiffnesses, drop three damping rates (each set in one
     lock-step rollout, SPECIMEN_SCREEN_SCHEDULE); keep a start value whose metric is already well inside its band
-    (start_in_band), else interpolate the value that hits the band's centre. Returns (initial values, summary)."""
+    (start_in_band), else interpolate the value that hits the band's centre. fixed: material fields that every
+    candidate carries and the screening does not vary (the class's viscosity). Returns (initial values, summary)."""
+    fixed = dict(fixed or {})
     p = probe_parameters(contract)
     fields = {f.name: f for f in contract.editable_fields}
     base = {"physical": physical, "sim": sim, "schedule": SPECIMEN_SCREEN_SCHEDULE}
@@ -126,7 +129,7 @@ def screen(asset: L0Asset, physical: PhysicalModel, contract: StageContract, tar
         f = fields["youngs_modulus_pa"]
         es = screen_moduli(values, f)
         mats = [Material(youngs_modulus_pa=e, poisson_ratio=values["poisson_ratio"],
-                         damping_rate_per_s=values["damping_rate_per_s"]) for e in es]
+                         damping_rate_per_s=values["damping_rate_per_s"], **fixed) for e in es]
         pos, vol = specimen_arrays(physical, contract, "specimen_compress")
         rs = screen_task(positions_m=pos, volumes_m3=vol, kind="specimen_compress", materials=mats,
                          params={"strain": p["strain"]}, **base)
@@ -145,7 +148,7 @@ def screen(asset: L0Asset, physical: PhysicalModel, contract: StageContract, tar
         f = fields["damping_rate_per_s"]
         ds = screen_dampings(values, f)
         mats = [Material(youngs_modulus_pa=values["youngs_modulus_pa"], poisson_ratio=values["poisson_ratio"],
-                         damping_rate_per_s=d) for d in ds]
+                         damping_rate_per_s=d, **fixed) for d in ds]
         pos, vol = specimen_arrays(physical, contract, "specimen_drop")
         rs = screen_task(positions_m=pos, volumes_m3=vol, kind="specimen_drop", materials=mats,
                          params={"height_fraction": p["height_fraction"]}, **base)
