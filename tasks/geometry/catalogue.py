@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import functools
 import re
 
 import numpy as np
@@ -15,6 +16,7 @@ from contracts.request import MAX_SIZE_M, MIN_SIZE_M, AssetRequest
 from contracts.shape import ShapeProgram
 from tasks.geometry import concepts, dims_words, grammar, size_words
 from tasks.geometry.analogy import FOOD_CUES
+from tasks.geometry.wordnet import wordnet
 from tasks.geometry.catalogue_programs import catalogue_program, catalogue_yaml
 from tasks.geometry.sdf import program_bounds
 
@@ -432,11 +434,26 @@ _PURPOSE = re.compile(r"^(?P<object>.*\w.*?)\s*,?\s+\bfor\s+(?:(?:an?|the|your|m
                       r"big|little|pet)\s+)*(?:[\w'-]+\s*){1,3}$", re.IGNORECASE)
 
 
+_BORE_WORDS = frozenset({"pipe", "pipes", "pipework", "hose", "hoses", "tap", "faucet", "radiator"})
+
+
+@functools.lru_cache(maxsize=256)
+def _is_being(word: str) -> bool:
+    """A noun whose most frequent sense is an animal or a person ('rabbits', 'ferrets', 'toddlers'; not 'pipe',
+    'laptop', 'drip')."""
+    senses = wordnet().senses(word)
+    return bool(senses) and senses[0].lexname in ("noun.animal", "noun.person")
+
+
 def _purpose_stripped(text: str) -> str:
     """'a bag of timothy hay for rabbits', 'a fleece hammock for ferrets', 'a foam tube for 22mm pipe' -> the object
     without whom or what it is for (the rabbit is not built, the pipe's size is not the tube's)."""
     m = _PURPOSE.match(text.strip())
-    return m.group("object").strip() if m is not None else text
+    if m is None:
+        return text
+    last = re.findall(r"[a-z]+", m.group(0).lower())[-1]
+    # ('for a 13 inch laptop' sizes the sleeve; 'for 22mm pipe' is the bore of the pipe it goes on, not its size)
+    return m.group("object").strip() if _is_being(last) or last in _BORE_WORDS else text
 
 
 def _pair_first(text: str) -> str:
@@ -535,6 +552,7 @@ def _as_meat(text: str, reading: concepts.Reading) -> str | None:
     pound) and nothing says it is a toy; else None."""
     noun = reading.match.noun
     if noun is None or concepts.concept_domain(reading.entry.key) != "animal" or _TOY_WORDS.search(text) \
+            or reading.entry.category in ("meat", "fish", "seafood", "food") \
             or not FOOD_CUES & set(re.findall(r"[a-z]+", text.lower())):
         return None
     swapped = re.sub(rf"\b{re.escape(noun)}\b", "meat", text, count=1, flags=re.I)

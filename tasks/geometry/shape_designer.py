@@ -55,7 +55,7 @@ def has_vision(model: str | None) -> bool:
 
 
 def render_pngs(mesh: trimesh.Trimesh, size_px: int = CRITIC_VIEW_PX) -> list[bytes]:
-    """PNG bytes of the front, side and top reference views (tasks.render.views)."""
+    """PNG bytes of the reference views (tasks.render.views: front, side, top and the three-quarter iso)."""
     return [iio.imwrite("<bytes>", render_view(mesh, view, size_px), extension=".png") for view in VIEWS]
 
 

@@ -59,6 +59,7 @@ LATHE_BASE_BAND = 0.15  # ... found within this share of its height from the bot
 INFLATION_ROUNDNESS = 0.6  # edges of an inflated part rounded over this share of its inscribed radius [-]
 GROUND_FOOT_BAND = 0.03  # an inflation rests on the rows within this share of its height from its lowest row [-]
 GROUND_EXTEND = 0.25  # ... continued this far (x height) below it while its depth is taken [-]
+LATHE_OVER_FIT_IOU = 0.9  # a template fitted below this gives way to a solid of revolution of the silhouette [-]
 MIN_FIT_IOU = 0.8  # a program that fits worse than this is not what the photo shows: generic reconstruction [-]
 FRONT_SYMMETRY_IOU = 0.85  # a silhouette built without a template is a front view above this mirror IoU [-]
 FLAT_PROGRAM = 0.5  # a top view is fitted only to a program this flat (height / narrowest horizontal extent) [-]
@@ -389,9 +390,21 @@ def reconstruct(mask: np.ndarray, image: np.ndarray, longest_m: float, resolutio
             notes.append(f"the photo's silhouette does not fit a '{entry}' template well enough (best IoU "
                          f"{fit.iou:.2f} < {MIN_FIT_IOU}, {fit.view} view): built from the silhouette instead")
             fit, rejected = None, fit
+    lathe = None
+    if fit is not None and fit.iou < LATHE_OVER_FIT_IOU:  # a symmetric silhouette's solid of revolution is exact
+        lathe = generic_field(frame, pixel_grid(mask))
+        if lathe[2] == "lathe":
+            notes.append(f"the silhouette is a solid of revolution, which fits it better than the '{entry}' template "
+                         f"(IoU {fit.iou:.2f}): built as one")
+            fit = None
+        else:
+            lathe = None
     if fit is not None:
         field, y = fitted_field(frame, program, fit)  # type: ignore[arg-type]
         method, view = "program fit", fit.view
+    elif lathe is not None:
+        field, y, method, sym = lathe
+        view = "front"
     else:
         field, y, method, sym = generic_field(frame, pixel_grid(mask))
         # the photo shows the object's front, unless a template seen from the side fitted best and the silhouette

@@ -137,8 +137,8 @@ def test_vision_critic_asks_for_one_revision_then_accepts(script) -> None:  # no
     assert "the tail fluke is missing" in first.critique and first.critic_source.model == VISION
     assert second.parent_iteration == 0 and second.critic_source.backend == "litellm"
     assert len(info.program.parts) == 2  # the revision was kept
-    views = _views(mock.calls[1])  # the Critic saw front, side and top renders of the meshed draft
-    assert len(views) == 3 and all(v.shape == (256, 256, 3) for v in views)
+    views = _views(mock.calls[1])  # the Critic saw front, side, top and iso renders of the meshed draft
+    assert len(views) == 4 and all(v.shape == (256, 256, 3) for v in views)
     assert all((v < 250).any(axis=2).mean() > 0.1 for v in views)  # the object is in each picture
     assert "a blue plush whale" in mock.calls[1]["messages"][1]["content"][0]["text"]
     redo = json.loads(mock.calls[2]["messages"][1]["content"].split("Request:\n", 1)[1])
