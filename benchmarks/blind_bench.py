@@ -65,6 +65,9 @@ def _bench_one(prompt: dict, settings: pipeline.L0Settings, out: Path) -> dict:
     except InputError as exc:
         return {"id": prompt["id"], "text": prompt["text"], "object": prompt.get("object"), "error": str(exc),
                 "expected_mass_kg": prompt.get("mass_kg")}
+    except Exception as exc:  # a bug, not a refusal: recorded as a failed prompt (not built), the run goes on
+        return {"id": prompt["id"], "text": prompt["text"], "object": prompt.get("object"), "crashed": True,
+                "error": f"internal error ({type(exc).__name__}): {exc}", "expected_mass_kg": prompt.get("mass_kg")}
     seconds, cpu_seconds = time.perf_counter() - t0, time.process_time() - c0
     with tempfile.TemporaryDirectory(prefix="ds-blind-") as tmp:
         folder = Path(tmp) / "l0"

@@ -1434,6 +1434,10 @@ def _body_envelope(program: ShapeProgram, resolution: int = 40) -> tuple[np.ndar
     """(centre, half extents) [m] of the solid a program describes, from its signed distances on a grid."""
     field_, origin, spacing = sample_program(program, resolution)
     idx = np.argwhere(field_ < 0)
+    if idx.size == 0:  # thinner than a grid cell (a film, a thin sheet): its primitives' bounds
+        lo_b, hi_b = program_bounds(program)
+        lo, hi = np.asarray(lo_b, dtype=np.float64), np.asarray(hi_b, dtype=np.float64)
+        return (lo + hi) / 2.0, (hi - lo) / 2.0
     lo, hi = origin + idx.min(axis=0) * spacing, origin + (idx.max(axis=0) + 1) * spacing
     return (lo + hi) / 2.0, (hi - lo) / 2.0
 

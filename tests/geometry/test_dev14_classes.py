@@ -5,9 +5,11 @@ Real masses: typical retail figures (the source in each line)."""
 
 from __future__ import annotations
 
+import numpy as np
 import pytest
 
-from tasks.geometry import catalogue
+from contracts.shape import Part, ShapeProgram
+from tasks.geometry import catalogue, concepts
 from tasks.geometry.concepts import concept_domain
 from tests.geometry.test_mass_classes import planned_mass
 
@@ -100,3 +102,16 @@ def test_a_count_of_pouch_goods_is_that_many_but_a_pack_stays_one_pack() -> None
     """'three juggling beanbags' was one bean bag; 'a pack of 6 hand warmers' is one pack of them."""
     assert _parts("four bean bags").count("body") + sum(n.startswith("body ") for n in _parts("four bean bags")) == 4
     assert catalogue.design_from_text("a pack of 6 hand warmers").entry == "generic_pouch"
+
+
+def test_a_body_thinner_than_the_envelope_grid_has_its_bounds_as_envelope(monkeypatch: pytest.MonkeyPatch) -> None:
+    """A slump word on a film thinner than _body_envelope's grid cell found no inside sample and raised ValueError
+    (a crash of L0 on a sealed set 14 prompt): the envelope falls back to the primitives' bounds, and the film is
+    not slumped (it is not ball-like)."""
+    film = ShapeProgram(name="film", category="textile", parts=[Part(
+        name="body", primitive={"kind": "ellipsoid", "radii_m": (0.5, 0.3, 0.0004)})])
+    monkeypatch.setattr(concepts, "sample_program", lambda program, resolution: (np.ones((8, 8, 8)), np.zeros(3),
+                                                                                 0.1))  # no sample inside the film
+    centre, half = concepts._body_envelope(film)
+    assert half == pytest.approx((0.5, 0.3, 0.0004), rel=0.05) and np.abs(centre).max() < 1e-6
+    assert concepts.slumped(film, 0.7) is None
