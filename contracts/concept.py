@@ -48,6 +48,10 @@ class ConceptMatch(Model):
         default=None, description="plausible mass range of the real object at the built size [kg]")
     mass_source: str | None = Field(default=None, description="where the typical mass comes from (a product "
                                     "listing, a nutrition database, a standard)")
+    restitution: float | None = Field(default=None, gt=0.0, le=1.0, description="the real object's coefficient of "
+                                      "restitution on a hard floor from the lexicon (a ball's rebound rule); L2 "
+                                      "calibrates the material's loss to it when its material is the concept's [-]")
+    restitution_source: str | None = Field(default=None, description="the rule the restitution is derived from")
     colors: dict[str, str] = Field(default_factory=dict, description="part name -> colour word applied from the "
                                    "text")
     analogy: list[str] = Field(default_factory=list, description="how an unknown noun was understood, step by step "

@@ -52,6 +52,12 @@ class LexiconEntry(Model):
     empty_mass_kg: float | None = Field(default=None, gt=0, le=20.0, description="mass of a filled object (a "
                                         "hot-water bottle, a gel pack) with nothing in it [kg]; its source is in "
                                         "mass_source")
+    restitution: float | None = Field(default=None, gt=0.0, le=1.0, description="coefficient of restitution of the "
+                                      "real object on a hard floor, e = sqrt(rebound height / drop height), where its "
+                                      "governing body or maker publishes a rebound rule; L2 calibrates the material's "
+                                      "loss to it instead of the material class's prior [-]")
+    restitution_source: str | None = Field(default=None, min_length=8, description="the rule restitution is derived "
+                                           "from (document, drop height and rebound band)")
     posed_by: str | None = Field(default=None, description="a body-plan entry that shows this (hand-written) object "
                                  "sitting or lying when asked ('a dog lying down'): its shape is used then")
 
@@ -63,6 +69,8 @@ class LexiconEntry(Model):
             raise ValueError(f"{self.key}: material '{self.material}' is not in contracts/vocab/materials.yaml")
         if self.hollow and self.wall_m is None and self.density_kg_per_m3 is None:
             raise ValueError(f"{self.key}: a hollow object needs wall_m (or an effective density)")
+        if (self.restitution is None) != (self.restitution_source is None):
+            raise ValueError(f"{self.key}: give restitution and restitution_source together")
         return self
 
     @property

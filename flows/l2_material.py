@@ -31,7 +31,7 @@ from contracts.stage import StageContract, load_contract
 from flows.harness import run_harness
 from flows.probe_tasks import probe_task, run_probes
 from prefect import flow
-from tasks.agents.intent import asset_targets
+from tasks.agents.intent import asset_material, asset_targets, concept_of
 from tasks.asset_dir import AssetDir
 from tasks.geometry.outputs import L0Asset, load_l0
 from tasks.physical.plan import physical_for
@@ -152,12 +152,14 @@ def l2_material(asset_dir: Path, request_or_intent: AssetRequest | str | None = 
     start = initial_values(contract, targets, None)
     # a bouncy class's loss in the material: its prior restitution as a Kelvin-Voigt viscosity, calibrated on this
     # object's impact at the reference speed with the start E and nu (tasks.realworld.loss); fixed through L2
-    fixed, loss = material_loss(asset.particles_m, asset.volumes_m3, physical, Material(**start), targets.priors, sim)
+    # (the concept's own restitution when the lexicon gives one, a ball's rebound rule; the record's "source" says which)
+    fixed, loss = material_loss(asset.particles_m, asset.volumes_m3, physical, Material(**start), targets.priors, sim,
+                                concept_of(asset.record), asset_material(asset.record, targets))
     initial, screening = (screen(asset, physical, contract, targets, start, sim, fixed) if screen_first
                           else (start, dict[str, Any](sim_calls=0)))
     if loss:
         screening["restitution_loss"] = loss
-        screening["sim_calls"] += int(loss.get("impacts", 1))  # the calibration's impacts are simulation calls too
+        screening["sim_calls"] += int(float(loss.get("impacts", 1)))  # the calibration's impacts are simulation calls too
     runner = _Runner(asset, physical, contract, sim, fixed)
     outcome = run_harness(contract, runner, targets, agents=agents, record_dir=asset_dir, initial=initial)
     material = Material(**outcome.values, **fixed) if outcome.passed and outcome.values else None

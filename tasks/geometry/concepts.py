@@ -338,14 +338,16 @@ def _kin_in_pose(entry: LexiconEntry, posable: LexiconEntry, poses: set[str]) ->
 def _match(entry: LexiconEntry, level: FallbackLevel, noun: str | None, note: str | None,
            material: str | None = None) -> ConceptMatch:
     """The ConceptMatch of an entry; a material named by the text (fallbacks) replaces the entry's, and then the
-    entry's density no longer applies; material-only fallbacks carry no typical mass."""
+    entry's density and restitution no longer apply; material-only fallbacks carry no typical mass or restitution."""
     mat_only = level in ("material", "generic", "gloss")
     return ConceptMatch(
         concept=entry.key, noun=noun, body_plan=entry.plan or f"catalogue:{entry.catalogue}", category=entry.category,
         fallback_level=level, fallback_note=note, default_material=material or entry.material, hollow=entry.hollow,
         wall_thickness_m=entry.wall_m, sheet=entry.sheet, density_kg_per_m3=entry.solid_density_kg_per_m3 if material is None else None,
         typical_mass_kg=None if mat_only else entry.mass_kg, typical_size_m=entry.size_m,
-        mass_source=None if mat_only else entry.mass_source)
+        mass_source=None if mat_only else entry.mass_source,
+        restitution=None if mat_only or material is not None else entry.restitution,
+        restitution_source=None if mat_only or material is not None else entry.restitution_source)
 
 
 def _fallback(t: str, noun: str | None, donor: LexiconEntry | None, donor_plan: tuple[str, dict] | None,

@@ -18,6 +18,7 @@ import math
 import numpy as np
 
 from cache import cached_task
+from contracts.concept import ConceptMatch
 from contracts.material import Material
 from contracts.physical import PhysicalModel
 from contracts.sim import SimConfig
@@ -92,19 +93,36 @@ def restitution_loss_task(positions_m: np.ndarray, volumes_m3: np.ndarray, physi
     return out
 
 
-def material_loss(positions_m: np.ndarray, volumes_m3: np.ndarray, physical: PhysicalModel, material: Material,
-                  priors: dict[str, float], sim: SimConfig) -> tuple[dict[str, float], dict[str, float]]:
-    """(fixed material fields, calibration record): {"viscosity_pa_s": eta} for a class with a prior `restitution`
-    (its calibration at the reference speed), else nothing."""
+def restitution_target(priors: dict[str, float], concept: ConceptMatch | None,
+                       material_class: str | None) -> tuple[float, str] | None:
+    """(restitution, where it comes from) that the material's loss is calibrated to: the lexicon entry's (a ball's
+    rebound rule, ConceptMatch.restitution) when L0 built a concept that carries one and the material is the concept's
+    own class, else the class's prior `restitution`; None when neither gives one."""
+    if concept is not None and concept.restitution is not None and material_class == concept.default_material:
+        return float(concept.restitution), f"lexicon: {concept.concept}"
     e = priors.get("restitution")
     if e is None:
+        return None
+    return float(e), f"class prior: {material_class or 'unknown'}"
+
+
+def material_loss(positions_m: np.ndarray, volumes_m3: np.ndarray, physical: PhysicalModel, material: Material,
+                  priors: dict[str, float], sim: SimConfig, concept: ConceptMatch | None = None,
+                  material_class: str | None = None) -> tuple[dict[str, float], dict[str, float | str]]:
+    """(fixed material fields, calibration record): {"viscosity_pa_s": eta} calibrated at the reference speed to the
+    restitution of restitution_target (the concept's, else the class's prior), else nothing; the record's "source"
+    says which."""
+    target = restitution_target(priors, concept, material_class)
+    if target is None:
         return {}, {}
-    rec = restitution_loss_task(positions_m=np.asarray(positions_m), volumes_m3=np.asarray(volumes_m3),
-                                physical=physical, material=material, restitution=float(e),
-                                speed_m_per_s=reference_speed_m_per_s(), sim=sim)
+    e, source = target
+    rec: dict[str, float | str] = dict(restitution_loss_task(
+        positions_m=np.asarray(positions_m), volumes_m3=np.asarray(volumes_m3), physical=physical, material=material,
+        restitution=e, speed_m_per_s=reference_speed_m_per_s(), sim=sim))
+    rec["source"] = source
     eta = float(rec["viscosity_pa_s"])
     return ({"viscosity_pa_s": eta} if eta > 0.0 else {}), rec
 
 
 __all__ = ["REFERENCE_DROP_M", "TASK_VERSION", "damping_ratio", "material_loss", "reference_speed_m_per_s",
-           "restitution_loss_task", "viscosity_for_damping_ratio"]
+           "restitution_loss_task", "restitution_target", "viscosity_for_damping_ratio"]
