@@ -445,6 +445,15 @@ def _is_being(word: str) -> bool:
     return bool(senses) and senses[0].lexname in ("noun.animal", "noun.person")
 
 
+_CUT_WORDS = re.compile(r"\b(?:skin|bone|shell|tail|peel|rind)[- ](?:on|in)\b", re.IGNORECASE)
+
+
+def _cut_words_stripped(text: str) -> str:
+    """'a skin-on salmon fillet', 'bone-in chicken thighs' -> without the cut's words (a parse read 'skin' as the
+    object); what the cut keeps is in its entry's shape and mass."""
+    return re.sub(r"\s+", " ", _CUT_WORDS.sub(" ", text)).strip()
+
+
 def _purpose_stripped(text: str) -> str:
     """'a bag of timothy hay for rabbits', 'a fleece hammock for ferrets', 'a foam tube for 22mm pipe' -> the object
     without whom or what it is for (the rabbit is not built, the pipe's size is not the tube's)."""
@@ -552,6 +561,7 @@ def _as_meat(text: str, reading: concepts.Reading) -> str | None:
     pound) and nothing says it is a toy; else None."""
     noun = reading.match.noun
     if noun is None or concepts.concept_domain(reading.entry.key) != "animal" or _TOY_WORDS.search(text) \
+            or (re.search(r"\bwhole\b", text, re.I) and reading.entry.plan != "bird") \
             or reading.entry.category in ("meat", "fish", "seafood", "food") \
             or not FOOD_CUES & set(re.findall(r"[a-z]+", text.lower())):
         return None
@@ -568,7 +578,7 @@ def design_from_text(text: str, size_hint_m: float | None = None) -> Design:
     if packed is not None:
         design = design_from_text(packed[0], size_hint_m)
         return design.model_copy(update={"warnings": [packed[1], *design.warnings]})
-    text_n = _purpose_stripped(_pair_first(normalise_sizes(text)))
+    text_n = _cut_words_stripped(_purpose_stripped(_pair_first(normalise_sizes(text))))
     size = parse_size(text_n)
     if size_hint_m is not None:
         size = SizeSpec(longest_m=size_hint_m, stated=f"size hint {size_hint_m:g} m")

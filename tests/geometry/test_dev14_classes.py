@@ -115,3 +115,20 @@ def test_a_body_thinner_than_the_envelope_grid_has_its_bounds_as_envelope(monkey
     centre, half = concepts._body_envelope(film)
     assert half == pytest.approx((0.5, 0.3, 0.0004), rel=0.05) and np.abs(centre).max() < 1e-6
     assert concepts.slumped(film, 0.7) is None
+
+
+@pytest.mark.parametrize("text, key, real_kg", [
+    ("a skin-on cod fillet", "white_fish_fillet", None),  # the cut's words are not the object
+    ("a whole raw octopus", "whole_octopus", 1.0),  # whole raw octopus 0.8-1.5 kg
+    ("a raw whole chicken", "whole_chicken", 1.6),  # size 14-18 chickens 1.4-1.8 kg
+])
+def test_sealed_set_14s_food_misreads(text: str, key: str, real_kg: float | None) -> None:
+    """After sealed set 14's run (no longer blind): 'a 150 g skin-on salmon fillet' was a generic block ('skin' read
+    as the object); 'a whole raw octopus, about 1 kg' became ground meat (the meat rule took the whole animal); 'a
+    whole raw chicken, ready to roast' was 0.45 kg of ground meat."""
+    design = catalogue.design_from_text(text)
+    if key == "white_fish_fillet":
+        assert design.concept is not None and not design.concept.by_analogy and "fillet" in design.entry
+        return
+    assert design.entry == key
+    assert real_kg is not None and 0.5 <= planned_mass(text) / real_kg <= 2.0
