@@ -556,6 +556,21 @@ _TOY_WORDS = re.compile(r"\b(?:plush|toy|toys|stuffed|squeaky|squeaker|rubber|fi
                         r"crochet(?:ed)?|silicone|cuddly|soft toy|teddy|doll|pillow|cushion|slippers?)\b", re.I)
 
 
+LOOP_BAND_MAX_M = 1.3  # a loop band laid flat is at most ~41 in (1.04 m); a longer stated band is a flat one [m]
+
+
+def _long_band_flat(text: str, reading: concepts.Reading, size: SizeSpec) -> str | None:
+    """The text with a loop band's noun made 'flat latex band' when its stated length is longer than any loop band
+    laid flat and nothing says it is a loop ('a 2 m latex band', 'a resistance band, 1.5 m long'); else None."""
+    noun = reading.match.noun
+    said = size.longest_m or max((v for v in size.extents_m if v is not None), default=None)
+    if reading.entry.key != "resistance_band" or noun is None or said is None or said <= LOOP_BAND_MAX_M \
+            or re.search(r"\bloops?\b", text, re.I):
+        return None
+    swapped = re.sub(rf"\b{re.escape(noun)}\b", "flat latex band", text, count=1, flags=re.I)
+    return swapped if swapped != text else None
+
+
 def _as_meat(text: str, reading: concepts.Reading) -> str | None:
     """The text with an animal's name made 'meat' when the words say it is eaten (raw, ground, cooked, a tray, a
     pound) and nothing says it is a toy; else None."""
@@ -587,6 +602,9 @@ def design_from_text(text: str, size_hint_m: float | None = None) -> Design:
     if mass is not None:
         stripped = size_words.strip_spans(stripped, [mass.span])
     reading = concepts.read_text(stripped)
+    flat = _long_band_flat(stripped, reading, size)
+    if flat is not None:  # 'a green latex resistance band, 1.5 m long': a flat band cut to length, not a loop
+        reading = concepts.read_text(flat)
     meat = _as_meat(stripped, reading)
     if meat is not None:  # 'a pound of ground lamb', 'a whole raw chicken': the meat, not the animal
         reading = concepts.read_text(meat)

@@ -72,6 +72,7 @@ PORTION_SHAPES: dict[str, tuple[str, dict]] = {
     "strip": ("sheet", {"width": 0.2, "thickness": 0.03}),
     "slab": ("block", {"width": 0.7, "height": 0.25, "edge": 0.1}),
     "cube": ("block", {"width": 1.0, "height": 1.0, "edge": 0.12}),
+    "block": ("block", {"width": 0.62, "height": 0.4, "edge": 0.1}),  # 'a 500 g block of modelling clay'
     "lump": ("blob", {"height": 0.6, "elongation": 1.25}), "blob": ("blob", {}), "dollop": ("blob", {"height": 0.4}),
     "stick": ("tube", {}),
     "ball": ("ball", {"squash": 0.92}),  # 'a ball of play-doh' (a ball the lexicon's own entry is stays itself)

@@ -132,3 +132,30 @@ def test_sealed_set_14s_food_misreads(text: str, key: str, real_kg: float | None
         return
     assert design.entry == key
     assert real_kg is not None and 0.5 <= planned_mass(text) / real_kg <= 2.0
+
+
+@pytest.mark.parametrize("text, key", [
+    ("a blue exercise band 1.8 m long", "therapy_band"),  # longer than any loop band laid flat
+    ("a 6 ft latex band", "therapy_band"),
+    ("a 41 inch pull up band loop", "resistance_band"),  # a loop said so
+    ("a resistance band", "resistance_band"),
+])
+def test_a_band_longer_than_a_loop_is_a_flat_band(text: str, key: str) -> None:
+    """'a green latex resistance band, 1.5 m long' (sealed set 14) and 'a 2 m flat latex band' (set 13) were built as
+    pull-up loops at 6-7x their mass: a stated length over 1.3 m that no loop band has laid flat is a flat band."""
+    assert catalogue.design_from_text(text).entry == key
+
+
+@pytest.mark.parametrize("text, key, plan", [
+    ("a 250 g block of modelling clay", "play_dough", "block"),  # 'a block of' shapes it; was a puck
+    ("a pastry bag full of whipped cream", "piping_bag", None),  # a cone of frosting, not a labelled pillow
+    ("an iceberg lettuce", "iceberg_lettuce", None),  # leaves, not a plain green ball
+])
+def test_sealed_set_14s_shapes(text: str, key: str, plan: str | None) -> None:
+    """After sealed set 14's run (no longer blind): a block of clay, a piping bag, a head of iceberg lettuce."""
+    design = catalogue.design_from_text(text)
+    assert design.entry == key
+    if plan is not None:
+        assert design.concept is not None and design.concept.shape_from == plan
+    if key == "iceberg_lettuce":
+        assert sum(n.startswith("leaf") for n in _parts(text)) >= 6
