@@ -18,6 +18,7 @@ from tasks.mpm.model import SceneSpec, build_model
 from tasks.mpm.scene import box_particles
 from tasks.mpm.simulator import Simulator
 from tasks.mpm.verify import bar_viscous_decay, run_case
+from tests.spheres import sphere_particles
 
 # -- (a) a physical law: a bar's first mode decays at the Kelvin-Voigt rate --------------------------------------------
 
@@ -54,9 +55,7 @@ R, SPACING, RHO, SPEED = 0.02, 0.004, 1000.0, 1.0
 def sphere_drop(eta: float | None, duration_s: float = 0.04) -> tuple[np.ndarray, Simulator]:
     """A 4 cm rubber-like sphere (E 200 kPa, 552 particles) moving down at 1 m/s just above the ground: the centre of
     mass's vertical velocity every 0.5 ms (eta None: the material as it was written before the field existed)."""
-    pos, vol = box_particles((-R, -R, -R), (R, R, R), SPACING)
-    keep = np.linalg.norm(pos, axis=1) <= R
-    pos, vol = pos[keep] + np.array([0.0, 0.0, R + 0.006]), vol[keep]
+    pos, vol = sphere_particles(R, SPACING, lift_m=0.006)
     kw = {} if eta is None else {"viscosity_pa_s": eta}
     mat = Material(youngs_modulus_pa=2e5, poisson_ratio=0.3, **kw)
     vel = np.tile([0.0, 0.0, -SPEED], (len(pos), 1))

@@ -21,8 +21,8 @@ from contracts.sim import SimConfig
 from flows.realworld import rule_rebound
 from tasks.geometry import concepts
 from tasks.geometry.outputs import L0Asset
-from tasks.mpm.scene import box_particles
 from tasks.realworld.loss import RESTITUTION_TOLERANCE, material_loss, restitution_target
+from tests.spheres import resting_sphere
 
 SET = load_realworld()
 RULE_BALLS = [o for o in SET.objects if o.rebound is not None]
@@ -87,14 +87,7 @@ RUBBER = Material(youngs_modulus_pa=1.5e6, poisson_ratio=0.48, damping_rate_per_
 
 
 def _sphere() -> tuple[np.ndarray, np.ndarray, PhysicalModel]:
-    pos, vol = box_particles((-R, -R, -R), (R, R, R), SPACING)
-    keep = np.linalg.norm(pos, axis=1) <= R
-    pos, vol = pos[keep] + np.array([0.0, 0.0, R]), vol[keep]
-    phys = PhysicalModel(density_kg_per_m3=RHO, volume_m3=float(vol.sum()), mass_kg=float(vol.sum() * RHO),
-                         particle_count=len(pos), particle_spacing_m=SPACING, ground_friction=0.5,
-                         gripper_friction=0.8, center_of_mass_m=(0.0, 0.0, R), extents_m=(2 * R, 2 * R, 2 * R),
-                         category="ball")
-    return pos, vol, phys
+    return resting_sphere(R, SPACING, RHO)
 
 
 def test_the_pickleballs_rule_rebound_lands_nearer_its_band_with_its_own_restitution(prefect_api: str) -> None:

@@ -11,10 +11,10 @@ import pytest
 from contracts.material import Material
 from contracts.physical import PhysicalModel
 from contracts.sim import SimConfig
-from tasks.mpm.scene import box_particles
 from tasks.realworld.impact import impact
 from tasks.realworld.loss import (RESTITUTION_TOLERANCE, damping_ratio, material_loss, restitution_loss_task,
                                   viscosity_for_damping_ratio)
+from tests.spheres import resting_sphere
 
 R, SPACING, RHO = 0.02, 0.004, 1000.0
 MAT = Material(youngs_modulus_pa=2e5, poisson_ratio=0.3)
@@ -22,14 +22,7 @@ MAT = Material(youngs_modulus_pa=2e5, poisson_ratio=0.3)
 
 def sphere() -> tuple[np.ndarray, np.ndarray, PhysicalModel]:
     """A 4 cm solid sphere of 552 particles resting on z = 0, and its physical model."""
-    pos, vol = box_particles((-R, -R, -R), (R, R, R), SPACING)
-    keep = np.linalg.norm(pos, axis=1) <= R
-    pos, vol = pos[keep] + np.array([0.0, 0.0, R]), vol[keep]
-    phys = PhysicalModel(density_kg_per_m3=RHO, volume_m3=float(vol.sum()), mass_kg=float(vol.sum() * RHO),
-                         particle_count=len(pos), particle_spacing_m=SPACING, ground_friction=0.5,
-                         gripper_friction=0.8, center_of_mass_m=(0.0, 0.0, R), extents_m=(2 * R, 2 * R, 2 * R),
-                         category="ball")
-    return pos, vol, phys
+    return resting_sphere(R, SPACING, RHO)
 
 
 @pytest.mark.parametrize("zeta", [0.01, 0.1, 0.3])
