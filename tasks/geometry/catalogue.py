@@ -556,6 +556,12 @@ _TOY_WORDS = re.compile(r"\b(?:plush|toy|toys|stuffed|squeaky|squeaker|rubber|fi
                         r"crochet(?:ed)?|silicone|cuddly|soft toy|teddy|doll|pillow|cushion|slippers?)\b", re.I)
 
 
+def _noun_swapped(text: str, noun: str, other: str) -> str | None:
+    """The text with the noun read from it replaced by `other` (to be read again), None when it is not found."""
+    swapped = re.sub(rf"\b{re.escape(noun)}\b", other, text, count=1, flags=re.I)
+    return swapped if swapped != text else None
+
+
 LOOP_BAND_MAX_M = 1.3  # a loop band laid flat is at most ~41 in (1.04 m); a longer stated band is a flat one [m]
 
 
@@ -567,8 +573,7 @@ def _long_band_flat(text: str, reading: concepts.Reading, size: SizeSpec) -> str
     if reading.entry.key != "resistance_band" or noun is None or said is None or said <= LOOP_BAND_MAX_M \
             or re.search(r"\bloops?\b", text, re.I):
         return None
-    swapped = re.sub(rf"\b{re.escape(noun)}\b", "flat latex band", text, count=1, flags=re.I)
-    return swapped if swapped != text else None
+    return _noun_swapped(text, noun, "flat latex band")
 
 
 def _as_meat(text: str, reading: concepts.Reading) -> str | None:
@@ -580,8 +585,7 @@ def _as_meat(text: str, reading: concepts.Reading) -> str | None:
             or reading.entry.category in ("meat", "fish", "seafood", "food") \
             or not FOOD_CUES & set(re.findall(r"[a-z]+", text.lower())):
         return None
-    swapped = re.sub(rf"\b{re.escape(noun)}\b", "meat", text, count=1, flags=re.I)
-    return swapped if swapped != text else None
+    return _noun_swapped(text, noun, "meat")
 
 
 def design_from_text(text: str, size_hint_m: float | None = None) -> Design:
@@ -589,11 +593,12 @@ def design_from_text(text: str, size_hint_m: float | None = None) -> Design:
     modifiers and colours; an unknown noun takes a fallback by meaning, recorded in `concept` and `warnings`."""
     if not text or not text.strip():
         raise InputError("the description is empty")
-    packed = _stuffed_in_sack(_purpose_stripped(normalise_sizes(text)))
+    sized = normalise_sizes(text)
+    packed = _stuffed_in_sack(_purpose_stripped(sized))
     if packed is not None:
         design = design_from_text(packed[0], size_hint_m)
         return design.model_copy(update={"warnings": [packed[1], *design.warnings]})
-    text_n = _cut_words_stripped(_purpose_stripped(_pair_first(normalise_sizes(text))))
+    text_n = _cut_words_stripped(_purpose_stripped(_pair_first(sized)))
     size = parse_size(text_n)
     if size_hint_m is not None:
         size = SizeSpec(longest_m=size_hint_m, stated=f"size hint {size_hint_m:g} m")
