@@ -39,7 +39,7 @@ class LexiconEntry(Model):
     material: str = Field(description="vocabulary material class (contracts/vocab/materials.yaml)")
     category: str
     size_m: float = Field(ge=0.005, le=2.0, description="typical longest extent [m]")
-    mass_kg: float = Field(gt=0, le=20.0, description="typical mass of the real object at size_m [kg]")
+    mass_kg: float = Field(gt=0, le=25.0, description="typical mass of the real object at size_m [kg]")
     mass_source: str = Field(min_length=8, description="where mass_kg comes from (the kind of reference)")
     hollow: bool = Field(default=False, description="a hollow shell (ball, squeeze toy, bath toy, inflatable)")
     wall_m: float | None = Field(default=None, gt=0, le=0.02, description="shell wall thickness of a hollow object [m]")
@@ -49,7 +49,7 @@ class LexiconEntry(Model):
                                             "when the material class's prior does not describe it [kg/m^3]")
     takes_shape: bool = Field(default=False, description="made in any shape: 'a cat cushion' is a cushion shaped "
                               "like a cat")
-    empty_mass_kg: float | None = Field(default=None, gt=0, le=20.0, description="mass of a filled object (a "
+    empty_mass_kg: float | None = Field(default=None, gt=0, le=25.0, description="mass of a filled object (a "
                                         "hot-water bottle, a gel pack) with nothing in it [kg]; its source is in "
                                         "mass_source")
     restitution: float | None = Field(default=None, gt=0.0, le=1.0, description="coefficient of restitution of the "

@@ -62,13 +62,23 @@ def _names_object(text: str, noun: str) -> bool:
     return re.search(r"(?<![a-z])" + re.escape(noun) + r"(?![a-z])" + end, text) is not None
 
 
+# where the object is, not what it is: 'a cardigan draped over an office chair', 'a rag on the workbench'
+_PLACE = re.compile(r"\s+(?:on top of|next to|on|onto|in|into|inside|under|underneath|over|across|against|atop|"
+                    r"behind|beside|besides|near|from|off|at)\s+(?:an?|the|its|his|her|their|my|your|some)\s")
+
+
+def _own_words(text: str) -> str:
+    """The words of the object itself: the text before a place it is put in, on or over ('... over a chair')."""
+    return _PLACE.split(text, maxsplit=1)[0]
+
+
 def rigid_object(text: str, vocab: MaterialVocab | None = None, also: tuple[str, ...] = ()) -> str | None:
     """The rigid object noun a text (or one of the texts `also` read beside it: a photo's file name) names ('a can',
     'teacup', 'figurine') when none of them names a deformable material, soft object word or soft word; None
     otherwise. Each text is read on its own (a noun is the head of a phrase within its own text)."""
     vocab = vocab or load_material_vocab()
     texts = [" ".join(t.lower().replace("_", " ").replace("-", " ").split()) for t in (text, *also) if t]
-    rigid = [w for t in texts for w in vocab.rigid_objects if _names_object(t, w)]
+    rigid = [w for t in texts for w in vocab.rigid_objects if _names_object(_own_words(t), w)]
     if not rigid:
         return None
     soft = [w for entry in vocab.materials.values() for w in entry.words] + list(vocab.objects) + vocab.soft_words
@@ -131,6 +141,12 @@ FAMILY_WORDS: dict[str, frozenset[str]] = {
 _MEASURE_OF = re.compile(r"\b(?:roll|rolls)\s+of\b")
 
 
+# a material said of a surface only: a coating, dip, lining or trim ('rubber-coated', 'latex-dipped', 'fleece-lined',
+# 'coated in latex'): not what the object is made of
+_SURFACE_ONLY = re.compile(r"\b[a-z]+[\s-]+(?:coated|dipped|lined|trimmed|edged|palmed)\b|"
+                           r"\b(?:coated|dipped|lined|trimmed|edged)\s+(?:in|with)\s+[a-z]+\b")
+
+
 def _match_material(text: str, vocab: MaterialVocab, concept_material: str | None = None,
                     own_words: frozenset[str] = frozenset()) -> tuple[str, str | None]:
     """The material named by the longest matching word (materials first, then the concept L0 built, then object
@@ -141,6 +157,7 @@ def _match_material(text: str, vocab: MaterialVocab, concept_material: str | Non
     best: tuple[int, str, str] | None = None
     named: dict[str, str] = {}
     text = _MEASURE_OF.sub(" ", text)  # 'a roll of bubble wrap' names no bread
+    text = _SURFACE_ONLY.sub(" ", text)  # 'rubber-coated gloves' are knit gloves, not solid rubber
     for name, entry in vocab.materials.items():
         for word in entry.words:
             if concept_material not in (None, name) and set(word.lower().split()) <= own_words:

@@ -284,9 +284,10 @@ def check_size(size: SizeSpec) -> None:
     vals = [v for v in (*size.extents_m, size.longest_m) if v is not None]
     for v in vals:
         if not (MIN_SIZE_M <= v <= MAX_SIZE_M):
+            hint = "; a sheet or cloth said 'folded' is built folded to fit" if v > MAX_SIZE_M else ""
             raise InputError(
                 f"requested size {v:g} m ({size.stated or 'size hint'}) is outside the supported range "
-                f"[{MIN_SIZE_M:g}, {MAX_SIZE_M:g}] m"
+                f"[{MIN_SIZE_M:g}, {MAX_SIZE_M:g}] m{hint}"
             )
 
 
@@ -296,9 +297,34 @@ _FOLD_STATE = re.compile(r"\bfold(?:ed|ing)?\b", re.IGNORECASE)
 def check_text_size(request: AssetRequest) -> None:
     """Refuse, before any layer runs, a size stated in the request's text outside what L0 can build (a --size-m
     hint overrides the text's sizes and is checked by the request itself). A folded good's stated size is its flat
-    size: design_from_text checks the folded footprint it builds."""
+    size: design_from_text checks the folded footprint it builds. A material's own thickness ('5 mm neoprene') is
+    not the object's size: design_from_text binds it to a sheet or strip, or sets it aside."""
     if request.text and request.size_hint_m is None and not _FOLD_STATE.search(request.text):
-        check_size(parse_size(normalise_sizes(request.text)))
+        check_size(parse_size(stock_thickness_stripped(normalise_sizes(request.text))[0]))
+
+
+# sheet stock whose thickness is said before its name ('5 mm neoprene', '2mm silicone', '3 mm thick felt')
+_STOCK_WORDS = ("neoprene", "foam", "silicone", "rubber", "latex", "felt", "fleece", "vinyl", "pvc", "eva", "nylon",
+                "leather", "polyester", "cotton", "wool", "cork", "nitrile", "tpe", "tpu", "canvas", "plastic",
+                "polyethylene", "polyurethane", "pu")
+_STOCK_THICKNESS = re.compile(r"(?<![\w.])(\d+(?:\.\d+)?)\s*(mm|millimet(?:er|re)s?)\s+(?:thick\s+)?"
+                              rf"(?=(?:{'|'.join(_STOCK_WORDS)})\b)", re.I)
+# a wetsuit's neoprene in its own notation, thickest panel first ('3/2 mm', '5/4/3mm'): not a fraction of a mm
+_NEOPRENE_NOTATION = re.compile(r"(?<![\w./])(\d+(?:\.\d+)?)(?:/\d+(?:\.\d+)?)+\s*-?\s*mm\b(\s+neoprene\b)?", re.I)
+
+
+def stock_thickness_stripped(text: str) -> tuple[str, list[str]]:
+    """The text without the sub-centimetre thicknesses of the sheet stock it is made of ('a 5 mm neoprene laptop
+    sleeve': the neoprene is 5 mm, the sleeve is not), and one note for each."""
+    notes: list[str] = []
+
+    def drop(m: re.Match[str]) -> str:
+        metres = float(m.group(1)) * 1e-3
+        if metres >= MIN_SIZE_M:
+            return m.group(0)
+        notes.append(f"'{m.group(0).strip()}' is the thickness of the material, not the object's size")
+        return ""
+    return _STOCK_THICKNESS.sub(drop, text), notes
 
 
 _HYPHEN_SIZE = re.compile(r"(\d)\s*-\s*(mm|cm|m|inch|in|ft)\b(?:\s*-\s*(?=[a-z]))?", re.I)
@@ -316,6 +342,7 @@ def normalise_sizes(text: str) -> str:
     dimension as digits ('about a metre long' -> 'about 1 metre long', 'half a metre wide' -> '0.5 metre wide'), or a
     length of a material ('one metre of tubing' -> '1 metre of tubing')."""
     text = _WORD_SIZE.sub(lambda m: f"{_NUMBER_WORDS[m.group(1).lower()]} ", text)
+    text = _NEOPRENE_NOTATION.sub(lambda m: f"{m.group(1)} mm neoprene", text)  # ('3/2 mm wetsuit')
     text = _FRACTION_SIZE.sub(_fraction_decimal, text)
     text = _WITH_SLASH.sub(lambda m: " without " if m.group(1) else " with ", text)
     text = _GARMENT_SIZE.sub(" ", text)
@@ -465,6 +492,23 @@ def _purpose_stripped(text: str) -> str:
     return m.group("object").strip() if _is_being(last) or last in _BORE_WORDS else text
 
 
+_PORTION_PLURALS = "slices|rashers|strips|wedges|fillets|cubes|sheets|sticks|chunks|pieces|cutlets|steaks|chops"
+_NOT_FOOD_WORD = frozenset("on in with from for and or stacked folded rolled piled laid lying on a the of to at by "
+                           "each fanned overlapping".split())
+_COUNTED_PORTIONS = re.compile(r"\b(\d+|two|three|four|five|six|seven|eight|nine|ten|twelve|a few|several|some)\s+"
+                               rf"({_PORTION_PLURALS})\s+of\s+([a-z][a-z-]*)(?:\s+([a-z][a-z-]*))?", re.I)
+
+
+def _portions_compounded(text: str) -> str:
+    """'three slices of ham, stacked' -> 'three ham slices, stacked' (the lexicon's noun is 'ham slice'; the plural
+    'slices of ham' read as a heap of ham: 16x its mass). The food is one or two words, not a place or a state."""
+    def swap(m: re.Match[str]) -> str:
+        food = [m.group(3)] + ([m.group(4)] if m.group(4) and m.group(4).lower() not in _NOT_FOOD_WORD else [])
+        rest = "" if len(food) == 2 or not m.group(4) else f" {m.group(4)}"
+        return f"{m.group(1)} {' '.join(food)} {m.group(2)}{rest}"
+    return _COUNTED_PORTIONS.sub(swap, text)
+
+
 def _pair_first(text: str) -> str:
     """'kids fleece mittens, pair', 'arm floaties (pair)' -> 'a pair of ...' (the pair said after the goods)."""
     if re.search(r"\bpairs?\s+of\b", text, re.IGNORECASE) or not _TRAILING_PAIR.search(text):
@@ -598,7 +642,7 @@ def design_from_text(text: str, size_hint_m: float | None = None) -> Design:
     if packed is not None:
         design = design_from_text(packed[0], size_hint_m)
         return design.model_copy(update={"warnings": [packed[1], *design.warnings]})
-    text_n = _cut_words_stripped(_purpose_stripped(_pair_first(sized)))
+    text_n = _cut_words_stripped(_purpose_stripped(_pair_first(_portions_compounded(sized))))
     size = parse_size(text_n)
     if size_hint_m is not None:
         size = SizeSpec(longest_m=size_hint_m, stated=f"size hint {size_hint_m:g} m")
@@ -615,6 +659,13 @@ def design_from_text(text: str, size_hint_m: float | None = None) -> Design:
         reading = concepts.read_text(meat)
         reading.warnings.insert(0, f"'{reading.phrase.text if reading.phrase else stripped}': said raw, ground or "
                                    f"cooked, so meat, not the animal")
+    thin = reading.donor or reading.entry
+    if size_hint_m is None and reading.match.fallback_level in ("exact", "synonym") \
+            and (thin is None or thin.plan not in dims_words.THIN_PLANS):  # (a known object: '3 mm rubber beads' are 3 mm)
+        unstocked, stock_notes = stock_thickness_stripped(text_n)  # a 5 mm neoprene sleeve: the sleeve's own size
+        if stock_notes:
+            size = parse_size(unstocked)
+            reading.warnings.extend(stock_notes)
     size = _piece_sized(size, reading)
     bound = dims_words.bind(text_n, reading.donor or reading.entry, reading.phrase.states if reading.phrase else []) \
         if size_hint_m is None and reading.donor_plan is None else None

@@ -535,8 +535,8 @@ def read_text(text: str, serving: bool = True) -> Reading:
             entry, match = _fallback(t, unknown, donor_entry, donor_plan, donor_words)
         warnings.append(match.fallback_note or "")
     if donor_plan is not None and phrase.portion and (phrase.portion in entry.key or phrase.portion in
-                                                       " ".join(entry.nouns)):
-        donor_plan = None  # 'a block of tofu' is the tofu block itself
+                                                       " ".join(entry.nouns) or donor_plan[0] == entry.plan):
+        donor_plan = None  # 'a block of tofu' is the tofu block itself; 'a sheet of fleece' the fleece sheet
     if donor_entry is not None and donor_entry.key != entry.key:
         match = match.model_copy(update={"shape_from": donor_entry.key})
     elif donor_plan is not None:
@@ -1420,12 +1420,17 @@ def ear_params(text: str, plan: str | None) -> dict[str, typing.Any]:
     return out
 
 
+# what an object is tied or wrapped with is not its surface ('a rolled brisket tied with butcher's string')
+_TIED_WITH = re.compile(r"\b(?:tied|bound|trussed|wrapped|secured|fastened|laced|netted)\s+(?:up\s+)?(?:with|in|by)\s+"
+                        r"[a-z' -]+", re.I)
+
+
 def relief_of(text: str, entry: LexiconEntry) -> tuple[str | None, bool]:
     """(relief kind, said in words) from the request's words, else from the object's own first noun; none for goods
     whose knit or fabric is their own shape (a knitted hat, a wool sock, a garment: no yarn strands over them)."""
     if entry.plan in GOODS_PLANS:
         return None, False
-    hits = _find(normalise(text), RELIEF_WORDS)
+    hits = _find(normalise(_TIED_WITH.sub(" ", text)), RELIEF_WORDS)
     if hits:
         kind = RELIEF_WORDS[hits[0][2]]
         return kind, kind in _RELIEF_SAID
@@ -1477,6 +1482,14 @@ def posed(program: ShapeProgram, pose: str) -> ShapeProgram:
 DEFLATE_FACTORS: dict[bool, tuple[float, float, float]] = {False: (1.25, 1.25, 0.14), True: (1.1, 1.1, 0.55)}
 EMPTY_FACTORS = (1.0, 1.0, 0.17)
 
+
+
+_PART_EMPTY = re.compile(r"\b(?:half|partly|partially|mostly|nearly|almost)[\s-]+empty\b", re.I)
+
+
+def _said_empty(text: str) -> bool:
+    """'an empty bottle' is its shell alone; 'a half-empty sack' is half full (tasks.geometry.fill_words)."""
+    return re.search(r"\bempty\b", text, re.I) is not None and _PART_EMPTY.search(text) is None
 
 def inflatable(entry: LexiconEntry) -> bool:
     """An object that holds its shape by air (an inflatable, a beach ball): it can be deflated."""
@@ -1586,12 +1599,12 @@ def _whole_object(reading: Reading, program: ShapeProgram, match: ConceptMatch, 
     elif inflatable(target) and (half or said_states & (_DEFLATED | {"deflated"})):
         before, program = program, deflated(program, half)
         states.append("half inflated" if half else "deflated")
-        skin = target.empty_mass_kg if target.empty_mass_kg is not None and re.search(r"\bempty\b", text) \
+        skin = target.empty_mass_kg if target.empty_mass_kg is not None and _said_empty(text) \
             else target.mass_kg  # 'a crumpled empty chip bag': the film alone
         match = _as_built_mass(match, before, DEFLATE_FACTORS[half], skin,
                                "the same skin, with less air: its mass is the skin's")
         match = match.model_copy(update={"density_kg_per_m3": skin / program_volume(program)})  # skin / body
-    elif target.empty_mass_kg is not None and re.search(r"\bempty\b", text):
+    elif target.empty_mass_kg is not None and _said_empty(text):
         before, program = program, emptied(program)
         states.append("empty")
         match = _as_built_mass(match, before, EMPTY_FACTORS, target.empty_mass_kg,

@@ -56,6 +56,20 @@ def _amount(words: str) -> float | None:
     return None
 
 
+_FULLNESS = re.compile(r"\b(half|halfway|a quarter|quarter|three quarters|a third|two thirds|partly|partially|mostly|"
+                       r"nearly|almost)\s+(full|empty)\b")
+
+
+def stated_fullness(text: str) -> tuple[float, str] | None:
+    """How full a request says a bag is with no fill named ('a half-empty sack of chicken feed': 0.5, 'a nearly
+    empty bag': 0.15), and the words; None when it says nothing of it."""
+    m = _FULLNESS.search(" ".join(text.lower().replace("-", " ").split()))
+    if m is None:
+        return None
+    share = AMOUNTS[m.group(1)]
+    return (share if m.group(2) == "full" else 1.0 - share), m.group(0)
+
+
 _FULL_OF = re.compile(r"\b((?:\d{1,3}\s*%|[a-z]+(?:\s+[a-z]+)?)\s+)?(full|filled|stuffed|packed|loaded)\s+"
                       r"(?:up\s+)?(?:of|with)\s+(?:some\s+|dry\s+|loose\s+)?([a-z]+(?:\s+[a-z]+)?)")
 _X_FILLED = re.compile(r"\b([a-z]+(?:\s+[a-z]+)?)[\s-]filled\b")
@@ -83,16 +97,18 @@ def read_fill(text: str) -> Fill | None:
         return Fill(rec["key"], m.group(0).strip(), amount, float(rec["bulk_density_kg_per_m3"]), rec["color"],
                     rec["source"])
     t2 = " ".join(text.lower().split())
+    said = stated_fullness(text)  # 'a half-full bag of compost': the bag of compost, half full
+    share, words = (said[0], f"{said[1]} ") if said is not None else (0.8, "")
     for m in _X_FILLED.finditer(t2):
         hit = _fill_key(m.group(1))
         if hit is not None:
             w, rec = hit
-            return Fill(rec["key"], m.group(0).strip(), 0.8, float(rec["bulk_density_kg_per_m3"]), rec["color"],
-                        rec["source"])
+            return Fill(rec["key"], words + m.group(0).strip(), share, float(rec["bulk_density_kg_per_m3"]),
+                        rec["color"], rec["source"])
     for m in _BAG_OF.finditer(t):
         hit = _fill_key(m.group(1))
         if hit is not None:
             w, rec = hit
-            return Fill(rec["key"], m.group(0).strip(), 0.8, float(rec["bulk_density_kg_per_m3"]), rec["color"],
-                        rec["source"])
+            return Fill(rec["key"], words + m.group(0).strip(), share, float(rec["bulk_density_kg_per_m3"]),
+                        rec["color"], rec["source"])
     return None

@@ -164,8 +164,9 @@ def apply(target: LexiconEntry, portion: str | None, text: str, params: dict, si
         cap = bag_capacity_m3(plan, {**target.params, **out.params}, out.size_m)
         volume = stated_volume_m3(text)
         said = ""
-        if volume is not None:  # '500 ml of saline': the bag that holds it
-            k = (volume / max(fill.fraction * cap, 1e-12)) ** (1.0 / 3.0)
+        if volume is not None:  # '500 ml of saline': the bag that holds it; 'a half-full 40 litre bag': its capacity
+            held = volume if fill_words.stated_fullness(text) is None else volume * fill.fraction
+            k = (held / max(fill.fraction * cap, 1e-12)) ** (1.0 / 3.0)
             out.size_m *= k
             cap = bag_capacity_m3(plan, {**target.params, **out.params}, out.size_m)
             out.match = out.match.model_copy(update={"typical_size_m": out.size_m})
@@ -182,7 +183,25 @@ def apply(target: LexiconEntry, portion: str | None, text: str, params: dict, si
                   f"{fill.bulk_density_kg_per_m3:g} kg/m^3 ({fill.source}) = {fill_kg * 1e3:.3g} g, plus the empty "
                   f"{target.key.replace('_', ' ')} {shell * 1e3:.3g} g")
         out.match = out.match.model_copy(update={"stated_mass_kg": shell + fill_kg, "stated_mass_source": source})
+    elif (fill is None or any(" of " in f" {n} " for n in target.nouns)) and plan in FILLABLE_PLANS \
+            and "fill" in fields and target.empty_mass_kg is not None \
+            and (fullness := fill_words.stated_fullness(text)) is not None:
+        _part_full(out, target, *fullness)
     return out
+
+
+def _part_full(out: GoodsChange, target: LexiconEntry, share: float, words: str) -> None:
+    """'a half-empty sack of chicken feed': the entry's own fill at that share of its full amount, and its mass
+    between its empty and full mass (its full mass scaled to the size built)."""
+    full = float(target.params.get("fill", 1.0))
+    out.params["fill"] = float(np.clip(full * share, 0.05, 1.0))
+    full_kg = target.mass_kg * (out.size_m / target.size_m) ** 3
+    empty_kg = float(target.empty_mass_kg or 0.0)
+    kg = empty_kg + max(full_kg - empty_kg, 0.0) * share
+    out.match = out.match.model_copy(update={"stated_mass_kg": kg, "stated_mass_source": (
+        f"'{words}': {share:g} of the full {target.key.replace('_', ' ')}'s contents ({full_kg:.3g} kg full, "
+        f"{empty_kg:.3g} kg empty)")})
+    out.notes += (f"{words}: {share:g} of its fill",)
 
 
 def _is_pair_itself(plan: str, params: dict) -> bool:

@@ -7,11 +7,13 @@ import numpy as np
 from contracts.errors import InputError
 from contracts.physical import PhysicalModel
 
-# What a robot hand can hold, from about the lightest object L0 admits (1 cm x 5 mm x 5 mm of the lightest foam,
-# 12 kg/m^3: ~3 mg; a foam earplug is ~0.2 g) to a large pillow (~3 kg) and a bit beyond. Outside this, L1 fails its
-# gate; inside it, plausibility is the density's (within the material's range). The floor was 2 g, which refused the
-# catalogue's own foam earplug whatever its density.
-MASS_RANGE_KG: tuple[float, float] = (1.0e-6, 5.0)
+# What a robot (or one person) can lift, from about the lightest object L0 admits (1 cm x 5 mm x 5 mm of the lightest
+# foam, 12 kg/m^3: ~3 mg; a foam earplug is ~0.2 g) to a full sack: 25 kg (a feed or flood sandbag; the NIOSH lifting
+# equation's load constant is 23 kg, industrial cobots carry 20-30 kg). Outside this, L1 fails its gate; inside it,
+# plausibility is the density's (within the material's range). The floor was 2 g, which refused the catalogue's own
+# foam earplug whatever its density; the ceiling was 5 kg, which planned a 15 kg flood sandbag and a 9 kg bean bag
+# chair at 5 kg and refused a stated '25 kg bag of chicken feed' at L1.
+MASS_RANGE_KG: tuple[float, float] = (1.0e-6, 25.0)
 DENSITY_BAND_SLACK = 1.5  # a density may sit this factor outside the material's prior range and still be plausible
 
 

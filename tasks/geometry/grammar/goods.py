@@ -899,7 +899,9 @@ class GarmentParams(Model):
     crumpled in a heap, or hung on a hanger. Length 1 is the body's (collar to hem) length, along x (collar at +x).
     Laid flat with its sleeves out it is wider than long, so its built layer is `GARMENT_LAYER` of that length."""
 
-    kind: Literal["top", "trousers", "dress"] = "top"
+    kind: Literal["top", "trousers", "dress", "suit"] = Field(default="top", description="'suit': a one-piece "
+                                                              "(a wetsuit, coveralls, a snowsuit, a footed sleepsuit): "
+                                                              "a top with legs below its body")
     state: Literal["flat", "folded", "crumpled", "hung"] = "flat"
     sleeves: Literal["none", "short", "long"] = "long"
     hood: bool = False
@@ -1027,7 +1029,29 @@ def _dress_flat(p: GarmentParams, t: float) -> list[Part]:
     return parts
 
 
+SUIT_LEG = 0.85  # a one-piece's leg (crotch to ankle) / its body's (collar to crotch) length [-]
+
+
+def _suit_flat(p: GarmentParams, t: float) -> list[Part]:
+    """A one-piece laid flat: the top (sleeves, collar or hood, zip) without its hem band, and two legs from the
+    crotch, tapering a little to their ankle cuffs with a gap between them."""
+    w = p.width
+    z = t / 2
+    parts = _top_flat(p.model_copy(update={"cuffs": False}), t)
+    for side, name in ((1, "left"), (-1, "right")):
+        a = np.array([-0.38, side * 0.25 * w, z])
+        b = np.array([-0.45 - SUIT_LEG, side * 0.3 * w, z])
+        parts.append(_flat_frustum(f"{name} leg", a, b, 0.24 * w, 0.17 * w, t, blend=0.03))
+        if p.cuffs:
+            d = (b - a) / np.linalg.norm(b - a)
+            parts.append(_flat_frustum(f"{name} ankle cuff", b - 0.08 * d, b + 0.01 * d, 0.18 * w, 0.18 * w, 1.25 * t,
+                                       blend=0.004))
+    return parts
+
+
 def _garment_flat(p: GarmentParams, t: float) -> list[Part]:
+    if p.kind == "suit":
+        return _suit_flat(p, t)
     if p.kind == "trousers":
         return _trousers_flat(p, t)
     if p.kind == "dress":
@@ -1133,8 +1157,8 @@ def _garment_folded(p: GarmentParams) -> list[Part]:
     h = n * t
     if p.kind == "trousers":
         return _trousers_folded(p, t, n)
-    parts = [box("body", (fl, fw, h), (0, 0, h / 2), edge=0.4 * t)]
-    if p.kind == "top" and p.sleeves != "none":
+    parts = [box("body", (fl, fw, h), (0, 0, h / 2), edge=0.9 * t)]  # (soft folded edges, not a crate's)
+    if p.kind in ("top", "suit") and p.sleeves != "none":
         for side in (1, -1):  # a sleeve folded in across the shoulder: a flap lying on top, cut to the outline
             parts.append(box(f"{'left' if side > 0 else 'right'} sleeve", (0.17, 0.32 * fw, 0.45 * t),
                              (0.13, side * 0.42 * fw, h + 0.15 * t), edge=0.2 * t, rot=(0, 0, side * 30), blend=0.004))
@@ -1143,9 +1167,8 @@ def _garment_folded(p: GarmentParams) -> list[Part]:
         parts.append(_op(box(f"fold gap {i}", (0.12 * fl, fw * 1.2, 0.22 * t), (-fl / 2, 0, i * t)), "subtract"))
     if p.hood:
         parts.append(ellipsoid("hood", (0.13, 0.17, 0.9 * t), (0.12, 0, h + 0.2 * t), blend=0.02))
-    elif p.kind == "top":  # the neckline at the top edge: a band round a dip
-        parts.append(_op(ellipsoid("neck", (0.07, 0.11, 0.6 * t), (fl / 2 - 0.01, 0, h + 0.15 * t)), "subtract",
-                         0.01))
+    elif p.kind in ("top", "suit"):  # the neckline at the top edge: a ribbed band lying on the fabric (a dip cut
+        # under it read as a tray's recess)
         parts.append(_scaled(torus("collar band", 0.1, 0.018, (fl / 2 - 0.035, 0, h + 0.1 * t)), (0.75, 1, 0.8)))
         parts.append(_op(box("collar cut", (0.2, 0.4, 4 * h), (fl / 2 + 0.1, 0, 0)), "subtract"))
     if p.cuffs:
