@@ -144,7 +144,8 @@ _MEASURE_OF = re.compile(r"\b(?:roll|rolls)\s+of\b")
 # a material said of a surface only: a coating, dip, lining or trim ('rubber-coated', 'latex-dipped', 'fleece-lined',
 # 'coated in latex'): not what the object is made of
 _SURFACE_ONLY = re.compile(r"\b[a-z]+[\s-]+(?:coated|dipped|lined|trimmed|edged|palmed)\b|"
-                           r"\b(?:coated|dipped|lined|trimmed|edged)\s+(?:in|with)\s+[a-z]+\b")
+                           r"\b(?:coated|dipped|lined|trimmed|edged)\s+(?:in|with)\s+[a-z]+\b|"
+                           r"\bwith\s+(?:[a-z]+\s+)?[a-z]+\s+(?:dots|grips?|palms?|soles?|patches|trim|piping)\b")
 
 
 def _match_material(text: str, vocab: MaterialVocab, concept_material: str | None = None,

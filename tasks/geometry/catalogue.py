@@ -509,6 +509,20 @@ def _portions_compounded(text: str) -> str:
     return _COUNTED_PORTIONS.sub(swap, text)
 
 
+# a clause about the robot's task after the object ('a ripe peach the gripper should pick up without bruising',
+# '... that the robot arm can squeeze'): the task, not the object
+_ROBOT = r"(?:the|a|an|our|my|your|its)\s+(?:robot(?:'s)?|robotic|gripper(?:'s)?|robot arm|arm|hand|manipulator|end effector)"
+_TASK_CLAUSE = re.compile(r"\s*,?\s+(?:(?:(?:that|which|so that|so)\s+)?" + _ROBOT + r"(?:\s+[a-z]+)?\s+(?:should|can|could|"
+                          r"will|would|must|needs?|has|is|may|might|to|grasps?|picks?|holds?|squeezes?|lifts?|grips?)"
+                          r"|(?:for|to)\s+" + _ROBOT + r")\b.*$", re.IGNORECASE)
+
+
+def _task_clause_stripped(text: str) -> str:
+    """The description without a trailing clause about the robot's task (the object it names is the head)."""
+    stripped = _TASK_CLAUSE.sub("", text)
+    return stripped if re.search(r"[a-z]", stripped, re.I) else text
+
+
 def _pair_first(text: str) -> str:
     """'kids fleece mittens, pair', 'arm floaties (pair)' -> 'a pair of ...' (the pair said after the goods)."""
     if re.search(r"\bpairs?\s+of\b", text, re.IGNORECASE) or not _TRAILING_PAIR.search(text):
@@ -642,7 +656,7 @@ def design_from_text(text: str, size_hint_m: float | None = None) -> Design:
     if packed is not None:
         design = design_from_text(packed[0], size_hint_m)
         return design.model_copy(update={"warnings": [packed[1], *design.warnings]})
-    text_n = _cut_words_stripped(_purpose_stripped(_pair_first(_portions_compounded(sized))))
+    text_n = _cut_words_stripped(_purpose_stripped(_pair_first(_portions_compounded(_task_clause_stripped(sized)))))
     size = parse_size(text_n)
     if size_hint_m is not None:
         size = SizeSpec(longest_m=size_hint_m, stated=f"size hint {size_hint_m:g} m")
