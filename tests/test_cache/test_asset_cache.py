@@ -202,3 +202,33 @@ def test_a_served_rerun_prints_the_same_json_summary(
     assert {k: v for k, v in served.items() if k != "wall_time_s"} == {
         k: v for k, v in made.items() if k != "wall_time_s"}
     assert list(served["wall_time_s"]) == ["cache"]
+
+
+def test_the_analogy_line_is_remembered_by_text_size_code_and_libraries(monkeypatch: pytest.MonkeyPatch) -> None:
+    """generate's first line (tasks.preflight.concept_line) reads the words (~3 s of spaCy, lexicon and WordNet): a
+    rerun with the same text, size and code reads it from the cache; any of them changed reads the words again."""
+    import tasks.geometry.catalogue as catalogue
+    from contracts.errors import InputError
+    from tasks.preflight import concept_line
+
+    read: list[str] = []
+    real = catalogue.design_from_text
+
+    def counting(text, size_hint_m=None, *args, **kwargs):  # noqa: ANN001, ANN002, ANN003, ANN202
+        read.append(text)
+        return real(text, size_hint_m, *args, **kwargs)
+
+    monkeypatch.setattr(catalogue, "design_from_text", counting)
+    tenrec = AssetRequest(text="a tenrec")
+    line = concept_line(tenrec, False)
+    assert line is not None and "tenrec" in line and len(read) == 1
+    assert concept_line(tenrec, False) == line and len(read) == 1  # remembered
+    with pytest.raises(InputError, match="--strict-concept"):
+        concept_line(tenrec, True)  # refused from the remembered line as from a fresh one
+    assert len(read) == 1
+    assert concept_line(AssetRequest(text=TEXT), False) is None and len(read) == 2  # named by the lexicon: None
+    assert concept_line(AssetRequest(text=TEXT), False) is None and len(read) == 2
+    concept_line(AssetRequest(text="a tenrec", size_hint_m=0.2), False)  # another size
+    assert len(read) == 3
+    monkeypatch.setattr(asset_cache, "code_fingerprint", lambda root=None: "another lexicon")
+    assert concept_line(tenrec, False) == line and len(read) == 4  # another code or data: read again
