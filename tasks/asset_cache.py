@@ -129,9 +129,10 @@ def _reference_path(root: Path, ref: str) -> Path:
     return root / ref if "/" in ref else root / "entries" / ref[:2] / ref
 
 
-def keep_asset(key: str, asset: Path, analogy: str | None) -> bool:
+def keep_asset(key: str, asset: Path, analogy: str | None, warnings: list[tuple[str, str]] | None = None) -> bool:
     """Keep the published asset directory under the request's fingerprint (a copy; an intact entry is kept as it
-    is); False when it was not stored (a full disk, an unwritable cache: the run itself has succeeded)."""
+    is), with the run's analogy line and its warnings ((stage, message): said again when it is served); False when it
+    was not stored (a full disk, an unwritable cache: the run itself has succeeded)."""
     from cache import CacheStore, cache_root
     from contracts.errors import CacheError
 
@@ -139,7 +140,8 @@ def keep_asset(key: str, asset: Path, analogy: str | None) -> bool:
     try:
         if store.contains(key):
             return False
-        value = {"asset": Path(asset), "analogy": analogy, "references": _references(Path(asset), store.root)}
+        value = {"asset": Path(asset), "analogy": analogy, "references": _references(Path(asset), store.root),
+                 "warnings": [[str(stage), str(message)] for stage, message in warnings or []]}
         return store.put(key, value, {"task": TASK, "version": VERSION})
     except (OSError, CacheError, TypeError, ValueError):
         return False
@@ -151,6 +153,7 @@ class Served:
 
     analogy: str | None
     wall_s: float
+    warnings: tuple[tuple[str, str], ...] = ()  # (stage, message) the run that made the asset warned of
 
 
 def serve(key: str, out_dir: Path, strict_concept: bool = False) -> Served | None:
@@ -197,7 +200,9 @@ def serve(key: str, out_dir: Path, strict_concept: bool = False) -> Served | Non
     wall_s = time.perf_counter() - t0
     store.record_event(key=key, task=TASK, version=VERSION, outcome="hit", wall_s=round(wall_s, 6), key_s=None,
                        exec_s=None, task_run_id=None, flow_run_id=None)
-    return Served(analogy=analogy, wall_s=wall_s)
+    warnings = tuple((str(w[0]), str(w[1])) for w in value.get("warnings") or []
+                     if isinstance(w, (list, tuple)) and len(w) == 2)
+    return Served(analogy=analogy, wall_s=wall_s, warnings=warnings)
 
 
 __all__ = ["Served", "code_fingerprint", "keep_asset", "library_versions", "request_key", "serve"]

@@ -121,6 +121,8 @@ def generate(
         if served.analogy is not None:
             console.print(f"[yellow]{escape(served.analogy)}[/yellow]", soft_wrap=True)
         console.log(f"[bold]generate[/bold] {escape(repr(what))} -> {escape(str(out))} ({device}, {quality})")
+        for stage, message in served.warnings:  # what the run that made it warned of (its records hold them too)
+            console.log(f"[bold]{escape(stage)}[/bold] [yellow]{escape(message)}[/yellow]")
         console.log("[bold]cache[/bold] the same request, options and code made this asset: republished from the "
                     "result cache (no layer ran)")
         path = Path(out) / "asset.json"
@@ -143,16 +145,20 @@ def generate(
 
         preload_layers(l3)  # while Prefect's local server starts in its own process (~3 s on 2 cores)
 
+        warnings: list[tuple[str, str]] = []  # kept with the asset: a served rerun says them again
+
         def on_stage(stage: str, message: str) -> None:
             status.update(f"{stage}: {message}")
             style = "yellow" if message.startswith("warning:") else "default"
+            if message.startswith("warning:"):
+                warnings.append((stage, message))
             console.log(f"[bold]{stage}[/bold] [{style}]{escape(message)}[/{style}]")  # a reason may hold [ ]
 
         manifest = generate_asset(checked, out, device=cast("Device", device), agents=agents, on_stage=on_stage,
                                   manipulate=l3, cpu_threads=cpu_threads,  # (device: checked by check_device)
                                   keep=cast("KeepTrials", record))  # (checked by check_record)
     if served_key is not None:  # a rerun of the same request and code is served from this copy
-        keep_asset(served_key, Path(out), analogy)
+        keep_asset(served_key, Path(out), analogy, warnings)
     report(manifest, out, dict(TIMINGS), as_json, require_l3)
 
 

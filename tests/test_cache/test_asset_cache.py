@@ -132,6 +132,7 @@ class _FakeLayers:
         import shutil
 
         self.calls.append(checked.request)
+        kwargs["on_stage"]("L2", "warning: no material named in 'x': using the default material's target bands")
         out = Path(out)
         if out.exists():
             shutil.rmtree(out)
@@ -171,6 +172,7 @@ def test_a_rerun_is_served_without_the_layers_or_a_server_and_a_changed_input_is
     rerun = _generate(TEXT, "--out", str(out))
     assert len(layers.calls) == 1 and servers == [1], "the rerun ran the layers"
     assert "republished from the result cache" in rerun and "asset published" in rerun
+    assert "warning: no material named" in " ".join(rerun.split())  # the warnings of the run that made it, again
     assert content_fingerprint(out) == made
     _generate(TEXT, "--out", str(tmp_path / "elsewhere"))  # another output folder: the same asset, served
     assert len(layers.calls) == 1 and content_fingerprint(tmp_path / "elsewhere") == made
