@@ -14,7 +14,6 @@ from pathlib import Path
 from typing import Any
 
 import numpy as np
-import zarr
 
 from cache import codec
 from cache.hashing import array_digest, path_digest
@@ -181,6 +180,8 @@ class CacheStore:
                 "nbytes": int(sum(a.nbytes for a in enc.arrays.values())),
             }
         }
+        import zarr  # (lazy: ~0.5 s to import; reading an entry without arrays never needs it)
+
         group = zarr.create_group(store=str(tmp), attributes=attrs, zarr_format=3)
         for name, arr in enc.arrays.items():
             z = group.create_array(name, shape=arr.shape, dtype=arr.dtype, chunks=_chunks(arr),
@@ -238,8 +239,12 @@ class CacheStore:
         info = self._attrs(key)
         if codec.tree_digest(info["value"]) != info["value_digest"]:
             raise CacheMiss(key)
-        group = zarr.open_group(store=str(d), mode="r")
-        arrays = {name: np.asarray(group[name][...]) for name in info["arrays"]}
+        arrays = {}
+        if info["arrays"]:
+            import zarr  # (lazy: an entry of values and files alone is read without it)
+
+            group = zarr.open_group(store=str(d), mode="r")
+            arrays = {name: np.asarray(group[name][...]) for name in info["arrays"]}
         digests = _digests(arrays)
         for name, spec in info["arrays"].items():
             if digests[name] != spec["digest"]:
@@ -273,6 +278,8 @@ class CacheStore:
             return "attribute digest mismatch"
         d = self.entry_dir(key)
         try:
+            import zarr
+
             group = zarr.open_group(store=str(d), mode="r")
             for name, spec in info["arrays"].items():
                 arr = np.asarray(group[name][...])

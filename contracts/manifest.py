@@ -27,6 +27,11 @@ class StageSummary(Model):
                                                         "...' or 'not lifted: mean finger force ... < m g / (2 mu)')")
 
 
+# the libraries whose versions a manifest's provenance records (tasks.manifest_summary)
+PROVENANCE_LIBRARIES = ("numpy", "warp-lang", "prefect", "zarr", "trimesh", "coacd", "pybullet", "rerun-sdk",
+                        "pydantic")
+
+
 class Provenance(Model):
     """Versions and keys that reproduce the asset (no timestamps: reruns are content-identical)."""
 

@@ -78,12 +78,12 @@ def gripper_names() -> list[str]:
 
 def load_gripper(name: str = DEFAULT_GRIPPER) -> GripperSpec:
     """A packaged gripper by name (InputError naming the known ones when there is no such gripper)."""
-    import yaml
+    from contracts.yaml_io import load_yaml
 
     path = GRIPPERS_DIR / f"{name}.yaml"
     if not path.is_file():
         raise InputError(f"no gripper '{name}': known grippers are {', '.join(gripper_names())}")
-    spec = GripperSpec.model_validate(yaml.safe_load(path.read_text(encoding="utf-8")))
+    spec = GripperSpec.model_validate(load_yaml(path.read_text(encoding="utf-8")))
     if spec.name != name:
         raise InputError(f"{path}: name '{spec.name}' does not match the file name")
     return spec

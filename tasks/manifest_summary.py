@@ -13,7 +13,7 @@ from typing import Any
 
 from contracts.agents import AgentConfig
 from contracts.asset_dir import ASSET_JSON, GeometryRecord, MaterialRecord, PhysicalRecord, attempt_path
-from contracts.manifest import Provenance, StageSummary
+from contracts.manifest import PROVENANCE_LIBRARIES, Provenance, StageSummary
 from contracts.manipulation import ManipulationRecord
 from contracts.robot import ActionPlan, ManipulationOutcome
 from contracts.sim import Device, KernelOptions
@@ -22,7 +22,7 @@ from tasks.asset_dir import AssetDir
 from tasks.manipulation.report import NO_GRASP_GATE
 from tasks.record.trials import reported_attempt
 
-LIBRARIES = ("numpy", "warp-lang", "prefect", "zarr", "trimesh", "coacd", "pybullet", "rerun-sdk", "pydantic")
+LIBRARIES = PROVENANCE_LIBRARIES  # (contracts.manifest: read without this module's imports)
 
 
 def _version(dist: str) -> str:

@@ -147,11 +147,41 @@ def concept_line(request, strict: bool) -> str | None:
     generic shape), or None when the lexicon names it; InputError with that line under --strict-concept."""
     if request.mesh_path is not None or not (request.text and request.text.strip()):
         return None
+    line = _remembered_concept_line(request.text, request.size_hint_m)
+    if line is not None and strict:
+        raise InputError(f"--strict-concept: {line}")
+    return line
+
+
+CONCEPT_LINE_VERSION = "1"
+
+
+def _remembered_concept_line(text: str, size_hint_m: float | None) -> str | None:
+    """The analogy line of a text (None: the lexicon names its object), remembered in the result cache by the text, the
+    size, the package's code and data and the library versions (tasks.asset_cache): reading the words (spaCy's model,
+    the lexicon, WordNet) costs ~3 s of CPU, and a rerun that changed only an option (--record, --no-l3, --intent)
+    would pay it again before its first line."""
+    from cache import CacheMiss, CacheStore, content_key
+    from contracts.errors import CacheError
+    from tasks.asset_cache import code_fingerprint, library_versions
+
+    key = content_key("preflight.concept_line", CONCEPT_LINE_VERSION, text, size_hint_m, code_fingerprint(),
+                      library_versions())
+    store = CacheStore(cache_root())
+    if store.entry_dir(key).is_dir():
+        try:
+            kept = store.get(key)
+            if isinstance(kept, dict) and (kept.get("line") is None or isinstance(kept.get("line"), str)):
+                return kept.get("line")
+        except CacheMiss:
+            pass
     # lazy: the offline Designer pulls scipy, skimage, trimesh (~2 s at CLI start)
     from tasks.geometry.catalogue import design_from_text
 
-    concept = design_from_text(request.text, request.size_hint_m).concept
+    concept = design_from_text(text, size_hint_m).concept
     line = concept.analogy_line() if concept is not None else None
-    if line is not None and strict:
-        raise InputError(f"--strict-concept: {line}")
+    try:
+        store.put(key, {"line": line}, {"task": "preflight.concept_line"})
+    except (OSError, CacheError):
+        pass  # not remembered: the next run reads the words again
     return line

@@ -9,14 +9,15 @@ import typer
 from pydantic import ValidationError
 from rich.markup import escape
 
-from cache import use_cache_root
-from contracts.errors import validation_message
+from cache import runtime, use_cache_root
+from contracts.errors import RequirementNotMet, validation_message
 from contracts.manifest import AssetManifest  # (not flows.generate: no Prefect import to read a file)
 from contracts.request import AssetRequest
 from flows.cli.apps import RECORD_HELP, app, check_device, check_record, console, emit_json, fail, results
 from flows.cli.evidence_cmds import print_tallies
 from flows.cli.geometry_cmds import GEOMETRY_BACKEND_HELP, STRICT_CONCEPT_HELP
 from flows.cli.llm_option import LLM_FALLBACK_HELP, llm_agents
+from tasks.asset_cache import keep_asset, request_key, serve
 from tasks.preflight import check_request, concept_line
 from tasks.batch_requests import slug
 from tasks.publish import check_out_dir
@@ -111,43 +112,71 @@ def generate(
     out = out or _default_out(text, image, mesh)
     check_request(request, out)  # image header, output parent and cache root usable, before any layer
     agents = llm_agents(llm, llm_fallback)
+    check_out_dir(Path(out).expanduser().absolute())  # not an asset directory: refused before anything is read
+    what = text if text is not None else (image or mesh).name
+    # a request whose asset the cache holds for this code (tasks.asset_cache): republished, no layer loaded
+    served_key = request_key(request, device=device, cpu_threads=cpu_threads, keep=record, manipulate=l3, llm=llm)
+    served = serve(served_key, out, strict_concept) if served_key is not None else None
+    if served is not None:
+        if served.analogy is not None:
+            console.print(f"[yellow]{escape(served.analogy)}[/yellow]", soft_wrap=True)
+        console.log(f"[bold]generate[/bold] {escape(repr(what))} -> {escape(str(out))} ({device}, {quality})")
+        for stage, message in served.warnings:  # what the run that made it warned of (its records hold them too)
+            console.log(f"[bold]{escape(stage)}[/bold] [yellow]{escape(message)}[/yellow]")
+        console.log("[bold]cache[/bold] the same request, options and code made this asset: republished from the "
+                    "result cache (no layer ran)")
+        path = Path(out) / "asset.json"
+        report(AssetManifest.model_validate_json(path.read_text(encoding="utf-8")), out, {"cache": served.wall_s},
+               as_json, require_l3)
+        return
+    runtime.prestart_local_server()  # the layers will run: Prefect's local server starts while they load
     # lazy: pulls trimesh, skimage, scipy (--help imports every command module)
     from tasks.request import checked_request
 
     checked = checked_request(request)  # a rigid material or '10 km long' is one line here, before the layers load
-    check_out_dir(Path(out).expanduser().absolute())  # not an asset directory: refused before L0's words are read
     analogy = concept_line(request, strict_concept)  # InputError under --strict-concept: before any layer
     if analogy is not None:
         console.print(f"[yellow]{escape(analogy)}[/yellow]", soft_wrap=True)  # the first line: a guess
-    what = text if text is not None else (image or mesh).name
     console.log(f"[bold]generate[/bold] {escape(repr(what))} -> {escape(str(out))} ({device}, {quality})")
 
     with console.status("loading the layers and the local Prefect server") as status:
         # lazy: pulls prefect, warp, pybullet (--help imports every command module)
-        from flows.generate import TIMINGS, generate_asset, require_l3 as check_l3
+        from flows.generate import TIMINGS, generate_asset
 
         preload_layers(l3)  # while Prefect's local server starts in its own process (~3 s on 2 cores)
+
+        warnings: list[tuple[str, str]] = []  # kept with the asset: a served rerun says them again
 
         def on_stage(stage: str, message: str) -> None:
             status.update(f"{stage}: {message}")
             style = "yellow" if message.startswith("warning:") else "default"
+            if message.startswith("warning:"):
+                warnings.append((stage, message))
             console.log(f"[bold]{stage}[/bold] [{style}]{escape(message)}[/{style}]")  # a reason may hold [ ]
 
         manifest = generate_asset(checked, out, device=cast("Device", device), agents=agents, on_stage=on_stage,
                                   manipulate=l3, cpu_threads=cpu_threads,  # (device: checked by check_device)
                                   keep=cast("KeepTrials", record))  # (checked by check_record)
+    if served_key is not None:  # a rerun of the same request and code is served from this copy
+        keep_asset(served_key, Path(out), analogy, warnings)
+    report(manifest, out, dict(TIMINGS), as_json, require_l3)
+
+
+def report(manifest: AssetManifest, out: Path, timings: dict[str, float], as_json: bool, require_l3: bool) -> None:
+    """generate's results: the summary (or --json) on stdout, L3's outcome on stderr, exit 7 under --require-l3 when L3
+    did not pass."""
     if as_json:
-        emit_json(generate_summary(out, manifest, TIMINGS))
+        emit_json(generate_summary(out, manifest, timings))
     else:
         print_summary(manifest, out)
-        results.print(wall_time_line(TIMINGS))
+        results.print(wall_time_line(timings))
         results.print(f"asset published: {out}", markup=False, highlight=False)
     l3_line = next((s for s in manifest.validation if s.stage == "L3"), None)
     if l3_line is not None and not l3_line.passed:  # on stderr: with --json, stdout holds the JSON alone
         console.print(f"L3 did not pass: {l3_line.reason or ', '.join(l3_line.failed_gates)}; the asset is published "
                       f"with this outcome" + ("" if require_l3 else " (--require-l3 makes this exit 7)"), markup=False)
-    if require_l3:
-        check_l3(manifest, out)  # RequirementNotMet: one error line, exit 7
+    if require_l3 and l3_line is not None and not l3_line.passed:  # (flows.generate.require_l3, without its imports)
+        raise RequirementNotMet("L3", l3_line.reason or ", ".join(l3_line.failed_gates), str(out))  # exit 7
 
 
 @app.command("inspect")

@@ -54,9 +54,14 @@ FLOW_COMMANDS = frozenset({"generate", "geometry", "physical", "material", "mani
                            "bench"})
 
 
+# flow commands that start the server themselves, once they know they will run flows: `generate` first looks for its
+# request's published asset in the cache (tasks.asset_cache), which needs no server
+PRESTART_IN_COMMAND = frozenset({"generate"})
+
+
 def _prestart_for(argv: list[str]) -> None:
     """Prestart the local Prefect server when the command line runs flows (not for --help)."""
-    if argv and argv[0] in FLOW_COMMANDS and not {"--help", "-h"} & set(argv):
+    if argv and argv[0] in FLOW_COMMANDS - PRESTART_IN_COMMAND and not {"--help", "-h"} & set(argv):
         runtime.prestart_local_server()
 
 

@@ -7,6 +7,7 @@ from pathlib import Path
 from typing import Literal
 
 import yaml
+from contracts.yaml_io import load_yaml
 
 import contracts
 from pydantic import Field, ValidationError, model_validator
@@ -131,7 +132,7 @@ class StageRoutes(Model):
 
 def _read(path: Path) -> dict:
     try:
-        data = yaml.safe_load(path.read_text(encoding="utf-8"))
+        data = load_yaml(path.read_text(encoding="utf-8"))
     except (OSError, yaml.YAMLError) as exc:
         raise ContractError(f"{path}: cannot read vocabulary: {exc}") from exc
     if not isinstance(data, dict):

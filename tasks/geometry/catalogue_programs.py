@@ -7,7 +7,7 @@ import functools
 from pathlib import Path
 from typing import Any
 
-import yaml
+from contracts.yaml_io import load_yaml
 
 from contracts.shape import ShapeProgram
 
@@ -17,7 +17,7 @@ CATALOGUE_FILE = Path(__file__).with_name("catalogue.yaml")
 @functools.lru_cache(maxsize=1)
 def catalogue_yaml() -> dict[str, Any]:
     """catalogue.yaml as read (entries, palette, length unit)."""
-    return yaml.safe_load(CATALOGUE_FILE.read_text(encoding="utf-8"))
+    return load_yaml(CATALOGUE_FILE.read_text(encoding="utf-8"))
 
 
 def catalogue_program(name: str) -> ShapeProgram:

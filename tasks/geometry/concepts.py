@@ -273,9 +273,9 @@ def _known_word(w: str) -> bool:
 @functools.lru_cache(maxsize=1)
 def _material_words() -> dict[str, str]:
     """Material word -> material class (contracts/vocab/materials.yaml)."""
-    import yaml
+    from contracts.yaml_io import load_yaml
 
-    raw = yaml.safe_load(MATERIALS_FILE.read_text(encoding="utf-8"))["materials"]
+    raw = load_yaml(MATERIALS_FILE.read_text(encoding="utf-8"))["materials"]
     return {normalise(w): name for name, m in raw.items() for w in m["words"]}
 
 

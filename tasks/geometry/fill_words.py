@@ -9,7 +9,7 @@ import re
 from dataclasses import dataclass
 from pathlib import Path
 
-import yaml
+from contracts.yaml_io import load_yaml
 
 FILLS_FILE = Path(__file__).resolve().parents[2] / "contracts" / "vocab" / "fills.yaml"
 
@@ -41,7 +41,7 @@ class Fill:
 @functools.lru_cache(maxsize=1)
 def fills() -> dict[str, dict]:
     """Fill word -> its record (contracts/vocab/fills.yaml), longest words first."""
-    raw = yaml.safe_load(FILLS_FILE.read_text(encoding="utf-8"))["fills"]
+    raw = load_yaml(FILLS_FILE.read_text(encoding="utf-8"))["fills"]
     table = {w: {"key": k, **v} for k, v in raw.items() for w in v["words"]}
     return dict(sorted(table.items(), key=lambda kv: -len(kv[0])))
 

@@ -261,7 +261,7 @@ def write_rrd(arrays: dict[str, np.ndarray], attrs: dict, path: Path, max_partic
             obj(rec, centers, cov, arrays["particles_x_m"][i])
             k_next = int(arrays["frame_control_index"][i + 1]) if i + 1 < len(k_frames) else len(t_c)
             for kk in range(frame_k, min(k_next, len(t_c))):  # curves at the control rate
-                rec.rec.set_time("sim_time", duration=float(t_c[kk]))
+                rec.set_sim_time(float(t_c[kk]))
                 for f in range(2):
                     rec.scalar(f"finger_{f}_force_n", float(np.linalg.norm(arrays["finger_force_n"][kk, f])))
                 rec.scalar("object_com_height_m", float(arrays["object_com_m"][kk, 2]))

@@ -11,7 +11,9 @@ recorded with the commanded joint states. Particle states (x, F) are recorded at
 from __future__ import annotations
 
 import math
+import threading
 import time
+from collections import OrderedDict
 from collections.abc import Callable
 from dataclasses import asdict, dataclass
 
@@ -382,16 +384,38 @@ def _replan_times(t_c: np.ndarray, dt_k: np.ndarray, k: int, t_next: float, t_en
     return t_new, dt_new, k + 1 + m, k + 1 + m + n_ext
 
 
+_PLANNED: OrderedDict[tuple[object, ...], Trajectory] = OrderedDict()  # the last trajectories planned in this process
+_PLANNED_LOCK = threading.Lock()
+PLANNED_KEPT = 16  # trajectories kept (each ~1-2 MB: its dense pad table)
+
+
 def trial_trajectory(plan: ActionPlan, body: TrialBody, settings: TrialSettings, place_stop_s: float | None = None
                      ) -> Trajectory:
     """The plan's trajectory as a trial executes it (raises UnreachableError or SimulationError); place_stop_s: where
-    a force-guarded place stopped the lowering [s]."""
+    a force-guarded place stopped the lowering [s].
+
+    A trajectory depends on the plan, the body's height and these settings alone, and is not changed once planned: the
+    last PLANNED_KEPT are kept in the process, so that a plan checked for reachability (plan_executable, ~1-2 s of IK
+    and pad table on the CPU) is not planned again by its trial, nor a trial's by its side-by-side conditions."""
     s = settings
     guarded = s.place_guard_height_m if s.place_support_fraction is not None else 0.0
+    key = (plan.model_dump_json(), float(body.height_m), float(s.pad_half_thickness_m), float(guarded),
+           float(s.place_guard_speed_m_per_s), None if place_stop_s is None else float(place_stop_s),
+           float(s.place_brake_s))
+    with _PLANNED_LOCK:
+        kept = _PLANNED.get(key)
+        if kept is not None:
+            _PLANNED.move_to_end(key)
+            return kept
     place = PlaceApproach(height_m=guarded, speed_m_per_s=s.place_guard_speed_m_per_s, stop_s=place_stop_s,
                           brake_s=s.place_brake_s)
-    return plan_trajectory(plan, object_pose=object_pose(plan), object_height_m=body.height_m,
+    traj = plan_trajectory(plan, object_pose=object_pose(plan), object_height_m=body.height_m,
                            pad_half_thickness_m=s.pad_half_thickness_m, place=place)
+    with _PLANNED_LOCK:
+        _PLANNED[key] = traj
+        while len(_PLANNED) > PLANNED_KEPT:
+            _PLANNED.popitem(last=False)
+    return traj
 
 
 def plan_or_error(plan: ActionPlan, body: TrialBody, settings: TrialSettings | None = None

@@ -55,3 +55,37 @@ def test_the_context_plans_as_reachable_plan_does(cube: Cube, planned: list[obje
         assert ctx.plan(values, target, yaw) == plan and len(planned) == checked  # a rerun's check: from the cache
         assert reachable_plan(plan, grasps, cube.body) == plan  # what reachable_plan, planning uncached, keeps
         planned.clear()
+
+
+def test_a_trajectory_is_planned_once_per_process_for_the_same_plan_body_height_and_settings(
+        cube: Cube, monkeypatch: pytest.MonkeyPatch) -> None:
+    """plan_executable's check and the trial itself plan the same trajectory: the second is the first's (a trajectory
+    is not changed once planned); another plan, body height, pad or place setting is planned anew."""
+    import tasks.manipulation.trial as trial
+    from tasks.manipulation.trial import TrialSettings, trial_trajectory
+
+    calls: list[object] = []
+    real = trial.plan_trajectory
+
+    def counting(plan, **kw):  # noqa: ANN001, ANN003, ANN202
+        calls.append(plan)
+        return real(plan, **kw)
+
+    monkeypatch.setattr(trial, "plan_trajectory", counting)
+    monkeypatch.setattr(trial, "_PLANNED", type(trial._PLANNED)())
+    plan, s = cube.plan(0.004), TrialSettings()
+    first = trial_trajectory(plan, cube.body, s)
+    assert trial_trajectory(plan, cube.body, s) is first and plan_or_error(plan, cube.body)[0] is first
+    assert len(calls) == 1
+    others = [trial_trajectory(cube.plan(0.005), cube.body, s),
+              trial_trajectory(plan, replace(cube.body, height_m=cube.body.height_m + 0.01), s),
+              trial_trajectory(plan, cube.body, replace(s, pad_half_thickness_m=0.005)),
+              trial_trajectory(plan, cube.body, replace(s, place_support_fraction=None)),
+              trial_trajectory(plan, cube.body, s, place_stop_s=first.lower_window_s[0] + 0.01)]
+    assert len(calls) == 6 and all(o is not first for o in others)
+    fresh = real(plan, object_pose=trial.object_pose(plan), object_height_m=cube.body.height_m,
+                 pad_half_thickness_m=s.pad_half_thickness_m,
+                 place=trial.PlaceApproach(height_m=s.place_guard_height_m, speed_m_per_s=s.place_guard_speed_m_per_s,
+                                           brake_s=s.place_brake_s))
+    t = np.linspace(0.0, first.duration_s, 50)
+    np.testing.assert_array_equal(fresh.pads_at(t).position_m, first.pads_at(t).position_m)  # what it would plan

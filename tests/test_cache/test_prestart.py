@@ -110,13 +110,14 @@ def test_no_prestart_when_prefect_is_pointed_at_a_server(monkeypatch: pytest.Mon
 def test_only_flow_commands_prestart(monkeypatch: pytest.MonkeyPatch) -> None:
     calls: list[int] = []
     monkeypatch.setattr(runtime, "prestart_local_server", lambda: calls.append(1))
-    for argv in (["generate"], ["material", "--asset", "x"], ["batch", "r.jsonl"], ["eval", "--suite", "s"]):
+    for argv in (["material", "--asset", "x"], ["batch", "r.jsonl"], ["eval", "--suite", "s"], ["probe", "drop"]):
         cli_main._prestart_for(argv)
     assert len(calls) == 4
     for argv in ([], ["inspect", "d"], ["schema", "--list"], ["cache", "stats"], ["generate", "--help"],
-                 ["verify", "physics"]):
+                 ["verify", "physics"], ["generate"]):  # generate: once it knows the layers will run (tasks.asset_cache)
         cli_main._prestart_for(argv)
     assert len(calls) == 4
+    assert cli_main.PRESTART_IN_COMMAND <= cli_main.FLOW_COMMANDS
 
 
 def test_a_server_that_does_not_come_up_leaves_flows_on_prefects_own(monkeypatch: pytest.MonkeyPatch) -> None:
