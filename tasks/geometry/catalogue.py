@@ -454,6 +454,20 @@ def _rolled_sized(size: SizeSpec, program: ShapeProgram, reading: concepts.Readi
                                    "stated": f"{size.stated}: the sheet's length and width, rolled"})
 
 
+def _crumpled_sized(size: SizeSpec, reading: concepts.Reading) -> SizeSpec:
+    """A crumpled sheet's stated sizes are the flat sheet's ('a crumpled bath towel, 70 x 140 cm'): the heap it
+    bunches into is built (grammar crumpled_size: about half the square side of its area across), not a 1.4 m heap."""
+    target = reading.donor or reading.entry
+    states = (reading.phrase.states if reading.phrase else []) + [str(reading.params.get("state", ""))]
+    dims = sorted((v for v in (*size.extents_m, size.longest_m) if v is not None), reverse=True)
+    if target is None or target.plan != "sheet" or "crumpled" not in states or not dims:
+        return size
+    width = dims[1] if len(dims) > 1 else dims[0] * float(target.params.get("width", 0.5))
+    across = 0.5 * float(np.sqrt(dims[0] * width))
+    return size.model_copy(update={"longest_m": across, "extents_m": (None, None, None), "flat": False,
+                                   "stated": f"{size.stated}: the flat sheet's, bunched into a heap"})
+
+
 _TRAILING_PAIR = re.compile(r"(?:\s*,\s*|\s+|\()(?:a\s+)?pair\b\)?(?!\s+of\b)", re.IGNORECASE)
 
 
@@ -723,6 +737,7 @@ def design_from_text(text: str, size_hint_m: float | None = None) -> Design:
         size = size.model_copy(update={"longest_m": size.longest_m * float(
             grammar.program_extents(program, 48).max() / grammar.program_extents(one, 48).max())})
     size = _rolled_sized(size, program, reading)
+    size = _crumpled_sized(size, reading)
     size, fill_match = _fill_sized(size, program, fill_match, mass)
     if mass is None:
         match = fill_match

@@ -163,3 +163,11 @@ def test_a_rubber_band_is_a_band() -> None:
     """Sealed set 15: a rubber band was a 6.5 g hair scrunchie (13x)."""
     assert catalogue.design_from_text("an elastic band").entry == "rubber_band"
     assert planned_mass("a rubber band") < 0.002
+
+
+def test_a_crumpled_sheet_stated_flat_is_a_heap_of_that_sheet() -> None:
+    """Sealed set 15: 'a crumpled white bath towel, 70 x 140 cm' was a 1.4 m heap of 3.7 kg (7.6x)."""
+    text = "a crumpled beach towel, 80 x 160 cm"  # retail 80 x 160 cm cotton beach towels 0.5-0.8 kg
+    d = catalogue.design_from_text(text)
+    assert d.size.longest_m is not None and d.size.longest_m < 0.7
+    assert 0.3 <= planned_mass(text) <= 1.3
