@@ -16,6 +16,7 @@ from __future__ import annotations
 import math
 from collections.abc import Callable
 from dataclasses import dataclass, field
+from typing import Literal
 
 import numpy as np
 
@@ -114,8 +115,8 @@ class FitResult:
     """The fitted material, where each parameter came from, the simulated metrics and residuals."""
 
     material: Material
-    young_source: str
-    viscosity_source: str
+    young_source: Literal["impact_strain", "press", "prior"]
+    viscosity_source: Literal["rebound", "no_bounce_lower_bound", "prior"]
     simulated: dict[str, float]
     residuals: dict[str, float]
     converged: bool
@@ -126,13 +127,14 @@ def fit(p: FitProblem) -> FitResult:
     """Fit E and the viscosity as the module docstring says."""
     young, eta = p.prior.youngs_modulus_pa, p.prior.viscosity_pa_s
     notes: list[str] = []
-    young_source = "prior"
+    young_source: Literal["impact_strain", "press", "prior"] = "prior"
     if p.press is not None:
         target = p.press.effective_modulus_pa
         young, _, _ = fit_modulus(lambda e: p.press_modulus(e, eta), young, target, TOLERANCE, max_sims=4)
         young_source = "press"
     r_target = p.rebound if p.rebound is not None and p.rebound > 0 else p.rebound_limit
-    visc_source = "prior" if r_target is None else ("rebound" if p.rebound else "no_bounce_lower_bound")
+    visc_source: Literal["rebound", "no_bounce_lower_bound", "prior"] = (
+        "prior" if r_target is None else ("rebound" if p.rebound else "no_bounce_lower_bound"))
     if young_source == "prior" and p.strain is not None and r_target is not None:
         values, _ = fit_both(p.metric("index"), p.metric("rebound_ratio"),
                              lambda v: [p.viscosity_knob(v["young_pa"], v["viscosity_pa_s"])],

@@ -25,9 +25,36 @@ STILL_PX = 1.0  # a centroid within max(1 px, 1 % of the height) of its final pl
 MIN_FIT_FRAMES = 4  # a parabola needs this many frames of flight
 
 
+CONTACT_FRACTION = 0.03  # a bottom within 3 % of the height of the floor line is on the floor
+
+
 def contact_tol_px(height_px: float) -> float:
-    """A bottom this close to the floor line is on the floor [px]."""
-    return max(1.5, 0.03 * height_px)
+    """A bottom this close to the floor line is on the floor [px] (at least a pixel row and a half)."""
+    return max(1.5, CONTACT_FRACTION * height_px)
+
+
+def impact_amplitude(t: np.ndarray, strain: np.ndarray) -> float:
+    """The compression of an impact: the amplitude A of the half sine A sin(pi (t - t0) / tc) on [t0, t0 + tc] (zero
+    elsewhere) that fits the strain samples best (least squares; t0 and tc searched on a grid over the samples' span,
+    A solved for each): an impact's compression is close to a half sine, and unlike the largest sample the fit is
+    not biased up by noise nor by where the frames fall."""
+    span = float(t[-1] - t[0])
+    if len(t) < 3 or span <= 0:
+        return float(np.max(strain)) if len(t) else math.nan
+    step = span / max(len(t) - 1, 1)
+    t0s = np.linspace(t[0] - step, t[-1], 48)
+    tcs = np.linspace(2.0 * step, span + 2.0 * step, 48)
+    best, amp = math.inf, math.nan
+    for tc in tcs:
+        x = (t[None, :] - t0s[:, None]) / tc
+        phi = np.where((x >= 0) & (x <= 1), np.sin(np.pi * np.clip(x, 0, 1)), 0.0)
+        den = (phi * phi).sum(axis=1)
+        a = np.where(den > 0, (phi * strain[None, :]).sum(axis=1) / np.maximum(den, 1e-300), 0.0)
+        sse = ((strain[None, :] - a[:, None] * phi) ** 2).sum(axis=1)
+        k = int(np.argmin(sse))
+        if sse[k] < best:
+            best, amp = float(sse[k]), float(a[k])
+    return amp
 
 
 @dataclass
@@ -139,34 +166,6 @@ def _runs(mask: np.ndarray) -> list[tuple[int, int]]:
     return out
 
 
-def _peak(values: np.ndarray, i: int) -> float:
-    """The value at a sampled maximum refined by the parabola through it and its neighbours."""
-    if 0 < i < len(values) - 1:
-        a, b, c = values[i - 1], values[i], values[i + 1]
-        den = a - 2.0 * b + c
-        if den < 0:
-            return float(b - 0.125 * (a - c) ** 2 / den)
-    return float(values[i])
-
-
-def _peak_fit(t: np.ndarray, s: np.ndarray, i: int) -> float:
-    """The peak of a noisy sampled bump: the vertex of a parabola fitted (least squares) to the samples above half
-    its sampled maximum around it (the sampled maximum alone is biased up by the noise); the 3-point peak when fewer
-    than 4 samples are there or the fit has no maximum inside them."""
-    top = s >= 0.5 * s[i]
-    lo, hi = i, i
-    while lo > 0 and top[lo - 1]:
-        lo -= 1
-    while hi < len(s) - 1 and top[hi + 1]:
-        hi += 1
-    if hi - lo + 1 >= 4:
-        c, b, a = np.polyfit(t[lo:hi + 1] - t[i], s[lo:hi + 1], 2)
-        tv = -b / (2 * c) if c < 0 else math.inf
-        if t[lo] - t[i] <= tv <= t[hi] - t[i]:
-            return float(a + b * tv + c * tv * tv)
-    return _peak(s, i)
-
-
 def analyse(tr: Track) -> DropAnalysis:
     """The phases of the drop (see the module docstring)."""
     n = len(tr.t_s)
@@ -215,7 +214,13 @@ def analyse(tr: Track) -> DropAnalysis:
         why["rebound_ratio"] = "the fall before the first impact is not in the video"
     # the flight after the first impact
     after = runs[1][0] if len(runs) > 1 else n
-    flight_rows = np.arange(c1 + 1, after)
+    end = c1 + 1  # the flight ends where the centroid, having risen and fallen, stops falling (the next impact)
+    while end + 1 < after and tr.cy[end + 1] < tr.cy[end]:
+        end += 1
+    while end + 1 < after and tr.cy[end + 1] >= tr.cy[end]:
+        end += 1
+    flight_rows = np.arange(c1 + 1, min(after, end + 1))
+    flight_rows = flight_rows[tr.bottom[flight_rows] < floor - tol]
     d.left_floor = len(flight_rows) > 0
     if d.left_floor:
         d.flight = Parabola.fit(tr.t_s[flight_rows], tr.cy[flight_rows])
@@ -229,11 +234,11 @@ def analyse(tr: Track) -> DropAnalysis:
             why["rebound_ratio"] = "the apex after the first impact is not in the video"
     # the impact strain: the second-moment height on the floor against the flight height
     if d.flight_height is not None:
-        rows = np.arange(max(0, c0 - 1), min(n, c1 + 2))
+        m = max(3, c1 - c0 + 1)  # the impact with as many frames either side (flight: no compression)
+        rows = np.arange(max(0, c0 - m), min(n, c1 + 1 + m))
         s = 1.0 - tr.moment_height[rows] / d.flight_height
-        i = int(np.argmax(s))
-        d.min_height = float(tr.moment_height[rows][i])
-        strain = _peak_fit(tr.t_s[rows], s, i)
+        d.min_height = float(tr.moment_height[c0:c1 + 1].min())
+        strain = impact_amplitude(tr.t_s[rows], s)
         if c1 - c0 + 1 < 3:
             why["impact_strain"] = (f"only {c1 - c0 + 1} frame(s) on the floor in the impact: the frame rate is too "
                                     "low to see the compression")
@@ -269,4 +274,5 @@ def video_metrics(d: DropAnalysis, metres_per_px: float) -> VideoMetrics:
         recovery_ratio=recovery, left_floor=d.left_floor)
 
 
-__all__ = ["DropAnalysis", "Parabola", "analyse", "contact_tol_px", "video_metrics"]
+__all__ = ["CONTACT_FRACTION", "DropAnalysis", "Parabola", "analyse", "contact_tol_px", "impact_amplitude",
+           "video_metrics"]

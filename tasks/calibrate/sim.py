@@ -3,9 +3,10 @@
 The fall and the rise are closed form under the material's damping (tasks.realworld.physics, as `bench realworld`
 does a rule's drop); the impact between them is the engine's impact probe (tasks.realworld.impact, the probe that
 calibrates L2's viscosity), so a 1 m drop costs the milliseconds of contact. Its metrics are the video's, defined
-the same way: the rebound ratio (rise / drop) and the impact strain as a camera sees it, the largest drop of the
+the same way: the rebound ratio (rise / drop) and the impact strain as a camera sees it: the compression of the
 silhouette's second-moment height 4 sigma_z (the particles drawn from the side as discs of half the spacing, the
-outline at half coverage, as the tracker's) below its height at touchdown.
+outline at half coverage, as the tracker's) below its height at touchdown, as the half sine fitted to the samples
+(tasks.calibrate.metrics.impact_amplitude).
 """
 
 from __future__ import annotations
@@ -18,6 +19,7 @@ import numpy as np
 from contracts.material import Material
 from contracts.physical import PhysicalModel
 from contracts.sim import SimConfig
+from tasks.calibrate.metrics import impact_amplitude
 from tasks.probes.rollout import DeformableBody, dx_of
 from tasks.realworld.impact import impact
 from tasks.realworld.physics import damped_impact_speed_m_per_s, damped_rise_height_m
@@ -73,8 +75,10 @@ def drop_impact(positions_m: np.ndarray, volumes_m3: np.ndarray, physical: Physi
     ppm = SILHOUETTE_PX / longest_extent_m(positions_m, spacing)
     heights: list[float] = []
     bottoms: list[float] = []
+    times: list[float] = []
 
     def observe(t: float, state: dict[str, np.ndarray]) -> None:
+        times.append(t)
         heights.append(silhouette_height(state["x"], spacing, ppm))
         bottoms.append(float(state["x"][:, 2].min()))
 
@@ -84,8 +88,9 @@ def drop_impact(positions_m: np.ndarray, volumes_m3: np.ndarray, physical: Physi
     out = {k: float(v) for k, v in raw.items() if isinstance(v, float) and math.isfinite(v)}
     out.update({"drop_height_m": drop_height_m, "speed_in_m_per_s": v_in, "finite": 1.0 if ok else 0.0})
     if ok:
-        h = np.array(heights)
-        out["impact_strain"] = float(max(0.0, 1.0 - h.min() / h[0]))
+        h, b, t = np.array(heights), np.array(bottoms), np.array(times)
+        out["impact_strain"] = max(0.0, impact_amplitude(t, 1.0 - h / h[0]))
+        out["impact_strain_max"] = float(max(0.0, 1.0 - h.min() / h[0]))
         # the engine's ground acts across a contact layer 1.5 dx deep: the bottom goes on down into it for `sink` after
         # the contact starts; the video's heights are measured from that lowest bottom (its floor line), so the fall
         # and the rise here are too

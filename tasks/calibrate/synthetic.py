@@ -60,19 +60,23 @@ def draw(bg: np.ndarray, xy_px: np.ndarray, radius_px: float, colour: tuple[int,
     return bg * (1.0 - a) + shade * a
 
 
-def degrade(frames: np.ndarray, noise_grey: float, jpeg_quality: int, seed: int = 0) -> np.ndarray:
-    """Camera noise (Gaussian, sigma in grey levels) and a JPEG round trip of every frame: uint8 RGB frames."""
+def degrade(frames: np.ndarray, noise_grey: float, jpeg_quality: int | None, seed: int = 0) -> np.ndarray:
+    """Camera noise (Gaussian, sigma in grey levels) and a JPEG round trip of every frame (None: none; a video
+    writer compresses them): uint8 RGB frames."""
     rng = np.random.default_rng(seed)
     out = []
     for f in frames:
         g = np.clip(f + rng.normal(0.0, noise_grey, f.shape), 0, 255).astype(np.uint8)
+        if jpeg_quality is None:
+            out.append(g)
+            continue
         ok, buf = cv2.imencode(".jpg", cv2.cvtColor(g, cv2.COLOR_RGB2BGR), [cv2.IMWRITE_JPEG_QUALITY, jpeg_quality])
         out.append(cv2.cvtColor(cv2.imdecode(buf, cv2.IMREAD_COLOR), cv2.COLOR_BGR2RGB))
     return np.stack(out)
 
 
 def disc_video(cam: Camera, centres_xz_m: np.ndarray, radius_m: float, noise_grey: float = 3.0,
-               jpeg_quality: int = 80, seed: int = 0) -> np.ndarray:
+               jpeg_quality: int | None = 80, seed: int = 0) -> np.ndarray:
     """One disc of `radius_m` per frame at the given world centres (F, 2)."""
     bg = scene(cam, seed)
     xs, ys = cam.project(centres_xz_m[:, 0], centres_xz_m[:, 1])
@@ -81,7 +85,7 @@ def disc_video(cam: Camera, centres_xz_m: np.ndarray, radius_m: float, noise_gre
 
 
 def particle_video(cam: Camera, positions_m: np.ndarray, spacing_m: float, noise_grey: float = 3.0,
-                   jpeg_quality: int = 80, seed: int = 0) -> np.ndarray:
+                   jpeg_quality: int | None = 80, seed: int = 0) -> np.ndarray:
     """Each frame's particles (F, N, 3) seen from the side (y is depth), each a disc of half the spacing."""
     bg = scene(cam, seed)
     frames = []

@@ -27,8 +27,8 @@ MIN_THRESHOLD = 18.0  # grey levels
 @dataclass
 class Track:
     """Per tracked frame: time [s], centroid (x, y), bottom and top y (image y down), second-moment height (4 sigma_y,
-    the height of an ellipse or a disc of that sigma), bounding-box width and height, mask area [px]; with the frame
-    count and the indices of the frames kept."""
+    the height of an ellipse or a disc of that sigma), width and height (_extent), mask area [px]; with the frame
+    count, the indices of the frames kept, the threshold and the frame rate."""
 
     frames: int
     index: np.ndarray
@@ -42,6 +42,7 @@ class Track:
     box_height: np.ndarray
     area: np.ndarray
     threshold: float
+    fps: float
 
     @property
     def dropped(self) -> int:
@@ -107,6 +108,12 @@ def _largest(mask: np.ndarray) -> np.ndarray | None:
     return labels == i
 
 
+def _extent(profile: np.ndarray) -> float:
+    """The object's extent along an axis [px]: the columns (or rows) that hold at least a tenth of the widest one's
+    pixels (and 2), so that a stray edge pixel of noise does not widen the box."""
+    return float(np.count_nonzero(profile >= max(2.0, 0.1 * float(profile.max()))))
+
+
 def track_object(frames: np.ndarray, fps: float) -> Track:
     """Track the object through the frames (InputError when it is never found)."""
     thr = noise_threshold(frames)
@@ -119,8 +126,7 @@ def track_object(frames: np.ndarray, fps: float) -> Track:
         ys, xs = np.nonzero(m)
         cy = float(ys.mean())
         rows.append((float(i), i / fps, float(xs.mean()), cy, float(ys.max()) + 0.5, float(ys.min()) - 0.5,
-                     4.0 * float(ys.std()), float(xs.max() - xs.min() + 1), float(ys.max() - ys.min() + 1),
-                     float(len(ys))))
+                     4.0 * float(ys.std()), _extent(m.sum(axis=0)), _extent(m.sum(axis=1)), float(len(ys))))
     if not rows:
         raise InputError("the object was never found in the video (no region differs from the background)")
     a = np.array(rows)
@@ -131,7 +137,7 @@ def track_object(frames: np.ndarray, fps: float) -> Track:
         raise InputError(f"the object was found in only {len(a)} of {len(frames)} frames; the video needs a static "
                          "camera and an object that stands out from the background")
     cols = [a[:, j] for j in range(10)]
-    return Track(len(frames), cols[0].astype(int), *cols[1:], threshold=thr)
+    return Track(len(frames), cols[0].astype(int), *cols[1:], threshold=thr, fps=fps)
 
 
 __all__ = ["Track", "background", "noise_threshold", "object_mask", "track_object"]
