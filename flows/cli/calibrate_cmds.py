@@ -9,6 +9,7 @@ from pathlib import Path
 import typer
 
 from contracts.errors import DeformSmithError
+from contracts.sim import SimConfig
 from contracts.video_fit import VIDEO_FIT_JSON, VideoFitRecord
 from flows.cli.apps import app, console, emit_json, fail, results
 
@@ -31,7 +32,7 @@ def summary_lines(r: VideoFitRecord, asset_dir: Path) -> list[str]:
         f"rebound ratio video {f(m.rebound_ratio)} sim {f(r.simulated.get('rebound_ratio'))}; impact strain video "
         f"{f(m.impact_strain)} sim {f(r.simulated.get('impact_strain'))}; settle time {f(m.settle_time_s)} s; "
         f"recovery {f(m.recovery_ratio)}",
-        f"residuals: " + (", ".join(f"{k} {v:+.1%}" for k, v in r.residuals.items()) or "none")
+        "residuals: " + (", ".join(f"{k} {v:+.1%}" for k, v in r.residuals.items()) or "none")
         + f"; converged {r.converged}; {r.sim_calls} simulations",
         f"scale {r.scale.metres_per_px * 1000:.4g} mm/px from {r.scale.source} ({r.scale.detail}); drop "
         f"{r.drop_height_m:.4g} m ({r.drop_height_source}), size {r.size_m:.4g} m ({r.size_source})",
@@ -66,8 +67,6 @@ def calibrate(
         _positive(name, v)
     if not 1 <= cpu_threads <= 64:
         fail(f"--cpu-threads must be 1 to 64, got {cpu_threads}")
-    # lazy: pulls warp, OpenCV, zarr (--help imports every command module)
-    from contracts.sim import SimConfig
     # lazy: pulls warp, OpenCV, zarr (--help imports every command module)
     from flows.calibrate import calibrate_asset
 

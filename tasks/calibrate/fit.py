@@ -139,7 +139,7 @@ def fit(p: FitProblem) -> FitResult:
         values, _ = fit_both(p.metric("index"), p.metric("rebound_ratio"),
                              lambda v: [p.viscosity_knob(v["young_pa"], v["viscosity_pa_s"])],
                              {"young_pa": young, "viscosity_pa_s": p.viscosity_knob(young).start},
-                             strain_index(p.strain), r_target, tol=TOLERANCE, rebound_sims=8)
+                             strain_index(p.strain), r_target, tol=TOLERANCE, refit_tol=TOLERANCE, rebound_sims=8)
         young, eta, young_source = values["young_pa"], values["viscosity_pa_s"], "impact_strain"
     elif young_source == "prior" and p.strain is not None:
         young, _, _ = fit_modulus(lambda e: p.metric("index")({"young_pa": e, "viscosity_pa_s": eta}), young,
@@ -152,7 +152,8 @@ def fit(p: FitProblem) -> FitResult:
         eta = values["viscosity_pa_s"]
     material = p.prior.model_copy(update={"youngs_modulus_pa": young, "viscosity_pa_s": eta})
     sim = p.drop(young, eta)
-    simulated = {k: sim[k] for k in ("impact_strain", "rebound_ratio", "restitution", "contact_time_s") if k in sim}
+    simulated: dict[str, float] = {k: sim[k] for k in ("impact_strain", "rebound_ratio", "restitution",
+                                                        "contact_time_s") if k in sim}
     residuals: dict[str, float] = {}
     if p.strain is not None and "impact_strain" in sim:
         residuals["impact_strain"] = rel(sim["impact_strain"], p.strain)

@@ -4,8 +4,8 @@ The fall and the rise are closed form under the material's damping (tasks.realwo
 does a rule's drop); the impact between them is the engine's impact probe (tasks.realworld.impact, the probe that
 calibrates L2's viscosity), so a 1 m drop costs the milliseconds of contact. Its metrics are the video's, defined
 the same way: the rebound ratio (rise / drop) and the impact strain as a camera sees it: the compression of the
-silhouette's second-moment height 4 sigma_z (the particles drawn from the side as discs of half the spacing, the
-outline at half coverage, as the tracker's) below its height at touchdown, as the half sine fitted to the samples
+silhouette's second-moment height 4 sigma_z (the particles drawn from the side as anti-aliased discs of half the
+spacing, each pixel weighted by its coverage, as the tracker weighs its pixels) below its height at touchdown, as the half sine fitted to the samples
 (tasks.calibrate.metrics.impact_amplitude).
 """
 
@@ -20,6 +20,7 @@ from contracts.material import Material
 from contracts.physical import PhysicalModel
 from contracts.sim import SimConfig
 from tasks.calibrate.metrics import impact_amplitude
+from tasks.calibrate.track import moment_height
 from tasks.probes.rollout import DeformableBody, dx_of
 from tasks.realworld.impact import impact
 from tasks.realworld.physics import damped_impact_speed_m_per_s, damped_rise_height_m
@@ -50,7 +51,7 @@ def scaled_body(positions_m: np.ndarray, volumes_m3: np.ndarray, physical: Physi
 
 
 def silhouette_height(x_m: np.ndarray, spacing_m: float, px_per_m: float) -> float:
-    """4 sigma of the rows of the side view's silhouette (x right, z up; discs of half the spacing) [m]."""
+    """4 sigma of the rows of the side view's silhouette (x right, z up; discs of half the spacing; coverage) [m]."""
     lo = x_m[:, [0, 2]].min(axis=0) - spacing_m
     hi = x_m[:, [0, 2]].max(axis=0) + spacing_m
     w, h = (np.ceil((hi - lo) * px_per_m)).astype(int) + 2
@@ -61,8 +62,7 @@ def silhouette_height(x_m: np.ndarray, spacing_m: float, px_per_m: float) -> flo
     xy[:, 1] = h - xy[:, 1]
     for px, py in np.rint(xy * k).astype(int).tolist():
         cv2.circle(mask, (px, py), r, 255, -1, cv2.LINE_AA, SHIFT)
-    ys = np.nonzero(mask >= 128)[0]
-    return 4.0 * float(ys.std()) / px_per_m
+    return moment_height(mask.astype(np.float64) / 255.0)[1] / px_per_m
 
 
 def drop_impact(positions_m: np.ndarray, volumes_m3: np.ndarray, physical: PhysicalModel, material: Material,
@@ -88,7 +88,7 @@ def drop_impact(positions_m: np.ndarray, volumes_m3: np.ndarray, physical: Physi
     out = {k: float(v) for k, v in raw.items() if isinstance(v, float) and math.isfinite(v)}
     out.update({"drop_height_m": drop_height_m, "speed_in_m_per_s": v_in, "finite": 1.0 if ok else 0.0})
     if ok:
-        h, b, t = np.array(heights), np.array(bottoms), np.array(times)
+        h, t = np.array(heights), np.array(times)
         out["impact_strain"] = max(0.0, impact_amplitude(t, 1.0 - h / h[0]))
         out["impact_strain_max"] = float(max(0.0, 1.0 - h.min() / h[0]))
         # the engine's ground acts across a contact layer 1.5 dx deep: the bottom goes on down into it for `sink` after

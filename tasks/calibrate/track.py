@@ -26,8 +26,8 @@ MIN_THRESHOLD = 18.0  # grey levels
 
 @dataclass
 class Track:
-    """Per tracked frame: time [s], centroid (x, y), bottom and top y (image y down), second-moment height (4 sigma_y,
-    the height of an ellipse or a disc of that sigma), width and height (_extent), mask area [px]; with the frame
+    """Per tracked frame: time [s], centroid (x, y) and second-moment height (4 sigma_y, the height of an ellipse or
+    a disc of that sigma) of the coverage (object_mask), bottom and top y of the mask (image y down), width and height (_extent), mask area [px]; with the frame
     count, the indices of the frames kept, the threshold and the frame rate."""
 
     frames: int
@@ -82,17 +82,36 @@ def background(frames: np.ndarray, threshold: float) -> np.ndarray:
     return out.astype(np.float32)
 
 
-def object_mask(frame: np.ndarray, bg: np.ndarray, threshold: float) -> np.ndarray | None:
-    """The largest region of the frame that differs from the background, cleaned (open, then close, 3x3); None when
-    there is none of MIN_AREA_PX."""
+def object_mask(frame: np.ndarray, bg: np.ndarray, threshold: float) -> tuple[np.ndarray, np.ndarray] | None:
+    """The largest region of the frame that differs from the background, cleaned (open, then close, 3x3), with its
+    edge at half the object's contrast; and the coverage of each pixel (1 inside, the difference over the object's
+    contrast on the one-pixel rings either side of the edge: a sub-pixel outline for the moments). None when there is
+    no region of MIN_AREA_PX."""
     diff = _diff(frame, bg)
     region = _largest(diff > threshold)
     if region is None:
         return None
     # the edge at half the object's contrast (where a pixel is half covered): an unbiased outline and extent
-    half = max(threshold, 0.5 * float(np.median(diff[region])))
+    contrast = float(np.median(diff[region]))
     near = cv2.dilate(region.astype(np.uint8), np.ones((5, 5), np.uint8)).astype(bool)
-    return _largest((diff > half) & near)
+    mask = _largest((diff > max(threshold, 0.5 * contrast)) & near)
+    if mask is None:
+        return None
+    m8 = mask.astype(np.uint8)
+    ring = cv2.dilate(m8, np.ones((3, 3), np.uint8)).astype(bool) & ~cv2.erode(m8, np.ones((3, 3), np.uint8)).astype(bool)
+    cover = mask.astype(np.float64)
+    cover[ring] = np.clip(diff[ring] / max(contrast, 1e-6), 0.0, 1.0)
+    return mask, cover
+
+
+def moment_height(cover: np.ndarray) -> tuple[float, float]:
+    """(centroid row, 4 sigma of the rows) of a coverage image [px]: the height of a disc or an ellipse of that
+    sigma."""
+    rows = cover.sum(axis=1)
+    y = np.arange(len(rows), dtype=np.float64)
+    w = float(rows.sum())
+    cy = float((rows * y).sum() / w)
+    return cy, 4.0 * float(np.sqrt(max(0.0, (rows * (y - cy) ** 2).sum() / w)))
 
 
 def _largest(mask: np.ndarray) -> np.ndarray | None:
@@ -120,13 +139,15 @@ def track_object(frames: np.ndarray, fps: float) -> Track:
     bg = background(frames, thr)
     rows: list[tuple[float, ...]] = []
     for i, f in enumerate(frames):
-        m = object_mask(f, bg, thr)
-        if m is None:
+        found = object_mask(f, bg, thr)
+        if found is None:
             continue
+        m, cover = found
         ys, xs = np.nonzero(m)
-        cy = float(ys.mean())
-        rows.append((float(i), i / fps, float(xs.mean()), cy, float(ys.max()) + 0.5, float(ys.min()) - 0.5,
-                     4.0 * float(ys.std()), _extent(m.sum(axis=0)), _extent(m.sum(axis=1)), float(len(ys))))
+        cy, height = moment_height(cover)
+        cx = float((cover.sum(axis=0) * np.arange(cover.shape[1])).sum() / cover.sum())
+        rows.append((float(i), i / fps, cx, cy, float(ys.max()) + 0.5, float(ys.min()) - 0.5, height,
+                     _extent(m.sum(axis=0)), _extent(m.sum(axis=1)), float(len(ys))))
     if not rows:
         raise InputError("the object was never found in the video (no region differs from the background)")
     a = np.array(rows)
@@ -136,8 +157,9 @@ def track_object(frames: np.ndarray, fps: float) -> Track:
     if len(a) < 0.25 * len(frames) or len(a) < 6:
         raise InputError(f"the object was found in only {len(a)} of {len(frames)} frames; the video needs a static "
                          "camera and an object that stands out from the background")
-    cols = [a[:, j] for j in range(10)]
-    return Track(len(frames), cols[0].astype(int), *cols[1:], threshold=thr, fps=fps)
+    c = a.T
+    return Track(frames=len(frames), index=c[0].astype(int), t_s=c[1], cx=c[2], cy=c[3], bottom=c[4], top=c[5],
+                 moment_height=c[6], box_width=c[7], box_height=c[8], area=c[9], threshold=thr, fps=fps)
 
 
-__all__ = ["Track", "background", "noise_threshold", "object_mask", "track_object"]
+__all__ = ["Track", "background", "moment_height", "noise_threshold", "object_mask", "track_object"]

@@ -75,7 +75,7 @@ def write_video(path: Path, frames: np.ndarray, fps: float, quality: int = 85) -
     path = Path(path)
     if path.suffix.lower() == ".avi":
         h, w = frames.shape[1:3]
-        vw = cv2.VideoWriter(str(path), cv2.VideoWriter_fourcc(*"MJPG"), fps, (w, h))
+        vw = cv2.VideoWriter(str(path), cv2.VideoWriter.fourcc(*"MJPG"), fps, (w, h))
         vw.set(cv2.VIDEOWRITER_PROP_QUALITY, quality)
         for f in frames:
             vw.write(cv2.cvtColor(f, cv2.COLOR_RGB2BGR))
