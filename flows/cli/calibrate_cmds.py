@@ -49,10 +49,10 @@ def summary_lines(r: VideoFitRecord, asset_dir: Path) -> list[str]:
 def calibrate(
     asset_dir: Path = typer.Argument(..., help="an asset directory that L2 has run on (material.json)"),
     video: Path = typer.Option(..., "--video", help="a static-camera video of the real object dropped on a table"),
-    drop_height: float = typer.Option(None, "--drop-height", help="the fall of the object's bottom to the table [m] "
+    drop_height: float = typer.Option(None, "--drop-height", help="the fall of the object's bottom to the table, in m "
                                       "(default: measured in the video)"),
-    size: float = typer.Option(None, "--size", help="the object's longest extent [m]: the video's scale (default: "
-                               "the drop height's, else gravity's)"),
+    size: float = typer.Option(None, "--size", help="the object's longest extent, in m: the video's scale "
+                               "(default: the drop height's, else gravity's)"),
     fps: float = typer.Option(None, "--fps", help="frames per second, when the file lacks it (or stores a slow-motion "
                               "clip's playback rate)"),
     press: Path = typer.Option(None, "--press", help="a flat-plate press test: CSV with columns displacement_m, force_n"),
