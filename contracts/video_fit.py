@@ -88,6 +88,7 @@ class FitStep(Model):
 
     youngs_modulus_pa: float
     viscosity_pa_s: float
+    damping_rate_per_s: float | None = None
     probe: Literal["drop_impact", "compress"]
     metrics: dict[str, float]
 

@@ -56,17 +56,19 @@ class FitProblem:
     rebound_limit: float | None = None  # no bounce: the rebound the video would have seen
     press: PressTest | None = None
     steps: list[FitStep] = field(default_factory=list)
-    _memo: dict[tuple[float, float], dict[str, float]] = field(default_factory=dict)
+    _memo: dict[tuple[float, float, float], dict[str, float]] = field(default_factory=dict)
 
-    def drop(self, young: float, eta: float) -> dict[str, float]:
-        """The video's drop in the engine with this E and viscosity (memoized)."""
-        key = (float(f"{young:.6g}"), float(f"{eta:.6g}"))
+    def drop(self, young: float, eta: float, damping: float | None = None) -> dict[str, float]:
+        """The video's drop in the engine with this E, viscosity and damping rate (None: the prior's; memoized)."""
+        d = self.prior.damping_rate_per_s if damping is None else damping
+        key = (float(f"{young:.6g}"), float(f"{eta:.6g}"), float(f"{d:.6g}"))
         if key not in self._memo:
-            mat = self.prior.model_copy(update={"youngs_modulus_pa": key[0], "viscosity_pa_s": key[1]})
+            mat = self.prior.model_copy(update={"youngs_modulus_pa": key[0], "viscosity_pa_s": key[1],
+                                                "damping_rate_per_s": key[2]})
             m = drop_impact(self.positions_m, self.volumes_m3, self.physical, mat, self.drop_height_m, self.sim)
             self._memo[key] = m
-            self.steps.append(FitStep(youngs_modulus_pa=key[0], viscosity_pa_s=key[1], probe="drop_impact",
-                                      metrics={k: v for k, v in m.items() if k in SHOWN}))
+            self.steps.append(FitStep(youngs_modulus_pa=key[0], viscosity_pa_s=key[1], damping_rate_per_s=key[2],
+                                      probe="drop_impact", metrics={k: v for k, v in m.items() if k in SHOWN}))
         return self._memo[key]
 
     def press_modulus(self, young: float, eta: float) -> float:
@@ -82,7 +84,7 @@ class FitProblem:
     def metric(self, name: str) -> Callable[[dict[str, float]], float]:
         """A metric of the drop as a function of the parameters (young_pa, viscosity_pa_s)."""
         def f(v: dict[str, float]) -> float:
-            m = self.drop(v["young_pa"], v["viscosity_pa_s"])
+            m = self.drop(v["young_pa"], v["viscosity_pa_s"], v.get("damping_rate_per_s"))
             if name == "index":
                 return strain_index(m["impact_strain"]) if "impact_strain" in m else math.nan
             return m.get(name, math.nan)
@@ -94,7 +96,17 @@ class FitProblem:
         body = DeformableBody.from_physical(self.positions_m, self.volumes_m3, self.physical)
         dx = dx_of(body, self.sim)
         high = VISCOUS_DT_FACTOR * self.physical.density_kg_per_m3 * dx * dx / MIN_DT_S
-        return Knob("viscosity_pa_s", start=min(guess, high), low=min(guess, high) * 1e-3, high=high, max_step=4.0)
+        return Knob("viscosity_pa_s", start=min(guess, high), low=min(guess, high) * 1e-3, high=high, max_step=10.0)
+
+    def knobs(self, v: dict[str, float]) -> list[Knob]:
+        """The rebound's knobs in turn: the viscosity, then (when even the least viscosity leaves too little rebound)
+        the asset's damping rate, which also slows the fall and the rise, down to a thousandth of the prior's."""
+        out = [self.viscosity_knob(v["young_pa"], v.get("viscosity_pa_s"))]
+        d = v.get("damping_rate_per_s", self.prior.damping_rate_per_s)
+        if d > 0:
+            out.append(Knob("damping_rate_per_s", start=d, low=1e-3 * self.prior.damping_rate_per_s,
+                            high=max(d, self.prior.damping_rate_per_s), max_step=4.0))
+        return out
 
     def first_viscosity(self, young: float) -> float:
         """The closed form of tasks.realworld.loss for the rebound aimed at (its restitution sqrt(rebound)), with the
@@ -125,7 +137,7 @@ class FitResult:
 
 def fit(p: FitProblem) -> FitResult:
     """Fit E and the viscosity as the module docstring says."""
-    young, eta = p.prior.youngs_modulus_pa, p.prior.viscosity_pa_s
+    young, eta, damping = p.prior.youngs_modulus_pa, p.prior.viscosity_pa_s, p.prior.damping_rate_per_s
     notes: list[str] = []
     young_source: Literal["impact_strain", "press", "prior"] = "prior"
     if p.press is not None:
@@ -136,22 +148,24 @@ def fit(p: FitProblem) -> FitResult:
     visc_source: Literal["rebound", "no_bounce_lower_bound", "prior"] = (
         "prior" if r_target is None else ("rebound" if p.rebound else "no_bounce_lower_bound"))
     if young_source == "prior" and p.strain is not None and r_target is not None:
-        values, _ = fit_both(p.metric("index"), p.metric("rebound_ratio"),
-                             lambda v: [p.viscosity_knob(v["young_pa"], v["viscosity_pa_s"])],
-                             {"young_pa": young, "viscosity_pa_s": p.viscosity_knob(young).start},
-                             strain_index(p.strain), r_target, tol=TOLERANCE, refit_tol=TOLERANCE, rebound_sims=8)
+        values, _ = fit_both(p.metric("index"), p.metric("rebound_ratio"), p.knobs,
+                             {"young_pa": young, "viscosity_pa_s": p.viscosity_knob(young).start,
+                              "damping_rate_per_s": damping},
+                             strain_index(p.strain), r_target, tol=TOLERANCE, refit_tol=TOLERANCE, rebound_sims=10)
         young, eta, young_source = values["young_pa"], values["viscosity_pa_s"], "impact_strain"
+        damping = values["damping_rate_per_s"]
     elif young_source == "prior" and p.strain is not None:
         young, _, _ = fit_modulus(lambda e: p.metric("index")({"young_pa": e, "viscosity_pa_s": eta}), young,
                                   strain_index(p.strain), TOLERANCE, max_sims=5)
         young_source = "impact_strain"
     elif r_target is not None:
-        knob = p.viscosity_knob(young, None)
-        values, _, _ = fit_rebound(lambda v: p.metric("rebound_ratio")({"young_pa": young, **v}), [knob], r_target,
-                                   TOLERANCE, max_sims=8)
-        eta = values["viscosity_pa_s"]
-    material = p.prior.model_copy(update={"youngs_modulus_pa": young, "viscosity_pa_s": eta})
-    sim = p.drop(young, eta)
+        start = {"young_pa": young, "viscosity_pa_s": p.viscosity_knob(young).start, "damping_rate_per_s": damping}
+        values, _, _ = fit_rebound(lambda v: p.metric("rebound_ratio")({**start, **v}), p.knobs(start), r_target,
+                                   TOLERANCE, max_sims=10)
+        eta, damping = values["viscosity_pa_s"], values.get("damping_rate_per_s", damping)
+    material = p.prior.model_copy(update={"youngs_modulus_pa": young, "viscosity_pa_s": eta,
+                                          "damping_rate_per_s": damping})
+    sim = p.drop(young, eta, damping)
     simulated: dict[str, float] = {k: sim[k] for k in ("impact_strain", "rebound_ratio", "restitution",
                                                         "contact_time_s") if k in sim}
     residuals: dict[str, float] = {}
@@ -164,6 +178,12 @@ def fit(p: FitProblem) -> FitResult:
         if last and "effective_modulus_pa" in last[-1].metrics:
             simulated["effective_modulus_pa"] = last[-1].metrics["effective_modulus_pa"]
             residuals["effective_modulus_pa"] = rel(simulated["effective_modulus_pa"], p.press.effective_modulus_pa)
+    if damping != p.prior.damping_rate_per_s:
+        notes.append(f"the damping rate moved {p.prior.damping_rate_per_s:.4g} -> {damping:.4g} 1/s: even the least "
+                     "viscosity left less rebound than the video shows")
+    if visc_source == "rebound" and abs(residuals.get("rebound_ratio", 0.0)) > 2 * TOLERANCE:
+        notes.append(f"the rebound is out of the knobs' reach: simulated {simulated.get('rebound_ratio', math.nan):.3g} "
+                     f"at the viscosity's and the damping's bounds, the video's {p.rebound:.3g}")
     if visc_source == "no_bounce_lower_bound":
         notes.append(f"no bounce: the viscosity is the least that keeps the rebound under the video's detection limit "
                      f"({r_target:.3g}); more would look the same")

@@ -120,6 +120,8 @@ class DropAnalysis:
     settle_t: float | None = None
     why: dict[str, str] = field(default_factory=dict)
 
+    impact_frames: int = 0  # frames of the first impact with the bottom on the floor line
+
     @property
     def drop_px(self) -> float | None:
         """The bottom's fall from release to the floor [px]."""
@@ -166,6 +168,23 @@ def _runs(mask: np.ndarray) -> list[tuple[int, int]]:
     return out
 
 
+def first_impact(tr: Track, floor: float, height: float, runs: list[tuple[int, int]]) -> tuple[int, int] | None:
+    """The track rows [first, last] of the first impact: the first run of frames on the floor, or sooner the first
+    reversal of a fall of at least half the height that turns near the floor (a fast impact between two frames
+    shows no frame on the floor: then that one frame); None when the object never comes down."""
+    on = runs[0] if runs else None
+    start = 0
+    for i in range(1, len(tr.cy) - 1):
+        if on is not None and i >= on[0]:
+            break
+        if tr.cy[i] < tr.cy[start]:
+            start = i  # the highest point so far: the fall is measured from there
+        falling, rises_next = tr.cy[i] > tr.cy[i - 1], tr.cy[i + 1] < tr.cy[i]
+        if falling and rises_next and tr.cy[i] - tr.cy[start] > 0.5 * height and tr.bottom[i] >= floor - 0.5 * height:
+            return i, i
+    return on
+
+
 def analyse(tr: Track) -> DropAnalysis:
     """The phases of the drop (see the module docstring)."""
     n = len(tr.t_s)
@@ -184,14 +203,16 @@ def analyse(tr: Track) -> DropAnalysis:
     longest = float(np.median(np.maximum(tr.box_width, tr.box_height)[extent_rows]))
     d = DropAnalysis(floor, resting, rest_cy, float(np.median(tr.moment_height[-k:])) if resting else None, None,
                      offset, longest, "resting" if resting else "all tracked", why=why)
-    if not runs or runs[0][0] == 0:
-        why["rebound_ratio"] = why["impact_strain"] = ("the video shows no fall onto the floor" if not runs else
+    first = first_impact(tr, floor, h_est, runs)
+    if first is None or first[0] == 0:
+        why["rebound_ratio"] = why["impact_strain"] = ("the video shows no fall onto the floor" if first is None else
                                                        "the object is on the floor in the first tracked frame")
         return d
-    c0, c1 = runs[0]
+    c0, c1 = first
     d.contact = (c0, c1)
-    d.floor_y = float(np.max(tr.bottom[c0:c1 + 1]))  # the floor line: the bottom's lowest in the first impact
+    d.floor_y = max(floor, float(np.max(tr.bottom[c0:c1 + 1])))  # the floor line: the bottom's lowest at the impact
     d.impact_t = float(tr.t_s[c0])
+    d.impact_frames = int(np.count_nonzero(tr.bottom[c0:c1 + 1] >= floor - tol))
     # the fall: the frames before the first impact that move down, back to where the motion starts
     j = c0 - 1
     while j > 0 and tr.cy[j] - tr.cy[j - 1] > 0.05 and tr.index[j] - tr.index[j - 1] == 1:
@@ -213,7 +234,7 @@ def analyse(tr: Track) -> DropAnalysis:
     else:
         why["rebound_ratio"] = "the fall before the first impact is not in the video"
     # the flight after the first impact
-    after = runs[1][0] if len(runs) > 1 else n
+    after = next((r[0] for r in runs if r[0] > c1), n)
     end = c1 + 1  # the flight ends where the centroid, having risen and fallen, stops falling (the next impact)
     while end + 1 < after and tr.cy[end + 1] < tr.cy[end]:
         end += 1
@@ -225,7 +246,7 @@ def analyse(tr: Track) -> DropAnalysis:
     if d.left_floor:
         d.flight = Parabola.fit(tr.t_s[flight_rows], tr.cy[flight_rows])
         top = int(flight_rows[np.argmin(tr.cy[flight_rows])])
-        apex_ok = len(runs) > 1 or resting or top != flight_rows[-1]
+        apex_ok = after < n or resting or top != flight_rows[-1]
         if d.flight is not None and flight_rows[0] < top < flight_rows[-1]:
             d.apex_cy = d.flight.at(d.flight.vertex_t)
         elif apex_ok:
@@ -239,9 +260,9 @@ def analyse(tr: Track) -> DropAnalysis:
         s = 1.0 - tr.moment_height[rows] / d.flight_height
         d.min_height = float(tr.moment_height[c0:c1 + 1].min())
         strain = impact_amplitude(tr.t_s[rows], s)
-        if c1 - c0 + 1 < 3:
-            why["impact_strain"] = (f"only {c1 - c0 + 1} frame(s) on the floor in the impact: the frame rate is too "
-                                    "low to see the compression")
+        if d.impact_frames < 3:
+            why["impact_strain"] = (f"only {d.impact_frames} frame(s) on the floor in the impact: the frame rate is "
+                                    "too low to see the compression")
         elif d.strain_noise is not None and strain <= d.strain_noise:
             why["impact_strain"] = (f"the compression ({strain:.3f}) is within the height's noise "
                                     f"({d.strain_noise:.3f})")
@@ -270,7 +291,7 @@ def video_metrics(d: DropAnalysis, metres_per_px: float) -> VideoMetrics:
         release_time_s=d.release_t, first_impact_time_s=d.impact_t,
         drop_height_m=drop * metres_per_px if drop is not None and drop > 0 else None,
         rebound_ratio=d.rebound_ratio, restitution_from_velocities=d.restitution, impact_strain=d.strain,
-        impact_frames=0 if d.contact is None else d.contact[1] - d.contact[0] + 1, settle_time_s=d.settle_t,
+        impact_frames=d.impact_frames, settle_time_s=d.settle_t,
         recovery_ratio=recovery, left_floor=d.left_floor)
 
 
