@@ -275,6 +275,8 @@ def analyse(tr: Track) -> DropAnalysis:
         still = np.abs(tr.cy - rest_cy) <= max(STILL_PX, 0.01 * h_est)
         moving = np.flatnonzero(~still)
         d.settle_t = float(tr.t_s[moving[-1] + 1] - d.release_t) if len(moving) and moving[-1] + 1 < n else None
+        if d.settle_t is None:
+            why["settle_time_s"] = "no frame of the object moving after its release"
     elif not resting:
         why["settle_time_s"] = "the object is still moving at the end of the video"
     return d
