@@ -89,13 +89,20 @@ def test_a_press_test_gives_e_when_the_video_shows_no_compression(tmp_path: Path
 @pytest.mark.slow
 def test_a_drop_that_does_not_bounce_fixes_the_damping_but_not_e(tmp_path: Path) -> None:
     """A video at 240 fps of a sphere with a large viscosity: no bounce (a lower bound on the viscosity), no
-    compression seen (E stays at the prior); both said in the record."""
+    compression seen (E stays at the prior); both said in the record (through the command, --dry-run: nothing
+    written)."""
     case = type(CASES["soft"])("dead", 5e4, 400.0, fps=240.0, duration_s=0.45)
     sim = SimConfig(cpu_threads=1)
     video = tmp_path / "drop.avi"
     write_case_video(case, SPACING, video, sim)
     asset = write_sphere_asset(tmp_path / "asset", SPACING)
-    rec = calibrate_asset(asset, video, case.drop_height_m, 2 * RADIUS_M, sim=sim)
+    before = (asset / "material.json").read_bytes()
+    res = CliRunner().invoke(app, ["calibrate", str(asset), "--video", str(video), "--drop-height",
+                                   str(case.drop_height_m), "--size", str(2 * RADIUS_M), "--cpu-threads", "1",
+                                   "--dry-run", "--json"])
+    assert res.exit_code == 0, res.output
+    assert (asset / "material.json").read_bytes() == before and not (asset / "calibration").exists()  # --dry-run
+    rec = VideoFitRecord.model_validate(json.loads(res.stdout))
     assert rec.metrics.rebound_ratio == 0.0 and not rec.metrics.left_floor
     assert rec.viscosity_source == "no_bounce_lower_bound" and rec.fitted.viscosity_pa_s > 0
     assert rec.youngs_modulus_source == "prior" and rec.fitted.youngs_modulus_pa == PRIOR.youngs_modulus_pa
