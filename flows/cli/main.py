@@ -19,14 +19,16 @@ from flows.cli import stop
 # job, tasks.throughput, and imports none of them.)
 COMMAND_MODULES = ("schema_cmds", "physical_cmds", "material_cmds", "generate_cmds", "mpm_cmds", "geometry_cmds",
                    "evidence_cmds", "cache_cmds", "batch_cmds", "manipulate_cmds", "eval_cmds",
-                   "card_cmds", "export_cmds", "crosscheck_cmds", "throughput_cmds", "realworld_cmds")
+                   "card_cmds", "export_cmds", "crosscheck_cmds", "throughput_cmds", "realworld_cmds",
+                   "calibrate_cmds")
 MODULE_OF: dict[str, str | tuple[str, ...]] = {
              "schema": "schema_cmds", "physical": "physical_cmds", "probe": "material_cmds",
              "material": "material_cmds", "generate": "generate_cmds", "inspect": "generate_cmds",
              "view": "generate_cmds", "geometry": "geometry_cmds", "evidence": "evidence_cmds",
              "batch": "batch_cmds", "manipulate": "manipulate_cmds", "replay": "manipulate_cmds",
              "eval": "eval_cmds", "card": "card_cmds", "export": "export_cmds",
-             "crosscheck": "crosscheck_cmds", "bench": ("throughput_cmds", "realworld_cmds")}
+             "crosscheck": "crosscheck_cmds", "bench": ("throughput_cmds", "realworld_cmds"),
+             "calibrate": "calibrate_cmds"}
 
 
 def register_commands(argv: list[str] | None = None) -> None:

@@ -5,6 +5,7 @@ form (tasks.realworld.physics), so a 2.5 m drop costs the few milliseconds of co
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 
 import numpy as np
 
@@ -34,10 +35,12 @@ def sample_interval_s(body: DeformableBody, material: Material, speed_m_per_s: f
 
 
 def impact(positions_m: np.ndarray, volumes_m3: np.ndarray, physical: PhysicalModel, material: Material,
-           speed_m_per_s: float, sim: SimConfig) -> dict[str, float]:
+           speed_m_per_s: float, sim: SimConfig,
+           observe: Callable[[float, dict[str, np.ndarray]], None] | None = None) -> dict[str, float]:
     """One impact at `speed_m_per_s`, straight down onto the ground: the COM speed in and out, the restitution (out /
     in), the contact time, the largest compressive strain (95th percentile over the particles) and the engine's
-    health (finite = 1 when every state stayed finite and no check stopped the run)."""
+    health (finite = 1 when every state stayed finite and no check stopped the run). `observe(t, state)` sees every
+    sample's particle state (tasks.calibrate: the silhouette a camera would see)."""
     body = DeformableBody.from_physical(positions_m, volumes_m3, physical)
     dx = dx_of(body, sim)
     x0 = body.positions_m
@@ -53,6 +56,8 @@ def impact(positions_m: np.ndarray, volumes_m3: np.ndarray, physical: PhysicalMo
         rep, st = run.advance(step)
         d = st[0]
         t.append(run.time_s)
+        if observe is not None:
+            observe(run.time_s, d)
         z.append(float(center_of_mass(d["x"], m)[2]))
         vz.append(float((d["v"][:, 2].astype(np.float64) * m).sum() / m.sum()))
         force.append(abs(float(rep.ground_force_n[0][2])))

@@ -28,11 +28,13 @@ OWN = (*ORDER, "deployments")  # our own top-level packages (and the deployment 
 # knows records; geometry builds with the harness's LLM roles (the shape Designer) and draws its reference views; the
 # robot measures geometry's meshes; probes run the engine on geometry; manipulation, export, evaluation, the request
 # check, the commands' pre-flight checks, the batch's requests and its throughput figures sit on top; report (what the
-# command line shows of results) reads them all.
+# command line shows of results) reads them all; the real-world figures and the calibration from video (which fits
+# with the export calibration's searches and the real-world impact probe) come last.
 TASKS_ORDER = ("native_output", "quiet_pybullet", "processes", "publish", "asset_dir", "mpm", "record", "render",
                "agents", "geometry", "physical", "robot", "probes", "manipulation", "manifest_summary", "export",
-               "evaluation", "request", "preflight", "batch_requests", "throughput", "report", "realworld")
-LAZY_LIMIT = 61  # function-level imports of our own modules, in all of OWN's sources together (61: `bench realworld`)
+               "evaluation", "request", "preflight", "batch_requests", "throughput", "report", "realworld",
+               "calibrate")
+LAZY_LIMIT = 62  # function-level imports of our own modules, in all of OWN's sources together (62: `calibrate`)
 BAD_REASON = re.compile(r"\b(cycle|cyclic|circular)\b", re.I)  # a circle is fixed by moving code, not by a lazy import
 
 

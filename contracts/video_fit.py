@@ -1,0 +1,124 @@
+"""`deformsmith calibrate DIR --video FILE` (issue #39): what a video of the real object (and optionally a flat-plate
+press test) says about it, and the material fitted to it, written into the asset as calibration/video_fit.json.
+
+Every quantity is SI with its unit in the field name; image quantities are in pixels (`_px`). A metric the video
+could not determine is None and named in `undetermined` with the reason, never guessed.
+"""
+
+from __future__ import annotations
+
+from typing import Literal
+
+from pydantic import Field
+
+from contracts.base import Model
+from contracts.material import Material
+
+VIDEO_FIT_JSON = "calibration/video_fit.json"
+
+ScaleSource = Literal["size", "drop_height", "gravity"]
+
+
+class VideoScale(Model):
+    """How pixels became metres."""
+
+    metres_per_px: float = Field(gt=0)
+    source: ScaleSource = Field(description="size: --size over the object's longest extent in px in its resting frames "
+                                "(else its flight frames); drop_height: --drop-height over the fall in px; gravity: "
+                                "9.81 m/s^2 over the free fall's fitted acceleration in px/s^2")
+    detail: str = Field(description="the numbers behind it, in words")
+    gravity_check: float | None = Field(default=None, description="the free fall's fitted acceleration in m/s^2 "
+                                        "under this scale (9.81 when scale and frame rate agree)")
+
+
+class TrackSummary(Model):
+    """The tracker's account of the video (tasks.calibrate.track)."""
+
+    frames: int = Field(ge=0, description="frames read")
+    frames_tracked: int = Field(ge=0)
+    frames_dropped: int = Field(ge=0, description="frames where segmentation found no object (left out of the track)")
+    fps: float = Field(gt=0)
+    fps_source: Literal["file", "option"]
+    frame_size_px: tuple[int, int] = Field(description="(width, height) of the frames as tracked (after any downscale)")
+    downscale: float = Field(gt=0, description="tracked frame size / file frame size")
+    floor_y_px: float = Field(description="the floor line: the object's bottom in its resting frames (image y, down)")
+    rest_height_px: float | None = None
+    flight_height_px: float | None = None
+    longest_extent_px: float = Field(gt=0, description="the object's longest extent in px in the frames the scale uses")
+    tracking_confidence: float = Field(ge=0.0, le=1.0, description="fraction of frames tracked times the mask-area "
+                                       "consistency (1 - the coefficient of variation of the mask area over the "
+                                       "flight frames, floored at 0)")
+    area_consistency: float = Field(ge=0.0, le=1.0)
+    threshold: float = Field(description="background-difference threshold (grey levels)")
+
+
+class VideoMetrics(Model):
+    """L2's drop metrics as the video shows them (tasks.calibrate.metrics)."""
+
+    release_time_s: float | None = None
+    first_impact_time_s: float | None = None
+    drop_height_m: float | None = Field(default=None, description="the bottom's fall from release to the floor, "
+                                        "measured in the video (metres by the scale)")
+    rebound_ratio: float | None = Field(default=None, description="(COM apex after the first impact - COM at rest) / "
+                                        "(COM at release - COM at rest), as L2's drop probe defines it [-]")
+    restitution_from_velocities: float | None = Field(default=None, description="speed out / speed in at the first "
+                                                      "impact from parabolas fitted to the flights either side [-]")
+    impact_strain: float | None = Field(default=None, description="largest height compression at the first impact, "
+                                        "1 - h / h_flight with h the silhouette's second-moment height [-]")
+    impact_frames: int = Field(default=0, description="frames with the object on the floor in the first impact")
+    settle_time_s: float | None = Field(default=None, description="from release until the object stays still")
+    recovery_ratio: float | None = Field(default=None, description="(rest height - lowest height at impact) / "
+                                         "(flight height - lowest height) [-]")
+    left_floor: bool = Field(default=False, description="the object left the floor after the first impact")
+
+
+class PressTest(Model):
+    """A flat-plate press test's force-displacement table (CSV) reduced to L2's compression metric."""
+
+    path: str
+    rows: int
+    strain: float = Field(description="the strain the effective modulus is read at (displacement / object height)")
+    force_n: float
+    cross_section_m2: float
+    effective_modulus_pa: float = Field(description="(F / A) / strain, as L2's compression probe defines it")
+
+
+class FitStep(Model):
+    """One simulation of the fit."""
+
+    youngs_modulus_pa: float
+    viscosity_pa_s: float
+    damping_rate_per_s: float | None = None
+    probe: Literal["drop_impact", "compress"]
+    metrics: dict[str, float]
+
+
+class VideoFitRecord(Model):
+    """calibration/video_fit.json: the video's evidence, the fit and its limits."""
+
+    schema_version: int = 1
+    video: str
+    press: PressTest | None = None
+    size_m: float = Field(gt=0, description="the object's longest extent the fit simulated it at")
+    size_source: Literal["option", "video"]
+    drop_height_m: float = Field(gt=0, description="the drop height the fit simulated")
+    drop_height_source: Literal["option", "video"]
+    scale: VideoScale
+    track: TrackSummary
+    metrics: VideoMetrics
+    prior: Material = Field(description="the asset's material before the fit")
+    fitted: Material
+    youngs_modulus_source: Literal["impact_strain", "press", "prior"]
+    viscosity_source: Literal["rebound", "no_bounce_lower_bound", "prior"]
+    simulated: dict[str, float] = Field(description="the fitted material's simulated metrics (same definitions)")
+    residuals: dict[str, float] = Field(description="metric -> (simulated - video) / video after the fit")
+    undetermined: dict[str, str] = Field(default_factory=dict, description="metric or parameter -> why the video "
+                                         "(or the press test) could not determine it")
+    steps: list[FitStep] = Field(default_factory=list)
+    sim_calls: int = 0
+    converged: bool = False
+    notes: list[str] = Field(default_factory=list)
+
+
+__all__ = ["FitStep", "PressTest", "ScaleSource", "TrackSummary", "VIDEO_FIT_JSON", "VideoFitRecord", "VideoMetrics",
+           "VideoScale"]

@@ -1,0 +1,139 @@
+"""`deformsmith calibrate DIR --video FILE`: the asset's material fitted to a video of the real object dropped on a
+table (and to a flat-plate press test): read and track the video, reduce the track to L2's drop metrics, fit E and
+the Kelvin-Voigt viscosity with the engine's drop impact at the video's drop height and size (tasks.calibrate), then
+write the record (calibration/video_fit.json) and the fitted material as the asset's (material.json, and asset.json
+when the asset is published) in one staged update: all of it, or nothing.
+
+Everything that can be checked without simulating (the asset, the press table, the video, the object, the scale, the
+drop height) is checked before the first simulation; a failure is one InputError line and writes nothing.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+import zarr
+
+from contracts.asset_dir import PARTICLES_ZARR, MaterialRecord
+from contracts.errors import InputError
+from contracts.material import Material
+from contracts.physical import PhysicalModel
+from contracts.sim import SimConfig
+from contracts.video_fit import VIDEO_FIT_JSON, PressTest, VideoFitRecord
+from tasks.asset_dir import AssetDir, document_json
+from tasks.calibrate.fit import FitProblem, fit
+from tasks.calibrate.metrics import analyse, contact_tol_px, video_metrics
+from tasks.calibrate.press import press_test, read_press
+from tasks.calibrate.scale import track_summary, video_scale
+from tasks.calibrate.sim import scaled_body
+from tasks.calibrate.track import track_object
+from tasks.calibrate.video import read_video
+from tasks.publish import staged_update, write_json_atomic
+
+
+@dataclass
+class AssetBody:
+    """What the fit needs of the asset: its particles, L1's model and its adopted material."""
+
+    positions_m: np.ndarray
+    volumes_m3: np.ndarray
+    physical: PhysicalModel
+    material: Material
+    material_source: str
+
+
+def load_asset(asset_dir: Path) -> AssetBody:
+    """The asset's particles, physical model and adopted material (InputError naming what is missing)."""
+    adir = AssetDir(asset_dir)
+    if not Path(asset_dir).is_dir():
+        raise InputError(f"{asset_dir} is not an asset directory")
+    physical = adir.physical_model()
+    adopted = adir.adopted_material()
+    path = Path(asset_dir) / PARTICLES_ZARR
+    try:
+        g = zarr.open_group(str(path), mode="r")
+        pos, vol = np.asarray(g["positions_m"][...], np.float64), np.asarray(g["volumes_m3"][...], np.float64)
+    except (OSError, KeyError, ValueError) as exc:
+        raise InputError(f"{path}: no particles to simulate ({type(exc).__name__})") from None
+    return AssetBody(pos, vol, physical, adopted.material, adopted.source)
+
+
+def calibrate_asset(asset_dir: Path, video_path: Path, drop_height_m: float | None = None,
+                    size_m: float | None = None, fps: float | None = None, press_csv: Path | None = None,
+                    sim: SimConfig | None = None, write: bool = True) -> VideoFitRecord:
+    """Fit the asset's material to the video (see the module docstring); returns the record (written when `write`)."""
+    sim = sim or SimConfig()
+    asset = load_asset(Path(asset_dir))
+    table = read_press(press_csv) if press_csv is not None else None
+    video = read_video(video_path, fps)
+    tr = track_object(video.frames, video.fps)
+    d = analyse(tr)
+    scale = video_scale(d, size_m, drop_height_m)
+    mpp = scale.metres_per_px
+    metrics = video_metrics(d, mpp)
+    undetermined = dict(d.why)
+    h = drop_height_m if drop_height_m is not None else metrics.drop_height_m
+    if h is None or not h > 0:
+        raise InputError("the drop height is not in the video (no release seen): give --drop-height")
+    size = size_m if size_m is not None else d.longest_extent * mpp
+    pos, vol, phys = scaled_body(asset.positions_m, asset.volumes_m3, asset.physical, size)
+    press: PressTest | None = None
+    if table is not None and press_csv is not None:
+        press = press_test(press_csv, table, pos, vol, phys.particle_spacing_m)
+    limit = None
+    if metrics.rebound_ratio == 0.0 and d.drop_px:
+        limit = contact_tol_px(d.flight_height or d.longest_extent) / d.drop_px  # a rise the tracker would see
+    problem = FitProblem(pos, vol, phys, asset.material, h, sim, strain=metrics.impact_strain,
+                         rebound=metrics.rebound_ratio if metrics.rebound_ratio else None, rebound_limit=limit,
+                         press=press)
+    result = fit(problem)
+    if result.young_source == "prior":
+        undetermined["youngs_modulus_pa"] = ("kept at the prior: " + undetermined.get("impact_strain", "no impact "
+                                             "strain") + "; give a press test (--press) to fix it")
+    elif result.young_source == "press" and metrics.impact_strain is None:
+        undetermined.setdefault("impact_strain", "not seen")
+    if result.viscosity_source == "prior":
+        undetermined["viscosity_pa_s"] = "kept at the prior: " + undetermined.get("rebound_ratio", "no rebound")
+    notes = list(result.notes)
+    if asset.material_source != "L2":
+        notes.append(f"the prior was the asset's adopted material ({asset.material_source})")
+    if scale.gravity_check is not None and abs(scale.gravity_check / 9.81 - 1.0) > 0.15:
+        notes.append(f"the free fall shows {scale.gravity_check:.2f} m/s^2 under this scale: check --fps (a slow-motion "
+                     "clip stores its playback rate) and --size")
+    notes.append("L2's held-out tests and L3 were not rerun on the fitted material")
+    record = VideoFitRecord(
+        video=str(video_path), press=press, size_m=size, size_source="option" if size_m is not None else "video",
+        drop_height_m=h, drop_height_source="option" if drop_height_m is not None else "video", scale=scale,
+        track=track_summary(tr, d, video), metrics=metrics, prior=asset.material, fitted=result.material,
+        youngs_modulus_source=result.young_source, viscosity_source=result.viscosity_source,
+        simulated=result.simulated, residuals=result.residuals, undetermined=undetermined, steps=problem.steps,
+        sim_calls=len(problem.steps), converged=result.converged, notes=notes)
+    if write:
+        write_calibration(Path(asset_dir), record)
+    return record
+
+
+def write_calibration(asset_dir: Path, record: VideoFitRecord) -> None:
+    """The record and the fitted material as the asset's (material.json; asset.json's material when published), in
+    one staged update of the asset directory."""
+    with staged_update(asset_dir) as work:
+        write_json_atomic_mkdir(work / VIDEO_FIT_JSON, document_json(record))
+        adir = AssetDir(work)
+        mat: MaterialRecord = adir.material()
+        adir.write_material(mat.model_copy(update={
+            "material": record.fitted,
+            "message": f"{mat.message}; calibrated from video ({VIDEO_FIT_JSON}: E from "
+                       f"{record.youngs_modulus_source}, viscosity from {record.viscosity_source})"}))
+        if adir.has("manifest"):
+            adir.write_manifest(adir.manifest().model_copy(update={"material": record.fitted}))
+
+
+def write_json_atomic_mkdir(path: Path, data: dict) -> None:
+    """write_json_atomic into a folder made first."""
+    path.parent.mkdir(parents=True, exist_ok=True)
+    write_json_atomic(path, data)
+
+
+__all__ = ["AssetBody", "calibrate_asset", "load_asset", "write_calibration"]

@@ -1,0 +1,196 @@
+"""Fit E and the Kelvin-Voigt viscosity to the video's metrics (and a press test) with the engine's own probes and
+the crosscheck calibration's searches (tasks.export.calibrate):
+
+- E from the impact strain: Hertz puts the compression of an impact at strain ~ E^(-2/5), so strain^(-5/2) (the
+  "impact modulus index") is close to proportional to E, as fit_modulus expects of its metric; from a press test
+  instead (when given): L2's compression probe's effective modulus against the table's (fit_modulus as crosscheck);
+- the viscosity from the rebound ratio: a knob that lowers the rebound as it grows (fit_rebound's bracketing and
+  regula falsi on a log scale);
+- both together (fit_both) when the video gives both: a viscosity fitted to the rebound moves the strain a little.
+A metric the video could not determine leaves its parameter at the prior (no bounce: the viscosity is fitted to the
+rebound's detection limit, a lower bound on the loss); the caller records which.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from typing import Literal
+
+import numpy as np
+
+from contracts.material import VISCOUS_DT_FACTOR, Material
+from contracts.physical import PhysicalModel
+from contracts.sim import SimConfig
+from contracts.video_fit import FitStep, PressTest
+from tasks.calibrate.press import probe_modulus
+from tasks.calibrate.sim import drop_impact
+from tasks.export.calibrate import Knob, fit_both, fit_modulus, fit_rebound, rel
+from tasks.probes.rollout import DeformableBody, dx_of
+from tasks.realworld.impact import contact_time_s
+from tasks.realworld.loss import damping_ratio, viscosity_for_damping_ratio
+
+TOLERANCE = 0.03  # each metric is fitted to within 3 %
+ENGINE_RESTITUTION = 0.9  # the engine's own restitution at no viscosity, for the first guess only (loss.py: 0.82-0.94)
+MIN_DT_S = 2e-6  # the viscosity's upper bound: its explicit time step stays above this
+
+
+def strain_index(strain: float) -> float:
+    """strain^(-5/2): close to proportional to E for an impact (Hertz)."""
+    return max(strain, 1e-4) ** -2.5
+
+
+@dataclass
+class FitProblem:
+    """The scaled body, the prior, the drop and what the fit aims at (None: not determined)."""
+
+    positions_m: np.ndarray
+    volumes_m3: np.ndarray
+    physical: PhysicalModel
+    prior: Material
+    drop_height_m: float
+    sim: SimConfig
+    strain: float | None = None
+    rebound: float | None = None
+    rebound_limit: float | None = None  # no bounce: the rebound the video would have seen
+    press: PressTest | None = None
+    steps: list[FitStep] = field(default_factory=list)
+    _memo: dict[tuple[float, float, float], dict[str, float]] = field(default_factory=dict)
+
+    def drop(self, young: float, eta: float, damping: float | None = None) -> dict[str, float]:
+        """The video's drop in the engine with this E, viscosity and damping rate (None: the prior's; memoized)."""
+        d = self.prior.damping_rate_per_s if damping is None else damping
+        key = (float(f"{young:.6g}"), float(f"{eta:.6g}"), float(f"{d:.6g}"))
+        if key not in self._memo:
+            mat = self.prior.model_copy(update={"youngs_modulus_pa": key[0], "viscosity_pa_s": key[1],
+                                                "damping_rate_per_s": key[2]})
+            m = drop_impact(self.positions_m, self.volumes_m3, self.physical, mat, self.drop_height_m, self.sim)
+            self._memo[key] = m
+            self.steps.append(FitStep(youngs_modulus_pa=key[0], viscosity_pa_s=key[1], damping_rate_per_s=key[2],
+                                      probe="drop_impact", metrics={k: v for k, v in m.items() if k in SHOWN}))
+        return self._memo[key]
+
+    def press_modulus(self, young: float, eta: float) -> float:
+        """L2's compression probe on the body at the press test's strain."""
+        assert self.press is not None
+        body = DeformableBody.from_physical(self.positions_m, self.volumes_m3, self.physical)
+        mat = self.prior.model_copy(update={"youngs_modulus_pa": young, "viscosity_pa_s": eta})
+        v = probe_modulus(body, mat, self.press.strain, self.sim)
+        self.steps.append(FitStep(youngs_modulus_pa=young, viscosity_pa_s=eta, probe="compress",
+                                  metrics={"effective_modulus_pa": v} if math.isfinite(v) else {}))
+        return v
+
+    def metric(self, name: str) -> Callable[[dict[str, float]], float]:
+        """A metric of the drop as a function of the parameters (young_pa, viscosity_pa_s)."""
+        def f(v: dict[str, float]) -> float:
+            m = self.drop(v["young_pa"], v["viscosity_pa_s"], v.get("damping_rate_per_s"))
+            if name == "index":
+                return strain_index(m["impact_strain"]) if "impact_strain" in m else math.nan
+            return m.get(name, math.nan)
+        return f
+
+    def viscosity_knob(self, young: float, start: float | None = None) -> Knob:
+        """The viscosity as a knob: from `start` (else a first guess), bounded on a log scale."""
+        guess = start if start and start > 0 else self.first_viscosity(young)
+        body = DeformableBody.from_physical(self.positions_m, self.volumes_m3, self.physical)
+        dx = dx_of(body, self.sim)
+        high = VISCOUS_DT_FACTOR * self.physical.density_kg_per_m3 * dx * dx / MIN_DT_S
+        return Knob("viscosity_pa_s", start=min(guess, high), low=min(guess, high) * 1e-3, high=high, max_step=10.0)
+
+    def knobs(self, v: dict[str, float]) -> list[Knob]:
+        """The rebound's knobs in turn: the viscosity, then (when even the least viscosity leaves too little rebound)
+        the asset's damping rate, which also slows the fall and the rise, down to a thousandth of the prior's."""
+        out = [self.viscosity_knob(v["young_pa"], v.get("viscosity_pa_s"))]
+        d = v.get("damping_rate_per_s", self.prior.damping_rate_per_s)
+        if d > 0:
+            out.append(Knob("damping_rate_per_s", start=d, low=1e-3 * self.prior.damping_rate_per_s,
+                            high=max(d, self.prior.damping_rate_per_s), max_step=4.0))
+        return out
+
+    def first_viscosity(self, young: float) -> float:
+        """The closed form of tasks.realworld.loss for the rebound aimed at (its restitution sqrt(rebound)), with the
+        engine's own loss taken as ENGINE_RESTITUTION."""
+        target = self.rebound if self.rebound is not None else (self.rebound_limit or 0.01)
+        e = min(0.999, math.sqrt(max(target, 1e-4)) / ENGINE_RESTITUTION)
+        radius = 0.5 * float(np.ptp(self.positions_m, axis=0).min() + self.physical.particle_spacing_m)
+        tc = contact_time_s(self.physical.mass_kg, radius, young, self.prior.poisson_ratio,
+                            math.sqrt(2 * 9.81 * self.drop_height_m))
+        return max(viscosity_for_damping_ratio(damping_ratio(e), young, tc), 1e-3 * young * tc)
+
+
+SHOWN = ("impact_strain", "rebound_ratio", "restitution", "contact_time_s", "contact_sink_m", "finite")
+
+
+@dataclass
+class FitResult:
+    """The fitted material, where each parameter came from, the simulated metrics and residuals."""
+
+    material: Material
+    young_source: Literal["impact_strain", "press", "prior"]
+    viscosity_source: Literal["rebound", "no_bounce_lower_bound", "prior"]
+    simulated: dict[str, float]
+    residuals: dict[str, float]
+    converged: bool
+    notes: list[str]
+
+
+def fit(p: FitProblem) -> FitResult:
+    """Fit E and the viscosity as the module docstring says."""
+    young, eta, damping = p.prior.youngs_modulus_pa, p.prior.viscosity_pa_s, p.prior.damping_rate_per_s
+    notes: list[str] = []
+    young_source: Literal["impact_strain", "press", "prior"] = "prior"
+    if p.press is not None:
+        target = p.press.effective_modulus_pa
+        young, _, _ = fit_modulus(lambda e: p.press_modulus(e, eta), young, target, TOLERANCE, max_sims=4)
+        young_source = "press"
+    r_target = p.rebound if p.rebound is not None and p.rebound > 0 else p.rebound_limit
+    visc_source: Literal["rebound", "no_bounce_lower_bound", "prior"] = (
+        "prior" if r_target is None else ("rebound" if p.rebound else "no_bounce_lower_bound"))
+    if young_source == "prior" and p.strain is not None and r_target is not None:
+        values, _ = fit_both(p.metric("index"), p.metric("rebound_ratio"), p.knobs,
+                             {"young_pa": young, "viscosity_pa_s": p.viscosity_knob(young).start,
+                              "damping_rate_per_s": damping},
+                             strain_index(p.strain), r_target, tol=TOLERANCE, refit_tol=TOLERANCE, rebound_sims=10)
+        young, eta, young_source = values["young_pa"], values["viscosity_pa_s"], "impact_strain"
+        damping = values["damping_rate_per_s"]
+    elif young_source == "prior" and p.strain is not None:
+        young, _, _ = fit_modulus(lambda e: p.metric("index")({"young_pa": e, "viscosity_pa_s": eta}), young,
+                                  strain_index(p.strain), TOLERANCE, max_sims=5)
+        young_source = "impact_strain"
+    elif r_target is not None:
+        start = {"young_pa": young, "viscosity_pa_s": p.viscosity_knob(young).start, "damping_rate_per_s": damping}
+        values, _, _ = fit_rebound(lambda v: p.metric("rebound_ratio")({**start, **v}), p.knobs(start), r_target,
+                                   TOLERANCE, max_sims=10)
+        eta, damping = values["viscosity_pa_s"], values.get("damping_rate_per_s", damping)
+    material = p.prior.model_copy(update={"youngs_modulus_pa": young, "viscosity_pa_s": eta,
+                                          "damping_rate_per_s": damping})
+    sim = p.drop(young, eta, damping)
+    simulated: dict[str, float] = {k: sim[k] for k in ("impact_strain", "rebound_ratio", "restitution",
+                                                        "contact_time_s") if k in sim}
+    residuals: dict[str, float] = {}
+    if p.strain is not None and "impact_strain" in sim:
+        residuals["impact_strain"] = rel(sim["impact_strain"], p.strain)
+    if p.rebound is not None and p.rebound > 0 and "rebound_ratio" in sim:
+        residuals["rebound_ratio"] = rel(sim["rebound_ratio"], p.rebound)
+    if p.press is not None:
+        last = [s for s in p.steps if s.probe == "compress" and s.youngs_modulus_pa == young]
+        if last and "effective_modulus_pa" in last[-1].metrics:
+            simulated["effective_modulus_pa"] = last[-1].metrics["effective_modulus_pa"]
+            residuals["effective_modulus_pa"] = rel(simulated["effective_modulus_pa"], p.press.effective_modulus_pa)
+    if damping != p.prior.damping_rate_per_s:
+        notes.append(f"the damping rate moved {p.prior.damping_rate_per_s:.4g} -> {damping:.4g} 1/s: even the least "
+                     "viscosity left less rebound than the video shows")
+    if visc_source == "rebound" and abs(residuals.get("rebound_ratio", 0.0)) > 2 * TOLERANCE:
+        notes.append(f"the rebound is out of the knobs' reach: simulated {simulated.get('rebound_ratio', math.nan):.3g} "
+                     f"at the viscosity's and the damping's bounds, the video's {p.rebound:.3g}")
+    if visc_source == "no_bounce_lower_bound":
+        notes.append(f"no bounce: the viscosity is the least that keeps the rebound under the video's detection limit "
+                     f"({r_target:.3g}); more would look the same")
+    fitted = {"impact_strain": young_source == "impact_strain", "rebound_ratio": visc_source == "rebound",
+              "effective_modulus_pa": young_source == "press"}
+    converged = all(abs(v) <= 2 * TOLERANCE for k, v in residuals.items() if fitted.get(k))
+    return FitResult(material, young_source, visc_source, simulated, residuals, converged, notes)
+
+
+__all__ = ["FitProblem", "FitResult", "TOLERANCE", "fit", "strain_index"]
