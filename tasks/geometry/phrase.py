@@ -30,6 +30,8 @@ STATE_WORDS: dict[str, str] = {
     "sitting": "sitting", "sits": "sitting", "seated": "sitting", "lying": "lying", "laying": "lying",
     "lies": "lying", "asleep": "lying", "sleeping": "lying", "resting": "lying", "standing": "standing",
 }
+# what a garment hangs on: drawn hung on its hanger
+HUNG_ON = frozenset({"hanger", "coathanger", "hook", "peg", "rail", "rack", "clothesline", "line", "door"})
 # nouns that measure or portion their object: 'a slice of cheese' is cheese in the shape of a slice
 PORTION_NOUNS = frozenset({"slice", "wedge", "piece", "chunk", "lump", "block", "bar", "ball", "loaf", "sheet",
                            "strip", "cube", "disc", "disk", "roll", "stick", "scoop", "pair", "bunch",
@@ -214,8 +216,9 @@ def parse(text: str, known: Callable[[str], bool] | None = None,
             phrase.states.append("loop")  # 'lying in a loose loop' (not 'a sponge with a loop')
         if word == "knot" and {"in", "into"} & set(before) and "knotted" not in phrase.states:
             phrase.states.append("knotted")  # 'tied in a loose knot' (not 'a balloon tied with a string')
-        if word in ("hanging", "hung", "hangs") and "hanger" in after and "hung" not in phrase.states:
-            phrase.states.append("hung")  # 'a shirt hanging on a hanger' (not 'a bag hanging from a hook')
+        if word in ("hanging", "hung", "hangs") and HUNG_ON & set(after) and "hung" not in phrase.states:
+            phrase.states.append("hung")  # 'a shirt hanging on a hanger', 'jeans hanging from a wall hook' (a
+            # plan with no hung state, a bag, ignores it)
     own = {t.i for t in span}
     phrase.outside = [t.text.lower() for t in doc if _is_noun(t) and t.i not in own and t.text.lower() != portion]
     return phrase

@@ -171,3 +171,10 @@ def test_a_crumpled_sheet_stated_flat_is_a_heap_of_that_sheet() -> None:
     d = catalogue.design_from_text(text)
     assert d.size.longest_m is not None and d.size.longest_m < 0.7
     assert 0.3 <= planned_mass(text) <= 1.3
+
+
+def test_a_garment_hanging_from_a_hook_is_drawn_hung() -> None:
+    """Sealed set 15: 'blue denim jeans hanging from a wall hook' were laid flat (only 'on a hanger' hung them)."""
+    d = catalogue.design_from_text("a wool coat hanging on a peg")
+    assert "hung" in d.concept.states
+    assert any(p.name == "hanger" for p in d.program.parts)
