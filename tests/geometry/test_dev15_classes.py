@@ -178,3 +178,13 @@ def test_a_garment_hanging_from_a_hook_is_drawn_hung() -> None:
     d = catalogue.design_from_text("a wool coat hanging on a peg")
     assert "hung" in d.concept.states
     assert any(p.name == "hanger" for p in d.program.parts)
+
+
+@pytest.mark.parametrize("text, entry, kg", [
+    ("a peeled clementine", "peeled_mandarin", 0.07),  # USDA: a peeled tangerine 76-88 g
+    ("a wet string mop head", "string_mop", 0.25),  # household cotton string mop heads 150-300 g dry
+])
+def test_sealed15_plain_goods(text: str, entry: str, kg: float) -> None:
+    """Sealed set 15 (after its run): a peeled mandarin was one segment (0.15x); a cotton mop head a flat pad."""
+    assert catalogue.design_from_text(text).entry == entry
+    assert 0.5 * kg <= planned_mass(text) <= 2.0 * kg
