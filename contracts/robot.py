@@ -8,6 +8,7 @@ from pydantic import Field, model_validator
 
 from contracts.base import Model
 from contracts.errors import InputError
+from contracts.yaml_io import load_yaml
 from contracts.stage import packaged_parameters
 
 Vec3 = tuple[float, float, float]
@@ -78,8 +79,6 @@ def gripper_names() -> list[str]:
 
 def load_gripper(name: str = DEFAULT_GRIPPER) -> GripperSpec:
     """A packaged gripper by name (InputError naming the known ones when there is no such gripper)."""
-    from contracts.yaml_io import load_yaml
-
     path = GRIPPERS_DIR / f"{name}.yaml"
     if not path.is_file():
         raise InputError(f"no gripper '{name}': known grippers are {', '.join(gripper_names())}")

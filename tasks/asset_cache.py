@@ -26,8 +26,14 @@ import time
 from dataclasses import dataclass
 from pathlib import Path
 
+from cache import CacheMiss, CacheStore, cache_root
+from cache.hashing import content_key
+from cache.runtime import LOCAL_API_ENV
 from contracts.asset_dir import ASSET_JSON
+from contracts.errors import CacheError
+from contracts.manifest import PROVENANCE_LIBRARIES
 from contracts.request import AssetRequest
+from tasks.publish import publish_directory, working_dir
 
 TASK = "generate.asset"
 VERSION = "1"  # bump when what is kept or how it is served changes
@@ -72,8 +78,6 @@ def library_versions() -> dict[str, str]:
     """The versions asset.json's provenance records (tasks.manifest_summary), deformsmith's too."""
     from importlib import metadata
 
-    from contracts.manifest import PROVENANCE_LIBRARIES
-
     def version(dist: str) -> str:
         try:
             return metadata.version(dist)
@@ -86,8 +90,6 @@ def library_versions() -> dict[str, str]:
 def uses_users_server() -> bool:
     """PREFECT_API_URL names a server that is not one DeformSmith started (read from the environment: no Prefect
     import)."""
-    from cache.runtime import LOCAL_API_ENV
-
     url = os.environ.get("PREFECT_API_URL")
     return bool(url) and url != os.environ.get(LOCAL_API_ENV)
 
@@ -98,8 +100,6 @@ def request_key(request: AssetRequest, *, device: str, cpu_threads: int, keep: s
     served from the cache (an LLM, a geometry backend, the user's Prefect server)."""
     if llm or request.geometry_backend or uses_users_server():
         return None
-    from cache.hashing import content_key
-
     inputs = [Path(p) for p in (request.image_path, request.mesh_path) if p is not None]
     if any(not p.is_file() for p in inputs):
         return None
@@ -133,9 +133,6 @@ def keep_asset(key: str, asset: Path, analogy: str | None, warnings: list[tuple[
     """Keep the published asset directory under the request's fingerprint (a copy; an intact entry is kept as it
     is), with the run's analogy line and its warnings ((stage, message): said again when it is served); False when it
     was not stored (a full disk, an unwritable cache: the run itself has succeeded)."""
-    from cache import CacheStore, cache_root
-    from contracts.errors import CacheError
-
     store = CacheStore(cache_root())
     try:
         if store.contains(key):
@@ -160,9 +157,6 @@ def serve(key: str, out_dir: Path, strict_concept: bool = False) -> Served | Non
     """Publish the asset kept under `key` as `out_dir` (a private copy, renamed into place as generate publishes);
     None, publishing nothing, when there is no intact entry or something it names in the cache is gone, or when
     `strict_concept` and the object was built by analogy (the layers' path refuses it with its error)."""
-    from cache import CacheMiss, CacheStore, cache_root
-    from tasks.publish import publish_directory, working_dir
-
     t0 = time.perf_counter()
     store = CacheStore(cache_root())
     if not store.entry_dir(key).is_dir():

@@ -16,9 +16,10 @@ import tempfile
 from collections.abc import Sequence
 from pathlib import Path
 
-from cache import cache_root
+from cache import CacheMiss, CacheStore, cache_root, content_key
 from cache.tempfiles import remove_dead_temporaries
-from contracts.errors import InputError
+from contracts.errors import CacheError, InputError
+from tasks import asset_cache
 from tasks.geometry.image_guard import check_image_size
 
 MIN_FREE_MB_DEFAULT = 100.0  # free space a location must have before a run starts [MB]
@@ -161,12 +162,8 @@ def _remembered_concept_line(text: str, size_hint_m: float | None) -> str | None
     size, the package's code and data and the library versions (tasks.asset_cache): reading the words (spaCy's model,
     the lexicon, WordNet) costs ~3 s of CPU, and a rerun that changed only an option (--record, --no-l3, --intent)
     would pay it again before its first line."""
-    from cache import CacheMiss, CacheStore, content_key
-    from contracts.errors import CacheError
-    from tasks.asset_cache import code_fingerprint, library_versions
-
-    key = content_key("preflight.concept_line", CONCEPT_LINE_VERSION, text, size_hint_m, code_fingerprint(),
-                      library_versions())
+    key = content_key("preflight.concept_line", CONCEPT_LINE_VERSION, text, size_hint_m, asset_cache.code_fingerprint(),
+                      asset_cache.library_versions())
     store = CacheStore(cache_root())
     if store.entry_dir(key).is_dir():
         try:
@@ -180,6 +177,8 @@ def _remembered_concept_line(text: str, size_hint_m: float | None) -> str | None
 
     concept = design_from_text(text, size_hint_m).concept
     line = concept.analogy_line() if concept is not None else None
+    if not (store.root / "entries").is_dir():
+        return line  # no cache in use yet: a command that keeps none (geometry) or is refused leaves none behind
     try:
         store.put(key, {"line": line}, {"task": "preflight.concept_line"})
     except (OSError, CacheError):

@@ -13,6 +13,7 @@ import numpy as np
 from contracts.concept import ConceptMatch, FallbackLevel
 from contracts.lexicon import MATERIALS_FILE, LexiconEntry, load_lexicon
 from contracts.shape import Part, ShapeProgram
+from contracts.yaml_io import load_yaml
 from tasks.geometry import analogy as analogy_mod, fill_words, goods_words, grammar, phrase as phrase_mod, pouch_words
 from tasks.geometry.catalogue_programs import catalogue_program
 from tasks.geometry.grammar.goods import PouchParams, SheetParams, folded_footprint, piece_grid
@@ -273,8 +274,6 @@ def _known_word(w: str) -> bool:
 @functools.lru_cache(maxsize=1)
 def _material_words() -> dict[str, str]:
     """Material word -> material class (contracts/vocab/materials.yaml)."""
-    from contracts.yaml_io import load_yaml
-
     raw = load_yaml(MATERIALS_FILE.read_text(encoding="utf-8"))["materials"]
     return {normalise(w): name for name, m in raw.items() for w in m["words"]}
 

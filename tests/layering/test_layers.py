@@ -32,7 +32,7 @@ OWN = (*ORDER, "deployments")  # our own top-level packages (and the deployment 
 # with the export calibration's searches and the real-world impact probe) come last.
 TASKS_ORDER = ("native_output", "quiet_pybullet", "processes", "publish", "asset_dir", "mpm", "record", "render",
                "agents", "geometry", "physical", "robot", "probes", "manipulation", "manifest_summary", "export",
-               "evaluation", "request", "preflight", "batch_requests", "throughput", "report", "realworld",
+               "evaluation", "asset_cache", "request", "preflight", "batch_requests", "throughput", "report", "realworld",
                "calibrate")
 LAZY_LIMIT = 62  # function-level imports of our own modules, in all of OWN's sources together (62: `calibrate`)
 BAD_REASON = re.compile(r"\b(cycle|cyclic|circular)\b", re.I)  # a circle is fixed by moving code, not by a lazy import

@@ -221,6 +221,9 @@ def test_the_analogy_line_is_remembered_by_text_size_code_and_libraries(monkeypa
         return real(text, size_hint_m, *args, **kwargs)
 
     monkeypatch.setattr(catalogue, "design_from_text", counting)
+    from cache import cache_root
+
+    (cache_root() / "entries").mkdir(parents=True, exist_ok=True)  # a cache in use (an empty one is not made)
     tenrec = AssetRequest(text="a tenrec")
     line = concept_line(tenrec, False)
     assert line is not None and "tenrec" in line and len(read) == 1
