@@ -21,6 +21,7 @@ from tasks.geometry.pipeline import Arrays, BuildInfo, arrays_to_mesh, proxy_par
 from contracts.asset_dir import GEOMETRY_JSON, GeometryRecord
 from tasks.asset_dir import AssetDir, document_json
 from tasks.publish import replace_directory
+from tasks.render.finish import finish_for
 from tasks.render.views import write_renders
 
 PARTICLES = "particles.zarr"
@@ -48,7 +49,8 @@ def write_outputs(
     for k in ("vertices", "faces", "colors"):
         s.create_array(k, data=np.ascontiguousarray(mesh[k]))
     write_3dgs_ply(gaussians, out_dir / "gaussians.ply")  # type: ignore[arg-type]
-    renders = write_renders(m, out_dir / "renders")
+    material = info.concept.default_material if info.concept else None
+    renders = write_renders(m, out_dir / "renders", finish=finish_for(material, info.category))
     files = {"mesh": "mesh.glb", "urdf": f"collision/{urdf.name}", "particles": PARTICLES, "gaussians": "gaussians.ply",
              **{f"render_{k}": f"renders/{v}" for k, v in renders.items()}}
     record = {"schema_version": 1, "info": info.model_dump(mode="json", exclude={"design_attempts"}),  # -> evidence/

@@ -19,6 +19,8 @@ import numpy as np
 
 from tasks.render.camera import Camera, project
 from tasks.render.columns import triangle_column_pairs
+from tasks.render.finish import MATTE, Finish, shade_pixels
+from tasks.render.scale_bar import draw_scale_bar
 
 if TYPE_CHECKING:  # a mesh is only read here (vertices, faces, normals, colours): the card's import stays light
     import trimesh
@@ -57,8 +59,13 @@ def view_axes(view: str) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     return rot[0] + 0.0, -rot[1] + 0.0, -rot[2] + 0.0  # (+ 0.0: no negative zeros)
 
 
-def render_view(mesh: trimesh.Trimesh, view: str, size_px: int = 384) -> np.ndarray:
-    """RGB uint8 image (size_px, size_px, 3) of the mesh from a named view, object filling FILL of the frame."""
+def render_view(mesh: trimesh.Trimesh, view: str, size_px: int = 384, finish: Finish | None = None,
+                scale_bar: bool = False) -> np.ndarray:
+    """RGB uint8 image (size_px, size_px, 3) of the mesh from a named view, object filling FILL of the frame.
+
+    Without a finish: one Lambert light (the silhouettes the critics and tests compare). With one: the still a user
+    sees, lit by key, fill and ambient light with the material's gloss, sheen, grain and mottle
+    (tasks.render.finish); scale_bar draws a round length in the corner (tasks.render.scale_bar)."""
     centre = mesh.bounds.mean(axis=0)
     cam = view_camera(view, centre, 1.0, size_px)
     rot = cam.frame()[0]
@@ -75,6 +82,9 @@ def render_view(mesh: trimesh.Trimesh, view: str, size_px: int = 384) -> np.ndar
     color = np.full((size_px * size_px, 3), BACKGROUND)
     light = np.array([LIGHT[0], -LIGHT[1], -LIGHT[2]])  # in the camera frame
     light /= np.linalg.norm(light)
+    verts = np.asarray(mesh.vertices, np.float64)
+    world_normals = np.asarray(mesh.vertex_normals, np.float64)
+    pixel_m = cam.ortho_height_m / size_px
     for t, ix, iy, w in triangle_column_pairs(tri_px, np.array([0.5, 0.5]), 1.0, (size_px, size_px)):
         z = np.einsum("ij,ij->i", w, tri_depth[t])
         pix = iy * size_px + ix  # row iy from the top
@@ -87,17 +97,28 @@ def render_view(mesh: trimesh.Trimesh, view: str, size_px: int = 384) -> np.ndar
         n = np.einsum("ij,ijk->ik", w[sel], normals[f])
         n /= np.maximum(np.linalg.norm(n, axis=1, keepdims=True), 1e-12)
         c = np.einsum("ij,ijk->ik", w[sel], vc[f])
-        shade = 0.35 + 0.65 * np.clip(np.abs(n @ light), 0, 1)
         zbuf[pix_o] = z[sel]
-        color[pix_o] = np.clip(c * shade[:, None], 0, 1)
-    return (color.reshape(size_px, size_px, 3) * 255).round().astype(np.uint8)
+        if finish is None:
+            shade = 0.35 + 0.65 * np.clip(np.abs(n @ light), 0, 1)
+            color[pix_o] = np.clip(c * shade[:, None], 0, 1)
+        else:  # in the asset frame, where the grain's noise lives
+            nw = np.einsum("ij,ijk->ik", w[sel], world_normals[f])
+            nw /= np.maximum(np.linalg.norm(nw, axis=1, keepdims=True), 1e-12)
+            color[pix_o] = shade_pixels(c, nw, np.einsum("ij,ijk->ik", w[sel], verts[f]), light @ rot,
+                                        -rot[2], finish, pixel_m)
+    img = (color.reshape(size_px, size_px, 3) * 255).round().astype(np.uint8)
+    if scale_bar:
+        draw_scale_bar(img, pixel_m)
+    return img
 
 
-def write_renders(mesh: trimesh.Trimesh, out_dir: Path, size_px: int = 384) -> dict[str, str]:
-    """front.png, side.png and top.png in out_dir; returns view -> file name."""
+def write_renders(mesh: trimesh.Trimesh, out_dir: Path, size_px: int = 384,
+                  finish: Finish | None = None) -> dict[str, str]:
+    """The stills a user sees (iso, front, side, top .png in out_dir) in the material's finish (MATTE when none is
+    given) with a scale bar; returns view -> file name."""
     out_dir.mkdir(parents=True, exist_ok=True)
     files = {}
     for view in VIEWS:
-        iio.imwrite(out_dir / f"{view}.png", render_view(mesh, view, size_px))
+        iio.imwrite(out_dir / f"{view}.png", render_view(mesh, view, size_px, finish or MATTE, scale_bar=True))
         files[view] = f"{view}.png"
     return files

@@ -1,0 +1,139 @@
+"""How a surface looks, by material class: gloss, cloth sheen, a bump at the size of the material's own grain (foam
+pores, a crumb, fur, a fabric's creases) and a mottle of its colour (a crust's browning, a fruit's skin), so that L0's
+stills read as the material and not as a grey block (#35: tofu and a marshmallow were named soap, a cold pack a
+pillow).
+
+    from tasks.render.finish import finish_for, shade_pixels
+
+    finish = finish_for("pu_foam", "foam")                  # Finish(...) by material class, else by category
+    rgb = shade_pixels(albedo, normals, points_m, view_axes, finish, pixel_m)
+
+A grain smaller than about two pixels is faded out rather than aliased (a 1 m mattress shows no pores; a 10 cm
+sponge does). The bump is solid value noise of the point in metres in the asset frame, so it is the same from
+every view and deterministic. Numpy only.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+AMBIENT = 0.36  # light everywhere
+KEY = 0.56  # key light over the viewer's shoulder (tasks.render.views.LIGHT)
+FILL = 0.14  # fill light from the camera
+MIN_GRAIN_PX = 2.0  # a grain below this many pixels fades out
+MIN_FADE = 0.3  # ... and one below MIN_FADE x MIN_GRAIN_PX pixels is not drawn
+
+
+@dataclass(frozen=True)
+class Finish:
+    """One material's look; lengths in metres, strengths as fractions of the lit colour."""
+
+    gloss: float = 0.0  # strength of the white specular highlight
+    shininess: float = 20.0  # Blinn-Phong exponent: higher is a smaller, sharper highlight
+    sheen: float = 0.0  # brightening at grazing angles (cloth, fur)
+    grain_m: float = 0.0  # size of the bump's features (0: none)
+    grain_depth: float = 0.0  # how far the bump tilts the normal
+    mottle_m: float = 0.0  # size of the colour's patches (0: none)
+    mottle: float = 0.0  # relative colour change across a patch
+
+
+MATTE = Finish()
+FINISHES: dict[str, Finish] = {
+    "pu_foam": Finish(grain_m=0.0012, grain_depth=0.55, mottle_m=0.004, mottle=0.05),
+    "slow_rise_foam": Finish(grain_m=0.0010, grain_depth=0.45, mottle_m=0.004, mottle=0.04),
+    "sponge": Finish(grain_m=0.0022, grain_depth=0.75, mottle_m=0.005, mottle=0.08),
+    "pe_foam": Finish(gloss=0.06, shininess=12.0, grain_m=0.0008, grain_depth=0.30),
+    "rubber": Finish(gloss=0.30, shininess=36.0),
+    "silicone": Finish(gloss=0.26, shininess=28.0, grain_m=0.0015, grain_depth=0.05),
+    "gel": Finish(gloss=0.55, shininess=70.0),
+    "inflatable": Finish(gloss=0.45, shininess=55.0),
+    "cheese": Finish(gloss=0.06, shininess=10.0, grain_m=0.0015, grain_depth=0.15, mottle_m=0.006, mottle=0.06),
+    "bread": Finish(grain_m=0.0025, grain_depth=0.45, mottle_m=0.012, mottle=0.22),
+    "plush": Finish(sheen=0.22, grain_m=0.0012, grain_depth=0.65, mottle_m=0.004, mottle=0.06),
+    "fruit": Finish(gloss=0.22, shininess=24.0, grain_m=0.0008, grain_depth=0.10, mottle_m=0.010, mottle=0.10),
+    "textile": Finish(sheen=0.14, grain_m=0.012, grain_depth=0.22, mottle_m=0.0009, mottle=0.07),
+    "marshmallow": Finish(sheen=0.05, grain_m=0.0010, grain_depth=0.12, mottle_m=0.003, mottle=0.03),
+    "dough": Finish(gloss=0.05, shininess=8.0, grain_m=0.004, grain_depth=0.18, mottle_m=0.008, mottle=0.04),
+}
+CATEGORY_MATERIAL = {  # a category's usual class where the material class is not known
+    "foam": "pu_foam", "plush_animal": "plush", "plush": "plush", "rubber_toy": "rubber", "fruit": "fruit",
+    "vegetable": "fruit", "baked_good": "bread", "textile": "textile", "gel": "gel", "meat": "gel",
+    "inflatable": "inflatable", "cheese": "cheese",
+}
+
+
+def finish_for(material: str | None, category: str | None = None) -> Finish:
+    """The finish of a material class (contracts/vocab/materials.yaml), else of the category's usual class, else
+    MATTE."""
+    if material in FINISHES:
+        return FINISHES[material]
+    return FINISHES.get(CATEGORY_MATERIAL.get(category or "", ""), MATTE)
+
+
+def _hash01(ijk: np.ndarray, seed: int) -> np.ndarray:
+    """A deterministic value in [0, 1) per integer lattice point (N, 3)."""
+    h = (ijk[:, 0] * 73856093) ^ (ijk[:, 1] * 19349663) ^ (ijk[:, 2] * 83492791) ^ (seed * 2654435761)
+    h = (h ^ (h >> 13)) * 1274126177
+    h = h ^ (h >> 16)
+    return (h & 0xFFFFFF).astype(np.float64) / float(0x1000000)
+
+
+def value_noise(points: np.ndarray, seed: int = 0) -> np.ndarray:
+    """Smooth solid noise in [0, 1) at points (N, 3) given in units of the feature size."""
+    p = np.asarray(points, np.float64)
+    base = np.floor(p).astype(np.int64)
+    f = p - base
+    s = f * f * (3.0 - 2.0 * f)  # smoothstep weights
+    out = np.zeros(len(p))
+    for corner in range(8):
+        d = np.array([(corner >> 2) & 1, (corner >> 1) & 1, corner & 1])
+        w = np.prod(np.where(d == 1, s, 1.0 - s), axis=1)
+        out += w * _hash01(base + d, seed)
+    return out
+
+
+def _bumped(normals: np.ndarray, points_m: np.ndarray, grain_m: float, depth: float) -> np.ndarray:
+    """Normals tilted by the gradient of two octaves of noise at grain_m (finite differences), renormalised."""
+    grad = np.zeros_like(normals)
+    for octave, weight in ((1.0, 1.0), (2.3, 0.5)):
+        q = points_m / (grain_m / octave)
+        n0 = value_noise(q, 1)
+        h = 0.25
+        for axis in range(3):
+            step = np.zeros(3)
+            step[axis] = h
+            grad[:, axis] += weight * (value_noise(q + step, 1) - n0) / h
+    tangential = grad - np.einsum("ij,ij->i", grad, normals)[:, None] * normals
+    n = normals - depth * tangential
+    return n / np.maximum(np.linalg.norm(n, axis=1, keepdims=True), 1e-12)
+
+
+def shade_pixels(albedo: np.ndarray, normals: np.ndarray, points_m: np.ndarray, light: np.ndarray,
+                 toward_eye: np.ndarray, finish: Finish, pixel_m: float) -> np.ndarray:
+    """Lit colours (N, 3) in 0..1 of pixels with albedo (N, 3), unit normals (N, 3) and points (N, 3) [m], all in one
+    frame with the unit light and eye directions; both faces of a surface are lit (meshes may face either way)."""
+    n = np.asarray(normals, np.float64)
+    n = np.where((n @ toward_eye)[:, None] < 0.0, -n, n)  # the face seen
+    colour = np.asarray(albedo, np.float64).copy()
+    if finish.grain_m > 0 and finish.grain_depth > 0:
+        fade = min(1.0, finish.grain_m / (MIN_GRAIN_PX * pixel_m))
+        if fade > MIN_FADE:
+            n = _bumped(n, points_m, max(finish.grain_m, MIN_GRAIN_PX * pixel_m), finish.grain_depth * fade)
+    fade = 0.0
+    if finish.mottle_m > 0 and finish.mottle > 0:
+        fade = min(1.0, finish.mottle_m / (MIN_GRAIN_PX * pixel_m))
+    if finish.mottle_m > 0 and finish.mottle > 0 and fade > MIN_FADE:
+        patch = value_noise(points_m / max(finish.mottle_m, MIN_GRAIN_PX * pixel_m), 2) - 0.5
+        colour *= (1.0 + 2.0 * finish.mottle * fade * patch)[:, None]
+    n_l = np.clip(n @ light, 0.0, 1.0)
+    n_v = np.clip(n @ toward_eye, 0.0, 1.0)
+    lit = colour * (AMBIENT + KEY * n_l + FILL * n_v)[:, None]
+    if finish.sheen > 0:
+        lit += finish.sheen * (1.0 - n_v)[:, None] ** 2 * (0.5 + 0.5 * colour)
+    if finish.gloss > 0:
+        half = light + toward_eye
+        half /= np.linalg.norm(half)
+        lit += finish.gloss * (np.clip(n @ half, 0.0, 1.0) ** finish.shininess)[:, None]
+    return np.clip(lit, 0.0, 1.0)
