@@ -84,7 +84,7 @@ def render_view(mesh: trimesh.Trimesh, view: str, size_px: int = 384, finish: Fi
     light /= np.linalg.norm(light)
     verts = np.asarray(mesh.vertices, np.float64)
     world_normals = np.asarray(mesh.vertex_normals, np.float64)
-    pixel_m = cam.ortho_height_m / size_px
+    pixel_m = float(cam.ortho_height_m or 1.0) / size_px  # (always set just above)
     for t, ix, iy, w in triangle_column_pairs(tri_px, np.array([0.5, 0.5]), 1.0, (size_px, size_px)):
         z = np.einsum("ij,ij->i", w, tri_depth[t])
         pix = iy * size_px + ix  # row iy from the top
