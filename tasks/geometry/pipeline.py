@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 from typing import Literal
 
 import numpy as np
@@ -17,6 +18,7 @@ from contracts.request import AssetRequest, Quality
 from contracts.shape import ShapeProgram
 from contracts.stage import L0Parameters, StageContract, load_contract
 from tasks.geometry import catalogue, concepts
+from tasks.geometry.bend import MIN_ASPECT, bend_along_length, can_bend, stated_bend
 from tasks.geometry.canonical import canonicalize, rest_on_ground, seat_flat
 from tasks.geometry.checks import GeometryChecks, evaluate, geometry_metrics
 from tasks.geometry.collision import CoacdSettings, convex_parts, union_volume
@@ -138,11 +140,30 @@ def mesh_from_text(request: AssetRequest, settings: L0Settings) -> tuple[Arrays,
         _final, stretch = catalogue.final_scale(design.size, design.program, concept.typical_size_m or 0.0)
         concept = concepts.stuffed_as_built(concept, float(mesh.extents.max()), float(mesh.volume), stretch,
                                            request.text or "")
+    sized = sized_concept(concept, mesh)  # (the straight object's size: a bend keeps its length and volume)
+    mesh, notes = _bent_as_said(mesh, request.text or "")
+    bent = any("drawn bent" in n for n in notes)
+    warnings = [w for w in design.warnings if not (bent and w.startswith("state 'bent' is not drawn"))]
     program = design.program.model_copy(update={"target_extent_m": tuple(float(v) for v in mesh.extents)})
     info = BuildInfo(source="text", name=design.program.name, category=design.program.category, entry=design.entry,
-                     program=program, size=design.size, modifiers=design.modifiers, reoriented=rotated,
-                     warnings=design.warnings, concept=sized_concept(concept, mesh))
+                     program=program, size=design.size, modifiers=design.modifiers, reoriented=rotated or bent,
+                     warnings=warnings, concept=sized, notes=notes)
     return mesh_to_arrays(mesh), info
+
+
+def _bent_as_said(mesh: trimesh.Trimesh, text: str) -> tuple[trimesh.Trimesh, list[str]]:
+    """The mesh bent as the request says ('bent into a U') when it is long enough to bend, with the note saying so;
+    else the mesh and a note when a bend was said but the object is too short to show one."""
+    bend = stated_bend(text)
+    if bend is None:
+        return mesh, []
+    if not can_bend(mesh.extents):
+        return mesh, [f"'{bend.words}': not drawn, the object is not long enough to bend "
+                      f"(longest side under {MIN_ASPECT:g}x the next)"]
+    length = float(mesh.extents.max())
+    bent = bend_along_length(mesh, bend.angle_rad)
+    return bent, [f"'{bend.words}': drawn bent by {math.degrees(bend.angle_rad):.0f} deg along its {length:.3g} m "
+                  "length (its length and volume kept)"]
 
 
 def sized_concept(concept: ConceptMatch | None, mesh: trimesh.Trimesh) -> ConceptMatch | None:
