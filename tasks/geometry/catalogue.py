@@ -18,7 +18,7 @@ from tasks.geometry import concepts, dims_words, grammar, size_words
 from tasks.geometry.analogy import FOOD_CUES
 from tasks.geometry.wordnet import wordnet
 from tasks.geometry.catalogue_programs import catalogue_program, catalogue_yaml
-from tasks.geometry.grammar.goods import crumpled_size
+from tasks.geometry.grammar.goods import crumpled_size, wad_size
 from tasks.geometry.sdf import program_bounds
 
 
@@ -464,6 +464,9 @@ def _crumpled_sized(size: SizeSpec, reading: concepts.Reading) -> SizeSpec:
     if target is None or target.plan != "sheet" or "crumpled" not in states or not dims:
         return size
     width = dims[1] if len(dims) > 1 else dims[0] * float(target.params.get("width", 0.5))
+    if target.params.get("stiff"):  # a sheet of paper: a wad
+        return size.model_copy(update={"longest_m": wad_size(dims[0] * width), "extents_m": (None, None, None),
+                                       "flat": False, "stated": f"{size.stated}: the flat sheet's, balled up"})
     across = crumpled_size(dims[0] * width)[0]
     return size.model_copy(update={"longest_m": across, "extents_m": (None, None, None), "flat": False,
                                    "stated": f"{size.stated}: the flat sheet's, bunched into a heap"})

@@ -491,6 +491,10 @@ def read_text(text: str, serving: bool = True) -> Reading:
     if head is not None and unknown is None:
         key, noun, exact = noun_index()[_qualified(head[2], phrase)]
         entry = lex.entries[key]
+        if entry.plan == "sheet" and phrase.portion in ("ball", "wad") and not look:
+            donor, donor_plan, donor_words = None, None, ""  # 'a ball of paper' is a sheet of it crumpled
+            if "crumpled" not in phrase.states:
+                phrase.states.append("crumpled")
         sliced = _sliced_form(entry) if not look and donor_plan == PORTION_SHAPES["slice"] else None
         if sliced is not None:  # 'a slice of sandwich bread': the lexicon's own slice of bread, not a cut block
             key, noun, exact = sliced.key, sliced.nouns[0], True

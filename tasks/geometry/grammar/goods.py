@@ -77,6 +77,8 @@ class SheetParams(Model):
                         "hinge across it this share of the width from the corner (a baking mat's curling corners) [-]")
     bubbles: bool = Field(default=False, description="rolled: the outer layer's air bubbles, rows of them over the "
                           "roll (bubble wrap)")
+    stiff: bool = Field(default=False, description="a stiff sheet (paper, foil, baking paper): crumpled, it is a round "
+                        "wad of creased facets in the hand's size, not a heap of cloth")
 
 
 CURL_DEG = 38.0  # how far a curling corner lifts about its hinge [deg]
@@ -157,6 +159,8 @@ def sheet(p: SheetParams) -> list[Part]:
     if p.state == "folded":
         return _folded(p, t)
     if p.state == "crumpled":
+        if p.stiff:
+            return wad(wad_size(w), seed=0.3 + 3 * w)
         d, height = crumpled_size(w)
         return heap(d, height, t, seed=0.3 + 3 * w)
     if p.state == "twisted":
@@ -884,6 +888,42 @@ def heap(diameter: float, height: float, t: float, seed: float = 0.3, folds: int
                          rot=(0, float(6 * np.sin(1.7 * i)), float(np.degrees(a)) + 45), blend=0.05 * R))
     parts.append(_op(box("ground", (8, 8, 8), (0, 0, 4)), "intersect"))
     return parts
+
+
+WAD_FACETS = 14  # planes cutting a paper wad's core into creased facets
+WAD_CREASES = 8  # folded ridges standing out of it
+
+
+def wad(diameter: float, seed: float = 0.3, name: str = "body") -> list[Part]:
+    """A sheet of paper crumpled in the hand: a round wad `diameter` across, its core cut by WAD_FACETS planes into
+    flat facets meeting at creases, with WAD_CREASES folded ridges (thin wedges of the sheet) standing out of it."""
+    R = diameter / 2
+    parts = [ellipsoid(name, (R, 0.93 * R, 0.84 * R), (0, 0, 0.84 * R))]
+    for i in range(WAD_FACETS):  # each cut: a large box whose face lies 0.8-0.9 R from the centre
+        u = np.array([np.cos(i * 2.39996 + seed), np.sin(i * 2.39996 + seed), 1.0 - 2.0 * (i + 0.5) / WAD_FACETS])
+        u[:2] *= np.sqrt(max(1.0 - u[2] ** 2, 0.0))
+        u /= np.linalg.norm(u)
+        depth = (0.84 + 0.07 * np.sin(4.1 * i + seed)) * R
+        yaw, pitch = np.degrees(np.arctan2(u[1], u[0])), np.degrees(np.arccos(np.clip(u[2], -1, 1)))
+        centre = np.array([0.0, 0.0, 0.84 * R]) + (depth - 2.0 * R) * u  # the box 4 R deep, its +u face at depth
+        parts.append(_op(box(f"facet {i + 1}", (4 * R, 4 * R, 4 * R), tuple(centre), rot=(0.0, float(pitch),
+                                                                                            float(yaw))), "intersect"))
+    for i in range(WAD_CREASES):
+        a = i * 2.39996 + 1.3 * seed
+        z = 0.84 * R + 0.55 * R * np.sin(2.2 * i + seed)
+        rho = 0.92 * R * np.sqrt(max(1.0 - ((z - 0.84 * R) / (0.84 * R)) ** 2, 0.2))
+        parts.append(box(f"crease {i + 1}", (0.9 * R, 0.06 * R, 0.45 * R),
+                         (rho * np.cos(a), rho * np.sin(a), float(z)),
+                         rot=(float(25 * np.sin(1.3 * i)), float(40 * np.cos(2.1 * i)), float(np.degrees(a) + 90)),
+                         edge=0.02 * R, blend=0.06 * R))
+    parts.append(_op(box("ground", (8, 8, 8), (0, 0, 4)), "intersect"))
+    return parts
+
+
+def wad_size(area: float) -> float:
+    """The diameter of a stiff sheet of `area` (unit frame) crumpled into a wad [-]: about a quarter of the square's
+    side (a 21 x 29.7 cm sheet of printer paper balls up to ~6.5 cm across)."""
+    return 0.26 * float(np.sqrt(area))
 
 
 def crumpled_size(area: float) -> tuple[float, float]:
