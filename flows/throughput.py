@@ -51,6 +51,16 @@ def run_throughput(requests_jsonl: Path, out_root: Path, gpus: list[str] | None 
     def end() -> None:
         ledger.end_session(session, *stats())
 
+    def write_report():  # noqa: ANN202
+        report = build_report(ledger.current(items), ledger.sessions(), len(items), requests_file=str(requests_jsonl),
+                              out_root=str(out_root), cache_root=str(cache.cache_root()))
+        report.write(out_root)
+        return report
+
+    def interrupted() -> None:  # at once on a stop, before the children are: the command line's backstop ends the
+        end()  # process ~1.3 s after the signal, sooner than many workers stop (24 workers: no report was written)
+        write_report()
+
     # a killed run's wall time ends at its last beat, and its samples are those of that beat
     stop_heartbeat = ledger.heartbeat(session, BEAT_S, stats)
     try:
@@ -59,14 +69,12 @@ def run_throughput(requests_jsonl: Path, out_root: Path, gpus: list[str] | None 
             run_batch(ledger.write_requests(todo, session.index), out_root, concurrency=workers,
                       device=config.device, job=job or (DEFAULT_JOB if l3 else NO_L3_JOB), timeout_s=timeout_s,
                       on_result=record, worker_envs=gpu_slots(gpus, workers_per_gpu) if gpus else None,
-                      on_interrupt=end)
-    finally:  # also when interrupted: the session's end and samples are recorded, and the report written
-        stop_heartbeat()
+                      on_interrupt=interrupted)
+    finally:  # also when interrupted: the session's end and samples are recorded, and the report written (again,
+        stop_heartbeat()  # with the stopped requests' records, when the process lives that long)
         for sampler in (gpu_sampler, host_sampler):
             if sampler is not None:
                 sampler.stop()
         end()
-        report = build_report(ledger.current(items), ledger.sessions(), len(items), requests_file=str(requests_jsonl),
-                              out_root=str(out_root), cache_root=str(cache.cache_root()))
-        report.write(out_root)
+        report = write_report()
     return report

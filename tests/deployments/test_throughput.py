@@ -387,7 +387,8 @@ def _sampled(session: Session) -> None:
 def test_a_sigterm_stopped_run_keeps_its_end_and_samples(tmp_path: Path) -> None:
     """SIGTERM as the command line takes it while a request slow to stop runs (it ignores SIGINT: the command line's
     backstop ends the benchmark before its children have stopped and its `finally` has run), with no heartbeat
-    written yet: the session keeps its end and what the samplers saw (s25's first session kept neither)."""
+    written yet: the session keeps its end and what the samplers saw (s25's first session kept neither), and the
+    report is written (s30's 2-GPU run of 24 workers left none)."""
     proc, out, calls = _throughput_process(tmp_path, ["sleep 300 stubborn"], beat_s=600.0, cli_stop=True)
     runs = tmp_path / "runs.txt"
     _wait_for(proc, lambda: runs.is_file() and "stubborn" in runs.read_text()
@@ -398,6 +399,8 @@ def test_a_sigterm_stopped_run_keeps_its_end_and_samples(tmp_path: Path) -> None
     session = Ledger(out).sessions()[0]
     assert session.ended_at is not None and t_signal <= session.ended_at <= t_signal + 1.3
     _sampled(session)
+    report = ThroughputReport.model_validate_json((out / REPORT_JSON).read_text())  # written before the backstop
+    assert (report.ok, report.pending) == (0, 1) and report.sessions[0].ended_at == session.ended_at
 
 
 def test_a_killed_run_keeps_the_samples_of_its_last_beat(tmp_path: Path) -> None:
