@@ -31,12 +31,17 @@ def probe_workers(n_jobs: int, device: str = "cpu") -> int:
     return max(1, min(n_jobs, cores(), cap))
 
 
+# the numerical libraries' thread pools (OpenMP: CoACD, scikit-image; BLAS: numpy, scipy): each sizes itself to every
+# core of the machine, so 24 workers on 32 cores ran 768 spinning threads (s30: L0 and L1 slowed 2-25x with 24 workers)
+POOL_THREAD_ENVS = ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS")
+
+
 def child_probe_workers(processes: int) -> dict[str, str]:
     """Environment for one of `processes` concurrent worker processes (batch, eval): the cores shared out, so the
-    workers' probes together do not run more threads than there are cores; empty when the user set the variable."""
-    if PROBE_WORKERS_ENV in os.environ:
-        return {}
-    return {PROBE_WORKERS_ENV: str(max(1, cores() // max(1, processes)))}
+    workers' probes and thread pools together do not run more threads than there are cores; a variable the user set
+    is left as it is."""
+    share = str(max(1, cores() // max(1, processes)))
+    return {name: share for name in (PROBE_WORKERS_ENV, *POOL_THREAD_ENVS) if name not in os.environ}
 
 
-__all__ = ["PROBE_WORKERS_ENV", "child_probe_workers", "cores", "probe_workers"]
+__all__ = ["POOL_THREAD_ENVS", "PROBE_WORKERS_ENV", "child_probe_workers", "cores", "probe_workers"]

@@ -10,7 +10,7 @@ import pytest
 from prefect import task
 
 from flows.harness import call_tasks, task_states
-from tasks.probes.workers import PROBE_WORKERS_ENV, child_probe_workers, probe_workers
+from tasks.probes.workers import POOL_THREAD_ENVS, PROBE_WORKERS_ENV, child_probe_workers, probe_workers
 
 
 def test_calls_run_side_by_side_and_come_back_in_order(prefect_api: str) -> None:
@@ -66,12 +66,15 @@ def test_workers_follow_calls_cores_env_and_device(monkeypatch: pytest.MonkeyPat
 
 
 def test_worker_processes_share_the_cores_unless_the_user_chose(monkeypatch: pytest.MonkeyPatch) -> None:
-    monkeypatch.delenv(PROBE_WORKERS_ENV, raising=False)
+    """Each of N workers gets cores / N probe threads and as many OpenMP and BLAS threads (not every core each)."""
+    for name in (PROBE_WORKERS_ENV, *POOL_THREAD_ENVS):
+        monkeypatch.delenv(name, raising=False)
     one = int(child_probe_workers(1)[PROBE_WORKERS_ENV])
     assert one >= 1
-    assert child_probe_workers(10 * one) == {PROBE_WORKERS_ENV: "1"}
+    assert child_probe_workers(10 * one) == {name: "1" for name in (PROBE_WORKERS_ENV, *POOL_THREAD_ENVS)}
     monkeypatch.setenv(PROBE_WORKERS_ENV, "3")
-    assert child_probe_workers(4) == {}
+    monkeypatch.setenv("OMP_NUM_THREADS", "2")
+    assert child_probe_workers(10 * one) == {"OPENBLAS_NUM_THREADS": "1", "MKL_NUM_THREADS": "1"}
 
 
 def test_eval_worker_processes_get_their_share(monkeypatch: pytest.MonkeyPatch) -> None:
