@@ -148,6 +148,9 @@ _SURFACE_ONLY = re.compile(r"\b[a-z]+[\s-]+(?:coated|dipped|lined|trimmed|edged|
                            r"\bwith\s+(?:[a-z]+\s+)?[a-z]+\s+(?:dots|grips?|palms?|soles?|patches|trim|piping)\b")
 
 
+_STATE_ONLY = frozenset({"inflated"})  # material words that only say a known object's state
+
+
 def _match_material(text: str, vocab: MaterialVocab, concept_material: str | None = None,
                     own_words: frozenset[str] = frozenset()) -> tuple[str, str | None]:
     """The material named by the longest matching word (materials first, then the concept L0 built, then object
@@ -163,6 +166,8 @@ def _match_material(text: str, vocab: MaterialVocab, concept_material: str | Non
         for word in entry.words:
             if concept_material not in (None, name) and set(word.lower().split()) <= own_words:
                 continue
+            if concept_material is not None and word in _STATE_ONLY:
+                continue  # 'an inflated balance cushion' is the cushion's rubber shell, blown up
             if _contains_phrase(text, word):
                 named.setdefault(name, word)
                 if best is None or len(word) > best[0]:

@@ -22,7 +22,7 @@ MIN_ASPECT = 4.0  # longest over middle extent: shorter objects are not bent (a 
 _U = r"(?:a\s+)?(?:u|horseshoe)(?:[\s-]?shape)?"
 BEND_PHRASES: list[tuple[re.Pattern[str], float]] = [
     (re.compile(rf"\b(?:bent|curved|curled|bowed|formed|shaped|folded)\s+(?:in)?to\s+{_U}\b", re.I), math.pi),
-    (re.compile(r"\bu[\s-]shaped\b|\bhorseshoe[\s-]shaped\b", re.I), math.pi),
+    (re.compile(r"\bu[\s-]shaped\b|\bhorseshoe(?:[\s-]shaped)?\b", re.I), math.pi),  # 'a horseshoe ring of sausage'
     (re.compile(r"\bbent\s+(?:in|into)\s+(?:half|two)\b|\bbent\s+double\b|\bdoubled\s+over\b", re.I), math.pi),
     (re.compile(r"\bbent\s+(?:at\s+)?(?:a\s+)?right[\s-]angle\b|\bl[\s-]shaped\b|\bbent\s+90\b", re.I), math.pi / 2),
     (re.compile(r"\bbent\b", re.I), math.pi / 3),  # ('curved', 'arched': a banana or a cat is so already)

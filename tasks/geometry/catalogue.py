@@ -643,11 +643,14 @@ LOOP_BAND_MAX_M = 1.3  # a loop band laid flat is at most ~41 in (1.04 m); a lon
 
 def _long_band_flat(text: str, reading: concepts.Reading, size: SizeSpec) -> str | None:
     """The text with a loop band's noun made 'flat latex band' when its stated length is longer than any loop band
-    laid flat and nothing says it is a loop ('a 2 m latex band', 'a resistance band, 1.5 m long'); else None."""
+    laid flat and nothing says it is a loop ('a 2 m latex band', 'a resistance band, 1.5 m long'), or it is said tied
+    ('tied in a loop'); else None."""
     noun = reading.match.noun
     said = size.longest_m or max((v for v in size.extents_m if v is not None), default=None)
-    if reading.entry.key != "resistance_band" or noun is None or said is None or said <= LOOP_BAND_MAX_M \
-            or re.search(r"\bloops?\b", text, re.I):
+    if reading.entry.key != "resistance_band" or noun is None:
+        return None
+    tied = re.search(r"\b(?:tied|knotted)\b", text, re.I)  # 'tied in a loop': a flat band tied, a loop band is one
+    if not tied and (said is None or said <= LOOP_BAND_MAX_M or re.search(r"\bloops?\b", text, re.I)):
         return None
     return _noun_swapped(text, noun, "flat latex band")
 

