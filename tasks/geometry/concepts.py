@@ -944,7 +944,7 @@ def build(reading: Reading, text: str) -> tuple[ShapeProgram, ConceptMatch, list
     if goods is not None and goods.bunch:  # 'a bunch of grapes': a cluster of them on a stem
         program, match = goods_words.bunched(program, match)
         states.append("a bunch")
-    program, applied = apply_colors(program, normalise(text))
+    program, applied = apply_colors(program, _own_colours_unsaid(normalise(text), reading, entry))
     if not applied:
         implied = reading.match.colors.get("body") or _implied_colour(reading)
         if implied is not None:
@@ -1327,6 +1327,20 @@ def lex_color(entry: LexiconEntry) -> tuple[float, float, float]:
     lex = load_lexicon()
     word = entry.colors.get("body") or next(iter(entry.colors.values()), "beige")
     return lex.colors[word]
+
+
+def _own_colours_unsaid(text: str, reading: Reading, entry: LexiconEntry) -> str:
+    """The text without the colour words of the object's own name that its entry already paints ('a salmon nigiri'
+    is a white rice base under salmon, not salmon all over); other colour words ('a red cabbage' of a green entry)
+    stay."""
+    noun = reading.match.noun
+    if not noun or not entry.colors:
+        return text
+    painted = set(entry.colors.values())
+    own = [w for w in noun.split() if w in load_lexicon().colors and w in painted]
+    for word in own:
+        text = re.sub(rf"\b{re.escape(word)}\b(?=[^.,;]*\b{re.escape(noun.split()[-1])}\b)", " ", text, count=1)
+    return text
 
 
 def apply_colors(program: ShapeProgram, text: str) -> tuple[ShapeProgram, dict[str, str]]:
