@@ -48,6 +48,8 @@ class ConceptMatch(Model):
         default=None, description="plausible mass range of the real object at the built size [kg]")
     mass_source: str | None = Field(default=None, description="where the typical mass comes from (a product "
                                     "listing, a nutrition database, a standard)")
+    finish: str | None = Field(default=None, description="the look of its surface in the stills when not its "
+                               "material's (the lexicon entry's `finish`)")
     restitution: float | None = Field(default=None, gt=0.0, le=1.0, description="the real object's coefficient of "
                                       "restitution on a hard floor from the lexicon (a ball's rebound rule); L2 "
                                       "calibrates the material's loss to it when its material is the concept's [-]")

@@ -47,6 +47,8 @@ class LexiconEntry(Model):
                         "band, a sleeve): its built surface counts the layer twice, so its shell is half the area")
     density_kg_per_m3: float | None = Field(default=None, gt=0, description="effective density of the solid object "
                                             "when the material class's prior does not describe it [kg/m^3]")
+    finish: str | None = Field(default=None, description="how its surface looks when not as its material class "
+                               "(tasks.render.finish.FINISHES: 'fish' for a fillet's fat lines, 'rice' for cooked rice)")
     takes_shape: bool = Field(default=False, description="made in any shape: 'a cat cushion' is a cushion shaped "
                               "like a cat")
     empty_mass_kg: float | None = Field(default=None, gt=0, le=25.0, description="mass of a filled object (a "

@@ -347,7 +347,8 @@ def _match(entry: LexiconEntry, level: FallbackLevel, noun: str | None, note: st
         typical_mass_kg=None if mat_only else entry.mass_kg, typical_size_m=entry.size_m,
         mass_source=None if mat_only else entry.mass_source,
         restitution=None if mat_only or material is not None else entry.restitution,
-        restitution_source=None if mat_only or material is not None else entry.restitution_source)
+        restitution_source=None if mat_only or material is not None else entry.restitution_source,
+        finish=None if mat_only or material is not None else entry.finish)
 
 
 def _fallback(t: str, noun: str | None, donor: LexiconEntry | None, donor_plan: tuple[str, dict] | None,

@@ -50,7 +50,8 @@ def write_outputs(
         s.create_array(k, data=np.ascontiguousarray(mesh[k]))
     write_3dgs_ply(gaussians, out_dir / "gaussians.ply")  # type: ignore[arg-type]
     material = info.concept.default_material if info.concept else None
-    renders = write_renders(m, out_dir / "renders", finish=finish_for(material, info.category))
+    look = info.concept.finish if info.concept else None
+    renders = write_renders(m, out_dir / "renders", finish=finish_for(material, info.category, look))
     files = {"mesh": "mesh.glb", "urdf": f"collision/{urdf.name}", "particles": PARTICLES, "gaussians": "gaussians.ply",
              **{f"render_{k}": f"renders/{v}" for k, v in renders.items()}}
     record = {"schema_version": 1, "info": info.model_dump(mode="json", exclude={"design_attempts"}),  # -> evidence/

@@ -37,6 +37,9 @@ class Finish:
     grain_depth: float = 0.0  # how far the bump tilts the normal
     mottle_m: float = 0.0  # size of the colour's patches (0: none)
     mottle: float = 0.0  # relative colour change across a patch
+    lines_m: float = 0.0  # spacing of pale lines across the surface (a fillet's fat lines; 0: none)
+    line_share: float = 0.18  # share of the spacing a line covers
+    line_tone: float = 0.55  # how far a line's colour goes towards white
 
 
 MATTE = Finish()
@@ -57,6 +60,13 @@ FINISHES: dict[str, Finish] = {
     "marshmallow": Finish(sheen=0.05, grain_m=0.0010, grain_depth=0.12, mottle_m=0.003, mottle=0.03),
     "dough": Finish(gloss=0.05, shininess=8.0, grain_m=0.004, grain_depth=0.18, mottle_m=0.008, mottle=0.04),
 }
+LOOKS: dict[str, Finish] = {  # a lexicon entry's own look (its `finish`), where its material class's does not say it
+    "fish": Finish(gloss=0.35, shininess=40.0, mottle_m=0.006, mottle=0.05, lines_m=0.011),  # a fillet's fat lines
+    "lean_fish": Finish(gloss=0.35, shininess=40.0, mottle_m=0.006, mottle=0.06, lines_m=0.014, line_share=0.1,
+                        line_tone=0.25),  # tuna: faint lines
+    "rice": Finish(grain_m=0.0022, grain_depth=0.9, mottle_m=0.0025, mottle=0.05),  # cooked grains
+    "meat": Finish(gloss=0.3, shininess=30.0, grain_m=0.003, grain_depth=0.15, mottle_m=0.008, mottle=0.12),
+}
 CATEGORY_MATERIAL = {  # a category's usual class where the material class is not known
     "foam": "pu_foam", "plush_animal": "plush", "plush": "plush", "rubber_toy": "rubber", "fruit": "fruit",
     "vegetable": "fruit", "baked_good": "bread", "textile": "textile", "gel": "gel", "meat": "gel",
@@ -64,9 +74,11 @@ CATEGORY_MATERIAL = {  # a category's usual class where the material class is no
 }
 
 
-def finish_for(material: str | None, category: str | None = None) -> Finish:
-    """The finish of a material class (contracts/vocab/materials.yaml), else of the category's usual class, else
-    MATTE."""
+def finish_for(material: str | None, category: str | None = None, look: str | None = None) -> Finish:
+    """The entry's own look (LOOKS), else the finish of a material class (contracts/vocab/materials.yaml), else of the
+    category's usual class, else MATTE."""
+    if look in LOOKS:
+        return LOOKS[look]
     if material in FINISHES:
         return FINISHES[material]
     return FINISHES.get(CATEGORY_MATERIAL.get(category or "", ""), MATTE)
@@ -127,6 +139,12 @@ def shade_pixels(albedo: np.ndarray, normals: np.ndarray, points_m: np.ndarray, 
     if finish.mottle_m > 0 and finish.mottle > 0 and fade > MIN_FADE:
         patch = value_noise(points_m / max(finish.mottle_m, MIN_GRAIN_PX * pixel_m), 2) - 0.5
         colour *= (1.0 + 2.0 * finish.mottle * fade * patch)[:, None]
+    if finish.lines_m > 0 and finish.lines_m > 3 * pixel_m:  # pale lines across the long axis, a little slanted
+        u = (points_m[:, 0] * 0.94 + points_m[:, 1] * 0.34 + 0.2 * points_m[:, 2]) / finish.lines_m
+        wobble = 0.25 * (value_noise(points_m / (3 * finish.lines_m), 3) - 0.5)
+        phase = np.abs(((u + wobble) % 1.0) - 0.5) * 2.0  # 0 at a line's centre
+        on = np.clip((finish.line_share - phase) / max(finish.line_share * 0.4, 1e-6), 0.0, 1.0)
+        colour = colour + (finish.line_tone * on)[:, None] * (1.0 - colour)
     n_l = np.clip(n @ light, 0.0, 1.0)
     n_v = np.clip(n @ toward_eye, 0.0, 1.0)
     lit = colour * (AMBIENT + KEY * n_l + FILL * n_v)[:, None]

@@ -110,3 +110,36 @@ def test_the_written_stills_carry_the_bar(tmp_path: Path) -> None:
     write_renders(_ball(0.03), tmp_path, 128, FINISHES["rubber"])
     img = iio.imread(tmp_path / "front.png")
     assert _inked_columns(img, slice(128 - 8, 128 - 3)).size > 5
+
+
+def test_every_lexicon_look_is_a_finish_and_reaches_the_concept() -> None:
+    """An entry's `finish` names one of LOOKS (a typo would silently fall back to its material's), and the concept L0
+    records carries it to the stills."""
+    from contracts.lexicon import load_lexicon
+    from tasks.geometry import catalogue
+    from tasks.render.finish import LOOKS
+
+    looks = {e.finish for e in load_lexicon().entries.values() if e.finish}
+    assert looks and looks <= set(LOOKS)
+    concept = catalogue.design_from_text("a salmon fillet").concept
+    assert concept is not None and concept.finish == "fish"
+    assert finish_for(concept.default_material, concept.category, concept.finish) is LOOKS["fish"]
+
+
+def test_a_fillet_shows_pale_fat_lines_across_it() -> None:
+    """The 'fish' look draws pale lines across a salmon-coloured slab: along its length the top's brightness rises and
+    falls about every 11 mm; the plain gel finish is even."""
+    from tasks.render.finish import LOOKS
+
+    slab = trimesh.creation.box((0.15, 0.06, 0.02)).subdivide().subdivide()
+    slab.visual.vertex_colors = np.tile([230, 102, 77, 255], (len(slab.vertices), 1))
+    top = {}
+    for name, fin in (("fish", LOOKS["fish"]), ("gel", FINISHES["gel"])):
+        img = render_view(slab, "top", 256, fin).astype(float)
+        row = img[128, 40:216, 2]  # blue rises towards white on a line
+        top[name] = row
+    def lines(row: np.ndarray) -> int:  # runs of pixels 30 levels above their neighbourhood's median
+        from scipy.ndimage import median_filter
+        above = (row - median_filter(row, size=15, mode="nearest")) > 30
+        return int(np.count_nonzero(np.diff(above.astype(int)) == 1))
+    assert lines(top["fish"]) >= 8 and lines(top["gel"]) == 0  # ~11 lines over the slab's middle 11 cm
