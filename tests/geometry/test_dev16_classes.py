@@ -98,3 +98,15 @@ def test_a_colour_word_of_the_objects_own_name_is_not_painted_over_it() -> None:
     assert min(parts["body"]) > 0.8 and parts["top layer"][0] > 2 * parts["top layer"][2]
     assert catalogue.design_from_text("a red cabbage").program.parts[0].color_rgb[0] > 0.6
     assert catalogue.design_from_text("a salmon-coloured towel").program.parts[0].color_rgb[2] < 0.5
+
+
+@pytest.mark.parametrize("text, entry, lo, hi", [
+    ("raw salmon fillet portion, skin on", "salmon_fillet", 0.1, 0.35),  # a generic block of 26 g
+    ("an unmoulded vanilla panna cotta", "panna_cotta", 0.07, 0.25),  # a 0.37 kg red jelly
+])
+def test_sealed16_after_run_objects(text: str, entry: str, lo: float, hi: float) -> None:
+    """Sealed set 16's misses fixed after its run (no longer blind)."""
+    design = catalogue.design_from_text(text)
+    assert design.entry == entry and lo <= planned_mass(text) <= hi
+    if entry == "panna_cotta":
+        assert min(design.program.parts[0].color_rgb) > 0.5  # cream, not the jelly's red
