@@ -100,7 +100,7 @@ class FitStep(Model):
     youngs_modulus_pa: float
     viscosity_pa_s: float
     damping_rate_per_s: float | None = None
-    probe: Literal["drop_impact", "compress"]
+    probe: Literal["drop_impact", "compress", "bounces"]
     metrics: dict[str, float]
 
 
@@ -119,7 +119,9 @@ class VideoFitRecord(Model):
     metrics: VideoMetrics
     prior: Material = Field(description="the asset's material before the fit")
     fitted: Material
-    youngs_modulus_source: Literal["impact_strain", "press", "prior"]
+    youngs_modulus_source: Literal["impact_strain", "press", "settle_time", "prior"] = Field(
+        description="settle_time: the video shows no compression but the bounces end; E is the one whose simulated "
+                    "settle time matches the video's, the viscosity refitted to the rebound at each E")
     viscosity_source: Literal["rebound", "no_bounce_lower_bound", "prior"]
     simulated: dict[str, float] = Field(description="the fitted material's simulated metrics (same definitions)")
     residuals: dict[str, float] = Field(description="metric -> (simulated - video) / video after the fit")

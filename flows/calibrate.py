@@ -23,11 +23,11 @@ from contracts.physical import PhysicalModel
 from contracts.sim import SimConfig
 from contracts.video_fit import VIDEO_FIT_JSON, PressTest, VideoFitRecord, VideoMetrics
 from tasks.asset_dir import AssetDir, document_json
-from tasks.calibrate.fit import FitProblem, fit
+from tasks.calibrate.fit import SETTLE_TOLERANCE, FitProblem, fit
 from tasks.calibrate.metrics import REST_FRAMES, analyse, contact_tol_px, video_metrics
 from tasks.calibrate.press import press_test, read_press
 from tasks.calibrate.scale import track_summary, video_scale
-from tasks.calibrate.sim import bounce_settle, scaled_body
+from tasks.calibrate.sim import scaled_body
 from tasks.export.calibrate import rel
 from tasks.calibrate.track import track_object
 from tasks.calibrate.video import read_video
@@ -88,10 +88,14 @@ def calibrate_asset(asset_dir: Path, video_path: Path, drop_height_m: float | No
         limit = contact_tol_px(d.flight_height or d.longest_extent) / d.drop_px  # a rise the tracker would see
     problem = FitProblem(pos, vol, phys, asset.material, h, sim, strain=metrics.impact_strain,
                          rebound=metrics.rebound_ratio if metrics.rebound_ratio else None, rebound_limit=limit,
-                         press=press)
+                         press=press, settle=metrics.settle_time_s, settle_tolerance_m=metrics.settle_tolerance_m,
+                         frame_times_s=tr.t_s, release_t_s=d.release_t or 0.0,
+                         settle_tail=max(5, int(REST_FRAMES * len(tr.t_s))))
     result = fit(problem)
     simulated, residuals = dict(result.simulated), dict(result.residuals)
-    settle_notes = simulate_settle(problem, result.material, metrics, tr.t_s, d.release_t, simulated, residuals)
+    settle_notes = simulate_settle(problem, result.material, metrics, simulated, residuals)
+    converged = result.converged and (result.young_source != "settle_time"
+                                      or abs(residuals.get("settle_time_s", 0.0)) <= 2 * SETTLE_TOLERANCE)
     if result.young_source == "prior":
         undetermined["youngs_modulus_pa"] = ("kept at the prior: " + undetermined.get("impact_strain", "no impact "
                                              "strain") + "; give a press test (--press) to fix it")
@@ -112,24 +116,21 @@ def calibrate_asset(asset_dir: Path, video_path: Path, drop_height_m: float | No
         track=track_summary(tr, d, video), metrics=metrics, prior=asset.material, fitted=result.material,
         youngs_modulus_source=result.young_source, viscosity_source=result.viscosity_source,
         simulated=simulated, residuals=residuals, undetermined=undetermined, steps=problem.steps,
-        sim_calls=len(problem.steps), converged=result.converged, notes=notes)
+        sim_calls=len(problem.steps), converged=converged, notes=notes)
     if write:
         write_calibration(Path(asset_dir), record)
     return record
 
 
-def simulate_settle(problem: FitProblem, material: Material, metrics: VideoMetrics, frame_times_s: np.ndarray,
-                    release_t_s: float | None, simulated: dict[str, float], residuals: dict[str, float]) -> list[str]:
+def simulate_settle(problem: FitProblem, material: Material, metrics: VideoMetrics, simulated: dict[str, float],
+                    residuals: dict[str, float]) -> list[str]:
     """The fitted material's bounces after the video's drop until they are under the video's settle tolerance
-    (tasks.calibrate.sim.bounce_settle), sampled at the video's frames: simulated settle_time_s (and its continuous
-    value), the bounces seen, the engine's restitution at each probed speed; the residual against the video's settle
-    time. Not fitted: the viscosity is the rebound's, so the settle time is a check of the fit. Returns notes."""
-    tol = metrics.settle_tolerance_m
-    if tol is None or not tol > 0:
+    (FitProblem.bounces: tasks.calibrate.sim.bounce_settle), sampled at the video's frames: simulated settle_time_s
+    (and its continuous value), the bounces seen, the engine's restitution at each probed speed; the residual against
+    the video's settle time (fitted only when E came from it). Returns notes."""
+    if problem.settle_tolerance_m is None or not problem.settle_tolerance_m > 0:
         return ["no settle time simulated: the video gave no settle tolerance"]
-    tail = max(5, int(REST_FRAMES * len(frame_times_s)))
-    out = bounce_settle(problem.positions_m, problem.volumes_m3, problem.physical, material, problem.drop_height_m,
-                        problem.sim, tol, frame_times_s, release_t_s or 0.0, tail)
+    out = problem.bounces(material.youngs_modulus_pa, material.viscosity_pa_s, material.damping_rate_per_s)
     sampled = out.get("settle_time_frames_s")
     simulated["settle_time_s"] = sampled if sampled is not None else out["settle_time_s"]
     simulated["settle_time_continuous_s"] = out["settle_time_s"]
@@ -139,8 +140,8 @@ def simulate_settle(problem: FitProblem, material: Material, metrics: VideoMetri
     if metrics.settle_time_s is not None and metrics.settle_time_s > 0:
         residuals["settle_time_s"] = rel(simulated["settle_time_s"], metrics.settle_time_s)
         if abs(residuals["settle_time_s"]) > 0.10:
-            notes.append(f"the settle time is {100 * residuals['settle_time_s']:+.0f} % off the video's (not fitted: "
-                         "the bounces after the first follow the engine's restitution at their slower speeds)")
+            notes.append(f"the settle time is {100 * residuals['settle_time_s']:+.0f} % off the video's (the bounces "
+                         "after the first follow the engine's restitution at their slower speeds)")
     if sampled is None:
         notes.append("the simulated bounces outlast the video's frames: its settle time is the continuous one")
     return notes

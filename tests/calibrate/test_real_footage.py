@@ -73,16 +73,20 @@ def test_a_shadow_over_the_scene_while_the_ball_falls_is_not_the_object(centres:
 def test_a_retimed_clip_repeats_frames_and_they_are_left_out(centres: np.ndarray) -> None:
     """A 120 fps capture stored at 240 fps by showing each frame twice: the repeats are found and left out (their
     time stamps are not when they were taken), not counted as dropped, and the rebound, the restitution and the fall
-    are the drawn ones at the file's rate."""
+    are those of the 120 fps frames at their own rate."""
     frames = degrade(clean_frames(CAM, centres[::2], R), 3.0, 80)
     doubled = np.repeat(frames, 2, axis=0)
-    assert duplicate_frames(doubled).sum() == pytest.approx(len(frames), abs=2)
+    rep = duplicate_frames(doubled)
+    # every repeat found is a second copy; the moving frames' are all found (held or at rest, a repeat and the still
+    # scene look alike: those are kept, their times do not matter)
+    assert rep.sum() >= 0.4 * len(frames) and not rep[0::2].any()
     assert not duplicate_frames(frames).any()
     tr = track_object(doubled, FPS)
-    assert tr.duplicates >= len(frames) - 2 and tr.dropped <= 2
+    assert tr.duplicates == rep.sum() and tr.dropped <= 2
     d, single = analyse(tr), analyse(track_object(frames, FPS / 2))
     assert d.rebound_ratio == pytest.approx(single.rebound_ratio, rel=0.01)
-    assert d.restitution == pytest.approx(single.restitution, rel=0.01)
+    assert d.restitution == pytest.approx(single.restitution, rel=0.03)  # a slow frame's repeat may stay in
+    assert d.restitution == pytest.approx(E, rel=0.04)
     assert d.rebound_ratio == pytest.approx(E * E, rel=0.06)
     assert d.fall is not None and 2.0 * d.fall.c == pytest.approx(9.81 * CAM.px_per_m, rel=0.05)
 
@@ -188,3 +192,24 @@ def test_the_simulated_bounces_settle_as_the_video_rule_reads_them(monkeypatch: 
     assert out["settle_time_s"] == pytest.approx(t_end, rel=1e-3)
     assert out["settle_time_frames_s"] == pytest.approx(t_end, abs=1.0 / fps)
     assert calls[0] == pytest.approx(np.sqrt(2 * g * DROP)) and min(calls) == pytest.approx(np.sqrt(2 * g * tol))
+
+
+def test_e_from_the_settle_time_when_the_video_shows_no_compression(monkeypatch: pytest.MonkeyPatch) -> None:
+    """E's search on the settle time (tasks.calibrate.fit.fit_settle), a softer E settling later: it finds the E
+    whose settle time is the video's within 5 %, refitting the viscosity at each E; out of its decade's reach it
+    stops at the bound and says so."""
+    from types import SimpleNamespace
+
+    import tasks.calibrate.fit as fit_mod
+
+    refits: list[float] = []
+    monkeypatch.setattr(fit_mod, "rebound_at", lambda p, young, d, target: (refits.append(young) or 3.0, d))
+    law = SimpleNamespace(settle=2.0, settle_time=lambda young, eta, d: 1.5 * (young / 1e6) ** -0.25)
+    notes: list[str] = []
+    young, eta, _ = fit_mod.fit_settle(law, 1e6, 0.0, 0.4, notes)  # type: ignore[arg-type]
+    assert law.settle_time(young, eta, 0.0) == pytest.approx(2.0, rel=fit_mod.SETTLE_TOLERANCE)
+    assert young < 1e6 and len(refits) <= fit_mod.SETTLE_E_SIMS and "E from the settle time" in notes[0]
+    far = SimpleNamespace(settle=20.0, settle_time=law.settle_time)
+    notes = []
+    young, _, _ = fit_mod.fit_settle(far, 1e6, 0.0, 0.4, notes)  # type: ignore[arg-type]
+    assert young == pytest.approx(1e6 * fit_mod.SETTLE_E_RANGE[0]) and "out of E's reach" in notes[-1]
