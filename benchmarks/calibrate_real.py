@@ -278,10 +278,13 @@ def main(argv: list[str] | None = None) -> int:
     if args.json:
         sys.stdout.write(json.dumps(out, indent=2) + "\n")
     else:
+        def f(v: float | None, fmt: str) -> str:
+            return "-" if v is None else format(v, fmt)
+
         for r in rows:
-            print(f"{r['clip']}: rebound {r['rebound_seen']:.3f} seen, {r['rebound_simulated']:.3f} simulated "
-                  f"({r['rebound_error']:+.1%}); settle {r['settle_time_seen_s']} s seen, "
-                  f"{r['settle_time_simulated_s']} s simulated ({r['settle_time_error']}); "
+            print(f"{r['clip']}: rebound {f(r['rebound_seen'], '.3f')} seen, {f(r['rebound_simulated'], '.3f')} "
+                  f"simulated ({f(r['rebound_error'], '+.1%')}); settle {f(r['settle_time_seen_s'], '.2f')} s seen, "
+                  f"{f(r['settle_time_simulated_s'], '.2f')} s simulated ({f(r['settle_time_error'], '+.1%')}); "
                   f"{'ok' if r['passed'] else 'MISS'}")
     return 0 if out["passed"] == out["of"] else 1
 
