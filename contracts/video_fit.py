@@ -37,6 +37,10 @@ class TrackSummary(Model):
     frames: int = Field(ge=0, description="frames read")
     frames_tracked: int = Field(ge=0)
     frames_dropped: int = Field(ge=0, description="frames where segmentation found no object (left out of the track)")
+    frames_at_edge: int = Field(default=0, ge=0, description="of those, frames where the object touched the frame's "
+                                "edge (partly out of the picture)")
+    frames_repeated: int = Field(default=0, ge=0, description="frames that repeat the one before (a re-timed clip), "
+                                 "left out and not counted as dropped")
     fps: float = Field(gt=0)
     fps_source: Literal["file", "option"]
     frame_size_px: tuple[int, int] = Field(description="(width, height) of the frames as tracked (after any downscale)")
@@ -66,10 +70,17 @@ class VideoMetrics(Model):
     impact_strain: float | None = Field(default=None, description="largest height compression at the first impact, "
                                         "1 - h / h_flight with h the silhouette's second-moment height [-]")
     impact_frames: int = Field(default=0, description="frames with the object on the floor in the first impact")
-    settle_time_s: float | None = Field(default=None, description="from release until the object stays still")
+    settle_time_s: float | None = Field(default=None, description="from release until the bouncing is over: the "
+                                        "centroid stays within the contact tolerance of a line through the last frames "
+                                        "(flat at rest; sloped for a ball rolling on)")
+    settle_tolerance_m: float | None = Field(default=None, description="that tolerance in metres: a bounce that rises "
+                                             "less is not seen (the simulated settle time uses the same)")
     recovery_ratio: float | None = Field(default=None, description="(rest height - lowest height at impact) / "
                                          "(flight height - lowest height) [-]")
     left_floor: bool = Field(default=False, description="the object left the floor after the first impact")
+    bounces: list[dict[str, float]] = Field(default_factory=list, description="each impact's restitution from the "
+                                            "video's timing alone (flight after / flight before; the first: over twice "
+                                            "the fall): time_s, speed_in_m_per_s, speed_out_m_per_s, restitution")
 
 
 class PressTest(Model):
@@ -89,7 +100,7 @@ class FitStep(Model):
     youngs_modulus_pa: float
     viscosity_pa_s: float
     damping_rate_per_s: float | None = None
-    probe: Literal["drop_impact", "compress"]
+    probe: Literal["drop_impact", "compress", "bounces"]
     metrics: dict[str, float]
 
 
@@ -108,7 +119,9 @@ class VideoFitRecord(Model):
     metrics: VideoMetrics
     prior: Material = Field(description="the asset's material before the fit")
     fitted: Material
-    youngs_modulus_source: Literal["impact_strain", "press", "prior"]
+    youngs_modulus_source: Literal["impact_strain", "press", "settle_time", "prior"] = Field(
+        description="settle_time: the video shows no compression but the bounces end; E is the one whose simulated "
+                    "settle time matches the video's, the viscosity refitted to the rebound at each E")
     viscosity_source: Literal["rebound", "no_bounce_lower_bound", "prior"]
     simulated: dict[str, float] = Field(description="the fitted material's simulated metrics (same definitions)")
     residuals: dict[str, float] = Field(description="metric -> (simulated - video) / video after the fit")

@@ -21,13 +21,14 @@ from contracts.errors import InputError
 from contracts.material import Material
 from contracts.physical import PhysicalModel
 from contracts.sim import SimConfig
-from contracts.video_fit import VIDEO_FIT_JSON, PressTest, VideoFitRecord
+from contracts.video_fit import VIDEO_FIT_JSON, PressTest, VideoFitRecord, VideoMetrics
 from tasks.asset_dir import AssetDir, document_json
-from tasks.calibrate.fit import FitProblem, fit
-from tasks.calibrate.metrics import analyse, contact_tol_px, video_metrics
+from tasks.calibrate.fit import SETTLE_TOLERANCE, FitProblem, fit
+from tasks.calibrate.metrics import REST_FRAMES, analyse, contact_tol_px, video_metrics
 from tasks.calibrate.press import press_test, read_press
 from tasks.calibrate.scale import track_summary, video_scale
 from tasks.calibrate.sim import scaled_body
+from tasks.export.calibrate import rel
 from tasks.calibrate.track import track_object
 from tasks.calibrate.video import read_video
 from tasks.publish import staged_update, write_json_atomic
@@ -87,8 +88,14 @@ def calibrate_asset(asset_dir: Path, video_path: Path, drop_height_m: float | No
         limit = contact_tol_px(d.flight_height or d.longest_extent) / d.drop_px  # a rise the tracker would see
     problem = FitProblem(pos, vol, phys, asset.material, h, sim, strain=metrics.impact_strain,
                          rebound=metrics.rebound_ratio if metrics.rebound_ratio else None, rebound_limit=limit,
-                         press=press)
+                         press=press, settle=metrics.settle_time_s, settle_tolerance_m=metrics.settle_tolerance_m,
+                         frame_times_s=tr.t_s, release_t_s=d.release_t or 0.0,
+                         settle_tail=max(5, int(REST_FRAMES * len(tr.t_s))))
     result = fit(problem)
+    simulated, residuals = dict(result.simulated), dict(result.residuals)
+    settle_notes = simulate_settle(problem, result.material, metrics, simulated, residuals)
+    converged = result.converged and (result.young_source != "settle_time"
+                                      or abs(residuals.get("settle_time_s", 0.0)) <= 2 * SETTLE_TOLERANCE)
     if result.young_source == "prior":
         undetermined["youngs_modulus_pa"] = ("kept at the prior: " + undetermined.get("impact_strain", "no impact "
                                              "strain") + "; give a press test (--press) to fix it")
@@ -96,7 +103,7 @@ def calibrate_asset(asset_dir: Path, video_path: Path, drop_height_m: float | No
         undetermined.setdefault("impact_strain", "not seen")
     if result.viscosity_source == "prior":
         undetermined["viscosity_pa_s"] = "kept at the prior: " + undetermined.get("rebound_ratio", "no rebound")
-    notes = list(result.notes)
+    notes = list(result.notes) + settle_notes
     if asset.material_source != "L2":
         notes.append(f"the prior was the asset's adopted material ({asset.material_source})")
     if scale.gravity_check is not None and abs(scale.gravity_check / 9.81 - 1.0) > 0.15:
@@ -108,11 +115,36 @@ def calibrate_asset(asset_dir: Path, video_path: Path, drop_height_m: float | No
         drop_height_m=h, drop_height_source="option" if drop_height_m is not None else "video", scale=scale,
         track=track_summary(tr, d, video), metrics=metrics, prior=asset.material, fitted=result.material,
         youngs_modulus_source=result.young_source, viscosity_source=result.viscosity_source,
-        simulated=result.simulated, residuals=result.residuals, undetermined=undetermined, steps=problem.steps,
-        sim_calls=len(problem.steps), converged=result.converged, notes=notes)
+        simulated=simulated, residuals=residuals, undetermined=undetermined, steps=problem.steps,
+        sim_calls=len(problem.steps), converged=converged, notes=notes)
     if write:
         write_calibration(Path(asset_dir), record)
     return record
+
+
+def simulate_settle(problem: FitProblem, material: Material, metrics: VideoMetrics, simulated: dict[str, float],
+                    residuals: dict[str, float]) -> list[str]:
+    """The fitted material's bounces after the video's drop until they are under the video's settle tolerance
+    (FitProblem.bounces: tasks.calibrate.sim.bounce_settle), sampled at the video's frames: simulated settle_time_s
+    (and its continuous value), the bounces seen, the engine's restitution at each probed speed; the residual against
+    the video's settle time (fitted only when E came from it). Returns notes."""
+    if problem.settle_tolerance_m is None or not problem.settle_tolerance_m > 0:
+        return ["no settle time simulated: the video gave no settle tolerance"]
+    out = problem.bounces(material.youngs_modulus_pa, material.viscosity_pa_s, material.damping_rate_per_s)
+    sampled = out.get("settle_time_frames_s")
+    simulated["settle_time_s"] = sampled if sampled is not None else out["settle_time_s"]
+    simulated["settle_time_continuous_s"] = out["settle_time_s"]
+    simulated["settle_bounces"] = out["bounces"]
+    simulated.update({k: v for k, v in out.items() if k.startswith("restitution_at_")})
+    notes = []
+    if metrics.settle_time_s is not None and metrics.settle_time_s > 0:
+        residuals["settle_time_s"] = rel(simulated["settle_time_s"], metrics.settle_time_s)
+        if abs(residuals["settle_time_s"]) > 0.10:
+            notes.append(f"the settle time is {100 * residuals['settle_time_s']:+.0f} % off the video's (the bounces "
+                         "after the first follow the engine's restitution at their slower speeds)")
+    if sampled is None:
+        notes.append("the simulated bounces outlast the video's frames: its settle time is the continuous one")
+    return notes
 
 
 def write_calibration(asset_dir: Path, record: VideoFitRecord) -> None:
@@ -136,4 +168,4 @@ def write_json_atomic_mkdir(path: Path, data: dict) -> None:
     write_json_atomic(path, data)
 
 
-__all__ = ["AssetBody", "calibrate_asset", "load_asset", "write_calibration"]
+__all__ = ["AssetBody", "calibrate_asset", "load_asset", "simulate_settle", "write_calibration"]

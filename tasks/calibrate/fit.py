@@ -6,7 +6,12 @@ the crosscheck calibration's searches (tasks.export.calibrate):
   instead (when given): L2's compression probe's effective modulus against the table's (fit_modulus as crosscheck);
 - the viscosity from the rebound ratio: a knob that lowers the rebound as it grows (fit_rebound's bracketing and
   regula falsi on a log scale);
-- both together (fit_both) when the video gives both: a viscosity fitted to the rebound moves the strain a little.
+- both together (fit_both) when the video gives both: a viscosity fitted to the rebound moves the strain a little;
+- E from the settle time when the video shows no compression (an impact between two frames) nor a press test but
+  shows the bounces end: how the restitution changes over the slower bounces depends on E (a softer body's longer
+  contact: the engine loses less at low speed, the Kelvin-Voigt loss grows with speed), so E is searched on a log
+  scale (secant on log settle time, bounded) with the viscosity refitted to the rebound at each E, until the
+  simulated settle time is within SETTLE_TOLERANCE of the video's.
 A metric the video could not determine leaves its parameter at the prior (no bounce: the viscosity is fitted to the
 rebound's detection limit, a lower bound on the loss); the caller records which.
 """
@@ -25,7 +30,7 @@ from contracts.physical import PhysicalModel
 from contracts.sim import SimConfig
 from contracts.video_fit import FitStep, PressTest
 from tasks.calibrate.press import probe_modulus
-from tasks.calibrate.sim import drop_impact
+from tasks.calibrate.sim import bounce_settle, drop_impact
 from tasks.export.calibrate import Knob, fit_both, fit_modulus, fit_rebound, rel
 from tasks.probes.rollout import DeformableBody, dx_of
 from tasks.realworld.impact import contact_time_s
@@ -34,6 +39,9 @@ from tasks.realworld.loss import damping_ratio, viscosity_for_damping_ratio
 TOLERANCE = 0.03  # each metric is fitted to within 3 %
 ENGINE_RESTITUTION = 0.9  # the engine's own restitution at no viscosity, for the first guess only (loss.py: 0.82-0.94)
 MIN_DT_S = 2e-6  # the viscosity's upper bound: its explicit time step stays above this
+SETTLE_TOLERANCE = 0.05  # E from the settle time: fitted to within 5 %
+SETTLE_E_RANGE = (0.1, 10.0)  # ... searched within a decade of the prior's E either way
+SETTLE_E_SIMS = 6  # ... with at most this many values of E
 
 
 def strain_index(strain: float) -> float:
@@ -55,8 +63,35 @@ class FitProblem:
     rebound: float | None = None
     rebound_limit: float | None = None  # no bounce: the rebound the video would have seen
     press: PressTest | None = None
+    settle: float | None = None  # the video's settle time [s]
+    settle_tolerance_m: float | None = None
+    frame_times_s: np.ndarray | None = None  # the video's tracked frames, for the settle rule
+    release_t_s: float = 0.0
+    settle_tail: int = 5
     steps: list[FitStep] = field(default_factory=list)
     _memo: dict[tuple[float, float, float], dict[str, float]] = field(default_factory=dict)
+    _settle_memo: dict[tuple[float, float, float], dict[str, float]] = field(default_factory=dict)
+
+    def bounces(self, young: float, eta: float, damping: float | None = None) -> dict[str, float]:
+        """The bounces after the drop until a rise is under the video's settle tolerance (sim.bounce_settle), sampled
+        at the video's frames (memoized)."""
+        assert self.settle_tolerance_m is not None
+        d = self.prior.damping_rate_per_s if damping is None else damping
+        key = (float(f"{young:.6g}"), float(f"{eta:.6g}"), float(f"{d:.6g}"))
+        if key not in self._settle_memo:
+            mat = self.prior.model_copy(update={"youngs_modulus_pa": key[0], "viscosity_pa_s": key[1],
+                                                "damping_rate_per_s": key[2]})
+            out = bounce_settle(self.positions_m, self.volumes_m3, self.physical, mat, self.drop_height_m, self.sim,
+                                self.settle_tolerance_m, self.frame_times_s, self.release_t_s, self.settle_tail)
+            self._settle_memo[key] = out
+            self.steps.append(FitStep(youngs_modulus_pa=key[0], viscosity_pa_s=key[1], damping_rate_per_s=key[2],
+                                      probe="bounces", metrics={k: v for k, v in out.items() if math.isfinite(v)}))
+        return self._settle_memo[key]
+
+    def settle_time(self, young: float, eta: float, damping: float | None = None) -> float:
+        """The simulated settle time as the video's rule reads it (the continuous one when it outlasts the frames)."""
+        out = self.bounces(young, eta, damping)
+        return out.get("settle_time_frames_s", out["settle_time_s"])
 
     def drop(self, young: float, eta: float, damping: float | None = None) -> dict[str, float]:
         """The video's drop in the engine with this E, viscosity and damping rate (None: the prior's; memoized)."""
@@ -127,7 +162,7 @@ class FitResult:
     """The fitted material, where each parameter came from, the simulated metrics and residuals."""
 
     material: Material
-    young_source: Literal["impact_strain", "press", "prior"]
+    young_source: Literal["impact_strain", "press", "settle_time", "prior"]
     viscosity_source: Literal["rebound", "no_bounce_lower_bound", "prior"]
     simulated: dict[str, float]
     residuals: dict[str, float]
@@ -135,11 +170,68 @@ class FitResult:
     notes: list[str]
 
 
+def rebound_at(p: FitProblem, young: float, damping: float, target: float) -> tuple[float, float]:
+    """The viscosity (and, past its reach, the damping rate) that gives the rebound `target` at this E."""
+    start = {"young_pa": young, "viscosity_pa_s": p.viscosity_knob(young).start, "damping_rate_per_s": damping}
+    values, _, _ = fit_rebound(lambda v: p.metric("rebound_ratio")({**start, **v}), p.knobs(start), target,
+                               TOLERANCE, max_sims=10)
+    return values["viscosity_pa_s"], values.get("damping_rate_per_s", damping)
+
+
+def fit_settle(p: FitProblem, prior_young: float, damping: float, target: float, notes: list[str]
+               ) -> tuple[float, float, float]:
+    """E from the settle time, the viscosity from the rebound at each E (see the module docstring): (E, viscosity,
+    damping) of the E whose simulated settle time is nearest the video's."""
+    assert p.settle is not None
+    goal = p.settle
+    lo, hi = prior_young * SETTLE_E_RANGE[0], prior_young * SETTLE_E_RANGE[1]
+    tried: dict[float, tuple[float, float, float]] = {}  # E -> (settle, viscosity, damping)
+
+    def at(young: float) -> float:
+        young = float(min(hi, max(lo, young)))
+        if young not in tried:
+            eta, d = rebound_at(p, young, damping, target)
+            tried[young] = (p.settle_time(young, eta, d), eta, d)
+        return tried[young][0]
+
+    young = prior_young
+    s = at(young)
+    step = 4.0
+    while len(tried) < SETTLE_E_SIMS and abs(s / p.settle - 1.0) > SETTLE_TOLERANCE:
+        below = [e for e, v in tried.items() if v[0] < p.settle]  # too short: a softer E lengthens it
+        above = [e for e, v in tried.items() if v[0] >= p.settle]
+        if below and above:  # bracketed: secant on log E against log settle time between the nearest two
+            a, b = min(below), max(above)
+            sa, sb = math.log(tried[a][0]), math.log(tried[b][0])
+            f = (math.log(p.settle) - sa) / (sb - sa) if sb != sa else 0.5
+            young = math.exp(math.log(a) + min(0.9, max(0.1, f)) * (math.log(b) - math.log(a)))
+        elif below:
+            young = min(below) / step
+        else:
+            young = max(above) * step
+        if min(hi, max(lo, young)) in tried:
+            break
+        s = at(young)
+    best = min(tried, key=lambda e: abs(math.log(tried[e][0] / goal)))
+    settle, eta, d = tried[best]
+    if len(tried) == 1:
+        notes.append(f"E from the settle time (the video shows no compression): the prior's {prior_young:.4g} Pa "
+                     f"already gives it (simulated {settle:.3g} s, the video's {goal:.3g} s)")
+    else:
+        notes.append(f"E from the settle time (the video shows no compression): {best:.4g} Pa, {len(tried)} values "
+                     f"tried from the prior's {prior_young:.4g} Pa, the viscosity refitted to the rebound at each; "
+                     f"simulated settle {settle:.3g} s against the video's {goal:.3g} s")
+    if abs(settle / p.settle - 1.0) > 2 * SETTLE_TOLERANCE:
+        notes.append(f"the settle time is out of E's reach within {SETTLE_E_RANGE[0]:g}-{SETTLE_E_RANGE[1]:g} x the "
+                     "prior's E")
+    return best, eta, d
+
+
 def fit(p: FitProblem) -> FitResult:
     """Fit E and the viscosity as the module docstring says."""
     young, eta, damping = p.prior.youngs_modulus_pa, p.prior.viscosity_pa_s, p.prior.damping_rate_per_s
     notes: list[str] = []
-    young_source: Literal["impact_strain", "press", "prior"] = "prior"
+    young_source: Literal["impact_strain", "press", "settle_time", "prior"] = "prior"
     if p.press is not None:
         target = p.press.effective_modulus_pa
         young, _, _ = fit_modulus(lambda e: p.press_modulus(e, eta), young, target, TOLERANCE, max_sims=4)
@@ -158,11 +250,11 @@ def fit(p: FitProblem) -> FitResult:
         young, _, _ = fit_modulus(lambda e: p.metric("index")({"young_pa": e, "viscosity_pa_s": eta}), young,
                                   strain_index(p.strain), TOLERANCE, max_sims=5)
         young_source = "impact_strain"
+    elif r_target is not None and young_source == "prior" and p.rebound and p.settle and p.settle_tolerance_m:
+        young, eta, damping = fit_settle(p, young, damping, r_target, notes)
+        young_source = "settle_time"
     elif r_target is not None:
-        start = {"young_pa": young, "viscosity_pa_s": p.viscosity_knob(young).start, "damping_rate_per_s": damping}
-        values, _, _ = fit_rebound(lambda v: p.metric("rebound_ratio")({**start, **v}), p.knobs(start), r_target,
-                                   TOLERANCE, max_sims=10)
-        eta, damping = values["viscosity_pa_s"], values.get("damping_rate_per_s", damping)
+        eta, damping = rebound_at(p, young, damping, r_target)
     material = p.prior.model_copy(update={"youngs_modulus_pa": young, "viscosity_pa_s": eta,
                                           "damping_rate_per_s": damping})
     sim = p.drop(young, eta, damping)
@@ -188,9 +280,10 @@ def fit(p: FitProblem) -> FitResult:
         notes.append(f"no bounce: the viscosity is the least that keeps the rebound under the video's detection limit "
                      f"({r_target:.3g}); more would look the same")
     fitted = {"impact_strain": young_source == "impact_strain", "rebound_ratio": visc_source == "rebound",
-              "effective_modulus_pa": young_source == "press"}
+              "effective_modulus_pa": young_source == "press", "settle_time_s": young_source == "settle_time"}
     converged = all(abs(v) <= 2 * TOLERANCE for k, v in residuals.items() if fitted.get(k))
     return FitResult(material, young_source, visc_source, simulated, residuals, converged, notes)
 
 
-__all__ = ["FitProblem", "FitResult", "TOLERANCE", "fit", "strain_index"]
+__all__ = ["FitProblem", "FitResult", "SETTLE_TOLERANCE", "TOLERANCE", "fit", "fit_settle", "rebound_at",
+           "strain_index"]

@@ -1,13 +1,21 @@
 """A drop's track (pixels, image y down) reduced to L2's drop metrics: the floor line, the release and the first
 impact, the rebound (apex and velocities), the impact strain, the settle time and the recovery.
 
-The phases: the floor is first the object's bottom in its resting frames (the lowest bottom when it never rests); a
-frame is on the floor when its bottom is within contact_tol_px of it; the first run of such frames is the first
-impact, and the floor line then the bottom's lowest in it. Heights of the rebound are taken from the touchdown (the
+The phases: the floor is first the object's bottom in its resting frames; when it never rests in view (it rolls on,
+toward the camera or out of the picture) the bottom where its first big fall turns (a ball bouncing toward the camera
+lands lower in the picture each time: the lowest bottom of all is not the first impact's floor). A frame is on the
+floor when its bottom is within contact_tol_px of it; the first run of such frames is the first impact, and the floor
+line then the bottom's lowest in it (for an object that never rests, with the impact between two frames, where the
+fall's parabola and the rebound's meet). Heights of the rebound are taken from the touchdown (the
 centroid when the bottom, in its flight shape, meets the floor line): rebound = rise / fall, both from there. The fall
 before it and the flight after it are fitted with parabolas (free flight: constant acceleration): the fall's vertex
 is the release (its time and height, also when the release is out of frame), the flight's vertex the apex; their
 slopes where the centroid crosses its touchdown height give the speeds in and out.
+
+Settling: the bouncing is over when the centroid stays within contact_tol_px of a straight line through the last
+tracked frames (flat for an object at rest; sloped for a ball that rolls on along the floor, toward or away from the
+camera: its rolling is not bouncing); the settle time runs from the release to the first frame of that stay
+(settle_time: also applied to the simulated bounces sampled at the video's frames).
 """
 
 from __future__ import annotations
@@ -19,6 +27,7 @@ import numpy as np
 
 from contracts.video_fit import VideoMetrics
 from tasks.calibrate.track import Track
+from tasks.realworld.physics import G_M_PER_S2
 
 REST_FRAMES = 0.1  # the last 10 % of the tracked frames (at least 5) are the resting frames when the object is still
 STILL_PX = 1.0  # a centroid within max(1 px, 1 % of the height) of its final place is still
@@ -118,6 +127,8 @@ class DropAnalysis:
     strain_noise: float | None = None
     min_height: float | None = None
     settle_t: float | None = None
+    settle_tol_px: float | None = None
+    bounces: list[dict[str, float]] = field(default_factory=list)
     why: dict[str, str] = field(default_factory=dict)
 
     impact_frames: int = 0  # frames of the first impact with the bottom on the floor line
@@ -168,10 +179,11 @@ def _runs(mask: np.ndarray) -> list[tuple[int, int]]:
     return out
 
 
-def first_impact(tr: Track, floor: float, height: float, runs: list[tuple[int, int]]) -> tuple[int, int] | None:
+def first_impact(tr: Track, floor: float | None, height: float, runs: list[tuple[int, int]]
+                 ) -> tuple[int, int] | None:
     """The track rows [first, last] of the first impact: the first run of frames on the floor, or sooner the first
     reversal of a fall of at least half the height that turns near the floor (a fast impact between two frames
-    shows no frame on the floor: then that one frame); None when the object never comes down."""
+    shows no frame on the floor: then that one frame; floor None: anywhere); None when the object never comes down."""
     on = runs[0] if runs else None
     start = 0
     for i in range(1, len(tr.cy) - 1):
@@ -180,9 +192,38 @@ def first_impact(tr: Track, floor: float, height: float, runs: list[tuple[int, i
         if tr.cy[i] < tr.cy[start]:
             start = i  # the highest point so far: the fall is measured from there
         falling, rises_next = tr.cy[i] > tr.cy[i - 1], tr.cy[i + 1] < tr.cy[i]
-        if falling and rises_next and tr.cy[i] - tr.cy[start] > 0.5 * height and tr.bottom[i] >= floor - 0.5 * height:
+        near = floor is None or tr.bottom[i] >= floor - 0.5 * height
+        if falling and rises_next and tr.cy[i] - tr.cy[start] > 0.5 * height and near:
             return i, i
     return on
+
+
+def settle_time(t: np.ndarray, y: np.ndarray, release_t: float, tol_px: float, tail: int) -> float | None:
+    """From `release_t` to the first of the frames from which on the centroid `y` stays within `tol_px` of the
+    straight line through the last `tail` frames (see the module docstring); None when even those stray from it
+    (still bouncing at the end) or no frame after the release strays (nothing to settle)."""
+    tail = min(tail, len(t))
+    if tail < 3:
+        return None
+    b, a = np.polyfit(t[-tail:], y[-tail:], 1)
+    off = np.abs(y - (a + b * t)) > tol_px
+    if off[-tail:].any():
+        return None
+    moving = np.flatnonzero(off & (t >= release_t))
+    if not len(moving) or moving[-1] + 1 >= len(t):
+        return None
+    return float(t[moving[-1] + 1] - release_t)
+
+
+def still_frames(tr: Track, rows: int) -> np.ndarray:
+    """The track rows of the `rows` frames where the centroid moves least (the least motion blur)."""
+    return still_frames_of(tr.t_s, tr.cy, rows)
+
+
+def still_frames_of(t: np.ndarray, y: np.ndarray, rows: int) -> np.ndarray:
+    """Indices of the `rows` samples where y(t) changes least."""
+    speed = np.abs(np.gradient(y, t)) if len(t) > 1 else np.zeros(len(t))
+    return np.argsort(speed, kind="stable")[:max(1, rows)]
 
 
 def analyse(tr: Track) -> DropAnalysis:
@@ -191,18 +232,22 @@ def analyse(tr: Track) -> DropAnalysis:
     k = max(5, int(REST_FRAMES * n))
     last_cy = tr.cy[-k:]
     h_est = float(np.median(tr.box_height))
-    resting = bool(np.ptp(last_cy) <= max(STILL_PX, 0.01 * h_est) * 2.0 and tr.index[-1] == tr.frames - 1)
-    floor = float(np.median(tr.bottom[-k:])) if resting else float(np.max(tr.bottom))
+    resting = bool(np.ptp(last_cy) <= max(STILL_PX, 0.01 * h_est) * 2.0 and tr.index[-1] == tr.last_frame)
     tol = contact_tol_px(h_est)
+    if resting:
+        floor = float(np.median(tr.bottom[-k:]))
+    else:  # the floor where the first big fall turns (see the module docstring), else the lowest bottom
+        turn = first_impact(tr, None, h_est, [])
+        floor = float(tr.bottom[turn[0]]) if turn is not None else float(np.max(tr.bottom))
     on_floor = tr.bottom >= floor - tol
     runs = _runs(on_floor)
     why: dict[str, str] = {}
     offset = float(np.median(tr.bottom - tr.cy))
     rest_cy = float(np.median(last_cy)) if resting else floor - offset
-    extent_rows = slice(n - k, n) if resting else slice(0, n)
+    extent_rows = np.arange(n - k, n) if resting else still_frames(tr, max(3, n // 4))
     longest = float(np.median(np.maximum(tr.box_width, tr.box_height)[extent_rows]))
     d = DropAnalysis(floor, resting, rest_cy, float(np.median(tr.moment_height[-k:])) if resting else None, None,
-                     offset, longest, "resting" if resting else "all tracked", why=why)
+                     offset, longest, "resting" if resting else "stillest quarter of the tracked", why=why)
     first = first_impact(tr, floor, h_est, runs)
     if first is None or first[0] == 0:
         why["rebound_ratio"] = why["impact_strain"] = ("the video shows no fall onto the floor" if first is None else
@@ -215,7 +260,7 @@ def analyse(tr: Track) -> DropAnalysis:
     d.impact_frames = int(np.count_nonzero(tr.bottom[c0:c1 + 1] >= floor - tol))
     # the fall: the frames before the first impact that move down, back to where the motion starts
     j = c0 - 1
-    while j > 0 and tr.cy[j] - tr.cy[j - 1] > 0.05 and tr.index[j] - tr.index[j - 1] == 1:
+    while j > 0 and tr.cy[j] - tr.cy[j - 1] > 0.05 and tr.consecutive(j):
         j -= 1
     fall_rows = np.arange(j, c0)
     fall_rows = fall_rows[tr.bottom[fall_rows] < floor - tol]
@@ -233,6 +278,12 @@ def analyse(tr: Track) -> DropAnalysis:
         why["restitution_from_velocities"] = "too few frames of the fall for a parabola"
     else:
         why["rebound_ratio"] = "the fall before the first impact is not in the video"
+    if not resting and d.release_t is not None:  # the extent in free frames: not held in a hand, least blurred
+        free = np.flatnonzero(tr.t_s >= d.release_t)
+        if len(free) >= 3:
+            sub = free[still_frames_of(tr.t_s[free], tr.cy[free], max(3, len(free) // 4))]
+            d.longest_extent = float(np.median(np.maximum(tr.box_width, tr.box_height)[sub]))
+            d.extent_frames = "stillest quarter of the post-release"
     # the flight after the first impact
     after = next((r[0] for r in runs if r[0] > c1), n)
     end = c1 + 1  # the flight ends where the centroid, having risen and fallen, stops falling (the next impact)
@@ -270,16 +321,55 @@ def analyse(tr: Track) -> DropAnalysis:
             d.strain = strain
     else:
         why["impact_strain"] = "no flight frames to measure the uncompressed height"
-    # settling: from release until the centroid stays within STILL_PX of its final place
-    if resting and d.release_t is not None:
-        still = np.abs(tr.cy - rest_cy) <= max(STILL_PX, 0.01 * h_est)
-        moving = np.flatnonzero(~still)
-        d.settle_t = float(tr.t_s[moving[-1] + 1] - d.release_t) if len(moving) and moving[-1] + 1 < n else None
+    # an impact between two frames of an object that never rests: the floor line where the two flights meet
+    if not resting and d.impact_frames == 0 and d.fall is not None and d.flight is not None:
+        meet = _meeting(d.fall, d.flight, float(tr.t_s[c0 - 1]), float(tr.t_s[c1 + 1]) if c1 + 1 < n else d.impact_t)
+        if meet is not None and meet + d.flight_offset > d.floor_y:
+            d.floor_y = meet + d.flight_offset
+    d.bounces = bounce_restitutions(tr, d)
+    # settling: from release until the bouncing is over (see the module docstring)
+    d.settle_tol_px = tol
+    if d.release_t is not None:
+        d.settle_t = settle_time(tr.t_s, tr.cy, d.release_t, tol, k)
         if d.settle_t is None:
-            why["settle_time_s"] = "no frame of the object moving after its release"
-    elif not resting:
-        why["settle_time_s"] = "the object is still moving at the end of the video"
+            why["settle_time_s"] = "the object is still bouncing at the end of the video"
     return d
+
+
+def bounce_restitutions(tr: Track, d: DropAnalysis, min_frames: int = 4) -> list[dict[str, float]]:
+    """The restitution of each impact the video shows, from its timing alone (no scale): an impact is where the
+    centroid turns from falling to rising; the flight after impact k lasts T_k, so the speed out is g T_k / 2 and the
+    restitution T_k / T_(k-1) (the first impact's: T_1 over twice the fall from the release); a turn after a fall of
+    under twice the contact tolerance is jitter. From the first flight shorter than `min_frames` frames on, none (a
+    frame's error is too much of it)."""
+    if d.contact is None or d.release_t is None or d.impact_t is None:
+        return []
+    fall_px = 2.0 * contact_tol_px(float(np.median(tr.box_height)))  # a turn after a smaller fall is jitter
+    turns = [d.contact[0]]
+    for i in range(d.contact[1] + 1, len(tr.cy) - 1):
+        if tr.cy[i] >= tr.cy[i - 1] and tr.cy[i] > tr.cy[i + 1] \
+                and tr.cy[i] - float(np.min(tr.cy[turns[-1]:i + 1])) > fall_px:
+            turns.append(i)
+    times = [float(tr.t_s[i]) for i in turns]
+    out = []
+    before = 2.0 * (times[0] - d.release_t)
+    frame = float(np.median(np.diff(tr.t_s))) if len(tr.t_s) > 1 else 1.0 / tr.fps  # repeats left out: wider
+    for a, b in zip(times, times[1:]):
+        flight = b - a
+        if flight < min_frames * frame or before < min_frames * frame:
+            break
+        out.append({"time_s": a, "speed_in_m_per_s": 0.5 * G_M_PER_S2 * before,
+                    "speed_out_m_per_s": 0.5 * G_M_PER_S2 * flight, "restitution": flight / before})
+        before = flight
+    return out
+
+
+def _meeting(fall: Parabola, flight: Parabola, t0: float, t1: float) -> float | None:
+    """The centroid's image y where the fall's parabola meets the rebound's between t0 and t1 (None: they do not)."""
+    c, b, a = fall.c - flight.c, fall.b - flight.b, fall.a - flight.a
+    roots = np.roots([c, b, a]) if abs(c) > 1e-12 else (np.array([-a / b]) if abs(b) > 1e-12 else np.array([]))
+    real = [float(r.real) for r in np.atleast_1d(roots) if abs(r.imag) < 1e-9 and t0 - 1e-9 <= r.real <= t1 + 1e-9]
+    return fall.at(real[0]) if real else None
 
 
 def video_metrics(d: DropAnalysis, metres_per_px: float) -> VideoMetrics:
@@ -294,8 +384,9 @@ def video_metrics(d: DropAnalysis, metres_per_px: float) -> VideoMetrics:
         drop_height_m=drop * metres_per_px if drop is not None and drop > 0 else None,
         rebound_ratio=d.rebound_ratio, restitution_from_velocities=d.restitution, impact_strain=d.strain,
         impact_frames=d.impact_frames, settle_time_s=d.settle_t,
-        recovery_ratio=recovery, left_floor=d.left_floor)
+        settle_tolerance_m=d.settle_tol_px * metres_per_px if d.settle_tol_px is not None else None,
+        recovery_ratio=recovery, left_floor=d.left_floor, bounces=d.bounces)
 
 
-__all__ = ["CONTACT_FRACTION", "DropAnalysis", "Parabola", "analyse", "contact_tol_px", "impact_amplitude",
-           "video_metrics"]
+__all__ = ["CONTACT_FRACTION", "DropAnalysis", "Parabola", "analyse", "contact_tol_px", "impact_amplitude", "settle_time",
+           "bounce_restitutions", "still_frames", "video_metrics"]

@@ -41,9 +41,10 @@ def track_summary(tr: Track, d: DropAnalysis, video: Video) -> TrackSummary:
     flight = tr.area[: d.contact[0]] if d.contact is not None and d.contact[0] > 2 else tr.area
     cv = float(np.std(flight) / np.mean(flight)) if len(flight) > 1 else 1.0
     consistency = float(min(1.0, max(0.0, 1.0 - cv)))
-    tracked = len(tr.index) / tr.frames
+    tracked = len(tr.index) / max(1, tr.frames - tr.duplicates)
     h, w = video.frames.shape[1:3]
-    return TrackSummary(frames=tr.frames, frames_tracked=len(tr.index), frames_dropped=tr.dropped, fps=video.fps,
+    return TrackSummary(frames=tr.frames, frames_tracked=len(tr.index), frames_dropped=tr.dropped,
+                        frames_at_edge=tr.at_edge, frames_repeated=tr.duplicates, fps=video.fps,
                         fps_source="option" if video.fps_source == "option" else "file", frame_size_px=(w, h),
                         downscale=video.downscale, floor_y_px=d.floor_y, rest_height_px=d.rest_height,
                         flight_height_px=d.flight_height, longest_extent_px=d.longest_extent,
