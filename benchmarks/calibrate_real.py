@@ -38,6 +38,9 @@ from contracts.agents import TargetBehaviour
 from contracts.asset_dir import PARTICLES_ZARR, HeldOutSummary, MaterialRecord, PhysicalRecord, SelectionSummary
 from contracts.material import Material
 from contracts.physical import PhysicalModel
+from flows.l2_material import l2_targets
+from tasks.asset_dir import AssetDir
+from tasks.geometry.outputs import load_l0
 from contracts.sim import SimConfig
 from contracts.video_fit import VideoFitRecord
 from flows.calibrate import calibrate_asset, load_asset
@@ -127,7 +130,6 @@ def prepare(clip: Clip, mirror: Path, out_dir: Path = CLIP_DIR) -> Path:
 
 def write_prior_material(path: Path, prior: Material, physical: PhysicalModel, message: str) -> None:
     """L2's record holding `prior` as the adopted material (what `calibrate` starts from)."""
-    from tasks.asset_dir import AssetDir
 
     AssetDir(path).write_material(MaterialRecord(
         passed=True, status="accepted", message=message, intent="", targets=TargetBehaviour(), material=prior,
@@ -140,8 +142,6 @@ def write_prior_material(path: Path, prior: Material, physical: PhysicalModel, m
 
 def l2_prior(asset_dir: Path) -> Material:
     """L2's prior material for the asset's class (its first proposal, before any probe)."""
-    from flows.l2_material import l2_targets
-    from tasks.geometry.outputs import load_l0
 
     p = l2_targets(load_l0(asset_dir), None).priors
     return Material(youngs_modulus_pa=p["youngs_modulus_pa"], poisson_ratio=p["poisson_ratio"],
@@ -164,7 +164,6 @@ def sphere_asset(path: Path, clip: Clip, prior: Material) -> Path:
     g = zarr.open_group(str(path / PARTICLES_ZARR), mode="w")
     g.create_array("positions_m", data=pos.astype(np.float32))
     g.create_array("volumes_m3", data=vol.astype(np.float32))
-    from tasks.asset_dir import AssetDir
 
     adir = AssetDir(path)
     adir.write_physical(PhysicalRecord(passed=True, status="accepted", message=f"{clip.object}: stated size and mass",
@@ -217,8 +216,7 @@ def run(clip: Clip, video: Path, asset_dir: Path | None, prior_dir: Path | None,
             shutil.copytree(asset_dir, work)
             label = f"{asset_dir.name} (an asset directory)"
             if not (work / "material.json").is_file():
-                from tasks.asset_dir import AssetDir
-
+            
                 prior = l2_prior(work)
                 write_prior_material(work, prior, AssetDir(work).physical_model(), "L2's prior for the class")
                 label = (f"{asset_dir.name} (built to L1 by the CLI at draft; L2's prior material for its class: "
