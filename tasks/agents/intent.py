@@ -152,7 +152,7 @@ _STATE_ONLY = frozenset({"inflated"})  # material words that only say a known ob
 
 
 def _match_material(text: str, vocab: MaterialVocab, concept_material: str | None = None,
-                    own_words: frozenset[str] = frozenset()) -> tuple[str, str | None]:
+                    own_words: frozenset[str] = frozenset(), hollow: bool = False) -> tuple[str, str | None]:
     """The material named by the longest matching word (materials first, then the concept L0 built, then object
     words); the default otherwise. The concept's own material wins when the text names it too ('a plush pillow' is
     plush, though 'pillow' is a foam word) or names only its family ('foam' for a closed-cell foam pad). A word of
@@ -166,7 +166,7 @@ def _match_material(text: str, vocab: MaterialVocab, concept_material: str | Non
         for word in entry.words:
             if concept_material not in (None, name) and set(word.lower().split()) <= own_words:
                 continue
-            if concept_material is not None and word in _STATE_ONLY:
+            if hollow and concept_material is not None and word in _STATE_ONLY:
                 continue  # 'an inflated balance cushion' is the cushion's rubber shell, blown up
             if _contains_phrase(text, word):
                 named.setdefault(name, word)
@@ -190,11 +190,11 @@ def _agrees(named: dict[str, str], concept_material: str) -> bool:
 
 
 def match_material(text: str, vocab: MaterialVocab | None = None, concept_material: str | None = None,
-                   own_words: frozenset[str] = frozenset()) -> str:
+                   own_words: frozenset[str] = frozenset(), hollow: bool = False) -> str:
     """The vocabulary material a text names (longest matching word; else the concept's default material; else the
     default material); own_words: the words of the concept's own nouns (see _match_material)."""
     vocab = vocab or load_material_vocab()
-    return _match_material(text.lower(), vocab, concept_material, own_words)[0]
+    return _match_material(text.lower(), vocab, concept_material, own_words, hollow)[0]
 
 
 def _narrow(low: float, high: float, frac: tuple[float, float], log: bool) -> tuple[float, float]:
@@ -241,7 +241,8 @@ def targets_from_intent(
     text = " ".join(intent.lower().split())
     check_deformable(text, vocab)
     check_rigid_object(text, vocab)
-    name, word = _match_material(text, vocab, concept.default_material if concept else None, own_nouns(concept))
+    name, word = _match_material(text, vocab, concept.default_material if concept else None, own_nouns(concept),
+                                 bool(concept and concept.hollow))
     entry = vocab.materials[name]
     by_concept = word is None and concept is not None and concept.default_material == name
     source = f"vocab:{word}" if word else f"concept:{concept.concept}({name})" if by_concept and concept else \
@@ -335,7 +336,8 @@ def asset_targets(record: dict, given: AssetRequest | str | None = None,
 def asset_material(record: dict, targets: TargetBehaviour, vocab: MaterialVocab | None = None) -> str:
     """The vocabulary material of an asset's targets (the words of targets.intent, else the concept's material)."""
     concept = concept_of(record)
-    return match_material(targets.intent, vocab, concept.default_material if concept else None, own_nouns(concept))
+    return match_material(targets.intent, vocab, concept.default_material if concept else None, own_nouns(concept),
+                          bool(concept and concept.hollow))
 
 
 def own_nouns(concept: ConceptMatch | None) -> frozenset[str]:

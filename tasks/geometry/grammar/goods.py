@@ -869,16 +869,16 @@ def heap(diameter: float, height: float, t: float, seed: float = 0.3, folds: int
     places; footprint `diameter`, top at about `height`, cloth `t` thick. (Four even flaps round a rounded mound
     with broad folds read as a plush animal lying face down: s30's judges named a crumpled towel a teddy bear.)"""
     R = diameter / 2
-    parts = [ellipsoid(name, (0.82 * R, 0.7 * R, 0.42 * height), (0.05 * R, 0.03 * R, 0.04 * height))]
+    parts = [ellipsoid(name, (0.82 * R, 0.7 * R, 0.64 * height), (0.05 * R, 0.03 * R, 0.05 * height))]
     for i, (a, r, turn) in enumerate(_rng_angles(folds, seed)):
         rho = 0.62 * R * r
         x, y = rho * np.cos(a), rho * np.sin(a)
-        top = 0.6 * height * np.sqrt(max(1 - (x / (0.85 * R)) ** 2 - (y / (0.72 * R)) ** 2, 0.05)) + 0.04 * height
+        top = 0.68 * height * np.sqrt(max(1 - (x / (0.85 * R)) ** 2 - (y / (0.72 * R)) ** 2, 0.05)) + 0.06 * height
         length = (0.45 + 0.35 * abs(np.sin(2.3 * i + seed))) * R
-        rad = (0.2 + 0.06 * np.sin(2.7 * i)) * height
+        rad = (0.25 + 0.06 * np.sin(2.7 * i)) * height
         d = np.degrees(a) + 90 + turn
         lean = 25 * np.sin(1.9 * i + seed)
-        parts.append(ellipsoid(f"fold {i + 1}", (length / 2, 0.6 * rad, rad), (x, y, top - 0.45 * rad),
+        parts.append(ellipsoid(f"fold {i + 1}", (length / 2, 0.6 * rad, rad), (x, y, top - 0.1 * rad),
                                rot=(float(lean), 0, float(d)), blend=0.7 * rad))
     for i in range(flaps):  # corners and edges out on the floor, at uneven angles and of uneven sizes
         a = seed + 0.8 + i * 2.1 + 0.6 * np.sin(5.0 * i + seed)
