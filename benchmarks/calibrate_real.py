@@ -2,7 +2,7 @@
 down, tracked and fitted against an asset of the object at its stated size and mass; the rebound and the settle time
 the video shows beside the calibrated simulation's (docs/calibration/real/README.md).
 
-    python -m benchmarks.calibrate_real --prepare [--mirror /work/.mirror]      # cut the clips from the snapshots
+    python -m benchmarks.calibrate_real --prepare --mirror DIR      # cut the clips from the snapshots
     python -m benchmarks.calibrate_real --asset ping_pong=DIR --asset green_ball=DIR [--clips ...] [--json]
 
 The clips are not in this repository (their authors state no licence): --prepare cuts them from a snapshot of each
@@ -251,7 +251,8 @@ def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--clips", default=",".join(CLIPS), help="comma-separated: " + ", ".join(CLIPS))
     ap.add_argument("--prepare", action="store_true", help="cut the clips from the repositories' snapshots first")
-    ap.add_argument("--mirror", type=Path, default=Path("/work/.mirror"), help="where the snapshots are")
+    ap.add_argument("--mirror", type=Path, default=None, help="where the repositories' snapshots are (each as "
+                    "<owner>+<name>/repo, a bare git directory); needed with --prepare")
     ap.add_argument("--videos", type=Path, default=CLIP_DIR, help="where the cut clips are")
     ap.add_argument("--asset", action="append", default=[], help="CLIP=DIR: fit this asset directory (a copy)")
     ap.add_argument("--prior-from", action="append", default=[], help="CLIP=DIR: the sphere's prior is DIR's material")
@@ -263,6 +264,8 @@ def main(argv: list[str] | None = None) -> int:
     bad = [n for n in names if n not in CLIPS]
     if bad:
         ap.error(f"unknown clip(s): {', '.join(bad)}")
+    if args.prepare and args.mirror is None:
+        ap.error("--prepare needs --mirror DIR: the folder holding the source repositories' snapshots")
     assets, priors = pairs(args.asset, "--asset"), pairs(args.prior_from, "--prior-from")
     sim = SimConfig(cpu_threads=args.cpu_threads)
     rows = []
