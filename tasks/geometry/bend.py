@@ -47,9 +47,10 @@ def stated_bend(text: str) -> Bend | None:
 
 
 def can_bend(extents_m: np.ndarray) -> bool:
-    """Long enough to bend: its longest horizontal extent at least MIN_ASPECT x the next."""
-    e = np.sort(np.asarray(extents_m, np.float64))[::-1]
-    return bool(e[0] >= MIN_ASPECT * max(e[1], 1e-12))
+    """Long enough to bend (extents x, y, z with z up): its longest horizontal extent, the one bend_along_length
+    bends, at least MIN_ASPECT x each of the other two."""
+    x, y, z = (float(v) for v in extents_m)
+    return max(x, y) >= MIN_ASPECT * max(min(x, y), z, 1e-12)
 
 
 def bend_along_length(mesh: trimesh.Trimesh, angle_rad: float) -> trimesh.Trimesh:

@@ -141,8 +141,7 @@ def mesh_from_text(request: AssetRequest, settings: L0Settings) -> tuple[Arrays,
         concept = concepts.stuffed_as_built(concept, float(mesh.extents.max()), float(mesh.volume), stretch,
                                            request.text or "")
     sized = sized_concept(concept, mesh)  # (the straight object's size: a bend keeps its length and volume)
-    mesh, notes = _bent_as_said(mesh, request.text or "")
-    bent = any("drawn bent" in n for n in notes)
+    mesh, notes, bent = _bent_as_said(mesh, request.text or "")
     warnings = [w for w in design.warnings if not (bent and w.startswith("state 'bent' is not drawn"))]
     program = design.program.model_copy(update={"target_extent_m": tuple(float(v) for v in mesh.extents)})
     info = BuildInfo(source="text", name=design.program.name, category=design.program.category, entry=design.entry,
@@ -151,19 +150,19 @@ def mesh_from_text(request: AssetRequest, settings: L0Settings) -> tuple[Arrays,
     return mesh_to_arrays(mesh), info
 
 
-def _bent_as_said(mesh: trimesh.Trimesh, text: str) -> tuple[trimesh.Trimesh, list[str]]:
-    """The mesh bent as the request says ('bent into a U') when it is long enough to bend, with the note saying so;
-    else the mesh and a note when a bend was said but the object is too short to show one."""
+def _bent_as_said(mesh: trimesh.Trimesh, text: str) -> tuple[trimesh.Trimesh, list[str], bool]:
+    """(mesh, notes, bent): the mesh bent as the request says ('bent into a U') when it is long enough to bend, with
+    the note saying so; else the mesh and a note when a bend was said but the object is too short to show one."""
     bend = stated_bend(text)
     if bend is None:
-        return mesh, []
+        return mesh, [], False
     if not can_bend(mesh.extents):
         return mesh, [f"'{bend.words}': not drawn, the object is not long enough to bend "
-                      f"(longest side under {MIN_ASPECT:g}x the next)"]
-    length = float(mesh.extents.max())
-    bent = bend_along_length(mesh, bend.angle_rad)
-    return bent, [f"'{bend.words}': drawn bent by {math.degrees(bend.angle_rad):.0f} deg along its {length:.3g} m "
-                  "length (its length and volume kept)"]
+                      f"(longest side under {MIN_ASPECT:g}x the others)"], False
+    length = float(max(mesh.extents[:2]))
+    return bend_along_length(mesh, bend.angle_rad), [
+        f"'{bend.words}': drawn bent by {math.degrees(bend.angle_rad):.0f} deg along its {length:.3g} m length (its "
+        "length and volume kept)"], True
 
 
 def sized_concept(concept: ConceptMatch | None, mesh: trimesh.Trimesh) -> ConceptMatch | None:

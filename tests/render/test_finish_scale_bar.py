@@ -9,6 +9,7 @@ import imageio.v3 as iio
 import numpy as np
 import pytest
 import trimesh
+import yaml
 
 from tasks.render.finish import FINISHES, MATTE, finish_for, value_noise
 from tasks.render.scale_bar import _text_mask, bar_length_m, draw_scale_bar, length_label
@@ -93,7 +94,7 @@ def test_finishes_follow_the_material_then_the_category() -> None:
     assert finish_for("sponge") is FINISHES["sponge"]
     assert finish_for(None, "baked_good") is FINISHES["bread"]
     assert finish_for("nonexistent", None) is MATTE
-    materials = set(__import__("yaml").safe_load(
+    materials = set(yaml.safe_load(
         (Path(__file__).parents[2] / "contracts" / "vocab" / "materials.yaml").read_text())["materials"])
     assert set(FINISHES) == materials  # every material class has its finish
 
