@@ -4,10 +4,10 @@ built volume) against the prompt's sourced real mass.
 
     python -m benchmarks.blind_bench tests/geometry/blind_prompts.jsonl --out docs/blind/set1 [--json] [--limit N]
 
-Writes OUT/views/<id>.png (iso | front | side), OUT/judge.jsonl (id, prompt, image: what a judge sees),
-OUT/table.json (every figure) and OUT/contact_sheet.png; prints the table (or JSON with --json). L0 seconds are the
-CPU seconds of L0's units (mesh, proxy, particles, Gaussians, checks), comparable on a shared machine; run it under
-`taskset -c 0` for the one-core figure."""
+Writes OUT/views/<id>.png (iso | front | side; iso | top | front for a flat object: views.telling_views),
+OUT/judge.jsonl (id, prompt, image: what a judge sees), OUT/table.json (every figure) and OUT/contact_sheet.png;
+prints the table (or JSON with --json). L0 seconds are the CPU seconds of L0's units (mesh, proxy, particles,
+Gaussians, checks), comparable on a shared machine; run it under `taskset -c 0` for the one-core figure."""
 
 from __future__ import annotations
 
@@ -27,9 +27,9 @@ from tasks.physical.plan import l1_plan
 from tasks.agents.intent import targets_from_request
 from tasks.geometry import pipeline, sources
 from tasks.geometry.outputs import load_l0, write_outputs
+from tasks.render.views import telling_views
 from benchmarks.geometry_bench import contact_sheet
 
-VIEWS = ("iso", "front", "side")  # a three-quarter view first: what a person names an object from
 
 
 def load_jsonl(path: Path) -> list[dict]:
@@ -77,7 +77,7 @@ def _bench_one(prompt: dict, settings: pipeline.L0Settings, out: Path) -> dict:
         plan = l1_plan(asset, None)
         volume = float(np.sum(asset.volumes_m3))
         mass = plan.mass.density_kg_per_m3 * volume
-        views = [iio.imread(folder / "renders" / f"{v}.png")[..., :3] for v in VIEWS]
+        views = [iio.imread(folder / "renders" / f"{v}.png")[..., :3] for v in telling_views(asset.mesh.extents)]
     strip = np.concatenate(views, axis=1)
     (out / "views").mkdir(parents=True, exist_ok=True)
     iio.imwrite(out / "views" / f"{prompt['id']}.png", strip)

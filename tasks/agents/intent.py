@@ -145,7 +145,12 @@ _MEASURE_OF = re.compile(r"\b(?:roll|rolls)\s+of\b")
 # 'coated in latex'): not what the object is made of
 _SURFACE_ONLY = re.compile(r"\b[a-z]+[\s-]+(?:coated|dipped|lined|trimmed|edged|palmed)\b|"
                            r"\b(?:coated|dipped|lined|trimmed|edged)\s+(?:in|with)\s+[a-z]+\b|"
-                           r"\bwith\s+(?:[a-z]+\s+)?[a-z]+\s+(?:dots|grips?|palms?|soles?|patches|trim|piping)\b")
+                           r"\bwith\s+(?:[a-z]+\s+)?[a-z]+\s+(?:dots|grips?|palms?|soles?|patches|trim|piping)\b|"
+                           # a part's material ('a blood pressure cuff with its rubber tube', 'a bag with plastic
+                           # handles'): the part's, not the object's
+                           r"\bwith\s+(?:(?:its|their|a|an|the|two)\s+)?(?:[a-z]+\s+)?[a-z]+\s+(?:tube|tubing|hose|"
+                           r"cord|handles?|straps?|cap|lid|string|tag|valve|plug|nozzle|clip|buckle|zip|zipper|"
+                           r"bulb|stem|spout|bell)\b")
 
 
 _STATE_ONLY = frozenset({"inflated"})  # material words that only say a known object's state

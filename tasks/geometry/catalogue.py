@@ -20,6 +20,7 @@ from tasks.geometry.wordnet import wordnet
 from tasks.geometry.catalogue_programs import catalogue_program, catalogue_yaml
 from tasks.geometry.grammar.goods import crumpled_size, wad_size
 from tasks.geometry.sdf import program_bounds
+from tasks.render.finish import DUSTED, with_look
 
 
 _UNITS = {"mm": 0.001, "millimeter": 0.001, "millimetre": 0.001, "cm": 0.01, "centimeter": 0.01,
@@ -472,6 +473,29 @@ def _crumpled_sized(size: SizeSpec, reading: concepts.Reading) -> SizeSpec:
                                    "stated": f"{size.stated}: the flat sheet's, bunched into a heap"})
 
 
+_DUSTED = re.compile(r"\b(?:dusted|powdered|sugared|floured|sprinkled with (?:icing|powdered|caster) sugar|"
+                     r"(?:icing|powdered) sugar on top|coated in (?:icing|powdered) sugar|dusting of)\b")
+_SQUARE = re.compile(r"\bsquare\b(?!\s+(?:of|metres?|meters?|feet|foot|inch(?:es)?|yards?)\b)")
+
+
+def _draped_sized(size: SizeSpec, program: ShapeProgram, reading: concepts.Reading) -> SizeSpec:
+    """A draped sheet's stated sizes are the flat sheet's ('a 90 cm square scarf draped over a bar'): its length
+    falls in two panels from the fold, its width runs along the bar."""
+    target = reading.donor or reading.entry
+    states = (reading.phrase.states if reading.phrase else []) + [str(reading.params.get("state", ""))]
+    dims = sorted((v for v in (*size.extents_m, size.longest_m) if v is not None), reverse=True)
+    if target is None or target.plan != "sheet" or "draped" not in states or not dims:
+        return size
+    lo, hi = program_bounds(program)
+    ext = np.asarray(hi) - np.asarray(lo)  # the fold along y, the panels falling in x-z
+    w = float({**target.params, **reading.params}.get("width", 0.5))
+    k = dims[0] / (float(ext[1]) / w)  # the stated length over the built sheet's
+    width = dims[1] if len(dims) > 1 and size.extents_m[1] is not None else float(ext[1]) * k
+    return size.model_copy(update={"longest_m": None, "extents_m": (float(ext[0]) * k, width, float(ext[2]) * k),
+                                   "flat": False, "long": False,
+                                   "stated": f"{size.stated}: the flat sheet's, draped"})
+
+
 _TRAILING_PAIR = re.compile(r"(?:\s*,\s*|\s+|\()(?:a\s+)?pair\b\)?(?!\s+of\b)", re.IGNORECASE)
 
 
@@ -709,6 +733,11 @@ def design_from_text(text: str, size_hint_m: float | None = None) -> Design:
         size = parse_size(dims_words.strip_consumed(text_n, bound.consumed))
         if bound.longest_m is not None and not size.explicit:
             size = SizeSpec(longest_m=bound.longest_m, stated="; ".join(bound.consumed))
+    square = reading.donor or reading.entry
+    if square is not None and square.plan == "sheet" and _SQUARE.search(text_n) \
+            and {**square.params, **reading.params}.get("shape", "rect") == "rect" \
+            and float({**square.params, **reading.params}.get("width", 0.5)) < 0.95:
+        reading.params = {**reading.params, "width": 1.0}  # 'a 90 cm square silk scarf': as wide as long
     stated = size.longest_m or max((v for v in size.extents_m if v is not None), default=None)
     if stated is not None and stated > MAX_SIZE_M and size_hint_m is None:  # a big sheet said folded: folded to fit
         concepts.fold_to_fit(reading, stated, MAX_SIZE_M)
@@ -745,6 +774,7 @@ def design_from_text(text: str, size_hint_m: float | None = None) -> Design:
             grammar.program_extents(program, 48).max() / grammar.program_extents(one, 48).max())})
     size = _rolled_sized(size, program, reading)
     size = _crumpled_sized(size, reading)
+    size = _draped_sized(size, program, reading)
     size, fill_match = _fill_sized(size, program, fill_match, mass)
     if mass is None:
         match = fill_match
@@ -758,6 +788,8 @@ def design_from_text(text: str, size_hint_m: float | None = None) -> Design:
     as_built = size.flat or concepts.sheet_roll(reading) is not None  # (a roll's stated sheet: its volume follows it)
     scaled = SizeSpec(axis_scale=size.axis_scale) if as_built and size.explicit else size
     match = concepts.size_scaled(match, *final_scale(scaled, program, match.typical_size_m or 0.0))
+    if _DUSTED.search(text_n):  # 'dusted with icing sugar', 'floured': the powder in the stills
+        match = match.model_copy(update={"finish": with_look(match.finish, DUSTED)})
     said = size_words.read_size_words(_strip_numeric_sizes(text_n), frozenset(MODIFIERS))
     warnings = [w for w in said.warnings + reading.warnings + build_warnings if w]
     score = {"exact": 2.0, "synonym": 1.0}.get(match.fallback_level, 0.0)

@@ -477,6 +477,9 @@ def read_text(text: str, serving: bool = True) -> Reading:
             main = covering[0][2]  # 'a sea slug': the parse took 'sea' for the head; the lexicon knows the whole
             # ('a cat bed': 'cat' names a plush cat, but the lexicon's 'cat bed' ends after it)
         head, compound, unknown = _head(main)
+        if unknown is not None and phrase.portion and phrase.noun_phrase in noun_index():
+            head, compound, unknown = _head(phrase.noun_phrase)  # 'a roll of gauze bandage': the 'roll of gauze'
+            # noun took 'gauze' from the gauze bandage, leaving 'bandage' unknown
         if head is None and unknown is None:
             head, compound, unknown = _head(t_shape)  # the object may be named after 'with' ('one with a bear face')
         if unknown is not None and phrase.head and phrase.head not in noun_index() and phrase.head in main.split() \
@@ -897,7 +900,8 @@ def build(reading: Reading, text: str) -> tuple[ShapeProgram, ConceptMatch, list
         own = {k: v for k, v in reading.params.items() if k != "state"}
         if params.get("rumpled"):
             own["rumpled"] = True
-        change = grammar.state_change(target.plan, {**target.params, **own}, size, params["state"])
+        strip = {k: params[k] for k in ("width", "thickness") if k in params}  # (a strip folded, then rolled)
+        change = grammar.state_change(target.plan, {**target.params, **own}, size, params["state"], also=strip)
         size = change.size_m
         shell = match.hollow and match.wall_thickness_m is not None  # a folded film's built area is not its film's
         density = match.density_kg_per_m3 * change.density_factor if match.density_kg_per_m3 and not shell else None
@@ -1150,6 +1154,8 @@ def _state_params(reading: Reading, warnings: list[str]) -> tuple[list[str], dic
     can = grammar.plan_states(plan) if plan in grammar.PLANS else ()
     said = list(dict.fromkeys("lying" if st == "curled" and "lying" in can and "curled" not in can else st
                               for st in phrase.states))
+    if plan == "sheet":  # a towel hanging on a rail hangs over it
+        said = list(dict.fromkeys("draped" if st == "hung" else st for st in said))
     if pose_of(phrase.text) is not None:  # 'lying on its side': the standing shape turned over (_whole_object)
         said = [st for st in said if st not in ("lying", "curled")]
     if inflatable(target) or dentable(target):  # 'deflated', 'crumpled', 'flat': drawn by _whole_object
@@ -1162,10 +1168,23 @@ def _state_params(reading: Reading, warnings: list[str]) -> tuple[list[str], dic
     for st in said:
         if st not in can and st not in shapeless:
             warnings.append(f"state '{st}' is not drawn: the {target.key.replace('_', ' ')} shape has no such state")
+    if plan == "sheet" and "rolled" in shown and "folded" in shown:  # 'a bath towel folded in thirds and rolled up'
+        shown = ["rolled", *(st for st in shown if st not in ("rolled", "folded"))]
+        return shown, {"state": "rolled", **_folded_strip(reading, phrase.text)}
     params: dict = {"state": shown[0]} if shown else {}
     if count is not None and shown[:1] == ["stacked"]:
         params["layers"] = int(min(max(count, 2), MAX_STACKED))
     return shown, params
+
+
+def _folded_strip(reading: Reading, text: str) -> dict:
+    """A sheet folded along its length before it is rolled: the strip's width and thickness (its layers), so that
+    the roll is as long as the folded strip is wide (a towel in thirds rolls into a third of its width)."""
+    target = reading.donor or reading.entry
+    p = SheetParams(**{**target.params, **reading.params})
+    folds, thirds = goods_words.stated_folds(normalise(text)) or (1, False)
+    layers = (3 if thirds else 2) * 2 ** (folds - 1)
+    return {"width": max(p.width / layers, 0.0021), "thickness": min(p.thickness * layers, 0.2)}
 
 
 MAX_STACKED = 12  # sheets drawn in a stack (SheetParams.layers) [-]
@@ -1533,7 +1552,9 @@ def dentable(entry: LexiconEntry) -> bool:
 
 
 # (depth of the dent / height, sag: height kept) of a half deflated ball (keyed True) and a deflated one
-DENT: dict[bool, tuple[float, float]] = {True: (0.35, 0.9), False: (0.6, 0.8)}
+DENT: dict[bool, tuple[float, float]] = {True: (0.35, 0.85), False: (0.6, 0.8)}
+DENT_OFFSET = 0.35  # the dent's centre from the top's, / the ball's radius [-]
+DENT_TILT_DEG = 28.0  # the dent turned toward its side [deg]
 
 
 def dented(program: ShapeProgram, half: bool = False) -> ShapeProgram:
@@ -1550,8 +1571,12 @@ def dented(program: ShapeProgram, half: bool = False) -> ShapeProgram:
     parts = squashed_parts(parts, (spread, spread, sag))
     rx, ry, rz = halfext[0] * spread, halfext[1] * spread, halfext[2] * sag
     top = 2.0 * rz
-    dish = ellipsoid("dent", (0.65 * rx, 0.65 * ry, 0.6 * rz), (0.0, 0.0, top + 0.6 * rz - depth * top),
-                     blend=0.3 * rz).model_copy(update={"operation": "subtract", "color_rgb": parts[0].color_rgb})
+    # the dish pushed in off the top, toward one side, an oval across it (centred on the top it read as an apple's
+    # stalk cavity)
+    off = DENT_OFFSET * rx
+    dish = ellipsoid("dent", (0.55 * rx, 0.75 * ry, 0.6 * rz), (off, 0.0, top + 0.6 * rz - depth * top - 0.15 * rz),
+                     blend=0.3 * rz, rot=(0.0, DENT_TILT_DEG, 0.0)).model_copy(
+        update={"operation": "subtract", "color_rgb": parts[0].color_rgb})
     centre_now = np.array([0.0, 0.0, rz])
     banded = [p for p in parts[1:] if np.linalg.norm(np.asarray(p.transform.translation_m) - centre_now) < 0.3 * rz]
     rest = [p for p in parts[1:] if p not in banded]  # seams round the middle are cut by the dish; pads follow it

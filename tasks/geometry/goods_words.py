@@ -294,11 +294,15 @@ def duplicated(program: ShapeProgram) -> ShapeProgram | None:
     horizontal axis (one body, as the mesher keeps one); a standing one (a toy) beside it, just touching; None past
     the part limit."""
     parts = list(program.parts)
-    if 2 * len(parts) > 64 or any(p.operation != "union" for p in parts):
+    if 2 * len(parts) > 64:
         return None
     ext = grammar.program_extents(program, 48)
     axis = 1 if ext[1] <= ext[0] else 0
     flat = float(ext[2]) < 0.3 * float(max(ext[0], ext[1]))
+    if any(p.operation != "union" for p in parts) and flat:  # (a cut in the copy lying over the first cuts both;
+        return None  # beside it, a roll's core or a cup's hollow cuts only its own copy: parts combine in order)
+    if not flat and any(part_group(p.name) in ("left ring", "right ring", "ring") for p in parts):
+        axis = 1 - axis  # two rolls side by side, both ends' layers seen (not end to end, read as one long roll)
     shift = [0.0, 0.0, 0.85 * float(ext[2]) if flat else 0.0]
     shift[axis] = (0.45 if flat else 0.97) * float(ext[axis])
     return program.model_copy(update={"parts": parts + [moved(p, shift, f"other {p.name}") for p in parts]})

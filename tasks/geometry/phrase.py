@@ -33,6 +33,9 @@ STATE_WORDS: dict[str, str] = {
 }
 # what a garment hangs on: drawn hung on its hanger
 HUNG_ON = frozenset({"hanger", "coathanger", "hook", "peg", "rail", "rack", "clothesline", "line", "door"})
+# words that hang a cloth over something ('draped over a bar'): drawn draped when 'over' follows
+DRAPE_WORDS = frozenset({"draped", "drape", "draping", "hanging", "hung", "hangs", "slung", "thrown", "folded", "laid",
+                         "flung", "lying"})
 # nouns that measure or portion their object: 'a slice of cheese' is cheese in the shape of a slice
 PORTION_NOUNS = frozenset({"slice", "wedge", "piece", "chunk", "lump", "block", "bar", "ball", "loaf", "sheet",
                            "strip", "cube", "disc", "disk", "roll", "stick", "scoop", "pair", "bunch",
@@ -165,7 +168,9 @@ def parse(text: str, known: Callable[[str], bool] | None = None,
     for i, tok in enumerate(doc):
         word = tok.text.lower()
         if seen_noun and word == "of" and span and (span[-1].lemma_.lower() in PORTION_NOUNS
-                                                     or span[-1].text.lower() in PORTION_NOUNS) and portion is None:
+                                                     or span[-1].text.lower() in PORTION_NOUNS) and portion is None \
+                and not (len(span) > 1 and is_known(f"{span[-2].text.lower()} {span[-1].text.lower()}")):
+            # ('a fat quarter of cotton' is a fat quarter: a known two-word noun is no portion)
             portion = span[-1].text.lower()
             span, seen_noun = [], False
             continue
@@ -217,6 +222,9 @@ def parse(text: str, known: Callable[[str], bool] | None = None,
             phrase.states.append("loop")  # 'lying in a loose loop' (not 'a sponge with a loop')
         if word == "knot" and {"in", "into"} & set(before) and "knotted" not in phrase.states:
             phrase.states.append("knotted")  # 'tied in a loose knot' (not 'a balloon tied with a string')
+        if word in DRAPE_WORDS and after[:1] == ["over"] and "draped" not in phrase.states:
+            phrase.states.append("draped")  # 'a scarf draped over a bar', 'a tea towel hanging over the oven door'
+            continue
         if word in ("hanging", "hung", "hangs") and HUNG_ON & set(after) and "hung" not in phrase.states:
             phrase.states.append("hung")  # 'a shirt hanging on a hanger', 'jeans hanging from a wall hook' (a
             # plan with no hung state, a bag, ignores it)

@@ -15,7 +15,7 @@ every view and deterministic. Numpy only.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -40,6 +40,8 @@ class Finish:
     lines_m: float = 0.0  # spacing of pale lines across the surface (a fillet's fat lines; 0: none)
     line_share: float = 0.18  # share of the spacing a line covers
     line_tone: float = 0.55  # how far a line's colour goes towards white
+    dust: float = 0.0  # a white powder on the upward faces (sugar, flour, starch): how far it whitens them
+    dust_m: float = 0.0015  # size of the powder's specks
 
 
 MATTE = Finish()
@@ -74,14 +76,27 @@ CATEGORY_MATERIAL = {  # a category's usual class where the material class is no
 }
 
 
+DUSTED = "dusted"  # a look said in the request ('dusted with icing sugar'), joined to the entry's own with '+'
+DUST = 0.75
+
+
 def finish_for(material: str | None, category: str | None = None, look: str | None = None) -> Finish:
     """The entry's own look (LOOKS), else the finish of a material class (contracts/vocab/materials.yaml), else of the
-    category's usual class, else MATTE."""
-    if look in LOOKS:
-        return LOOKS[look]
-    if material in FINISHES:
-        return FINISHES[material]
-    return FINISHES.get(CATEGORY_MATERIAL.get(category or "", ""), MATTE)
+    category's usual class, else MATTE; a look ending '+dusted' (or 'dusted') adds a white powder over its top."""
+    looks = (look or "").split("+")
+    own = next((w for w in looks if w in LOOKS), None)
+    if own is not None:
+        base = LOOKS[own]
+    elif material in FINISHES:
+        base = FINISHES[str(material)]
+    else:
+        base = FINISHES.get(CATEGORY_MATERIAL.get(category or "", ""), MATTE)
+    return replace(base, dust=DUST) if DUSTED in looks else base
+
+
+def with_look(look: str | None, added: str) -> str:
+    """An entry's look with another said in the request ('fish' + 'dusted' -> 'fish+dusted')."""
+    return added if not look else f"{look}+{added}"
 
 
 def _hash01(ijk: np.ndarray, seed: int) -> np.ndarray:
@@ -139,6 +154,11 @@ def shade_pixels(albedo: np.ndarray, normals: np.ndarray, points_m: np.ndarray, 
     if finish.mottle_m > 0 and finish.mottle > 0 and fade > MIN_FADE:
         patch = value_noise(points_m / max(finish.mottle_m, MIN_GRAIN_PX * pixel_m), 2) - 0.5
         colour *= (1.0 + 2.0 * finish.mottle * fade * patch)[:, None]
+    if finish.dust > 0:  # powder settles on what faces up, in specks
+        up = np.clip(np.asarray(normals, np.float64)[:, 2], 0.0, 1.0) ** 2
+        speck = value_noise(points_m / max(finish.dust_m, MIN_GRAIN_PX * pixel_m), 5)
+        amount = finish.dust * up * np.clip(0.25 + 1.3 * speck, 0.0, 1.0)
+        colour = colour + amount[:, None] * (0.97 - colour)
     if finish.lines_m > 0 and finish.lines_m > 3 * pixel_m:  # pale lines across the long axis, a little slanted
         u = (points_m[:, 0] * 0.94 + points_m[:, 1] * 0.34 + 0.2 * points_m[:, 2]) / finish.lines_m
         wobble = 0.25 * (value_noise(points_m / (3 * finish.lines_m), 3) - 0.5)

@@ -40,6 +40,16 @@ VIEWS: dict[str, View] = {
     "iso": View((1.0, -0.75, 0.6), (0.0, 0.0, 1.0)),   # camera front-right (37 deg round from the front), 26 deg up
 }
 FILL = 0.85  # the mesh's widest extent across the frame, as a fraction of it
+FLAT = 0.25  # an object whose height is under this share of its second extent lies flat (a towel, a slice) [-]
+
+
+def telling_views(extents_m: np.ndarray) -> tuple[str, str, str]:
+    """The three stills a person names an object from: the three-quarter view first, then front and side; a flat
+    object (a folded towel, a T-shirt laid out, a slice) from above and the front, its side seen edge-on telling
+    nothing of its outline."""
+    e = np.asarray(extents_m, np.float64)
+    flat = e[2] < FLAT * float(np.sort(e[:2])[0])
+    return ("iso", "top", "front") if flat else ("iso", "front", "side")
 LIGHT = (0.35, 0.45, 0.82)  # towards the light in the view's (screen-right, screen-up, towards-viewer) axes
 BACKGROUND = 1.0  # white
 

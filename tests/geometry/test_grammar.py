@@ -138,8 +138,9 @@ def test_goods_variants_build_watertight(plan: str, params: dict) -> None:
 
 
 def test_plan_states_name_the_sheet_states_and_no_others() -> None:
-    assert grammar.plan_states("sheet") == (*SHEET_STATES, "crumpled", "loop", "twisted", "knotted")  # crumpled, loop:
-    # test_goods, test_garment_classes; twisted: test_sealed9_classes; knotted: test_sealed10_classes
+    assert grammar.plan_states("sheet") == (*SHEET_STATES, "crumpled", "loop", "twisted", "knotted", "draped")
+    # crumpled, loop: test_goods, test_garment_classes; twisted: test_sealed9_classes; knotted: test_sealed10_classes;
+    # draped: test_dev17_classes
     assert grammar.plan_states("ball") == () and grammar.plan_states("pouch") == ()
     program = grammar.build_program("sheet", {**MAT, "state": "rolled"}, BODY, "mat", "t", 0.6)
     assert program.parts[0].name == "body"

@@ -18,13 +18,13 @@ from tests.geometry.test_mass_classes import planned_mass
 
 # phrase -> (concept, parts that must be there, longest side band [m], real mass [kg], source)
 POUCHES: dict[str, tuple[str, set[str], tuple[float, float], float, str]] = {
-    "a bag of frozen garden peas": ("generic_pouch", {"body", "seam"}, (0.18, 0.32), 0.5,
+    "a bag of frozen garden peas": ("generic_pouch", {"body", "end seal", "crimp"}, (0.18, 0.32), 0.5,
                                     "retail frozen peas: 454 g-1 kg bags (~25 x 18 cm for 500 g)"),
-    "a 1 kg bag of frozen mixed veg": ("generic_pouch", {"body", "seam"}, (0.25, 0.42), 1.0,
+    "a 1 kg bag of frozen mixed veg": ("generic_pouch", {"body", "end seal", "crimp"}, (0.25, 0.42), 1.0,
                                        "stated 1 kg; retail 1 kg frozen vegetable bags ~30 x 22 cm"),
     "a 250 ml pouch of water for a drip": ("generic_pouch", {"body", "port", "hanger tab"}, (0.12, 0.25), 0.26,
                                            "250 ml 0.9 % saline bags, ~0.26-0.28 kg filled (medical supply)"),
-    "a packet of penne pasta": ("generic_pouch", {"body", "seam"}, (0.18, 0.32), 0.5,
+    "a packet of penne pasta": ("generic_pouch", {"body", "end seal", "crimp"}, (0.18, 0.32), 0.5,
                                 "retail 500 g bags of penne (~25 x 15 cm)"),
     "a sack of play sand, 40 cm long": ("generic_pouch", {"body"}, (0.36, 0.44), 9.0,
                                         "retail play sand sacks: 10-15 kg, ~45 x 30 cm; 40 cm ~8-10 kg"),

@@ -193,16 +193,18 @@ class StateChange(Model):
                                "`layers` sheets is that many) [-]")
 
 
-def state_change(plan: str, params: dict[str, Any] | None, size_m: float, state: str) -> StateChange:
+def state_change(plan: str, params: dict[str, Any] | None, size_m: float, state: str,
+                 also: dict[str, Any] | None = None) -> StateChange:
     """The size, density and mass factors of the object of `plan` with `params` (longest extent size_m [m]) when it is
     built in `state` instead: e.g. a 1.83 m flat yoga mat rolled up is a 0.61 m roll of the same mass. Build it with
     build_program(plan, {**params, 'state': state}, ..., size_m=change.size_m), give it the entry's density times
-    density_factor, and expect the entry's typical mass times mass_factor at that size."""
+    density_factor, and expect the entry's typical mass times mass_factor at that size. `also`: parameters that
+    change with the state only (a towel folded into a strip before it is rolled: the strip's width and layers)."""
     states = plan_states(plan)
     if state not in states:
         raise InputError(f"body plan '{plan}' has no state '{state}' (its states: {', '.join(states) or 'none'})")
     base = plan_parameters(plan, params)
-    new = plan_parameters(plan, {**(params or {}), "state": state})
+    new = plan_parameters(plan, {**(params or {}), **(also or {}), "state": state})
     a, b = _unit_solid(plan, base), _unit_solid(plan, new)
     scale = size_m / a[0]
     layers_a = getattr(base, "layers", 1) if getattr(base, "state", "") == "stacked" else 1

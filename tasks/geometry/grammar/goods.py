@@ -34,7 +34,7 @@ from tasks.geometry.grammar.parts import (
 MIN_LAYER = 0.025  # a built sheet layer, / the flat sheet's length [-]
 MIN_WALL = 0.03  # a built mould or hat wall, / the outline's size [-]
 
-SheetState = Literal["flat", "rolled", "folded", "stacked", "crumpled", "loop", "twisted", "knotted"]
+SheetState = Literal["flat", "rolled", "folded", "stacked", "crumpled", "loop", "twisted", "knotted", "draped"]
 
 
 def _op(part: Part, op: str, blend: float = 0.0) -> Part:
@@ -52,12 +52,14 @@ class SheetParams(Model):
     state: SheetState = Field(default="flat", description="flat; crumpled (a bunched heap); rolled (a roll along the "
                               "sheet's width, the layers "
                               "seen as rings at its ends); folded (halved `folds` times); stacked (`layers` sheets); "
-                              "knotted (tied in a loose knot at its middle, a scarf)")
-    shape: Literal["rect", "round", "bib", "hourglass", "envelope", "mask", "bread"] = Field(
+                              "knotted (tied in a loose knot at its middle, a scarf); draped (hung over a bar at its "
+                              "middle: two panels falling from a rounded fold, their hems splayed)")
+    shape: Literal["rect", "round", "bib", "hourglass", "envelope", "mask", "bread", "puzzle"] = Field(
         default="rect", description="a rectangle or a round sheet (tortilla, pad); laid flat: a bib (its neck cut out, "
         "the straps' snap), an hourglass (a nappy: leg cut-outs, padded core, waist tabs), an envelope (a padded "
         "mailer: sealed edges and its flap), a mask (a pleated face mask with its nose wire and ear loops), bread (a "
-        "slice of sandwich bread: a square foot, a rounded top, the crust round the crumb)")
+        "slice of sandwich bread: a square foot, a rounded top, the crust round the crumb), puzzle (a foam floor "
+        "tile: round tabs along two sides, their sockets cut in the other two)")
     width: float = Field(default=0.5, gt=0.002, le=1.0, description="width / length [-]")
     thickness: float = Field(default=0.005, gt=0.0, le=0.2, description="the real sheet's thickness / length [-]")
     folds: int = Field(default=1, ge=1, le=3, description="halvings when folded [-]")
@@ -149,6 +151,11 @@ def sheet(p: SheetParams) -> list[Part]:
         return parts
     if p.state == "loop":
         return _strip_loop(p, t)
+    if p.state == "stacked" and p.shape in FORMED_SHEETS:  # a stack of bread slices: each its own outline
+        one = FORMED_SHEETS[p.shape](w, t)
+        if p.shape == "bread" and len(one) * p.layers > MAX_PARTS:
+            one = bread_slice(w, t, arc=5)  # (the crust's arc in fewer segments: three slices in one program)
+        return stacked_formed(one, min(p.layers, MAX_PARTS // len(one)), t)
     if p.state == "stacked":
         parts = []
         for i in range(p.layers):
@@ -167,7 +174,64 @@ def sheet(p: SheetParams) -> list[Part]:
         return _twisted(p)
     if p.state == "knotted":
         return _knotted(p)
+    if p.state == "draped":
+        return _draped(p, t)
     return _rolled(p)
+
+
+DRAPE_BAR = 0.025  # the radius of the bar a draped sheet hangs over, / the sheet's length [-]
+DRAPE_SPLAY = 0.22  # how far a draped panel's hem swings out, / the panel's drop [-]
+DRAPE_RIPPLES = 3  # soft vertical folds down each draped panel [-]
+DRAPE_WAVE = 0.05  # the folds' depth / the sheet's width [-]
+
+
+def _draped(p: SheetParams, t: float) -> list[Part]:
+    """A sheet hung over a bar at its middle (a towel over a rail, a scarf over a bar): the fold round the bar's top
+    (the bar along y, not drawn) and the two panels falling from it, each splayed out toward its hem and waved by
+    soft vertical folds (strips turned alternately); standing on the hems, its length and area the flat sheet's."""
+    w, r = p.width, DRAPE_BAR + t / 2
+    drop = max(0.5 - 0.5 * np.pi * r, 0.05)  # each panel's length below the fold
+    splay = np.arcsin(DRAPE_SPLAY)  # the panel's tilt from vertical [rad]
+    top = drop * np.cos(splay)  # the fold's centre above the ground
+    parts = []
+    n_arc = 5
+    for k in range(n_arc):  # the fold: short slabs round the bar's top half
+        a0, a1 = np.pi * k / n_arc, np.pi * (k + 1) / n_arc
+        mid = 0.5 * (a0 + a1)
+        seg = 2 * r * np.sin(0.5 * (a1 - a0)) + 0.6 * t
+        parts.append(box("body" if k == 2 else f"fold {k + 1}", (seg, w, t),
+                         (r * np.cos(mid), 0.0, top + r * np.sin(mid)), edge=0.45 * t,
+                         rot=(0.0, -np.degrees(mid) + 90.0, 0.0)))
+    strips = 2 * DRAPE_RIPPLES
+    dy = w / strips
+    amp = DRAPE_WAVE * w  # the folds' depth, across the panel
+    theta = np.degrees(np.arctan2(amp, dy))
+    for side, sgn in (("left", -1.0), ("right", 1.0)):
+        x0 = sgn * r
+        panel = [box(f"{side} panel" if j == 0 else f"{side} panel {j + 1}", (t, np.hypot(dy, amp) + 0.5 * t,
+                                                                           drop + 0.3 * t),
+                     (x0 + sgn * amp / 2, -w / 2 + (j + 0.5) * dy, top - drop / 2), edge=0.45 * t,
+                     rot=(0.0, 0.0, theta if j % 2 else -theta)) for j in range(strips)]
+        parts += rotated_parts(panel, (0.0, -sgn * np.degrees(splay), 0.0), (x0, 0.0, top))
+    return parts
+
+
+MAX_PARTS = 64  # a ShapeProgram's parts (contracts.shape)
+
+
+def stacked_formed(one: list[Part], layers: int, t: float) -> list[Part]:
+    """`layers` copies of a formed sheet (a slice of bread, a bib) stacked as they fall, each turned and shifted a
+    little; a copy's parts keep their names' groups (its crust is crust)."""
+    parts: list[Part] = []
+    for i in range(layers):
+        turned = rotated_parts(one, (0.0, 0.0, 4.0 * np.sin(3.1 * i)))
+        for q in turned:
+            tf = q.transform
+            x, y, z = tf.translation_m
+            at = (x + 0.012 * np.sin(2.3 * i), y + 0.012 * np.cos(1.7 * i), z + 0.96 * t * i)
+            parts.append(q.model_copy(update={"name": q.name if i == 0 else f"{q.name} {i + 1}",
+                                              "transform": tf.model_copy(update={"translation_m": at})}))
+    return parts
 
 
 TWIST_LOBES = 7  # the twisted rope's turns drawn as lobes along it [-]
@@ -286,18 +350,42 @@ def face_mask(w: float, t: float) -> list[Part]:
     return parts
 
 
-def bread_slice(w: float, t: float) -> list[Part]:
+def bread_slice(w: float, t: float, arc: int = 15) -> list[Part]:
     """A slice of sandwich bread lying flat, length 1 along x (the loaf's height): the crumb, a square foot and a
-    rounded top a little wider than it, and the crust a rounded rim along its outline."""
+    rounded top a little wider than it, and the crust a rounded rim along its outline (`arc` points round the top)."""
     parts = [box("body", (0.8, 0.9 * w, 0.9 * t), (-0.1, 0, t / 2), edge=0.15 * t),
              _scaled(cylinder("top crumb", w / 2, 0.9 * t, (0.28, 0, t / 2), edge=0.15 * t), (0.44 / w, 1.0, 1.0))]
-    arc = [(0.28 + 0.22 * np.cos(a), (w / 2) * np.sin(a), t / 2) for a in np.radians(np.linspace(-100, 100, 15))]
-    outline = np.array([(-0.5, 0.45 * w, t / 2), (-0.5, -0.45 * w, t / 2), (0.2, -0.45 * w, t / 2), *arc,
+    top = [(0.28 + 0.22 * np.cos(a), (w / 2) * np.sin(a), t / 2) for a in np.radians(np.linspace(-100, 100, arc))]
+    outline = np.array([(-0.5, 0.45 * w, t / 2), (-0.5, -0.45 * w, t / 2), (0.2, -0.45 * w, t / 2), *top,
                         (0.2, 0.45 * w, t / 2), (-0.5, 0.45 * w, t / 2)])
     return parts + swept(["crust"], outline, np.full(len(outline), 0.5 * t), blend=0.1 * t)
 
 
-FORMED_SHEETS = {"bib": bib, "hourglass": hourglass, "envelope": envelope, "mask": face_mask, "bread": bread_slice}
+PUZZLE_TABS = 4  # tabs along each side of a foam puzzle mat tile [-]
+
+
+def puzzle_tile(w: float, t: float) -> list[Part]:
+    """An interlocking foam floor tile lying flat, length 1 along x: a square slab whose +x and +y sides carry round
+    tabs and whose -x and -y sides are cut with the sockets they fit (a playroom or gym floor's EVA mat)."""
+    r = 0.055
+    inner = (1.0 - 2 * r, w - 2 * r)  # the slab between the tabs' reach
+    parts = [box("body", (inner[0], inner[1], t), (0, 0, t / 2), edge=0.2 * t)]
+    for axis in (0, 1):
+        span = inner[1 - axis]
+        for k in range(PUZZLE_TABS):
+            along = -span / 2 + (k + 0.5) * span / PUZZLE_TABS
+            edge = inner[axis] / 2
+            for kind, sgn in (("tab", 1.0), ("socket", -1.0)):
+                c = sgn * (edge + (0.55 * r if kind == "tab" else -0.55 * r))
+                at = (c, along, t / 2) if axis == 0 else (along, c, t / 2)
+                head = cylinder(f"{kind} {axis * PUZZLE_TABS + k + 1}", r * (1.0 if kind == "tab" else 1.08),
+                                t * (1.0 if kind == "tab" else 1.5), at, edge=0.15 * t)
+                parts.append(head if kind == "tab" else _op(head, "subtract"))
+    return parts
+
+
+FORMED_SHEETS = {"bib": bib, "hourglass": hourglass, "envelope": envelope, "mask": face_mask, "bread": bread_slice,
+                 "puzzle": puzzle_tile}
 
 
 def fold_layers(p: SheetParams) -> int:
@@ -487,6 +575,9 @@ class PouchParams(Model):
     piece_shape: Literal["ball", "cylinder", "block"] = Field(default="ball", description="the pieces' form")
     label: bool = Field(default=False, description="a printed label on its top (a sack of rice, a bag of dog food): "
                         "what tells a pack of goods from a pillow")
+    crimp: bool = Field(default=False, description="a pillow pack (a bag of crisps, frozen peas, rice, pet food, "
+                        "compost): no border seam, its two short ends heat-sealed into flat fins with crimp ridges "
+                        "across them, the filled body gathering into them")
 
 
 LABEL_SIZE = (0.46, 0.62)  # a pack's printed label over its top: / length, / width [-]
@@ -500,6 +591,8 @@ def pouch(p: PouchParams) -> list[Part]:
     if max(p.piece) > 0:  # a bag of goods is as deep as they are thick: they bulge its film, not stand on a tray
         h = max(h, BAG_DEPTH_OVER_PIECE * sorted(p.piece)[0])
     st = MIN_LAYER
+    if p.crimp and p.port == "none":  # (a bag with a port or a tie is sealed round its border)
+        return _pillow_pack(p, h) + (bagged_pieces(p, h) if max(p.piece) > 0 else [])
     parts = [superellipsoid("body", (0.5 - s, w / 2 - s, h / 2), (0, 0, h / 2), ns=0.55 + 0.3 * p.fill,
                             ew=p.squareness)]
     if s > 0:
@@ -537,6 +630,30 @@ def pouch(p: PouchParams) -> list[Part]:
         parts.append(box("velcro", (0.35 * p.strap, 0.9 * sw, 0.8 * st), (0.5 + 0.55 * p.strap, 0, st * 1.2),
                          edge=0.3 * st, blend=0.003))
         parts.append(_scaled(torus("ring", 0.6 * sw / 2 + 0.02, 0.018, (0.5 + p.strap - 0.02, 0, 0.018)), (1, 1, 1)))
+    return parts
+
+
+CRIMP_FIN = 0.09  # a pillow pack's sealed end fin / its length [-]
+CRIMP_RIDGES = 5  # crimp ridges across each fin [-]
+
+
+def _pillow_pack(p: PouchParams, h: float) -> list[Part]:
+    """A pillow pack lying flat, length 1 along x: the filled body (rounder the fuller it is) gathering at both
+    short ends into flat heat-sealed fins as wide as the bag, crimp ridges across each fin, and the printed label
+    on its top."""
+    w, st, fin = p.width, MIN_LAYER, CRIMP_FIN
+    tf = 1.1 * st  # the fin as the mesher sees it (two films and the crimp)
+    half = 0.5 - 0.8 * fin  # the body reaches a little into each fin
+    parts = [superellipsoid("body", (half, w / 2, h / 2), (0, 0, h / 2), ns=0.5 + 0.4 * p.fill, ew=0.2)]
+    for side, sgn in (("left", -1.0), ("right", 1.0)):
+        parts.append(box(f"{side} end seal", (fin, w, tf), (sgn * (0.5 - fin / 2), 0, h / 2), edge=0.4 * tf,
+                         blend=0.2 * h))
+        for k in range(CRIMP_RIDGES):
+            x = sgn * (0.5 - fin * (k + 0.6) / (CRIMP_RIDGES + 0.2))
+            parts.append(cylinder(f"{side} crimp {k + 1}", 0.68 * tf, 0.97 * w, (x, 0, h / 2), rot=(90, 0, 0)))
+    if p.label and max(p.piece) == 0:
+        parts.append(box("label", (LABEL_SIZE[0], LABEL_SIZE[1] * w, st), (0.0, 0.0, h), edge=0.45 * st,
+                         blend=0.1 * st))
     return parts
 
 

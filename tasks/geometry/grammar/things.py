@@ -226,6 +226,11 @@ class DiscParams(Model):
     height: float = Field(default=0.1, gt=0.005, le=2.0, description="height / diameter [-]")
     edge: float = Field(default=0.4, ge=0.0, le=1.0, description="rim rounding / half the height [-]")
     elongation: float = Field(default=1.0, gt=0.5, le=2.0, description="an oval disc's length / width [-]")
+    swirl: float = Field(default=0.0, ge=0.0, le=4.0, description="turns of a rolled dough's spiral, raised over the "
+                         "top and ending down the side (a cinnamon roll); 0 none [-]")
+
+
+SWIRL_POINTS = 22  # points along a cinnamon roll's spiral [-]
 
 
 def disc(p: DiscParams) -> list[Part]:
@@ -234,7 +239,18 @@ def disc(p: DiscParams) -> list[Part]:
     part = cylinder("body", 0.5, h, (0, 0, h / 2), edge=p.edge * min(h / 2, 0.5))
     if p.elongation != 1.0:
         part = part.model_copy(update={"transform": part.transform.model_copy(update={"scale": (p.elongation, 1, 1)})})
-    return [part]
+    if p.swirl <= 0:
+        return [part]
+    # the rolled layer's seam: an Archimedean spiral from the centre out to the rim, half sunk in the top, then
+    # down the side where the dough's end lies
+    r_tube = 0.05
+    theta = np.linspace(0.0, 2 * np.pi * p.swirl, SWIRL_POINTS)
+    rad = 0.06 + (0.5 - 0.06 - 0.4 * r_tube) * theta / theta[-1]
+    top = h - 0.3 * r_tube - 0.12 * p.edge * min(h / 2, 0.5) * (rad / 0.5) ** 4
+    pts = np.stack([rad * np.cos(theta), rad * np.sin(theta), top], axis=1)
+    end = np.array([[pts[-1, 0], pts[-1, 1], 0.25 * h]])
+    path = np.vstack([pts, end])
+    return [part, *swept(["swirl"], path, np.full(len(path), r_tube), blend=0.01)]
 
 
 class RingParams(Model):
