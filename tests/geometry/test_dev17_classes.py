@@ -197,3 +197,18 @@ def test_a_roll_of_a_known_two_word_noun_is_that_noun_rolled() -> None:
 def test_a_surgical_cap_is_a_light_cap_not_a_baseball_cap() -> None:
     assert catalogue.design_from_text("a disposable surgical cap").entry == "surgical_cap"
     assert planned_mass("a disposable surgical cap") < 0.01
+
+
+@pytest.mark.parametrize("text, entry, lo, hi", [("a whole raw chicken", "whole_chicken", 1.2, 2.2),
+                                                  ("a roast turkey", "whole_turkey", 4.0, 8.5),
+                                                  ("a whole duck", "whole_duck", 1.6, 3.0)])
+def test_a_whole_bird_is_oven_ready_with_its_drumsticks(text: str, entry: str, lo: float, hi: float) -> None:
+    """'a whole raw chicken in shrink wrap' was a pink egg (read as a water balloon); 'a roast turkey' ground meat."""
+    design = catalogue.design_from_text(text)
+    assert design.entry == entry
+    names = {p.name for p in design.program.parts}
+    assert {"left drumstick", "right drumstick", "left wing", "right wing"} <= names
+    knuckle = next(p for p in design.program.parts if p.name == "left knuckle").transform.translation_m
+    body = next(p for p in design.program.parts if p.name == "body").transform.translation_m
+    assert knuckle[0] < body[0] and knuckle[2] > body[2]  # at the tail end, up
+    assert lo <= planned_mass(text) <= hi

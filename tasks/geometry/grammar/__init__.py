@@ -43,6 +43,7 @@ PLANS: dict[str, tuple[type[Model], Callable[[Any], list[Part]]]] = {
     "mushroom": (food.MushroomParams, food.mushroom),
     "loaf": (food.LoafParams, food.loaf),
     "bun": (food.BunParams, food.bun),
+    "poultry": (food.PoultryParams, food.poultry),
     "croissant": (food.CroissantParams, food.croissant),
     "pretzel": (food.PretzelParams, food.pretzel),
     "muffin": (food.MuffinParams, food.muffin),

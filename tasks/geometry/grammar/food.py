@@ -321,6 +321,33 @@ def loaf(p: LoafParams) -> list[Part]:
     return parts
 
 
+class PoultryParams(Model):
+    """An oven-ready bird lying breast up (a whole raw or roast chicken, a turkey, a duck): the plump body, the two
+    drumsticks folded back along it with their knuckles up at the tail end, the wings tucked at its sides."""
+
+    width: float = Field(default=0.74, gt=0.4, le=1.0, description="body width / length [-]")
+    height: float = Field(default=0.55, gt=0.3, le=0.9, description="body height / length [-]")
+    legs: float = Field(default=0.42, ge=0.2, le=0.6, description="a drumstick's length / the body's length [-]")
+
+
+def poultry(p: PoultryParams) -> list[Part]:
+    """Length 1 along x, the neck end at +x, the legs' knuckles at -x; resting on its back, breast up."""
+    w, h = p.width, p.height
+    parts = [superellipsoid("body", (0.5, w / 2, h / 2), (0.0, 0.0, h / 2), ns=0.8, ew=0.75),
+             ellipsoid("breast", (0.3, 0.3 * w, 0.16 * h), (0.08, 0.0, 0.86 * h), blend=0.12)]
+    for side, sgn in (("left", 1.0), ("right", -1.0)):
+        thigh = (-0.08, sgn * 0.36 * w, 0.55 * h)
+        knuckle = (-0.08 - p.legs, sgn * 0.2 * w, 0.88 * h)
+        parts.append(ellipsoid(f"{side} thigh", (0.2, 0.11, 0.13), thigh, blend=0.06, rot=(0.0, -15.0, sgn * 12.0)))
+        parts.append(tapered(f"{side} drumstick", thigh, knuckle, 0.13, 0.055, blend=0.05))
+        parts.append(ellipsoid(f"{side} knuckle", (0.065, 0.065, 0.06), knuckle, blend=0.02))
+        parts.append(ellipsoid(f"{side} wing", (0.2, 0.06, 0.1), (0.22, sgn * 0.47 * w, 0.32 * h), blend=0.05,
+                               rot=(sgn * 20.0, 0.0, -sgn * 18.0)))
+    parts.append(ellipsoid("tail", (0.06, 0.07, 0.05), (-0.5, 0.0, 0.35 * h), blend=0.05))
+    parts.append(ellipsoid("neck flap", (0.07, 0.13, 0.09), (0.5, 0.0, 0.45 * h), blend=0.06))
+    return parts
+
+
 class BunParams(Model):
     """A bun, roll, scone, dumpling, cookie, mochi: a flattened dome."""
 
