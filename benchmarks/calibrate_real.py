@@ -9,10 +9,11 @@ The clips are not in this repository (their authors state no licence): --prepare
 source repository (git show of the stated commit and path, as `fetch` brings it) into shared/calibration/real/. An
 asset for a clip is either an asset directory (--asset NAME=DIR: its particles, L1's model and L2's material, e.g.
 built by `deformsmith geometry`/`physical`/`material`; one built to L1 only gets L2's prior material for its class,
-as `bench realworld --priors-only` takes it) or, by default, a solid sphere of the stated diameter at the
-stated mass (an effective density: the shell's mass over the enclosed volume, as L1 models a hollow ball) whose prior
-material is the one given (--prior-from NAME=DIR, an asset's adopted material) or a rubber prior. Passes: the
-calibrated simulation's rebound and settle time within 10 % of the clip's.
+as `bench realworld --priors-only` takes it) or, by default, a sphere of the stated diameter at the stated mass whose
+prior material is the one given (--prior-from NAME=DIR, an asset's adopted material) or a rubber prior: a hollow ball's
+shell (particles only in its wall, at the density that gives the mass: the green ball) or, with --solid or for a clip
+with no wall, a solid sphere at an effective density (the shell's mass over the enclosed volume, as L1 models a hollow
+ball). Passes: the calibrated simulation's rebound and settle time within 10 % of the clip's.
 """
 
 from __future__ import annotations
