@@ -9,10 +9,11 @@ The clips are not in this repository (their authors state no licence): --prepare
 source repository (git show of the stated commit and path, as `fetch` brings it) into shared/calibration/real/. An
 asset for a clip is either an asset directory (--asset NAME=DIR: its particles, L1's model and L2's material, e.g.
 built by `deformsmith geometry`/`physical`/`material`; one built to L1 only gets L2's prior material for its class,
-as `bench realworld --priors-only` takes it) or, by default, a solid sphere of the stated diameter at the
-stated mass (an effective density: the shell's mass over the enclosed volume, as L1 models a hollow ball) whose prior
-material is the one given (--prior-from NAME=DIR, an asset's adopted material) or a rubber prior. Passes: the
-calibrated simulation's rebound and settle time within 10 % of the clip's.
+as `bench realworld --priors-only` takes it) or, by default, a sphere of the stated diameter at the stated mass whose
+prior material is the one given (--prior-from NAME=DIR, an asset's adopted material) or a rubber prior: a hollow ball's
+shell (particles only in its wall, at the density that gives the mass: the green ball) or, with --solid or for a clip
+with no wall, a solid sphere at an effective density (the shell's mass over the enclosed volume, as L1 models a hollow
+ball). Passes: the calibrated simulation's rebound and settle time within 10 % of the clip's.
 """
 
 from __future__ import annotations
@@ -44,7 +45,7 @@ from tasks.geometry.outputs import load_l0
 from contracts.sim import SimConfig
 from contracts.video_fit import VideoFitRecord
 from flows.calibrate import calibrate_asset, load_asset
-from tasks.mpm.scene import box_particles
+from tasks.mpm.scene import ball_particles
 
 ROOT = Path(__file__).resolve().parents[1]
 CLIP_DIR = ROOT / "shared" / "calibration" / "real"
@@ -71,7 +72,10 @@ class Clip:
     mass_kg: float
     mass_source: str
     cut_why: str
-    spacing_m: float = 0.004  # the default sphere asset's particle spacing
+    spacing_m: float = 0.004  # the default sphere asset's particle spacing (a solid sphere)
+    wall_m: float | None = None  # a hollow ball: the default asset is a shell of this wall (None: a solid sphere)
+    wall_spacing_m: float = 0.0015  # ... its particle spacing (a wall of two particle layers or more)
+    wall_why: str = ""  # where the wall comes from
 
 
 CLIPS = {
@@ -84,7 +88,10 @@ CLIPS = {
         mass_kg=0.026, mass_source="the author's PA8part2_Zafiruddin.m: ballMass = 0.026 kg",
         cut_why="from a second before the release (the hand holds the ball at the top) to before the hand comes back "
                 "for it (the ball rolls out of the bottom of the picture first: those frames are left out)",
-        spacing_m=0.003),
+        spacing_m=0.003, wall_m=0.003, wall_spacing_m=0.0015,
+        wall_why="the real wall, 26 g of rubber (~1100 kg/m^3) over the 6.87 cm sphere, is ~1.7 mm; 3 mm is two particle "
+                 "layers at 1.5 mm (one grid cell), the thinnest wall a calibration can afford on a CPU core (1.7 mm "
+                 "takes 39000 particles and ~100 s an impact), at the density that keeps 26 g (630 kg/m^3)"),
     "ping_pong": Clip(
         name="ping_pong", repo="zakilyawatsonjarrett/PTV-restitution-coefficient-home-experiment",
         commit="84f1d7ec8ab4a864228ab0fecb5828061a4ab743", path="pingpongvid2.mov",
@@ -148,25 +155,30 @@ def l2_prior(asset_dir: Path) -> Material:
                     damping_rate_per_s=p.get("damping_rate_per_s", 0.0))
 
 
-def sphere_asset(path: Path, clip: Clip, prior: Material) -> Path:
-    """A solid sphere of the clip's stated diameter at its stated mass (effective density), resting on z = 0, with
-    `prior` as L2's material: the files `calibrate` reads."""
+def sphere_asset(path: Path, clip: Clip, prior: Material, solid: bool = False) -> Path:
+    """A sphere of the clip's stated diameter at its stated mass, resting on z = 0, with `prior` as L2's material:
+    the files `calibrate` reads. A hollow ball (clip.wall_m, unless `solid`) is its shell: particles only within the
+    wall of the surface, at the density that gives the stated mass; otherwise a solid sphere at an effective density
+    (the shell's mass over the enclosed volume, as L1 models a hollow ball)."""
     r = 0.5 * clip.size_m
-    pos, vol = box_particles((-r, -r, -r), (r, r, r), clip.spacing_m)
-    keep = np.linalg.norm(pos, axis=1) <= r
-    pos, vol = pos[keep] + np.array([0.0, 0.0, r]), vol[keep]
+    shell = clip.wall_m is not None and not solid
+    spacing = clip.wall_spacing_m if shell else clip.spacing_m
+    pos, vol = ball_particles(r, spacing, clip.wall_m if shell else None)
+    pos = pos + np.array([0.0, 0.0, r])
     density = clip.mass_kg / float(vol.sum())
     phys = PhysicalModel(density_kg_per_m3=density, volume_m3=float(vol.sum()), mass_kg=clip.mass_kg,
-                         particle_count=len(pos), particle_spacing_m=clip.spacing_m, ground_friction=0.5,
+                         particle_count=len(pos), particle_spacing_m=spacing, ground_friction=0.5,
                          gripper_friction=0.8, center_of_mass_m=(0.0, 0.0, r), extents_m=(2 * r, 2 * r, 2 * r),
                          category="ball")
+    what = (f"{clip.object}: stated size and mass, a {clip.wall_m * 1e3:g} mm shell" if shell and clip.wall_m
+            else f"{clip.object}: stated size and mass")
     path.mkdir(parents=True, exist_ok=True)
     g = zarr.open_group(str(path / PARTICLES_ZARR), mode="w")
     g.create_array("positions_m", data=pos.astype(np.float32))
     g.create_array("volumes_m3", data=vol.astype(np.float32))
 
     adir = AssetDir(path)
-    adir.write_physical(PhysicalRecord(passed=True, status="accepted", message=f"{clip.object}: stated size and mass",
+    adir.write_physical(PhysicalRecord(passed=True, status="accepted", message=what,
                                        material_class="rubber", intent="", mass_check={}, targets=TargetBehaviour(),
                                        physical_model=phys, metrics={}, sim_calls=0, attempts=1, recordings=[]))
     write_prior_material(path, prior, phys, "the prior")
@@ -207,7 +219,7 @@ def summary(clip: Clip, rec: VideoFitRecord, asset: str, wall_s: float) -> dict[
 
 
 def run(clip: Clip, video: Path, asset_dir: Path | None, prior_dir: Path | None, sim: SimConfig,
-        record_dir: Path | None = RECORD_DIR) -> dict[str, Any]:
+        record_dir: Path | None = RECORD_DIR, solid: bool = False) -> dict[str, Any]:
     """Calibrate a copy of the asset (never the one given) to the clip; the record goes to record_dir/<name>.json."""
     t0 = time.perf_counter()
     with tempfile.TemporaryDirectory(prefix="calibrate-real-") as tmp:
@@ -223,8 +235,12 @@ def run(clip: Clip, video: Path, asset_dir: Path | None, prior_dir: Path | None,
                          f"E {prior.youngs_modulus_pa:.3g} Pa, nu {prior.poisson_ratio:g})")
         else:
             prior = load_asset(prior_dir).material if prior_dir is not None else RUBBER_PRIOR
-            sphere_asset(work, clip, prior)
-            label = ("a solid sphere at the stated size and mass, prior material "
+            sphere_asset(work, clip, prior, solid)
+            shell = clip.wall_m is not None and not solid
+            label = ((f"a hollow sphere at the stated size and mass: a {clip.wall_m * 1e3:g} mm shell, "
+                      f"{clip.wall_spacing_m * 1e3:g} mm particle spacing ({clip.wall_why}), prior material "
+                      if shell and clip.wall_m is not None else
+                      "a solid sphere at the stated size and mass (an effective density), prior material ")
                      + (f"{prior_dir.name}'s adopted L2 material (E {prior.youngs_modulus_pa:.3g} Pa, nu "
                         f"{prior.poisson_ratio:g})" if prior_dir is not None else "rubber (1 MPa)"))
         rec = calibrate_asset(work, video, size_m=clip.size_m, sim=sim, write=False)
@@ -256,6 +272,8 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--videos", type=Path, default=CLIP_DIR, help="where the cut clips are")
     ap.add_argument("--asset", action="append", default=[], help="CLIP=DIR: fit this asset directory (a copy)")
     ap.add_argument("--prior-from", action="append", default=[], help="CLIP=DIR: the sphere's prior is DIR's material")
+    ap.add_argument("--solid", action="store_true", help="a hollow ball's default asset is a solid sphere at an "
+                    "effective density (as L1 models it), not its shell")
     ap.add_argument("--cpu-threads", type=int, default=1)
     ap.add_argument("--no-records", action="store_true", help="do not write docs/calibration/real/<clip>.video_fit.json")
     ap.add_argument("--json", action="store_true", help="print the figures as JSON")
@@ -273,7 +291,8 @@ def main(argv: list[str] | None = None) -> int:
         video = prepare(CLIPS[n], args.mirror, args.videos) if args.prepare else args.videos / f"{n}.mp4"
         if not video.is_file():
             ap.error(f"{video}: no such clip; cut it first with --prepare")
-        rows.append(run(CLIPS[n], video, assets.get(n), priors.get(n), sim, None if args.no_records else RECORD_DIR))
+        rows.append(run(CLIPS[n], video, assets.get(n), priors.get(n), sim, None if args.no_records else RECORD_DIR,
+                        args.solid))
     out = {"clips": rows, "passed": sum(r["passed"] for r in rows), "of": len(rows), "tolerance": TOLERANCE,
            "load_average": os.getloadavg()[0]}
     if args.json:

@@ -186,34 +186,68 @@ def fit_settle(p: FitProblem, prior_young: float, damping: float, target: float,
     goal = p.settle
     lo, hi = prior_young * SETTLE_E_RANGE[0], prior_young * SETTLE_E_RANGE[1]
     tried: dict[float, tuple[float, float, float]] = {}  # E -> (settle, viscosity, damping)
+    short: set[float] = set()  # E whose rebound stays short of the target even at the knobs' least loss
 
     def at(young: float) -> float:
         young = float(min(hi, max(lo, young)))
         if young not in tried:
             eta, d = rebound_at(p, young, damping, target)
             tried[young] = (p.settle_time(young, eta, d), eta, d)
+            if p.drop(young, eta, d).get("rebound_ratio", 0.0) < target * (1.0 - 2 * TOLERANCE):
+                short.add(young)
         return tried[young][0]
+
+    def log_slope(reach: list[float]) -> float | None:
+        """d log(settle) / d log(E) between the two reachable E whose settle times are nearest the video's."""
+        a, b = sorted(reach, key=lambda e: abs(math.log(tried[e][0] / goal)))[:2]
+        k = math.log(tried[b][0] / tried[a][0]) / math.log(b / a)
+        return k if abs(k) > 1e-3 else None
 
     young = prior_young
     s = at(young)
     step = 4.0
-    while len(tried) < SETTLE_E_SIMS and abs(s / p.settle - 1.0) > SETTLE_TOLERANCE:
-        below = [e for e, v in tried.items() if v[0] < p.settle]  # too short: a softer E lengthens it
-        above = [e for e, v in tried.items() if v[0] >= p.settle]
+    while len(tried) < SETTLE_E_SIMS and (abs(s / p.settle - 1.0) > SETTLE_TOLERANCE or young in short):
+        reach = [e for e in tried if e not in short]
+        if not reach or young in short:
+            # a body that loses more than the rebound allows at the least viscosity (a hollow shell buckling at
+            # the impact) is too soft: the rebound rules the E out whatever its settle time; stiffer, bisecting
+            # on log E toward the softest E that reached it
+            stiffer = [e for e in reach if e > max(short)]
+            young = float(min(hi, math.sqrt(max(short) * min(stiffer)) if stiffer else max(short) * step))
+            if young in tried:
+                break
+            s = at(young)
+            continue
+        below = [e for e in reach if tried[e][0] < p.settle]  # too short: a softer E lengthens it (a solid's)
+        above = [e for e in reach if tried[e][0] >= p.settle]
         if below and above:  # bracketed: secant on log E against log settle time between the nearest two
-            a, b = min(below), max(above)
+            a = max(below, key=lambda e: tried[e][0])
+            b = min(above, key=lambda e: tried[e][0])
             sa, sb = math.log(tried[a][0]), math.log(tried[b][0])
             f = (math.log(p.settle) - sa) / (sb - sa) if sb != sa else 0.5
             young = math.exp(math.log(a) + min(0.9, max(0.1, f)) * (math.log(b) - math.log(a)))
+        elif len(reach) >= 2 and (slope := log_slope(reach)) is not None:
+            # not bracketed: the settle time's own trend with E (a shell's may run either way), from the two
+            # nearest the video's, extrapolated at most a step
+            a = min(reach, key=lambda e: abs(math.log(tried[e][0] / goal)))
+            young = a * min(step, max(1.0 / step, math.exp(math.log(goal / tried[a][0]) / slope)))
         elif below:
             young = min(below) / step
         else:
             young = max(above) * step
-        if min(hi, max(lo, young)) in tried:
+        floor = [e for e in short if e < min(reach)]
+        if floor and young <= max(floor):  # not past an E the rebound ruled out: bisect on log E
+            young = math.sqrt(max(floor) * min(reach))
+        young = float(min(hi, max(lo, young)))
+        if young in tried:
             break
         s = at(young)
-    best = min(tried, key=lambda e: abs(math.log(tried[e][0] / goal)))
+    reach = [e for e in tried if e not in short] or list(tried)
+    best = min(reach, key=lambda e: abs(math.log(tried[e][0] / goal)))
     settle, eta, d = tried[best]
+    if short:
+        notes.append(f"the rebound is out of the viscosity's reach at E <= {max(short):.4g} Pa (too much loss at the "
+                     "least viscosity): those E were ruled out")
     if len(tried) == 1:
         notes.append(f"E from the settle time (the video shows no compression): the prior's {prior_young:.4g} Pa "
                      f"already gives it (simulated {settle:.3g} s, the video's {goal:.3g} s)")

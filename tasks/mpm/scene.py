@@ -1,4 +1,4 @@
-"""Scene builders: particle lattices for boxes and the standard benchmark cube (SI units)."""
+"""Scene builders: particle lattices for boxes, balls (solid or hollow) and the standard benchmark cube (SI units)."""
 
 from __future__ import annotations
 
@@ -25,6 +25,20 @@ def box_particles(
     pos = np.stack([X.ravel(), Y.ravel(), Z.ravel()], axis=1)
     vol = np.full(len(pos), float(np.prod(h)))
     return pos, vol
+
+
+def ball_particles(radius_m: float, spacing_m: float, wall_m: float | None = None) -> tuple[np.ndarray, np.ndarray]:
+    """Particles of a ball centred on the origin: the lattice cells of box_particles whose centres lie inside the
+    sphere, or, given a wall, only those within wall_m of its surface (a hollow ball's shell: nothing inside it).
+    A wall under two particle spacings is not a shell the grid (dx = 2 spacings) can resolve: refused."""
+    if wall_m is not None and wall_m < 2.0 * spacing_m * (1.0 - 1e-9):
+        raise ValueError(f"a {wall_m * 1e3:g} mm wall needs a particle spacing of at most half of it, got "
+                         f"{spacing_m * 1e3:g} mm")
+    r = float(radius_m)
+    pos, vol = box_particles((-r, -r, -r), (r, r, r), spacing_m)
+    dist = np.linalg.norm(pos, axis=1)
+    keep = dist <= r if wall_m is None else (dist <= r) & (dist > r - wall_m)
+    return pos[keep], vol[keep]
 
 
 def box_scene(

@@ -203,13 +203,40 @@ def test_e_from_the_settle_time_when_the_video_shows_no_compression(monkeypatch:
     import tasks.calibrate.fit as fit_mod
 
     refits: list[float] = []
-    monkeypatch.setattr(fit_mod, "rebound_at", lambda p, young, d, target: (refits.append(young) or 3.0, d))
-    law = SimpleNamespace(settle=2.0, settle_time=lambda young, eta, d: 1.5 * (young / 1e6) ** -0.25)
+
+    def refit(p: object, young: float, d: float, target: float) -> tuple[float, float]:
+        refits.append(young)
+        return 3.0, d
+
+    monkeypatch.setattr(fit_mod, "rebound_at", refit)
+    reached = lambda young, eta, d: {"rebound_ratio": 0.4}  # noqa: E731  (the viscosity reaches the rebound)
+    law = SimpleNamespace(settle=2.0, settle_time=lambda young, eta, d: 1.5 * (young / 1e6) ** -0.25, drop=reached)
     notes: list[str] = []
     young, eta, _ = fit_mod.fit_settle(law, 1e6, 0.0, 0.4, notes)  # type: ignore[arg-type]
     assert law.settle_time(young, eta, 0.0) == pytest.approx(2.0, rel=fit_mod.SETTLE_TOLERANCE)
     assert young < 1e6 and len(refits) <= fit_mod.SETTLE_E_SIMS and "E from the settle time" in notes[0]
-    far = SimpleNamespace(settle=20.0, settle_time=law.settle_time)
+    far = SimpleNamespace(settle=20.0, settle_time=law.settle_time, drop=reached)
     notes = []
     young, _, _ = fit_mod.fit_settle(far, 1e6, 0.0, 0.4, notes)  # type: ignore[arg-type]
     assert young == pytest.approx(1e6 * fit_mod.SETTLE_E_RANGE[0]) and "out of E's reach" in notes[-1]
+
+
+def test_e_from_the_settle_time_rules_out_an_e_whose_rebound_the_viscosity_cannot_reach(
+        monkeypatch: pytest.MonkeyPatch) -> None:
+    """A hollow shell loses more at a hard impact the softer it is (it buckles): below some E even the least
+    viscosity leaves less rebound than the video's, whatever that E's settle time. fit_settle rules such an E out
+    and goes stiffer (the prior here is too soft, and the settle time alone would send it softer still), then finds
+    the settle time among the E that reach the rebound, following the settle time's own trend with E (here a stiffer
+    shell settles later), and says so."""
+    from types import SimpleNamespace
+
+    import tasks.calibrate.fit as fit_mod
+
+    monkeypatch.setattr(fit_mod, "rebound_at", lambda p, young, d, target: (1.0, d))
+    law = SimpleNamespace(settle=2.0, settle_time=lambda young, eta, d: 1.5 * (young / 1e6) ** 0.25,
+                          drop=lambda young, eta, d: {"rebound_ratio": 0.4 if young >= 2e6 else 0.25})
+    notes: list[str] = []
+    young, _, _ = fit_mod.fit_settle(law, 1e6, 0.0, 0.4, notes)  # type: ignore[arg-type]
+    assert young >= 2e6
+    assert law.settle_time(young, 1.0, 0.0) == pytest.approx(2.0, rel=fit_mod.SETTLE_TOLERANCE)
+    assert any("out of the viscosity's reach" in n for n in notes)
