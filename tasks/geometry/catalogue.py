@@ -560,9 +560,21 @@ _TASK_CLAUSE = re.compile(r"\s*,?\s+(?:(?:(?:that|which|so that|so)\s+)?" + _ROB
 
 
 def _task_clause_stripped(text: str) -> str:
-    """The description without a trailing clause about the robot's task (the object it names is the head)."""
-    stripped = _TASK_CLAUSE.sub("", text)
+    """The description without a request's opening ('can you make', 'I need') or a trailing clause about the robot's
+    task (the object it names is the head)."""
+    stripped = _TASK_CLAUSE.sub("", _REQUEST_OPENING.sub("", text))
+    stripped = _STAND_UP.sub("standing", stripped)  # 'a stand-up pouch' (the parse took 'stand' for the object)
     return stripped if re.search(r"[a-z]", stripped, re.I) else text
+
+
+# a request's opening words before the object ('Can you make a pair of jeans': 'can' was read as a tin can)
+_REQUEST_OPENING = re.compile(
+    r"^\s*(?:(?:(?:can|could|would|will)\s+(?:you|we|i)\s+(?:please\s+)?|please\s+|i(?:'d|\s+would)\s+like\s+"
+    r"(?:to\s+(?:have|get|see|make|simulate|model)\s+)?|i\s+(?:want|need)\s+(?:to\s+(?:have|make|simulate|model)\s+)?|"
+    r"we\s+need\s+|let's\s+|lets\s+)(?:(?:make|create|generate|build|model|simulate|give|get|design|add)\s+"
+    r"(?:me\s+|us\s+)?)?|(?:make|create|generate|build|model|simulate|give|design)\s+(?:me\s+|us\s+)?(?=an?\s|the\s|"
+    r"some\s|one\s|two\s|three\s))", re.IGNORECASE)
+_STAND_UP = re.compile(r"\bstand[- ]up\b(?=\s+[a-z])", re.IGNORECASE)
 
 
 def _pair_first(text: str) -> str:

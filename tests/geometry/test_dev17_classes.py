@@ -212,3 +212,26 @@ def test_a_whole_bird_is_oven_ready_with_its_drumsticks(text: str, entry: str, l
     body = next(p for p in design.program.parts if p.name == "body").transform.translation_m
     assert knuckle[0] < body[0] and knuckle[2] > body[2]  # at the tail end, up
     assert lo <= planned_mass(text) <= hi
+
+
+@pytest.mark.parametrize("text, entry", [
+    ("Can you make a pair of blue denim jeans, folded in half", "trousers"),
+    ("I'd like to simulate a plush turtle", "plush_turtle"), ("please generate a red rubber duck", "rubber_duck")])
+def test_a_requests_opening_words_are_not_the_object(text: str, entry: str) -> None:
+    """Sealed set 17 (after the run): 'Can you make a pair of blue denim jeans' was a 26 g generic block named
+    'can'."""
+    assert catalogue.design_from_text(text).entry == entry
+
+
+def test_a_stand_up_pouch_is_a_pouch() -> None:
+    """'stand-up refill pouch of liquid hand soap, 500 ml' was a generic block named 'stand' (after the run)."""
+    design = catalogue.design_from_text("a stand-up refill pouch of liquid hand soap, 500 ml")
+    assert design.concept.body_plan == "pouch"
+    assert 0.3 <= planned_mass("a stand-up refill pouch of liquid hand soap, 500 ml") <= 0.8
+
+
+def test_a_paper_towel_is_a_sheet_of_paper_that_crumples_into_a_wad() -> None:
+    """'a crumpled paper towel' was a crumpled bath towel of 0.54 kg (207 times its mass; after the run)."""
+    assert catalogue.design_from_text("a crumpled paper towel").entry == "paper_towel_sheet"
+    assert planned_mass("a crumpled paper towel") < 0.006
+    assert catalogue.design_from_text("a roll of paper towels").entry == "paper_towel_roll"
