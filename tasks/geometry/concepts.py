@@ -1571,12 +1571,14 @@ def dented(program: ShapeProgram, half: bool = False) -> ShapeProgram:
     parts = squashed_parts(parts, (spread, spread, sag))
     rx, ry, rz = halfext[0] * spread, halfext[1] * spread, halfext[2] * sag
     top = 2.0 * rz
-    # the dish pushed in off the top, toward one side, an oval across it (centred on the top it read as an apple's
-    # stalk cavity)
-    off = DENT_OFFSET * rx
-    dish = ellipsoid("dent", (0.55 * rx, 0.75 * ry, 0.6 * rz), (off, 0.0, top + 0.6 * rz - depth * top - 0.15 * rz),
-                     blend=0.3 * rz, rot=(0.0, DENT_TILT_DEG, 0.0)).model_copy(
-        update={"operation": "subtract", "color_rgb": parts[0].color_rgb})
+    if half:  # the dish pushed in off the top, toward one side, an oval across it (centred on the top it read as an
+        # apple's stalk cavity); a ball with no air left caves in as a bowl
+        dish = ellipsoid("dent", (0.55 * rx, 0.75 * ry, 0.6 * rz), (DENT_OFFSET * rx, 0.0, top + 0.45 * rz - depth * top),
+                         blend=0.3 * rz, rot=(0.0, DENT_TILT_DEG, 0.0))
+    else:
+        dish = ellipsoid("dent", (0.65 * rx, 0.65 * ry, 0.6 * rz), (0.0, 0.0, top + 0.6 * rz - depth * top),
+                         blend=0.3 * rz)
+    dish = dish.model_copy(update={"operation": "subtract", "color_rgb": parts[0].color_rgb})
     centre_now = np.array([0.0, 0.0, rz])
     banded = [p for p in parts[1:] if np.linalg.norm(np.asarray(p.transform.translation_m) - centre_now) < 0.3 * rz]
     rest = [p for p in parts[1:] if p not in banded]  # seams round the middle are cut by the dish; pads follow it
