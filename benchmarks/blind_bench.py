@@ -93,6 +93,14 @@ def _bench_one(prompt: dict, settings: pipeline.L0Settings, out: Path) -> dict:
     return row
 
 
+def _shown(path: Path) -> str:
+    """The prompts file as the table records it: relative to the working directory when under it (no machine path)."""
+    try:
+        return str(path.resolve().relative_to(Path.cwd().resolve()))
+    except ValueError:
+        return str(path)
+
+
 def run(path: Path, out: Path, quality: str = "draft", limit: int | None = None, progress=print) -> dict:  # noqa: ANN001
     """Every prompt of a JSONL file; the table, the judge's file and the contact sheet under out."""
     prompts = load_jsonl(path)[:limit]
@@ -118,7 +126,7 @@ def run(path: Path, out: Path, quality: str = "draft", limit: int | None = None,
                                            if with_m else None),
                "max_cpu_seconds": max((r["cpu_seconds"] for r in ok), default=None),
                "mean_cpu_seconds": round(float(np.mean([r["cpu_seconds"] for r in ok])), 2) if ok else None}
-    result = {"prompts_file": str(path), "quality": quality, "rows": rows, "summary": summary}
+    result = {"prompts_file": _shown(path), "quality": quality, "rows": rows, "summary": summary}
     (out / "table.json").write_text(json.dumps(result, indent=2), encoding="utf-8")
     return result
 

@@ -95,12 +95,15 @@ class Part(Model):
     blend_m: float = Field(default=0.0, ge=0, description="smooth-union blend radius with the parts before [m]")
 
 
+MAX_PARTS = 64  # parts in one ShapeProgram
+
+
 class ShapeProgram(Model):
     """A watertight shape: parts combined in order (smooth union / subtract / intersect) as signed distances."""
 
     name: str = Field(description="object name, e.g. 'plush turtle'")
     category: str = Field(description="catalogue category the program came from, e.g. 'plush_animal'")
-    parts: list[Part] = Field(min_length=1, max_length=64)
+    parts: list[Part] = Field(min_length=1, max_length=MAX_PARTS)
     target_extent_m: Vec3 | None = Field(
         default=None, description="if given, the mesh is scaled to this bounding box (x, y, z) [m]"
     )

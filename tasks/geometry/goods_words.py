@@ -12,7 +12,7 @@ import numpy as np
 
 from contracts.concept import ConceptMatch
 from contracts.lexicon import LexiconEntry, load_lexicon
-from contracts.shape import Part, ShapeProgram
+from contracts.shape import MAX_PARTS, Part, ShapeProgram
 from tasks.geometry import fill_words, grammar
 from tasks.geometry.grammar.goods import BAG_CAPACITY
 from tasks.geometry.grammar.parts import ellipsoid, limb, part_group
@@ -268,7 +268,7 @@ def grouped(program: ShapeProgram, match: ConceptMatch, count: int) -> tuple[Sha
     parts = list(program.parts)  # (a copy's carved parts, a peach's crease, carve only its own)
     if any(p.operation not in ("union", "subtract") for p in parts):
         return program, match
-    count = max(1, min(count, 64 // max(len(parts), 1)))
+    count = max(1, min(count, MAX_PARTS // max(len(parts), 1)))
     if count < 2:
         return program, match
     ext = grammar.program_extents(program, 48)
@@ -294,7 +294,7 @@ def duplicated(program: ShapeProgram) -> ShapeProgram | None:
     horizontal axis (one body, as the mesher keeps one); a standing one (a toy) beside it, just touching; None past
     the part limit."""
     parts = list(program.parts)
-    if 2 * len(parts) > 64:
+    if 2 * len(parts) > MAX_PARTS:
         return None
     ext = grammar.program_extents(program, 48)
     axis = 1 if ext[1] <= ext[0] else 0
@@ -321,7 +321,7 @@ def nested_stack(program: ShapeProgram, match: ConceptMatch, count: int) -> tupl
     """`count` open cups nested one in another, each NEST_STEP of a cup's height above the one below (as many as a
     program's 64 parts hold); the concept's typical mass times the count and its typical size the stack's longest
     extent."""
-    count = max(1, min(count, 64 // max(len(program.parts), 1)))
+    count = max(1, min(count, MAX_PARTS // max(len(program.parts), 1)))
     rise = NEST_STEP * float(grammar.program_extents(program, 32)[2])
     return copies(program, match, [(0.0, 0.0, k * rise) for k in range(count)])
 

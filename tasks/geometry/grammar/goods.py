@@ -17,7 +17,7 @@ import numpy as np
 from pydantic import Field
 
 from contracts.base import Model
-from contracts.shape import Part
+from contracts.shape import MAX_PARTS, Part
 from tasks.geometry.grammar.parts import (
     box,
     cone,
@@ -214,9 +214,6 @@ def _draped(p: SheetParams, t: float) -> list[Part]:
                      rot=(0.0, 0.0, theta if j % 2 else -theta)) for j in range(strips)]
         parts += rotated_parts(panel, (0.0, -sgn * np.degrees(splay), 0.0), (x0, 0.0, top))
     return parts
-
-
-MAX_PARTS = 64  # a ShapeProgram's parts (contracts.shape)
 
 
 def stacked_formed(one: list[Part], layers: int, t: float) -> list[Part]:
@@ -620,9 +617,8 @@ def pouch(p: PouchParams) -> list[Part]:
                                  (1, 1, 1)), "subtract", 0.02))
     if max(p.piece) > 0:
         parts += bagged_pieces(p, h)
-    elif p.label:  # printed on the film: a flat panel just proud of the filled top, its own colour
-        parts.append(box("label", (LABEL_SIZE[0], LABEL_SIZE[1] * (w - 2 * s), st), (0.0, 0.0, h), edge=0.45 * st,
-                         blend=0.1 * st))
+    elif p.label:
+        parts.append(_label(w - 2 * s, h))
     if p.strap > 0:
         sw, st = 0.55 * w, 1.6 * MIN_LAYER
         parts.append(box("strap", (p.strap, sw, st), (0.5 + p.strap / 2 - 0.05, 0, st / 2), edge=0.45 * st,
@@ -652,9 +648,14 @@ def _pillow_pack(p: PouchParams, h: float) -> list[Part]:
             x = sgn * (0.5 - fin * (k + 0.6) / (CRIMP_RIDGES + 0.2))
             parts.append(cylinder(f"{side} crimp {k + 1}", 0.68 * tf, 0.97 * w, (x, 0, h / 2), rot=(90, 0, 0)))
     if p.label and max(p.piece) == 0:
-        parts.append(box("label", (LABEL_SIZE[0], LABEL_SIZE[1] * w, st), (0.0, 0.0, h), edge=0.45 * st,
-                         blend=0.1 * st))
+        parts.append(_label(w, h))
     return parts
+
+
+def _label(width: float, h: float) -> Part:
+    """A pack's printed label: a flat panel just proud of the filled top (at h) across `width`, its own colour."""
+    st = MIN_LAYER
+    return box("label", (LABEL_SIZE[0], LABEL_SIZE[1] * width, st), (0.0, 0.0, h), edge=0.45 * st, blend=0.1 * st)
 
 
 BAG_DEPTH_OVER_PIECE = 0.9  # a bag of goods' depth over one piece's thickness (the goods press up its film) [-]
