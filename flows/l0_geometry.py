@@ -50,8 +50,10 @@ MESH_VERSION = "20"  # l0.mesh alone; 2: marching cubes no longer pinches the su
 # 19: the stills in the material's finish (gloss, grain, mottle) with a scale bar (tasks.render.finish, scale_bar)
 # 20: dev set 17's (pillow packs' crimped ends, a sheet draped over a bar or folded then rolled, stacked slices
 # keep their outline, foam puzzle tiles, a side dent, a cinnamon roll's swirl, a powder 'dusted' over the top)
-PROXY_VERSION = "3"  # l0.proxy alone; 2: CoACD's coarse copy keeps cells across a long or flat good's thinnest side;
+PROXY_VERSION = "4"  # l0.proxy alone; 2: CoACD's coarse copy keeps cells across a long or flat good's thinnest side;
 # 3: a mesh that hugs its convex hull is proxied by CoACD's root hull (collision.NEAR_CONVEX_*: a yarn ball 40 s -> 0.3 s)
+# 4: CoACD's pieces merged down to the budget by ours (collision.merge_hulls: a dog bed 38 -> 20 s), the coarse copy
+# never finer than the mesh (a foam puzzle tile 21 -> 8 s)
 GAUSSIANS_VERSION = "3"  # l0.gaussians alone; 2: surface discs dense and small for the particle spacing (#36);
 # 3: on blue-noise surface samples
 
