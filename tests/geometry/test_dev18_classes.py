@@ -3,6 +3,8 @@ wrong, fixed by class and tested here with other phrasings than the set's (the s
 
 from __future__ import annotations
 
+import re
+
 import numpy as np
 import pytest
 
@@ -65,3 +67,21 @@ def test_a_stack_of_paper_shows_its_sheets() -> None:
     """A ream and a pad of notes are stacks of sheets (not one block, read as a sponge)."""
     design = catalogue.design_from_text("a ream of printer paper")
     assert sum(p.name.startswith(("body", "layer")) for p in design.program.parts) >= 4
+
+
+def _bodies(design: catalogue.Design) -> int:
+    return sum(re.fullmatch(r"body( \d+)?", p.name) is not None for p in design.program.parts)
+
+
+def test_a_bunch_of_bananas_is_a_hand_of_them_from_one_crown() -> None:
+    """'a bunch of 5 bananas' was one banana: it is a hand, the count said (else five), side by side, their stems
+    drawn in to one crown, the mass the hand's."""
+    five = catalogue.design_from_text("a bunch of bananas")
+    assert _bodies(five) == 5
+    assert any(p.name == "crown" for p in five.program.parts)
+    three = catalogue.design_from_text("a bunch of 3 yellow bananas")
+    assert _bodies(three) == 3
+    one = planned_mass("a banana")
+    assert 3.5 * one < planned_mass("a bunch of bananas") < 6.0 * one
+    assert planned_mass("a bunch of 3 bananas") == pytest.approx(3 * one, rel=0.3)
+    assert catalogue.design_from_text("a bunch of grapes").program.parts[0].name != "crown"  # grapes: a cluster
