@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 import trimesh
 
-from tasks.geometry.collision import _coarsen, merge_hulls, union_volume
+from tasks.geometry.collision import GROW_BUDGETS, _coarsen, merge_hulls, merged_to_cover, union_volume
 
 
 def _box(lo: tuple[float, float, float], size: float = 0.01) -> trimesh.Trimesh:
@@ -54,3 +54,21 @@ def test_coarse_copy_is_never_finer_than_the_mesh() -> None:
     tile = tile.subdivide().subdivide()
     coarse = _coarsen(tile, 6000)
     assert len(coarse.faces) <= len(tile.faces)
+
+
+def _ring(n: int = 36, radius: float = 0.06) -> list[trimesh.Trimesh]:
+    """n 1 cm cubes round a circle of `radius`: a thin hollow good's pieces (a hat's brim, a hose's coil)."""
+    a = 2 * np.pi * np.arange(n) / n
+    return [_box((radius * np.cos(t), radius * np.sin(t), 0.0)) for t in a]
+
+
+def test_a_hollow_good_gets_more_hulls_until_they_cover_it_closely() -> None:
+    """Merged to 4 hulls a ring's union is many times its volume (each quarter's hull spans the ring's inside);
+    merged_to_cover grows the budget until the union is within the ratio asked, and keeps 4 when that is enough."""
+    pieces = _ring()
+    volume = union_volume(pieces)
+    assert union_volume(merge_hulls(pieces, 4)) > 2.0 * volume
+    covered = merged_to_cover(pieces, 4, volume, 1.3)
+    assert len(covered) in (*GROW_BUDGETS, len(pieces))
+    assert union_volume(covered) <= 1.3 * volume
+    assert len(merged_to_cover(pieces, 4, volume, 100.0)) == 4
