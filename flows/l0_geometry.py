@@ -52,10 +52,11 @@ MESH_VERSION = "21"  # l0.mesh alone; 2: marching cubes no longer pinches the su
 # keep their outline, foam puzzle tiles, a side dent, a cinnamon roll's swirl, a powder 'dusted' over the top)
 # 21: dev set 18's (a height stated of a bag lying flat is the height it stands, paper bags, reams and pads of
 # sticky notes as stacked sheets, cotton wool rolls, twine balls, empty and half-used sacks)
-PROXY_VERSION = "4"  # l0.proxy alone; 2: CoACD's coarse copy keeps cells across a long or flat good's thinnest side;
+PROXY_VERSION = "5"  # l0.proxy alone; 2: CoACD's coarse copy keeps cells across a long or flat good's thinnest side;
 # 3: a mesh that hugs its convex hull is proxied by CoACD's root hull (collision.NEAR_CONVEX_*: a yarn ball 40 s -> 0.3 s)
 # 4: CoACD's pieces merged down to the budget by ours (collision.merge_hulls: a dog bed 38 -> 20 s), the coarse copy
 # never finer than the mesh (a foam puzzle tile 21 -> 8 s)
+# 5: the budget grows while the hulls' union is over 1.5x the mesh (collision.merged_to_cover: a beanie, a hat)
 GAUSSIANS_VERSION = "3"  # l0.gaussians alone; 2: surface discs dense and small for the particle spacing (#36);
 # 3: on blue-noise surface samples
 
