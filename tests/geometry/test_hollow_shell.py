@@ -143,3 +143,38 @@ def test_geometry_json_records_the_shell_and_l1_weighs_it(tmp_path: Path) -> Non
     wall_mass = RUBBER_BALL.mass_estimate_kg(body.enclosed_volume_m3, float(asset.mesh.area))
     assert plan.mass.density_kg_per_m3 * float(asset.volumes_m3.sum()) == pytest.approx(wall_mass, rel=1e-6)
     assert 900.0 < plan.mass.density_kg_per_m3 < 1300.0  # the wall's rubber, not ~300 kg/m^3 over the enclosed volume
+
+
+def test_an_exported_shell_weighs_what_the_asset_weighs() -> None:
+    """The exports are solid tet meshes of the surface: a shell asset goes out at its mass over the enclosed volume."""
+    from types import SimpleNamespace
+
+    from contracts.material import Material
+    from tasks.export.inputs import export_material
+
+    body = ParticleBody(kind="shell", wall_m=WALL_M, requested_wall_m=WALL_M, spacing_m=0.003, volume_m3=5.0e-5,
+                        enclosed_volume_m3=1.5e-4)
+    mat = Material(youngs_modulus_pa=1.5e6, poisson_ratio=0.48, damping_rate_per_s=0.0)
+    physical = SimpleNamespace(density_kg_per_m3=1100.0, mass_kg=1100.0 * 5.0e-5, ground_friction=0.6,
+                               gripper_friction=0.8)
+
+    class Dir:
+        def __init__(self, particles: ParticleBody | None) -> None:
+            self.particles = particles
+
+        def material(self) -> SimpleNamespace:
+            return SimpleNamespace(material=mat, passed=True, message="")
+
+        def physical_model(self) -> SimpleNamespace:
+            return physical
+
+        def adopted_material(self) -> SimpleNamespace:
+            return SimpleNamespace(material=mat)
+
+        def geometry(self) -> SimpleNamespace:
+            return SimpleNamespace(particles=self.particles)
+
+    shell = export_material(Dir(body))  # type: ignore[arg-type]
+    assert shell.density_kg_per_m3 * body.enclosed_volume_m3 == pytest.approx(physical.mass_kg)
+    assert shell.mass_kg == pytest.approx(physical.mass_kg)
+    assert export_material(Dir(None)).density_kg_per_m3 == 1100.0  # type: ignore[arg-type]
