@@ -178,3 +178,20 @@ def test_an_exported_shell_weighs_what_the_asset_weighs() -> None:
     assert shell.density_kg_per_m3 * body.enclosed_volume_m3 == pytest.approx(physical.mass_kg)
     assert shell.mass_kg == pytest.approx(physical.mass_kg)
     assert export_material(Dir(None)).density_kg_per_m3 == 1100.0  # type: ignore[arg-type]
+
+
+def test_l0_builds_a_squash_ball_as_its_shell_and_a_duck_solid_over_the_draft_budget(tmp_path: Path) -> None:
+    """Through run_l0 at draft: the squash ball's 5 mm wall (~3k particles at 2 mm) is a shell; the bath duck's 1.5 mm
+    wall would take ~117k particles at 0.75 mm, over draft's 20k: solid, and geometry.json says why."""
+    from contracts.request import AssetRequest
+    from flows.l0_geometry import run_l0
+
+    ball = run_l0(AssetRequest(text="a squash ball", quality="draft"), use_cache=False)
+    assert ball.checks.passed and ball.body is not None and ball.body.shell and ball.body.wall_m == 0.005
+    assert len(ball.particles["positions_m"]) < 5000
+    assert float(ball.particles["volumes_m3"].sum()) == pytest.approx(ball.body.volume_m3, rel=1e-9)
+    duck = run_l0(AssetRequest(text="a rubber duck", quality="draft"), use_cache=False)
+    assert duck.body is not None and duck.body.kind == "solid" and duck.body.requested_wall_m == 0.0015
+    assert "over the budget of 20000" in str(duck.body.reason)
+    write_l0(duck, tmp_path / "duck")
+    assert load_l0(tmp_path / "duck").record["particles"]["reason"] == duck.body.reason
