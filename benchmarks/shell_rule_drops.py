@@ -28,15 +28,16 @@ from tasks.physical.plan import physical_for
 from tasks.realworld.loss import material_loss
 
 
-def drop(name: str, work: Path, youngs_modulus_pa: float, sim: SimConfig) -> dict:
-    """One ball's rule drop (its L0 built in `work`)."""
+def drop(name: str, work: Path, youngs_modulus_pa: float, sim: SimConfig, solid: bool = False) -> dict:
+    """One ball's rule drop (its L0 built in `work`; as its shell, the L0 contract's opt-in, unless solid)."""
     objects = {o.name: o for o in load_realworld().objects}
     obj = objects[name]
     if obj.rebound is None:
         raise SystemExit(f"{name}: no rebound rule in the real-world set")
     t0 = time.perf_counter()
     request = AssetRequest(text=name, quality="draft")
-    l0 = l0_geometry.run_l0(request, quality="draft", use_cache=False)
+    l0 = l0_geometry.run_l0(request, quality="draft", use_cache=False,
+                            contract=l0_geometry.with_hollow_particles("solid" if solid else "shell"))
     out = work / name.replace(" ", "_")
     shutil.rmtree(out, ignore_errors=True)
     l0_geometry.write_l0(l0, out, request=request)
@@ -58,18 +59,17 @@ def drop(name: str, work: Path, youngs_modulus_pa: float, sim: SimConfig) -> dic
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("names", nargs="+", help="balls of the real-world set with a rebound rule")
-    ap.add_argument("--solid", action="store_true", help="build every ball solid (before session 32)")
+    ap.add_argument("--solid", action="store_true", help="build every ball solid (the default of L0's "
+                    "contract; without it the shell is opted into)")
     ap.add_argument("--youngs-modulus-pa", type=float, default=1.58e6, help="E of the fixed material [Pa] (1.58 MPa: "
                     "what L2 adopted for the solid tennis ball in sessions 27-28)")
     ap.add_argument("--work", type=Path, default=None, help="where the L0 directories go (default: a temporary one)")
     args = ap.parse_args()
-    if args.solid:  # L0's shell decision replaced by 'no wall' (the particles of before)
-        vars(l0_geometry)["_wall"] = lambda request, info: (None, "built solid: --solid")
     sim = SimConfig(device="cpu", cpu_threads=1)
     with tempfile.TemporaryDirectory() as tmp, cache.local_runtime():
         work = args.work or Path(tmp)
         for name in args.names:
-            print(json.dumps(drop(name, work, args.youngs_modulus_pa, sim)), flush=True)
+            print(json.dumps(drop(name, work, args.youngs_modulus_pa, sim, args.solid)), flush=True)
 
 
 if __name__ == "__main__":

@@ -54,7 +54,7 @@ MESH_VERSION = "20"  # l0.mesh alone; 2: marching cubes no longer pinches the su
 PROXY_VERSION = "3"  # l0.proxy alone; 2: CoACD's coarse copy keeps cells across a long or flat good's thinnest side;
 # 3: a mesh that hugs its convex hull is proxied by CoACD's root hull (collision.NEAR_CONVEX_*: a yarn ball 40 s -> 0.3 s)
 PARTICLES_VERSION = "2"  # l0.particles alone; 2: a hollow concept's particles are its shell (build_body, with the
-# ParticleBody record; session 32)
+# ParticleBody record; session 32), opt-in: ParticleSettings.hollow_particles (the L0 contract's) keys it
 GAUSSIANS_VERSION = "3"  # l0.gaussians alone; 2: surface discs dense and small for the particle spacing (#36);
 # 3: on blue-noise surface samples
 
@@ -134,6 +134,13 @@ def l0_geometry(request: AssetRequest, settings: L0Settings, contract: StageCont
     return L0Result(mesh, proxy, particles, gaussians, info, checks, body)
 
 
+def with_hollow_particles(kind: str, contract: StageContract | None = None) -> StageContract:
+    """The L0 contract (the packaged one by default) with its hollow_particles parameter set: 'shell' builds a hollow
+    concept's particles as its wall (opt-in, `deformsmith geometry --hollow-shell`), 'solid' as the whole volume."""
+    contract = contract or load_contract("L0")
+    return contract.model_copy(update={"parameters": {**contract.parameters, "hollow_particles": kind}})
+
+
 def run_l0(request: AssetRequest, quality: Quality | None = None, contract: StageContract | None = None,
            use_cache: bool = True, coacd_overrides: dict | None = None,
            agents: AgentConfig | None = None) -> L0Result:
@@ -195,4 +202,4 @@ def write_l0(result: L0Result, out_dir: Path, extra: dict | None = None,
     return files
 
 
-__all__ = ["L0Result", "run_l0", "write_l0", "l0_geometry", "geometry_request", "np"]
+__all__ = ["L0Result", "run_l0", "write_l0", "with_hollow_particles", "l0_geometry", "geometry_request", "np"]

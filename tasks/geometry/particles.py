@@ -4,6 +4,7 @@ shell: the particles within its wall of the surface, their volumes summing to th
 from __future__ import annotations
 
 import math
+from typing import Literal
 
 import numpy as np
 import trimesh
@@ -29,6 +30,9 @@ class ParticleSettings(Model):
     min_cells_through_thinnest: int = Field(default=4, gt=0, description="cells across the thinnest extent [-]")
     max_particles: int = Field(gt=0, description="particle budget [-]")
     min_particles: int = Field(default=1000, ge=0, description="refine the lattice until at least this many [-]")
+    hollow_particles: Literal["solid", "shell"] = Field(
+        default="solid", description="a hollow concept's particles: 'solid' (the whole volume, the default) or 'shell' "
+        "(its wall alone, where the lattice resolves it): the L0 contract's hollow_particles")
 
 
 def inside_lattice(mesh: trimesh.Trimesh, origin: np.ndarray, spacing: float, shape: tuple[int, ...]) -> np.ndarray:

@@ -64,6 +64,7 @@ def settings_from_contract(quality: Quality, contract: StageContract | None = No
             max_particles=int(p["max_particles"][quality]),
             min_particles=typed.min_particles,
             min_cells_through_thinnest=typed.min_cells_through_thinnest,
+            hollow_particles=typed.hollow_particles,
         ),
         coacd=CoacdSettings(**coacd),
         gaussians_per_particle=float(p["gaussians_per_particle"]),
@@ -204,14 +205,21 @@ def build_particles(mesh: Arrays, settings: ParticleSettings) -> Arrays:
     return build_body(mesh, settings)[0]
 
 
+SHELL_OPT_IN = ("built solid: a shell is opt-in (L0 parameter hollow_particles: shell) until a gas-pressure model "
+                "keeps a pressurised ball's bounce (a rubber shell alone: tennis-ball rule rebound 0.12, rule 0.53-0.58)")
+
+
 def build_body(mesh: Arrays, settings: ParticleSettings, wall_m: float | None = None,
                solid_reason: str | None = None) -> tuple[Arrays, ParticleBody]:
     """The MPM particles and what they fill: a hollow object's shell of wall_m (tasks.geometry.particles.sample_shell)
-    when given and the lattice resolves it within the budget, else the solid (build_particles' arrays; the reason a
-    hollow object stayed solid in the record: solid_reason, or why its wall could not be resolved)."""
+    when given, settings.hollow_particles is 'shell' (opt-in: SHELL_OPT_IN says why) and the lattice resolves the wall
+    within the budget, else the solid (build_particles' arrays; the reason a hollow object stayed solid in the record:
+    solid_reason, SHELL_OPT_IN, or why its wall could not be resolved)."""
     m = arrays_to_mesh(mesh)
     volume = float(m.volume)
-    if wall_m is not None:
+    if wall_m is not None and settings.hollow_particles != "shell":
+        solid_reason = SHELL_OPT_IN
+    elif wall_m is not None:
         try:
             pos, vol, col, dx, fill, shell_m3 = sample_shell(m, settings, wall_m)
         except ShellUnresolved as exc:

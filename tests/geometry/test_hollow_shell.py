@@ -1,6 +1,8 @@
 """A hollow object's MPM particles are its shell (issue #39, session 32): L0 keeps the lattice points within the wall
 of the surface when the lattice resolves the wall (two particle spacings, within the budget), records it in
-geometry.json, and L1 spreads the wall's mass over the shell. Small spheres (a few thousand particles at most)."""
+geometry.json, and L1 spreads the wall's mass over the shell. The shell is opt-in (the L0 contract's hollow_particles:
+shell; default solid, as before: a rubber shell alone is a dead ball); the shell tests set it. Small spheres (a few
+thousand particles at most)."""
 
 from __future__ import annotations
 
@@ -23,7 +25,8 @@ from tasks.physical.plan import l1_plan
 
 RADIUS_M = 0.03
 WALL_M = 0.006  # 3 mm spacing: ~2k particles
-SETTINGS = ParticleSettings(cells_per_longest_extent=10, max_particles=5000, min_particles=0)
+SETTINGS = ParticleSettings(cells_per_longest_extent=10, max_particles=5000, min_particles=0, hollow_particles="shell")
+SOLID = SETTINGS.model_copy(update={"hollow_particles": "solid"})  # the default
 RUBBER_BALL = ConceptMatch(concept="tennis_ball", noun="tennis ball", body_plan="catalogue:tennis_ball",
                            category="ball", fallback_level="exact", default_material="rubber", hollow=True,
                            wall_thickness_m=WALL_M, density_kg_per_m3=950.0, typical_mass_kg=0.058,
@@ -181,17 +184,57 @@ def test_an_exported_shell_weighs_what_the_asset_weighs() -> None:
 
 
 def test_l0_builds_a_squash_ball_as_its_shell_and_a_duck_solid_over_the_draft_budget(tmp_path: Path) -> None:
-    """Through run_l0 at draft: the squash ball's 5 mm wall (~3k particles at 2 mm) is a shell; the bath duck's 1.5 mm
-    wall would take ~117k particles at 0.75 mm, over draft's 20k: solid, and geometry.json says why."""
+    """Through run_l0 at draft with the shell opted into (the L0 contract's hollow_particles: shell): the squash ball's
+    5 mm wall (~3k particles at 2 mm) is a shell; the bath duck's 1.5 mm wall would take ~117k particles at 0.75 mm,
+    over draft's 20k: solid, and geometry.json says why."""
     from contracts.request import AssetRequest
-    from flows.l0_geometry import run_l0
+    from flows.l0_geometry import run_l0, with_hollow_particles
 
-    ball = run_l0(AssetRequest(text="a squash ball", quality="draft"), use_cache=False)
+    shell = with_hollow_particles("shell")
+    ball = run_l0(AssetRequest(text="a squash ball", quality="draft"), contract=shell, use_cache=False)
     assert ball.checks.passed and ball.body is not None and ball.body.shell and ball.body.wall_m == 0.005
     assert len(ball.particles["positions_m"]) < 5000
     assert float(ball.particles["volumes_m3"].sum()) == pytest.approx(ball.body.volume_m3, rel=1e-9)
-    duck = run_l0(AssetRequest(text="a rubber duck", quality="draft"), use_cache=False)
+    duck = run_l0(AssetRequest(text="a rubber duck", quality="draft"), contract=shell, use_cache=False)
     assert duck.body is not None and duck.body.kind == "solid" and duck.body.requested_wall_m == 0.0015
     assert "over the budget of 20000" in str(duck.body.reason)
     write_l0(duck, tmp_path / "duck")
     assert load_l0(tmp_path / "duck").record["particles"]["reason"] == duck.body.reason
+
+
+def test_by_default_a_hollow_concept_is_built_solid_and_says_the_shell_is_opt_in(tmp_path: Path) -> None:
+    """The L0 contract's default (hollow_particles: solid): a squash ball's particles are the solid of before, and
+    geometry.json says why; the choice keys the particles' cache."""
+    from contracts.request import AssetRequest
+    from contracts.stage import L0Parameters, load_contract
+    from flows.harness import probe_cache_key
+    from flows.l0_geometry import build_particles, run_l0, with_hollow_particles
+
+    arrays, body = pipeline.build_body(pipeline.mesh_to_arrays(_sphere()), SOLID, WALL_M)
+    assert body.kind == "solid" and body.requested_wall_m == WALL_M and body.reason == pipeline.SHELL_OPT_IN
+    np.testing.assert_array_equal(arrays["positions_m"],
+                                  pipeline.build_particles(pipeline.mesh_to_arrays(_sphere()), SOLID)["positions_m"])
+    assert L0Parameters.of(load_contract("L0")).hollow_particles == "solid"
+    assert pipeline.settings_from_contract("draft").particles.hollow_particles == "solid"
+    request = AssetRequest(text="a squash ball", quality="draft")
+    ball = run_l0(request, use_cache=False)
+    assert ball.checks.passed and ball.body is not None and ball.body.kind == "solid"
+    assert ball.body.wall_m is None and ball.body.requested_wall_m == 0.005
+    assert ball.body.reason == pipeline.SHELL_OPT_IN
+    assert "opt-in" in ball.body.reason and "hollow_particles: shell" in ball.body.reason
+    assert "0.12" in ball.body.reason and "0.53-0.58" in ball.body.reason
+    # the particles of before: the solid lattice of the mesh, the volumes summing to the mesh volume
+    draft = pipeline.settings_from_contract("draft").particles
+    pos, vol, _, _, _ = sample_particles(pipeline.arrays_to_mesh(ball.mesh), draft)
+    np.testing.assert_array_equal(ball.particles["positions_m"], pos)
+    np.testing.assert_array_equal(ball.particles["volumes_m3"], vol)
+    write_l0(ball, tmp_path / "ball", request=request)
+    asset = load_l0(tmp_path / "ball")
+    assert not asset.shell and asset.record["particles"]["reason"] == pipeline.SHELL_OPT_IN
+    assert "built as its shell" not in " ".join(l1_plan(asset, "a squash ball").mass.notes)
+    # solid and shell are different particles' cache keys
+    shell = pipeline.settings_from_contract("draft", with_hollow_particles("shell")).particles
+    assert shell.hollow_particles == "shell"
+    keys = {probe_cache_key(build_particles, {"mesh": ball.mesh, "particles": s, "wall_m": 0.005})
+            for s in (draft, shell)}
+    assert len(keys) == 2 and None not in keys
