@@ -24,7 +24,7 @@ from tasks.geometry.particles import ParticleSettings
 from tasks.geometry.pipeline import Arrays, BuildInfo, L0Settings
 
 TASK_VERSION = "1"  # bump when tasks/geometry changes what these tasks return
-MESH_VERSION = "20"  # l0.mesh alone; 2: marching cubes no longer pinches the surface at samples on the level;
+MESH_VERSION = "21"  # l0.mesh alone; 2: marching cubes no longer pinches the surface at samples on the level;
 # 3: BuildInfo.generator / design_attempts (LLM Designer, reconstruction backends); 4: text -> lexicon concept and
 # grammar program (BuildInfo.concept), colours and shape phrases; 5: photos keep their upright, lathe / inflation,
 # size from the concept (#35); 6: standing toys seated on a flat base (canonical.seat_flat), pouches and slumps (#35);
@@ -51,8 +51,13 @@ MESH_VERSION = "20"  # l0.mesh alone; 2: marching cubes no longer pinches the su
 # 19: the stills in the material's finish (gloss, grain, mottle) with a scale bar (tasks.render.finish, scale_bar)
 # 20: dev set 17's (pillow packs' crimped ends, a sheet draped over a bar or folded then rolled, stacked slices
 # keep their outline, foam puzzle tiles, a side dent, a cinnamon roll's swirl, a powder 'dusted' over the top)
-PROXY_VERSION = "3"  # l0.proxy alone; 2: CoACD's coarse copy keeps cells across a long or flat good's thinnest side;
+# 21: dev set 18's (a height stated of a bag lying flat is the height it stands, paper bags, reams and pads of
+# sticky notes as stacked sheets, cotton wool rolls, twine balls, empty and half-used sacks)
+PROXY_VERSION = "5"  # l0.proxy alone; 2: CoACD's coarse copy keeps cells across a long or flat good's thinnest side;
 # 3: a mesh that hugs its convex hull is proxied by CoACD's root hull (collision.NEAR_CONVEX_*: a yarn ball 40 s -> 0.3 s)
+# 4: CoACD's pieces merged down to the budget by ours (collision.merge_hulls: a dog bed 38 -> 20 s), the coarse copy
+# never finer than the mesh (a foam puzzle tile 21 -> 8 s)
+# 5: the budget grows while the hulls' union is over 1.5x the mesh (collision.merged_to_cover: a beanie, a hat)
 PARTICLES_VERSION = "2"  # l0.particles alone; 2: a hollow concept's particles are its shell (build_body, with the
 # ParticleBody record; session 32), opt-in: ParticleSettings.hollow_particles (the L0 contract's) keys it
 GAUSSIANS_VERSION = "3"  # l0.gaussians alone; 2: surface discs dense and small for the particle spacing (#36);

@@ -52,6 +52,10 @@ MODIFIERS: dict[str, tuple[float, float, float]] = {
 WEARER_WORDS = frozenset({"newborn", "infant", "toddler"})  # they size garments only ('a newborn puppy plush' is not)
 
 
+FLAT_LYING = 0.4  # z / longest extent under which an object lies flat [-]
+UPRIGHT_OVER_THICK = 2.5  # a stated height this many times the thickness is the height it stands [-]
+
+
 class SizeSpec(Model):
     """Requested size: explicit extents on canonical axes and/or a longest extent, plus relative modifiers."""
 
@@ -63,6 +67,8 @@ class SizeSpec(Model):
                        "long axis, the cross-section stays its typical one")
     flat: bool = Field(default=False, description="a flat good (a towel, a mat, a garment laid flat): a size sets its "
                        "outline, the thickness stays its typical one unless stated")
+    upright: bool = Field(default=False, description="the z size was stated as a height ('30 cm tall'): on an object "
+                          "built lying flat it is the height it stands, its longest side")
     unfold: tuple[float, float] | None = Field(default=None, description="a folded sheet: its folded footprint over "
                                                "the flat sheet's along x and y; a stated size nearer the flat "
                                                "sheet's is the flat sheet's ('a folded towel, 70 x 140 cm') [-]")
@@ -71,6 +77,8 @@ class SizeSpec(Model):
         """Target extents [m] for a mesh whose extents are `current` (x, y, z)."""
         ext = np.asarray(current, dtype=np.float64) * np.asarray(self.axis_scale)
         given = [(i, v) for i, v in enumerate(self.extents_m) if v is not None]
+        if self._stands_on_end(ext, given):  # 'a bag of chips 30 cm tall': a bag on a shelf stands on its end
+            return ext * (given[0][1] / float(ext.max()))
         shaped = self._resolve_form(ext, given)
         if shaped is not None:
             return shaped
@@ -82,6 +90,13 @@ class SizeSpec(Model):
         elif self.longest_m is not None:
             ext = ext * (self.longest_m / float(ext.max()))
         return ext
+
+    def _stands_on_end(self, ext: np.ndarray, given: list[tuple[int, float]]) -> bool:
+        """A height alone, on an object built lying flat (its z under FLAT_LYING of its longest side), far more than
+        its thickness (UPRIGHT_OVER_THICK): the height it stands on its end, not its thickness (a chips bag '30 cm
+        tall' was a 1.3 m bag of 14 kg)."""
+        return (self.upright and len(given) == 1 and given[0][0] == 2 and ext[2] < FLAT_LYING * ext.max()
+                and given[0][1] > UPRIGHT_OVER_THICK * ext[2])
 
     @property
     def explicit(self) -> bool:
@@ -201,7 +216,8 @@ def parse_size(text: str) -> SizeSpec:
             return SizeSpec(longest_m=said.longest_m, stated="; ".join(said.stated))
         return SizeSpec()
     if any(v is not None for v in ext):
-        return SizeSpec(extents_m=tuple(ext), stated="; ".join(stated))
+        upright = any(re.search(r"\b(?:tall|high|height)\b", x, re.I) for x in stated)
+        return SizeSpec(extents_m=tuple(ext), stated="; ".join(stated), upright=upright)
     return SizeSpec(longest_m=longest, stated="; ".join(stated))
 
 

@@ -946,6 +946,9 @@ def build(reading: Reading, text: str) -> tuple[ShapeProgram, ConceptMatch, list
     if goods is not None and goods.nested:  # 'a pack of 12 muffin cups': the cups nested in a stack
         program, match = goods_words.nested_stack(program, match, goods.nested)
         states.append(f"a stack of {goods.nested}")
+    if goods is not None and goods.hand:  # 'a bunch of bananas': a hand of them from one crown
+        program, match = goods_words.hand_of(program, match, goods.hand)
+        states.append(f"a hand of {goods.hand}")
     if goods is not None and goods.bunch:  # 'a bunch of grapes': a cluster of them on a stem
         program, match = goods_words.bunched(program, match)
         states.append("a bunch")

@@ -57,7 +57,7 @@ def _amount(words: str) -> float | None:
 
 
 _FULLNESS = re.compile(r"\b(half|halfway|a quarter|quarter|three quarters|a third|two thirds|partly|partially|mostly|"
-                       r"nearly|almost)\s+(full|empty)\b")
+                       r"nearly|almost)\s+(full|empty|used)\b")  # ('half-used': half of it used, half empty)
 
 
 def stated_fullness(text: str) -> tuple[float, str] | None:
@@ -67,7 +67,7 @@ def stated_fullness(text: str) -> tuple[float, str] | None:
     if m is None:
         return None
     share = AMOUNTS[m.group(1)]
-    return (share if m.group(2) == "full" else 1.0 - share), m.group(0)
+    return (share if m.group(2) == "full" else 1.0 - share), m.group(0)  # (empty or used: the rest is left)
 
 
 _FULL_OF = re.compile(r"\b((?:\d{1,3}\s*%|[a-z]+(?:\s+[a-z]+)?)\s+)?(full|filled|stuffed|packed|loaded)\s+"

@@ -59,6 +59,13 @@ _COUNT = r"(\d+|" + "|".join(sorted(_COUNT_WORDS, key=len, reverse=True)) + r")"
 _GROUP_COUNT = re.compile(r"\b(?:pack|packet|set|bundle|box|bag|net|tray|punnet|carton)\s+of\s+" + _COUNT + r"\s+(?!"
                           + _NOT_COUNTED + r")|^\s*(?:a\s+)?" + _COUNT + r"\s+(?!" + _NOT_COUNTED + r")|"
                           r"\b" + _COUNT + r"[- ]pack\b")
+_HAND_COUNT = re.compile(r"\b(?:bunch|hand)\s+of\s+" + _COUNT + r"\b|^\s*(?:a\s+)?" + _COUNT + r"\s+(?:[a-z]+\s+)?bunch")
+HAND_PLANS = frozenset({"elongated"})
+HAND_DEFAULT = 5  # bananas in a retail hand (4-7) [-]
+HAND_MAX = 5  # most a program's parts hold (with their stems' joins and crown) at 4 arcs each: 11 parts [-]
+HAND_SEGMENTS = 5  # arcs each is swept in [-]
+HAND_PITCH = 0.8  # their spacing / one's width: pressed together [-]
+HAND_RISE = 0.35  # the middle one's lift / one's height [-]
 GROUP_MAX = 12  # pieces drawn side by side at most [-]
 GROUP_PER_ROW = 4  # pieces in a row before the next row [-]
 GROUP_PITCH = 0.9  # the pieces' spacing / one piece's extent: touching, as the mesher keeps one body (as duplicated)
@@ -78,6 +85,7 @@ class GoodsChange:
     duplicate: bool = False
     count: int = 0
     bunch: bool = False
+    hand: int = 0
     nested: int = 0
     fill_color: str | None = None
     notes: tuple[str, ...] = ()
@@ -149,6 +157,14 @@ def apply(target: LexiconEntry, portion: str | None, text: str, params: dict, si
     if count is not None:
         out.count = count
         out.notes += (f"{count} of them side by side",)
+    if portion in BUNCH_WORDS and plan in HAND_PLANS and {**target.params, **out.params}.get("curvature", 0.0) > 0.5:
+        # 'a bunch of bananas': a hand of them, side by side from one crown (a curved fruit; a straight one bunched
+        # is a bundle)
+        said = _HAND_COUNT.search(text)
+        n = (int(said.group(1)) if said.group(1).isdigit() else _COUNT_WORDS.get(said.group(1))) if said else None
+        out.hand = int(np.clip(n or HAND_DEFAULT, 2, HAND_MAX))
+        out.params["segments"] = HAND_SEGMENTS if out.hand <= 4 else HAND_SEGMENTS - 1  # (five of 11 parts each)
+        out.notes += (f"a bunch: a hand of {out.hand} from one crown",)
     if portion in BUNCH_WORDS and plan in BUNCHABLE_PLANS and size_m <= BUNCH_PIECE_MAX_M:
         out.bunch = True
         out.notes += ("a bunch: a cluster of them on a stem",)
@@ -280,6 +296,32 @@ def grouped(program: ShapeProgram, match: ConceptMatch, count: int) -> tuple[Sha
         shift[long_] = GROUP_PITCH * float(ext[long_]) * (k // GROUP_PER_ROW)
         shifts.append(shift)
     return copies(program, match, shifts)
+
+
+def hand_of(program: ShapeProgram, match: ConceptMatch, count: int) -> tuple[ShapeProgram, ConceptMatch]:
+    """A hand of curved fruit (bananas) lying on a table: `count` side by side HAND_PITCH of one's width apart, the
+    inner ones resting a little higher on their neighbours, every stem end joined in one crown; the typical mass
+    times the count."""
+    count = max(1, min(count, (MAX_PARTS - 1) // max(len(program.parts), 1)))
+    if count < 2:
+        return program, match
+    ext = grammar.program_extents(program, 48)
+    mid = 0.5 * (count - 1)
+    shifts = [(0.0, HAND_PITCH * float(ext[1]) * (k - mid), HAND_RISE * float(ext[2]) * (1.0 - abs(k - mid) / mid))
+              for k in range(count)]
+    many, match = copies(program, match, shifts)
+    stems = [q for q in many.parts if part_group(q.name) == "stem"]
+    if stems and len(many.parts) + len(stems) + 1 <= MAX_PARTS:  # the stems drawn in to one crown
+        ends = np.array([q.transform.translation_m for q in stems])
+        r = 0.16 * float(ext[1])
+        crown = (float(ends[:, 0].max()) + 1.5 * r, 0.0, float(ends[:, 2].mean()))
+        rgb = stems[0].color_rgb
+        joins = [limb(f"stem join {k + 1}", tuple(float(v) for v in end), crown, r, blend=0.3 * r) for k, end in
+                 enumerate(ends)]
+        joins.append(ellipsoid("crown", (1.6 * r, 1.8 * r, 1.4 * r), crown, blend=0.3 * r))
+        many = many.model_copy(update={"parts": [*many.parts, *(q.model_copy(update={"color_rgb": rgb})
+                                                                  for q in joins)]})
+    return many, match
 
 
 def moved(part: Part, shift: Sequence[float], name: str) -> Part:

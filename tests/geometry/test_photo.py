@@ -357,12 +357,12 @@ def test_large_photo_is_reduced_as_it_is_read(tmp_path: Path) -> None:
     assert _iou(image.segment(loaded)[0], truth) > 0.9  # upright, not on its side
     s = _fast()
     sources.build_mesh(AssetRequest(image_path=small, size_hint_m=0.3), s)  # warm caches
-    t0 = time.perf_counter()
+    t0 = time.process_time()  # (CPU time: the wall time on a loaded machine measures the other processes too)
     sources.build_mesh(AssetRequest(image_path=small, size_hint_m=0.3), s)
-    t_small = time.perf_counter() - t0
-    t0 = time.perf_counter()
+    t_small = time.process_time() - t0
+    t0 = time.process_time()
     sources.build_mesh(AssetRequest(image_path=big, size_hint_m=0.3), s)
-    t_big = time.perf_counter() - t0
+    t_big = time.process_time() - t0
     assert t_big < 1.5 * t_small + 1.0, (t_big, t_small)
 
 

@@ -128,6 +128,8 @@ class ElongatedParams(Model):
     stem_length: float = Field(default=0.07, gt=0.0, le=0.3, description="a stub stem's length / length [-]")
     blossom: bool = Field(default=False, description="a dark nub at the -x end (a banana's blossom end)")
     flatten: float = Field(default=1.0, gt=0.3, le=1.0, description="height / width of the cross-section [-]")
+    segments: int = Field(default=14, ge=4, le=14, description="arcs the body is swept in (fewer for many of them "
+                          "in one program: a hand of bananas) [-]")
     peeled: float = Field(default=0.0, ge=0.0, le=1.0, description="share of the length peeled from the stem end "
                           "(a banana): the flesh bare there, the peel in three strips folded back from the peel line "
                           "(none when all of it is peeled) [-]")
@@ -148,7 +150,7 @@ def elongated_radius(p: ElongatedParams, t: float) -> float:
 def elongated(p: ElongatedParams) -> list[Part]:
     """A smooth tube swept along a circular arc in the x-z plane (bending up at both ends), tapering as
     `elongated_radius` says; the stem at +x, a blossom nub at -x."""
-    n = ELONGATED_SEGMENTS
+    n = min(p.segments, ELONGATED_SEGMENTS)
     s = np.linspace(-0.5, 0.5, n + 1)
     k = p.curvature
     if k > 1e-6:
