@@ -160,8 +160,8 @@ def apply(target: LexiconEntry, portion: str | None, text: str, params: dict, si
     if portion in BUNCH_WORDS and plan in HAND_PLANS and {**target.params, **out.params}.get("curvature", 0.0) > 0.5:
         # 'a bunch of bananas': a hand of them, side by side from one crown (a curved fruit; a straight one bunched
         # is a bundle)
-        said = _HAND_COUNT.search(text)
-        n = (int(said.group(1)) if said.group(1).isdigit() else _COUNT_WORDS.get(said.group(1))) if said else None
+        hand = _HAND_COUNT.search(text)
+        n = (int(hand.group(1)) if hand.group(1).isdigit() else _COUNT_WORDS.get(hand.group(1))) if hand else None
         out.hand = int(np.clip(n or HAND_DEFAULT, 2, HAND_MAX))
         out.params["segments"] = HAND_SEGMENTS if out.hand <= 4 else HAND_SEGMENTS - 1  # (five of 11 parts each)
         out.notes += (f"a bunch: a hand of {out.hand} from one crown",)
