@@ -66,7 +66,7 @@ LEAN_OUT = {"litellm", "ruff", "mypy"}
 MB = 1_000_000
 PART_MAX = 60 * MB  # the bound on one part
 CALL_MAX = 64 * 1024 * 1024  # what one device call carries: the working tree and the carried folder together
-MARGIN = 2 * MB  # files added to the tree between `prepare` and the calls
+MARGIN = 8 * MB  # files added to the tree between `prepare` and the calls (docs grow ~2 MB a session: contact sheets)
 
 
 def norm(name: str) -> str:

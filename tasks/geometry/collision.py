@@ -58,11 +58,26 @@ def convex_parts(mesh: trimesh.Trimesh, settings: CoacdSettings) -> list[trimesh
         mcts_iterations=settings.mcts_iterations, mcts_nodes=settings.mcts_nodes,
         mcts_max_depth=settings.mcts_max_depth, seed=settings.seed, merge=not own_merge,
     )
-    parts = [trimesh.Trimesh(v, f, process=True).convex_hull for v, f in raw]
-    parts = [p for p in parts if p.volume > 0]
+    parts = [hull for v, f in raw if (hull := piece_hull(v, f)) is not None]
     if own_merge and settings.max_convex_hull > 0:
         parts = merged_to_cover(parts, settings.max_convex_hull, float(mesh.volume), settings.union_ratio_max)
     return parts
+
+
+def piece_hull(vertices: np.ndarray, faces: np.ndarray) -> trimesh.Trimesh | None:
+    """The convex hull of one of CoACD's pieces, None for a flat or degenerate one (unmerged, CoACD can return a
+    sliver of three points: qhull cannot hull it, and it covers no volume)."""
+    from scipy.spatial import QhullError
+
+    points = np.unique(np.asarray(vertices, dtype=np.float64), axis=0)
+    if len(points) < 4:
+        return None
+    try:
+        with np.errstate(invalid="ignore", divide="ignore"):  # (a flat piece's joggled hull has zero-area faces)
+            hull = trimesh.convex.convex_hull(points)
+    except QhullError:
+        return None
+    return hull if hull.volume > 0 else None
 
 
 def merged_to_cover(pieces: list[trimesh.Trimesh], budget: int, volume_m3: float, ratio_max: float

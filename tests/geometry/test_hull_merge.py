@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 import trimesh
 
-from tasks.geometry.collision import GROW_BUDGETS, _coarsen, merge_hulls, merged_to_cover, union_volume
+from tasks.geometry.collision import GROW_BUDGETS, _coarsen, merge_hulls, merged_to_cover, piece_hull, union_volume
 
 
 def _box(lo: tuple[float, float, float], size: float = 0.01) -> trimesh.Trimesh:
@@ -72,3 +72,15 @@ def test_a_hollow_good_gets_more_hulls_until_they_cover_it_closely() -> None:
     assert len(covered) in (*GROW_BUDGETS, len(pieces))
     assert union_volume(covered) <= 1.3 * volume
     assert len(merged_to_cover(pieces, 4, volume, 100.0)) == 4
+
+
+def test_a_flat_or_degenerate_piece_is_dropped_not_an_error() -> None:
+    """Unmerged, CoACD returned a three-point sliver for a pair of crumpled gardening gloves: qhull raised and L0
+    failed with an internal error (sealed set 18). Such a piece covers nothing and is dropped."""
+    tri = np.array([[0.0, 0.0, 0.0], [0.01, 0.0, 0.0], [0.0, 0.01, 0.0]])
+    assert piece_hull(tri, np.array([[0, 1, 2]])) is None
+    flat = np.array([[0.0, 0.0, 0.0], [0.01, 0.0, 0.0], [0.0, 0.01, 0.0], [0.01, 0.01, 0.0]])
+    assert piece_hull(flat, np.array([[0, 1, 2], [1, 3, 2]])) is None
+    box = trimesh.creation.box(extents=(0.01, 0.01, 0.01))
+    hull = piece_hull(np.asarray(box.vertices), np.asarray(box.faces))
+    assert hull is not None and abs(hull.volume - 1e-6) < 1e-12
