@@ -61,10 +61,31 @@ class GeometryInfo(BaseModel):
     concept: dict[str, Any] | None = None
 
 
+class ParticleBody(Model):
+    """geometry.json `particles`: what the MPM particles fill. A hollow object (a tennis ball, a bath duck:
+    ConceptMatch.hollow with a wall) is its shell, the particles within `wall_m` of the surface, when the lattice
+    resolves the wall (at least two particle spacings, within the particle budget); else the solid, and `reason`
+    says why (L1 then weighs the solid at an effective density)."""
+
+    kind: Literal["solid", "shell"] = Field(description="the solid volume, or a hollow object's wall alone")
+    wall_m: float | None = Field(default=None, gt=0, description="the shell's wall thickness (kind 'shell') [m]")
+    requested_wall_m: float | None = Field(default=None, gt=0, description="the concept's wall, built or not [m]")
+    spacing_m: float = Field(gt=0, description="the particle lattice's spacing [m]")
+    volume_m3: float = Field(gt=0, description="what the particle volumes sum to: the mesh volume, or the shell's "
+                             "(the mesh volume x the share of the fine lattice within the wall) [m^3]")
+    enclosed_volume_m3: float = Field(gt=0, description="the mesh's volume [m^3]")
+    reason: str | None = Field(default=None, description="why a hollow object stayed solid (None otherwise)")
+
+    @property
+    def shell(self) -> bool:
+        """True when the particles are a hollow object's wall."""
+        return self.kind == "shell"
+
+
 class GeometryRecord(Model):
     """geometry.json: L0's checks, gates, files and build information."""
 
-    ABSENT_UNLESS_GIVEN: ClassVar[frozenset[str]] = frozenset({"request"})  # keys older records lack
+    ABSENT_UNLESS_GIVEN: ClassVar[frozenset[str]] = frozenset({"request", "particles"})  # keys older records lack
     schema_version: int = 1
     info: GeometryInfo
     metrics: dict[str, float]
@@ -74,6 +95,8 @@ class GeometryRecord(Model):
     warnings: list[str]
     files: dict[str, str]
     request: dict[str, Any] | None = Field(default=None, description="the whole request (records before it: absent)")
+    particles: ParticleBody | None = Field(default=None, description="what the MPM particles fill: the solid or a "
+                                           "hollow object's shell (records before session 32: absent, solid)")
 
 
 class PhysicalRecord(Model):

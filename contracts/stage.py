@@ -173,6 +173,8 @@ class L0Parameters(StageParameters):
     max_particles: PerQuality
     min_particles: int
     min_cells_through_thinnest: int
+    hollow_particles: Literal["solid", "shell"] = Field(description="a hollow concept's MPM particles: 'solid' "
+                                                       "(the whole volume) or 'shell' (its wall alone, opt-in)")
     gaussians_per_particle: float
     gaussian_surface_fraction: float
     max_gaussians: int

@@ -11,6 +11,7 @@ from prefect import flow
 import cache
 from cache import cached_task
 from contracts.agents import AgentConfig
+from contracts.asset_dir import ParticleBody
 from contracts.request import AssetRequest, Quality
 from contracts.stage import StageContract, load_contract
 from tasks.agents.fallbacks import l0_designer_stand_in
@@ -57,6 +58,8 @@ PROXY_VERSION = "5"  # l0.proxy alone; 2: CoACD's coarse copy keeps cells across
 # 4: CoACD's pieces merged down to the budget by ours (collision.merge_hulls: a dog bed 38 -> 20 s), the coarse copy
 # never finer than the mesh (a foam puzzle tile 21 -> 8 s)
 # 5: the budget grows while the hulls' union is over 1.5x the mesh (collision.merged_to_cover: a beanie, a hat)
+PARTICLES_VERSION = "2"  # l0.particles alone; 2: a hollow concept's particles are its shell (build_body, with the
+# ParticleBody record; session 32), opt-in: ParticleSettings.hollow_particles (the L0 contract's) keys it
 GAUSSIANS_VERSION = "3"  # l0.gaussians alone; 2: surface discs dense and small for the particle spacing (#36);
 # 3: on blue-noise surface samples
 
@@ -71,6 +74,7 @@ class L0Result:
     gaussians: Arrays
     info: BuildInfo
     checks: GeometryChecks
+    body: ParticleBody | None = None  # what the particles fill (solid, or a hollow object's shell); None: not recorded
 
 
 def geometry_request(request: AssetRequest) -> AssetRequest:
@@ -92,10 +96,17 @@ def build_proxy(mesh: Arrays, coacd: CoacdSettings) -> Arrays:
     return pipeline.build_proxy(mesh, coacd)
 
 
-@cached_task(version=TASK_VERSION, name="l0.particles")
-def build_particles(mesh: Arrays, particles: ParticleSettings) -> Arrays:
-    """MPM particles with volumes summing to the mesh volume."""
-    return pipeline.build_particles(mesh, particles)
+@cached_task(version=f"{TASK_VERSION}.{PARTICLES_VERSION}", name="l0.particles")
+def build_particles(mesh: Arrays, particles: ParticleSettings, wall_m: float | None = None,
+                    solid_reason: str | None = None) -> tuple[Arrays, ParticleBody]:
+    """MPM particles with volumes summing to the mesh volume, or to a hollow object's shell of wall_m."""
+    return pipeline.build_body(mesh, particles, wall_m, solid_reason)
+
+
+def _wall(request: AssetRequest, info: BuildInfo) -> tuple[float | None, str | None]:
+    """The wall the particles are a shell of (pipeline.hollow_wall), from the concept and the whole request's
+    material words (its material intent too: L1 weighs the object by them)."""
+    return pipeline.hollow_wall(info.concept, request.material_intent or request.text)
 
 
 @cached_task(version=GAUSSIANS_VERSION, name="l0.gaussians")
@@ -121,11 +132,18 @@ def l0_geometry(request: AssetRequest, settings: L0Settings, contract: StageCont
     """Build and check the geometry of one request."""
     mesh, info = build_mesh(geometry_request(request), settings)
     proxy = build_proxy(mesh, settings.coacd)
-    particles = build_particles(mesh, settings.particles)
+    particles, body = build_particles(mesh, settings.particles, *_wall(request, info))
     gaussians = build_gaussians(mesh, particles, settings.gaussians_per_particle, settings.gaussian_surface_fraction,
                                 settings.max_gaussians, settings.seed)
     checks = check_geometry(mesh, proxy, particles, gaussians, contract)
-    return L0Result(mesh, proxy, particles, gaussians, info, checks)
+    return L0Result(mesh, proxy, particles, gaussians, info, checks, body)
+
+
+def with_hollow_particles(kind: str, contract: StageContract | None = None) -> StageContract:
+    """The L0 contract (the packaged one by default) with its hollow_particles parameter set: 'shell' builds a hollow
+    concept's particles as its wall (opt-in, `deformsmith geometry --hollow-shell`), 'solid' as the whole volume."""
+    contract = contract or load_contract("L0")
+    return contract.model_copy(update={"parameters": {**contract.parameters, "hollow_particles": kind}})
 
 
 def run_l0(request: AssetRequest, quality: Quality | None = None, contract: StageContract | None = None,
@@ -146,7 +164,8 @@ def run_l0(request: AssetRequest, quality: Quality | None = None, contract: Stag
     result = _run_l0(request, settings, contract, use_cache)
     if stood_in is not None:  # the offline build is cached under the offline key, so a later run with a key asks
         info = result.info.model_copy(update={"warnings": [*result.info.warnings, stood_in]})
-        result = L0Result(result.mesh, result.proxy, result.particles, result.gaussians, info, result.checks)
+        result = L0Result(result.mesh, result.proxy, result.particles, result.gaussians, info, result.checks,
+                          result.body)
     return result
 
 
@@ -156,10 +175,10 @@ def _run_l0(request: AssetRequest, settings: pipeline.L0Settings, contract: Stag
     if not use_cache:
         mesh, info = sources.build_mesh(geometry_request(request), settings)
         proxy = pipeline.build_proxy(mesh, settings.coacd)
-        particles = pipeline.build_particles(mesh, settings.particles)
+        particles, body = pipeline.build_body(mesh, settings.particles, *_wall(request, info))
         gaussians = pipeline.build_gaussians(mesh, particles, settings)
         return L0Result(mesh, proxy, particles, gaussians, info,
-                        pipeline.check_geometry(mesh, proxy, particles, gaussians, contract))
+                        pipeline.check_geometry(mesh, proxy, particles, gaussians, contract), body)
     with cache.local_runtime():
         return l0_geometry(request, settings, contract)
 
@@ -174,8 +193,9 @@ def write_l0(result: L0Result, out_dir: Path, extra: dict | None = None,
     files: dict[str, str] = {}
 
     def build(tmp: Path) -> None:
+        body = {"particles": result.body.model_dump(mode="json")} if result.body is not None else {}
         files.update(write_outputs(tmp, result.mesh, result.proxy, result.particles, result.gaussians, result.info,
-                                   result.checks, extra))
+                                   result.checks, {**body, **(extra or {})}))
         if result.info.design_attempts:  # the LLM Designer's attempts, as the other stages record theirs
 
             recorder = AttemptRecorder(tmp, "L0")
@@ -187,4 +207,4 @@ def write_l0(result: L0Result, out_dir: Path, extra: dict | None = None,
     return files
 
 
-__all__ = ["L0Result", "run_l0", "write_l0", "l0_geometry", "geometry_request", "np"]
+__all__ = ["L0Result", "run_l0", "write_l0", "with_hollow_particles", "l0_geometry", "geometry_request", "np"]

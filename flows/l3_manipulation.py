@@ -126,7 +126,7 @@ def load_context(asset_dir: Path, options: L3Options, contract: StageContract,
     g = gripper(name)
     spacing = options.particle_spacing_m or auto_trial_spacing(asset.mesh.extents, options.quality, g.pad_face_m)
     body = trial_body(asset.mesh, asset.particles_m, asset.spacing_m, asset.gaussians, spacing,
-                      surface_samples=SURFACE_SAMPLES)
+                      surface_samples=SURFACE_SAMPLES, shell_volumes_m3=asset.volumes_m3 if asset.shell else None)
     nominal = squeeze_plan(width_m=g.stroke_m, pad_area_m2=g.pad_area_m2, gripper_max_n=g.spec.max_grip_force_n,
                            friction=physical.gripper_friction, **hold)
     reasons: list[str] = []

@@ -18,6 +18,10 @@ from tasks.report.layers import geometry_line
 QUALITIES = ("draft", "standard", "high")
 GEOMETRY_BACKEND_HELP = ("reconstruction backend that makes the mesh: a Python entry point 'module:function' or an "
                          "HTTP endpoint 'http://host:port/path' (interface: tasks/geometry/backends.py)")
+HOLLOW_SHELL_HELP = ("build a hollow object's (a tennis ball's) MPM particles as its wall alone (the L0 contract's "
+                     "hollow_particles: shell); default solid: without a gas-pressure model a rubber shell is a dead "
+                     "ball (tennis-ball rule rebound 0.12 against 0.53-0.58). `physical` and `material` on the "
+                     "directory follow geometry.json's record")
 STRICT_CONCEPT_HELP = ("refuse an object the lexicon does not name (exit 2, nothing written) instead of building it by "
                        "analogy")
 
@@ -48,6 +52,7 @@ def geometry(
     geometry_backend: str = typer.Option(None, "--geometry-backend", envvar="DEFORMSMITH_GEOMETRY_BACKEND",
                                          help=GEOMETRY_BACKEND_HELP),
     strict_concept: bool = typer.Option(False, "--strict-concept", help=STRICT_CONCEPT_HELP),
+    hollow_shell: bool = typer.Option(False, "--hollow-shell", help=HOLLOW_SHELL_HELP),
 ) -> None:
     """Run L0 alone: text, image or mesh -> mesh.glb, collision/, particles.zarr, gaussians.ply, renders/, geometry.json."""
     # lazy: contracts.asset_dir's models (~0.1 s; --help imports every command module)
@@ -74,10 +79,11 @@ def geometry(
     check_request(request, out, cache=not no_cache)  # image header, output parent and cache root usable
     prefect_log_level("CRITICAL")  # user errors surface as one line, not task tracebacks
     # lazy: pulls prefect, trimesh, zarr (--help imports every command module)
-    from flows.l0_geometry import run_l0, write_l0
+    from flows.l0_geometry import run_l0, with_hollow_particles, write_l0
 
+    contract = with_hollow_particles("shell") if hollow_shell else None
     with console.status(f"L0 geometry ({quality})..."):
-        result = run_l0(request, use_cache=not no_cache, agents=_agents(llm, llm_fallback))
+        result = run_l0(request, contract=contract, use_cache=not no_cache, agents=_agents(llm, llm_fallback))
         write_l0(result, out, request=request)
     if as_json:
         emit_json(document_json(AssetDir(out).geometry()))

@@ -74,15 +74,20 @@ def write_readme(out_dir: Path, target: str, load_hint: str, lines: Sequence[str
 
 def export_material(adir: AssetDir) -> ExportMaterial:
     """The asset's adopted material (AssetDir.adopted_material) with L1's density, mass and friction (InputError when
-    L2 did not pass)."""
+    L2 did not pass). The export is a solid tet mesh of the surface: a hollow object whose particles are its shell
+    (geometry.json `particles`) goes out at its mass over the enclosed volume (an effective density), so that it
+    weighs what the asset weighs."""
     record = adir.material()
     if record.material is None or not record.passed:
         raise InputError(f"{adir.file('material')}: L2 did not validate a material ({record.message or 'failed'}); "
                          "only a validated material is exported")
     physical = adir.physical_model()
     m = adir.adopted_material().material
+    body = adir.geometry().particles
+    density = physical.mass_kg / body.enclosed_volume_m3 if body is not None and body.shell \
+        else physical.density_kg_per_m3
     return ExportMaterial(youngs_modulus_pa=m.youngs_modulus_pa, poisson_ratio=m.poisson_ratio,
-                          density_kg_per_m3=physical.density_kg_per_m3, damping_rate_per_s=m.damping_rate_per_s,
+                          density_kg_per_m3=density, damping_rate_per_s=m.damping_rate_per_s,
                           viscosity_pa_s=m.viscosity_pa_s,
                           ground_friction=physical.ground_friction, gripper_friction=physical.gripper_friction,
                           mass_kg=physical.mass_kg)

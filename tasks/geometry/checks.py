@@ -86,7 +86,10 @@ def geometry_metrics(
         "particle_count": float(len(pos)),
         "particle_spacing_m": float(particles["spacing_m"]),
         "particle_mesh_distance_max_m": float(outside_distance(mesh, pos).max()),
-        "particle_volume_ratio": float(vol.sum() / volume) if volume > 0 else 0.0,
+        # against what the particles fill: the mesh volume, or a hollow object's shell (build_body's body_volume_m3)
+        "particle_volume_ratio": float(vol.sum() / float(particles.get("body_volume_m3", volume)))
+        if volume > 0 else 0.0,
+        "particle_body_volume_ratio": float(particles.get("body_volume_m3", volume)) / volume if volume > 0 else 0.0,
         "particle_lattice_fill_ratio": float(particles["lattice_fill_ratio"]),
         "particle_com_offset_m": float(np.linalg.norm(p_com - com)),
         "gaussian_count": float(len(gpos)),

@@ -18,7 +18,7 @@ from tasks.geometry.collision import write_collision
 from tasks.geometry.gaussians import read_3dgs_ply, rest_covariances, write_3dgs_ply
 from tasks.geometry.glb import write_glb
 from tasks.geometry.pipeline import Arrays, BuildInfo, arrays_to_mesh, proxy_parts
-from contracts.asset_dir import GEOMETRY_JSON, GeometryRecord
+from contracts.asset_dir import GEOMETRY_JSON, GeometryRecord, ParticleBody
 from tasks.asset_dir import AssetDir, document_json
 from tasks.publish import replace_directory
 from tasks.render.finish import finish_for
@@ -84,13 +84,25 @@ class L0Asset:
 
     mesh: trimesh.Trimesh                 # watertight, vertex colours
     particles_m: np.ndarray               # (N, 3) rest positions [m]
-    volumes_m3: np.ndarray                # (N,), sums to mesh.volume [m^3]
+    volumes_m3: np.ndarray                # (N,), sums to mesh.volume (a hollow object's shell: the shell's) [m^3]
     particle_colors: np.ndarray           # (N, 3) uint8
     spacing_m: float                      # lattice spacing [m]
     urdf: Path                            # convex collision proxy for pybullet
     proxy_parts: list[trimesh.Trimesh]    # convex parts
     gaussians: dict[str, np.ndarray]      # rest Gaussians from gaussians.ply (+ binding arrays)
     record: dict                          # geometry.json
+
+    @property
+    def body(self) -> ParticleBody | None:
+        """What the particles fill (geometry.json `particles`): the solid or a hollow object's shell; None in records
+        written before session 32 (solid)."""
+        rec = self.record.get("particles")
+        return ParticleBody.model_validate(rec) if rec else None
+
+    @property
+    def shell(self) -> bool:
+        """True when the particles are a hollow object's wall alone (their volumes sum to the shell's)."""
+        return self.body is not None and self.body.shell
 
     def gaussian_covariances(self) -> np.ndarray:
         """Rest covariances (G, 3, 3) [m^2] of the Gaussians."""

@@ -10,6 +10,7 @@ import trimesh
 from pydantic import Field
 
 from contracts.agents import RoleConfig
+from contracts.asset_dir import ParticleBody
 from contracts.base import Model
 from contracts.concept import ConceptMatch
 from contracts.errors import InputError
@@ -17,6 +18,7 @@ from contracts.evidence import Attempt
 from contracts.request import AssetRequest, Quality
 from contracts.shape import ShapeProgram
 from contracts.stage import L0Parameters, StageContract, load_contract
+from tasks.agents.intent import match_material, own_nouns
 from tasks.geometry import catalogue, concepts
 from tasks.geometry.bend import MIN_ASPECT, bend_along_length, can_bend, stated_bend
 from tasks.geometry.canonical import canonicalize, rest_on_ground, seat_flat
@@ -24,7 +26,7 @@ from tasks.geometry.checks import GeometryChecks, evaluate, geometry_metrics
 from tasks.geometry.collision import CoacdSettings, convex_parts, union_volume
 from tasks.geometry.gaussians import make_gaussians
 from tasks.geometry.meshing import mesh_program, scale_to_extents
-from tasks.geometry.particles import ParticleSettings, sample_particles
+from tasks.geometry.particles import ParticleSettings, ShellUnresolved, sample_particles, sample_shell
 from tasks.geometry.silhouette import PhotoReconstruction
 
 Arrays = dict[str, np.ndarray]
@@ -62,6 +64,7 @@ def settings_from_contract(quality: Quality, contract: StageContract | None = No
             max_particles=int(p["max_particles"][quality]),
             min_particles=typed.min_particles,
             min_cells_through_thinnest=typed.min_cells_through_thinnest,
+            hollow_particles=typed.hollow_particles,
         ),
         coacd=CoacdSettings(**coacd),
         gaussians_per_particle=float(p["gaussians_per_particle"]),
@@ -197,11 +200,57 @@ def proxy_parts(proxy: Arrays) -> list[trimesh.Trimesh]:
 
 
 def build_particles(mesh: Arrays, settings: ParticleSettings) -> Arrays:
-    """positions_m (N, 3), volumes_m3 (N,) summing to the mesh volume, colors (N, 3) uint8, spacing_m, lattice_fill_ratio."""
+    """positions_m (N, 3), volumes_m3 (N,) summing to the mesh volume, colors (N, 3) uint8, spacing_m, lattice_fill_ratio,
+    body_volume_m3 (what the volumes sum to: the mesh volume)."""
+    return build_body(mesh, settings)[0]
+
+
+SHELL_OPT_IN = ("built solid: a shell is opt-in (L0 parameter hollow_particles: shell) until a gas-pressure model "
+                "keeps a pressurised ball's bounce (a rubber shell alone: tennis-ball rule rebound 0.12, rule 0.53-0.58)")
+
+
+def build_body(mesh: Arrays, settings: ParticleSettings, wall_m: float | None = None,
+               solid_reason: str | None = None) -> tuple[Arrays, ParticleBody]:
+    """The MPM particles and what they fill: a hollow object's shell of wall_m (tasks.geometry.particles.sample_shell)
+    when given, settings.hollow_particles is 'shell' (opt-in: SHELL_OPT_IN says why) and the lattice resolves the wall
+    within the budget, else the solid (build_particles' arrays; the reason a hollow object stayed solid in the record:
+    solid_reason, SHELL_OPT_IN, or why its wall could not be resolved)."""
     m = arrays_to_mesh(mesh)
+    volume = float(m.volume)
+    if wall_m is not None and settings.hollow_particles != "shell":
+        solid_reason = SHELL_OPT_IN
+    elif wall_m is not None:
+        try:
+            pos, vol, col, dx, fill, shell_m3 = sample_shell(m, settings, wall_m)
+        except ShellUnresolved as exc:
+            solid_reason = f"built solid: {exc}"
+        else:
+            arrays = {"positions_m": pos, "volumes_m3": vol, "colors": col, "spacing_m": np.array(dx),
+                      "lattice_fill_ratio": np.array(fill), "body_volume_m3": np.array(shell_m3)}
+            return arrays, ParticleBody(kind="shell", wall_m=wall_m, requested_wall_m=wall_m, spacing_m=dx,
+                                        volume_m3=shell_m3, enclosed_volume_m3=volume)
     pos, vol, col, dx, fill = sample_particles(m, settings)
-    return {"positions_m": pos, "volumes_m3": vol, "colors": col, "spacing_m": np.array(dx),
-            "lattice_fill_ratio": np.array(fill)}
+    arrays = {"positions_m": pos, "volumes_m3": vol, "colors": col, "spacing_m": np.array(dx),
+              "lattice_fill_ratio": np.array(fill), "body_volume_m3": np.array(volume)}
+    return arrays, ParticleBody(kind="solid", requested_wall_m=wall_m, spacing_m=dx, volume_m3=volume,
+                                enclosed_volume_m3=volume, reason=solid_reason)
+
+
+def hollow_wall(concept: ConceptMatch | None, words: str | None) -> tuple[float | None, str | None]:
+    """The wall a hollow concept's particles are a shell of [m], else None with the reason a hollow object is built
+    solid (None for a solid concept): a one-layer sheet (its built solid is that layer already), no wall in the lexicon
+    (an effective density instead), or a material the words name that is not the concept's ('a foam tennis ball')."""
+    if concept is None or not concept.hollow:
+        return None, None
+    if concept.sheet:
+        return None, "built solid: a one-layer sheet drawn as a thin solid (its particles are that layer)"
+    if concept.wall_thickness_m is None:
+        return None, "built solid: the lexicon gives no wall thickness (an effective density instead)"
+    if words and concept.default_material is not None:
+        named = match_material(words, None, concept.default_material, own_nouns(concept), True)
+        if named != concept.default_material:
+            return None, f"built solid: the words name {named}, not the {concept.default_material} of its wall"
+    return concept.wall_thickness_m, None
 
 
 def build_gaussians(mesh: Arrays, particles: Arrays, settings: L0Settings) -> Arrays:

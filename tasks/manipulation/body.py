@@ -2,7 +2,8 @@
 
 Resampling the L0 volume at a finer lattice is a NUMERICAL choice of L3 (the pads build grip force only on a grid
 of <= ~5 mm): the physical model (density, mass, friction) and the material stay those of L1 / L2. The particle
-volumes are the mesh volume shared equally, so sum V_i = mesh volume and m = rho V as in L1. The L0 Gaussians are
+volumes are the mesh volume shared equally, so sum V_i = mesh volume and m = rho V as in L1 (a hollow object's shell
+keeps L0's particles and volumes, summing to the shell's volume). The L0 Gaussians are
 re-bound to the trial particles (same kernel as L0) so replay can drive them from the recorded particle states.
 """
 
@@ -59,17 +60,24 @@ def lattice_inside(mesh: trimesh.Trimesh, spacing_m: float) -> np.ndarray:
 
 def trial_body(mesh: trimesh.Trimesh, l0_particles_m: np.ndarray, l0_spacing_m: float, gaussians: dict[str, np.ndarray],
                spacing_m: float | None = None, surface_samples: int = 2000, max_gaussians: int = 100_000,
-               seed: int = 0) -> TrialBody:
-    """The trial's object: the L0 particles, or the mesh volume resampled at ``spacing_m`` when that differs."""
+               seed: int = 0, shell_volumes_m3: np.ndarray | None = None) -> TrialBody:
+    """The trial's object: the L0 particles, or the mesh volume resampled at ``spacing_m`` when that differs. A hollow
+    object's shell (shell_volumes_m3: L0's particle volumes, summing to the shell's) is always L0's particles and
+    volumes: its lattice already resolves the wall (at most half the wall apart), which a coarser trial lattice would
+    not, and a finer one is not needed for the pads."""
     if not mesh.is_watertight:
         raise InputError("the trial body needs a watertight mesh")
-    if spacing_m is None or abs(spacing_m - l0_spacing_m) <= 0.01 * l0_spacing_m:
+    if shell_volumes_m3 is not None:
+        pts, spacing = np.asarray(l0_particles_m, dtype=np.float64), float(l0_spacing_m)
+        volumes = np.asarray(shell_volumes_m3, dtype=np.float64)
+    elif spacing_m is None or abs(spacing_m - l0_spacing_m) <= 0.01 * l0_spacing_m:
         pts, spacing = np.asarray(l0_particles_m, dtype=np.float64), float(l0_spacing_m)
     else:
         pts, spacing = lattice_inside(mesh, spacing_m), float(spacing_m)
         if len(pts) < 8:
             raise InputError(f"a {spacing_m * 1000:.1f} mm lattice puts only {len(pts)} particles inside the mesh")
-    volumes = np.full(len(pts), float(mesh.volume) / len(pts))
+    if shell_volumes_m3 is None:
+        volumes = np.full(len(pts), float(mesh.volume) / len(pts))
     surf, faces = trimesh.sample.sample_surface_even(mesh, surface_samples, seed=seed)
     normals = np.asarray(mesh.face_normals[faces], dtype=np.float64)
     g_pos = np.asarray(gaussians["positions_m"], dtype=np.float64)

@@ -1,6 +1,7 @@
 """L1's mass check: the material's density range times the volume, and the named object's typical mass when L0 knows
-it (contracts.concept.ConceptMatch). Hollow objects get an effective density: the shell's mass over the enclosed
-volume, so that the solid MPM body weighs what the real, hollow one weighs."""
+it (contracts.concept.ConceptMatch). A hollow object built as its shell (L0's ParticleBody) has the wall's mass over
+the shell's particles; one built solid gets an effective density: the shell's mass over the enclosed volume, so that
+the solid MPM body weighs what the real, hollow one weighs."""
 
 from __future__ import annotations
 
@@ -103,8 +104,14 @@ def _g(kg: float) -> str:
 def mass_check(volume_m3: float, longest_m: float, area_m2: float, material: str, density_prior: float,
                density_range: tuple[float, float], concept: ConceptMatch | None = None,
                shell_wall_m: float | None = None, stated_density: bool = False,
-               density_bounds: tuple[float, float] = (0.0, math.inf)) -> MassCheck:
+               density_bounds: tuple[float, float] = (0.0, math.inf),
+               enclosed_volume_m3: float | None = None) -> MassCheck:
     """The mass band, density prior and gate range of an object of this volume, material and (optional) concept.
+
+    volume_m3 is what the particles fill; enclosed_volume_m3, when given and larger, the mesh's: the particles are a
+    hollow object's shell (L0's ParticleBody), the concept's wall mass is found from the mesh (its area x wall, at most
+    its volume) and spread over the shell, so the density prior is the wall's (not an effective density over the
+    enclosed volume).
 
     With no concept that applies: the material's density range x volume (a hollow concept with no typical mass but
     a wall thickness: the shell's mass). With one: the intersection of that band with [0.5, 2] x the concept's typical
@@ -123,8 +130,10 @@ def mass_check(volume_m3: float, longest_m: float, area_m2: float, material: str
         band = _clamp_band(stated * STATED_BAND_FACTOR[0], stated * STATED_BAND_FACTOR[1])
         return _finish(band, stated, volume_m3, density_prior, None, [check], stated, True, stated_density,
                        density_bounds, [f"the request gives {_g(stated)}: effective density = that mass / volume"])
+    enclosed = enclosed_volume_m3 if enclosed_volume_m3 is not None else volume_m3
+    shell = enclosed > volume_m3 * (1.0 + 1e-9)
     applies = concept_applies(concept, material)
-    cband = concept_band(concept, longest_m, volume_m3, area_m2) if applies and concept is not None else None
+    cband = concept_band(concept, longest_m, enclosed, area_m2) if applies and concept is not None else None
     notes: list[str] = []
     if concept is not None and not applies:
         notes.append(f"the typical mass of {concept.concept} is for {concept.default_material}; the request names "
@@ -137,7 +146,7 @@ def mass_check(volume_m3: float, longest_m: float, area_m2: float, material: str
         return MassCheck(band_kg=by_density, density_kg_per_m3=density_prior, density_range_kg_per_m3=density_range,
                          checks=[density_check], source=density_check, notes=notes)
     assert concept is not None
-    typical, how = _typical(concept, longest_m, volume_m3, area_m2)
+    typical, how = _typical(concept, longest_m, enclosed, area_m2)
     if typical is None:
         typical, how = math.sqrt(cband[0] * cband[1]), "the middle of L0's range"
     typical_check = f"typical mass of {concept.concept} ({concept.mass_source or 'lexicon'})"
@@ -149,7 +158,10 @@ def mass_check(volume_m3: float, longest_m: float, area_m2: float, material: str
         band, checks, effective = (lo, hi), [density_check, typical_check], False
     else:
         band, checks, effective = _clamp_band(*cband), [typical_check], True
-        if concept.hollow:
+        if concept.hollow and shell:
+            notes.append(f"hollow {concept.concept} built as its shell ({volume_m3 * 1e6:.3g} cm^3 of particles in "
+                         f"{enclosed * 1e6:.3g} cm^3): density = wall mass / shell volume")
+        elif concept.hollow:
             notes.append(f"hollow {concept.concept}: effective density = shell mass / enclosed volume")
         elif own_outside:
             notes.append(f"{concept.concept} has its own effective density {own:g} kg/m^3, outside the {density_check}: "
