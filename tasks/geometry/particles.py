@@ -41,22 +41,35 @@ def inside_lattice(mesh: trimesh.Trimesh, origin: np.ndarray, spacing: float, sh
     return winding > 0
 
 
-def _lattice(mesh: trimesh.Trimesh, dx: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def _fine_grid(mesh: trimesh.Trimesh, dx: float) -> tuple[np.ndarray, np.ndarray, np.ndarray, float, np.ndarray]:
+    """The lattice of cells dx across centred on the mesh's box: (cells per axis, its corner [m], the first
+    sub-sample's centre [m], the sub-sample spacing [m], which sub-samples (_SUB per cell per axis) lie inside)."""
     lo, hi = mesh.bounds
     n = np.maximum(np.ceil((hi - lo) / dx).astype(int), 1)
     origin = lo + 0.5 * ((hi - lo) - n * dx)  # centre the lattice on the bounding box
     h = dx / _SUB
-    fine = inside_lattice(mesh, origin + 0.5 * h + _OFFSET * dx, h, tuple(int(v) for v in n * _SUB))
-    blocks = fine.reshape(n[0], _SUB, n[1], _SUB, n[2], _SUB)
+    o_fine = origin + 0.5 * h + _OFFSET * dx
+    return n, origin, o_fine, h, inside_lattice(mesh, o_fine, h, tuple(int(v) for v in n * _SUB))
+
+
+def _cell_centroids(keep: np.ndarray, n: np.ndarray, origin: np.ndarray, dx: float
+                    ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Per cell holding any kept sub-sample: the kept sub-samples' centroid [m], their share of the cell, the cell."""
+    h = dx / _SUB
+    blocks = keep.reshape(n[0], _SUB, n[1], _SUB, n[2], _SUB)
     count = blocks.sum(axis=(1, 3, 5))
     cells = np.argwhere(count > 0)
     sub = np.argwhere(np.ones((_SUB,) * 3, dtype=bool))
-    # centroid of the inside sub-samples of each cell
     occ = blocks.transpose(0, 2, 4, 1, 3, 5)[cells[:, 0], cells[:, 1], cells[:, 2]].reshape(len(cells), -1)
     centroid_sub = (occ[:, :, None] * sub[None]).sum(axis=1) / occ.sum(axis=1, keepdims=True)
     pos = origin + (cells * _SUB + centroid_sub + 0.5) * h + _OFFSET * dx
     frac = count[cells[:, 0], cells[:, 1], cells[:, 2]] / float(_SUB**3)
     return pos, frac, cells
+
+
+def _lattice(mesh: trimesh.Trimesh, dx: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    n, origin, _, _, fine = _fine_grid(mesh, dx)
+    return _cell_centroids(fine, n, origin, dx)
 
 
 def sample_particles(
@@ -104,26 +117,14 @@ def surface_distance(mesh: trimesh.Trimesh, points: np.ndarray, wall_m: float, u
 def _shell_lattice(mesh: trimesh.Trimesh, dx: float, wall_m: float) -> tuple[np.ndarray, np.ndarray, float]:
     """The lattice cells holding the wall: positions (centroids of the cell's sub-samples inside the mesh and within
     wall_m of its surface), the cells' filled fractions, and the wall's share of the inside sub-samples."""
-    lo, hi = mesh.bounds
-    n = np.maximum(np.ceil((hi - lo) / dx).astype(int), 1)
-    origin = lo + 0.5 * ((hi - lo) - n * dx)
-    h = dx / _SUB
-    o_fine = origin + 0.5 * h + _OFFSET * dx
-    fine = inside_lattice(mesh, o_fine, h, tuple(int(v) for v in n * _SUB))
+    n, origin, o_fine, h, fine = _fine_grid(mesh, dx)
     idx = np.argwhere(fine)
     if len(idx) == 0:
         return np.zeros((0, 3)), np.zeros(0), 0.0
     near = surface_distance(mesh, o_fine + idx * h, wall_m, upper_m=wall_m) < wall_m
     wall = np.zeros_like(fine)
     wall[tuple(idx[near].T)] = True
-    blocks = wall.reshape(n[0], _SUB, n[1], _SUB, n[2], _SUB)
-    count = blocks.sum(axis=(1, 3, 5))
-    cells = np.argwhere(count > 0)
-    sub = np.argwhere(np.ones((_SUB,) * 3, dtype=bool))
-    occ = blocks.transpose(0, 2, 4, 1, 3, 5)[cells[:, 0], cells[:, 1], cells[:, 2]].reshape(len(cells), -1)
-    centroid_sub = (occ[:, :, None] * sub[None]).sum(axis=1) / occ.sum(axis=1, keepdims=True)
-    pos = o_fine - 0.5 * h + (cells * _SUB + centroid_sub + 0.5) * h
-    frac = count[cells[:, 0], cells[:, 1], cells[:, 2]] / float(_SUB**3)
+    pos, frac, _ = _cell_centroids(wall, n, origin, dx)
     return pos, frac, float(near.sum()) / float(len(idx))
 
 
