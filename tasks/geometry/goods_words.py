@@ -61,6 +61,11 @@ _GROUP_COUNT = re.compile(r"\b(?:pack|packet|set|bundle|box|bag|net|tray|punnet|
                           r"\b" + _COUNT + r"[- ]pack\b")
 _HAND_COUNT = re.compile(r"\b(?:bunch|hand)\s+of\s+" + _COUNT + r"\b|^\s*(?:a\s+)?" + _COUNT + r"\s+(?:[a-z]+\s+)?bunch")
 HAND_PLANS = frozenset({"elongated"})
+_STRAW = re.compile(r"\b(?:with|and|plus)\s+(?:a\s+|its\s+|the\s+)?(?:\w+\s+)?straw\b|\bstraw\s+(?:in|stuck)\b")
+# 'a stack of 5 pancakes', 'five stacked pancakes': the layers of a stacked disc (DiscParams.layers)
+_STACK_COUNT = re.compile(r"\b(?:stack|pile|tower)\s+of\s+" + _COUNT + r"\b|^\s*(?:a\s+)?" + _COUNT
+                          + r"\s+(?:[a-z]+\s+)?(?:stacked|piled)\b")
+STACK_MAX = 8  # layers a stack is drawn with (DiscParams allows 12; a taller stack reads as a cylinder) [-]
 HAND_DEFAULT = 5  # bananas in a retail hand (4-7) [-]
 HAND_MAX = 5  # most a program's parts hold (with their stems' joins and crown) at 4 arcs each: 11 parts [-]
 HAND_SEGMENTS = 5  # arcs each is swept in [-]
@@ -129,6 +134,9 @@ def apply(target: LexiconEntry, portion: str | None, text: str, params: dict, si
             out.notes += (f"{count} of them side by side",)
         return out
     fields = grammar.PLANS[plan][0].model_fields
+    if plan == "pouch" and _STRAW.search(text):  # 'a juice pouch with a straw'
+        out.params["port"] = "straw"
+        out.notes += ("a straw through its top",)
     _folds(out, plan, {**target.params, **out.params}, text)
     _puffy(out, plan, {**target.params, **out.params}, text)
     if portion in PAIR_WORDS and _is_pair_itself(plan, {**target.params, **out.params}):
@@ -151,15 +159,26 @@ def apply(target: LexiconEntry, portion: str | None, text: str, params: dict, si
         word = nest.group(1)
         out.nested = int(word) if word and word.isdigit() else _COUNT_WORDS.get(word or "", NEST_DEFAULT)
         out.notes += (f"a stack of {out.nested}, nested",)
+    layers = int({**target.params, **out.params}.get("layers", 1))
+    stack = _STACK_COUNT.search(text) if plan == "disc" else None
+    if stack is not None:  # 'a stack of 5 pancakes': the stacked disc's layers, its height and mass with them
+        word = stack.group(1) or stack.group(2)
+        n = int(np.clip(int(word) if word.isdigit() else _COUNT_WORDS.get(word, layers), 2, STACK_MAX))
+        height = float({**target.params, **out.params}.get("height", 0.1))
+        out.params.update(layers=n, height=height * n / layers)
+        mass = match.typical_mass_kg * n / layers if match.typical_mass_kg else None  # (one disc's times n)
+        out.match = out.match.model_copy(update={"typical_mass_kg": mass})
+        out.notes += (f"a stack of {n}",)
     goods = plan not in UNGROUPED_PLANS or (plan == "pouch" and fill is None and not target.key.startswith("generic"))
+    goods = goods and stack is None
     # (a pouch is a good of its own, 'three juggling beanbags', unless it is the pack the count is inside of)
     count = group_count(text) if goods and portion not in PAIR_WORDS | BUNCH_WORDS else None
     if count is not None:
         out.count = count
         out.notes += (f"{count} of them side by side",)
-    if portion in BUNCH_WORDS and plan in HAND_PLANS and {**target.params, **out.params}.get("curvature", 0.0) > 0.5:
-        # 'a bunch of bananas': a hand of them, side by side from one crown (a curved fruit; a straight one bunched
-        # is a bundle)
+    if portion in BUNCH_WORDS and plan in HAND_PLANS and size_m > BUNCH_PIECE_MAX_M:
+        # 'a bunch of bananas': a hand of them, side by side from one crown; 'a bunch of carrots' the same, their
+        # leafy tops gathered
         hand = _HAND_COUNT.search(text)
         n = (int(hand.group(1)) if hand.group(1).isdigit() else _COUNT_WORDS.get(hand.group(1))) if hand else None
         out.hand = int(np.clip(n or HAND_DEFAULT, 2, HAND_MAX))
@@ -376,8 +395,9 @@ def copies(program: ShapeProgram, match: ConceptMatch, shifts: Sequence[Sequence
              for k, shift in enumerate(shifts) for p in program.parts]
     many = program.model_copy(update={"parts": parts})
     mass = match.typical_mass_kg * len(shifts) if match.typical_mass_kg else None
-    return many, match.model_copy(update={"typical_mass_kg": mass,
-                                          "typical_size_m": float(grammar.program_extents(many, 48).max())})
+    span = np.ptp(np.asarray(shifts, dtype=np.float64).reshape(-1, 3), axis=0)  # (the copies' extents from one's: a
+    longest = float((grammar.program_extents(program, 48) + span).max())  # thin disc spread wide falls between voxels)
+    return many, match.model_copy(update={"typical_mass_kg": mass, "typical_size_m": longest})
 
 
 def painted_fill(program: ShapeProgram, color: str) -> ShapeProgram:

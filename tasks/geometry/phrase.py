@@ -41,7 +41,7 @@ PORTION_NOUNS = frozenset({"slice", "wedge", "piece", "chunk", "lump", "block", 
                            "strip", "cube", "disc", "disk", "roll", "stick", "scoop", "pair", "bunch",
                            "handful", "bundle", "pile", "stack", "coil", "skein", "wad", "blob", "dollop", "round",
                            "square", "segment", "half", "quarter", "portion", "brick", "pad", "head", "clove", "sprig",
-                           "bulb", "ear", "wheel"})
+                           "bulb", "ear", "wheel", "log", "set"})
 # portions that are a state of their object
 PORTION_STATES = {"stack": "stacked", "pile": "stacked", "roll": "rolled", "coil": "rolled"}
 # nouns that name nothing in particular
@@ -99,6 +99,7 @@ def _nlp() -> Any:
 # a fastening said as a phrasal verb before the noun is an adjective ('a zip-up makeup bag' is a zippered bag; the
 # tagger made 'zip' the object and 'up' a preposition ending its phrase)
 _FASTENED = re.compile(r"\b(?:zip|zipper)[- ](?:up|top|around|round)\b(?=\s+[a-z])", re.I)
+_GLUED_UNIT = re.compile(r"\b(\d+(?:\.\d+)?)(ml|cl|dl|l|oz|fl|g|kg|mg|lb|lbs|cm|mm|m|in|ft|ct|pk)\b", re.I)
 _BUTTONED = re.compile(r"\bbutton[- ](?:up|down)\b(?=\s+[a-z])", re.I)
 
 
@@ -111,6 +112,7 @@ def _prepare(text: str) -> tuple[str, str | None]:
         like = m.group(1).replace("-", " ").lower()
         text = (text[: m.start()] + " " + text[m.end():])
     text = re.sub(r"(?<=[A-Za-z])-(?=[A-Za-z])", " ", text)
+    text = _GLUED_UNIT.sub(r"\1 \2", text)  # '100ml' is a measure, never the head noun
     return re.sub(r"\s+", " ", text).strip(), like
 
 

@@ -55,6 +55,7 @@ PLANS: dict[str, tuple[type[Model], Callable[[Any], list[Part]]]] = {
     "ring": (things.RingParams, things.ring),
     "tube": (things.TubeParams, things.tube),
     "cone": (things.ConeParams, things.cone_plan),
+    "bottle": (things.BottleParams, things.bottle),
     "star": (things.StarParams, things.star),
     "heart": (things.HeartParams, things.heart),
     "bone": (things.BoneParams, things.bone),

@@ -228,13 +228,38 @@ class DiscParams(Model):
     elongation: float = Field(default=1.0, gt=0.5, le=2.0, description="an oval disc's length / width [-]")
     swirl: float = Field(default=0.0, ge=0.0, le=4.0, description="turns of a rolled dough's spiral, raised over the "
                          "top and ending down the side (a cinnamon roll); 0 none [-]")
+    layers: int = Field(default=1, ge=1, le=12, description="discs stacked one on another, the height shared among "
+                        "them, each rim rounded so the stack shows its layers (a stack of pancakes); 1 one disc [-]")
 
 
 SWIRL_POINTS = 22  # points along a cinnamon roll's spiral [-]
 
 
+STACK_RADIUS_STEP = 0.025  # a stacked disc's radius varies by up to this share of the stack's (hand-made layers) [-]
+STACK_OFFSET = 0.02  # and its centre sits up to this much off the stack's axis [-]
+
+
+def disc_stack(p: DiscParams) -> list[Part]:
+    """`p.layers` discs one on another, each a rounded cylinder of height / layers, a little larger or smaller and
+    off-centre in turn so the rims show as layers; diameter 1."""
+    t = p.height / p.layers
+    parts = []
+    for k in range(p.layers):
+        wobble = ((3 * k) % 4) / 3.0 - 0.5  # -0.5..0.5, the same stack for the same words
+        r = 0.5 * (1.0 - STACK_RADIUS_STEP * (1.0 + wobble))
+        at = (STACK_OFFSET * wobble, STACK_OFFSET * ((k % 2) - 0.5), t * (k + 0.5))
+        part = cylinder("body" if k == 0 else f"body {k + 1}", r, 1.02 * t, at, edge=0.9 * t / 2, blend=0.04 * t)
+        if p.elongation != 1.0:
+            part = part.model_copy(update={"transform": part.transform.model_copy(update={
+                "scale": (p.elongation, 1, 1)})})
+        parts.append(part)
+    return parts
+
+
 def disc(p: DiscParams) -> list[Part]:
     """Diameter 1."""
+    if p.layers > 1:
+        return disc_stack(p)
     h = p.height
     part = cylinder("body", 0.5, h, (0, 0, h / 2), edge=p.edge * min(h / 2, 0.5))
     if p.elongation != 1.0:
@@ -318,6 +343,60 @@ def cone_plan(p: ConeParams) -> list[Part]:
         return [box("body", (1.0, 1.0, h), (0, 0, h / 2)),
                 ellipsoid("dome", (0.5, 0.5, h), (0, 0, 0)).model_copy(update={"operation": "intersect"})]
     return [cone("body", 0.5, 0.5 * p.top, h, (0, 0, h / 2), edge=0.04)]
+
+
+class BottleParams(Model):
+    """A soft plastic bottle standing on its base: a PET water bottle, a shampoo or lotion bottle, a travel bottle."""
+
+    height: float = Field(default=2.6, gt=0.8, le=4.5, description="height with its cap / body width [-]")
+    depth: float = Field(default=1.0, gt=0.3, le=1.0, description="body depth / width: 1 round, less an oval [-]")
+    neck: float = Field(default=0.4, gt=0.1, le=0.9, description="neck diameter / body width [-]")
+    shoulder: float = Field(default=0.18, ge=0.02, le=0.5, description="the shoulder's height / the height [-]")
+    cap: Literal["screw", "flip", "pump", "none"] = "screw"
+    ribs: int = Field(default=0, ge=0, le=8, description="grip grooves round the body (a water bottle) [-]")
+    dent: float = Field(default=0.0, ge=0.0, le=0.6, description="a side squeezed in (a half-empty bottle "
+                        "crushed in a hand): the dent's depth / the body's radius [-]")
+
+
+def bottle(p: BottleParams) -> list[Part]:
+    """Body width 1 along y (its depth along x), standing on its base at z = 0; the cap on top."""
+    h = p.height
+    cap_h = {"screw": 0.09, "flip": 0.11, "pump": 0.16, "none": 0.0}[p.cap] * h
+    neck_h = 0.04 * h
+    sh = p.shoulder * h
+    zb = h - cap_h - neck_h - sh  # the body's straight wall
+    rn = 0.5 * p.neck
+    sx = (p.depth, 1.0, 1.0)
+    parts = [_scaled_part(cylinder("body", 0.5, zb + 0.02, (0, 0, zb / 2 + 0.01), edge=0.1), sx),
+             _scaled_part(cone("shoulder", 0.5, rn, sh, (0, 0, zb + sh / 2),
+                               blend=0.06), sx),
+             cylinder("neck", rn, neck_h + 0.04, (0, 0, zb + sh + neck_h / 2), blend=0.02)]
+    top = zb + sh + neck_h
+    if p.cap == "screw":
+        parts.append(cylinder("cap", 1.12 * rn, cap_h, (0, 0, top + cap_h / 2), edge=0.15 * cap_h))
+    elif p.cap == "flip":  # a flip-top cap nearly as wide as the bottle's depth (a shampoo or lotion bottle)
+        rc = max(0.42 * p.depth / max(p.depth, 1e-6), 1.2 * rn)
+        parts.append(_scaled_part(cylinder("cap", rc, cap_h, (0, 0, top + cap_h / 2), edge=0.25 * cap_h, blend=0.01),
+                                  (p.depth, 1.0, 1.0)))
+    elif p.cap == "pump":
+        parts.append(cylinder("cap", 1.2 * rn, 0.3 * cap_h, (0, 0, top + 0.15 * cap_h), edge=0.05 * cap_h))
+        parts.append(cylinder("pump stem", 0.3 * rn, 0.5 * cap_h, (0, 0, top + 0.5 * cap_h)))
+        parts.append(box("pump head", (0.9 * rn, 1.6 * rn, 0.25 * cap_h), (0, 0.3 * rn, top + 0.85 * cap_h),
+                         edge=0.1 * cap_h, blend=0.01))
+    for i in range(p.ribs):  # grip grooves round the lower body
+        z = zb * (0.25 + 0.5 * (i + 0.5) / p.ribs)
+        groove = _scaled_part(torus(f"rib {i + 1}", 0.5, 0.025, (0, 0, z)), sx)
+        parts.append(groove.model_copy(update={"operation": "subtract", "blend_m": 0.02}))
+    if p.dent > 0:  # the side pushed in by a hand, rounded
+        dent = ellipsoid("dent", (0.35, 0.5 * p.dent + 0.1, 0.3 * zb), (0, 0.5 + 0.1 - 0.5 * p.dent, 0.5 * zb))
+        parts.append(dent.model_copy(update={"operation": "subtract", "blend_m": 0.08}))
+    return parts
+
+
+def _scaled_part(part: Part, scale: tuple[float, float, float]) -> Part:
+    """A part with its transform's scale multiplied (an oval bottle's body)."""
+    sc = tuple(a * b for a, b in zip(part.transform.scale, scale, strict=True))
+    return part.model_copy(update={"transform": part.transform.model_copy(update={"scale": sc})})
 
 
 class StarParams(Model):

@@ -1,0 +1,90 @@
+"""Misspelt and split words of a request read as the lexicon's own ('slipers' -> 'slippers', 'tooth paste' ->
+'toothpaste'): a word no English dictionary (WordNet's four indexes) knows, within one or two letters of exactly one
+lexicon word, is read as it; two words that the lexicon writes as one are joined."""
+
+from __future__ import annotations
+
+import difflib
+import functools
+import re
+from collections.abc import Iterable
+
+from tasks.geometry.wordnet import data_dir
+
+MIN_LENGTH = 5  # shorter words are too often another real word one letter away [-]
+CUTOFF = 0.85  # difflib's similarity ratio a correction needs (one letter in 7: 0.93; two in 8: 0.88) [-]
+# endings an English word takes that WordNet's lemma indexes do not list ('tangled', 'squished', 'bunched')
+_ENDINGS = (("ies", "y"), ("ied", "y"), ("es", ""), ("s", ""), ("ed", ""), ("ed", "e"), ("ing", ""), ("ing", "e"),
+            ("er", ""), ("est", ""), ("ly", ""), ("y", ""), ("y", "e"), ("ish", ""))
+_WORD = re.compile(r"[a-z]+")
+# how people type that no dictionary lists ('thats' is no misspelt 'hats')
+CASUAL = frozenset("""thats whats dont doesnt didnt cant wont isnt arent wasnt im ive youre theyre lets pls plz gonna
+wanna kinda sorta gotta lemme gimme ya yeah okay ok hmm thx thanks""".split())
+
+
+@functools.lru_cache(maxsize=1)
+def english_words() -> frozenset[str]:
+    """Every lemma of WordNet's noun, verb, adjective and adverb indexes (one-word lemmas; ~130k)."""
+    words: set[str] = set()
+    folder = data_dir()
+    for pos in ("noun", "verb", "adj", "adv"):
+        with open(folder / f"index.{pos}", encoding="utf-8") as fh:
+            words.update(line.split(" ", 1)[0] for line in fh if not line.startswith(" "))
+    return frozenset(w for w in words if w.isalpha())
+
+
+def is_english(word: str) -> bool:
+    """True when WordNet knows the word or its stem under a common ending."""
+    known = english_words()
+    if word in known:
+        return True
+    return any(word.endswith(end) and word[: -len(end)] + repl in known for end, repl in _ENDINGS
+               if len(word) > len(end) + 2)
+
+
+def _doubled(word: str) -> str:
+    """A word with its doubled last consonant undone before -ed/-ing ('tapped' -> 'tap')."""
+    m = re.match(r"^(.*?)([b-df-hj-np-tv-z])\2(ed|ing)$", word)
+    return m.group(1) + m.group(2) if m else word
+
+
+@functools.lru_cache(maxsize=1)
+def _function_words() -> frozenset[str]:
+    """spaCy's English stop words ('could', 'would', 'every') and the casual spellings: never corrected."""
+    from spacy.lang.en.stop_words import STOP_WORDS  # lazy: spaCy's import costs ~1 s, paid by the parse anyway
+
+    return frozenset(STOP_WORDS) | CASUAL
+
+
+def corrections(text: str, vocabulary: Iterable[str], phrases: Iterable[str] = ()) -> list[tuple[str, str]]:
+    """(as written, as read) for each misspelt or split word of a normalised text against the lexicon's words;
+    two words are joined only when no lexicon noun phrase (`phrases`) holds them as written ('bath mat')."""
+    return list(_corrections(text, frozenset(vocabulary), frozenset(phrases)))
+
+
+@functools.lru_cache(maxsize=1024)
+def _corrections(text: str, vocab: frozenset[str], phrases: frozenset[str]) -> tuple[tuple[str, str], ...]:
+    """The cached corrections of one text against one vocabulary."""
+    words = _WORD.findall(text)
+    out: list[tuple[str, str]] = []
+    for a, b in zip(words, words[1:], strict=False):  # 'tooth paste' -> 'toothpaste'
+        if a + b in vocab and len(a) >= 3 and len(b) >= 3 and not any(f"{a} {b}" in p for p in phrases):
+            out.append((f"{a} {b}", a + b))
+    for w in dict.fromkeys(words):
+        if len(w) < MIN_LENGTH or w in vocab or w in _function_words() or is_english(w) or is_english(_doubled(w)):
+            continue
+        close = difflib.get_close_matches(w, vocab, n=2, cutoff=CUTOFF)
+        if len(close) == 1 or (len(close) == 2 and difflib.SequenceMatcher(None, w, close[0]).ratio()
+                               > difflib.SequenceMatcher(None, w, close[1]).ratio()):
+            out.append((w, close[0]))
+    return tuple(out)
+
+
+def corrected(text: str, vocabulary: Iterable[str], phrases: Iterable[str] = ()) -> str:
+    """The text with its corrections applied (whole words only)."""
+    for wrong, right in corrections(text, vocabulary, phrases):
+        text = re.sub(rf"\b{re.escape(wrong)}\b", right, text)
+    return text
+
+
+__all__ = ["corrected", "corrections", "english_words", "is_english"]
