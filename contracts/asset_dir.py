@@ -11,7 +11,7 @@ from __future__ import annotations
 
 from typing import Any, ClassVar, Literal, get_args
 
-from pydantic import BaseModel, ConfigDict, Field
+from pydantic import BaseModel, ConfigDict, Field, SerializerFunctionWrapHandler, model_serializer
 
 from contracts.agents import OutcomeStatus, TargetBehaviour
 from contracts.base import Model
@@ -75,6 +75,21 @@ class ParticleBody(Model):
                              "(the mesh volume x the share of the fine lattice within the wall) [m^3]")
     enclosed_volume_m3: float = Field(gt=0, description="the mesh's volume [m^3]")
     reason: str | None = Field(default=None, description="why a hollow object stayed solid (None otherwise)")
+    gauge_pressure_pa: float | None = Field(default=None, gt=0, description="a pressurised ball's shell: the gas it "
+                                            "encloses, its gauge pressure (the lexicon's inflation_gauge_pa); L2 "
+                                            "adds its stiffness to the wall (tasks.realworld.inflation); absent "
+                                            "otherwise [Pa]")
+    gauge_pressure_source: str | None = Field(default=None, description="where gauge_pressure_pa comes from")
+
+    @model_serializer(mode="wrap")
+    def _omit_no_gas(self, handler: SerializerFunctionWrapHandler) -> Any:
+        """The gas keys are written only for a pressurised shell: a solid's record is the one of before."""
+        out = handler(self)
+        if isinstance(out, dict):
+            for key in ("gauge_pressure_pa", "gauge_pressure_source"):
+                if out.get(key, 0.0) is None:
+                    out.pop(key)
+        return out
 
     @property
     def shell(self) -> bool:
@@ -151,7 +166,8 @@ class MaterialRecord(Model):
     """material.json: L2's outcome, targets, the material (None when L2 found none) and its evidence; L2's record, which
     L3 never edits (the asset's final material is AdoptedMaterial: this one, or an L3 revision in manipulation.json)."""
 
-    ABSENT_UNLESS_GIVEN: ClassVar[frozenset[str]] = frozenset({"not_measured", "cached_recordings"})  # older: none
+    ABSENT_UNLESS_GIVEN: ClassVar[frozenset[str]] = frozenset({"not_measured", "cached_recordings",  # older: none
+                                                                "inflation"})
     schema_version: int = 1
     stage: Literal["L2"] = "L2"
     passed: bool
@@ -173,6 +189,12 @@ class MaterialRecord(Model):
         "keeps the adopted L3 trial's recording alone; `--record all` copies these too): the name it would have in the "
         "asset (recordings/<stage>_<kind>.rrd) -> its path under the cache root (recordings/<stage>_<kind>-<the "
         "probe's cache key, first 16 hex digits>.rrd; the full key in evidence/attempts.jsonl)")
+    inflation: dict[str, float | str] | None = Field(
+        default=None, description="a pressurised ball built as its shell (geometry.json `particles` with a gauge "
+        "pressure): the gas's pressure and source, the radius and wall, the rubber's E (the material's "
+        "youngs_modulus_pa, what the specimen is tested at), the modulus the gas adds (material.gas_modulus_pa) and "
+        "the wall's (the shell is simulated at their sum), and the model: a homogenised equivalent, not a gas "
+        "simulation (tasks.realworld.inflation); absent otherwise")
 
 
 MaterialSource = Literal["L2", "L3 revision"]

@@ -2,9 +2,9 @@
 
 from __future__ import annotations
 
-from typing import Literal
+from typing import Any, Literal
 
-from pydantic import Field
+from pydantic import Field, SerializerFunctionWrapHandler, model_serializer
 
 from contracts.base import Model
 
@@ -54,6 +54,10 @@ class ConceptMatch(Model):
                                       "restitution on a hard floor from the lexicon (a ball's rebound rule); L2 "
                                       "calibrates the material's loss to it when its material is the concept's [-]")
     restitution_source: str | None = Field(default=None, description="the rule the restitution is derived from")
+    inflation_gauge_pa: float | None = Field(default=None, gt=0.0, description="a pressurised hollow ball's internal "
+                                             "gauge pressure from the lexicon; L0 records it with a shell, L2 adds "
+                                             "the gas's stiffness to the wall (absent from the dump when None) [Pa]")
+    inflation_source: str | None = Field(default=None, description="where inflation_gauge_pa comes from")
     colors: dict[str, str] = Field(default_factory=dict, description="part name -> colour word applied from the "
                                    "text")
     analogy: list[str] = Field(default_factory=list, description="how an unknown noun was understood, step by step "
@@ -66,6 +70,17 @@ class ConceptMatch(Model):
                                          "bag); L1 takes it over the typical mass and the material's density [kg]")
     stated_mass_source: str | None = Field(default=None, description="where stated_mass_kg comes from (the words "
                                            "read, and for a fill its capacity, bulk density and source)")
+
+    @model_serializer(mode="wrap")
+    def _omit_no_inflation(self, handler: SerializerFunctionWrapHandler) -> Any:
+        """The inflation keys are left out of the dump when None (every concept but a pressurised ball), so records
+        and cache keys from before them are unchanged."""
+        out = handler(self)
+        if isinstance(out, dict):
+            for key in ("inflation_gauge_pa", "inflation_source"):
+                if out.get(key, 0.0) is None:
+                    out.pop(key)
+        return out
 
     @property
     def by_analogy(self) -> bool:

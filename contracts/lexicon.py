@@ -60,6 +60,12 @@ class LexiconEntry(Model):
                                       "loss to it instead of the material class's prior [-]")
     restitution_source: str | None = Field(default=None, min_length=8, description="the rule restitution is derived "
                                            "from (document, drop height and rebound band)")
+    inflation_gauge_pa: float | None = Field(default=None, gt=0.0, le=1.0e6, description="internal gauge pressure "
+                                             "(over the ambient) of a pressurised hollow ball; L2 adds the gas's "
+                                             "contact stiffness to its shell's wall as a modulus "
+                                             "(tasks.realworld.inflation) [Pa]")
+    inflation_source: str | None = Field(default=None, min_length=8, description="where inflation_gauge_pa comes "
+                                         "from (a rule, or what is commonly cited, and how it was converted)")
     posed_by: str | None = Field(default=None, description="a body-plan entry that shows this (hand-written) object "
                                  "sitting or lying when asked ('a dog lying down'): its shape is used then")
 
@@ -73,6 +79,10 @@ class LexiconEntry(Model):
             raise ValueError(f"{self.key}: a hollow object needs wall_m (or an effective density)")
         if (self.restitution is None) != (self.restitution_source is None):
             raise ValueError(f"{self.key}: give restitution and restitution_source together")
+        if (self.inflation_gauge_pa is None) != (self.inflation_source is None):
+            raise ValueError(f"{self.key}: give inflation_gauge_pa and inflation_source together")
+        if self.inflation_gauge_pa is not None and not (self.hollow and self.wall_m is not None):
+            raise ValueError(f"{self.key}: an inflation pressure needs a hollow object with a wall (wall_m)")
         return self
 
     @property

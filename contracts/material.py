@@ -31,7 +31,14 @@ class Material(Model):
                     "velocity gradient; a loss in the material (impacts, vibration), none in rigid motion",
     )
 
-    @field_validator("youngs_modulus_pa", "poisson_ratio", "damping_rate_per_s", "viscosity_pa_s")
+    gas_modulus_pa: float = Field(
+        default=0.0, ge=0.0,
+        description="the modulus a pressurised ball's gas adds to its shell's wall [Pa]: the object is simulated at "
+                    "youngs_modulus_pa + gas_modulus_pa (wall_modulus_pa), a specimen of the material at "
+                    "youngs_modulus_pa; a homogenised equivalent of the inflation, not a gas (tasks.realworld.inflation)",
+    )
+
+    @field_validator("youngs_modulus_pa", "poisson_ratio", "damping_rate_per_s", "viscosity_pa_s", "gas_modulus_pa")
     @classmethod
     def _finite(cls, v: float) -> float:
         if not math.isfinite(v):
@@ -40,22 +47,34 @@ class Material(Model):
 
     @model_serializer(mode="wrap")
     def _omit_zero_viscosity(self, handler):
-        """viscosity_pa_s = 0 (the default, the engine before it existed) is left out of the dump, so the cache keys
-        of materials from before the field existed still name the same results; any other value is in it."""
+        """viscosity_pa_s = 0 and gas_modulus_pa = 0 (the defaults, the engine before they existed) are left out of the
+        dump, so the cache keys of materials from before the fields existed still name the same results; any other
+        value is in it."""
         out = handler(self)
-        if isinstance(out, dict) and out.get("viscosity_pa_s") == 0.0:
-            out.pop("viscosity_pa_s")
+        if isinstance(out, dict):
+            for key in ("viscosity_pa_s", "gas_modulus_pa"):  # gas_modulus_pa = 0: every material but a gas shell's
+                if out.get(key) == 0.0:
+                    out.pop(key)
         return out
 
     @property
+    def wall_modulus_pa(self) -> float:
+        """The modulus the object is simulated at: E, plus a pressurised shell's gas_modulus_pa [Pa]."""
+        return self.youngs_modulus_pa + self.gas_modulus_pa
+
+    def specimen(self) -> Material:
+        """The material itself, without a shell's gas (what a specimen cube or ball of it is tested at)."""
+        return self if self.gas_modulus_pa == 0.0 else self.model_copy(update={"gas_modulus_pa": 0.0})
+
+    @property
     def mu_pa(self) -> float:
-        """Lame shear modulus mu = E / (2 (1 + nu)) [Pa]."""
-        return self.youngs_modulus_pa / (2.0 * (1.0 + self.poisson_ratio))
+        """Lame shear modulus mu = E_wall / (2 (1 + nu)) [Pa] (E_wall: E plus a shell's gas_modulus_pa)."""
+        return self.wall_modulus_pa / (2.0 * (1.0 + self.poisson_ratio))
 
     @property
     def lambda_pa(self) -> float:
-        """Lame first parameter lambda = E nu / ((1 + nu)(1 - 2 nu)) [Pa]."""
-        e, nu = self.youngs_modulus_pa, self.poisson_ratio
+        """Lame first parameter lambda = E_wall nu / ((1 + nu)(1 - 2 nu)) [Pa] (E_wall: E plus a shell's gas_modulus_pa)."""
+        e, nu = self.wall_modulus_pa, self.poisson_ratio
         return e * nu / ((1.0 + nu) * (1.0 - 2.0 * nu))
 
     def p_wave_speed_m_per_s(self, density_kg_per_m3: float) -> float:

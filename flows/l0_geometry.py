@@ -133,6 +133,7 @@ def l0_geometry(request: AssetRequest, settings: L0Settings, contract: StageCont
     mesh, info = build_mesh(geometry_request(request), settings)
     proxy = build_proxy(mesh, settings.coacd)
     particles, body = build_particles(mesh, settings.particles, *_wall(request, info))
+    body = pipeline.with_gas(body, info.concept)  # a pressurised ball's shell records its gas (outside the cache key)
     gaussians = build_gaussians(mesh, particles, settings.gaussians_per_particle, settings.gaussian_surface_fraction,
                                 settings.max_gaussians, settings.seed)
     checks = check_geometry(mesh, proxy, particles, gaussians, contract)
@@ -176,6 +177,7 @@ def _run_l0(request: AssetRequest, settings: pipeline.L0Settings, contract: Stag
         mesh, info = sources.build_mesh(geometry_request(request), settings)
         proxy = pipeline.build_proxy(mesh, settings.coacd)
         particles, body = pipeline.build_body(mesh, settings.particles, *_wall(request, info))
+        body = pipeline.with_gas(body, info.concept)
         gaussians = pipeline.build_gaussians(mesh, particles, settings)
         return L0Result(mesh, proxy, particles, gaussians, info,
                         pipeline.check_geometry(mesh, proxy, particles, gaussians, contract), body)

@@ -41,6 +41,7 @@ from tasks.probes.registry import by_kind, stage_probes
 from tasks.probes.screening import (l2_probe, probe_parameters, screen, screen_dampings, screen_moduli,
                                     specimen_arrays)
 from tasks.probes.workers import probe_workers
+from tasks.realworld.inflation import shell_inflation
 from tasks.realworld.loss import material_loss
 from tasks.publish import write_text_atomic
 from tasks.record.keep import keep_recording
@@ -150,19 +151,23 @@ def l2_material(asset_dir: Path, request_or_intent: AssetRequest | str | None = 
     targets = l2_targets(asset, request_or_intent)
 
     start = initial_values(contract, targets, None)
+    # a pressurised ball built as its shell: its gas as a modulus added to the wall's (tasks.realworld.inflation), at the
+    # start's nu; fixed through L2, in the object's probes and the loss calibration, never in a specimen's
+    inflation = shell_inflation(getattr(asset, "body", None), float(start["poisson_ratio"]))  # stand-ins: none
+    gas = {"gas_modulus_pa": float(inflation["gas_modulus_pa"])} if inflation else {}
     # a bouncy class's loss in the material: its prior restitution as a Kelvin-Voigt viscosity, calibrated on this
     # object's impact at the reference speed with the start E and nu (tasks.realworld.loss); fixed through L2
     # (the concept's own restitution when the lexicon gives one, a ball's rebound rule; the record's "source" says which)
-    fixed, loss = material_loss(asset.particles_m, asset.volumes_m3, physical, Material(**start), targets.priors, sim,
-                                concept_of(asset.record), asset_material(asset.record, targets))
+    fixed, loss = material_loss(asset.particles_m, asset.volumes_m3, physical, Material(**start, **gas), targets.priors,
+                                sim, concept_of(asset.record), asset_material(asset.record, targets))
     initial, screening = (screen(asset, physical, contract, targets, start, sim, fixed) if screen_first
                           else (start, dict[str, Any](sim_calls=0)))
     if loss:
         screening["restitution_loss"] = loss
         screening["sim_calls"] += int(float(loss.get("impacts", 1)))  # the calibration's impacts are simulation calls too
-    runner = _Runner(asset, physical, contract, sim, fixed)
+    runner = _Runner(asset, physical, contract, sim, {**fixed, **gas})
     outcome = run_harness(contract, runner, targets, agents=agents, record_dir=asset_dir, initial=initial)
-    material = Material(**outcome.values, **fixed) if outcome.passed and outcome.values else None
+    material = Material(**outcome.values, **fixed, **gas) if outcome.passed and outcome.values else None
     recordings: dict[str, str | None] = {}
     cached: dict[str, str] = {}  # keep 'adopted': the recordings left in the cache
     held: list[ProbeResult] = []
@@ -176,7 +181,7 @@ def l2_material(asset_dir: Path, request_or_intent: AssetRequest | str | None = 
             recordings[f"{p.kind}_held_out"] = keep_recording(r.recording, asset_dir, p.recording_name(True), keep,
                                                               cached)
     record = material_record(outcome, targets, material, physical, contract, screening, held, recordings, cached,
-                             keep)
+                             keep, inflation)
     (asset_dir / "evidence").mkdir(parents=True, exist_ok=True)
     lines = "".join(a.model_dump_json() + "\n" for a in outcome.attempts)
     write_text_atomic(asset_dir / "evidence" / "L2_attempts.jsonl", lines)

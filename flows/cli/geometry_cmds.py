@@ -19,9 +19,9 @@ QUALITIES = ("draft", "standard", "high")
 GEOMETRY_BACKEND_HELP = ("reconstruction backend that makes the mesh: a Python entry point 'module:function' or an "
                          "HTTP endpoint 'http://host:port/path' (interface: tasks/geometry/backends.py)")
 HOLLOW_SHELL_HELP = ("build a hollow object's (a tennis ball's) MPM particles as its wall alone (the L0 contract's "
-                     "hollow_particles: shell); default solid: without a gas-pressure model a rubber shell is a dead "
-                     "ball (tennis-ball rule rebound 0.12 against 0.53-0.58). `physical` and `material` on the "
-                     "directory follow geometry.json's record")
+                     "hollow_particles: shell); default solid: a rubber shell alone is a dead ball (tennis-ball rule "
+                     "rebound 0.12 against 0.53-0.58), with its gas as a wall modulus (a pressurised ball's) still "
+                     "just under (0.524). `physical` and `material` on the directory follow geometry.json's record")
 STRICT_CONCEPT_HELP = ("refuse an object the lexicon does not name (exit 2, nothing written) instead of building it by "
                        "analogy")
 

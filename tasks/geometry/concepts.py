@@ -358,7 +358,8 @@ def _kin_in_pose(entry: LexiconEntry, posable: LexiconEntry, poses: set[str]) ->
 def _match(entry: LexiconEntry, level: FallbackLevel, noun: str | None, note: str | None,
            material: str | None = None) -> ConceptMatch:
     """The ConceptMatch of an entry; a material named by the text (fallbacks) replaces the entry's, and then the
-    entry's density and restitution no longer apply; material-only fallbacks carry no typical mass or restitution."""
+    entry's density, restitution and inflation no longer apply; material-only fallbacks carry no typical mass,
+    restitution or inflation."""
     mat_only = level in ("material", "generic", "gloss")
     return ConceptMatch(
         concept=entry.key, noun=noun, body_plan=entry.plan or f"catalogue:{entry.catalogue}", category=entry.category,
@@ -368,6 +369,8 @@ def _match(entry: LexiconEntry, level: FallbackLevel, noun: str | None, note: st
         mass_source=None if mat_only else entry.mass_source,
         restitution=None if mat_only or material is not None else entry.restitution,
         restitution_source=None if mat_only or material is not None else entry.restitution_source,
+        inflation_gauge_pa=None if mat_only or material is not None else entry.inflation_gauge_pa,
+        inflation_source=None if mat_only or material is not None else entry.inflation_source,
         finish=None if mat_only or material is not None else entry.finish)
 
 

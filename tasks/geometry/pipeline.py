@@ -236,6 +236,15 @@ def build_body(mesh: Arrays, settings: ParticleSettings, wall_m: float | None = 
                                 enclosed_volume_m3=volume, reason=solid_reason)
 
 
+def with_gas(body: ParticleBody, concept: ConceptMatch | None) -> ParticleBody:
+    """A shell's record with the gas it encloses (the concept's inflation pressure and source: a pressurised ball);
+    a solid's, or an unpressurised shell's, as it is."""
+    if not body.shell or concept is None or concept.inflation_gauge_pa is None:
+        return body
+    return body.model_copy(update={"gauge_pressure_pa": concept.inflation_gauge_pa,
+                                   "gauge_pressure_source": concept.inflation_source})
+
+
 def hollow_wall(concept: ConceptMatch | None, words: str | None) -> tuple[float | None, str | None]:
     """The wall a hollow concept's particles are a shell of [m], else None with the reason a hollow object is built
     solid (None for a solid concept): a one-layer sheet (its built solid is that layer already), no wall in the lexicon

@@ -184,7 +184,7 @@ def _check_time_step(model: Model, config: SimConfig) -> None:
     if dt < config.dt_min_s:
         m = model.materials[worst]
         raise SimulationError(
-            f"the material is too stiff for explicit MPM at dx = {model.dx:.3g} m: E = {m.youngs_modulus_pa:.3g} Pa, "
+            f"the material is too stiff for explicit MPM at dx = {model.dx:.3g} m: E = {m.wall_modulus_pa:.3g} Pa, "
             f"nu = {m.poisson_ratio:g}, density {model.densities[worst]:.4g} kg/m^3 give a p-wave speed of {c:.3g} m/s "
             f"and CFL time steps of {dt:.2g} s, below the {config.dt_min_s:g} s floor (SimConfig.dt_min_s): "
             "lower E or nu, or coarsen the grid"

@@ -39,10 +39,11 @@ def l2_metrics(results: list[ProbeResult], contract: StageContract) -> dict[str,
 def material_record(outcome: StageOutcome, targets: TargetBehaviour, material: Material | None,
                     physical: PhysicalModel, contract: StageContract, screening: dict[str, Any],
                     held: list[ProbeResult], recordings: dict[str, str | None], cached: dict[str, str],
-                    keep: KeepTrials) -> MaterialRecord:
+                    keep: KeepTrials, inflation: dict[str, float | str] | None = None) -> MaterialRecord:
     """material.json of an L2 run: the harness's outcome and ranking, the screening, the chosen material's held-out
     tests (`held`: none when no material passed) and its recordings (kind -> path in the asset; under keep 'adopted'
-    those left in the cache are named in `cached`)."""
+    those left in the cache are named in `cached`); `inflation`: a pressurised shell's (tasks.realworld.inflation),
+    recorded with the rubber's E and the wall's."""
     held_metrics = l2_metrics(held, contract) if held else {}
     held_targets = targets.model_copy(update={"bands": [b for b in targets.bands if b.metric in held_metrics]})
     sim_calls = outcome.sim_calls + int(screening["sim_calls"]) + sum(r.sim_calls for r in held)
@@ -61,4 +62,7 @@ def material_record(outcome: StageOutcome, targets: TargetBehaviour, material: M
             ranking=sorted(({"iteration": a.iteration, "values": a.proposal, "score": a.score, "verdict": a.verdict}
                             for a in outcome.attempts if a.score is not None), key=lambda d: -d["score"])),
         sim_calls=sim_calls, recordings={k: v for k, v in recordings.items() if v is not None or keep == "all"},
-        **({"cached_recordings": cached} if cached else {}))
+        **({"cached_recordings": cached} if cached else {}),
+        **({"inflation": {**inflation, **({"rubber_youngs_modulus_pa": material.youngs_modulus_pa,
+                                           "wall_modulus_pa": material.wall_modulus_pa} if material else {})}}
+           if inflation else {}))

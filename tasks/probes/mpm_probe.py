@@ -46,13 +46,15 @@ def specimen_arrays(physical: PhysicalModel, contract: StageContract, shape: str
 
 def body_inputs(ctx: ProbeContext, specimen: str | None = None) -> dict[str, Any]:
     """The inputs every deformable probe takes: the particles (the object's, or a specimen of this shape), the
-    physical model, the material, the numerics."""
+    physical model, the material (a specimen's without a pressurised shell's gas: Material.specimen), the numerics."""
+    material = ctx.material
     if specimen is None:
         pos = np.asarray(ctx.asset.particles_m, np.float64)
         vol = np.asarray(ctx.asset.volumes_m3, np.float64)
     else:
         pos, vol = specimen_arrays(ctx.physical, ctx.contract, specimen)
-    return {"positions_m": pos, "volumes_m3": vol, "physical": ctx.physical, "material": ctx.material,
+        material = material.specimen() if material is not None else None
+    return {"positions_m": pos, "volumes_m3": vol, "physical": ctx.physical, "material": material,
             "sim": ctx.sim or SimConfig()}
 
 

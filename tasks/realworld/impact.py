@@ -30,7 +30,7 @@ def contact_time_s(mass_kg: float, radius_m: float, modulus_pa: float, poisson_r
 def sample_interval_s(body: DeformableBody, material: Material, speed_m_per_s: float) -> float:
     """A fortieth of the expected contact time, within [2e-5 s, 5e-4 s]."""
     radius = 0.5 * float(np.min(body.extents_m))
-    tc = contact_time_s(body.mass_kg, radius, material.youngs_modulus_pa, material.poisson_ratio, speed_m_per_s)
+    tc = contact_time_s(body.mass_kg, radius, material.wall_modulus_pa, material.poisson_ratio, speed_m_per_s)
     return float(min(5e-4, max(2e-5, tc / 40.0)))
 
 

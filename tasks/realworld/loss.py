@@ -69,7 +69,7 @@ def restitution_loss_task(positions_m: np.ndarray, volumes_m3: np.ndarray, physi
         out["restitution"] = e0  # the engine alone loses as much (or failed): no viscosity
         return out
     zeta = damping_ratio(restitution / e0)
-    eta = viscosity_for_damping_ratio(zeta, base.youngs_modulus_pa, raw0["contact_time_s"])
+    eta = viscosity_for_damping_ratio(zeta, base.wall_modulus_pa, raw0["contact_time_s"])  # a gas shell: its wall's
     out["viscosity_first_pa_s"] = eta
     pts = [(0.0, 0.0)]  # (eta, damping ratio of e / e0) seen
     best, impacts = (0.0, e0), 1  # the last healthy impact's (eta, restitution); impacts run

@@ -5,12 +5,15 @@ from __future__ import annotations
 
 import json
 from pathlib import Path
+from types import SimpleNamespace
+from typing import Any
 
 import pytest
 
 import flows.l2_material as l2
 from cache import CacheStore, cache_resolve, cache_root
 from contracts.material import Material
+from contracts.sim import SimConfig
 from contracts.stage import load_contract
 from tests.l2.helpers import box_asset
 
@@ -100,3 +103,53 @@ def test_plush_and_rubber_intents_end_in_different_materials_that_meet_their_tar
     assert rubber["material"]["youngs_modulus_pa"] > 20 * plush["material"]["youngs_modulus_pa"]
     assert rubber["metrics"]["rebound_ratio"] > plush["metrics"]["rebound_ratio"]
     assert plush["selection"]["targets_met"] and plush["selection"]["status"] == "accepted"
+
+
+def test_a_gas_shells_material_is_the_objects_and_a_specimen_gets_the_rubber() -> None:
+    """A pressurised shell's material (gas_modulus_pa, session 33): every object probe's inputs (its cache key) carry
+    the gas, so the object is simulated at the wall modulus; every specimen probe's the rubber alone, so a specimen's
+    results are the rubber's, shared with the material without gas."""
+    asset, phys = box_asset((0.1, 0.08, 0.06), 4)
+    rubber = Material(youngs_modulus_pa=2.0e4, poisson_ratio=0.3, damping_rate_per_s=8.0)
+    gas = rubber.model_copy(update={"gas_modulus_pa": 2.0e4})
+    contract, sim = _contract(), SimConfig()
+    for kind in ("compress", "drop", "lift", "stability", "specimen_compress", "specimen_drop"):
+        got = l2.probe_inputs(kind, asset, phys, gas, contract, sim)["material"]  # type: ignore[arg-type]
+        assert got == (rubber if kind.startswith("specimen") else gas), kind
+
+
+class _Stop(Exception):
+    """Ends the flow once the harness is reached (the test reads what L2 set up for it)."""
+
+
+def test_l2_simulates_a_pressurised_shell_at_its_wall_modulus(tmp_path: Path, monkeypatch: pytest.MonkeyPatch,
+                                                               prefect_api: str) -> None:
+    """L2 on a tennis ball's shell with its gas (geometry.json `particles` with 82.7 kPa): the loss is calibrated on the
+    object at the wall modulus and every candidate's object probes carry the gas (fixed, like the viscosity); the
+    gas modulus is the formula's at the start's nu."""
+    from contracts.asset_dir import ParticleBody
+    from tasks.realworld.inflation import gas_wall_modulus_pa, sphere_radius_m
+
+    d, phys = _asset(tmp_path, monkeypatch)
+    asset = l2.load_l0(d)
+    body = ParticleBody(kind="shell", wall_m=0.004, requested_wall_m=0.004, spacing_m=0.002, volume_m3=5e-5,
+                        enclosed_volume_m3=1.6e-4, gauge_pressure_pa=82.7e3, gauge_pressure_source="a test source")
+    monkeypatch.setattr(l2, "load_l0", lambda _: SimpleNamespace(**vars(asset), body=body))
+    seen: dict[str, Any] = {}
+
+    def loss(*args: Any) -> tuple[dict, dict]:
+        seen["loss_material"] = args[3]
+        return {}, {}
+
+    def harness(contract: Any, runner: Any, *args: Any, **kwargs: Any) -> None:
+        seen["fixed"] = runner.fixed
+        raise _Stop
+
+    monkeypatch.setattr(l2, "material_loss", loss)
+    monkeypatch.setattr(l2, "run_harness", harness)
+    with pytest.raises(_Stop):
+        l2.run_l2(d, "a rubber ball", physical=phys, contract=_contract(), screen_first=False)
+    nu = seen["loss_material"].poisson_ratio
+    de = gas_wall_modulus_pa(sphere_radius_m(1.6e-4), 0.004, 82.7e3, nu)
+    assert seen["loss_material"].gas_modulus_pa == pytest.approx(de, rel=1e-12)
+    assert seen["fixed"] == {"gas_modulus_pa": seen["loss_material"].gas_modulus_pa}
