@@ -923,7 +923,8 @@ def build(reading: Reading, text: str) -> tuple[ShapeProgram, ConceptMatch, list
         own = {k: v for k, v in reading.params.items() if k != "state"}
         if params.get("rumpled"):
             own["rumpled"] = True
-        strip = {k: params[k] for k in ("width", "thickness") if k in params}  # (a strip folded, then rolled)
+        strip = {k: params[k] for k in ("width", "thickness", "layers") if k in params}  # (a strip folded, then
+        # rolled; the sheets stacked)
         change = grammar.state_change(target.plan, {**target.params, **own}, size, params["state"], also=strip)
         size = change.size_m
         shell = match.hollow and match.wall_thickness_m is not None  # a folded film's built area is not its film's

@@ -248,8 +248,9 @@ def _base_radius(v: np.ndarray) -> float:
 
 
 def test_standing_bottle_is_a_solid_of_revolution_kept_upright(tmp_path: Path) -> None:
-    """No resting-pose step: the photo's vertical is up, the bottle stands on a flat base as wide as its body."""
-    path = _scene(tmp_path, "squeeze_bottle")
+    """No resting-pose step: the photo's vertical is up, the bottle stands on a flat base as wide as its body (a
+    'bottle' the lexicon has no template for: a lathe of its silhouette)."""
+    path = _scene(tmp_path, "squeeze_bottle", "bottle.png")
     s = _fast().model_copy(update={"marching_cubes_resolution": 64})
     arrays, info = sources.build_mesh(AssetRequest(image_path=path, size_hint_m=0.25), s)
     photo = info.photo
@@ -264,6 +265,17 @@ def test_standing_bottle_is_a_solid_of_revolution_kept_upright(tmp_path: Path) -
     assert silhouette.silhouette_iou(v, arrays["faces"], photo, mask) >= 0.9
     m = pipeline.arrays_to_mesh(arrays)
     assert m.is_watertight and m.is_winding_consistent
+
+
+def test_a_named_squeeze_bottle_photo_is_fitted_by_its_template_upright(tmp_path: Path) -> None:
+    """A photo named as a squeeze bottle: the lexicon's bottle (body, shoulder, neck, cap) fitted to the silhouette,
+    standing as in the photo."""
+    path = _scene(tmp_path, "squeeze_bottle")
+    arrays, info = sources.build_mesh(AssetRequest(image_path=path, size_hint_m=0.25), _fast())
+    photo = info.photo
+    assert photo is not None and photo.method == "program fit" and photo.entry == "squeeze_bottle"
+    assert photo.fit_iou is not None and photo.fit_iou >= 0.85 and not info.reoriented
+    assert np.ptp(arrays["vertices"][:, 2]) == pytest.approx(0.25, rel=1e-3)  # standing: its height is the size
 
 
 def test_pose_stable_is_asked_for(tmp_path: Path) -> None:

@@ -32,6 +32,7 @@ from tasks.geometry.grammar.parts import (
 )
 
 MIN_LAYER = 0.025  # a built sheet layer, / the flat sheet's length [-]
+CRISP_STACK_DRAWN = 4  # cut sheets drawn in a stack of them (the rest in the pad's thickness) [-]
 MIN_WALL = 0.03  # a built mould or hat wall, / the outline's size [-]
 
 SheetState = Literal["flat", "rolled", "folded", "stacked", "crumpled", "loop", "twisted", "knotted", "draped"]
@@ -67,6 +68,8 @@ class SheetParams(Model):
     core: float = Field(default=0.12, ge=0.0, le=0.6, description="a roll's hole radius / roll radius [-]")
     packing: float = Field(default=0.8, gt=0.2, le=1.0, description="share of a roll's cross-section that is sheet [-]")
     edge: float = Field(default=0.5, ge=0.0, le=1.0, description="edge rounding / half the layer [-]")
+    crisp: bool = Field(default=False, description="cut sheets with square edges (paper, felt, craft foam): stacked, "
+                        "a squared pad of a few sheets, not soft folded layers")
     thirds: bool = Field(default=False, description="folded in thirds (a letter fold: three layers, a crease at each "
                          "end) before any further halving")
     quilt: int = Field(default=0, ge=0, le=16, description="puffy baffles across the length (a duvet, a sleeping bag, "
@@ -156,6 +159,15 @@ def sheet(p: SheetParams) -> list[Part]:
         if p.shape == "bread" and len(one) * p.layers > MAX_PARTS:
             one = bread_slice(w, t, arc=5)  # (the crust's arc in fewer segments: three slices in one program)
         return stacked_formed(one, min(p.layers, MAX_PARTS // len(one)), t)
+    if p.state == "stacked" and p.crisp:  # cut sheets (paper, felt, craft foam): a squared pad as thick as the
+        # stack (at least a built layer per sheet drawn), a few sheets drawn, each a little askew so their edges show
+        total = max(p.thickness * p.layers, MIN_LAYER * min(p.layers, CRISP_STACK_DRAWN))
+        n = int(min(p.layers, CRISP_STACK_DRAWN, max(total // MIN_LAYER, 1)))
+        tl = total / n
+        flat = p.model_copy(update={"edge": 0.15})
+        return [_slab("body" if i == 0 else f"layer {i + 1}", flat, 1.0, w, 1.02 * tl,
+                      (0.01 * np.sin(2.3 * i), 0.01 * np.cos(1.7 * i) * w, tl / 2 + tl * i),
+                      rot=(0, 0, 1.2 * np.sin(3.1 * i))) for i in range(n)]
     if p.state == "stacked":
         parts = []
         for i in range(p.layers):
