@@ -56,9 +56,9 @@ _NOT_COUNTED = (r"(?:mm|cm|m|km|in|inch|inches|ft|foot|feet|yd|yards?|met(?:re|e
                 r"cups?|x|%|years?|months?|weeks?|days?|pack|pair|pairs|piece|pin|" + _COMPOUND_AFTER + r")\b")
 # 'two overripe bananas', '3 tennis balls', 'a pack of 6 sponges', 'a 3-pack of scrub sponges': that many pieces
 _COUNT = r"(\d+|" + "|".join(sorted(_COUNT_WORDS, key=len, reverse=True)) + r")"
-_GROUP_COUNT = re.compile(r"\b(?:pack|packet|set|bundle|box|bag|net|tray|punnet|carton)\s+of\s+" + _COUNT + r"\s+(?!"
-                          + _NOT_COUNTED + r")|^\s*(?:a\s+)?" + _COUNT + r"\s+(?!" + _NOT_COUNTED + r")|"
-                          r"\b" + _COUNT + r"[- ]pack\b")
+_GROUP_COUNT = re.compile(r"\b(?:pack|packet|set|bundle|box|bag|net|tray|punnet|carton|pile|heap)\s+of\s+" + _COUNT
+                          + r"(?:\s+(?!" + _NOT_COUNTED + r")|\s*$)|^\s*(?:a\s+)?" + _COUNT + r"\s+(?!" + _NOT_COUNTED
+                          + r")|\b" + _COUNT + r"[- ]pack\b")  # ('rolls, a pile of 10': the count ends the text)
 _HAND_COUNT = re.compile(r"\b(?:bunch|hand)\s+of\s+" + _COUNT + r"\b|^\s*(?:a\s+)?" + _COUNT + r"\s+(?:[a-z]+\s+)?bunch")
 HAND_PLANS = frozenset({"elongated"})
 _STRAW = re.compile(r"\b(?:with|and|plus)\s+(?:a\s+|its\s+|the\s+)?(?:\w+\s+)?straw\b|\bstraw\s+(?:in|stuck)\b")

@@ -32,7 +32,7 @@ from tasks.geometry.grammar.parts import (
 )
 
 MIN_LAYER = 0.025  # a built sheet layer, / the flat sheet's length [-]
-CRISP_STACK_DRAWN = 4  # cut sheets drawn in a stack of them (the rest in the pad's thickness) [-]
+CRISP_STACK_DRAWN = 2  # cut sheets drawn in a stack of them (the rest in the pad's thickness) [-]
 MIN_WALL = 0.03  # a built mould or hat wall, / the outline's size [-]
 
 SheetState = Literal["flat", "rolled", "folded", "stacked", "crumpled", "loop", "twisted", "knotted", "draped"]
