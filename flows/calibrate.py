@@ -184,9 +184,10 @@ def check_material(asset_dir: Path, material: Material, sim: SimConfig, l3: bool
             revision = out
             gates["L3 robot confirmation"] = out.accepted
             status = "confirmed" if out.accepted else "failed"
+            missed = [k for k in L3_OUTCOMES if not (out.confirmation or {}).get(k)]
             note = ("the robot picked, carried and placed it under the same plan" if out.accepted else
-                    "the robot failed under the same plan: " + ", ".join(
-                        k for k, v in (out.confirmation or {}).items() if k in L3_OUTCOMES and not v) or "see l3")
+                    "the robot failed under the same plan: " + (", ".join(f"not {k}" for k in missed)
+                                                                 or "a gate of L3's contract (see l3.confirmation)"))
     return CalibrationChecks(passed=all(gates.values()), gates=gates, l2=check, word_bands=words, l3=revision,
                              l3_status=status, l3_note=note)
 
@@ -252,16 +253,9 @@ def simulate_settle(problem: FitProblem, material: Material, metrics: VideoMetri
     return notes
 
 
-def write_calibration(asset_dir: Path, record: VideoFitRecord) -> None:
-    """The record and the fitted material as the asset's (write_records), in one staged update of the asset
-    directory."""
-    with staged_update(asset_dir) as work:
-        write_records(work, record)
-
-
 def write_records(work: Path, record: VideoFitRecord) -> None:
     """The record and the fitted material as the asset's (material.json; asset.json's material when published) in a
-    working copy of the asset."""
+    working copy of the asset (staged_update: swapped in whole)."""
     write_json_atomic_mkdir(work / VIDEO_FIT_JSON, document_json(record))
     adir = AssetDir(work)
     mat: MaterialRecord = adir.material()
@@ -279,4 +273,4 @@ def write_json_atomic_mkdir(path: Path, data: dict) -> None:
 
 
 __all__ = ["AssetBody", "calibrate_asset", "check_material", "failure_message", "load_asset", "simulate_settle",
-           "write_calibration", "write_comparison", "write_records"]
+           "write_comparison", "write_records"]
