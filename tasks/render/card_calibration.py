@@ -60,6 +60,7 @@ def _limits(r: VideoFitRecord) -> list[str]:
            f"{t.frames_dropped} dropped ({t.frames_at_edge} at the frame's edge), {t.frames_repeated} repeated; "
            f"{t.fps:g} fps ({t.fps_source})"]
     out += [f"not determined: {k}: {why}" for k, why in r.undetermined.items()]
+    out += [f"note: {n}" for n in r.notes]  # the fit's own warnings (a scale that gravity disagrees with, ...)
     return out
 
 

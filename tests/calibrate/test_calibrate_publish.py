@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import json
 import shutil
+from html import escape as html_escape
 from pathlib import Path
 
 import numpy as np
@@ -137,6 +138,8 @@ def test_the_card_shows_the_real_clip_beside_the_simulated_one(calibrated: Path,
     assert "L2 held-out hard gates: passed" in html and "held-out tests run: compress, drop" in html
     for key in rec.undetermined:
         assert f"not determined: {key}" in html
+    for note in rec.notes:
+        assert html_escape(f"note: {note}") in html
     card = card_data(root)
     assert card.calibration is not None and card.calibration.image == SIDE_BY_SIDE_JPG
     from PIL import Image
