@@ -24,18 +24,20 @@ from pathlib import Path
 from typing import Any
 
 import numpy as np
-import zarr
+import trimesh
 
 from contracts.agents import TargetBehaviour
-from contracts.asset_dir import PARTICLES_ZARR, HeldOutSummary, MaterialRecord, PhysicalRecord, SelectionSummary
+from contracts.asset_dir import HeldOutSummary, MaterialRecord, PhysicalRecord, SelectionSummary
 from contracts.material import Material
 from contracts.physical import PhysicalModel
 from contracts.sim import SimConfig
 from flows.calibrate import calibrate_asset
+from flows.l0_geometry import L0Result, write_l0
 from tasks.asset_dir import AssetDir
 from tasks.calibrate.sim import drop_impact
 from tasks.calibrate.synthetic import Camera, mpm_drop_positions, particle_video
 from tasks.calibrate.video import write_video
+from tasks.geometry import pipeline
 from tasks.mpm.scene import box_particles
 
 RADIUS_M, DENSITY = 0.02, 1000.0
@@ -73,13 +75,32 @@ def sphere(spacing_m: float) -> tuple[np.ndarray, np.ndarray, PhysicalModel]:
     return pos, vol, phys
 
 
+def write_sphere_l0(path: Path, pos: np.ndarray, vol: np.ndarray, spacing_m: float) -> None:
+    """L0 of the sphere (flows.l0_geometry.write_l0): an icosphere mesh, itself its one convex collision part, the
+    given lattice as its particles and Gaussians bound to them: what L2's probes (the calibration's held-out tests)
+    read of an asset."""
+    mesh = trimesh.creation.icosphere(subdivisions=3, radius=RADIUS_M)
+    mesh.apply_translation((0.0, 0.0, RADIUS_M))
+    arrays = pipeline.mesh_to_arrays(mesh)
+    proxy: dict[str, np.ndarray] = {
+        "vertices": arrays["vertices"], "faces": arrays["faces"], "part_vertex_count": np.array([len(mesh.vertices)]),
+        "part_face_count": np.array([len(mesh.faces)]), "union_volume_m3": np.array(mesh.volume)}
+    particles: dict[str, np.ndarray] = {
+        "positions_m": pos, "volumes_m3": vol, "colors": np.tile(np.array([200, 40, 30], np.uint8), (len(pos), 1)),
+        "spacing_m": np.array(spacing_m), "lattice_fill_ratio": np.array(1.0),
+        "body_volume_m3": np.array(vol.sum())}  # L1's volume (sphere())
+    settings = pipeline.settings_from_contract("draft")
+    gaussians = pipeline.build_gaussians(arrays, particles, settings)
+    info = pipeline.BuildInfo(source="text", name="ball", category="ball")
+    write_l0(L0Result(arrays, proxy, particles, gaussians, info,
+                      pipeline.check_geometry(arrays, proxy, particles, gaussians)), path)
+
+
 def write_sphere_asset(path: Path, spacing_m: float, prior: Material = PRIOR) -> Path:
-    """An asset directory holding what `calibrate` reads: the particles, L1's model and L2's material."""
+    """An asset directory holding what `calibrate` reads: L0 (write_sphere_l0: the particles), L1's model and L2's
+    material."""
     pos, vol, phys = sphere(spacing_m)
-    path.mkdir(parents=True, exist_ok=True)
-    g = zarr.open_group(str(path / PARTICLES_ZARR), mode="w")
-    g.create_array("positions_m", data=pos.astype(np.float32))
-    g.create_array("volumes_m3", data=vol.astype(np.float32))
+    write_sphere_l0(path, pos, vol, spacing_m)
     adir = AssetDir(path)
     adir.write_physical(PhysicalRecord(passed=True, status="accepted", message="a test sphere", material_class="rubber",
                                        intent="", mass_check={}, targets=TargetBehaviour(), physical_model=phys,

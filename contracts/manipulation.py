@@ -149,13 +149,19 @@ class GripperChoice(Row):
 class L2Check(Row):
     """L2's revalidation of a revised material (flows.l3_material.revalidate_in_l2)."""
 
-    ABSENT_UNLESS_GIVEN: ClassVar[frozenset[str]] = frozenset({"material"})
+    ABSENT_UNLESS_GIVEN: ClassVar[frozenset[str]] = frozenset({"material", "held_out_gates", "held_out_metrics",
+                                                               "held_out_probes"})
     material: Material | None = Field(default=None, description="the material revalidated (L3 always writes it)")
     passed: bool
     gates: dict[str, bool]
     bands: dict[str, bool]
     metrics: dict[str, float]
     probe_keys: list[str]
+    held_out_gates: dict[str, bool] = Field(default_factory=dict, description="each L2 hard gate on the held-out "
+                                            "tests' metrics (given when they ran: a calibrated material's check)")
+    held_out_metrics: dict[str, float] = Field(default_factory=dict, description="the held-out tests' metrics")
+    held_out_probes: list[str] = Field(default_factory=list, description="the held-out tests run, in the contract's "
+                                       "order (probe kind)")
 
 
 class MaterialRevision(Row):

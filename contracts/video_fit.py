@@ -12,9 +12,11 @@ from typing import Literal
 from pydantic import Field
 
 from contracts.base import Model
+from contracts.manipulation import L2Check, MaterialRevision
 from contracts.material import Material
 
 VIDEO_FIT_JSON = "calibration/video_fit.json"
+SIDE_BY_SIDE_JPG = "calibration/side_by_side.jpg"  # the real clip's key frames above the simulated ones
 
 ScaleSource = Literal["size", "drop_height", "gravity"]
 
@@ -104,6 +106,42 @@ class FitStep(Model):
     metrics: dict[str, float]
 
 
+class CalibrationChecks(Model):
+    """The fitted material through L2's held-out tests and L3's revise/re-validate edge before it is published
+    (flows.calibrate): it is published only when `passed`."""
+
+    passed: bool = Field(description="every gate in `gates` held")
+    gates: dict[str, bool] = Field(description="gate -> held: 'L2 hard gates' (the selection probes), 'L2 held-out "
+                                   "hard gates' (the held-out tests), 'L3 robot confirmation' (when L3 ran)")
+    l2: L2Check = Field(description="L2's revalidation of the fitted material at the asset's own settings: its "
+                                    "selection probes and held-out tests (flows.l3_material.revalidate_in_l2)")
+    word_bands: dict[str, bool] = Field(default_factory=dict, description="the target bands from the words that held "
+                                        "for the L2 material -> whether the fitted material still holds them "
+                                        "(information, not a gate: the video measures the real object)")
+    l3: MaterialRevision | None = Field(default=None, description="the robot under the plan, physical model and force "
+                                        "budget of manipulation.json with the fitted material (L3's revise/re-validate "
+                                        "edge, trigger 'calibration'); None when it did not run")
+    l3_status: Literal["confirmed", "failed", "skipped"]
+    l3_note: str = Field(description="what happened to L3, or why it did not run (--no-l3; no L3 on this asset)")
+
+
+class KeyFrame(Model):
+    """One moment of the side-by-side comparison: the real frame and the simulated drop at the same time."""
+
+    label: str = Field(description="release, first impact, top of first bounce, rest")
+    t_s: float = Field(description="time in the video [s]")
+    frame: int = Field(description="the video's frame index")
+    sim_t_s: float = Field(description="time after the simulated release [s]")
+
+
+class Comparison(Model):
+    """The real clip beside the simulated one (tasks.calibrate.compare)."""
+
+    image: str = Field(description="the side-by-side strip, relative to the asset (JPEG)")
+    frames: list[KeyFrame]
+    note: str = Field(default="", description="how the simulated frames were drawn")
+
+
 class VideoFitRecord(Model):
     """calibration/video_fit.json: the video's evidence, the fit and its limits."""
 
@@ -131,7 +169,11 @@ class VideoFitRecord(Model):
     sim_calls: int = 0
     converged: bool = False
     notes: list[str] = Field(default_factory=list)
+    checks: CalibrationChecks | None = Field(default=None, description="L2's held-out tests and L3's confirmation of "
+                                             "the fitted material (None: a dry run, or a record written before them)")
+    comparison: Comparison | None = Field(default=None, description="the real clip's key frames beside the simulated "
+                                          "drop's (None: a dry run, or too few frames to pick them)")
 
 
-__all__ = ["FitStep", "PressTest", "ScaleSource", "TrackSummary", "VIDEO_FIT_JSON", "VideoFitRecord", "VideoMetrics",
-           "VideoScale"]
+__all__ = ["CalibrationChecks", "Comparison", "FitStep", "KeyFrame", "PressTest", "SIDE_BY_SIDE_JPG", "ScaleSource",
+           "TrackSummary", "VIDEO_FIT_JSON", "VideoFitRecord", "VideoMetrics", "VideoScale"]

@@ -18,7 +18,7 @@ cached tasks (trial, gripper choice, grasp selection) and the flow.
 from __future__ import annotations
 
 import functools
-from dataclasses import asdict
+from dataclasses import asdict, replace
 from pathlib import Path
 from typing import Any, cast
 
@@ -30,8 +30,8 @@ from cache import cached_task
 from cache.files import source_digest
 from cache.prefect_flow import lean_flow
 from contracts.agents import AgentConfig, StageOutcome, TargetBehaviour
-from contracts.asset_dir import DEFAULT_KEEP, KeepTrials
-from contracts.manipulation import ConditionRow, GripperOption, L2Check, ManipulationRecord
+from contracts.asset_dir import DEFAULT_KEEP, KeepTrials, attempt_path
+from contracts.manipulation import ConditionRow, GripperOption, L2Check, ManipulationRecord, MaterialRevision
 from contracts.material import Material
 from contracts.physical import PhysicalModel
 from contracts.probes import ProbeResult, ProbeSpec
@@ -49,7 +49,7 @@ from tasks.manipulation.context import (SURFACE_SAMPLES, HoldInputs, L3Context, 
 from tasks.manipulation.keep import keep_trials
 from tasks.manipulation.l3_record import (build_record, chosen_attempt, conditions, conditions_summary,
                                           name_pick_and_place, no_grasp_outcome)
-from tasks.manipulation.material_revision import MaterialLimits, robustness_and_revision
+from tasks.manipulation.material_revision import MaterialLimits, robot_confirmation, robustness_and_revision
 from tasks.manipulation.outcome import TrialTolerances
 from tasks.manipulation.report import L3Progress, Progress, planned_trials
 from tasks.manipulation.trial import TrialSettings, plan_or_error, run_trial
@@ -260,6 +260,55 @@ def l3_manipulation(asset_dir: Path, options: L3Options | None = None, agents: A
     report.say("L3 " + ("passed" + conditions_summary(held, robustness) if passed else "did not pass: " + record.reason))
     AssetDir(asset_dir).write_manipulation(record)  # no wall time in it: a rerun writes the same file
     return record, outcome
+
+
+def recorded_options(record: ManipulationRecord, device: str = "cpu", cpu_threads: int = 1) -> L3Options:
+    """The L3Options a manipulation.json was run with, as far as it records them: its quality's timing and conditions
+    (the CLI's draft or standard) and its trial lattice."""
+    base = (L3Options.standard(device, cpu_threads) if record.numerics.quality == "standard"
+            else L3Options(device=device, cpu_threads=cpu_threads))
+    spacing = record.numerics.trial_particle_spacing_m
+    return replace(base, particle_spacing_m=spacing) if spacing else base
+
+
+def confirm_material(asset_dir: Path, check: L2Check, trigger: str, reason: str, scratch: Path,
+                     device: str = "cpu", cpu_threads: int = 1,
+                     progress: Progress | None = None) -> MaterialRevision | str:
+    """A material from outside L3 (a calibration's) through L3's revise/re-validate edge after L2 passed it (`check`:
+    flows.l3_material.revalidate_in_l2): the robot under the plan, physical model and force budget of the asset's
+    manipulation.json (tasks.manipulation.material_revision.robot_confirmation), the l3-material-confirmation flow
+    against the local Prefect runtime. The trials are cached tasks; their interaction data go to `scratch`, never
+    into the asset. Returns the revision (accepted: the nominal condition passed), or why the robot could not confirm
+    it (no L3 plan passed on this asset)."""
+    record = AssetDir(asset_dir).manipulation()
+    if not record.passed or record.values is None:
+        return f"L3 did not pass on this asset ({record.status}): no plan to confirm the material under"
+    if check.material is None:
+        raise ValueError("the L2 check names no material")
+    rev = MaterialRevision.model_validate({
+        "trigger": trigger, "from": record.material, "to": check.material, "reason": reason, "failed_gates": [],
+        "l2_revalidation": check, "l2_checks": [check], "plan_values": dict(record.values), "accepted": False})
+    with cache.local_runtime():
+        return l3_material_confirmation(Path(asset_dir), rev, recorded_options(record, device, cpu_threads),
+                                        Path(scratch), progress)
+
+
+@lean_flow(name="l3-material-confirmation", validate_parameters=False, persist_result=False)
+def l3_material_confirmation(asset_dir: Path, revision: MaterialRevision, options: L3Options, scratch: Path,
+                             progress: Progress | None = None) -> MaterialRevision:
+    """The robot's confirmation of a material revision from outside L3 (confirm_material): the context L3 ran under
+    (its material, gripper, grasps, squeeze range), then robot_confirmation under the recorded plan."""
+    ctx = load_context(asset_dir, options, load_contract("L3"), revision.from_)
+    ctx.asset_dir, ctx.recordings = Path(scratch), False  # the trials' data to the scratch folder, no recordings
+    ctx.progress = L3Progress(progress, 1 + len(options.robustness))
+    rev = robot_confirmation(ctx, revision)
+    if rev.robustness is None:
+        return rev
+    # the conditions' interaction paths were the scratch folder's: name their data by cache key instead
+    where = {attempt_path(a.attempt): f"in the cache, key {a.data_key}" if a.data_key else None
+             for a in ctx.attempts if a.attempt is not None}
+    rows = [c.model_copy(update={"attempt": where.get(c.attempt or "")}) for c in rev.robustness.conditions]
+    return rev.model_copy(update={"robustness": rev.robustness.model_copy(update={"conditions": rows})})
 
 
 def load_manipulation(asset_dir: Path) -> ManipulationRecord:

@@ -21,18 +21,30 @@ if TYPE_CHECKING:
 
 def revalidate_in_l2(asset_dir: Path, material: Material, physical: PhysicalModel,
                      limits: MaterialLimits | None = None, sim: SimConfig | None = None,
-                     asset: L0Asset | None = None) -> L2Check:
+                     asset: L0Asset | None = None, held_out: bool = False) -> L2Check:
     """L2 revalidation of a revised material (L2's l2-revalidation flow, a subflow of l3-manipulation: its selection
     probes, cached, under `sim`: L3's device and CPU threads): passes when every L2 hard gate holds and every target
-    band that held for the L2 material still holds. asset: the L0 data L3 already loaded (else read again)."""
+    band that held for the L2 material still holds. asset: the L0 data L3 already loaded (else read again).
+    held_out: L2's held-out tests too (a calibrated material, flows.calibrate): every hard gate must hold on their
+    metrics as well."""
     l2 = load_contract("L2")
-    result = evaluate_material(asset_dir, material, contract=l2, sim=sim, held_out=False, physical=physical,
+    result = evaluate_material(asset_dir, material, contract=l2, sim=sim, held_out=held_out, physical=physical,
                                asset=asset)
     metrics = result["metrics"]
     gates = {g.name: bool(g.passes(metrics.get(g.metric))) for g in l2.hard_gates}
     bands = {b.metric: bool(b.contains(metrics.get(b.metric))) for b in (limits.held_bands() if limits else [])}
-    return L2Check(material=material, passed=all(gates.values()) and all(bands.values()), gates=gates, bands=bands,
-                   metrics=metrics, probe_keys=[r.cache_key for r in result["selection"] if r.cache_key])
+    check = L2Check(material=material, passed=all(gates.values()) and all(bands.values()), gates=gates, bands=bands,
+                    metrics=metrics, probe_keys=[r.cache_key for r in result["selection"] if r.cache_key])
+    if not held_out:
+        return check
+    held = result["held_out_metrics"]
+    held_gates = {g.name: bool(g.passes(held[g.metric])) for g in l2.hard_gates if g.metric in held}  # what they
+    # measure (the long rollout is the stability probe's, not a held-out test's)
+    if not held_gates:  # held-out tests that measured none of the gates' metrics are no check
+        held_gates = {"held-out tests measured": False}
+    return check.model_copy(update={"passed": check.passed and all(held_gates.values()), "held_out_gates": held_gates,
+                                    "held_out_metrics": held,
+                                    "held_out_probes": [r.spec.kind for r in result["held_out"]]})
 
 
 __all__ = ["revalidate_in_l2"]

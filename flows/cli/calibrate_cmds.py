@@ -39,6 +39,17 @@ def summary_lines(r: VideoFitRecord, asset_dir: Path) -> list[str]:
         f"tracked {t.frames_tracked}/{t.frames} frames ({t.frames_dropped} dropped) at {t.fps:g} fps ({t.fps_source}); "
         f"tracking confidence {t.tracking_confidence:.2f}",
     ]
+    if r.checks is not None:
+        c = r.checks
+        lines.append("checks: " + ", ".join(f"{g} {'passed' if ok else 'FAILED'}" for g, ok in c.gates.items())
+                     + f" (held-out tests: {', '.join(c.l2.held_out_probes) or 'none'}); L3 {c.l3_status}: "
+                     f"{c.l3_note}")
+        left = [m for m, ok in c.word_bands.items() if not ok]
+        if left:
+            lines.append(f"outside the words' bands (not a gate: the video measures the object): {', '.join(left)}")
+    if r.comparison is not None:
+        lines.append(f"real beside simulated: {asset_dir / r.comparison.image} "
+                     f"({', '.join(k.label for k in r.comparison.frames)})")
     lines += [f"undetermined: {k}: {why}" for k, why in r.undetermined.items()]
     lines += [f"note: {n}" for n in r.notes]
     lines.append(f"record: {asset_dir / VIDEO_FIT_JSON}")
@@ -57,12 +68,16 @@ def calibrate(
                               "clip's playback rate)"),
     press: Path = typer.Option(None, "--press", help="a flat-plate press test: CSV with columns displacement_m, force_n"),
     cpu_threads: int = typer.Option(2, "--cpu-threads", help="threads sharing each MPM rollout's particles"),
-    dry_run: bool = typer.Option(False, "--dry-run", help="fit and report, write nothing"),
+    no_l3: bool = typer.Option(False, "--no-l3", help="skip the robot's confirmation of the fitted material under "
+                               "manipulation.json's plan (L3 trials are the slow part; the record says it was skipped)"),
+    dry_run: bool = typer.Option(False, "--dry-run", help="fit and report; no held-out tests, no L3, nothing written"),
     as_json: bool = typer.Option(False, "--json", help="print the record as JSON"),
 ) -> None:
     """Fit the asset's Young's modulus and Kelvin-Voigt viscosity to a video of the real object (rebound, impact
-    strain; E from a press test when given) with the engine's drop at the video's height and size; write
-    calibration/video_fit.json and the fitted material as the asset's."""
+    strain; E from a press test when given) with the engine's drop at the video's height and size; check it with
+    L2's held-out tests and (when the asset has L3) the robot under its plan; only when every gate holds, write
+    calibration/video_fit.json, calibration/side_by_side.jpg and the fitted material as the asset's (exit 6 and
+    nothing written when a gate fails)."""
     for name, v in (("--drop-height", drop_height), ("--size", size), ("--fps", fps)):
         _positive(name, v)
     if not 1 <= cpu_threads <= 64:
@@ -71,9 +86,10 @@ def calibrate(
     from flows.calibrate import calibrate_asset
 
     try:
-        with console.status("tracking the video and fitting the material ..."):
+        with console.status("tracking the video and fitting the material ...") as status:
             record = calibrate_asset(asset_dir, video, drop_height, size, fps, press,
-                                     SimConfig(cpu_threads=cpu_threads), write=not dry_run)
+                                     SimConfig(cpu_threads=cpu_threads), write=not dry_run, l3=not no_l3,
+                                     progress=status.update)
     except DeformSmithError as exc:
         fail(str(exc), exc.exit_code)
     if as_json:

@@ -193,15 +193,21 @@ def revise_with_l2(ctx: L3Context, values: dict[str, float], metrics: dict[str, 
         "trigger": trigger, "from": ctx.material, "to": revised, "reason": reason,
         "failed_gates": failed_gates(metrics, ctx.contract), "l2_revalidation": checks[-1], "l2_checks": checks,
         "plan_values": dict(values), "accepted": False})
-    if checks[-1].passed:
-        confirm = [ctx.trial(dict(values), "confirmation", "revise_material", material=revised)]
-        confirmed = accepted(confirm[0].metrics, ctx.contract)
-        if confirmed:  # the robustness conditions only matter for a material the nominal condition accepts
-            confirm += ctx.under(dict(values), ctx.options.robustness, "robustness", "revise_material", revised)
-        rev = rev.model_copy(update={
-            "accepted": confirmed, "confirmation": confirm[0].metrics,
-            "robustness": conditions(ctx.options.robustness, confirm[1:], ctx.contract)})
-    return rev
+    return robot_confirmation(ctx, rev) if checks[-1].passed else rev
+
+
+def robot_confirmation(ctx: L3Context, rev: MaterialRevision) -> MaterialRevision:
+    """The robot under the same plan (rev.plan_values), physical model and force budget with the revised material
+    (rev.to), after L2 passed it: the nominal condition, and the robustness conditions when it passes. The revision
+    with 'accepted' (the nominal condition passed), its labels ('confirmation') and the robustness conditions."""
+    values = dict(rev.plan_values)
+    confirm = [ctx.trial(values, "confirmation", "revise_material", material=rev.to)]
+    confirmed = accepted(confirm[0].metrics, ctx.contract)
+    if confirmed:  # the robustness conditions only matter for a material the nominal condition accepts
+        confirm += ctx.under(values, ctx.options.robustness, "robustness", "revise_material", rev.to)
+    return rev.model_copy(update={
+        "accepted": confirmed, "confirmation": confirm[0].metrics,
+        "robustness": conditions(ctx.options.robustness, confirm[1:], ctx.contract)})
 
 
 def more_robust(revision: MaterialRevision | None, robustness: ConditionSummary) -> MaterialRevision | None:
@@ -257,4 +263,4 @@ def robustness_and_revision(ctx: L3Context, outcome: StageOutcome, contract: Sta
 
 
 __all__ = ["AfterHarness", "MaterialLimits", "Revalidate", "base_attempt", "failed_gates", "fell_over", "halfway",
-           "more_robust", "revise_material", "revise_with_l2", "robustness_and_revision"]
+           "more_robust", "revise_material", "revise_with_l2", "robot_confirmation", "robustness_and_revision"]

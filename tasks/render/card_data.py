@@ -22,6 +22,7 @@ from tasks.asset_dir import AssetDir
 from tasks.record.attempts import ATTEMPTS_FILE, read_attempts
 from tasks.record.tally import stage_tallies
 from tasks.record.trials import data_location
+from tasks.render.card_calibration import CalibrationCard, calibration_card
 from tasks.render.protocol_video import CARD_TIMES_S, VIEW_NAMES, card_still_name
 
 STILL_VIEWS = ("iso", "front", "side", "top")  # renders/<view>.png (L0; iso since mesh version 17)
@@ -160,6 +161,7 @@ class CardData(BaseModel):
     analogy: list[str] = []  # when built by analogy: the one-line note, then the chain (geometry.json concept)
     layers: list[LayerVerdict] = []  # L0..L3 at a glance
     material_words: str | None = None  # "soft as a plush toy: E = 9.98 kPa"
+    calibration: CalibrationCard | None = None  # calibrated from a video (calibration/video_fit.json), else None
 
 
 def _number(value: Any) -> float | None:
@@ -343,7 +345,7 @@ def card_data(asset_dir: Path | str, manifest: AssetManifest | None = None) -> C
     return CardData(name=request_title(request), request=request, views=views,
                     drop_frames=_drop_frames(adir), videos=videos, material=material_rows, bands=bands, l1=l1_rows,
                     protocol=protocol, l3=l3, stages=stages, sources=sources, built=built,
-                    analogy=analogy, layers=layers, material_words=words)
+                    analogy=analogy, layers=layers, material_words=words, calibration=calibration_card(adir.path))
 
 
 def _stage_line(t: StageTally, l3: L3Card) -> str:

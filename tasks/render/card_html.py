@@ -7,6 +7,7 @@ import html
 import os
 from pathlib import Path
 
+from tasks.render.card_calibration import CalibrationCard
 from tasks.render.card_data import CardData, Figure
 from tasks.render.card_text import band_text, outcome_lines, request_line, si, state_text
 
@@ -24,7 +25,7 @@ STYLE = ("body{font-family:system-ui,-apple-system,'Segoe UI',Helvetica,Arial,sa
          "table{border-collapse:collapse;margin:.5em 0}td,th{border:1px solid #ccc;padding:4px 8px;font-size:16px}"
          "th{background:#eee;text-align:left}.miss{color:#b00;font-weight:bold}.unmeasured{color:#8a5a00}"
          ".key{font-family:monospace;font-size:14px}.technical{border-top:3px solid #ccc;margin-top:2em}"
-         "video,img.still{max-width:640px;width:100%}img.frame{width:24%}figure{display:inline-block;margin:4px}"
+         "video,img.still{max-width:640px;width:100%}img.calibration{max-width:100%}img.frame{width:24%}figure{display:inline-block;margin:4px}"
          "figcaption{font-size:16px;color:#444}"
          ".analogy{border:3px solid #c80;background:#fff6e5;padding:8px 12px;margin:.6em 0;font-size:18px}")
 
@@ -79,6 +80,39 @@ def force_svg(card: CardData, width: int = 640, height: int = 220) -> str:
     return "\n".join(lines)
 
 
+def _ratio(v: float | None) -> str:
+    """A residual as a signed percentage, '-' when there is none."""
+    return "-" if v is None else f"{100 * v:+.1f} %"
+
+
+def calibration_html(c: CalibrationCard) -> list[str]:
+    """The calibration section: the real clip beside the simulated one, the fitted material beside the prior, the
+    metrics with the fit's residuals, the checks and the limits."""
+    e = html.escape
+    parts = ["<h2>Calibrated from a video of the real object</h2>",
+             f"<p>Clip <b>{e(c.video)}</b>: Young's modulus {e(si(c.prior[0], 'Pa'))} &rarr; "
+             f"<b>{e(si(c.fitted[0], 'Pa'))}</b> (from {e(c.youngs_modulus_source.replace('_', ' '))}); viscosity "
+             f"{e(si(c.prior[1], 'Pa s'))} &rarr; <b>{e(si(c.fitted[1], 'Pa s'))}</b> (from "
+             f"{e(c.viscosity_source.replace('_', ' '))}); the fit {'converged' if c.converged else 'did not converge'}."
+             "</p>"]
+    if c.image:
+        parts.append(f'<figure><img class="calibration" src="{e(_rel(c.image))}" alt="real clip above, simulated '
+                     f'drop below"><figcaption>top: the real clip; bottom: the fitted material simulated from the same '
+                     f'release ({e("; ".join(c.frames))})</figcaption></figure>')
+    else:
+        parts.append("<p>(no side-by-side frames stored)</p>")
+    rows = ["<table><tr><th>metric</th><th>video</th><th>simulated</th><th>residual</th><th>note</th></tr>"]
+    for r in c.rows:
+        rows.append(f"<tr><td>{e(r.label)}</td><td>{e(si(r.video, r.unit))}</td><td>{e(si(r.simulated, r.unit))}</td>"
+                    f"<td>{e(_ratio(r.residual))}</td><td>{e(r.note or '')}</td></tr>")
+    parts += [*rows, "</table>", "<h3>Checks before it was published</h3>",
+              "<ul>" + "".join(f"<li>{e(s)}</li>" for s in c.checks) + "</ul>",
+              "<h3>Limits of the video's evidence</h3>",
+              "<ul>" + "".join(f"<li>{e(s)}</li>" for s in c.limits) + "</ul>",
+              f"<p>record: {e(c.record)}</p>"]
+    return parts
+
+
 def verdict_mark(passed: bool | None) -> str:
     """PASSED / NOT PASSED / NOT RUN."""
     return NOT_RUN if passed is None else (PASSED if passed else NOT_PASSED)
@@ -121,6 +155,8 @@ def card_html(card: CardData) -> str:
             parts.append(f"<p>{e(view)} view: no drop frames stored (older asset): see the video below.</p>")
     parts += [f'<figure><video controls muted loop playsinline preload="metadata" src="{e(_rel(rel))}"></video>'
               f"<figcaption>{e(label)}</figcaption></figure>" for label, rel in card.videos.items()]
+    if card.calibration is not None:
+        parts += calibration_html(card.calibration)
     parts.append("<h2>The grasp</h2>")
     l3 = card.l3
     if not l3.ran:

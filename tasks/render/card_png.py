@@ -79,6 +79,11 @@ def _figure_line(fig: Figure) -> str:
 
 def _material_lines(card: CardData) -> list[str]:
     lines = [line for f in card.material for line in wrap(_figure_line(f), TECH_WRAP, indent="    ")]
+    c = card.calibration
+    if c is not None:
+        lines += wrap(f"calibrated from video {c.video}: E {si(c.prior[0], 'Pa')} -> {si(c.fitted[0], 'Pa')}, "
+                      f"viscosity {si(c.prior[1], 'Pa s')} -> {si(c.fitted[1], 'Pa s')} (real beside simulated: "
+                      "card.html)", TECH_WRAP, indent="    ")
     lines += ["", "targets (measured on a specimen of the material):"]
     for fig in card.bands:
         lines += wrap(_figure_line(fig), TECH_WRAP, indent="    ")

@@ -25,8 +25,9 @@ from tasks.probes.rollout import DeformableBody
 SPACING = 0.0035  # 739 particles
 
 
-def test_the_command_recovers_e_and_the_rebound_of_a_drop_video(tmp_path: Path) -> None:
-    """The medium sphere (E 200 kPa, 30 Pa s) through the command: the record and the fitted material are written."""
+def test_the_command_recovers_e_and_the_rebound_of_a_drop_video(tmp_path: Path, prefect_api: str) -> None:
+    """The medium sphere (E 200 kPa, 30 Pa s) through the command: the record and the fitted material are written
+    (after L2's held-out tests passed it)."""
     case = CASES["medium"]
     sim = SimConfig(cpu_threads=1)
     video = tmp_path / "drop.avi"
@@ -68,7 +69,7 @@ def test_the_round_trip_recovers_soft_medium_and_stiff(name: str, tmp_path: Path
 
 
 @pytest.mark.slow
-def test_a_press_test_gives_e_when_the_video_shows_no_compression(tmp_path: Path) -> None:
+def test_a_press_test_gives_e_when_the_video_shows_no_compression(tmp_path: Path, prefect_api: str) -> None:
     """A 240 fps video of the stiff sphere sees the impact in two frames at most: E from the press table (made from
     the true material's own compression probe), the viscosity from the rebound; the record says why."""
     case = CASES["stiff"]

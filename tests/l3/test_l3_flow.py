@@ -296,3 +296,43 @@ def test_a_material_revision_runs_l2_revalidation_as_a_subflow_of_l3(cube_asset:
     subflows = children(latest_run("l3-manipulation").id)
     assert [name for name, _ in subflows] == ["harness-stage", "l2-revalidation"]
     assert probed_in == [str(subflows[1][1].id)]
+
+
+def test_a_calibrated_material_goes_through_l3s_revise_revalidate_edge(cube_asset: Path, prefect_api: str,
+                                                                      monkeypatch: pytest.MonkeyPatch) -> None:
+    """`deformsmith calibrate`'s checks (flows.calibrate.check_material) on an asset with a passed L3: L2's check (a
+    stand-in here), then the robot under manipulation.json's plan with the calibrated material (a stand-in robot that
+    holds only materials at least as stiff as the L2 one; the flow around it is the real one): a stiff material is
+    confirmed, a soft one fails the L3 gate, and --no-l3 skips the robot."""
+    import flows.calibrate as calibrate
+    from contracts.sim import SimConfig
+
+    _l2_material_in_band(cube_asset)  # E 20 kPa
+    _stand_in_robot(monkeypatch, lambda m, yaw: PASS if m.youngs_modulus_pa >= 2e4 else SLIP)
+    record, _ = run_l3(cube_asset, L3Options(squeeze_depth_m=0.004, robustness=()), contract=_contract(),
+                       recordings=False)
+    assert record.passed and record.values is not None
+    checked: list[float] = []
+
+    def l2_passes(asset_dir, material, physical, sim=None, held_out=False, **_):  # noqa: ANN001, ANN202
+        assert held_out  # the calibration asks for L2's held-out tests too
+        checked.append(material.youngs_modulus_pa)
+        return L2Check(material=material, passed=True, gates={"finite": True}, bands={}, metrics={}, probe_keys=[],
+                       held_out_gates={"finite": True}, held_out_probes=["compress"])
+
+    monkeypatch.setattr(calibrate, "revalidate_in_l2", l2_passes)
+    stiff = record.material.model_copy(update={"youngs_modulus_pa": 4e4})
+    checks = calibrate.check_material(cube_asset, stiff, SimConfig(), True, lambda _: None)
+    assert checks.passed and checks.l3_status == "confirmed" and checks.gates["L3 robot confirmation"]
+    rev = checks.l3
+    assert rev is not None and rev.trigger == "calibration" and rev.accepted and rev.to == stiff
+    assert rev.from_ == record.material and rev.plan_values == record.values
+    assert rev.confirmation is not None and rev.confirmation["lifted"] == 1.0
+    soft = record.material.model_copy(update={"youngs_modulus_pa": 1e4})
+    checks = calibrate.check_material(cube_asset, soft, SimConfig(), True, lambda _: None)
+    assert not checks.passed and checks.l3_status == "failed" and checks.gates["L3 robot confirmation"] is False
+    assert "lifted" in checks.l3_note and "L3 robot confirmation" in calibrate.failure_message(checks)
+    checks = calibrate.check_material(cube_asset, soft, SimConfig(), False, lambda _: None)
+    assert checks.passed and checks.l3 is None and "--no-l3" in checks.l3_note
+    assert "L3 robot confirmation" not in checks.gates
+    assert checked == [4e4, 1e4, 1e4]
