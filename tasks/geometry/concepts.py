@@ -1679,14 +1679,15 @@ def _whole_object(reading: Reading, program: ShapeProgram, match: ConceptMatch, 
         match = _as_built_mass(match, before, EMPTY_FACTORS, target.empty_mass_kg,
                                f"empty: {target.empty_mass_kg:g} kg")
     elif target.plan == "bottle" and target.empty_mass_kg is not None \
-            and (said := fill_words.stated_fullness(text)) is not None:
+            and (fullness := fill_words.stated_fullness(text)) is not None:
         # 'a half-empty water bottle': its shell and that share of its contents (a bottle's typical mass is full)
-        k = (target.empty_mass_kg + said[0] * (target.mass_kg - target.empty_mass_kg)) / target.mass_kg
+        share, words = fullness
+        k = (target.empty_mass_kg + share * (target.mass_kg - target.empty_mass_kg)) / target.mass_kg
         match = match.model_copy(update={
             "typical_mass_kg": match.typical_mass_kg * k if match.typical_mass_kg else None,
             "density_kg_per_m3": match.density_kg_per_m3 * k if match.density_kg_per_m3 else None,
-            "mass_source": f"{match.mass_source}; {said[1]}: the shell and {said[0]:g} of its contents"})
-        states.append(said[1])
+            "mass_source": f"{match.mass_source}; {words}: the shell and {share:g} of its contents"})
+        states.append(words)
     pose = pose_of(text)
     if pose is not None:
         program = posed(program, pose)

@@ -163,12 +163,12 @@ def apply(target: LexiconEntry, portion: str | None, text: str, params: dict, si
     stack = _STACK_COUNT.search(text) if plan == "disc" else None
     if stack is not None:  # 'a stack of 5 pancakes': the stacked disc's layers, its height and mass with them
         word = stack.group(1) or stack.group(2)
-        n = int(np.clip(int(word) if word.isdigit() else _COUNT_WORDS.get(word, layers), 2, STACK_MAX))
+        n_layers = int(np.clip(int(word) if word.isdigit() else _COUNT_WORDS.get(word, layers), 2, STACK_MAX))
         height = float({**target.params, **out.params}.get("height", 0.1))
-        out.params.update(layers=n, height=height * n / layers)
-        mass = match.typical_mass_kg * n / layers if match.typical_mass_kg else None  # (one disc's times n)
+        out.params.update(layers=n_layers, height=height * n_layers / layers)
+        mass = match.typical_mass_kg * n_layers / layers if match.typical_mass_kg else None  # (one disc's times n)
         out.match = out.match.model_copy(update={"typical_mass_kg": mass})
-        out.notes += (f"a stack of {n}",)
+        out.notes += (f"a stack of {n_layers}",)
     goods = plan not in UNGROUPED_PLANS or (plan == "pouch" and fill is None and not target.key.startswith("generic"))
     goods = goods and stack is None
     # (a pouch is a good of its own, 'three juggling beanbags', unless it is the pack the count is inside of)
