@@ -130,6 +130,7 @@ def test_cut_sheets_stack_as_a_thin_pad_weighing_each_sheet() -> None:
     ("a folded mesh basketball jersey", "t_shirt", 0.08, 0.3),  # was a generic quadruped (WordNet's cow)
     ("a wet one-piece swimsuit", "swimsuit", 0.1, 0.6),  # was a generic garment
     ("a woven straw hat", "straw_hat", 0.05, 0.25),  # was a red bobble hat
+    ("a blue foam flip flop", "flip_flop", 0.06, 0.2),  # was a 26 g generic block
 ])
 def test_dev19_objects_are_their_own_entries_with_their_mass(text: str, entry: str, low: float, high: float) -> None:
     assert catalogue.design_from_text(text).entry == entry
