@@ -1114,6 +1114,9 @@ class GarmentParams(Model):
     width: float = Field(default=0.78, gt=0.3, le=1.2, description="body width / length [-]")
     thickness: float = Field(default=0.012, gt=0.0, le=0.1, description="real flat thickness (front and back "
                              "layers) / length [-]")
+    robe: bool = Field(default=False, description="a wrap robe (a bathrobe, a dressing gown): a shawl collar "
+                       "crossing from the neck to the waist, and a tie belt knotted at the side with its two ends "
+                       "hanging")
     baffles: int = Field(default=0, ge=0, le=12, description="quilted (down-filled) baffles across the body, and "
                          "along the sleeves in proportion: a puffy layer with stitched grooves (a puffer jacket or "
                          "vest) [-]")
@@ -1173,6 +1176,22 @@ def _top_flat(p: GarmentParams, t: float) -> list[Part]:
         for side in (1, -1):
             parts.append(box(f"{'left' if side > 0 else 'right'} collar", (0.12, 0.12, 0.5 * t),
                              (0.45, side * 0.07, 1.1 * t), edge=0.2 * t, rot=(0, 0, side * 30), blend=0.004))
+    if p.robe:
+        parts += _robe_wrap(w, t)
+    return parts
+
+
+def _robe_wrap(w: float, t: float) -> list[Part]:
+    """A wrap robe's shawl collar (two raised bands crossing from the neck to the waist) and its tie belt (a band
+    round the waist, knotted at one side, its two ends hanging down the front)."""
+    parts = [_flat_limb(f"{'left' if side > 0 else 'right'} lapel", np.array([0.5, side * 0.1, 1.1 * t]),
+                        np.array([0.02, -side * 0.1 * w, 1.1 * t]), 0.07, 1.6 * t, blend=0.01) for side in (1, -1)]
+    parts.append(box("belt", (0.07, 1.02 * w, 1.5 * t), (0.0, 0.0, 0.75 * t), edge=0.4 * t, blend=0.005))
+    knot = np.array([0.0, 0.12 * w, 1.5 * t])
+    parts.append(ellipsoid("belt knot", (0.05, 0.05, 1.1 * t), tuple(float(v) for v in knot), blend=0.01))
+    for k, end in enumerate(((-0.34, 0.16 * w), (-0.28, 0.05 * w))):
+        parts.append(_flat_limb(f"belt end {k + 1}", knot, np.array([end[0], end[1], 1.2 * t]), 0.03, 1.2 * t,
+                                blend=0.01))
     return parts
 
 
