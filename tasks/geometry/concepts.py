@@ -1004,6 +1004,7 @@ def build(reading: Reading, text: str) -> tuple[ShapeProgram, ConceptMatch, list
         match = match.model_copy(update={"density_kg_per_m3": None})  # its typical mass at the built size (L1)
     program, match, states = _whole_object(reading, program, match, normalise(text), states, warnings)
     program, match, states = _eaten(entry, program, match, normalise(text), states)
+    program, match, states = _halved(entry, program, match, normalise(text), states)
     match, states = _soaked(match, target, normalise(text), states)
     match = graded(match, normalise(text))
     if reading.vacuum:  # the piece on the flat sealed film of its vacuum pack; the film's mass is the piece's
@@ -1040,6 +1041,32 @@ def _eaten(entry: LexiconEntry, program: ShapeProgram, match: ConceptMatch, text
     left = program_volume(eaten, 40) / max(before, 1e-12)
     mass = match.typical_mass_kg * left if match.typical_mass_kg else None
     return eaten, match.model_copy(update={"typical_mass_kg": mass}), [*states, "half eaten" if half else "bitten"]
+
+
+_HALVED = re.compile(r"\b(?:half (?:of )?an?|halved|cut in half|sliced in half|cut in two|a half)\b")
+
+
+def _halved(entry: LexiconEntry, program: ShapeProgram, match: ConceptMatch, text: str,
+            states: list[str]) -> tuple[ShapeProgram, ConceptMatch, list[str]]:
+    """Half a fruit or vegetable ('half a kiwi', 'a halved peach'): the lower half kept below a level cut through
+    its middle, the cut face up in the inside colour, its typical mass scaled by the volume left ('half eaten' and
+    'half full' are other states)."""
+    if not _HALVED.search(text) or _HALF_EATEN.search(text) or len(program.parts) > 62 \
+            or not (entry.material == "fruit" or entry.category in ("fruit", "vegetable")):
+        return program, match, states
+    centre, radii = _body_envelope(program, 32)
+    if radii[2] > 1.15 * max(radii[0], radii[1]):  # a standing long fruit (an avocado, a pear) is halved lengthwise:
+        program = program.model_copy(update={"parts": rotated_parts(program.parts, (0.0, 90.0, 0.0),
+                                                                    tuple(float(v) for v in centre))})
+        centre, radii = _body_envelope(program, 32)  # laid down first, then cut level
+    big = 4.0 * float(radii.max())
+    cut = box("cut face", (big, big, big), (float(centre[0]), float(centre[1]), float(centre[2]) - big / 2))
+    cut = cut.model_copy(update={"operation": "intersect", "color_rgb": _inside_rgb(program, entry)})
+    before = program_volume(program, 40)
+    half = program.model_copy(update={"parts": [*program.parts, cut]})
+    left = program_volume(half, 40) / max(before, 1e-12)
+    mass = match.typical_mass_kg * left if match.typical_mass_kg else None
+    return half, match.model_copy(update={"typical_mass_kg": mass}), [*states, "halved"]
 
 
 _HEAP = re.compile(r"\b(?:heap|heaped|pile|piled|balled|ball|wad|wadded|scrunched|bunched|on the floor|"

@@ -141,3 +141,19 @@ def test_green_beans_are_a_fresh_fill_not_dry_beans() -> None:
     fill = fill_words.read_fill("a bag of green beans")
     assert fill is not None and fill.key == "fresh_beans" and fill.bulk_density_kg_per_m3 < 500
     assert fill_words.read_fill("a bag of dry beans").key == "beans"  # type: ignore[union-attr]
+
+
+def test_half_a_fruit_is_its_lower_half_cut_face_up_at_half_the_mass() -> None:
+    """'half a kiwi' built a whole kiwi: the half below a level cut, the face in the flesh's colour; a standing long
+    fruit (an avocado) is laid down and halved lengthwise; 'half a sandwich' and 'half eaten' are not this."""
+    whole, half = catalogue.design_from_text("a kiwi"), catalogue.design_from_text("half a kiwi")
+    assert "halved" in half.concept.states
+    assert half.concept.typical_mass_kg == pytest.approx(0.5 * whole.concept.typical_mass_kg, rel=0.1)
+    face = [p for p in half.program.parts if p.name == "cut face"]
+    assert face and np.allclose(face[0].color_rgb, load_lexicon().colors["lime"])
+    ext = grammar.program_extents(half.program, 48)
+    assert ext[2] < 0.6 * ext[0]  # a low half, cut face up
+    avocado = grammar.program_extents(catalogue.design_from_text("half an avocado").program, 48)
+    assert avocado[0] > 1.3 * avocado[2]  # lying, halved along its length
+    assert "halved" not in catalogue.design_from_text("half a ham sandwich").concept.states
+    assert "halved" not in catalogue.design_from_text("a half eaten apple").concept.states
