@@ -14,7 +14,7 @@ from contracts.errors import InputError
 from contracts.lexicon import load_lexicon
 from contracts.request import MAX_SIZE_M, MIN_SIZE_M, AssetRequest
 from contracts.shape import ShapeProgram
-from tasks.geometry import concepts, dims_words, grammar, size_words
+from tasks.geometry import concepts, dims_words, grammar, size_words, spelling
 from tasks.geometry.analogy import FOOD_CUES
 from tasks.geometry.wordnet import wordnet
 from tasks.geometry.catalogue_programs import catalogue_program, catalogue_yaml
@@ -819,7 +819,9 @@ def design_from_text(text: str, size_hint_m: float | None = None) -> Design:
     if _DUSTED.search(text_n):  # 'dusted with icing sugar', 'floured': the powder in the stills
         match = match.model_copy(update={"finish": with_look(match.finish, DUSTED)})
     said = size_words.read_size_words(_strip_numeric_sizes(text_n), frozenset(MODIFIERS))
-    warnings = [w for w in said.warnings + reading.warnings + build_warnings if w]
+    spelt = [f"read '{wrong}' as '{right}'" for wrong, right in spelling.corrections(
+        concepts.plain(text), concepts.lexicon_words(), concepts.lexicon_phrases())]
+    warnings = [w for w in said.warnings + reading.warnings + build_warnings + spelt if w]
     score = {"exact": 2.0, "synonym": 1.0}.get(match.fallback_level, 0.0)
     return Design(entry=match.concept, program=program, size=size, modifiers=mods, warnings=warnings,
                   match_score=score, concept=match)

@@ -157,3 +157,9 @@ def test_half_a_fruit_is_its_lower_half_cut_face_up_at_half_the_mass() -> None:
     assert avocado[0] > 1.3 * avocado[2]  # lying, halved along its length
     assert "halved" not in catalogue.design_from_text("half a ham sandwich").concept.states
     assert "halved" not in catalogue.design_from_text("a half eaten apple").concept.states
+
+
+def test_a_corrected_word_is_said_in_the_warnings() -> None:
+    """A spelling read another way is a guess: the user sees it."""
+    assert "read 'slipers' as 'slippers'" in catalogue.design_from_text("a pair of hotel slipers").warnings
+    assert not any(w.startswith("read '") for w in catalogue.design_from_text("a pair of hotel slippers").warnings)
