@@ -114,7 +114,7 @@ def _calibration_speed(monkeypatch: pytest.MonkeyPatch, concept: ConceptMatch | 
 def test_a_rule_ball_is_calibrated_at_its_rules_impact_speed(obj: RealWorldObject,
                                                               monkeypatch: pytest.MonkeyPatch) -> None:
     """The concept L0 builds from the plain name: its loss is calibrated at the speed of a free fall from the rule's
-    drop height (v^2 / 2g is the rule's height: 7.06 m/s for the 2.54 m rules, 1.89 m/s for table tennis's 305 mm),
+    drop height (v^2 / 2g is the rule's height: 7.06 m/s for the 2.54 m rules, 2.45 m/s for table tennis's 305 mm),
     and the record says so."""
     assert obj.rebound is not None
     _, match, _ = concepts.build(concepts.read_text(obj.name), obj.name)
