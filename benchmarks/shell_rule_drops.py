@@ -1,7 +1,8 @@
 """The regulation balls' rule drops with a hollow ball built as its shell, or as the solid of before (session 32, issue
 #39), measured as session 28 measured them (docs/REALWORLD.md): L0 (draft) and L1's priors of the plain name, a fixed
-material (E, nu 0.48, damping 0), its loss calibrated to the ball's own restitution at the 2 m reference speed
-(tasks.realworld.loss.material_loss), then the rule's drop (flows.realworld.rule_rebound). One JSON line per ball.
+material (E, nu 0.48, damping 0), its loss calibrated to the ball's own restitution (tasks.realworld.loss.material_loss:
+at the 2 m reference speed until session 33, now at the rule's own drop speed), then the rule's drop
+(flows.realworld.rule_rebound). One JSON line per ball.
 With --gas (session 33), a pressurised ball's shell is simulated at the wall modulus of its gas, E + dE_gas
 (tasks.realworld.inflation, from the pressure geometry.json records), as L2 does; a ball with no pressure at E.
 

@@ -54,6 +54,9 @@ class ConceptMatch(Model):
                                       "restitution on a hard floor from the lexicon (a ball's rebound rule); L2 "
                                       "calibrates the material's loss to it when its material is the concept's [-]")
     restitution_source: str | None = Field(default=None, description="the rule the restitution is derived from")
+    restitution_drop_m: float | None = Field(default=None, gt=0.0, description="the rule's drop height from the "
+                                             "lexicon: L2 calibrates the loss at the speed of a fall from it (absent "
+                                             "from the dump when None) [m]")
     inflation_gauge_pa: float | None = Field(default=None, gt=0.0, description="a pressurised hollow ball's internal "
                                              "gauge pressure from the lexicon; L0 records it with a shell, L2 adds "
                                              "the gas's stiffness to the wall (absent from the dump when None) [Pa]")
@@ -72,12 +75,12 @@ class ConceptMatch(Model):
                                            "read, and for a fill its capacity, bulk density and source)")
 
     @model_serializer(mode="wrap")
-    def _omit_no_inflation(self, handler: SerializerFunctionWrapHandler) -> Any:
-        """The inflation keys are left out of the dump when None (every concept but a pressurised ball), so records
-        and cache keys from before them are unchanged."""
+    def _omit_absent_keys(self, handler: SerializerFunctionWrapHandler) -> Any:
+        """The inflation keys and the rule's drop height are left out of the dump when None (every concept but a
+        pressurised ball, a rule ball), so records and cache keys from before them are unchanged."""
         out = handler(self)
         if isinstance(out, dict):
-            for key in ("inflation_gauge_pa", "inflation_source"):
+            for key in ("inflation_gauge_pa", "inflation_source", "restitution_drop_m"):
                 if out.get(key, 0.0) is None:
                     out.pop(key)
         return out

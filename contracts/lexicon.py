@@ -60,6 +60,9 @@ class LexiconEntry(Model):
                                       "loss to it instead of the material class's prior [-]")
     restitution_source: str | None = Field(default=None, min_length=8, description="the rule restitution is derived "
                                            "from (document, drop height and rebound band)")
+    restitution_drop_m: float | None = Field(default=None, gt=0.0, le=10.0, description="the rule's drop height, "
+                                             "floor to the bottom of the ball (its source is restitution_source): L2 "
+                                             "calibrates the loss at the speed of a fall from it [m]")
     inflation_gauge_pa: float | None = Field(default=None, gt=0.0, le=1.0e6, description="internal gauge pressure "
                                              "(over the ambient) of a pressurised hollow ball; L2 adds the gas's "
                                              "contact stiffness to its shell's wall as a modulus "
@@ -79,6 +82,8 @@ class LexiconEntry(Model):
             raise ValueError(f"{self.key}: a hollow object needs wall_m (or an effective density)")
         if (self.restitution is None) != (self.restitution_source is None):
             raise ValueError(f"{self.key}: give restitution and restitution_source together")
+        if (self.restitution is None) != (self.restitution_drop_m is None):
+            raise ValueError(f"{self.key}: give restitution with its rule's drop height (restitution_drop_m) together")
         if (self.inflation_gauge_pa is None) != (self.inflation_source is None):
             raise ValueError(f"{self.key}: give inflation_gauge_pa and inflation_source together")
         if self.inflation_gauge_pa is not None and not (self.hollow and self.wall_m is not None):

@@ -157,7 +157,8 @@ def l2_material(asset_dir: Path, request_or_intent: AssetRequest | str | None = 
     gas = {"gas_modulus_pa": float(inflation["gas_modulus_pa"])} if inflation else {}
     # a bouncy class's loss in the material: its prior restitution as a Kelvin-Voigt viscosity, calibrated on this
     # object's impact at the reference speed with the start E and nu (tasks.realworld.loss); fixed through L2
-    # (the concept's own restitution when the lexicon gives one, a ball's rebound rule; the record's "source" says which)
+    # (the concept's own restitution when the lexicon gives one, a ball's rebound rule, at its rule's drop speed; the
+    # record's "source" and "calibration_drop_m" say which)
     fixed, loss = material_loss(asset.particles_m, asset.volumes_m3, physical, Material(**start, **gas), targets.priors,
                                 sim, concept_of(asset.record), asset_material(asset.record, targets))
     initial, screening = (screen(asset, physical, contract, targets, start, sim, fixed) if screen_first

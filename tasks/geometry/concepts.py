@@ -369,6 +369,7 @@ def _match(entry: LexiconEntry, level: FallbackLevel, noun: str | None, note: st
         mass_source=None if mat_only else entry.mass_source,
         restitution=None if mat_only or material is not None else entry.restitution,
         restitution_source=None if mat_only or material is not None else entry.restitution_source,
+        restitution_drop_m=None if mat_only or material is not None else entry.restitution_drop_m,
         inflation_gauge_pa=None if mat_only or material is not None else entry.inflation_gauge_pa,
         inflation_source=None if mat_only or material is not None else entry.inflation_source,
         finish=None if mat_only or material is not None else entry.finish)

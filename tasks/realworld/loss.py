@@ -9,6 +9,8 @@ solid spheres (session 28, E 0.2-1.5 MPa, nu 0.3-0.48): the ratio of the damping
 (restitution 0.82-0.94 at eta = 0, by resolution). Hence the calibration: one impact at eta = 0 (the engine's own
 restitution e0), one at the closed form's eta for the rest (e / e0), then secant steps on the damping ratio seen
 against eta (nearly linear) until an impact's restitution is within RESTITUTION_TOLERANCE of the target.
+The impact's speed is a fall from 2 m for a class prior, and from the rule's own drop height for a ball's rule
+restitution (the restitution falls with the impact speed, and the rule states it at its height; session 33).
 """
 
 from __future__ import annotations
@@ -26,7 +28,9 @@ from tasks.realworld.impact import impact
 from tasks.realworld.physics import G_M_PER_S2
 
 TASK_VERSION = "1"
-REFERENCE_DROP_M = 2.0  # the class's restitution is for a drop from 2 m onto a hard floor (6.26 m/s): most ball rules drop 1.8-2.54 m
+# the class's restitution is for a drop from 2 m onto a hard floor (6.26 m/s): most ball rules drop 1.8-2.54 m; a rule
+# ball's restitution is calibrated at its rule's own drop (calibration_drop)
+REFERENCE_DROP_M = 2.0
 CORRECTION_BOUNDS = (0.25, 4.0)  # each correction stays within these factors of the last guess
 RESTITUTION_TOLERANCE = 0.005  # the calibration stops once an impact's restitution is this close to the target
 MAX_IMPACTS = 4  # impacts with viscosity at most (besides the one at eta = 0)
@@ -43,9 +47,14 @@ def viscosity_for_damping_ratio(zeta: float, youngs_modulus_pa: float, contact_t
     return zeta * youngs_modulus_pa * contact_time_s / math.pi
 
 
+def drop_speed_m_per_s(drop_m: float) -> float:
+    """Impact speed after a fall from `drop_m` in vacuum, sqrt(2 g h) [m/s]."""
+    return math.sqrt(2.0 * G_M_PER_S2 * drop_m)
+
+
 def reference_speed_m_per_s() -> float:
     """Impact speed of the class's restitution: a fall from REFERENCE_DROP_M in vacuum [m/s]."""
-    return math.sqrt(2.0 * G_M_PER_S2 * REFERENCE_DROP_M)
+    return drop_speed_m_per_s(REFERENCE_DROP_M)
 
 
 @cached_task(version=TASK_VERSION, name="l2.restitution_loss")
@@ -106,23 +115,37 @@ def restitution_target(priors: dict[str, float], concept: ConceptMatch | None,
     return float(e), f"class prior: {material_class or 'unknown'}"
 
 
+def calibration_drop(concept: ConceptMatch | None, material_class: str | None) -> tuple[float, str]:
+    """(drop height [m], where it comes from) of the impact the loss is calibrated at: the rule's own drop
+    (ConceptMatch.restitution_drop_m) when the target is the concept's rule restitution, since the restitution falls
+    with the impact speed and the rule states it at its own height; else REFERENCE_DROP_M, the class prior's."""
+    if concept is not None and concept.restitution is not None and concept.restitution_drop_m is not None \
+            and material_class == concept.default_material:
+        return float(concept.restitution_drop_m), f"the rule's drop: {concept.concept}"
+    return REFERENCE_DROP_M, "reference drop"
+
+
 def material_loss(positions_m: np.ndarray, volumes_m3: np.ndarray, physical: PhysicalModel, material: Material,
                   priors: dict[str, float], sim: SimConfig, concept: ConceptMatch | None = None,
                   material_class: str | None = None) -> tuple[dict[str, float], dict[str, float | str]]:
-    """(fixed material fields, calibration record): {"viscosity_pa_s": eta} calibrated at the reference speed to the
-    restitution of restitution_target (the concept's, else the class's prior), else nothing; the record's "source"
-    says which."""
+    """(fixed material fields, calibration record): {"viscosity_pa_s": eta} calibrated to the restitution of
+    restitution_target (the concept's, else the class's prior) at the speed of calibration_drop's fall (the rule's
+    drop, else 2 m), else nothing; the record's "source" says which restitution, "calibration_drop_m" and
+    "calibration_drop_source" which drop (its "speed_m_per_s" the impact's speed)."""
     target = restitution_target(priors, concept, material_class)
     if target is None:
         return {}, {}
     e, source = target
+    drop_m, drop_source = calibration_drop(concept, material_class)
     rec: dict[str, float | str] = dict(restitution_loss_task(
         positions_m=np.asarray(positions_m), volumes_m3=np.asarray(volumes_m3), physical=physical, material=material,
-        restitution=e, speed_m_per_s=reference_speed_m_per_s(), sim=sim))
+        restitution=e, speed_m_per_s=drop_speed_m_per_s(drop_m), sim=sim))
     rec["source"] = source
+    rec["calibration_drop_m"] = drop_m
+    rec["calibration_drop_source"] = drop_source
     eta = float(rec["viscosity_pa_s"])
     return ({"viscosity_pa_s": eta} if eta > 0.0 else {}), rec
 
 
-__all__ = ["REFERENCE_DROP_M", "TASK_VERSION", "damping_ratio", "material_loss", "reference_speed_m_per_s",
-           "restitution_loss_task", "restitution_target", "viscosity_for_damping_ratio"]
+__all__ = ["REFERENCE_DROP_M", "TASK_VERSION", "calibration_drop", "damping_ratio", "drop_speed_m_per_s",
+           "material_loss", "reference_speed_m_per_s", "restitution_loss_task", "restitution_target", "viscosity_for_damping_ratio"]
