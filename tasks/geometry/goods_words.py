@@ -61,6 +61,8 @@ _GROUP_COUNT = re.compile(r"\b(?:pack|packet|set|bundle|box|bag|net|tray|punnet|
                           + r")|\b" + _COUNT + r"[- ]pack\b")  # ('rolls, a pile of 10': the count ends the text)
 _HAND_COUNT = re.compile(r"\b(?:bunch|hand)\s+of\s+" + _COUNT + r"\b|^\s*(?:a\s+)?" + _COUNT + r"\s+(?:[a-z]+\s+)?bunch")
 HAND_PLANS = frozenset({"elongated"})
+PART_UNROLLED = re.compile(r"\b(?:partly|partially|part|half|a bit|a little|slightly|somewhat|loosely)\s+unrolled\b")
+UNROLLED_TAIL = 1.5  # a partly unrolled roll's free end on the ground, in roll diameters [-]
 _STRAW = re.compile(r"\b(?:with|and|plus)\s+(?:a\s+|its\s+|the\s+)?(?:\w+\s+)?straw\b|\bstraw\s+(?:in|stuck)\b")
 # 'a stack of 5 pancakes', 'five stacked pancakes': the layers of a stacked disc (DiscParams.layers)
 _STACK_COUNT = re.compile(r"\b(?:stack|pile|tower)\s+of\s+" + _COUNT + r"\b|^\s*(?:a\s+)?" + _COUNT
@@ -169,7 +171,12 @@ def apply(target: LexiconEntry, portion: str | None, text: str, params: dict, si
         mass = match.typical_mass_kg * n_layers / layers if match.typical_mass_kg else None  # (one disc's times n)
         out.match = out.match.model_copy(update={"typical_mass_kg": mass})
         out.notes += (f"a stack of {n_layers}",)
-    goods = plan not in UNGROUPED_PLANS or (plan == "pouch" and fill is None and not target.key.startswith("generic"))
+    rolled = plan == "sheet" and {**target.params, **out.params}.get("state") == "rolled"  # a roll object (toilet
+    if rolled and PART_UNROLLED.search(text):  # paper, a bandage): 'partly unrolled', its end out on the ground
+        out.params["tail"] = UNROLLED_TAIL
+        out.notes += ("partly unrolled",)
+    goods = plan not in UNGROUPED_PLANS or (plan == "pouch" and fill is None and not target.key.startswith("generic")) \
+        or rolled  # ('two toilet rolls': two rolls side by side)
     goods = goods and stack is None
     # (a pouch is a good of its own, 'three juggling beanbags', unless it is the pack the count is inside of)
     count = group_count(text) if goods and portion not in PAIR_WORDS | BUNCH_WORDS else None

@@ -13,6 +13,7 @@ from tasks.geometry.wordnet import data_dir
 
 MIN_LENGTH = 5  # shorter words are too often another real word one letter away [-]
 CUTOFF = 0.85  # difflib's similarity ratio a correction needs (one letter in 7: 0.93; two in 8: 0.88) [-]
+MARGIN = 0.03  # how much nearer the best word must be than the next (else the word is left as written) [-]
 # endings an English word takes that WordNet's lemma indexes do not list ('tangled', 'squished', 'bunched')
 _ENDINGS = (("ies", "y"), ("ied", "y"), ("es", ""), ("s", ""), ("ed", ""), ("ed", "e"), ("ing", ""), ("ing", "e"),
             ("er", ""), ("est", ""), ("ly", ""), ("y", ""), ("y", "e"), ("ish", ""))
@@ -56,6 +57,13 @@ def _function_words() -> frozenset[str]:
     return frozenset(STOP_WORDS) | CASUAL
 
 
+def _one_doubling_away(word: str, vocab: frozenset[str]) -> set[str]:
+    """The vocabulary's words that are `word` with one doubled letter single, or one letter doubled."""
+    out = {word[:i] + word[i + 1:] for i in range(len(word) - 1) if word[i] == word[i + 1]}
+    out |= {word[: i + 1] + word[i] + word[i + 1:] for i in range(len(word))}
+    return {w for w in out if w in vocab and w != word}
+
+
 def corrections(text: str, vocabulary: Iterable[str], phrases: Iterable[str] = ()) -> list[tuple[str, str]]:
     """(as written, as read) for each misspelt or split word of a normalised text against the lexicon's words;
     two words are joined only when no lexicon noun phrase (`phrases`) holds them as written ('bath mat')."""
@@ -73,9 +81,13 @@ def _corrections(text: str, vocab: frozenset[str], phrases: frozenset[str]) -> t
     for w in dict.fromkeys(words):
         if len(w) < MIN_LENGTH or w in vocab or w in _function_words() or is_english(w) or is_english(_doubled(w)):
             continue
+        doubled = _one_doubling_away(w, vocab)  # the commonest slip first: a letter doubled or not ('bananna' is a
+        if len(doubled) == 1:  # banana, though 'bandanna' is as near by difflib's ratio)
+            out.append((w, doubled.pop()))
+            continue
         close = difflib.get_close_matches(w, vocab, n=2, cutoff=CUTOFF)
         if len(close) == 1 or (len(close) == 2 and difflib.SequenceMatcher(None, w, close[0]).ratio()
-                               > difflib.SequenceMatcher(None, w, close[1]).ratio()):
+                               > difflib.SequenceMatcher(None, w, close[1]).ratio() + MARGIN):
             out.append((w, close[0]))
     return tuple(out)
 

@@ -70,6 +70,8 @@ class SheetParams(Model):
     edge: float = Field(default=0.5, ge=0.0, le=1.0, description="edge rounding / half the layer [-]")
     crisp: bool = Field(default=False, description="cut sheets with square edges (paper, felt, craft foam): stacked, "
                         "a squared pad of a few sheets, not soft folded layers")
+    tail: float = Field(default=0.0, ge=0.0, le=4.0, description="a roll partly unrolled: its free end lying out "
+                        "flat on the ground in front of it, this many roll diameters long; 0 none [-]")
     thirds: bool = Field(default=False, description="folded in thirds (a letter fold: three layers, a crease at each "
                          "end) before any further halving")
     quilt: int = Field(default=0, ge=0, le=16, description="puffy baffles across the length (a duvet, a sleeping bag, "
@@ -549,6 +551,10 @@ def _rolled(p: SheetParams) -> list[Part]:
             parts.append(_op(ring, "subtract"))
     if r0 > 0:
         parts.append(_op(cylinder("hole", r0, 1.2 * w, (0, 0, R), rot=(0, 90, 0)), "subtract"))
+    if p.tail > 0:  # the free end unrolled off the bottom of the roll, lying flat towards -y
+        run = p.tail * 2 * R
+        parts.append(box("tail", (w, run + 0.5 * R, layer), (0, -0.5 * run, layer / 2), edge=0.3 * layer,
+                         blend=0.05 * R))
     if p.bubbles:  # the outer layer's bubbles: staggered rows over the roll's upper half, drawn a little large
         rb = 0.15 * R
         along = max(2, int(0.9 * w / (2.6 * rb)))
