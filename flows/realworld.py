@@ -54,11 +54,14 @@ def rule_rebound(rule: RuleDrop, asset: L0Asset, physical: PhysicalModel, materi
             "rebound_sim": {k: float(v) for k, v in raw.items() if math.isfinite(v)}}
 
 
-def build_figures(obj: RealWorldObject, work: Path, sim: SimConfig, priors_only: bool) -> OurFigures:
+def build_figures(obj: RealWorldObject, work: Path, sim: SimConfig, priors_only: bool,
+                  hollow_shell: bool = False) -> OurFigures:
     """L0 -> L1 -> L2 (draft) of the object's plain name in `work`, and its rule drop; priors_only: L0, L1 and L2's
-    priors (the first proposal), no MPM."""
+    priors (the first proposal), no MPM; hollow_shell: a hollow concept's particles as its wall (with its gas, where
+    the lexicon records a pressure), as `deformsmith geometry --hollow-shell`."""
     request = AssetRequest(text=obj.name, quality="draft")
-    l0 = l0_geometry.run_l0(request, quality="draft")
+    contract = l0_geometry.with_hollow_particles("shell") if hollow_shell else None
+    l0 = l0_geometry.run_l0(request, quality="draft", contract=contract)
     if not l0.checks.passed:
         raise StageFailure("L0", f"geometry gates failed: {', '.join(l0.checks.failed)}")
     if work.exists():
@@ -92,11 +95,13 @@ def build_figures(obj: RealWorldObject, work: Path, sim: SimConfig, priors_only:
     return OurFigures(**figures)
 
 
-def run_object(obj: RealWorldObject, root: Path, sim: SimConfig, priors_only: bool = False) -> ObjectReport:
+def run_object(obj: RealWorldObject, root: Path, sim: SimConfig, priors_only: bool = False,
+               hollow_shell: bool = False) -> ObjectReport:
     """One object's report; a layer that says no (or bad input) is the object's error, not the bench's."""
     t0 = time.perf_counter()
     try:
-        ours, status, error = build_figures(obj, root / slug(obj.name), sim, priors_only), "ok", None
+        ours = build_figures(obj, root / slug(obj.name), sim, priors_only, hollow_shell)
+        status, error = "ok", None
     except DeformSmithError as exc:
         ours, status, error = OurFigures(), "failed", f"{type(exc).__name__}: {exc}"
     return ObjectReport(name=obj.name, kind=obj.kind, expected_concept=obj.concept, status=status, error=error,
@@ -104,13 +109,14 @@ def run_object(obj: RealWorldObject, root: Path, sim: SimConfig, priors_only: bo
 
 
 def run_realworld(objects: Sequence[RealWorldObject], root: Path, device: Device = "cpu", priors_only: bool = False,
-                  on_result: Callable[[ObjectReport], None] | None = None) -> RealWorldReport:
+                  on_result: Callable[[ObjectReport], None] | None = None,
+                  hollow_shell: bool = False) -> RealWorldReport:
     """Every object in turn (assets under `root`), against the local Prefect runtime."""
     sim = SimConfig(device=device)
     reports = []
     with cache.local_runtime():
         for obj in objects:
-            r = run_object(obj, Path(root), sim, priors_only)
+            r = run_object(obj, Path(root), sim, priors_only, hollow_shell)
             reports.append(r)
             if on_result is not None:
                 on_result(r)

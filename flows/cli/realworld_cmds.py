@@ -56,6 +56,8 @@ def realworld(
                              f"({REPORT_JSON})"),
     cache_dir: Path = typer.Option(None, "--cache", help="cache root (default OUT/_cache)"),
     as_json: bool = typer.Option(False, "--json", help="print the report as JSON"),
+    hollow_shell: bool = typer.Option(False, "--hollow-shell", help="a hollow ball's particles as its wall, its gas "
+                                      "as an added wall modulus where the lexicon records a pressure (default solid)"),
 ) -> None:
     """Everyday soft objects with published measurements (Young's modulus, mass, regulation-ball rebound) built from
     their plain names through L2 at draft; our mass, E, effective modulus and rule-drop rebound beside each. Exit 0
@@ -81,6 +83,6 @@ def realworld(
         console.log(_line(r) + f" ({r.wall_s:.1f} s)")
 
     with console.status(f"{len(objects)} objects on {device}"):
-        report = run_realworld(objects, out, cast("Device", device), priors_only, on_result)
+        report = run_realworld(objects, out, cast("Device", device), priors_only, on_result, hollow_shell)
     write_text_atomic(out / REPORT_JSON, json.dumps(report.model_dump(mode="json"), indent=2) + "\n")
     emit_report(report.model_dump(mode="json"), summary_lines(report), out / REPORT_JSON, as_json)
