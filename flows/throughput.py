@@ -24,6 +24,7 @@ def run_throughput(requests_jsonl: Path, out_root: Path, gpus: list[str] | None 
     """Run the benchmark's requests not yet done in out_root (gpus: pin workers_per_gpu workers to each, on CUDA;
     None: `concurrency` workers on the CPU), then write and return the report of every session in out_root. An
     interrupted run records what finished and re-raises; the same command resumes it."""
+    given = str(requests_jsonl)  # the report names the file as the command was given it, not this machine's path
     requests_jsonl, out_root = Path(requests_jsonl).absolute(), Path(out_root).absolute()
     items = benchmark_items(requests_jsonl, limit)
     workers = len(gpus) * workers_per_gpu if gpus else concurrency
@@ -52,7 +53,7 @@ def run_throughput(requests_jsonl: Path, out_root: Path, gpus: list[str] | None 
         ledger.end_session(session, *stats())
 
     def write_report():  # noqa: ANN202
-        report = build_report(ledger.current(items), ledger.sessions(), len(items), requests_file=str(requests_jsonl),
+        report = build_report(ledger.current(items), ledger.sessions(), len(items), requests_file=given,
                               out_root=str(out_root), cache_root=str(cache.cache_root()))
         report.write(out_root)
         return report
