@@ -1216,7 +1216,7 @@ def _state_params(reading: Reading, warnings: list[str]) -> tuple[list[str], dic
     if inflatable(target) or dentable(target):  # 'deflated', 'crumpled', 'flat': drawn by _whole_object
         said = [st for st in said if st not in _DEFLATED and st != "deflated"]
     a_roll = plan == "sheet" and {**target.params, **reading.params}.get("state") == "rolled"  # (a toilet roll)
-    if a_roll and _PART_UNROLLED.search(phrase.text):  # 'partly unrolled': still the roll, its end out (goods_words)
+    if a_roll and goods_words.PART_UNROLLED.search(phrase.text):  # 'partly unrolled': still the roll, its end out (goods_words)
         said = [st for st in said if st != "flat"]
     if count is not None and "rolled" not in said and not a_roll:  # 'a pack of 10 felt sheets', '3 burp cloths
         said = ["stacked", *(st for st in said if st != "stacked")]  # folded and stacked' (rolls: side by side)
@@ -1246,7 +1246,6 @@ def _folded_strip(reading: Reading, text: str) -> dict:
 
 
 MAX_STACKED = 12  # sheets drawn in a stack (SheetParams.layers) [-]
-_PART_UNROLLED = goods_words.PART_UNROLLED
 _SHEET_COUNT = re.compile(r"\b(?:pack|packet|set|bundle|stack|pile|box)\s+of\s+(\d+|[a-z]+)\b|^\s*(\d+|[a-z]+)\s+(?!cm\b|mm\b|m\b|in\b|inch)")
 
 

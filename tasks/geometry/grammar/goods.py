@@ -25,6 +25,7 @@ from tasks.geometry.grammar.parts import (
     ellipsoid,
     limb,
     rotated_parts,
+    scaled,
     superellipsoid,
     swept,
     tapered,
@@ -40,10 +41,6 @@ SheetState = Literal["flat", "rolled", "folded", "stacked", "crumpled", "loop", 
 
 def _op(part: Part, op: str, blend: float = 0.0) -> Part:
     return part.model_copy(update={"operation": op, "blend_m": blend})
-
-
-def _scaled(part: Part, scale: tuple[float, float, float]) -> Part:
-    return part.model_copy(update={"transform": part.transform.model_copy(update={"scale": scale})})
 
 
 # ----------------------------------------------------------------------------------------------------------- sheets
@@ -133,7 +130,7 @@ def _slab(name: str, p: SheetParams, length: float, width: float, t: float, at: 
           rot: tuple[float, float, float] = (0, 0, 0)) -> Part:
     e = p.edge * t / 2
     if p.shape == "round":
-        return _scaled(cylinder(name, width / 2, t, at, edge=e, rot=rot), (length / width, 1, 1))
+        return scaled(cylinder(name, width / 2, t, at, edge=e, rot=rot), (length / width, 1, 1))
     return box(name, (length, width, t), at, edge=e, rot=rot)
 
 
@@ -279,7 +276,7 @@ def _knotted(p: SheetParams) -> list[Part]:
     t = sheet_layer(p)
     r = max(float(np.sqrt(w * max(p.thickness, 1e-4) / (TWIST_PACKING * np.pi))), 0.035)
     parts = [ellipsoid("body", (2.0 * r, 1.7 * r, 1.0 * r), (0, 0, 1.0 * r)),
-             _scaled(torus("knot wrap", 1.25 * r, 0.6 * r, (0, 0, 1.0 * r), rot=(90, 0, 15), blend=0.3 * r),
+             scaled(torus("knot wrap", 1.25 * r, 0.6 * r, (0, 0, 1.0 * r), rot=(90, 0, 15), blend=0.3 * r),
                      (1.0, 1.0, 0.8))]
     seg = KNOT_TAIL / 3
     for side, sgn in (("left", -1.0), ("right", 1.0)):
@@ -300,8 +297,8 @@ def bib(w: float, t: float) -> list[Part]:
     between the two straps, a snap on each strap's end, a piped edge."""
     rn = 0.2 * min(w, 1.0)  # the neck's radius
     xn = 0.5 - 0.3 * min(w, 1.0)
-    parts = [_scaled(cylinder("body", w / 2, t, (0, 0, t / 2), edge=0.45 * t), (1.0 / w, 1, 1)),
-             _scaled(torus("piping", w / 2 - 0.4 * t, 0.7 * t, (0, 0, 0.7 * t)), (1.0 / w, 1, 0.8)),
+    parts = [scaled(cylinder("body", w / 2, t, (0, 0, t / 2), edge=0.45 * t), (1.0 / w, 1, 1)),
+             scaled(torus("piping", w / 2 - 0.4 * t, 0.7 * t, (0, 0, 0.7 * t)), (1.0 / w, 1, 0.8)),
              _op(cylinder("neck", rn, 4 * t, (xn, 0, t / 2)), "subtract", 0.2 * t),
              _op(box("neck opening", (0.6, 1.1 * rn, 4 * t), (xn + 0.3, 0, t / 2)), "subtract", 0.2 * t)]
     for side, y in (("left", -1.0), ("right", 1.0)):
@@ -317,7 +314,7 @@ def hourglass(w: float, t: float) -> list[Part]:
     r = 0.42
     parts = [box("body", (1.0, w, t), (0, 0, t / 2), edge=0.45 * t)]
     for side, y in (("left", -1.0), ("right", 1.0)):
-        leg = _scaled(cylinder(f"{side} leg opening", r, 4 * t, (0.0, 0.0, t / 2)), (1.0, depth / r * 1.6, 1.0))
+        leg = scaled(cylinder(f"{side} leg opening", r, 4 * t, (0.0, 0.0, t / 2)), (1.0, depth / r * 1.6, 1.0))
         leg = leg.model_copy(update={"transform": leg.transform.model_copy(update={
             "translation_m": (0.04, y * (w / 2 + 1.6 * depth - depth), t / 2)})})
         parts.append(_op(leg, "subtract", 0.3 * t))
@@ -357,7 +354,7 @@ def face_mask(w: float, t: float) -> list[Part]:
     parts.append(box("nose wire", (0.55, 0.03 + 0.5 * t, 0.5 * t), (0, w / 2 - 0.05, 1.0 * t), edge=0.2 * t))
     loop = max(0.6 * t, 0.012)  # the elastic's radius, as thick as the body shows it at draft
     for side, x in (("left", -1.0), ("right", 1.0)):
-        parts.append(_scaled(torus(f"{side} ear loop", 0.4 * w, loop, (x * 0.52, 0, loop)), (0.55, 1.0, 1.0)))
+        parts.append(scaled(torus(f"{side} ear loop", 0.4 * w, loop, (x * 0.52, 0, loop)), (0.55, 1.0, 1.0)))
     return parts
 
 
@@ -365,7 +362,7 @@ def bread_slice(w: float, t: float, arc: int = 15) -> list[Part]:
     """A slice of sandwich bread lying flat, length 1 along x (the loaf's height): the crumb, a square foot and a
     rounded top a little wider than it, and the crust a rounded rim along its outline (`arc` points round the top)."""
     parts = [box("body", (0.8, 0.9 * w, 0.9 * t), (-0.1, 0, t / 2), edge=0.15 * t),
-             _scaled(cylinder("top crumb", w / 2, 0.9 * t, (0.28, 0, t / 2), edge=0.15 * t), (0.44 / w, 1.0, 1.0))]
+             scaled(cylinder("top crumb", w / 2, 0.9 * t, (0.28, 0, t / 2), edge=0.15 * t), (0.44 / w, 1.0, 1.0))]
     top = [(0.28 + 0.22 * np.cos(a), (w / 2) * np.sin(a), t / 2) for a in np.radians(np.linspace(-100, 100, arc))]
     outline = np.array([(-0.5, 0.45 * w, t / 2), (-0.5, -0.45 * w, t / 2), (0.2, -0.45 * w, t / 2), *top,
                         (0.2, 0.45 * w, t / 2), (-0.5, 0.45 * w, t / 2)])
@@ -424,7 +421,7 @@ def _folded(p: SheetParams, t: float) -> list[Part]:
     n = fold_layers(p)
     h = n * t
     if p.shape == "round":
-        parts = [_scaled(cylinder("body", p.width / 2, h, (0, 0, h / 2), edge=p.edge * t / 2), (1 / p.width, 1, 1))]
+        parts = [scaled(cylinder("body", p.width / 2, h, (0, 0, h / 2), edge=p.edge * t / 2), (1 / p.width, 1, 1))]
         parts.append(_op(box("fold", (2, 2, 2 * h), (1.0, 0, h / 2)), "intersect"))
         if p.folds >= 2:
             parts.append(_op(box("second fold", (2, 2, 2 * h), (0, 1.0, h / 2)), "intersect"))
@@ -534,7 +531,7 @@ def _rolled(p: SheetParams) -> list[Part]:
     R = roll_radius(p)
     r0 = p.core * R
     if p.shape == "round":  # a rolled tortilla or pancake: a wrap, tapered at its ends
-        return [_scaled(cylinder("body", R, w, (0, 0, R), edge=0.6 * R, rot=(0, 90, 0)), (1, 1, 1))]
+        return [scaled(cylinder("body", R, w, (0, 0, R), edge=0.6 * R, rot=(0, 90, 0)), (1, 1, 1))]
     parts = [cylinder("body", R, w, (0, 0, R), edge=min(0.15 * R, 0.02), rot=(0, 90, 0))]
     layer = float(np.clip(p.thickness, 0.03 * R, 0.12 * R))
     parts.append(box("flap", (w, 0.5 * R, layer), (0, -0.25 * R, 2 * R + layer / 2 - 0.005 * R), edge=0.3 * layer,
@@ -547,7 +544,7 @@ def _rolled(p: SheetParams) -> list[Part]:
     for i in range(1, rings + 1):
         rad = r0 + pitch * i
         for side, s in (("left", 1), ("right", -1)):
-            ring = _scaled(torus(f"{side} ring {i}", rad, g, (s * w / 2, 0, R), rot=(0, 90, 0)), (1, 1, depth / g))
+            ring = scaled(torus(f"{side} ring {i}", rad, g, (s * w / 2, 0, R), rot=(0, 90, 0)), (1, 1, depth / g))
             parts.append(_op(ring, "subtract"))
     if r0 > 0:
         parts.append(_op(cylinder("hole", r0, 1.2 * w, (0, 0, R), rot=(0, 90, 0)), "subtract"))
@@ -633,7 +630,7 @@ def pouch(p: PouchParams) -> list[Part]:
         parts.append(cylinder("cap", 0.05, 0.05, (0.6, 0, h / 2), edge=0.01, rot=(0, 90, 0), blend=0.005))
     for i in range(p.channels):  # stitched lines across the pad
         x = -0.5 + s + (1 - 2 * s) * (i + 1) / (p.channels + 1)
-        parts.append(_op(_scaled(cylinder(f"stitch {i + 1}", 0.035, w * 1.2, (x, 0, h), rot=(90, 0, 0)),
+        parts.append(_op(scaled(cylinder(f"stitch {i + 1}", 0.035, w * 1.2, (x, 0, h), rot=(90, 0, 0)),
                                  (1, 1, 1)), "subtract", 0.02))
     if max(p.piece) > 0:
         parts += bagged_pieces(p, h)
@@ -645,7 +642,7 @@ def pouch(p: PouchParams) -> list[Part]:
                          blend=0.01))
         parts.append(box("velcro", (0.35 * p.strap, 0.9 * sw, 0.8 * st), (0.5 + 0.55 * p.strap, 0, st * 1.2),
                          edge=0.3 * st, blend=0.003))
-        parts.append(_scaled(torus("ring", 0.6 * sw / 2 + 0.02, 0.018, (0.5 + p.strap - 0.02, 0, 0.018)), (1, 1, 1)))
+        parts.append(scaled(torus("ring", 0.6 * sw / 2 + 0.02, 0.018, (0.5 + p.strap - 0.02, 0, 0.018)), (1, 1, 1)))
     return parts
 
 
@@ -782,7 +779,7 @@ def glove(p: GloveParams) -> list[Part]:
         cl = p.cuff * pl
         c = cone("cuff", pw / 2, pw / 2 * p.flare, cl + 0.04, (-pl / 2 - cl / 2 + 0.02, 0, z), edge=0.2 * t,
                  blend=0.03, rot=(0, -90, 0))
-        parts.append(_scaled(c, (min(1.0, t / pw), 1, 1)))
+        parts.append(scaled(c, (min(1.0, t / pw), 1, 1)))
     return parts
 
 
@@ -841,7 +838,7 @@ def _sock_ball(p: SockParams) -> list[Part]:
     parts = [ellipsoid("body", (1.08 * r, 0.96 * r, 0.84 * r), (0, 0, zc))]
     # the turned-over cuff: a wide band round the bundle, its knit ribs as grooves along the roll's axis (the toe's
     # dark cap was read as an onion's root by blind reviewers: the toe is inside the roll)
-    parts.append(_scaled(torus("cuff", 0.93 * r, 0.15 * r, (0.3 * r, 0, zc), rot=(0, 90, 0)), (0.86, 1.0, 2.2)))
+    parts.append(scaled(torus("cuff", 0.93 * r, 0.15 * r, (0.3 * r, 0, zc), rot=(0, 90, 0)), (0.86, 1.0, 2.2)))
     for i in range(SOCK_BALL_RIBS):
         a = 2 * np.pi * i / SOCK_BALL_RIBS
         y, z = 1.06 * r * np.cos(a), zc + 0.92 * r * np.sin(a)
@@ -884,7 +881,7 @@ def hat(p: HatParams) -> list[Part]:
         parts.append(_op(limb(f"rib {i + 1}", (rr * np.cos(a), rr * np.sin(a), -0.05),
                               (rr * np.cos(a), rr * np.sin(a), p.cuff - 0.03), 0.016), "subtract"))
     if p.cuff > 0:
-        parts.append(_op(_scaled(torus("cuff edge", R + 0.6 * w + 0.01, 0.012, (0, 0, p.cuff)), (1, 1, 1)),
+        parts.append(_op(scaled(torus("cuff edge", R + 0.6 * w + 0.01, 0.012, (0, 0, p.cuff)), (1, 1, 1)),
                          "subtract"))
     parts.append(_op(ellipsoid("inside", (R - w, R - w, H - w), (0, 0, 0)), "subtract"))
     parts.append(_op(box("ground", (4, 4, 4), (0, 0, 2)), "intersect"))
@@ -927,7 +924,7 @@ def tool(p: ToolParams) -> list[Part]:
                                      (x0 + 0.55 * head_len, y, z), edge=0.03 * hw), "subtract"))
     elif p.head == "scraper":
         parts.append(box("head", (0.6 * head_len, hw, t), (x0 + 0.3 * head_len, 0, z), edge=0.45 * t, blend=0.02))
-        parts.append(_scaled(cylinder("blade", hw / 2, t, (x0 + 0.6 * head_len, 0, z), edge=0.45 * t, blend=0.005),
+        parts.append(scaled(cylinder("blade", hw / 2, t, (x0 + 0.6 * head_len, 0, z), edge=0.45 * t, blend=0.005),
                              (0.8 * head_len / hw, 1, 1)))
     elif p.head == "brush":
         fl = 0.3 * head_len
@@ -997,7 +994,7 @@ def mould(p: MouldParams) -> list[Part]:
     if p.columns == 1 and p.rows == 1:
         parts = _outline("body", p.outline, 2 * (rb + w), 0.0, h, (0, 0), slope, 0.4 * w)
         if p.rim:
-            parts.append(_scaled(torus("rim", 0.5 + w, 1.2 * w, (0, 0, h - 0.6 * w)), (1, 1, 0.6))
+            parts.append(scaled(torus("rim", 0.5 + w, 1.2 * w, (0, 0, h - 0.6 * w)), (1, 1, 0.6))
                          if p.outline == "round" else
                          box("rim", (1.0 + 5 * w, 1.0 + 5 * w, w), (0, 0, h - w / 2), edge=0.4 * w, blend=0.01))
         cavity = _outline("cavity", p.outline, 2 * (rb + slope * w), w, top, (0, 0), slope, 0.3 * w)
@@ -1163,7 +1160,7 @@ def _top_flat(p: GarmentParams, t: float) -> list[Part]:
         parts += quilting(0.92, w + 1.0, t, p.baffles, 0)
     if p.hood:
         parts.append(ellipsoid("hood", (0.24, 0.25, 1.6 * t), (0.6, 0, 0.9 * t), blend=0.03))
-        parts.append(_scaled(torus("hood rim", 0.15, 0.035, (0.58, 0, 1.9 * t)), (1.0, 1.1, 0.5)))
+        parts.append(scaled(torus("hood rim", 0.15, 0.035, (0.58, 0, 1.9 * t)), (1.0, 1.1, 0.5)))
         parts.append(_op(ellipsoid("hood opening", (0.14, 0.15, 0.8 * t), (0.58, 0, 2.3 * t)), "subtract", 0.01))
         for side in (1, -1):
             a = np.array([0.44, side * 0.05, 1.3 * t])
@@ -1171,8 +1168,8 @@ def _top_flat(p: GarmentParams, t: float) -> list[Part]:
                                                                                                0]), 0.012,
                               blend=0.005))
     else:
-        parts.append(_op(_scaled(cylinder("neck", 0.1, 4 * t, (0.52, 0, z)), (0.75, 1, 1)), "subtract", 0.01))
-        parts.append(_scaled(torus("collar band", 0.105, 0.022, (0.5, 0, 0.7 * t)), (0.78, 1, 0.8)))
+        parts.append(_op(scaled(cylinder("neck", 0.1, 4 * t, (0.52, 0, z)), (0.75, 1, 1)), "subtract", 0.01))
+        parts.append(scaled(torus("collar band", 0.105, 0.022, (0.5, 0, 0.7 * t)), (0.78, 1, 0.8)))
     if p.pocket:
         parts.append(superellipsoid("pocket", (0.15, 0.24 * w, 0.3 * t), (-0.2, 0, t), ns=0.2, ew=0.3, blend=0.004))
     if p.zip:  # a zip from hem to collar, its pull at the top
@@ -1243,14 +1240,14 @@ def _flat_frustum(name: str, a: np.ndarray, b: np.ndarray, ra: float, rb: float,
     d = b - a
     angle = float(np.degrees(np.arctan2(d[1], d[0])))
     c = cone(name, ra, rb, float(np.linalg.norm(d)), (a + b) / 2, edge=0.3 * t, blend=blend, rot=(0, 90, angle))
-    return _scaled(c, (t / (2 * max(ra, rb)), 1, 1))
+    return scaled(c, (t / (2 * max(ra, rb)), 1, 1))
 
 
 def _dress_flat(p: GarmentParams, t: float) -> list[Part]:
     w = p.width
     parts = [cone("body", 0.62 * w, 0.3 * w, 1.0, (0, 0, t / 2), rot=(0, 90, 0), edge=0.2 * t)]
-    parts[0] = _scaled(parts[0], (t / (0.62 * w * 2), 1, 1))
-    parts.append(_op(_scaled(cylinder("neck", 0.1, 4 * t, (0.52, 0, t / 2)), (0.75, 1, 1)), "subtract", 0.01))
+    parts[0] = scaled(parts[0], (t / (0.62 * w * 2), 1, 1))
+    parts.append(_op(scaled(cylinder("neck", 0.1, 4 * t, (0.52, 0, t / 2)), (0.75, 1, 1)), "subtract", 0.01))
     return parts
 
 
@@ -1306,7 +1303,7 @@ def garment(p: GarmentParams) -> list[Part]:
         # from the flat layout in the x-z plane (thin along x) by swapping their scale and radii axes
         parts = [_swap_xz(q) for q in rot]
         hook_z = 1.0 + 0.2 if not p.hood else 1.25
-        parts.append(_scaled(torus("hanger", 0.06, 0.012, (0, 0, hook_z + 0.05), rot=(90, 0, 0)), (1, 1, 1)))
+        parts.append(scaled(torus("hanger", 0.06, 0.012, (0, 0, hook_z + 0.05), rot=(90, 0, 0)), (1, 1, 1)))
         parts.append(limb("hanger bar", (0, -0.38 * w, 0.97), (0, 0.38 * w, 0.97), 0.015, blend=0.005))
         parts.append(limb("hanger neck", (0, 0, 0.97), (0, 0, hook_z), 0.012, blend=0.005))
         return parts
@@ -1340,7 +1337,7 @@ def garment(p: GarmentParams) -> list[Part]:
         if p.hood:
             hc = np.array([-0.5 * R, -0.45 * R, 0.6 * height])
             parts.append(ellipsoid("hood", (0.22, 0.18, 0.12), hc, blend=0.03, rot=(0, -15, 35)))
-            parts.append(_scaled(torus("hood rim", 0.12, 0.03, hc + np.array([-0.06, -0.04, 0.07]), rot=(0, -30, 35)),
+            parts.append(scaled(torus("hood rim", 0.12, 0.03, hc + np.array([-0.06, -0.04, 0.07]), rot=(0, -30, 35)),
                                  (1.25, 1, 1)))
             parts.append(_op(ellipsoid("hood opening", (0.13, 0.1, 0.07), hc + np.array([-0.07, -0.05, 0.1]),
                                        rot=(0, -30, 35)), "subtract", 0.01))
@@ -1394,7 +1391,7 @@ def _garment_folded(p: GarmentParams) -> list[Part]:
         parts.append(ellipsoid("hood", (0.13, 0.17, 0.9 * t), (0.12, 0, h + 0.2 * t), blend=0.02))
     elif p.kind in ("top", "suit"):  # the neckline at the top edge: a ribbed band lying on the fabric (a dip cut
         # under it read as a tray's recess)
-        parts.append(_scaled(torus("collar band", 0.1, 0.018, (fl / 2 - 0.035, 0, h + 0.1 * t)), (0.75, 1, 0.8)))
+        parts.append(scaled(torus("collar band", 0.1, 0.018, (fl / 2 - 0.035, 0, h + 0.1 * t)), (0.75, 1, 0.8)))
         parts.append(_op(box("collar cut", (0.2, 0.4, 4 * h), (fl / 2 + 0.1, 0, 0)), "subtract"))
     if p.cuffs:
         parts.append(box("hem", (0.05, fw, 0.5 * t), (-fl / 2 + 0.04, 0, h + 0.1 * t), edge=0.2 * t, blend=0.003))
@@ -1509,7 +1506,7 @@ def bag(p: BagParams) -> list[Part]:
     if p.kind == "drawstring":  # a sack gathered at its neck: the body, the cinched neck, a ruffle beyond it
         parts.append(superellipsoid("body", (0.36, w / 2, t / 2 + 0.04 * (1 + 3 * p.fill)), (-0.14, 0, t / 2 + 0.04 *
                                     (1 + 3 * p.fill)), ns=0.5, ew=0.35))
-        parts.append(_scaled(cylinder("neck", 0.09 * w + 0.02, 0.08, (0.26, 0, 0.06), rot=(0, 90, 0), edge=0.02),
+        parts.append(scaled(cylinder("neck", 0.09 * w + 0.02, 0.08, (0.26, 0, 0.06), rot=(0, 90, 0), edge=0.02),
                              (1, 1, 0.6)))
         for i, yy in enumerate(np.linspace(-0.28 * w, 0.28 * w, 5)):
             parts.append(ellipsoid(f"ruffle {i + 1}", (0.12, 0.075 * w, 0.035), (0.36, yy, 0.045), blend=0.02,
@@ -1612,10 +1609,10 @@ def _carrier(p: BagParams, t: float) -> list[Part]:
         at = (-0.5 + 0.5 * (1 - hl) + rho * np.cos(a) * (1 - hl), 0.8 * rho * np.sin(a) * w, t)
         parts.append(ellipsoid(f"crease {i + 1}", (0.11 + 0.04 * np.sin(1.3 * i), 0.2 * t, 0.5 * t), at,
                                rot=(0, 0, float(np.degrees(1.9 * i))), blend=0.3 * t))
-    parts.append(_op(_scaled(cylinder("mouth", (w - 2 * hw) / 2, 4 * t, (0.5, 0, t / 2)),
+    parts.append(_op(scaled(cylinder("mouth", (w - 2 * hw) / 2, 4 * t, (0.5, 0, t / 2)),
                              ((hl + 0.08) / ((w - 2 * hw) / 2), 1, 1)), "subtract", 0.01))
     for side in (1, -1):
-        slot = _scaled(cylinder(f"{'left' if side > 0 else 'right'} handle hole", 0.2 * hw, 4 * t,
+        slot = scaled(cylinder(f"{'left' if side > 0 else 'right'} handle hole", 0.2 * hw, 4 * t,
                                 (0.5 - 0.45 * hl, side * (w / 2 - 0.5 * hw), t / 2)), (0.3 * hl / (0.2 * hw), 1, 1))
         parts.append(_op(slot, "subtract", 0.005))
     parts.append(box("bottom seam", (0.025, w, 1.2 * t), (-0.5 + 0.03, 0, 0.6 * t), edge=0.4 * t, blend=0.004))
@@ -1795,7 +1792,7 @@ def strap(p: StrapParams) -> list[Part]:
             parts.append(box("buckle", (0.04, 1.4 * w, 1.8 * t), (length / 2 - 0.03, 0, 0.9 * t), edge=0.4 * t,
                              blend=0.002))
         elif p.ends == "ring":
-            parts.append(_scaled(torus("ring", 0.7 * w, 0.12 * w, (length / 2, 0, 0.12 * w)), (1, 1, 1)))
+            parts.append(scaled(torus("ring", 0.7 * w, 0.12 * w, (length / 2, 0, 0.12 * w)), (1, 1, 1)))
         elif p.ends == "hose":  # out of the top face near one end, curving away over the table
             r = 0.012
             pts = [np.array([-0.22 + 0.45 * u - 0.1 * np.sin(np.pi * u), -w / 2 - 0.28 * np.sin(0.5 * np.pi * u),
@@ -1892,15 +1889,15 @@ def book(p: BookParams) -> list[Part]:
                                         ew=0.25, blend=0.1 * pt))
         parts.append(superellipsoid("cover", (0.5, w / 2, c / 2), (0, 0, T - c / 2), ns=0.35, ew=0.2,
                                     blend=0.1 * pt))
-        parts.append(_scaled(cylinder("spine", T / 2, 1.0, (0, -w / 2 + 0.02, T / 2), edge=0.3 * c, rot=(0, 90, 0),
+        parts.append(scaled(cylinder("spine", T / 2, 1.0, (0, -w / 2 + 0.02, T / 2), edge=0.3 * c, rot=(0, 90, 0),
                                       blend=0.02), (1, 0.4, 1)))
-        parts.append(_scaled(cylinder("patch", 0.22, 0.25 * c, (0.03, 0.04, T + 0.05 * c), edge=0.1 * c,
+        parts.append(scaled(cylinder("patch", 0.22, 0.25 * c, (0.03, 0.04, T + 0.05 * c), edge=0.1 * c,
                                       blend=0.005), (1, 1, 1)))
     else:
         parts = [box("body", (1.0, w, c), (0, 0, c / 2), edge=edge)]
         parts.append(box("pages", (0.96, w - 0.03, pages + 0.01), (0, 0.01, c + pages / 2), edge=0.1 * c))
         parts.append(box("cover", (1.0, w, c), (0, 0, T - c / 2), edge=edge, blend=0.002))
-        parts.append(_scaled(cylinder("spine", T / 2, 1.0, (0, -w / 2, T / 2), edge=0.3 * c, rot=(0, 90, 0),
+        parts.append(scaled(cylinder("spine", T / 2, 1.0, (0, -w / 2, T / 2), edge=0.3 * c, rot=(0, 90, 0),
                                       blend=0.01), (1, 0.35, 1)))
         for i in range(p.page_lines):
             z = c + pages * (i + 1) / (p.page_lines + 1)
@@ -1909,6 +1906,6 @@ def book(p: BookParams) -> list[Part]:
             parts.append(_op(box(f"page line {i + 1} end", (0.05, w * 0.9, g), (0.49, 0.03, z)), "subtract"))
     for i in range(p.tags):
         x = -0.33 + 0.66 * i / max(p.tags - 1, 1)
-        parts.append(_scaled(torus(f"tag {i + 1}", 0.055, 0.022, (x, w / 2 + 0.02, T / 2), rot=(0, 0, 0),
+        parts.append(scaled(torus(f"tag {i + 1}", 0.055, 0.022, (x, w / 2 + 0.02, T / 2), rot=(0, 0, 0),
                                    blend=0.01), (0.8, 1.3, 0.6)))
     return parts

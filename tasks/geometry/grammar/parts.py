@@ -70,6 +70,11 @@ def cone(name: str, r_bottom: float, r_top: float, height: float, at: Vec, edge:
                 color_rgb=DEFAULT_GREY)
 
 
+def scaled(part: Part, scale: Vec) -> Part:
+    """A part with its transform's scale set to `scale` (a flattened or oval primitive; builders make them at 1)."""
+    return part.model_copy(update={"transform": part.transform.model_copy(update={"scale": _f3(scale)})})
+
+
 def _euler_z_to(direction: np.ndarray) -> tuple[float, float, float]:
     """XYZ Euler angles [deg] of a rotation taking local +z onto `direction`."""
     d = direction / max(float(np.linalg.norm(direction)), 1e-12)

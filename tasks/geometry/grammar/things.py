@@ -18,6 +18,7 @@ from tasks.geometry.grammar.parts import (
     cylinder,
     ellipsoid,
     limb,
+    scaled,
     sphere_directions,
     squashed_parts,
     superellipsoid,
@@ -367,16 +368,16 @@ def bottle(p: BottleParams) -> list[Part]:
     zb = h - cap_h - neck_h - sh  # the body's straight wall
     rn = 0.5 * p.neck
     sx = (p.depth, 1.0, 1.0)
-    parts = [_scaled_part(cylinder("body", 0.5, zb + 0.02, (0, 0, zb / 2 + 0.01), edge=0.1), sx),
-             _scaled_part(cone("shoulder", 0.5, rn, sh, (0, 0, zb + sh / 2),
+    parts = [scaled(cylinder("body", 0.5, zb + 0.02, (0, 0, zb / 2 + 0.01), edge=0.1), sx),
+             scaled(cone("shoulder", 0.5, rn, sh, (0, 0, zb + sh / 2),
                                blend=0.06), sx),
              cylinder("neck", rn, neck_h + 0.04, (0, 0, zb + sh + neck_h / 2), blend=0.02)]
     top = zb + sh + neck_h
     if p.cap == "screw":
         parts.append(cylinder("cap", 1.12 * rn, cap_h, (0, 0, top + cap_h / 2), edge=0.15 * cap_h))
     elif p.cap == "flip":  # a flip-top cap nearly as wide as the bottle's depth (a shampoo or lotion bottle)
-        rc = max(0.42 * p.depth / max(p.depth, 1e-6), 1.2 * rn)
-        parts.append(_scaled_part(cylinder("cap", rc, cap_h, (0, 0, top + cap_h / 2), edge=0.25 * cap_h, blend=0.01),
+        rc = max(0.42, 1.2 * rn)
+        parts.append(scaled(cylinder("cap", rc, cap_h, (0, 0, top + cap_h / 2), edge=0.25 * cap_h, blend=0.01),
                                   (p.depth, 1.0, 1.0)))
     elif p.cap == "pump":
         parts.append(cylinder("cap", 1.2 * rn, 0.3 * cap_h, (0, 0, top + 0.15 * cap_h), edge=0.05 * cap_h))
@@ -385,18 +386,12 @@ def bottle(p: BottleParams) -> list[Part]:
                          edge=0.1 * cap_h, blend=0.01))
     for i in range(p.ribs):  # grip grooves round the lower body
         z = zb * (0.25 + 0.5 * (i + 0.5) / p.ribs)
-        groove = _scaled_part(torus(f"rib {i + 1}", 0.5, 0.025, (0, 0, z)), sx)
+        groove = scaled(torus(f"rib {i + 1}", 0.5, 0.025, (0, 0, z)), sx)
         parts.append(groove.model_copy(update={"operation": "subtract", "blend_m": 0.02}))
     if p.dent > 0:  # the side pushed in by a hand, rounded
         dent = ellipsoid("dent", (0.35, 0.5 * p.dent + 0.1, 0.3 * zb), (0, 0.5 + 0.1 - 0.5 * p.dent, 0.5 * zb))
         parts.append(dent.model_copy(update={"operation": "subtract", "blend_m": 0.08}))
     return parts
-
-
-def _scaled_part(part: Part, scale: tuple[float, float, float]) -> Part:
-    """A part with its transform's scale multiplied (an oval bottle's body)."""
-    sc = tuple(a * b for a, b in zip(part.transform.scale, scale, strict=True))
-    return part.model_copy(update={"transform": part.transform.model_copy(update={"scale": sc})})
 
 
 class StarParams(Model):
