@@ -181,10 +181,35 @@ def _start_server_process(port: int) -> subprocess.Popen:
     args = [sys.executable, "-P", "-c", _SERVE, "--app-dir", str(app_dir), "--factory",
             "prefect.server.api.server:create_app", "--host", "127.0.0.1", "--port", str(port), "--log-level",
             "error", "--lifespan", "on"]
-    # stdout stays clean for --json output; errors still reach stderr. A session of its own: a signal to the command's
-    # process group (Ctrl-C in a terminal, `timeout`) leaves the server up while the command unwinds (its client
-    # reports the runs' end to a live server, instead of retrying a dead one), and the command stops it at exit.
-    return subprocess.Popen(args, env=env, stdout=subprocess.DEVNULL, stdin=subprocess.DEVNULL, start_new_session=True)
+    # stdout stays clean for --json output, and the user's stderr holds only the command's own lines: the server's
+    # output (its errors, and the tracebacks uvicorn prints when stopped mid-request) goes to a log in PREFECT_HOME.
+    # A session of its own: a signal to the command's process group (Ctrl-C in a terminal, `timeout`) leaves the server
+    # up while the command unwinds (its client reports the runs' end to a live server, instead of retrying a dead one),
+    # and the command stops it at exit.
+    with _server_log() as log:
+        return subprocess.Popen(args, env=env, stdout=subprocess.DEVNULL, stderr=log, stdin=subprocess.DEVNULL,
+                                start_new_session=True)
+
+
+SERVER_LOG_NAME = "local-server.log"
+SERVER_LOG_MAX_BYTES = 1 << 20
+
+
+@contextlib.contextmanager
+def _server_log() -> Iterator[int]:
+    """A file descriptor appending to PREFECT_HOME's server log (the last ~1 MiB kept as `.1`); /dev/null if none opens."""
+    path = Path(os.environ.get("PREFECT_HOME", str(default_prefect_home()))) / SERVER_LOG_NAME
+    try:
+        path.parent.mkdir(parents=True, exist_ok=True)
+        if path.exists() and path.stat().st_size > SERVER_LOG_MAX_BYTES:
+            path.replace(path.with_name(SERVER_LOG_NAME + ".1"))
+        fd = os.open(path, os.O_WRONLY | os.O_CREAT | os.O_APPEND, 0o644)
+    except OSError:
+        fd = os.open(os.devnull, os.O_WRONLY)
+    try:
+        yield fd
+    finally:
+        os.close(fd)  # the child holds its own copy
 
 
 def _get(url: str) -> None:

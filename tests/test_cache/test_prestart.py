@@ -77,6 +77,9 @@ def test_the_server_exits_when_its_command_is_killed(prefect_home: Path) -> None
                             stderr=subprocess.DEVNULL, text=True)
     try:
         server_pid = int(proc.stdout.readline())
+        # its output goes to a log, not to the command's stderr (a server stopped mid-request printed a traceback
+        # after the command's own last line)
+        assert os.readlink(f"/proc/{server_pid}/fd/2") == str(prefect_home / runtime.SERVER_LOG_NAME)
     finally:
         proc.kill()  # SIGKILL: no atexit hook runs
         proc.wait(timeout=30)
@@ -90,8 +93,8 @@ def test_the_server_exits_when_its_command_is_killed(prefect_home: Path) -> None
 
 
 def test_a_command_that_exits_at_once_is_not_held_open_by_the_server(prefect_home: Path) -> None:
-    # the server inherits stderr: a server started (or starting) after the command's exit would hold a caller's
-    # pipe open, and a caller reading it to the end would wait forever (a CI hang before the atexit close)
+    # a server started (or starting) after the command's exit must not outlive it, nor hold a caller's pipe open (a
+    # CI hang before the atexit close, when the server shared the command's stderr)
     for _ in range(3):
         t0 = time.time()
         res = subprocess.run([sys.executable, "-m", "flows.cli.main", "generate", "a sponge", "--quality", "ultra"],
