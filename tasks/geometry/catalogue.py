@@ -14,7 +14,7 @@ from contracts.errors import InputError
 from contracts.lexicon import load_lexicon
 from contracts.request import MAX_SIZE_M, MIN_SIZE_M, AssetRequest
 from contracts.shape import ShapeProgram
-from tasks.geometry import concepts, dims_words, grammar, size_words, spelling
+from tasks.geometry import concepts, dims_words, grammar, pouch_words, size_words, spelling
 from tasks.geometry.analogy import FOOD_CUES
 from tasks.geometry.wordnet import wordnet
 from tasks.geometry.catalogue_programs import catalogue_program, catalogue_yaml
@@ -585,12 +585,35 @@ def _task_clause_stripped(text: str) -> str:
 
 # a request's opening words before the object ('Can you make a pair of jeans': 'can' was read as a tin can)
 _REQUEST_OPENING = re.compile(
-    r"^\s*(?:(?:(?:can|could|would|will)\s+(?:you|we|i)\s+(?:please\s+)?|please\s+|i(?:'d|\s+would)\s+like\s+"
+    r"^\s*(?:(?:(?:can|could|would|will)\s+(?:you|we|i)\s+(?:(?:please|pls|plz)\s+)?|(?:please|pls|plz)\s+|i(?:'d|\s+would)\s+like\s+"
     r"(?:to\s+(?:have|get|see|make|simulate|model)\s+)?|i\s+(?:want|need)\s+(?:to\s+(?:have|make|simulate|model)\s+)?|"
     r"we\s+need\s+|let's\s+|lets\s+)(?:(?:make|create|generate|build|model|simulate|give|get|design|add)\s+"
     r"(?:me\s+|us\s+)?)?|(?:make|create|generate|build|model|simulate|give|design)\s+(?:me\s+|us\s+)?(?=an?\s|the\s|"
     r"some\s|one\s|two\s|three\s))", re.IGNORECASE)
 _STAND_UP = re.compile(r"\bstand[- ]up\b(?=\s+[a-z])", re.IGNORECASE)
+
+
+_OF_WORDS = re.compile(r"\b([a-z]+) of ((?:[a-z]+ ){1,2})([a-z]+)\b", re.IGNORECASE)
+
+
+def _of_words_moved(text: str) -> str:
+    """'a tube of acrylic paint' -> 'a acrylic tube of paint' when the lexicon knows 'tube of paint' and not 'tube of
+    acrylic paint' (the words between hid the noun: a paint tube was built as a generic block); the moved words still
+    describe the object. Counts and stop words stay where they are."""
+    def move(m: re.Match[str]) -> str:
+        head, between, last = m.group(1), m.group(2), m.group(3)
+        words = between.split()
+        known = concepts.noun_index()
+        if head.lower() in pouch_words.CONTAINERS or f"{head} of {last}".lower() not in known \
+                or f"{head} of {between}{last}".lower() in known or f"{between}{last}".lower() in known \
+                or any(w.lower() in _OF_KEEP for w in words):  # (a bag's goods: the pouch reading's, kept whole)
+            return m.group(0)
+        return f"{between}{head} of {last}"
+    return _OF_WORDS.sub(move, text)
+
+
+_OF_KEEP = frozenset({"a", "an", "the", "one", "two", "three", "four", "five", "six", "some", "my", "your", "its",
+                      "their", "our", "this", "that", "these", "those", "half", "about", "around", "and", "or"})
 
 
 def _pair_first(text: str) -> str:
@@ -663,6 +686,10 @@ _STUFFED_IN = re.compile(r"^(?P<goods>.*\w.*?)\s*,?\s+(?:(?:stuffed|packed|compr
                          re.IGNORECASE)
 
 
+_SEE_THROUGH = re.compile(r"\b(?:clear|transparent|see through|plastic|poly|polythene|polyethylene|cellophane|zip|"
+                          r"ziploc|ziplock|zipper|vacuum)\b", re.IGNORECASE)
+
+
 def _stuffed_in_sack(text: str) -> tuple[str, str] | None:
     """'a sleeping bag stuffed in a compression sack', 'a hammock stuffed in its pouch': (the request for the packed
     sack, weighing the goods, and a note), else None. What is seen is the sack, full; its mass is the goods'."""
@@ -674,6 +701,10 @@ def _stuffed_in_sack(text: str) -> tuple[str, str] | None:
     kg = (c.stated_mass_kg or c.typical_mass_kg) if c is not None else None
     if kg is None or c is None or c.by_analogy:
         return None
+    sack = m.group("sack") or m.group("named") or ""
+    if _SEE_THROUGH.search(sack):  # 'a hoodie folded inside a clear plastic bag': what is seen is the hoodie
+        return m.group("goods").strip(), (f"'{m.group('goods').strip()}' in {sack}: built as the goods seen through "
+                                          f"the clear bag (the bag, a few grams of film, is not drawn)")
     note = (f"'{m.group('goods').strip()}' packed in {m.group('sack') or m.group('named')}: built as the full stuff "
             f"sack, weighing the "
             f"{c.concept.replace('_', ' ')} ({kg:.3g} kg)")
@@ -725,11 +756,13 @@ def design_from_text(text: str, size_hint_m: float | None = None) -> Design:
     if not text or not text.strip():
         raise InputError("the description is empty")
     sized = normalise_sizes(text)
-    packed = _stuffed_in_sack(_purpose_stripped(sized))
+    # ('pls make a down jacket stuffed into its own pocket': the request's opening is not the goods)
+    packed = _stuffed_in_sack(_purpose_stripped(_task_clause_stripped(sized)))
     if packed is not None:
         design = design_from_text(packed[0], size_hint_m)
         return design.model_copy(update={"warnings": [packed[1], *design.warnings]})
-    text_n = _cut_words_stripped(_purpose_stripped(_pair_first(_portions_compounded(_task_clause_stripped(sized)))))
+    text_n = _cut_words_stripped(_purpose_stripped(_pair_first(_portions_compounded(_of_words_moved(
+        _task_clause_stripped(sized))))))
     size = parse_size(text_n)
     if size_hint_m is not None:
         size = SizeSpec(longest_m=size_hint_m, stated=f"size hint {size_hint_m:g} m")
@@ -812,8 +845,10 @@ def design_from_text(text: str, size_hint_m: float | None = None) -> Design:
         check_size(SizeSpec(longest_m=final_scale(size, program, 0.0)[0], stated=size.stated))
     else:
         check_size(size)
-    # a flat good's stated sizes keep its typical thickness (or state it): its mass follows its built area
-    as_built = size.flat or concepts.sheet_roll(reading) is not None  # (a roll's stated sheet: its volume follows it)
+    # a flat good's stated sizes keep its typical thickness (or state it): its mass follows its built area; so does a
+    # folded sheet's (its stated outline sets the pile's footprint, the pile keeps its layers: 'a fleece blanket folded
+    # in 4, 75 x 100 cm' weighed 3x its fleece as a blanket scaled whole), and a roll's stated sheet its volume
+    as_built = size.flat or size.unfold is not None or concepts.sheet_roll(reading) is not None
     scaled = SizeSpec(axis_scale=size.axis_scale) if as_built and size.explicit else size
     match = concepts.size_scaled(match, *final_scale(scaled, program, match.typical_size_m or 0.0))
     if _DUSTED.search(text_n):  # 'dusted with icing sugar', 'floured': the powder in the stills

@@ -652,8 +652,21 @@ def _pouch_of(t: str, phrase: phrase_mod.Phrase, entry: LexiconEntry, match: Con
             entry.plan in ("pouch", "bag") or noun.split()[-1:] == [phrase.head]):
         return None  # the lexicon's own bag ('an ice bag', 'a zip bag'); the bare 'pouch' is no drawstring pouch
     found = pouch_words.pouch_of(t, phrase.head, phrase.compounds)
-    if found is not None:
-        return found
+    pieces = _pieces_pouch(t)
+    if pieces is not None and pieces.piece_m is not None and (found is None or (
+            max(pieces.piece_m) >= SEEN_PIECE_M and found.port == "none")):
+        # goods the lexicon knows, big enough to be seen one by one ('a bag of gummy bears', 'a bag of cotton balls'):
+        # drawn through the film, not a generic fill's label ('candy' read as a bag of flour)
+        return pieces
+    return found if found is not None else pieces
+
+
+SEEN_PIECE_M = 0.015  # goods at least this long are told apart through a bag's film (grains, peas, beans are not) [m]
+
+
+def _pieces_pouch(t: str) -> pouch_words.PouchOf | None:
+    """A pouch of pieces of a small food or good the lexicon knows, named after the container ('a packet of
+    cherries', 'a bag of 20 cotton balls'), with the pieces' size, shape and colour and the fill's bulk density."""
     m = _GOODS_OF.search(t)
     words = m.group(1) if m is not None else ""
     hits = _find(words, noun_index(), rightmost=True)
@@ -1209,8 +1222,10 @@ def _state_params(reading: Reading, warnings: list[str]) -> tuple[list[str], dic
     can = grammar.plan_states(plan) if plan in grammar.PLANS else ()
     said = list(dict.fromkeys("lying" if st == "curled" and "lying" in can and "curled" not in can else st
                               for st in phrase.states))
-    if plan == "sheet":  # a towel hanging on a rail hangs over it
-        said = list(dict.fromkeys("draped" if st == "hung" else st for st in said))
+    if plan == "sheet":  # a towel hanging on a rail hangs over it; a sheet bent in half is folded in half
+        half = re.search(r"\b(?:in half|in two|double)\b", phrase.text) is not None
+        said = list(dict.fromkeys("draped" if st == "hung" else "folded" if st == "bent" and half else st
+                                  for st in said))
     if pose_of(phrase.text) is not None:  # 'lying on its side': the standing shape turned over (_whole_object)
         said = [st for st in said if st not in ("lying", "curled")]
     if inflatable(target) or dentable(target):  # 'deflated', 'crumpled', 'flat': drawn by _whole_object

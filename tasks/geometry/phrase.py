@@ -25,7 +25,7 @@ STATE_WORDS: dict[str, str] = {
     "crumpled": "crumpled", "wrinkled": "crumpled", "scrunched": "crumpled", "bunched": "crumpled",
     "balled": "crumpled", "wadded": "crumpled", "screwed": "crumpled",
     "stuffed": "stuffed", "filled": "filled", "hollow": "hollow", "empty": "hollow",
-    "deflated": "deflated", "inflated": "inflated", "bent": "bent", "curled": "curled",
+    "deflated": "deflated", "inflated": "inflated", "blown": "inflated", "bent": "bent", "curled": "curled",
     "flat": "flat", "unrolled": "flat", "spread": "flat", "laid": "flat",
     "looped": "loop", "wrung": "twisted", "twisted": "twisted", "wringing": "twisted", "knotted": "knotted",
     "sitting": "sitting", "sits": "sitting", "seated": "sitting", "lying": "lying", "laying": "lying",

@@ -130,6 +130,8 @@ class ElongatedParams(Model):
     flatten: float = Field(default=1.0, gt=0.3, le=1.0, description="height / width of the cross-section [-]")
     segments: int = Field(default=14, ge=4, le=14, description="arcs the body is swept in (fewer for many of them "
                           "in one program: a hand of bananas) [-]")
+    ridges: int = Field(default=0, ge=0, le=8, description="grooves along a straight body (a churro's star-piped "
+                        "ridges): that many, evenly round it; 0 a smooth body [-]")
     peeled: float = Field(default=0.0, ge=0.0, le=1.0, description="share of the length peeled from the stem end "
                           "(a banana): the flesh bare there, the peel in three strips folded back from the peel line "
                           "(none when all of it is peeled) [-]")
@@ -202,6 +204,13 @@ def elongated(p: ElongatedParams) -> list[Part]:
         for j, deg in enumerate((-25, 0, 25)):
             v = np.array([np.cos(np.radians(deg)) * 0.8, np.sin(np.radians(deg)) * 0.6, 0.4])
             parts.append(limb(f"leaf {j + 1}", end, end + v * 0.18, 0.22 * p.radius, blend=0.2 * p.radius))
+    if p.ridges and p.curvature <= 1e-6:  # grooves cut along the straight body end to end: a star seen from its end
+        r_groove = 0.32 * r0
+        for j in range(p.ridges):
+            phi = 2.0 * np.pi * (j + 0.5) / p.ridges
+            centre = (0.0, 1.0 * r0 * np.cos(phi), r0 + 1.0 * r0 * np.sin(phi))
+            parts.append(cylinder(f"groove {j + 1}", r_groove, 1.2, centre, blend=0.15 * r_groove, rot=(0, 90, 0),
+                                  op="subtract"))
     if p.blossom:
         back = pts[0] - pts[1]
         back /= np.linalg.norm(back)

@@ -686,10 +686,28 @@ def piece_grid(p: PouchParams) -> tuple[int, int]:
     return max(1, int(inner_x // (1.05 * a))), max(1, int(inner_y // (1.05 * b)))
 
 
+PIECE_DRAWN_MAX_SCALE = 2.0  # goods a little too many to draw are drawn up to this much larger, fewer of them [-]
+
+
+def _countable(p: PouchParams) -> PouchParams:
+    """The pouch with its pieces drawn at most PIECE_DRAWN_MAX_SCALE times larger when more than MAX_PIECES of them
+    would cover its top (a bag of gummy bears: 64 bears of 2.5 cm on a 25 cm bag drawn as 28 larger ones, still a bag
+    of bears; rice or peas, far smaller, stay the fill's colour alone). Only the drawing: the fill's mass is its own."""
+    if max(p.piece) <= 0:
+        return p
+    for k in np.arange(1.0, PIECE_DRAWN_MAX_SCALE + 1e-9, 0.05):
+        q = p.model_copy(update={"piece": tuple(float(v * k) for v in p.piece)})
+        nx, ny = piece_grid(q)
+        if nx * ny <= MAX_PIECES:
+            return q
+    return p
+
+
 def bagged_pieces(p: PouchParams, h: float) -> list[Part]:
     """The goods of a clear bag pressing up through its film: pieces in staggered rows over the bag's top, each
     standing half out of the filled body ('a bag of marshmallows', 'a pack of sponges'); none when they are too
     small to tell apart (rice, peas)."""
+    p = _countable(p)
     a, b, c = sorted(p.piece, reverse=True)
     a, b = a * 1.05, b * 1.05
     inner_x, inner_y = 1.0 - 2.2 * p.seam, p.width - 2.2 * p.seam
@@ -722,6 +740,9 @@ class GloveParams(Model):
     spread: float = Field(default=6.0, ge=0.0, le=20.0, description="angle between fingers [deg]")
     boxing: bool = Field(default=False, description="a boxing glove: a padded fist curled over the palm, the thumb "
                          "pressed to its side, a round cuff with a strap band, lying on its little-finger side")
+    state: Literal["flat", "inflated"] = Field(default="flat", description="inflated: blown up like a balloon and "
+                                                 "tied off (a party trick with a disposable glove): a round palm, "
+                                                 "fat fingers spread, the cuff gathered into a knot")
 
 
 _FINGERS = (("index finger", 0.88), ("middle finger", 1.0), ("ring finger", 0.93), ("little finger", 0.72))
@@ -736,6 +757,30 @@ def _flat_limb(name: str, a: np.ndarray, b: np.ndarray, r: float, t: float, blen
                 transform={"translation_m": tuple(float(x) for x in (a + b) / 2), "rotation_deg": (0.0, 90.0, angle),
                            "scale": (min(1.0, t / (2 * r)), 1.0, 1.0)}, blend_m=blend)
     return part
+
+
+def _inflated_glove(p: GloveParams) -> list[Part]:
+    """A glove blown up and tied off: the palm a balloon (round in section), the fingers fat teats spread in a fan and
+    tilted up a little, the thumb to the side, the cuff drawn into a neck with a knot; palm length 0.34 as `glove`."""
+    pl, pw = 0.34, 0.36
+    r = 0.19  # the palm's half-thickness: blown round
+    parts = [ellipsoid("palm", (pl / 2 + 0.02, pw / 2, r), (0, 0, r))]
+    fr = pw / 6.4
+    for i, (name, share) in enumerate(_FINGERS):
+        y = pw / 2 - fr - i * (pw - 2 * fr) / 3
+        a = np.radians(14.0 * (1.5 - i))
+        length = share * p.finger_length * pl * 0.8
+        base = np.array([pl / 2 - 0.05, y, r])
+        tip = base + length * np.array([np.cos(a), np.sin(a), 0.25])
+        parts.append(limb(name, tuple(base), tuple(tip), fr, blend=0.04))
+    tb = np.array([-0.02, pw / 2 - 0.03, r])
+    ta = np.radians(62.0)
+    parts.append(limb("thumb", tuple(tb), tuple(tb + 0.5 * pl * np.array([np.cos(ta), np.sin(ta), 0.2])), 1.15 * fr,
+                      blend=0.04))
+    neck_end = np.array([-pl / 2 - 0.12, 0.0, 0.7 * r])
+    parts.append(limb("cuff", (-pl / 2 + 0.04, 0.0, r), tuple(neck_end), 0.05, blend=0.05))
+    parts.append(ellipsoid("knot", (0.035, 0.03, 0.03), tuple(neck_end + np.array([-0.02, 0.0, 0.0])), blend=0.015))
+    return parts
 
 
 def _boxing_glove() -> list[Part]:
@@ -754,6 +799,8 @@ def glove(p: GloveParams) -> list[Part]:
     """Palm length 0.34, width 0.3 (the glove's parts in proportion); lying palm down."""
     if p.boxing:
         return _boxing_glove()
+    if p.state == "inflated":
+        return _inflated_glove(p)
     pl, pw = 0.34, 0.3
     t = p.thickness * pw
     z = t / 2

@@ -353,7 +353,9 @@ class BottleParams(Model):
     depth: float = Field(default=1.0, gt=0.3, le=1.0, description="body depth / width: 1 round, less an oval [-]")
     neck: float = Field(default=0.4, gt=0.1, le=0.9, description="neck diameter / body width [-]")
     shoulder: float = Field(default=0.18, ge=0.02, le=0.5, description="the shoulder's height / the height [-]")
-    cap: Literal["screw", "flip", "pump", "none"] = "screw"
+    cap: Literal["screw", "flip", "pump", "nozzle", "none"] = Field(default="screw", description="nozzle: a lab "
+                                                                     "wash bottle's screw cap with a thin delivery "
+                                                                     "tube rising from it and bent over to the side")
     ribs: int = Field(default=0, ge=0, le=8, description="grip grooves round the body (a water bottle) [-]")
     dent: float = Field(default=0.0, ge=0.0, le=0.6, description="a side squeezed in (a half-empty bottle "
                         "crushed in a hand): the dent's depth / the body's radius [-]")
@@ -362,7 +364,7 @@ class BottleParams(Model):
 def bottle(p: BottleParams) -> list[Part]:
     """Body width 1 along y (its depth along x), standing on its base at z = 0; the cap on top."""
     h = p.height
-    cap_h = {"screw": 0.09, "flip": 0.11, "pump": 0.16, "none": 0.0}[p.cap] * h
+    cap_h = {"screw": 0.09, "flip": 0.11, "pump": 0.16, "nozzle": 0.09, "none": 0.0}[p.cap] * h
     neck_h = 0.04 * h
     sh = p.shoulder * h
     zb = h - cap_h - neck_h - sh  # the body's straight wall
@@ -384,6 +386,13 @@ def bottle(p: BottleParams) -> list[Part]:
         parts.append(cylinder("pump stem", 0.3 * rn, 0.5 * cap_h, (0, 0, top + 0.5 * cap_h)))
         parts.append(box("pump head", (0.9 * rn, 1.6 * rn, 0.25 * cap_h), (0, 0.3 * rn, top + 0.85 * cap_h),
                          edge=0.1 * cap_h, blend=0.01))
+    elif p.cap == "nozzle":  # the cap, the tube rising from it, bent over and down to a fine tip
+        parts.append(cylinder("cap", 1.12 * rn, cap_h, (0, 0, top + cap_h / 2), edge=0.15 * cap_h))
+        rt = 0.045
+        rise = top + cap_h + 0.55
+        parts.append(limb("nozzle", (0, 0, top + cap_h - 0.02), (0, 0, rise), rt, blend=0.01))
+        parts.append(limb("nozzle bend", (0, 0, rise), (0, 0.42, rise - 0.08), rt, blend=0.02))
+        parts.append(limb("nozzle tip", (0, 0.42, rise - 0.08), (0, 0.5, rise - 0.22), 0.7 * rt, blend=0.02))
     for i in range(p.ribs):  # grip grooves round the lower body
         z = zb * (0.25 + 0.5 * (i + 0.5) / p.ribs)
         groove = scaled(torus(f"rib {i + 1}", 0.5, 0.025, (0, 0, z)), sx)
