@@ -520,6 +520,10 @@ _PURPOSE = re.compile(r"^(?P<object>.*\w.*?)\s*,?\s+\bfor\s+(?:(?:an?|the|your|m
 
 
 _BORE_WORDS = frozenset({"pipe", "pipes", "pipework", "hose", "hoses", "tap", "faucet", "radiator"})
+# an amount said by what it makes ('enough for one 12 inch pizza', 'enough to make two loaves'): the clause sizes
+# the thing made, not the object
+_ENOUGH_FOR = re.compile(r"\s*,?\s*\b(?:just\s+|about\s+)?enough\s+(?:\w+\s+)?(?:for|to\s+make|to\s+fill)\s+"
+                         r"(?:an?|one|two|three|four|\d+)\s+[^,;.]*", re.IGNORECASE)
 
 
 @functools.lru_cache(maxsize=256)
@@ -542,6 +546,7 @@ def _cut_words_stripped(text: str) -> str:
 def _purpose_stripped(text: str) -> str:
     """'a bag of timothy hay for rabbits', 'a fleece hammock for ferrets', 'a foam tube for 22mm pipe' -> the object
     without whom or what it is for (the rabbit is not built, the pipe's size is not the tube's)."""
+    text = _ENOUGH_FOR.sub("", text)  # 'a ball of pizza dough, enough for one 12 inch pizza': not the ball's size
     m = _PURPOSE.match(text.strip())
     if m is None:
         return text

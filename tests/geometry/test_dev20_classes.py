@@ -135,3 +135,13 @@ def test_goods_big_enough_to_tell_apart_show_through_a_bag_in_place_of_a_label()
 ])
 def test_more_dev20_masses(text: str, low: float, high: float) -> None:
     assert low <= planned_mass(text) <= high
+
+
+def test_a_size_of_what_the_object_makes_is_not_its_size() -> None:
+    """'a ball of pizza dough, enough for one 12 inch pizza' was a 30 cm ball (sealed set 19): the size belongs to
+    the pizza. The amount clause is dropped; the object keeps its typical size."""
+    plain = catalogue.design_from_text("a ball of bread dough")
+    said = catalogue.design_from_text("a ball of bread dough, enough to make one 9 inch loaf, floured")
+    assert said.entry == plain.entry and not said.size.explicit
+    assert grammar.program_extents(said.program, 32).max() == pytest.approx(
+        grammar.program_extents(plain.program, 32).max(), rel=0.05)
