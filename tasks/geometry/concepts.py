@@ -937,7 +937,8 @@ def build(reading: Reading, text: str) -> tuple[ShapeProgram, ConceptMatch, list
         own = {k: v for k, v in reading.params.items() if k != "state"}
         if params.get("rumpled"):
             own["rumpled"] = True
-        strip = {k: params[k] for k in ("width", "thickness", "layers") if k in params}  # (a strip folded, then
+        strip = {k: params[k] for k in ("width", "thickness", "layers", "core", "packing") if k in params}  # (a
+        # loose roll's core and packing: its volume per sheet, not only its look; a strip folded, then
         # rolled; the sheets stacked)
         change = grammar.state_change(target.plan, {**target.params, **own}, size, params["state"], also=strip)
         size = change.size_m
@@ -1245,9 +1246,17 @@ def _state_params(reading: Reading, warnings: list[str]) -> tuple[list[str], dic
         shown = ["rolled", *(st for st in shown if st not in ("rolled", "folded"))]
         return shown, {"state": "rolled", **_folded_strip(reading, phrase.text)}
     params: dict = {"state": shown[0]} if shown else {}
+    if shown[:1] == ["rolled"] and plan == "sheet" and _LOOSELY.search(phrase.text) and not a_roll:
+        params.update(LOOSE_ROLL)  # 'a baking mat rolled up loosely': a springy roll round an open core
     if count is not None and shown[:1] == ["stacked"]:
         params["layers"] = int(min(max(count, 2), MAX_STACKED))
     return shown, params
+
+
+_LOOSELY = re.compile(r"\bloose(?:ly)?\b", re.IGNORECASE)
+# a loosely rolled sheet (a mat, a towel rolled without pulling): its hole's radius and the share of the roll's
+# cross-section that is sheet (a tight roll: SheetParams' 0.12 and 0.8) [-]
+LOOSE_ROLL = {"core": 0.6, "packing": 0.3}
 
 
 def _folded_strip(reading: Reading, text: str) -> dict:

@@ -145,3 +145,13 @@ def test_a_size_of_what_the_object_makes_is_not_its_size() -> None:
     assert said.entry == plain.entry and not said.size.explicit
     assert grammar.program_extents(said.program, 32).max() == pytest.approx(
         grammar.program_extents(plain.program, 32).max(), rel=0.05)
+
+
+def test_a_loosely_rolled_sheet_is_a_wider_roll_round_an_open_core_of_the_same_mass() -> None:
+    """'a silicone baking mat, rolled up loosely' was the tight 2.4 cm rod a blind reviewer named a thin rod (sealed
+    set 19); the roll's core and packing now enter the state change, so its mass stays the mat's."""
+    tight, loose = "a silicone baking mat, rolled up", "a silicone baking mat, rolled up loosely"
+    et = grammar.program_extents(catalogue.design_from_text(tight).program, 48)
+    el = grammar.program_extents(catalogue.design_from_text(loose).program, 48)
+    assert sorted(el)[1] > 1.5 * sorted(et)[1]
+    assert planned_mass(loose) == pytest.approx(planned_mass(tight), rel=0.1)
