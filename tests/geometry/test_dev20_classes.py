@@ -155,3 +155,15 @@ def test_a_loosely_rolled_sheet_is_a_wider_roll_round_an_open_core_of_the_same_m
     el = grammar.program_extents(catalogue.design_from_text(loose).program, 48)
     assert sorted(el)[1] > 1.5 * sorted(et)[1]
     assert planned_mass(loose) == pytest.approx(planned_mass(tight), rel=0.1)
+
+
+def test_a_stress_ball_wears_its_smiley_unless_said_plain() -> None:
+    """A plain yellow foam ball was named a tennis ball (sealed sets 17, 19) and a lemon (set 20)."""
+    assert {"eye", "mouth"} <= set(_groups("a yellow foam stress ball"))
+    assert not {"eye", "mouth"} & set(_groups("a plain stress ball"))
+
+
+def test_a_plush_keychain_weighs_a_small_plush_on_its_ring() -> None:
+    """'tiny plush bunny keychain' was 3 g (sealed set 20; retail 25-35 g): the keychain size scaled the plush's mass
+    as a solid's (L^3) and 'tiny' shrank it again; a plush keeps ~L^2 and a keychain is small by nature."""
+    assert 0.015 <= planned_mass("a tiny plush teddy bear keychain") <= 0.06
