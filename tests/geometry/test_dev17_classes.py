@@ -215,7 +215,7 @@ def test_a_whole_bird_is_oven_ready_with_its_drumsticks(text: str, entry: str, l
 
 
 @pytest.mark.parametrize("text, entry", [
-    ("Can you make a pair of blue denim jeans, folded in half", "trousers"),
+    ("Can you make a pair of blue denim jeans, folded in half", "jeans"),
     ("I'd like to simulate a plush turtle", "plush_turtle"), ("please generate a red rubber duck", "rubber_duck")])
 def test_a_requests_opening_words_are_not_the_object(text: str, entry: str) -> None:
     """Sealed set 17 (after the run): 'Can you make a pair of blue denim jeans' was a 26 g generic block named
