@@ -170,7 +170,8 @@ class MaterialRevision(Row):
     model_config = ConfigDict(**Model.model_config, serialize_by_alias=True, validate_by_name=True,
                               validate_by_alias=True)
     ABSENT_UNLESS_GIVEN: ClassVar[frozenset[str]] = frozenset({"l2_checks", "confirmation", "robustness"})
-    trigger: str = Field(description="robustness, escalation, no plan passed")
+    trigger: str = Field(description="robustness, escalation, no plan passed (L3's own); calibration (a material "
+                         "fitted to a video, `deformsmith calibrate`)")
     from_: Material = Field(alias="from")
     to: Material
     reason: str

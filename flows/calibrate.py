@@ -6,8 +6,12 @@ asset's own settings, every hard gate; then, when the asset has L3, the robot un
 model and force budget: L3's revise/re-validate edge, flows.l3_manipulation.confirm_material; `l3=False` skips it),
 draw the real clip's key frames beside the simulated drop's (calibration/side_by_side.jpg), and only when every gate
 held write the record (calibration/video_fit.json) and the fitted material as the asset's (material.json, asset.json
-and the card when the asset is published) in one staged update: all of it, or nothing. A failed gate is a
-StageFailure (exit 6) naming it, and writes nothing.
+and the card when the asset is published) in one staged update: all of it, or nothing. The checks run in that
+update's working copy: when the robot confirmed the material, its trials are stored there and L3's confirmed result
+is written as L3's material revisions are (manipulation.json: the confirmation as the reported trial, the held-out
+conditions with the fitted material; flows.l3_manipulation.write_l3_record), and asset.json, the PhysGaussian
+config, the card and the pick-and-place video follow it (flows.generate.refresh_after_l3, as after `deformsmith
+manipulate`). A failed gate is a StageFailure (exit 6) naming it, and writes nothing.
 
 Everything that can be checked without simulating (the asset, the press table, the video, the object, the scale, the
 drop height) is checked before the first simulation; a failure is one InputError line and writes nothing.
@@ -30,6 +34,7 @@ from contracts.physical import PhysicalModel
 from contracts.sim import SimConfig
 from contracts.video_fit import (SIDE_BY_SIDE_JPG, VIDEO_FIT_JSON, CalibrationChecks, Comparison, PressTest,
                                  VideoFitRecord, VideoMetrics)
+from flows.generate import refresh_after_l3
 from flows.l3_manipulation import confirm_material
 from flows.l3_material import revalidate_in_l2
 from tasks.asset_dir import AssetDir, document_json
@@ -42,6 +47,7 @@ from tasks.calibrate.sim import scaled_body
 from tasks.export.calibrate import rel
 from tasks.calibrate.track import Track, track_object
 from tasks.calibrate.video import Video, read_video
+from tasks.manipulation.l3_record import CALIBRATION_TRIGGER
 from tasks.manipulation.material_revision import MaterialLimits
 from tasks.publish import staged_update, write_json_atomic
 from tasks.render.card import CARD_HTML, build_card
@@ -140,26 +146,32 @@ def calibrate_asset(asset_dir: Path, video_path: Path, drop_height_m: float | No
         sim_calls=len(problem.steps), converged=converged, notes=notes)
     if not write:
         return record
-    checks = check_material(Path(asset_dir), record.fitted, sim, l3, say)
-    record = record.model_copy(update={"checks": checks})
-    if not checks.passed:
-        raise StageFailure("calibrate", failure_message(checks) + "; nothing written")
-    say("drawing the real clip beside the simulated drop")
-    with staged_update(Path(asset_dir)) as work:
+    with staged_update(Path(asset_dir)) as work:  # the checks' robot trials and every record: all, or nothing
+        checks = check_material(work, record.fitted, sim, l3, say, publish=True)
+        record = record.model_copy(update={"checks": checks})
+        if not checks.passed:
+            raise StageFailure("calibrate", failure_message(checks) + "; nothing written")
+        say("drawing the real clip beside the simulated drop")
         comparison = write_comparison(work, video, tr, d, mpp, (pos, vol, phys), record.fitted, h, sim)
         record = record.model_copy(update={"comparison": comparison})
         write_records(work, record)
-        if (work / CARD_HTML).is_file():  # a published asset: its card shows the calibration
+        published = AssetDir(work).manipulation() if checks.l3_status == "confirmed" else None
+        if published is not None and refresh_after_l3(work, published, sim.device) is not None:
+            say("asset.json, card and video refreshed from manipulation.json")  # as `deformsmith manipulate` does
+        elif (work / CARD_HTML).is_file():  # a published asset: its card shows the calibration
             say("rebuilding the card")
             build_card(work)
     return record
 
 
-def check_material(asset_dir: Path, material: Material, sim: SimConfig, l3: bool, say: Progress) -> CalibrationChecks:
+def check_material(asset_dir: Path, material: Material, sim: SimConfig, l3: bool, say: Progress,
+                   publish: bool = False) -> CalibrationChecks:
     """The fitted material as L3's material revisions are checked (flows.l3_material.revalidate_in_l2 with L2's
     held-out tests: every hard gate on both), then, when L2 passed it and the asset has a passed L3, the robot under
-    manipulation.json's plan (flows.l3_manipulation.confirm_material; its trials' data to a scratch folder). Nothing
-    in the asset is written."""
+    manipulation.json's plan (flows.l3_manipulation.confirm_material). Not `publish`: the trials' data go to a
+    scratch folder and nothing in the asset is written. `publish`: asset_dir is the working copy of the asset being
+    published (calibrate_asset's staged update); the trials are stored in it, and a material the robot confirmed is
+    written there as L3's result (manipulation.json, as L3's own material revisions are)."""
     adir = AssetDir(asset_dir)
     say("L2: the fitted material's selection probes and held-out tests")
     check = revalidate_in_l2(asset_dir, material, adir.physical_model(), sim=sim, held_out=True)
@@ -176,8 +188,9 @@ def check_material(asset_dir: Path, material: Material, sim: SimConfig, l3: bool
     else:
         say("L3: the robot under manipulation.json's plan with the fitted material")
         with tempfile.TemporaryDirectory(prefix="deformsmith-calibrate-l3-") as scratch:
-            out = confirm_material(asset_dir, check, "calibration", "calibrated from video", Path(scratch),
-                                   device=sim.device, cpu_threads=sim.cpu_threads, progress=say)
+            out = confirm_material(asset_dir, check, CALIBRATION_TRIGGER, "calibrated from video",
+                                   None if publish else Path(scratch), device=sim.device,
+                                   cpu_threads=sim.cpu_threads, progress=say, publish=publish)
         if isinstance(out, str):
             status, note = "skipped", out
         else:
@@ -185,7 +198,8 @@ def check_material(asset_dir: Path, material: Material, sim: SimConfig, l3: bool
             gates["L3 robot confirmation"] = out.accepted
             status = "confirmed" if out.accepted else "failed"
             missed = [k for k in L3_OUTCOMES if not (out.confirmation or {}).get(k)]
-            note = ("the robot picked, carried and placed it under the same plan" if out.accepted else
+            note = ("the robot picked, carried and placed it under the same plan"
+                    + ("; published as L3's result (manipulation.json)" if publish else "") if out.accepted else
                     "the robot failed under the same plan: " + (", ".join(f"not {k}" for k in missed)
                                                                  or "a gate of L3's contract (see l3.confirmation)"))
     return CalibrationChecks(passed=all(gates.values()), gates=gates, l2=check, word_bands=words, l3=revision,

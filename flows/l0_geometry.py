@@ -105,10 +105,11 @@ def build_particles(mesh: Arrays, particles: ParticleSettings, wall_m: float | N
     return pipeline.build_body(mesh, particles, wall_m, solid_reason)
 
 
-def _wall(request: AssetRequest, info: BuildInfo) -> tuple[float | None, str | None]:
+def _wall(request: AssetRequest, info: BuildInfo, mesh: Arrays) -> tuple[float | None, str | None]:
     """The wall the particles are a shell of (pipeline.hollow_wall), from the concept and the whole request's
-    material words (its material intent too: L1 weighs the object by them)."""
-    return pipeline.hollow_wall(info.concept, request.material_intent or request.text)
+    material words (its material intent too: L1 weighs the object by them), fitted on the built mesh to the
+    concept's typical mass (the wall L1 weighs)."""
+    return pipeline.hollow_wall(info.concept, request.material_intent or request.text, mesh)
 
 
 @cached_task(version=GAUSSIANS_VERSION, name="l0.gaussians")
@@ -134,7 +135,7 @@ def l0_geometry(request: AssetRequest, settings: L0Settings, contract: StageCont
     """Build and check the geometry of one request."""
     mesh, info = build_mesh(geometry_request(request), settings)
     proxy = build_proxy(mesh, settings.coacd)
-    particles, body = build_particles(mesh, settings.particles, *_wall(request, info))
+    particles, body = build_particles(mesh, settings.particles, *_wall(request, info, mesh))
     body = pipeline.with_gas(body, info.concept)  # a pressurised ball's shell records its gas (outside the cache key)
     gaussians = build_gaussians(mesh, particles, settings.gaussians_per_particle, settings.gaussian_surface_fraction,
                                 settings.max_gaussians, settings.seed)
@@ -178,7 +179,7 @@ def _run_l0(request: AssetRequest, settings: pipeline.L0Settings, contract: Stag
     if not use_cache:
         mesh, info = sources.build_mesh(geometry_request(request), settings)
         proxy = pipeline.build_proxy(mesh, settings.coacd)
-        particles, body = pipeline.build_body(mesh, settings.particles, *_wall(request, info))
+        particles, body = pipeline.build_body(mesh, settings.particles, *_wall(request, info, mesh))
         body = pipeline.with_gas(body, info.concept)
         gaussians = pipeline.build_gaussians(mesh, particles, settings)
         return L0Result(mesh, proxy, particles, gaussians, info,

@@ -31,7 +31,8 @@ from cache.files import source_digest
 from cache.prefect_flow import lean_flow
 from contracts.agents import AgentConfig, StageOutcome, TargetBehaviour
 from contracts.asset_dir import DEFAULT_KEEP, KeepTrials, attempt_path
-from contracts.manipulation import ConditionRow, GripperOption, L2Check, ManipulationRecord, MaterialRevision
+from contracts.manipulation import (ConditionRow, ConditionSummary, GripperOption, L2Check, ManipulationRecord,
+                                    MaterialRevision)
 from contracts.material import Material
 from contracts.physical import PhysicalModel
 from contracts.probes import ProbeResult, ProbeSpec
@@ -48,7 +49,7 @@ from tasks.manipulation.context import (SURFACE_SAMPLES, HoldInputs, L3Context, 
                                         with_squeeze_range)
 from tasks.manipulation.keep import keep_trials
 from tasks.manipulation.l3_record import (build_record, chosen_attempt, conditions, conditions_summary,
-                                          name_pick_and_place, no_grasp_outcome)
+                                          name_pick_and_place, no_grasp_outcome, unname_pick_and_place)
 from tasks.manipulation.material_revision import MaterialLimits, robot_confirmation, robustness_and_revision
 from tasks.manipulation.outcome import TrialTolerances
 from tasks.manipulation.report import L3Progress, Progress, planned_trials
@@ -245,63 +246,106 @@ def l3_manipulation(asset_dir: Path, options: L3Options | None = None, agents: A
     after = robustness_and_revision(ctx, outcome, contract, revalidate)
     chosen_values, final_material, revision, robustness = after.values, after.material, after.revision, after.robustness
     passed = chosen_values is not None and (outcome.passed or final_material is not ctx.material)
-    # 5. the final plan under the held-out conditions (recorded apart)
-    held: list[ConditionRow] = []
-    if passed and options.held_out and chosen_values is not None:
-        results = ctx.under(dict(chosen_values), options.held_out, "held_out", material=final_material)
-        held = conditions(options.held_out, results, contract).conditions
-    # 6. manipulation.json: the chosen trial (its recording under the name users open), every trial, the conditions
-    chosen = chosen_attempt(ctx, chosen_values, final_material) if passed else None
-    if recordings and chosen is not None:
-        chosen = name_pick_and_place(asset_dir, ctx.attempts, chosen)
-    record = build_record(ctx, outcome, passed, chosen, final_material, revision, held, robustness,
-                          [a.recording for a in ctx.attempts if a.recording])  # every trial's, failed ones included
-    record = keep_trials(asset_dir, record, keep)  # by default the reported trial's states alone; the rest cached
-    report.say("L3 " + ("passed" + conditions_summary(held, robustness) if passed else "did not pass: " + record.reason))
-    AssetDir(asset_dir).write_manipulation(record)  # no wall time in it: a rerun writes the same file
+    record = write_l3_record(ctx, outcome, contract, passed, chosen_values, final_material, revision, robustness, keep)
+    report.say("L3 " + ("passed" + conditions_summary(record.held_out.conditions, robustness) if passed
+                        else "did not pass: " + record.reason))
     return record, outcome
 
 
+def write_l3_record(ctx: L3Context, outcome: StageOutcome, contract: StageContract, passed: bool,
+                    values: dict[str, float] | None, material: Material, revision: MaterialRevision | None,
+                    robustness: ConditionSummary | None, keep: KeepTrials) -> ManipulationRecord:
+    """L3's last steps, the one writer of manipulation.json after trials ran (the l3-manipulation flow's, and a
+    material confirmed from outside L3, confirm_material): 5. the final plan (`values`) under the held-out conditions
+    with the final `material` (recorded apart); 6. the chosen trial (its recording under the name users open when
+    ctx.recordings), every trial in ctx.attempts, the conditions, what the asset keeps (`keep`), written into
+    ctx.asset_dir. `contract`: the stage's contract as given (the gates the conditions are judged by)."""
+    held: list[ConditionRow] = []
+    if passed and ctx.options.held_out and values is not None:
+        results = ctx.under(dict(values), ctx.options.held_out, "held_out", material=material)
+        held = conditions(ctx.options.held_out, results, contract).conditions
+    chosen = chosen_attempt(ctx, values, material) if passed else None
+    if ctx.recordings and chosen is not None:
+        chosen = name_pick_and_place(ctx.asset_dir, ctx.attempts, chosen)
+    record = build_record(ctx, outcome, passed, chosen, material, revision, held, robustness,
+                          [a.recording for a in ctx.attempts if a.recording])  # every trial's, failed ones included
+    record = keep_trials(ctx.asset_dir, record, keep)  # by default the reported trial's states alone; the rest cached
+    AssetDir(ctx.asset_dir).write_manipulation(record)  # no wall time in it: a rerun writes the same file
+    return record
+
+
 def recorded_options(record: ManipulationRecord, device: str = "cpu", cpu_threads: int = 1) -> L3Options:
-    """The L3Options a manipulation.json was run with, as far as it records them: its quality's timing and conditions
-    (the CLI's draft or standard) and its trial lattice."""
+    """The L3Options a manipulation.json was run with, as far as it records them: its quality's timing (the CLI's
+    draft or standard), its trial lattice and, for a passed record, its robustness and held-out conditions (a passed
+    L3 records every condition it ran: none when it ran none)."""
     base = (L3Options.standard(device, cpu_threads) if record.numerics.quality == "standard"
             else L3Options(device=device, cpu_threads=cpu_threads))
     spacing = record.numerics.trial_particle_spacing_m
-    return replace(base, particle_spacing_m=spacing) if spacing else base
+    if spacing:
+        base = replace(base, particle_spacing_m=spacing)
+    if not record.passed:
+        return base
+    rows = record.robustness.conditions if record.robustness is not None else []
+    return replace(base, robustness=_recorded(rows), held_out=_recorded(record.held_out.conditions))
 
 
-def confirm_material(asset_dir: Path, check: L2Check, trigger: str, reason: str, scratch: Path,
-                     device: str = "cpu", cpu_threads: int = 1,
-                     progress: Progress | None = None) -> MaterialRevision | str:
+def _recorded(rows: list[ConditionRow]) -> tuple[tuple[float, float, float], ...]:
+    """Conditions (x [m], y [m], yaw [deg]) as L3Options holds them, from their rows."""
+    return tuple((float(r.target_xy_m[0]), float(r.target_xy_m[1]), float(r.initial_yaw_deg)) for r in rows)
+
+
+def confirm_material(asset_dir: Path, check: L2Check, trigger: str, reason: str, scratch: Path | None = None,
+                     device: str = "cpu", cpu_threads: int = 1, progress: Progress | None = None,
+                     publish: bool = False) -> MaterialRevision | str:
     """A material from outside L3 (a calibration's) through L3's revise/re-validate edge after L2 passed it (`check`:
-    flows.l3_material.revalidate_in_l2): the robot under the plan, physical model and force budget of the asset's
-    manipulation.json (tasks.manipulation.material_revision.robot_confirmation), the l3-material-confirmation flow
-    against the local Prefect runtime. The trials are cached tasks; their interaction data go to `scratch`, never
-    into the asset. Returns the revision (accepted: the nominal condition passed), or why the robot could not confirm
-    it (no L3 plan passed on this asset)."""
+    flows.l3_material.revalidate_in_l2): the robot under the plan, physical model, force budget and conditions of the
+    asset's manipulation.json (tasks.manipulation.material_revision.robot_confirmation), the l3-material-confirmation
+    flow against the local Prefect runtime. The trials are cached tasks. Not `publish`: their interaction data go to
+    `scratch`, never into the asset. `publish`: asset_dir is the working copy of an asset being published
+    (tasks.publish.staged_update, swapped in whole or not at all); the trials are stored in it as L3 stores its own,
+    and a material the robot confirmed becomes L3's result there as the flow's material revision does
+    (write_l3_record: the held-out conditions with it, the confirmation as the reported trial, manipulation.json).
+    Returns the revision (accepted: the nominal condition passed), or why the robot could not confirm it (no L3 plan
+    passed on this asset)."""
     record = AssetDir(asset_dir).manipulation()
     if not record.passed or record.values is None:
         return f"L3 did not pass on this asset ({record.status}): no plan to confirm the material under"
     if check.material is None:
         raise ValueError("the L2 check names no material")
+    if not publish and scratch is None:
+        raise ValueError("a confirmation that does not publish needs a scratch folder for its trials")
     rev = MaterialRevision.model_validate({
         "trigger": trigger, "from": record.material, "to": check.material, "reason": reason, "failed_gates": [],
         "l2_revalidation": check, "l2_checks": [check], "plan_values": dict(record.values), "accepted": False})
     with cache.local_runtime():
         return l3_material_confirmation(Path(asset_dir), rev, recorded_options(record, device, cpu_threads),
-                                        Path(scratch), progress)
+                                        None if publish else Path(cast(Path, scratch)), progress)
 
 
 @lean_flow(name="l3-material-confirmation", validate_parameters=False, persist_result=False)
-def l3_material_confirmation(asset_dir: Path, revision: MaterialRevision, options: L3Options, scratch: Path,
+def l3_material_confirmation(asset_dir: Path, revision: MaterialRevision, options: L3Options, scratch: Path | None,
                              progress: Progress | None = None) -> MaterialRevision:
     """The robot's confirmation of a material revision from outside L3 (confirm_material): the context L3 ran under
-    (its material, gripper, grasps, squeeze range), then robot_confirmation under the recorded plan."""
-    ctx = load_context(asset_dir, options, load_contract("L3"), revision.from_)
-    ctx.asset_dir, ctx.recordings = Path(scratch), False  # the trials' data to the scratch folder, no recordings
-    ctx.progress = L3Progress(progress, 1 + len(options.robustness))
+    (its material, gripper, grasps, squeeze range), then robot_confirmation under the recorded plan. scratch: where
+    the trials' data go (no recordings); None: into asset_dir after the trials L3 recorded, numbered after them and
+    recorded as L3 recorded its own, and an accepted revision written as L3's result (write_l3_record)."""
+    record = AssetDir(asset_dir).manipulation()
+    contract = load_contract("L3")
+    ctx = load_context(asset_dir, options, contract, revision.from_)
+    publish = scratch is None
+    if publish:  # L3's trials first (the new ones numbered after them); its reported recording back under its number
+        ctx.attempts, ctx.recordings = unname_pick_and_place(asset_dir, record.attempts), bool(record.recordings)
+    else:
+        ctx.asset_dir, ctx.recordings = Path(cast(Path, scratch)), False  # the trials' data to the scratch folder
+    ctx.progress = L3Progress(progress, 1 + len(options.robustness) + (len(options.held_out) if publish else 0))
     rev = robot_confirmation(ctx, revision)
+    if publish:
+        if rev.accepted:
+            harness = StageOutcome(stage="L3", status=record.status, message=record.message,
+                                   attempts_used=record.harness_attempts)
+            write_l3_record(ctx, harness, contract, True, dict(rev.plan_values), rev.to, rev, rev.robustness,
+                            recorded_keep(record))
+        return rev
     if rev.robustness is None:
         return rev
     # the conditions' interaction paths were the scratch folder's: name their data by cache key instead
@@ -309,6 +353,13 @@ def l3_material_confirmation(asset_dir: Path, revision: MaterialRevision, option
              for a in ctx.attempts if a.attempt is not None}
     rows = [c.model_copy(update={"attempt": where.get(c.attempt or "")}) for c in rev.robustness.conditions]
     return rev.model_copy(update={"robustness": rev.robustness.model_copy(update={"conditions": rows})})
+
+
+def recorded_keep(record: ManipulationRecord) -> KeepTrials:
+    """What of its trials an asset keeps, as its manipulation.json shows it: 'all' when it keeps more than one trial's
+    data and every one of them, else 'adopted' (the default)."""
+    stored = [a for a in record.attempts if a.attempt is not None]
+    return "all" if len(stored) > 1 and all(a.kept_in == "asset" for a in stored) else "adopted"
 
 
 def load_manipulation(asset_dir: Path) -> ManipulationRecord:

@@ -97,7 +97,7 @@ def export(inputs: ExportInputs, out_dir: Path) -> TargetManifest:
         f"and fits E, the mass damping and the step ({inputs.slug}{CALIBRATED_SUFFIX}.sdf, calibration.json here).",
         "pydrake 1.51.1 logs 'SDFormat Error ... Missing element description for [drake:wall_boundary_condition]' "
         "while parsing any deformable link (its parser probing an optional tag): harmless, the body loads.",
-        f"Mapping: {MAPPING} Damping: {DAMPING}"])
+        f"Mapping: {MAPPING} Damping: {DAMPING}"], material=inputs.material)
     return TargetManifest(target="drake", files=[sdf_name, "ground.sdf", *mesh_files, readme], load_hint=hint,
                           material=inputs.material, mapping="", damping_mapping=DAMPING)
 

@@ -211,7 +211,7 @@ def export(inputs: ExportInputs, out_dir: Path) -> TargetManifest:
         "on gs.morphs.Plane() (rigid; its MPM coupling friction is the ground friction).",
         f"Damping: {damping}.",
         "Genesis compiles its kernels on the first build (minutes on a CPU); later builds reuse its cache.",
-        f"Install: {GENESIS_INSTALL}."])
+        f"Install: {GENESIS_INSTALL}."], material=inputs.material)
     return TargetManifest(target="genesis", files=[SCENE, str(params["surface_file"]), "params.json", *mesh_files,
                                                    readme],
                           load_hint=LOAD_HINT, material=inputs.material, mapping=MAPPING, damping_mapping=damping)

@@ -15,6 +15,7 @@ from contracts.errors import InputError
 from contracts.export import ExportMaterial
 from tasks.asset_dir import AssetDir
 from tasks.export.tetmesh import TetMesh, enclosed_volume_m3, tet_quality, tetrahedralize, write_msh, write_vtk
+from tasks.export.wall import homogenised_wall
 from tasks.geometry.gaussians import GaussianSet
 from tasks.geometry.outputs import load_l0
 
@@ -64,19 +65,39 @@ def write_tetmesh_dir(inputs: ExportInputs, out_dir: Path) -> dict[str, float]:
     return quality
 
 
-def write_readme(out_dir: Path, target: str, load_hint: str, lines: Sequence[str] = ()) -> str:
-    """README.md of an export folder: the load line first, then notes; returns its name."""
+def write_readme(out_dir: Path, target: str, load_hint: str, lines: Sequence[str] = (),
+                 material: ExportMaterial | None = None) -> str:
+    """README.md of an export folder: the load line first, then notes (and, for a pressurised shell's `material`,
+    what its Young's modulus is: material_lines); returns its name."""
     body = [f"# {target} export (DeformSmith)", "", f"Load: {load_hint}", "",
-            "Units: SI (metres, kilograms, seconds, pascals); frame z up, the object resting on z = 0.", "", *lines]
+            "Units: SI (metres, kilograms, seconds, pascals); frame z up, the object resting on z = 0.", "", *lines,
+            *(material_lines(material) if material is not None else [])]
     (out_dir / "README.md").write_text("\n".join(body).rstrip() + "\n", encoding="utf-8")
     return "README.md"
+
+
+def material_lines(material: ExportMaterial) -> list[str]:
+    """README lines on the exported material: for a pressurised shell, that its Young's modulus is the homogenised
+    wall's, with the rubber's and the gas's; none for any other material."""
+    w = material.homogenised_wall
+    if w is None:
+        return []
+    pressure = (f" at a gauge pressure of {w.gauge_pressure_pa:.4g} Pa ({w.gauge_pressure_source})"
+                if w.gauge_pressure_pa is not None else "")
+    return ["", f"Young's modulus: {w.wall_modulus_pa:.6g} Pa is a pressurised shell's homogenised wall modulus, the "
+            f"rubber's {w.rubber_youngs_modulus_pa:.6g} Pa plus {w.gas_modulus_pa:.6g} Pa for its inflation gas"
+            f"{pressure}; a homogenised equivalent of the gas, not a gas simulation. This export is a solid body at "
+            "the wall's modulus (the asset simulates the shell's wall at it), stiffer than the hollow ball."]
 
 
 def export_material(adir: AssetDir) -> ExportMaterial:
     """The asset's adopted material (AssetDir.adopted_material) with L1's density, mass and friction (InputError when
     L2 did not pass). The export is a solid tet mesh of the surface: a hollow object whose particles are its shell
     (geometry.json `particles`) goes out at its mass over the enclosed volume (an effective density), so that it
-    weighs what the asset weighs."""
+    weighs what the asset weighs. A pressurised shell (a material with a gas modulus) goes out at its wall's modulus,
+    the rubber's E plus the gas's, as DeformSmith simulates its wall, recorded as such (`homogenised_wall`,
+    tasks.realworld.inflation.homogenised_wall); note that the tet mesh is then a solid body at the wall's modulus,
+    stiffer than the shell it stands for."""
     record = adir.material()
     if record.material is None or not record.passed:
         raise InputError(f"{adir.file('material')}: L2 did not validate a material ({record.message or 'failed'}); "
@@ -86,11 +107,14 @@ def export_material(adir: AssetDir) -> ExportMaterial:
     body = adir.geometry().particles
     density = physical.mass_kg / body.enclosed_volume_m3 if body is not None and body.shell \
         else physical.density_kg_per_m3
-    return ExportMaterial(youngs_modulus_pa=m.youngs_modulus_pa, poisson_ratio=m.poisson_ratio,
+    # a pressurised shell (a gas modulus): exported at its wall's modulus, and says so
+    wall = homogenised_wall(m, record.inflation) if m.gas_modulus_pa else None
+    return ExportMaterial(youngs_modulus_pa=m.youngs_modulus_pa if wall is None else wall.wall_modulus_pa,
+                          poisson_ratio=m.poisson_ratio,
                           density_kg_per_m3=density, damping_rate_per_s=m.damping_rate_per_s,
                           viscosity_pa_s=m.viscosity_pa_s,
                           ground_friction=physical.ground_friction, gripper_friction=physical.gripper_friction,
-                          mass_kg=physical.mass_kg)
+                          mass_kg=physical.mass_kg, **({"homogenised_wall": wall} if wall is not None else {}))
 
 
 def cached_tet_mesh(vertices_m: np.ndarray, faces: np.ndarray, edge_length_m: float | None = None) -> TetMesh:

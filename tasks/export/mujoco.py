@@ -72,7 +72,7 @@ def export(inputs: ExportInputs, out_dir: Path) -> TargetManifest:
         "Calibrated: `deformsmith crosscheck DIR --sim mujoco` fits young, the timestep (finer where the discrete "
         "integrator's numerical dissipation takes too much of the impact's energy; the contacts' time constant "
         "follows it) and the flex damping to L2's probes and writes "
-        f"{inputs.slug}{CALIBRATED_SUFFIX}.xml and calibration.json here."])
+        f"{inputs.slug}{CALIBRATED_SUFFIX}.xml and calibration.json here."], material=inputs.material)
     return TargetManifest(target="mujoco", files=[xml, "parameters.json", *mesh_files, readme], load_hint=hint,
                           material=inputs.material, mapping=MAPPING, damping_mapping=DAMPING)
 

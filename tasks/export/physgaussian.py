@@ -7,17 +7,23 @@ import json
 from pathlib import Path
 
 from tasks.asset_dir import AssetDir
+from tasks.export.wall import homogenised_wall
 
 CONFIG = Path("export") / "physgaussian_config.json"  # in the asset directory
 
 
 def write_physgaussian_export(adir: AssetDir) -> Path:
     """A PhysGaussian-style simulation config next to the Gaussians: the adopted material's E, nu (AssetDir.
-    adopted_material), L1's density and the particle file (SI)."""
+    adopted_material), L1's density and the particle file (SI). A pressurised shell's E is its wall's homogenised
+    modulus (the rubber's plus its gas's, what its particles are simulated at), recorded as such under
+    `homogenised_wall` (absent otherwise)."""
     phys, mat = adir.physical_model(), adir.adopted_material().material
+    # a pressurised shell: its particles are the wall, simulated at the wall's modulus (rubber + gas), and say so
+    wall = homogenised_wall(mat, adir.material().inflation) if mat.gas_modulus_pa else None
     config = {
         "material": "jelly",  # PhysGaussian's name for its neo-Hookean model
-        "E": mat.youngs_modulus_pa, "nu": mat.poisson_ratio, "density": phys.density_kg_per_m3,
+        "E": mat.youngs_modulus_pa if wall is None else wall.wall_modulus_pa, "nu": mat.poisson_ratio,
+        "density": phys.density_kg_per_m3,
         "damping_rate_per_s": mat.damping_rate_per_s,
         # Kelvin-Voigt viscosity [Pa s]: recorded, not applied (PhysGaussian's jelly has no viscous stress)
         "viscosity_pa_s": mat.viscosity_pa_s,
@@ -25,6 +31,7 @@ def write_physgaussian_export(adir: AssetDir) -> Path:
         "gaussians_ply": "../gaussians.ply", "particles_zarr": "../particles.zarr",
         "units": "SI (Pa, kg/m^3, m, s); frame z up, object resting on z = 0",
         "particle_volumes": "particles.zarr/volumes_m3", "n_particles": phys.particle_count,
+        **({"homogenised_wall": wall.model_dump(mode="json")} if wall is not None else {}),
     }
     path = adir.path / CONFIG
     path.parent.mkdir(parents=True, exist_ok=True)

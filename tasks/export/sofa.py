@@ -112,6 +112,6 @@ def export(inputs: ExportInputs, out_dir: Path) -> TargetManifest:
         "(NeoHookean), MeshMatrixMass from the density, friction contact with a ground plane at z = 0.",
         "Not run here: SofaPython3 is not installable from PyPI; the scene is checked by compiling it and building "
         "its graph on a recording stand-in for Sofa's node API.",
-        f"Mapping: {MAPPING} Damping: {DAMPING}"])
+        f"Mapping: {MAPPING} Damping: {DAMPING}"], material=inputs.material)
     return TargetManifest(target="sofa", files=[SCENE, *mesh_files, readme], load_hint=hint,
                           material=inputs.material, mapping=MAPPING, damping_mapping=DAMPING)

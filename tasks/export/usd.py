@@ -178,6 +178,6 @@ def export(inputs: ExportInputs, out_dir: Path) -> TargetManifest:
         "of the physics material.",
         f"Mapping: {MAPPING} Damping: {DAMPING}",
         "USD is a scene description, not a simulator: this export is validated by opening it with usd-core, "
-        "not by stepping it."]))
+        "not by stepping it."], material=inputs.material))
     return TargetManifest(target="usd", files=files, load_hint=hint, material=inputs.material, mapping=MAPPING,
                           damping_mapping=DAMPING)

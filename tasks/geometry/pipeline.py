@@ -27,6 +27,7 @@ from tasks.geometry.collision import CoacdSettings, convex_parts, union_volume
 from tasks.geometry.gaussians import make_gaussians
 from tasks.geometry.meshing import mesh_program, scale_to_extents
 from tasks.geometry.particles import ParticleSettings, ShellUnresolved, sample_particles, sample_shell
+from tasks.geometry.shell import Surface, concept_wall_m
 from tasks.geometry.silhouette import PhotoReconstruction
 
 Arrays = dict[str, np.ndarray]
@@ -245,10 +246,13 @@ def with_gas(body: ParticleBody, concept: ConceptMatch | None) -> ParticleBody:
                                    "gauge_pressure_source": concept.inflation_source})
 
 
-def hollow_wall(concept: ConceptMatch | None, words: str | None) -> tuple[float | None, str | None]:
+def hollow_wall(concept: ConceptMatch | None, words: str | None,
+                mesh: Arrays | None = None) -> tuple[float | None, str | None]:
     """The wall a hollow concept's particles are a shell of [m], else None with the reason a hollow object is built
     solid (None for a solid concept): a one-layer sheet (its built solid is that layer already), no wall in the lexicon
-    (an effective density instead), or a material the words name that is not the concept's ('a foam tennis ball')."""
+    (an effective density instead), or a material the words name that is not the concept's ('a foam tennis ball').
+    mesh: the built surface, on which the wall is fitted to the concept's typical mass (tasks.geometry.shell.
+    concept_wall_m: the shell's true volume, as L1 weighs it); without it, the lexicon's wall."""
     if concept is None or not concept.hollow:
         return None, None
     if concept.sheet:
@@ -259,6 +263,8 @@ def hollow_wall(concept: ConceptMatch | None, words: str | None) -> tuple[float 
         named = match_material(words, None, concept.default_material, own_nouns(concept), True)
         if named != concept.default_material:
             return None, f"built solid: the words name {named}, not the {concept.default_material} of its wall"
+    if mesh is not None:
+        return concept_wall_m(concept, Surface.of(arrays_to_mesh(mesh))), None
     return concept.wall_thickness_m, None
 
 

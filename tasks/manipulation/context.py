@@ -183,10 +183,12 @@ def store_attempt(asset_dir: Path, arrays: dict[str, np.ndarray], attrs: dict[st
     return store_attempt_keyed(asset_dir, arrays, attrs)[0]
 
 
-def store_attempt_keyed(asset_dir: Path, arrays: dict[str, np.ndarray], attrs: dict[str, Any]) -> tuple[int, str]:
+def store_attempt_keyed(asset_dir: Path, arrays: dict[str, np.ndarray], attrs: dict[str, Any],
+                        first: int = 0) -> tuple[int, str]:
     """store_attempt, and the cache key the attempt's Zarr group is stored under (the trial row's data_key: the
-    asset may later drop the folder, tasks.manipulation.keep; CacheStore(root).get(key) gives it back)."""
-    n = max(attempt_indices(asset_dir), default=-1) + 1
+    asset may later drop the folder, tasks.manipulation.keep; CacheStore(root).get(key) gives it back). first: the
+    lowest index it may take (after the rows of trials whose folders the asset no longer holds)."""
+    n = max(max(attempt_indices(asset_dir), default=-1) + 1, first)
     interaction_root(asset_dir)
     attrs_json = json.dumps({**attrs, "attempt": n}, sort_keys=True,
                             default=lambda o: o.tolist() if hasattr(o, "tolist") else str(o))
@@ -297,7 +299,10 @@ class L3Context:
                  "role": role, "action": action, "values": values, "cache_key": key,
                  "material": (material or self.material).model_dump(mode="json"),
                  "physical_model": self.physical.model_dump(mode="json")}
-        n, data_key = store_attempt_keyed(self.asset_dir, out["arrays"], attrs) if out["arrays"] else (None, None)
+        after = max((a.attempt for a in self.attempts if a.attempt is not None), default=-1) + 1  # a row may name a
+        # folder the asset dropped (kept in the cache): a new trial never reuses its index
+        n, data_key = (store_attempt_keyed(self.asset_dir, out["arrays"], attrs, after) if out["arrays"]
+                       else (None, None))
         trial = len(self.attempts) + 1  # the trial's one number (tasks.record.trials)
         rrd = (record_attempt(self.asset_dir, trial, out["arrays"], {**attrs, "trial": trial}, key)
                if n is not None and self.recordings else None)

@@ -17,6 +17,7 @@ from contracts.stage import StageContract
 from tasks.asset_dir import AssetDir
 from tasks.geometry.outputs import load_l0
 from tasks.manipulation.context import L3Context, L3Options, accepted, material_of, tolerances_from
+from tasks.manipulation.recordings import trial_recording_name
 from tasks.manipulation.report import best_attempt, failed_gate_names, record_no_grasp, trial_reason
 
 PICK_AND_PLACE_RECORDING = "recordings/L3_pick_and_place.rrd"  # the chosen trial's recording
@@ -49,6 +50,37 @@ def name_pick_and_place(asset_dir: Path, attempts: list[TrialRow], chosen: Trial
     renamed = chosen.model_copy(update={"recording": PICK_AND_PLACE_RECORDING})
     attempts[next(i for i, a in enumerate(attempts) if a is chosen)] = renamed
     return renamed
+
+
+def unname_pick_and_place(asset_dir: Path, attempts: list[TrialRow]) -> list[TrialRow]:
+    """The reverse of name_pick_and_place, for a record whose reported trial is about to change (a material confirmed
+    from outside L3, flows.l3_manipulation.confirm_material): the row whose recording has the name users open gets
+    it back under its trial's own name (recordings/L3_trial_NN.rrd; renamed, not copied), so the new reported trial
+    can take the name and keep_trials can treat the old one as any other trial. Returns the rows."""
+    rows = []
+    for row in attempts:
+        if row.recording == PICK_AND_PLACE_RECORDING and row.trial is not None:
+            path = Path(asset_dir) / PICK_AND_PLACE_RECORDING
+            if path.is_file():
+                os.replace(path, Path(asset_dir) / trial_recording_name(row.trial))
+                row = row.model_copy(update={"recording": trial_recording_name(row.trial)})
+            else:
+                row = row.model_copy(update={"recording": None})
+        rows.append(row)
+    return rows
+
+
+def material_source(ctx: L3Context, material: Material, revision: MaterialRevision | None) -> str:
+    """Where manipulation.json's material comes from: the context's own, an L3 material revision, or a calibrated
+    material the robot confirmed (a revision with trigger 'calibration', flows.calibrate)."""
+    if material is ctx.material:
+        return ctx.material_source
+    if revision is not None and revision.trigger == CALIBRATION_TRIGGER:
+        return "calibrated from video (L2 revalidated, robot confirmed)"
+    return "L3 material revision (L2 revalidated)"
+
+
+CALIBRATION_TRIGGER = "calibration"  # a MaterialRevision's trigger when the material comes from `deformsmith calibrate`
 
 
 def no_grasp_record(asset_dir: Path, options: L3Options, contract: StageContract, physical: PhysicalModel,
@@ -123,7 +155,7 @@ def build_record(ctx: L3Context, outcome: StageOutcome, accepted: bool, chosen: 
             failed_gates=failed_gate_names(best.labels, ctx.contract),
             reason=trial_reason(best.labels, ctx.contract, tol)),
         material=material,
-        material_source=ctx.material_source if material is ctx.material else "L3 material revision (L2 revalidated)",
+        material_source=material_source(ctx, material, material_revision),
         physical_model=ctx.physical,
         plan=ctx.plan(chosen.values) if chosen else None,
         values=chosen.values if chosen else None, attempt=chosen.attempt if chosen else None,

@@ -11,6 +11,7 @@ from pydantic import Field
 
 from contracts.base import Model
 from contracts.concept import ConceptMatch
+from tasks.geometry.shell import Surface, concept_wall_m, fitted_wall_m
 from tasks.physical.model import MASS_RANGE_KG
 
 SOLID_EXPONENT = 3.0  # a solid's mass scales with its volume: (length ratio)^3
@@ -37,19 +38,45 @@ class MassCheck(Model):
 
 
 def typical_mass_at_size(concept: ConceptMatch, longest_m: float, volume_m3: float | None = None,
-                         area_m2: float | None = None) -> float | None:
+                         area_m2: float | None = None, surface: Surface | None = None) -> float | None:
     """The named object's typical mass as built [kg]: from its built geometry when the lexicon gives its density
-    (volume x density; wall area x wall thickness x density when hollow: ConceptMatch.mass_estimate_kg), else its
-    typical mass scaled to the built size, x (L / L_typical)^3 for a solid, ^2 for a hollow shell."""
-    return _typical(concept, longest_m, volume_m3, area_m2)[0]
+    (volume x density; when hollow, the wall's true volume on the built `surface` x density, the wall fitted to the
+    typical mass when the lexicon gives one: shell_estimate; without a surface, wall area x wall thickness x density:
+    ConceptMatch.mass_estimate_kg), else its typical mass scaled to the built size, x (L / L_typical)^3 for a solid,
+    ^2 for a hollow shell."""
+    return _typical(concept, longest_m, volume_m3, area_m2, surface)[0]
+
+
+def shell_estimate(concept: ConceptMatch, surface: Surface) -> tuple[float, str] | None:
+    """A hollow concept's mass on its built surface and how it was found: its wall's density x the true volume of
+    its wall (tasks.geometry.shell: Steiner's formula, not area x wall, which over-states a thick curved wall), the
+    wall fitted so that the surface at the typical size holds the typical mass (concept_wall_m: the same wall L0
+    builds the shell of), the lexicon's when there is no typical mass; None when it does not apply (solid, no wall or
+    density, a one-layer sheet: weighed by half its area x wall) or no wall at that density holds the typical mass on
+    this shape (a KONG toy's 120 g is more than its built solid at rubber's 950 kg/m^3: area x wall, as before)."""
+    density, wall = concept.density_kg_per_m3, concept.wall_thickness_m
+    if not concept.hollow or concept.sheet or density is None or wall is None:
+        return None
+    built = concept_wall_m(concept, surface)
+    if built is None or (built == wall and concept.typical_mass_kg is not None and concept.typical_size_m is not None
+                         and fitted_wall_m(surface, concept.typical_mass_kg, concept.typical_size_m, density) is None):
+        return None
+    how = f"a {built * 1e3:.3g} mm wall's true volume"
+    if built != wall:
+        how += (f" (the wall fitted to {_g(concept.typical_mass_kg or 0.0)} at {concept.typical_size_m:g} m on this "
+                f"shape; the lexicon's {wall * 1e3:g} mm)")
+    return density * surface.shell_volume_m3(built), f"its density {density:g} kg/m^3 x {how}"
 
 
 def _typical(concept: ConceptMatch, longest_m: float, volume_m3: float | None,
-             area_m2: float | None) -> tuple[float | None, str]:
+             area_m2: float | None, surface: Surface | None = None) -> tuple[float | None, str]:
     """typical_mass_at_size and how it was found (for the record)."""
     estimate = getattr(concept, "mass_estimate_kg", None)
     density = getattr(concept, "density_kg_per_m3", None)
     wall = getattr(concept, "wall_thickness_m", None)
+    shell = shell_estimate(concept, surface) if surface is not None and estimate is not None else None
+    if shell is not None and shell[0] > 0:
+        return shell
     if estimate is not None and volume_m3 and area_m2 is not None and (not concept.hollow or wall is not None):
         m = estimate(volume_m3, area_m2)
         if m is not None and m > 0:
@@ -69,7 +96,7 @@ def _typical(concept: ConceptMatch, longest_m: float, volume_m3: float | None,
 
 
 def concept_band(concept: ConceptMatch, longest_m: float, volume_m3: float | None = None,
-                 area_m2: float | None = None) -> tuple[float, float] | None:
+                 area_m2: float | None = None, surface: Surface | None = None) -> tuple[float, float] | None:
     """The plausible mass of the named object as built [kg]: [0.5, 2] x its typical mass as built
     (typical_mass_at_size), L0's range when only that is known."""
     scalable = concept.typical_mass_kg is not None and concept.typical_size_m is not None
@@ -78,7 +105,7 @@ def concept_band(concept: ConceptMatch, longest_m: float, volume_m3: float | Non
         lo, hi = sorted(concept.typical_mass_range_kg)
         if lo > 0:
             return lo, hi
-    m = typical_mass_at_size(concept, longest_m, volume_m3, area_m2)
+    m = typical_mass_at_size(concept, longest_m, volume_m3, area_m2, surface)
     if m is None:
         return None
     return m * CONCEPT_BAND_FACTOR[0], m * CONCEPT_BAND_FACTOR[1]
@@ -105,13 +132,14 @@ def mass_check(volume_m3: float, longest_m: float, area_m2: float, material: str
                density_range: tuple[float, float], concept: ConceptMatch | None = None,
                shell_wall_m: float | None = None, stated_density: bool = False,
                density_bounds: tuple[float, float] = (0.0, math.inf),
-               enclosed_volume_m3: float | None = None) -> MassCheck:
+               enclosed_volume_m3: float | None = None, surface: Surface | None = None) -> MassCheck:
     """The mass band, density prior and gate range of an object of this volume, material and (optional) concept.
 
     volume_m3 is what the particles fill; enclosed_volume_m3, when given and larger, the mesh's: the particles are a
     hollow object's shell (L0's ParticleBody), the concept's wall mass is found from the mesh (its area x wall, at most
     its volume) and spread over the shell, so the density prior is the wall's (not an effective density over the
-    enclosed volume).
+    enclosed volume). surface: the built mesh's measures (tasks.geometry.shell.Surface), with which a hollow concept's
+    wall is weighed by its true volume, fitted to its typical mass (shell_estimate); without it, area x wall.
 
     With no concept that applies: the material's density range x volume (a hollow concept with no typical mass but
     a wall thickness: the shell's mass). With one: the intersection of that band with [0.5, 2] x the concept's typical
@@ -133,7 +161,7 @@ def mass_check(volume_m3: float, longest_m: float, area_m2: float, material: str
     enclosed = enclosed_volume_m3 if enclosed_volume_m3 is not None else volume_m3
     shell = enclosed > volume_m3 * (1.0 + 1e-9)
     applies = concept_applies(concept, material)
-    cband = concept_band(concept, longest_m, enclosed, area_m2) if applies and concept is not None else None
+    cband = concept_band(concept, longest_m, enclosed, area_m2, surface) if applies and concept is not None else None
     notes: list[str] = []
     if concept is not None and not applies:
         notes.append(f"the typical mass of {concept.concept} is for {concept.default_material}; the request names "
@@ -146,7 +174,7 @@ def mass_check(volume_m3: float, longest_m: float, area_m2: float, material: str
         return MassCheck(band_kg=by_density, density_kg_per_m3=density_prior, density_range_kg_per_m3=density_range,
                          checks=[density_check], source=density_check, notes=notes)
     assert concept is not None
-    typical, how = _typical(concept, longest_m, enclosed, area_m2)
+    typical, how = _typical(concept, longest_m, enclosed, area_m2, surface)
     if typical is None:
         typical, how = math.sqrt(cband[0] * cband[1]), "the middle of L0's range"
     typical_check = f"typical mass of {concept.concept} ({concept.mass_source or 'lexicon'})"

@@ -19,6 +19,7 @@ from tasks.agents.intent import asset_material, asset_targets, concept_of, expli
 from tasks.agents.vocab import load_material_vocab
 from tasks.asset_dir import AssetDir, geometry_info
 from tasks.geometry.outputs import L0Asset
+from tasks.geometry.shell import Surface
 from tasks.physical.mass import MassCheck, mass_check
 from tasks.physical.model import build_physical_model, mass_plausible
 
@@ -53,7 +54,8 @@ def l1_plan(asset: L0Asset, intent: str | None, contract: StageContract | None =
     mass = mass_check(float(np.sum(asset.volumes_m3)), longest_extent_m(asset), float(asset.mesh.area), material,
                       rho, drange, concept_of(asset.record), entry.shell_wall_thickness_m,
                       "density_kg_per_m3" in explicit_numbers(words.intent)[1], (field.low, field.high),
-                      asset.body.enclosed_volume_m3 if asset.shell and asset.body is not None else None)
+                      asset.body.enclosed_volume_m3 if asset.shell and asset.body is not None else None,
+                      Surface.of(asset.mesh))
     priors["density_kg_per_m3"] = mass.density_kg_per_m3
     lo, hi = mass.band_kg
     bands = [TargetBand(metric="mass_kg", unit="kg", low=lo, high=hi, scale="log", source=mass.source)]

@@ -179,3 +179,27 @@ def test_key_frames_follow_the_track() -> None:
     top = first_floor + int(np.argmax(dz[first_floor:] < 0))  # the highest frame of the first bounce
     assert abs(frames[1].frame - first_floor) <= 1
     assert abs(frames[2].frame - top) <= 1
+
+
+@pytest.mark.slow  # ~2 min on one core: the fit, L2's probes and held-out tests, and the robot's trials, all real
+def test_the_command_publishes_the_robots_confirmation_as_l3s_result(drop: tuple[Path, Path], tmp_path: Path,
+                                                                     prefect_api: str) -> None:
+    """The sphere with a real L3 (5 mm trial lattice, one held-out condition): the command's real checks (L2, then
+    the robot under manipulation.json's plan) confirm the fitted material, and manipulation.json is L3's result with
+    it, published with material.json and the record."""
+    from flows.l3_manipulation import L3Options, run_l3
+
+    asset = tmp_path / "asset"
+    shutil.copytree(drop[0], asset)
+    before, _ = run_l3(asset, L3Options(particle_spacing_m=0.005, robustness=(), held_out=((0.06, -0.08, 30.0),),
+                                        cpu_threads=1))
+    assert before.passed
+    code, _, out = calibrate(asset, drop[1])
+    assert code == 0, out
+    assert "L3 robot confirmation passed" in out and "published as L3's result" in out, out
+    rec = VideoFitRecord.model_validate_json((asset / VIDEO_FIT_JSON).read_text())
+    assert rec.checks is not None and rec.checks.l3_status == "confirmed" and rec.checks.l3 is not None
+    l3 = AssetDir(asset).manipulation()
+    assert l3.passed and l3.material == rec.fitted and l3.material_revision == rec.checks.l3
+    assert AssetDir(asset).material_model() == rec.fitted == AssetDir(asset).adopted_material().material
+    assert [a.role for a in l3.attempts[len(before.attempts):]] == ["confirmation", "held_out"]

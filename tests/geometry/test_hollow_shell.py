@@ -20,7 +20,8 @@ from tasks.geometry import pipeline
 from tasks.geometry.collision import CoacdSettings
 from tasks.geometry.outputs import load_l0
 from tasks.geometry.particles import MIN_WALL_SPACINGS, ParticleSettings, sample_particles, surface_distance
-from tasks.physical.mass import mass_check
+from tasks.geometry.shell import Surface, concept_wall_m
+from tasks.physical.mass import mass_check, shell_estimate
 from tasks.physical.plan import l1_plan
 
 RADIUS_M = 0.03
@@ -135,17 +136,22 @@ def test_geometry_json_records_the_shell_and_l1_weighs_it(tmp_path: Path) -> Non
     s = s.model_copy(update={"particles": SETTINGS, "gaussians_per_particle": 0.05, "max_gaussians": 2000})
     info = BuildInfo(source="text", name="tennis ball", category="ball", concept=RUBBER_BALL)
     proxy = pipeline.build_proxy(mesh, CoacdSettings(method="hull"))
-    particles, body = pipeline.build_body(mesh, s.particles, *pipeline.hollow_wall(RUBBER_BALL, "a tennis ball"))
+    # the wall as L0 builds it: fitted on the mesh to the concept's typical mass (tasks.geometry.shell)
+    wall = concept_wall_m(RUBBER_BALL, Surface.of(_sphere()))
+    assert wall is not None and pipeline.hollow_wall(RUBBER_BALL, "a tennis ball", mesh) == (wall, None)
+    particles, body = pipeline.build_body(mesh, s.particles, wall)
     gaussians = pipeline.build_gaussians(mesh, particles, s)
     checks = pipeline.check_geometry(mesh, proxy, particles, gaussians)
     write_l0(L0Result(mesh, proxy, particles, gaussians, info, checks, body), tmp_path / "ball")
     asset = load_l0(tmp_path / "ball")
     assert asset.shell and asset.body == body
-    assert asset.record["particles"]["kind"] == "shell" and asset.record["particles"]["wall_m"] == WALL_M
+    assert asset.record["particles"]["kind"] == "shell" and asset.record["particles"]["wall_m"] == wall
     plan = l1_plan(asset, "a tennis ball")
-    wall_mass = RUBBER_BALL.mass_estimate_kg(body.enclosed_volume_m3, float(asset.mesh.area))
-    assert plan.mass.density_kg_per_m3 * float(asset.volumes_m3.sum()) == pytest.approx(wall_mass, rel=1e-6)
-    assert 900.0 < plan.mass.density_kg_per_m3 < 1300.0  # the wall's rubber, not ~300 kg/m^3 over the enclosed volume
+    estimate = shell_estimate(RUBBER_BALL, Surface.of(asset.mesh))
+    assert estimate is not None
+    assert plan.mass.density_kg_per_m3 * float(asset.volumes_m3.sum()) == pytest.approx(estimate[0], rel=1e-6)
+    assert 900.0 < plan.mass.density_kg_per_m3 < 1000.0  # the wall's rubber (950: the particles hold the wall L1
+    # weighs), not ~300 kg/m^3 over the enclosed volume
 
 
 def test_an_exported_shell_weighs_what_the_asset_weighs() -> None:
@@ -185,18 +191,23 @@ def test_an_exported_shell_weighs_what_the_asset_weighs() -> None:
 
 def test_l0_builds_a_squash_ball_as_its_shell_and_a_duck_solid_over_the_draft_budget(tmp_path: Path) -> None:
     """Through run_l0 at draft with the shell opted into (the L0 contract's hollow_particles: shell): the squash ball's
-    5 mm wall (~3k particles at 2 mm) is a shell; the bath duck's 1.5 mm wall would take ~117k particles at 0.75 mm,
-    over draft's 20k: solid, and geometry.json says why."""
+    wall (fitted to its 24 g at the rubber class's 950 kg/m^3 on the shell's true volume: 7.5 mm, the lexicon's 5 mm
+    having been area x wall; ~2k particles at 2 mm) is a shell; the bath duck's ~1.6 mm wall would take ~100k
+    particles at 0.8 mm, over draft's 20k: solid, and geometry.json says why."""
     from contracts.request import AssetRequest
     from flows.l0_geometry import run_l0, with_hollow_particles
 
     shell = with_hollow_particles("shell")
     ball = run_l0(AssetRequest(text="a squash ball", quality="draft"), contract=shell, use_cache=False)
-    assert ball.checks.passed and ball.body is not None and ball.body.shell and ball.body.wall_m == 0.005
+    assert ball.checks.passed and ball.body is not None and ball.body.shell and ball.info.concept is not None
+    fitted = concept_wall_m(ball.info.concept, Surface.of(pipeline.arrays_to_mesh(ball.mesh)))
+    assert ball.body.wall_m == fitted and fitted is not None and fitted > 0.005
     assert len(ball.particles["positions_m"]) < 5000
     assert float(ball.particles["volumes_m3"].sum()) == pytest.approx(ball.body.volume_m3, rel=1e-9)
     duck = run_l0(AssetRequest(text="a rubber duck", quality="draft"), contract=shell, use_cache=False)
-    assert duck.body is not None and duck.body.kind == "solid" and duck.body.requested_wall_m == 0.0015
+    assert duck.body is not None and duck.body.kind == "solid" and duck.info.concept is not None
+    assert duck.body.requested_wall_m == concept_wall_m(duck.info.concept,
+                                                        Surface.of(pipeline.arrays_to_mesh(duck.mesh)))
     assert "over the budget of 20000" in str(duck.body.reason)
     write_l0(duck, tmp_path / "duck")
     assert load_l0(tmp_path / "duck").record["particles"]["reason"] == duck.body.reason
@@ -219,7 +230,9 @@ def test_by_default_a_hollow_concept_is_built_solid_and_says_the_shell_is_opt_in
     request = AssetRequest(text="a squash ball", quality="draft")
     ball = run_l0(request, use_cache=False)
     assert ball.checks.passed and ball.body is not None and ball.body.kind == "solid"
-    assert ball.body.wall_m is None and ball.body.requested_wall_m == 0.005
+    assert ball.body.wall_m is None and ball.info.concept is not None
+    assert ball.body.requested_wall_m == concept_wall_m(ball.info.concept,
+                                                        Surface.of(pipeline.arrays_to_mesh(ball.mesh)))
     assert ball.body.reason == pipeline.SHELL_OPT_IN
     assert "opt-in" in ball.body.reason and "hollow_particles: shell" in ball.body.reason
     assert "0.12" in ball.body.reason and "0.53-0.58" in ball.body.reason

@@ -17,6 +17,7 @@ from tasks.agents.vocab import load_material_vocab
 from tasks.geometry import catalogue, pipeline
 from tasks.geometry.catalogue import normalise_sizes, parse_size
 from tasks.geometry.concepts import PLUSH_MASS_EXPONENT_UP
+from tasks.geometry.shell import Surface
 from tasks.physical.mass import mass_check
 
 # phrase -> the lexicon concept it builds
@@ -103,7 +104,7 @@ def planned_mass(text: str) -> float:
     field = load_contract("L1").field("density_kg_per_m3")
     check = mass_check(float(mesh.volume), float(mesh.extents.max()), float(mesh.area), material, rho, drange,
                        concept_of(record), vocab.materials[material].shell_wall_thickness_m, False,
-                       (field.low, field.high))
+                       (field.low, field.high), surface=Surface.of(mesh))  # as L1 (tasks.physical.plan.l1_plan)
     return check.density_kg_per_m3 * float(mesh.volume)
 
 
