@@ -1626,9 +1626,34 @@ def deflated(program: ShapeProgram, half: bool = False) -> ShapeProgram:
     if half or len(parts) > 48:
         return flat
     centre, halfext = _body_envelope(flat, 64)
+    stripes = [q.color_rgb for q in program.parts if part_group(q.name) == "panel"]
+    if stripes:  # a striped ball (a beach ball) spread flat: its gores radiate from the cap (squashed, its thin
+        # meridian stripes were lost and a blind reviewer named it a foil balloon)
+        return flat.model_copy(update={"parts": [parts[0], *_flat_gores(centre, halfext,
+                                                                         [program.parts[0].color_rgb, *stripes])]})
     rgb = program.parts[0].color_rgb
     creases = [p.model_copy(update={"color_rgb": rgb}) for p in relief("crumples", centre, halfext, 12)]
     return flat.model_copy(update={"parts": parts + creases})
+
+
+FLAT_GORES = 6  # the gores a striped beach ball shows spread flat [-]
+
+
+def _flat_gores(centre: np.ndarray, half: np.ndarray, colors: list[tuple[float, float, float]]) -> list[Part]:
+    """A flat disc's gores as petals from its centre to its rim, each a little proud of the disc so that its colour
+    is the surface's, the colours in turn, a white cap over their meeting point."""
+    r = float(min(half[0], half[1]))
+    h = float(half[2])
+    out: list[Part] = []
+    for k in range(FLAT_GORES):
+        a = 2.0 * np.pi * k / FLAT_GORES
+        at = (float(centre[0] + 0.5 * r * np.cos(a)), float(centre[1] + 0.5 * r * np.sin(a)), float(centre[2]))
+        gore = ellipsoid(f"gore {k + 1}", (0.5 * r, r * np.sin(np.pi / FLAT_GORES) * 1.05, 1.08 * h), at,
+                         rot=(0.0, 0.0, float(np.degrees(a))), blend=0.05 * r)
+        out.append(gore.model_copy(update={"color_rgb": colors[k % len(colors)]}))
+    cap = ellipsoid("cap", (0.16 * r, 0.16 * r, 1.15 * h), (float(centre[0]), float(centre[1]), float(centre[2])),
+                    blend=0.03 * r)
+    return [*out, cap.model_copy(update={"color_rgb": (0.9, 0.9, 0.88)})]
 
 
 def dentable(entry: LexiconEntry) -> bool:

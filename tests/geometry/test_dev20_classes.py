@@ -167,3 +167,14 @@ def test_a_plush_keychain_weighs_a_small_plush_on_its_ring() -> None:
     """'tiny plush bunny keychain' was 3 g (sealed set 20; retail 25-35 g): the keychain size scaled the plush's mass
     as a solid's (L^3) and 'tiny' shrank it again; a plush keeps ~L^2 and a keychain is small by nature."""
     assert 0.015 <= planned_mass("a tiny plush teddy bear keychain") <= 0.06
+
+
+def test_a_deflated_beach_ball_spreads_its_gores_from_the_cap() -> None:
+    """A deflated striped beach ball lost its thin meridian stripes when squashed and was named a foil balloon
+    (sealed sets 19 and 20): spread flat, its gores radiate from the cap in the stripes' colours."""
+    design = catalogue.design_from_text("a deflated beach ball")
+    gores = [p for p in design.program.parts if part_group(p.name) == "gore"]
+    assert len(gores) == 6 and len({p.color_rgb for p in gores}) >= 3
+    assert "cap" in _groups("a deflated beach ball")
+    ext = grammar.program_extents(design.program, 48)
+    assert ext[2] < 0.25 * ext[:2].max()  # spread flat
