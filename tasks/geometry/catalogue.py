@@ -760,14 +760,13 @@ def design_from_text(text: str, size_hint_m: float | None = None) -> Design:
     modifiers and colours; an unknown noun takes a fallback by meaning, recorded in `concept` and `warnings`."""
     if not text or not text.strip():
         raise InputError("the description is empty")
-    sized = normalise_sizes(text)
-    # ('pls make a down jacket stuffed into its own pocket': the request's opening is not the goods)
-    packed = _stuffed_in_sack(_purpose_stripped(_task_clause_stripped(sized)))
+    asked = _task_clause_stripped(normalise_sizes(text))  # ('pls make a down jacket stuffed into its own pocket':
+    # the request's opening is not the goods)
+    packed = _stuffed_in_sack(_purpose_stripped(asked))
     if packed is not None:
         design = design_from_text(packed[0], size_hint_m)
         return design.model_copy(update={"warnings": [packed[1], *design.warnings]})
-    text_n = _cut_words_stripped(_purpose_stripped(_pair_first(_portions_compounded(_of_words_moved(
-        _task_clause_stripped(sized))))))
+    text_n = _cut_words_stripped(_purpose_stripped(_pair_first(_portions_compounded(_of_words_moved(asked)))))
     size = parse_size(text_n)
     if size_hint_m is not None:
         size = SizeSpec(longest_m=size_hint_m, stated=f"size hint {size_hint_m:g} m")

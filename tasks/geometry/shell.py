@@ -23,6 +23,7 @@ from dataclasses import dataclass
 
 import numpy as np
 import trimesh
+from scipy.optimize import brentq
 
 from contracts.concept import ConceptMatch
 
@@ -69,23 +70,16 @@ class Surface:
         return float(min(max(self._poly(t, scale), 0.0), v))
 
 
-def _bisect(f: Callable[[float], float], lo: float, hi: float) -> float | None:
-    """The root of an increasing f on [lo, hi] (None when f(hi) < 0; an infinite hi is searched for first)."""
+def _root(f: Callable[[float], float], hi: float) -> float | None:
+    """The root of an increasing f on [0, hi] (scipy's brentq; an infinite hi is searched for first by doubling),
+    None when f(hi) < 0."""
     if not math.isfinite(hi):
-        hi = max(lo, 1e-6)
+        hi = 1e-6
         while f(hi) < 0 and hi < 1e3:
             hi *= 2.0
     if f(hi) < 0:
         return None
-    for _ in range(200):
-        mid = 0.5 * (lo + hi)
-        if f(mid) < 0:
-            lo = mid
-        else:
-            hi = mid
-        if hi - lo <= 1e-12 * max(hi, 1e-9):
-            break
-    return 0.5 * (lo + hi)
+    return float(brentq(f, 0.0, hi, xtol=1e-15, rtol=1e-12))
 
 
 def fitted_wall_m(surface: Surface, mass_kg: float, size_m: float, density_kg_per_m3: float) -> float | None:
@@ -98,7 +92,7 @@ def fitted_wall_m(surface: Surface, mass_kg: float, size_m: float, density_kg_pe
     target = mass_kg / density_kg_per_m3
     if target >= surface.volume_m3 * scale**3:  # not even the solid is that heavy
         return None
-    wall = _bisect(lambda t: surface._poly(t, scale) - target, 0.0, surface.reach_m(scale))
+    wall = _root(lambda t: surface._poly(t, scale) - target, surface.reach_m(scale))
     return wall if wall is not None and wall > 0 else None
 
 
