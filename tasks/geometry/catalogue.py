@@ -82,7 +82,12 @@ class SizeSpec(Model):
         shaped = self._resolve_form(ext, given)
         if shaped is not None:
             return shaped
-        if given:
+        free = [i for i in range(3) if self.extents_m[i] is None]
+        if given and self.longest_m is not None and free:  # a bare size beside named sides: the longest other side
+            ext[free] = ext[free] * (self.longest_m / float(ext[free].max()))
+            for i, v in given:
+                ext[i] = v
+        elif given:
             factors = [v / ext[i] for i, v in given]
             ext = ext * float(np.exp(np.mean(np.log(factors))))
             for i, v in given:
@@ -217,7 +222,9 @@ def parse_size(text: str) -> SizeSpec:
         return SizeSpec()
     if any(v is not None for v in ext):
         upright = any(re.search(r"\b(?:tall|high|height)\b", x, re.I) for x in stated)
-        return SizeSpec(extents_m=tuple(ext), stated="; ".join(stated), upright=upright)
+        # '60 cm, 10 cm thick': the bare size is the longest of the sides not named (it was dropped)
+        bare = longest if longest is not None and longest > max(v for v in ext if v is not None) else None
+        return SizeSpec(extents_m=tuple(ext), longest_m=bare, stated="; ".join(stated), upright=upright)
     return SizeSpec(longest_m=longest, stated="; ".join(stated))
 
 
@@ -364,7 +371,46 @@ def normalise_sizes(text: str) -> str:
     text = _FRACTION_SIZE.sub(_fraction_decimal, text)
     text = _WITH_SLASH.sub(lambda m: " without " if m.group(1) else " with ", text)
     text = _GARMENT_SIZE.sub(" ", text)
+    text = _AGE_SIZE.sub(" ", text)
+    text = _bed_sized(text)
     return _HYPHEN_SIZE.sub(lambda m: f"{m.group(1)} {m.group(2)} ", text)
+
+
+# a wearer's age ('0-3 months', '6 mo', '2-4 years'): a fit, not a length (the number was read as the object's size)
+_AGE_SIZE = re.compile(r"\b\d+(?:\s*(?:-|to)\s*\d+)?\s*(?:months?|mos?|mths?)\b(?:\s+old)?"
+                       r"|\b\d+\s*(?:-|to)\s*\d+\s*(?:years?|yrs?)\b(?:\s+old)?", re.IGNORECASE)
+# a bed's size said by name ('twin xl', 'queen size'): the mattress's width x length, or a duvet's that covers it
+# (US mattress standards; comforters: retail 'twin' 173 x 218 cm, 'full/queen' 228 x 228 cm, 'king' 264 x 228 cm)
+_MATTRESS_WORDS = re.compile(r"\b(?:mattress|topper|mattress pad|fitted sheet|mattress protector|futon)\b", re.I)
+_COVER_WORDS = re.compile(r"\b(?:duvet|comforter|quilt|bedspread|blanket|flat sheet|bed sheet|coverlet)\b", re.I)
+_BED_SIZE = re.compile(r"\b(california king|cal king|twin xl|twin|single|full|double|queen|king)(?:[- ]size[d]?)?\b"
+                       r"(?!\s*(?:of|-|bed\b))", re.IGNORECASE)
+MATTRESS_CM = {"twin": (99, 191), "single": (90, 190), "twin xl": (99, 203), "full": (137, 191),
+               "double": (137, 191), "queen": (152, 203), "king": (193, 203), "california king": (183, 213),
+               "cal king": (183, 213)}
+COVER_CM = {"twin": (173, 218), "single": (173, 218), "twin xl": (173, 229), "full": (228, 228), "double": (228, 228),
+            "queen": (228, 228), "king": (264, 228), "california king": (264, 239), "cal king": (264, 239)}
+
+
+def _bed_sized(text: str) -> str:
+    """'a memory foam mattress topper, twin xl' -> '..., 99 x 203 cm' (only beside bedding; 'full' and 'single' only
+    said as a size or right before the bedding's noun)."""
+    table = MATTRESS_CM if _MATTRESS_WORDS.search(text) else COVER_CM if _COVER_WORDS.search(text) else None
+    if table is None:
+        return text
+
+    def named(m: re.Match[str]) -> str:
+        word = re.sub(r"\s+", " ", m.group(1).lower())
+        loose = word in ("full", "single", "double", "king", "queen", "twin")
+        said_size = m.group(0).lower() != m.group(1).lower()
+        before_noun = re.match(r"\s+(?:[a-z]+\s+){0,2}(?:mattress|topper|duvet|comforter|quilt|sheet|blanket|bedspread)",
+                               text[m.end():], re.I) is not None
+        if loose and word in ("full", "single", "double") and not (said_size or before_noun):
+            return m.group(0)
+        w, length = table[word]
+        return f" {w} x {length} cm "
+
+    return _BED_SIZE.sub(named, text)
 
 
 # a fraction before a unit ('5/8" x 50 ft hose', '1 1/2 in foam', '3/4-inch rope'): a decimal (the bare '8"' was read)
@@ -384,7 +430,7 @@ _WITH_SLASH = re.compile(r"(?<![a-z0-9])w/(o\b)?\s*", re.IGNORECASE)
 # (a ball's 'size 5' stays: size_words reads it)
 _GARMENT_SIZE = re.compile(r"\b(?:(?:adult|kids?|child(?:ren)?'?s?|youth|toddler|men'?s|women'?s|ladies'?|unisex)\s+)?"
                            r"size\s+(?:x{0,3}s|x{0,3}l|m|small|medium|large|\d{1,2}(?:\.5)?(?!\s+(?:[a-z]+\s+){0,2}[a-z]*ball))\b"
-                           r"|\b(?:adult|kids?|men'?s|women'?s)\s+(?:x{0,3}s|x{0,3}l|m)\b(?![a-z])",
+                           r"|\b(?:adult|kids?|men'?s|women'?s)\s+(?:x{0,3}s|x{0,3}l|m|small|medium|large)\b(?![a-z])",
                            re.IGNORECASE)
 
 
@@ -516,7 +562,22 @@ _TRAILING_PAIR = re.compile(r"(?:\s*,\s*|\s+|\()(?:a\s+)?pair\b\)?(?!\s+of\b)", 
 
 
 _PURPOSE = re.compile(r"^(?P<object>.*\w.*?)\s*,?\s+\bfor\s+(?:(?:an?|the|your|my|our|his|her|their|small|large|"
-                      r"big|little|pet)\s+)*(?:[\w'-]+\s*){1,3}$", re.IGNORECASE)
+                      r"big|little|pet)\s+)*(?:[\w'./-]+\s*){1,4}$", re.IGNORECASE)
+
+
+# 'a slice of pizza, from a 14 in pie', 'a wedge cut from a 20 cm cheese wheel': the size is the whole's
+_FROM_WHOLE = re.compile(r"\s*,?\s*\b(?:cut\s+|taken\s+)?(?:from|off|of)\s+an?\s+(?P<size>(?:[\d.]+\s*(?:-\s*)?"
+                         r"(?:in|inch|inches|\"|cm|mm|m|ft)\b)\s*(?:[a-z-]+\s+){0,2}?(?:pie|pizza|cake|tart|quiche|"
+                         r"wheel|loaf|round|cheesecake|flan)s?)\b", re.IGNORECASE)
+_CUT_FROM_WHOLE = frozenset({"slice", "wedge", "piece", "portion", "quarter", "half", "segment"})
+
+
+def _whole_sized(text: str) -> tuple[str, float | None]:
+    """The text without a 'from a <size> pie' clause, and that size [m] (the whole's a piece was cut from)."""
+    m = _FROM_WHOLE.search(text)
+    if m is None:
+        return text, None
+    return text[: m.start()] + text[m.end():], parse_size(m.group("size")).longest_m
 
 
 _BORE_WORDS = frozenset({"pipe", "pipes", "pipework", "hose", "hoses", "tap", "faucet", "radiator"})
@@ -767,6 +828,7 @@ def design_from_text(text: str, size_hint_m: float | None = None) -> Design:
         design = design_from_text(packed[0], size_hint_m)
         return design.model_copy(update={"warnings": [packed[1], *design.warnings]})
     text_n = _cut_words_stripped(_purpose_stripped(_pair_first(_portions_compounded(_of_words_moved(asked)))))
+    text_n, whole_m = _whole_sized(text_n)
     size = parse_size(text_n)
     if size_hint_m is not None:
         size = SizeSpec(longest_m=size_hint_m, stated=f"size hint {size_hint_m:g} m")
@@ -775,6 +837,8 @@ def design_from_text(text: str, size_hint_m: float | None = None) -> Design:
     if mass is not None:
         stripped = size_words.strip_spans(stripped, [mass.span])
     reading = concepts.read_text(stripped)
+    if whole_m is not None and reading.phrase is not None and reading.phrase.portion in _CUT_FROM_WHOLE:
+        reading.size_m = whole_m  # 'a slice of pizza from a 14 in pie': the pie is 14 in, the slice cut from it
     flat = _long_band_flat(stripped, reading, size)
     if flat is not None:  # 'a green latex resistance band, 1.5 m long': a flat band cut to length, not a loop
         reading = concepts.read_text(flat)
@@ -827,6 +891,9 @@ def design_from_text(text: str, size_hint_m: float | None = None) -> Design:
     kept = _not_implied(mods, program, match.body_plan)
     if match.category != "textile" or match.noun and any(w in match.noun for w in ("baby", "infant")):
         kept = [m for m in kept if m not in WEARER_WORDS]  # ('a baby sock' is a baby's size already)
+    if match.noun and any(w in match.noun.split() for w in ("baby", "infant", "newborn")):
+        kept = [m for m in kept if m not in ("tiny", "little", "small", "mini")]  # ('tiny baby booties': a baby's
+        # things are small by nature; 'tiny' shrank them to a third of their mass again)
     if "little" in kept and (match.typical_size_m or 1.0) <= SMALL_BY_NATURE_M:
         kept = [m for m in kept if m != "little"]  # 'a little catnip mouse': a fond word for a small thing
     if concepts.KEYCHAIN_WORDS.search(text_n):  # 'a tiny plush bunny keychain': a keychain toy is small by nature

@@ -75,7 +75,8 @@ PORTION_SHAPES: dict[str, tuple[str, dict]] = {
     "slab": ("block", {"width": 0.7, "height": 0.25, "edge": 0.1}),
     "cube": ("block", {"width": 1.0, "height": 1.0, "edge": 0.12}),
     "block": ("block", {"width": 0.62, "height": 0.4, "edge": 0.1}),  # 'a 500 g block of modelling clay'
-    "lump": ("blob", {"height": 0.6, "elongation": 1.25}), "blob": ("blob", {}), "dollop": ("blob", {"height": 0.4}),
+    "lump": ("blob", {"height": 0.6, "elongation": 1.25}), "blob": ("blob", {}), "glob": ("blob", {}),
+    "dollop": ("blob", {"height": 0.4}),
     "stick": ("tube", {}),
     "ball": ("ball", {"squash": 0.92}),  # 'a ball of play-doh' (a ball the lexicon's own entry is stays itself)
 }  # 'a wedge of X' follows X's own shape (wedged)
@@ -303,9 +304,24 @@ def _material_in(text: str) -> str | None:
     return _material_words()[max(hits, key=lambda h: h[1] - h[0])[2]] if hits else None
 
 
+def _ends_on_longest(main: str, hits: list[tuple[int, int, str]]) -> list[tuple[int, int, str]]:
+    """The hits with a longer noun of the index that ends on the clause's last word put last, when an earlier,
+    longer hit had taken its first words ('air activated hand warmer packet': 'air activated hand warmer' took 'hand
+    warmer' and left 'packet' a generic bag; the head is the hand warmer packet)."""
+    words = [(m.start(), m.end(), m.group(0)) for m in re.finditer(r"[a-z0-9']+", main)]
+    if not hits or not words or (hits[-1][1] == words[-1][1] and " " in hits[-1][2]):
+        return hits
+    for n in range(min(4, len(words)), 1, -1):
+        phrase = " ".join(w for _, _, w in words[-n:])
+        start = words[-n][0]
+        if phrase in noun_index() and hits[-1][0] < start < hits[-1][1]:
+            return [h for h in hits if h[1] <= start] + [(start, words[-1][1], phrase)]
+    return hits
+
+
 def _head(main: str) -> tuple[tuple[int, int, str] | None, tuple[int, int, str] | None, str | None]:
     """(head noun hit, an earlier noun hit that shapes it, an unknown trailing head word) in the main clause."""
-    hits = _find(main, noun_index(), rightmost=True)
+    hits = _ends_on_longest(main, _find(main, noun_index(), rightmost=True))
     tail_unknown = None
     words = [(m.start(), m.group(0)) for m in re.finditer(r"[a-z]+", main)]
     last_end = hits[-1][1] if hits else -1
@@ -523,6 +539,9 @@ def read_text(text: str, serving: bool = True) -> Reading:
             donor, donor_plan, donor_words = None, None, ""  # 'a ball of paper' is a sheet of it crumpled
             if "crumpled" not in phrase.states:
                 phrase.states.append("crumpled")
+        if not look and donor_plan == PORTION_SHAPES["slice"] and entry.plan in SLICED_AS_WEDGE:
+            donor, donor_plan, donor_words = None, None, ""  # 'a slice of pizza' is a wedge of it, not a slab
+            phrase.portion = "wedge"
         sliced = _sliced_form(entry) if not look and donor_plan == PORTION_SHAPES["slice"] else None
         if sliced is not None:  # 'a slice of sandwich bread': the lexicon's own slice of bread, not a cut block
             key, noun, exact = sliced.key, sliced.nouns[0], True
@@ -566,8 +585,10 @@ def read_text(text: str, serving: bool = True) -> Reading:
             entry, match = _fallback(t, unknown, donor_entry, donor_plan, donor_words)
         warnings.append(match.fallback_note or "")
     if donor_plan is not None and phrase.portion and (phrase.portion in entry.key or phrase.portion in
-                                                       " ".join(entry.nouns) or donor_plan[0] == entry.plan):
-        donor_plan = None  # 'a block of tofu' is the tofu block itself; 'a sheet of fleece' the fleece sheet
+                                                       " ".join(entry.nouns) or (donor_plan[0] == entry.plan
+                                                                                 and phrase.portion != "slice")):
+        donor_plan = None  # 'a block of tofu' is the tofu block itself; 'a sheet of fleece' the fleece sheet ('a
+        # slice of tamagoyaki' is still a slice cut from the block: it was the whole roll)
     if donor_entry is not None and donor_entry.key != entry.key:
         match = match.model_copy(update={"shape_from": donor_entry.key})
     elif donor_plan is not None:
@@ -1640,20 +1661,27 @@ FLAT_GORES = 6  # the gores a striped beach ball shows spread flat [-]
 
 
 def _flat_gores(centre: np.ndarray, half: np.ndarray, colors: list[tuple[float, float, float]]) -> list[Part]:
-    """A flat disc's gores as petals from its centre to its rim, each a little proud of the disc so that its colour
-    is the surface's, the colours in turn, a white cap over their meeting point."""
+    """A flat disc's gores as wedges from its centre to its rim, each a little proud of the disc so that its colour
+    is the surface's, the colours in turn, a white cap over their meeting point. A wedge is four ellipsoids along
+    its radius, each as wide as the wedge where it lies (one round petal per gore overlapped its neighbours and the
+    colours ran together)."""
     r = float(min(half[0], half[1]))
     h = float(half[2])
     out: list[Part] = []
     for k in range(FLAT_GORES):
         a = 2.0 * np.pi * k / FLAT_GORES
-        at = (float(centre[0] + 0.5 * r * np.cos(a)), float(centre[1] + 0.5 * r * np.sin(a)), float(centre[2]))
-        gore = ellipsoid(f"gore {k + 1}", (0.5 * r, r * np.sin(np.pi / FLAT_GORES) * 1.05, 1.08 * h), at,
-                         rot=(0.0, 0.0, float(np.degrees(a))), blend=0.05 * r)
-        out.append(gore.model_copy(update={"color_rgb": colors[k % len(colors)]}))
+        for j, (x, length) in enumerate(GORE_SEGMENTS):
+            width = np.tan(np.pi / FLAT_GORES) * x * r
+            at = (float(centre[0] + x * r * np.cos(a)), float(centre[1] + x * r * np.sin(a)), float(centre[2]))
+            seg = ellipsoid(f"gore {k + 1} {j + 1}", (length * r, width, 1.04 * h), at,
+                            rot=(0.0, 0.0, float(np.degrees(a))), blend=0.02 * r)
+            out.append(seg.model_copy(update={"color_rgb": colors[k % len(colors)]}))
     cap = ellipsoid("cap", (0.16 * r, 0.16 * r, 1.15 * h), (float(centre[0]), float(centre[1]), float(centre[2])),
                     blend=0.03 * r)
     return [*out, cap.model_copy(update={"color_rgb": (0.9, 0.9, 0.88)})]
+
+
+GORE_SEGMENTS = ((0.24, 0.2), (0.44, 0.22), (0.64, 0.22), (0.84, 0.18))  # (centre, half length) of a gore's pieces / the disc's radius
 
 
 def dentable(entry: LexiconEntry) -> bool:
@@ -1858,6 +1886,7 @@ def _contrast_seams(program: ShapeProgram, target: LexiconEntry) -> ShapeProgram
 
 
 WEDGE_WORDS = frozenset({"wedge", "wedges"})
+SLICED_AS_WEDGE = frozenset({"pie"})  # plans whose slice is cut from the centre out (a pizza's, a tart's)
 WEDGE_ANGLE_DEG = {"fruit": 45.0, "vegetable": 45.0}  # a lemon or melon wedge is an eighth; a cheese or pie wedge a sixth
 
 

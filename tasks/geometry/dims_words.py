@@ -9,6 +9,8 @@ from __future__ import annotations
 import re
 from dataclasses import dataclass, field
 
+import numpy as np
+
 from contracts.lexicon import LexiconEntry
 from contracts.request import MAX_SIZE_M, MIN_SIZE_M
 from contracts.shape import ShapeProgram
@@ -114,9 +116,12 @@ def bind(text: str, entry: LexiconEntry | None, states: list[str]) -> Bound | No
             length = 2.0 * v if closed else v  # a closed band's size is its length laid flat, doubled
             bound.consumed.append(s)
             bound.notes.append(f"'{s}' is the {'band laid flat' if closed else 'strip'}'s own length")
-        w0, t0 = float(p0.width), float(p0.thickness)  # type: ignore[attr-defined]
+        w0 = float(p0.width)  # type: ignore[attr-defined]
+        t0 = w0 if p0.round else float(p0.thickness)  # type: ignore[attr-defined]  # (a round cord is as thick as wide)
         width, thickness = w0 * length0, t0 * length0
         bore0 = float(getattr(p0, "bore", 0.0))
+        if bore0 > 0 and any("hose" in n for n in entry.nouns):  # a hose's bare size is its nominal bore ('a 5/8
+            cross = [("inner" if w is None else w, v, s) for w, v, s in cross]  # inch garden hose')
         inner = [(v, s) for w, v, s in cross if w == "inner"]
         outer = [v for w, v, _s in cross if w == "diameter"]
         if inner and bore0 > 0 and not outer:  # '6 mm ID' alone: the wall the tube has at its own bore ratio
@@ -142,6 +147,10 @@ def bind(text: str, entry: LexiconEntry | None, states: list[str]) -> Bound | No
                 and params.get("state") != "loop":
             params["state"] = "rolled"  # longer than L0 builds straight: coiled
             bound.notes.append(f"{length:g} m of it is built coiled")
+        if params.get("state", entry.params.get("state")) == "rolled" \
+                and _unit_longest("strap", params) * length > MAX_SIZE_M:  # a long coil wound as tight as its cord
+            tight = np.sqrt(0.55 * length / (1.45 * np.pi * max(width, 1e-6)))  # allows (r1 - r0 = 0.55 r1 = turns x
+            params["turns"] = float(np.clip(max(tight, float(p0.turns)), 1.0, 8.0))  # type: ignore[attr-defined]  # width)
         bound.longest_m = _unit_longest("strap", params) * length
         bound.mass_factor = (length / length0) * (width * thickness) / (w0 * t0 * length0 ** 2)
         if bore0 > 0:  # a tube weighs its wall: (OD^2 - ID^2) against the entry's own

@@ -39,7 +39,7 @@ DRAPE_WORDS = frozenset({"draped", "drape", "draping", "hanging", "hung", "hangs
 # nouns that measure or portion their object: 'a slice of cheese' is cheese in the shape of a slice
 PORTION_NOUNS = frozenset({"slice", "wedge", "piece", "chunk", "lump", "block", "bar", "ball", "loaf", "sheet",
                            "strip", "cube", "disc", "disk", "roll", "stick", "scoop", "pair", "bunch",
-                           "handful", "bundle", "pile", "stack", "coil", "skein", "wad", "blob", "dollop", "round",
+                           "handful", "bundle", "pile", "stack", "coil", "skein", "wad", "blob", "glob", "dollop", "round",
                            "square", "segment", "half", "quarter", "portion", "brick", "pad", "head", "clove", "sprig",
                            "bulb", "ear", "wheel", "log", "set"})
 # portions that are a state of their object

@@ -64,6 +64,12 @@ def _one_doubling_away(word: str, vocab: frozenset[str]) -> set[str]:
     return {w for w in out if w in vocab and w != word}
 
 
+def _one_swap_away(word: str, vocab: frozenset[str]) -> set[str]:
+    """The vocabulary's words that are `word` with two neighbouring letters swapped."""
+    out = {word[:i] + word[i + 1] + word[i] + word[i + 2:] for i in range(len(word) - 1)}
+    return {w for w in out if w in vocab and w != word}
+
+
 def corrections(text: str, vocabulary: Iterable[str], phrases: Iterable[str] = ()) -> list[tuple[str, str]]:
     """(as written, as read) for each misspelt or split word of a normalised text against the lexicon's words;
     two words are joined only when no lexicon noun phrase (`phrases`) holds them as written ('bath mat')."""
@@ -84,6 +90,10 @@ def _corrections(text: str, vocab: frozenset[str], phrases: frozenset[str]) -> t
         doubled = _one_doubling_away(w, vocab)  # the commonest slip first: a letter doubled or not ('bananna' is a
         if len(doubled) == 1:  # banana, though 'bandanna' is as near by difflib's ratio)
             out.append((w, doubled.pop()))
+            continue
+        swapped = _one_swap_away(w, vocab)  # then two letters typed in turn ('jakcet': difflib's ratio is 0.83)
+        if len(swapped) == 1:
+            out.append((w, swapped.pop()))
             continue
         close = difflib.get_close_matches(w, vocab, n=2, cutoff=CUTOFF)
         if len(close) == 1 or (len(close) == 2 and difflib.SequenceMatcher(None, w, close[0]).ratio()

@@ -15,6 +15,7 @@ from typing import Literal
 
 import numpy as np
 from pydantic import Field
+from scipy.spatial.transform import Rotation
 
 from contracts.base import Model
 from contracts.shape import MAX_PARTS, Part
@@ -92,7 +93,6 @@ def curled_corners(length: float, width: float, t: float, c: float) -> list[Part
     """A flat sheet's four corners curling up: each corner's triangle (legs `c`) cut from the sheet and a flap over
     it turned up CURL_DEG about the hinge across the corner (two short layers, the second turned further, read as a
     curl)."""
-    from scipy.spatial.transform import Rotation
 
     cuts: list[Part] = []
     flaps: list[Part] = []
@@ -872,25 +872,31 @@ def sock(p: SockParams) -> list[Part]:
     return parts
 
 
-SOCK_BALL_RIBS = 20  # knit ribs round a rolled sock's turned-over cuff [-]
+SOCK_BALL_RIBS = 24  # knit ribs round a rolled sock's turned-over cuff [-]
 
 
 def _sock_ball(p: SockParams) -> list[Part]:
-    """A rolled sock (pair): the flat sock's volume as a slightly squashed ball, the turned-over cuff a wide band
-    round it, the toe a cap at one end."""
+    """A rolled sock (pair): the flat sock's volume as a slightly squashed oval bundle, the turned-over cuff a wide
+    ribbed band round its middle with two stripes along its edges (an athletic sock's), the toe tucked inside."""
     # the flat sock is drawn puffier than its two knit layers (~1 cm): rolled tight, the ball holds ~0.45 of that
     flat = 0.45 * p.width * p.thickness * (1.0 + p.leg_length) * 0.85 * (2 if p.pair else 1)
     r = float((flat / (4 / 3 * np.pi * 0.8)) ** (1 / 3))
     zc = 0.84 * r
-    parts = [ellipsoid("body", (1.08 * r, 0.96 * r, 0.84 * r), (0, 0, zc))]
-    # the turned-over cuff: a wide band round the bundle, its knit ribs as grooves along the roll's axis (the toe's
-    # dark cap was read as an onion's root by blind reviewers: the toe is inside the roll)
-    parts.append(scaled(torus("cuff", 0.93 * r, 0.15 * r, (0.3 * r, 0, zc), rot=(0, 90, 0)), (0.86, 1.0, 2.2)))
+    parts = [ellipsoid("body", (1.15 * r, 0.95 * r, 0.84 * r), (0, 0, zc))]
+    # the turned-over cuff covers the bundle's middle (a narrow band at one end was named a surprise egg's rim and the
+    # toe's dark cap an onion's root by blind reviewers, sets 19 and 20), its knit ribs grooves along the roll's axis
+    band_x, band_half = 0.1 * r, 0.5 * r
+    parts.append(scaled(torus("cuff", 0.9 * r, 0.14 * r, (band_x, 0, zc), rot=(0, 90, 0)),
+                        (0.9, 1.0, band_half / (0.14 * r))))
     for i in range(SOCK_BALL_RIBS):
         a = 2 * np.pi * i / SOCK_BALL_RIBS
-        y, z = 1.06 * r * np.cos(a), zc + 0.92 * r * np.sin(a)
-        parts.append(limb(f"rib {i + 1}", (0.08 * r, y, z), (0.52 * r, y, z), 0.04 * r).model_copy(
-            update={"operation": "subtract"}))
+        y, z = 1.05 * r * np.cos(a), zc + 0.96 * r * np.sin(a)
+        parts.append(limb(f"rib {i + 1}", (band_x - 0.8 * band_half, y, z), (band_x + 0.8 * band_half, y, z),
+                          0.05 * r).model_copy(update={"operation": "subtract"}))
+    for side in (-1.0, 1.0):
+        x = band_x + side * 0.62 * band_half
+        parts.append(scaled(torus(f"{'left' if side < 0 else 'right'} stripe", 0.9 * r, 0.24 * r, (x, 0, zc),
+                                  rot=(0, 90, 0)), (0.9, 1.0, 0.5)))
     return parts
 
 
@@ -1100,32 +1106,43 @@ def heap(diameter: float, height: float, t: float, seed: float = 0.3, folds: int
     return parts
 
 
-WAD_FACETS = 14  # planes cutting a paper wad's core into creased facets
-WAD_CREASES = 8  # folded ridges standing out of it
+WAD_FACETS = 22  # planes cutting a paper wad's core into creased facets
+WAD_CREASES = 6  # folded ridges standing out of it
+WAD_VALLEYS = 8  # creases pressed into it
 
 
 def wad(diameter: float, seed: float = 0.3, name: str = "body") -> list[Part]:
-    """A sheet of paper crumpled in the hand: a round wad `diameter` across, its core cut by WAD_FACETS planes into
-    flat facets meeting at creases, with WAD_CREASES folded ridges (thin wedges of the sheet) standing out of it."""
+    """A sheet of paper crumpled in the hand: a lumpy wad `diameter` across, its core cut by WAD_FACETS planes at
+    uneven depths into flat facets meeting at sharp creases, WAD_CREASES folded ridges (thin wedges of the sheet)
+    standing a little out of it and WAD_VALLEYS creases pressed in. (Fourteen shallow cuts left a round ball and
+    its ridges stood out as flaps: blind reviewers named it a ball partly wrapped in paper, sets 19 and 20.)"""
     R = diameter / 2
-    parts = [ellipsoid(name, (R, 0.93 * R, 0.84 * R), (0, 0, 0.84 * R))]
-    for i in range(WAD_FACETS):  # each cut: a large box whose face lies 0.8-0.9 R from the centre
+    zc = 0.8 * R
+    parts = [ellipsoid(name, (R, 0.9 * R, 0.8 * R), (0, 0, zc))]
+    for i in range(WAD_FACETS):  # each cut: a large box whose face lies 0.7-0.92 R from the centre
         u = np.array([np.cos(i * 2.39996 + seed), np.sin(i * 2.39996 + seed), 1.0 - 2.0 * (i + 0.5) / WAD_FACETS])
         u[:2] *= np.sqrt(max(1.0 - u[2] ** 2, 0.0))
         u /= np.linalg.norm(u)
-        depth = (0.84 + 0.07 * np.sin(4.1 * i + seed)) * R
+        reach = float(np.linalg.norm(u * np.array([1.0, 0.9, 0.8])))  # the ellipsoid's radius along u, / R
+        depth = (0.81 + 0.11 * np.sin(4.1 * i + seed)) * reach * R
         yaw, pitch = np.degrees(np.arctan2(u[1], u[0])), np.degrees(np.arccos(np.clip(u[2], -1, 1)))
-        centre = np.array([0.0, 0.0, 0.84 * R]) + (depth - 2.0 * R) * u  # the box 4 R deep, its +u face at depth
+        centre = np.array([0.0, 0.0, zc]) + (depth - 2.0 * R) * u  # the box 4 R deep, its +u face at depth
         parts.append(_op(box(f"facet {i + 1}", (4 * R, 4 * R, 4 * R), tuple(centre), rot=(0.0, float(pitch),
                                                                                             float(yaw))), "intersect"))
-    for i in range(WAD_CREASES):
-        a = i * 2.39996 + 1.3 * seed
-        z = 0.84 * R + 0.55 * R * np.sin(2.2 * i + seed)
-        rho = 0.92 * R * np.sqrt(max(1.0 - ((z - 0.84 * R) / (0.84 * R)) ** 2, 0.2))
-        parts.append(box(f"crease {i + 1}", (0.9 * R, 0.06 * R, 0.45 * R),
-                         (rho * np.cos(a), rho * np.sin(a), float(z)),
-                         rot=(float(25 * np.sin(1.3 * i)), float(40 * np.cos(2.1 * i)), float(np.degrees(a) + 90)),
-                         edge=0.02 * R, blend=0.06 * R))
+    for i in range(WAD_CREASES + WAD_VALLEYS):  # a fold: a thin fin of the sheet square to the surface, standing a
+        valley = i >= WAD_CREASES  # little out of it (a crease) or cut into it (a valley)
+        u = np.array([np.cos(i * 2.39996 + 1.3 * seed), np.sin(i * 2.39996 + 1.3 * seed), 0.8 * np.sin(2.2 * i + seed)])
+        u /= np.linalg.norm(u)
+        along = np.cross(u, [np.sin(1.7 * i), np.cos(1.7 * i), 0.5])  # the fold's line, across the surface
+        along /= np.linalg.norm(along)
+        frame = np.stack([along, np.cross(u, along), u], axis=1)  # local x along the fold, z out of the wad
+        euler = Rotation.from_matrix(frame).as_euler("xyz", degrees=True)
+        reach = float(np.linalg.norm(u * np.array([1.0, 0.9, 0.8]))) * R
+        crease = box(f"{'valley' if valley else 'crease'} {i + 1}",
+                     (0.75 * R, (0.08 if valley else 0.05) * R, 0.4 * R),
+                     tuple(np.array([0.0, 0.0, zc]) + ((0.86 if valley else 0.68) * reach) * u),
+                     rot=tuple(float(e) for e in euler), edge=0.015 * R, blend=0.03 * R)
+        parts.append(_op(crease, "subtract") if valley else crease)
     parts.append(_op(box("ground", (8, 8, 8), (0, 0, 4)), "intersect"))
     return parts
 
@@ -1449,9 +1466,12 @@ def _garment_folded(p: GarmentParams) -> list[Part]:
 
 def _trousers_folded(p: GarmentParams, t: float, n: int) -> list[Part]:
     """Trousers folded as in a shop, the seat up: a rectangle `n` layers thick with the waistband along its top edge
-    (belt loops, the button at its end, a label patch), the yoke seam dipping across below it, two back pockets, and
-    the folded legs' layers seen at the bottom edge."""
+    (belt loops, the button at its end, a label patch), the yoke seam dipping across below it, two back pockets
+    outlined by their stitching (a pocket's sides and pointed bottom, and a jeans' arcuate wings across it), and the
+    folded legs' layers seen at the bottom edge. (Denim all one colour read as a blue toolbox with a lid to blind
+    reviewers, sets 19 and 20: the stitching, patch and button carry the entry's colours when it has them.)"""
     fl, fw = 0.36, 0.5 * p.width
+    t = TROUSERS_FOLD_LAYER * t
     h = n * t
     top = h + 0.15 * t
     parts = [box("body", (fl, fw, h), (0, 0, h / 2), edge=0.4 * t)]
@@ -1460,19 +1480,33 @@ def _trousers_folded(p: GarmentParams, t: float, n: int) -> list[Part]:
     for i, y in enumerate(np.linspace(-0.44 * fw, 0.44 * fw, 5)):
         parts.append(box(f"belt loop {i + 1}", (0.07, 0.02, 0.5 * t), (xw - 0.005, y, h + 0.45 * t), edge=0.2 * t,
                          blend=0.002))
-    parts.append(cylinder("button", 0.018, 0.5 * t, (xw, -0.47 * fw, h + 0.5 * t), edge=0.15 * t, blend=0.002))
-    parts.append(box("patch", (0.045, 0.12 * fw, 0.35 * t), (xw - 0.002, 0.22 * fw, h + 0.4 * t), edge=0.1 * t,
+    parts.append(cylinder("button", 0.02, 0.6 * t, (xw, -0.47 * fw, h + 0.5 * t), edge=0.15 * t, blend=0.002))
+    parts.append(box("patch", (0.05, 0.14 * fw, 0.5 * t), (xw - 0.002, 0.22 * fw, h + 0.45 * t), edge=0.1 * t,
                      blend=0.002))
     for side in (1, -1):  # the yoke: a seam from the side dipping to the centre seam
-        parts.append(limb(f"{'left' if side > 0 else 'right'} yoke", (xw - 0.05, side * 0.5 * fw, top),
-                          (xw - 0.09, 0.0, top), 0.006, blend=0.003))
-        parts.append(box(f"{'left' if side > 0 else 'right'} back pocket", (0.13, 0.3 * fw, 0.35 * t),
-                         (xw - 0.175, side * 0.24 * fw, h + 0.1 * t), edge=0.15 * t, blend=0.003,
-                         rot=(0, 0, side * 4)))
+        word = "left" if side > 0 else "right"
+        parts.append(limb(f"{word} yoke", (xw - 0.05, side * 0.5 * fw, top), (xw - 0.09, 0.0, top), 0.006,
+                          blend=0.003))
+        px, py, pl, pw = xw - 0.175, side * 0.24 * fw, 0.13, 0.3 * fw
+        parts.append(box(f"{word} back pocket", (pl, pw, 0.35 * t), (px, py, h + 0.1 * t), edge=0.15 * t,
+                         blend=0.003, rot=(0, 0, side * 4)))
+        ztop, r = h + 0.3 * t, STITCH_RADIUS
+        corners = [(px + pl / 2, py - pw / 2), (px - 0.3 * pl, py - pw / 2), (px - pl / 2, py),
+                   (px - 0.3 * pl, py + pw / 2), (px + pl / 2, py + pw / 2)]
+        for k in range(4):  # the pocket's stitched outline: its two sides and the pointed bottom
+            (ax, ay), (bx, by) = corners[k], corners[k + 1]
+            parts.append(limb(f"{word} pocket stitch {k + 1}", (ax, ay, ztop), (bx, by, ztop), r, blend=0.001))
+        dip = (px - 0.12 * pl, py, ztop)  # the arcuate: two wings meeting in a V across the pocket
+        for k, wing in enumerate((py - 0.42 * pw, py + 0.42 * pw)):
+            parts.append(limb(f"{word} arcuate stitch {k + 1}", (px + 0.05 * pl, wing, ztop), dip, r, blend=0.001))
     parts.append(limb("centre seam", (xw - 0.09, 0.0, top), (-fl / 2 + 0.05, 0.0, top), 0.006, blend=0.003))
     for i in range(1, n):  # the folded bottom edge: the layers seen apart
         parts.append(_op(box(f"fold gap {i}", (0.1 * fl, fw * 1.2, 0.22 * t), (-fl / 2, 0, i * t)), "subtract"))
     return parts
+
+
+TROUSERS_FOLD_LAYER = 0.6  # a folded trousers' layer / a folded top's (a shop-folded pair of jeans is ~5 cm high) [-]
+STITCH_RADIUS = 0.006  # a stitched seam's bead, drawn wider than thread to be seen (unit frame) [-]
 
 
 def _swap_xz(part: Part) -> Part:
@@ -1779,10 +1813,9 @@ class StrapParams(Model):
     bore: float = Field(default=0.0, ge=0.0, lt=1.0, description="a tube's inner over outer diameter (drawn solid; "
                         "its mass is the wall's: tasks.geometry.dims_words) [-]")
     turns: float = Field(default=3.0, ge=1.0, le=8.0, description="turns of a coil [-]")
-    ends: Literal["none", "handles", "buckle", "ring", "hose"] = Field(default="none", description="what the ends "
-                                                                       "carry; hose: an inflatable cuff's (a blood "
-                                                                       "pressure cuff): its rubber tube and plug out "
-                                                                       "of one face, a hook-and-loop patch")
+    ends: Literal["none", "handles", "buckle", "ring", "hose", "hooks"] = Field(
+        default="none", description="what the ends carry; hose: an inflatable cuff's (a blood pressure cuff): its "
+        "rubber tube and plug out of one face, a hook-and-loop patch; hooks: a J-hook at each end (a bungee cord)")
 
 
 def _strip_dims(p: StrapParams, extent: float) -> tuple[float, float]:
@@ -1840,6 +1873,8 @@ def strap(p: StrapParams) -> list[Part]:
                              blend=0.002))
         elif p.ends == "ring":
             parts.append(scaled(torus("ring", 0.7 * w, 0.12 * w, (length / 2, 0, 0.12 * w)), (1, 1, 1)))
+        elif p.ends == "hooks":
+            parts += _end_hooks(length, z, w)
         elif p.ends == "hose":  # out of the top face near one end, curving away over the table
             r = 0.012
             pts = [np.array([-0.22 + 0.45 * u - 0.1 * np.sin(np.pi * u), -w / 2 - 0.28 * np.sin(0.5 * np.pi * u),
@@ -1850,6 +1885,27 @@ def strap(p: StrapParams) -> list[Part]:
             parts.append(cylinder("plug", 1.8 * r, 0.05, tuple(tip), rot=(0, 90, 0), edge=0.4 * r, blend=0.005))
             parts.append(box("fastener patch", (0.3, 0.8 * w, 0.35 * t), (0.3, 0, t * 1.05), edge=0.15 * t,
                              blend=0.004))
+    return parts
+
+
+HOOK_SIZE = 0.065  # a bungee cord's J-hook: shank length, / the cord's length [-]
+
+
+def _end_hooks(length: float, z: float, w: float) -> list[Part]:
+    """A J-hook at each end of a straight cord, lying on the table: a crimped collar, a straight shank out of it and
+    a bend back toward the cord ending in a tip (coated steel, drawn a little thicker than the wire to be seen)."""
+    r = max(0.35 * w, 0.006)
+    parts: list[Part] = []
+    for sgn, word in ((1.0, "right"), (-1.0, "left")):
+        end = np.array([sgn * length / 2, 0.0, z])
+        parts.append(limb(f"{word} collar", end - [sgn * 0.5 * HOOK_SIZE, 0, 0], end, 0.75 * w, blend=0.2 * w))
+        tip = end + [sgn * HOOK_SIZE, 0, 0]
+        parts.append(limb(f"{word} hook", end, tip, r, blend=0.3 * r))
+        bend = 0.4 * HOOK_SIZE
+        a = np.linspace(-0.5 * np.pi, 0.5 * np.pi, 5)
+        pts = [tip + np.array([sgn * bend * np.cos(t), bend + bend * np.sin(t), 0.0]) for t in a]
+        pts.append(pts[-1] - [sgn * 0.6 * HOOK_SIZE, 0, 0])
+        parts += [limb(f"{word} hook {k + 2}", pts[k], pts[k + 1], r, blend=0.3 * r) for k in range(len(pts) - 1)]
     return parts
 
 

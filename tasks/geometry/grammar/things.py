@@ -317,7 +317,7 @@ class TubeParams(Model):
     """A tube or roll lying along x: pool noodle, rolled towel, foam roller, hose (optional through-hole)."""
 
     radius: float = Field(default=0.2, gt=0.02, le=0.5, description="outer radius / length [-]")
-    hole: float = Field(default=0.0, ge=0.0, le=0.7, description="inner radius / outer radius [-]")
+    hole: float = Field(default=0.0, ge=0.0, le=0.92, description="inner radius / outer radius (a fabric tube ~0.9) [-]")
 
 
 def tube(p: TubeParams) -> list[Part]:
