@@ -19,7 +19,7 @@ from tasks.geometry import analogy as analogy_mod, fill_words, goods_words, gram
 from tasks.geometry.catalogue_programs import catalogue_program
 from tasks.geometry.grammar.goods import PouchParams, SheetParams, folded_footprint, piece_grid
 from tasks.geometry.grammar.things import smiley
-from tasks.geometry.grammar.parts import _euler_z_to, box, ellipsoid, part_group, relief, rotated_parts, squashed_parts, torus
+from tasks.geometry.grammar.parts import _euler_z_to, box, cone, ellipsoid, part_group, relief, rotated_parts, squashed_parts, torus
 from tasks.geometry.meshing import program_volume, sample_program
 from tasks.geometry.sdf import program_bounds, program_sdf
 from tasks.geometry.wordnet import wordnet
@@ -1469,6 +1469,9 @@ def _own_colours_unsaid(text: str, reading: Reading, entry: LexiconEntry) -> str
     return text
 
 
+PART_ALIASES = {"frosting": ("icing", "buttercream", "frosted", "glaze")}  # other words for a part ('pink icing')
+
+
 def apply_colors(program: ShapeProgram, text: str) -> tuple[ShapeProgram, dict[str, str]]:
     """Colour words in the text painted on the parts they name ('with a green leaf'), the rest on the body: every part
     that had the body's colour takes the first colour not bound to a part."""
@@ -1479,7 +1482,7 @@ def apply_colors(program: ShapeProgram, text: str) -> tuple[ShapeProgram, dict[s
     groups = {part_group(p.name) for p in program.parts}
     group_words = {}
     for g in groups:
-        for form in {g, g.split()[-1], *plurals(g.split()[-1])}:
+        for form in {g, g.split()[-1], *plurals(g.split()[-1]), *PART_ALIASES.get(g, ())}:
             group_words[form] = g
     applied: dict[str, str] = {}
     primary: str | None = None
@@ -1597,10 +1600,13 @@ def with_relief(program: ShapeProgram, kind: str) -> ShapeProgram | None:
     """The program with surface relief over its body (spikes, nubs, folds, strands, ruffles, lumps) standing out of
     it; None when the body is not ball-like (its shortest half extent under half its longest)."""
     centre, half = _body_envelope(program)
-    if kind != "lumps" and float(half.min()) < 0.5 * float(half.max()):
-        return None
     budget = 64 - len(program.parts)
     if budget < 8:
+        return None
+    if kind in ("spikes", "nubs") and float(half[2]) < 0.5 * float(half.max()):  # a flat body (a balance cushion)
+        return program.model_copy(update={"parts": list(program.parts) + _top_relief(program, kind, centre, half,
+                                                                                       budget)})
+    if kind != "lumps" and float(half.min()) < 0.5 * float(half.max()):
         return None
     if kind == "ruffles":  # a pouf is frills around a small core: the body shrinks to the core
         core = [p.model_copy(update={"transform": p.transform.model_copy(update={"scale": (0.7, 0.7, 0.7), "translation_m": tuple(
@@ -1613,6 +1619,39 @@ def with_relief(program: ShapeProgram, kind: str) -> ShapeProgram | None:
     if kind not in ("strands", "ruffles"):
         extra = _snapped(extra, program, centre, half)
     return program.model_copy(update={"parts": body + extra})  # a stated size still sizes the whole (pipeline)
+
+
+TOP_RELIEF_MAX = 48  # bumps on a flat body's top face, at most [-]
+
+
+def _top_relief(program: ShapeProgram, kind: str, centre: np.ndarray, half: np.ndarray, budget: int) -> list[Part]:
+    """Spikes or nubs over a flat body's top face on a hexagonal grid inside its footprint, each standing on the top
+    surface found along z (a spiky balance cushion, a nubby massage mat)."""
+    n = min(budget, TOP_RELIEF_MAX)
+    area = np.pi * 0.88 ** 2 * half[0] * half[1]  # (the footprint's ellipse, its rim left clear)
+    step = float(np.sqrt(area / (0.87 * n)))
+    xs = np.arange(-half[0], half[0] + 1e-9, step)
+    spots = [(x, y) for j, x in enumerate(xs) for y in np.arange(-half[1] + (0.5 * step if j % 2 else 0.0),
+                                                                half[1] + 1e-9, 0.87 * step)
+             if (x / (0.88 * half[0])) ** 2 + (y / (0.88 * half[1])) ** 2 <= 1.0][:n]
+    rgb = program.parts[0].color_rgb
+    size = 0.4 * step
+    out: list[Part] = []
+    zs = centre[2] + np.linspace(half[2], -half[2], 24)
+    for i, (x, y) in enumerate(spots):
+        pts = np.stack([np.full_like(zs, centre[0] + x), np.full_like(zs, centre[1] + y), zs], axis=1)
+        inside = np.nonzero(program_sdf(pts, program) < 0)[0]
+        if inside.size == 0:
+            continue
+        top = np.array([centre[0] + x, centre[1] + y, zs[inside[0]]])
+        if kind == "spikes":
+            h = min(1.4 * size, 0.9 * float(half[2]))
+            part = cone(f"spike {i + 1}", 0.45 * size, 0.1 * size, h, tuple(top + [0, 0, 0.35 * h]), edge=0.05 * size,
+                        blend=0.07 * size)
+        else:
+            part = ellipsoid(f"nub {i + 1}", (0.5 * size, 0.5 * size, 0.4 * size), top, blend=0.15 * size)
+        out.append(part.model_copy(update={"color_rgb": rgb}))
+    return out
 
 
 def posed(program: ShapeProgram, pose: str) -> ShapeProgram:

@@ -160,3 +160,36 @@ def test_a_deflated_beach_balls_gores_are_wedges_in_turn() -> None:
     assert len(gores) == 24 and len({p.name.split()[1] for p in gores}) == 6
     widths = sorted(p.primitive.radii_m[1] for p in gores if p.name.split()[1] == "1")
     assert widths[0] < 0.5 * widths[-1]  # narrow at the cap, wide at the rim
+
+
+def test_a_cupcake_wears_a_piped_swirl_in_the_colour_said() -> None:
+    """'a cupcake with a swirl of pink buttercream' was a muffin with no frosting: a cupcake's swirl is rings
+    narrowing to a point, and 'buttercream' or 'icing' names that part for a colour word."""
+    design = catalogue.design_from_text("a cupcake with pink buttercream")
+    frosting = [p for p in design.program.parts if part_group(p.name).startswith("frosting")]
+    radii = [p.primitive.major_radius_m for p in frosting if p.primitive.kind == "torus"]
+    assert len(radii) >= 3 and radii == sorted(radii, reverse=True)
+    body = next(p for p in design.program.parts if part_group(p.name) == "cup")
+    assert frosting[0].color_rgb != body.color_rgb and frosting[0].color_rgb[0] > frosting[0].color_rgb[2]  # pink
+    assert catalogue.design_from_text("a blueberry muffin").entry == "muffin"
+
+
+def test_salmon_nigiri_is_a_slice_of_fish_over_a_rice_mound() -> None:
+    """A two-layer block was named a pink eraser: the fish overhangs the rice at both ends and the rice is white."""
+    design = catalogue.design_from_text("one salmon nigiri")
+    ext = grammar.program_extents(design.program, 64)
+    rice = grammar.program_extents(design.program.model_copy(update={"parts": [
+        p for p in design.program.parts if part_group(p.name) in ("body", "ground")]}), 64)
+    assert ext[0] > 1.1 * rice[0]  # the fish is longer than its rice
+    assert 0.015 <= planned_mass("one salmon nigiri") <= 0.06
+    assert catalogue.design_from_text("tuna nigiri").entry == "tuna_nigiri"
+
+
+def test_a_flat_cushion_said_spiky_has_spikes_on_its_top_face() -> None:
+    """'spikes are not drawn: the balance cushion is not ball-like': a flat body takes them on its top face."""
+    design = catalogue.design_from_text("a spiky wobble cushion")
+    spikes = [p for p in design.program.parts if part_group(p.name) == "spike"]
+    assert len(spikes) >= 20
+    top = max(p.transform.translation_m[2] for p in design.program.parts[:1])
+    assert all(p.transform.translation_m[2] > top for p in spikes)
+    assert not any("not drawn" in w for w in design.warnings)

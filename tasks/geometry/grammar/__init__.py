@@ -47,6 +47,7 @@ PLANS: dict[str, tuple[type[Model], Callable[[Any], list[Part]]]] = {
     "croissant": (food.CroissantParams, food.croissant),
     "pretzel": (food.PretzelParams, food.pretzel),
     "muffin": (food.MuffinParams, food.muffin),
+    "nigiri": (food.NigiriParams, food.nigiri),
     "pie": (food.PieParams, food.pie),
     "cushion": (things.CushionParams, things.cushion),
     "ball": (things.BallParams, things.ball),

@@ -404,13 +404,57 @@ class MuffinParams(Model):
 
     cup_height: float = Field(default=0.5, gt=0.1, le=1.5, description="cup height / top diameter [-]")
     top_height: float = Field(default=0.35, gt=0.05, le=1.0, description="dome height / top diameter [-]")
+    frosting: bool = Field(default=False, description="a piped swirl of frosting on the top (a cupcake)")
+
+
+FROSTING_TIERS = ((0.42, 0.11), (0.33, 0.1), (0.23, 0.09), (0.13, 0.08))  # (ring radius, tube radius) bottom up [-]
 
 
 def muffin(p: MuffinParams) -> list[Part]:
-    """Top diameter 1."""
+    """Top diameter 1. A frosted cupcake: its swirl piped as rings narrowing upward to a point."""
     ch = p.cup_height
-    return [cone("cup", 0.36, 0.44, ch, (0, 0, ch / 2), edge=0.03),
-            ellipsoid("top", (0.5, 0.5, p.top_height), (0, 0, ch), blend=0.04)]
+    parts = [cone("cup", 0.36, 0.44, ch, (0, 0, ch / 2), edge=0.03),
+             ellipsoid("top", (0.5, 0.5, p.top_height), (0, 0, ch), blend=0.04)]
+    if p.frosting:
+        z = ch + 0.6 * p.top_height
+        for i, (ring, tube) in enumerate(FROSTING_TIERS):
+            parts.append(torus(f"frosting {i + 1}", ring, tube, (0.02 * (i % 2), 0.0, z), blend=0.04))
+            z += 1.45 * tube
+        parts.append(cone("frosting tip", 0.1, 0.0, 0.16, (0, 0, z + 0.02), blend=0.05))
+    return parts
+
+
+class NigiriParams(Model):
+    """Nigiri sushi: an oval mound of rice under a slice of fish draped over it and past its ends."""
+
+    width: float = Field(default=0.5, gt=0.2, le=0.8, description="rice width / fish length [-]")
+    fish: float = Field(default=0.07, gt=0.02, le=0.2, description="fish slice thickness / fish length [-]")
+    stripes: int = Field(default=0, ge=0, le=8, description="white fat lines across the fish (salmon) [-]")
+
+
+def nigiri(p: NigiriParams) -> list[Part]:
+    """Fish length 1 along x: the rice (body) 0.8 long, the fish slice over its top a little wider, its ends dipping
+    past the rice, and `stripes` fat lines slanting across the fish's top. (A two-layer block read as a pink eraser
+    to blind reviewers, development set 21.)"""
+    w = p.width
+    rice_h = 0.38
+    parts = [ellipsoid("body", (0.4, w / 2, rice_h), (0, 0, 0.0)),
+             _op_ground()]
+    top = rice_h
+    for k, (x, tilt) in enumerate(((0.0, 0.0), (0.33, 14.0), (-0.33, -14.0))):
+        z = top - (0.035 if k else 0.0) - p.fish / 2 + 0.01
+        parts.append(ellipsoid("fish" if k == 0 else f"fish {k + 1}", (0.26 if k else 0.3, 0.55 * w + 0.02, p.fish / 2),
+                               (x, 0.0, z), rot=(0.0, tilt, 0.0), blend=0.05))
+    for i in range(p.stripes):
+        x = -0.27 + 0.54 * i / max(p.stripes - 1, 1)
+        parts.append(box(f"fat {i + 1}", (0.05, 0.8 * w, 0.5 * p.fish), (x, 0.0, top + 0.006 - 0.08 * abs(x)),
+                         rot=(0.0, float(np.degrees(np.arctan(0.08)) * np.sign(x)), 30.0), edge=0.01, blend=0.01))
+    return parts
+
+
+def _op_ground() -> Part:
+    """A half-space keeping z >= 0 (the rice sits flat on the plate)."""
+    return box("ground", (8, 8, 8), (0, 0, 4)).model_copy(update={"operation": "intersect"})
 
 
 class PieParams(Model):
