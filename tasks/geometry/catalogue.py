@@ -392,6 +392,9 @@ COVER_CM = {"twin": (173, 218), "single": (173, 218), "twin xl": (173, 229), "fu
             "queen": (228, 228), "king": (264, 228), "california king": (264, 239), "cal king": (264, 239)}
 
 
+_FOLDED_OR_ROLLED = re.compile(r"\b(?:folded|rolled|bunched|crumpled)\b", re.IGNORECASE)
+
+
 def _bed_sized(text: str) -> str:
     """'a memory foam mattress topper, twin xl' -> '..., 99 x 203 cm' (only beside bedding; 'full' and 'single' only
     said as a size or right before the bedding's noun)."""
@@ -408,6 +411,8 @@ def _bed_sized(text: str) -> str:
         if loose and word in ("full", "single", "double") and not (said_size or before_noun):
             return m.group(0)
         w, length = table[word]
+        if max(w, length) > 100 * MAX_SIZE_M and not _FOLDED_OR_ROLLED.search(text):
+            return m.group(0)  # (a king duvet laid out is more than L0 builds: its typical size, not a refusal)
         return f" {w} x {length} cm "
 
     return _BED_SIZE.sub(named, text)

@@ -17,7 +17,7 @@ from contracts.yaml_io import load_yaml
 from tasks.geometry import analogy as analogy_mod, fill_words, goods_words, grammar, phrase as phrase_mod, pouch_words, \
     spelling
 from tasks.geometry.catalogue_programs import catalogue_program
-from tasks.geometry.grammar.goods import PouchParams, SheetParams, folded_footprint, piece_grid
+from tasks.geometry.grammar.goods import PouchParams, SheetParams, folded_footprint, piece_grid, roll_radius
 from tasks.geometry.grammar.things import smiley
 from tasks.geometry.grammar.parts import _euler_z_to, box, cone, ellipsoid, part_group, relief, rotated_parts, squashed_parts, torus
 from tasks.geometry.meshing import program_volume, sample_program
@@ -961,7 +961,7 @@ def build(reading: Reading, text: str) -> tuple[ShapeProgram, ConceptMatch, list
         own = {k: v for k, v in reading.params.items() if k != "state"}
         if params.get("rumpled"):
             own["rumpled"] = True
-        strip = {k: params[k] for k in ("width", "thickness", "layers", "core", "packing") if k in params}  # (a
+        strip = {k: params[k] for k in ("width", "thickness", "layers", "core", "packing", "tail") if k in params}  # (a
         # loose roll's core and packing: its volume per sheet, not only its look; a strip folded, then
         # rolled; the sheets stacked)
         change = grammar.state_change(target.plan, {**target.params, **own}, size, params["state"], also=strip)
@@ -1272,12 +1272,18 @@ def _state_params(reading: Reading, warnings: list[str]) -> tuple[list[str], dic
     params: dict = {"state": shown[0]} if shown else {}
     if shown[:1] == ["rolled"] and plan == "sheet" and _LOOSELY.search(phrase.text) and not a_roll:
         params.update(LOOSE_ROLL)  # 'a baking mat rolled up loosely': a springy roll round an open core
+    if shown[:1] == ["rolled"] and plan == "sheet" and _HALF_ROLLED.search(phrase.text) and not a_roll:
+        rolled_half = SheetParams(**{**target.params, **reading.params, **params, "state": "rolled"})
+        rolled_half = rolled_half.model_copy(update={"thickness": 0.5 * rolled_half.thickness})  # (half its length)
+        params["tail"] = HALF_ROLLED_RUN / (2.0 * roll_radius(rolled_half))  # 'half rolled': half of it lies flat
     if count is not None and shown[:1] == ["stacked"]:
         params["layers"] = int(min(max(count, 2), MAX_STACKED))
     return shown, params
 
 
 _LOOSELY = re.compile(r"\bloose(?:ly)?\b", re.IGNORECASE)
+_HALF_ROLLED = re.compile(r"\b(?:half|partly|partially|part)[\s-]+(?:way\s+)?rolled\b", re.IGNORECASE)
+HALF_ROLLED_RUN = 0.5  # a half rolled sheet's flat part, / the sheet's length [-]
 # a loosely rolled sheet (a mat, a towel rolled without pulling): its hole's radius and the share of the roll's
 # cross-section that is sheet (a tight roll: SheetParams' 0.12 and 0.8) [-]
 LOOSE_ROLL = {"core": 0.6, "packing": 0.3}
@@ -1603,7 +1609,8 @@ def with_relief(program: ShapeProgram, kind: str) -> ShapeProgram | None:
     budget = 64 - len(program.parts)
     if budget < 8:
         return None
-    if kind in ("spikes", "nubs") and float(half[2]) < 0.5 * float(half.max()):  # a flat body (a balance cushion)
+    if kind in ("spikes", "nubs") and float(half[2]) < 0.5 * float(half.max()) \
+            and float(half[:2].min()) >= 0.5 * float(half[:2].max()):  # a flat, compact body (a balance cushion)
         return program.model_copy(update={"parts": list(program.parts) + _top_relief(program, kind, centre, half,
                                                                                        budget)})
     if kind != "lumps" and float(half.min()) < 0.5 * float(half.max()):

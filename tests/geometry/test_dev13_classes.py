@@ -58,7 +58,7 @@ def test_a_fraction_before_a_unit_is_its_value() -> None:
     assert catalogue.normalise_sizes("1 1/2 in thick foam pad").startswith("1.5 in")
     assert catalogue.normalise_sizes("a 1/2 lb bag of rice") == "a 1/2 lb bag of rice"  # a mass: size_words reads it
     d = catalogue.design_from_text('5/8" x 50 ft garden hose')
-    assert "'0.625\"' is its diameter" in (d.concept.stated_mass_source or "")
+    assert "'0.625\"' is its inner diameter" in (d.concept.stated_mass_source or "")  # (a hose's nominal bore)
     assert 0.5 < d.concept.stated_mass_kg < 4.0  # retail: 15 m of 5/8 in hose 1.5-4.5 kg
 
 

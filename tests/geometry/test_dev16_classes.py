@@ -94,7 +94,7 @@ def test_a_colour_word_of_the_objects_own_name_is_not_painted_over_it() -> None:
     """'a salmon nigiri' was salmon-pink all over (read as a pink eraser): its rice base stays white; a colour the
     entry does not paint still applies ('a red cabbage'), and 'salmon-coloured' is a colour."""
     parts = {p.name: p.color_rgb for p in catalogue.design_from_text("a salmon nigiri").program.parts}
-    assert min(parts["body"]) > 0.8 and parts["top layer"][0] > 2 * parts["top layer"][2]
+    assert min(parts["body"]) > 0.8 and parts["fish"][0] > 2 * parts["fish"][2]
     assert catalogue.design_from_text("a red cabbage").program.parts[0].color_rgb[0] > 0.6
     assert catalogue.design_from_text("a salmon-coloured towel").program.parts[0].color_rgb[2] < 0.5
 

@@ -57,11 +57,15 @@ def test_two_letters_typed_in_turn_are_corrected() -> None:
 
 def test_a_wearers_age_and_a_bed_size_are_not_lengths() -> None:
     """'0-3 months' made a onesie a generic block; 'twin xl' a mattress topper; a bed's size said by name is the
-    mattress's width x length (US standards), a duvet's the cover's."""
+    mattress's width x length (US standards), a duvet's the cover's (over 2 m only when it is said folded or
+    rolled: L0 builds at most 2 m)."""
     assert "month" not in normalise_sizes("a grey baby romper, 3-6 months")
     assert catalogue.design_from_text("a white baby onesie, 6-12 months, folded").entry == "baby_bodysuit"
-    assert parse_size(normalise_sizes("a foam mattress topper, queen")).extents_m[:2] == pytest.approx((1.52, 2.03))
-    assert parse_size(normalise_sizes("a king size duvet")).extents_m[:2] == pytest.approx((2.64, 2.28))
+    assert parse_size(normalise_sizes("a foam mattress topper, queen, rolled up")).extents_m[:2] == pytest.approx(
+        (1.52, 2.03))
+    assert parse_size(normalise_sizes("a full size fitted sheet")).extents_m[:2] == pytest.approx((1.37, 1.91))
+    assert parse_size(normalise_sizes("a king size duvet, folded")).extents_m[:2] == pytest.approx((2.64, 2.28))
+    assert not parse_size(normalise_sizes("a king size duvet")).explicit  # laid out, more than L0 builds: typical
     assert normalise_sizes("a half-full bag of rice") == "a half-full bag of rice"  # 'full' only as a bed size
 
 
@@ -193,3 +197,14 @@ def test_a_flat_cushion_said_spiky_has_spikes_on_its_top_face() -> None:
     top = max(p.transform.translation_m[2] for p in design.program.parts[:1])
     assert all(p.transform.translation_m[2] > top for p in spikes)
     assert not any("not drawn" in w for w in design.warnings)
+
+
+def test_a_half_rolled_mat_is_a_roll_with_its_other_half_lying_flat() -> None:
+    """'a bamboo sushi mat, half rolled' was drawn fully rolled: half rolled, the sheet's free half lies flat in
+    front of the roll, drawn thick enough to be meshed, and the mat keeps its mass."""
+    design = catalogue.design_from_text("a half rolled yoga mat")
+    assert "tail" in [part_group(p.name) for p in design.program.parts]
+    ext = np.sort(grammar.program_extents(design.program, 64))
+    rolled = np.sort(grammar.program_extents(catalogue.design_from_text("a rolled yoga mat").program, 64))
+    assert ext[2] > 1.5 * rolled[2]  # the flat half makes it longer than the roll alone
+    assert 0.5 <= planned_mass("a half rolled yoga mat") / planned_mass("a rolled yoga mat") <= 1.5

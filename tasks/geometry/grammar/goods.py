@@ -68,7 +68,7 @@ class SheetParams(Model):
     edge: float = Field(default=0.5, ge=0.0, le=1.0, description="edge rounding / half the layer [-]")
     crisp: bool = Field(default=False, description="cut sheets with square edges (paper, felt, craft foam): stacked, "
                         "a squared pad of a few sheets, not soft folded layers")
-    tail: float = Field(default=0.0, ge=0.0, le=4.0, description="a roll partly unrolled: its free end lying out "
+    tail: float = Field(default=0.0, ge=0.0, le=12.0, description="a roll partly unrolled: its free end lying out "
                         "flat on the ground in front of it, this many roll diameters long; 0 none [-]")
     thirds: bool = Field(default=False, description="folded in thirds (a letter fold: three layers, a crease at each "
                          "end) before any further halving")
@@ -524,6 +524,9 @@ def roll_radius(p: SheetParams) -> float:
     return max(r, 0.04 * p.width)
 
 
+MIN_TAIL_LAYER = 0.02  # an unrolled tail's drawn thickness, at least this share of the roll's extent [-]
+
+
 def _rolled(p: SheetParams) -> list[Part]:
     """A roll of length `width` along x: a cylinder with a hole, rings cut into both ends one layer pitch apart, and
     the sheet's free end as a step along the outside."""
@@ -550,8 +553,9 @@ def _rolled(p: SheetParams) -> list[Part]:
         parts.append(_op(cylinder("hole", r0, 1.2 * w, (0, 0, R), rot=(0, 90, 0)), "subtract"))
     if p.tail > 0:  # the free end unrolled off the bottom of the roll, lying flat towards -y
         run = p.tail * 2 * R
-        parts.append(box("tail", (w, run + 0.5 * R, layer), (0, -0.5 * run, layer / 2), edge=0.3 * layer,
-                         blend=0.05 * R))
+        flat = max(layer, MIN_TAIL_LAYER * max(w, run))  # (no thinner than the mesher sees: a half rolled yoga mat's
+        parts.append(box("tail", (w, run + 0.5 * R, flat), (0, -0.5 * run, flat / 2), edge=0.3 * flat,  # 6 mm sheet
+                         blend=0.05 * R))  # was lost between the voxels)
     if p.bubbles:  # the outer layer's bubbles: staggered rows over the roll's upper half, drawn a little large
         rb = 0.15 * R
         along = max(2, int(0.9 * w / (2.6 * rb)))
