@@ -19,6 +19,7 @@ from tasks.geometry.analogy import FOOD_CUES
 from tasks.geometry.wordnet import wordnet
 from tasks.geometry.catalogue_programs import catalogue_program, catalogue_yaml
 from tasks.geometry.grammar.goods import crumpled_size, wad_size
+from tasks.geometry.grammar.parts import part_group
 from tasks.geometry.sdf import program_bounds
 from tasks.render.finish import DUSTED, with_look
 
@@ -503,6 +504,10 @@ def _rolled_sized(size: SizeSpec, program: ShapeProgram, reading: concepts.Readi
     width = concepts.sheet_roll(reading)
     if width is None:
         return size
+    if any(part_group(p.name) == "tail" for p in program.parts) and size.explicit:  # partly unrolled: the sheet's
+        return SizeSpec(axis_scale=size.axis_scale, stated=f"{size.stated}: the sheet's length, built at its typical "
+                        f"roll")  # length is the roll's and the tail's together ('a 60 inch tape measure, partly
+        # unrolled' was read as an 8 mm roll)
     lo, hi = program_bounds(program)
     ext = np.asarray(hi) - np.asarray(lo)  # the roll lies along x
     typical_sheet = float(ext[0]) / width
@@ -583,6 +588,12 @@ def _whole_sized(text: str) -> tuple[str, float | None]:
     if m is None:
         return text, None
     return text[: m.start()] + text[m.end():], parse_size(m.group("size")).longest_m
+
+
+# a size or stiffness said not to be ('regular size not mini', 'the soft kind, not the stiff one'): not a modifier
+_NEGATED = re.compile(r"\b(?:not|never)\s+(?:too\s+|very\s+|so\s+|a\s+|an\s+|the\s+)?(?:mini|tiny|small|little|big|"
+                      r"large|huge|giant|jumbo|stiff|hard|firm|rigid|soft|squishy|long|short|thick|thin|flat)\b"
+                      r"(?:\s+(?:kind|one|type|version|size))?", re.IGNORECASE)
 
 
 _BORE_WORDS = frozenset({"pipe", "pipes", "pipework", "hose", "hoses", "tap", "faucet", "radiator"})
@@ -826,7 +837,7 @@ def design_from_text(text: str, size_hint_m: float | None = None) -> Design:
     modifiers and colours; an unknown noun takes a fallback by meaning, recorded in `concept` and `warnings`."""
     if not text or not text.strip():
         raise InputError("the description is empty")
-    asked = _task_clause_stripped(normalise_sizes(text))  # ('pls make a down jacket stuffed into its own pocket':
+    asked = _task_clause_stripped(normalise_sizes(_NEGATED.sub(" ", text)))  # ('pls make a down jacket stuffed into its own pocket':
     # the request's opening is not the goods)
     packed = _stuffed_in_sack(_purpose_stripped(asked))
     if packed is not None:

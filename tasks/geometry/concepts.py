@@ -956,6 +956,10 @@ def build(reading: Reading, text: str) -> tuple[ShapeProgram, ConceptMatch, list
     target = reading.donor or entry
     if params.get("state") == "crumpled" and target.plan == "garment" and not _HEAP.search(normalise(text)):
         params = {**params, "rumpled": True}  # 'a crumpled t-shirt' still shows its outline; 'in a heap' is a heap
+    if target.plan == "sheet" and "tail" not in params and goods_words.PART_UNROLLED.search(normalise(text)) \
+            and {**target.params, **reading.params, **params}.get("state") == "rolled":
+        params = {**params, "state": "rolled", "tail": goods_words.UNROLLED_TAIL}  # 'partly unrolled': the roll and its
+        # free end weigh the roll (the end made the longest side, and the whole was shrunk to the roll's size: 1.8 g)
     if "state" in params and target.plan is not None and (reading.donor_plan is None or reading.donor is not None):
         # the same object in another state: a 1.83 m yoga mat rolled up is a 0.61 m roll of the same mass
         own = {k: v for k, v in reading.params.items() if k != "state"}
