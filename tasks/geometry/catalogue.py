@@ -596,6 +596,17 @@ _NEGATED = re.compile(r"\b(?:not|never)\s+(?:too\s+|very\s+|so\s+|a\s+|an\s+|the
                       r"(?:\s+(?:kind|one|type|version|size))?", re.IGNORECASE)
 
 
+# 'the big grey kind', 'the soft puffy kind': which variety of the object is meant, not a size to scale it by (a
+# canvas mail sack 'the big grey kind' was scaled 1.4x over the typical mail sack); its colour words stay
+_THE_KIND = re.compile(r"\bthe\s+((?:[a-z]+\s+){0,2}?)(?:big|large|huge|giant|small|little|tiny|mini)\s+((?:[a-z]+\s+)?)"
+                       r"(?:kind|type|sort|variety|version)\b", re.IGNORECASE)
+
+
+def _kind_colours(m: re.Match[str]) -> str:
+    """The words of 'the big grey kind' but its size word ('grey')."""
+    return " " + " ".join(w for w in (m.group(1) + " " + m.group(2)).split()) + " "
+
+
 _BORE_WORDS = frozenset({"pipe", "pipes", "pipework", "hose", "hoses", "tap", "faucet", "radiator"})
 # an amount said by what it makes ('enough for one 12 inch pizza', 'enough to make two loaves'): the clause sizes
 # the thing made, not the object
@@ -837,7 +848,7 @@ def design_from_text(text: str, size_hint_m: float | None = None) -> Design:
     modifiers and colours; an unknown noun takes a fallback by meaning, recorded in `concept` and `warnings`."""
     if not text or not text.strip():
         raise InputError("the description is empty")
-    asked = _task_clause_stripped(normalise_sizes(_NEGATED.sub(" ", text)))  # ('pls make a down jacket stuffed into its own pocket':
+    asked = _task_clause_stripped(normalise_sizes(_THE_KIND.sub(_kind_colours, _NEGATED.sub(" ", text))))  # ('pls make a down jacket stuffed into its own pocket':
     # the request's opening is not the goods)
     packed = _stuffed_in_sack(_purpose_stripped(asked))
     if packed is not None:

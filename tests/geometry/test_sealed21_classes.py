@@ -33,3 +33,20 @@ def test_a_partly_unrolled_rolls_stated_length_is_its_sheets() -> None:
     whole = planned_mass("a sewing tape measure")
     assert 0.5 <= planned_mass("a sewing tape measure, 60 inch, partly unrolled") / whole <= 2.0
     assert 0.5 <= planned_mass("a sewing tape measure, partly unrolled") / whole <= 2.0
+
+
+@pytest.mark.parametrize(("text", "low", "high"), [
+    ("an empty canvas mail sack, the big grey kind", 0.5, 2.0),  # 0.14x: a 0.2 kg cotton sack, then 'big' on it
+    ("a rectangular yoga bolster, 66 x 30 x 15 cm", 1.35, 5.4),  # 0.33x: a foam bolster's density
+    ("a skein of worsted yarn", 0.1, 0.4),  # 0.4x: a 100 g ball
+])
+def test_sealed21_masses_within_2x(text: str, low: float, high: float) -> None:
+    assert low <= planned_mass(text) <= high
+
+
+def test_the_kind_said_with_a_size_word_is_the_variety_not_a_scale() -> None:
+    """'the big grey kind' names which mail sack; its size word scaled the typical one 1.4x, its colour stays."""
+    design = catalogue.design_from_text("a teddy bear, the big brown kind")
+    assert "big" not in design.modifiers
+    assert catalogue.design_from_text("a mail sack, the big blue kind").program.parts[0].color_rgb == \
+        catalogue.design_from_text("a blue mail sack").program.parts[0].color_rgb  # 'blue' is still its colour
