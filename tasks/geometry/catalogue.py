@@ -405,11 +405,10 @@ def _bed_sized(text: str) -> str:
 
     def named(m: re.Match[str]) -> str:
         word = re.sub(r"\s+", " ", m.group(1).lower())
-        loose = word in ("full", "single", "double", "king", "queen", "twin")
         said_size = m.group(0).lower() != m.group(1).lower()
         before_noun = re.match(r"\s+(?:[a-z]+\s+){0,2}(?:mattress|topper|duvet|comforter|quilt|sheet|blanket|bedspread)",
                                text[m.end():], re.I) is not None
-        if loose and word in ("full", "single", "double") and not (said_size or before_noun):
+        if word in ("full", "single", "double") and not (said_size or before_noun):
             return m.group(0)
         w, length = table[word]
         if max(w, length) > 100 * MAX_SIZE_M and not _FOLDED_OR_ROLLED.search(text):
@@ -848,7 +847,8 @@ def design_from_text(text: str, size_hint_m: float | None = None) -> Design:
     modifiers and colours; an unknown noun takes a fallback by meaning, recorded in `concept` and `warnings`."""
     if not text or not text.strip():
         raise InputError("the description is empty")
-    asked = _task_clause_stripped(normalise_sizes(_THE_KIND.sub(_kind_colours, _NEGATED.sub(" ", text))))  # ('pls make a down jacket stuffed into its own pocket':
+    unsized = _THE_KIND.sub(_kind_colours, _NEGATED.sub(" ", text))  # ('not mini', 'the big grey kind': no sizes)
+    asked = _task_clause_stripped(normalise_sizes(unsized))  # ('pls make a down jacket stuffed into its own pocket':
     # the request's opening is not the goods)
     packed = _stuffed_in_sack(_purpose_stripped(asked))
     if packed is not None:
@@ -916,11 +916,11 @@ def design_from_text(text: str, size_hint_m: float | None = None) -> Design:
         own_name = own_name.replace(match.noun, " ")
     mods, axis_scale = parse_modifiers(own_name)
     kept = _not_implied(mods, program, match.body_plan)
+    babys = match.noun is not None and any(w in match.noun.split() for w in ("baby", "infant", "newborn"))
     if match.category != "textile" or match.noun and any(w in match.noun for w in ("baby", "infant")):
         kept = [m for m in kept if m not in WEARER_WORDS]  # ('a baby sock' is a baby's size already)
-    if match.noun and any(w in match.noun.split() for w in ("baby", "infant", "newborn")):
-        kept = [m for m in kept if m not in ("tiny", "little", "small", "mini")]  # ('tiny baby booties': a baby's
-        # things are small by nature; 'tiny' shrank them to a third of their mass again)
+    if babys:  # ('tiny baby booties': a baby's things are small by nature; 'tiny' shrank them to a third again)
+        kept = [m for m in kept if m not in ("tiny", "little", "small", "mini")]
     if "little" in kept and (match.typical_size_m or 1.0) <= SMALL_BY_NATURE_M:
         kept = [m for m in kept if m != "little"]  # 'a little catnip mouse': a fond word for a small thing
     if concepts.KEYCHAIN_WORDS.search(text_n):  # 'a tiny plush bunny keychain': a keychain toy is small by nature

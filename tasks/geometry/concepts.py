@@ -1649,12 +1649,13 @@ def _top_relief(program: ShapeProgram, kind: str, centre: np.ndarray, half: np.n
     size = 0.4 * step
     out: list[Part] = []
     zs = centre[2] + np.linspace(half[2], -half[2], 24)
-    for i, (x, y) in enumerate(spots):
-        pts = np.stack([np.full_like(zs, centre[0] + x), np.full_like(zs, centre[1] + y), zs], axis=1)
-        inside = np.nonzero(program_sdf(pts, program) < 0)[0]
-        if inside.size == 0:
+    xy = np.asarray(spots, dtype=np.float64).reshape(-1, 2) + centre[:2]
+    columns = np.concatenate([np.repeat(xy, len(zs), axis=0), np.tile(zs, len(xy))[:, None]], axis=1)
+    inside = (program_sdf(columns, program) < 0).reshape(len(xy), len(zs))  # every spot's column in one pass
+    for i, (x, y) in enumerate(xy):
+        if not inside[i].any():
             continue
-        top = np.array([centre[0] + x, centre[1] + y, zs[inside[0]]])
+        top = np.array([x, y, zs[int(np.argmax(inside[i]))]])
         if kind == "spikes":
             h = min(1.4 * size, 0.9 * float(half[2]))
             part = cone(f"spike {i + 1}", 0.45 * size, 0.1 * size, h, tuple(top + [0, 0, 0.35 * h]), edge=0.05 * size,
@@ -1708,6 +1709,8 @@ def deflated(program: ShapeProgram, half: bool = False) -> ShapeProgram:
 
 
 FLAT_GORES = 6  # the gores a striped beach ball shows spread flat [-]
+GORE_SEGMENTS = ((0.24, 0.2), (0.44, 0.22), (0.64, 0.22), (0.84, 0.18))  # (centre, half length) of a gore's
+# pieces, / the disc's radius
 
 
 def _flat_gores(centre: np.ndarray, half: np.ndarray, colors: list[tuple[float, float, float]]) -> list[Part]:
@@ -1729,9 +1732,6 @@ def _flat_gores(centre: np.ndarray, half: np.ndarray, colors: list[tuple[float, 
     cap = ellipsoid("cap", (0.16 * r, 0.16 * r, 1.15 * h), (float(centre[0]), float(centre[1]), float(centre[2])),
                     blend=0.03 * r)
     return [*out, cap.model_copy(update={"color_rgb": (0.9, 0.9, 0.88)})]
-
-
-GORE_SEGMENTS = ((0.24, 0.2), (0.44, 0.22), (0.64, 0.22), (0.84, 0.18))  # (centre, half length) of a gore's pieces / the disc's radius
 
 
 def dentable(entry: LexiconEntry) -> bool:
