@@ -89,6 +89,10 @@ class SizeSpec(Model):
             for i, v in given:
                 ext[i] = v
         elif given:
+            if [i for i, _ in given] == [0, 1]:  # '9 x 18 in' of a solid object: the larger on its longer side
+                axes = sorted(int(i) for i in np.argsort(-ext, kind="stable")[:2])
+                hi_lo = sorted((v for _, v in given), reverse=True)
+                given = list(zip(sorted(axes, key=lambda i: -ext[i]), hi_lo))
             factors = [v / ext[i] for i, v in given]
             ext = ext * float(np.exp(np.mean(np.log(factors))))
             for i, v in given:
@@ -916,6 +920,7 @@ def design_from_text(text: str, size_hint_m: float | None = None) -> Design:
         own_name = own_name.replace(match.noun, " ")
     mods, axis_scale = parse_modifiers(own_name)
     kept = _not_implied(mods, program, match.body_plan)
+    kept = [m for m in kept if m not in (match.noun or "").split()]  # 'a giant foam #1 finger': its name's own word
     babys = match.noun is not None and any(w in match.noun.split() for w in ("baby", "infant", "newborn"))
     if match.category != "textile" or match.noun and any(w in match.noun for w in ("baby", "infant")):
         kept = [m for m in kept if m not in WEARER_WORDS]  # ('a baby sock' is a baby's size already)

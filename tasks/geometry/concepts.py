@@ -12,7 +12,7 @@ import numpy as np
 
 from contracts.concept import ConceptMatch, FallbackLevel
 from contracts.lexicon import MATERIALS_FILE, LexiconEntry, load_lexicon
-from contracts.shape import Part, ShapeProgram
+from contracts.shape import Part, RoundedBox, ShapeProgram
 from contracts.yaml_io import load_yaml
 from tasks.geometry import analogy as analogy_mod, fill_words, goods_words, grammar, phrase as phrase_mod, pouch_words, \
     spelling
@@ -487,6 +487,12 @@ def modifier_word(word: str) -> bool:
         or word in phrase_mod.STATE_WORDS or any(word in p for p in PATTERN_WORDS)
 
 
+_STYLE = re.compile(r"\b([a-z]+)[\s-]+style\s+([a-z]+)\b")
+# 'X (crammed) into its stuff sack': the sack, packed (a sleeping bag or a tent packed away)
+_PACKED_IN_SACK = re.compile(r"\b(?:in|into|inside)\s+(?:its|a|an|the|his|her|their)\s+(?:own\s+)?"
+                             r"(stuff sack|compression sack|compression bag)\b")
+
+
 def read_text(text: str, serving: bool = True) -> Reading:
     """The concept a description names, with its shape donor, colours and fallback level.
 
@@ -494,7 +500,11 @@ def read_text(text: str, serving: bool = True) -> Reading:
     outside it ('lying on its belly', 'rolled up') never become the object. A noun the lexicon does not know is
     explained by WordNet (tasks.geometry.analogy) before the fallbacks by body plan, category and material."""
     lex = load_lexicon()
-    t = _expand_diminutives(normalise(text))
+    t = _STYLE.sub(lambda m: f"{m.group(1)} {m.group(2)}" if f"{m.group(1)} {m.group(2)}" in noun_index()
+                   else m.group(0), _expand_diminutives(normalise(text)))  # 'a muppet-style puppet': a muppet puppet
+    packed = _PACKED_IN_SACK.search(t)
+    if packed is not None and packed.start() > 0:  # 'a sleeping bag crammed into its stuff sack': what is seen is
+        return read_text(packed.group(1), serving)  # the packed sack (its entry's mass holds what is packed in it)
     contents = pouch_words.vacuum_contents(t)
     if contents is not None and contents != t:  # 'vacuum sealed pork chop': the chop, on its sealed film
         inner = read_text(contents)
@@ -1419,16 +1429,20 @@ def apply_pattern(program: ShapeProgram, text: str) -> tuple[ShapeProgram, dict[
     kind = "spot" if named[0] in _SPOTS else "stripe" if named[0] in _STRIPES else None
     main = program.parts[0]
     tf = main.transform
-    if kind is None or main.primitive.kind not in ("ellipsoid", "superellipsoid") or any(tf.rotation_deg) \
-            or tuple(tf.scale) != (1.0, 1.0, 1.0):
-        return program, {}, f"pattern '{named[0]}' is not drawn on this shape: colours apply per part"
     lex = load_lexicon()
     colour_hits = [h for h in _find(text, lex.colors)]
     word = next((c for _, end, c in colour_hits if re.match(r"\s*(?:polka )?(spots?|dots?|stripes?)\b", text[end:])),
                 None)
-    if word is None:
-        word = "white" if float(np.mean(main.color_rgb)) < 0.3 else "dark brown"
+    if word is None:  # a light stripe on a dark or a saturated body (a turquoise beach towel's white), else a dark one
+        word = "white" if float(np.mean(main.color_rgb)) < STRIPE_LIGHT_BODY else "dark brown"
     rgb = lex.colors[word]
+    if kind == "stripe" and tuple(tf.scale) == (1.0, 1.0, 1.0) and (bands := _sheet_stripes(list(program.parts), rgb)):
+        if len(program.parts) + len(bands) > 64:
+            return program, {}, f"pattern '{named[0]}' is not drawn: the shape has too many parts"
+        return program.model_copy(update={"parts": list(program.parts) + bands}), {kind: word}, None
+    if kind is None or main.primitive.kind not in ("ellipsoid", "superellipsoid") or any(tf.rotation_deg) \
+            or tuple(tf.scale) != (1.0, 1.0, 1.0):
+        return program, {}, f"pattern '{named[0]}' is not drawn on this shape: colours apply per part"
     r = np.asarray(main.primitive.radii_m, dtype=np.float64)
     c = np.asarray(tf.translation_m, dtype=np.float64)
     extra: list[Part] = []
@@ -1449,6 +1463,52 @@ def apply_pattern(program: ShapeProgram, text: str) -> tuple[ShapeProgram, dict[
     if len(parts) > 64:
         return program, {}, f"pattern '{named[0]}' is not drawn: the shape has too many parts"
     return program.model_copy(update={"parts": parts}), {kind: word}, None
+
+
+STRIPE_LIGHT_BODY = 0.7  # a body whose mean linear RGB is under this takes white stripes, else dark brown [-]
+SHEET_STRIPES = 5  # stripes across a rolled or flat sheet (a beach towel's) [-]
+STRIPE_SHARE = 0.09  # each stripe's width / the sheet's length along them [-]
+FLAT_STACK = 0.5  # a flat sheet or folded stack is at most this thick / its smaller side [-]
+
+
+def _sheet_stripes(parts: list[Part], rgb: tuple) -> list[Part]:
+    """Stripes on a sheet's main part: bands round a roll lying along x (a rolled striped beach towel: the stripes
+    that ran along the towel's length are rings round the roll), or bands across a flat sheet's top; [] for any
+    other main part."""
+    main = parts[0]
+    tf, prim = main.transform, main.primitive
+    c = np.asarray(tf.translation_m, dtype=np.float64)
+    xs = (np.arange(SHEET_STRIPES) - (SHEET_STRIPES - 1) / 2) / SHEET_STRIPES
+    if prim.kind == "cylinder" and np.allclose(tf.rotation_deg, (0.0, 90.0, 0.0)):
+        r, h = prim.radius_m, prim.height_m
+        grow = max(0.02 * r, 5e-4)
+        return [Part(name=f"stripe {i + 1}", primitive={"kind": "cylinder", "radius_m": r + grow,
+                                                        "height_m": STRIPE_SHARE * h},
+                     transform={"translation_m": (float(c[0] + x * h), float(c[1]), float(c[2])),
+                                "rotation_deg": (0.0, 90.0, 0.0)}, color_rgb=rgb) for i, x in enumerate(xs)]
+    slabs = [(np.asarray(q.transform.translation_m), np.asarray(q.primitive.size_m)) for q in parts
+             if isinstance(q.primitive, RoundedBox) and q.operation == "union" and not any(q.transform.rotation_deg)
+             and tuple(q.transform.scale) == (1.0, 1.0, 1.0)]
+    if prim.kind != "rounded_box" or not slabs:
+        return []
+    lo = np.min([at - size / 2 for at, size in slabs], axis=0)
+    hi = np.max([at + size / 2 for at, size in slabs], axis=0)
+    (sx, sy, sz), mid = hi - lo, (hi + lo) / 2
+    if sz > FLAT_STACK * min(sx, sy):
+        return []
+    # bands across a flat sheet's or a folded stack's longer side, over its top and sides
+    lift = max(min(0.003 * max(sx, sy), 0.1 * sz), 5e-4)
+    k = 0 if sx >= sy else 1
+    size = np.array([sx, sy, sz]) + 2 * lift
+    size[k] = STRIPE_SHARE * (sx, sy)[k]
+    out = []
+    for i, x in enumerate(xs):
+        at = mid.copy()
+        at[k] += x * (sx, sy)[k]
+        out.append(Part(name=f"stripe {i + 1}", primitive={"kind": "rounded_box", "size_m": tuple(float(v) for v in size),
+                                                           "edge_radius_m": prim.edge_radius_m},
+                        transform={"translation_m": tuple(float(v) for v in at)}, color_rgb=rgb))
+    return out
 
 
 def _patch(name: str, at: np.ndarray, normal: np.ndarray, radius: float, thickness: float, rgb: tuple) -> Part:
@@ -1500,6 +1560,8 @@ def apply_colors(program: ShapeProgram, text: str) -> tuple[ShapeProgram, dict[s
         after = re.findall(r"[a-z]+", text[end:])[:3]
         if after and (after[0] in _SPOTS + _STRIPES or after[:2] == ["polka", "dots"]):
             continue  # 'black spots': the pattern's colour (apply_pattern)
+        if word in group_words and (not after or after[0] not in group_words) and len(groups) > 1:
+            continue  # 'a hot dog with mustard': the word names a part, drawn in its own colour already
         bound = next((group_words[w] for w in after if w in group_words), None)
         if bound is not None and bound not in ("body", part_group(program.parts[0].name)):
             applied.setdefault(bound, word)

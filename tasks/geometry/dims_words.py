@@ -28,6 +28,7 @@ _MEASURE = re.compile(r"(?:\b(length|thickness|diameter|width|" + _DIAMETERS + r
                       r"feet|yd|yards?)(?![a-z])(?:\s*(?:in\s+)?(long|length|thick|thickness|wide|width|diameter|dia|"
                       r"across|round|gauge|" + _DIAMETERS + r")(?![a-z]))?", re.I)
 THIN_PLANS = frozenset({"sheet", "strap"})
+HANK_RADIUS_M = 0.3  # a long rope coiled by hand: loops about an arm span round (0.6 m across) [m]
 CROSS_SECTION_MAX = 0.06  # a bare size under this share of the good's typical size measures its cross-section [-]
 CROSS_WORDS = {"thick": "thickness", "thickness": "thickness", "diameter": "diameter", "dia": "diameter",
                "gauge": "diameter", "wide": "width", "width": "width", "across": "diameter", "round": "diameter",
@@ -151,6 +152,10 @@ def bind(text: str, entry: LexiconEntry | None, states: list[str]) -> Bound | No
                 and _unit_longest("strap", params) * length > MAX_SIZE_M:  # a long coil wound as tight as its cord
             tight = np.sqrt(0.55 * length / (1.45 * np.pi * max(width, 1e-6)))  # allows (r1 - r0 = 0.55 r1 = turns x
             params["turns"] = float(np.clip(max(tight, float(p0.turns)), 1.0, 8.0))  # type: ignore[attr-defined]  # width)
+            if tight > 8.0:  # too long for a flat spiral the mesher sees: loops laid one on another (a rope's hank)
+                params["hank"] = True
+                params["turns"] = float(np.clip(length / (2 * np.pi * HANK_RADIUS_M), 2.0, 60.0))
+                bound.notes.append(f"coiled in {params['turns']:.0f} loops of {2 * HANK_RADIUS_M:g} m")
         bound.longest_m = _unit_longest("strap", params) * length
         bound.mass_factor = (length / length0) * (width * thickness) / (w0 * t0 * length0 ** 2)
         if bore0 > 0:  # a tube weighs its wall: (OD^2 - ID^2) against the entry's own

@@ -201,7 +201,7 @@ def apply(target: LexiconEntry, portion: str | None, text: str, params: dict, si
             fill = fill_words.Fill("water", "its liquid", float(target.params.get("fill", 0.6)),
                                    float(rec["bulk_density_kg_per_m3"]), rec["color"], rec["source"])
     if fill is not None and plan in FILLABLE_PLANS and "fill" in fields \
-            and not any(" of " in f" {n} " for n in target.nouns):  # 'a bag of sugar' is its own entry
+            and not _named_with_fill(target, match):  # 'a bag of sugar' is its own entry
         out.params["fill"] = float(np.clip(fill.fraction, 0.05, 1.0))
         cap = bag_capacity_m3(plan, {**target.params, **out.params}, out.size_m)
         volume = stated_volume_m3(text)
@@ -225,11 +225,18 @@ def apply(target: LexiconEntry, portion: str | None, text: str, params: dict, si
                   f"{fill.bulk_density_kg_per_m3:g} kg/m^3 ({fill.source}) = {fill_kg * 1e3:.3g} g, plus the empty "
                   f"{target.key.replace('_', ' ')} {shell * 1e3:.3g} g")
         out.match = out.match.model_copy(update={"stated_mass_kg": shell + fill_kg, "stated_mass_source": source})
-    elif (fill is None or any(" of " in f" {n} " for n in target.nouns)) and plan in FILLABLE_PLANS \
+    elif (fill is None or _named_with_fill(target, match)) and plan in FILLABLE_PLANS \
             and "fill" in fields and target.empty_mass_kg is not None \
             and (fullness := fill_words.stated_fullness(text)) is not None:
         _part_full(out, target, *fullness)
     return out
+
+
+def _named_with_fill(target: LexiconEntry, match: ConceptMatch) -> bool:
+    """True when the noun the request matched names the bag with its fill ('a bag of sugar' is its own entry, its
+    mass the entry's); 'a paper bag of popcorn' matched 'paper bag', so its fill is read."""
+    noun = match.noun or ""
+    return " of " in f" {noun} " or (not noun and any(" of " in f" {n} " for n in target.nouns))
 
 
 def _part_full(out: GoodsChange, target: LexiconEntry, share: float, words: str) -> None:

@@ -150,6 +150,11 @@ def _boundary(doc: Any, i: int, known: Callable[[str], bool] = lambda w: False) 
     return False
 
 
+
+def _names_with_next(doc, i: int, is_known) -> bool:  # noqa: ANN001
+    """True when a placeholder word starts a known two-word noun with the next token ('a stuff sack')."""
+    return i + 1 < len(doc) and is_known(f"{doc[i].text.lower()} {doc[i + 1].text.lower()}")
+
 def parse(text: str, known: Callable[[str], bool] | None = None,
           modifier: Callable[[str], bool] | None = None) -> Phrase:
     """The object's noun phrase in a request and the modifiers bound to it.
@@ -180,7 +185,7 @@ def parse(text: str, known: Callable[[str], bool] | None = None,
             continue
         if seen_noun and _boundary(doc, i, is_known) and not (tok.tag_ in ("VB", "VBP", "VBZ") and is_known(word)):
             break  # (a known noun tagged a verb is still the phrase: 'a silicone loaf pan')
-        if word in PLACEHOLDER_NOUNS:
+        if word in PLACEHOLDER_NOUNS and not _names_with_next(doc, i, is_known):
             span.append(tok)
             seen_noun = True
             continue
@@ -191,8 +196,10 @@ def parse(text: str, known: Callable[[str], bool] | None = None,
             seen_noun = True
     if not span:
         return phrase
-    if any(t.text.lower() in PLACEHOLDER_NOUNS for t in span):
-        span = span[: next(k for k, t in enumerate(span) if t.text.lower() in PLACEHOLDER_NOUNS) + 1]
+    held = [k for k, t in enumerate(span) if t.text.lower() in PLACEHOLDER_NOUNS
+            and not _names_with_next(doc, t.i, is_known)]
+    if held:
+        span = span[: held[0] + 1]
     heads = [k for k, t in enumerate(span) if is_known(t.text.lower()) and t.pos_ != "ADJ"] or \
         [k for k, t in enumerate(span) if _is_noun(t)] or [len(span) - 1]
     k = heads[-1]

@@ -33,7 +33,7 @@ def test_a_bath_pouf_weighs_its_netting() -> None:
 
 
 @pytest.mark.parametrize("text,entry", [("a fabric pencil case with a zip", "zip_pouch"),
-                                        ("a zip-up toiletry bag", "zip_pouch"), ("a small coin purse", "zip_pouch"),
+                                        ("a zip-up toiletry bag", "makeup_bag"), ("a small coin purse", "zip_pouch"),
                                         ("a padded laptop sleeve", "laptop_sleeve")])
 def test_a_zipped_case_shows_its_zip(text: str, entry: str) -> None:
     got, groups = _groups(text)

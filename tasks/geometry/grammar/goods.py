@@ -25,6 +25,7 @@ from tasks.geometry.grammar.parts import (
     cylinder,
     ellipsoid,
     limb,
+    part_group,
     rotated_parts,
     scaled,
     superellipsoid,
@@ -578,10 +579,11 @@ class PouchParams(Model):
     fill: float = Field(default=0.6, ge=0.0, le=1.0, description="how full: 0 an empty, flat bag; 1 a round pillow [-]")
     seam: float = Field(default=0.04, ge=0.0, le=0.15, description="width of the sealed or sewn border / length [-]")
     squareness: float = Field(default=0.35, gt=0.1, le=1.0, description="1 an oval pouch, small a square one [-]")
-    port: Literal["none", "iv", "cap", "spout", "tied", "straw"] = Field(
+    port: Literal["none", "iv", "cap", "spout", "tied", "straw", "hose"] = Field(
         default="none", description="iv: two ports at the front and a hanger hole; cap: a screw neck; spout: one tube; "
         "tied: a sack's neck gathered and tied, its cloth flaring past the tie; straw: a drinking straw pushed in "
-        "through the top seam, standing out past it at an angle")
+        "through the top seam, standing out past it at an angle; hose: a hydration bladder's screw cap on its top "
+        "and a drinking tube out of its bottom end, lying in a loose curve, its bite valve at the end")
     channels: int = Field(default=0, ge=0, le=8, description="stitched channels across a quilted pad (an ankle "
                           "weight) [-]")
     strap: float = Field(default=0.0, ge=0.0, le=1.5, description="a flat strap from the pad's +x end (velcro, a "
@@ -591,6 +593,8 @@ class PouchParams(Model):
     piece_shape: Literal["ball", "cylinder", "block"] = Field(default="ball", description="the pieces' form")
     label: bool = Field(default=False, description="a printed label on its top (a sack of rice, a bag of dog food): "
                         "what tells a pack of goods from a pillow")
+    handle: bool = Field(default=False, description="a webbing carry handle across the top, sewn at both ends (a "
+                         "stage sandbag)")
     crimp: bool = Field(default=False, description="a pillow pack (a bag of crisps, frozen peas, rice, pet food, "
                         "compost): no border seam, its two short ends heat-sealed into flat fins with crimp ridges "
                         "across them, the filled body gathering into them")
@@ -629,6 +633,14 @@ def pouch(p: PouchParams) -> list[Part]:
         parts.append(cone("ruffle", 0.06, 0.14, 0.14, (0.71, 0, h / 2), edge=0.015, rot=(0, 90, 0), blend=0.03))
     elif p.port == "straw":  # through the seam near one corner, sticking out a third of the pouch's length
         parts.append(limb("straw", (0.36, 0.22 * w, h / 2), (0.8, 0.3 * w, h / 2 + 0.08), 0.022, blend=0.006))
+    elif p.port == "hose":
+        parts.append(cylinder("cap", 0.09, 0.05, (0.25, 0, h + 0.02), edge=0.01, blend=0.01))
+        r = HOSE_RADIUS
+        pts = [np.array([-0.5 - 0.35 * np.sin(0.5 * np.pi * u), 0.45 * w * (1 - np.cos(np.pi * u)) - 0.1 * w, r])
+               for u in np.linspace(0.0, 1.0, 7)]
+        pts[0] = np.array([-0.5 + s + 0.06, -0.1 * w, r])  # (from inside the body: one piece)
+        parts += [limb(f"hose {k + 1}", pts[k], pts[k + 1], r, blend=0.3 * r) for k in range(len(pts) - 1)]
+        parts.append(limb("bite valve", pts[-1], pts[-1] + np.array([0.06, 0.02, 0.0]), 1.5 * r, blend=0.3 * r))
     elif p.port == "spout":
         parts.append(limb("spout", (0.42, 0, h / 2), (0.58, 0, h / 2), 0.035, blend=0.02))
         parts.append(cylinder("cap", 0.05, 0.05, (0.6, 0, h / 2), edge=0.01, rot=(0, 90, 0), blend=0.005))
@@ -636,6 +648,12 @@ def pouch(p: PouchParams) -> list[Part]:
         x = -0.5 + s + (1 - 2 * s) * (i + 1) / (p.channels + 1)
         parts.append(_op(scaled(cylinder(f"stitch {i + 1}", 0.035, w * 1.2, (x, 0, h), rot=(90, 0, 0)),
                                  (1, 1, 1)), "subtract", 0.02))
+    if p.handle:  # a flat webbing loop arching over the top along the length, its ends sewn down
+        hw = 0.16 * w
+        R = (h + 0.02) / 2  # the arch's top 0.08 over the body, its lower half hidden inside it
+        parts.append(torus("handle", R, 0.035, (0, 0, h + 0.08 - R), rot=(90, 0, 0)))
+        for x in (-R, R):
+            parts.append(box("handle tab", (0.09, hw, MIN_LAYER), (x, 0, h * 0.98), edge=0.4 * MIN_LAYER, blend=0.01))
     if max(p.piece) > 0:
         parts += bagged_pieces(p, h)
     elif p.label:
@@ -650,6 +668,7 @@ def pouch(p: PouchParams) -> list[Part]:
     return parts
 
 
+HOSE_RADIUS = 0.02  # a hydration bladder's drinking tube, / the bladder's length (drawn ~9 mm of 45 cm) [-]
 CRIMP_FIN = 0.09  # a pillow pack's sealed end fin / its length [-]
 CRIMP_RIDGES = 5  # crimp ridges across each fin [-]
 
@@ -1808,15 +1827,20 @@ class StrapParams(Model):
     """A long flat strip or cord: resistance band, strap, belt, ribbon, tie, hose, cable, skipping rope; straight,
     lying in a loose loop, or coiled. Length 1 is the strip's full length (a closed band's circumference)."""
 
-    state: Literal["straight", "loop", "rolled"] = Field(default="straight", description="straight; loop (lying in "
-                                                          "a loose loop); rolled (coiled)")
+    state: Literal["straight", "loop", "rolled", "wavy"] = Field(
+        default="straight", description="straight; loop (lying in a loose loop); rolled (coiled); wavy (an open "
+        "length dropped on the table in loose S-bends: a feather boa, a garland)")
+    fluff: bool = Field(default=False, description="a fluffy cord (a feather boa): clumps of fluff at uneven tilts "
+                        "all along it, as thick as the cord")
+    hank: bool = Field(default=False, description="rolled: a long rope coiled in `turns` loops laid one on another "
+                       "into a thick ring (a climbing rope's coil), not a flat spiral")
     closed: bool = Field(default=False, description="a closed band (a loop band): laid straight it is doubled")
     width: float = Field(default=0.012, gt=0.0, le=0.3, description="strip width / length [-]")
     thickness: float = Field(default=0.002, gt=0.0, le=0.1, description="strip thickness / length [-]")
     round: bool = Field(default=False, description="a round cord or hose rather than a flat strip")
     bore: float = Field(default=0.0, ge=0.0, lt=1.0, description="a tube's inner over outer diameter (drawn solid; "
                         "its mass is the wall's: tasks.geometry.dims_words) [-]")
-    turns: float = Field(default=3.0, ge=1.0, le=8.0, description="turns of a coil [-]")
+    turns: float = Field(default=3.0, ge=1.0, le=60.0, description="turns of a coil (a flat spiral draws at most 8) [-]")
     ends: Literal["none", "handles", "buckle", "ring", "hose", "hooks"] = Field(
         default="none", description="what the ends carry; hose: an inflatable cuff's (a blood pressure cuff): its "
         "rubber tube and plug out of one face, a hook-and-loop patch; hooks: a J-hook at each end (a bungee cord)")
@@ -1844,21 +1868,32 @@ def strap(p: StrapParams) -> list[Part]:
         z = t / 2 if not p.round else w / 2
         pts = [np.array([x, y, z]) for x, y in xy]
         parts = _flat_chain("body", pts, w / 2, t, blend=0.3 * w)
+    elif p.state == "rolled" and p.hank:
+        parts = _hank(p)
     elif p.state == "rolled":  # a flat spiral from radius r0 = 0.45 r1 out to r1, its length 1
-        n = int(min(40, 10 * p.turns))
-        r1 = 1.0 / (np.pi * p.turns * 1.45)
+        turns = min(p.turns, 8.0)
+        n = int(min(40, 10 * turns))
+        r1 = 1.0 / (np.pi * turns * 1.45)
         r0 = 0.45 * r1
         s_ = np.linspace(0, 1, n + 1)
-        ang = 2 * np.pi * p.turns * s_
+        ang = 2 * np.pi * turns * s_
         rad = r0 + (r1 - r0) * s_
         xy = np.stack([rad * np.cos(ang), rad * np.sin(ang)], axis=1)
         extent = 2 * r1
         w, t = _strip_dims(p, extent)
-        w = min(w, 0.9 * (r1 - r0) / p.turns) if p.turns > 1.5 else w
+        w = min(w, 0.9 * (r1 - r0) / turns) if turns > 1.5 else w
         t = min(t, w) if p.round else t
         z = t / 2 if not p.round else w / 2
         pts = [np.array([x, y, z]) for x, y in xy]
         parts = _flat_chain("body", pts, w / 2, t, blend=0.2 * w)
+    elif p.state == "wavy":  # an open length in loose S-bends: 1.5 waves, their amplitude a tenth of the length
+        u = np.linspace(0.0, 1.0, WAVY_POINTS)
+        xy = np.stack([u, WAVY_AMPLITUDE * np.sin(3 * np.pi * u) * (0.8 + 0.4 * u)], axis=1)
+        xy *= 1.0 / np.sum(np.linalg.norm(np.diff(xy, axis=0), axis=1))
+        xy -= xy.mean(axis=0)
+        w, t = _strip_dims(p, float(np.ptp(xy[:, 0])))
+        z = t / 2 if not p.round else w / 2
+        parts = _flat_chain("body", [np.array([x, y, z]) for x, y in xy], w / 2, t, blend=0.3 * w)
     else:
         length = 0.5 if p.closed else 1.0
         w, t = _strip_dims(p, length)
@@ -1889,7 +1924,57 @@ def strap(p: StrapParams) -> list[Part]:
             parts.append(cylinder("plug", 1.8 * r, 0.05, tuple(tip), rot=(0, 90, 0), edge=0.4 * r, blend=0.005))
             parts.append(box("fastener patch", (0.3, 0.8 * w, 0.35 * t), (0.3, 0, t * 1.05), edge=0.15 * t,
                              blend=0.004))
+    if p.fluff:
+        parts += _fluff(parts)
     return parts
+
+
+HANK_PACKING = 0.7  # the cord's share of a coiled hank's ring section [-]
+HANK_STRANDS = 14  # loops drawn over the hank's surface [-]
+
+
+def _hank(p: StrapParams) -> list[Part]:
+    """A rope of length 1 coiled in `turns` loops stacked into one ring lying on the ground: the ring's section holds
+    the cord's volume at HANK_PACKING; single loops, a little off round and tilted, are drawn over it."""
+    R = 1.0 / (2 * np.pi * p.turns)
+    d = max(p.width, 1e-4)
+    rb = max(float(np.sqrt(d * d / (4 * HANK_PACKING * 2 * np.pi * R))), 0.6 * d)
+    parts = [torus("body", R, rb, (0, 0, rb))]
+    r = max(0.5 * d, 0.18 * rb)
+    for i in range(HANK_STRANDS):  # loops on the ring's top and sides, each turned a little about x and y
+        a = 2 * np.pi * i / HANK_STRANDS
+        lift = rb * np.sin(a * 3.0)
+        spread = rb * np.cos(a * 3.0) * 0.8
+        tilt = (4.0 * np.sin(1.7 * i), 4.0 * np.cos(2.3 * i), 0.0)
+        parts.append(torus(f"loop {i + 1}", R + spread, r, (0.3 * rb * np.cos(a), 0.3 * rb * np.sin(a),
+                                                          rb + 0.8 * lift), rot=tilt))
+    return parts
+
+
+WAVY_POINTS = 19  # a wavy length's polyline points [-]
+WAVY_AMPLITUDE = 0.1  # its S-bends' amplitude / its length [-]
+FLUFF_CLUMPS = 36  # fluff clumps along a fluffy cord (a program holds at most 64 parts) [-]
+
+
+def _fluff(cord: list[Part]) -> list[Part]:
+    """Clumps of fluff along a cord's body segments: flattened ellipsoids as wide as the cord, each at its own tilt
+    and a little off the cord's line (deterministic), so the outline is ragged, not a smooth tube."""
+    body = [q for q in cord if part_group(q.name) == "body"]
+    if len(body) < 2 or body[0].primitive.kind != "capsule":
+        return []
+    r = float(body[0].primitive.radius_m)
+    centres = np.array([q.transform.translation_m for q in body], dtype=np.float64)
+    seg = np.linalg.norm(np.diff(centres, axis=0), axis=1)
+    s = np.concatenate([[0.0], np.cumsum(seg)])
+    rng = np.random.default_rng(5)
+    out = []
+    for i, at in enumerate(np.linspace(0.0, s[-1], min(FLUFF_CLUMPS, 64 - len(cord)))):
+        c = np.array([np.interp(at, s, centres[:, k]) for k in range(3)])
+        off = rng.normal(0.0, 0.25 * r, 3)
+        tilt = rng.uniform(-60.0, 60.0, 3)
+        out.append(ellipsoid(f"fluff {i + 1}", (1.5 * r, 1.15 * r, 0.9 * r), c + off, rot=tuple(tilt),
+                             blend=0.4 * r))
+    return out
 
 
 HOOK_SIZE = 0.065  # a bungee cord's J-hook: shank length, / the cord's length [-]

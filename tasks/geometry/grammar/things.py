@@ -91,9 +91,12 @@ class BallParams(Model):
                        "meridians (a medicine ball's or a volleyball's stitched panels) [-]")
     face: bool = Field(default=False, description="a printed smiley face (two eyes and a smile) on its front (+x), "
                        "tilted up")
+    bands: int = Field(default=0, ge=0, le=24, description="rubber bands wound round it, each a raised great circle "
+                       "at its own tilt ('band a' ... 'band f' take their own colours: a rubber band ball) [-]")
 
 
 BALL_SPINDLE_POINTS = 17
+BAND_RADIUS = 0.022  # a wound rubber band's raised round section / the ball's diameter [-]
 
 
 def ball_radius(p: BallParams, t: float) -> float:
@@ -129,6 +132,9 @@ def ball(p: BallParams) -> list[Part]:
                                rot=(0, 0, 180.0 * i / (p.gores // 2))))
     if p.face:
         parts += smiley((0.0, 0.0, rz), (0.5 * p.aspect, 0.5, rz))
+    for i, d in enumerate(sphere_directions(p.bands, seed=1.1) if p.bands else ()):
+        parts.append(scaled(torus(f"band {'abcdef'[i % 6]} {i + 1}", 0.5, BAND_RADIUS, (0, 0, rz), rot=_euler_z_to(d)),
+                            (1.0, 1.0, 1.0)))
     if p.patches:
         for i, d in enumerate(sphere_directions(p.patches, seed=0.4)):
             n = d / np.linalg.norm(d)
