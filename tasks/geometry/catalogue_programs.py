@@ -1,5 +1,6 @@
-"""The catalogue's hand-written shape programs (tasks/geometry/catalogue.yaml), read once: the entries the offline
-Designer (tasks/geometry/catalogue.py) and the lexicon's concepts (tasks/geometry/concepts.py) both build from."""
+"""The catalogue's hand-written shape programs (tasks/geometry/catalogue.yaml and shapes/*.yaml), read once: the
+entries the offline Designer (tasks/geometry/catalogue.py) and the lexicon's concepts (tasks/geometry/concepts.py)
+both build from."""
 
 from __future__ import annotations
 
@@ -12,12 +13,21 @@ from contracts.yaml_io import load_yaml
 from contracts.shape import ShapeProgram
 
 CATALOGUE_FILE = Path(__file__).with_name("catalogue.yaml")
+SHAPES_DIR = Path(__file__).with_name("shapes")  # more hand-written entries, one file per batch, same units
 
 
 @functools.lru_cache(maxsize=1)
 def catalogue_yaml() -> dict[str, Any]:
-    """catalogue.yaml as read (entries, palette, length unit)."""
-    return load_yaml(CATALOGUE_FILE.read_text(encoding="utf-8"))
+    """catalogue.yaml as read (entries, palette, length unit), with the entries of every shapes/*.yaml merged in;
+    an entry named twice is an error."""
+    raw = load_yaml(CATALOGUE_FILE.read_text(encoding="utf-8"))
+    for path in sorted(SHAPES_DIR.glob("*.yaml")):
+        more = load_yaml(path.read_text(encoding="utf-8"))["entries"]
+        twice = sorted(set(more) & set(raw["entries"]))
+        if twice:
+            raise ValueError(f"{path.name}: catalogue entries {twice} are defined twice")
+        raw["entries"].update(more)
+    return raw
 
 
 def catalogue_program(name: str) -> ShapeProgram:
