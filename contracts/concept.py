@@ -61,6 +61,12 @@ class ConceptMatch(Model):
                                              "gauge pressure from the lexicon; L0 records it with a shell, L2 adds "
                                              "the gas's stiffness to the wall (absent from the dump when None) [Pa]")
     inflation_source: str | None = Field(default=None, description="where inflation_gauge_pa comes from")
+    youngs_modulus_range_pa: tuple[float, float] | None = Field(
+        default=None, description="the rubber's Young's modulus band from the lexicon's Shore A hardness (Gent's "
+        "relation); L2 tests the material against it when its material is the concept's (absent from the dump when "
+        "None) [Pa]")
+    youngs_modulus_source: str | None = Field(default=None, description="the hardness and its source the band comes "
+                                              "from")
     colors: dict[str, str] = Field(default_factory=dict, description="part name -> colour word applied from the "
                                    "text")
     analogy: list[str] = Field(default_factory=list, description="how an unknown noun was understood, step by step "
@@ -76,11 +82,13 @@ class ConceptMatch(Model):
 
     @model_serializer(mode="wrap")
     def _omit_absent_keys(self, handler: SerializerFunctionWrapHandler) -> Any:
-        """The inflation keys and the rule's drop height are left out of the dump when None (every concept but a
-        pressurised ball, a rule ball), so records and cache keys from before them are unchanged."""
+        """The inflation keys, the rule's drop height and the hardness band are left out of the dump when None (every
+        concept but a pressurised ball, a rule ball, a rubber of published hardness), so records and cache keys from
+        before them are unchanged."""
         out = handler(self)
         if isinstance(out, dict):
-            for key in ("inflation_gauge_pa", "inflation_source", "restitution_drop_m"):
+            for key in ("inflation_gauge_pa", "inflation_source", "restitution_drop_m", "youngs_modulus_range_pa",
+                        "youngs_modulus_source"):
                 if out.get(key, 0.0) is None:
                     out.pop(key)
         return out

@@ -69,6 +69,10 @@ class LexiconEntry(Model):
                                              "(tasks.realworld.inflation) [Pa]")
     inflation_source: str | None = Field(default=None, min_length=8, description="where inflation_gauge_pa comes "
                                          "from (a rule, or what is commonly cited, and how it was converted)")
+    hardness_shore_a: tuple[float, float] | None = Field(default=None, description="the Shore A hardness range of "
+                                                         "its rubber where a rule or maker publishes it; L2's "
+                                                         "modulus band for the rubber is Gent's E at its ends [-]")
+    hardness_source: str | None = Field(default=None, min_length=8, description="where hardness_shore_a comes from")
     posed_by: str | None = Field(default=None, description="a body-plan entry that shows this (hand-written) object "
                                  "sitting or lying when asked ('a dog lying down'): its shape is used then")
 
@@ -86,6 +90,11 @@ class LexiconEntry(Model):
             raise ValueError(f"{self.key}: give restitution with its rule's drop height (restitution_drop_m) together")
         if (self.inflation_gauge_pa is None) != (self.inflation_source is None):
             raise ValueError(f"{self.key}: give inflation_gauge_pa and inflation_source together")
+        if (self.hardness_shore_a is None) != (self.hardness_source is None):
+            raise ValueError(f"{self.key}: give hardness_shore_a and hardness_source together")
+        if self.hardness_shore_a is not None and not (10.0 <= self.hardness_shore_a[0] <= self.hardness_shore_a[1]
+                                                      <= 90.0):
+            raise ValueError(f"{self.key}: hardness_shore_a must be a low <= high range within Shore A 10-90")
         if self.inflation_gauge_pa is not None and not (self.hollow and self.wall_m is not None):
             raise ValueError(f"{self.key}: an inflation pressure needs a hollow object with a wall (wall_m)")
         return self

@@ -95,3 +95,15 @@ class Material(Model):
         if self.viscosity_pa_s <= 0.0:
             return math.inf
         return VISCOUS_DT_FACTOR * density_kg_per_m3 * dx_m * dx_m / self.viscosity_pa_s
+
+
+SHORE_A_RANGE = (10.0, 90.0)  # where Gent's relation is used (it diverges towards Shore A 100) [-]
+
+
+def shore_a_youngs_modulus_pa(shore_a: float) -> float:
+    """Young's modulus of a rubber from its Shore A hardness, Gent's relation (A. N. Gent, Trans. Inst. Rubber Ind.
+    34, 46-57, 1958; ASTM D2240's indenter): E = 0.0981 (56 + 7.62336 S) / (0.137505 (254 - 2.54 S)) MPa [Pa]."""
+    if not SHORE_A_RANGE[0] <= shore_a <= SHORE_A_RANGE[1]:
+        raise ValueError(f"Shore A {shore_a:g} is outside {SHORE_A_RANGE} where Gent's relation is used")
+    return 1.0e6 * 0.0981 * (56.0 + 7.62336 * shore_a) / (0.137505 * (254.0 - 2.54 * shore_a))
+

@@ -273,6 +273,11 @@ def targets_from_intent(
         lo, hi = _explicit_band(metric, value, vocab)
         bands[metric] = (lo, hi, f"request:{metric}={value:g}")
     priors.update(stated_priors)
+    hard = concept.youngs_modulus_range_pa if concept is not None and concept.default_material == name else None
+    if concept is not None and hard is not None and "effective_modulus_pa" in bands \
+            and "effective_modulus_pa" not in stated and bands["effective_modulus_pa"][2] == source:
+        # a published hardness (Gent's modulus band), where no word narrowed the band ('a soft racquetball')
+        bands["effective_modulus_pa"] = (float(hard[0]), float(hard[1]), f"concept:{concept.concept}:hardness")
     if "effective_modulus_pa" in bands and "effective_modulus_pa" not in stated:
         lo, hi, _ = bands["effective_modulus_pa"]  # seed E inside the (possibly narrowed) modulus band
         priors["youngs_modulus_pa"] = math.sqrt(lo * hi)

@@ -12,6 +12,7 @@ import numpy as np
 
 from contracts.concept import ConceptMatch, FallbackLevel
 from contracts.lexicon import MATERIALS_FILE, LexiconEntry, load_lexicon
+from contracts.material import shore_a_youngs_modulus_pa
 from contracts.shape import Part, RoundedBox, ShapeProgram
 from contracts.yaml_io import load_yaml
 from tasks.geometry import analogy as analogy_mod, fill_words, goods_words, grammar, phrase as phrase_mod, pouch_words, \
@@ -388,7 +389,17 @@ def _match(entry: LexiconEntry, level: FallbackLevel, noun: str | None, note: st
         restitution_drop_m=None if mat_only or material is not None else entry.restitution_drop_m,
         inflation_gauge_pa=None if mat_only or material is not None else entry.inflation_gauge_pa,
         inflation_source=None if mat_only or material is not None else entry.inflation_source,
+        **({} if mat_only or material is not None else _hardness_band(entry)),
         finish=None if mat_only or material is not None else entry.finish)
+
+
+def _hardness_band(entry: LexiconEntry) -> dict:
+    """The rubber's modulus band from the entry's published Shore A hardness (Gent's relation), or nothing."""
+    if entry.hardness_shore_a is None:
+        return {}
+    lo, hi = entry.hardness_shore_a
+    return {"youngs_modulus_range_pa": (shore_a_youngs_modulus_pa(lo), shore_a_youngs_modulus_pa(hi)),
+            "youngs_modulus_source": f"Shore A {lo:g}-{hi:g} ({entry.hardness_source}) by Gent's relation"}
 
 
 def _fallback(t: str, noun: str | None, donor: LexiconEntry | None, donor_plan: tuple[str, dict] | None,
@@ -679,6 +690,8 @@ def _pouch_of(t: str, phrase: phrase_mod.Phrase, entry: LexiconEntry, match: Con
         return None
     noun = match.noun or ""
     holds = _HOLDS.search(t) is not None  # 'a grocery bag with six oranges inside': the bag holds them
+    if entry.key in FILM_BAGS and noun and re.search(rf"\b{re.escape(noun)}\s+of\b", t) and _pieces_pouch(t):
+        holds = True  # 'a plastic bag of cotton rounds': goods the lexicon knows, seen through the film
     if not match.by_analogy and noun not in pouch_words.CONTAINERS and not holds and (
             entry.plan in ("pouch", "bag") or noun.split()[-1:] == [phrase.head]):
         return None  # the lexicon's own bag ('an ice bag', 'a zip bag'); the bare 'pouch' is no drawstring pouch
@@ -692,6 +705,7 @@ def _pouch_of(t: str, phrase: phrase_mod.Phrase, entry: LexiconEntry, match: Con
     return found if found is not None else pieces
 
 
+FILM_BAGS = frozenset({"carrier_bag"})  # a plastic bag 'of' goods the lexicon knows is a bag of them, seen through
 SEEN_PIECE_M = 0.015  # goods at least this long are told apart through a bag's film (grains, peas, beans are not) [m]
 
 

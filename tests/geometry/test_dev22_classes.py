@@ -166,3 +166,12 @@ def test_a_stage_sandbag_has_its_handle_and_weight() -> None:
     assert 5.5 < planned_mass("a stage sandbag") < 23.0  # 11.3 kg (retail 25 lb)
     lo, _hi = program_bounds(_design("a stage sandbag").program)
     assert lo[2] > -1e-3  # the handle's arch does not poke out under the bag
+
+
+def test_a_plastic_bag_of_known_goods_shows_them() -> None:
+    """'a half-empty plastic bag of cotton rounds' was the empty 6 g carrier bag: a plastic bag 'of' goods the
+    lexicon knows is a pouch of them seen through its film, their mass its fill's; a bare plastic bag stays one."""
+    assert _design("a plastic bag of cotton pads").entry == "generic_pouch"
+    assert "fill" in _groups("a plastic bag of cotton pads")
+    assert _design("a plastic bag").entry == "carrier_bag"
+    assert 0.015 < planned_mass("a plastic bag of cotton rounds") < 0.12  # ~40 pads at 0.6 g plus the bag
