@@ -433,6 +433,10 @@ def _folded(p: SheetParams, t: float) -> list[Part]:
     return _folded_layers(length, width, n, t, p)
 
 
+FOLD_GAP_MAX = 0.011  # the gap between a folded sheet's open edges at most this / its length (a thick foam pad's
+# 0.22 layer was 2.2 cm wide: particles centred in it sat outside the mesh) [-]
+
+
 def _folded_layers(length: float, width: float, n: int, t: float, p: SheetParams) -> list[Part]:
     """n layers of a folded sheet along x: a crease at -x (and at +x between the layers of a letter fold), the other
     ends open, cut apart by a gap, the top layer set back from the open edge."""
@@ -447,7 +451,7 @@ def _folded_layers(length: float, width: float, n: int, t: float, p: SheetParams
                               edge=e, rot=(90, 0, 0), blend=0.2 * t))
     for i in range(1, n):
         open_at = -1 if (p.thirds and n == 3 and i == 2) else 1
-        parts.append(_op(box(f"gap {i}", (0.3 * length, width * 1.2, 0.22 * t),
+        parts.append(_op(box(f"gap {i}", (0.3 * length, width * 1.2, min(0.22 * t, FOLD_GAP_MAX * length)),
                              (open_at * length / 2, 0, i * t)), "subtract"))
     inset = min(0.06 * length, 2.5 * t)  # the top layer stops short of the open edge: a step seen from above
     top_open = -1 if (p.thirds and n == 3) else 1
