@@ -82,6 +82,7 @@ def test_a_thing_packed_in_its_stuff_sack_is_the_packed_sack() -> None:
     ("a paper bag of popcorn", 0.015, 0.12),  # ~40 g: 'paper bag of seed' among the entry's nouns hid the fill
     ("a paper bag of churros", 0.08, 0.4),  # ~0.17 kg
     ("a sheet mask in its foil pouch", 0.012, 0.07),  # ~30 g (was 0.17 kg of gel)
+    ("a 120 cm sewn sling", 0.03, 0.12),  # 55-65 g: a sling's stated length is its loop's (a closed band's was doubled)
 ])
 def test_dev22_masses_within_2x(text: str, low: float, high: float) -> None:
     assert low <= planned_mass(text) <= high
