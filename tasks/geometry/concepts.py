@@ -1149,6 +1149,12 @@ WET_FACTORS = ((re.compile(r"\b(?:soaked|soaking|sopping|dripping|drenched|water
                (re.compile(r"\b(?:wet|wetted|soggy)\b"), 2.0), (re.compile(r"\b(?:damp|moist)\b"), 1.4))
 WRUNG_WET_FACTOR = 1.8  # wet and wrung out [-]
 ABSORBENT = frozenset({"textile", "sponge"})
+# an open-cell sponge or foam holds water in its pores, not in proportion to its dry mass: a cellulose sponge takes up
+# 10-20x its own weight, floral foam ~40x. Its wet density is its dry one plus the pores' water: porosity x share of
+# the pores filled x 1000 kg/m3 (soaked or dripping: full; wet: 0.6; damp: 0.3) [-]
+SPONGE_POROSITY = 0.9  # open-cell cellulose sponge and phenolic floral foam, 0.9-0.97 (manufacturer data kind)
+PORE_FILL = ((WET_FACTORS[0][0], 1.0), (WET_FACTORS[1][0], 0.6), (WET_FACTORS[2][0], 0.3))
+WATER_KG_PER_M3 = 1000.0
 
 
 def _soaked(match: ConceptMatch, target: LexiconEntry, text: str, states: list[str]) -> tuple[ConceptMatch, list[str]]:
@@ -1156,6 +1162,17 @@ def _soaked(match: ConceptMatch, target: LexiconEntry, text: str, states: list[s
     mass (its density and typical mass times the wet factor)."""
     if target.category not in ABSORBENT and target.material not in ABSORBENT:
         return match, states
+    if "sponge" in (target.category, target.material) and match.density_kg_per_m3 and "twisted" not in states:
+        fill = next((f for rx, f in PORE_FILL if rx.search(text)), 0.0)
+        if fill > 0.0:  # 'a soaked floral foam brick': its pores' water
+            rho = match.density_kg_per_m3
+            wet = rho + fill * SPONGE_POROSITY * WATER_KG_PER_M3
+            return match.model_copy(update={
+                "typical_mass_kg": match.typical_mass_kg * wet / rho if match.typical_mass_kg else None,
+                "density_kg_per_m3": wet,
+                "mass_source": f"{match.mass_source}; wet: its pores {fill:g} full of water ({SPONGE_POROSITY:g} "
+                               f"porosity: {rho:.3g} -> {wet:.3g} kg/m^3)" if match.mass_source else None,
+            }), [*states, "wet"]
     factor = next((f for rx, f in WET_FACTORS if rx.search(text)), 1.0)
     if factor > 1.0 and "twisted" in states:
         factor = min(factor, WRUNG_WET_FACTOR)

@@ -60,3 +60,13 @@ def test_a_hay_net_stuffed_with_hay_is_a_tied_net_of_hay() -> None:
     assert d.entry == "hay_net"
     assert "tie" in {part_group(p.name) for p in d.program.parts}
     assert 2.25 < planned_mass("a hay net stuffed full of hay") < 9.0  # ~4.5 kg a feed
+
+
+def test_a_soaked_sponge_or_floral_foam_holds_its_pores_water() -> None:
+    """'a soaked green floral foam brick, 9x4x3 inches' was a 52 g foam block against ~1.8 kg: an open-cell sponge or
+    foam holds water in its pores (porosity ~0.9), not three times its dry mass as a towel does."""
+    assert catalogue.design_from_text("a wet floral foam brick").entry == "floral_foam"
+    soaked = planned_mass("a soaked floral foam brick, 9x4x3 inches")
+    assert 0.9 < soaked < 3.6  # ~1.6-1.8 kg soaked (retail: a brick takes up ~1.7 l of water)
+    assert planned_mass("a floral foam brick, 9x4x3 inches") < 0.1 * soaked  # dry ~45 g
+    assert planned_mass("a damp kitchen sponge") < planned_mass("a soaked kitchen sponge")
