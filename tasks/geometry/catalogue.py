@@ -775,10 +775,12 @@ def _fill_sized(size: SizeSpec, program: ShapeProgram, match: ConceptMatch,
     return size, match
 
 
-_STUFFED_IN = re.compile(r"^(?P<goods>.*\w.*?)\s*,?\s+(?:(?:stuffed|packed|compressed|rolled|folded|squashed)\s+(?:up\s+|"
+_STUFFED_IN = re.compile(r"^(?P<goods>.*\w.*?)\s*,?\s+(?:(?:stuffed|packed|compressed|rolled|folded|squashed|crammed|"
+                         r"jammed|squeezed|shoved|stowed)\s+(?:up\s+|"
                          r"away\s+)?in(?:to|side)?\s+(?:its|a|an|the|their|his|her)\s+(?:own\s+)?(?P<sack>(?:[\w-]+\s+)"
                          r"{0,2}?(?:stuff\s+sack|sack|stuff\s+bag|bag|pouch|carry\s+bag|case|pocket))|in(?:side)?\s+(?:its|a|an|"
-                         r"the)\s+(?:own\s+)?(?P<named>stuff\s+sack|compression\s+(?:sack|bag)|stuff\s+bag|dry\s+bag))\s*$",
+                         r"the)\s+(?:own\s+)?(?P<named>stuff\s+sack|compression\s+(?:sack|bag)|stuff\s+bag|dry\s+bag))"
+                         r"(?P<size>\s*,\s*(?:about|around|roughly|approx\w*\s+)?\s*\d[^,]*)?\s*$",  # (', about 9x18 in')
                          re.IGNORECASE)
 
 
@@ -798,13 +800,13 @@ def _stuffed_in_sack(text: str) -> tuple[str, str] | None:
     if kg is None or c is None or c.by_analogy:
         return None
     sack = m.group("sack") or m.group("named") or ""
+    goods_text, size = m.group("goods").strip(), m.group("size") or ""  # (a stated size stays with the request)
     if _SEE_THROUGH.search(sack):  # 'a hoodie folded inside a clear plastic bag': what is seen is the hoodie
-        return m.group("goods").strip(), (f"'{m.group('goods').strip()}' in {sack}: built as the goods seen through "
-                                          f"the clear bag (the bag, a few grams of film, is not drawn)")
-    note = (f"'{m.group('goods').strip()}' packed in {m.group('sack') or m.group('named')}: built as the full stuff "
-            f"sack, weighing the "
+        return goods_text + size, (f"'{goods_text}' in {sack}: built as the goods seen through the clear bag (the bag, "
+                                   f"a few grams of film, is not drawn)")
+    note = (f"'{goods_text}' packed in {sack}: built as the full stuff sack, weighing the "
             f"{c.concept.replace('_', ' ')} ({kg:.3g} kg)")
-    return f"a compression sack, {kg * 1000:.4g} g", note
+    return f"a compression sack, {kg * 1000:.4g} g{size}", note
 
 
 _TOY_WORDS = re.compile(r"\b(?:plush|toy|toys|stuffed|squeaky|squeaker|rubber|figurine|puppet|costume|felt|knitted|"

@@ -498,10 +498,7 @@ def modifier_word(word: str) -> bool:
         or word in phrase_mod.STATE_WORDS or any(word in p for p in PATTERN_WORDS)
 
 
-_STYLE = re.compile(r"\b([a-z]+)[\s-]+style\s+([a-z]+)\b")
-# 'X (crammed) into its stuff sack': the sack, packed (a sleeping bag or a tent packed away)
-_PACKED_IN_SACK = re.compile(r"\b(?:in|into|inside)\s+(?:its|a|an|the|his|her|their)\s+(?:own\s+)?"
-                             r"(stuff sack|compression sack|compression bag)\b")
+_STYLE = re.compile(r"\b([a-z]+)[\s-]+style\s+([a-z]+)\b")  # 'a muppet-style puppet'
 
 
 def read_text(text: str, serving: bool = True) -> Reading:
@@ -513,9 +510,6 @@ def read_text(text: str, serving: bool = True) -> Reading:
     lex = load_lexicon()
     t = _STYLE.sub(lambda m: f"{m.group(1)} {m.group(2)}" if f"{m.group(1)} {m.group(2)}" in noun_index()
                    else m.group(0), _expand_diminutives(normalise(text)))  # 'a muppet-style puppet': a muppet puppet
-    packed = _PACKED_IN_SACK.search(t)
-    if packed is not None and packed.start() > 0:  # 'a sleeping bag crammed into its stuff sack': what is seen is
-        return read_text(packed.group(1), serving)  # the packed sack (its entry's mass holds what is packed in it)
     contents = pouch_words.vacuum_contents(t)
     if contents is not None and contents != t:  # 'vacuum sealed pork chop': the chop, on its sealed film
         inner = read_text(contents)

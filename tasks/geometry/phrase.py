@@ -150,10 +150,10 @@ def _boundary(doc: Any, i: int, known: Callable[[str], bool] = lambda w: False) 
     return False
 
 
-
-def _names_with_next(doc, i: int, is_known) -> bool:  # noqa: ANN001
+def _names_with_next(doc: Any, i: int, is_known: Callable[[str], bool]) -> bool:
     """True when a placeholder word starts a known two-word noun with the next token ('a stuff sack')."""
     return i + 1 < len(doc) and is_known(f"{doc[i].text.lower()} {doc[i + 1].text.lower()}")
+
 
 def parse(text: str, known: Callable[[str], bool] | None = None,
           modifier: Callable[[str], bool] | None = None) -> Phrase:

@@ -133,8 +133,7 @@ def ball(p: BallParams) -> list[Part]:
     if p.face:
         parts += smiley((0.0, 0.0, rz), (0.5 * p.aspect, 0.5, rz))
     for i, d in enumerate(sphere_directions(p.bands, seed=1.1) if p.bands else ()):
-        parts.append(scaled(torus(f"band {'abcdef'[i % 6]} {i + 1}", 0.5, BAND_RADIUS, (0, 0, rz), rot=_euler_z_to(d)),
-                            (1.0, 1.0, 1.0)))
+        parts.append(torus(f"band {'abcdef'[i % 6]} {i + 1}", 0.5, BAND_RADIUS, (0, 0, rz), rot=_euler_z_to(d)))
     if p.patches:
         for i, d in enumerate(sphere_directions(p.patches, seed=0.4)):
             n = d / np.linalg.norm(d)
