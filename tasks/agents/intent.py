@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import functools
 import math
 import re
 
@@ -72,16 +73,27 @@ def _own_words(text: str) -> str:
     return _PLACE.split(text, maxsplit=1)[0]
 
 
+@functools.lru_cache(maxsize=1)
+def _soft_lexicon_nouns() -> tuple[str, ...]:
+    """The lexicon's nouns that hold a rigid object's word ('baby spoon', 'sack chair', 'melon pan'): the lexicon
+    names deformable objects only, so naming one of them is naming something soft."""
+    rigid = load_material_vocab().rigid_objects
+    nouns = {" ".join(n.lower().replace("-", " ").split()) for e in load_lexicon().entries.values() for n in e.nouns}
+    return tuple(sorted(n for n in nouns if any(_names_object(n, w) for w in rigid)))
+
+
 def rigid_object(text: str, vocab: MaterialVocab | None = None, also: tuple[str, ...] = ()) -> str | None:
     """The rigid object noun a text (or one of the texts `also` read beside it: a photo's file name) names ('a can',
-    'teacup', 'figurine') when none of them names a deformable material, soft object word or soft word; None
-    otherwise. Each text is read on its own (a noun is the head of a phrase within its own text)."""
+    'teacup', 'figurine') when none of them names a deformable material, soft object word, soft word or a lexicon
+    object whose noun holds the rigid word ('a baby spoon'); None otherwise. Each text is read on its own (a noun is
+    the head of a phrase within its own text)."""
     vocab = vocab or load_material_vocab()
     texts = [" ".join(t.lower().replace("_", " ").replace("-", " ").split()) for t in (text, *also) if t]
     rigid = [w for t in texts for w in vocab.rigid_objects if _names_object(_own_words(t), w)]
     if not rigid:
         return None
     soft = [w for entry in vocab.materials.values() for w in entry.words] + list(vocab.objects) + vocab.soft_words
+    soft += _soft_lexicon_nouns()
     if any(_contains_phrase(t, w) for t in texts for w in soft):
         return None
     return max(rigid, key=len)
