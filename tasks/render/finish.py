@@ -114,10 +114,11 @@ def value_noise(points: np.ndarray, seed: int = 0) -> np.ndarray:
     f = p - base
     s = f * f * (3.0 - 2.0 * f)  # smoothstep weights
     out = np.zeros(len(p))
+    weights = [(1.0 - s[:, k], s[:, k]) for k in range(3)]  # per axis, the low and the high corner's weight
     for corner in range(8):
-        d = np.array([(corner >> 2) & 1, (corner >> 1) & 1, corner & 1])
-        w = np.prod(np.where(d == 1, s, 1.0 - s), axis=1)
-        out += w * _hash01(base + d, seed)
+        d = ((corner >> 2) & 1, (corner >> 1) & 1, corner & 1)
+        w = weights[0][d[0]] * weights[1][d[1]] * weights[2][d[2]]  # not np.prod over a last axis of 3: slow
+        out += w * _hash01(base + np.array(d), seed)
     return out
 
 
