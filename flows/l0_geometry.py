@@ -57,11 +57,13 @@ MESH_VERSION = "24"  # l0.mesh alone; 2: marching cubes no longer pinches the su
 # one through a bag, a folded sheet's stated flat size, goods in a clear bag built as the goods); 23: dev set 21's
 # (a sock ball's cuff, a faceted paper wad, stitched jeans, wedge gores, a pizza slice as a wedge, half rolled, nigiri)
 # 24: dev set 22's (hand-written hot dog, taco, puppets, tutu...; sheet stripes, band balls, a boa, a rope's hank)
-PROXY_VERSION = "5"  # l0.proxy alone; 2: CoACD's coarse copy keeps cells across a long or flat good's thinnest side;
+PROXY_VERSION = "6"  # l0.proxy alone; 2: CoACD's coarse copy keeps cells across a long or flat good's thinnest side;
 # 3: a mesh that hugs its convex hull is proxied by CoACD's root hull (collision.NEAR_CONVEX_*: a yarn ball 40 s -> 0.3 s)
 # 4: CoACD's pieces merged down to the budget by ours (collision.merge_hulls: a dog bed 38 -> 20 s), the coarse copy
 # never finer than the mesh (a foam puzzle tile 21 -> 8 s)
 # 5: the budget grows while the hulls' union is over 1.5x the mesh (collision.merged_to_cover: a beanie, a hat)
+# 6: a coarse copy that lost a thin wall is redone finer or skipped (a straw hat's proxy covered 5 % of it); a good of
+# at most 4 pieces over 1.5x is split at finer CoACD thresholds (a necktie: 1 piece, 2.27x -> 4, 1.24x)
 PARTICLES_VERSION = "2"  # l0.particles alone; 2: a hollow concept's particles are its shell (build_body, with the
 # ParticleBody record; session 32), opt-in: ParticleSettings.hollow_particles (the L0 contract's) keys it
 GAUSSIANS_VERSION = "3"  # l0.gaussians alone; 2: surface discs dense and small for the particle spacing (#36);
