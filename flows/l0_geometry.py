@@ -63,7 +63,8 @@ PROXY_VERSION = "6"  # l0.proxy alone; 2: CoACD's coarse copy keeps cells across
 # never finer than the mesh (a foam puzzle tile 21 -> 8 s)
 # 5: the budget grows while the hulls' union is over 1.5x the mesh (collision.merged_to_cover: a beanie, a hat)
 # 6: a coarse copy that lost a thin wall is redone finer or skipped (a straw hat's proxy covered 5 % of it); a good of
-# at most 4 pieces over 1.5x is split at finer CoACD thresholds (a necktie: 1 piece, 2.27x -> 4, 1.24x)
+# at most 12 pieces over 1.5x is split at finer CoACD thresholds (a necktie: 1 piece, 2.27x -> 4, 1.24x; a coiled rope
+# 7, 1.95x -> 32, 1.47x)
 PARTICLES_VERSION = "2"  # l0.particles alone; 2: a hollow concept's particles are its shell (build_body, with the
 # ParticleBody record; session 32), opt-in: ParticleSettings.hollow_particles (the L0 contract's) keys it
 GAUSSIANS_VERSION = "3"  # l0.gaussians alone; 2: surface discs dense and small for the particle spacing (#36);
