@@ -135,6 +135,8 @@ class ElongatedParams(Model):
     peeled: float = Field(default=0.0, ge=0.0, le=1.0, description="share of the length peeled from the stem end "
                           "(a banana): the flesh bare there, the peel in three strips folded back from the peel line "
                           "(none when all of it is peeled) [-]")
+    tied_ends: bool = Field(default=False, description="a sausage's casing twisted shut at both ends: a pinched neck "
+                            "and a little knot (a clip: colour 'tie' silver) [-]")
 
 
 ELONGATED_SEGMENTS = 14
@@ -211,6 +213,16 @@ def elongated(p: ElongatedParams) -> list[Part]:
             centre = (0.0, 1.0 * r0 * np.cos(phi), r0 + 1.0 * r0 * np.sin(phi))
             parts.append(cylinder(f"groove {j + 1}", r_groove, 1.2, centre, blend=0.15 * r_groove, rot=(0, 90, 0),
                                   op="subtract"))
+    if p.tied_ends:  # the casing twisted into a neck and a knot beyond each end
+        for which, i0, i1 in (("left", 0, 1), ("right", n, n - 1)):
+            out = pts[i0] - pts[i1]
+            out /= np.linalg.norm(out)
+            r_end = float(radii[i0])
+            neck = pts[i0] + out * 0.75 * r_end
+            parts.append(tapered(f"{which} tie", pts[i0] + out * 0.3 * r_end, neck + out * 0.45 * r_end, 0.4 * r_end,
+                                 0.17 * r_end, blend=0.12 * r_end))
+            parts.append(ellipsoid(f"{which} tie end", (0.22 * r_end,) * 3, neck + out * 0.6 * r_end,
+                                   blend=0.05 * r_end))
     if p.blossom:
         back = pts[0] - pts[1]
         back /= np.linalg.norm(back)
@@ -318,6 +330,10 @@ class LoafParams(Model):
     height: float = Field(default=0.45, gt=0.1, le=1.5, description="height / length [-]")
     dome: float = Field(default=0.35, ge=0.0, le=1.0, description="share of the height in the domed top [-]")
     roundness: float = Field(default=0.6, gt=0.1, le=1.0, description="1 an oval loaf, small a tin loaf [-]")
+    scores: int = Field(default=0, ge=0, le=6, description="diagonal slashes across the top (a baker's scoring), "
+                        "their floors the crumb's colour [-]")
+    cut_end: bool = Field(default=False, description="the +x end sliced off: the lighter crumb on the cut face, the "
+                          "crust all round the rest")
 
 
 def loaf(p: LoafParams) -> list[Part]:
@@ -328,7 +344,22 @@ def loaf(p: LoafParams) -> list[Part]:
     if p.dome > 0:
         parts.append(ellipsoid("crust", (0.48, 0.98 * p.width / 2, p.height * p.dome + 0.02), (0, 0, base_h * 0.95),
                                blend=0.05))
-    parts[0] = parts[0].model_copy(update={"name": "crust" if p.dome == 0 else "crumb"})
+    parts[0] = parts[0].model_copy(update={"name": "crust" if p.dome == 0 else ("lower crust" if p.cut_end
+                                                                                  else "crumb")})
+    top = base_h * 0.95 + p.height * p.dome + 0.02 if p.dome > 0 else base_h
+    for i in range(p.scores):  # slashes across the top, 45 deg to the length, their floors pale
+        x = (i - (p.scores - 1) / 2) * 0.62 / max(p.scores, 1)
+        fall = (1 - (x / 0.48) ** 2) ** 0.5 if p.dome > 0 else 1.0
+        z = base_h * 0.95 + (top - base_h * 0.95) * fall if p.dome > 0 else top
+        length = 0.26 * p.width
+        parts.append(ellipsoid(f"score {i + 1}", (0.035, length, 0.05), (x, 0, z + 0.01), rot=(0, 0, 40))
+                     .model_copy(update={"operation": "subtract"}))
+        parts.append(ellipsoid(f"score crumb {i + 1}", (0.02, 0.8 * length, 0.02), (x, 0, z - 0.035), rot=(0, 0, 40),
+                               blend=0.005))
+    if p.cut_end:  # sliced at x = 0.3: the crust ring round a pale crumb face
+        parts.append(box("cut", (0.4, 2.0, 2.0), (0.5, 0, 0.5)).model_copy(update={"operation": "subtract"}))
+        hz = top / 2
+        parts.append(ellipsoid("crumb", (0.006, 0.86 * p.width / 2, 0.84 * hz), (0.3, 0, 0.96 * hz)))
     return parts
 
 
@@ -383,10 +414,14 @@ class CroissantParams(Model):
 
     bend: float = Field(default=0.9, ge=0.0, le=1.5, description="how far the horns curl [-]")
     thickness: float = Field(default=0.3, gt=0.1, le=0.6, description="middle height / length [-]")
+    ridges: bool = Field(default=False, description="the rolled dough's bands as distinct ridges across the "
+                         "crescent (a croissant), creases between them, lighter pastry at the creases")
 
 
 def croissant(p: CroissantParams) -> list[Part]:
     """Crescent in the x-y plane (horns towards -x)."""
+    if p.ridges:
+        return _croissant_ridged(p)
     n = 7
     parts = []
     for i in range(n):
@@ -397,6 +432,37 @@ def croissant(p: CroissantParams) -> list[Part]:
         name = "body" if i == n // 2 else f"segment {i + 1}"
         parts.append(ellipsoid(name, (r * 1.1, r * 1.25, r), (x, y, r), blend=0.08, rot=(0, 0, float(np.degrees(a)))))
     return parts
+
+
+def _croissant_ridged(p: CroissantParams) -> list[Part]:
+    """Bands of rolled dough round a crescent arc: each a flat ellipsoid across the arc, fattest in the middle, a
+    pointed horn curling in at each end; a pale 'crease' under each join."""
+    n = 7
+    span = 0.45 + 0.8 * p.bend  # half the arc's angle [rad]
+    big_r = 0.42
+    step = 2 * span * big_r / (n - 1)
+    parts: list[Part] = []
+    creases: list[Part] = []
+
+    def at(t: float) -> tuple[float, float, float, float]:
+        a = t * span
+        r = p.thickness / 2 * (1 - 0.7 * abs(t) ** 1.5)
+        return big_r * np.cos(a) - 0.2, big_r * np.sin(a), r, float(np.degrees(a))
+
+    for i in range(n):
+        t = (i - (n - 1) / 2) / ((n - 1) / 2)  # -1 .. 1
+        x, y, r, deg = at(t)
+        name = "body" if i == n // 2 else f"segment {i + 1}"
+        parts.append(ellipsoid(name, (1.5 * r, 0.68 * step, 0.8 * r), (x, y, 0.8 * r), blend=0.012, rot=(0, 0, deg)))
+        if i < n - 1:
+            x, y, rr, deg = at(t + 1 / (n - 1))
+            creases.append(ellipsoid(f"crease {i + 1}", (1.3 * rr, 0.16 * step, 0.7 * rr), (x, y, 0.8 * rr),
+                                     blend=0.005, rot=(0, 0, deg)))
+    for side, t in (("left", -1.0), ("right", 1.0)):  # the horns: thin points curling in past the last band
+        x, y, r, deg = at(t * 1.3)
+        parts.append(ellipsoid(f"{side} horn", (0.5 * r, 1.2 * step, 0.45 * r), (x, y, 0.45 * r), blend=0.03,
+                               rot=(0, 0, deg)))
+    return parts + creases
 
 
 class MuffinParams(Model):
@@ -544,6 +610,8 @@ class LayeredParams(Model):
     topping: float = Field(default=0.0, ge=0.0, le=0.5, description="top coat (frosting, cheese) / main layer [-]")
     angle_deg: float = Field(default=40.0, gt=10.0, le=120.0, description="a wedge's angle [deg]")
     puff: float = Field(default=0.3, ge=0.0, le=1.0, description="rounding of the main layers (a bun's dome) [-]")
+    ruffle: bool = Field(default=False, description="a block's main layers rippled along their long edges (lasagna "
+                         "sheets' ruffled sides) [-]")
 
 
 def layered(p: LayeredParams) -> list[Part]:
@@ -559,6 +627,11 @@ def layered(p: LayeredParams) -> list[Part]:
         thick = unit
         parts.append(_layer(names[0], p, thick, z, edge=min(p.puff * thick / 2, 0.45 * thick) if p.shape == "block"
                             else 0.15 * thick, w=w))
+        if p.ruffle and p.shape == "block":  # the sheet's wavy edges standing out of both long sides
+            for sgn in (1.0, -1.0):
+                for j in range(7):
+                    parts.append(ellipsoid(f"ruffle {len(parts)}", (0.05, 0.018, 0.4 * thick),
+                                           (-0.44 + 0.88 * j / 6, sgn * w / 2, z + thick / 2), blend=0.01))
         z += thick
         if i < n - 1:
             ft = unit * p.filling

@@ -54,12 +54,13 @@ class SheetParams(Model):
                               "seen as rings at its ends); folded (halved `folds` times); stacked (`layers` sheets); "
                               "knotted (tied in a loose knot at its middle, a scarf); draped (hung over a bar at its "
                               "middle: two panels falling from a rounded fold, their hems splayed)")
-    shape: Literal["rect", "round", "bib", "hourglass", "envelope", "mask", "bread", "puzzle"] = Field(
+    shape: Literal["rect", "round", "bib", "hourglass", "envelope", "mask", "bread", "puzzle", "hammock"] = Field(
         default="rect", description="a rectangle or a round sheet (tortilla, pad); laid flat: a bib (its neck cut out, "
         "the straps' snap), an hourglass (a nappy: leg cut-outs, padded core, waist tabs), an envelope (a padded "
         "mailer: sealed edges and its flap), a mask (a pleated face mask with its nose wire and ear loops), bread (a "
         "slice of sandwich bread: a square foot, a rounded top, the crust round the crumb), puzzle (a foam floor "
-        "tile: round tabs along two sides, their sockets cut in the other two)")
+        "tile: round tabs along two sides, their sockets cut in the other two), hammock (its bed between two spreader "
+        "bars, the cords fanning to a ring at each end, a rope beyond)")
     width: float = Field(default=0.5, gt=0.002, le=1.0, description="width / length [-]")
     thickness: float = Field(default=0.005, gt=0.0, le=0.2, description="the real sheet's thickness / length [-]")
     folds: int = Field(default=1, ge=1, le=3, description="halvings when folded [-]")
@@ -85,6 +86,19 @@ class SheetParams(Model):
                           "roll (bubble wrap)")
     stiff: bool = Field(default=False, description="a stiff sheet (paper, foil, baking paper): crumpled, it is a round "
                         "wad of creased facets in the hand's size, not a heap of cloth")
+    stripes: int = Field(default=0, ge=0, le=9, description="woven or printed bands across the length over the top "
+                         "(a tea towel's, a blanket's or a scarf's stripes), parts 'stripe', their own colour [-]")
+    checks: bool = Field(default=False, description="with stripes: bands along the length too, a gingham check")
+    hem: bool = Field(default=False, description="a hemmed border round the top's edge, its own colour (part 'hem')")
+    printed: Literal["none", "newspaper", "magazine"] = Field(
+        default="none", description="printing over the top: newspaper (a headline band, columns of grey text lines and "
+        "a photo); magazine (a cover: a masthead band, a cover photo, cover lines)")
+    grommets: int = Field(default=0, ge=0, le=6, description="metal eyelets along each long edge, corners included "
+                          "(a tarp), parts 'grommet' [-]")
+    open_end: bool = Field(default=False, description="one short end open (a pillowcase): a wide hem band across "
+                           "it (part 'cuff'), and laid flat the mouth cut into its edge")
+    hood: bool = Field(default=False, description="flat: a sleeping bag's hood at the +x end (a rounded raised head "
+                       "end, its face opening a dark oval) and a foot tapered toward -x")
 
 
 CURL_DEG = 38.0  # how far a curling corner lifts about its hinge [deg]
@@ -144,13 +158,19 @@ def sheet(p: SheetParams) -> list[Part]:
     if p.state == "flat":
         if p.quilt:
             t = PUFF * t
-        parts = [_slab("body", p, 1.0, w, t, (0, 0, t / 2))]
+        rects = decor_rects(p, 1.0, w) if p.shape == "rect" else []
+        parts = tiled_top(rects, 1.0, w, 0.0, t, "body", reserve=sheet_extras(p)) if rects else [_slab("body", p, 1.0, w, t, (0, 0, t / 2))]
+        parts += grommets(p, 1.0, w, t) if p.grommets else []
         parts += quilting(1.0, w, t, p.quilt, p.quilt if p.grid else 0)
         parts += knit_ribs(1.0, w, t, p.ribs) + (fringe(1.0, w, t) if p.fringe else [])
         if p.zip:
             parts.append(box("zip", (0.96, 0.018, 0.5 * t), (0, -w / 2 + 0.02, t), edge=0.2 * t, blend=0.004))
         if p.curl > 0 and p.shape == "rect":
             parts += curled_corners(1.0, w, t, p.curl * w)
+        if p.hood:
+            parts += _hood(w, t)
+        if p.open_end:
+            parts += _open_end(w, t)
         return parts
     if p.state == "loop":
         return _strip_loop(p, t)
@@ -393,7 +413,28 @@ def puzzle_tile(w: float, t: float) -> list[Part]:
     return parts
 
 
-FORMED_SHEETS = {"bib": bib, "hourglass": hourglass, "envelope": envelope, "mask": face_mask, "bread": bread_slice,
+def hammock(w: float, t: float) -> list[Part]:
+    """A hammock laid out flat, length 1 along x: the fabric bed between two spreader bars across its ends, the
+    suspension cords fanning from each bar to a ring, and a short rope beyond each ring."""
+    bed = 0.66
+    parts = [box("body", (bed, w, t), (0, 0, t / 2), edge=0.45 * t)]
+    rb = max(0.6 * t, 0.016)
+    cords = 4
+    for side, sx in (("left", -1.0), ("right", 1.0)):
+        xb = sx * (bed / 2 + 0.01)
+        parts.append(limb(f"{side} spreader bar", (xb, -0.56 * w, rb), (xb, 0.56 * w, rb), rb, blend=0.2 * t))
+        ring = np.array([sx * 0.45, 0.0, 0.5 * rb])
+        for k in range(cords):
+            y = -0.45 * w + 0.9 * w * k / (cords - 1)
+            parts.append(limb(f"{side} cord {k + 1}", (xb, y, 0.5 * rb), tuple(ring), 0.7 * rb, blend=0.1 * rb))
+        parts.append(torus(f"{side} ring", 0.02, 0.6 * rb, tuple(ring + np.array([sx * 0.015, 0, 0])),
+                           blend=0.2 * rb))
+        parts.append(limb(f"{side} rope", tuple(ring + np.array([sx * 0.04, 0, 0])), (sx * (0.5 - 0.5 * rb), 0.0, 0.5 * rb),
+                          0.5 * rb, blend=0.1 * rb))
+    return parts
+
+
+FORMED_SHEETS = {"hammock": hammock, "bib": bib, "hourglass": hourglass, "envelope": envelope, "mask": face_mask, "bread": bread_slice,
                  "puzzle": puzzle_tile}
 
 
@@ -443,7 +484,18 @@ def _folded_layers(length: float, width: float, n: int, t: float, p: SheetParams
     h = n * t
     e = p.edge * t / 2
     r = t  # a crease wraps two layers
-    parts = [box("body", (length - r, width, h), (r / 2, 0, h / 2), edge=e)]
+    inset = min(0.06 * length, 2.5 * t)  # the top layer stops short of the open edge: a step seen from above
+    rects = decor_rects(p, length - r, width)
+    if rects:  # tiled through with its pattern (a tile over a ground of the sheet's colour would blend into it)
+        parts = [q.model_copy(update={"transform": q.transform.model_copy(update={"translation_m": (
+            q.transform.translation_m[0] + r / 2, *q.transform.translation_m[1:])})})
+            for q in tiled_top(rects, length - r, width, 0.0, h, "body", reserve=2 * n)]
+    else:
+        parts = [box("body", (length - r, width, h), (r / 2, 0, h / 2), edge=e)]
+    if p.grommets:
+        parts += [q.model_copy(update={"transform": q.transform.model_copy(update={"translation_m": (
+            q.transform.translation_m[0] + (r - inset) / 2, *q.transform.translation_m[1:])})})
+            for q in grommets(p, length - r - inset, width, h)]
     for i in range(1, n):
         crease_at_plus = p.thirds and n == 3 and i == 2
         sx = 1 if crease_at_plus else -1
@@ -453,11 +505,162 @@ def _folded_layers(length: float, width: float, n: int, t: float, p: SheetParams
         open_at = -1 if (p.thirds and n == 3 and i == 2) else 1
         parts.append(_op(box(f"gap {i}", (0.3 * length, width * 1.2, min(0.22 * t, FOLD_GAP_MAX * length)),
                              (open_at * length / 2, 0, i * t)), "subtract"))
-    inset = min(0.06 * length, 2.5 * t)  # the top layer stops short of the open edge: a step seen from above
     top_open = -1 if (p.thirds and n == 3) else 1
     parts.append(_op(box("top edge", (2 * inset, width * 1.2, 1.1 * t), (top_open * length / 2, 0, h - 0.45 * t)),
                      "subtract", 0.1 * t))
     return parts
+
+
+DECOR_MIN = 0.09  # a pattern band at least this / the sheet's drawn footprint wide: the mesher blends a surface's
+# colour over 1.5 cells (1/64 of the object at draft), a narrower band is a smear [-]
+
+TILE_DYE = 3  # a pattern patch drawn this many times over, at most (see tiled_top) [-]
+TILE_LAP = 0.004  # neighbouring pattern tiles overlap by this / the sheet's footprint [-]
+Rect = tuple[str, float, float, float, float]  # a coloured patch: (name, x0, x1, y0, y1)
+
+
+def _bands(lo: float, hi: float, n: int, share: float, least: float) -> list[tuple[float, float]]:
+    """n bands evenly over [lo, hi], each `share` of its pitch wide (at least `least`)."""
+    pitch = (hi - lo) / n
+    bw = min(max(share * pitch, least), 0.9 * pitch)
+    return [(lo + (i + 0.5) * pitch - bw / 2, lo + (i + 0.5) * pitch + bw / 2) for i in range(n)]
+
+
+def decor_rects(p: SheetParams, length: float, width: float) -> list[Rect]:
+    """A sheet's printed or woven pattern over its top (length along x, width along y, centred) as coloured patches
+    that do not overlap: stripes across the length (and along it for a check, their crossings 'check'), a hem round
+    the edge, a newspaper's headline, text lines and photo, a magazine cover's masthead, photo and cover lines."""
+    L, W = length, width
+    least = DECOR_MIN * max(L, W)
+    out: list[Rect] = []
+    x0, x1, y0, y1 = -L / 2, L / 2, -W / 2, W / 2
+    if p.hem:
+        hw = max(0.06 * min(L, W), least)
+        out += [("hem", x0, x1, y1 - hw, y1), ("hem", x0, x1, y0, y0 + hw), ("hem", x0, x0 + hw, y0 + hw, y1 - hw),
+                ("hem", x1 - hw, x1, y0 + hw, y1 - hw)]
+        x0, x1, y0, y1 = x0 + hw, x1 - hw, y0 + hw, y1 - hw
+    if p.stripes and not p.checks:
+        out += [("stripe", a, b, y0, y1) for a, b in _bands(x0, x1, p.stripes, 0.4, least)]
+    elif p.stripes:  # gingham: bands both ways, their crossings the darkest
+        xs = _bands(x0, x1, p.stripes, 0.5, least)
+        n_along = int(np.clip(round(p.stripes * (y1 - y0) / (x1 - x0)), 2, p.stripes))  # (at most 7 x 7 tiles)
+        ys = _bands(y0, y1, n_along, 0.5, least)
+        xcuts = sorted({x0, x1, *[v for ab in xs for v in ab]})
+        ycuts = sorted({y0, y1, *[v for ab in ys for v in ab]})
+        for xa, xb in zip(xcuts[:-1], xcuts[1:]):
+            inx = any(a <= 0.5 * (xa + xb) <= b for a, b in xs)
+            for ya, yb in zip(ycuts[:-1], ycuts[1:]):
+                iny = any(a <= 0.5 * (ya + yb) <= b for a, b in ys)
+                if inx or iny:
+                    out.append(("check" if inx and iny else "stripe", xa, xb, ya, yb))
+    if p.open_end and p.state == "folded":  # a folded pillowcase: its open end's wide hem band across the top
+        out.append(("cuff", x1 - max(0.22 * L, least), x1, y0, y1))
+    if p.printed == "newspaper":  # the page's head at +x: the masthead, then three columns of text, a photo
+        m = 0.05 * L
+        hx = max(0.12 * L, least)
+        out.append(("headline", x1 - m - hx, x1 - m, y0 + m, y1 - m))
+        top, bot = x1 - 2 * m - hx, x0 + m
+        cols = _bands(y0 + m, y1 - m, 3, 0.84, least)
+        split = top - 0.45 * (top - bot)  # the photo over the first column's top
+        out.append(("photo", split, top, *cols[0]))
+        out.append(("text", bot, split - m, *cols[0]))
+        out += [("text", bot, top, ya, yb) for ya, yb in cols[1:]]
+    if p.printed == "magazine":  # a cover: masthead at +x, the cover photo below it, cover lines beside it
+        m = 0.05 * L
+        hx = max(0.15 * L, least)
+        out.append(("masthead", x1 - m - hx, x1 - m, y0 + m, y1 - m))
+        top, bot = x1 - 2 * m - hx, x0 + m
+        split = y0 + 0.38 * (y1 - y0)
+        out.append(("cover photo", bot, top, split + 0.5 * m, y1 - m))
+        for a, b in _bands(bot, top, 3, 0.45, least):
+            out.append(("cover line", a, b, y0 + m, split - 0.5 * m))
+    return out
+
+
+def sheet_extras(p: SheetParams) -> int:
+    """Parts a flat sheet draws beside its body (fringe, quilting, ribs, zip, grommets, hood, open end, corners)."""
+    tassels = 2 * int(np.clip(round(p.width / (3.2 * sheet_layer(p))), 3, 9)) if p.fringe else 0
+    return 4 + tassels + 2 * p.quilt + p.ribs + 2 * p.grommets + 8 * (p.curl > 0) + 3
+
+
+def tiled_top(rects: list[Rect], length: float, width: float, z0: float, z1: float, ground: str,
+              reserve: int = 14) -> list[Part]:
+    """A layer from z0 to z1 over the whole top (length x width, centred), tiled flush: the coloured patches and,
+    between them, `ground` tiles (the sheet's own colour); neighbouring tiles meet side by side, so each patch keeps
+    its colour across its middle (a patch standing proud of a ground beneath it would blend into it)."""
+    xs = sorted({-length / 2, length / 2, *[r[1] for r in rects], *[r[2] for r in rects]})
+    rows: list[tuple[float, float, list[tuple[str, float, float]]]] = []
+    for xa, xb in zip(xs[:-1], xs[1:]):
+        if xb - xa < 1e-9:
+            continue
+        mid = 0.5 * (xa + xb)
+        cover = sorted((r[3], r[4], r[0]) for r in rects if r[1] <= mid <= r[2])
+        row, y = [], -width / 2
+        for ya, yb, name in cover:
+            if ya > y + 1e-9:
+                row.append((ground, y, ya))
+            row.append((name, ya, yb))
+            y = yb
+        if y < width / 2 - 1e-9:
+            row.append((ground, y, width / 2))
+        if rows and rows[-1][2] == row:
+            rows[-1] = (rows[-1][0], xb, row)
+        else:
+            rows.append((xa, xb, row))
+    parts: list[Part] = []
+    count: dict[str, int] = {}
+    lap = TILE_LAP * max(length, width)  # tiles overlap: flush faces would meet at zero distance, a seam the mesher
+    for xa, xb, row in rows:               # splits the sheet along
+        for name, ya, yb in row:
+            count[name] = count.get(name, 0) + 1
+            label = name if count[name] == 1 else f"{name} {count[name]}"
+            xa2, xb2 = max(xa - lap, -length / 2), min(xb + lap, length / 2)
+            ya2, yb2 = max(ya - lap, -width / 2), min(yb + lap, width / 2)
+            parts.append(box(label, (xb2 - xa2, yb2 - ya2, z1 - z0), (0.5 * (xa2 + xb2), 0.5 * (ya2 + yb2),
+                                                                       0.5 * (z0 + z1))))
+    parts = sorted(parts, key=lambda q: q.name != ground)  # the first ground tile first (the sheet's body)
+    # the mesher paints a surface point by every part near it, weighted by nearness, in linear light: a white ground
+    # beside a narrow band washes it pink; each patch drawn again in the same place (coincident copies, its colour
+    # counted twice or three times over) keeps its own colour across its middle
+    patches = [q for q in parts if part_group(q.name) != ground]
+    copies = int(np.clip((MAX_PARTS - reserve - len(parts)) // max(len(patches), 1), 0, TILE_DYE - 1))
+    for _k in range(copies):
+        for q in patches:
+            g = part_group(q.name)
+            count[g] += 1
+            parts.append(q.model_copy(update={"name": f"{g} {count[g]}"}))
+    return parts
+
+
+def grommets(p: SheetParams, length: float, width: float, z: float) -> list[Part]:
+    """A tarp's metal eyelets along both long edges of a top at height z, corners included."""
+    n = max(p.grommets, 2)
+    rg = 0.03 * max(length, width)
+    out: list[Part] = []
+    for side in (-1, 1):
+        for i in range(n):
+            x = -length / 2 + 1.6 * rg + i * (length - 3.2 * rg) / (n - 1)
+            out.append(torus(f"grommet {len(out) + 1}", rg, 0.45 * rg, (x, side * (width / 2 - 1.6 * rg), z),
+                             blend=0.2 * rg))
+    return out
+
+
+def _hood(w: float, t: float) -> list[Part]:
+    """A sleeping bag's head end at +x: the hood (a rounded, raised cowl over the end, as wide as the bag) and its
+    face opening, a dark oval in the hood's top facing the foot."""
+    hx = 0.13
+    return [superellipsoid("hood", (hx, 0.5 * w, 0.95 * t), (0.45 - hx, 0, 0.95 * t), ns=0.5, ew=0.6, blend=0.5 * t),
+            _op(ellipsoid("face", (0.7 * hx, 0.34 * w, 0.8 * t), (0.45 - 1.05 * hx, 0, 2.0 * t)), "subtract",
+                0.2 * t),
+            ellipsoid("opening", (0.62 * hx, 0.3 * w, 0.45 * t), (0.45 - 1.05 * hx, 0, 1.05 * t))]
+
+
+def _open_end(w: float, t: float) -> list[Part]:
+    """A pillowcase's open end at +x: the wide hem band across it, standing a little proud, and the mouth cut into
+    the end between its two layers."""
+    cw = 0.2
+    return [box("cuff", (cw, 1.0 * w, 1.25 * t), (0.5 - cw / 2, 0, 0.6 * t), edge=0.4 * t, blend=0.1 * t),
+            _op(box("mouth", (0.12, 0.92 * w, 0.35 * t), (0.5, 0, 0.6 * t)), "subtract", 0.05 * t)]
 
 
 def _turned(parts: list[Part], deg: float) -> list[Part]:
@@ -583,11 +786,12 @@ class PouchParams(Model):
     fill: float = Field(default=0.6, ge=0.0, le=1.0, description="how full: 0 an empty, flat bag; 1 a round pillow [-]")
     seam: float = Field(default=0.04, ge=0.0, le=0.15, description="width of the sealed or sewn border / length [-]")
     squareness: float = Field(default=0.35, gt=0.1, le=1.0, description="1 an oval pouch, small a square one [-]")
-    port: Literal["none", "iv", "cap", "spout", "tied", "straw", "hose"] = Field(
+    port: Literal["none", "iv", "cap", "spout", "tied", "straw", "hose", "knot"] = Field(
         default="none", description="iv: two ports at the front and a hanger hole; cap: a screw neck; spout: one tube; "
         "tied: a sack's neck gathered and tied, its cloth flaring past the tie; straw: a drinking straw pushed in "
         "through the top seam, standing out past it at an angle; hose: a hydration bladder's screw cap on its top "
-        "and a drinking tube out of its bottom end, lying in a loose curve, its bite valve at the end")
+        "and a drinking tube out of its bottom end, lying in a loose curve, its bite valve at the end; knot: a bin "
+        "bag's neck twisted into a knot, its two drawstring ears splayed out of it")
     channels: int = Field(default=0, ge=0, le=8, description="stitched channels across a quilted pad (an ankle "
                           "weight) [-]")
     strap: float = Field(default=0.0, ge=0.0, le=1.5, description="a flat strap from the pad's +x end (velcro, a "
@@ -599,6 +803,8 @@ class PouchParams(Model):
                         "what tells a pack of goods from a pillow")
     handle: bool = Field(default=False, description="a webbing carry handle across the top, sewn at both ends (a "
                          "stage sandbag)")
+    upright: bool = Field(default=False, description="standing on its closed end, the port (a tied neck) up: a full "
+                          "bin bag, lumpy with what is in it")
     crimp: bool = Field(default=False, description="a pillow pack (a bag of crisps, frozen peas, rice, pet food, "
                         "compost): no border seam, its two short ends heat-sealed into flat fins with crimp ridges "
                         "across them, the filled body gathering into them")
@@ -612,6 +818,8 @@ def pouch(p: PouchParams) -> list[Part]:
     w = p.width
     s = p.seam
     h = max(MIN_LAYER * 1.6, p.fill * 0.42 * w)
+    if p.upright:  # a full bag standing: as deep as it is wide, its weight spreading it
+        h = max(h, 0.8 * p.fill * w)
     if max(p.piece) > 0:  # a bag of goods is as deep as they are thick: they bulge its film, not stand on a tray
         h = max(h, BAG_DEPTH_OVER_PIECE * sorted(p.piece)[0])
     st = MIN_LAYER
@@ -635,6 +843,13 @@ def pouch(p: PouchParams) -> list[Part]:
         parts.append(tapered("neck", (0.3, 0, h / 2), (0.62, 0, h / 2), r0, 0.06, blend=0.08))
         parts.append(torus("tie", 0.065, 0.025, (0.62, 0, h / 2), rot=(0, 90, 0), blend=0.005))
         parts.append(cone("ruffle", 0.06, 0.14, 0.14, (0.71, 0, h / 2), edge=0.015, rot=(0, 90, 0), blend=0.03))
+    elif p.port == "knot":  # the neck gathered into a knot, the two ears of the tie splayed out of it
+        r0 = 0.7 * min(h, w) / 2
+        parts.append(tapered("neck", (0.3, 0, h / 2), (0.6, 0, h / 2), r0, 0.05, blend=0.08))
+        parts.append(ellipsoid("knot", (0.06, 0.07, 0.06), (0.62, 0, h / 2), blend=0.02))
+        for side, sy in (("left", -1.0), ("right", 1.0)):
+            parts.append(ellipsoid(f"{side} ear", (0.12, 0.05, 0.018), (0.7, sy * 0.09, h / 2), rot=(0, 0, sy * 40),
+                                   blend=0.02))
     elif p.port == "straw":  # through the seam near one corner, sticking out a third of the pouch's length
         parts.append(limb("straw", (0.36, 0.22 * w, h / 2), (0.8, 0.3 * w, h / 2 + 0.08), 0.022, blend=0.006))
     elif p.port == "hose":
@@ -662,6 +877,12 @@ def pouch(p: PouchParams) -> list[Part]:
         parts += bagged_pieces(p, h)
     elif p.label:
         parts.append(_label(w - 2 * s, h))
+    if p.upright:  # lumps of what is inside pressing out its sides, then stood on its closed end
+        for k, (x, a) in enumerate(((-0.25, 20.0), (-0.05, 150.0), (0.12, 260.0), (-0.2, 300.0))):
+            ca, sa = np.cos(np.radians(a)), np.sin(np.radians(a))
+            parts.append(ellipsoid(f"lump {k + 1}", (0.16, 0.12, 0.12), (x, 0.3 * w * ca, h / 2 + 0.3 * h * sa),
+                                   blend=0.06))
+        parts = rotated_parts(parts, (0.0, -90.0, 0.0))
     if p.strap > 0:
         sw, st = 0.55 * w, 1.6 * MIN_LAYER
         parts.append(box("strap", (p.strap, sw, st), (0.5 + p.strap / 2 - 0.05, 0, st / 2), edge=0.45 * st,
@@ -868,6 +1089,9 @@ class SockParams(Model):
     state: Literal["flat", "rolled"] = Field(default="flat", description="flat, or rolled up into a sock ball (the "
                                              "cuff turned over it)")
     pair: bool = Field(default=False, description="two socks: side by side, or rolled together into one ball")
+    standing: bool = Field(default=False, description="a boot standing on its sole (a rubber boot, a wellington): "
+                           "the leg upright, a tread sole under the foot and heel, its opening a dark hollow at the "
+                           "top")
 
 
 def sock(p: SockParams) -> list[Part]:
@@ -896,6 +1120,18 @@ def sock(p: SockParams) -> list[Part]:
     if p.cuff:
         d = (top - heel) / np.linalg.norm(top - heel)
         parts.append(_flat_limb("cuff", top - d * 0.12, top, 1.0 * r, 1.1 * t, blend=0.01))
+    if p.standing:  # the L turned up (the leg along +z), a sole under the foot, the opening sunk into the top
+        parts = rotated_parts(parts, (90.0, 0.0, 0.0))
+        zt = float(top[1])
+        xt = float(top[0])
+        sole = 0.07
+        parts.append(box("sole", (1.0 + 0.1 * r, 1.02 * t, sole), (0.5 - 0.5 * r, -t / 2, -r + sole / 2),
+                         edge=0.3 * sole, blend=0.02))
+        parts.append(_op(scaled(cylinder("hollow", 0.8 * r, 0.3, (xt, -t / 2, zt + 0.9 * r)), (1.0, 0.75 * t / r / 2
+                                                                                              * 2, 1.0)), "subtract",
+                         0.02))
+        parts.append(scaled(cylinder("opening", 0.78 * r, 0.02, (xt, -t / 2, zt + 0.9 * r - 0.15)),
+                            (1.0, 0.75 * t / r, 1.0)))
     return parts
 
 
@@ -1193,9 +1429,11 @@ class GarmentParams(Model):
     crumpled in a heap, or hung on a hanger. Length 1 is the body's (collar to hem) length, along x (collar at +x).
     Laid flat with its sleeves out it is wider than long, so its built layer is `GARMENT_LAYER` of that length."""
 
-    kind: Literal["top", "trousers", "dress", "suit"] = Field(default="top", description="'suit': a one-piece "
-                                                              "(a wetsuit, coveralls, a snowsuit, a footed sleepsuit): "
-                                                              "a top with legs below its body")
+    kind: Literal["top", "trousers", "dress", "suit", "apron", "swimsuit"] = Field(
+        default="top", description="'suit': a one-piece (a wetsuit, coveralls, a snowsuit, a footed sleepsuit): a top "
+        "with legs below its body; 'dress': a fitted bodice on shoulder straps (or sleeves), a waistband and a flared "
+        "skirt; 'apron': a bib on a neck loop over a wider skirt panel, waist ties out to the sides, a patch pocket; "
+        "'swimsuit': a one-piece swimsuit, its straps, a body narrowing to the waist, high leg openings")
     state: Literal["flat", "folded", "crumpled", "hung"] = "flat"
     sleeves: Literal["none", "short", "long"] = "long"
     hood: bool = False
@@ -1335,10 +1573,79 @@ def _flat_frustum(name: str, a: np.ndarray, b: np.ndarray, ra: float, rb: float,
 
 
 def _dress_flat(p: GarmentParams, t: float) -> list[Part]:
+    """A dress laid flat, the neck at +x: a fitted bodice on two shoulder straps (or short or long sleeves), the
+    neckline cut between them, a waistband, and the skirt flaring from the waist to a wide hem."""
     w = p.width
-    parts = [cone("body", 0.62 * w, 0.3 * w, 1.0, (0, 0, t / 2), rot=(0, 90, 0), edge=0.2 * t)]
-    parts[0] = scaled(parts[0], (t / (0.62 * w * 2), 1, 1))
-    parts.append(_op(scaled(cylinder("neck", 0.1, 4 * t, (0.52, 0, t / 2)), (0.75, 1, 1)), "subtract", 0.01))
+    waist = 0.12
+    bw = 0.34 * w  # the bodice's half-width
+    skirt = 0.5 + waist
+    parts = [scaled(cone("body", 0.62 * w, bw, skirt, (waist - skirt / 2, 0, t / 2), rot=(0, 90, 0), edge=0.2 * t),
+                    (t / (0.62 * w * 2), 1, 1)),
+             superellipsoid("bodice", ((0.46 - waist) / 2, bw, t / 2), ((0.46 + waist) / 2, 0, t / 2), ns=0.2,
+                            ew=0.3, blend=0.3 * t),
+             box("waistband", (0.05, 2 * bw + 0.02, 1.1 * t), (waist, 0, t / 2), edge=0.3 * t, blend=0.1 * t),
+             _op(scaled(cylinder("neck", 0.5 * bw, 4 * t, (0.47, 0, t / 2)), (0.9, 1, 1)), "subtract", 0.2 * t)]
+    for side, sy in (("left", -1.0), ("right", 1.0)):
+        a = np.array([0.36, sy * 0.72 * bw, t / 2])
+        if p.sleeves == "none":
+            parts += _flat_chain(f"{side} strap", [a, np.array([0.52, sy * 0.7 * bw, t / 2])], 0.045 * w, t,
+                                 blend=0.3 * t)
+        else:
+            reach = 0.16 if p.sleeves == "short" else 0.5
+            start = np.array([0.4, sy * 0.85 * bw, t / 2])
+            end = start + np.array([-0.5 * reach, sy * reach * 0.85, 0.0])
+            parts += _flat_chain(f"{side} sleeve", [start, end], 0.09 * w, t, blend=0.3 * t)
+    return parts
+
+
+def _apron_flat(p: GarmentParams, t: float) -> list[Part]:
+    """An apron laid flat, the neck at +x: the skirt panel (its hem at -x), the narrower bib above it, the neck loop
+    from the bib's top corners, the waist ties out from its sides, and a patch pocket on the skirt."""
+    w = p.width
+    waist = 0.05
+    parts = [box("body", (0.5 + waist, w, t), ((waist - 0.5) / 2, 0, t / 2), edge=0.45 * t),
+             box("bib", (0.42 - waist + 0.02, 0.62 * w, t), ((0.42 + waist) / 2, 0, t / 2), edge=0.45 * t,
+                 blend=0.2 * t)]
+    r = 0.3 * w  # the neck loop's half-width
+    loop = [np.array([0.41 + 0.17 * np.sin(a), 0.26 * w * np.cos(a), t / 2]) for a in np.linspace(0, np.pi, 7)]
+    loop[0][1], loop[-1][1] = 0.26 * w, -0.26 * w
+    parts += _flat_chain("neck strap", [np.array([0.4, r * 0.9, t / 2]), *loop[1:-1], np.array([0.4, -r * 0.9, t / 2])],
+                         0.025, t, blend=0.2 * t)
+    for side, sy in (("left", -1.0), ("right", 1.0)):
+        a = np.array([waist, sy * (w / 2 - 0.02), t / 2])
+        parts += _flat_chain(f"{side} tie", [a, a + np.array([-0.02, sy * 0.25, 0]), a + np.array([-0.3, sy * 0.36, 0])],
+                             0.025, t, blend=0.2 * t)
+    if p.pocket:
+        parts.append(box("pocket", (0.18, 0.5 * w, 0.5 * t), (-0.2, 0, t), edge=0.2 * t, blend=0.1 * t))
+    return parts
+
+
+def _swimsuit_flat(p: GarmentParams, t: float) -> list[Part]:
+    """A one-piece swimsuit laid flat, the neck at +x: the body, narrowing to the waist, its neckline and the high
+    leg openings cut away down to the narrow crotch at -x, two shoulder straps."""
+    w = p.width
+    parts = [superellipsoid("body", (0.36, w / 2, t / 2), (0.06, 0, t / 2), ns=0.2, ew=0.35)]
+    bare = p.sleeves == "none"  # (with sleeves: a baby's bodysuit, straight-sided, no straps)
+    for side, sy in (("left", -1.0), ("right", 1.0)):
+        if bare:
+            parts.append(_op(scaled(cylinder(f"{side} waist", 0.2, 4 * t, (0.08, sy * (w / 2 + 0.16), t / 2)),
+                                    (1.6, 1, 1)), "subtract", 0.05))
+        parts.append(_op(scaled(cylinder(f"{side} leg opening", 0.3, 4 * t, (-0.34, sy * (0.14 * w + 0.3), t / 2)),
+                                (1.1, 1, 1)), "subtract", 0.03))
+        if bare:
+            parts += _flat_chain(f"{side} strap", [np.array([0.35, sy * 0.3 * w, t / 2]),
+                                                    np.array([0.5, sy * 0.28 * w, t / 2])], 0.03, t, blend=0.2 * t)
+    parts.append(box("crotch", (0.18, 0.16 * w + 0.06, t), (-0.36, 0, t / 2), edge=0.45 * t, blend=0.05))
+    parts.append(_op(scaled(cylinder("neck", 0.16 * w + 0.05, 4 * t, (0.45, 0, t / 2)), (0.8, 1, 1)), "subtract",
+                     0.03))
+    if p.sleeves != "none":  # a baby's bodysuit: sleeves from the shoulders, snaps across the crotch flap
+        reach = 0.13 if p.sleeves == "short" else 0.4
+        for side, sy in (("left", -1.0), ("right", 1.0)):
+            a = np.array([0.3, sy * 0.36 * w, t / 2])
+            parts += _flat_chain(f"{side} sleeve", [a, a + np.array([-0.4 * reach, sy * reach, 0.0])], 0.09,
+                                 t, blend=0.3 * t)
+        for k, y in enumerate((-0.07, 0.0, 0.07)):
+            parts.append(cylinder(f"snap {k + 1}", 0.022, 0.5 * t, (-0.42, y, t), edge=0.2 * t, blend=0.1 * t))
     return parts
 
 
@@ -1369,6 +1676,10 @@ def _garment_flat(p: GarmentParams, t: float) -> list[Part]:
         return _trousers_flat(p, t)
     if p.kind == "dress":
         return _dress_flat(p, t)
+    if p.kind == "apron":
+        return _apron_flat(p, t)
+    if p.kind == "swimsuit":
+        return _swimsuit_flat(p, t)
     return _top_flat(p, t)
 
 
@@ -1831,9 +2142,10 @@ class StrapParams(Model):
     """A long flat strip or cord: resistance band, strap, belt, ribbon, tie, hose, cable, skipping rope; straight,
     lying in a loose loop, or coiled. Length 1 is the strip's full length (a closed band's circumference)."""
 
-    state: Literal["straight", "loop", "rolled", "wavy"] = Field(
+    state: Literal["straight", "loop", "rolled", "wavy", "bow"] = Field(
         default="straight", description="straight; loop (lying in a loose loop); rolled (coiled); wavy (an open "
-        "length dropped on the table in loose S-bends: a feather boa, a garland)")
+        "length dropped on the table in loose S-bends: a feather boa, a garland); bow (tied in a bow: two loops "
+        "and two tails out of a knot, a ribbon's)")
     fluff: bool = Field(default=False, description="a fluffy cord (a feather boa): clumps of fluff at uneven tilts "
                         "all along it, as thick as the cord")
     hank: bool = Field(default=False, description="rolled: a long rope coiled in `turns` loops laid one on another "
@@ -1845,9 +2157,11 @@ class StrapParams(Model):
     bore: float = Field(default=0.0, ge=0.0, lt=1.0, description="a tube's inner over outer diameter (drawn solid; "
                         "its mass is the wall's: tasks.geometry.dims_words) [-]")
     turns: float = Field(default=3.0, ge=1.0, le=60.0, description="turns of a coil (a flat spiral draws at most 8) [-]")
-    ends: Literal["none", "handles", "buckle", "ring", "hose", "hooks"] = Field(
+    ends: Literal["none", "handles", "buckle", "ring", "hose", "hooks", "leash"] = Field(
         default="none", description="what the ends carry; hose: an inflatable cuff's (a blood pressure cuff): its "
-        "rubber tube and plug out of one face, a hook-and-loop patch; hooks: a J-hook at each end (a bungee cord)")
+        "rubber tube and plug out of one face, a hook-and-loop patch; hooks: a J-hook at each end (a bungee cord); "
+        "buckle: a metal frame buckle (laid in a loop: the belt buckled, its tip through the buckle); leash: a "
+        "handle loop sewn at one end and a snap clip at the other (a dog leash, laid wavy)")
 
 
 def _strip_dims(p: StrapParams, extent: float) -> tuple[float, float]:
@@ -1872,6 +2186,10 @@ def strap(p: StrapParams) -> list[Part]:
         z = t / 2 if not p.round else w / 2
         pts = [np.array([x, y, z]) for x, y in xy]
         parts = _flat_chain("body", pts, w / 2, t, blend=0.3 * w)
+        if p.ends == "buckle":
+            parts += _buckle(pts[0], pts[1] - pts[-2], w, t)
+    elif p.state == "bow":
+        parts = _bow(p)
     elif p.state == "rolled" and p.hank:
         parts = _hank(p)
     elif p.state == "rolled":  # a flat spiral from radius r0 = 0.45 r1 out to r1, its length 1
@@ -1897,7 +2215,10 @@ def strap(p: StrapParams) -> list[Part]:
         xy -= xy.mean(axis=0)
         w, t = _strip_dims(p, float(np.ptp(xy[:, 0])))
         z = t / 2 if not p.round else w / 2
-        parts = _flat_chain("body", [np.array([x, y, z]) for x, y in xy], w / 2, t, blend=0.3 * w)
+        pts = [np.array([x, y, z]) for x, y in xy]
+        parts = _flat_chain("body", pts, w / 2, t, blend=0.3 * w)
+        if p.ends == "leash":
+            parts += _leash_ends(pts, w, t)
     else:
         length = 0.5 if p.closed else 1.0
         w, t = _strip_dims(p, length)
@@ -1931,6 +2252,63 @@ def strap(p: StrapParams) -> list[Part]:
     if p.fluff:
         parts += _fluff(parts)
     return parts
+
+
+def _bow(p: StrapParams) -> list[Part]:
+    """A ribbon tied in a bow lying flat: the knot at the centre, two loops out to the sides (each a flat band round
+    a teardrop), two tails hanging down from the knot, their ends cut in a V; the ribbon's length 1 shared among
+    them."""
+    loop_len, tail_len = 0.34, 0.13
+    extent = 2 * loop_len / np.pi + 0.1
+    w, t = _strip_dims(p, extent)
+    z = t / 2
+    parts = [box("body", (1.3 * w, 1.2 * w, 2.2 * t), (0, 0, 1.1 * t), edge=0.45 * t)]  # the knot
+    R = loop_len / (2 * np.pi)
+    for side, sx in (("left", -1.0), ("right", 1.0)):
+        c = np.array([sx * (0.55 * w + R), 0.0])
+        pts = [np.array([c[0] + sx * R * np.cos(a), 0.65 * R * np.sin(a), z])
+               for a in np.linspace(np.pi + 0.45, 3 * np.pi - 0.45, 9)]
+        pts = [np.array([0.0, 0.25 * w * (1 if k == 0 else -1), z]) if k in (0, 8) else q for k, q in enumerate(pts)]
+        parts += _flat_chain(f"{side} loop", pts, w / 2, t, blend=0.3 * w)
+        a = np.array([0.0, 0.0, z])
+        b = np.array([sx * 0.45 * tail_len, -0.9 * tail_len, z])
+        parts += _flat_chain(f"{side} tail", [a, b], w / 2, t, blend=0.3 * w)
+        parts.append(_op(box(f"{side} tail notch", (0.9 * w, 0.9 * w, 4 * t), tuple(b + np.array([0, -0.35 * w, 0])),
+                             rot=(0, 0, 45)), "subtract"))
+    return parts
+
+
+def _buckle(at: np.ndarray, along: np.ndarray, w: float, t: float) -> list[Part]:
+    """A belt's frame buckle lying on the strap at `at`, its bar across the strap (the strap running `along`): the
+    metal frame (a plate with its window cut), the prong across the window, the strap's tip out past it."""
+    d = along / np.linalg.norm(along)
+    yaw = float(np.degrees(np.arctan2(d[1], d[0])))
+    fl, fw, ft = 1.5 * w, 1.5 * w, 1.4 * t
+    c = at + np.array([0.0, 0.0, 0.7 * t])
+    return [box("buckle", (fl, fw, ft), tuple(c), edge=0.3 * ft, rot=(0, 0, yaw), blend=0.1 * t),
+            _op(box("buckle window", (0.6 * fl, 0.7 * fw, 3 * ft), tuple(c), rot=(0, 0, yaw)), "subtract"),
+            box("prong", (0.75 * fl, 0.14 * fw, 0.8 * ft), tuple(c + np.array([0.0, 0.0, 0.1 * t])), edge=0.3 * t,
+                rot=(0, 0, yaw)),
+            box("keeper", (0.35 * w, 1.2 * w, 1.6 * t), tuple(at - d * 1.3 * fl + np.array([0.0, 0.0, 0.6 * t])),
+                edge=0.4 * t, rot=(0, 0, yaw), blend=0.1 * t)]
+
+
+def _leash_ends(pts: list[np.ndarray], w: float, t: float) -> list[Part]:
+    """A leash's ends: the handle, a flat loop of the strap sewn back at the first point, and the metal snap clip
+    (a swivel ring and the hook's body) at the last."""
+    a, b = pts[0], pts[-1]
+    da = (a - pts[1]) / np.linalg.norm(a - pts[1])
+    db = (b - pts[-2]) / np.linalg.norm(b - pts[-2])
+    R = 0.06
+    hc = a + da * R * 0.9
+    out = [scaled(torus("handle", R, w / 2, tuple(hc), rot=(0, 0, 0)), (1.0, 0.6, t / w)),
+           box("stitching", (1.2 * w, 1.1 * w, 1.2 * t), tuple(a), edge=0.4 * t, blend=0.1 * t,
+               rot=(0, 0, float(np.degrees(np.arctan2(da[1], da[0])))))]
+    rr = 0.6 * w
+    rc = b + db * rr
+    out.append(torus("swivel ring", rr, 0.25 * w, tuple(rc), blend=0.1 * t))
+    out.append(limb("clip", tuple(rc + db * rr), tuple(rc + db * (rr + 0.07)), 0.45 * w, blend=0.2 * w))
+    return out
 
 
 HANK_PACKING = 0.7  # the cord's share of a coiled hank's ring section [-]

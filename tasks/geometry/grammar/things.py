@@ -18,6 +18,7 @@ from tasks.geometry.grammar.parts import (
     cylinder,
     ellipsoid,
     limb,
+    relief,
     scaled,
     sphere_directions,
     squashed_parts,
@@ -93,43 +94,59 @@ class BallParams(Model):
                        "tilted up")
     bands: int = Field(default=0, ge=0, le=24, description="rubber bands wound round it, each a raised great circle "
                        "at its own tilt ('band a' ... 'band f' take their own colours: a rubber band ball) [-]")
+    lines: Literal["none", "tennis", "baseball", "basketball"] = Field(
+        default="none", description="raised seam lines in their own colour ('seam'): tennis, one closed curve "
+        "winding round it (a tennis ball's); baseball, that curve with red stitches ('stitch') across it; "
+        "basketball, the equator, a meridian and the two curved lines")
+    holes: int = Field(default=0, ge=0, le=40, description="round holes set into the shell, evenly spread "
+                       "('hole': a pickleball's, a wiffle ball's) [-]")
+    relief: Literal["none", "spikes", "nubs", "folds", "strands", "ruffles", "crumples", "lumps"] = Field(
+        default="none", description="raised surface detail (tasks.geometry.grammar.parts.relief): spikes, nubs, "
+        "strands (a wound ball), lumps (a hand-rolled meatball) ...")
+    stick: float = Field(default=0.0, ge=0.0, le=3.0, description="a stick standing under it, its length / the "
+                         "ball's diameter ('stick': a cake pop) [-]")
+    sprinkles: int = Field(default=0, ge=0, le=60, description="small sprinkles on its upper half ('sprinkle a' ... "
+                           "'sprinkle c' take their own colours) [-]")
+    cut: bool = Field(default=False, description="a wedge cut out of its top front, showing its inside ('inside': "
+                      "a wax-coated cheese's paste)")
+    knot: bool = Field(default=False, description="a pinched, gathered knot on top (a burrata's, a pouch's)")
+    lip: bool = Field(default=False, description="a ragged lip of lumps round its foot, where it was pressed out of "
+                      "the scoop (a scoop of ice cream)")
 
 
-BALL_SPINDLE_POINTS = 17
 BAND_RADIUS = 0.022  # a wound rubber band's raised round section / the ball's diameter [-]
-
-
-def ball_radius(p: BallParams, t: float) -> float:
-    """Cross-section radius at t in [-0.5, 0.5] along the length (diameter 1 at the middle): an ellipse's when
-    `tips` is 0, falling to a point as `tips` grows."""
-    u = min(1.0, (2.0 * abs(t)) ** 2)
-    return 0.5 * max(1.0 - u, 0.0) ** (0.5 + 0.5 * p.tips)
 
 
 def ball(p: BallParams) -> list[Part]:
     """Diameter 1; x is the long axis of a prolate ball."""
     rz = 0.5 * p.squash
-    if p.tips > 0:
-        ts = np.linspace(-0.5, 0.5, BALL_SPINDLE_POINTS)
-        radii = np.array([max(ball_radius(p, float(t)), 0.035 * (0.2 + (1 - p.tips))) for t in ts])
-        pts = np.stack([ts * p.aspect, np.zeros_like(ts), np.full_like(ts, 0.5)], axis=1)
-        k = BALL_SPINDLE_POINTS // 2
-        names = ["body" if i in (k - 1, k) else ("tip" if i in (0, BALL_SPINDLE_POINTS - 2) else f"part {i}")
-                 for i in range(BALL_SPINDLE_POINTS - 1)]
-        parts = swept(names, pts, radii)
-        first = next(i for i, q in enumerate(parts) if q.name == "body" and q.primitive.kind == "cone")
-        parts = [parts[first]] + parts[:first] + parts[first + 1:]
+    if p.tips > 0:  # a prolate body and a cone to each end, smoothly joined: one smooth spindle, pointed ends
+        half = 0.5 * p.aspect
+        ex = half * (1.0 - 0.25 * p.tips)
+        parts = [ellipsoid("body", (ex, 0.5, 0.5), (0, 0, 0.5))]
+        xt = ex * ex / half  # where a line from the end (half, 0) touches the body's outline: each cone starts there
+        yt = 0.5 * np.sqrt(max(1.0 - (ex / half) ** 2, 0.0))
+        r_end = 0.02 + 0.08 * (1.0 - p.tips)
+        x_end = half - r_end * (half - xt) / yt  # along that tangent line until it is r_end from the axis
+        back = 0.015  # each cone's base a little behind the touching point along the line, its rim barely rounded
+        xb, yb = xt - back, yt + back * yt / (half - xt)
+        for s in (1, -1):  # each cone tangent to the body where it leaves it (no blend: a blend would bulge there)
+            tip = tapered(f"{'front' if s > 0 else 'back'} tip", (s * xb, 0, 0.5), (s * x_end, 0, 0.5), yb, r_end)
+            parts.append(tip.model_copy(update={"primitive": tip.primitive.model_copy(update={"edge_radius_m": 0.004})}))
         if p.squash < 1.0:
             parts = squashed_parts(parts, (1.0, 1.0, p.squash))
     else:
         parts = [ellipsoid("body", (0.5 * p.aspect, 0.5, rz), (0, 0, rz))]
+    lift = SEAM_LIFT  # raised enough that its own colour wins over the body's at draft meshing
     if p.panels:
-        parts.append(ellipsoid("seam", (0.505 * p.aspect, 0.06, rz * 1.01), (0, 0, rz)))
+        parts.append(ellipsoid("seam", (0.5 * p.aspect + lift, 0.05, rz + lift), (0, 0, rz)))
     if p.laces:
         parts += _laces(p.aspect, rz)
     for i in range(p.gores // 2):  # each seam a great circle through the poles: two panels' edges
-        parts.append(ellipsoid(f"panel seam {i + 1}", (0.52 * p.aspect, 0.022, rz * 1.04), (0, 0, rz),
+        parts.append(ellipsoid(f"panel seam {i + 1}", (0.5 * p.aspect + lift, 0.03, rz + lift), (0, 0, rz),
                                rot=(0, 0, 180.0 * i / (p.gores // 2))))
+    if p.lines != "none":
+        parts += _ball_lines(p.lines, (0.5 * p.aspect, 0.5, rz), rz)
     if p.face:
         parts += smiley((0.0, 0.0, rz), (0.5 * p.aspect, 0.5, rz))
     for i, d in enumerate(sphere_directions(p.bands, seed=1.1) if p.bands else ()):
@@ -139,7 +156,108 @@ def ball(p: BallParams) -> list[Part]:
             n = d / np.linalg.norm(d)
             parts.append(cylinder(f"patch {i + 1}", 0.2, 0.09, np.array([0, 0, rz]) + 0.5 * n * (1, 1, p.squash),
                                   edge=0.01, rot=_euler_z_to(n), op="subtract"))  # a panel set in, its own colour
+    radii = np.array([0.5 * p.aspect, 0.5, rz])
+    centre = np.array([0.0, 0.0, rz])
+    for i, d in enumerate(sphere_directions(p.holes, seed=0.2) if p.holes else ()):
+        n = d / np.linalg.norm(d)
+        parts.append(cylinder(f"hole {i + 1}", 0.055, 0.16, centre + radii * n, edge=0.01, rot=_euler_z_to(n),
+                              op="subtract"))
+    if p.relief != "none":
+        parts += relief(p.relief, tuple(centre), tuple(radii))
+    if p.cut:  # a quarter wedge out of the upper front: a box's corner at the centre, its faces the inside
+        parts.append(box("inside", (0.8, 0.8, 0.8), (0.4 * np.sqrt(2.0), 0.0, rz + 0.4), rot=(0.0, 0.0, 45.0),
+                         op="subtract"))
+    if p.knot:
+        top = 2 * rz
+        parts += [tapered("knot neck", (0, 0, top - 0.08), (0, 0, top + 0.07), 0.16, 0.06, blend=0.05),
+                  ellipsoid("knot", (0.1, 0.08, 0.07), (0, 0, top + 0.1), blend=0.03)]
+        for j in range(5):
+            a = 2 * np.pi * j / 5
+            parts.append(ellipsoid(f"knot fold {j + 1}", (0.045, 0.045, 0.1), (0.09 * np.cos(a), 0.09 * np.sin(a),
+                                   top - 0.02), rot=(float(np.degrees(-0.5 * np.sin(a))),
+                                                     float(np.degrees(0.5 * np.cos(a))), 0.0), blend=0.03))
+    if p.lip:  # a ring of uneven lumps round the foot, standing out of the body's lower flank
+        foot = 0.2 * rz
+        flank = 0.5 * p.aspect * np.sqrt(1.0 - ((foot - rz) / rz) ** 2)
+        parts.append(torus("lip", flank, 0.07, (0.0, 0.0, foot), blend=0.03))
+        for j in range(9):
+            a = 2 * np.pi * j / 9 + 0.3 * np.sin(3.0 * j)
+            s = 0.085 + 0.03 * np.sin(2.1 * j)
+            parts.append(ellipsoid(f"lip lump {j + 1}", (1.4 * s, s, 0.8 * s), (flank * np.cos(a), flank * np.sin(a),
+                                   foot + 0.02 * np.cos(1.7 * j)), rot=(0.0, 0.0, float(np.degrees(a)) + 90.0),
+                                   blend=0.04))
+    for i, d in enumerate(sphere_directions(2 * p.sprinkles, seed=0.5)[:p.sprinkles] if p.sprinkles else ()):
+        n = d / np.linalg.norm(d)
+        t = np.cross(n, (np.cos(2.3 * i), np.sin(2.3 * i), 0.4))
+        parts.append(limb(f"sprinkle {'abc'[i % 3]} {i + 1}", centre + radii * n * 1.01 - 0.035 * t,
+                          centre + radii * n * 1.01 + 0.035 * t, 0.022))
+    if p.stick > 0:  # the ball raised onto a stick standing under it
+        h = p.stick
+        parts = [q.model_copy(update={"transform": q.transform.model_copy(update={"translation_m": (
+            q.transform.translation_m[0], q.transform.translation_m[1], q.transform.translation_m[2] + h)})})
+            for q in parts]
+        parts.append(cylinder("stick", 0.045, h + 0.2, (0.0, 0.0, 0.5 * (h + 0.2)), edge=0.01))
     return parts
+
+
+SEAM_LIFT = 0.03  # how far a seam line stands out of the ball / its diameter [-] (~2 draft cells: its colour shows)
+
+
+def _loop(name: str, pts: np.ndarray, radius: float) -> list[Part]:
+    """A closed line of capsules through the points (n, 3)."""
+    n = len(pts)
+    return [limb(f"{name} {i + 1}", pts[i], pts[(i + 1) % n], radius) for i in range(n)]
+
+
+def _ball_lines(kind: str, radii: Vec, rz: float) -> list[Part]:
+    """A ball's seam lines as raised round lines centred on its surface (radii along x, y, z; centre at height
+    rz): see BallParams.lines."""
+    r = np.asarray(radii, dtype=np.float64)
+    c = np.array([0.0, 0.0, rz])
+    w = SEAM_LIFT
+    t = np.linspace(0.0, 2.0 * np.pi, 48, endpoint=False)
+
+    def on(d: np.ndarray) -> np.ndarray:
+        return c + d / np.linalg.norm(d, axis=-1, keepdims=True) * r
+
+    if kind in ("tennis", "baseball"):
+        a, b = 0.72, 0.28  # the tennis-ball curve: on the unit sphere for any a + b = 1
+        d = np.stack([a * np.cos(t) + b * np.cos(3 * t), a * np.sin(t) - b * np.sin(3 * t),
+                      2 * np.sqrt(a * b) * np.sin(2 * t)], axis=1)
+        d = d @ np.array([[1, 0, 0], [0, 0, 1], [0, -1, 0]], dtype=np.float64)  # its lobes front, back and up
+        pts = on(d)
+        if kind == "tennis":
+            return _loop("seam", pts, w)
+        parts: list[Part] = []
+        for i in range(0, len(pts), 2):  # red stitches in two rows along the curve, each pair a chevron
+            tan = pts[(i + 1) % len(pts)] - pts[i - 1]
+            nrm = (pts[i] - c) / np.linalg.norm(pts[i] - c)
+            side = np.cross(nrm, tan)
+            side = 0.06 * side / np.linalg.norm(side)
+            tan = 0.03 * tan / np.linalg.norm(tan)
+            for s in (1, -1):
+                parts.append(limb(f"stitch {len(parts) + 1}", pts[i] + 0.2 * s * side - tan + 0.01 * nrm,
+                                  pts[i] + s * side + tan + 0.01 * nrm, w))
+        return parts
+    if kind == "basketball":  # grooves (a torus each, cut in): two great circles and a small circle round each y pole
+        g = 1.0 + 0.01 / r[1]  # each groove's centre line just outside the surface: cut ~0.025 deep and ~0.06 wide
+        k = 1.0 - 0.01 / (g * r[1])
+        grooves: list[Part] = []
+
+        def groove(name: str, major: float, dy: float, rot: Vec, scale: Vec) -> None:
+            # each groove cut twice, the second narrower with the same floor (its centre line moved in towards the
+            # centre): two parts' colour against the body's one there, so the seam's colour shows ~2 cells deep
+            for label, f, minor in ((f"{name} seam", 1.0, w), (f"{name} channel seam", k, w - 0.01)):
+                grooves.append(torus(label, f * major, minor, c + (0.0, f * dy, 0.0), rot=rot, scale=scale))
+
+        groove("equator", g * r[1], 0.0, (0.0, 0.0, 0.0), (r[0] / r[1], 1.0, r[2] / r[1]))
+        groove("meridian", g * r[1], 0.0, (90.0, 0.0, 0.0), (r[0] / r[1], r[2] / r[1], 1.0))
+        th = np.radians(50.0)
+        for sign, label in ((1, "left"), (-1, "right")):
+            groove(f"{label} curve", g * r[1] * np.sin(th), sign * g * r[1] * np.cos(th), (90.0, 0.0, 0.0),
+                   (1.0, 1.0, 1.0))
+        return [q.model_copy(update={"operation": "subtract"}) for q in grooves]
+    raise ValueError(f"unknown ball lines '{kind}'")
 
 
 def smiley(centre: Vec, radii: Vec) -> list[Part]:
@@ -170,9 +288,9 @@ def _laces(aspect: float, rz: float) -> list[Part]:
     """A seam along the top and short stitches across it (an American football's laces), about a third of its
     length."""
     top = 2 * rz
-    parts = [box("lace seam", (0.34 * aspect, 0.035, 0.05), (0, 0, top - 0.012), edge=0.012)]
-    for i, x in enumerate(np.linspace(-0.14, 0.14, 7) * aspect):
-        parts.append(box(f"lace {i + 1}", (0.035, 0.14, 0.05), (float(x), 0, top - 0.01), edge=0.012))
+    parts = [box("middle lace", (0.34 * aspect, 0.04, 0.08), (0, 0, top + 0.005), edge=0.015)]
+    for i, x in enumerate(np.linspace(-0.14, 0.14, 7) * aspect):  # standing ~2 draft cells proud: white shows
+        parts.append(box(f"lace {i + 1}", (0.045, 0.16, 0.08), (float(x), 0, top + 0.01), edge=0.015))
     return parts
 
 
@@ -323,15 +441,58 @@ class TubeParams(Model):
 
     radius: float = Field(default=0.2, gt=0.02, le=0.5, description="outer radius / length [-]")
     hole: float = Field(default=0.0, ge=0.0, le=0.92, description="inner radius / outer radius (a fabric tube ~0.9) [-]")
+    style: Literal["plain", "dart", "rocket", "sword", "javelin", "rolltop"] = Field(
+        default="plain", description="dart: a foam dart's soft rounded tip at +x (part 'tip'); rocket: a foam "
+        "rocket's nose cone at +x and four fins round its tail; sword: a foam sword's blade to a rounded point at "
+        "+x, a crossguard, a grip and a pommel at -x; javelin: a foam javelin's rounded nose, its grip band and "
+        "tail fins; rolltop: a dry bag's top rolled down and buckled at +x (the roll, its strap and buckle)")
 
 
 def tube(p: TubeParams) -> list[Part]:
     """Length 1 along x."""
     r = p.radius
+    if p.style == "sword":
+        return _foam_sword(r)
     parts = [cylinder("body", r, 1.0, (0, 0, r), edge=0.15 * r, rot=(0, 90, 0))]
     if p.hole > 0:
         parts.append(cylinder("hole", r * p.hole, 1.2, (0, 0, r), rot=(0, 90, 0), op="subtract"))
+    if p.style == "dart":  # the soft tip: a rounded cap a little wider than the shaft, the shaft's end hollow
+        parts[0] = cylinder("body", r, 0.8, (-0.1, 0, r), edge=0.1 * r, rot=(0, 90, 0))
+        parts.append(cylinder("tip", 1.08 * r, 0.2, (0.4, 0, r), edge=0.9 * r, rot=(0, 90, 0), blend=0.1 * r))
+        parts.append(cylinder("hollow", 0.55 * r, 0.2, (-0.5, 0, r), rot=(0, 90, 0), op="subtract"))
+    elif p.style == "rocket":  # nose cone at +x, four swept fins round the tail
+        parts[0] = cylinder("body", r, 0.78, (-0.11, 0, r), edge=0.1 * r, rot=(0, 90, 0))
+        parts.append(cone("nose", r, 0.15 * r, 0.22, (0.39, 0, r), edge=0.1 * r, rot=(0, 90, 0), blend=0.1 * r))
+        for k in range(4):
+            a = np.radians(45 + 90 * k)
+            parts.append(box(f"fin {k + 1}", (0.2, 0.25 * r, 1.2 * r), (-0.4, 1.5 * r * np.cos(a), r + 1.5 * r * np.sin(a)),
+                             edge=0.1 * r, rot=(np.degrees(a) - 90, 0, 0), blend=0.15 * r))
+    elif p.style == "javelin":  # a rounded nose, a grip band at the balance point, small fins at the tail
+        parts[0] = cylinder("body", r, 0.86, (-0.07, 0, r), edge=0.1 * r, rot=(0, 90, 0))
+        parts.append(ellipsoid("nose", (0.09, 1.25 * r, 1.25 * r), (0.4, 0, r), blend=0.2 * r))
+        parts.append(cylinder("grip", 1.12 * r, 0.12, (0.05, 0, r), edge=0.2 * r, rot=(0, 90, 0), blend=0.05 * r))
+        for k in range(3):
+            a = np.radians(90 + 120 * k)
+            parts.append(box(f"fin {k + 1}", (0.12, 0.3 * r, 1.6 * r), (-0.44, 1.3 * r * np.cos(a), r + 1.3 * r * np.sin(a)),
+                             edge=0.1 * r, rot=(np.degrees(a) - 90, 0, 0), blend=0.15 * r))
+    elif p.style == "rolltop":  # the top rolled down flat at +x and its strap buckled across
+        parts[0] = cylinder("body", r, 0.86, (-0.07, 0, r), edge=0.3 * r, rot=(0, 90, 0))
+        parts.append(scaled(cylinder("roll", 0.45 * r, 2.3 * r, (0.42, 0, r), edge=0.3 * r, rot=(90, 0, 0),
+                                     blend=0.2 * r), (1.0, 1.0, 1.0)))
+        parts.append(limb("strap", (0.42, -1.1 * r, 1.42 * r), (0.42, 1.1 * r, 1.42 * r), 0.14 * r, blend=0.05 * r))
+        parts.append(box("buckle", (0.1, 0.5 * r, 0.25 * r), (0.42, 0, 1.55 * r), edge=0.08 * r, blend=0.05 * r))
     return parts
+
+
+def _foam_sword(r: float) -> list[Part]:
+    """A foam sword lying along x: the blade to a rounded point at +x, a crossguard across it, the grip and a round
+    pommel at -x."""
+    z = 1.6 * r  # the guard's half-width off the ground
+    return [cylinder("body", r, 0.68, (0.12, 0, z), edge=0.3 * r, rot=(0, 90, 0)),
+            ellipsoid("point", (0.08, r, r), (0.46, 0, z), blend=0.2 * r),
+            box("crossguard", (0.05, 6.2 * r, 1.8 * r), (-0.24, 0, z), edge=0.6 * r, blend=0.1 * r),
+            cylinder("grip", 0.7 * r, 0.2, (-0.36, 0, z), edge=0.2 * r, rot=(0, 90, 0), blend=0.1 * r),
+            ellipsoid("pommel", (1.1 * r, 1.1 * r, 1.1 * r), (-0.47, 0, z), blend=0.1 * r)]
 
 
 class ConeParams(Model):
