@@ -302,11 +302,18 @@ def parse_modifiers(text: str) -> tuple[list[str], tuple[float, float, float]]:
     """Modifier words found in the text (those of the object, not of its parts or pose) and their combined per-axis
     scale."""
     words = _words(text)
-    found = [w for i, w in enumerate(words) if w in MODIFIERS and not _binds_elsewhere(words, i)]
+    at = [i for i, w in enumerate(words) if w in MODIFIERS and not _binds_elsewhere(words, i)]
+    found = [words[i] for i in at]
     scale = np.ones(3)
-    for w in found:
-        scale *= np.asarray(MODIFIERS[w])
+    for i in at:  # 'slightly flat', 'a bit long': a fraction of the word's change ('a slightly flat tennis ball' was
+        slight = (i > 0 and words[i - 1] in _SLIGHT_WORDS) or (i > 1 and " ".join(words[i - 2:i]) in _SLIGHT_WORDS)
+        scale *= np.asarray(MODIFIERS[words[i]]) ** (SLIGHT_SHARE if slight else 1.0)  # half its height: a soap bar)
     return found, (float(scale[0]), float(scale[1]), float(scale[2]))
+
+
+_SLIGHT_WORDS = frozenset({"slightly", "somewhat", "kinda", "bit", "a bit", "a little", "little bit", "a tad", "tad",
+                           "touch", "a touch"})
+SLIGHT_SHARE = 0.35  # of a modifier's change (in log scale) that 'slightly' keeps [-]
 
 
 def check_size(size: SizeSpec) -> None:

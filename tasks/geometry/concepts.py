@@ -1641,6 +1641,9 @@ GOODS_PLANS = frozenset({"sheet", "pouch", "glove", "sock", "hat", "tool", "moul
 _RELIEF_SAID = frozenset({"spikes", "nubs"})  # asked for in words: say so when it cannot be drawn
 _DEFLATED = frozenset({"deflated", "flat", "crumpled"})
 _HALF_INFLATED = re.compile(r"\b(?:half|partly|partially|semi|part) (?:inflated|deflated|blown up|full)\b")
+# a little air gone is half deflated, not flat ('a slightly flat tennis ball' was squashed to a bar of soap)
+_SLIGHTLY_FLAT = re.compile(r"\b(?:slightly|a bit|a little(?: bit)?|a touch|somewhat|kinda|kind of|a tad)\s+"
+                            r"(?:flat|flattened|deflated|squashed|soft|low on air)\b")
 
 
 def pose_of(text: str) -> str | None:
@@ -1900,7 +1903,7 @@ def _whole_object(reading: Reading, program: ShapeProgram, match: ConceptMatch, 
             states.append(kind)
         elif said:
             warnings.append(f"'{kind}' are not drawn: the {entry.key.replace('_', ' ')} is not ball-like")
-    half = _HALF_INFLATED.search(text) is not None
+    half = _HALF_INFLATED.search(text) is not None or _SLIGHTLY_FLAT.search(normalise(text)) is not None
     keep = slump_of(text)
     if keep is not None and not inflatable(target) and not dentable(target) \
             and concept_domain(target.key) != "animal":
