@@ -1430,7 +1430,10 @@ def _implied_colour(reading: Reading) -> str | None:
     if phrase is None or reading.entry.category not in ("jelly", "dessert", "candy", "food", "dairy", "bread"):
         return None
     lex = load_lexicon()
+    own = set((reading.match.noun or "").split()) if reading.match is not None else set()
     for word in reversed([*phrase.adjectives, *phrase.compounds]):
+        if word in own:  # the object's own name ('an apple fritter' is golden, not an apple's red)
+            continue
         hit = noun_index().get(word)
         if hit is not None and hit[0] != reading.entry.key:
             donor = lex.entries[hit[0]]

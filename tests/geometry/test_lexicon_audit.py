@@ -60,3 +60,18 @@ def test_a_floor_pouf_is_not_frilled_like_a_bath_pouf() -> None:
     assert relief_of("a pouf", lex["pouf"]) == (None, False)
     assert relief_of("a grey knitted pouf", lex["pouf"])[0] != "ruffles"
     assert relief_of("a pink shower pouf", lex["bath_pouf"])[0] == "ruffles"
+
+
+def test_a_fruit_in_the_objects_own_name_does_not_colour_it() -> None:
+    """'an apple fritter' was an apple's red (the fruit before a food colours it: 'a strawberry jelly' is red); the
+    fruit inside the object's own noun is its name, not its flavour's colour."""
+    from tasks.geometry.catalogue import design_from_text
+
+    def main_colour(text: str) -> tuple[float, ...]:
+        parts = design_from_text(text).program.parts
+        return tuple(parts[0].color_rgb)
+
+    fritter = main_colour("an apple fritter")
+    assert not (fritter[0] > 0.6 and fritter[1] < 0.2)  # not red
+    jelly = main_colour("a strawberry jelly")
+    assert jelly[0] > 0.6 and jelly[1] < 0.2  # red

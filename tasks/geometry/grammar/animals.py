@@ -1187,6 +1187,8 @@ class SnakeParams(Model):
 
     thickness: float = Field(default=1.0, gt=0.3, le=3.0, description="body radius scale [-]")
     bends: float = Field(default=1.5, ge=0.0, le=3.0, description="S-curve periods along the body [-]")
+    bands: bool = Field(default=False, description="every other segment a 'band' part (its own colour): a toy "
+                        "snake's rings, a gummy snake's two-tone stripes")
 
 
 def snake(p: SnakeParams) -> list[Part]:
@@ -1201,6 +1203,8 @@ def snake(p: SnakeParams) -> list[Part]:
     for i in range(n):
         r = r0 * (0.35 + 0.65 * (i + 1) / n)
         name = "body" if i == n - 1 else ("tail" if i == 0 else f"segment {i + 1}")
+        if p.bands and i % 2 == 1 and i < n - 1:
+            name = f"band {i + 1}"
         parts.append(limb(name, (xs[i], ys[i], r0), (xs[i + 1], ys[i + 1], r0), r, blend=0.2 * r0))
     head = np.array([0.5, ys[-1], r0 * 1.1])
     parts.append(ellipsoid("head", (1.8 * r0, 1.3 * r0, 1.05 * r0), head, blend=0.3 * r0))

@@ -528,6 +528,8 @@ class PieParams(Model):
 
     height: float = Field(default=0.15, gt=0.02, le=0.6, description="height / diameter [-]")
     rim: float = Field(default=0.05, ge=0.0, le=0.2, description="rim tube radius / diameter [-]")
+    cheese: bool = Field(default=False, description="a melted cheese layer over the sauce, short of the rim (a pizza)")
+    pepperoni: int = Field(default=0, ge=0, le=16, description="pepperoni rounds standing proud of the top (a pizza)")
 
 
 def pie(p: PieParams) -> list[Part]:
@@ -536,6 +538,19 @@ def pie(p: PieParams) -> list[Part]:
     parts = [cylinder("filling", 0.48, h, (0, 0, h / 2), edge=0.3 * h)]
     if p.rim > 0:
         parts.append(torus("crust", 0.5 - p.rim, p.rim, (0, 0, h - 0.3 * p.rim), blend=0.02))
+    top = h
+    if p.cheese:  # a pale layer proud of the red sauce, leaving a ring of sauce inside the crust
+        c = 0.03
+        parts.append(cylinder("cheese", 0.5 - 2.2 * p.rim - 0.04, c, (0, 0, h + c / 2 - 0.005), edge=0.4 * c,
+                              blend=0.005))
+        top = h + c - 0.005
+    for i in range(p.pepperoni):  # rounds on two rings (a third of them near the middle)
+        inner = p.pepperoni // 3
+        k, n, r = (i, inner, 0.13) if i < inner else (i - inner, p.pepperoni - inner, 0.29)
+        a = 2 * np.pi * k / max(n, 1) + (0.4 if i < inner else 0.0)
+        t = 0.03
+        parts.append(cylinder(f"pepperoni {i + 1}", 0.07, t, (r * np.cos(a), r * np.sin(a), top + t / 2 - 0.004),
+                              edge=0.4 * t, blend=0.004))
     return parts
 
 

@@ -1449,6 +1449,8 @@ class GarmentParams(Model):
     robe: bool = Field(default=False, description="a wrap robe (a bathrobe, a dressing gown): a shawl collar "
                        "crossing from the neck to the waist, and a tie belt knotted at the side with its two ends "
                        "hanging")
+    coat: bool = Field(default=False, description="a long buttoned coat (a lab coat, a doctor's coat): wide "
+                       "notched lapels, a row of buttons down the front, two hip patch pockets and a breast pocket")
     baffles: int = Field(default=0, ge=0, le=12, description="quilted (down-filled) baffles across the body, and "
                          "along the sleeves in proportion: a puffy layer with stitched grooves (a puffer jacket or "
                          "vest) [-]")
@@ -1499,7 +1501,20 @@ def _top_flat(p: GarmentParams, t: float) -> list[Part]:
     else:
         parts.append(_op(scaled(cylinder("neck", 0.1, 4 * t, (0.52, 0, z)), (0.75, 1, 1)), "subtract", 0.01))
         parts.append(scaled(torus("collar band", 0.105, 0.022, (0.5, 0, 0.7 * t)), (0.78, 1, 0.8)))
-    if p.pocket:
+    if p.coat:  # a long buttoned coat: wide lapels from the collar, buttons down the front, a breast pocket
+        for side in (1, -1):
+            parts.append(box(f"{'left' if side > 0 else 'right'} lapel", (0.34, 0.11, 1.8 * t),
+                             (0.31, side * 0.08, 1.1 * t), edge=0.4 * t, rot=(0, 0, -side * 18), blend=0.004))
+        for i, x in enumerate(np.linspace(0.12, -0.36, 4)):
+            parts.append(cylinder(f"button {i + 1}", 0.026, 1.6 * t, (float(x), 0.0, 1.2 * t), edge=0.3 * t,
+                                  blend=0.002))
+        parts.append(superellipsoid("breast pocket", (0.07, 0.08 * w, 0.7 * t), (0.2, -0.28 * w, t), ns=0.2, ew=0.3,
+                                    blend=0.004))
+    if p.pocket and (p.robe or p.coat):  # two patch pockets, low on either side (a robe's belt ends between)
+        for side in (1, -1):
+            parts.append(superellipsoid(f"{'left' if side > 0 else 'right'} pocket", (0.1, 0.12 * w, 0.7 * t),
+                                        (-0.24, side * 0.3 * w, t), ns=0.2, ew=0.3, blend=0.004))
+    elif p.pocket:
         parts.append(superellipsoid("pocket", (0.15, 0.24 * w, 0.3 * t), (-0.2, 0, t), ns=0.2, ew=0.3, blend=0.004))
     if p.zip:  # a zip from hem to collar, its pull at the top
         parts.append(box("zip", (0.9, 0.035, 0.6 * t), (-0.02, 0, t + 0.1 * t), edge=0.1 * t, blend=0.002))
@@ -1517,12 +1532,12 @@ def _robe_wrap(w: float, t: float) -> list[Part]:
     """A wrap robe's shawl collar (two raised bands crossing from the neck to the waist) and its tie belt (a band
     round the waist, knotted at one side, its two ends hanging down the front)."""
     parts = [_flat_limb(f"{'left' if side > 0 else 'right'} lapel", np.array([0.5, side * 0.1, 1.1 * t]),
-                        np.array([0.02, -side * 0.1 * w, 1.1 * t]), 0.07, 1.6 * t, blend=0.01) for side in (1, -1)]
+                        np.array([0.02, -side * 0.1 * w, 1.1 * t]), 0.08, 2.0 * t, blend=0.01) for side in (1, -1)]
     parts.append(box("belt", (0.07, 1.02 * w, 1.5 * t), (0.0, 0.0, 0.75 * t), edge=0.4 * t, blend=0.005))
     knot = np.array([0.0, 0.12 * w, 1.5 * t])
     parts.append(ellipsoid("belt knot", (0.05, 0.05, 1.1 * t), tuple(float(v) for v in knot), blend=0.01))
-    for k, end in enumerate(((-0.34, 0.16 * w), (-0.28, 0.05 * w))):
-        parts.append(_flat_limb(f"belt end {k + 1}", knot, np.array([end[0], end[1], 1.2 * t]), 0.03, 1.2 * t,
+    for k, end in enumerate(((-0.44, 0.17 * w), (-0.36, 0.04 * w))):
+        parts.append(_flat_limb(f"belt end {k + 1}", knot, np.array([end[0], end[1], 1.2 * t]), 0.035, 1.4 * t,
                                 blend=0.01))
     return parts
 
