@@ -60,3 +60,20 @@ def cluttered_photo(seed: int = 0) -> tuple[np.ndarray, np.ndarray]:
     img[mask] = tex[mask].clip(0, 255).astype(np.uint8)
     img = cv2.GaussianBlur(img, (3, 3), 0)
     return img, mask
+
+
+def parts_by_group(program) -> dict[str, list]:  # noqa: ANN001
+    """A shape program's parts by their part group ('left ear' and 'right ear' -> 'ear')."""
+    from tasks.geometry.grammar.parts import part_group
+
+    out: dict[str, list] = {}
+    for p in program.parts:
+        out.setdefault(part_group(p.name), []).append(p)
+    return out
+
+
+def designs(texts: dict[str, str]) -> dict[str, tuple]:
+    """name -> (lexicon entry, shape program) of each text as design_from_text reads and builds it."""
+    from tasks.geometry import catalogue
+
+    return {k: (d.entry, d.program) for k, d in ((k, catalogue.design_from_text(t)) for k, t in texts.items())}

@@ -15,6 +15,7 @@ from tasks.geometry import catalogue
 from tasks.geometry.canonical import is_resting_stable
 from tasks.geometry.grammar.parts import part_group
 from tasks.geometry.meshing import mesh_program
+from tests.geometry.helpers import designs, parts_by_group as _groups
 
 TEXTS = {"lion": "a lion", "zebra": "a zebra", "cow": "a cow", "goat": "a billy goat", "turkey": "a turkey",
          "toucan": "a toucan", "butterfly": "a butterfly", "spider": "a spider", "snail": "a snail",
@@ -31,18 +32,9 @@ ENTRIES = {"lion": "plush_lion", "zebra": "plush_zebra", "cow": "plush_cow", "go
 
 @pytest.fixture(scope="module")
 def built() -> dict[str, tuple[str, ShapeProgram]]:
-    out = {}
-    for k, text in TEXTS.items():
-        d = catalogue.design_from_text(text)
-        out[k] = (d.entry, d.program)
-    return out
+    return designs(TEXTS)
 
 
-def _groups(program: ShapeProgram) -> dict[str, list]:
-    g: dict[str, list] = {}
-    for p in program.parts:
-        g.setdefault(part_group(p.name), []).append(p)
-    return g
 
 
 def _dark(rgb: tuple[float, float, float]) -> bool:

@@ -13,6 +13,7 @@ from tasks.geometry import catalogue
 from tasks.geometry.catalogue_programs import catalogue_program
 from tasks.geometry.grammar.parts import part_group
 from tasks.geometry.sdf import program_bounds
+from tests.geometry.helpers import parts_by_group as _groups
 
 CHANGED = ("onion", "garlic", "pineapple", "pomegranate", "beet", "apricot", "raspberry", "melon", "grapefruit",
            "papaya", "passion_fruit", "cabbage", "candy_corn", "rice_ball", "sponge_cake", "burger_patty",
@@ -29,11 +30,6 @@ def programs() -> dict:
     return {k: catalogue_program(k) for k in CHANGED}
 
 
-def _groups(prog) -> dict[str, list]:  # noqa: ANN001
-    out: dict[str, list] = {}
-    for p in prog.parts:
-        out.setdefault(part_group(p.name), []).append(p)
-    return out
 
 
 def _rgb(part) -> np.ndarray:  # noqa: ANN001

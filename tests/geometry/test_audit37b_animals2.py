@@ -10,8 +10,8 @@ import numpy as np
 import pytest
 
 from contracts.shape import ShapeProgram
-from tasks.geometry import catalogue
 from tasks.geometry.grammar.parts import part_group
+from tests.geometry.helpers import designs
 
 TEXTS = {"avocado": "a plush avocado", "monkey": "a sock monkey", "santa": "a santa", "robot": "a plush robot",
          "moon": "a crescent moon", "cloud": "a cloud", "egg": "a plush egg", "sushi": "a plush sushi",
@@ -29,11 +29,7 @@ ENTRIES = {"avocado": "plush_avocado", "monkey": "sock_monkey", "santa": "plush_
 
 @pytest.fixture(scope="module")
 def built() -> dict[str, tuple[str, ShapeProgram]]:
-    out = {}
-    for k, text in TEXTS.items():
-        d = catalogue.design_from_text(text)
-        out[k] = (d.entry, d.program)
-    return out
+    return designs(TEXTS)
 
 
 def _parts(program: ShapeProgram) -> dict[str, object]:

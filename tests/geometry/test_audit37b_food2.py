@@ -17,6 +17,7 @@ from tasks.geometry import catalogue
 from tasks.geometry.catalogue_programs import catalogue_program
 from tasks.geometry.grammar.parts import part_group
 from tasks.geometry.sdf import program_bounds
+from tests.geometry.helpers import parts_by_group as _groups
 
 CHANGED = ("spring_roll", "bok_choy", "napa_cabbage", "romaine", "rhubarb", "baklava", "lamington", "concha",
            "melonpan", "apple_fritter", "ravioli", "tamale", "madeleine")
@@ -28,11 +29,6 @@ def programs() -> dict:
     return {k: catalogue_program(k) for k in (*CHANGED, *RENAMED.values())}
 
 
-def _groups(prog) -> dict[str, list]:  # noqa: ANN001
-    out: dict[str, list] = {}
-    for p in prog.parts:
-        out.setdefault(part_group(p.name), []).append(p)
-    return out
 
 
 def _rgb(part) -> np.ndarray:  # noqa: ANN001

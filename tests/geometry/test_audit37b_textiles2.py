@@ -13,8 +13,7 @@ import numpy as np
 import pytest
 
 from contracts.shape import ShapeProgram
-from tasks.geometry import catalogue
-from tasks.geometry.grammar.parts import part_group
+from tests.geometry.helpers import designs, parts_by_group as _groups
 
 TEXTS = {"slipper": "a slipper", "pincushion": "a pincushion", "makeup_brush": "a makeup brush",
          "kids_cape": "a superhero cape", "bathrobe": "a bathrobe", "paper_towel_roll": "a paper towel roll",
@@ -23,18 +22,9 @@ TEXTS = {"slipper": "a slipper", "pincushion": "a pincushion", "makeup_brush": "
 
 @pytest.fixture(scope="module")
 def built() -> dict[str, tuple[str, ShapeProgram]]:
-    out = {}
-    for k, text in TEXTS.items():
-        d = catalogue.design_from_text(text)
-        out[k] = (d.entry, d.program)
-    return out
+    return designs(TEXTS)
 
 
-def _groups(program: ShapeProgram) -> dict[str, list]:
-    g: dict[str, list] = {}
-    for p in program.parts:
-        g.setdefault(part_group(p.name), []).append(p)
-    return g
 
 
 def _at(part) -> np.ndarray:  # noqa: ANN001
