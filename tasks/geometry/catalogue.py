@@ -343,7 +343,10 @@ def check_text_size(request: AssetRequest) -> None:
 # sheet stock whose thickness is said before its name ('5 mm neoprene', '2mm silicone', '3 mm thick felt')
 _STOCK_WORDS = ("neoprene", "foam", "silicone", "rubber", "latex", "felt", "fleece", "vinyl", "pvc", "eva", "nylon",
                 "leather", "polyester", "cotton", "wool", "cork", "nitrile", "tpe", "tpu", "canvas", "plastic",
-                "polyethylene", "polyurethane", "pu")
+                "polyethylene", "polyurethane", "pu",
+                # surf and dive goods are named by their neoprene's thickness ('a 2mm shorty wetsuit', '5mm booties')
+                "wetsuit", "wetsuits", "shorty", "springsuit", "steamer", "fullsuit", "bootie", "booties", "surf",
+                "dive", "diving", "wet")
 _STOCK_THICKNESS = re.compile(r"(?<![\w.])(\d+(?:\.\d+)?)\s*(mm|millimet(?:er|re)s?)\s+(?:thick\s+)?"
                               rf"(?=(?:{'|'.join(_STOCK_WORDS)})\b)", re.I)
 # a wetsuit's neoprene in its own notation, thickest panel first ('3/2 mm', '5/4/3mm'): not a fraction of a mm

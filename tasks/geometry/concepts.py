@@ -449,6 +449,12 @@ def _unknown_container(t: str, unknown: str | None, phrase: phrase_mod.Phrase
     return lex.entries[key], _match(lex.entries[key], "category", word, note, _material_in(t))
 
 
+# towels a hotel folds into an animal ('a towel elephant', 'a towel swan on the bed'): the animal's look, the towel's
+# cloth, colour and mass
+TOWEL_ANIMAL_CLOTHS = frozenset({"bath_towel", "hand_towel", "beach_towel", "face_cloth"})
+TOWEL_ANIMAL_M = 0.35  # a towel animal folded from one bath towel: ~30-40 cm long (hotel housekeeping guides) [m]
+
+
 _FUNCTION_WORDS = frozenset({"of", "au", "aux", "the", "in", "de", "du", "and", "with", "on", "la", "le", "a", "n"})
 
 
@@ -516,6 +522,9 @@ def read_text(text: str, serving: bool = True) -> Reading:
         inner.vacuum = True
         return inner
     t_shape, donor, donor_words = _shape_donor(t)
+    if donor is not None and re.sub(r"^(?:an?|the) ", "", t) in noun_index():  # a noun that says its shape
+        t = normalise(lex.entries[noun_index()[re.sub(r"^(?:an?|the) ", "", t)][0]].nouns[0])  # ('squishy toy
+        t_shape, donor, donor_words = t, None, ""  # shaped like a donut'): read as the entry's first noun
     phrase = phrase_mod.parse(t_shape, known_noun, modifier_word)
     served = _serving(t, phrase) if serving else None
     if served is not None:  # 'a jello cup', 'a cup of strawberry jelly': one serving of the food
@@ -550,6 +559,12 @@ def read_text(text: str, serving: bool = True) -> Reading:
     if head is not None and unknown is None:
         key, noun, exact = noun_index()[_qualified(head[2], phrase)]
         entry = lex.entries[key]
+        folded_from = lex.entries[noun_index()[compound[2]][0]] if compound is not None else None
+        if folded_from is not None and folded_from.key in TOWEL_ANIMAL_CLOTHS and donor is None \
+                and concept_domain(entry.key) == "animal":  # 'a towel elephant': a hotel towel folded into an
+            donor_entry, donor_words, look = entry, noun, True  # animal: the towel's cloth and mass, the animal's look
+            key, noun, exact, entry = folded_from.key, folded_from.nouns[0], True, folded_from
+            size_m = TOWEL_ANIMAL_M
         if entry.plan == "sheet" and phrase.portion in ("ball", "wad") and not look:
             donor, donor_plan, donor_words = None, None, ""  # 'a ball of paper' is a sheet of it crumpled
             if "crumpled" not in phrase.states:
@@ -564,6 +579,9 @@ def read_text(text: str, serving: bool = True) -> Reading:
         level: FallbackLevel = "exact" if exact else "synonym"
         kin = None if exact else analogy_mod.kin_of(entry.nouns[0], noun)
         match = _match(entry, level, noun, None)
+        if size_m == TOWEL_ANIMAL_M and entry.key in TOWEL_ANIMAL_CLOTHS:  # the whole towel, folded: its own mass
+            match = match.model_copy(update={"typical_size_m": TOWEL_ANIMAL_M, "mass_source": (
+                f"{entry.mass_source}; folded into a {donor_words}: the same towel"), "states": ["folded"]})
         if kin is not None:  # 'a heron' from the stork's entry: a sibling kind, built by analogy and said so
             match = _match(entry, "hypernym", noun, f"'{noun}' is not in the lexicon: built as its nearest kin "
                            f"there, a {entry.nouns[0]} (both kinds of {kin} in WordNet)")
@@ -624,6 +642,8 @@ def read_text(text: str, serving: bool = True) -> Reading:
             size = pouch.size_m
         elif pouch.piece_m is not None and max(pouch.piece_m) > PACK_PIECE_M:  # 'a pack of sponges': a few
             size = PACK_PIECES_ALONG * max(pouch.piece_m)
+        elif entry.key == "generic_pouch" and pouch.piece_m is None:  # 'a bag of potting soil': the usual 50 l sack
+            size = fill_words.retail_bag_m(pouch.fill.key)
         return Reading(match=match, entry=entry, warnings=[note], phrase=phrase, pouch=pouch, size_m=size)
     return Reading(match=match, entry=entry, donor=donor_entry, donor_plan=donor_plan, warnings=warnings,
                    phrase=phrase, size_m=size_m, look_only=look and not match.by_analogy)
@@ -686,10 +706,12 @@ def _pouch_of(t: str, phrase: phrase_mod.Phrase, entry: LexiconEntry, match: Con
     holds = _HOLDS.search(t) is not None  # 'a grocery bag with six oranges inside': the bag holds them
     if entry.key in FILM_BAGS and noun and re.search(rf"\b{re.escape(noun)}\s+of\b", t) and _pieces_pouch(t):
         holds = True  # 'a plastic bag of cotton rounds': goods the lexicon knows, seen through the film
-    if not match.by_analogy and noun not in pouch_words.CONTAINERS and not holds and (
+    found = pouch_words.pouch_of(t, phrase.head, phrase.compounds)
+    wider_fill = found is not None and bool(noun) and " of " not in f" {t} " \
+        and found.fill.words.endswith(f" {noun}")  # 'a dog food bag': 'dog food', wider than the lexicon's 'food bag'
+    if not match.by_analogy and noun not in pouch_words.CONTAINERS and not holds and not wider_fill and (
             entry.plan in ("pouch", "bag") or noun.split()[-1:] == [phrase.head]):
         return None  # the lexicon's own bag ('an ice bag', 'a zip bag'); the bare 'pouch' is no drawstring pouch
-    found = pouch_words.pouch_of(t, phrase.head, phrase.compounds)
     pieces = _pieces_pouch(t)
     if pieces is not None and pieces.piece_m is not None and (found is None or (
             max(pieces.piece_m) >= SEEN_PIECE_M and found.port == "none")):
@@ -1001,6 +1023,8 @@ def build(reading: Reading, text: str) -> tuple[ShapeProgram, ConceptMatch, list
         if reading.pouch is not None and reading.pouch.piece_m is not None:  # the goods seen through the film
             params = {**params, "piece": tuple(v / size for v in reading.pouch.piece_m),
                       "piece_shape": reading.pouch.piece_shape}
+        if reading.pouch is not None and target.plan == "pouch":  # its front's emblem, its form (#38)
+            params = {**params, **pouch_words.pack_look(reading.pouch, normalise(text))}
         goods = goods_words.apply(target, reading.phrase.portion if reading.phrase else None, normalise(text),
                                   params, size, match, reading.pouch.fill if reading.pouch is not None else None)
         params, size, match = goods.params, goods.size_m, goods.match
@@ -1051,8 +1075,12 @@ def build(reading: Reading, text: str) -> tuple[ShapeProgram, ConceptMatch, list
         if reading.pouch is not None and reading.pouch.piece_colors and any(
                 part_group(p.name) == "fill" for p in program.parts):
             program = _bagged_colors(program, reading.pouch.piece_colors)
+    if reading.look_only and entry.key in TOWEL_ANIMAL_CLOTHS and reading.donor is not None and not applied:
+        program = _towel_coloured(program, entry)  # 'a towel elephant': all towel, but its eyes
     program = _contrast_seams(program, target)
     program = _label_colored(program)
+    if reading.pouch is not None and target.plan == "pouch":
+        program = pouch_words.painted_marks(program, str(params.get("emblem", "none")), load_lexicon().colors)
     if keychain:
         program = _on_key_ring(program)
         states.append("keychain")
@@ -1553,6 +1581,14 @@ def lex_color(entry: LexiconEntry) -> tuple[float, float, float]:
     return lex.colors[word]
 
 
+def _towel_coloured(program: ShapeProgram, towel: LexiconEntry) -> ShapeProgram:
+    """A towel folded into an animal is the towel's colour all over; only its eyes (googly or button) keep theirs."""
+    rgb = tuple(load_lexicon().colors[towel.colors.get("body", "white")])
+    parts = [p if any(w in p.name for w in ("eye", "pupil")) else p.model_copy(update={"color_rgb": rgb})
+             for p in program.parts]
+    return program.model_copy(update={"parts": parts})
+
+
 def _own_colours_unsaid(text: str, reading: Reading, entry: LexiconEntry) -> str:
     """The text without the colour words of the object's own name that its entry already paints ('a salmon nigiri'
     is a white rice base under salmon, not salmon all over); other colour words ('a red cabbage' of a green entry)
@@ -1776,8 +1812,10 @@ _PART_EMPTY = re.compile(r"\b(?:half|partly|partially|mostly|nearly|almost)[\s-]
 
 
 def _said_empty(text: str) -> bool:
-    """'an empty bottle' is its shell alone; 'a half-empty sack' is half full (tasks.geometry.fill_words)."""
-    return re.search(r"\bempty\b", text, re.I) is not None and _PART_EMPTY.search(text) is None
+    """'an empty bottle' is its shell alone, and so is 'a crushed water bottle' (crushed, crumpled or flattened: its
+    contents are gone); 'a half-empty sack' is half full (tasks.geometry.fill_words)."""
+    return re.search(r"\b(?:empty|emptied|crushed|crumpled|flattened)\b", text, re.I) is not None \
+        and _PART_EMPTY.search(text) is None
 
 def inflatable(entry: LexiconEntry) -> bool:
     """An object that holds its shape by air (an inflatable, a beach ball): it can be deflated."""
@@ -1892,7 +1930,8 @@ def _whole_object(reading: Reading, program: ShapeProgram, match: ConceptMatch, 
     states = list(states)
     phrase = reading.phrase
     if phrase is not None and reading.donor_plan is None and (phrase.portion in WEDGE_WORDS or (
-            phrase.head in WEDGE_WORDS and (phrase.compounds or phrase.adjectives))):
+            phrase.head in WEDGE_WORDS and (phrase.compounds or phrase.adjectives))) and not (
+            entry.catalogue and WEDGE_WORDS & set((reading.match.noun or "").split())):  # (a hand-drawn 'positioning wedge')
         program = wedged(program, target)
         states.append("wedge")
     kind, said = relief_of(text, target if reading.donor is not None else entry)

@@ -46,6 +46,12 @@ def fills() -> dict[str, dict]:
     return dict(sorted(table.items(), key=lambda kv: -len(kv[0])))
 
 
+def retail_bag_m(key: str) -> float | None:
+    """The longest side of the bag a fill is usually sold in (a 50 l bag of compost: 0.7 m), if the table gives one."""
+    rec = next((v for v in fills().values() if v["key"] == key), None)
+    return float(rec["bag_m"]) if rec is not None and "bag_m" in rec else None
+
+
 def _amount(words: str) -> float | None:
     words = " ".join(words.split())
     if m := re.search(r"(\d{1,3})\s*%", words):

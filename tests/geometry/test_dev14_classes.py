@@ -147,7 +147,7 @@ def test_a_band_longer_than_a_loop_is_a_flat_band(text: str, key: str) -> None:
 
 
 @pytest.mark.parametrize("text, key, plan", [
-    ("a 250 g block of modelling clay", "play_dough", "block"),  # 'a block of' shapes it; was a puck
+    ("a 250 g block of modelling clay", "modelling_clay", "block"),  # 'a block of' shapes it; was a puck
     ("a pastry bag full of whipped cream", "piping_bag", None),  # a cone of frosting, not a labelled pillow
     ("an iceberg lettuce", "iceberg_lettuce", None),  # leaves, not a plain green ball
 ])

@@ -127,7 +127,7 @@ def test_cut_sheets_stack_as_a_thin_pad_weighing_each_sheet() -> None:
     ("a folded blue paper patient bib", "dental_bib", 0.004, 0.016),  # was a 30 g terry baby bib
     ("a travel pack of tissues", "tissue_pack", 0.01, 0.04),  # was a 0.31 kg generic pouch
     ("a soft pack of wet wipes", "wipes_pack", 0.2, 0.8),
-    ("a folded mesh basketball jersey", "t_shirt", 0.08, 0.3),  # was a generic quadruped (WordNet's cow)
+    ("a folded mesh basketball jersey", "sports_jersey", 0.08, 0.3),  # was a generic quadruped (WordNet's cow)
     ("a wet one-piece swimsuit", "swimsuit", 0.1, 0.6),  # was a generic garment
     ("a woven straw hat", "straw_hat", 0.05, 0.25),  # was a red bobble hat
     ("a blue foam flip flop", "flip_flop", 0.06, 0.2),  # was a 26 g generic block

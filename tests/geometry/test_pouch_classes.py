@@ -30,8 +30,10 @@ POUCHES: dict[str, tuple[str, set[str], tuple[float, float], float, str]] = {
                                         "retail play sand sacks: 10-15 kg, ~45 x 30 cm; 40 cm ~8-10 kg"),
     "a bag of blueberries from the freezer": ("generic_pouch", {"body"}, (0.18, 0.32), 0.5,
                                               "retail frozen blueberries: 400-600 g bags"),
-    "a sack of potting soil": ("generic_pouch", {"body"}, (0.18, 0.32), 0.6,
-                               "retail 1-2 l sacks of potting soil (0.5-1.2 kg)"),
+    "a sack of potting soil": ("generic_pouch", {"body"}, (0.5, 0.75), 6.0,
+                               "the bag a user means unsized: 20-30 l sacks of potting soil, 5-10 kg (independent "
+                               "prompt writers: 'bag of potting soil' 5 kg, '20 litre bag' 8 kg; docs/blind/dev38; "
+                               "a 1-2 l houseplant sack is the exception, said with its size)"),
     "a lentil bag": ("generic_pouch", {"body"}, (0.18, 0.32), 0.5, "retail 500 g bags of dried lentils"),
     "a litre bag of iv saline": ("generic_pouch", {"body", "port"}, (0.22, 0.36), 1.05,
                                  "1000 ml 0.9 % saline bags 1.03-1.08 kg filled (medical supply)"),

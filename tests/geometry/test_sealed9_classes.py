@@ -41,8 +41,9 @@ def test_a_hacky_sack_is_a_panelled_footbag_and_a_chew_bone_is_solid_rubber() ->
 
 
 def test_a_knee_brace_is_the_neoprene_sleeve() -> None:
-    match = concepts.read_text("neoprene knee brace").match
-    assert match.concept == "compression_sleeve" and match.fallback_level in ("exact", "synonym")
+    match = concepts.read_text("neoprene knee brace").match  # (set 38: its own hinged brace, not the plain sleeve
+    # a blind judge took for foam pipe insulation)
+    assert match.concept == "knee_brace" and match.fallback_level in ("exact", "synonym")
 
 
 @pytest.mark.parametrize("text,concept", [

@@ -83,7 +83,10 @@ class SheetParams(Model):
     curl: float = Field(default=0.0, ge=0.0, le=0.45, description="flat: each corner lifted, curling up from a "
                         "hinge across it this share of the width from the corner (a baking mat's curling corners) [-]")
     bubbles: bool = Field(default=False, description="rolled: the outer layer's air bubbles, rows of them over the "
-                          "roll (bubble wrap)")
+                          "roll, and its loose end lying out in front covered in them (bubble wrap); flat: a "
+                          "staggered grid of them over the top")
+    spiral: bool = Field(default=False, description="rolled: the sheet's spiral cut into both ends of the roll, "
+                         "coarse enough to see, no hole (a rolled yoga mat, not a foam tube)")
     stiff: bool = Field(default=False, description="a stiff sheet (paper, foil, baking paper): crumpled, it is a round "
                         "wad of creased facets in the hand's size, not a heap of cloth")
     stripes: int = Field(default=0, ge=0, le=9, description="woven or printed bands across the length over the top "
@@ -171,6 +174,8 @@ def sheet(p: SheetParams) -> list[Part]:
             parts += _hood(w, t)
         if p.open_end:
             parts += _open_end(w, t)
+        if p.bubbles:
+            parts += _bubble_grid(1.0, w, t, MAX_PARTS - len(parts))
         return parts
     if p.state == "loop":
         return _strip_loop(p, t)
@@ -201,7 +206,7 @@ def sheet(p: SheetParams) -> list[Part]:
         if p.stiff:
             return wad(wad_size(w), seed=0.3 + 3 * w)
         d, height = crumpled_size(w)
-        return heap(d, height, t, seed=0.3 + 3 * w)
+        return creased_heap(d, height, t, seed=0.3 + 3 * w)
     if p.state == "twisted":
         return _twisted(p)
     if p.state == "knotted":
@@ -413,24 +418,43 @@ def puzzle_tile(w: float, t: float) -> list[Part]:
     return parts
 
 
+HAMMOCK_SAG = 0.12  # how far a hung hammock's bed sags below its spreader bars, / its length [-]
+HAMMOCK_BED_SEGMENTS = 6  # straight pieces of the sagging bed [-]
+
+
 def hammock(w: float, t: float) -> list[Part]:
-    """A hammock laid out flat, length 1 along x: the fabric bed between two spreader bars across its ends, the
-    suspension cords fanning from each bar to a ring, and a short rope beyond each ring."""
+    """A hammock as it hangs, length 1 along x: the fabric bed sagging in a curve between two spreader bars across
+    its ends, resting on the ground at its lowest, the suspension cords fanning up from each bar to a ring, and a
+    short rope beyond each ring. (Laid out flat between its bars it read as a folding camp cot, session 38.)"""
     bed = 0.66
-    parts = [box("body", (bed, w, t), (0, 0, t / 2), edge=0.45 * t)]
+    sag = HAMMOCK_SAG
     rb = max(0.6 * t, 0.016)
+
+    def z_bed(x: float) -> float:  # the bed's middle surface: a parabola, its lowest at t / 2
+        return t / 2 + sag * (2 * x / bed) ** 2
+
+    parts = []
+    n = HAMMOCK_BED_SEGMENTS
+    for i in range(n):
+        x0, x1 = -bed / 2 + bed * i / n, -bed / 2 + bed * (i + 1) / n
+        dz = z_bed(x1) - z_bed(x0)
+        seg = float(np.hypot(x1 - x0, dz)) + 0.5 * t
+        pitch = -float(np.degrees(np.arctan2(dz, x1 - x0)))
+        parts.append(box("body" if i == 0 else f"bed {i + 1}", (seg, w, t), (0.5 * (x0 + x1), 0.0, 0.5 * (z_bed(x0) + z_bed(x1))),
+                         edge=0.45 * t, rot=(0, pitch, 0), blend=0.3 * t))
     cords = 4
     for side, sx in (("left", -1.0), ("right", 1.0)):
         xb = sx * (bed / 2 + 0.01)
-        parts.append(limb(f"{side} spreader bar", (xb, -0.56 * w, rb), (xb, 0.56 * w, rb), rb, blend=0.2 * t))
-        ring = np.array([sx * 0.45, 0.0, 0.5 * rb])
+        zb = z_bed(bed / 2) + 0.5 * rb
+        parts.append(limb(f"{side} spreader bar", (xb, -0.56 * w, zb), (xb, 0.56 * w, zb), rb, blend=0.2 * t))
+        ring = np.array([sx * 0.45, 0.0, zb + 0.06])
         for k in range(cords):
             y = -0.45 * w + 0.9 * w * k / (cords - 1)
-            parts.append(limb(f"{side} cord {k + 1}", (xb, y, 0.5 * rb), tuple(ring), 0.7 * rb, blend=0.1 * rb))
+            parts.append(limb(f"{side} cord {k + 1}", (xb, y, zb), tuple(ring), 0.7 * rb, blend=0.1 * rb))
         parts.append(torus(f"{side} ring", 0.02, 0.6 * rb, tuple(ring + np.array([sx * 0.015, 0, 0])),
                            blend=0.2 * rb))
-        parts.append(limb(f"{side} rope", tuple(ring + np.array([sx * 0.04, 0, 0])), (sx * (0.5 - 0.5 * rb), 0.0, 0.5 * rb),
-                          0.5 * rb, blend=0.1 * rb))
+        parts.append(limb(f"{side} rope", tuple(ring + np.array([sx * 0.04, 0, 0])),
+                          (sx * (0.5 - 0.5 * rb), 0.0, float(ring[2]) + 0.02), 0.5 * rb, blend=0.1 * rb))
     return parts
 
 
@@ -752,6 +776,9 @@ def _rolled(p: SheetParams) -> list[Part]:
     rings = int(np.clip(np.floor((R - r0) / (5 * g)) - 1, 1, 5))
     pitch = (R - r0) / (rings + 1)
     depth = min(0.12 * w, 3 * g)
+    if p.spiral:  # the spiral instead of the rings, and no hole
+        rings, r0 = 0, 0.0
+        parts += _spiral_cuts(w, R)
     for i in range(1, rings + 1):
         rad = r0 + pitch * i
         for side, s in (("left", 1), ("right", -1)):
@@ -764,6 +791,16 @@ def _rolled(p: SheetParams) -> list[Part]:
         flat = max(layer, MIN_TAIL_LAYER * max(w, run))  # (no thinner than the mesher sees: a half rolled yoga mat's
         parts.append(box("tail", (w, run + 0.5 * R, flat), (0, -0.5 * run, flat / 2), edge=0.3 * flat,  # 6 mm sheet
                          blend=0.05 * R))  # was lost between the voxels)
+    if p.bubbles:  # the loose end lying out in front (not a partly unrolled tail), bubbled: a sheet of them reads as
+        run = (p.tail or BUBBLE_END) * 2 * R  # bubble wrap, rows round a roll alone as a massage roller
+        flat = max(layer, MIN_TAIL_LAYER * max(w, run))
+        if p.tail == 0:
+            parts.append(box("loose end", (w, run + 0.5 * R, flat), (0, -0.5 * run, flat / 2), edge=0.3 * flat,
+                             blend=0.05 * R))
+        grid = _bubble_grid(w, run, flat, 36)
+        parts += [q.model_copy(update={"transform": q.transform.model_copy(update={"translation_m": (
+            q.transform.translation_m[0], q.transform.translation_m[1] - 0.5 * run - 0.1 * R,
+            q.transform.translation_m[2])})}) for q in grid]
     if p.bubbles:  # the outer layer's bubbles: staggered rows over the roll's upper half, drawn a little large
         rb = 0.15 * R
         along = max(2, int(0.9 * w / (2.6 * rb)))
@@ -775,6 +812,53 @@ def _rolled(p: SheetParams) -> list[Part]:
                                        rot=(float(np.degrees(-ang)), 0, 0), blend=0.3 * rb))
                 if len(parts) >= 63:
                     return parts
+    return parts
+
+
+SPIRAL_TURNS = 2.25  # turns of a rolled sheet's spiral drawn at its ends (each groove ~1.5 mesher cells wide) [-]
+SPIRAL_STEPS = 10  # straight groove segments per turn [-]
+
+
+def _spiral_cuts(w: float, R: float) -> list[Part]:
+    """A roll's spiral (length `w` along x, radius R, axis at height R) cut into both end faces: a groove following an
+    Archimedean spiral from near the axis out to the outer layer, which ends at the roll's top (where the flap is)."""
+    pitch = 0.92 * R / SPIRAL_TURNS
+    g, depth = 0.42 * pitch, min(0.1 * w, 0.5 * R)
+    n = int(SPIRAL_TURNS * SPIRAL_STEPS)
+    end = np.pi / 2 + 2 * np.pi * SPIRAL_TURNS  # the outer end at the top
+    parts: list[Part] = []
+    for side, s in (("left", 1.0), ("right", -1.0)):
+        for k in range(n):
+            th0, th1 = end - 2 * np.pi * SPIRAL_TURNS * (1 - k / n), end - 2 * np.pi * SPIRAL_TURNS * (1 - (k + 1) / n)
+            pts = [(0.06 * R + pitch * (th - end + 2 * np.pi * SPIRAL_TURNS) / (2 * np.pi)) * np.array(
+                [np.cos(th), np.sin(th)]) for th in (th0, th1)]
+            mid, d = 0.5 * (pts[0] + pts[1]), pts[1] - pts[0]
+            seg = float(np.linalg.norm(d)) + 0.8 * g
+            phi = float(np.degrees(np.arctan2(d[1], d[0])))
+            parts.append(_op(box(f"{side} spiral {k + 1}", (2 * depth, seg, g), (s * w / 2, float(mid[0]), R + float(mid[1])),
+                                 rot=(phi, 0, 0)), "subtract"))
+    return parts
+
+
+BUBBLE_END = 0.5  # a roll of bubble wrap's loose end lying out in front, / the roll's diameter [-]
+BUBBLE_PITCH = 0.11  # bubble wrap's bubbles drawn this far apart, / the drawn sheet's longer side [-]
+
+
+def _bubble_grid(length: float, width: float, t: float, most: int) -> list[Part]:
+    """Bubble wrap's air bubbles over a sheet's top (length along x, width along y, top at t): staggered rows of domes,
+    drawn larger than real (10 mm) so the mesher sees them; at most `most` of them."""
+    pitch = BUBBLE_PITCH * max(length, width)
+    nx, ny = max(int(length / pitch), 2), max(int(width / pitch), 2)
+    while nx * ny > most and nx > 2:
+        nx, ny = nx - 1, max(int(ny * (nx - 1) / nx), 2)
+    rb = 0.36 * min(length / nx, width / ny)
+    parts: list[Part] = []
+    for j in range(ny):
+        for i in range(nx):
+            x = -length / 2 + (i + 0.5 + 0.25 * (1 if j % 2 else -1)) * length / nx
+            y = -width / 2 + (j + 0.5) * width / ny
+            parts.append(ellipsoid(f"bubble {len(parts) + 1}", (rb, rb, max(0.55 * rb, 0.6 * t)), (x, y, t),
+                                   blend=0.15 * rb))
     return parts
 
 
@@ -808,6 +892,24 @@ class PouchParams(Model):
     crimp: bool = Field(default=False, description="a pillow pack (a bag of crisps, frozen peas, rice, pet food, "
                         "compost): no border seam, its two short ends heat-sealed into flat fins with crimp ridges "
                         "across them, the filled body gathering into them")
+    emblem: Literal["none", "paw", "bone", "fish", "sprout", "bowl", "drop", "pad", "piece", "chip", "fruit"] = Field(
+        default="none", description="a simple raised picture of the contents on the label (#38), what tells a pack "
+        "of dog food from one of flour: paw (cat litter, pet food), bone (dog food, treats), fish (cat food), sprout "
+        "(soil, compost, mulch, fertilizer, seed), bowl (rice, grain), drop (milk, juice, liquid soap), pad (pads, "
+        "diapers), piece (a window onto the goods: the piece shape in `piece`, candy), chip (a crisp), fruit (an "
+        "apple with its leaf: juice, baby food)")
+    lid: bool = Field(default=False, description="a wipes pack's plastic flip lid on its top: an oval frame round a "
+                      "raised lid with a finger tab (the label then lies beside it)")
+    grip: bool = Field(default=False, description="a carry flap sealed on at the -x end with a handle slot cut "
+                       "through it (a pack of diapers, of toilet rolls)")
+    stand: bool = Field(default=False, description="standing on its bottom end, its label facing out (a stand-up "
+                        "pouch with a round gusset base and a zip line under its top seam; a bag of crisps on a "
+                        "shelf)")
+    form: Literal["pouch", "laundry", "mesh"] = Field(default="pouch", description="laundry: a soft drawstring sack "
+                                                      "standing full of clothes, bulging, its neck cinched by a cord "
+                                                      "with a toggle, a sleeve hanging out; mesh: a net bag of round "
+                                                      "goods (oranges), the pieces heaped inside a diamond net "
+                                                      "gathered into a clip at each end")
 
 
 LABEL_SIZE = (0.46, 0.62)  # a pack's printed label over its top: / length, / width [-]
@@ -823,8 +925,15 @@ def pouch(p: PouchParams) -> list[Part]:
     if max(p.piece) > 0:  # a bag of goods is as deep as they are thick: they bulge its film, not stand on a tray
         h = max(h, BAG_DEPTH_OVER_PIECE * sorted(p.piece)[0])
     st = MIN_LAYER
+    if p.form == "laundry":
+        return _laundry_sack(p)
+    if p.form == "mesh" and max(p.piece) > 0:
+        return _net_bag(p)
     if p.crimp and p.port == "none":  # (a bag with a port or a tie is sealed round its border)
-        return _pillow_pack(p, h) + (bagged_pieces(p, h) if max(p.piece) > 0 else [])
+        out = _pillow_pack(p, h) + (bagged_pieces(p, h) if max(p.piece) > 0 else [])
+        if p.emblem != "none" and p.label:
+            out += emblem_parts(p.emblem, h + 0.5 * st, p.piece)
+        return _stood(out) if p.stand else out
     parts = [superellipsoid("body", (0.5 - s, w / 2 - s, h / 2), (0, 0, h / 2), ns=0.55 + 0.3 * p.fill,
                             ew=p.squareness)]
     if s > 0:
@@ -877,12 +986,33 @@ def pouch(p: PouchParams) -> list[Part]:
         parts += bagged_pieces(p, h)
     elif p.label:
         parts.append(_label(w - 2 * s, h))
+    if p.emblem != "none" and p.label:
+        parts += emblem_parts(p.emblem, h + 0.5 * st, p.piece)
+    if p.lid:  # an oval frame on the top, the raised lid in it, its finger tab towards +x
+        lw = 0.32 * w
+        parts.append(superellipsoid("lid frame", (0.19, lw, 0.02), (0.0, 0.0, h), ns=0.5, ew=1.0, blend=0.02))
+        parts.append(superellipsoid("lid", (0.16, 0.84 * lw, 0.03), (0.0, 0.0, h + 0.02), ns=0.4, ew=1.0,
+                                    blend=0.005))
+        parts.append(box("lid tab", (0.05, 0.3 * lw, 0.03), (0.17, 0.0, h + 0.02), edge=0.01, blend=0.005))
+    if p.grip:  # the carry flap beyond the -x end, a slot cut through it
+        ft = 2.5 * st
+        parts.append(box("grip", (0.16, 0.7 * w, ft), (-0.5 - 0.05, 0, 0.75 * h), edge=0.4 * ft, blend=0.08))
+        parts.append(_op(scaled(cylinder("grip slot", 0.04, 4 * ft, (-0.56, 0, 0.75 * h)), (1.0, 3.0, 1.0)),
+                         "subtract", 0.005))
+    if p.stand and not p.upright:  # a stand-up pouch: a zip line under the top seam, a round gusset base
+        parts.append(box("zip line", (0.035, w - 2.4 * s, 0.6 * st), (0.5 - s - 0.08, 0, 0.93 * h), edge=0.25 * st,
+                         blend=0.2 * st))
+        parts.append(superellipsoid("gusset", (0.16, w / 2 - s, 0.75 * h), (-0.5 + s + 0.14, 0, h / 2), ns=0.6,
+                                    ew=0.3, blend=0.15))
+        return _stood(parts)
     if p.upright:  # lumps of what is inside pressing out its sides, then stood on its closed end
         for k, (x, a) in enumerate(((-0.25, 20.0), (-0.05, 150.0), (0.12, 260.0), (-0.2, 300.0))):
             ca, sa = np.cos(np.radians(a)), np.sin(np.radians(a))
             parts.append(ellipsoid(f"lump {k + 1}", (0.16, 0.12, 0.12), (x, 0.3 * w * ca, h / 2 + 0.3 * h * sa),
                                    blend=0.06))
         parts = rotated_parts(parts, (0.0, -90.0, 0.0))
+        if p.label:  # its printed front turned to face +x, where the renders look from
+            parts = rotated_parts(parts, (0.0, 0.0, 180.0))
     if p.strap > 0:
         sw, st = 0.55 * w, 1.6 * MIN_LAYER
         parts.append(box("strap", (p.strap, sw, st), (0.5 + p.strap / 2 - 0.05, 0, st / 2), edge=0.45 * st,
@@ -915,6 +1045,133 @@ def _pillow_pack(p: PouchParams, h: float) -> list[Part]:
     if p.label and max(p.piece) == 0:
         parts.append(_label(w, h))
     return parts
+
+
+EMBLEM_PROUD = 0.03  # an emblem's raised face over its label / the pack's length (markings flush, ~3 % proud) [-]
+
+
+def emblem_parts(kind: str, z: float, piece: tuple[float, float, float] = (0.0, 0.0, 0.0)) -> list[Part]:
+    """A simple raised picture of a pack's contents on its label (its top face at z), ~0.3 of the pack's length
+    across, each part named 'emblem': a paw (pad and four toes), a dog's bone, a fish, a sprout (stem and two
+    leaves), a bowl heaped with grain, a drop, a pad, or one of the goods (`piece`) drawn large."""
+    t = 2 * EMBLEM_PROUD
+    zc = z + EMBLEM_PROUD - t / 2
+    out: list[Part] = []
+
+    def flat(part: Part) -> None:
+        out.append(part.model_copy(update={"name": f"emblem {len(out) + 1}"}))
+
+    if kind == "paw":
+        flat(ellipsoid("pad", (0.075, 0.09, t / 2), (-0.04, 0.0, zc)))
+        for k, (x, y) in enumerate(((0.06, -0.11), (0.1, -0.04), (0.1, 0.04), (0.06, 0.11))):
+            flat(ellipsoid(f"toe {k}", (0.035, 0.03, t / 2), (x, y, zc), rot=(0, 0, float(-25 * y / 0.11))))
+    elif kind == "bone":
+        flat(box("shaft", (0.06, 0.24, t), (0.0, 0.0, zc), edge=0.25 * t))
+        for x in (-0.04, 0.04):
+            for y in (-0.13, 0.13):
+                flat(cylinder("knob", 0.042, t, (x, y, zc), edge=0.25 * t))
+    elif kind == "fish":
+        flat(ellipsoid("body", (0.075, 0.14, t / 2), (0.0, -0.03, zc)))
+        flat(box("tail", (0.085, 0.085, t), (0.0, 0.13, zc), edge=0.2 * t, rot=(0, 0, 45)))
+    elif kind == "sprout":
+        flat(box("stem", (0.16, 0.024, t), (-0.07, 0.0, zc), edge=0.2 * t))
+        for sy in (-1.0, 1.0):
+            flat(ellipsoid("leaf", (0.05, 0.1, t / 2), (0.04, sy * 0.08, zc), rot=(0, 0, float(sy * 40))))
+    elif kind == "bowl":  # a bowl seen from the side (a flat trapezoid), the grain heaped over its rim
+        flat(cone("bowl", 0.075, 0.15, 0.12, (-0.04, 0.0, zc), edge=0.01, rot=(0, 90, 0), scale=(t / 0.3, 1, 1)))
+        flat(ellipsoid("heap", (0.07, 0.135, t / 2), (0.03, 0.0, zc)))
+    elif kind == "drop":
+        flat(ellipsoid("drop", (0.09, 0.09, t / 2), (-0.03, 0.0, zc)))
+        flat(cone("tip", 0.086, 0.006, 0.17, (0.055, 0.0, zc), rot=(0, 90, 0), scale=(t / 0.172, 1, 1)))
+    elif kind == "chip":  # a crisp: a wavy oval, two lobes
+        flat(ellipsoid("chip", (0.1, 0.13, t / 2), (0.0, -0.02, zc), rot=(0, 0, 20)))
+        flat(ellipsoid("chip lobe", (0.08, 0.09, t / 2), (0.03, 0.08, zc), rot=(0, 0, -15)))
+    elif kind == "fruit":  # an apple: the round fruit, its stalk and one leaf
+        flat(ellipsoid("apple", (0.11, 0.12, t / 2), (-0.02, 0.0, zc)))
+        flat(box("stalk", (0.07, 0.02, t), (0.11, 0.0, zc), edge=0.2 * t))
+        flat(ellipsoid("leaf", (0.03, 0.065, t / 2), (0.13, 0.06, zc), rot=(0, 0, 35)))
+    elif kind == "pad":
+        flat(superellipsoid("pad", (0.16, 0.075, t / 2), (0.0, 0.0, zc), ns=0.3, ew=0.9))
+    elif kind == "piece" and max(piece) > 0:
+        a, b, _c = sorted(piece, reverse=True)
+        flat(ellipsoid("piece", (0.13, max(0.05, 0.13 * b / a), t / 2), (0.0, 0.0, zc)))
+    return [_spread(q, EMBLEM_SCALE) for q in out]
+
+
+EMBLEM_SCALE = 1.3  # the emblem drawn over most of its label (a pack's picture fills its front) [-]
+
+
+def _spread(part: Part, k: float) -> Part:
+    """An emblem part k times larger across the label (x, y), as thick."""
+    tf = part.transform
+    x, y, z = tf.translation_m
+    sx, sy, sz = tf.scale
+    turned = abs(abs(tf.rotation_deg[1]) - 90.0) < 1.0  # (a cone laid along x: its local x is the world's z)
+    scale = (sx, sy * k, sz * k) if turned else (sx * k, sy * k, sz)
+    return part.model_copy(update={"transform": tf.model_copy(update={"translation_m": (x * k, y * k, z),
+                                                                       "scale": scale})})
+
+
+def _stood(parts: list[Part]) -> list[Part]:
+    """A pack lying flat (length along x, label up) stood on its -x end, its label facing -x."""
+    return rotated_parts(parts, (0.0, -90.0, 0.0))
+
+
+def _laundry_sack(p: PouchParams) -> list[Part]:
+    """A soft laundry sack standing full of clothes (height 1 along z): a bulging body lumpy with what is in it, the
+    neck gathered under a cord channel, the drawstring's two ends out of a toggle, a sleeve hanging over the rim."""
+    w = p.width
+    hb = 0.72
+    r = w / 2
+    parts = [superellipsoid("body", (r, 0.85 * r, hb / 2), (0, 0, hb / 2), ns=0.7, ew=0.9)]
+    for k, a in enumerate((20.0, 110.0, 200.0, 290.0)):
+        ca, sa = np.cos(np.radians(a)), np.sin(np.radians(a))
+        parts.append(ellipsoid(f"lump {k + 1}", (0.16, 0.14, 0.16), (0.8 * r * ca, 0.7 * r * sa, 0.3 + 0.12 * (k % 2)),
+                               blend=0.06))
+    parts.append(cone("shoulder", 0.85 * r, 0.3 * r, 0.16, (0, 0, hb - 0.04), blend=0.06, scale=(1, 0.85, 1)))
+    parts.append(torus("channel", 0.3 * r, 0.035, (0, 0, hb + 0.1), blend=0.02, scale=(1, 0.85, 1)))
+    for i in range(6):
+        a = 2 * np.pi * i / 6
+        parts.append(ellipsoid(f"ruffle {i + 1}", (0.07, 0.045, 0.1), (0.3 * r * np.cos(a), 0.26 * r * np.sin(a),
+                                                                      hb + 0.18),
+                               rot=(0, 25, float(np.degrees(a))), blend=0.03))
+    top = np.array([0.3 * r, 0.0, hb + 0.1])
+    toggle = top + np.array([0.09, 0.0, -0.1])
+    parts.append(cylinder("toggle", 0.03, 0.08, tuple(toggle), edge=0.01, blend=0.005))
+    for k, dy in enumerate((-0.05, 0.05)):
+        end = toggle + np.array([0.05, dy * 2.5, -0.17])
+        parts.append(limb(f"cord {k + 1}", top + np.array([0.0, dy * 0.5, 0.0]), toggle, 0.012, blend=0.005))
+        parts.append(limb(f"cord end {k + 1}", toggle, end, 0.012, blend=0.005))
+    sleeve = [np.array([-0.1 * r, 0.1, hb + 0.22]), np.array([-0.45 * r, 0.3 * r, hb + 0.12]),
+              np.array([-0.95 * r, 0.45 * r, hb - 0.12])]
+    parts.append(tapered("sleeve", sleeve[0], sleeve[1], 0.06, 0.055, blend=0.02))
+    parts.append(tapered("sleeve cuff", sleeve[1], sleeve[2], 0.055, 0.05, blend=0.02))
+    return parts
+
+
+def _net_bag(p: PouchParams) -> list[Part]:
+    """A net bag of round goods lying flat (length 1 along x): the pieces in a bottom layer and a top layer in its
+    hollows, each crossed by two strands of the net (its diamonds), both ends gathered into a clip."""
+    p = _countable(p)
+    r = 0.5 * max(p.piece)
+    w = p.width
+    nx, ny = max(2, int(0.84 / (2 * r))), max(2, int(w / (2 * r)))  # (two rows at least: a heap, not a line)
+    spots = [(-(nx - 1) * r + 2 * r * i, -(ny - 1) * r + 2 * r * j, r) for i in range(nx) for j in range(ny)]
+    spots += [(-(nx - 2) * r + 2 * r * i, -(ny - 2) * r + 2 * r * j, 2.35 * r) for i in range(nx - 1)
+              for j in range(max(ny - 1, 1))]
+    parts: list[Part] = [ellipsoid("body", (0.8 * nx * r, 0.8 * ny * r, 0.7 * r), (0, 0, 0.9 * r))]
+    strand = 0.07 * r
+    for k, at in enumerate(spots):
+        parts.append(ellipsoid(f"fill {k + 1}", (r, r, 0.95 * r), at))
+        for m, (tilt, turn) in enumerate(((90.0, 45.0), (90.0, -45.0), (30.0, 0.0))):  # its diamonds
+            parts.append(torus(f"net {3 * k + m + 1}", 0.99 * r, strand, at, rot=(tilt, 0.0, turn + 20.0 * k)))
+    end = nx * r + 0.4 * r
+    for side, sx in (("left", -1.0), ("right", 1.0)):
+        parts.append(tapered(f"{side} net", (sx * (end - 0.9 * r), 0, r), (sx * end, 0, 0.9 * r), 0.6 * r,
+                             0.15 * r, blend=0.05 * r))
+        parts.append(cylinder(f"{side} clip", 0.2 * r, 0.35 * r, (sx * end, 0, 0.9 * r), edge=0.05 * r,
+                              rot=(0, 90, 0), blend=0.01 * r))
+    return parts[:MAX_PARTS]
 
 
 def _label(width: float, h: float) -> Part:
@@ -1369,6 +1626,36 @@ def heap(diameter: float, height: float, t: float, seed: float = 0.3, folds: int
     return parts
 
 
+def creased_heap(diameter: float, height: float, t: float, seed: float = 0.3) -> list[Part]:
+    """A sheet balled up and dropped (a fitted sheet, a towel, a blanket): a low, lopsided mound under the cloth, the
+    cloth lying over it in overlapping flaps (their edges seen all round, sloping from the top down to the floor), a
+    few narrow folds along the top; no rounded lobes standing up (heap's ridges read as a plush bunny's ears and paws:
+    session 38's judges named a balled-up fitted sheet a plush rabbit)."""
+    R = diameter / 2
+    parts = [ellipsoid("body", (0.62 * R, 0.52 * R, 0.6 * height), (0.05 * R, 0.0, 0.0))]
+    tiers = ((6, 0.5, 0.32, 0.85, 0.8), (4, 0.18, 0.6, 0.6, 0.6))  # (flaps, out from the centre, height, size)
+    for ti, (n, rho, zs, ln, wd) in enumerate(tiers):
+        for i in range(n):
+            a = seed + 2 * np.pi * (i + 0.37 * ti) / n + 0.35 * np.sin(3.3 * i + seed)
+            length = (ln + 0.15 * np.sin(2.1 * i + seed)) * R
+            drop = zs * height
+            tilt = float(np.degrees(np.arctan2(drop, 0.8 * length)))
+            skew = 28 * np.sin(2.3 * i + 1.7 * seed)  # each flap turned off the radial: overlapping, not a star
+            turn = Rotation.from_euler("z", np.degrees(a) + skew, degrees=True) * Rotation.from_euler(
+                "xy", [14 * np.sin(1.3 * i + seed), tilt], degrees=True)
+            r_ = (rho + 0.08 * np.sin(2.9 * i)) * R
+            parts.append(box(f"{'corner' if ti == 0 else 'flap'} {i + 1}", (length, (wd + 0.15 * np.cos(1.7 * i)) * R, t),
+                             (r_ * np.cos(a), r_ * np.sin(a), drop / 2 + 0.6 * t + 0.1 * height * ti), edge=0.45 * t,
+                             rot=tuple(float(e) for e in turn.as_euler("xyz", degrees=True)), blend=0.03 * R))
+    for i, (a, r, turn) in enumerate(_rng_angles(5, seed)):  # narrow folds over the top
+        rho = 0.3 * R * r
+        parts.append(ellipsoid(f"fold {i + 1}", ((0.16 + 0.06 * np.sin(i)) * R, 0.03 * R + 0.5 * t, 0.06 * height),
+                               (rho * np.cos(a), rho * np.sin(a), 0.56 * height),
+                               rot=(0, 0, float(np.degrees(a) + 90 + turn)), blend=0.04 * R))
+    parts.append(_op(box("ground", (8, 8, 8), (0, 0, 4)), "intersect"))
+    return parts
+
+
 WAD_FACETS = 22  # planes cutting a paper wad's core into creased facets
 WAD_CREASES = 6  # folded ridges standing out of it
 WAD_VALLEYS = 8  # creases pressed into it
@@ -1454,6 +1741,10 @@ class GarmentParams(Model):
     baffles: int = Field(default=0, ge=0, le=12, description="quilted (down-filled) baffles across the body, and "
                          "along the sleeves in proportion: a puffy layer with stitched grooves (a puffer jacket or "
                          "vest) [-]")
+    motif: Literal["none", "print", "number", "knit", "dots"] = Field(
+        default="none", description="what the front shows: 'print' a printed chest graphic (a t-shirt), 'number' a "
+        "big number and trim stripes (a sports jersey), 'knit' cable-knit columns (a knitted sweater), 'dots' a "
+        "small scattered print (a hospital gown)")
 
 
 GARMENT_LAYER = 0.045  # a garment's (or a bag's with handles) built layer / its length: MIN_LAYER of its span [-]
@@ -1473,7 +1764,8 @@ def _top_flat(p: GarmentParams, t: float) -> list[Part]:
     for side in (1, -1):
         shoulder = np.array([0.36, side * (w / 2 - 0.06), z])
         if p.sleeves == "long":
-            tip = shoulder + np.array([-0.72, side * 0.36, 0.0])
+            tip = shoulder + np.array([-0.5, side * 0.36, 0.0])  # (ending by the hem they read as trouser legs
+            # to blind judges, set 38: a shirt's sleeves end at mid-body)
         elif p.sleeves == "short":
             tip = shoulder + np.array([-0.16, side * 0.2, 0.0])
         else:  # sleeveless (a vest, a gilet): an armhole cut into each side below the shoulder
@@ -1653,14 +1945,32 @@ def _swimsuit_flat(p: GarmentParams, t: float) -> list[Part]:
     parts.append(box("crotch", (0.18, 0.16 * w + 0.06, t), (-0.36, 0, t / 2), edge=0.45 * t, blend=0.05))
     parts.append(_op(scaled(cylinder("neck", 0.16 * w + 0.05, 4 * t, (0.45, 0, t / 2)), (0.8, 1, 1)), "subtract",
                      0.03))
-    if p.sleeves != "none":  # a baby's bodysuit: sleeves from the shoulders, snaps across the crotch flap
-        reach = 0.13 if p.sleeves == "short" else 0.4
+    if p.sleeves != "none":  # a baby's bodysuit: sleeves out from the shoulders with trimmed cuffs, the neckline
+        # and leg openings trimmed, a heart printed on the chest, snaps across the crotch flap (stub sleeves on a white
+        # outline read as a sheepskin rug to blind judges, set 38)
+        reach = 0.2 if p.sleeves == "short" else 0.45
         for side, sy in (("left", -1.0), ("right", 1.0)):
-            a = np.array([0.3, sy * 0.36 * w, t / 2])
-            parts += _flat_chain(f"{side} sleeve", [a, a + np.array([-0.4 * reach, sy * reach, 0.0])], 0.09,
-                                 t, blend=0.3 * t)
+            a = np.array([0.36, sy * 0.36 * w, t / 2])
+            b = a + np.array([-0.55 * reach, sy * reach, 0.0])
+            parts.append(_flat_frustum(f"{side} sleeve", a, b, 0.13, 0.1, t, blend=0.3 * t))
+            d = (b - a) / np.linalg.norm(b - a)
+            parts.append(_flat_frustum(f"{side} cuff trim", b - 0.035 * d, b + 0.01 * d, 0.105, 0.105, 1.4 * t,
+                                       blend=0.002))
+            edge = [np.array([-0.45, sy * 0.09, 0.9 * t])]  # the leg opening's edge, from the crotch to the side
+            edge += [np.array([-0.34 + 1.04 * 0.33 * np.cos(a), sy * (0.14 * w + 0.3 - 1.04 * 0.3 * np.sin(a)), 0.9 * t])
+                     for a in np.radians((90.0, 62.0, 36.0, 14.0))]
+            parts += _flat_chain(f"{side} leg trim", edge, 0.014, 0.8 * t, blend=0.002)
+        rn = 0.16 * w + 0.05  # the neck cut again (the sleeves reach over it), its trim along the edge
+        parts.append(_op(cylinder("neck opening", rn, 4 * t, (0.5, 0, t / 2)), "subtract", 0.03))
+        neck = [np.array([0.5 + rn * np.cos(a), rn * np.sin(a), 0.9 * t]) for a in np.radians(
+            (80.0, 125.0, 180.0, 235.0, 280.0))]
+        parts += _flat_chain("neck trim", neck, 0.016, 0.8 * t, blend=0.002)
+        for k, y in enumerate((-0.05, 0.05)):  # a heart on the chest: two lobes and the point below
+            parts.append(cylinder(f"heart {k + 1}", 0.062, 0.8 * t, (0.15, y, 1.1 * t), edge=0.1 * t, blend=0.004))
+        parts.append(box("heart 3", (0.09, 0.09, 0.8 * t), (0.1, 0.0, 1.1 * t), edge=0.1 * t, rot=(0, 0, 45),
+                         blend=0.004))
         for k, y in enumerate((-0.07, 0.0, 0.07)):
-            parts.append(cylinder(f"snap {k + 1}", 0.022, 0.5 * t, (-0.42, y, t), edge=0.2 * t, blend=0.1 * t))
+            parts.append(cylinder(f"snap {k + 1}", 0.026, 0.6 * t, (-0.42, y, t), edge=0.2 * t, blend=0.1 * t))
     return parts
 
 
@@ -1788,41 +2098,98 @@ def _rumpled(flat: list[Part], w: float, t: float) -> list[Part]:
 
 def _garment_folded(p: GarmentParams) -> list[Part]:
     """Folded neatly: a rectangle a little longer than wide, 8 layers of the fabric thick (front and back, folded in
-    half twice), the collar (or hood) at the top edge, the sleeves folded in as diagonal flaps at the shoulders, the
-    layers' edges seen at the folded bottom and the hem band across it."""
+    half twice), the ribbed collar (or hood) at the top edge with a neck label inside it, short sleeves folded in as
+    flaps at the shoulders with their hems, long sleeves crossed over the front to their ribbed cuffs, the layers'
+    edges seen at the folded bottom and the (ribbed) hem band across it; and the front's motif (a chest print, a
+    jersey's number, cable-knit columns, a scattered print). (A plain slab with a collar ring read as a padded laptop
+    sleeve, a foam tile or a seat cushion to blind judges, set 38.)"""
     fl, fw = 0.42, 0.62 * p.width
     t = float(np.clip(2 * p.thickness, 0.011, 0.03)) * (PUFF if p.baffles else 1.0)  # one layer (front and back)
     n = 4
-    h = n * t
     if p.kind == "trousers":
         return _trousers_folded(p, t, n)
+    t = min(t, FOLDED_TOP_LAYER * (PUFF if p.baffles else 1.0))  # (a thick knit stacked higher than a fifth of its
+    # width was seen from the side only: a block; a shop-folded sweater is ~6 cm high on ~30 cm)
+    h = n * t
     parts = [box("body", (fl, fw, h), (0, 0, h / 2), edge=0.9 * t)]  # (soft folded edges, not a crate's)
+    top, xt = h + 0.3 * t, fl / 2
+    if p.motif == "knit":  # cable-knit columns: twisted ropes of slanted stitches along the body
+        for k, y in enumerate((-0.3 * fw, 0.0, 0.3 * fw)):
+            for j, x in enumerate(np.linspace(-fl / 2 + 0.1, xt - 0.1, 5)):
+                parts.append(ellipsoid(f"cable {k + 1} {j + 1}", (0.035, 0.018, 0.5 * t), (float(x), y, h),
+                                       rot=(0, 0, 40.0 if j % 2 else -40.0), blend=0.003))
+    elif p.motif == "print":  # a printed graphic on the chest: a disc with a ring round it
+        parts.append(cylinder("print", 0.075, 0.5 * t, (0.02, 0.0, h + 0.1 * t), edge=0.1 * t, blend=0.002))
+        parts.append(scaled(torus("print 2", 0.1, 0.012, (0.02, 0.0, h)), (1.0, 1.0, 0.6)))
+    elif p.motif == "number":  # a jersey's big number ('10') across the front
+        parts.append(box("number 1", (0.2, 0.05, 1.0 * t), (-0.02, 0.17 * fw, h + 0.3 * t), edge=0.1 * t,
+                         blend=0.002))
+        parts.append(box("number 2", (0.05, 0.045, 1.0 * t), (0.05, 0.17 * fw - 0.035, h + 0.3 * t),
+                         edge=0.1 * t, rot=(0, 0, 35), blend=0.002))
+        parts.append(scaled(torus("number 3", 0.07, 0.026, (-0.02, -0.17 * fw, h + 0.2 * t)), (1.4, 1.0, 0.9)))
+    elif p.motif == "dots":  # a small scattered print (a hospital gown's; its ties below)
+        rng = np.random.default_rng(7)
+        for k in range(14):
+            x, y = rng.uniform(-fl / 2 + 0.06, xt - 0.07), rng.uniform(-fw / 2 + 0.04, fw / 2 - 0.04)
+            parts.append(cylinder(f"dot {k + 1}", 0.02, 0.8 * t, (float(x), float(y), h + 0.2 * t), edge=0.1 * t,
+                                  blend=0.002))
+    if p.kind in ("top", "suit") and p.sleeves == "long":
+        for side in (1, -1):  # a sleeve folded across the front from its shoulder, the two crossing, cuff at the end
+            word = "left" if side > 0 else "right"
+            a = np.array([xt - 0.07, side * (fw / 2 - 0.06), top])
+            b = np.array([-fl / 2 + 0.12, -side * (fw / 2 - 0.1), top + 0.2 * t * side])
+            parts.append(_flat_limb(f"{word} sleeve", a, b, 0.058, 1.4 * t, blend=0.006))
+            if p.cuffs:
+                d = (b - a) / np.linalg.norm(b - a)
+                parts.append(_flat_limb(f"{word} cuff", b - 0.06 * d, b + 0.04 * d, 0.054, 1.6 * t, blend=0.003))
+                for j in (-1, 0, 1):  # its ribs
+                    off = np.array([-d[1], d[0], 0.0]) * 0.03 * j
+                    parts.append(_flat_limb(f"{word} cuff rib {j + 2}", b - 0.05 * d + off, b + 0.05 * d + off,
+                                            0.008, 2.1 * t, blend=0.002))
+    elif p.kind in ("top", "suit") and p.sleeves == "short":
+        for side in (1, -1):  # a short sleeve folded in across the shoulder: a flap lying on top, cut to the outline
+            word = "left" if side > 0 else "right"
+            parts.append(box(f"{word} sleeve", (0.2, 0.34 * fw, 0.9 * t), (xt - 0.09, side * 0.43 * fw, h + 0.35 * t),
+                             edge=0.3 * t, rot=(0, 0, side * 35), blend=0.004))
+            stripe = "sleeve stripe" if p.motif == "number" else "sleeve hem"
+            parts.append(limb(f"{word} {stripe}", (xt - 0.2, side * 0.2 * fw, h + 0.85 * t),
+                              (xt - 0.03, side * 0.5 * fw, h + 0.85 * t), 0.014 if p.motif == "number" else 0.007,
+                              blend=0.002))
     if p.kind in ("top", "suit") and p.sleeves != "none":
-        for side in (1, -1):  # a sleeve folded in across the shoulder: a flap lying on top, cut to the outline
-            parts.append(box(f"{'left' if side > 0 else 'right'} sleeve", (0.17, 0.32 * fw, 0.45 * t),
-                             (0.13, side * 0.42 * fw, h + 0.15 * t), edge=0.2 * t, rot=(0, 0, side * 30), blend=0.004))
-        parts.append(_op(box("outline", (fl, fw, 4 * h), (0, 0, 0)), "intersect"))
+        parts.append(_op(box("outline", (fl, fw, 6 * h), (0, 0, 0)), "intersect"))
+    if p.motif == "dots":  # a gown's back ties hanging out at the side, lying on the table
+        for k, x in enumerate((0.06, -0.08)):
+            a = np.array([x, fw / 2 - 0.02, 0.6 * h])
+            bend = a + np.array([-0.05 - 0.03 * k, 0.05, -0.6 * h + 0.012])
+            parts.append(limb(f"tie {k + 1}", a, bend, 0.012, blend=0.004))
+            parts.append(limb(f"tie {k + 1} end", bend, bend + np.array([0.03, 0.12, 0.0]), 0.012, blend=0.004))
     for i in range(1, n):  # the folded bottom edge: the layers seen apart
         parts.append(_op(box(f"fold gap {i}", (0.12 * fl, fw * 1.2, 0.22 * t), (-fl / 2, 0, i * t)), "subtract"))
     if p.hood:
         parts.append(ellipsoid("hood", (0.13, 0.17, 0.9 * t), (0.12, 0, h + 0.2 * t), blend=0.02))
     elif p.kind in ("top", "suit"):  # the neckline at the top edge: a ribbed band lying on the fabric (a dip cut
-        # under it read as a tray's recess)
-        parts.append(scaled(torus("collar band", 0.1, 0.018, (fl / 2 - 0.035, 0, h + 0.1 * t)), (0.75, 1, 0.8)))
-        parts.append(_op(box("collar cut", (0.2, 0.4, 4 * h), (fl / 2 + 0.1, 0, 0)), "subtract"))
+        # under it read as a tray's recess), the neck label inside its back
+        parts.append(scaled(torus("collar band", 0.1, 0.024, (xt - 0.03, 0, h + 0.2 * t)), (0.8, 1, 1.0)))
+        parts.append(box("neck label", (0.035, 0.06, 0.5 * t), (xt - 0.035, 0, h + 0.1 * t), edge=0.1 * t,
+                         blend=0.002))
+        parts.append(_op(box("collar cut", (0.2, 0.4, 6 * h), (xt + 0.1, 0, 0)), "subtract"))
     if p.cuffs:
-        parts.append(box("hem", (0.05, fw, 0.5 * t), (-fl / 2 + 0.04, 0, h + 0.1 * t), edge=0.2 * t, blend=0.003))
+        parts.append(box("hem", (0.06, fw, 0.6 * t), (-fl / 2 + 0.04, 0, h + 0.15 * t), edge=0.2 * t, blend=0.003))
+        for j, y in enumerate(np.linspace(-0.45 * fw, 0.45 * fw, 10)):  # the ribbed band's ribs
+            parts.append(box(f"hem rib {j + 1}", (0.06, 0.012, 0.4 * t), (-fl / 2 + 0.04, float(y), h + 0.5 * t),
+                             edge=0.1 * t, blend=0.002))
     else:
         parts.append(limb("hem", (-fl / 2 + 0.04, -0.48 * fw, h), (-fl / 2 + 0.04, 0.48 * fw, h), 0.012, blend=0.004))
     return parts
 
 
 def _trousers_folded(p: GarmentParams, t: float, n: int) -> list[Part]:
-    """Trousers folded as in a shop, the seat up: a rectangle `n` layers thick with the waistband along its top edge
-    (belt loops, the button at its end, a label patch), the yoke seam dipping across below it, two back pockets
-    outlined by their stitching (a pocket's sides and pointed bottom, and a jeans' arcuate wings across it), and the
-    folded legs' layers seen at the bottom edge. (Denim all one colour read as a blue toolbox with a lid to blind
-    reviewers, sets 19 and 20: the stitching, patch and button carry the entry's colours when it has them.)"""
+    """Trousers folded as in a shop, front up: a rectangle `n` layers thick with the waistband along its top edge
+    (belt loops, the button at its middle), the fly's J-stitch down from it, the two front pockets' scooped openings
+    to the sides (a jeans' coin pocket in the right one), and the two legs' turned-up hems side by side at the
+    folded bottom edge, the layers seen apart there. (Denim all one colour read as a blue toolbox with a lid, sets 19
+    and 20, and the seat up with its back pockets as a foam tile or a hardcover book, set 38: the stitching, button
+    and hems carry the entry's colours when it has them.)"""
     fl, fw = 0.36, 0.5 * p.width
     t = TROUSERS_FOLD_LAYER * t
     h = n * t
@@ -1831,34 +2198,44 @@ def _trousers_folded(p: GarmentParams, t: float, n: int) -> list[Part]:
     xw = fl / 2 - 0.03
     parts.append(box("waistband", (0.055, fw, 0.5 * t), (xw, 0, h + 0.1 * t), edge=0.2 * t, blend=0.003))
     for i, y in enumerate(np.linspace(-0.44 * fw, 0.44 * fw, 5)):
+        if abs(y) < 0.05 * fw:
+            continue  # (the button's place)
         parts.append(box(f"belt loop {i + 1}", (0.07, 0.02, 0.5 * t), (xw - 0.005, y, h + 0.45 * t), edge=0.2 * t,
                          blend=0.002))
-    parts.append(cylinder("button", 0.02, 0.6 * t, (xw, -0.47 * fw, h + 0.5 * t), edge=0.15 * t, blend=0.002))
-    parts.append(box("patch", (0.05, 0.14 * fw, 0.5 * t), (xw - 0.002, 0.22 * fw, h + 0.45 * t), edge=0.1 * t,
-                     blend=0.002))
-    for side in (1, -1):  # the yoke: a seam from the side dipping to the centre seam
+    parts.append(cylinder("button", 0.024, 0.7 * t, (xw, 0.0, h + 0.5 * t), edge=0.15 * t, blend=0.002))
+    parts.append(box("patch", (0.04, 0.14 * fw, 0.5 * t), (xw, -0.33 * fw, h + 0.45 * t), edge=0.1 * t,
+                     blend=0.002))  # a brand label on the waistband
+    ztop, r = h + 0.3 * t, STITCH_RADIUS
+    fly = [(xw - 0.035, -0.07 * fw), (xw - 0.15, -0.07 * fw), (xw - 0.185, -0.035 * fw), (xw - 0.19, 0.0)]
+    for k in range(3):  # the fly's J-stitch
+        parts.append(limb(f"fly stitch {k + 1}", (*fly[k], ztop), (*fly[k + 1], ztop), r, blend=0.001))
+    parts.append(limb("centre seam", (xw - 0.19, 0.0, top), (-fl / 2 + 0.07, 0.0, top), 0.006, blend=0.003))
+    for side in (1, -1):  # a front pocket's scooped opening: a curve from the waistband down to the side seam
         word = "left" if side > 0 else "right"
-        parts.append(limb(f"{word} yoke", (xw - 0.05, side * 0.5 * fw, top), (xw - 0.09, 0.0, top), 0.006,
-                          blend=0.003))
-        px, py, pl, pw = xw - 0.175, side * 0.24 * fw, 0.13, 0.3 * fw
-        parts.append(box(f"{word} back pocket", (pl, pw, 0.35 * t), (px, py, h + 0.1 * t), edge=0.15 * t,
-                         blend=0.003, rot=(0, 0, side * 4)))
-        ztop, r = h + 0.3 * t, STITCH_RADIUS
-        corners = [(px + pl / 2, py - pw / 2), (px - 0.3 * pl, py - pw / 2), (px - pl / 2, py),
-                   (px - 0.3 * pl, py + pw / 2), (px + pl / 2, py + pw / 2)]
-        for k in range(4):  # the pocket's stitched outline: its two sides and the pointed bottom
-            (ax, ay), (bx, by) = corners[k], corners[k + 1]
-            parts.append(limb(f"{word} pocket stitch {k + 1}", (ax, ay, ztop), (bx, by, ztop), r, blend=0.001))
-        dip = (px - 0.12 * pl, py, ztop)  # the arcuate: two wings meeting in a V across the pocket
-        for k, wing in enumerate((py - 0.42 * pw, py + 0.42 * pw)):
-            parts.append(limb(f"{word} arcuate stitch {k + 1}", (px + 0.05 * pl, wing, ztop), dip, r, blend=0.001))
-    parts.append(limb("centre seam", (xw - 0.09, 0.0, top), (-fl / 2 + 0.05, 0.0, top), 0.006, blend=0.003))
+        arc = [(xw - 0.03 - 0.12 * (1 - np.cos(a)), side * (0.18 * fw + 0.27 * fw * np.sin(a)))
+               for a in np.linspace(0.0, np.pi / 2, 4)]
+        for k in range(3):
+            (ax, ay), (bx, by) = arc[k], arc[k + 1]
+            parts.append(limb(f"{word} pocket edge {k + 1}", (ax, ay, top), (bx, by, top), 0.009, blend=0.002))
+            parts.append(limb(f"{word} pocket stitch {k + 1}", (ax - 0.02, ay, ztop), (bx - 0.02, by, ztop), r,
+                              blend=0.001))
+    coin = [(xw - 0.035, -0.26 * fw), (xw - 0.1, -0.26 * fw), (xw - 0.1, -0.4 * fw), (xw - 0.035, -0.4 * fw)]
+    for k in range(3):  # the coin pocket's stitched outline
+        parts.append(limb(f"coin pocket stitch {k + 1}", (*coin[k], ztop), (*coin[k + 1], ztop), r, blend=0.001))
+    for side in (1, -1):  # the legs' hems, turned up over the folded bottom edge side by side
+        word = "left" if side > 0 else "right"
+        parts.append(box(f"{word} hem cuff", (0.06, 0.44 * fw, 0.6 * t), (-fl / 2 + 0.035, side * 0.25 * fw,
+                                                                            h + 0.2 * t), edge=0.2 * t, blend=0.003))
+        parts.append(limb(f"{word} hem stitch", (-fl / 2 + 0.055, side * 0.05 * fw, h + 0.55 * t),
+                          (-fl / 2 + 0.055, side * 0.45 * fw, h + 0.55 * t), r, blend=0.001))
     for i in range(1, n):  # the folded bottom edge: the layers seen apart
         parts.append(_op(box(f"fold gap {i}", (0.1 * fl, fw * 1.2, 0.22 * t), (-fl / 2, 0, i * t)), "subtract"))
     return parts
 
 
-TROUSERS_FOLD_LAYER = 0.6  # a folded trousers' layer / a folded top's (a shop-folded pair of jeans is ~5 cm high) [-]
+TROUSERS_FOLD_LAYER = 0.45  # a folded trousers' layer / a folded top's (a shop-folded pair of jeans is ~5 cm high,
+# under a fifth of its width, so it is seen from above: at 0.6 it was seen from the side only) [-]
+FOLDED_TOP_LAYER = 0.016  # a folded top's layer (front and back) at most / its length [-]
 STITCH_RADIUS = 0.006  # a stitched seam's bead, drawn wider than thread to be seen (unit frame) [-]
 
 
@@ -1898,6 +2275,9 @@ class BagParams(Model):
     handle_width: float = Field(default=0.06, gt=0.01, le=0.2, description="strap width / height [-]")
     fill: float = Field(default=0.0, ge=0.0, le=1.0, description="share of the bag's capacity filled [-]")
     thickness: float = Field(default=0.004, gt=0.0, le=0.1, description="real wall (two layers) / height [-]")
+    zip_around: bool = Field(default=False, description="pouch: the zip runs along the top edge and down both sides "
+                             "(a laptop sleeve's U-shaped zip), its pull lying flat at a top corner, a padded "
+                             "border round the edge")
 
 
 # capacity of a bag filled round, / (height x width x min(height, width)): a 17.7 x 19.5 cm quart zip bag holds
@@ -1984,6 +2364,23 @@ def _zip_pouch(p: BagParams) -> list[Part]:
     w = p.width
     d = max(p.gusset, 2 * p.thickness, 0.04)
     parts = [superellipsoid("body", (0.5, w / 2, d / 2), (0.0, 0.0, d / 2), ns=0.35, ew=0.2)]
+    if p.zip_around:  # a laptop sleeve: a U of zip inboard of three edges, the pull flat at the top corner
+        lift = 0.02
+        inset = 0.05
+        x_top = 0.5 - inset
+        run = 1.0 - 2 * inset
+        for name, size, at in (("zip tape", (0.045, w - 2 * inset, lift), (x_top, 0.0, d)),
+                               ("left zip tape", (run, 0.045, lift), (0.0, -(w / 2 - inset), d)),
+                               ("right zip tape", (run, 0.045, lift), (0.0, w / 2 - inset, d))):
+            parts.append(box(name, size, at, edge=0.3 * lift, blend=0.01))
+        parts.append(box("zip teeth", (0.018, w - 2 * inset - 0.04, 1.6 * lift), (x_top, 0.0, d + 0.3 * lift),
+                         edge=0.3 * lift, blend=0.005))
+        parts.append(box("zip slider", (0.06, 0.05, 2.2 * lift), (x_top, w / 2 - inset - 0.06, d + 0.5 * lift),
+                         edge=0.3 * lift, blend=0.005))
+        parts.append(box("zip pull", (0.11, 0.035, 1.2 * lift), (x_top - 0.08, w / 2 - inset - 0.1, d + 0.6 * lift),
+                         edge=0.3 * lift, blend=0.005, rot=(0, 0, 30)))
+        parts.append(box("patch", (0.12, 0.2, lift), (-0.28, 0.0, d), edge=0.3 * lift, blend=0.01))
+        return parts
     x_zip = 0.5 - 0.09 - 0.15 * d  # on the top face, inboard of the rounded edge
     lift = 0.025 + 0.05 * d
     parts.append(box("zip tape", (0.11, 0.92 * w, lift), (x_zip, 0, d - 0.3 * lift), edge=0.3 * lift,
