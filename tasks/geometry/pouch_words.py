@@ -12,7 +12,7 @@ import numpy as np
 
 from contracts.shape import Part, ShapeProgram
 from tasks.geometry import fill_words
-from tasks.geometry.grammar.parts import squashed_parts, superellipsoid
+from tasks.geometry.grammar.parts import part_group, squashed_parts, superellipsoid
 from tasks.geometry.meshing import sample_program
 from tasks.geometry.sdf import program_bounds
 
@@ -183,8 +183,6 @@ def painted_marks(program: ShapeProgram, emblem: str, rgb_of: dict[str, tuple[fl
                   ) -> ShapeProgram:
     """A pack's emblem in a colour that stands out from its label (white on a strong label, its own colour on a
     white one); a net bag's net and clips in red. rgb_of: colour word -> linear RGB (the lexicon's colours)."""
-    from tasks.geometry.grammar.parts import part_group
-
     label = next((p.color_rgb for p in program.parts if part_group(p.name) == "label"), None)
     white = label is None or min(label) > 0.6
     own = rgb_of[EMBLEM_COLORS.get(emblem, "dark brown")] if white else rgb_of["white"]

@@ -87,6 +87,10 @@ def _corrections(text: str, vocab: frozenset[str], phrases: frozenset[str]) -> t
     for w in dict.fromkeys(words):
         if len(w) < MIN_LENGTH or w in vocab or w in _function_words() or is_english(w) or is_english(_doubled(w)):
             continue
+        split = [f"{w[:i]} {w[i:]}" for i in range(3, len(w) - 2) if f"{w[:i]} {w[i:]}" in phrases]
+        if len(split) == 1:  # two words written as one ('teddybear', 'rubberband'): the lexicon's noun phrase
+            out.append((w, split[0]))
+            continue
         doubled = _one_doubling_away(w, vocab)  # the commonest slip first: a letter doubled or not ('bananna' is a
         if len(doubled) == 1:  # banana, though 'bandanna' is as near by difflib's ratio)
             out.append((w, doubled.pop()))

@@ -52,7 +52,7 @@ def _colours(text: str, group: str) -> set[tuple[float, ...]]:
     ("yellow play-doh", "play_dough", {"body", "tub", "label", "lid", "thumb print"}),
     ("lump of modeling clay", "modelling_clay", {"body", "thumb print", "stick"}),
     ("modeling clay block", "modelling_clay", {"body", "stick"}),
-    ("foam ear plugs", "foam_earplug", {"plug", "plug dome", "second plug"}),
+    ("foam ear plugs", "foam_earplug", {"plug", "second plug"}),
     ("cinnamon roll", "cinnamon_roll", {"bun", "swirl", "side groove", "coil end", "icing drizzle"}),
     ("tube of cookie dough", "cookie_dough_tube", {"body", "wrapper", "crimp left", "clip right", "picture"}),
     ("1 lb ground beef chub", "ground_beef_chub", {"body", "wrapper", "crimp left", "clip right"}),

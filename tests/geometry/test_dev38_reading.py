@@ -130,3 +130,9 @@ def test_a_snack_bar_is_a_wrapped_bar_with_crimped_ends(text: str) -> None:
     assert design.entry == "wrapped_snack_bar"
     names = " ".join(p.name for p in design.program.parts)
     assert "crimp" in names and "label" in names
+
+
+@pytest.mark.parametrize("text, entry", [("small brown teddybear", "teddy_bear"), ("a hairtie", "hair_scrunchie")])
+def test_two_words_written_as_one_read_as_the_lexicons_phrase(text: str, entry: str) -> None:
+    """Sealed set 24 (s24_03): 'small brown teddybear' built a generic block (0.04 of a teddy's mass)."""
+    assert catalogue.design_from_text(text).entry == entry
