@@ -9,6 +9,7 @@ that run a flow command as a subprocess pass it `cli_env` (the same server, so t
 from __future__ import annotations
 
 import os
+import re
 import shutil
 import tempfile
 from collections.abc import Iterator
@@ -72,3 +73,25 @@ def cli_env(prefect_api: str) -> dict[str, str]:
     from cache.runtime import local_api_env
 
     return {**os.environ, "PYTHONPATH": str(REPO), **local_api_env(prefect_api)}
+
+
+# The phrase sweeps of the class-regression files (one per blind or development set: test_devNN_classes.py,
+# test_sealedNN_classes.py, the lexicon batches and the audits) grow with every session. The default run keeps every
+# test with the first, third, fifth ... of its phrases; the others run with `-m slow` (the whole sweep).
+_SWEEP_FILES = re.compile(r"tests/geometry/test_(?:(?:dev|sealed)\d+\w*_classes|lexicon_s\d+\w*|audit\d+\w*|"
+                          r"mass_classes|pouch_classes)\.py$")
+
+
+@pytest.hookimpl(tryfirst=True)
+def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item]) -> None:
+    """Mark every second phrase of a sweep file's parametrized tests slow (deterministic: collection order)."""
+    seen: dict[tuple[str, str], int] = {}
+    for item in items:
+        path = item.nodeid.split("::", 1)[0]
+        if not _SWEEP_FILES.search(path) or not hasattr(item, "callspec"):
+            continue
+        key = (path, getattr(item, "originalname", item.name))
+        k = seen.get(key, 0)
+        seen[key] = k + 1
+        if k % 2 == 1:
+            item.add_marker(pytest.mark.slow)

@@ -44,15 +44,29 @@ def _prior(name: str) -> tuple[float, float, tuple[float, float], str]:
     return float(mesh_program(program, 32).volume), density, drange, material
 
 
-def test_every_catalogue_entry_passes_the_mass_gate_at_its_prior() -> None:
-    """No catalogue object is refused by L1 whatever density it is given (the foam earplug was, at 2 g's floor; the
-    beach ball was, as solid rubber: 33 kg)."""
+def _gate_failures(names: list[str]) -> list[str]:
     failures = []
-    for name in catalogue.entry_names():
+    for name in names:
         volume, density, drange, material = _prior(name)
         mass = volume * density
         if not (MASS_RANGE_KG[0] <= mass <= MASS_RANGE_KG[1] and mass_plausible(mass, density, drange)):
             failures.append(f"{name} ({material}): {mass:.4g} kg")
+    return failures
+
+
+ENTRIES = sorted(catalogue.entry_names())
+
+
+def test_a_sample_of_catalogue_entries_passes_the_mass_gate_at_its_prior() -> None:
+    """Every fourth hand-written object (a fixed sample; the whole catalogue in the slow sweep below)."""
+    assert not _gate_failures(ENTRIES[::4]), _gate_failures(ENTRIES[::4])
+
+
+@pytest.mark.slow
+def test_every_catalogue_entry_passes_the_mass_gate_at_its_prior() -> None:
+    """No catalogue object is refused by L1 whatever density it is given (the foam earplug was, at 2 g's floor; the
+    beach ball was, as solid rubber: 33 kg; a hung pleated curtain, drawn as a 0.33 m^3 solid, 85 kg)."""
+    failures = _gate_failures(ENTRIES)
     assert not failures, failures
 
 
