@@ -75,11 +75,14 @@ def cli_env(prefect_api: str) -> dict[str, str]:
     return {**os.environ, "PYTHONPATH": str(REPO), **local_api_env(prefect_api)}
 
 
-# The phrase sweeps of the class-regression files (one per blind or development set: test_devNN_classes.py,
-# test_sealedNN_classes.py, the lexicon batches and the audits) grow with every session. The default run keeps every
-# test with the first, third, fifth ... of its phrases; the others run with `-m slow` (the whole sweep).
+# The phrase sweeps of L0's tests (the class-regression files, one per blind or development set, the lexicon batches,
+# the audits, the grammar's and the goods' phrase tables) grow with every session. The default run keeps every test
+# with the first, third, fifth ... of its phrases; the others run with `-m slow` (the whole sweep). Files whose cases
+# are distinct behaviours (bad inputs, backends, units, the phrase table) run whole; the photo, input and lexicon
+# files choose their own fixed samples.
 _SWEEP_FILES = re.compile(r"tests/geometry/test_(?:(?:dev|sealed)\d+\w*_classes|lexicon_s\d+\w*|audit\d+\w*|"
-                          r"mass_classes|pouch_classes)\.py$")
+                          r"mass_classes|pouch_classes|goods|grammar|details_poses|material_dims|stable_pose|bend|seat|"
+                          r"dev38_reading)\.py$")
 
 
 @pytest.hookimpl(tryfirst=True)
