@@ -15,8 +15,8 @@ from contracts.lexicon import MATERIALS_FILE, LexiconEntry, load_lexicon
 from contracts.material import shore_a_youngs_modulus_pa
 from contracts.shape import Part, RoundedBox, ShapeProgram
 from contracts.yaml_io import load_yaml
-from tasks.geometry import analogy as analogy_mod, fill_words, goods_words, grammar, phrase as phrase_mod, pouch_words, \
-    spelling
+from tasks.geometry import analogy as analogy_mod, fill_words, goods_words, grammar, pack_pieces, phrase as phrase_mod, \
+    pouch_words, spelling
 from tasks.geometry.catalogue_programs import catalogue_program
 from tasks.geometry.grammar.goods import PouchParams, SheetParams, folded_footprint, piece_grid, roll_radius
 from tasks.geometry.grammar.things import smiley
@@ -774,7 +774,8 @@ def _pieces_pouch(t: str) -> pouch_words.PouchOf | None:
     box_fill = volume / max(float(np.prod(ext)), 1e-12)  # a ball ~0.52, a cylinder ~0.79, a block ~1
     shape = "block" if box_fill > 0.86 else "cylinder" if box_fill > 0.66 else "ball"
     return pouch_words.PouchOf(fill=fill, piece_m=(float(ext[0]), float(ext[1]), float(ext[2])), piece_shape=shape,
-                               piece_colors=tuple(dict.fromkeys(said)) or (color,),
+                               piece_colors=tuple(dict.fromkeys(said)) or (color,), piece_key=piece.key,
+                               piece_colors_said=bool(said),
                                size_m=size if stated is not None else None)
 
 
@@ -1079,6 +1080,9 @@ def build(reading: Reading, text: str) -> tuple[ShapeProgram, ConceptMatch, list
         program = _towel_coloured(program, entry)  # 'a towel elephant': all towel, but its eyes
     program = _contrast_seams(program, target)
     program = _label_colored(program)
+    if reading.pouch is not None and reading.pouch.piece_key is not None and target.plan == "pouch":
+        program = pack_pieces.drawn_pieces(program, concept_program(reading.pouch.piece_key),
+                                           keep_colours=not reading.pouch.piece_colors_said)
     if reading.pouch is not None and target.plan == "pouch":
         program = pouch_words.painted_marks(program, str(params.get("emblem", "none")), load_lexicon().colors)
     if keychain:

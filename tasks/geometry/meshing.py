@@ -15,6 +15,8 @@ _CHUNK = 1_000_000
 # MAX_RESOLUTION_FACTOR x the resolution along its longest (64 cells along a 1.5 m noodle left 2.7 across it)
 MIN_CELLS_ACROSS = 12
 MAX_RESOLUTION_FACTOR = 4
+COLOR_SHARPNESS = 0.6  # how far apart parts blend their colours on the surface / the grid spacing (a label or an eye
+# raised less than ~2 of these takes its neighbour's colour) [-]
 _LEVEL_NUDGE = 1e-3  # field samples closer to the level than this x the largest step across it are moved off it [-]
 
 
@@ -107,7 +109,7 @@ def mesh_program(program: ShapeProgram, resolution: int) -> trimesh.Trimesh:
     longest extent, more for a slender one (slender_resolution)."""
     field, origin, spacing = sample_program(program, slender_resolution(program, resolution))
     mesh = mesh_from_field(field, origin, spacing)
-    rgb = part_colors(mesh.vertices, program, sharpness_m=1.5 * spacing)
+    rgb = part_colors(mesh.vertices, program, sharpness_m=COLOR_SHARPNESS * spacing)
     mesh.visual = trimesh.visual.ColorVisuals(mesh, vertex_colors=linear_to_srgb8(rgb))
     if program.target_extent_m is not None:
         scale_to_extents(mesh, np.asarray(program.target_extent_m, dtype=np.float64))

@@ -46,6 +46,8 @@ class PouchOf:
     piece_m: tuple[float, float, float] | None = None  # goods seen through the film: one piece's extents [m]
     piece_shape: str = "ball"  # 'ball', 'cylinder' or 'block' (PouchParams.piece_shape)
     piece_colors: tuple[str, ...] = ()  # colour words of the goods ('pink and white marshmallows')
+    piece_key: str | None = None  # the goods' lexicon concept, drawn in each piece slot (tasks.geometry.pack_pieces)
+    piece_colors_said: bool = False  # the goods' colours were said, not the concept's own
     size_m: float | None = None  # the pack's size when the request says how many it holds ('six oranges inside') [m]
 
     @property
