@@ -54,6 +54,7 @@ MATERIAL_GENERIC: dict[str, str] = {
     "silicone": "generic_blob", "gel": "generic_blob", "bread": "generic_baked", "plush": "generic_quadruped",
     "fruit": "generic_round_fruit", "textile": "generic_block", "inflatable": "generic_ball",
     "marshmallow": "generic_block", "dough": "generic_blob", "slow_rise_foam": "generic_blob", "cheese": "generic_block",
+    "processed_meat": "generic_blob", "firm_produce": "generic_vegetable",
 }
 # "X-shaped" / "shaped like X" words that are shapes rather than objects
 SHAPE_WORDS: dict[str, tuple[str, dict]] = {

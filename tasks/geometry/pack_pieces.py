@@ -108,12 +108,14 @@ def drawn_pieces(program: ShapeProgram, piece: ShapeProgram, keep_colours: bool 
     """`program` with each piece slot ('fill N') replaced by the piece's parts fitted into the slot's box (its
     longest axis along the slot's longest, uniformly scaled, turned as the slot is), and one piece drawn large in
     low relief on the pack's top (its printed picture; the slots under it left out). keep_colours: the piece's own
-    colours (unsaid goods); else each piece all in its slot's colour ('pink and white marshmallows'). Unchanged
-    when the program has no slots or the piece cannot be drawn within MAX_PARTS."""
+    colours (unsaid goods); else each piece all in its slot's colour ('pink and white marshmallows'). With no slots
+    (goods too small to draw one by one) the picture alone; unchanged when nothing fits within MAX_PARTS."""
     slots = [i for i, p in enumerate(program.parts)
              if part_group(p.name) == "fill" and p.primitive.kind in SLOT_KINDS and p.operation == "union"]
-    if not slots:
-        return program
+    if not slots:  # goods too small or too many to draw one by one ('a bag of m&ms'): their picture alone
+        alone = _picture(program, piece)[0]
+        return program.model_copy(update={"parts": [*program.parts, *alone]}) if alone and len(
+            program.parts) + len(alone) <= MAX_PARTS else program
     picture, foot_lo, foot_hi = _picture(program, piece) if len(slots) >= PICTURE_MIN_SLOTS else (
         [], np.zeros(2), np.zeros(2))
     if picture and not keep_colours:

@@ -58,6 +58,8 @@ FINISHES: dict[str, Finish] = {
     "bread": Finish(grain_m=0.0025, grain_depth=0.45, mottle_m=0.012, mottle=0.22),
     "plush": Finish(sheen=0.22, grain_m=0.0012, grain_depth=0.65, mottle_m=0.004, mottle=0.06),
     "fruit": Finish(gloss=0.22, shininess=24.0, grain_m=0.0008, grain_depth=0.10, mottle_m=0.010, mottle=0.10),
+    "firm_produce": Finish(gloss=0.22, shininess=24.0, grain_m=0.0008, grain_depth=0.10, mottle_m=0.010, mottle=0.10),
+    "processed_meat": Finish(gloss=0.3, shininess=30.0, grain_m=0.003, grain_depth=0.15, mottle_m=0.008, mottle=0.12),
     "textile": Finish(sheen=0.14, grain_m=0.012, grain_depth=0.22, mottle_m=0.0009, mottle=0.07),
     "marshmallow": Finish(sheen=0.05, grain_m=0.0010, grain_depth=0.12, mottle_m=0.003, mottle=0.03),
     "dough": Finish(gloss=0.05, shininess=8.0, grain_m=0.004, grain_depth=0.18, mottle_m=0.008, mottle=0.04),

@@ -37,7 +37,7 @@ def _rgb(text: str, group: str) -> set[tuple[float, ...]]:
 @pytest.mark.parametrize(("text", "emblem"), [
     ("a bag of dog food", "bone"), ("20 lb bag of dry dog food", "bone"), ("a bag of dry cat food", "fish"),
     ("a bag of potting soil", "sprout"), ("bag of bark mulch", "sprout"), ("a bag of fertilizer", "sprout"),
-    ("small cat litter bag", "paw"), ("1kg bag of rice", "bowl"), ("bag of baby spinach", "sprout"),
+    ("small cat litter bag", "paw"), ("1kg bag of rice", "bowl"), ("a bag of salad mix", "sprout"),
 ])
 def test_a_pack_of_a_fill_shows_its_contents_emblem(text: str, emblem: str) -> None:
     reading = read_text(text)
