@@ -353,7 +353,8 @@ def _head(main: str) -> tuple[tuple[int, int, str] | None, tuple[int, int, str] 
     specific = bool(qualifiers) and not any(w in noun_index() for w in qualifiers) and head_noun.split()[-1] != "toy" \
         and donor is not None and concept_domain(noun_index()[donor[2]][0]) != "animal"  # ('a duck bath toy': a duck)
     if donor is not None and head_noun.split()[-1] in GENERIC_NOUNS and not head_entry.takes_shape and not specific \
-            and not any(donor[2].split()[-1] in normalise(n).split() for n in head_entry.nouns):
+            and not any(donor[2].split()[-1] in normalise(n).split() for n in head_entry.nouns) \
+            and donor[2] not in _material_words():  # ('a fabric mouse pad' is a mouse pad made of fabric)
         return donor, None, tail_unknown  # 'a teether ring' is a teether ('a mouse cat toy' is the cat toy mouse;
         # 'volleyball knee pads' are knee pads)
     return head, donor, tail_unknown
@@ -1084,6 +1085,9 @@ def build(reading: Reading, text: str) -> tuple[ShapeProgram, ConceptMatch, list
     if reading.pouch is not None and reading.pouch.piece_key is not None and target.plan == "pouch":
         program = pack_pieces.drawn_pieces(program, concept_program(reading.pouch.piece_key),
                                            keep_colours=not reading.pouch.piece_colors_said)
+    elif target.plan == "pouch" and (shown := pack_pieces.picture_of(
+            entry.key, reading.pouch.fill.key if reading.pouch is not None else None)) is not None:
+        program = pack_pieces.pictured(program, concept_program(shown))  # its goods' picture, not an emblem
     if reading.pouch is not None and target.plan == "pouch":
         program = pouch_words.painted_marks(program, str(params.get("emblem", "none")), load_lexicon().colors)
     if keychain:

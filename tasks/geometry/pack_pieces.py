@@ -4,15 +4,19 @@ shows crescents, 'a bag of goldfish crackers' orange fish), within the program's
 
 from __future__ import annotations
 
+import functools
 import warnings
+from pathlib import Path
 
 import numpy as np
 from scipy.spatial.transform import Rotation
 
+from contracts.yaml_io import load_yaml
 from contracts.shape import MAX_PARTS, Part, RoundedBox, ShapeProgram, Transform
 from tasks.geometry.grammar.parts import part_group, squashed_parts
 from tasks.geometry.sdf import program_bounds
 
+PICTURES_FILE = Path(__file__).resolve().parents[2] / "contracts" / "vocab" / "pack_pictures.yaml"
 SLOT_KINDS = ("superellipsoid", "ellipsoid")  # how bagged_pieces and the net bag draw a piece slot
 PICTURE_ACROSS = 0.6  # the pack's picture of one piece: its longest side / the pack's narrower side [-]
 PICTURE_PROUD = 0.06  # the picture's relief / the pack's length (~3 draft cells: a thinner one is not meshed) [-]
@@ -150,3 +154,25 @@ def drawn_pieces(program: ShapeProgram, piece: ShapeProgram, keep_colours: bool 
                                             "color_rgb": q.color_rgb if keep_colours else p.color_rgb,
                                             "blend_m": p.blend_m if j == 0 else q.blend_m}))
     return program.model_copy(update={"parts": out + picture})
+
+
+@functools.lru_cache(maxsize=1)
+def _pictures() -> dict[str, dict[str, str]]:
+    return load_yaml(PICTURES_FILE.read_text(encoding="utf-8"))
+
+
+def picture_of(entry_key: str, fill_key: str | None) -> str | None:
+    """The concept a pack of this lexicon entry or fill shows on its front (contracts/vocab/pack_pictures.yaml)."""
+    table = _pictures()
+    return table["entries"].get(entry_key) or (table["fills"].get(fill_key) if fill_key else None)
+
+
+def pictured(program: ShapeProgram, piece: ShapeProgram) -> ShapeProgram:
+    """A pack with its printed label and emblem replaced by its goods' picture (one piece large on a label); the
+    pack unchanged when it has no body or the picture does not fit within MAX_PARTS."""
+    kept = [p for p in program.parts if part_group(p.name) not in ("label", "emblem")]
+    bare = program.model_copy(update={"parts": kept})
+    picture = _picture(bare, piece)[0]
+    if not picture or len(kept) + len(picture) > MAX_PARTS:
+        return program
+    return bare.model_copy(update={"parts": [*kept, *picture]})

@@ -70,6 +70,13 @@ def _one_swap_away(word: str, vocab: frozenset[str]) -> set[str]:
     return {w for w in out if w in vocab and w != word}
 
 
+def _one_letter_short(word: str, vocab: frozenset[str]) -> set[str]:
+    """The vocabulary's words that are `word` with one letter added anywhere ('hoodi' -> 'hoodie')."""
+    letters = "abcdefghijklmnopqrstuvwxyz"
+    out = {word[:i] + c + word[i:] for i in range(len(word) + 1) for c in letters}
+    return {w for w in out if w in vocab}
+
+
 def corrections(text: str, vocabulary: Iterable[str], phrases: Iterable[str] = ()) -> list[tuple[str, str]]:
     """(as written, as read) for each misspelt or split word of a normalised text against the lexicon's words;
     two words are joined only when no lexicon noun phrase (`phrases`) holds them as written ('bath mat')."""
@@ -98,6 +105,12 @@ def _corrections(text: str, vocab: frozenset[str], phrases: frozenset[str]) -> t
         swapped = _one_swap_away(w, vocab)  # then two letters typed in turn ('jakcet': difflib's ratio is 0.83)
         if len(swapped) == 1:
             out.append((w, swapped.pop()))
+            continue
+        short = _one_letter_short(w, vocab)  # then a letter left out ('hoodi': difflib finds 'hood' as near), the
+        if len(short) > 1:  # last one first ('blanke' is a blanket before a blankie)
+            short = {c for c in short if c.startswith(w)} or short
+        if len(short) == 1:
+            out.append((w, short.pop()))
             continue
         close = difflib.get_close_matches(w, vocab, n=2, cutoff=CUTOFF)
         if len(close) == 1 or (len(close) == 2 and difflib.SequenceMatcher(None, w, close[0]).ratio()

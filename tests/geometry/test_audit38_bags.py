@@ -37,7 +37,7 @@ def _rgb(text: str, group: str) -> set[tuple[float, ...]]:
 @pytest.mark.parametrize(("text", "emblem"), [
     ("a bag of dog food", "bone"), ("20 lb bag of dry dog food", "bone"), ("a bag of dry cat food", "fish"),
     ("a bag of potting soil", "sprout"), ("bag of bark mulch", "sprout"), ("a bag of fertilizer", "sprout"),
-    ("small cat litter bag", "paw"), ("1kg bag of rice", "bowl"), ("a bag of salad mix", "sprout"),
+    ("small cat litter bag", "paw"), ("1kg bag of rice", "bowl"), ("a bag of compost", "sprout"),
 ])
 def test_a_pack_of_a_fill_shows_its_contents_emblem(text: str, emblem: str) -> None:
     reading = read_text(text)
@@ -94,7 +94,8 @@ def test_oranges_in_a_net_bag() -> None:
     ("soap refill pouch", "refill_pouch", {"label", "emblem", "neck", "cap"}),
     ("freeze-dried meal pouch", "meal_pouch", {"label", "emblem"}),
     ("pack of baby wipes", "wipes_pack", {"lid", "lid frame", "lid tab"}),
-    ("sealed bag of potato chips", "bag_of_chips", {"label", "emblem", "end seal", "crimp"}),
+    ("sealed bag of potato chips", "bag_of_chips", {"picture", "picture label", "end seal", "crimp"}),  # (a chip on
+    # its front since session 39: tasks/geometry/pack_pieces.py)
     ("wet cat food pouch", "pet_food_pouch", {"label", "emblem"}),
     ("baby food pouch", "yogurt_pouch", {"label", "emblem", "spout"}),
     ("1 liter milk pouch", "milk_bag", {"label", "emblem"}),

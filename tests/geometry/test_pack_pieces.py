@@ -87,3 +87,33 @@ def test_the_label_keeps_its_colour_on_the_mesh() -> None:
     # the label's own light colour where the red picture is not: the lighter quarter of its face at least 0.72 in
     # every channel (0.78 at 0.6 cells; blended over 1.5 cells, as before, 0.62: a pink label on a red bag)
     assert np.quantile(seen.min(axis=1), 0.75) > 0.72, (picture, seen.mean(axis=0))
+
+
+def test_every_pack_picture_is_a_lexicon_concept_and_a_fill_or_pack_it_names() -> None:
+    from tasks.geometry.concepts import load_lexicon
+    from tasks.geometry.fill_words import fills
+    from tasks.geometry.pack_pieces import _pictures
+
+    entries, fill_keys = load_lexicon().entries, {r["key"] for r in fills().values()}
+    table = _pictures()
+    assert set(table["fills"]) <= fill_keys and set(table["entries"]) <= set(entries)
+    assert set(table["fills"].values()) | set(table["entries"].values()) <= set(entries)
+
+
+@pytest.mark.parametrize(("text", "shown"), [("a bag of frozen peas", "pea_pod"), ("a bag of candy", "gummy_bear"),
+                                             ("a bag of salad mix", "spinach_leaf"),
+                                             ("a bag of potato chips", "potato_chip")])
+def test_a_pack_of_goods_not_drawn_one_by_one_shows_their_picture_not_an_emblem(text: str, shown: str) -> None:
+    """Sealed set 25: a labelled bag of frozen peas was read as a pack of wet wipes; now its front shows a pea pod."""
+    program = _design(text).program
+    groups = {part_group(p.name) for p in program.parts}
+    assert "picture" in groups and "picture label" in groups and not groups & {"emblem", "label"}
+    piece = catalogue.design_from_text(f"a {shown.replace('_', ' ')}").program
+    picture = [p for p in program.parts if p.name.startswith("picture") and p.name != "picture label"]
+    assert len(picture) == min(len(piece.parts), 8)
+
+
+def test_rice_keeps_its_emblem() -> None:
+    """A fill with no one object to show keeps the emblem of its kind."""
+    groups = {part_group(p.name) for p in _design("1kg bag of rice").program.parts}
+    assert "emblem" in groups and "picture" not in groups
