@@ -148,12 +148,14 @@ def stated_volume_m3(text: str) -> float | None:
 # fill key -> (emblem, stands up); 'dog' or 'cat' in the words picks the pet food's picture. (Packs are drawn lying,
 # their front up: a pack stood on its end in the renders' settling falls on its face, its picture hidden.)
 PACK_EMBLEMS: dict[str, tuple[str, bool]] = {
-    "pet_food": ("paw", False), "cat_litter": ("paw", False), "compost": ("sprout", False),
+    "pet_food": ("paw", False), "cat_litter": ("cat", False), "compost": ("sprout", False),
     "soil": ("sprout", False), "fertilizer": ("sprout", False), "seed": ("sprout", False),
     "salad": ("sprout", False), "rice": ("bowl", False), "oats": ("bowl", False), "nuts": ("bowl", False), "coffee": ("bowl", False),
+    "flour": ("wheat", False),
 }
 EMBLEM_COLORS = {"paw": "dark brown", "bone": "dark brown", "fish": "orange", "sprout": "green", "bowl": "tan",
-                 "drop": "light blue", "pad": "light blue", "piece": "red"}
+                 "drop": "light blue", "pad": "light blue", "piece": "red",
+                 "wheat": "wheat", "cat": "dark brown", "bottle": "blue", "diaper": "light blue"}
 _NET = re.compile(r"\b(?:net|netted|mesh|string)\b")
 
 

@@ -37,7 +37,7 @@ def _rgb(text: str, group: str) -> set[tuple[float, ...]]:
 @pytest.mark.parametrize(("text", "emblem"), [
     ("a bag of dog food", "bone"), ("20 lb bag of dry dog food", "bone"), ("a bag of dry cat food", "fish"),
     ("a bag of potting soil", "sprout"), ("bag of bark mulch", "sprout"), ("a bag of fertilizer", "sprout"),
-    ("small cat litter bag", "paw"), ("1kg bag of rice", "bowl"), ("a bag of compost", "sprout"),
+    ("small cat litter bag", "cat"), ("1kg bag of rice", "bowl"), ("a bag of compost", "sprout"),
 ])
 def test_a_pack_of_a_fill_shows_its_contents_emblem(text: str, emblem: str) -> None:
     reading = read_text(text)
@@ -65,7 +65,8 @@ def test_the_emblem_stands_proud_of_the_label_and_fills_it() -> None:
     assert max(ys) - min(ys) > 0.25 and max(xs) - min(xs) > 0.1  # spread over the label, not a dot
 
 
-@pytest.mark.parametrize("kind", ["paw", "bone", "fish", "sprout", "bowl", "drop", "pad", "chip", "fruit"])
+@pytest.mark.parametrize("kind", ["paw", "bone", "fish", "sprout", "bowl", "drop", "pad", "chip", "fruit", "wheat", "cat",
+                                  "bottle", "diaper"])
 def test_every_emblem_is_drawn(kind: str) -> None:
     parts = emblem_parts(kind, 0.2)
     assert parts and all(part_group(q.name) == "emblem" for q in parts)

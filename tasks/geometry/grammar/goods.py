@@ -892,12 +892,14 @@ class PouchParams(Model):
     crimp: bool = Field(default=False, description="a pillow pack (a bag of crisps, frozen peas, rice, pet food, "
                         "compost): no border seam, its two short ends heat-sealed into flat fins with crimp ridges "
                         "across them, the filled body gathering into them")
-    emblem: Literal["none", "paw", "bone", "fish", "sprout", "bowl", "drop", "pad", "piece", "chip", "fruit"] = Field(
+    emblem: Literal["none", "paw", "bone", "fish", "sprout", "bowl", "drop", "pad", "piece", "chip", "fruit",
+                    "wheat", "cat", "bottle", "diaper"] = Field(
         default="none", description="a simple raised picture of the contents on the label (#38), what tells a pack "
         "of dog food from one of flour: paw (cat litter, pet food), bone (dog food, treats), fish (cat food), sprout "
         "(soil, compost, mulch, fertilizer, seed), bowl (rice, grain), drop (milk, juice, liquid soap), pad (pads, "
         "diapers), piece (a window onto the goods: the piece shape in `piece`, candy), chip (a crisp), fruit (an "
-        "apple with its leaf: juice, baby food)")
+        "apple with its leaf: juice, baby food), wheat (an ear of wheat: flour), cat (a cat's head with its pointed ears: "
+        "cat litter), bottle (a milk bottle: milk), diaper (one diaper laid open: a pack of diapers)")
     lid: bool = Field(default=False, description="a wipes pack's plastic flip lid on its top: an oval frame round a "
                       "raised lid with a finger tab (the label then lies beside it)")
     grip: bool = Field(default=False, description="a carry flap sealed on at the -x end with a handle slot cut "
@@ -1090,6 +1092,31 @@ def emblem_parts(kind: str, z: float, piece: tuple[float, float, float] = (0.0, 
         flat(ellipsoid("apple", (0.11, 0.12, t / 2), (-0.02, 0.0, zc)))
         flat(box("stalk", (0.07, 0.02, t), (0.11, 0.0, zc), edge=0.2 * t))
         flat(ellipsoid("leaf", (0.03, 0.065, t / 2), (0.13, 0.06, zc), rot=(0, 0, 35)))
+    elif kind == "wheat":  # an ear of wheat: its stalk along x, pairs of grains slanting up it, one at its tip
+        flat(box("stalk", (0.3, 0.026, t), (-0.05, 0.0, zc), edge=0.2 * t))
+        for k in range(4):
+            for sy in (-1.0, 1.0):
+                flat(ellipsoid("grain", (0.045, 0.024, t / 2), (-0.02 + 0.05 * k, sy * 0.032, zc),
+                               rot=(0, 0, float(sy * 35))))
+        flat(ellipsoid("grain", (0.045, 0.024, t / 2), (0.19, 0.0, zc)))
+    elif kind == "cat":  # a cat's head face on: the round face, two pointed ears at its top (+x), a hollow for each eye
+        flat(ellipsoid("face", (0.11, 0.13, t / 2), (-0.02, 0.0, zc)))
+        for sy in (-1.0, 1.0):  # (a cone laid along x, flattened, its tip turned out)
+            flat(cone("ear", 0.05, 0.006, 0.11, (0.1, sy * 0.075, zc), rot=(0, 90, float(sy * 25)),
+                      scale=(t / 0.1, 1, 1)))
+        for sy in (-1.0, 1.0):
+            flat(_op(ellipsoid("eye", (0.022, 0.03, t), (0.0, sy * 0.05, zc + t)), "subtract", 0.004))
+    elif kind == "bottle":  # a milk bottle standing (+x up): its round-shouldered body, the neck, the cap
+        flat(superellipsoid("bottle", (0.11, 0.075, t / 2), (-0.06, 0.0, zc), ns=0.3, ew=0.3))
+        flat(cone("shoulder", 0.075, 0.04, 0.1, (0.09, 0.0, zc), edge=0.01, rot=(0, 90, 0), scale=(t / 0.15, 1, 1)))
+        flat(box("cap", (0.04, 0.1, t), (0.145, 0.0, zc), edge=0.2 * t))
+    elif kind == "diaper":  # a diaper laid open (+x its waist): the wide back panel with its tabs, the narrow
+        # crotch, the front panel
+        flat(box("back", (0.1, 0.22, t), (0.12, 0.0, zc), edge=0.25 * t))
+        flat(superellipsoid("crotch", (0.14, 0.06, t / 2), (0.0, 0.0, zc), ns=0.2, ew=1.0))
+        flat(box("front", (0.09, 0.2, t), (-0.13, 0.0, zc), edge=0.25 * t))
+        for sy in (-1.0, 1.0):
+            flat(box("tab", (0.05, 0.04, t), (0.14, sy * 0.125, zc), edge=0.2 * t))
     elif kind == "pad":
         flat(superellipsoid("pad", (0.16, 0.075, t / 2), (0.0, 0.0, zc), ns=0.3, ew=0.9))
     elif kind == "piece" and max(piece) > 0:
