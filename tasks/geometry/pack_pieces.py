@@ -23,8 +23,8 @@ PICTURE_PROUD = 0.06  # the picture's relief / the pack's length (~3 draft cells
 PICTURE_SUNK = 0.2  # the share of the picture's relief sunk in its label [-]
 LABEL_MARGIN = 1.25  # the label under the picture / the picture's footprint [-]
 LABEL_PROUD = 0.03  # the label's face over the film's top / the pack's length (colours are the nearest part's,
-# blended over 1.5 draft cells: a flush label would take the film's) [-]
-LABEL_THICK = 0.05  # the label's thickness / the pack's length, half of it proud of the film [-]
+# blended over meshing.COLOR_SHARPNESS cells: a flush label would take the film's) [-]
+LABEL_THICK = 0.05  # the label's thickness / the pack's length, its face LABEL_PROUD over the film, the rest sunk [-]
 LIGHT_LABEL = (0.85, 0.85, 0.82)  # a label under a dark picture (linear RGB)
 DARK_LABEL = (0.02, 0.03, 0.12)  # a label under a light one (navy)
 PICTURE_MIN_SLOTS = 6  # a pack of fewer, larger goods shows them well enough without a picture [-]
@@ -87,11 +87,10 @@ def _picture(program: ShapeProgram, piece: ShapeProgram) -> tuple[list[Part], np
     plo, phi = program_bounds(piece.model_copy(update={"parts": parts}))
     extent = np.maximum(phi - plo, 1e-9)
     ext_sorted = np.sort(extent)[::-1]
-    k = PICTURE_ACROSS * float(min(hi[0] - lo[0], hi[1] - lo[1])) / float(ext_sorted[0])
-    relief = PICTURE_PROUD * float(max(hi[0] - lo[0], hi[1] - lo[1]))
-    flat = min(1.0, relief / (k * float(ext_sorted[2])))
-    drawn = squashed_parts(_placed(parts, (plo + phi) / 2, k, _axes_by_extent(extent), np.zeros(3)), (1.0, 1.0, flat))
     length = float(max(hi[0] - lo[0], hi[1] - lo[1]))
+    k = PICTURE_ACROSS * float(min(hi[0] - lo[0], hi[1] - lo[1])) / float(ext_sorted[0])
+    flat = min(1.0, PICTURE_PROUD * length / (k * float(ext_sorted[2])))
+    drawn = squashed_parts(_placed(parts, (plo + phi) / 2, k, _axes_by_extent(extent), np.zeros(3)), (1.0, 1.0, flat))
     top = hi[2] + LABEL_PROUD * length  # the label's face
     at = np.array([(lo[0] + hi[0]) / 2, (lo[1] + hi[1]) / 2, top + (0.5 - PICTURE_SUNK) * k * ext_sorted[2] * flat])
     named = [q.model_copy(update={
@@ -117,16 +116,15 @@ def drawn_pieces(program: ShapeProgram, piece: ShapeProgram, keep_colours: bool 
     slots = [i for i, p in enumerate(program.parts)
              if part_group(p.name) == "fill" and p.primitive.kind in SLOT_KINDS and p.operation == "union"]
     if not slots:  # goods too small or too many to draw one by one ('a bag of m&ms'): their picture alone
-        alone = _picture(program, piece)[0]
-        return program.model_copy(update={"parts": [*program.parts, *alone]}) if alone and len(
-            program.parts) + len(alone) <= MAX_PARTS else program
+        return pictured(program, piece)
     picture, foot_lo, foot_hi = _picture(program, piece) if len(slots) >= PICTURE_MIN_SLOTS else (
         [], np.zeros(2), np.zeros(2))
     if picture and not keep_colours:
         picture = [picture[0], *(q.model_copy(update={"color_rgb": program.parts[slots[0]].color_rgb})
                                  for q in picture[1:])]
-    covered = set() if not picture else {i for i in slots if np.all(np.abs(np.asarray(program.parts[i].transform.translation_m[:2])
-                                                 - (foot_lo + foot_hi) / 2) < (foot_hi - foot_lo) / 2)}
+    mid, half = (foot_lo + foot_hi) / 2, (foot_hi - foot_lo) / 2
+    covered = {i for i in slots if picture and np.all(np.abs(np.asarray(program.parts[i].transform.translation_m[:2])
+                                                             - mid) < half)}
     shown = [i for i in slots if i not in covered]
     if not shown:
         return program
