@@ -31,9 +31,11 @@ class LexiconEntry(Model):
     key: str = Field(description="stable concept key, e.g. 'plush_turtle'")
     nouns: list[str] = Field(min_length=1, description="nouns and synonyms that name it (singular; plurals by code); "
                              "'(generic)' for the generic_* concepts, which no noun names")
-    plan: str | None = Field(default=None, description="grammar body plan (tasks/geometry/grammar)")
+    plan: str | None = Field(default=None, description="grammar body plan (tasks/geometry/grammar); with a catalogue "
+                             "shape too, the plan draws the object only in what the drawing lacks: a state ('folded', "
+                             "'rolled'), stated sheet sizes, a curl")
     catalogue: str | None = Field(default=None, description="hand-written program in tasks/geometry/catalogue.yaml "
-                                  "used instead of a plan")
+                                  "that draws the object as it is usually seen, instead of its plan")
     params: dict[str, Any] = Field(default_factory=dict, description="body-plan parameters")
     colors: dict[str, str] = Field(default_factory=dict, description="part or part group -> colour word")
     material: str = Field(description="vocabulary material class (contracts/vocab/materials.yaml)")
@@ -78,8 +80,8 @@ class LexiconEntry(Model):
 
     @model_validator(mode="after")
     def _check(self) -> LexiconEntry:
-        if (self.plan is None) == (self.catalogue is None):
-            raise ValueError(f"{self.key}: give exactly one of plan and catalogue")
+        if self.plan is None and self.catalogue is None:
+            raise ValueError(f"{self.key}: give a plan or a catalogue shape (or both: the plan for its states)")
         if self.material not in material_densities():
             raise ValueError(f"{self.key}: material '{self.material}' is not in contracts/vocab/materials.yaml")
         if self.hollow and self.wall_m is None and self.density_kg_per_m3 is None:

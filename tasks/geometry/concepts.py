@@ -21,7 +21,7 @@ from tasks.geometry.catalogue_programs import catalogue_program
 from tasks.geometry.grammar.goods import PouchParams, SheetParams, folded_footprint, piece_grid, roll_radius
 from tasks.geometry.grammar.things import smiley
 from tasks.geometry.grammar.parts import _euler_z_to, box, cone, ellipsoid, part_group, relief, rotated_parts, squashed_parts, torus
-from tasks.geometry.meshing import program_volume, sample_program
+from tasks.geometry.meshing import mesh_program, program_volume, sample_program
 from tasks.geometry.sdf import program_bounds, program_sdf
 from tasks.geometry.wordnet import wordnet
 
@@ -381,7 +381,8 @@ def _match(entry: LexiconEntry, level: FallbackLevel, noun: str | None, note: st
     restitution or inflation."""
     mat_only = level in ("material", "generic", "gloss")
     return ConceptMatch(
-        concept=entry.key, noun=noun, body_plan=entry.plan or f"catalogue:{entry.catalogue}", category=entry.category,
+        concept=entry.key, noun=noun, category=entry.category,
+        body_plan=f"catalogue:{entry.catalogue}" if entry.catalogue else entry.plan or "",
         fallback_level=level, fallback_note=note, default_material=material or entry.material, hollow=entry.hollow,
         wall_thickness_m=entry.wall_m, sheet=entry.sheet, density_kg_per_m3=entry.solid_density_kg_per_m3 if material is None else None,
         typical_mass_kg=None if mat_only else entry.mass_kg, typical_size_m=entry.size_m,
@@ -882,7 +883,7 @@ def _by_wordnet(phrase: phrase_mod.Phrase, unknown: str | None, t: str, donor: L
         note = f"'{found.noun}' is not in the lexicon: it is a kind of '{found.kind}' (WordNet), so it was built by " \
                f"analogy with the {what}"
         match = _match(named, "hypernym", found.noun, note, _material_in(said)).model_copy(update={
-            "concept": generic_key, "body_plan": named.plan or f"catalogue:{named.catalogue}",
+            "concept": generic_key, "body_plan": f"catalogue:{named.catalogue}" if named.catalogue else named.plan,
             "mass_source": f"by analogy with the lexicon's {what}: {named.mass_source}",
             "analogy": [*chain, f"built like the lexicon's {what}: its shape, material and typical mass"]})
         size_m = named.size_m
@@ -927,6 +928,19 @@ def _entry_program_cached(key: str, size_m: float) -> ShapeProgram:
             prog = prog.model_copy(update={"parts": parts})
         return prog
     return _with_params(entry, {}, size_m)
+
+
+PLAN_DENSITY_RESOLUTION = 48  # cells along the plan drawing's longest side when it is weighed (L0's draft mesh) [-]
+
+
+@functools.lru_cache(maxsize=64)
+def _plan_density(key: str) -> float | None:
+    """The effective density of a hand-drawn entry's plan drawing: its typical mass over the volume of the plan's mesh
+    as L0 builds it (its thin layers at their built thickness) at the typical size; the catalogue shape's density is
+    its own drawing's [kg/m^3]."""
+    entry = load_lexicon().entries[key]
+    volume = float(mesh_program(_with_params(entry, {}, entry.size_m), PLAN_DENSITY_RESOLUTION).volume)
+    return entry.mass_kg / volume if volume > 0 and not entry.hollow else entry.density_kg_per_m3
 
 
 def concept_program(key: str) -> ShapeProgram:
@@ -1003,6 +1017,10 @@ def build(reading: Reading, text: str) -> tuple[ShapeProgram, ConceptMatch, list
             and {**target.params, **reading.params, **params}.get("state") == "rolled":
         params = {**params, "state": "rolled", "tail": goods_words.UNROLLED_TAIL}  # 'partly unrolled': the roll and its
         # free end weigh the roll (the end made the longest side, and the whole was shrunk to the roll's size: 1.8 g)
+    if params and entry.catalogue is not None and entry.plan is not None and target is entry \
+            and reading.donor_plan is None:  # a hand-drawn object in a state its drawing lacks: its plan draws it,
+        match = match.model_copy(update={"density_kg_per_m3": _plan_density(entry.key),  # weighed as that drawing
+                                         "body_plan": entry.plan})
     if "state" in params and target.plan is not None and (reading.donor_plan is None or reading.donor is not None):
         # the same object in another state: a 1.83 m yoga mat rolled up is a 0.61 m roll of the same mass
         own = {k: v for k, v in reading.params.items() if k != "state"}
