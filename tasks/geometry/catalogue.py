@@ -510,6 +510,9 @@ def _size_form(program: ShapeProgram, match: ConceptMatch, reading: concepts.Rea
     return {"long": long, "flat": flat, "unfold": concepts.sheet_fold(reading) if flat or plan == "sheet" else None}
 
 
+ROLL_OWN_LENGTH = ": the roll's own length, rolled tighter"  # (SizeSpec.stated's ending for it)
+
+
 def _rolled_sized(size: SizeSpec, program: ShapeProgram, reading: concepts.Reading) -> SizeSpec:
     """A rolled sheet's stated length and width are the sheet's ('a roll of bubble wrap, 50 cm wide and 2 m long'):
     the width is the roll's length, the length sets its diameter (the rolled cross-section grows with the sheet's
@@ -533,6 +536,12 @@ def _rolled_sized(size: SizeSpec, program: ShapeProgram, reading: concepts.Readi
         size = size.model_copy(update={"longest_m": None, "extents_m": (sheet_len, None, None)})
     if size.extents_m[2] is not None or (sheet_len is None and roll_len is None):
         return size
+    if roll_len is None and sheet_len is not None and said is None and sheet_len < float(ext.max()) \
+            and abs(np.log(sheet_len / typical_sheet)) > abs(np.log(sheet_len / float(ext.max()))):
+        # 'a rolled sleeping bag, about 45 cm long': nearer the roll's length than the sheet's, and shorter than the
+        # typical roll: the roll's own length, the same bag rolled tighter (design_from_text keeps its mass)
+        return SizeSpec(longest_m=sheet_len, axis_scale=size.axis_scale,
+                        stated=f"{size.stated}{ROLL_OWN_LENGTH}")
     if sheet_len is not None and roll_len is not None and roll_len > sheet_len and width <= 1.0:
         sheet_len, roll_len = roll_len, sheet_len  # '70 x 140 cm' rolled: rolled along its length, as the typical one
     k = float(np.sqrt((sheet_len or typical_sheet) / typical_sheet))
@@ -967,7 +976,12 @@ def design_from_text(text: str, size_hint_m: float | None = None) -> Design:
     # in 4, 75 x 100 cm' weighed 3x its fleece as a blanket scaled whole), and a roll's stated sheet its volume
     as_built = size.flat or size.unfold is not None or concepts.sheet_roll(reading) is not None
     scaled = SizeSpec(axis_scale=size.axis_scale) if as_built and size.explicit else size
-    match = concepts.size_scaled(match, *final_scale(scaled, program, match.typical_size_m or 0.0))
+    tighter = bool(size.stated and size.stated.endswith(ROLL_OWN_LENGTH) and size.longest_m)
+    if tighter and match.density_kg_per_m3 and match.typical_size_m:  # the same object rolled tighter: its
+        match = match.model_copy(update={"density_kg_per_m3": match.density_kg_per_m3 * (  # typical mass
+            match.typical_size_m / final_scale(size, program, match.typical_size_m)[0]) ** 3})
+    else:
+        match = concepts.size_scaled(match, *final_scale(scaled, program, match.typical_size_m or 0.0))
     if _DUSTED.search(text_n):  # 'dusted with icing sugar', 'floured': the powder in the stills
         match = match.model_copy(update={"finish": with_look(match.finish, DUSTED)})
     said = size_words.read_size_words(_strip_numeric_sizes(text_n), frozenset(MODIFIERS))

@@ -11,12 +11,14 @@ from collections.abc import Iterable
 
 from tasks.geometry.wordnet import data_dir
 
-MIN_LENGTH = 5  # shorter words are too often another real word one letter away [-]
+MIN_LENGTH = 5  # shorter words are too often another real word one letter away; a word one letter shorter is read
+# only as a lexicon word with one letter added or two swapped ('towl': a towel) [-]
+MIN_WRONG_LENGTH = 6  # a word read with one letter typed as another at least this long ('eaten' is no 'eater') [-]
 CUTOFF = 0.85  # difflib's similarity ratio a correction needs (one letter in 7: 0.93; two in 8: 0.88) [-]
 MARGIN = 0.03  # how much nearer the best word must be than the next (else the word is left as written) [-]
-# endings an English word takes that WordNet's lemma indexes do not list ('tangled', 'squished', 'bunched')
+# endings an English word takes that WordNet's lemma indexes do not list ('tangled', 'squished', 'bunched', 'eaten')
 _ENDINGS = (("ies", "y"), ("ied", "y"), ("es", ""), ("s", ""), ("ed", ""), ("ed", "e"), ("ing", ""), ("ing", "e"),
-            ("er", ""), ("est", ""), ("ly", ""), ("y", ""), ("y", "e"), ("ish", ""))
+            ("er", ""), ("est", ""), ("ly", ""), ("y", ""), ("y", "e"), ("ish", ""), ("en", ""), ("en", "e"))
 _WORD = re.compile(r"[a-z]+")
 # how people type that no dictionary lists ('thats' is no misspelt 'hats')
 CASUAL = frozenset("""thats whats dont doesnt didnt cant wont isnt arent wasnt im ive youre theyre lets pls plz gonna
@@ -77,6 +79,13 @@ def _one_letter_short(word: str, vocab: frozenset[str]) -> set[str]:
     return {w for w in out if w in vocab}
 
 
+def _one_letter_wrong(word: str, vocab: frozenset[str]) -> set[str]:
+    """The vocabulary's words that are `word` with one letter typed as another ('beenie' -> 'beanie')."""
+    letters = "abcdefghijklmnopqrstuvwxyz"
+    out = {word[:i] + c + word[i + 1:] for i in range(len(word)) for c in letters if c != word[i]}
+    return {w for w in out if w in vocab}
+
+
 def corrections(text: str, vocabulary: Iterable[str], phrases: Iterable[str] = ()) -> list[tuple[str, str]]:
     """(as written, as read) for each misspelt or split word of a normalised text against the lexicon's words;
     two words are joined only when no lexicon noun phrase (`phrases`) holds them as written ('bath mat')."""
@@ -92,6 +101,11 @@ def _corrections(text: str, vocab: frozenset[str], phrases: frozenset[str]) -> t
         if a + b in vocab and len(a) >= 3 and len(b) >= 3 and not any(f"{a} {b}" in p for p in phrases):
             out.append((f"{a} {b}", a + b))
     for w in dict.fromkeys(words):
+        if len(w) == MIN_LENGTH - 1 and w not in vocab and w not in _function_words() and not is_english(w):
+            near = _one_letter_short(w, vocab) or _one_swap_away(w, vocab)  # a short word only with a letter left
+            if len(near) == 1:  # out or two letters typed in turn ('towl': a towel; 'bera': a bear)
+                out.append((w, near.pop()))
+            continue
         if len(w) < MIN_LENGTH or w in vocab or w in _function_words() or is_english(w) or is_english(_doubled(w)):
             continue
         split = [f"{w[:i]} {w[i:]}" for i in range(3, len(w) - 2) if f"{w[:i]} {w[i:]}" in phrases]
@@ -111,6 +125,10 @@ def _corrections(text: str, vocab: frozenset[str], phrases: frozenset[str]) -> t
             short = {c for c in short if c.startswith(w)} or short
         if len(short) == 1:
             out.append((w, short.pop()))
+            continue
+        wrong = _one_letter_wrong(w, vocab) if len(w) >= MIN_WRONG_LENGTH else set()  # then one letter typed as
+        if len(wrong) == 1:  # another ('beenie': difflib's ratio 0.83)
+            out.append((w, wrong.pop()))
             continue
         close = difflib.get_close_matches(w, vocab, n=2, cutoff=CUTOFF)
         if len(close) == 1 or (len(close) == 2 and difflib.SequenceMatcher(None, w, close[0]).ratio()
