@@ -204,8 +204,10 @@ def parse(text: str, known: Callable[[str], bool] | None = None,
         [k for k, t in enumerate(span) if _is_noun(t)] or [len(span) - 1]
     k = heads[-1]
     last = span[-1].text.lower()
-    if k < len(span) - 1 and (_is_noun(span[-1]) or is_known(last)) and last not in STATE_WORDS:
-        k = len(span) - 1  # the last noun is the object ('a plush quokka'; 'butter croissant', tagged an adjective)
+    if k < len(span) - 1 and (_is_noun(span[-1]) or is_known(last)) and last not in STATE_WORDS \
+            and not any(t.pos_ == "CCONJ" for t in span[k + 1:]):
+        k = len(span) - 1  # the last noun is the object ('a plush quokka'; 'butter croissant', tagged an adjective),
+        # not a word joined to the words after the object ('car wash sponge yellow and squishy')
     words = [t.text.lower() for t in span[: k + 1]]
     phrase.head = words[-1]
     is_modifier = modifier or (lambda w: False)

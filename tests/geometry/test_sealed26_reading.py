@@ -38,3 +38,18 @@ def test_a_rolled_sheets_stated_length_near_its_roll_is_the_roll_and_keeps_its_m
     assert ratio == pytest.approx((typical.concept.typical_size_m / 0.45) ** 3, rel=0.05)  # the same mass, smaller
     mat = catalogue.design_from_text("a yoga mat rolled up, 183 cm long")
     assert not (mat.size.stated or "").endswith(ROLL_OWN_LENGTH)
+
+
+@pytest.mark.parametrize(("text", "entry"), [("car wash sponge yellow and squishy", "car_sponge"),
+                                             ("a yellow and squishy sponge", "kitchen_sponge"),
+                                             ("a black and white cow plush", "plush_cow")])
+def test_a_lexicon_noun_joined_after_the_object_does_not_take_it_over(text: str, entry: str) -> None:
+    """'squishy' names a foam squishy toy, but after 'sponge yellow and' it is one more word for the sponge."""
+    assert catalogue.design_from_text(text).entry == entry
+
+
+def test_a_foam_play_block_is_a_toddlers_block_at_its_own_mass() -> None:
+    d = catalogue.design_from_text("soft foam play block, blue cube")
+    assert d.entry == "foam_play_block"
+    assert d.concept.fallback_level in ("exact", "synonym")
+    assert 0.05 <= d.concept.density_kg_per_m3 * d.concept.typical_size_m ** 3 <= 0.2  # 80-130 g, a solid cube
