@@ -239,6 +239,9 @@ def _slope_motion(
         # polyhedral ball on a small facet) then crept down an incline below atan(mu) (1 cm/s at mu = 0.9).
         inertia = pb.getDynamicsInfo(uid, -1, physicsClientId=cid)[2]
         pb.changeDynamics(uid, -1, localInertiaDiagonal=[LOCK_INERTIA_FACTOR * i for i in inertia], physicsClientId=cid)
+        linear, _ = pb.getBaseVelocity(uid, physicsClientId=cid)  # the lock keeps whatever spin the body had: a
+        pb.resetBaseVelocity(uid, linearVelocity=linear, angularVelocity=(0.0, 0.0, 0.0), physicsClientId=cid)
+        # banana still rocking at the lock turned on at 0.17 rad/s and crept up the incline at 3 mm/s below atan(mu)
         every = max(1, int(round(1.0 / (TRACE_FPS * TIME_STEP_S))))
         pb.setGravity(g * math.sin(th), 0.0, -g * math.cos(th), physicsClientId=cid)
         steps = int(round(measure_s / TIME_STEP_S))

@@ -34,3 +34,18 @@ def test_a_body_still_rolling_does_not_settle() -> None:
     body = rigid.RigidBodySpec(hulls_m=[np.asarray(hull.vertices)], mass_kg=0.053,
                                center_of_mass_m=tuple(hull.center_mass), friction=0.5)
     assert rigid.placement_probe(body)["place_settle_time_s"] == float("inf")
+
+
+BANANA = [Path(__file__).parent / "fixtures" / f"banana_hull_{k}.txt" for k in range(2)]
+BANANA_COM_M = (-0.0036132137388843353, 2.7787464479442573e-06, 0.022374306661936513)  # its built mesh's
+
+
+@pytest.mark.parametrize("friction", [0.5, 1.0])
+def test_a_banana_still_rocking_when_its_rotation_is_locked_sticks_below_the_friction_angle(friction: float) -> None:
+    """The slide probe locks rotation by a huge inertia after 0.3 s; L0's banana was still rocking then, kept that
+    spin (0.17 rad/s) through the lock and crept up the incline below atan(mu): the lock now starts it still."""
+    body = rigid.RigidBodySpec(hulls_m=[np.loadtxt(p) for p in BANANA], mass_kg=0.12, center_of_mass_m=BANANA_COM_M,
+                               friction=friction)
+    out = rigid.slide_probe(body)
+    assert out["slide_below_sticks"] == 1.0 and out["slide_above_slides"] == 1.0
+    assert out["slide_accel_error_rel"] < 0.05  # a = g (sin - mu cos) above the angle

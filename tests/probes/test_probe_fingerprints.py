@@ -28,10 +28,10 @@ from tests.l2.helpers import box_asset
 
 FIXTURE = Path(__file__).parents[1] / "record" / "fixtures" / "plush_turtle"
 
-L1_EXECUTED = [  # (the rigid probes' VERSION 3, session 40: at rest by the pose's net change)
+L1_EXECUTED = [  # (the rigid probes' VERSION 3, slide 4, session 40: at rest by the pose's net change)
     ("l1.drop", "62301b4e9e2476cbaf3181865f07b69f44e6254fccc536ccb2d2e677eff66d68"),
     ("l1.place", "c2704b521f2e18d389fbc9cfba1cc26b89dc42d7808b7160000cef257b54b1a1"),
-    ("l1.slide", "e9f0194b28a273dfd44e2766bc99c775a80f4d316fe1de0af7032ba7eca8c290"),
+    ("l1.slide", "3596ec2be36cbfbf962e483612ddcecbbb5218405d3bfebe22162bf2145ea83c"),
 ]
 L1_RECORDINGS = {"place": "L1_place-d826a6cb4b5d7663.rrd", "rigid_drop": "L1_drop-00be9819d51df611.rrd",
                  "slide": "L1_slide-dc6cb286d9c79e6d.rrd"}

@@ -11,8 +11,8 @@ from tasks.probes import rigid
 from tasks.probes.probe import ProbeContext, ProbeModule
 from tasks.probes.rigid_probe import body_inputs, l1_parameters, run_rigid
 
-VERSION = "3"  # bump when tasks/probes/rigid.py changes what it returns (2: asset-frame pose, inertia lock;
-# 3: at rest by the pose's own change, not pybullet's velocity)
+VERSION = "4"  # bump when tasks/probes/rigid.py changes what it returns (2: asset-frame pose, inertia lock;
+# 3: at rest by the pose's own change, not pybullet's velocity; 4: no spin kept through the lock)
 
 
 class SlideMetrics(ProbeMetrics):
