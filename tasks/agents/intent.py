@@ -162,7 +162,11 @@ _SURFACE_ONLY = re.compile(r"\b[a-z]+[\s-]+(?:coated|dipped|lined|trimmed|edged|
                            # handles'): the part's, not the object's
                            r"\bwith\s+(?:(?:its|their|a|an|the|two)\s+)?(?:[a-z]+\s+)?[a-z]+\s+(?:tube|tubing|hose|"
                            r"cord|handles?|straps?|cap|lid|string|tag|valve|plug|nozzle|clip|buckle|zip|zipper|"
-                           r"bulb|stem|spout|bell)\b")
+                           r"bulb|stem|spout|bell)\b|"
+                           # what ties or holds it ('a bunch of kale tied with a rubber band'): not its material
+                           r"\b(?:tied|held|bound|banded|secured|fastened|wrapped)(?:\s+(?:together|up|round|around))?"
+                           r"\s+(?:with|by)\s+(?:(?:an?|its|the|two|a few)\s+)?(?:[a-z]+\s+){0,2}(?:bands?|string|"
+                           r"twine|ribbons?|ties?|clips?|cord)\b")
 
 
 _STATE_ONLY = frozenset({"inflated"})  # material words that only say a known object's state

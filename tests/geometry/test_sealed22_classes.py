@@ -27,7 +27,7 @@ from tests.geometry.test_mass_classes import planned_mass
     ("a slow feeder hay net", "hay_net"),  # a generic quadruped ('stall')
     ("a purple aerial silk", "aerial_silk"),  # a 26 g generic block
     ("a nomex hood", "balaclava"),  # 'flash hood' a generic block
-    ("a natural elephant ear sponge", "bath_sponge"),  # a kitchen sponge
+    ("a natural elephant ear sponge", "sea_sponge"),  # a kitchen sponge (a natural sea sponge since session 40)
     ("a folded bowling towel", "microfiber_cloth"),  # a 0.57 kg bath towel
 ])
 def test_sealed22_nouns_build_their_own_object(text: str, entry: str) -> None:

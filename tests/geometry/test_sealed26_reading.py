@@ -53,3 +53,14 @@ def test_a_foam_play_block_is_a_toddlers_block_at_its_own_mass() -> None:
     assert d.entry == "foam_play_block"
     assert d.concept.fallback_level in ("exact", "synonym")
     assert 0.05 <= d.concept.density_kg_per_m3 * d.concept.typical_size_m ** 3 <= 0.2  # 80-130 g, a solid cube
+
+
+def test_a_size_word_in_the_entrys_own_name_does_not_shrink_it_again() -> None:
+    """'small red bean bag': the lexicon's small bean bag (10 cm) is small already; 'a big bean bag' still grows."""
+    assert catalogue.design_from_text("small red bean bag").size.axis_scale == (1.0, 1.0, 1.0)
+    assert catalogue.design_from_text("a big bean bag").size.axis_scale[0] > 1.0
+
+
+def test_a_salon_towel_is_a_hand_towel() -> None:
+    d = catalogue.design_from_text("black salon towel, folded")  # retail salon towels ~40 x 80 cm, 150-250 g
+    assert d.entry == "hand_towel" and 0.1 <= d.concept.typical_mass_kg <= 0.4

@@ -102,6 +102,10 @@ class SheetParams(Model):
                            "it (part 'cuff'), and laid flat the mouth cut into its edge")
     hood: bool = Field(default=False, description="flat: a sleeping bag's hood at the +x end (a rounded raised head "
                        "end, its face opening a dark oval) and a foot tapered toward -x")
+    border: bool = Field(default=False, description="folded: a towel's woven border (dobby) band across the top near "
+                         "each end, a raised stripe (parts 'border'); a towel's strongest cue")
+    straps: bool = Field(default=False, description="rolled: two compression straps round the roll, each with its "
+                         "buckle, the roll cinched under them (a rolled sleeping bag; a yoga mat has none)")
 
 
 CURL_DEG = 38.0  # how far a curling corner lifts about its hinge [deg]
@@ -492,46 +496,134 @@ def _folded(p: SheetParams, t: float) -> list[Part]:
         if p.folds >= 2:
             parts.append(_op(box("second fold", (2, 2, 2 * h), (0, 1.0, h / 2)), "intersect"))
         return parts
+    if p.shape == "bib":
+        return _folded_bib(p.width, t)
     if last == "y":  # built along x, turned a quarter about z
         q = p.model_copy(update={"width": 1.0})
         return _turned(_folded_layers(length=width, width=length, n=n, t=t, p=q), 90.0)
     return _folded_layers(length, width, n, t, p)
 
 
+BIB_FOLD_AT = -0.22  # a folded bib's crease across it, its round bottom folded up over the front, / its length [-]
+
+
+def _folded_bib(w: float, t: float) -> list[Part]:
+    """A baby bib with its round bottom folded up over its front: the neck cut-out, the straps and their snaps and
+    the piped edge still seen at +x, the folded flap (the bib's own round outline, piped) lying over the middle, and
+    the crease a round roll across it at -x (folded in half it was a plain pad: a microfibre cloth or foam sheet)."""
+    xf = BIB_FOLD_AT
+    flat = bib(w, t)
+    body, piping, snaps = flat[0], flat[1], flat[4:]
+    flap = [q.model_copy(update={"name": f"flap {name}" if name else "flap", "transform": q.transform.model_copy(
+        update={"translation_m": (2 * xf, 0.0, q.transform.translation_m[2] + t)})})
+        for q, name in ((body, ""), (piping, "piping"))]
+    chord = (w / 2) * float(np.sqrt(max(1.0 - (2 * xf) ** 2, 0.0)))  # the crease's half-length: the outline there
+    roll = cylinder("crease", t, 2 * chord, (xf, 0, t), edge=0.4 * t, rot=(90, 0, 0), blend=0.2 * t)
+    return [body, piping, *flat[2:4], *flap, _op(box("fold", (2.0, 2.0, 2.0), (xf + 1.0, 0, 0.5)), "intersect"),
+            roll, *snaps]
+
+
 FOLD_GAP_MAX = 0.011  # the gap between a folded sheet's open edges at most this / its length (a thick foam pad's
 # 0.22 layer was 2.2 cm wide: particles centred in it sat outside the mesh) [-]
+FOLD_SOFT = 0.42  # a folded cloth's edges rounded by this / its layer: soft cloth, not a foam slab's crisp edge [-]
+CREASE_ROUND = 0.8  # a folded sheet's crease rounded by this / its half-height (1: a half round) [-]
+FOLD_NOTCH = 0.4  # the rounded groove between two layers' edges (open end and sides), radius / the layer [-]
+FOLD_DOME = 0.3  # a folded cloth's top rises this much / its layer over its middle (loft, not a flat slab) [-]
+FOLD_DOME_MAX = 0.12  # ... at most this / the folded stack's height (a folded towel is still twice the sheet) [-]
+FOLD_SIDE_LINES = 6  # layers seen as lines along the folded sheet's sides up to this many layers (64 parts) [-]
+BORDER_BAND = 0.1  # a towel's woven border band's width / the folded towel's longer side (~6 cm on 70 cm) [-]
+BORDER_MARGIN = 0.09  # the band this far in from the towel's end, / the folded towel's longer side [-]
+BORDER_PROUD = 0.45  # the band stands proud of the top by this / the layer (a dobby weave, raised) [-]
+
+
+def _crease(name: str, s: int, z0: float, z1: float, length: float, width: float) -> list[Part]:
+    """A crease at the end x = s * length / 2 joining the layers from z0 to z1: the square end cut off and a roll of
+    cloth in its place, as high as the layers it joins, its profile rounded nearly to a half round (a short flat at
+    its tip: a true half round's tip is missed by the mesher's grid, and the object drawn 2 % too large)."""
+    r = (z1 - z0) / 2
+    rx = min(r, 0.35 * length)  # (a short thick stack: the roll an oval, no longer than a third of the sheet)
+    zc = (z0 + z1) / 2
+    xc = s * (length / 2 - rx)
+    cut = _op(box(f"{name} cut", (rx + 0.02 * length, 1.2 * width, z1 - z0), (xc + s * (rx / 2 + 0.01 * length), 0,
+                                                                              zc)), "subtract")
+    edge = CREASE_ROUND * min(r, rx)
+    tail = max(0.0, min(edge, 0.8 * length - 2 * rx))  # (reaching on under the layers: its inner end's rounding
+    # hidden, not a notch in the sides where the roll meets them; short of the open end's gaps)
+    roll = box(name, (2 * rx + tail, width, z1 - z0), (xc - s * tail / 2, 0, zc), edge=edge, blend=0.05 * r)
+    return [cut, roll]
+
+
+def _border_bands(x0: float, x1: float, width: float, z: float, t: float) -> list[Part]:
+    """A folded towel's two woven border bands on its top (from x0 to x1 along x, `width` along y, at height z):
+    raised flat stripes across its shorter side, one near each end of its longer side, as a towel is seen on a
+    shelf."""
+    along_x = width > x1 - x0  # the bands run along the shorter side
+    span, long_side = (x1 - x0, width) if along_x else (width, x1 - x0)
+    bw = BORDER_BAND * long_side
+    proud = BORDER_PROUD * t
+    c = 0.5 * (x0 + x1)
+    out: list[Part] = []
+    for k, s in enumerate((-1.0, 1.0)):
+        d = s * (0.5 * long_side - BORDER_MARGIN * long_side - bw / 2)
+        at, size = ((c, d, z), (span, bw, 2 * proud)) if along_x else ((c + d, 0.0, z), (bw, 0.96 * span, 2 * proud))
+        out.append(box("border" if k == 0 else f"border {k + 1}", size, at, edge=0.3 * proud, blend=0.2 * t))
+    return out
 
 
 def _folded_layers(length: float, width: float, n: int, t: float, p: SheetParams) -> list[Part]:
-    """n layers of a folded sheet along x: a crease at -x (and at +x between the layers of a letter fold), the other
-    ends open, cut apart by a gap, the top layer set back from the open edge."""
+    """n layers of a folded sheet along x, soft cloth: the crease at -x a round roll wrapping the stack (and, in a
+    letter fold, the bottom two layers rolled at -x, the top two at +x), the open ends' layers cut apart with rounded
+    grooves between their edges, the layers seen as lines along the sides, the top layer set back from its open edge
+    (a step) and its top a little domed; a towel's woven border band across the top near each end."""
     h = n * t
-    e = p.edge * t / 2
-    r = t  # a crease wraps two layers
+    e = min(FOLD_SOFT * t, 0.3 * h)
+    letter = p.thirds and n == 3  # a letter fold: a crease at each end, an open edge at each
+    top_open = -1 if letter else 1
     inset = min(0.06 * length, 2.5 * t)  # the top layer stops short of the open edge: a step seen from above
-    rects = decor_rects(p, length - r, width)
+    extras = 2 * (n - 1) + 4 + 2 + 2 * p.border + (2 * max(p.grommets, 2) if p.grommets else 0)  # (beside the tiles)
+    sides = n <= FOLD_SIDE_LINES
+    rects = decor_rects(p, length, width)
     if rects:  # tiled through with its pattern (a tile over a ground of the sheet's colour would blend into it)
-        parts = [q.model_copy(update={"transform": q.transform.model_copy(update={"translation_m": (
-            q.transform.translation_m[0] + r / 2, *q.transform.translation_m[1:])})})
-            for q in tiled_top(rects, length - r, width, 0.0, h, "body", reserve=2 * n)]
+        parts = tiled_top(rects, length, width, 0.0, h, "body", reserve=extras + 2 * (n - 1) * sides)
     else:
-        parts = [box("body", (length - r, width, h), (r / 2, 0, h / 2), edge=e)]
+        parts = [box("body", (length, width, h), (0, 0, h / 2), edge=e)]
     if p.grommets:
         parts += [q.model_copy(update={"transform": q.transform.model_copy(update={"translation_m": (
-            q.transform.translation_m[0] + (r - inset) / 2, *q.transform.translation_m[1:])})})
-            for q in grommets(p, length - r - inset, width, h)]
-    for i in range(1, n):
-        crease_at_plus = p.thirds and n == 3 and i == 2
-        sx = 1 if crease_at_plus else -1
-        parts.append(cylinder(f"crease {i}" if i > 1 else "crease", r, width, (sx * (length / 2 - r), 0, i * t),
-                              edge=e, rot=(90, 0, 0), blend=0.2 * t))
-    for i in range(1, n):
-        open_at = -1 if (p.thirds and n == 3 and i == 2) else 1
-        parts.append(_op(box(f"gap {i}", (0.3 * length, width * 1.2, min(0.22 * t, FOLD_GAP_MAX * length)),
-                             (open_at * length / 2, 0, i * t)), "subtract"))
-    top_open = -1 if (p.thirds and n == 3) else 1
+            q.transform.translation_m[0] - top_open * inset / 2, *q.transform.translation_m[1:])})})
+            for q in grommets(p, length - inset - 2 * t, width, h)]
+    creases = [(-1, 0.0, 2 * t), (1, t, h)] if letter else [(-1, 0.0, h)]
+    rolls: list[Part] = []
+    for k, (s, z0, z1) in enumerate(creases):
+        cut, roll = _crease("crease" if k == 0 else f"crease {k + 1}", s, z0, z1, length, width)
+        parts.append(cut)
+        rolls.append(roll)
+    g = FOLD_NOTCH * t
+    gap = min(0.22 * t, FOLD_GAP_MAX * length)
+    for i in range(1, n):  # each open edge: a slit between the layers and a rounded groove at its mouth
+        s = -1 if (letter and i == 2) else 1
+        parts.append(_op(box(f"gap {i}", (0.3 * length, width * 1.2, gap), (s * length / 2, 0, i * t)), "subtract"))
+        parts.append(_op(cylinder(f"notch {i}", g, 1.2 * width, (s * length / 2, 0, i * t), rot=(90, 0, 0)),
+                         "subtract", 0.2 * g))
+    if sides:  # the layers along both sides (a folded cloth's stacked edges; a foam pad has none)
+        for i in range(1, n):
+            for sy in (-1, 1):
+                parts.append(_op(cylinder(f"side line {2 * i - (sy < 0)}", g, 1.2 * length, (0, sy * width / 2, i * t),
+                                          rot=(0, 90, 0)), "subtract", 0.2 * g))
     parts.append(_op(box("top edge", (2 * inset, width * 1.2, 1.1 * t), (top_open * length / 2, 0, h - 0.45 * t)),
                      "subtract", 0.1 * t))
+    parts += rolls
+    if letter:  # the top layer's flat run: from its open edge (set back) to the crease at +x
+        top_lo, top_hi = -length / 2 + inset, length / 2 - t
+    else:  # from the crease's roll to its open edge
+        top_lo, top_hi = -length / 2 + min(h / 2, 0.35 * length), length / 2 - inset
+    rise = min(FOLD_DOME * t, FOLD_DOME_MAX * h)
+    c = rise + 0.5 * t
+    if not rects:  # (a patterned top stays flat: a dome of the ground's colour would cover its pattern)
+        parts.append(superellipsoid("loft", (0.45 * (top_hi - top_lo), 0.44 * width, c),
+                                    (0.5 * (top_lo + top_hi), 0, h + rise - c), ns=1.0, ew=0.35, blend=0.6 * t))
+    if p.border and not rects:  # a towel's dobby bands: a raised woven stripe across the top near each end of its
+        # longer side (a striped or printed towel shows its pattern instead)
+        parts += _border_bands(top_lo, top_hi, width, h, t)
     return parts
 
 
@@ -767,7 +859,9 @@ def _rolled(p: SheetParams) -> list[Part]:
     r0 = p.core * R
     if p.shape == "round":  # a rolled tortilla or pancake: a wrap, tapered at its ends
         return [scaled(cylinder("body", R, w, (0, 0, R), edge=0.6 * R, rot=(0, 90, 0)), (1, 1, 1))]
-    parts = [cylinder("body", R, w, (0, 0, R), edge=min(0.15 * R, 0.02), rot=(0, 90, 0))]
+    puffy = p.quilt > 0  # a quilted sheet (a sleeping bag) rolls up soft: its ends rounded, its baffles round it
+    parts = [cylinder("body", R, w, (0, 0, R), edge=ROLL_PUFFY_EDGE * R if puffy else min(0.15 * R, 0.02),
+                      rot=(0, 90, 0))]
     layer = float(np.clip(p.thickness, 0.03 * R, 0.12 * R))
     parts.append(box("flap", (w, 0.5 * R, layer), (0, -0.25 * R, 2 * R + layer / 2 - 0.005 * R), edge=0.3 * layer,
                      blend=0.02 * R))
@@ -786,6 +880,10 @@ def _rolled(p: SheetParams) -> list[Part]:
             parts.append(_op(ring, "subtract"))
     if r0 > 0:
         parts.append(_op(cylinder("hole", r0, 1.2 * w, (0, 0, R), rot=(0, 90, 0)), "subtract"))
+    if puffy:
+        parts += _roll_baffles(p, w, R)
+    if p.straps:
+        parts += _roll_straps(w, R)
     if p.tail > 0:  # the free end unrolled off the bottom of the roll, lying flat towards -y
         run = p.tail * 2 * R
         flat = max(layer, MIN_TAIL_LAYER * max(w, run))  # (no thinner than the mesher sees: a half rolled yoga mat's
@@ -813,6 +911,46 @@ def _rolled(p: SheetParams) -> list[Part]:
                 if len(parts) >= 63:
                     return parts
     return parts
+
+
+ROLL_PUFFY_EDGE = 0.3  # a rolled quilted sheet's ends rounded by this / the roll's radius (soft, not a cut tube) [-]
+ROLL_BAFFLES = 5  # a rolled quilted sheet's baffle seams drawn round the roll's upper side [-]
+STRAP_AT = 0.27  # a rolled sleeping bag's straps this far either side of the roll's middle, / its length [-]
+STRAP_WIDE = 0.075  # a strap's width / the roll's length (2.5-4 cm webbing on a ~40-75 cm roll) [-]
+STRAP_THICK = 2.2 / 48  # a strap's thickness / the roll's longest side: ~2 mesher cells at draft, to be seen [-]
+
+
+def _roll_baffles(p: SheetParams, w: float, R: float) -> list[Part]:
+    """A rolled quilted sheet's baffle seams: grooves along the roll over its top, one baffle's pitch apart round it
+    (the channels between them puff out: a sleeping bag's, not a smooth mat's outside)."""
+    step = float(np.clip(np.degrees(1.0 / max(p.quilt, 1) / R), 35.0, 70.0))
+    g = max(0.11 * R, 0.03 * max(w, 2 * R))
+    out: list[Part] = []
+    for k in range(ROLL_BAFFLES):
+        a = np.radians(90.0 + (k - (ROLL_BAFFLES - 1) / 2) * step)
+        at = (0.0, float((R + 0.25 * g) * np.cos(a)), float(R + (R + 0.25 * g) * np.sin(a)))
+        out.append(_op(cylinder(f"baffle {k + 1}", g, 0.86 * w, at, rot=(0, 90, 0)), "subtract", 0.5 * g))
+    return out
+
+
+def _roll_straps(w: float, R: float) -> list[Part]:
+    """Two compression straps round a roll (length w along x, radius R, axis at height R), each cinching the roll
+    into a shallow waist, its buckle on the top and the strap's loose tail hanging from it."""
+    longest = max(w, 2 * R)
+    th = STRAP_THICK * longest
+    sw = max(STRAP_WIDE * w, 1.6 * th)
+    out: list[Part] = []
+    for k, sx in enumerate((-1.0, 1.0)):
+        x = sx * STRAP_AT * w
+        out.append(_op(scaled(torus(f"cinch {k + 1}", R + 0.2 * th, 0.9 * th, (x, 0, R), rot=(0, 90, 0)),
+                              (1, 1, 1.3 * sw / (1.8 * th))), "subtract", 0.8 * th))
+        out.append(scaled(torus(f"strap {k + 1}", R - 0.35 * th, 0.5 * th, (x, 0, R), rot=(0, 90, 0)),
+                          (1, 1, sw / th)))
+        a = np.radians(60.0)  # the buckle a little over the top, towards the viewer's side
+        at = (x, float(-(R + 0.1 * th) * np.cos(a)), float(R + (R + 0.1 * th) * np.sin(a)))
+        out.append(box(f"buckle {k + 1}", (1.35 * sw, 1.2 * sw, 1.1 * th), at, edge=0.3 * th,
+                       rot=(90.0 - np.degrees(a), 0, 0), blend=0.2 * th))
+    return out
 
 
 SPIRAL_TURNS = 2.25  # turns of a rolled sheet's spiral drawn at its ends (each groove ~1.5 mesher cells wide) [-]
@@ -2128,8 +2266,10 @@ def _garment_folded(p: GarmentParams) -> list[Part]:
     half twice), the ribbed collar (or hood) at the top edge with a neck label inside it, short sleeves folded in as
     flaps at the shoulders with their hems, long sleeves crossed over the front to their ribbed cuffs, the layers'
     edges seen at the folded bottom and the (ribbed) hem band across it; and the front's motif (a chest print, a
-    jersey's number, cable-knit columns, a scattered print). (A plain slab with a collar ring read as a padded laptop
-    sleeve, a foam tile or a seat cushion to blind judges, set 38.)"""
+    jersey's number, cable-knit columns, a scattered print). A robe shows its shawl collar and tied belt instead
+    (_robe_folded), an apron its neck strap, ties and pocket (_apron_folded). (A plain slab with a collar ring read as
+    a padded laptop sleeve, a foam tile or a seat cushion to blind judges, set 38; a robe with a t-shirt's collar and
+    a sweater's crossed sleeves as a foam packaging insert, an apron as a seat cushion pad, set 39.)"""
     fl, fw = 0.42, 0.62 * p.width
     t = float(np.clip(2 * p.thickness, 0.011, 0.03)) * (PUFF if p.baffles else 1.0)  # one layer (front and back)
     n = 4
@@ -2139,6 +2279,10 @@ def _garment_folded(p: GarmentParams) -> list[Part]:
     # width was seen from the side only: a block; a shop-folded sweater is ~6 cm high on ~30 cm)
     h = n * t
     parts = [box("body", (fl, fw, h), (0, 0, h / 2), edge=0.9 * t)]  # (soft folded edges, not a crate's)
+    if p.robe:
+        return parts + _robe_folded(fl, fw, h, t, p.pocket) + _fold_gaps(fl, fw, t, n)
+    if p.kind == "apron":
+        return parts + _apron_folded(fl, fw, h, t, p.pocket) + _fold_gaps(fl, fw, t, n)
     top, xt = h + 0.3 * t, fl / 2
     if p.motif == "knit":  # cable-knit columns: twisted ropes of slanted stitches along the body
         for k, y in enumerate((-0.3 * fw, 0.0, 0.3 * fw)):
@@ -2190,8 +2334,7 @@ def _garment_folded(p: GarmentParams) -> list[Part]:
             bend = a + np.array([-0.05 - 0.03 * k, 0.05, -0.6 * h + 0.012])
             parts.append(limb(f"tie {k + 1}", a, bend, 0.012, blend=0.004))
             parts.append(limb(f"tie {k + 1} end", bend, bend + np.array([0.03, 0.12, 0.0]), 0.012, blend=0.004))
-    for i in range(1, n):  # the folded bottom edge: the layers seen apart
-        parts.append(_op(box(f"fold gap {i}", (0.12 * fl, fw * 1.2, 0.22 * t), (-fl / 2, 0, i * t)), "subtract"))
+    parts += _fold_gaps(fl, fw, t, n)
     if p.hood:
         parts.append(ellipsoid("hood", (0.13, 0.17, 0.9 * t), (0.12, 0, h + 0.2 * t), blend=0.02))
     elif p.kind in ("top", "suit"):  # the neckline at the top edge: a ribbed band lying on the fabric (a dip cut
@@ -2207,6 +2350,75 @@ def _garment_folded(p: GarmentParams) -> list[Part]:
                              edge=0.1 * t, blend=0.002))
     else:
         parts.append(limb("hem", (-fl / 2 + 0.04, -0.48 * fw, h), (-fl / 2 + 0.04, 0.48 * fw, h), 0.012, blend=0.004))
+    return parts
+
+
+def _fold_gaps(fl: float, fw: float, t: float, n: int) -> list[Part]:
+    """A folded garment's bottom edge (-x): its n layers seen apart."""
+    return [_op(box(f"fold gap {i}", (0.12 * fl, fw * 1.2, 0.22 * t), (-fl / 2, 0, i * t)), "subtract")
+            for i in range(1, n)]
+
+
+ROBE_BELT_AT = -0.06  # a folded robe's belt tied round it this far below the middle / its folded length [-]
+ROBE_COLLAR_V = 0.36  # a folded robe's shawl collar dips to a V this far down its top / its folded length [-]
+ROBE_LAPEL = 0.04  # its lapels this half-wide (unit frame: ~7 cm bands on a robe folded to ~40 cm) [-]
+ROBE_KNOT_AT = 0.3  # a folded robe's belt knot this far to one side / its folded width (a robe ties at the side) [-]
+GARMENT_STRAP = 0.017  # a folded garment's strap or tie drawn this half-wide (~2 mesher cells wide at draft) [-]
+
+
+def _robe_folded(fl: float, fw: float, h: float, t: float, pocket: bool) -> list[Part]:
+    """A wrap robe folded as a hotel presents it (the sleeves folded behind), on its top: the shawl collar (its roll
+    across the neck at the top end and two broad rolled lapels from it crossing in a V down to the waist), the tie
+    belt wrapped round the folded robe there, knotted at one side with its two ends hanging down the front, and two
+    patch pockets low on either side; a plain turned hem at the folded bottom edge (ribbing read as a sweater)."""
+    xt = fl / 2
+    xb = ROBE_BELT_AT * fl
+    z = h + 0.5 * t
+    parts = [_op(ellipsoid("neck", (0.07, 0.2 * fw, 1.2 * t), (xt - 0.02, 0.0, h + 0.2 * t)), "subtract",
+                 0.3 * t)]  # (above the collar's V at the top edge: the back of the neck, sunk a little)
+    for side, sy in (("left", 1.0), ("right", -1.0)):  # the shawl collar: broad lapels from the top corners down to
+        top = np.array([xt - ROBE_LAPEL, sy * (0.5 * fw - ROBE_LAPEL), z])  # a V at the middle, crossing there
+        cross = np.array([xt - ROBE_COLLAR_V * fl, -sy * 0.04 * fw, z + (0.5 * t if sy > 0 else 0.0)])
+        parts.append(_flat_limb(f"{side} lapel", top, cross, ROBE_LAPEL, 2.4 * t, blend=0.008))
+    parts.append(box("belt", (0.06, fw + 2.4 * t, h + 1.2 * t), (xb, 0, (h + 1.2 * t) / 2), edge=1.0 * t,
+                     blend=0.004))  # (round the top and sides, not under it: it rests on its back, not on the belt)
+    knot = np.array([xb, ROBE_KNOT_AT * fw, h + 1.5 * t])  # (tied at the side: at the middle it read as a bow)
+    parts.append(ellipsoid("belt knot", (0.04, 0.036, 1.6 * t), tuple(float(v) for v in knot), blend=0.006))
+    for k, dy in enumerate((0.14, -0.02)):
+        end = np.array([-fl / 2 + 0.045 + 0.03 * k, (ROBE_KNOT_AT + dy) * fw, h + 0.9 * t])
+        parts.append(_flat_limb(f"belt end {k + 1}", knot, end, 0.026, 1.8 * t, blend=0.005))
+    if pocket:
+        for side, sy in (("left", 1.0), ("right", -1.0)):
+            parts.append(superellipsoid(f"{side} pocket", (0.06, 0.15 * fw, 0.8 * t), (-fl / 2 + 0.1, sy * 0.33 * fw,
+                                                                                       h + 0.1 * t),
+                                        ns=0.2, ew=0.3, blend=0.004))
+    parts.append(limb("hem", (-fl / 2 + 0.03, -0.47 * fw, h), (-fl / 2 + 0.03, 0.47 * fw, h), 0.014, blend=0.004))
+    return parts
+
+
+def _apron_folded(fl: float, fw: float, h: float, t: float, pocket: bool) -> list[Part]:
+    """A folded apron's own cues: its neck strap lying in a loop over the top end (+x), the two waist ties coming out
+    of its sides and lying in loose S-bends on the table, and the patch pocket low on the front, split in two by a
+    stitched seam."""
+    xt = fl / 2
+    z = h + 0.3 * t
+    r = GARMENT_STRAP
+    loop = [np.array([xt - 0.015 - 0.16 * np.sin(a), 0.24 * fw * np.cos(a), z]) for a in np.linspace(0, np.pi, 7)]
+    parts = _flat_chain("neck strap", loop, r, 1.6 * t, blend=0.004)
+    for side, sy in (("left", 1.0), ("right", -1.0)):
+        out = np.array([0.04, sy * (fw / 2 - 0.01), 0.55 * h])
+        down = np.array([0.01, sy * (fw / 2 + 0.045), 0.9 * t])
+        parts.append(limb(f"{side} tie", out, down, 0.75 * r, blend=0.004))
+        bends = [down, down + np.array([-0.09, sy * 0.03, 0]), down + np.array([-0.19, -sy * 0.005, 0]),
+                 down + np.array([-0.27, sy * 0.035, 0])]
+        parts += [_flat_limb(f"{side} tie {k + 2}", bends[k], bends[k + 1], r, 1.6 * t, blend=0.004)
+                  for k in range(len(bends) - 1)]
+    if pocket:
+        xp = -fl / 2 + 0.13
+        parts.append(box("pocket", (0.14, 0.62 * fw, 1.2 * t), (xp, 0, h + 0.1 * t), edge=0.3 * t, blend=0.003))
+        parts.append(limb("pocket seam", (xp - 0.065, 0, h + 0.75 * t), (xp + 0.065, 0, h + 0.75 * t), 0.007,
+                          blend=0.002))
+    parts.append(limb("hem", (-fl / 2 + 0.03, -0.47 * fw, h), (-fl / 2 + 0.03, 0.47 * fw, h), 0.01, blend=0.004))
     return parts
 
 
