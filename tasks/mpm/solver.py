@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import gc
 from collections import OrderedDict
 
 import numpy as np
@@ -235,11 +236,21 @@ class Solver:
         self._since_refit = entry[1]
 
     def _capture(self, cmds: list):
-        """A CUDA graph of the recorded launches (in order)."""
+        """A CUDA graph of the recorded launches (in order). Python's cyclic garbage collector is held off while the
+        stream captures: a collection there freed some unreachable Warp array (cudaFree, on the legacy stream) in the
+        middle of the capture, and the capture failed (Warp CUDA errors 906 'operation would make the legacy stream
+        depend on a capturing blocking stream' in release_now, and 901 after it: a sausage and a piece of jelly in
+        session 40's throughput run, a boiled egg and a silicone baking mat before)."""
         wp.load_module(K, device=self.device)
-        with wp.ScopedCapture(device=self.device, force_module_load=False) as cap:
-            for cmd in cmds:
-                cmd.launch()
+        collecting = gc.isenabled()
+        gc.disable()
+        try:
+            with wp.ScopedCapture(device=self.device, force_module_load=False) as cap:
+                for cmd in cmds:
+                    cmd.launch()
+        finally:
+            if collecting:
+                gc.enable()
         return cap.graph
 
     @staticmethod
