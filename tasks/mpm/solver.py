@@ -237,10 +237,11 @@ class Solver:
 
     def _capture(self, cmds: list):
         """A CUDA graph of the recorded launches (in order). Python's cyclic garbage collector is held off while the
-        stream captures: a collection there freed some unreachable Warp array (cudaFree, on the legacy stream) in the
-        middle of the capture, and the capture failed (Warp CUDA errors 906 'operation would make the legacy stream
-        depend on a capturing blocking stream' in release_now, and 901 after it: a sausage and a piece of jelly in
-        session 40's throughput run, a boiled egg and a silicone baking mat before)."""
+        stream captures: a collection there freed an unreachable solver's pinned host buffers (cudaFreeHost
+        synchronises with the legacy stream) in the middle of the capture, and the capture failed (Warp CUDA errors
+        906 'operation would make the legacy stream depend on a capturing blocking stream' in release_now, and 901
+        after it: a sausage and a piece of jelly in session 40's throughput run, a boiled egg and a silicone baking
+        mat before)."""
         wp.load_module(K, device=self.device)
         collecting = gc.isenabled()
         gc.disable()

@@ -1,5 +1,5 @@
 """A CUDA graph capture survives Python's garbage collector: a collection in the middle of a capture freed an
-unreachable Warp array (its release on the legacy stream) and the capture failed with Warp CUDA error 906 or 901 (two
+unreachable solver's pinned host buffer (its release synchronises with the legacy stream) and the capture failed with Warp CUDA error 906 or 901 (two
 requests of session 40's 1-GPU throughput run, two of the 2-GPU runs before). Here every allocation is made to start
 a collection (threshold 1) while cyclic garbage holding device arrays waits, and a rollout captures its graphs."""
 
@@ -21,11 +21,13 @@ MAT = Material(youngs_modulus_pa=1e5, poisson_ratio=0.3, damping_rate_per_s=5.0)
 
 
 class _Cycle:
-    """Unreachable device memory only the cyclic collector frees."""
+    """Unreachable memory only the cyclic collector frees: a device array and a pinned host buffer, as a finished
+    rollout's solver holds for its readbacks (freeing pinned memory synchronises with the legacy stream)."""
 
     def __init__(self) -> None:
         self.me = self
         self.array = wp.zeros(4096, dtype=float, device="cuda")
+        self.staging = wp.zeros(4096, dtype=float, device="cpu", pinned=True)
 
 
 def test_a_collection_during_a_capture_frees_nothing_and_the_rollout_runs() -> None:
