@@ -64,3 +64,11 @@ def test_a_size_word_in_the_entrys_own_name_does_not_shrink_it_again() -> None:
 def test_a_salon_towel_is_a_hand_towel() -> None:
     d = catalogue.design_from_text("black salon towel, folded")  # retail salon towels ~40 x 80 cm, 150-250 g
     assert d.entry == "hand_towel" and 0.1 <= d.concept.typical_mass_kg <= 0.4
+
+
+def test_a_hair_cutting_cape_is_a_salon_cape_not_a_superhero_cape() -> None:
+    """'a nylon hair cutting cape, folded' built the children's superhero cape (0.76 m, 70 g): a salon cape is a
+    140 x 150 cm nylon sheet of ~200 g, folded as a sheet is."""
+    d = catalogue.design_from_text("a nylon hair cutting cape, folded")
+    assert d.entry == "hair_cutting_cape" and "folded" in d.concept.states
+    assert catalogue.design_from_text("a red superhero cape").entry == "kids_cape"
