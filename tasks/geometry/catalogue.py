@@ -515,19 +515,20 @@ def _size_form(program: ShapeProgram, match: ConceptMatch, reading: concepts.Rea
     return {"long": long, "flat": flat, "unfold": concepts.sheet_fold(reading) if flat or plan == "sheet" else None}
 
 
-ROLL_OWN_LENGTH = ": the roll's own length, rolled tighter"  # (SizeSpec.stated's ending for it)
+ROLL_OWN_LENGTH = ": the roll's own length, rolled tighter"  # (how SizeSpec.stated says it)
 
 
-def _rolled_sized(size: SizeSpec, program: ShapeProgram, reading: concepts.Reading) -> SizeSpec:
+def _rolled_sized(size: SizeSpec, program: ShapeProgram, reading: concepts.Reading) -> tuple[SizeSpec, bool]:
     """A rolled sheet's stated length and width are the sheet's ('a roll of bubble wrap, 50 cm wide and 2 m long'):
     the width is the roll's length, the length sets its diameter (the rolled cross-section grows with the sheet's
-    length, so the diameter as its square root)."""
+    length, so the diameter as its square root); and whether the size stated is the roll's own, the same sheet
+    rolled tighter (its mass kept)."""
     width = concepts.sheet_roll(reading)
     if width is None:
-        return size
+        return size, False
     if any(part_group(p.name) == "tail" for p in program.parts) and size.explicit:  # partly unrolled: the sheet's
         return SizeSpec(axis_scale=size.axis_scale, stated=f"{size.stated}: the sheet's length, built at its typical "
-                        f"roll")  # length is the roll's and the tail's together ('a 60 inch tape measure, partly
+                        f"roll"), False  # length is the roll's and the tail's together ('a 60 inch tape measure, partly
         # unrolled' was read as an 8 mm roll)
     lo, hi = program_bounds(program)
     ext = np.asarray(hi) - np.asarray(lo)  # the roll lies along x
@@ -540,19 +541,19 @@ def _rolled_sized(size: SizeSpec, program: ShapeProgram, reading: concepts.Readi
         # 'boxing hand wraps, rolled, 180 inch'): the sheet's length, not the roll's
         size = size.model_copy(update={"longest_m": None, "extents_m": (sheet_len, None, None)})
     if size.extents_m[2] is not None or (sheet_len is None and roll_len is None):
-        return size
+        return size, False
     if roll_len is None and sheet_len is not None and said is None and sheet_len < float(ext.max()) \
             and abs(np.log(sheet_len / typical_sheet)) > abs(np.log(sheet_len / float(ext.max()))):
         # 'a rolled sleeping bag, about 45 cm long': nearer the roll's length than the sheet's, and shorter than the
         # typical roll: the roll's own length, the same bag rolled tighter (design_from_text keeps its mass)
         return SizeSpec(longest_m=sheet_len, axis_scale=size.axis_scale,
-                        stated=f"{size.stated}{ROLL_OWN_LENGTH}")
+                        stated=f"{size.stated}{ROLL_OWN_LENGTH}"), True
     if sheet_len is not None and roll_len is not None and roll_len > sheet_len and width <= 1.0:
         sheet_len, roll_len = roll_len, sheet_len  # '70 x 140 cm' rolled: rolled along its length, as the typical one
     k = float(np.sqrt((sheet_len or typical_sheet) / typical_sheet))
     ext_m = (roll_len or float(ext[0]), float(ext[1]) * k, float(ext[2]) * k)
     return size.model_copy(update={"extents_m": ext_m, "long": False, "flat": False,
-                                   "stated": f"{size.stated}: the sheet's length and width, rolled"})
+                                   "stated": f"{size.stated}: the sheet's length and width, rolled"}), False
 
 
 def _crumpled_sized(size: SizeSpec, reading: concepts.Reading) -> SizeSpec:
@@ -966,7 +967,7 @@ def design_from_text(text: str, size_hint_m: float | None = None) -> Design:
         # '20 cm each': the size of one of the pair
         size = size.model_copy(update={"longest_m": size.longest_m * float(
             grammar.program_extents(program, 48).max() / grammar.program_extents(one, 48).max())})
-    size = _rolled_sized(size, program, reading)
+    size, tighter = _rolled_sized(size, program, reading)
     size = _crumpled_sized(size, reading)
     size = _draped_sized(size, program, reading)
     size, fill_match = _fill_sized(size, program, fill_match, mass)
@@ -983,7 +984,6 @@ def design_from_text(text: str, size_hint_m: float | None = None) -> Design:
     # in 4, 75 x 100 cm' weighed 3x its fleece as a blanket scaled whole), and a roll's stated sheet its volume
     as_built = size.flat or size.unfold is not None or concepts.sheet_roll(reading) is not None
     scaled = SizeSpec(axis_scale=size.axis_scale) if as_built and size.explicit else size
-    tighter = bool(size.stated and size.stated.endswith(ROLL_OWN_LENGTH) and size.longest_m)
     if tighter and match.density_kg_per_m3 and match.typical_size_m:  # the same object rolled tighter: its
         match = match.model_copy(update={"density_kg_per_m3": match.density_kg_per_m3 * (  # typical mass
             match.typical_size_m / final_scale(size, program, match.typical_size_m)[0]) ** 3})

@@ -101,12 +101,12 @@ def _corrections(text: str, vocab: frozenset[str], phrases: frozenset[str]) -> t
         if a + b in vocab and len(a) >= 3 and len(b) >= 3 and not any(f"{a} {b}" in p for p in phrases):
             out.append((f"{a} {b}", a + b))
     for w in dict.fromkeys(words):
-        if len(w) == MIN_LENGTH - 1 and w not in vocab and w not in _function_words() and not is_english(w):
-            near = _one_letter_short(w, vocab) or _one_swap_away(w, vocab)  # a short word only with a letter left
-            if len(near) == 1:  # out or two letters typed in turn ('towl': a towel; 'bera': a bear)
-                out.append((w, near.pop()))
+        if len(w) < MIN_LENGTH - 1 or w in vocab or w in _function_words() or is_english(w) or is_english(_doubled(w)):
             continue
-        if len(w) < MIN_LENGTH or w in vocab or w in _function_words() or is_english(w) or is_english(_doubled(w)):
+        if len(w) < MIN_LENGTH:  # a short word only with a letter left out or two typed in turn ('towl': a towel;
+            near = _one_letter_short(w, vocab) or _one_swap_away(w, vocab)  # 'bera': a bear)
+            if len(near) == 1:
+                out.append((w, near.pop()))
             continue
         split = [f"{w[:i]} {w[i:]}" for i in range(3, len(w) - 2) if f"{w[:i]} {w[i:]}" in phrases]
         if len(split) == 1:  # two words written as one ('teddybear', 'rubberband'): the lexicon's noun phrase
