@@ -510,6 +510,18 @@ def modifier_word(word: str) -> bool:
 _STYLE = re.compile(r"\b([a-z]+)[\s-]+style\s+([a-z]+)\b")  # 'a muppet-style puppet'
 
 
+_ASIDE = re.compile(r"\([^()]*\)")
+
+
+def _without_asides(text: str) -> str:
+    """The text without its bracketed asides when the rest names a known object ('muddy gardening glove (just the
+    one)': the glove, not 'one'); the whole text when only the aside does ('a squishy one (a frog)')."""
+    rest = _ASIDE.sub(" ", text)
+    if rest == text or not _find(normalise(rest), noun_index()):
+        return text
+    return rest
+
+
 def read_text(text: str, serving: bool = True) -> Reading:
     """The concept a description names, with its shape donor, colours and fallback level.
 
@@ -517,6 +529,7 @@ def read_text(text: str, serving: bool = True) -> Reading:
     outside it ('lying on its belly', 'rolled up') never become the object. A noun the lexicon does not know is
     explained by WordNet (tasks.geometry.analogy) before the fallbacks by body plan, category and material."""
     lex = load_lexicon()
+    text = _without_asides(text)
     t = _STYLE.sub(lambda m: f"{m.group(1)} {m.group(2)}" if f"{m.group(1)} {m.group(2)}" in noun_index()
                    else m.group(0), _expand_diminutives(normalise(text)))  # 'a muppet-style puppet': a muppet puppet
     contents = pouch_words.vacuum_contents(t)
