@@ -15,6 +15,7 @@ from contracts.lexicon import LexiconEntry
 from contracts.request import MAX_SIZE_M, MIN_SIZE_M
 from contracts.shape import ShapeProgram
 from tasks.geometry import grammar
+from tasks.geometry.grammar.goods import HANK_MIN_TURNS
 
 _UNITS = {"mm": 0.001, "millimeter": 0.001, "millimetre": 0.001, "millimeters": 0.001, "millimetres": 0.001,
           "cm": 0.01, "centimeter": 0.01, "centimetre": 0.01, "centimeters": 0.01, "centimetres": 0.01, "m": 1.0,
@@ -28,7 +29,15 @@ _MEASURE = re.compile(r"(?:\b(length|thickness|diameter|width|" + _DIAMETERS + r
                       r"feet|yd|yards?)(?![a-z])(?:\s*(?:in\s+)?(long|length|thick|thickness|wide|width|diameter|dia|"
                       r"across|round|gauge|" + _DIAMETERS + r")(?![a-z]))?", re.I)
 THIN_PLANS = frozenset({"sheet", "strap"})
-HANK_RADIUS_M = 0.3  # a long rope coiled by hand: loops about an arm span round (0.6 m across) [m]
+HANK_RADIUS_M = 0.3  # a long rope coiled by hand: loops at most about an arm span round (0.6 m across) [m]
+HANK_RADIUS_MIN_M = 0.08  # the tightest loop a hand coils [m]
+HANK_RADIUS_PER_SQRT = 0.5  # a coil's loop radius over sqrt(length x cord diameter): 10 m of XLR cable (6.5 mm) in
+# 25 cm loops, 15 m of garden hose (19 mm) in 53 cm loops, a 60 m climbing rope (9.8 mm) at the arm span [-]
+
+
+def hank_radius(length_m: float, diameter_m: float) -> float:
+    """The loop radius a hand coils a cord of this length and diameter into [m]."""
+    return float(np.clip(HANK_RADIUS_PER_SQRT * np.sqrt(length_m * diameter_m), HANK_RADIUS_MIN_M, HANK_RADIUS_M))
 CROSS_SECTION_MAX = 0.06  # a bare size under this share of the good's typical size measures its cross-section [-]
 CROSS_WORDS = {"thick": "thickness", "thickness": "thickness", "diameter": "diameter", "dia": "diameter",
                "gauge": "diameter", "wide": "width", "width": "width", "across": "diameter", "round": "diameter",
@@ -148,14 +157,17 @@ def bind(text: str, entry: LexiconEntry | None, states: list[str]) -> Bound | No
                 and params.get("state") != "loop":
             params["state"] = "rolled"  # longer than L0 builds straight: coiled
             bound.notes.append(f"{length:g} m of it is built coiled")
-        if params.get("state", entry.params.get("state")) == "rolled" \
-                and _unit_longest("strap", params) * length > MAX_SIZE_M:  # a long coil wound as tight as its cord
-            tight = np.sqrt(0.55 * length / (1.45 * np.pi * max(width, 1e-6)))  # allows (r1 - r0 = 0.55 r1 = turns x
-            params["turns"] = float(np.clip(max(tight, float(p0.turns)), 1.0, 8.0))  # type: ignore[attr-defined]  # width)
-            if tight > 8.0:  # too long for a flat spiral the mesher sees: loops laid one on another (a rope's hank)
+        rolled = params.get("state", entry.params.get("state")) == "rolled"
+        hank = rolled and (bool(params.get("hank")) or (bool(p0.round) and float(p0.turns) > HANK_MIN_TURNS))  # type: ignore[attr-defined]
+        if rolled and (hank or _unit_longest("strap", params) * length > MAX_SIZE_M):  # a long coil wound as tight
+            tight = np.sqrt(0.55 * length / (1.45 * np.pi * max(width, 1e-6)))  # as its cord allows (r1 - r0 =
+            params["turns"] = float(np.clip(max(tight, float(p0.turns)), 1.0, 8.0))  # type: ignore[attr-defined]  # 0.55 r1 = turns x width)
+            if hank or tight > (HANK_MIN_TURNS if p0.round else 8.0):  # type: ignore[attr-defined]  # loops laid one on
+                # another (a rope's hank): a flat strip past what the mesher sees as a spiral, a round cord sooner
                 params["hank"] = True
-                params["turns"] = float(np.clip(length / (2 * np.pi * HANK_RADIUS_M), 2.0, 60.0))
-                bound.notes.append(f"coiled in {params['turns']:.0f} loops of {2 * HANK_RADIUS_M:g} m")
+                loop = hank_radius(length, width)
+                params["turns"] = float(np.clip(length / (2 * np.pi * loop), 2.0, 60.0))
+                bound.notes.append(f"coiled in {params['turns']:.0f} loops of {2 * loop:.2g} m")
         bound.longest_m = _unit_longest("strap", params) * length
         bound.mass_factor = (length / length0) * (width * thickness) / (w0 * t0 * length0 ** 2)
         if bore0 > 0:  # a tube weighs its wall: (OD^2 - ID^2) against the entry's own

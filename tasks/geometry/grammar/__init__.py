@@ -87,7 +87,7 @@ PLANS: dict[str, tuple[type[Model], Callable[[Any], list[Part]]]] = {
 _DARK = {"eye", "nose", "pupil", "mouth"}
 BLACK: RGB = (0.02, 0.02, 0.02)
 # fittings a part keeps unless the entry or the request names their colour: a zip, its pull, a button, a buckle
-_HARDWARE = {"zip", "pull", "button", "buckle"}
+_HARDWARE = {"zip", "pull", "button", "buckle", "plug", "coupling"}
 METAL: RGB = (0.32, 0.32, 0.34)
 
 

@@ -2808,11 +2808,12 @@ class StrapParams(Model):
     bore: float = Field(default=0.0, ge=0.0, lt=1.0, description="a tube's inner over outer diameter (drawn solid; "
                         "its mass is the wall's: tasks.geometry.dims_words) [-]")
     turns: float = Field(default=3.0, ge=1.0, le=60.0, description="turns of a coil (a flat spiral draws at most 8) [-]")
-    ends: Literal["none", "handles", "buckle", "ring", "hose", "hooks", "leash"] = Field(
+    ends: Literal["none", "handles", "buckle", "ring", "hose", "hooks", "leash", "plug", "coupling"] = Field(
         default="none", description="what the ends carry; hose: an inflatable cuff's (a blood pressure cuff): its "
         "rubber tube and plug out of one face, a hook-and-loop patch; hooks: a J-hook at each end (a bungee cord); "
         "buckle: a metal frame buckle (laid in a loop: the belt buckled, its tip through the buckle); leash: a "
-        "handle loop sewn at one end and a snap clip at the other (a dog leash, laid wavy)")
+        "handle loop sewn at one end and a snap clip at the other (a dog leash, laid wavy); plug / coupling: a coiled "
+        "cord's free end trailing out of the coil to a cable's connector / a hose's threaded coupling")
 
 
 def _strip_dims(p: StrapParams, extent: float) -> tuple[float, float]:
@@ -2841,8 +2842,8 @@ def strap(p: StrapParams) -> list[Part]:
             parts += _buckle(pts[0], pts[1] - pts[-2], w, t)
     elif p.state == "bow":
         parts = _bow(p)
-    elif p.state == "rolled" and p.hank:
-        parts = _hank(p)
+    elif p.state == "rolled" and (p.hank or (p.round and p.turns > HANK_MIN_TURNS)):
+        parts = _hank(p)  # a round cord of many turns is coiled loop on loop, as hands coil a hose or a cable
     elif p.state == "rolled":  # a flat spiral from radius r0 = 0.45 r1 out to r1, its length 1
         turns = min(p.turns, 8.0)
         n = int(min(40, 10 * turns))
@@ -2962,6 +2963,8 @@ def _leash_ends(pts: list[np.ndarray], w: float, t: float) -> list[Part]:
     return out
 
 
+TAIL_MIN_RADIUS = 0.045  # a coil's trailing end: its radius at least this share of the coil's outer radius [-]
+HANK_MIN_TURNS = 4.5  # a round cord coiled in more turns is a hank, not a flat spiral (a hose, a cable) [-]
 HANK_PACKING = 0.7  # the cord's share of a coiled hank's ring section [-]
 HANK_STRANDS = 14  # loops drawn over the hank's surface [-]
 
@@ -2981,6 +2984,23 @@ def _hank(p: StrapParams) -> list[Part]:
         tilt = (4.0 * np.sin(1.7 * i), 4.0 * np.cos(2.3 * i), 0.0)
         parts.append(torus(f"loop {i + 1}", R + spread, r, (0.3 * rb * np.cos(a), 0.3 * rb * np.sin(a),
                                                           rb + 0.8 * lift), rot=tilt))
+    if p.ends in ("plug", "coupling"):
+        parts += _coil_end(R, rb, d, p.ends)
+    return parts
+
+
+def _coil_end(R: float, rb: float, d: float, kind: str) -> list[Part]:
+    """A coiled cord's free end: out of the coil's outer edge, curving away over the table, ending in a fitting (a
+    cable's connector: a long sleeve three cords thick; a hose's coupling: a short collar half as thick again)."""
+    z = d / 2
+    pts = [np.array([R + 0.2 * rb, 0.0, rb]), np.array([R + rb + 0.12 * R, -0.3 * R, z]),
+           np.array([R + rb + 0.22 * R, -0.7 * R, z])]
+    r = max(d / 2, TAIL_MIN_RADIUS * (R + rb))  # no thinner than the mesher sees at the coil's extent
+    parts = [limb(f"tail {k + 1}", pts[k], pts[k + 1], r, blend=r) for k in range(2)]
+    along = (pts[2] - pts[1]) / np.linalg.norm(pts[2] - pts[1])
+    radius, length = (3 * r, 12 * r) if kind == "plug" else (1.6 * r, 3.6 * r)
+    start = pts[2] + along * 0.4 * r
+    parts.append(limb(kind, start, start + along * length, radius, blend=0.6 * r))
     return parts
 
 

@@ -1,0 +1,40 @@
+"""Sealed set 27's misses, fixed after its one run: 'muddy gardening glove (just the one)' built a generic block (the
+aside's 'one' took the head); a coiled garden hose and a coiled XLR cable were flat spirals of straight segments that
+the blind judges read as mesh trellises: a round cord of many turns is now coiled loop on loop (a hank) in loops a
+hand coils (their radius grows with the square root of length x diameter), its free end trailing out to its fitting."""
+
+from __future__ import annotations
+
+import pytest
+
+from tasks.geometry import catalogue
+from tasks.geometry.dims_words import hank_radius
+from tasks.geometry.grammar.parts import part_group
+from tests.geometry.test_mass_classes import planned_mass
+
+
+@pytest.mark.parametrize(("text", "entry"), [("muddy gardening glove (just the one)", "garden_glove"),
+                                             ("a foam ball (the squishy kind)", "foam_ball")])
+def test_a_bracketed_aside_does_not_take_the_head(text: str, entry: str) -> None:
+    assert catalogue.design_from_text(text).entry == entry
+
+
+def test_the_loops_a_hand_coils_grow_with_the_cord() -> None:
+    assert hank_radius(10.0, 0.0065) == pytest.approx(0.127, abs=0.005)  # an XLR cable: 25 cm loops
+    assert hank_radius(15.0, 0.019) == pytest.approx(0.267, abs=0.01)  # a garden hose: 53 cm loops
+    assert hank_radius(60.0, 0.0098) == 0.3  # a climbing rope: the arm span at most
+    assert hank_radius(0.5, 0.002) == 0.08  # a short cord: the tightest loop a hand coils
+
+
+@pytest.mark.parametrize(("text", "fitting", "across_m", "mass_kg"), [
+    ("10m XLR cable loosely coiled", "plug", (0.22, 0.42), 0.45),  # music retail: 10 m XLR cables 0.4-0.5 kg
+    ("green garden hose, 15m, coiled", "coupling", (0.45, 0.8), 2.0),  # 15 m x 1/2 in PVC hoses 1.8-3 kg
+    ("an xlr cable", "plug", (0.15, 0.35), 0.35),
+])
+def test_a_coiled_hose_or_cable_is_loops_on_loops_with_its_end_and_fitting_out(
+        text: str, fitting: str, across_m: tuple[float, float], mass_kg: float) -> None:
+    d = catalogue.design_from_text(text)
+    groups = {part_group(p.name) for p in d.program.parts}
+    assert {"body", "loop", "tail", fitting} <= groups, groups  # the ring, loops over it, the free end, the fitting
+    assert across_m[0] <= (d.size.longest_m or d.concept.typical_size_m) <= across_m[1]
+    assert 0.5 <= planned_mass(text) / mass_kg <= 2.0
