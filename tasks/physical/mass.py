@@ -111,10 +111,22 @@ def concept_band(concept: ConceptMatch, longest_m: float, volume_m3: float | Non
     return m * CONCEPT_BAND_FACTOR[0], m * CONCEPT_BAND_FACTOR[1]
 
 
-def concept_applies(concept: ConceptMatch | None, material: str) -> bool:
+WALL_MATERIAL_RATIO = 3.0  # an object this many times lighter than its stated material is made of it, not solid [-]
+
+
+def concept_applies(concept: ConceptMatch | None, material: str, material_density_low: float | None = None) -> bool:
     """The concept's typical mass and hollowness describe this object: the request's material is the concept's own
-    (a 'foam ball' is not the lexicon's hollow rubber ball, so a ball's typical mass does not bind it)."""
-    return concept is not None and (concept.default_material is None or concept.default_material == material)
+    (a 'foam ball' is not the lexicon's hollow rubber ball, so a ball's typical mass does not bind it), or the object
+    is far lighter than a solid of the stated material (its own effective density below the material's lowest /
+    WALL_MATERIAL_RATIO): the material is what its walls or uppers are made of ('a rubber climbing shoe' weighs a
+    shoe, not a shoe-shaped block of rubber)."""
+    if concept is None:
+        return False
+    if concept.default_material is None or concept.default_material == material:
+        return True
+    own = getattr(concept, "density_kg_per_m3", None)
+    return (own is not None and material_density_low is not None and not concept.hollow
+            and own * WALL_MATERIAL_RATIO < material_density_low)
 
 
 def _clamp_band(lo: float, hi: float) -> tuple[float, float]:
@@ -160,7 +172,7 @@ def mass_check(volume_m3: float, longest_m: float, area_m2: float, material: str
                        density_bounds, [f"the request gives {_g(stated)}: effective density = that mass / volume"])
     enclosed = enclosed_volume_m3 if enclosed_volume_m3 is not None else volume_m3
     shell = enclosed > volume_m3 * (1.0 + 1e-9)
-    applies = concept_applies(concept, material)
+    applies = concept_applies(concept, material, dlo)
     cband = concept_band(concept, longest_m, enclosed, area_m2, surface) if applies and concept is not None else None
     notes: list[str] = []
     if concept is not None and not applies:

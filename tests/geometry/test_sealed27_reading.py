@@ -38,3 +38,14 @@ def test_a_coiled_hose_or_cable_is_loops_on_loops_with_its_end_and_fitting_out(
     assert {"body", "loop", "tail", fitting} <= groups, groups  # the ring, loops over it, the free end, the fitting
     assert across_m[0] <= (d.size.longest_m or d.concept.typical_size_m) <= across_m[1]
     assert 0.5 <= planned_mass(text) / mass_kg <= 2.0
+
+
+@pytest.mark.parametrize(("text", "mass_kg"), [
+    ("old rubber climbing shoe, single, kinda squashed", 0.25),  # retail: one climbing shoe 200-300 g (was 1.5 kg)
+    ("a leather bag", 0.5),
+])
+def test_a_dense_material_named_for_a_light_object_is_what_it_is_made_of(text: str, mass_kg: float) -> None:
+    """A shoe is far lighter than a solid shoe of rubber: 'rubber' names its sole, not a rubber block; the object's
+    own typical mass binds. A foam ball is still foam (foam is lighter than the ball: the material binds)."""
+    assert 0.5 <= planned_mass(text) / mass_kg <= 2.0
+    assert planned_mass("a foam ball") < 0.5 * planned_mass("a ball")
