@@ -49,3 +49,12 @@ def test_a_dense_material_named_for_a_light_object_is_what_it_is_made_of(text: s
     own typical mass binds. A foam ball is still foam (foam is lighter than the ball: the material binds)."""
     assert 0.5 <= planned_mass(text) / mass_kg <= 2.0
     assert planned_mass("a foam ball") < 0.5 * planned_mass("a ball")
+
+
+def test_a_climbing_shoe_is_its_own_shoe_with_straps_and_a_rubber_rand() -> None:
+    """It was the laced red-and-white sneaker (read as a Christmas stocking): now low, strapped, a black rubber sole
+    wrapping the toe, at a climbing shoe's mass."""
+    d = catalogue.design_from_text("old rubber climbing shoe, single, kinda squashed")
+    assert d.entry == "climbing_shoe"
+    groups = {part_group(p.name) for p in d.program.parts}
+    assert {"sole", "toe rand", "strap"} <= groups and "lace" not in groups, groups
