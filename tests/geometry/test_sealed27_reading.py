@@ -58,3 +58,10 @@ def test_a_climbing_shoe_is_its_own_shoe_with_straps_and_a_rubber_rand() -> None
     assert d.entry == "climbing_shoe"
     groups = {part_group(p.name) for p in d.program.parts}
     assert {"sole", "toe rand", "strap"} <= groups and "lace" not in groups, groups
+
+
+def test_a_lead_x_ray_apron_weighs_a_lead_apron_not_a_kitchen_apron() -> None:
+    """It was the 300 g kitchen apron (x0.07 of the writer's 4.3 kg): now the lead apron, 2-4.5 kg."""
+    text = "lead xray apron draped over a hook"
+    assert catalogue.design_from_text(text).entry == "lead_apron"
+    assert 2.0 <= planned_mass(text) <= 4.5
