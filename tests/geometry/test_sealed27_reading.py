@@ -65,3 +65,12 @@ def test_a_lead_x_ray_apron_weighs_a_lead_apron_not_a_kitchen_apron() -> None:
     text = "lead xray apron draped over a hook"
     assert catalogue.design_from_text(text).entry == "lead_apron"
     assert 2.0 <= planned_mass(text) <= 4.5
+
+
+@pytest.mark.parametrize("text", ["roll of cork handlebar tape", "a roll of kinesiology tape, blue", "electrical tape"])
+def test_a_roll_of_tape_is_a_wound_ring_with_its_free_end(text: str) -> None:
+    """'roll of cork handlebar tape' was a generic strip coiled flat (read as a rope coaster)."""
+    d = catalogue.design_from_text(text)
+    assert d.entry == "tape_roll"
+    assert {"body", "core", "free end"} <= {part_group(p.name) for p in d.program.parts}
+    assert 0.5 <= planned_mass(text) / 0.035 <= 2.0
