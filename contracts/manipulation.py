@@ -50,7 +50,7 @@ class TrialRow(Row):
 
     ABSENT_UNLESS_GIVEN: ClassVar[frozenset[str]] = frozenset({"values", "cache_key", "recording", "condition",
                                                                "trial", "reason", "data_key", "kept_in",
-                                                               "recording_in_cache"})
+                                                               "recording_in_cache", "frame_stride"})
     attempt: int | None = Field(description="its interaction folder (interaction/attempt_NNN); None: nothing stored")
     role: str = Field(description="selection, robustness, confirmation, held_out, grasp_selection")
     action: str = Field(description="the harness action that asked for it ('' for a condition trial)")
@@ -69,6 +69,10 @@ class TrialRow(Row):
         "reported trial's alone (`--record all` keeps every trial's); records before #38: absent, the asset")
     recording_in_cache: str | None = Field(default=None, description="its Rerun recording's path under the cache "
                                            "root (recordings/L3_trial-<key>-r<version>.rrd)")
+    frame_stride: int = Field(default=1, ge=1, description="the asset keeps every frame_stride-th of its particle "
+                              "frames (the first and last kept) so that its states fit the asset's budget "
+                              "(tasks.manipulation.keep.KEPT_FRAMES_BYTES); every frame stays in the cache entry "
+                              "data_key, and `--record all` keeps them in the asset")
 
 
 class ConditionRow(Row):

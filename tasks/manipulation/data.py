@@ -23,6 +23,7 @@ is written to a temporary folder and renamed into place, so a reader never sees 
 from __future__ import annotations
 
 import json
+import math
 import os
 import re
 import shutil
@@ -44,6 +45,37 @@ FLOAT32_ARRAYS = ("particles_x_m", "particles_F")
 FRAME_ARRAYS = (*FLOAT32_ARRAYS, particle_frames.X_OFFSET, particle_frames.F_OFFSET)
 FRAME_CHUNK_BYTES = 16 * 2**20
 CHUNK_KEYS = {"name": "default", "separator": "."}  # c.0.0: one file per chunk, no folder per dimension
+
+
+FRAME_INDEXED = ("frame_t_s", "frame_control_index", particle_frames.X, particle_frames.F)  # (T, ...) as decoded
+
+
+def frame_bytes(folder: Path) -> int:
+    """Bytes an attempt's particle frames take on disk (their chunk files, not the arrays' metadata)."""
+    names = (*FRAME_ARRAYS, particle_frames.X_CENTER)
+    return sum(f.stat().st_size for n in names if (folder / n).is_dir() for f in (folder / n).rglob("*")
+               if f.is_file() and f.name != "zarr.json")
+
+
+def thin_frames(asset_dir: Path, index: int, budget_bytes: int) -> int:
+    """Keep every s-th particle frame of a stored attempt (its first and last kept), s the smallest stride that
+    brings its frames within budget_bytes; the attempt is rewritten atomically and its attributes say frame_stride s
+    and frames_full T. Returns the attempt's stride (an attempt thinned before, or within the budget: as it is)."""
+    folder = interaction_dir(asset_dir) / f"attempt_{index:03d}"
+    done = zarr.open_group(str(folder), mode="r").attrs.get("frame_stride")
+    size = frame_bytes(folder)
+    if done is not None or size <= budget_bytes:  # thinned once already (a rerun), or within the budget
+        return int(done or 1)
+    arrays, attrs = read_attempt_folder(folder)
+    n = len(arrays.get("frame_t_s", ()))
+    stride = int(math.ceil(size / budget_bytes))
+    if n < 3 or stride < 2:
+        return 1
+    keep = np.unique(np.r_[np.arange(0, n, stride), n - 1])
+    thinned = {k: (v[keep] if k in FRAME_INDEXED and v.ndim and len(v) == n else v) for k, v in arrays.items()}
+    attrs = {k: v for k, v in attrs.items() if k != "attempt"}
+    write_attempt(asset_dir, thinned, {**attrs, "frame_stride": stride, "frames_full": n}, index=index)
+    return stride
 
 
 def interaction_dir(asset_dir: Path) -> Path:

@@ -7,7 +7,9 @@ one, else the best failed one: the trial the card, the pick-and-place video and 
 cache entry, tasks.manipulation.context.store_attempt_keyed; each recording a file under the cache's recordings/):
 their rows say so (`kept_in: "cache"`) and name the entry (`data_key`) and the recording (`recording_in_cache`), and
 `deformsmith replay DIR --trial N` reads such a trial from the cache. A trial whose entry the cache does not hold
-stays in the asset.
+stays in the asset. The reported trial's particle frames beyond KEPT_FRAMES_BYTES are thinned in time (every s-th
+frame, its row's frame_stride; tasks.manipulation.data.thin_frames) when the cache holds them all: a large object's
+states (a cat bed: 122 MB) no longer make the asset; `deformsmith replay` reads the full-rate trial from the cache.
 """
 
 from __future__ import annotations
@@ -20,10 +22,12 @@ from cache import CacheMiss, CacheStore, cache_resolve, cache_root
 from contracts.asset_dir import DEFAULT_KEEP, KEEP_TRIALS, KeepTrials, attempt_path
 from contracts.errors import InputError
 from contracts.manipulation import ManipulationRecord, TrialRow
-from tasks.manipulation.data import INTERACTION, attempt_indices
+from tasks.manipulation.data import INTERACTION, attempt_indices, thin_frames
 from tasks.record.trials import data_location, reported_attempt
 
 _TRIAL_RECORDING = re.compile(r"^L3_trial_\d+\.rrd$")
+KEPT_FRAMES_BYTES = 4 * 2**20  # the reported trial's particle frames in a default asset: every s-th frame beyond it
+# (a cat bed's 60k particles x 300 frames were 122 MB of a 143 MB asset; the turtle's ~3 MB fit whole)
 
 
 def _in_cache(row: TrialRow) -> bool:
@@ -49,6 +53,11 @@ def keep_trials(asset_dir: Path, record: ManipulationRecord, keep: KeepTrials = 
     kept = reported_attempt(record)
     rows: list[TrialRow] = []
     for row in record.attempts:
+        if row.attempt == kept and row.attempt is not None and row.kept_in == "asset" and _in_cache(row) \
+                and (asset_dir / attempt_path(row.attempt)).is_dir():  # the reported trial, within the budget
+            stride = thin_frames(asset_dir, row.attempt, KEPT_FRAMES_BYTES)
+            rows.append(row.model_copy(update={"frame_stride": stride}) if stride > 1 else row)
+            continue
         if row.attempt is None or row.attempt == kept or row.kept_in == "cache" or not _in_cache(row):
             rows.append(row)  # the reported trial, a plan that stored nothing, or data the cache lacks: as it is
             continue

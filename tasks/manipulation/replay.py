@@ -131,7 +131,12 @@ def _read(asset_dir: Path, attempt: int | None, trial: int | None) -> tuple[dict
     in the cache: tasks.manipulation.keep) from the cache entry its row names; InputError, one line, when neither
     holds them."""
     if attempt is None or (asset_dir / attempt_path(attempt)).is_dir():
-        return read_attempt(asset_dir, attempt)
+        arrays, attrs = read_attempt(asset_dir, attempt)
+        if int(attrs.get("frame_stride", 1)) > 1:  # a default asset's thinned frames: every frame from the cache
+            full = _full_rate(asset_dir, int(attrs.get("attempt", attempt or 0)))
+            if full is not None:
+                return full
+        return arrays, attrs
     adir = AssetDir(asset_dir)
     record = adir.manipulation() if adir.has("manipulation") else None
     row = next((r for r in record.attempts if r.attempt == attempt), None) if record is not None else None
@@ -147,6 +152,21 @@ def _read(asset_dir: Path, attempt: int | None, trial: int | None) -> tuple[dict
         raise InputError(f"{what}'s states are not in {asset_dir} and the cache {root} no longer holds them (key "
                          f"{row.data_key}); `deformsmith manipulate {asset_dir} --record all` simulates them again")
     return read_attempt_folder(folder)
+
+
+def _full_rate(asset_dir: Path, attempt: int) -> tuple[dict[str, np.ndarray], dict] | None:
+    """Every frame of an attempt whose asset copy is thinned (tasks.manipulation.keep), from the cache entry its row
+    names; None when the cache no longer holds it (the asset's frames are then what there is)."""
+    adir = AssetDir(asset_dir)
+    record = adir.manipulation() if adir.has("manipulation") else None
+    row = next((r for r in record.attempts if r.attempt == attempt), None) if record is not None else None
+    if row is None or not row.data_key:
+        return None
+    try:
+        folder = CacheStore(cache_root()).get(row.data_key)
+    except CacheMiss:
+        return None
+    return read_attempt_folder(folder) if isinstance(folder, Path) and folder.is_dir() else None
 
 
 def _which(asset_dir: Path, attempt: int | None, trial: int | None) -> tuple[int | None, int | None]:

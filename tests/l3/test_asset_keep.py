@@ -125,3 +125,45 @@ def test_replay_reads_a_trial_from_the_cache_and_says_in_one_line_when_it_is_gon
     r = subprocess.run([sys.executable, "-m", "flows.cli.main", "replay", str(asset), "--trial", "3"],
                        capture_output=True, text=True, cwd=REPO, timeout=600)
     assert r.returncode == 2 and r.stderr.startswith("error: trial 3's states") and r.stderr.count("\n") == 1
+
+
+def test_a_reported_trial_over_the_budget_keeps_every_sth_frame_and_replay_reads_all_from_the_cache(
+        attempt: tuple, tmp_path: Path, cache_dir: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    """A large object's reported trial (a cat bed's: 122 MB of particle frames) would make the asset: its frames
+    beyond the budget are thinned in time, the first and last kept, the rest of the trial (controls, forces) whole;
+    the row says the stride, and replay reads every frame from the cache entry."""
+    from tasks.asset_dir import AssetDir
+    from tasks.manipulation import keep
+    from tasks.manipulation.data import frame_bytes, interaction_dir, read_attempt, read_attempt_folder
+    from tasks.manipulation.replay import _read
+
+    arrays, attrs = attempt
+    n_frames, rng = len(arrays["frame_t_s"]), np.random.default_rng(0)
+    x = np.cumsum(rng.normal(0.0, 1e-4, (n_frames, 4000, 3)), axis=0) + rng.uniform(-0.05, 0.05, (1, 4000, 3))
+    f = np.eye(3) + np.cumsum(rng.normal(0.0, 1e-3, (n_frames, 4000, 3, 3)), axis=0)
+    big = {**arrays, "particles_x_m": x.astype(np.float32), "particles_F": f.astype(np.float32)}  # a larger body's
+    asset = tmp_path / "asset"
+    record = _l3_asset(asset, (big, attrs))
+    folder = interaction_dir(asset) / "attempt_001"
+    full_bytes = frame_bytes(folder)
+    budget = full_bytes // 3
+    monkeypatch.setattr(keep, "KEPT_FRAMES_BYTES", budget)
+    kept = keep.keep_trials(asset, record, "adopted")
+    AssetDir(asset).write_manipulation(kept)
+    row = next(r for r in kept.attempts if r.attempt == 1)
+    assert row.frame_stride >= 3 and '"frame_stride"' in (asset / "manipulation.json").read_text()
+    assert frame_bytes(folder) <= 1.2 * budget  # (one more frame: the last)
+    got, attrs = read_attempt(asset, 1)
+    want, _ = read_attempt_folder(keep.CacheStore(cache_dir).get(row.data_key))
+    n = len(want["frame_t_s"])
+    assert attrs["frames_full"] == n and attrs["frame_stride"] == row.frame_stride
+    idx = np.unique(np.r_[np.arange(0, n, row.frame_stride), n - 1])
+    assert np.array_equal(got["frame_t_s"], want["frame_t_s"][idx])
+    assert np.allclose(got["particles_x_m"], want["particles_x_m"][idx], atol=1e-5)
+    assert np.allclose(got["particles_F"], want["particles_F"][idx], atol=1e-3)
+    assert np.array_equal(got["finger_force_n"], want["finger_force_n"])  # the controls and forces whole
+    full, _ = _read(asset, 1, 2)
+    assert np.array_equal(full["frame_t_s"], want["frame_t_s"])  # replay: every frame, from the cache
+    # a rerun keeps the stride it recorded
+    again = keep.keep_trials(asset, AssetDir(asset).manipulation(), "adopted")
+    assert next(r for r in again.attempts if r.attempt == 1).frame_stride == row.frame_stride
