@@ -5,10 +5,12 @@ showing its rolled layers, browned streaks and two slices laid face up; a bamboo
 rolled sheet, 'rolled felt', 5x its mass) as slats, strings and a rubber band; an oshibori (was a full-size rolled
 towel with a core, 'paper towels', 6x its mass) as a small white log with its spiral ends; rolled quilt batting (was a
 generic cushion) as a lofty white roll with thick layers at its ends; a pack of bait squid (was a generic pouch, 'a
-bag of flour') as four squid on a foam tray; a coir basket liner (was a microfiber cloth) as a brown hairy bowl; a
-mic-stand sandbag (was the flood sandbag, 'a squeeze tube') as two orange pouches on a strap with a handle; a crash
-pad folded like a taco (was a folded sheet, 'a sleeping pad') as a U with shoulder straps; chest waders folded in half
-(was a garment stack, 'a photo album') with their boots and suspenders. Checked on the programs, built once each."""
+bag of flour') as four squid on a foam tray; a half-empty bag of fiberfill (was a flat pouch, 'a cushion') as a
+cloud of white fluff at one end of a crumpled clear bag with a blue label; a coir basket liner (was a microfiber
+cloth) as a brown hairy bowl; a mic-stand sandbag (was the flood sandbag, 'a squeeze tube') as two orange pouches on
+a strap with a handle; a crash pad folded like a taco (was a folded sheet, 'a sleeping pad') as a U with shoulder
+straps; chest waders folded in half (was a garment stack, 'a photo album') with their boots and suspenders. Checked
+on the programs, built once each."""
 
 from __future__ import annotations
 
@@ -28,6 +30,8 @@ CASES = [
     ("oshibori - damp rolled hand towel", "oshibori", 0.05, {"roll", "flap", "flap edge", "border"}),
     ("crib size quilt batting, rolled", "batting_roll", 0.3, {"roll", "loft", "label band"}),
     ("1 lb pack of bait squid, thawed and floppy", "bait_squid_pack", 0.45, {"tray", "mantle", "fin", "eye", "arm"}),
+    ("half-empty bag of polyester fiberfill", "stuffing_bag", 0.2, {"filled half", "fluff", "film fold", "crease",
+                                                                  "label"}),
     ("coir liner for a 12 inch hanging basket", "coir_liner", 0.16, {"bowl", "rim tuft", "fibre"}),
     ("5 lb sandbag for a mic stand", "stand_sandbag", 2.3, {"pouch", "strap", "handle", "stitch"}),
     ("bouldering crash pad folded like a taco", "crash_pad_taco", 5.5, {"fold", "half", "shoulder strap", "hip belt"}),
@@ -80,6 +84,14 @@ def test_the_density_is_the_sourced_mass_over_the_built_volume(entry: str) -> No
     scale = e.size_m / float(np.max(grammar.program_extents(prog, 48)))
     mass = e.solid_density_kg_per_m3 * mesh_program(prog, 48).volume * scale ** 3
     assert 0.85 * e.mass_kg <= mass <= 1.15 * e.mass_kg, (entry, mass, e.mass_kg)
+
+
+def test_a_part_used_bag_of_fiberfill_keeps_its_drawing_and_weighs_its_share() -> None:
+    """A hand-drawn pouch of goods keeps its drawing at any fill share (the pouch plan drew 'half-empty' as a flat
+    white pillow, read as a cushion): the share sets only its mass."""
+    half, whole = _design("half-empty bag of polyester fiberfill"), _design("a bag of toy stuffing")
+    assert [p.name for p in half.program.parts] == [p.name for p in whole.program.parts]
+    assert half.concept.stated_mass_kg is not None and half.concept.stated_mass_kg < 0.6 * whole.concept.typical_mass_kg
 
 
 def test_the_plain_objects_keep_their_own_entries() -> None:
