@@ -1069,8 +1069,10 @@ def build(reading: Reading, text: str) -> tuple[ShapeProgram, ConceptMatch, list
         body = lex_color(entry)
         base = grammar.build_program(plan, {**plan_params, **params}, {"body": body}, entry.key.replace("_", " "),
                                      entry.category, size)
-    else:
-        base = _entry_program(entry, size) if not params else _with_params(entry, params, size)
+    else:  # a hand-drawn pouch of goods keeps its drawing at any fill share ('a half-empty bag of fiberfill' is drawn
+        # part used): the share sets only its mass (tasks.geometry.goods_words)
+        drawn = entry.catalogue is not None and entry.plan == "pouch" and set(params) <= {"fill"}
+        base = _entry_program(entry, size) if not params or drawn else _with_params(entry, params, size)
     name = reading.match.noun if reading.match.by_analogy and reading.match.noun else entry.key.replace("_", " ")
     program = base.model_copy(update={"name": name, "category": entry.category})
     if face and base_target.plan is None:  # a hand-written ball: the face printed on its envelope
