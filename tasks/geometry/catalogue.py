@@ -829,6 +829,12 @@ def _stuffed_in_sack(text: str) -> tuple[str, str] | None:
     if _SEE_THROUGH.search(sack):  # 'a hoodie folded inside a clear plastic bag': what is seen is the hoodie
         return goods_text + size, (f"'{goods_text}' in {sack}: built as the goods seen through the clear bag (the bag, "
                                    f"a few grams of film, is not drawn)")
+    if re.search(r"\bpouch\b", sack, re.I) and re.search(r"\b(?:packable|foldable|pack[- ]?away)\b|\bown\s+pouch\b",
+                                                        m.group(0), re.I):  # a packable bag or jacket in its own
+        # pouch is a small zipped pouch (a stuff sack is a sleeping bag's): its mass the goods'
+        return (f"a packed zip pouch, {kg * 1000:.4g} g{size}",
+                f"'{goods_text}' packed in {sack}: built as the small zipped pouch, weighing the "
+                f"{c.concept.replace('_', ' ')} ({kg:.3g} kg)")
     note = (f"'{goods_text}' packed in {sack}: built as the full stuff sack, weighing the "
             f"{c.concept.replace('_', ' ')} ({kg:.3g} kg)")
     return f"a compression sack, {kg * 1000:.4g} g{size}", note
