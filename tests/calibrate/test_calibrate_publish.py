@@ -6,6 +6,7 @@ particles at 8 mm) dropped in an MPM video (benchmarks.calibrate_roundtrip)."""
 from __future__ import annotations
 
 import json
+import os
 import shutil
 from html import escape as html_escape
 from pathlib import Path
@@ -59,6 +60,13 @@ def calibrated(drop: tuple[Path, Path], tmp_path_factory: pytest.TempPathFactory
     return asset
 
 
+@pytest.fixture(scope="module")
+def calibrated_cache(calibrated: Path) -> str:
+    """The cache root `calibrated` ran against (the session's: module fixtures are set up before a test's own
+    `_isolated_cache`)."""
+    return os.environ["DEFORMSMITH_CACHE"]
+
+
 def test_the_record_lists_the_held_out_results_and_the_side_by_side_frames(calibrated: Path) -> None:
     rec = VideoFitRecord.model_validate_json((calibrated / VIDEO_FIT_JSON).read_text())
     checks = rec.checks
@@ -98,9 +106,10 @@ def test_the_record_lists_the_held_out_results_and_the_side_by_side_frames(calib
 
 def test_a_failed_gate_exits_non_zero_and_leaves_the_asset_untouched(drop: tuple[Path, Path], tmp_path: Path,
                                                                      monkeypatch: pytest.MonkeyPatch,
-                                                                     prefect_api: str) -> None:
+                                                                     prefect_api: str, calibrated_cache: str) -> None:
     """An L2 contract whose 'no explosion' gate allows no swelling at all (J <= 1): the sphere's impact swells it a
-    few per cent, so the fitted material fails there; one error line names the gate, exit 6, nothing written."""
+    few per cent, so the fitted material fails there; one error line names the gate, exit 6, nothing written. (Against
+    the cache `calibrated` filled: its L2 probe runs are reused, only the verdict differs.)"""
     import flows.l3_material as l3_material
 
     def strict(stage: str) -> StageContract:
@@ -109,6 +118,8 @@ def test_a_failed_gate_exits_non_zero_and_leaves_the_asset_untouched(drop: tuple
         return c.model_copy(update={"hard_gates": gates})
 
     monkeypatch.setattr(l3_material, "load_contract", strict)
+    assert calibrated_cache != os.environ["DEFORMSMITH_CACHE"]
+    monkeypatch.setenv("DEFORMSMITH_CACHE", calibrated_cache)
     asset = tmp_path / "asset"
     shutil.copytree(drop[0], asset)
     before = digest(asset)

@@ -101,11 +101,12 @@ def test_cli_reports_and_exits_nonzero(tmp_path: Path) -> None:
     assert runner.invoke(app, ["batch", str(tmp_path / "missing.jsonl")]).exit_code == 2
 
 
-def test_children_ignore_folders_in_the_working_directory(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+def test_children_ignore_folders_in_the_working_directory(tmp_path: Path, monkeypatch: pytest.MonkeyPatch,
+                                                         prefect_api: str) -> None:
     """Run from a folder holding a user's own `cache/` and `tasks/` (no PYTHONPATH: the package comes from the install),
     a child still imports DeformSmith's packages and fails for the request's own reason. Under an editable install,
     a child run with the working directory on sys.path failed every request with "ImportError: cannot import name
-    'cached_task' from 'cache' (unknown location)"."""
+    'cached_task' from 'cache' (unknown location)". (Against the session's Prefect server: the batch starts none.)"""
     for name in ("cache", "tasks", "flows", "contracts"):
         (tmp_path / name).mkdir()
     monkeypatch.delenv("PYTHONPATH", raising=False)

@@ -13,16 +13,18 @@ TINY = {"name": "tiny", "cases": [{"id": "cube", "kind": "text", "text": "a soft
                                    "intent": "soft foam", "expected_material": "pu_foam"}]}
 
 
-def _cli(*args: str) -> subprocess.CompletedProcess:
-    return subprocess.run([sys.executable, "-m", "flows.cli.main", "eval", *args], capture_output=True, text=True)
+def _cli(*args: str, env: dict[str, str] | None = None) -> subprocess.CompletedProcess:
+    return subprocess.run([sys.executable, "-m", "flows.cli.main", "eval", *args], capture_output=True, text=True,
+                          env=env)
 
 
-def test_bad_inputs_fail_clearly(tmp_path: Path) -> None:
-    r = _cli("--ablation", "nonsense", "--out", str(tmp_path / "o"))
+def test_bad_inputs_fail_clearly(tmp_path: Path, cli_env: dict[str, str]) -> None:
+    # against the session's Prefect server (conftest's cli_env): no command starts one of its own beside the check
+    r = _cli("--ablation", "nonsense", "--out", str(tmp_path / "o"), env=cli_env)
     assert r.returncode != 0 and "--ablation must be one of" in r.stderr
-    r = _cli("--suite", str(tmp_path / "none.yaml"), "--out", str(tmp_path / "o"))
+    r = _cli("--suite", str(tmp_path / "none.yaml"), "--out", str(tmp_path / "o"), env=cli_env)
     assert r.returncode != 0 and "suite" in r.stderr and "not found" in r.stderr
-    r = _cli("--vision-llm", "some/vision-model", "--no-videos", "--out", str(tmp_path / "o"))
+    r = _cli("--vision-llm", "some/vision-model", "--no-videos", "--out", str(tmp_path / "o"), env=cli_env)
     assert r.returncode != 0 and "--vision-llm rates the drop-protocol videos" in r.stderr
     assert not (tmp_path / "o").exists()
 

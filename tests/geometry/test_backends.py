@@ -196,20 +196,23 @@ def test_backend_identity_keys_the_mesh_cache(prefect_api: str) -> None:
     assert len(fake_backend.CALLS) == 2
 
 
-def _cli(*args: str, backend_env: str) -> subprocess.CompletedProcess[str]:
-    env = {**os.environ, "PYTHONPATH": str(REPO), "DEFORMSMITH_GEOMETRY_BACKEND": backend_env}
+def _cli(*args: str, backend_env: str, env: dict[str, str] | None = None) -> subprocess.CompletedProcess[str]:
+    """The command with the backend in the environment; `env` (conftest's cli_env) runs it against the session's
+    Prefect server."""
+    env = {**(env or os.environ), "PYTHONPATH": str(REPO), "DEFORMSMITH_GEOMETRY_BACKEND": backend_env}
     return subprocess.run([sys.executable, "-m", "flows.cli.main", *args], cwd=REPO, capture_output=True, text=True,
                           env=env, timeout=300)
 
 
-def test_cli_backend_errors_are_one_line_from_the_environment_or_the_option(tmp_path: Path) -> None:
+def test_cli_backend_errors_are_one_line_from_the_environment_or_the_option(tmp_path: Path,
+                                                                          cli_env: dict[str, str]) -> None:
     """The environment names the backend; --geometry-backend overrides it; a failure is one line, exit 2, no output."""
     from typer.testing import CliRunner
 
     from flows.cli.main import app  # every command registered
 
     out = tmp_path / "x"
-    from_env = _cli("geometry", "a ball", "--out", str(out), "--no-cache", backend_env=f"{FAKE}:broken")
+    from_env = _cli("geometry", "a ball", "--out", str(out), "--no-cache", backend_env=f"{FAKE}:broken", env=cli_env)
     assert from_env.returncode == 2 and "Traceback" not in from_env.stderr
     assert from_env.stderr.strip().splitlines()[-1] == (f"error: geometry backend '{FAKE}:broken' failed: "
                                                         "RuntimeError: checkpoint not found: /models/sam3d.ckpt")

@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import json
-import os
 import subprocess
 import sys
 from pathlib import Path
@@ -19,14 +18,16 @@ from contracts.request import AssetRequest
 REPO = Path(__file__).resolve().parents[2]
 
 
-def _cli(*args: str) -> subprocess.CompletedProcess[str]:
+def _cli(*args: str, env: dict[str, str]) -> subprocess.CompletedProcess[str]:
+    """The command against the session's Prefect server (conftest's `cli_env`: it starts none of its own)."""
     return subprocess.run([sys.executable, "-m", "flows.cli.main", *args], cwd=REPO, capture_output=True, text=True,
-                          env={**os.environ, "PYTHONPATH": str(REPO)}, timeout=300)
+                          env=env, timeout=300)
 
 
-def test_geometry_command_writes_a_loadable_asset(tmp_path: Path) -> None:
+def test_geometry_command_writes_a_loadable_asset(tmp_path: Path, cli_env: dict[str, str]) -> None:
     out = tmp_path / "turtle"
-    proc = _cli("geometry", "a soft plush turtle toy, about 25 cm long", "--out", str(out), "--no-cache", "--json")
+    proc = _cli("geometry", "a soft plush turtle toy, about 25 cm long", "--out", str(out), "--no-cache", "--json",
+                env=cli_env)
     assert proc.returncode == 0, proc.stderr
     record = json.loads(proc.stdout)
     assert record["passed"] and record["info"]["entry"] == "plush_turtle"
@@ -60,9 +61,10 @@ def test_geometry_command_writes_a_loadable_asset(tmp_path: Path) -> None:
     (["--mesh", "/no/such/file.obj"], "not found"),
     (["--image", __file__], "cannot read image"),
 ])
-def test_bad_input_is_one_clear_line_and_leaves_nothing(tmp_path: Path, args: list[str], message: str) -> None:
+def test_bad_input_is_one_clear_line_and_leaves_nothing(tmp_path: Path, args: list[str], message: str,
+                                                       cli_env: dict[str, str]) -> None:
     out = tmp_path / "asset"
-    proc = _cli("geometry", *args, "--out", str(out), "--no-cache")
+    proc = _cli("geometry", *args, "--out", str(out), "--no-cache", env=cli_env)
     assert proc.returncode != 0
     assert message in proc.stderr and "Traceback" not in proc.stderr
     assert list(tmp_path.iterdir()) == []

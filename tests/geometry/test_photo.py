@@ -87,6 +87,15 @@ def _coffee_mask() -> np.ndarray:
     return image.segment(data.coffee())[0]
 
 
+@functools.cache
+def _photo_segment(file: str) -> tuple[np.ndarray, str]:
+    """image.segment of a photo in tests/geometry/photos (deterministic; the mesh test and the mask test below read
+    the same photos: each is segmented once per process)."""
+    mask, method = image.segment(image.load_image(PHOTOS / file))
+    mask.setflags(write=False)
+    return mask, method
+
+
 def _iou(a: np.ndarray, b: np.ndarray) -> float:
     return float((a & b).sum() / (a | b).sum())
 
@@ -399,7 +408,7 @@ def test_real_photo_of_a_soft_object_matches_its_mask_upright(row: dict) -> None
     arrays, info = sources.build_mesh(request, _fast().model_copy(update={"marching_cubes_resolution": 64}))
     photo = info.photo
     assert photo is not None and np.allclose(photo.camera_up, (0, 0, 1), atol=1e-6) and not info.reoriented
-    mask = image.segment(image.load_image(path))[0]
+    mask = _photo_segment(row["file"])[0]
     assert silhouette.silhouette_iou(arrays["vertices"], arrays["faces"], photo, mask) >= 0.85
     assert pipeline.arrays_to_mesh(arrays).is_watertight
     assert info.concept is not None and info.concept.fallback_level != "generic" or \
@@ -440,8 +449,7 @@ def test_real_photo_mask_is_the_whole_object(row: dict) -> None:
     segmented by its own alpha."""
     from benchmarks.segmentation_sheet import label_mask
 
-    img = image.load_image(PHOTOS / row["file"])
-    mask, method = image.segment(img)
+    mask, method = _photo_segment(row["file"])
     shapes = _labels().get(row["file"])
     if shapes is None:
         assert method == "alpha", f"{row['file']}: no hand label in masks.json and no alpha"

@@ -84,11 +84,12 @@ def test_limit_is_configurable_and_normal_images_pass(tmp_path: Path, monkeypatc
     assert Image.MAX_IMAGE_PIXELS == image_guard.MAX_IMAGE_PIXELS_DEFAULT
 
 
-def test_bomb_through_the_cli_is_one_error_line(tmp_path: Path) -> None:
+def test_bomb_through_the_cli_is_one_error_line(tmp_path: Path, cli_env: dict[str, str]) -> None:
     bomb = write_bomb(tmp_path / "bomb.png")
     out_dir = tmp_path / "out"
     proc = subprocess.run([sys.executable, "-m", "flows.cli.main", "geometry", "--image", str(bomb),
-                           "--out", str(out_dir)], cwd=REPO, capture_output=True, text=True, timeout=300)
+                           "--out", str(out_dir)], cwd=REPO, capture_output=True, text=True, timeout=300,
+                          env=cli_env)  # the session's Prefect server: the command starts none of its own
     assert proc.returncode == 2, proc.stderr[-2000:]
     lines = [ln for ln in proc.stderr.splitlines() if ln.strip()]
     assert lines == [ln for ln in lines if ln.startswith("error:")] and len(lines) == 1, proc.stderr[-2000:]

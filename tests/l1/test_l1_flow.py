@@ -82,9 +82,9 @@ def test_rigid_probe_rejects_density_outside_the_contract(sponge: Path) -> None:
         run_rigid_probe("bounce", sponge)
 
 
-def test_physical_command_on_a_non_asset_is_one_clear_error(tmp_path: Path) -> None:
+def test_physical_command_on_a_non_asset_is_one_clear_error(tmp_path: Path, cli_env: dict[str, str]) -> None:
     out = subprocess.run([sys.executable, "-m", "flows.cli.main", "physical", "--asset", str(tmp_path)],
-                         capture_output=True, text=True, timeout=120)
+                         capture_output=True, text=True, timeout=120, env=cli_env)  # the session's Prefect server
     assert out.returncode != 0
     assert out.stderr.startswith("error:") and "geometry.json" in out.stderr and out.stderr.count("\n") == 1
 

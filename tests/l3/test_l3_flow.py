@@ -78,9 +78,9 @@ def test_a_trial_over_the_force_budget_is_labelled_and_never_accepted(cube_asset
     assert stored["passed"] is False and stored["attempt"] is None
 
 
-def test_cli_rejects_a_directory_without_an_asset(tmp_path: Path) -> None:
-    for cmd in (["manipulate", str(tmp_path)], ["replay", str(tmp_path)]):
-        r = subprocess.run([sys.executable, "-m", "flows.cli.main", *cmd], capture_output=True, text=True)
+def test_cli_rejects_a_directory_without_an_asset(tmp_path: Path, cli_env: dict[str, str]) -> None:
+    for cmd in (["manipulate", str(tmp_path)], ["replay", str(tmp_path)]):  # against the session's Prefect server
+        r = subprocess.run([sys.executable, "-m", "flows.cli.main", *cmd], capture_output=True, text=True, env=cli_env)
         assert r.returncode != 0 and "error:" in r.stderr
 
 
