@@ -1373,7 +1373,7 @@ def _state_params(reading: Reading, warnings: list[str]) -> tuple[list[str], dic
     # carried by the material and mass, or a pose the shape has anyway (a teddy sits), not drawn apart
     shapeless = {"stuffed", "filled", "inflated", "hollow", "flat", "sitting", "lying", "standing"}
     for st in said:
-        if st not in can and st not in shapeless:
+        if st not in can and st not in shapeless and st != target.drawn_state:
             warnings.append(f"state '{st}' is not drawn: the {target.key.replace('_', ' ')} shape has no such state")
     if plan == "sheet" and "rolled" in shown and "folded" in shown:  # 'a bath towel folded in thirds and rolled up'
         shown = ["rolled", *(st for st in shown if st not in ("rolled", "folded"))]

@@ -74,3 +74,16 @@ def test_a_roll_of_tape_is_a_wound_ring_with_its_free_end(text: str) -> None:
     assert d.entry == "tape_roll"
     assert {"body", "core", "free end"} <= {part_group(p.name) for p in d.program.parts}
     assert 0.5 <= planned_mass(text) / 0.035 <= 2.0
+
+
+@pytest.mark.parametrize("text", ["bamboo sushi mat rolled up with a rubber band", "blue dental bib, crumpled",
+                                  "neoprene chest waders, folded in half"])
+def test_a_state_the_drawing_shows_is_not_warned_about(text: str) -> None:
+    """These entries are drawn rolled, crumpled, folded (LexiconEntry.drawn_state): saying so is no missing state."""
+    d = catalogue.design_from_text(text)
+    assert not [w for w in d.warnings if "is not drawn" in w], d.warnings
+
+
+def test_a_state_the_drawing_lacks_is_still_warned_about() -> None:
+    d = catalogue.design_from_text("a rolled up dental bib")
+    assert d.entry == "dental_bib" and any("state 'rolled' is not drawn" in w for w in d.warnings), d.warnings
