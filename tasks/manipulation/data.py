@@ -47,6 +47,7 @@ FRAME_CHUNK_BYTES = 16 * 2**20
 CHUNK_KEYS = {"name": "default", "separator": "."}  # c.0.0: one file per chunk, no folder per dimension
 
 
+THIN_TRIES, THIN_SLACK = 3, 1.1  # thin_frames: strides tried, and the budget's slack (the last frame kept) [-]
 FRAME_INDEXED = ("frame_t_s", "frame_control_index", particle_frames.X, particle_frames.F)  # (T, ...) as decoded
 
 
@@ -71,10 +72,15 @@ def thin_frames(asset_dir: Path, index: int, budget_bytes: int) -> int:
     stride = int(math.ceil(size / budget_bytes))
     if n < 3 or stride < 2:
         return 1
-    keep = np.unique(np.r_[np.arange(0, n, stride), n - 1])
-    thinned = {k: (v[keep] if k in FRAME_INDEXED and v.ndim and len(v) == n else v) for k, v in arrays.items()}
     attrs = {k: v for k, v in attrs.items() if k != "attempt"}
-    write_attempt(asset_dir, thinned, {**attrs, "frame_stride": stride, "frames_full": n}, index=index)
+    for _ in range(THIN_TRIES):  # compression is not linear in the frames kept: a coarser stride while over
+        keep = np.unique(np.r_[np.arange(0, n, stride), n - 1])
+        thinned = {k: (v[keep] if k in FRAME_INDEXED and v.ndim and len(v) == n else v) for k, v in arrays.items()}
+        write_attempt(asset_dir, thinned, {**attrs, "frame_stride": stride, "frames_full": n}, index=index)
+        now = frame_bytes(folder)
+        if now <= THIN_SLACK * budget_bytes or len(keep) <= 2:
+            break
+        stride = int(math.ceil(stride * now / budget_bytes))
     return stride
 
 

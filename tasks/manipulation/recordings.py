@@ -20,13 +20,15 @@ from cache import cache_root
 from tasks.manipulation import replay
 from tasks.publish import copy_file_atomic
 
-RECORDING_VERSION = "2"  # bump when write_rrd changes what a trial's recording shows
+RECORDING_VERSION = "3"  # bump when write_rrd changes what a trial's recording shows (3: MAX_OBJECT_FRAMES)
 # what a trial's recording keeps (a deterministic stride). At 3000 particles and 2000 Gaussians the adopted trial's
 # recording was 6.2 MB of the draft turtle's 19.6 MB asset and 8.1 MB of the rubber duck's 21.2 MB on an H200 (#38
 # asks at most 20 MB per default asset); the preview keeps the object's shape at these counts.
 MAX_PARTICLES = 2000     # particles per frame
 MAX_GAUSSIANS = 1200     # Gaussians per frame ...
 GAUSSIAN_EVERY = 2       # ... at every second recorded frame (15 fps)
+MAX_OBJECT_FRAMES = 90   # the object at most at 90 frames of a trial (a long one strided: the loaf's recording was
+# 9.0 MB of its 23.6 MB asset, the cat bed's 7.9 MB of 25.8 MB on an H200; the robot moves at every frame)
 
 
 def trial_recording_name(trial: int) -> str:
@@ -45,7 +47,7 @@ def cached_recording(arrays: dict[str, np.ndarray], attrs: dict[str, Any], trial
     if not path.is_file():
         shown = {"labels": attrs.get("labels", {}), "role": f"trial {trial_key[:16]}", "plan": attrs.get("plan"),
                  "attempt": trial_key[:16]}
-        replay.write_rrd(arrays, shown, path, MAX_PARTICLES, MAX_GAUSSIANS, GAUSSIAN_EVERY)
+        replay.write_rrd(arrays, shown, path, MAX_PARTICLES, MAX_GAUSSIANS, GAUSSIAN_EVERY, MAX_OBJECT_FRAMES)
     return path
 
 
@@ -55,7 +57,7 @@ def record_attempt(asset_dir: Path, trial: int, arrays: dict[str, np.ndarray], a
     path (a trial without a cache key is recorded straight into the asset)."""
     rel = trial_recording_name(trial)
     if trial_key is None:
-        replay.write_rrd(arrays, attrs, Path(asset_dir) / rel, MAX_PARTICLES, MAX_GAUSSIANS, GAUSSIAN_EVERY)
+        replay.write_rrd(arrays, attrs, Path(asset_dir) / rel, MAX_PARTICLES, MAX_GAUSSIANS, GAUSSIAN_EVERY, MAX_OBJECT_FRAMES)
     else:
         copy_file_atomic(cached_recording(arrays, attrs, trial_key), Path(asset_dir) / rel)
     return rel

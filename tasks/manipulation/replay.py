@@ -195,13 +195,15 @@ def _stride(n: int, cap: int | None) -> slice:
 
 
 def write_rrd(arrays: dict[str, np.ndarray], attrs: dict, path: Path, max_particles: int | None = None,
-              max_gaussians: int | None = RRD_MAX_GAUSSIANS, gaussian_every: int = 1) -> Path:
+              max_gaussians: int | None = RRD_MAX_GAUSSIANS, gaussian_every: int = 1,
+              max_object_frames: int | None = None) -> Path:
     """The attempt as a Rerun recording (written atomically: the file appears when complete).
 
     world/robot/<link>: the URDF's visual meshes (static) with their FK pose per frame, or world/robot/gripper: a
     box gripper; world/colliders/finger_<k>: the pad boxes; world/object/particles and world/object/gaussians (at most
     max_particles / max_gaussians, a deterministic stride; the Gaussians at every gaussian_every-th frame and the
-    last); metrics/finger_<k>_force_n (|force| on each finger [N]),
+    last; the object at most at max_object_frames evenly strided frames, the last included: a long trial's recording
+    keeps its size, the robot moving at every frame); metrics/finger_<k>_force_n (|force| on each finger [N]),
     metrics/object_com_height_m and metrics/grip_opening_m at the control rate; harness/log: the labels. Timelines:
     ``frame`` (the recorded particle frames) and ``sim_time`` [s]; the approach before the simulation (the object at
     rest) is on ``sim_time`` only.
@@ -270,15 +272,19 @@ def write_rrd(arrays: dict[str, np.ndarray], attrs: dict, path: Path, max_partic
                 obj(rec, np.asarray(arrays["gaussian_positions_m"]), np.asarray(arrays["gaussian_covariances_m2"]),
                     arrays["rest_particles_m"])
         frame_k = 0
+        n_frames = len(arrays["frame_t_s"])
+        every = max(1, -(-n_frames // max_object_frames)) if max_object_frames else 1
         for i, t in enumerate(arrays["frame_t_s"]):
             rec.set_time(i, float(t))
             robot(rec, len(a_t) + i)
-            shown = i % max(1, gaussian_every) == 0 or i == len(k_frames) - 1
-            centers: np.ndarray | None = None
-            cov: np.ndarray | None = None
-            if shown:
-                centers, cov = frame_gaussians(arrays, i)
-            obj(rec, centers, cov, arrays["particles_x_m"][i])
+            last = i == len(k_frames) - 1
+            if i % every == 0 or last:
+                shown = (i // every) % max(1, gaussian_every) == 0 or last
+                centers: np.ndarray | None = None
+                cov: np.ndarray | None = None
+                if shown:
+                    centers, cov = frame_gaussians(arrays, i)
+                obj(rec, centers, cov, arrays["particles_x_m"][i])
             k_next = int(arrays["frame_control_index"][i + 1]) if i + 1 < len(k_frames) else len(t_c)
             for kk in range(frame_k, min(k_next, len(t_c))):  # curves at the control rate
                 rec.set_sim_time(float(t_c[kk]))

@@ -167,3 +167,18 @@ def test_a_reported_trial_over_the_budget_keeps_every_sth_frame_and_replay_reads
     # a rerun keeps the stride it recorded
     again = keep.keep_trials(asset, AssetDir(asset).manipulation(), "adopted")
     assert next(r for r in again.attempts if r.attempt == 1).frame_stride == row.frame_stride
+
+
+def test_a_long_trials_recording_shows_the_object_at_a_bounded_number_of_frames(attempt: tuple,
+                                                                                 tmp_path: Path) -> None:
+    """A trial's recording logs the object at most at max_object_frames evenly strided frames and the last (a long
+    trial's recording kept its size: the loaf's was 9 MB of a 23.6 MB asset); without the cap, every frame."""
+    from tasks.manipulation.replay import rrd_particle_frames, write_rrd
+
+    arrays, attrs = attempt
+    n = len(arrays["frame_t_s"])
+    assert n >= 8
+    every = rrd_particle_frames(write_rrd(arrays, attrs, tmp_path / "all.rrd", 500))
+    capped = rrd_particle_frames(write_rrd(arrays, attrs, tmp_path / "capped.rrd", 500, max_object_frames=4))
+    assert len(every) == n
+    assert len(capped) <= 5 and np.allclose(capped[-1], every[-1]) and np.allclose(capped[0], every[0])
