@@ -70,6 +70,7 @@ LOOKS: dict[str, Finish] = {  # a lexicon entry's own look (its `finish`), where
                         line_tone=0.25),  # tuna: faint lines
     "rice": Finish(grain_m=0.0022, grain_depth=0.9, mottle_m=0.0025, mottle=0.05),  # cooked grains
     "meat": Finish(gloss=0.3, shininess=30.0, grain_m=0.003, grain_depth=0.15, mottle_m=0.008, mottle=0.12),
+    "egg": Finish(gloss=0.08, shininess=10.0, mottle_m=0.006, mottle=0.08),  # cooked egg (an omelette): matte, not gel
 }
 CATEGORY_MATERIAL = {  # a category's usual class where the material class is not known
     "foam": "pu_foam", "plush_animal": "plush", "plush": "plush", "rubber_toy": "rubber", "fruit": "fruit",
