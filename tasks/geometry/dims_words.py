@@ -15,7 +15,7 @@ from contracts.lexicon import LexiconEntry
 from contracts.request import MAX_SIZE_M, MIN_SIZE_M
 from contracts.shape import ShapeProgram
 from tasks.geometry import grammar
-from tasks.geometry.grammar.goods import HANK_MIN_TURNS
+from tasks.geometry.grammar.goods import HANK_MIN_TURNS, StrapParams, coiled_as_hank
 
 _UNITS = {"mm": 0.001, "millimeter": 0.001, "millimetre": 0.001, "millimeters": 0.001, "millimetres": 0.001,
           "cm": 0.01, "centimeter": 0.01, "centimetre": 0.01, "centimeters": 0.01, "centimetres": 0.01, "m": 1.0,
@@ -33,16 +33,16 @@ HANK_RADIUS_M = 0.3  # a long rope coiled by hand: loops at most about an arm sp
 HANK_RADIUS_MIN_M = 0.08  # the tightest loop a hand coils [m]
 HANK_RADIUS_PER_SQRT = 0.5  # a coil's loop radius over sqrt(length x cord diameter): 10 m of XLR cable (6.5 mm) in
 # 25 cm loops, 15 m of garden hose (19 mm) in 53 cm loops, a 60 m climbing rope (9.8 mm) at the arm span [-]
-
-
-def hank_radius(length_m: float, diameter_m: float) -> float:
-    """The loop radius a hand coils a cord of this length and diameter into [m]."""
-    return float(np.clip(HANK_RADIUS_PER_SQRT * np.sqrt(length_m * diameter_m), HANK_RADIUS_MIN_M, HANK_RADIUS_M))
 CROSS_SECTION_MAX = 0.06  # a bare size under this share of the good's typical size measures its cross-section [-]
 CROSS_WORDS = {"thick": "thickness", "thickness": "thickness", "diameter": "diameter", "dia": "diameter",
                "gauge": "diameter", "wide": "width", "width": "width", "across": "diameter", "round": "diameter",
                "od": "diameter", "outer": "diameter", "outside": "diameter", "external": "diameter", "id": "inner",
                "inner": "inner", "inside": "inner", "internal": "inner", "bore": "inner"}
+
+
+def hank_radius(length_m: float, diameter_m: float) -> float:
+    """The loop radius a hand coils a cord of this length and diameter into [m]."""
+    return float(np.clip(HANK_RADIUS_PER_SQRT * np.sqrt(length_m * diameter_m), HANK_RADIUS_MIN_M, HANK_RADIUS_M))
 
 
 def _cross_word(word: str) -> str | None:
@@ -158,7 +158,7 @@ def bind(text: str, entry: LexiconEntry | None, states: list[str]) -> Bound | No
             params["state"] = "rolled"  # longer than L0 builds straight: coiled
             bound.notes.append(f"{length:g} m of it is built coiled")
         rolled = params.get("state", entry.params.get("state")) == "rolled"
-        hank = rolled and (bool(params.get("hank")) or (bool(p0.round) and float(p0.turns) > HANK_MIN_TURNS))  # type: ignore[attr-defined]
+        hank = rolled and (bool(params.get("hank")) or (isinstance(p0, StrapParams) and coiled_as_hank(p0)))
         if rolled and (hank or _unit_longest("strap", params) * length > MAX_SIZE_M):  # a long coil wound as tight
             tight = np.sqrt(0.55 * length / (1.45 * np.pi * max(width, 1e-6)))  # as its cord allows (r1 - r0 =
             params["turns"] = float(np.clip(max(tight, float(p0.turns)), 1.0, 8.0))  # type: ignore[attr-defined]  # 0.55 r1 = turns x width)

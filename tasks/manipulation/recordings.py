@@ -31,6 +31,11 @@ MAX_OBJECT_FRAMES = 90   # the object at most at 90 frames of a trial (a long on
 # 9.0 MB of its 23.6 MB asset, the cat bed's 7.9 MB of 25.8 MB on an H200; the robot moves at every frame)
 
 
+def _write(arrays: dict[str, np.ndarray], attrs: dict[str, Any], path: Path) -> Path:
+    """A trial's recording at what it keeps (the limits above)."""
+    return replay.write_rrd(arrays, attrs, path, MAX_PARTICLES, MAX_GAUSSIANS, GAUSSIAN_EVERY, MAX_OBJECT_FRAMES)
+
+
 def trial_recording_name(trial: int) -> str:
     """The asset-relative path of trial `trial`'s recording (1-based)."""
     return f"recordings/L3_trial_{trial:02d}.rrd"
@@ -47,7 +52,7 @@ def cached_recording(arrays: dict[str, np.ndarray], attrs: dict[str, Any], trial
     if not path.is_file():
         shown = {"labels": attrs.get("labels", {}), "role": f"trial {trial_key[:16]}", "plan": attrs.get("plan"),
                  "attempt": trial_key[:16]}
-        replay.write_rrd(arrays, shown, path, MAX_PARTICLES, MAX_GAUSSIANS, GAUSSIAN_EVERY, MAX_OBJECT_FRAMES)
+        _write(arrays, shown, path)
     return path
 
 
@@ -57,7 +62,7 @@ def record_attempt(asset_dir: Path, trial: int, arrays: dict[str, np.ndarray], a
     path (a trial without a cache key is recorded straight into the asset)."""
     rel = trial_recording_name(trial)
     if trial_key is None:
-        replay.write_rrd(arrays, attrs, Path(asset_dir) / rel, MAX_PARTICLES, MAX_GAUSSIANS, GAUSSIAN_EVERY, MAX_OBJECT_FRAMES)
+        _write(arrays, attrs, Path(asset_dir) / rel)
     else:
         copy_file_atomic(cached_recording(arrays, attrs, trial_key), Path(asset_dir) / rel)
     return rel

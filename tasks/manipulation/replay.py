@@ -127,46 +127,39 @@ def replay(asset_dir: Path, attempt: int | None = None, frames_dir: Path | None 
 
 
 def _read(asset_dir: Path, attempt: int | None, trial: int | None) -> tuple[dict[str, np.ndarray], dict]:
-    """The trial's arrays and attributes: from the asset's interaction folder, else (a trial a default asset leaves
-    in the cache: tasks.manipulation.keep) from the cache entry its row names; InputError, one line, when neither
-    holds them."""
+    """The trial's arrays and attributes: from the asset's interaction folder (every frame from the cache when the
+    asset keeps them thinned: tasks.manipulation.keep, while the cache holds them), else (a trial a default asset
+    leaves in the cache) from the cache entry its row names; InputError, one line, when neither holds them."""
     if attempt is None or (asset_dir / attempt_path(attempt)).is_dir():
         arrays, attrs = read_attempt(asset_dir, attempt)
-        if int(attrs.get("frame_stride", 1)) > 1:  # a default asset's thinned frames: every frame from the cache
-            full = _full_rate(asset_dir, int(attrs.get("attempt", attempt or 0)))
-            if full is not None:
-                return full
+        if int(attrs.get("frame_stride", 1)) > 1:
+            key, folder = _cached_attempt(asset_dir, int(attrs.get("attempt", attempt or 0)))
+            if folder is not None:
+                return read_attempt_folder(folder)
         return arrays, attrs
-    adir = AssetDir(asset_dir)
-    record = adir.manipulation() if adir.has("manipulation") else None
-    row = next((r for r in record.attempts if r.attempt == attempt), None) if record is not None else None
-    if row is None or not row.data_key:
+    key, folder = _cached_attempt(asset_dir, attempt)
+    if key is None:
         return read_attempt(asset_dir, attempt)  # (its error names the stored attempts)
-    root = cache_root()
-    what = f"trial {trial}" if trial is not None else f"attempt {attempt}"
-    try:
-        folder = CacheStore(root).get(row.data_key)
-    except CacheMiss:
-        folder = None
-    if not isinstance(folder, Path) or not folder.is_dir():
-        raise InputError(f"{what}'s states are not in {asset_dir} and the cache {root} no longer holds them (key "
-                         f"{row.data_key}); `deformsmith manipulate {asset_dir} --record all` simulates them again")
+    if folder is None:
+        what = f"trial {trial}" if trial is not None else f"attempt {attempt}"
+        raise InputError(f"{what}'s states are not in {asset_dir} and the cache {cache_root()} no longer holds them "
+                         f"(key {key}); `deformsmith manipulate {asset_dir} --record all` simulates them again")
     return read_attempt_folder(folder)
 
 
-def _full_rate(asset_dir: Path, attempt: int) -> tuple[dict[str, np.ndarray], dict] | None:
-    """Every frame of an attempt whose asset copy is thinned (tasks.manipulation.keep), from the cache entry its row
-    names; None when the cache no longer holds it (the asset's frames are then what there is)."""
+def _cached_attempt(asset_dir: Path, attempt: int) -> tuple[str | None, Path | None]:
+    """(the cache key manipulation.json names for an attempt's states, that entry's folder while the cache holds
+    it); (None, None) when no row names a key."""
     adir = AssetDir(asset_dir)
     record = adir.manipulation() if adir.has("manipulation") else None
     row = next((r for r in record.attempts if r.attempt == attempt), None) if record is not None else None
     if row is None or not row.data_key:
-        return None
+        return None, None
     try:
         folder = CacheStore(cache_root()).get(row.data_key)
     except CacheMiss:
-        return None
-    return read_attempt_folder(folder) if isinstance(folder, Path) and folder.is_dir() else None
+        return row.data_key, None
+    return row.data_key, folder if isinstance(folder, Path) and folder.is_dir() else None
 
 
 def _which(asset_dir: Path, attempt: int | None, trial: int | None) -> tuple[int | None, int | None]:

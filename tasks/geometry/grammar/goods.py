@@ -2842,8 +2842,8 @@ def strap(p: StrapParams) -> list[Part]:
             parts += _buckle(pts[0], pts[1] - pts[-2], w, t)
     elif p.state == "bow":
         parts = _bow(p)
-    elif p.state == "rolled" and (p.hank or (p.round and p.turns > HANK_MIN_TURNS)):
-        parts = _hank(p)  # a round cord of many turns is coiled loop on loop, as hands coil a hose or a cable
+    elif p.state == "rolled" and coiled_as_hank(p):
+        parts = _hank(p)
     elif p.state == "rolled":  # a flat spiral from radius r0 = 0.45 r1 out to r1, its length 1
         turns = min(p.turns, 8.0)
         n = int(min(40, 10 * turns))
@@ -2967,6 +2967,12 @@ TAIL_MIN_RADIUS = 0.045  # a coil's trailing end: its radius at least this share
 HANK_MIN_TURNS = 4.5  # a round cord coiled in more turns is a hank, not a flat spiral (a hose, a cable) [-]
 HANK_PACKING = 0.7  # the cord's share of a coiled hank's ring section [-]
 HANK_STRANDS = 14  # loops drawn over the hank's surface [-]
+
+
+def coiled_as_hank(p: StrapParams) -> bool:
+    """A coil drawn loop on loop (a hank), not as a flat spiral: asked for, or a round cord of more than
+    HANK_MIN_TURNS turns (hands coil a hose or a cable so)."""
+    return p.hank or (p.round and p.turns > HANK_MIN_TURNS)
 
 
 def _hank(p: StrapParams) -> list[Part]:
