@@ -177,7 +177,7 @@ class L0Parameters(StageParameters):
                                                        "(the whole volume) or 'shell' (its wall alone, opt-in)")
     gaussians_per_particle: float
     gaussian_surface_fraction: float
-    max_gaussians: int
+    max_gaussians: PerQuality
     shape_max_parts: int
     shape_part_size_m: tuple[float, float]
     shape_extent_m: tuple[float, float]

@@ -42,8 +42,8 @@ def write_outputs(
         g.create_array(k, data=np.ascontiguousarray(particles[k]))
     g.attrs.update({"spacing_m": float(particles["spacing_m"]), "units": "SI: metres, cubic metres",
                     "frame": "z up, resting on z = 0, centred in x, y"})
-    b = g.create_group("gaussian_binding")
-    for k in ("positions_m", "particle_index", "particle_weight", "scales_m", "rotations_wxyz"):
+    b = g.create_group("gaussian_binding")  # the Gaussians themselves (positions, scales, rotations) are gaussians.ply's
+    for k in ("particle_index", "particle_weight"):
         b.create_array(k, data=np.ascontiguousarray(gaussians[k]))
     s = g.create_group("surface_mesh")  # the aligned mesh in the asset frame (z up), for code that needs it exactly
     for k in ("vertices", "faces", "colors"):

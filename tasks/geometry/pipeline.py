@@ -17,7 +17,7 @@ from contracts.errors import InputError
 from contracts.evidence import Attempt
 from contracts.request import AssetRequest, Quality
 from contracts.shape import ShapeProgram
-from contracts.stage import L0Parameters, StageContract, load_contract
+from contracts.stage import L0Parameters, StageContract, at_quality, load_contract
 from tasks.agents.intent import match_material, own_nouns
 from tasks.geometry import catalogue, concepts
 from tasks.geometry.bend import MIN_ASPECT, bend_along_length, can_bend, stated_bend
@@ -70,7 +70,7 @@ def settings_from_contract(quality: Quality, contract: StageContract | None = No
         coacd=CoacdSettings(**coacd),
         gaussians_per_particle=float(p["gaussians_per_particle"]),
         gaussian_surface_fraction=typed.gaussian_surface_fraction,
-        max_gaussians=typed.max_gaussians,
+        max_gaussians=int(at_quality(typed.max_gaussians, quality)),
         seed=seed,
     )
 

@@ -43,6 +43,11 @@ def test_geometry_command_writes_a_loadable_asset(tmp_path: Path, cli_env: dict[
     assert asset.mesh.is_watertight and asset.particles_m.shape[1] == 3
     assert asset.gaussians["particle_index"].shape == (len(asset.gaussians["positions_m"]), 4)
     assert PlyData.read(str(out / "gaussians.ply"))["vertex"].count == len(asset.gaussians["positions_m"])
+    # the binding is the particle indices and weights; the Gaussians themselves are stored once, in gaussians.ply
+    import zarr
+
+    assert sorted(zarr.open_group(str(out / "particles.zarr"), mode="r")["gaussian_binding"].array_keys()) == [
+        "particle_index", "particle_weight"]
     glb = trimesh.load(out / "mesh.glb", force="mesh")
     assert glb.volume == pytest.approx(asset.mesh.volume, rel=1e-3)
 

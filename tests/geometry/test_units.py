@@ -110,6 +110,27 @@ def test_3dgs_ply_round_trips_through_plyfile(tmp_path: Path) -> None:
     np.testing.assert_allclose(back["opacities"], g["opacities"], atol=1e-5)
 
 
+def test_a_large_flat_good_keeps_its_draft_gaussians_within_the_fleet_budget(tmp_path: Path) -> None:
+    """A 50 x 35 cm sheet at a 5.8 mm particle spacing asks for ~330k surface discs at 0.1 x the spacing; at draft it
+    gets the contract's 60k, and its gaussians.ply (68 B each) stays near 4 MB."""
+    from tasks.geometry.gaussians import dense_count
+    from tasks.geometry.pipeline import settings_from_contract
+
+    mesh = trimesh.creation.box((0.5, 0.35, 0.02))
+    mesh.visual.vertex_colors = np.tile([200, 220, 240, 255], (len(mesh.vertices), 1)).astype(np.uint8)
+    spacing = 0.0058
+    pos = np.stack(np.meshgrid(*(np.arange(-h + spacing / 2, h, spacing) for h in (0.25, 0.175, 0.01)),
+                               indexing="ij"), -1).reshape(-1, 3)
+    asked = dense_count(float(mesh.area), spacing, 0.75)
+    cap = settings_from_contract("draft").max_gaussians
+    assert asked > 300_000 and cap == 60_000
+    assert settings_from_contract("standard").max_gaussians > cap
+    g = make_gaussians(mesh, pos, spacing, 2 * len(pos), seed=0, max_count=cap)
+    assert len(g["positions_m"]) == cap
+    write_3dgs_ply(g, tmp_path / "g.ply")
+    assert (tmp_path / "g.ply").stat().st_size < 68 * cap + 2000
+
+
 @pytest.mark.parametrize("text, ext, longest", [
     ("a soft plush turtle toy, about 25 cm long", (0.25, None, None), None),
     ("kitchen sponge 10 x 7 x 3 cm", (0.10, 0.07, 0.03), None),
