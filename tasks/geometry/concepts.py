@@ -726,8 +726,9 @@ def _pouch_of(t: str, phrase: phrase_mod.Phrase, entry: LexiconEntry, match: Con
     wider_fill = found is not None and bool(noun) and " of " not in f" {t} " \
         and found.fill.words.endswith(f" {noun}")  # 'a dog food bag': 'dog food', wider than the lexicon's 'food bag'
     if not match.by_analogy and noun not in pouch_words.CONTAINERS and not holds and not wider_fill and (
-            entry.plan in ("pouch", "bag") or noun.split()[-1:] == [phrase.head]):
-        return None  # the lexicon's own bag ('an ice bag', 'a zip bag'); the bare 'pouch' is no drawstring pouch
+            entry.plan in ("pouch", "bag") or phrase.head in noun.split()):
+        return None  # the lexicon's own bag ('an ice bag', 'a zip bag', 'a bag of bait squid', 'a whirlpak bag with
+        # a water sample'); the bare 'pouch' is no drawstring pouch
     pieces = _pieces_pouch(t)
     if pieces is not None and pieces.piece_m is not None and (found is None or (
             max(pieces.piece_m) >= SEEN_PIECE_M and found.port == "none")):

@@ -72,7 +72,7 @@ def test_a_resistance_band_said_tied_is_a_flat_band(text: str) -> None:
     ("a silicone stacking cup", "stacking_cup", 0.02, 0.08),  # a blob of 170 g
     ("a crumpled empty bread bag", "carrier_bag", 0.003, 0.02),  # a loaf of bread: 0.94 kg
     ("a crumpled sheet of brown kraft paper", "kraft_paper", 0.025, 0.1),
-    ("a 25 cm rolled-up hand towel", "rolled_towel", 0.1, 0.3),  # 0.5 kg
+    ("a 25 cm rolled-up hand towel", "rolled_hand_towel", 0.1, 0.3),  # 0.5 kg
 ])
 def test_dev16_objects_and_masses(text: str, entry: str, lo: float, hi: float) -> None:
     assert catalogue.design_from_text(text).entry == entry
