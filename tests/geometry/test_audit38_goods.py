@@ -55,7 +55,7 @@ def _colours(text: str, group: str) -> set[tuple[float, ...]]:
     ("foam ear plugs", "foam_earplug", {"plug", "second plug"}),
     ("cinnamon roll", "cinnamon_roll", {"bun", "swirl", "side groove", "coil end", "icing drizzle"}),
     ("tube of cookie dough", "cookie_dough_tube", {"body", "wrapper", "crimp left", "clip right", "picture"}),
-    ("1 lb ground beef chub", "ground_beef_chub", {"body", "wrapper", "crimp left", "clip right"}),
+    ("1 lb ground beef chub", "ground_beef_chub", {"body", "mince", "label", "gather", "clip"}),
     ("pack of hot dogs", "hot_dog_pack", {"tray", "frank", "label", "seal rim"}),
     ("foil balloon", "foil_balloon", {"centre", "point", "crimp seam", "neck"}),
     ("bouncy ball", "bouncy_ball", {"ball", "swirl"}),
