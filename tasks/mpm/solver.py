@@ -3,6 +3,8 @@
 from __future__ import annotations
 
 import gc
+import logging
+import re
 from collections import OrderedDict
 
 import numpy as np
@@ -19,6 +21,16 @@ from tasks.mpm.plan_cuda import CudaLaunchPlan
 from tasks.mpm.state import State
 
 INT_MAX = 2**31 - 1
+CAPTURE_ATTEMPTS = 3  # captures of one graph before its launches run uncaptured
+# CUDA's stream-capture errors (900-908: unsupported, invalidated, merge, unmatched, unjoined, isolation, implicit
+# dependency on the legacy stream, captured event, wrong thread) and Warp's message when ending a failed capture
+_CAPTURE_ERROR = re.compile(r"CUDA error 90[0-8]\b|CUDA graph capture failed")
+_log = logging.getLogger(__name__)
+
+
+def capture_invalidated(err: BaseException) -> bool:
+    """Whether an error raised inside a CUDA graph capture is the capture's own failure (captured again), not a bug."""
+    return bool(_CAPTURE_ERROR.search(str(err)))
 
 
 def make_plan(solver: Solver, options: KernelOptions) -> LaunchPlan:
@@ -46,6 +58,7 @@ class Solver:
         nc = max(1, model.n_colliders)
         self.use_graph = (d == "cuda") if use_graph is None else (bool(use_graph) and d == "cuda")
         self._graphs: dict[tuple, tuple] = {}
+        self.capture_retries = 0  # CUDA graph captures invalidated and captured again (see _capture)
         # multi-step graphs of advance_steps, least recently used first (bounded: each holds its launches)
         self._blocks: OrderedDict[tuple, tuple] = OrderedDict()
         self._host_bufs: dict[str, wp.array] = {}  # pinned host mirrors for one-sync readbacks (CUDA)
@@ -149,12 +162,7 @@ class Solver:
                 cmds = pack_cpu_launches(cmds)  # replays skip Warp's per-call argument packing
             entry = (cmds, graph, state_in, state_out, control)  # keep the arrays alive while cached
             self._graphs[key] = entry
-        cmds, graph = entry[0], entry[1]
-        if graph is not None:
-            self._replay(graph)
-        else:
-            for cmd in cmds:
-                cmd.launch()
+        self._run(entry[1], entry[0])
 
     # longest block of whole refit cycles captured into one graph, in steps, and how many graphs are kept
     MAX_BLOCK_STEPS = 256
@@ -232,27 +240,49 @@ class Solver:
                 self._blocks.popitem(last=False)
         else:
             self._blocks.move_to_end(key)
-        self._replay(entry[0])
+        self._run(entry[0], entry[2])
         self._since_refit = entry[1]
 
     def _capture(self, cmds: list):
-        """A CUDA graph of the recorded launches (in order). Python's cyclic garbage collector is held off while the
-        stream captures: a collection there freed an unreachable solver's pinned host buffers (cudaFreeHost
-        synchronises with the legacy stream) in the middle of the capture, and the capture failed (Warp CUDA errors
-        906 'operation would make the legacy stream depend on a capturing blocking stream' in release_now, and 901
-        after it: a sausage and a piece of jelly in session 40's throughput run, a boiled egg and a silicone baking
-        mat before)."""
+        """A CUDA graph of the recorded launches (in order), or None when CAPTURE_ATTEMPTS captures were invalidated
+        (the launches then run uncaptured at every replay: the same arithmetic, more host calls).
+
+        Python's cyclic garbage collector is held off while the stream captures: a collection there freed an
+        unreachable solver's pinned host buffers (cudaFreeHost synchronises with the legacy stream) in the middle of
+        the capture, and the capture failed (Warp CUDA errors 906 'operation would make the legacy stream depend on a
+        capturing blocking stream' in release_now, and 901 after it: a sausage and a piece of jelly in session 40's
+        throughput run, a boiled egg and a silicone baking mat before). The same error came back once in 40 assets
+        with the collector off (a cat bed, session 42): Warp defers a release while any capture is open, but checks
+        for one before it releases, so a release on another thread can still land inside a capture. Nothing a
+        capture records has run, so an invalidated capture is simply captured again, after a device synchronisation."""
         wp.load_module(K, device=self.device)
-        collecting = gc.isenabled()
-        gc.disable()
-        try:
-            with wp.ScopedCapture(device=self.device, force_module_load=False) as cap:
-                for cmd in cmds:
-                    cmd.launch()
-        finally:
-            if collecting:
-                gc.enable()
-        return cap.graph
+        for attempt in range(CAPTURE_ATTEMPTS):
+            collecting = gc.isenabled()
+            gc.disable()
+            try:
+                with wp.ScopedCapture(device=self.device, force_module_load=False) as cap:
+                    for cmd in cmds:
+                        cmd.launch()
+                return cap.graph
+            except RuntimeError as err:
+                if not capture_invalidated(err):
+                    raise
+                self.capture_retries += 1
+                _log.warning("CUDA graph capture invalidated (attempt %d of %d): %s", attempt + 1, CAPTURE_ATTEMPTS,
+                             err)
+            finally:
+                if collecting:
+                    gc.enable()
+            wp.synchronize_device(self.device)
+        return None
+
+    def _run(self, graph, cmds: list) -> None:
+        """Replay a captured graph, or launch the recorded launches one by one when there is none."""
+        if graph is not None:
+            self._replay(graph)
+        else:
+            for cmd in cmds:
+                cmd.launch()
 
     @staticmethod
     def _replay(graph) -> None:
