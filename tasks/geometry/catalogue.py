@@ -825,10 +825,6 @@ def _stuffed_in_sack(text: str) -> tuple[str, str] | None:
     if kg is None or c is None or c.by_analogy:
         return None
     sack = m.group("sack") or m.group("named") or ""
-    own = concepts.plain(re.sub(r"^(?:an?|the)\s+", "", f"{m.group('goods').strip()} in its pouch", flags=re.I))
-    if re.search(r"\bpouch\b", sack, re.I) and own in concepts.noun_index():  # an entry of its own: 'a rain poncho
-        return own + (m.group("size") or ""), f"'{m.group(0).strip()}': built as the {own}"  # folded in its little
-        # pouch' is the flat retail packet
     goods_text, size = m.group("goods").strip(), m.group("size") or ""  # (a stated size stays with the request)
     if _SEE_THROUGH.search(sack):  # 'a hoodie folded inside a clear plastic bag': what is seen is the hoodie
         return goods_text + size, (f"'{goods_text}' in {sack}: built as the goods seen through the clear bag (the bag, "
@@ -839,6 +835,10 @@ def _stuffed_in_sack(text: str) -> tuple[str, str] | None:
         return (f"a packed zip pouch, {kg * 1000:.4g} g{size}",
                 f"'{goods_text}' packed in {sack}: built as the small zipped pouch, weighing the "
                 f"{c.concept.replace('_', ' ')} ({kg:.3g} kg)")
+    own = concepts.plain(re.sub(r"^(?:an?|the)\s+", "", f"{goods_text} in its pouch", flags=re.I))
+    if re.search(r"\bpouch\b", sack, re.I) and own in concepts.noun_index():  # an entry of its own: 'a rain poncho
+        return own + size, f"'{m.group(0).strip()}': built as the {own}"  # folded in its little pouch' is the flat
+        # retail packet
     note = (f"'{goods_text}' packed in {sack}: built as the full stuff sack, weighing the "
             f"{c.concept.replace('_', ' ')} ({kg:.3g} kg)")
     return f"a compression sack, {kg * 1000:.4g} g{size}", note

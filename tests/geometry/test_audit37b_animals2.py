@@ -1,7 +1,7 @@
 """Session 37 audit (second round), animals2: figures and food-shaped plush blind judges could not name from their
 plans (a plush avocado read as a pear, a sock monkey as a teddy bear, a Santa and a robot as plain dolls, a moon as a
 squash, a cloud as bread dough, a plush egg as a bean bag, plush sushi as a sponge) are drawn by hand with the parts
-people name them by; a whole chicken and turkey are roasted brown, not pink (read as a seal), a plush croissant has its
+people name them by; a roast chicken and turkey are brown, not pink (read as a seal; a whole raw chicken is drawn raw, session 42), a plush croissant has its
 rolled ridges."""
 
 from __future__ import annotations
@@ -15,13 +15,13 @@ from tests.geometry.helpers import designs
 
 TEXTS = {"avocado": "a plush avocado", "monkey": "a sock monkey", "santa": "a santa", "robot": "a plush robot",
          "moon": "a crescent moon", "cloud": "a cloud", "egg": "a plush egg", "sushi": "a plush sushi",
-         "puppet": "a hand puppet", "chicken": "a whole chicken", "turkey": "a whole turkey",
+         "puppet": "a hand puppet", "chicken": "a roast chicken", "turkey": "a whole turkey",
          "croissant": "a plush croissant", "gummy snake": "a gummy snake",
          "sperm whale": "a sperm whale", "grey whale": "a grey whale",
          "yeti": "a yeti"}
 ENTRIES = {"avocado": "plush_avocado", "monkey": "sock_monkey", "santa": "plush_santa", "robot": "plush_robot",
            "moon": "plush_moon", "cloud": "plush_cloud", "egg": "plush_egg", "sushi": "plush_sushi",
-           "puppet": "hand_puppet", "chicken": "whole_chicken", "turkey": "whole_turkey",
+           "puppet": "hand_puppet", "chicken": "roast_chicken", "turkey": "whole_turkey",
            "croissant": "plush_croissant", "gummy snake": "gummy_snake",
            "sperm whale": "plush_sperm_whale", "grey whale": "plush_baleen_whale",
            "yeti": "plush_yeti"}
