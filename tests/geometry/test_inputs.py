@@ -58,7 +58,7 @@ def test_same_input_same_geometry() -> None:
 # the sweep of every hand-written entry is slow (240+ entries, ~1 s each on one core); the default run builds a fixed
 # number spread evenly over them (the first of each run of keys), the slow run all of them
 _ENTRIES = catalogue.entry_names()
-_SAMPLE = frozenset(_ENTRIES[:: max(1, len(_ENTRIES) // 16)])
+_SAMPLE = frozenset(_ENTRIES[:: max(1, len(_ENTRIES) // 10)])  # the default run's sample; -m slow: all
 
 
 @pytest.mark.parametrize("entry", [pytest.param(e, marks=() if e in _SAMPLE else (pytest.mark.slow,)) for e in _ENTRIES])
