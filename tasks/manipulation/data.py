@@ -41,6 +41,9 @@ from tasks.manipulation import particle_frames
 INTERACTION = "interaction"
 _NAME = re.compile(r"^attempt_(\d{3,})$")
 FLOAT32_ARRAYS = ("particles_x_m", "particles_F")
+# the rest Gaussians an attempt is drawn with, stored at gaussians.ply's precision (float32: the asset's own Gaussians
+# are float32 there), not float64: 60k Gaussians' covariances were 2.6 MB of a 21 MB asset (session 42)
+GAUSSIAN_FLOAT32 = ("gaussian_positions_m", "gaussian_covariances_m2", "gaussian_colors")
 # the (T, N, ...) particle frames as stored: compressed along time, in chunks of whole particle histories
 FRAME_ARRAYS = (*FLOAT32_ARRAYS, particle_frames.X_OFFSET, particle_frames.F_OFFSET)
 FRAME_CHUNK_BYTES = 16 * 2**20
@@ -147,7 +150,8 @@ def write_attempt(asset_dir: Path, arrays: dict[str, np.ndarray], attrs: dict[st
         g = zarr.open_group(str(tmp), mode="w")
         for name, a in arrays.items():
             a = np.asarray(a)
-            dtype = np.float32 if name in FLOAT32_ARRAYS else (np.float64 if a.dtype.kind == "f" else a.dtype)
+            dtype = np.float32 if name in (*FLOAT32_ARRAYS, *GAUSSIAN_FLOAT32) else (
+                np.float64 if a.dtype.kind == "f" else a.dtype)
             for s in particle_frames.encode(name, np.asarray(a, dtype=dtype)):
                 data = np.ascontiguousarray(s.data)
                 g.create_array(s.name, data=data, attributes=s.attrs or None, chunk_key_encoding=CHUNK_KEYS,
