@@ -18,6 +18,8 @@ CASES = [
     ("SAM splint rolled up", "sam_splint_rolled", 0.11),
     ("one har gow", "har_gow", 0.022),
     ("lo mai gai in the lotus leaf", "lo_mai_gai", 0.2),
+    ("O2 mask w/ tubing", "oxygen_mask", 0.06),
+    ("soggy sheet mask", "sheet_mask_unfolded", 0.025),
 ]
 BUILT = {"a flake of hay", "one har gow"}  # built in the default run; the rest under -m slow
 
@@ -33,10 +35,13 @@ def test_the_prompt_builds_at_its_real_mass(text: str, entry: str, kg: float) ->
     assert 0.5 * kg <= planned_mass(text) <= 2.0 * kg, (text, planned_mass(text))
 
 
-@pytest.mark.parametrize("entry", ["hay_flake", "lo_mai_gai", "lamb_teat", "har_gow"])
+@pytest.mark.parametrize("entry", ["hay_flake", "lo_mai_gai", "lamb_teat", "har_gow", "oxygen_mask", "sheet_mask_unfolded"])
 def test_each_shape_is_hand_drawn_within_the_part_budget(entry: str) -> None:
     assert 3 <= len(catalogue_program(entry).parts) <= 64
 
 
-def test_konjac_sponge_wet_reads_as_the_konjac_sponge() -> None:
-    assert catalogue.design_from_text("konjac sponge wet").entry == "konjac_sponge"
+@pytest.mark.parametrize(("text", "entry"), [("konjac sponge wet", "konjac_sponge"), ("a korean sheet mask", "sheet_mask"),
+                                             ("an oxygen mask", "oxygen_mask"), ("a burp cloth", "burp_cloth"),
+                                             ("an elastic bandage", "elastic_bandage")])
+def test_the_new_nouns_leave_the_old_readings(text: str, entry: str) -> None:
+    assert catalogue.design_from_text(text).entry == entry
