@@ -349,6 +349,13 @@ _STOCK_WORDS = ("neoprene", "foam", "silicone", "rubber", "latex", "felt", "flee
                 "dive", "diving", "wet")
 _STOCK_THICKNESS = re.compile(r"(?<![\w.])(\d+(?:\.\d+)?)\s*(mm|millimet(?:er|re)s?)\s+(?:thick\s+)?"
                               rf"(?=(?:{'|'.join(_STOCK_WORDS)})\b)", re.I)
+# a surf or dive good's neoprene thickness a word or two before its name or after it ('5mm full wetsuit', 'dive booties
+# pair 5mm': development set 42 refused both as 5 mm objects)
+_SURF_GOODS = r"(?:wetsuits?|shorty|springsuit|steamer|fullsuit|booties?|dive\s+boots?|hoods?|neoprene)"
+_SURF_BEFORE = re.compile(rf"(?<![\w.])(\d+(?:\.\d+)?)\s*(?:mm|millimet(?:er|re)s?)\s+((?:[a-z]+\s+){{1,2}}{_SURF_GOODS}\b)",
+                          re.I)
+_SURF_AFTER = re.compile(rf"(\b{_SURF_GOODS}\b(?:[\s,]+[a-z]+){{0,2}}[\s,]+)(\d+(?:\.\d+)?)\s*(?:mm|millimet(?:er|re)s?)\b",
+                         re.I)
 # a wetsuit's neoprene in its own notation, thickest panel first ('3/2 mm', '5/4/3mm'): not a fraction of a mm
 _NEOPRENE_NOTATION = re.compile(r"(?<![\w./])(\d+(?:\.\d+)?)(?:/\d+(?:\.\d+)?)+\s*-?\s*mm\b(\s+neoprene\b)?", re.I)
 
@@ -364,7 +371,14 @@ def stock_thickness_stripped(text: str) -> tuple[str, list[str]]:
             return m.group(0)
         notes.append(f"'{m.group(0).strip()}' is the thickness of the material, not the object's size")
         return ""
-    return _STOCK_THICKNESS.sub(drop, text), notes
+    def drop_surf(m: re.Match[str], number: int, kept: int) -> str:
+        if float(m.group(number)) * 1e-3 >= MIN_SIZE_M:
+            return m.group(0)
+        notes.append(f"'{m.group(number)} mm' is the thickness of the neoprene, not the object's size")
+        return m.group(kept)
+    text = _STOCK_THICKNESS.sub(drop, text)
+    text = _SURF_BEFORE.sub(lambda m: drop_surf(m, 1, 2), text)
+    return _SURF_AFTER.sub(lambda m: drop_surf(m, 2, 1), text), notes
 
 
 _HYPHEN_SIZE = re.compile(r"(\d)\s*-\s*(mm|cm|m|inch|in|ft)\b(?:\s*-\s*(?=[a-z]))?", re.I)
@@ -385,12 +399,16 @@ def normalise_sizes(text: str) -> str:
     text = _NEOPRENE_NOTATION.sub(lambda m: f"{m.group(1)} mm neoprene", text)  # ('3/2 mm wetsuit')
     text = _FRACTION_SIZE.sub(_fraction_decimal, text)
     text = _WITH_SLASH.sub(lambda m: " without " if m.group(1) else " with ", text)
+    text = _SOCCER_SIZE.sub(lambda m: f"size {m.group(1)} soccer ball", text)  # (before the size label goes)
     text = _GARMENT_SIZE.sub(" ", text)
     text = _AGE_SIZE.sub(" ", text)
     text = _bed_sized(text)
     return _HYPHEN_SIZE.sub(lambda m: f"{m.group(1)} {m.group(2)} ", text)
 
 
+# a numbered ball size before 'football' names association football's ball ('deflated size 5 footbal', development set
+# 42, built an American football; those are sized by name: official, youth, junior)
+_SOCCER_SIZE = re.compile(r"\bsize\s+([1-5])\s+foot\s?ball?\b", re.IGNORECASE)
 # a wearer's age ('0-3 months', '6 mo', '2-4 years'): a fit, not a length (the number was read as the object's size)
 _AGE_SIZE = re.compile(r"\b\d+(?:\s*(?:-|to)\s*\d+)?\s*(?:months?|mos?|mths?)\b(?:\s+old)?"
                        r"|\b\d+\s*(?:-|to)\s*\d+\s*(?:years?|yrs?)\b(?:\s+old)?", re.IGNORECASE)

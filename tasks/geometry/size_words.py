@@ -32,7 +32,8 @@ _OWNER = r"(?:(?:an?\s+)?(?:adult|child|kid|man|woman|person|grown\s*up)(?:'s|s'
 _COMPARE = re.compile(
     rf"\b(?:(?:about|roughly|around|approximately|nearly|almost)\s+)?(?:the\s+)?size\s+of\s+{_ARTICLE}{_OWNER}"
     r"([a-z]+(?:\s+[a-z]+)?)", re.I)
-_SIZED = re.compile(r"\b([a-z]+)(?:-|\s)?sized?\b", re.I)
+# ('deflated size 5 football': 'size 5' is the ball's size label, not 'deflated-sized'; development set 42)
+_SIZED = re.compile(r"\b([a-z]+)(?:-|\s)?sized?\b(?!\s*\d)", re.I)
 _LENGTH_WORD = re.compile(r"(\d+(?:\.\d+)?)\s*([a-zµ]*(?:met(?:er|re)s?|metric)|furlongs?|leagues?|nmi|angstroms?|"
                           r"parsecs?|light\s*years?)\b", re.I)
 
