@@ -8,8 +8,6 @@ import copy
 import io
 import json
 import os
-import subprocess
-import sys
 from pathlib import Path
 from typing import Any
 
@@ -252,14 +250,18 @@ def test_a_model_without_credentials_is_not_asked_and_l0_is_keyed_offline(monkey
 
 
 def test_cli_with_an_unreachable_model_says_it_fell_back(tmp_path: Path, cli_env: dict[str, str]) -> None:
-    """A real litellm call to a local Ollama that is not running: one connection error, the offline build, a warning."""
+    """A real litellm call to a local Ollama that is not running: one connection error, the offline build, a warning.
+    (The command in this process, which has litellm imported already: a subprocess spent ~10 s importing it.)"""
+    from typer.testing import CliRunner
+
+    from flows.cli.main import app
+
     env = {**cli_env, "OLLAMA_API_BASE": "http://127.0.0.1:9"}
-    proc = subprocess.run([sys.executable, "-m", "flows.cli.main", "geometry", "a tofu block 10 x 7 x 4 cm",
-                           "--out", str(tmp_path / "t"), "--no-cache", "--llm", PLAIN], cwd=REPO, capture_output=True,
-                          text=True, env=env, timeout=300)
-    assert proc.returncode == 0, proc.stderr
+    res = CliRunner().invoke(app, ["geometry", "a tofu block 10 x 7 x 4 cm", "--out", str(tmp_path / "t"),
+                                   "--no-cache", "--llm", PLAIN], env=env)
+    assert res.exit_code == 0, res.output
     assert f"LLM Designer (litellm/{PLAIN}) gave no valid shape program (APIConnectionError" in \
-        " ".join(proc.stderr.split())
+        " ".join(res.stderr.split())
     record = json.loads((tmp_path / "t" / "geometry.json").read_text())
     assert record["info"]["generator"] == "offline" and record["passed"]
     assert (tmp_path / "t" / "evidence" / "attempts.jsonl").is_file()
