@@ -347,15 +347,13 @@ _STOCK_WORDS = ("neoprene", "foam", "silicone", "rubber", "latex", "felt", "flee
                 # surf and dive goods are named by their neoprene's thickness ('a 2mm shorty wetsuit', '5mm booties')
                 "wetsuit", "wetsuits", "shorty", "springsuit", "steamer", "fullsuit", "bootie", "booties", "surf",
                 "dive", "diving", "wet")
-_STOCK_THICKNESS = re.compile(r"(?<![\w.])(\d+(?:\.\d+)?)\s*(mm|millimet(?:er|re)s?)\s+(?:thick\s+)?"
-                              rf"(?=(?:{'|'.join(_STOCK_WORDS)})\b)", re.I)
-# a surf or dive good's neoprene thickness a word or two before its name or after it ('5mm full wetsuit', 'dive booties
-# pair 5mm': development set 42 refused both as 5 mm objects)
+# a surf or dive good is named by its neoprene's thickness a word or two before its name or after it ('5mm full
+# wetsuit', 'dive booties pair 5mm': development set 42 refused both as 5 mm objects)
 _SURF_GOODS = r"(?:wetsuits?|shorty|springsuit|steamer|fullsuit|booties?|dive\s+boots?|hoods?|neoprene)"
-_SURF_BEFORE = re.compile(rf"(?<![\w.])(\d+(?:\.\d+)?)\s*(?:mm|millimet(?:er|re)s?)\s+((?:[a-z]+\s+){{1,2}}{_SURF_GOODS}\b)",
-                          re.I)
-_SURF_AFTER = re.compile(rf"(\b{_SURF_GOODS}\b(?:[\s,]+[a-z]+){{0,2}}[\s,]+)(\d+(?:\.\d+)?)\s*(?:mm|millimet(?:er|re)s?)\b",
-                         re.I)
+_MM = r"(?P<mm>\d+(?:\.\d+)?)\s*(?:mm|millimet(?:er|re)s?)"
+_STOCK_THICKNESS = re.compile(rf"(?<![\w.]){_MM}\s+(?:thick\s+)?"
+                              rf"(?=(?:{'|'.join(_STOCK_WORDS)})\b|(?:[a-z]+\s+){{1,2}}{_SURF_GOODS}\b)", re.I)
+_THICKNESS_AFTER = re.compile(rf"(?P<kept>\b{_SURF_GOODS}\b(?:[\s,]+[a-z]+){{0,2}}[\s,]+){_MM}\b", re.I)
 # a wetsuit's neoprene in its own notation, thickest panel first ('3/2 mm', '5/4/3mm'): not a fraction of a mm
 _NEOPRENE_NOTATION = re.compile(r"(?<![\w./])(\d+(?:\.\d+)?)(?:/\d+(?:\.\d+)?)+\s*-?\s*mm\b(\s+neoprene\b)?", re.I)
 
@@ -366,19 +364,12 @@ def stock_thickness_stripped(text: str) -> tuple[str, list[str]]:
     notes: list[str] = []
 
     def drop(m: re.Match[str]) -> str:
-        metres = float(m.group(1)) * 1e-3
-        if metres >= MIN_SIZE_M:
+        if float(m.group("mm")) * 1e-3 >= MIN_SIZE_M:
             return m.group(0)
-        notes.append(f"'{m.group(0).strip()}' is the thickness of the material, not the object's size")
-        return ""
-    def drop_surf(m: re.Match[str], number: int, kept: int) -> str:
-        if float(m.group(number)) * 1e-3 >= MIN_SIZE_M:
-            return m.group(0)
-        notes.append(f"'{m.group(number)} mm' is the thickness of the neoprene, not the object's size")
-        return m.group(kept)
-    text = _STOCK_THICKNESS.sub(drop, text)
-    text = _SURF_BEFORE.sub(lambda m: drop_surf(m, 1, 2), text)
-    return _SURF_AFTER.sub(lambda m: drop_surf(m, 2, 1), text), notes
+        kept = m.groupdict().get("kept") or ""
+        notes.append(f"'{m.group(0)[len(kept):].strip()}' is the thickness of the material, not the object's size")
+        return kept
+    return _THICKNESS_AFTER.sub(drop, _STOCK_THICKNESS.sub(drop, text)), notes
 
 
 _HYPHEN_SIZE = re.compile(r"(\d)\s*-\s*(mm|cm|m|inch|in|ft)\b(?:\s*-\s*(?=[a-z]))?", re.I)
