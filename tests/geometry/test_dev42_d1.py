@@ -11,7 +11,7 @@ from __future__ import annotations
 import pytest
 
 from tasks.geometry import catalogue
-from test_mass_classes import planned_mass
+from tests.geometry.test_mass_classes import planned_mass
 
 FIXED = [  # (text, entry, real mass [kg])
     ("an octopus", "whole_octopus", 1.5),  # fishmonger listings: whole raw common octopus 0.8-2 kg

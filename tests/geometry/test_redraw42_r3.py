@@ -20,6 +20,7 @@ import pytest
 
 from contracts.lexicon import load_lexicon
 from tasks.geometry import catalogue, grammar
+from tests.geometry.test_mass_classes import planned_mass
 
 # prompt as typed, entry, the real object's mass [kg]
 CASES = [
@@ -50,19 +51,9 @@ def test_the_prompt_reads_as_the_entry(text: str, entry: str, _kg: float) -> Non
 @pytest.mark.slow
 @pytest.mark.parametrize(("text", "entry", "kg"), CASES)
 def test_the_built_mass_is_within_2x_of_the_real_mass(text: str, entry: str, kg: float) -> None:
-    """L1's mass as the blind bench weighs it: the density over the volume built at the final size, or the mass the
-    request states ('1lb')."""
-    from tasks.geometry.meshing import mesh_program
-
-    d = _design(text)
-    c = d.concept
-    if c.stated_mass_kg is not None:
-        mass = c.stated_mass_kg
-    else:
-        longest, _stretch = catalogue.final_scale(d.size, d.program, c.typical_size_m or 0.0)
-        built = float(np.max(grammar.program_extents(d.program, 48)))
-        mass = c.density_kg_per_m3 * mesh_program(d.program, 48).volume * (longest / built) ** 3
-    assert 0.5 * kg <= mass <= 2.0 * kg, (entry, mass, kg)
+    """L1's mass as the blind bench weighs it (tests.geometry.test_mass_classes.planned_mass): the density over the
+    volume built at the final size, or the mass the request states ('1lb')."""
+    assert 0.5 * kg <= planned_mass(text) <= 2.0 * kg, (entry, planned_mass(text), kg)
 
 
 @pytest.mark.slow
