@@ -11,6 +11,7 @@ from __future__ import annotations
 import os
 import re
 import shutil
+import sys
 import tempfile
 from collections.abc import Iterator
 from pathlib import Path
@@ -27,6 +28,10 @@ os.environ["PREFECT_LOGGING_TO_API_WHEN_MISSING_FLOW"] = "ignore"
 os.environ.pop("PREFECT_API_URL", None)  # never talk to a developer's own server from tests
 os.environ.pop("PREFECT_PROFILES_PATH", None)
 (_SESSION_DIR / "prefect-home").mkdir(parents=True, exist_ok=True)
+# An image that sets PYTHONDONTWRITEBYTECODE makes every command a test starts (and each xdist worker) compile the
+# project's modules again, ~1 s a process; their bytecode goes to the checkout's git-ignored __pycache__ folders.
+os.environ.pop("PYTHONDONTWRITEBYTECODE", None)
+sys.dont_write_bytecode = False
 
 
 def pytest_sessionfinish(session: pytest.Session, exitstatus: int) -> None:
