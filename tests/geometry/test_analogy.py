@@ -3,7 +3,6 @@ concept's record, the card's box, and --strict-concept refusing it with nothing 
 
 from __future__ import annotations
 
-import subprocess
 import sys
 from pathlib import Path
 
@@ -79,29 +78,46 @@ def test_every_generic_concept_is_reported_as_an_analogy() -> None:
             assert c.by_analogy, text
 
 
-def _cli(*args: str, cwd: Path, env: dict[str, str]) -> subprocess.CompletedProcess[str]:
-    """The command in `cwd`, against the session's Prefect server (conftest's `cli_env`)."""
-    return subprocess.run([sys.executable, "-m", "flows.cli.main", *args], cwd=cwd, capture_output=True, text=True,
-                          env=env, timeout=300)
+def _cli(*args: str, api: str, monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]) -> tuple[int, str]:
+    """`deformsmith ARGS` in this process against the session's Prefect server: (exit code, stderr). The real app
+    stands in as a test's app, so the command returns here instead of ending the process (flows.cli.main.main)."""
+    from cache.runtime import local_api_env
+    from flows.cli import main as cli_main
+    from flows.cli.apps import app
+
+    for key, value in local_api_env(api).items():
+        monkeypatch.setenv(key, value)
+    monkeypatch.setattr(cli_main, "app", app, raising=False)
+    monkeypatch.setattr(sys, "argv", ["deformsmith", *args])
+    capsys.readouterr()
+    code: object = 0
+    try:
+        cli_main.main()
+    except SystemExit as exc:
+        code = exc.code or 0
+    return int(code), capsys.readouterr().err  # type: ignore[call-overload]
 
 
-def test_strict_concept_refuses_an_analogy_and_writes_nothing(tmp_path: Path, cli_env: dict[str, str]) -> None:
+def test_strict_concept_refuses_an_analogy_and_writes_nothing(tmp_path: Path, prefect_api: str,
+                                                              monkeypatch: pytest.MonkeyPatch,
+                                                              capsys: pytest.CaptureFixture[str]) -> None:
     out = tmp_path / "thing"
-    proc = _cli("geometry", "a rubber thingamajig", "--out", str(out), "--no-cache", "--strict-concept",
-                cwd=tmp_path, env=cli_env)
-    assert proc.returncode == 2, proc.stderr
-    assert proc.stderr.strip().splitlines()[-1].startswith("error: --strict-concept: built by analogy:")
+    code, err = _cli("geometry", "a rubber thingamajig", "--out", str(out), "--no-cache", "--strict-concept",
+                     api=prefect_api, monkeypatch=monkeypatch, capsys=capsys)
+    assert code == 2, err
+    assert err.strip().splitlines()[-1].startswith("error: --strict-concept: built by analogy:")
     assert not out.exists()
-    proc = _cli("generate", "a zorblat", "--out", str(tmp_path / "z"), "--strict-concept", "--no-l3",
-                "--cache", str(tmp_path / "cache"), cwd=tmp_path, env=cli_env)
-    assert proc.returncode == 2 and "built by analogy" in proc.stderr and not (tmp_path / "z").exists()
+    code, err = _cli("generate", "a zorblat", "--out", str(tmp_path / "z"), "--strict-concept", "--no-l3",
+                     "--cache", str(tmp_path / "cache"), api=prefect_api, monkeypatch=monkeypatch, capsys=capsys)
+    assert code == 2 and "built by analogy" in err and not (tmp_path / "z").exists()
 
 
-def test_the_first_line_says_built_by_analogy(tmp_path: Path, cli_env: dict[str, str]) -> None:
-    proc = _cli("geometry", "a rubber thingamajig", "--out", str(tmp_path / "t"), "--no-cache", cwd=tmp_path,
-                env=cli_env)
-    assert proc.returncode == 0, proc.stderr
-    assert proc.stderr.splitlines()[0].startswith("built by analogy: 'thingamajig' is not in the lexicon")
+def test_the_first_line_says_built_by_analogy(tmp_path: Path, prefect_api: str, monkeypatch: pytest.MonkeyPatch,
+                                              capsys: pytest.CaptureFixture[str]) -> None:
+    code, err = _cli("geometry", "a rubber thingamajig", "--out", str(tmp_path / "t"), "--no-cache",
+                     api=prefect_api, monkeypatch=monkeypatch, capsys=capsys)
+    assert code == 0, err
+    assert err.splitlines()[0].startswith("built by analogy: 'thingamajig' is not in the lexicon")
     import json
 
     concept = json.loads((tmp_path / "t" / "geometry.json").read_text())["info"]["concept"]
