@@ -321,14 +321,14 @@ def check_size(size: SizeSpec) -> None:
     vals = [v for v in (*size.extents_m, size.longest_m) if v is not None]
     for v in vals:
         if not (MIN_SIZE_M <= v <= MAX_SIZE_M):
-            hint = "; a sheet or cloth said 'folded' is built folded to fit" if v > MAX_SIZE_M else ""
+            hint = "; a sheet or cloth said 'folded' or 'rolled' is built so to fit" if v > MAX_SIZE_M else ""
             raise InputError(
                 f"requested size {v:g} m ({size.stated or 'size hint'}) is outside the supported range "
                 f"[{MIN_SIZE_M:g}, {MAX_SIZE_M:g}] m{hint}"
             )
 
 
-_FOLD_STATE = re.compile(r"\bfold(?:ed|ing)?\b", re.IGNORECASE)
+_FOLD_STATE = re.compile(r"\b(?:fold(?:ed|ing)?|roll(?:ed|ing)?|coil(?:ed|ing)?)\b", re.IGNORECASE)
 
 
 def check_text_size(request: AssetRequest) -> None:

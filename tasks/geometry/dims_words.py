@@ -105,12 +105,14 @@ def bind(text: str, entry: LexiconEntry | None, states: list[str]) -> Bound | No
     cross = [(w, v, s) for w, v, s in measures if (w in ("thickness", "diameter", "width", "inner") or w is None)
              and v < CROSS_SECTION_MAX * max(typical, length0)]
     if entry.plan == "sheet":
-        thick = [(v, s) for w, v, s in cross if w == "thickness"] or [(v, s) for w, v, s in cross
-                                                                       if w is None and v < MIN_SIZE_M]
-        if not thick:  # (a bare size too small for any object L0 builds, 'a 6 mm yoga mat', is its thickness too;
-            return None  # '4 inch' on a bandage is its width)
-        v, s = thick[0]
         t0 = float(grammar.plan_parameters("sheet", params).thickness)  # type: ignore[attr-defined]
+        own = t0 * length0  # the sheet's typical thickness [m]
+        thick = [(v, s) for w, v, s in cross if w == "thickness"] or [(v, s) for w, v, s in cross
+                                                                       if w is None and (v < MIN_SIZE_M or
+                                                                                         own / 2.5 <= v <= own * 2.5)]
+        if not thick:  # (a bare size too small for any object L0 builds, 'a 6 mm yoga mat', is its thickness too, and
+            return None  # so is one near the sheet's own thickness: 'a 5cm memory foam topper'; '4 inch' on a
+        v, s = thick[0]  # bandage is its width)
         params["thickness"] = v / length0
         bound.mass_factor = params["thickness"] / t0
         bound.consumed.append(s)

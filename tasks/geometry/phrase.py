@@ -146,7 +146,9 @@ def _boundary(doc: Any, i: int, known: Callable[[str], bool] = lambda w: False) 
     if tok.pos_ == "CCONJ":
         return prev is not None and _is_noun(prev)
     if tok.tag_.startswith("VB"):
-        return nxt is None or nxt.pos_ in ("ADP", "PART", "ADV", "DET", "PUNCT", "CCONJ", "PRON", "SCONJ")
+        if tok.tag_ in ("VBG", "VBN") and tok.dep_ == "acl" and not known(word):
+            return True  # a clause about the object ('a teddy bear missing one eye': the bear, not its eye)
+        return nxt is None or nxt.pos_ in ("ADP", "PART", "ADV", "DET", "PUNCT", "CCONJ", "PRON", "SCONJ", "NUM")
     return False
 
 

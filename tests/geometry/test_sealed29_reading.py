@@ -1,0 +1,41 @@
+"""Sealed set 29's reading misses, fixed after its one run: a clause after the object named its noun ('old brown teddy
+bear missing one eye' built a ring of plush for 'eye'); a foam topper's thickness said in centimetres was its length
+('rolled-up single 5cm memory foam mattress topper': 0.6 g of 4.7 kg); a rolled mat's stated length was refused as the
+object's size ('rolled up 3 m artificial turf putting mat', and 'mat' named nothing)."""
+
+from __future__ import annotations
+
+import pytest
+
+from contracts.errors import InputError
+from contracts.request import AssetRequest
+from tasks.geometry import catalogue
+from tests.geometry.test_mass_classes import planned_mass
+
+
+@pytest.mark.parametrize(("text", "entry"), [("old brown teddy bear missing one eye, 30 cm", "teddy_bear"),
+                                             ("a rag doll missing a button eye", "plush_doll"),
+                                             ("a teddy bear holding a heart", "teddy_bear")])
+def test_a_clause_after_the_object_does_not_name_it(text: str, entry: str) -> None:
+    assert catalogue.design_from_text(text).entry == entry
+
+
+def test_a_foam_sheets_thickness_in_centimetres_is_its_thickness_not_its_length() -> None:
+    text = "rolled-up single 5cm memory foam mattress topper tied with straps"
+    d = catalogue.design_from_text(text)
+    assert d.entry == "foam_topper" and d.size.longest_m is None  # the topper's own length, rolled
+    assert 0.5 * 4.7 <= planned_mass(text) <= 2.0 * 4.7
+    thick = catalogue.design_from_text("a 3 inch memory foam topper")  # twice the typical 2 in: twice the foam
+    assert thick.concept.stated_mass_kg == pytest.approx(4.7 * 7.62 / 5.2, rel=0.1)
+    assert catalogue.design_from_text("a 6 mm yoga mat").concept.stated_mass_kg is None  # its own thickness
+
+
+def test_a_rolled_mats_stated_length_is_its_sheet_and_an_unrolled_size_is_still_refused() -> None:
+    text = "rolled up 3 m artificial turf putting mat"
+    catalogue.check_text_size(AssetRequest(text=text))  # before any layer: the roll is built, not a 3 m object
+    d = catalogue.design_from_text(text)
+    assert d.entry == "putting_mat" and max(d.size.extents_m) < 1.0  # type: ignore[type-var]
+    for bad in ("a 3 m plush snake", "a 3 m plush snake rolled up", "a 10 km rolled towel"):
+        with pytest.raises(InputError, match="outside the supported range"):
+            catalogue.check_text_size(AssetRequest(text=bad))
+            catalogue.design_from_text(bad)
