@@ -232,15 +232,20 @@ def _expand_diminutives(text: str) -> str:
     return re.sub(r"[a-z]+", repl, text)
 
 
+MAX_NOUN_WORDS = 8  # the lexicon's longest nouns ('mesh bag of foam practice golf balls', 'lo mai gai in the lotus leaf')
+
+
 def _find(text: str, phrases: dict, rightmost: bool = False) -> list[tuple[int, int, str]]:
     """Non-overlapping phrase occurrences (longest first) as (start, end, phrase), in text order; phrases are
     matched on whole words (word n-grams of the text looked up in the dict). Of two overlapping ones of the same
     length the leftmost wins, or with `rightmost` the one further right (a head noun: 'raw chicken breast fillet' is
     a chicken breast fillet, not a raw chicken breast and a 'fillet')."""
     words = [(m.start(), m.end(), m.group(0)) for m in re.finditer(r"[a-z0-9']+", text)]
+    words = [w for k, w in enumerate(words) if not (w[2].isdigit() and k and words[k - 1][2] == "of")]  # 'a bag of
+    # 12 golf balls' names a bag of golf balls (the count is read by the pieces' pouch and the packs)
     used = [False] * len(words)
     hits: list[tuple[int, int, str]] = []
-    for n in range(min(5, len(words)), 0, -1):
+    for n in range(min(MAX_NOUN_WORDS, len(words)), 0, -1):
         starts = range(len(words) - n + 1)
         for i in (reversed(starts) if rightmost else starts):
             if any(used[i : i + n]):
