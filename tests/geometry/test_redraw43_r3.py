@@ -74,7 +74,7 @@ def test_the_density_is_the_sourced_mass_over_the_built_volume(entry: str) -> No
     from tasks.geometry.meshing import mesh_program
 
     e = load_lexicon().entries[entry]
-    prog = catalogue_program(e.catalogue)
+    prog = catalogue_program(str(e.catalogue))
     scale = e.size_m / float(np.max(grammar.program_extents(prog, 48)))
     mass = e.solid_density_kg_per_m3 * mesh_program(prog, 48).volume * scale ** 3
     assert 0.85 * e.mass_kg <= mass <= 1.15 * e.mass_kg, (entry, mass, e.mass_kg)
