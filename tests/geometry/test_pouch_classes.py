@@ -136,7 +136,7 @@ def _hw(text: str) -> tuple[float, float, np.ndarray]:
 
 
 @pytest.mark.parametrize("text, most", [
-    ("a slumping ball of pizza dough after its rise", 0.55),
+    ("a slumping ball of bread dough after its rise", 0.55),
     ("a proved dough ball sitting on a board", 0.55),
     ("a sagging sand-filled slam ball", 0.8),
     ("a ball of fresh mozzarella, a bit slumped", 0.85),
