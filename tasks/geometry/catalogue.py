@@ -945,6 +945,11 @@ def design_from_text(text: str, size_hint_m: float | None = None) -> Design:
             and float({**square.params, **reading.params}.get("width", 0.5)) < 0.95:
         reading.params = {**reading.params, "width": 1.0}  # 'a 90 cm square silk scarf': as wide as long
     stated = size.longest_m or max((v for v in size.extents_m if v is not None), default=None)
+    drawn = reading.donor or reading.entry
+    if stated is not None and stated > MAX_SIZE_M and size_hint_m is None and drawn.catalogue \
+            and drawn.drawn_state == "folded":  # a shape drawn folded ('king size fitted sheet, folded'): the stated
+        size = SizeSpec(stated=f"{size.stated}: the flat size of a shape drawn folded, built at its typical size")
+        stated = None  # size is its flat sheet's, over what L0 builds; the drawn fold keeps its own typical size
     if stated is not None and stated > MAX_SIZE_M and size_hint_m is None:  # a big sheet said folded: folded to fit
         concepts.fold_to_fit(reading, stated, MAX_SIZE_M)
     program, match, build_warnings = concepts.build(reading, stripped)

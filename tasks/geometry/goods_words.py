@@ -22,6 +22,7 @@ from tasks.geometry.pouch_words import stated_volume_m3
 FILLABLE_PLANS = frozenset({"bag", "pouch"})
 PAIR_WORDS = frozenset({"pair"})
 BUNCH_WORDS = frozenset({"bunch"})
+PAIR_ITSELF_SHAPES = frozenset({"jeans_folded"})  # hand-drawn objects a pair of names once (its two legs)
 BUNCH_PIECE_MAX_M = 0.025  # 'a bunch of' small round pieces (grapes, currants) is a cluster of them [m] (cherries
 # on their long stems are a few, not a cluster)
 BUNCH_LENGTH = 8.0  # a bunch of grapes lying on a table is ~8 grapes long (a 2.2 cm grape: ~18 cm) [-]
@@ -126,7 +127,9 @@ def apply(target: LexiconEntry, portion: str | None, text: str, params: dict, si
     out = GoodsChange(params=dict(params), size_m=size_m, match=match)
     plan = target.plan
     if plan is None or plan not in grammar.PLANS:
-        if portion in PAIR_WORDS:  # a hand-written object ('a pair of plush bunnies'): two of it side by side
+        if portion in PAIR_WORDS and target.key in PAIR_ITSELF_SHAPES:
+            out.notes += ("a pair of trousers is one garment",)
+        elif portion in PAIR_WORDS:  # a hand-written object ('a pair of plush bunnies'): two of it side by side
             out.duplicate = True
             out.match = match.model_copy(update={"typical_mass_kg": match.typical_mass_kg * 2
                                                  if match.typical_mass_kg else None})
