@@ -151,6 +151,9 @@ FAMILY_WORDS: dict[str, frozenset[str]] = {
 
 # a measure noun before 'of' is the amount of what follows, not its material ('a roll of tape', 'rolls of wrap')
 _MEASURE_OF = re.compile(r"\b(?:roll|rolls)\s+of\b")
+# food classes: 'stuffed' said of a food is its filling, not a stuffed toy's plush (sealed set 29's calzone weighed 40 g)
+_FOOD_CLASSES = frozenset({"cheese", "processed_meat", "firm_produce", "bread", "fruit", "marshmallow", "dough", "gel"})
+_STUFFED = re.compile(r"\bstuffed\b")
 
 
 # a material said of a surface only: a coating, dip, lining or trim ('rubber-coated', 'latex-dipped', 'fleece-lined',
@@ -183,6 +186,8 @@ def _match_material(text: str, vocab: MaterialVocab, concept_material: str | Non
     named: dict[str, str] = {}
     text = _MEASURE_OF.sub(" ", text)  # 'a roll of bubble wrap' names no bread
     text = _SURFACE_ONLY.sub(" ", text)  # 'rubber-coated gloves' are knit gloves, not solid rubber
+    if concept_material in _FOOD_CLASSES:
+        text = _STUFFED.sub(" ", text)  # 'a calzone stuffed with ricotta', 'a stuffed pepper': a filling, not plush
     for name, entry in vocab.materials.items():
         for word in entry.words:
             if concept_material not in (None, name) and set(word.lower().split()) <= own_words:

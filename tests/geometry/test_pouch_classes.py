@@ -150,9 +150,9 @@ def test_slump_words_settle_a_round_body_on_a_flat_base(text: str, most: float) 
 
 
 def test_slump_is_proportional_to_its_degree_word() -> None:
-    slight, _b, _e = _hw("a slightly slumped ball of mozzarella")
-    very, _b, _e = _hw("a very slumped ball of mozzarella")
-    plain, _b, _e = _hw("a ball of mozzarella")
+    slight, _b, _e = _hw("a slightly slumped burrata")  # (the mozzarella is drawn by hand since session 43)
+    very, _b, _e = _hw("a very slumped burrata")
+    plain, _b, _e = _hw("a burrata")
     assert very < slight < plain
 
 

@@ -39,3 +39,15 @@ def test_a_rolled_mats_stated_length_is_its_sheet_and_an_unrolled_size_is_still_
         with pytest.raises(InputError, match="outside the supported range"):
             catalogue.check_text_size(AssetRequest(text=bad))
             catalogue.design_from_text(bad)
+
+
+@pytest.mark.parametrize(("text", "kg"), [("a bell pepper stuffed with rice", 0.12), ("a stuffed pepper", 0.12),
+                                          ("a chicken breast stuffed with spinach", 0.25),
+                                          ("an empanada stuffed with beef", 0.12)])
+def test_a_stuffed_food_is_weighed_as_the_food_not_as_plush(text: str, kg: float) -> None:
+    """'stuffed' said of a food is its filling: the calzone 'stuffed with ricotta and ham' weighed 40 g of 450 g."""
+    assert 0.5 * kg <= planned_mass(text) <= 2.0 * kg
+
+
+def test_a_stuffed_toy_is_still_plush() -> None:
+    assert 0.15 <= planned_mass("a stuffed bear") <= 0.6
