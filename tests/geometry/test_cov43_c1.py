@@ -23,7 +23,7 @@ FIXED = [  # (text, entry, real mass [kg])
     ("black skate wrist guards", "skate_wrist_guard", 0.2),  # ~100 g each, a pair
     ("paintball neck protector", "neck_protector", 0.06),  # listings 50-70 g
     ("grab an energy gel", "energy_gel", 0.035),  # 32 g gel in a ~3 g sachet
-    ("black leather ballet flats", "leather_ballet_flat", 0.35),  # ~175 g a shoe, a pair
+    ("black leather ballet flats", "ballet_flat", 0.35),  # ~175 g a shoe, a pair
     ("muslin backdrop, folded", "muslin_backdrop", 1.1),  # 10.8 m2 at ~100 g/m2
     ("rubber air blower", "air_blower", 0.04),  # rocket blowers 40-50 g
     ("rubber thumb tip", "thumb_tip", 0.005),  # soft vinyl 4-6 g
