@@ -35,6 +35,7 @@ def test_a_rolled_mats_stated_length_is_its_sheet_and_an_unrolled_size_is_still_
     catalogue.check_text_size(AssetRequest(text=text))  # before any layer: the roll is built, not a 3 m object
     d = catalogue.design_from_text(text)
     assert d.entry == "putting_mat" and max(d.size.extents_m) < 1.0  # type: ignore[type-var]
+    assert 3.5 / 2 <= planned_mass(text) <= 5.0 * 2  # a 3 x 0.5 m turf mat: 3.5-5 kg (it weighed 18 kg rolled)
     for bad in ("a 3 m plush snake", "a 3 m plush snake rolled up", "a 10 km rolled towel"):
         with pytest.raises(InputError, match="outside the supported range"):
             catalogue.check_text_size(AssetRequest(text=bad))
