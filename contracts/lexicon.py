@@ -38,7 +38,8 @@ class LexiconEntry(Model):
                                   "that draws the object as it is usually seen, instead of its plan")
     params: dict[str, Any] = Field(default_factory=dict, description="body-plan parameters")
     drawn_state: str | None = Field(default=None, description="the state its hand-written shape shows ('rolled', "
-                                    "'folded', 'crumpled'): a request that says so is drawn, not warned about")
+                                    "'folded', 'crumpled', 'a pair': a pair of shoes drawn and weighed as the pair): a request that says so is drawn, "
+                                    "not warned about nor doubled")
     colors: dict[str, str] = Field(default_factory=dict, description="part or part group -> colour word")
     material: str = Field(description="vocabulary material class (contracts/vocab/materials.yaml)")
     category: str

@@ -129,6 +129,8 @@ def apply(target: LexiconEntry, portion: str | None, text: str, params: dict, si
     if plan is None or plan not in grammar.PLANS:
         if portion in PAIR_WORDS and target.key in PAIR_ITSELF_SHAPES:
             out.notes += ("a pair of trousers is one garment",)
+        elif portion in PAIR_WORDS and target.drawn_state == "a pair":  # ('a pair of ballet flats': drawn as the pair
+            out.notes += ("drawn as the pair it is sold as",)  # they are sold as, weighed as it)
         elif portion in PAIR_WORDS:  # a hand-written object ('a pair of plush bunnies'): two of it side by side
             out.duplicate = True
             out.match = match.model_copy(update={"typical_mass_kg": match.typical_mass_kg * 2

@@ -190,6 +190,17 @@ def test_a_pair_of_rolled_socks_is_one_ball_of_two_and_a_pair_of_gloves_is_two()
     assert gloves.concept.typical_mass_kg == pytest.approx(2 * load_lexicon().entries["knit_glove"].mass_kg)
 
 
+def test_a_pair_of_a_good_drawn_as_its_pair_is_that_pair() -> None:
+    """A hand-drawn entry whose shape is the pair it is sold as (drawn_state 'a pair': ballet flats, skate wrist
+    guards) is that pair when asked for 'a pair of' them, not two pairs; a single hand-drawn toy still doubles."""
+    flats, pair = _design("black leather ballet flats"), _design("a pair of ballet flats")
+    assert pair.entry == "ballet_flat" and len(pair.program.parts) == len(flats.program.parts)
+    assert pair.concept.typical_mass_kg == pytest.approx(flats.concept.typical_mass_kg)
+    toy = _design("a catnip mouse")
+    toys = _design("a pair of catnip mice")
+    assert toys.concept.typical_mass_kg == pytest.approx(2 * toy.concept.typical_mass_kg)  # type: ignore[operator]
+
+
 def test_a_band_lying_in_a_loop_is_a_closed_strip_and_weighs_like_latex() -> None:
     d = _design("long green latex pull-up resistance band lying in a loose loop")
     assert d.entry == "resistance_band" and d.concept.states == ["loop"]
