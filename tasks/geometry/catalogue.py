@@ -382,10 +382,15 @@ _WORD_SIZE = re.compile(rf"\b({'|'.join(sorted(_NUMBER_WORDS, key=len, reverse=T
                         rf"(?={_UNIT_WORDS}[\s-]+(?:long|tall|wide|high|across|thick|deep|in diameter|of)\b)", re.I)
 
 
+# a product's count of uses ('a 5-in-1 reflector', 'a 3 in 1 charger') is no size (it was read as 5 inches)
+_N_IN_ONE = re.compile(r"\b\d+\s*-\s*in\s*-\s*1\b|\b\d+\s+in\s+1\b(?=\s+[a-z])", re.I)
+
+
 def normalise_sizes(text: str) -> str:
     """'an 8-cm-tall cat' -> 'an 8 cm tall cat' (so the size binds to its axis); number words before a unit and a
     dimension as digits ('about a metre long' -> 'about 1 metre long', 'half a metre wide' -> '0.5 metre wide'), or a
     length of a material ('one metre of tubing' -> '1 metre of tubing')."""
+    text = _N_IN_ONE.sub(" ", text)
     text = _WORD_SIZE.sub(lambda m: f"{_NUMBER_WORDS[m.group(1).lower()]} ", text)
     text = _NEOPRENE_NOTATION.sub(lambda m: f"{m.group(1)} mm neoprene", text)  # ('3/2 mm wetsuit')
     text = _FRACTION_SIZE.sub(_fraction_decimal, text)
@@ -714,11 +719,12 @@ def _task_clause_stripped(text: str) -> str:
 
 
 # a request's opening words before the object ('Can you make a pair of jeans': 'can' was read as a tin can)
+# ('pick up a besan laddu': 'pick' was read as a guitar pick)
 _REQUEST_OPENING = re.compile(
     r"^\s*(?:(?:(?:can|could|would|will)\s+(?:you|we|i)\s+(?:(?:please|pls|plz)\s+)?|(?:please|pls|plz)\s+|i(?:'d|\s+would)\s+like\s+"
     r"(?:to\s+(?:have|get|see|make|simulate|model)\s+)?|i\s+(?:want|need)\s+(?:to\s+(?:have|make|simulate|model)\s+)?|"
     r"we\s+need\s+|let's\s+|lets\s+)(?:(?:make|create|generate|build|model|simulate|give|get|design|add)\s+"
-    r"(?:me\s+|us\s+)?)?|(?:make|create|generate|build|model|simulate|give|design)\s+(?:me\s+|us\s+)?(?=an?\s|the\s|"
+    r"(?:me\s+|us\s+)?)?|(?:make|create|generate|build|model|simulate|give|design|pick\s+up)\s+(?:me\s+|us\s+)?(?=an?\s|the\s|"
     r"some\s|one\s|two\s|three\s))", re.IGNORECASE)
 _STAND_UP = re.compile(r"\bstand[- ]up\b(?=\s+[a-z])", re.IGNORECASE)
 
