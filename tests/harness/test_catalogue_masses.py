@@ -7,6 +7,7 @@ import functools
 
 import pytest
 
+from contracts.errors import InputError
 from tasks.agents.intent import match_material, targets_from_intent
 from tasks.agents.vocab import load_material_vocab
 from tasks.geometry import catalogue
@@ -43,7 +44,7 @@ def _prior(name: str) -> tuple[float, float, tuple[float, float], str]:
     drange = vocab.materials[material].prior_ranges["density_kg_per_m3"]
     try:
         volume = float(mesh_program(program, 32).volume)
-    except ValueError:  # a long thin good 32 cells cannot resolve (a 1.4 m stole 3 cm thick): L0's draft grid
+    except (ValueError, InputError):  # a long thin good 32 cells cannot resolve (a 1.4 m stole 3 cm thick): L0's draft grid
         volume = float(mesh_program(program, 48).volume)
     return volume, density, drange, material
 
