@@ -956,6 +956,11 @@ def design_from_text(text: str, size_hint_m: float | None = None) -> Design:
             and drawn.drawn_state == "folded":  # a shape drawn folded ('king size fitted sheet, folded'): the stated
         size = SizeSpec(stated=f"{size.stated}: the flat size of a shape drawn folded, built at its typical size")
         stated = None  # size is its flat sheet's, over what L0 builds; the drawn fold keeps its own typical size
+    elif stated is not None and size_hint_m is None and drawn is not None and drawn.catalogue \
+            and drawn.drawn_state == "coiled":  # a long good drawn in loose coils ('2 metre
+        # tinsel garland'): the stated size is its length laid out, not the coil's; the coil keeps its typical size
+        size = SizeSpec(stated=f"{size.stated}: the length of a good drawn coiled, built at its typical size")
+        stated = None
     if stated is not None and stated > MAX_SIZE_M and size_hint_m is None:  # a big sheet said folded: folded to fit
         concepts.fold_to_fit(reading, stated, MAX_SIZE_M)
     program, match, build_warnings = concepts.build(reading, stripped)
