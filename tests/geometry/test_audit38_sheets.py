@@ -68,11 +68,12 @@ def test_bubble_wrap_shows_its_bubbles_on_a_sheet() -> None:
 
 
 def test_a_chamois_is_a_hide_with_an_irregular_edge() -> None:
-    assert {"lobe", "notch", "wrinkle"} <= _groups("chamois leather")
-    body = _colour("chamois leather", "body")
+    """(Redrawn in session 43 folded over once and stiff: laid out flat it was judged a sheepskin rug.)"""
+    assert {"lobe", "layer", "fold"} <= _groups("chamois leather")
+    body = _colour("chamois leather", "layer")
     assert body[0] > body[2] + 0.3  # the buff yellow of chamois, not a white towel
     ext = _extent("chamois leather")
-    assert ext[2] < 0.06 * ext[0]  # laid out flat
+    assert ext[2] < 0.1 * ext[0]  # a skin folded once, lying flat
 
 
 def test_a_ream_is_wrapped_with_its_sheets_showing_at_the_open_end() -> None:

@@ -26,8 +26,9 @@ def test_a_pack_of_goods_shows_a_printed_label_and_a_clear_bag_its_goods() -> No
     body = next(p.color_rgb for p in design.program.parts if p.name == "body")
     label = next(p.color_rgb for p in design.program.parts if p.name == "label")
     assert max(abs(a - b) for a, b in zip(body, label)) > 0.3  # it stands out from the film
-    assert "label" not in _parts("a bag of marshmallows") and any(n.startswith("fill") for n in
-                                                                   _parts("a bag of marshmallows"))
+    assert "label" not in _parts("a bag of gummy bears") and any(n.startswith("fill") for n in
+                                                                   _parts("a bag of gummy bears"))  # (the bag of
+    # marshmallows is a hand-drawn entry since session 43)
 
 
 @pytest.mark.parametrize("text, real_kg", [

@@ -150,8 +150,9 @@ def test_folded_jeans_show_their_stitching_patch_and_button_in_their_own_colours
     carry the entry's colours; a shop-folded pair is ~5-9 cm high, not 12."""
     design = catalogue.design_from_text("folded blue jeans")
     colours = {part_group(p.name): p.color_rgb for p in design.program.parts}
-    body = np.asarray(colours["body"])
-    for part in ("pocket stitch", "fly stitch", "patch", "button", "hem cuff"):  # (set 38: folded front up)
+    assert design.entry == "jeans_folded"  # (hand-drawn since session 43: the trouser outline folded at the knees)
+    body = np.asarray(colours["thigh"])
+    for part in ("pocket stitch", "fly stitch", "button", "hem stitch", "outseam"):
         assert not np.allclose(colours[part], body, atol=0.1), part
     assert float(grammar.program_extents(design.program, 48)[2]) < 0.1
 
