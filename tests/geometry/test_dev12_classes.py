@@ -17,7 +17,7 @@ from tasks.geometry.sdf import program_bounds
 from tests.geometry.test_mass_classes import planned_mass
 
 
-@pytest.mark.parametrize("text", ["a bag of arugula", "a 1 lb bag of cotton wadding", "a packet of shredded coconut"])
+@pytest.mark.parametrize("text", ["a bag of arugula", "a 1 lb bag of kapok fiber", "a packet of shredded coconut"])
 def test_a_bag_of_unknown_goods_is_a_pouch_said_as_a_guess(text: str) -> None:
     d = catalogue.design_from_text(text)
     assert d.entry == "generic_pouch" and d.concept.fallback_level == "category"

@@ -68,7 +68,7 @@ def test_a_resistance_band_said_tied_is_a_flat_band(text: str) -> None:
     ("an uncut 20 cm maki roll", "maki_roll", 0.12, 0.35),  # a 20 cm blob of maki pieces: 4.8 kg
     ("a horseshoe ring of smoked sausage", "kielbasa", 0.2, 0.6),  # a generic block of 20 g
     ("a stack of four folded fat quarters", "fat_quarter", 0.08, 0.25),  # a metre of fabric x 4: 2 kg
-    ("a rolled-up bamboo sushi mat", "sushi_mat", 0.04, 0.12),  # a generic block
+    ("a rolled-up bamboo sushi mat", "sushi_mat_rolled", 0.04, 0.12),  # a generic block
     ("a silicone stacking cup", "stacking_cup", 0.02, 0.08),  # a blob of 170 g
     ("a crumpled empty bread bag", "carrier_bag", 0.003, 0.02),  # a loaf of bread: 0.94 kg
     ("a crumpled sheet of brown kraft paper", "kraft_paper", 0.025, 0.1),
