@@ -328,7 +328,8 @@ def check_size(size: SizeSpec) -> None:
             )
 
 
-_FOLD_STATE = re.compile(r"\b(?:fold(?:ed|ing)?|roll(?:ed|ing)?|coil(?:ed|ing)?)\b", re.IGNORECASE)
+_FOLD_STATE = re.compile(r"\b(?:fold(?:ed|ing)?|roll(?:ed|ing)?|coil(?:ed|ing)?|crumpled|bunched|bundled|balled)\b",
+                         re.IGNORECASE)
 
 
 def check_text_size(request: AssetRequest) -> None:

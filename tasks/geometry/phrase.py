@@ -23,7 +23,7 @@ STATE_WORDS: dict[str, str] = {
     "folded": "folded", "fold": "folded", "doubled": "folded",
     "stacked": "stacked", "piled": "stacked",
     "crumpled": "crumpled", "wrinkled": "crumpled", "scrunched": "crumpled", "bunched": "crumpled",
-    "balled": "crumpled", "wadded": "crumpled", "screwed": "crumpled",
+    "balled": "crumpled", "wadded": "crumpled", "screwed": "crumpled", "bundled": "crumpled",
     "stuffed": "stuffed", "filled": "filled", "hollow": "hollow", "empty": "hollow",
     "deflated": "deflated", "inflated": "inflated", "blown": "inflated", "bent": "bent", "curled": "curled",
     "flat": "flat", "unrolled": "flat", "spread": "flat", "laid": "flat",

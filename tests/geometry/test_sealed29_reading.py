@@ -52,3 +52,17 @@ def test_a_stuffed_food_is_weighed_as_the_food_not_as_plush(text: str, kg: float
 
 def test_a_stuffed_toy_is_still_plush() -> None:
     assert 0.15 <= planned_mass("a stuffed bear") <= 0.6
+
+
+def test_food_noodles_are_a_nest_of_noodles_not_a_pool_noodle() -> None:
+    """Sealed set 30 (after its one run): 'portion of fresh ramen noodles' built a 1.5 m foam pool noodle."""
+    for text in ("portion of fresh ramen noodles", "a bundle of udon noodles", "fresh egg noodles"):
+        assert catalogue.design_from_text(text).entry == "pasta_nest", text
+    assert catalogue.design_from_text("a pool noodle").entry == "pool_noodle"
+
+
+def test_a_bundled_cloth_is_crumpled_and_its_flat_size_is_checked_on_the_heap() -> None:
+    assert "crumpled" in catalogue.design_from_text("a bundled up towel").concept.states
+    catalogue.check_text_size(AssetRequest(text="a 3 m bedsheet bundled up"))  # the heap is checked when built
+    d = catalogue.design_from_text("a 3 m bedsheet bundled up")
+    assert d.size.longest_m is not None and d.size.longest_m <= 2.0  # a heap, not a 3 m sheet
