@@ -10,11 +10,12 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from contracts.lexicon import load_lexicon
 from contracts.request import AssetRequest
 from contracts.stage import load_contract
 from tasks.agents.intent import asset_material, asset_targets, concept_of
 from tasks.agents.vocab import load_material_vocab
-from tasks.geometry import catalogue, pipeline
+from tasks.geometry import catalogue, grammar, pipeline
 from tasks.geometry.catalogue import normalise_sizes, parse_size
 from tasks.geometry.concepts import PLUSH_MASS_EXPONENT_UP
 from tasks.geometry.shell import Surface
@@ -165,3 +166,16 @@ def test_a_thin_good_with_stated_sides_builds(text: str) -> None:
     design = catalogue.design_from_text(text)
     ext = grammar.program_extents(design.program, 96)
     assert ext[2] < 0.05 * ext[0] and ext[0] > 0.15
+
+
+def drawn_mass_kg(key: str) -> float:
+    """A hand-drawn entry's mass as L0 draws it: its density over its catalogue shape's volume at size_m (the draft
+    mesh, 48 cells), the check that its density is the sourced mass over the built volume."""
+    from tasks.geometry.catalogue_programs import catalogue_program  # lazy: the redraw tests' slow density checks only
+    from tasks.geometry.meshing import mesh_program  # lazy: the redraw tests' slow density checks only
+
+    e = load_lexicon().entries[key]
+    prog = catalogue_program(str(e.catalogue))
+    scale = e.size_m / float(np.max(grammar.program_extents(prog, 48)))
+    return float(e.solid_density_kg_per_m3 * mesh_program(prog, 48).volume * scale ** 3)
+

@@ -15,12 +15,11 @@ from __future__ import annotations
 
 import functools
 
-import numpy as np
 import pytest
 
 from contracts.lexicon import load_lexicon
-from tasks.geometry import catalogue, grammar
-from tests.geometry.test_mass_classes import planned_mass
+from tasks.geometry import catalogue
+from tests.geometry.test_mass_classes import drawn_mass_kg, planned_mass
 
 # prompt as typed, entry, the real object's mass [kg]
 CASES = [
@@ -60,13 +59,7 @@ def test_the_built_mass_is_within_2x_of_the_real_mass(text: str, entry: str, kg:
 @pytest.mark.parametrize("entry", [e for _t, e, _k in CASES if e != "yoga_strap"])
 def test_the_density_is_the_sourced_mass_over_the_built_volume(entry: str) -> None:
     """Density is the sourced mass over the built shape's volume at size_m (L0's draft mesh, 48 cells)."""
-    from tasks.geometry.catalogue_programs import catalogue_program
-    from tasks.geometry.meshing import mesh_program
-
-    e = load_lexicon().entries[entry]
-    prog = catalogue_program(e.catalogue)
-    scale = e.size_m / float(np.max(grammar.program_extents(prog, 48)))
-    mass = e.solid_density_kg_per_m3 * mesh_program(prog, 48).volume * scale ** 3
+    e, mass = load_lexicon().entries[entry], drawn_mass_kg(entry)
     assert 0.85 * e.mass_kg <= mass <= 1.15 * e.mass_kg, (entry, mass, e.mass_kg)
 
 
