@@ -328,6 +328,8 @@ def check_size(size: SizeSpec) -> None:
             )
 
 
+# what a stated size measures of a hand-drawn shape drawn in a state (its entry's drawn_state)
+_DRAWN_STATE_SIZES = {"folded": "the flat size of a shape drawn folded", "coiled": "the length of a good drawn coiled"}
 _FOLD_STATE = re.compile(r"\b(?:fold(?:ed|ing)?|roll(?:ed|ing)?|coil(?:ed|ing)?|crumpled|bunched|bundled|balled)\b",
                          re.IGNORECASE)
 
@@ -953,15 +955,12 @@ def design_from_text(text: str, size_hint_m: float | None = None) -> Design:
         reading.params = {**reading.params, "width": 1.0}  # 'a 90 cm square silk scarf': as wide as long
     stated = size.longest_m or max((v for v in size.extents_m if v is not None), default=None)
     drawn = reading.donor or reading.entry
-    if stated is not None and stated > MAX_SIZE_M and size_hint_m is None and drawn.catalogue \
-            and drawn.drawn_state == "folded":  # a shape drawn folded ('king size fitted sheet, folded'): the stated
-        size = SizeSpec(stated=f"{size.stated}: the flat size of a shape drawn folded, built at its typical size")
-        stated = None  # size is its flat sheet's, over what L0 builds; the drawn fold keeps its own typical size
-    elif stated is not None and size_hint_m is None and drawn is not None and drawn.catalogue \
-            and drawn.drawn_state == "coiled":  # a long good drawn in loose coils ('2 metre
-        # tinsel garland'): the stated size is its length laid out, not the coil's; the coil keeps its typical size
-        size = SizeSpec(stated=f"{size.stated}: the length of a good drawn coiled, built at its typical size")
-        stated = None
+    said_of = _DRAWN_STATE_SIZES.get(drawn.drawn_state or "") if drawn is not None and drawn.catalogue else None
+    if stated is not None and size_hint_m is None and said_of is not None \
+            and (drawn.drawn_state == "coiled" or stated > MAX_SIZE_M):  # a shape drawn folded ('king size fitted
+        # sheet, folded': a flat size over what L0 builds) or coiled ('2 metre tinsel garland': its length laid out)
+        size = SizeSpec(stated=f"{size.stated}: {said_of}, built at its typical size")
+        stated = None  # the drawing keeps its own typical size
     if stated is not None and stated > MAX_SIZE_M and size_hint_m is None:  # a big sheet said folded: folded to fit
         concepts.fold_to_fit(reading, stated, MAX_SIZE_M)
     program, match, build_warnings = concepts.build(reading, stripped)
