@@ -73,9 +73,15 @@ def _best_sense(noun: str, context: set[str] | None = None) -> Sense | None:
     ctx = (context or set()) - set(own.split("_"))
     tier = {"noun.artifact": 0, "noun.food": -1 if ctx & FOOD_CUES else 0, "noun.animal": 0, "noun.plant": 0,
             "noun.object": 1, "noun.substance": 2}
-    ranked = sorted(enumerate(senses), key=lambda p: (-_overlap(p[1], ctx), p[1].lemmas[0] != own,
+    ranked = sorted(enumerate(senses), key=lambda p: (_is_group(p[1]), -_overlap(p[1], ctx), p[1].lemmas[0] != own,
                                                       tier.get(p[1].lexname, 3), p[0]))
     return ranked[0][1]
+
+
+def _is_group(sense: Sense) -> bool:
+    """A taxonomic or other group filed among physical nouns ('pan', the chimpanzee genus), never an object a user
+    asks for while another sense is one ('a rubber feed pan' is the vessel)."""
+    return any(a.lemmas[0] in ("group", "taxonomic_group") for a in wordnet().ancestors(sense))
 
 
 def domain_of_sense(sense: Sense) -> str:
@@ -108,23 +114,26 @@ def explain(candidates: list[str], lexicon_nouns: dict[str, Any], shape_words: d
         sense = found
         out = Analogy(noun=noun, sense=sense)
         out.chain.append(f"WordNet: {sense.name} = '{sense.definition}'")
-        path = [s for s in wordnet().ancestors(sense, MAX_ANCESTORS)]
+        # the sense itself first: 'a phone case' is a case (a class of its own), 'a cardboard box' a box
+        path = [sense, *wordnet().ancestors(sense, MAX_ANCESTORS)]
         kinds: list[str] = []
-        for anc in path[:MAX_ANCESTORS]:
+        for anc in path[:MAX_ANCESTORS + 1]:
             words = [w.replace("_", " ") for w in anc.lemmas]
             if words[0] in too_general:
                 continue
-            kinds.append(words[0])
+            if anc is not sense:
+                kinds.append(words[0])
+            what = f"a kind of {' < '.join(kinds)}" if kinds else f"WordNet's '{sense.name}'"
             donor = next((w for w in words if w in lexicon_nouns and (
                 lexicon_domain is None or lexicon_domain(lexicon_nouns[w][0]) == domain_of_sense(anc))), None)
             if donor is not None:
                 out.concept, out.named_donor, out.kind = lexicon_nouns[donor][0], True, donor
-                out.chain.append(f"a kind of {' < '.join(kinds)}; the lexicon knows '{donor}'")
+                out.chain.append(f"{what}; the lexicon knows '{donor}'")
                 break
             generic = next((v["ancestors"][w] for w in words if w in v["ancestors"]), None)
             if generic is not None:
                 out.concept, out.named_donor, out.kind = generic, not generic.startswith("generic_"), words[0]
-                out.chain.append(f"a kind of {' < '.join(kinds)}: the class '{words[0]}'"
+                out.chain.append(f"{what}: the class '{words[0]}'"
                                  + (f", built like the lexicon's {generic.replace('_', ' ')}" if out.named_donor else ""))
                 break
         gloss = _words(sense.definition)

@@ -84,7 +84,7 @@ PORTION_SHAPES: dict[str, tuple[str, dict]] = {
 }  # 'a wedge of X' follows X's own shape (wedged)
 # nouns that name a generic form: a more specific object noun before them wins ('teether ring', 'sock ball')
 GENERIC_NOUNS = frozenset({"ball", "ring", "block", "cube", "roll", "pad", "disc", "tube", "bar", "piece", "toy",
-                           "noodle", "cushion", "pillow", "roller", "bun", "bone", "loaf", "bread"})
+                           "noodle", "cushion", "pillow", "roller", "bun", "bone", "loaf", "bread", "log"})
 MEASURE_NOUNS = frozenset({"loaf", "block", "piece", "slice", "ball", "lump", "chunk", "bar", "bag", "roll", "pack",
                            "cube", "wedge", "stick", "sheet", "bunch", "scoop", "handful", "pair", "head", "wheel"})
 PATTERN_WORDS = ("striped", "stripes", "spotted", "spots", "polka dot", "dotted", "checked", "checkered", "plaid",
@@ -142,9 +142,16 @@ class Reading:
     params: dict = field(default_factory=dict)  # plan parameters bound from the text ('6 mm thick': the sheet's)
 
 
+# 'tied w/ string', 'stuffed w straw', 'w/o a lid': the note-taker's 'with' and 'without' (never a width: 'w x 20 cm'
+# and '60 w' are left alone)
+_WITH_ABBREVIATION = re.compile(r"(?<![\w.])w/(o\b)?\s*(?=[a-z])|(?<![\w./])w(?=\s+(?!x\b)[a-z]{2,})\s*")
+
+
 def plain(text: str) -> str:
     """Lower case, hyphens and punctuation as spaces (so 'four-legged' reads as 'four legged')."""
     t = text.lower().replace("×", "x")
+    t = _WITH_ABBREVIATION.sub(
+        lambda m: m.group(0) if re.search(r"\d\s*$", t[:m.start()]) else "without " if m.group(1) else "with ", t)
     t = re.sub(r"[-_/]", " ", t)
     t = re.sub(r"[^a-z0-9.,;' ]", " ", t)
     return re.sub(r"\s+", " ", t).strip()
@@ -306,8 +313,13 @@ def _material_words() -> dict[str, str]:
     return {normalise(w): name for name, m in raw.items() for w in m["words"]}
 
 
+_MEASURE_OF = re.compile(rf"\b(?:{'|'.join(sorted(MEASURE_NOUNS, key=len, reverse=True))})s?\s+of\b")
+
+
 def _material_in(text: str) -> str | None:
-    hits = _find(text, _material_words())
+    """The material class a request's words name; a measure word before 'of' names none ('a roll of paper target
+    faces' is no bread, 'a bar of soap' no chocolate)."""
+    hits = [h for h in _find(text, _material_words()) if not _MEASURE_OF.match(text, h[0])]
     return _material_words()[max(hits, key=lambda h: h[1] - h[0])[2]] if hits else None
 
 
@@ -751,13 +763,16 @@ def _pieces_pouch(t: str) -> pouch_words.PouchOf | None:
     """A pouch of pieces of a small food or good the lexicon knows, named after the container ('a packet of
     cherries', 'a bag of 20 cotton balls'), with the pieces' size, shape and colour and the fill's bulk density."""
     m = _GOODS_OF.search(t)
+    before = m is None
+    if m is None:  # 'a gummy bear bag', 'saltwater taffy bag half full': the goods named before the container
+        m = _GOODS_BEFORE.search(t)
     words = m.group(1) if m is not None else ""
     hits = _find(words, noun_index(), rightmost=True)
     if not hits:
         return None
     piece = load_lexicon().entries[noun_index()[hits[-1][2]][0]]
     domain = concept_domain(piece.key)
-    if domain == "animal" or piece.size_m > (PIECE_MAX_SIZE_M if domain == "food" else GOODS_MAX_SIZE_M) \
+    if (before and domain != "food") or domain == "animal" or piece.size_m > (PIECE_MAX_SIZE_M if domain == "food" else GOODS_MAX_SIZE_M) \
             or piece.plan in ("pouch", "bag", "mould", "sheet"):  # (cups and moulds come nested:
         # goods_words.nested_stack; sheets stacked: _state_params)
         return None
@@ -766,7 +781,9 @@ def _pieces_pouch(t: str) -> pouch_words.PouchOf | None:
     solid = piece.mass_kg / volume if piece.mass_kg and volume > 0 else piece.solid_density_kg_per_m3
     color = piece.colors.get("body") or "beige"
     said = [w for _s, _e, w in _find(words[: hits[-1][0]], load_lexicon().colors)]
-    fill = fill_words.Fill(f"pieces of {piece.key}", m.group(0), 0.8, PIECE_PACKING * solid,  # type: ignore[union-attr]
+    fullness = fill_words.stated_fullness(t)  # 'a bag of taffy, half full'
+    fill = fill_words.Fill(f"pieces of {piece.key}", m.group(0), fullness[0] if fullness else 0.8,  # type: ignore[union-attr]
+                           PIECE_PACKING * solid,
                            said[0] if said else color,
                            f"{piece.key.replace('_', ' ')} pieces: {piece.mass_kg or 0:g} kg each over their "
                            f"{volume * 1e6:.3g} cm^3 = {solid:.3g} kg/m^3 at {PIECE_PACKING:g} packing")
@@ -812,6 +829,8 @@ PACK_PIECES_ALONG = 3.4  # such a pack's length / one piece's: 2 x 2 to 3 x 2 of
 # 'a bag of pink and white marshmallows': the goods' words after the container, up to the end of the clause
 _GOODS_OF = re.compile(rf"\b(?:{'|'.join(sorted(pouch_words.CONTAINERS, key=len, reverse=True))})\s+(?:of|with|"
                        r"containing|full of|filled with)\s+((?:[a-z0-9]+\s*){1,6}?)(?=$|[,.;]| with | from | on | in )")
+_GOODS_BEFORE = re.compile(rf"((?:[a-z]+\s+){{1,4}}?)(?:{'|'.join(sorted(pouch_words.CONTAINERS, key=len, reverse=True))})"
+                           r"\b(?!\s+(?:of|with|containing|full of|filled with)\b)")
 GOODS_MAX_SIZE_M = 0.15  # a good small enough to be sold several to a bag or pack ('a pack of sponges') [m]
 
 
