@@ -847,16 +847,17 @@ def _stuffed_in_sack(text: str) -> tuple[str, str] | None:
     if _SEE_THROUGH.search(sack):  # 'a hoodie folded inside a clear plastic bag': what is seen is the hoodie
         return goods_text + size, (f"'{goods_text}' in {sack}: built as the goods seen through the clear bag (the bag, "
                                    f"a few grams of film, is not drawn)")
+    own = concepts.plain(re.sub(r"^(?:an?|the)\s+", "", f"{goods_text} in its pouch", flags=re.I))
+    if re.search(r"\bpouch\b", sack, re.I) and concepts.noun_index().get(own, ("packed_pouch",))[0] != "packed_pouch":
+        return own + size, f"'{m.group(0).strip()}': built as the {own}"  # an entry of its own: 'a rain poncho
+        # folded in its little pouch' is the flat retail packet, 'a down jacket stuffed in its own pouch' the packed
+        # jacket's own drawing (the generic packed pouch weighs the goods, below)
     if re.search(r"\bpouch\b", sack, re.I) and re.search(r"\b(?:packable|foldable|pack[- ]?away)\b|\bown\s+pouch\b",
                                                         m.group(0), re.I):  # a packable bag or jacket in its own
         # pouch is a small zipped pouch (a stuff sack is a sleeping bag's): its mass the goods'
         return (f"a packed zip pouch, {kg * 1000:.4g} g{size}",
                 f"'{goods_text}' packed in {sack}: built as the small zipped pouch, weighing the "
                 f"{c.concept.replace('_', ' ')} ({kg:.3g} kg)")
-    own = concepts.plain(re.sub(r"^(?:an?|the)\s+", "", f"{goods_text} in its pouch", flags=re.I))
-    if re.search(r"\bpouch\b", sack, re.I) and own in concepts.noun_index():  # an entry of its own: 'a rain poncho
-        return own + size, f"'{m.group(0).strip()}': built as the {own}"  # folded in its little pouch' is the flat
-        # retail packet
     note = (f"'{goods_text}' packed in {sack}: built as the full stuff sack, weighing the "
             f"{c.concept.replace('_', ' ')} ({kg:.3g} kg)")
     return f"a compression sack, {kg * 1000:.4g} g{size}", note
