@@ -25,7 +25,7 @@ CASES = [
 
 
 @pytest.mark.parametrize(("text", "entry", "kg"), CASES)
-def test_the_prompt_reads_as_its_entry(text: str, entry: str, kg: float) -> None:  # noqa: ARG001
+def test_the_prompt_reads_as_its_entry(text: str, entry: str, kg: float) -> None:
     assert catalogue.design_from_text(text).entry == entry
 
 
