@@ -329,7 +329,8 @@ def check_size(size: SizeSpec) -> None:
 
 
 # what a stated size measures of a hand-drawn shape drawn in a state (its entry's drawn_state)
-_DRAWN_STATE_SIZES = {"folded": "the flat size of a shape drawn folded", "coiled": "the length of a good drawn coiled"}
+_DRAWN_STATE_SIZES = {"folded": "the flat size of a shape drawn folded", "coiled": "the length of a good drawn coiled",
+                      "bundled": "the length of a fabric drawn bundled in a heap"}
 _FOLD_STATE = re.compile(r"\b(?:fold(?:ed|ing)?|roll(?:ed|ing)?|coil(?:ed|ing)?|crumpled|bunched|bundled|balled)\b",
                          re.IGNORECASE)
 
@@ -958,7 +959,7 @@ def design_from_text(text: str, size_hint_m: float | None = None) -> Design:
     drawn = reading.donor or reading.entry
     said_of = _DRAWN_STATE_SIZES.get(drawn.drawn_state or "") if drawn is not None and drawn.catalogue else None
     if stated is not None and size_hint_m is None and said_of is not None \
-            and (drawn.drawn_state == "coiled" or stated > MAX_SIZE_M):  # a shape drawn folded ('king size fitted
+            and (drawn.drawn_state in ("coiled", "bundled") or stated > MAX_SIZE_M):  # a shape drawn folded ('king size fitted
         # sheet, folded': a flat size over what L0 builds) or coiled ('2 metre tinsel garland': its length laid out)
         size = SizeSpec(stated=f"{size.stated}: {said_of}, built at its typical size")
         stated = None  # the drawing keeps its own typical size
