@@ -26,16 +26,19 @@ def test_w_is_with_unless_it_is_a_unit(text: str, said: str) -> None:
 
 def test_a_log_of_a_known_food_is_that_food_and_w_string_is_no_head() -> None:
     assert bindings("rolled chashu pork belly log tied w string").head == "log"
-    assert catalogue.design_from_text("rolled chashu pork belly log tied w string").entry == "pork_belly_strip"
+    assert catalogue.design_from_text("rolled chashu pork belly log tied w string").entry == "chashu_roll"  # drawn since
+    assert catalogue.design_from_text("pork belly log").entry == "pork_belly_strip"
     assert catalogue.design_from_text("a goat cheese log").entry == "goat_cheese"
 
 
 def test_goods_named_before_their_bag_are_a_bag_of_them_as_full_as_said() -> None:
-    for text in ("a gummy bear bag", "saltwater taffy bag half full"):
+    for text in ("a gummy bear bag", "gummy bear bag half full"):
         d = catalogue.design_from_text(text)
         assert d.entry == "generic_pouch", (text, d.entry)
-    full, half = planned_mass("a bag of saltwater taffy"), planned_mass("saltwater taffy bag half full")
+    full, half = planned_mass("a bag of gummy bears"), planned_mass("gummy bear bag half full")
     assert 0.4 * full <= half <= 0.75 * full  # half full: the pieces' mass halves (the bag's film stays)
+    # the taffy bag of this set is drawn since (session 44, contracts/lexicon/redraw44_r3.yaml): a half-full bag
+    assert catalogue.design_from_text("saltwater taffy bag half full").entry == "taffy_bag"
     assert 0.5 * 0.73 <= planned_mass("a gummy bear bag") <= 2 * 0.73  # as 'a bag of gummy bears' weighs
     for own in ("a bean bag", "a tea bag", "a marshmallow bag"):  # the lexicon's own bags stay themselves
         assert catalogue.design_from_text(own).entry != "generic_pouch", own
@@ -57,6 +60,8 @@ def test_the_requests_own_noun_is_a_class_before_its_kinds(text: str, cls: str) 
 def test_an_object_sense_comes_before_a_genus() -> None:
     sense = _best_sense("pan", {"flexible", "black", "rubber", "feed", "zebras"})
     assert sense is not None and "vessel" in sense.definition  # not 'chimpanzees' (the genus Pan)
-    d = catalogue.design_from_text("flexible black rubber feed pan for the zebras")
-    assert d.concept is not None and d.concept.fallback_level == "hypernym"  # built like the flexible tub
+    d = catalogue.design_from_text("a pan for the goats")
+    assert d.concept is not None and d.concept.fallback_level == "hypernym", d.entry  # a pan, built as a vessel
+    # the feed pan of this set has its own entry since (session 44): the flexible tub's mould made shallow
+    assert catalogue.design_from_text("flexible black rubber feed pan for the zebras").entry == "feed_pan"
     assert 0.45 <= planned_mass("flexible black rubber feed pan for the zebras") <= 1.8  # ~0.9 kg; 55 g before
