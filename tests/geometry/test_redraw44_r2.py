@@ -24,7 +24,7 @@ CASES = [
 ]
 BUILT = {"silicone_phone_case", "strawberry_daifuku"}  # built in the default run (the rest under -m slow)
 SHAPES = ["sock_poi", "zabuton", "fukusa", "strawberry_daifuku", "yukata_folded", "giant_gummy_worm",
-          "garden_kneeling_pad", "packed_down_jacket", "silicone_phone_case", "flattened_cardboard_box", "cardboard_box"]
+          "knee_pad", "packed_down_jacket", "silicone_phone_case", "flattened_cardboard_box", "cardboard_box"]
 
 
 @pytest.mark.parametrize(("text", "entry", "kg"), CASES)
