@@ -84,7 +84,7 @@ PORTION_SHAPES: dict[str, tuple[str, dict]] = {
 }  # 'a wedge of X' follows X's own shape (wedged)
 # nouns that name a generic form: a more specific object noun before them wins ('teether ring', 'sock ball')
 GENERIC_NOUNS = frozenset({"ball", "ring", "block", "cube", "roll", "pad", "disc", "tube", "bar", "piece", "toy",
-                           "noodle", "cushion", "pillow", "roller", "bun", "bone", "loaf", "bread", "log"})
+                           "noodle", "cushion", "pillow", "roller", "bun", "bone", "loaf", "bread", "log", "wrap"})
 MEASURE_NOUNS = frozenset({"loaf", "block", "piece", "slice", "ball", "lump", "chunk", "bar", "bag", "roll", "pack",
                            "cube", "wedge", "stick", "sheet", "bunch", "scoop", "handful", "pair", "head", "wheel"})
 PATTERN_WORDS = ("striped", "stripes", "spotted", "spots", "polka dot", "dotted", "checked", "checkered", "plaid",
@@ -228,6 +228,23 @@ def diminutive_base(word: str) -> str | None:
                 if cand in noun_index():
                     return cand
     return None
+
+
+_PLUSH_AFTER = re.compile(r"\b((?:[a-z]+ ){0,3}[a-z]+) (?:plushie|plushies|plushy|stuffie|stuffies|stuffy|plush toy)\b")
+
+
+def _plush_before(text: str) -> str:
+    """'an avocado plushie', 'boba tea plushie' -> 'a plush avocado', 'plush boba tea': the plush toy of the object
+    named just before the word (the lexicon's plush entries and the plush-of-a-shape readings name it first)."""
+    def repl(m: re.Match) -> str:
+        words = m.group(1).split()
+        for n in range(min(3, len(words)), 0, -1):
+            noun = " ".join(words[-n:])
+            if noun in noun_index() or f"plush {noun}" in noun_index():
+                return " ".join([*words[:-n], "plush", noun])
+        return m.group(0)
+
+    return _PLUSH_AFTER.sub(repl, text)
 
 
 def _expand_diminutives(text: str) -> str:
@@ -548,10 +565,13 @@ def read_text(text: str, serving: bool = True) -> Reading:
     lex = load_lexicon()
     text = _without_asides(text)
     t = _STYLE.sub(lambda m: f"{m.group(1)} {m.group(2)}" if f"{m.group(1)} {m.group(2)}" in noun_index()
-                   else m.group(0), _expand_diminutives(normalise(text)))  # 'a muppet-style puppet': a muppet puppet
+                   else m.group(0), _expand_diminutives(_plush_before(normalise(text))))  # 'a muppet-style puppet': a
+    # muppet puppet
     contents = pouch_words.vacuum_contents(t)
     if contents is not None and contents != t:  # 'vacuum sealed pork chop': the chop, on its sealed film
         inner = read_text(contents)
+        if inner.entry.category in VACUUM_STORED and not inner.match.by_analogy:
+            return _vacuum_stored(inner)  # 'a vacuum bag with a queen duvet in it': a space-saver bag of it
         inner.vacuum = True
         return inner
     t_shape, donor, donor_words = _shape_donor(t)
@@ -680,6 +700,27 @@ def read_text(text: str, serving: bool = True) -> Reading:
         return Reading(match=match, entry=entry, warnings=[note], phrase=phrase, pouch=pouch, size_m=size)
     return Reading(match=match, entry=entry, donor=donor_entry, donor_plan=donor_plan, warnings=warnings,
                    phrase=phrase, size_m=size_m, look_only=look and not match.by_analogy)
+
+
+# soft goods a vacuum bag stores squeezed flat (a duvet, clothes, a pillow, plush toys), not a food's sealed film
+VACUUM_STORED = frozenset({"textile", "pillow", "plush_animal"})
+VACUUM_BAG_FILM_KG = 0.15  # an 80 x 60 cm space-saver bag's own film and valve (retail listings 120-180 g) [kg]
+
+
+def _vacuum_stored(inner: Reading) -> Reading:
+    """The lexicon's space-saver bag holding the goods read inside it, weighing what they weigh plus its film, its
+    size the bag's scaled by the cube root of that mass over its typical load (squeezed goods keep their density)."""
+    bag = load_lexicon().entries["vacuum_storage_bag"]
+    goods = inner.match.typical_mass_kg or inner.entry.mass_kg
+    mass = goods + VACUUM_BAG_FILM_KG
+    size = float(min(bag.size_m, bag.size_m * (mass / bag.mass_kg) ** (1.0 / 3.0)))
+    what = inner.entry.key.replace("_", " ")
+    note = f"a vacuum storage bag of {what}: squeezed flat, it weighs the {what}'s {goods:.3g} kg and its film"
+    match = _match(bag, "synonym", inner.match.noun, note).model_copy(update={  # both named: no analogy
+        "typical_mass_kg": mass, "typical_size_m": size,
+        "mass_source": f"the {what}'s typical mass ({inner.entry.mass_source}) plus the bag's film "
+                       f"({VACUUM_BAG_FILM_KG:g} kg)"})
+    return Reading(match=match, entry=bag, warnings=[note], phrase=inner.phrase, size_m=size)
 
 
 # one serving of a soft dessert: the snack cup's contents, turned out (#35)
