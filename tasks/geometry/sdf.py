@@ -2,7 +2,8 @@
 
 from __future__ import annotations
 
-from collections.abc import Callable
+import functools
+from collections.abc import Callable, Sequence
 from typing import Any
 
 import numpy as np
@@ -106,8 +107,16 @@ _SDF: dict[str, Callable[[np.ndarray, Any], np.ndarray]] = {
 
 
 def rotation_matrix(tf: Transform) -> np.ndarray:
-    """3x3 rotation of a transform (extrinsic XYZ Euler angles in degrees)."""
-    return Rotation.from_euler("xyz", tf.rotation_deg, degrees=True).as_matrix()
+    """3x3 rotation of a transform (extrinsic XYZ Euler angles in degrees; read-only, shared by equal angles)."""
+    return _rotation_matrix(tuple(float(a) for a in tf.rotation_deg))
+
+
+@functools.lru_cache(maxsize=4096)
+def _rotation_matrix(rotation_deg: tuple[float, ...]) -> np.ndarray:
+    """(scipy's from_euler is ~90 us a call, and a program's parts are boxed and evaluated once per grid chunk)"""
+    r = Rotation.from_euler("xyz", rotation_deg, degrees=True).as_matrix()
+    r.setflags(write=False)
+    return r
 
 
 def part_sdf(p: np.ndarray, part: Part) -> np.ndarray:
@@ -156,6 +165,48 @@ def culled_part_sdf(p: np.ndarray, part: Part) -> np.ndarray:
     d = _len(gap)
     if near.any():
         d[near] = part_sdf(p[near], part)
+    return d
+
+
+def _grid_points(axes: Sequence[np.ndarray]) -> np.ndarray:
+    """The (N, 3) points of the grid with these coordinate axes (x slowest, as meshgrid 'ij' flattened)."""
+    return np.stack(np.meshgrid(*axes, indexing="ij"), axis=-1).reshape(-1, 3)
+
+
+def _grid_culled_part_sdf(axes: Sequence[np.ndarray], part: Part) -> np.ndarray:
+    """culled_part_sdf on the grid of `axes`, the same values: the part's near region is a box of grid cells and its
+    gap to the part's box is separable by axis, so neither is computed point by point."""
+    centre, half = _part_box(part)
+    margin = part.blend_m + float(half.max())
+    gaps = [np.maximum(np.abs(a - c) - h, 0.0) for a, c, h in zip(axes, centre, half)]
+    near = [np.flatnonzero(g <= margin) for g in gaps]  # contiguous: |a - c| falls then rises along a sorted axis
+    shape = tuple(len(a) for a in axes)
+    if all(len(n) == len(a) for n, a in zip(near, axes)):
+        return part_sdf(_grid_points(axes), part).reshape(shape)
+    sq = (gaps[0] * gaps[0])[:, None, None] + (gaps[1] * gaps[1])[None, :, None]  # _len's order of summation
+    sq = sq + (gaps[2] * gaps[2])[None, None, :]
+    d = np.sqrt(sq)
+    if all(len(n) for n in near):
+        box = tuple(slice(int(n[0]), int(n[-1]) + 1) for n in near)
+        sub = [a[b] for a, b in zip(axes, box)]
+        d[box] = part_sdf(_grid_points(sub), part).reshape(tuple(len(a) for a in sub))
+    return d
+
+
+def grid_program_sdf(axes: Sequence[np.ndarray], program: ShapeProgram) -> np.ndarray:
+    """program_sdf at the points of the grid with coordinate axes (x, y, z), as an (nx, ny, nz) array: the same values
+    as program_sdf of the flattened grid, each part evaluated only on the box of cells around it."""
+    axes = [np.asarray(a, dtype=np.float64) for a in axes]
+    shape = tuple(len(a) for a in axes)
+    d = part_sdf(_grid_points(axes), program.parts[0]).reshape(shape)
+    for part in program.parts[1:]:
+        di = _grid_culled_part_sdf(axes, part)
+        if part.operation == "union":
+            d = smooth_min(d, di, part.blend_m)
+        elif part.operation == "subtract":
+            d = smooth_max(d, -di, part.blend_m)
+        else:
+            d = smooth_max(d, di, part.blend_m)
     return d
 
 
