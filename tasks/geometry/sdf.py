@@ -168,9 +168,26 @@ def culled_part_sdf(p: np.ndarray, part: Part) -> np.ndarray:
     return d
 
 
-def _grid_points(axes: Sequence[np.ndarray]) -> np.ndarray:
-    """The (N, 3) points of the grid with these coordinate axes (x slowest, as meshgrid 'ij' flattened)."""
-    return np.stack(np.meshgrid(*axes, indexing="ij"), axis=-1).reshape(-1, 3)
+def _grid_part_sdf(axes: Sequence[np.ndarray], part: Part) -> np.ndarray:
+    """part_sdf at the points of the grid with coordinate axes (x, y, z), as an (nx, ny, nz) array: the same values,
+    the part's local coordinates built per axis and broadcast (p - t and its rotation are separable on a grid)."""
+    tf = part.transform
+    s = np.asarray(tf.scale, dtype=np.float64)
+    rel = [a - c for a, c in zip(axes, np.asarray(tf.translation_m))]
+    shape = tuple(len(a) for a in axes)
+    if any(tf.rotation_deg):  # part_sdf's column-by-column product, summed in its order
+        r = rotation_matrix(tf)
+        local = (rel[0][:, None, None, None] * r[0] + rel[1][None, :, None, None] * r[1]) \
+            + rel[2][None, None, :, None] * r[2]
+    else:
+        local = np.empty((*shape, 3))
+        local[..., 0] = rel[0][:, None, None]
+        local[..., 1] = rel[1][None, :, None]
+        local[..., 2] = rel[2][None, None, :]
+    local = local.reshape(-1, 3)
+    if (s != 1.0).any():
+        local = local / s
+    return (_SDF[part.primitive.kind](local, part.primitive) * float(s.min())).reshape(shape)
 
 
 def _grid_culled_part_sdf(axes: Sequence[np.ndarray], part: Part) -> np.ndarray:
@@ -180,16 +197,14 @@ def _grid_culled_part_sdf(axes: Sequence[np.ndarray], part: Part) -> np.ndarray:
     margin = part.blend_m + float(half.max())
     gaps = [np.maximum(np.abs(a - c) - h, 0.0) for a, c, h in zip(axes, centre, half)]
     near = [np.flatnonzero(g <= margin) for g in gaps]  # contiguous: |a - c| falls then rises along a sorted axis
-    shape = tuple(len(a) for a in axes)
     if all(len(n) == len(a) for n, a in zip(near, axes)):
-        return part_sdf(_grid_points(axes), part).reshape(shape)
+        return _grid_part_sdf(axes, part)
     sq = (gaps[0] * gaps[0])[:, None, None] + (gaps[1] * gaps[1])[None, :, None]  # _len's order of summation
     sq = sq + (gaps[2] * gaps[2])[None, None, :]
     d = np.sqrt(sq)
     if all(len(n) for n in near):
         box = tuple(slice(int(n[0]), int(n[-1]) + 1) for n in near)
-        sub = [a[b] for a, b in zip(axes, box)]
-        d[box] = part_sdf(_grid_points(sub), part).reshape(tuple(len(a) for a in sub))
+        d[box] = _grid_part_sdf([a[b] for a, b in zip(axes, box)], part)
     return d
 
 
@@ -197,8 +212,7 @@ def grid_program_sdf(axes: Sequence[np.ndarray], program: ShapeProgram) -> np.nd
     """program_sdf at the points of the grid with coordinate axes (x, y, z), as an (nx, ny, nz) array: the same values
     as program_sdf of the flattened grid, each part evaluated only on the box of cells around it."""
     axes = [np.asarray(a, dtype=np.float64) for a in axes]
-    shape = tuple(len(a) for a in axes)
-    d = part_sdf(_grid_points(axes), program.parts[0]).reshape(shape)
+    d = _grid_part_sdf(axes, program.parts[0])
     for part in program.parts[1:]:
         di = _grid_culled_part_sdf(axes, part)
         if part.operation == "union":
