@@ -48,11 +48,23 @@ class GeometryChecks(Model):
         return [g.gate for g in self.gates if not g.passed]
 
 
-def outside_distance(mesh: trimesh.Trimesh, points: np.ndarray, seed: int = 0) -> np.ndarray:
+class SurfaceSamples:
+    """A mesh's dense surface samples, their faces and a k-d tree over them (outside_distance's estimate)."""
+
+    def __init__(self, mesh: trimesh.Trimesh, seed: int = 0) -> None:
+        self.points, self.faces = trimesh.sample.sample_surface(mesh, _SURFACE_SAMPLES, seed=seed)
+        self.tree = cKDTree(self.points)
+
+
+def outside_distance(mesh: trimesh.Trimesh, points: np.ndarray, seed: int = 0,
+                     surface: SurfaceSamples | None = None) -> np.ndarray:
     """Distance [m] of each point outside the surface (0 inside): nearest dense surface sample and its normal's side;
-    the farthest estimated-outside points are confirmed by the winding number and measured exactly."""
-    samples, fidx = trimesh.sample.sample_surface(mesh, _SURFACE_SAMPLES, seed=seed)
-    d, i = cKDTree(samples).query(points)
+    the farthest estimated-outside points are confirmed by the winding number and measured exactly. `surface`: the
+    mesh's SurfaceSamples (for `seed`) when several point sets are measured against one mesh."""
+    if surface is None:
+        surface = SurfaceSamples(mesh, seed)
+    samples, fidx = surface.points, surface.faces
+    d, i = surface.tree.query(points)
     side = np.einsum("ij,ij->i", points - samples[i], mesh.face_normals[fidx[i]])
     out = np.where(side > 0, d, 0.0)
     check = np.flatnonzero(out > _VERIFY_ABOVE_M)
@@ -77,7 +89,8 @@ def geometry_metrics(
     gpos = np.asarray(gaussians["positions_m"], dtype=np.float64)
     com = mesh.center_mass if mesh.is_watertight else mesh.centroid
     p_com = (pos * vol[:, None]).sum(axis=0) / vol.sum()
-    g_out = outside_distance(mesh, gpos)
+    surface = SurfaceSamples(mesh)  # sampled once for the Gaussians and the particles
+    g_out = outside_distance(mesh, gpos, surface=surface)
     return {
         "watertight": float(mesh.is_watertight and mesh.is_winding_consistent),
         "volume_m3": volume,
@@ -87,7 +100,7 @@ def geometry_metrics(
         "min_z_m": float(mesh.bounds[0, 2]),
         "particle_count": float(len(pos)),
         "particle_spacing_m": float(particles["spacing_m"]),
-        "particle_mesh_distance_max_m": float(outside_distance(mesh, pos).max()),
+        "particle_mesh_distance_max_m": float(outside_distance(mesh, pos, surface=surface).max()),
         # against what the particles fill: the mesh volume, or a hollow object's shell (build_body's body_volume_m3)
         "particle_volume_ratio": float(vol.sum() / float(particles.get("body_volume_m3", volume)))
         if volume > 0 else 0.0,

@@ -68,10 +68,11 @@ def make_gaussians(
     surf_rot = _frame_quaternions(normals)
     pick = rng.integers(0, len(particles_m), n_int)
     int_pts = particles_m[pick] + rng.uniform(-0.25, 0.25, (n_int, 3)) * spacing_m
-    depth, near = cKDTree(pts).query(int_pts)
+    surface = cKDTree(pts)  # (built once: the surface discs are queried twice)
+    depth, near = surface.query(int_pts)
     outside = np.einsum("ij,ij->i", int_pts - pts[near], normals[near]) > 0.0
     int_pts[outside] = particles_m[pick][outside]  # a jitter that left the surface: back on its particle
-    depth[outside], near[outside] = cKDTree(pts).query(int_pts[outside])
+    depth[outside], near[outside] = surface.query(int_pts[outside])
     _, vi = cKDTree(mesh.vertices).query(int_pts)
     int_rgb = vc[vi]
     # an interior blob stays inside: its 3 sigma no deeper than it lies under the surface (no halo round the object);

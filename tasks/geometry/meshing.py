@@ -8,7 +8,7 @@ from skimage.measure import marching_cubes
 
 from contracts.errors import InputError
 from contracts.shape import ShapeProgram
-from tasks.geometry.sdf import part_colors, program_bounds, program_sdf
+from tasks.geometry.sdf import grid_program_sdf, part_colors, program_bounds
 
 _CHUNK = 1_000_000
 # a slender object (a pool noodle, a rope) keeps at least this many cells across its middle extent, up to
@@ -85,9 +85,10 @@ def sample_program(program: ShapeProgram, resolution: int) -> tuple[np.ndarray, 
     origin = bounds[0] - 2.0 * spacing
     shape = tuple(int(n) for n in np.ceil(size / spacing).astype(int) + 5)
     axes = [origin[i] + spacing * np.arange(shape[i]) for i in range(3)]
-    pts = np.stack(np.meshgrid(*axes, indexing="ij"), axis=-1).reshape(-1, 3)
-    d = np.concatenate([program_sdf(pts[i : i + _CHUNK], program) for i in range(0, len(pts), _CHUNK)])
-    return d.reshape(shape), origin, spacing
+    step = max(1, _CHUNK // (shape[1] * shape[2]))  # slabs of x of about _CHUNK points (bounds the temporaries)
+    d = np.concatenate([grid_program_sdf([axes[0][i : i + step], axes[1], axes[2]], program)
+                        for i in range(0, shape[0], step)])
+    return d, origin, spacing
 
 
 

@@ -2,7 +2,8 @@
 
 from __future__ import annotations
 
-from collections.abc import Callable
+import functools
+from collections.abc import Callable, Sequence
 from typing import Any
 
 import numpy as np
@@ -106,8 +107,16 @@ _SDF: dict[str, Callable[[np.ndarray, Any], np.ndarray]] = {
 
 
 def rotation_matrix(tf: Transform) -> np.ndarray:
-    """3x3 rotation of a transform (extrinsic XYZ Euler angles in degrees)."""
-    return Rotation.from_euler("xyz", tf.rotation_deg, degrees=True).as_matrix()
+    """3x3 rotation of a transform (extrinsic XYZ Euler angles in degrees; read-only, shared by equal angles)."""
+    return _rotation_matrix(tuple(float(a) for a in tf.rotation_deg))
+
+
+@functools.lru_cache(maxsize=4096)
+def _rotation_matrix(rotation_deg: tuple[float, ...]) -> np.ndarray:
+    """(scipy's from_euler is ~90 us a call, and a program's parts are boxed and evaluated once per grid chunk)"""
+    r = Rotation.from_euler("xyz", rotation_deg, degrees=True).as_matrix()
+    r.setflags(write=False)
+    return r
 
 
 def part_sdf(p: np.ndarray, part: Part) -> np.ndarray:
@@ -156,6 +165,62 @@ def culled_part_sdf(p: np.ndarray, part: Part) -> np.ndarray:
     d = _len(gap)
     if near.any():
         d[near] = part_sdf(p[near], part)
+    return d
+
+
+def _grid_part_sdf(axes: Sequence[np.ndarray], part: Part) -> np.ndarray:
+    """part_sdf at the points of the grid with coordinate axes (x, y, z), as an (nx, ny, nz) array: the same values,
+    the part's local coordinates built per axis and broadcast (p - t and its rotation are separable on a grid)."""
+    tf = part.transform
+    s = np.asarray(tf.scale, dtype=np.float64)
+    rel = [a - c for a, c in zip(axes, np.asarray(tf.translation_m))]
+    shape = tuple(len(a) for a in axes)
+    if any(tf.rotation_deg):  # part_sdf's column-by-column product, summed in its order
+        r = rotation_matrix(tf)
+        local = (rel[0][:, None, None, None] * r[0] + rel[1][None, :, None, None] * r[1]) \
+            + rel[2][None, None, :, None] * r[2]
+    else:
+        local = np.empty((*shape, 3))
+        local[..., 0] = rel[0][:, None, None]
+        local[..., 1] = rel[1][None, :, None]
+        local[..., 2] = rel[2][None, None, :]
+    local = local.reshape(-1, 3)
+    if (s != 1.0).any():
+        local = local / s
+    return (_SDF[part.primitive.kind](local, part.primitive) * float(s.min())).reshape(shape)
+
+
+def _grid_culled_part_sdf(axes: Sequence[np.ndarray], part: Part) -> np.ndarray:
+    """culled_part_sdf on the grid of `axes`, the same values: the part's near region is a box of grid cells and its
+    gap to the part's box is separable by axis, so neither is computed point by point."""
+    centre, half = _part_box(part)
+    margin = part.blend_m + float(half.max())
+    gaps = [np.maximum(np.abs(a - c) - h, 0.0) for a, c, h in zip(axes, centre, half)]
+    near = [np.flatnonzero(g <= margin) for g in gaps]  # contiguous: |a - c| falls then rises along a sorted axis
+    if all(len(n) == len(a) for n, a in zip(near, axes)):
+        return _grid_part_sdf(axes, part)
+    sq = (gaps[0] * gaps[0])[:, None, None] + (gaps[1] * gaps[1])[None, :, None]  # _len's order of summation
+    sq = sq + (gaps[2] * gaps[2])[None, None, :]
+    d = np.sqrt(sq)
+    if all(len(n) for n in near):
+        box = tuple(slice(int(n[0]), int(n[-1]) + 1) for n in near)
+        d[box] = _grid_part_sdf([a[b] for a, b in zip(axes, box)], part)
+    return d
+
+
+def grid_program_sdf(axes: Sequence[np.ndarray], program: ShapeProgram) -> np.ndarray:
+    """program_sdf at the points of the grid with coordinate axes (x, y, z), as an (nx, ny, nz) array: the same values
+    as program_sdf of the flattened grid, each part evaluated only on the box of cells around it."""
+    axes = [np.asarray(a, dtype=np.float64) for a in axes]
+    d = _grid_part_sdf(axes, program.parts[0])
+    for part in program.parts[1:]:
+        di = _grid_culled_part_sdf(axes, part)
+        if part.operation == "union":
+            d = smooth_min(d, di, part.blend_m)
+        elif part.operation == "subtract":
+            d = smooth_max(d, -di, part.blend_m)
+        else:
+            d = smooth_max(d, di, part.blend_m)
     return d
 
 

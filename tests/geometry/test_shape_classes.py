@@ -4,10 +4,11 @@ knots, pointed footballs, soccer panels, dented balls and bean bag chairs, on ph
 from __future__ import annotations
 
 import numpy as np
+import pytest
 import trimesh
 
 from contracts.shape import ShapeProgram
-from tasks.geometry import concepts
+from tasks.geometry import concepts, meshing
 from tasks.geometry.grammar import build_program
 from tasks.geometry.meshing import mesh_program, sample_program
 from tasks.geometry.sdf import part_sdf, program_sdf
@@ -117,3 +118,8 @@ def test_culled_part_distances_keep_every_sign() -> None:
     for part in program.parts[1:]:
         exact = smooth_min(exact, part_sdf(pts, part), part.blend_m)
     assert np.array_equal(exact < 0, program_sdf(pts, program) < 0)
+    # the grid's field (culled by boxes of cells, in slabs of x) is program_sdf of the same points, bit for bit
+    assert np.array_equal(field.reshape(-1), program_sdf(pts, program))
+    with pytest.MonkeyPatch.context() as mp:
+        mp.setattr(meshing, "_CHUNK", 3 * shape[1] * shape[2])  # several slabs
+        assert np.array_equal(meshing.sample_program(program, 32)[0], field)

@@ -118,7 +118,8 @@ class ImportSite:
     text: str
 
 
-def own_imports(source: str, module: str, is_package: bool = False) -> list[ImportSite]:
+@functools.cache  # (both tasks/ checks below read every tasks/ file: each is tokenized and parsed once)
+def own_imports(source: str, module: str, is_package: bool = False) -> tuple[ImportSite, ...]:
     """The import statements of `source` that name our own packages (relative ones made absolute)."""
     package = module.split(".") if is_package else module.split(".")[:-1]
     lines = source.splitlines()
@@ -151,7 +152,7 @@ def own_imports(source: str, module: str, is_package: bool = False) -> list[Impo
             visit(child, inner)
 
     visit(ast.parse(source), False)
-    return found
+    return tuple(found)
 
 
 def tasks_unit(name: str) -> str | None:
