@@ -882,6 +882,8 @@ def _rolled(p: SheetParams) -> list[Part]:
         parts.append(_op(cylinder("hole", r0, 1.2 * w, (0, 0, R), rot=(0, 90, 0)), "subtract"))
     if puffy:
         parts += _roll_baffles(p, w, R)
+    if p.hem or p.fringe:  # a rug rolled up: its border round both ends of the roll, its fringe off the loose end
+        parts += _roll_border_fringe(p, w, R, layer)
     if p.straps:
         parts += _roll_straps(w, R)
     if p.tail > 0:  # the free end unrolled off the bottom of the roll, lying flat towards -y
@@ -911,6 +913,28 @@ def _rolled(p: SheetParams) -> list[Part]:
                 if len(parts) >= 63:
                     return parts
     return parts
+
+
+def _roll_border_fringe(p: SheetParams, w: float, R: float, layer: float) -> list[Part]:
+    """A rolled sheet's woven border (hem) seen as a band round the roll near each end, and its fringe as tassels
+    hanging from the loose end's edge down the roll's side (a rolled rug: the short end with the fringe is outside)."""
+    out: list[Part] = []
+    if p.hem:
+        band = max(0.07 * w, 0.02 * max(w, 2 * R))
+        th = max(layer, 0.08 * R)  # (set in from the ends past the rings' or spiral's cut: they stay open)
+        for k, sx in enumerate((-1.0, 1.0)):
+            x = sx * (w / 2 - 0.06 * w - band / 2)
+            out.append(cylinder(f"hem {k + 1}", R + th, band, (x, 0, R), rot=(0, 90, 0), edge=0.3 * th))
+    if p.fringe:
+        n = int(np.clip(round(w / (0.06 * max(w, 2 * R))), 5, 12))
+        r = max(0.5 * layer, 0.012 * max(w, 2 * R))
+        tl = 0.55 * R
+        for j in range(n):
+            x = -0.45 * w + 0.9 * w * j / (n - 1)
+            a = np.array([x, -0.5 * R, 2 * R])
+            b = np.array([x + 0.08 * tl * np.sin(2.1 * j), -1.0 * R - 0.1 * tl, 2 * R - tl])
+            out.append(limb(f"tassel {j + 1}", a, b, r, blend=0.2 * r))
+    return out
 
 
 ROLL_PUFFY_EDGE = 0.3  # a rolled quilted sheet's ends rounded by this / the roll's radius (soft, not a cut tube) [-]
