@@ -389,9 +389,9 @@ def test_large_photo_is_reduced_as_it_is_read(tmp_path: Path) -> None:
 
 _SOFT = [r for r in _manifest() if r["soft"]]
 _RIGID = [r for r in _manifest() if not r["soft"]]
-# building a mesh from every soft photo is a sweep (~50 s of one core): the default run builds every third, the slow
+# building a mesh from every soft photo is a sweep (~50 s of one core): the default run builds every fourth, the slow
 # run all of them
-_SOFT_SAMPLE = {r["file"] for r in _SOFT[::3]}
+_SOFT_SAMPLE = {r["file"] for r in _SOFT[::4]}
 
 
 @pytest.mark.skipif(not _SOFT, reason="no photos in tests/geometry/photos")
