@@ -212,24 +212,22 @@ def grid_program_sdf(axes: Sequence[np.ndarray], program: ShapeProgram) -> np.nd
     """program_sdf at the points of the grid with coordinate axes (x, y, z), as an (nx, ny, nz) array: the same values
     as program_sdf of the flattened grid, each part evaluated only on the box of cells around it."""
     axes = [np.asarray(a, dtype=np.float64) for a in axes]
-    d = _grid_part_sdf(axes, program.parts[0])
-    for part in program.parts[1:]:
-        di = _grid_culled_part_sdf(axes, part)
-        if part.operation == "union":
-            d = smooth_min(d, di, part.blend_m)
-        elif part.operation == "subtract":
-            d = smooth_max(d, -di, part.blend_m)
-        else:
-            d = smooth_max(d, di, part.blend_m)
-    return d
+    return _combined(program, lambda part: _grid_part_sdf(axes, part), lambda part: _grid_culled_part_sdf(axes, part))
 
 
 def program_sdf(p: np.ndarray, program: ShapeProgram) -> np.ndarray:
     """Signed distance of a whole program at points p (N, 3); parts are combined in order."""
     p = np.asarray(p, dtype=np.float64)
-    d = part_sdf(p, program.parts[0])
+    return _combined(program, lambda part: part_sdf(p, part), lambda part: culled_part_sdf(p, part))
+
+
+def _combined(program: ShapeProgram, first: Callable[[Part], np.ndarray], culled: Callable[[Part], np.ndarray]
+              ) -> np.ndarray:
+    """The program's parts folded in order (union, subtract, intersect with their blends): the first part's field,
+    then each later part's culled field."""
+    d = first(program.parts[0])
     for part in program.parts[1:]:
-        di = culled_part_sdf(p, part)
+        di = culled(part)
         if part.operation == "union":
             d = smooth_min(d, di, part.blend_m)
         elif part.operation == "subtract":
