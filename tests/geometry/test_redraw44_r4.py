@@ -44,7 +44,7 @@ def test_each_shape_is_hand_drawn_within_the_part_budget(entry: str) -> None:
                                              ("a jersey", "sports_jersey"), ("jersey fabric", "fabric_piece"),
                                              ("a bundle of fabric offcuts", "fabric_scrap_bundle"),
                                              ("fabric scraps", "fabric_scrap_bundle"),
-                                             ("a yogurt pouch", "yogurt_pouch"), ("a foam wedge", "foam_wedge"),
+                                             ("a yogurt pouch", "yogurt_pouch"), ("a foam wedge", "positioning_wedge"),
                                              ("a boba plush", "boba_plush"), ("a sleeve pattern piece", "fleece_sleeve_piece")])
 def test_the_new_nouns_and_their_neighbours(text: str, entry: str) -> None:
     assert catalogue.design_from_text(text).entry == entry
