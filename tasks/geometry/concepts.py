@@ -1121,7 +1121,7 @@ def build(reading: Reading, text: str) -> tuple[ShapeProgram, ConceptMatch, list
         if reading.pouch is not None and reading.pouch.port != "none":
             params = {**params, "port": reading.pouch.port}
         if reading.pouch is not None and reading.pouch.piece_m is not None:  # the goods seen through the film
-            params = {**params, "piece": tuple(v / size for v in reading.pouch.piece_m),
+            params = {**params, "piece": reading.pouch.piece_drawn or tuple(v / size for v in reading.pouch.piece_m),
                       "piece_shape": reading.pouch.piece_shape}
         if reading.pouch is not None and target.plan == "pouch":  # its front's emblem, its form (#38)
             params = {**params, **pouch_words.pack_look(reading.pouch, normalise(text))}

@@ -5,6 +5,7 @@ film's flat border round it. A stated volume ('500 ml', '1 litre') or mass ('1 k
 
 from __future__ import annotations
 
+import dataclasses
 import re
 from dataclasses import dataclass
 
@@ -49,6 +50,8 @@ class PouchOf:
     piece_key: str | None = None  # the goods' lexicon concept, drawn in each piece slot (tasks.geometry.pack_pieces)
     piece_colors_said: bool = False  # the goods' colours were said, not the concept's own
     size_m: float | None = None  # the pack's size when the request says how many it holds ('six oranges inside') [m]
+    piece_drawn: tuple[float, float, float] | None = None  # a fill's pieces as drawn, / the pack's length: larger
+    # than life where the draft grid could not show a real bean (tasks.geometry.pouch_words.fill_pieces)
 
     @property
     def liquid(self) -> bool:
@@ -78,10 +81,49 @@ def pouch_of(text: str, head: str | None, compounds: list[str]) -> PouchOf | Non
                 break
     if fill is None:
         return None
+    fill = tinted(fill, t)
     port = "none"
     if fill.key in LIQUID_FILLS:
         port = "iv" if _IV_WORDS.search(t) else "spout" if _SPOUT_WORDS.search(t) else "none"
-    return PouchOf(fill=fill, port=port)
+    if fill.key in DELI_FILLS:  # the slices in the meat's colour, seen through the tray's clear film
+        return PouchOf(fill=fill, port=port, piece_colors=(fill.color,))
+    return fill_pieces(PouchOf(fill=fill, port=port))
+
+
+def _record(key: str) -> dict | None:
+    return next((v for v in fill_words.fills().values() if v["key"] == key), None)
+
+
+def tinted(fill: fill_words.Fill, text: str) -> fill_words.Fill:
+    """The fill in the colour a word of the request gives it ('taro powder' lavender, 'sliced turkey' light pink;
+    contracts/vocab/fills.yaml `tints`), else as it is."""
+    rec = _record(fill.key)
+    for word, color in sorted(((rec or {}).get("tints") or {}).items(), key=lambda kv: -len(kv[0])):
+        if re.search(rf"\b{re.escape(word)}\b", text):
+            return dataclasses.replace(fill, color=color)
+    return fill
+
+
+# a pack of a piece fill shows about this many pieces along its length: real beans (1.3 cm on a 25 cm bag) are ~2
+# cells of L0's draft grid and melt into the film, so the pieces are drawn larger than life, as a pack's window shows
+SEEN_FILL_ALONG = 7.0
+
+
+def fill_pieces(pouch: PouchOf) -> PouchOf:
+    """A pouch of a fill told by its pieces (contracts/vocab/fills.yaml `piece`: beans, tapioca pearls, pasta,
+    lettuce shreds) with them drawn through its clear film in the goods' colours; the fill's mass rule unchanged."""
+    rec = _record(pouch.fill.key)
+    piece = rec.get("piece") if rec is not None else None
+    if rec is None or piece is None or pouch.port != "none" or pouch.piece_m is not None:
+        return pouch
+    mm = np.asarray(piece["mm"], dtype=np.float64)
+    drawn = mm / float(mm.max()) / SEEN_FILL_ALONG
+    colors = tuple(piece.get("colors") or (pouch.fill.color,))
+    if pouch.fill.color != rec["color"]:  # a tint said ('white tapioca pearls'): the pieces in it
+        colors = (pouch.fill.color,)
+    return dataclasses.replace(pouch, piece_m=tuple(float(v) * 1e-3 for v in mm),  # type: ignore[arg-type]
+                               piece_shape=str(piece.get("form", "ball")), piece_colors=colors,
+                               piece_drawn=(float(drawn[0]), float(drawn[1]), float(drawn[2])))
 
 
 def vacuum_contents(text: str) -> str | None:
@@ -157,6 +199,11 @@ EMBLEM_COLORS = {"paw": "dark brown", "bone": "dark brown", "fish": "orange", "s
                  "drop": "light blue", "pad": "light blue", "piece": "red",
                  "wheat": "wheat", "cat": "dark brown", "bottle": "blue", "diaper": "light blue"}
 _NET = re.compile(r"\b(?:net|netted|mesh|string)\b")
+# fills sold in their own form of pack (#45): flour and sugar in a paper sack standing on its flat bottom, drink and
+# protein powders in a stand-up zip pouch of the powder's colour, sliced deli meat in a flat clear tray of slices
+SACK_FILLS = frozenset({"flour", "sugar"})
+STAND_UP_FILLS = frozenset({"powder"})
+DELI_FILLS = frozenset({"deli"})
 
 
 def pack_look(pouch: PouchOf, text: str) -> dict[str, object]:
@@ -169,7 +216,13 @@ def pack_look(pouch: PouchOf, text: str) -> dict[str, object]:
         if _NET.search(t) and pouch.piece_shape == "ball":
             return {"form": "mesh"}
         return {}
+    if pouch.port == "none" and pouch.fill.key in DELI_FILLS:
+        return {"form": "deli", "label": True, "crimp": False}
+    if pouch.port == "none" and pouch.fill.key in STAND_UP_FILLS:
+        return {"stand": True, "label": True, "crimp": False}
     emblem, stand = PACK_EMBLEMS.get(pouch.fill.key, ("none", False))
+    if pouch.port == "none" and pouch.fill.key in SACK_FILLS:
+        return {"form": "sack", "label": True, "crimp": False, **({"emblem": emblem} if emblem != "none" else {})}
     if pouch.fill.key == "pet_food":
         emblem = "fish" if re.search(r"\b(?:cat|kitten|kitty)\b", t) else "bone" if re.search(
             r"\b(?:dog|puppy|doggy)\b", t) else "paw"

@@ -22,8 +22,8 @@ def _program(text: str):  # noqa: ANN202
 @pytest.mark.parametrize(("text", "entry", "emblem", "count"), [
     ("pack of baby diapers", "diaper_pack", "diaper", 5),
     ("pack of adult diapers", "diaper_pack", "diaper", 5),
-    ("bag of flour", "bag_of_flour", "wheat", 10),
-    ("a 5 lb paper sack of all purpose flour", "bag_of_flour", "wheat", 10),
+    ("bag of flour", "bag_of_flour", "wheat", 14),
+    ("a 5 lb paper sack of all purpose flour", "bag_of_flour", "wheat", 14),
     ("1 liter milk pouch", "milk_bag", "bottle", 3),
 ])
 def test_a_pack_shows_the_picture_that_names_it(text: str, entry: str, emblem: str, count: int) -> None:

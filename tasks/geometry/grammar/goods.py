@@ -1044,7 +1044,9 @@ class PouchParams(Model):
                          "ring at its end) / length [-]")
     piece: tuple[float, float, float] = Field(default=(0.0, 0.0, 0.0), description="goods seen through a clear "
                                               "bag ('a bag of marshmallows'): one piece's extents / length; 0: none")
-    piece_shape: Literal["ball", "cylinder", "block"] = Field(default="ball", description="the pieces' form")
+    piece_shape: Literal["ball", "cylinder", "block", "shred"] = Field(default="ball", description="the pieces' "
+                                                                       "form; shred: thin ruffled leaf shreds tumbled "
+                                                                       "every way (shredded lettuce, salad)")
     label: bool = Field(default=False, description="a printed label on its top (a sack of rice, a bag of dog food): "
                         "what tells a pack of goods from a pillow")
     handle: bool = Field(default=False, description="a webbing carry handle across the top, sewn at both ends (a "
@@ -1069,11 +1071,13 @@ class PouchParams(Model):
     stand: bool = Field(default=False, description="standing on its bottom end, its label facing out (a stand-up "
                         "pouch with a round gusset base and a zip line under its top seam; a bag of crisps on a "
                         "shelf)")
-    form: Literal["pouch", "laundry", "mesh"] = Field(default="pouch", description="laundry: a soft drawstring sack "
-                                                      "standing full of clothes, bulging, its neck cinched by a cord "
-                                                      "with a toggle, a sleeve hanging out; mesh: a net bag of round "
-                                                      "goods (oranges), the pieces heaped inside a diamond net "
-                                                      "gathered into a clip at each end")
+    form: Literal["pouch", "laundry", "mesh", "sack", "deli"] = Field(
+        default="pouch", description="laundry: a soft drawstring sack standing full of clothes, bulging, its neck "
+        "cinched by a cord with a toggle, a sleeve hanging out; mesh: a net bag of round goods (oranges), the pieces "
+        "heaped inside a diamond net gathered into a clip at each end; sack: a paper sack of flour or sugar standing "
+        "on its flat bottom, a brick with its top folded down flat, gusset creases down its sides, its printed label "
+        "facing out; deli: a flat clear tray of sliced deli meat, the slices folded and shingled along it, the sealed "
+        "film's flange round its rim")
 
 
 LABEL_SIZE = (0.46, 0.62)  # a pack's printed label over its top: / length, / width [-]
@@ -1093,6 +1097,10 @@ def pouch(p: PouchParams) -> list[Part]:
         return _laundry_sack(p)
     if p.form == "mesh" and max(p.piece) > 0:
         return _net_bag(p)
+    if p.form == "sack":
+        return _paper_sack(p, h)
+    if p.form == "deli":
+        return _deli_pack(p)
     if p.crimp and p.port == "none":  # (a bag with a port or a tie is sealed round its border)
         out = _pillow_pack(p, h) + (bagged_pieces(p, h) if max(p.piece) > 0 else [])
         if p.emblem != "none" and p.label:
@@ -1254,13 +1262,17 @@ def emblem_parts(kind: str, z: float, piece: tuple[float, float, float] = (0.0, 
         flat(ellipsoid("apple", (0.11, 0.12, t / 2), (-0.02, 0.0, zc)))
         flat(box("stalk", (0.07, 0.02, t), (0.11, 0.0, zc), edge=0.2 * t))
         flat(ellipsoid("leaf", (0.03, 0.065, t / 2), (0.13, 0.06, zc), rot=(0, 0, 35)))
-    elif kind == "wheat":  # an ear of wheat: its stalk along x, pairs of grains slanting up it, one at its tip
-        flat(box("stalk", (0.3, 0.026, t), (-0.05, 0.0, zc), edge=0.2 * t))
+    elif kind == "wheat":  # an ear of wheat upright (+x up): its stalk, plump grains in pairs slanting up out of it,
+        # one at its tip, and the long bristly awns fanning up past the tip (what tells wheat from a shrimp or a leaf)
+        flat(box("stalk", (0.13, 0.026, t), (-0.145, 0.0, zc), edge=0.2 * t))
         for k in range(4):
             for sy in (-1.0, 1.0):
-                flat(ellipsoid("grain", (0.045, 0.024, t / 2), (-0.02 + 0.05 * k, sy * 0.032, zc),
-                               rot=(0, 0, float(sy * 35))))
-        flat(ellipsoid("grain", (0.045, 0.024, t / 2), (0.19, 0.0, zc)))
+                flat(ellipsoid("grain", (0.036, 0.024, t / 2), (-0.06 + 0.042 * k, sy * 0.03, zc),
+                               rot=(0, 0, float(sy * 30))))
+        flat(ellipsoid("grain", (0.036, 0.022, t / 2), (0.1, 0.0, zc)))
+        for a in (-18.0, -6.0, 6.0, 18.0):
+            ca, sa = np.cos(np.radians(a)), np.sin(np.radians(a))
+            flat(box("awn", (0.14, 0.013, t), (0.1 + 0.07 * ca, 0.025 * np.sign(a) + 0.07 * sa, zc), rot=(0, 0, a)))
     elif kind == "cat":  # a cat's head face on: the round face, two pointed ears at its top (+x), a hollow for each eye
         flat(ellipsoid("face", (0.11, 0.13, t / 2), (-0.02, 0.0, zc)))
         for sy in (-1.0, 1.0):  # (a cone laid along x, flattened, its tip turned out)
@@ -1302,8 +1314,58 @@ def _spread(part: Part, k: float) -> Part:
 
 
 def _stood(parts: list[Part]) -> list[Part]:
-    """A pack lying flat (length along x, label up) stood on its -x end, its label facing -x."""
-    return rotated_parts(parts, (0.0, -90.0, 0.0))
+    """A pack lying flat (length along x, label up) stood on its -x end, its label facing +x (where the renders'
+    front view looks: a stand-up pouch showed its blank back, session 45)."""
+    return rotated_parts(rotated_parts(parts, (0.0, -90.0, 0.0)), (0.0, 0.0, 180.0))
+
+
+SACK_FOLD = 0.1  # a paper sack's folded-down top / its height [-]
+SACK_FOLD_THICK = 0.45  # the folded top's thickness / the sack's depth [-]
+
+
+def _paper_sack(p: PouchParams, h: float) -> list[Part]:
+    """A paper sack of flour or sugar (length 1 along x its height, width along y, its depth h along z) standing on
+    its flat bottom, its printed front facing +x where the renders look: a brick of paper, the top folded down flat
+    into a thinner band, a gusset crease down each side, the label and its emblem on the front."""
+    w, st = p.width, MIN_LAYER
+    fold = SACK_FOLD
+    parts = [superellipsoid("body", (0.5 - fold / 2, w / 2, h / 2), (-fold / 2, 0, h / 2), ns=0.12, ew=0.12)]
+    parts.append(box("fold", (fold + 0.04, 0.98 * w, SACK_FOLD_THICK * h), (0.5 - fold / 2 - 0.02, 0, 0.62 * h),
+                     edge=0.2 * SACK_FOLD_THICK * h, blend=0.04))
+    parts.append(box("fold flap", (0.45 * fold, 0.96 * w, 1.2 * st), (0.5 - fold - 0.01, 0, h + 0.2 * st),
+                     edge=0.45 * st, blend=0.01))  # the folded-over top's edge, glued down on the front
+    for sy in (-1.0, 1.0):  # a gusset's in-fold down each side
+        parts.append(_op(cylinder("gusset crease", 0.035 * h / 0.27, 0.8, (-0.08, sy * w / 2, h / 2),
+                                  rot=(0, 90, 0)), "subtract", 0.01))
+    if p.label:
+        parts.append(box("label", (0.5, 0.84 * w, st), (-0.1, 0.0, h), edge=0.45 * st, blend=0.1 * st))
+        if p.emblem != "none":
+            parts += [q.model_copy(update={"transform": q.transform.model_copy(update={"translation_m": (
+                q.transform.translation_m[0] - 0.1, *q.transform.translation_m[1:])})})
+                for q in emblem_parts(p.emblem, h + 0.5 * st)]
+    return _stood(parts)
+
+
+DELI_DEPTH = 0.12  # a deli tray's depth / its length (a 20 cm pack of sliced turkey ~2.5 cm deep) [-]
+DELI_SLICES = 6  # folded slices shingled along the tray [-]
+
+
+def _deli_pack(p: PouchParams) -> list[Part]:
+    """A flat clear tray of sliced deli meat lying flat (length 1 along x): the shallow tray ('body'), the sealed
+    film's flange round its rim ('seam'), the folded slices shingled along it, each leaning on the next, their
+    top edges over the rim ('fill N': the meat's colour), and a printed label band across its -x end."""
+    w, st = p.width, MIN_LAYER
+    d = DELI_DEPTH
+    parts = [superellipsoid("body", (0.46, w / 2 - 0.03, d / 2), (0, 0, d / 2), ns=0.2, ew=0.25)]
+    parts.append(box("seam", (0.98, w, 1.2 * st), (0, 0, d), edge=0.45 * st, blend=0.2 * st))
+    span = 0.56
+    for k in range(DELI_SLICES):  # broad thin ovals, each leaning on the next: a row of shingled slice edges
+        x = -span / 2 + span * k / (DELI_SLICES - 1) + 0.05
+        parts.append(superellipsoid(f"fill {k + 1}", (0.2, 0.42 * w, 1.1 * st), (x, 0.012 * (-1) ** k, d + 0.03),
+                                    ns=0.7, ew=0.6, rot=(0, -16, 0), blend=0.15 * st))
+    if p.label:
+        parts.append(box("label", (0.14, w, 1.4 * st), (-0.42, 0, d + 0.2 * st), edge=0.45 * st, blend=0.2 * st))
+    return parts
 
 
 def _laundry_sack(p: PouchParams) -> list[Part]:
@@ -1408,7 +1470,8 @@ def bagged_pieces(p: PouchParams, h: float) -> list[Part]:
     nx, ny = piece_grid(p)
     if nx * ny > MAX_PIECES or a > inner_x or b > inner_y:
         return []
-    ns, ew = {"ball": (1.0, 1.0), "cylinder": (0.2, 1.0), "block": (0.25, 0.25)}[p.piece_shape]
+    ns, ew = {"ball": (1.0, 1.0), "cylinder": (0.2, 1.0), "block": (0.25, 0.25), "shred": (0.7, 0.6)}[p.piece_shape]
+    shred = p.piece_shape == "shred"
     out: list[Part] = []
     for j in range(ny):
         for i in range(nx):
@@ -1416,6 +1479,11 @@ def bagged_pieces(p: PouchParams, h: float) -> list[Part]:
             y = -inner_y / 2 + (j + 0.5) * inner_y / ny
             x = float(np.clip(x, -inner_x / 2 + a / 2, inner_x / 2 - a / 2))
             tilt = 9.0 * np.sin(2.7 * i + 1.3 * j)
+            if shred:  # a shred of leaf tumbled every way, curled: its edge up here, its face there
+                out.append(superellipsoid(f"fill {len(out) + 1}", (a / 2.1, b / 2.1, c / 2), (x, y, h - 0.25 * b),
+                                          ns=ns, ew=ew, rot=(4.0 * tilt, 2.5 * tilt, 40.0 * i + 75.0 * j),
+                                          blend=0.3 * c))
+                continue
             # each sunk in the bag to just under its top, the film drawn over it: bumps in a pillow, not goods on a tray
             out.append(superellipsoid(f"fill {len(out) + 1}", (a / 2.1, b / 2.1, c / 2), (x, y, h - 0.5 * c),
                                       ns=ns, ew=ew, rot=(tilt, 0.6 * tilt, 1.4 * tilt), blend=0.3 * c))
