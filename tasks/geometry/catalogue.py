@@ -14,7 +14,7 @@ from contracts.errors import InputError
 from contracts.lexicon import load_lexicon
 from contracts.request import MAX_SIZE_M, MIN_SIZE_M, AssetRequest
 from contracts.shape import ShapeProgram
-from tasks.geometry import concepts, dims_words, grammar, pouch_words, size_words, spelling
+from tasks.geometry import concepts, dims_words, fill_words, grammar, pouch_words, size_words, spelling
 from tasks.geometry.analogy import FOOD_CUES
 from tasks.geometry.wordnet import wordnet
 from tasks.geometry.catalogue_programs import catalogue_program, catalogue_yaml
@@ -403,9 +403,14 @@ def normalise_sizes(text: str) -> str:
     text = _GARMENT_SIZE.sub(" ", text)
     text = _AGE_SIZE.sub(" ", text)
     text = _bed_sized(text)
+    text = _PACK_SIZE.sub(lambda m: " huge " if m.group(1) else " small ", text)
     return _HYPHEN_SIZE.sub(lambda m: f"{m.group(1)} {m.group(2)} ", text)
 
 
+# a retail pack size said by name ('a family size bag of chips' ~9-10 oz against a 1-2 oz single bag; 'fun size'
+# bars ~15-20 g against ~50 g): the pack said huge or small (MODIFIERS), not an unknown size word
+_PACK_SIZE = re.compile(r"\b(?:(family|party|sharing|value|jumbo|bulk|club)|(fun|snack|single[\s-]serve|lunchbox|"
+                        r"travel|trial|sample))[\s-]+size[ds]?\b", re.IGNORECASE)
 # a numbered ball size before 'football' names association football's ball ('deflated size 5 footbal', development set
 # 42, built an American football; those are sized by name: official, youth, junior)
 _SOCCER_SIZE = re.compile(r"\bsize\s+([1-5])\s+foot\s?ball?\b", re.IGNORECASE)
@@ -795,6 +800,21 @@ def _mass_sized(size: SizeSpec, match: ConceptMatch, stated: size_words.StatedMa
                                    "stated": f"sized to weigh the stated {stated.stated} at its typical density"})
 
 
+_LABEL_CONTAINER = re.compile(r"^\s*(?:\w+\s+){0,2}?(?:bags?|sacks?|packs?|packets?|pouch(?:es)?|sachets?)\b")
+
+
+def _label_mass_used(mass: size_words.StatedMass | None, text: str, reading: concepts.Reading
+                     ) -> size_words.StatedMass | None:
+    """A mass said before a pouch of goods is its label's, the full pack's ('a half-used 1 kg bag of tapioca
+    pearls'): the goods left weigh it times the fullness said (0.5 kg), the bag sized to hold the whole 1 kg."""
+    if mass is None or reading.pouch is None or _LABEL_CONTAINER.match(text[mass.span[1]:]) is None:
+        return mass
+    said = fill_words.stated_fullness(text)
+    if said is None or said[0] >= 1.0:
+        return mass
+    return size_words.StatedMass(kg=mass.kg * said[0], stated=f"{mass.stated} pack, {said[1]}", span=mass.span)
+
+
 def _fill_sized(size: SizeSpec, program: ShapeProgram, match: ConceptMatch,
                 stated: size_words.StatedMass | None) -> tuple[SizeSpec, ConceptMatch]:
     """A bag weighed by its fill (tasks.geometry.goods_words: fill x capacity) at the size it is built: a stated size
@@ -925,6 +945,7 @@ def design_from_text(text: str, size_hint_m: float | None = None) -> Design:
     if mass is not None:
         stripped = size_words.strip_spans(stripped, [mass.span])
     reading = concepts.read_text(stripped)
+    mass = _label_mass_used(mass, stripped, reading)
     if whole_m is not None and reading.phrase is not None and reading.phrase.portion in _CUT_FROM_WHOLE:
         reading.size_m = whole_m  # 'a slice of pizza from a 14 in pie': the pie is 14 in, the slice cut from it
     flat = _long_band_flat(stripped, reading, size)

@@ -30,3 +30,18 @@ def test_soft_goods_said_vacuum_packed_are_a_space_saver_bag_at_their_mass() -> 
                                              ("a chicken wrap", "naan"), ("a hand wrap", "hand_wrap")])
 def test_a_plushie_after_its_object_and_a_known_noun_before_wrap(text: str, entry: str) -> None:
     assert catalogue.design_from_text(text).entry == entry
+
+
+@pytest.mark.parametrize(("text", "kg"), [("half-used 1 kg bag of tapioca pearls", 0.5),
+                                          ("a half full 2 kg bag of rice", 1.0), ("a 2 kg bag of rice", 2.0)])
+def test_a_mass_said_before_a_pouch_is_its_label_and_the_fullness_said_takes_its_share(text: str, kg: float) -> None:
+    """Set 31's half-used 1 kg bag of tapioca pearls weighed the whole 1 kg."""
+    assert planned_mass(text) == pytest.approx(kg, rel=0.02)
+
+
+def test_a_family_size_pack_is_a_big_one_and_a_fun_size_one_small() -> None:
+    """'family size' was an unknown size word (a 47 g single bag of chips for a ~270 g family bag)."""
+    regular, family = planned_mass("a bag of potato chips"), planned_mass("a family size bag of potato chips")
+    assert 0.5 * 0.27 <= family <= 2.0 * 0.27 and family > 4 * regular
+    assert not any("not understood" in w for w in catalogue.design_from_text("a family-size bag of chips").warnings)
+    assert planned_mass("a fun size candy bar") < planned_mass("a candy bar")
