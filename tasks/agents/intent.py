@@ -84,6 +84,15 @@ def _soft_lexicon_nouns() -> tuple[str, ...]:
     return tuple(sorted(n for n in nouns if any(w in n and _names_object(n, w) for w in rigid)))
 
 
+# measure words that, before 'of', shape the goods named after them: 'a vacuum brick of hop pellets' is the pellets
+MEASURE_OF_WORDS = frozenset({"brick", "block", "bar", "slab", "cube", "stick", "log", "sheet", "roll"})
+
+
+def _measures_goods(text: str, word: str) -> bool:
+    """True when the rigid word is a measure of the goods after it ('a brick of coffee', 'a block of tofu')."""
+    return word in MEASURE_OF_WORDS and re.search(rf"(?<![a-z]){re.escape(word)}s?\s+of\s+[a-z]", text) is not None
+
+
 def rigid_object(text: str, vocab: MaterialVocab | None = None, also: tuple[str, ...] = ()) -> str | None:
     """The rigid object noun a text (or one of the texts `also` read beside it: a photo's file name) names ('a can',
     'teacup', 'figurine') when none of them names a deformable material, soft object word, soft word or a lexicon
@@ -91,7 +100,8 @@ def rigid_object(text: str, vocab: MaterialVocab | None = None, also: tuple[str,
     the head of a phrase within its own text)."""
     vocab = vocab or load_material_vocab()
     texts = [" ".join(t.lower().replace("_", " ").replace("-", " ").split()) for t in (text, *also) if t]
-    rigid = [w for t in texts for w in vocab.rigid_objects if _names_object(_own_words(t), w)]
+    rigid = [w for t in texts for w in vocab.rigid_objects if _names_object(_own_words(t), w)
+             and not _measures_goods(_own_words(t), w)]
     if not rigid:
         return None
     soft = [w for entry in vocab.materials.values() for w in entry.words] + list(vocab.objects) + vocab.soft_words

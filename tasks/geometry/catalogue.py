@@ -403,10 +403,18 @@ def normalise_sizes(text: str) -> str:
     text = _GARMENT_SIZE.sub(" ", text)
     text = _AGE_SIZE.sub(" ", text)
     text = _bed_sized(text)
+    text = _COUNT_AFTER_PACK.sub(lambda m: f"{m.group('pre')}a pack of {m.group('n')} {m.group('goods')}", text)
+    text = _COUNT_BEFORE.sub(lambda m: f"a pack of {m.group('n')} {m.group('goods')}", text)
     text = _PACK_SIZE.sub(lambda m: " huge " if m.group(1) else " small ", text)
     return _HYPHEN_SIZE.sub(lambda m: f"{m.group(1)} {m.group(2)} ", text)
 
 
+# a retail count ('tortilla pack, 10 count', 'a 12-count pack of diapers', '24 ct bag of tortilla chips'): a pack of
+# that many of the goods (a pack of N is built as N of them)
+_COUNT_AFTER_PACK = re.compile(r"^(?P<pre>.*?)(?:\b(?:an?|the)\s+)?\b(?P<goods>[a-z]+(?:\s+[a-z]+)?)\s+(?:pack|package|packet)"
+                               r"\s*,?\s*(?P<n>\d+)[\s-]*(?:count|ct|pcs|pieces)\b", re.IGNORECASE)
+_COUNT_BEFORE = re.compile(r"\b(?:an?\s+)?(?P<n>\d+)[\s-]*(?:count|ct)\s+(?:(?:pack|package|packet|bag)\s+of\s+)?"
+                           r"(?P<goods>[a-z]+(?:\s+[a-z]+)?)\s+(?:pack|package|packet)\b", re.IGNORECASE)
 # a retail pack size said by name ('a family size bag of chips' ~9-10 oz against a 1-2 oz single bag; 'fun size'
 # bars ~15-20 g against ~50 g): the pack said huge or small (MODIFIERS), not an unknown size word
 _PACK_SIZE = re.compile(r"\b(?:(family|party|sharing|value|jumbo|bulk|club)|(fun|snack|single[\s-]serve|lunchbox|"
@@ -800,6 +808,31 @@ def _mass_sized(size: SizeSpec, match: ConceptMatch, stated: size_words.StatedMa
                                    "stated": f"sized to weigh the stated {stated.stated} at its typical density"})
 
 
+_UNITLESS_DIMS = re.compile(r"(?<![\w.])(\d+(?:\.\d+)?)\s*x\s*(\d+(?:\.\d+)?)(?:\s*x\s*(\d+(?:\.\d+)?))?(?![\w.]|\s*(?:"
+                            r"mm|cm|m|in|inch|inches|ft|feet|foot|\"|')\b)", re.IGNORECASE)
+UNITLESS_UNITS = (("cm", 0.01), ("in", 0.0254))  # a bare 'A x B x C' is read in the one of these nearer its typical size
+UNITLESS_REACH = 3.0  # ... and only within this factor of it, else the typical size is built (and said) [-]
+
+
+def _unitless_dims(text: str, reading: concepts.Reading) -> SizeSpec | None:
+    """Sides said with no unit ('24x24x4 high density foam slab', 'sofa seat cushion, about 24x24x5'): read in
+    centimetres or inches, whichever puts the longest side nearer the object's typical size (within UNITLESS_REACH
+    of it); a flat sheet's stated size is its unfolded one, so a sheet is left to its typical size."""
+    m = _UNITLESS_DIMS.search(text)
+    entry = reading.donor or reading.entry
+    if m is None or entry is None or not entry.size_m or entry.plan == "sheet" or entry.drawn_state:
+        return None
+    dims = [float(g) for g in m.groups() if g is not None]
+    if min(dims) <= 0:
+        return None
+    unit, k = min(UNITLESS_UNITS, key=lambda u: abs(np.log(max(dims) * u[1] / entry.size_m)))
+    if abs(np.log(max(dims) * k / entry.size_m)) > np.log(UNITLESS_REACH):
+        return None
+    return SizeSpec(extents_m=tuple(sorted((d * k for d in dims), reverse=True)) + (None,) * (3 - len(dims)),
+                    stated=f"{m.group(0).strip()} (no unit: read in {unit}, nearer the "
+                           f"{entry.key.replace('_', ' ')}'s typical {entry.size_m:g} m)")
+
+
 _LABEL_CONTAINER = re.compile(r"^\s*(?:\w+\s+){0,2}?(?:bags?|sacks?|packs?|packets?|pouch(?:es)?|sachets?)\b")
 
 
@@ -946,6 +979,8 @@ def design_from_text(text: str, size_hint_m: float | None = None) -> Design:
         stripped = size_words.strip_spans(stripped, [mass.span])
     reading = concepts.read_text(stripped)
     mass = _label_mass_used(mass, stripped, reading)
+    if not size.explicit and size_hint_m is None:
+        size = _unitless_dims(text_n, reading) or size
     if whole_m is not None and reading.phrase is not None and reading.phrase.portion in _CUT_FROM_WHOLE:
         reading.size_m = whole_m  # 'a slice of pizza from a 14 in pie': the pie is 14 in, the slice cut from it
     flat = _long_band_flat(stripped, reading, size)

@@ -41,7 +41,7 @@ PORTION_NOUNS = frozenset({"slice", "wedge", "piece", "chunk", "lump", "block", 
                            "strip", "cube", "disc", "disk", "roll", "stick", "scoop", "pair", "bunch",
                            "handful", "bundle", "pile", "stack", "coil", "skein", "wad", "blob", "glob", "dollop", "round",
                            "square", "segment", "half", "quarter", "portion", "brick", "pad", "head", "clove", "sprig",
-                           "bulb", "ear", "wheel", "log", "set"})
+                           "bulb", "ear", "wheel", "log", "set", "section", "length"})
 # portions that are a state of their object
 PORTION_STATES = {"stack": "stacked", "pile": "stacked", "roll": "rolled", "coil": "rolled"}
 # nouns that name nothing in particular
@@ -128,6 +128,13 @@ UNIT_WORDS = frozenset({"ml", "l", "litre", "liter", "litres", "liters", "millil
                         "kilograms", "gallon", "pint", "quart", "size", "mm", "cm", "inch", "inches"})
 
 
+# words that, after the object's noun, start what is said of it, whatever the tagger makes of them
+AFTER_NOUN_ADVERBS = frozenset({"still", "already", "just", "now", "again", "also", "too", "soaking", "sopping",
+                                "dripping", "freshly", "recently", "completely", "totally", "fully", "partly",
+                                "partially", "mostly", "nearly", "almost", "barely", "slightly", "very", "really",
+                                "kinda", "somewhat", "all"})
+
+
 def _boundary(doc: Any, i: int, known: Callable[[str], bool] = lambda w: False) -> bool:
     """True when token i ends the object's own noun phrase (said after its first noun): punctuation, a preposition
     ('on its belly', 'with a green leaf'; not a known noun the tagger took for one: 'cotton oven mitt'), an
@@ -145,6 +152,9 @@ def _boundary(doc: Any, i: int, known: Callable[[str], bool] = lambda w: False) 
         return True
     if tok.pos_ == "CCONJ":
         return prev is not None and _is_noun(prev)
+    if word in AFTER_NOUN_ADVERBS:
+        return True  # 'an airline blanket still in its sleeve' ('still' was the head: a distilling still), 'a glove
+        # soaking wet, inside out' ('wet' was)
     if tok.tag_.startswith("VB"):
         if tok.tag_ in ("VBG", "VBN") and tok.dep_ == "acl" and not known(word):
             return True  # a clause about the object ('a teddy bear missing one eye': the bear, not its eye)
