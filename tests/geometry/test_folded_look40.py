@@ -49,23 +49,27 @@ def test_folded_textiles_stay_within_the_part_budget_with_unique_names(text: str
 def test_a_folded_towel_has_a_round_crease_layer_lines_and_two_border_bands() -> None:
     groups = _groups("a folded bath towel")
     assert groups.count("border") == 2
-    assert {"crease", "gap", "notch", "side line", "loft"} <= set(groups)
+    assert {"crease", "layer", "loft"} <= set(groups)  # (session 45: its layers own soft slabs, not grooves cut)
 
 
 def test_the_crease_side_is_round_and_the_open_side_shows_its_layers() -> None:
     """Probes into the folded towel: just inside its crease end's top corner is outside the solid (the crease is
-    round, not a slab's square edge) while the middle of that end is cloth; at the open end the slit between the
-    first two layers is outside."""
+    round, not a slab's square edge) while the middle of that end is cloth; at the open end, between the first two
+    layers' rounded edges, is outside."""
     prog = _program("a folded bath towel")
     part = {p.name: p for p in prog.parts}
-    body, crease, gap = part["body"], part["crease"], part["gap 1"]
-    half, top = 0.5 * float(body.primitive.size_m[0]), float(body.primitive.size_m[2])  # (the body stands on z = 0)
-    x0 = float(body.transform.translation_m[0])
-    s = float(np.sign(crease.transform.translation_m[0] - x0))  # the crease's end
+    body, crease, second = part["body"], part["crease"], part["layer 2"]
+    top = max(float(p.transform.translation_m[2] + p.primitive.size_m[2] / 2) for p in prog.parts
+              if p.name == "body" or p.name.startswith("layer "))
+    lo = float(body.transform.translation_m[0] - body.primitive.size_m[0] / 2)
+    hi = min(float(q.transform.translation_m[0] + q.primitive.size_m[0] / 2) for q in (body, second))
+    s = float(np.sign(crease.transform.translation_m[0] - 0.5 * (lo + hi)))  # the crease's end
+    crease_end, open_end = (lo, hi) if s < 0 else (hi, lo)
     d = CORNER_IN * top
-    probes = np.array([[x0 + s * (half - d), 0.0, top - d],  # the crease end's top corner
-                       [x0 + s * (half - d), 0.0, 0.5 * top],  # its middle
-                       [x0 - s * (half - d), 0.0, float(gap.transform.translation_m[2])]])  # the open end's slit
+    seam = float(body.transform.translation_m[2] + body.primitive.size_m[2] / 2)  # between the first two layers
+    probes = np.array([[crease_end - s * d, 0.0, top - d],  # the crease end's top corner
+                       [crease_end - s * d, 0.0, 0.5 * top],  # its middle
+                       [open_end + s * 0.02 * abs(hi - lo), 0.0, seam]])  # the open end, between two layers
     inside = program_sdf(probes, prog) < 0
     assert inside.tolist() == [False, True, False]
 
@@ -80,11 +84,12 @@ def test_a_patterned_folded_towel_shows_its_stripes_not_bands() -> None:
 
 
 def test_a_towels_bands_keep_the_towels_mass() -> None:
-    """Small details only: the folded towel's built volume, bands and all, stays the flat towel's."""
+    """Small details only: the bands change the folded towel's built volume little (its mass is the flat towel's
+    through the density factor; session 45 drew folded cloth lower, so the factor is no longer ~1)."""
     change = grammar.state_change("sheet", {**BATH_TOWEL, "border": True}, 1.4, "folded")
     plain = grammar.state_change("sheet", BATH_TOWEL, 1.4, "folded")
     assert change.density_factor == pytest.approx(plain.density_factor, rel=0.1)
-    assert change.density_factor == pytest.approx(1.0, rel=0.15)
+    assert change.mass_factor == 1.0 and 1.0 <= change.density_factor < 2.0
 
 
 def test_a_rolled_sleeping_bag_is_strapped_and_a_rolled_mat_is_not() -> None:

@@ -570,8 +570,99 @@ def _border_bands(x0: float, x1: float, width: float, z: float, t: float) -> lis
     return out
 
 
+FOLD_FLAT = 0.3  # a folded stack at most this high / its smaller side (8 built layers of a blanket stood as a cube
+# of grooved foam; a folded blanket or tarp lies low): its layers drawn thinner, its volume less, the density up [-]
+FOLD_CELLS = 64  # the draft mesher's cells along the folded stack's longest side [-]
+FOLD_LAYER_CELLS = 2.6  # each drawn layer at least this many of them thick (its soft edges still seen apart) [-]
+FOLD_SHIFT = 0.022  # each layer shifted up to this / the stack's footprint (folded by hand: not squared up) [-]
+FOLD_NARROW = 0.04  # each layer narrower by up to this / its width (folds never quite even) [-]
+FOLD_BULGE = 0.03  # the middle layers wider by this / the width (the pile bulging at its middle) [-]
+FOLD_YAW = 1.3  # each layer turned up to this about z [deg]
+FOLD_LAYER_EDGE = 0.48  # a drawn layer's edges rounded by this / its thickness (soft rolled edges) [-]
+
+
+def fold_drawn(length: float, width: float, n: int, t: float) -> tuple[int, float]:
+    """(layers drawn, each one's thickness) of a folded stack of n built layers t thick on a length x width footprint:
+    no higher than FOLD_FLAT of its smaller side, each drawn layer at least FOLD_LAYER_CELLS mesher cells thick
+    (fewer, thicker layers drawn when the stack's n would be thinner)."""
+    cell = max(length, width) / FOLD_CELLS
+    h = min(n * t, max(FOLD_FLAT * min(length, width), 2 * FOLD_LAYER_CELLS * cell))
+    m = int(np.clip(np.floor(h / (FOLD_LAYER_CELLS * cell)), 2, n))
+    return m, h / m
+
+
+def _layer_look(i: int, m: int) -> tuple[float, float, float, float, float]:
+    """Layer i of m's (shift along x, shift along y, length share, width share, yaw) — fixed wobbles, the same every
+    time: layers of a cloth folded by hand, each a little off the one beneath and a little narrower or wider, the
+    middle ones bulging."""
+    mid = 1.0 - ((2 * i + 1) / m - 1.0) ** 2  # 1 at the stack's middle, ~0 at its top and bottom
+    return (FOLD_SHIFT * np.sin(2.3 * i + 0.7), FOLD_SHIFT * np.cos(1.7 * i + 2.1),
+            1.0 - 0.5 * FOLD_NARROW * (1 + np.sin(1.3 * i + 0.4)),
+            1.0 - 0.5 * FOLD_NARROW * (1 + np.sin(2.9 * i + 1.1)) + FOLD_BULGE * mid, FOLD_YAW * np.sin(3.1 * i + 0.5))
+
+
 def _folded_layers(length: float, width: float, n: int, t: float, p: SheetParams) -> list[Part]:
-    """n layers of a folded sheet along x, soft cloth: the crease at -x a round roll wrapping the stack (and, in a
+    """n layers of a folded sheet along x, soft cloth, drawn low (fold_drawn): each layer its own soft slab, a little
+    shifted, turned and narrower or wider than the next (the middle ones bulging), their rounded edges seen apart
+    along the sides and the open end; the crease at -x a round roll wrapping the stack (in a letter fold the bottom
+    two layers rolled at -x, the top two at +x); the top layer set back from its open edge, its top a little domed; a towel's
+    woven border band across the top near each end. A patterned sheet is one tiled block (_folded_block: its tiles
+    are its body); cut sheets, paper and a thick pad stay a squared block of their built layers."""
+    if p.crisp or p.stiff or p.thickness >= MIN_LAYER:  # cut sheets, paper, a thick foam pad: a squared block
+        return _folded_block(length, width, n, t, p)
+    m, td = fold_drawn(length, width, n, t)
+    if decor_rects(p, length, width):
+        return _folded_block(length, width, m, td, p)
+    h = m * td
+    letter = p.thirds and n == 3 and m == 3  # a letter fold: a crease at each end, an open edge at each
+    inset = min(0.06 * length, 2.5 * td)  # the top layer stops short of its open edge: a step seen from above
+    parts: list[Part] = []
+    runs: list[tuple[float, float, float, float]] = []  # each layer's (x0, x1, y, width)
+    for i in range(m):
+        sx, sy, ls, ws, yaw = _layer_look(i, m)
+        x0, x1 = -length / 2, length / 2
+        short = (1.0 - ls) * length + (inset if i == m - 1 else 0.0)  # pulled back from its open end
+        if letter and i == 0:
+            x1 -= short
+        elif letter and i == 2:
+            x0 += short
+        elif not letter:
+            x1 -= short - 0.5 * sx * length * (i < m - 1)
+        wi, yi = ws * width, sy * width
+        runs.append((x0, x1, yi, wi))
+        parts.append(box("body" if i == 0 else f"layer {i + 1}", (x1 - x0, wi, td),
+                         (0.5 * (x0 + x1), yi, (i + 0.5) * td), edge=FOLD_LAYER_EDGE * td, rot=(0, 0, yaw),
+                         blend=0.06 * td))
+    if p.grommets:
+        parts += grommets(p, runs[-1][1] - runs[-1][0] - 2 * td, runs[-1][3], h)
+        parts[-2 * max(p.grommets, 2):] = [q.model_copy(update={"transform": q.transform.model_copy(update={
+            "translation_m": (q.transform.translation_m[0] + 0.5 * (runs[-1][0] + runs[-1][1]),
+                              q.transform.translation_m[1] + runs[-1][2], q.transform.translation_m[2])})})
+            for q in parts[-2 * max(p.grommets, 2):]]
+    x0, x1, yt, wt = runs[-1]
+    if letter:  # the top layer's flat run: from its open edge (set back) to the crease at +x
+        top_lo, top_hi = x0, x1 - td
+    else:  # from the crease's roll to its open edge
+        top_lo, top_hi = x0 + min(h / 2, 0.35 * length), x1
+    rise = min(FOLD_DOME * td, FOLD_DOME_MAX * h)
+    c = rise + 0.5 * td
+    parts.append(superellipsoid("loft", (0.45 * (top_hi - top_lo), 0.44 * wt, c),
+                                (0.5 * (top_lo + top_hi), yt, h + rise - c), ns=1.0, ew=0.35, blend=0.6 * td))
+    creases = [(-1, 0.0, 2 * td), (1, td, h)] if letter else [(-1, 0.0, h)]
+    rolls: list[Part] = []
+    for k, (s, z0, z1) in enumerate(creases):
+        cut, roll = _crease("crease" if k == 0 else f"crease {k + 1}", s, z0, z1, length,
+                            (1.0 + 0.5 * FOLD_BULGE) * width)
+        parts.append(cut)
+        rolls.append(roll)
+    parts += rolls
+    if p.border:  # a towel's dobby bands: a raised woven stripe across the top near each end of its longer side
+        parts += _border_bands(top_lo, top_hi, width, h, td)
+    return parts
+
+
+def _folded_block(length: float, width: float, n: int, t: float, p: SheetParams) -> list[Part]:
+    """n layers of a folded sheet with a pattern over its top (one tiled block) along x: the crease at -x a round roll wrapping the stack (and, in a
     letter fold, the bottom two layers rolled at -x, the top two at +x), the open ends' layers cut apart with rounded
     grooves between their edges, the layers seen as lines along the sides, the top layer set back from its open edge
     (a step) and its top a little domed; a towel's woven border band across the top near each end."""
