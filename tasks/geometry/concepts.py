@@ -2040,13 +2040,13 @@ def _whole_object(reading: Reading, program: ShapeProgram, match: ConceptMatch, 
     if phrase is not None and reading.donor_plan is None and (phrase.portion in WEDGE_WORDS or (
             phrase.head in WEDGE_WORDS and (phrase.compounds or phrase.adjectives))) and not (
             entry.catalogue and WEDGE_WORDS & set((reading.match.noun or "").split())):  # (a hand-drawn 'positioning wedge')
-        new = wedged(program, target)
+        cut = wedged(program, target)
         if match.density_kg_per_m3 is not None and WEDGE_WORDS & set(entry.nouns[0].split()):
             # the entry is named a wedge ('a makeup wedge'): its sourced mass is the wedge's, not its block's ('a swiss
             # cheese wedge' is cut from the swiss cheese's block, at the block's density)
             match = match.model_copy(update={"density_kg_per_m3": match.density_kg_per_m3 * program_volume(program)
-                                             / max(program_volume(new), 1e-12)})
-        program = new
+                                             / max(program_volume(cut), 1e-12)})
+        program = cut
         states.append("wedge")
     kind, said = relief_of(text, target if reading.donor is not None else entry)
     if kind is not None:
