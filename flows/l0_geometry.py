@@ -1,4 +1,5 @@
-"""L0 geometry flow: build mesh -> convex proxy, particles, Gaussians -> checks (each a content-cached task)."""
+"""L0 geometry flow: build mesh -> convex proxy -> (a text request's) rest on the proxy -> particles, Gaussians ->
+checks (each a content-cached task)."""
 
 from __future__ import annotations
 
@@ -16,7 +17,7 @@ from contracts.request import AssetRequest, Quality
 from contracts.stage import StageContract, load_contract
 from tasks.agents.fallbacks import l0_designer_stand_in
 from tasks.agents.records import AttemptRecorder
-from tasks.geometry import pipeline, sources
+from tasks.geometry import pipeline, rest, sources
 from tasks.geometry.checks import GeometryChecks
 from tasks.geometry.collision import CoacdSettings
 from tasks.geometry.outputs import publish_dir, write_outputs
@@ -70,6 +71,9 @@ PROXY_VERSION = "6"  # l0.proxy alone; 2: CoACD's coarse copy keeps cells across
 # 6: a coarse copy that lost a thin wall is redone finer or skipped (a straw hat's proxy covered 5 % of it); a good of
 # at most 12 pieces over 1.5x is split at finer CoACD thresholds (a necktie: 1 piece, 2.27x -> 4, 1.24x; a coiled rope
 # 7, 1.95x -> 32, 1.47x)
+REST_VERSION = "1"  # l0.rest alone (tasks.geometry.rest: a text request's mesh and proxy turned together onto the
+# proxy's nearest face that holds a lean when the pose built is no rest of it; session 45: a padel ball on its seam,
+# a kielbasa's U)
 PARTICLES_VERSION = "2"  # l0.particles alone; 2: a hollow concept's particles are its shell (build_body, with the
 # ParticleBody record; session 32), opt-in: ParticleSettings.hollow_particles (the L0 contract's) keys it
 GAUSSIANS_VERSION = "3"  # l0.gaussians alone; 2: surface discs dense and small for the particle spacing (#36);
@@ -106,6 +110,12 @@ def build_mesh(request: AssetRequest, settings: L0Settings) -> tuple[Arrays, Bui
 def build_proxy(mesh: Arrays, coacd: CoacdSettings) -> Arrays:
     """CoACD convex collision proxy."""
     return pipeline.build_proxy(mesh, coacd)
+
+
+@cached_task(version=f"{TASK_VERSION}.{REST_VERSION}", name="l0.rest")
+def rest_on_proxy(mesh: Arrays, proxy: Arrays) -> tuple[Arrays, Arrays, str | None]:
+    """The mesh and proxy on a rest of the proxy, and the note when they were turned (tasks.geometry.rest)."""
+    return rest.rest_on_proxy(mesh, proxy)
 
 
 @cached_task(version=f"{TASK_VERSION}.{PARTICLES_VERSION}", name="l0.particles")
@@ -145,6 +155,9 @@ def l0_geometry(request: AssetRequest, settings: L0Settings, contract: StageCont
     """Build and check the geometry of one request."""
     mesh, info = build_mesh(geometry_request(request), settings)
     proxy = build_proxy(mesh, settings.coacd)
+    if pipeline.pose_is_ours(request):
+        mesh, proxy, note = rest_on_proxy(mesh, proxy)
+        info = pipeline.with_rest_note(info, note)
     particles, body = build_particles(mesh, settings.particles, *_wall(request, info, mesh))
     body = pipeline.with_gas(body, info.concept)  # a pressurised ball's shell records its gas (outside the cache key)
     gaussians = build_gaussians(mesh, particles, settings.gaussians_per_particle, settings.gaussian_surface_fraction,
@@ -189,6 +202,8 @@ def _run_l0(request: AssetRequest, settings: pipeline.L0Settings, contract: Stag
     if not use_cache:
         mesh, info = sources.build_mesh(geometry_request(request), settings)
         proxy = pipeline.build_proxy(mesh, settings.coacd)
+        if pipeline.pose_is_ours(request):
+            mesh, proxy, info = pipeline.rested(mesh, proxy, info)
         particles, body = pipeline.build_body(mesh, settings.particles, *_wall(request, info, mesh))
         body = pipeline.with_gas(body, info.concept)
         gaussians = pipeline.build_gaussians(mesh, particles, settings)

@@ -27,6 +27,7 @@ from tasks.geometry.collision import CoacdSettings, convex_parts, union_volume
 from tasks.geometry.gaussians import make_gaussians
 from tasks.geometry.meshing import mesh_program, scale_to_extents
 from tasks.geometry.particles import ParticleSettings, ShellUnresolved, sample_particles, sample_shell
+from tasks.geometry.rest import rest_on_proxy
 from tasks.geometry.shell import Surface, concept_wall_m
 from tasks.geometry.silhouette import PhotoReconstruction
 
@@ -244,6 +245,27 @@ def with_gas(body: ParticleBody, concept: ConceptMatch | None) -> ParticleBody:
         return body
     return body.model_copy(update={"gauge_pressure_pa": concept.inflation_gauge_pa,
                                    "gauge_pressure_source": concept.inflation_source})
+
+
+def pose_is_ours(request: AssetRequest) -> bool:
+    """True when L0 chose the resting pose (a text request built by the grammar or an LLM Designer), so it may turn the
+    body onto its proxy's resting face (tasks.geometry.rest); a photo's upright, an imported mesh's pose and a
+    reconstruction backend's are the caller's."""
+    return request.input_kind == "text" and request.geometry_backend is None
+
+
+def rested(mesh: Arrays, proxy: Arrays, info: BuildInfo) -> tuple[Arrays, Arrays, BuildInfo]:
+    """The mesh, proxy and build record on a rest of the proxy (tasks.geometry.rest.rest_on_proxy); the record says
+    when they were turned."""
+    mesh, proxy, note = rest_on_proxy(mesh, proxy)
+    return mesh, proxy, with_rest_note(info, note)
+
+
+def with_rest_note(info: BuildInfo, note: str | None) -> BuildInfo:
+    """The build record of a body rest_on_proxy turned (reoriented, with its note); as it is when kept (None)."""
+    if note is None:
+        return info
+    return info.model_copy(update={"reoriented": True, "notes": [*info.notes, note]})
 
 
 def hollow_wall(concept: ConceptMatch | None, words: str | None,

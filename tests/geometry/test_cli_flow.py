@@ -84,10 +84,11 @@ def test_flow_reruns_from_the_cache(prefect_api: str) -> None:
     n = len(CacheStore(cache_root()).events())
     second = run_l0(req, "draft", coacd_overrides={"method": "hull"})
     events = CacheStore(cache_root()).events()[n:]
-    assert {e["outcome"] for e in events} == {"hit"} and len(events) == 5
+    # mesh, proxy, rest on the proxy (a text request's), particles, Gaussians, checks
+    assert {e["outcome"] for e in events} == {"hit"} and len(events) == 6
     assert second.checks == first.checks
     np.testing.assert_array_equal(second.particles["positions_m"], first.particles["positions_m"])
     # material words never invalidate L0
     third = run_l0(req.model_copy(update={"material_intent": "firm rubber"}), "draft", coacd_overrides={"method": "hull"})
-    assert {e["outcome"] for e in CacheStore(cache_root()).events()[n + 5:]} == {"hit"}
+    assert {e["outcome"] for e in CacheStore(cache_root()).events()[n + 6:]} == {"hit"}
     assert third.checks == first.checks
