@@ -1278,6 +1278,9 @@ KEYCHAIN_SIZE_M = 0.11  # a plush or squishy keychain toy: ~8-12 cm (retail list
 WET_FACTORS = ((re.compile(r"\b(?:soaked|soaking|sopping|dripping|drenched|waterlogged|saturated)\b"), 3.0),
                (re.compile(r"\b(?:wet|wetted|soggy)\b"), 2.0), (re.compile(r"\b(?:damp|moist)\b"), 1.4))
 WRUNG_WET_FACTOR = 1.8  # wet and wrung out [-]
+# 'wet' naming the kind of good, not its state: a wet wipe is sold wet (its sourced mass holds its lotion), a wet suit
+# is dry; a pack of wet wipes likewise
+WET_NAMES = re.compile(r"\bwet (?=(?:wipe|wipes|tissue|tissues|suit|suits)\b)")
 ABSORBENT = frozenset({"textile", "sponge"})
 # an open-cell sponge or foam holds water in its pores, not in proportion to its dry mass: a cellulose sponge takes up
 # 10-20x its own weight, floral foam ~40x. Its wet density is its dry one plus the pores' water: porosity x share of
@@ -1303,6 +1306,7 @@ def _soaked(match: ConceptMatch, target: LexiconEntry, text: str, states: list[s
                 "mass_source": f"{match.mass_source}; wet: its pores {fill:g} full of water ({SPONGE_POROSITY:g} "
                                f"porosity: {rho:.3g} -> {wet:.3g} kg/m^3)" if match.mass_source else None,
             }), [*states, "wet"]
+    text = WET_NAMES.sub("", text)  # ('a wet wipe' is not wetted; 'a soaking wet baby wipe' is)
     factor = next((f for rx, f in WET_FACTORS if rx.search(text)), 1.0)
     if factor > 1.0 and "twisted" in states:
         factor = min(factor, WRUNG_WET_FACTOR)
