@@ -1639,6 +1639,14 @@ STRIPE_SHARE = 0.09  # each stripe's width / the sheet's length along them [-]
 FLAT_STACK = 0.5  # a flat sheet or folded stack is at most this thick / its smaller side [-]
 
 
+SLAB_TURN_DEG = 3.0  # a folded cloth's layers lie turned a little about z (grammar goods._layer_look): still slabs [deg]
+
+
+def _level(rotation_deg: tuple[float, float, float]) -> bool:
+    """True for a part lying level, at most turned SLAB_TURN_DEG about z (a folded layer's own skew)."""
+    return rotation_deg[0] == 0.0 and rotation_deg[1] == 0.0 and abs(rotation_deg[2]) <= SLAB_TURN_DEG
+
+
 def _sheet_stripes(parts: list[Part], rgb: tuple) -> list[Part]:
     """Stripes on a sheet's main part: bands round a roll lying along x (a rolled striped beach towel: the stripes
     that ran along the towel's length are rings round the roll), or bands across a flat sheet's top; [] for any
@@ -1655,7 +1663,7 @@ def _sheet_stripes(parts: list[Part], rgb: tuple) -> list[Part]:
                      transform={"translation_m": (float(c[0] + x * h), float(c[1]), float(c[2])),
                                 "rotation_deg": (0.0, 90.0, 0.0)}, color_rgb=rgb) for i, x in enumerate(xs)]
     slabs = [(np.asarray(q.transform.translation_m), np.asarray(q.primitive.size_m)) for q in parts
-             if isinstance(q.primitive, RoundedBox) and q.operation == "union" and not any(q.transform.rotation_deg)
+             if isinstance(q.primitive, RoundedBox) and q.operation == "union" and _level(q.transform.rotation_deg)
              and tuple(q.transform.scale) == (1.0, 1.0, 1.0)]
     if prim.kind != "rounded_box" or not slabs:
         return []
