@@ -53,13 +53,14 @@ def convex_parts(mesh: trimesh.Trimesh, settings: CoacdSettings) -> list[trimesh
     own_merge = settings.merge == "volume" and not root_only
     volume = float(mesh.volume)
 
-    def decompose(threshold: float) -> list[trimesh.Trimesh]:
+    def decompose(threshold: float, preprocess_mode: str = "auto") -> list[trimesh.Trimesh]:
         raw = coacd.run_coacd(
             cm, threshold=1.0 if root_only else threshold,
             max_convex_hull=1 if root_only else (-1 if own_merge else settings.max_convex_hull),
             preprocess_resolution=settings.preprocess_resolution, resolution=settings.resolution,
             mcts_iterations=settings.mcts_iterations, mcts_nodes=settings.mcts_nodes,
             mcts_max_depth=settings.mcts_max_depth, seed=settings.seed, merge=not own_merge,
+            preprocess_mode=preprocess_mode,
         )
         pieces = [hull for v, f in raw if (hull := piece_hull(v, f)) is not None]
         if own_merge and settings.max_convex_hull > 0:
@@ -67,17 +68,27 @@ def convex_parts(mesh: trimesh.Trimesh, settings: CoacdSettings) -> list[trimesh
         return pieces
 
     parts = decompose(settings.threshold)
-    if root_only or volume <= 0 or len(parts) > FINER_MAX_PIECES:
+    if root_only or volume <= 0 or len(parts) > FINER_MAX_PIECES_ONCE:
         return parts
     # a thin, gently curved good (a necktie, a belt, a strap lying in an arc) is under CoACD's concavity threshold
     # (measured against its bounding box's diagonal) as one piece or a few whose hulls are twice its volume, a coiled
     # rope or cable as a few fat rings (1.6-1.95x): split finer (these only: a finer threshold costs a coiled rope
     # 4 -> 29 s of CPU, which is still better than an L0 that fails its proxy gate)
+    # A thin-walled hollow good (a knee brace's sleeve, a play teepee's canvas, a disc cone, a carton of fries) comes
+    # out of the first pass as 17-26 pieces, each a hull across the hollow it walls (1.64-2.01x the mesh): split once
+    # finer (0.4: 68-138 pieces, 7-20 s of CPU, merged down to GROW_BUDGETS 1.35-1.52x); the second, finer still, only
+    # after a first pass of at most FINER_MAX_PIECES
+    steps = FINER_THRESHOLDS if len(parts) <= FINER_MAX_PIECES else FINER_THRESHOLDS[:1]
+    # CoACD's own preprocessing ('auto': when it judges the input not manifold) remeshes it on a grid of
+    # preprocess_resolution cells along its longest side, which fattens a part thinner than a cell (a cotton swab's
+    # 2.6 mm stick in an 8 cm swab: 3 pieces 2.02x the mesh at the finest threshold, 0.98 without it): our input is
+    # watertight (the mesh, or _coarsen's marching-cubes copy), so the finer passes skip it
+    mode = "off" if src.is_watertight and src.is_winding_consistent else "auto"
     best, ratio = parts, union_volume(parts) / volume
-    for finer in FINER_THRESHOLDS:
+    for finer in steps:
         if ratio <= settings.union_ratio_max:
             break
-        pieces = decompose(settings.threshold * finer)
+        pieces = decompose(settings.threshold * finer, mode)
         if (r := union_volume(pieces) / volume) < ratio:
             best, ratio = pieces, r
     return best
@@ -85,6 +96,7 @@ def convex_parts(mesh: trimesh.Trimesh, settings: CoacdSettings) -> list[trimesh
 
 FINER_THRESHOLDS = (0.4, 0.15)  # CoACD's threshold x these, in turn, while the hulls' union is over union_ratio_max
 FINER_MAX_PIECES = 12  # ... and CoACD's first pass found at most this many pieces [-]
+FINER_MAX_PIECES_ONCE = 32  # ... or at most this many: the first of FINER_THRESHOLDS only [-]
 
 
 def piece_hull(vertices: np.ndarray, faces: np.ndarray) -> trimesh.Trimesh | None:
