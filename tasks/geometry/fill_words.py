@@ -46,9 +46,19 @@ def fills() -> dict[str, dict]:
     return dict(sorted(table.items(), key=lambda kv: -len(kv[0])))
 
 
+@functools.lru_cache(maxsize=1)
+def _by_key() -> dict[str, dict]:
+    return {v["key"]: v for v in fills().values()}  # (every word of a fill carries the same record)
+
+
+def record(key: str) -> dict | None:
+    """The fill table's record of a fill key ('beans': its bulk density, colour, piece, tints...), None if unknown."""
+    return _by_key().get(key)
+
+
 def retail_bag_m(key: str) -> float | None:
     """The longest side of the bag a fill is usually sold in (a 50 l bag of compost: 0.7 m), if the table gives one."""
-    rec = next((v for v in fills().values() if v["key"] == key), None)
+    rec = record(key)
     return float(rec["bag_m"]) if rec is not None and "bag_m" in rec else None
 
 

@@ -90,14 +90,10 @@ def pouch_of(text: str, head: str | None, compounds: list[str]) -> PouchOf | Non
     return fill_pieces(PouchOf(fill=fill, port=port))
 
 
-def _record(key: str) -> dict | None:
-    return next((v for v in fill_words.fills().values() if v["key"] == key), None)
-
-
 def tinted(fill: fill_words.Fill, text: str) -> fill_words.Fill:
     """The fill in the colour a word of the request gives it ('taro powder' lavender, 'sliced turkey' light pink;
     contracts/vocab/fills.yaml `tints`), else as it is."""
-    rec = _record(fill.key)
+    rec = fill_words.record(fill.key)
     for word, color in sorted(((rec or {}).get("tints") or {}).items(), key=lambda kv: -len(kv[0])):
         if re.search(rf"\b{re.escape(word)}\b", text):
             return dataclasses.replace(fill, color=color)
@@ -112,7 +108,7 @@ SEEN_FILL_ALONG = 7.0
 def fill_pieces(pouch: PouchOf) -> PouchOf:
     """A pouch of a fill told by its pieces (contracts/vocab/fills.yaml `piece`: beans, tapioca pearls, pasta,
     lettuce shreds) with them drawn through its clear film in the goods' colours; the fill's mass rule unchanged."""
-    rec = _record(pouch.fill.key)
+    rec = fill_words.record(pouch.fill.key)
     piece = rec.get("piece") if rec is not None else None
     if rec is None or piece is None or pouch.port != "none" or pouch.piece_m is not None:
         return pouch
