@@ -114,8 +114,11 @@ def turn_to_rest(points: np.ndarray, com: np.ndarray) -> np.ndarray | None:
     quasi-static drop, as canonical.most_stable_rotation)."""
     points = np.asarray(points, dtype=np.float64)
     com = np.asarray(com, dtype=np.float64)
-    if not falls_away(points, com)[0]:
-        return None
+    return _resting_turn(points, com) if falls_away(points, com)[0] else None
+
+
+def _resting_turn(points: np.ndarray, com: np.ndarray) -> np.ndarray | None:
+    """turn_to_rest's turn for a pose already found to fall away."""
     hull = trimesh.convex.convex_hull(points)
     transforms, probs = trimesh.poses.compute_stable_poses(hull, center_mass=com, sigma=0.0, n_samples=1)
     if len(transforms) == 0:
@@ -138,9 +141,9 @@ def _placed(mesh: trimesh.Trimesh, rot: np.ndarray) -> np.ndarray:
     tf[:3, :3] = rot
     posed = mesh.copy()
     posed.apply_transform(tf)
-    tf = align_horizontal(posed) @ tf
-    posed = mesh.copy()
-    posed.apply_transform(tf)
+    turn = align_horizontal(posed)
+    posed.apply_transform(turn)
+    tf = turn @ tf
     lo, hi = posed.bounds
     shift = np.eye(4)
     shift[:3, 3] = [-(lo[0] + hi[0]) / 2.0, -(lo[1] + hi[1]) / 2.0, -lo[2]]
@@ -154,12 +157,12 @@ def rest_on_proxy(mesh: Arrays, proxy: Arrays) -> tuple[Arrays, Arrays, str | No
     m = trimesh.Trimesh(np.asarray(mesh["vertices"], dtype=np.float64), np.asarray(mesh["faces"]), process=False)
     com = np.asarray(m.center_mass if m.is_watertight else m.centroid, dtype=np.float64)
     points = proxy_points(proxy)
-    rot = turn_to_rest(points, com)
+    away, before = falls_away(points, com)
+    rot = _resting_turn(points, com) if away else None
     if rot is None:
         return mesh, proxy, None
     tf = _placed(m, rot)
     turned = _transformed(proxy, tf)
-    before = falls_away(points, com)[1]
     after = falls_away(proxy_points(turned), com @ tf[:3, :3].T + tf[:3, 3])[1]
     note = (f"turned onto the nearest face of its collision proxy that holds a lean: built standing on an edge, ridge "
             f"or point of it "

@@ -633,12 +633,11 @@ def _folded_layers(length: float, width: float, n: int, t: float, p: SheetParams
         parts.append(box("body" if i == 0 else f"layer {i + 1}", (x1 - x0, wi, td),
                          (0.5 * (x0 + x1), yi, (i + 0.5) * td), edge=FOLD_LAYER_EDGE * td, rot=(0, 0, yaw),
                          blend=0.06 * td))
-    if p.grommets:
-        parts += grommets(p, runs[-1][1] - runs[-1][0] - 2 * td, runs[-1][3], h)
-        parts[-2 * max(p.grommets, 2):] = [q.model_copy(update={"transform": q.transform.model_copy(update={
-            "translation_m": (q.transform.translation_m[0] + 0.5 * (runs[-1][0] + runs[-1][1]),
-                              q.transform.translation_m[1] + runs[-1][2], q.transform.translation_m[2])})})
-            for q in parts[-2 * max(p.grommets, 2):]]
+    if p.grommets:  # along the top layer's edges, moved with it
+        x0, x1, yt, wt = runs[-1]
+        parts += [q.model_copy(update={"transform": q.transform.model_copy(update={"translation_m": (
+            q.transform.translation_m[0] + 0.5 * (x0 + x1), q.transform.translation_m[1] + yt,
+            q.transform.translation_m[2])})}) for q in grommets(p, x1 - x0 - 2 * td, wt, h)]
     x0, x1, yt, wt = runs[-1]
     if letter:  # the top layer's flat run: from its open edge (set back) to the crease at +x
         top_lo, top_hi = x0, x1 - td
