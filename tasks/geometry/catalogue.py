@@ -203,6 +203,7 @@ def parse_size(text: str) -> SizeSpec:
         dims = [float(m.group(i)) * (_UNITS[_unit_key(own[i])] if own.get(i) else unit) for i in (1, 3, 5)
                 if m.group(i) is not None]
         return SizeSpec(extents_m=tuple(dims) + (None,) * (3 - len(dims)), stated=m.group(0))
+    t = _FEET_INCHES.sub(_feet_inches_sum, t)  # '5 ft 6 in' is one size
     ext: list[float | None] = [None, None, None]
     stated = []
     longest = None
@@ -217,8 +218,8 @@ def parse_size(text: str) -> SizeSpec:
         word = (mm.group(3) or "").lower()
         if word:
             _assign(ext, word, val)
-        else:
-            longest = val
+        else:  # of several bare sizes the largest is the object's: '50 ft of 1.75 in hose', '10 ft of 3/4 in tubing'
+            longest = val if longest is None else max(longest, val)  # (the smaller measures its cross-section)
         stated.append(mm.group(0).strip())
     if not stated:
         said = size_words.read_size_words(_strip_numeric_sizes(t), frozenset(MODIFIERS))
@@ -231,6 +232,13 @@ def parse_size(text: str) -> SizeSpec:
         bare = longest if longest is not None and longest > max(v for v in ext if v is not None) else None
         return SizeSpec(extents_m=tuple(ext), longest_m=bare, stated="; ".join(stated), upright=upright)
     return SizeSpec(longest_m=longest, stated="; ".join(stated))
+
+
+_FEET_INCHES = re.compile(r"\b(\d+)\s*(?:ft|foot|feet|')\s*(\d+(?:\.\d+)?)\s*(?:in|inch|inches|\")(?![a-z])", re.I)
+
+
+def _feet_inches_sum(m: re.Match[str]) -> str:
+    return f"{float(m.group(1)) * 12 + float(m.group(2)):g} in"
 
 
 def _unit_key(u: str) -> str:
@@ -331,6 +339,10 @@ def check_size(size: SizeSpec) -> None:
 # what a stated size measures of a hand-drawn shape drawn in a state (its entry's drawn_state)
 _DRAWN_STATE_SIZES = {"folded": "the flat size of a shape drawn folded", "coiled": "the length of a good drawn coiled",
                       "bundled": "the length of a fabric drawn bundled in a heap"}
+_MATERIAL_STATES = ("rolled", "coiled", "folded", "bundled", "crumpled")  # a hand-drawn good of a thin material
+FOLDED_FLAT_SHARE = 1.6  # a size stated for a good drawn folded over this many times its typical (folded) size is
+# its flat size ('a 32 in reflector folded down': 80 cm open, ~30 cm folded) [-]
+MATERIAL_SIZE_SHARE = 0.1  # a bare size under this share of such a good's typical size measures its material [-]
 _FOLD_STATE = re.compile(r"\b(?:fold(?:ed|ing)?|roll(?:ed|ing)?|coil(?:ed|ing)?|crumpled|bunched|bundled|balled)\b",
                          re.IGNORECASE)
 
@@ -646,7 +658,10 @@ def _whole_sized(text: str) -> tuple[str, float | None]:
     m = _FROM_WHOLE.search(text)
     if m is None:
         return text, None
-    return text[: m.start()] + text[m.end():], parse_size(m.group("size")).longest_m
+    kept = ""
+    if re.search(rf"\b(?:{'|'.join(_CUT_FROM_WHOLE)})s?$", text[: m.start()].strip(), re.IGNORECASE):
+        kept = " " + re.sub(r"[\d.]+\s*(?:-\s*)?(?:in|inch|inches|\"|cm|mm|m|ft)\b\s*", "", m.group(0).strip(), count=1)  # 'half of a 10 inch cake': the cake is the
+    return text[: m.start()] + kept + text[m.end():], parse_size(m.group("size")).longest_m  # object, its size the whole's
 
 
 # a size or stiffness said not to be ('regular size not mini', 'the soft kind, not the stiff one'): not a modifier
@@ -944,6 +959,27 @@ def _long_band_flat(text: str, reading: concepts.Reading, size: SizeSpec) -> str
     return _noun_swapped(text, noun, "flat latex band")
 
 
+LENGTH_OF_HOSE_SHARE = 3.0  # a stated length over this many times a short hose's typical size is a length of it [-]
+_HOSE_NOUNS = re.compile(r"\b(?:hose|hoses|hosepipe|tube|tubes|tubing|pipe)\b", re.I)
+
+
+def _length_of_hose(text: str, reading: concepts.Reading, size: SizeSpec) -> str | None:
+    """The text with a moulded hose's noun made 'tubing' when a stated length is many times the hose's own ('10 ft
+    of 3/4 in silicone hose': a length of hose, coiled, not a 3 m radiator hose), so the length binds to the tube
+    (tasks.geometry.dims_words); else None."""
+    noun, entry = reading.match.noun, reading.donor or reading.entry
+    said = size.longest_m or max((v for v in size.extents_m if v is not None), default=None)
+    if noun is None or entry is None or entry.plan in dims_words.THIN_PLANS or not entry.size_m or said is None \
+            or entry.drawn_state in ("coiled", "rolled") \
+            or said <= LENGTH_OF_HOSE_SHARE * entry.size_m or said <= 1.0 or not _HOSE_NOUNS.search(noun):
+        return None
+    swapped = _noun_swapped(text, noun, "tubing")
+    if swapped is None:  # ('silicone brew hose' read as 'silicone hose'): its last hose word
+        last = list(_HOSE_NOUNS.finditer(text))
+        swapped = text[:last[-1].start()] + "tubing" + text[last[-1].end():] if last else None
+    return swapped
+
+
 def _as_meat(text: str, reading: concepts.Reading) -> str | None:
     """The text with an animal's name made 'meat' when the words say it is eaten (raw, ground, cooked, a tray, a
     pound) and nothing says it is a toy; else None."""
@@ -986,6 +1022,10 @@ def design_from_text(text: str, size_hint_m: float | None = None) -> Design:
     flat = _long_band_flat(stripped, reading, size)
     if flat is not None:  # 'a green latex resistance band, 1.5 m long': a flat band cut to length, not a loop
         reading = concepts.read_text(flat)
+    hose = _length_of_hose(stripped, reading, size)
+    if hose is not None:  # '10 ft of 3/4 in silicone hose': a length of tubing, coiled
+        reading = concepts.read_text(hose)
+        reading.warnings.insert(0, "a length of hose many times a moulded hose's size: built as tubing, coiled")
     meat = _as_meat(stripped, reading)
     if meat is not None:  # 'a pound of ground lamb', 'a whole raw chicken': the meat, not the animal
         reading = concepts.read_text(meat)
@@ -1014,8 +1054,16 @@ def design_from_text(text: str, size_hint_m: float | None = None) -> Design:
     stated = size.longest_m or max((v for v in size.extents_m if v is not None), default=None)
     drawn = reading.donor or reading.entry
     said_of = _DRAWN_STATE_SIZES.get(drawn.drawn_state or "") if drawn is not None and drawn.catalogue else None
+    if stated is not None and size_hint_m is None and drawn is not None and drawn.catalogue and drawn.size_m \
+            and drawn.drawn_state in _MATERIAL_STATES and all(v is None for v in size.extents_m) \
+            and stated < MATERIAL_SIZE_SHARE * drawn.size_m:  # 'a roll of 1-inch batting', '3/4 in hose, coiled':
+        reading.warnings.append(f"'{size.stated}' measures the {drawn.drawn_state} material's thickness or "  # the
+                                f"diameter, not the object: built at its typical size")  # material's, not the roll's
+        size = SizeSpec(stated=f"{size.stated}: the material's own thickness")
+        stated = None
     if stated is not None and size_hint_m is None and said_of is not None \
-            and (drawn.drawn_state in ("coiled", "bundled") or stated > MAX_SIZE_M):  # a shape drawn folded ('king size fitted
+            and (drawn.drawn_state in ("coiled", "bundled") or stated > MAX_SIZE_M
+                 or (drawn.drawn_state == "folded" and drawn.size_m and stated > FOLDED_FLAT_SHARE * drawn.size_m)):  # a shape drawn folded ('king size fitted
         # sheet, folded': a flat size over what L0 builds) or coiled ('2 metre tinsel garland': its length laid out)
         size = SizeSpec(stated=f"{size.stated}: {said_of}, built at its typical size")
         stated = None  # the drawing keeps its own typical size

@@ -22,7 +22,7 @@ from tasks.geometry.grammar.goods import PouchParams, SheetParams, folded_footpr
 from tasks.geometry.grammar.things import smiley
 from tasks.geometry.grammar.parts import _euler_z_to, box, cone, ellipsoid, part_group, relief, rotated_parts, squashed_parts, torus
 from tasks.geometry.meshing import mesh_program, program_volume, sample_program
-from tasks.geometry.sdf import program_bounds, program_sdf
+from tasks.geometry.sdf import REVEAL_CUT, program_bounds, program_sdf
 from tasks.geometry.wordnet import wordnet
 
 # Words that say what an unknown object is like (checked only when the head noun is not in the lexicon).
@@ -1240,25 +1240,36 @@ def _eaten(entry: LexiconEntry, program: ShapeProgram, match: ConceptMatch, text
     return eaten, match.model_copy(update={"typical_mass_kg": mass}), [*states, "half eaten" if half else "bitten"]
 
 
-_HALVED = re.compile(r"\b(?:half (?:of )?an?|halved|cut in half|sliced in half|cut in two|a half)\b")
+_HALVED = re.compile(r"\b(?:half (?:of )?an?|half of (?:the|this|that|my|our|your)|halved|cut in half|sliced in "
+                     r"half|cut in two|a half|leftover half)\b(?!\s+(?:sheet|pan|size|dozen|pound|kilo|gallon|litre|liter|pint|cup)s?\b)")
+HALVED_UPRIGHT = frozenset({"bread", "baked_good", "dairy", "food", "jelly", "tofu", "meat"})  # round in plan: halved down through the middle
 
 
 def _halved(entry: LexiconEntry, program: ShapeProgram, match: ConceptMatch, text: str,
             states: list[str]) -> tuple[ShapeProgram, ConceptMatch, list[str]]:
     """Half a fruit or vegetable ('half a kiwi', 'a halved peach'): the lower half kept below a level cut through
-    its middle, the cut face up in the inside colour, its typical mass scaled by the volume left ('half eaten' and
+    its middle, the cut face up; half a cake, pie, cheese or loaf ('the leftover half of the cake'): cut down through
+    its middle. The cut face takes the inside colour, the typical mass is scaled by the volume left ('half eaten' and
     'half full' are other states)."""
+    fruit = entry.material == "fruit" or entry.category in ("fruit", "vegetable")
     if not _HALVED.search(text) or _HALF_EATEN.search(text) or len(program.parts) > 62 \
-            or not (entry.material == "fruit" or entry.category in ("fruit", "vegetable")):
+            or not (fruit or entry.category in HALVED_UPRIGHT) or entry.params.get("shape") == "wedge" \
+            or (entry.plan == "layered" and entry.params.get("shape", "block") != "round"):  # (a slice; half a
+        # sandwich is cut corner to corner, not drawn here)
         return program, match, states
     centre, radii = _body_envelope(program, 32)
-    if radii[2] > 1.15 * max(radii[0], radii[1]):  # a standing long fruit (an avocado, a pear) is halved lengthwise:
-        program = program.model_copy(update={"parts": rotated_parts(program.parts, (0.0, 90.0, 0.0),
+    if fruit and radii[2] > 1.15 * max(radii[0], radii[1]):  # a standing long fruit (an avocado, a pear) is halved
+        program = program.model_copy(update={"parts": rotated_parts(program.parts, (0.0, 90.0, 0.0),  # lengthwise:
                                                                     tuple(float(v) for v in centre))})
         centre, radii = _body_envelope(program, 32)  # laid down first, then cut level
     big = 4.0 * float(radii.max())
-    cut = box("cut face", (big, big, big), (float(centre[0]), float(centre[1]), float(centre[2]) - big / 2))
+    if fruit:  # the lower half kept, its cut face up
+        cut = box("cut face", (big, big, big), (float(centre[0]), float(centre[1]), float(centre[2]) - big / 2))
+    else:  # a cake, a pie, a cheese wheel, a loaf: cut down through its middle, the cut face upright (a loaf across
+        cut = box("cut face", (big, big, big), (float(centre[0]) - big / 2, float(centre[1]), float(centre[2])))  # its length)
     cut = cut.model_copy(update={"operation": "intersect", "color_rgb": _inside_rgb(program, entry)})
+    if entry.plan == "layered":  # a layer cake, a sandwich, a lasagna: the cut shows its layers
+        cut = cut.model_copy(update={"name": REVEAL_CUT})
     before = program_volume(program, 40)
     half = program.model_copy(update={"parts": [*program.parts, cut]})
     left = program_volume(half, 40) / max(before, 1e-12)
@@ -1443,7 +1454,8 @@ def _state_params(reading: Reading, warnings: list[str]) -> tuple[list[str], dic
     # carried by the material and mass, or a pose the shape has anyway (a teddy sits), not drawn apart
     shapeless = {"stuffed", "filled", "inflated", "hollow", "flat", "sitting", "lying", "standing"}
     for st in said:
-        if st not in can and st not in shapeless and st != target.drawn_state:
+        if st not in can and st not in shapeless and st != target.drawn_state \
+                and {st, target.drawn_state} != {"rolled", "coiled"}:  # (a hose drawn coiled is rolled)
             warnings.append(f"state '{st}' is not drawn: the {target.key.replace('_', ' ')} shape has no such state")
     if plan == "sheet" and "rolled" in shown and "folded" in shown:  # 'a bath towel folded in thirds and rolled up'
         shown = ["rolled", *(st for st in shown if st not in ("rolled", "folded"))]

@@ -270,9 +270,26 @@ def program_bounds(program: ShapeProgram) -> np.ndarray:
     return np.stack([lo, hi])
 
 
+REVEAL_CUT = "reveal cut"  # a cutting part so named shows what it cuts on its face (a halved cake's layers), not its colour
+
+
 def part_colors(p: np.ndarray, program: ShapeProgram, sharpness_m: float) -> np.ndarray:
-    """Linear RGB at surface points: parts nearest the point win, softly blended over sharpness_m."""
-    d = np.stack([np.abs(part_sdf(p, part)) for part in program.parts], axis=1)
-    w = np.exp(-(d - d.min(axis=1, keepdims=True)) / max(sharpness_m, 1e-6))
+    """Linear RGB at surface points: parts nearest the point win, softly blended over sharpness_m. On the face of a
+    cutting part named REVEAL_CUT the innermost solid part holding the point wins (the one whose surface is nearest
+    among those it lies in: a cake's sponge inside its frosting coat; the layers a cut shows)."""
+    signed = np.stack([part_sdf(p, part) for part in program.parts], axis=1)
+    d = np.abs(signed)
+    sharp = max(sharpness_m, 1e-6)
+    w = np.exp(-(d - d.min(axis=1, keepdims=True)) / sharp)
     cols = np.asarray([part.color_rgb for part in program.parts], dtype=np.float64)
-    return (w @ cols) / w.sum(axis=1, keepdims=True)
+    rgb = (w @ cols) / w.sum(axis=1, keepdims=True)
+    reveal = [i for i, part in enumerate(program.parts) if part.operation != "union" and part.name.startswith(REVEAL_CUT)]
+    if reveal:
+        on_cut = np.isin(np.argmin(d, axis=1), reveal)
+        solid = [i for i, part in enumerate(program.parts) if part.operation == "union" or i == 0]
+        if on_cut.any() and solid:
+            inside = signed[on_cut][:, solid]
+            depth = np.where(inside < 0.0, -inside, np.abs(inside) + 1e3)  # (outside every part: the nearest)
+            ws = np.exp(-(depth - depth.min(axis=1, keepdims=True)) / sharp)
+            rgb[on_cut] = (ws @ cols[solid]) / ws.sum(axis=1, keepdims=True)
+    return rgb

@@ -941,6 +941,9 @@ class CephalopodParams(Model):
     curl: float = Field(default=0.5, ge=0.0, le=1.0, description="how far the arm tips curl up [-]")
     hanging: bool = Field(default=False, description="a jellyfish: a domed bell with a frilled rim, thin wavy "
                           "tentacles hanging from under it down to the ground")
+    limp: bool = Field(default=False, description="a real (dead, raw) octopus on a slab: the mantle a sagging sack "
+                       "lying back, the arms tapering to fine tips, wavy and curled, flat on the ground (a round "
+                       "head over even arms reads as a toy)")
 
 
 def _jellyfish(p: CephalopodParams) -> list[Part]:
@@ -967,10 +970,39 @@ def _jellyfish(p: CephalopodParams) -> list[Part]:
     return parts
 
 
+def _limp_octopus(p: CephalopodParams) -> list[Part]:
+    """A real octopus laid out: a sagging mantle lying back from a low hub, arms in tapering wavy segments."""
+    r = 0.25
+    h = r * p.mantle_height
+    parts = [ellipsoid("hub", (0.55 * r, 0.55 * r, 0.3 * r), (0, 0, 0.3 * r)),
+             ellipsoid("head", (0.95 * h, 0.7 * r, 0.42 * r), (-0.95 * h, 0, 0.42 * r), blend=0.1 * r,
+                       rot=(0, -6, 0))]
+    parts += mirrored(ellipsoid, "eye", (0.1 * r, 0.1 * r, 0.09 * r), (0.1 * r, 0.36 * r, 0.52 * r), blend=0.03 * r)
+    L = 2 * r * p.arm_length
+    radii = (0.17 * r, 0.12 * r, 0.08 * r, 0.045 * r, 0.018 * r)
+    for i in range(p.arm_count):
+        a = 2 * np.pi * (i + 0.5) / p.arm_count + 0.12 * np.sin(3.1 * i)  # (laid out by hand, not a star)
+        if np.cos(a) < -0.6:  # (the arms fan forward and to the sides, the mantle lies back between them)
+            a += 0.45 * np.sign(np.sin(a) or 1.0)
+        turn = (0.5 + 0.5 * p.curl) * (0.7 + 0.3 * np.cos(2.3 * i)) * (1, 1, -1, 1, -1, -1, 1, -1, 1, -1, 1, -1)[i]  # each segment bends the same way: a curling arm
+        pos = np.array([0.35 * r * np.cos(a), 0.35 * r * np.sin(a), 0.0])
+        for k in range(4):
+            seg = L * (0.34, 0.28, 0.22, 0.16)[k]
+            ang = a + turn * k * k / 3.0
+            nxt = pos + seg * np.array([np.cos(ang), np.sin(ang), 0.0])
+            z0, z1 = radii[k] * 0.9, radii[k + 1] * 0.9
+            parts.append(tapered(f"arm {i + 1}{'' if k == 0 else f' tip {k}'}", (*pos[:2], z0), (*nxt[:2], z1),
+                                 radii[k], radii[k + 1], blend=0.02 * r))
+            pos = nxt
+    return parts
+
+
 def cephalopod(p: CephalopodParams) -> list[Part]:
     """Mantle on top of a ring of arms lying on the ground (mantle radius 0.25)."""
     if p.hanging:
         return _jellyfish(p)
+    if p.limp:
+        return _limp_octopus(p)
     r = 0.25
     zc = 0.12 + r * p.mantle_height * 0.8
     parts = [ellipsoid("head", (r, r, r * p.mantle_height), (0, 0, zc))]

@@ -627,6 +627,8 @@ class LayeredParams(Model):
     puff: float = Field(default=0.3, ge=0.0, le=1.0, description="rounding of the main layers (a bun's dome) [-]")
     ruffle: bool = Field(default=False, description="a block's main layers rippled along their long edges (lasagna "
                          "sheets' ruffled sides) [-]")
+    coat: bool = Field(default=False, description="a round cake frosted all over: the topping's coat down its sides "
+                       "too (a bare golden side read as a loaf of bread)")
 
 
 def layered(p: LayeredParams) -> list[Part]:
@@ -656,6 +658,16 @@ def layered(p: LayeredParams) -> list[Part]:
     if p.topping > 0:
         tt = unit * p.topping
         parts.append(_layer("topping", p, tt, z - 0.02 * tt, edge=0.45 * tt, w=w))
+    if p.coat and p.shape == "round":
+        coat = 0.03 if p.topping > 0 else 0.0
+        parts.append(cylinder("side topping", 0.5 + coat, z, (0, 0, z / 2), edge=0.02, blend=0.01))
+        top = z + unit * p.topping
+        for k, (at, n) in enumerate(((top, 20), (0.03, 20))):  # beaded piping round its top edge and its foot
+            for j in range(n):
+                a = 2 * np.pi * (j + 0.5 * k) / n
+                rr = 0.5 + coat - 0.01
+                parts.append(ellipsoid(f"{('top', 'foot')[k]} bead {j + 1} topping", (0.05, 0.05, 0.04),
+                                       (rr * np.cos(a), rr * np.sin(a), at), blend=0.01))
     if p.shape == "wedge":
         return _shift_x(parts + _wedge_cut(p.angle_deg, p.height), -0.5)
     return parts
