@@ -103,3 +103,12 @@ def test_a_raw_octopus_has_tapering_arms_and_a_sea_colour_a_plush_one_does_not()
     assert raw.parts[0].color_rgb != plush.parts[0].color_rgb
     assert max(raw.parts[0].color_rgb) < 0.6  # a dusky raw octopus, not a bright toy
 
+
+
+def test_a_bunched_sleeping_bag_shows_its_baffles_and_zip_and_a_crumpled_towel_does_not() -> None:
+    bag = design_from_text("sleeping bag bunched up in the crew quarters").program
+    baffles = [p for p in bag.parts if " baffle " in p.name]
+    assert len(baffles) >= 12 and any(p.name == "zip" for p in bag.parts)
+    assert bag.parts[-1].operation == "intersect"  # (cut flat on the floor)
+    towel = design_from_text("a crumpled bath towel").program
+    assert not any(" baffle " in p.name for p in towel.parts)

@@ -210,6 +210,8 @@ def sheet(p: SheetParams) -> list[Part]:
         if p.stiff:
             return wad(wad_size(w), seed=0.3 + 3 * w)
         d, height = crumpled_size(w)
+        if p.quilt:  # a sleeping bag or a duvet bunched up: its flaps puffy baffled tubes, its zip along one
+            return quilted_heap(d, height, t * PUFF, seed=0.3 + 3 * w, zip_=p.zip)
         return creased_heap(d, height, t, seed=0.3 + 3 * w)
     if p.state == "twisted":
         return _twisted(p)
@@ -1999,6 +2001,46 @@ def creased_heap(diameter: float, height: float, t: float, seed: float = 0.3) ->
         parts.append(ellipsoid(f"fold {i + 1}", ((0.16 + 0.06 * np.sin(i)) * R, 0.03 * R + 0.5 * t, 0.06 * height),
                                (rho * np.cos(a), rho * np.sin(a), 0.56 * height),
                                rot=(0, 0, float(np.degrees(a) + 90 + turn)), blend=0.04 * R))
+    parts.append(_op(box("ground", (8, 8, 8), (0, 0, 4)), "intersect"))
+    return parts
+
+
+QUILTED_HEAP_BAFFLES = 3  # puffy baffle tubes side by side across each flap of a bunched quilted bag [-]
+
+
+def quilted_heap(diameter: float, height: float, t: float, seed: float = 0.3, zip_: bool = False) -> list[Part]:
+    """A quilted bag or duvet bunched up (a sleeping bag in a heap): creased_heap's lopsided mound and overlapping
+    flaps, each flap drawn as QUILTED_HEAP_BAFFLES puffy tubes side by side (the down-filled channels between their
+    stitch lines), and a zip ('zip') along one flap's edge; a plain creased heap read as a towel (sealed set 32's
+    sleeping bag, judged 'a crumpled navy towel')."""
+    R = diameter / 2
+    parts = [ellipsoid("body", (0.55 * R, 0.45 * R, 0.5 * height), (0.05 * R, 0.0, 0.0))]
+    puff = 0.5 * t  # a baffle tube's radius: half the quilted layer (its channels' full height)
+    flaps = ((5, 0.5, 0.3, 0.9, 0.55), (3, 0.16, 0.62, 0.65, 0.45))  # (flaps, out, height, length, width) / R
+    zipped = False
+    for ti, (n, rho, zs, ln, wd) in enumerate(flaps):
+        for i in range(n):
+            a = seed + 2 * np.pi * (i + 0.41 * ti) / n + 0.35 * np.sin(3.3 * i + seed)
+            length = (ln + 0.15 * np.sin(2.1 * i + seed)) * R
+            drop = zs * height
+            tilt = float(np.degrees(np.arctan2(drop, 0.8 * length)))
+            skew = 28 * np.sin(2.3 * i + 1.7 * seed)
+            turn = Rotation.from_euler("z", np.degrees(a) + skew, degrees=True) * Rotation.from_euler(
+                "xy", [14 * np.sin(1.3 * i + seed), tilt], degrees=True)
+            r_ = (rho + 0.08 * np.sin(2.9 * i)) * R
+            centre = np.array([r_ * np.cos(a), r_ * np.sin(a), drop / 2 + puff + 0.1 * height * ti])
+            along, across = turn.apply([1.0, 0.0, 0.0]), turn.apply([0.0, 1.0, 0.0])
+            width = (wd + 0.1 * np.cos(1.7 * i)) * R
+            for k in range(QUILTED_HEAP_BAFFLES):  # the flap's channels, each a puffy tube along it
+                off = (k - (QUILTED_HEAP_BAFFLES - 1) / 2) * width / QUILTED_HEAP_BAFFLES
+                mid = centre + off * across
+                parts.append(limb(f"{'corner' if ti == 0 else 'flap'} {i + 1} baffle {k + 1}",
+                                  mid - along * (length / 2 - puff), mid + along * (length / 2 - puff), puff,
+                                  blend=0.1 * puff))
+            if zip_ and not zipped and ti == 0:  # the zip along the flap's outer edge, just proud of its tube
+                edge = centre + (width / 2 + 0.2 * puff) * across + 0.55 * puff * turn.apply([0.0, 0.0, 1.0])
+                parts.append(limb("zip", edge - along * 0.45 * length, edge + along * 0.45 * length, 0.3 * puff))
+                zipped = True
     parts.append(_op(box("ground", (8, 8, 8), (0, 0, 4)), "intersect"))
     return parts
 
