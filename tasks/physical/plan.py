@@ -4,6 +4,7 @@ observations, and the physical model a probe runs with outside L1 (the asset's, 
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from dataclasses import dataclass
 from pathlib import Path
@@ -34,7 +35,14 @@ class L1Plan:
 
 
 def longest_extent_m(asset: L0Asset) -> float:
-    """Longest side of the asset's bounding box [m] (the size a typical mass is scaled to)."""
+    """Longest side of the asset's bounding box as L0 built it [m] (the size a typical mass is scaled to): a body L0
+    turned onto its resting face (geometry.json `info.reoriented`) is measured in the frame it was built and sized in
+    (`info.program.target_extent_m`): a padel ball turned off its seam has a smaller box on the ground's axes, and
+    weighed 51 g of its 56-59 g."""
+    info = asset.record.get("info") or {}
+    built = (info.get("program") or {}).get("target_extent_m")
+    if info.get("reoriented") and built:
+        return float(max(built))
     return float(np.max(asset.mesh.extents))
 
 
@@ -55,7 +63,7 @@ def l1_plan(asset: L0Asset, intent: str | None, contract: StageContract | None =
                       rho, drange, concept_of(asset.record), entry.shell_wall_thickness_m,
                       "density_kg_per_m3" in explicit_numbers(words.intent)[1], (field.low, field.high),
                       asset.body.enclosed_volume_m3 if asset.shell and asset.body is not None else None,
-                      Surface.of(asset.mesh))
+                      dataclasses.replace(Surface.of(asset.mesh), longest_m=longest_extent_m(asset)))
     priors["density_kg_per_m3"] = mass.density_kg_per_m3
     lo, hi = mass.band_kg
     bands = [TargetBand(metric="mass_kg", unit="kg", low=lo, high=hi, scale="log", source=mass.source)]

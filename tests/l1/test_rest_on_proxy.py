@@ -9,6 +9,7 @@ unchanged; turned onto the proxy's nearest face that holds a lean, as L0 now doe
 from __future__ import annotations
 
 from pathlib import Path
+from types import SimpleNamespace
 
 import numpy as np
 import pytest
@@ -16,6 +17,7 @@ import trimesh
 
 from tasks.geometry import rest
 from tasks.geometry.pipeline import pose_is_ours
+from tasks.physical.plan import longest_extent_m
 from tasks.probes import rigid
 
 FIXTURES = Path(__file__).parent / "fixtures"
@@ -126,3 +128,18 @@ def test_only_a_pose_l0_chose_is_turned() -> None:
     assert pose_is_ours(AssetRequest(text="a padel ball"))
     assert not pose_is_ours(AssetRequest(text="a padel ball", geometry_backend="mymod:make"))
     assert not pose_is_ours(AssetRequest(mesh_path=Path("ball.obj")))
+
+
+def test_a_turned_body_is_weighed_at_the_size_it_was_built() -> None:
+    """The padel ball turned off its seam has a smaller box on the ground's axes (the seam's extremes off them): L1
+    scaled its typical mass to that box and weighed it 51 g of the rules' 56-59.4 g (session 46: now 58.1 g,
+    `bench realworld --only 'padel ball' --priors-only`). The size is the one L0 built it at, before the turn."""
+    box = trimesh.creation.box((0.1, 0.06, 0.02))
+    built = [float(v) for v in box.extents]
+    turned = box.copy()
+    turned.apply_transform(trimesh.transformations.rotation_matrix(np.radians(40.0), (0, 0, 1)))
+    assert float(turned.extents.max()) != pytest.approx(0.1, rel=0.05)  # (the box on the ground's axes)
+    record = {"info": {"reoriented": True, "program": {"target_extent_m": built}}}
+    assert longest_extent_m(SimpleNamespace(mesh=turned, record=record)) == pytest.approx(0.1)  # type: ignore[arg-type]
+    kept = {"info": {"reoriented": False, "program": {"target_extent_m": built}}}
+    assert longest_extent_m(SimpleNamespace(mesh=turned, record=kept)) == pytest.approx(float(turned.extents.max()))  # type: ignore[arg-type]
