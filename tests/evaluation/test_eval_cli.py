@@ -18,14 +18,41 @@ def _cli(*args: str, env: dict[str, str] | None = None) -> subprocess.CompletedP
                           env=env)
 
 
-def test_bad_inputs_fail_clearly(tmp_path: Path, cli_env: dict[str, str]) -> None:
-    # against the session's Prefect server (conftest's cli_env): no command starts one of its own beside the check
+def _cli_here(*args: str, api: str, monkeypatch: pytest.MonkeyPatch,
+              capsys: pytest.CaptureFixture[str]) -> tuple[int, str]:
+    """`deformsmith eval ARGS` in this process (flows.cli.main.main, the real app standing in as a test's app, as
+    tests/geometry/test_analogy does) against the session's Prefect server: (exit code, stderr)."""
+    from cache.runtime import local_api_env
+    from flows.cli import main as cli_main
+    from flows.cli.apps import app
+
+    for key, value in local_api_env(api).items():
+        monkeypatch.setenv(key, value)
+    monkeypatch.setattr(cli_main, "app", app, raising=False)
+    monkeypatch.setattr(sys, "argv", ["deformsmith", "eval", *args])
+    capsys.readouterr()
+    code: object = 0
+    try:
+        cli_main.main()
+    except SystemExit as exc:
+        code = exc.code or 0
+    return int(code), capsys.readouterr().err  # type: ignore[call-overload]
+
+
+def test_bad_inputs_fail_clearly(tmp_path: Path, cli_env: dict[str, str], prefect_api: str,
+                                 monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]) -> None:
+    # the command as its own process once (against the session's Prefect server, conftest's cli_env: no command
+    # starts one of its own beside the check): exit status and stderr as a user sees them
     r = _cli("--ablation", "nonsense", "--out", str(tmp_path / "o"), env=cli_env)
     assert r.returncode != 0 and "--ablation must be one of" in r.stderr
-    r = _cli("--suite", str(tmp_path / "none.yaml"), "--out", str(tmp_path / "o"), env=cli_env)
-    assert r.returncode != 0 and "suite" in r.stderr and "not found" in r.stderr
-    r = _cli("--vision-llm", "some/vision-model", "--no-videos", "--out", str(tmp_path / "o"), env=cli_env)
-    assert r.returncode != 0 and "--vision-llm rates the drop-protocol videos" in r.stderr
+    # the other refusals through the same entry point in this process (no interpreter start-up per case)
+    for args, words in ((("--suite", str(tmp_path / "none.yaml")), ("suite", "not found")),
+                        (("--vision-llm", "some/vision-model", "--no-videos"),
+                         ("--vision-llm rates the drop-protocol videos",)),
+                        (("--ablation", "nonsense"), ("--ablation must be one of",))):
+        code, err = _cli_here(*args, "--out", str(tmp_path / "o"), api=prefect_api, monkeypatch=monkeypatch,
+                              capsys=capsys)
+        assert code != 0 and all(w in err for w in words), (args, code, err)
     assert not (tmp_path / "o").exists()
 
 

@@ -69,38 +69,10 @@ def test_an_unexecutable_plan_has_no_outcome() -> None:
 
 # --- how L3's result reaches the user: reasons in words, progress, the reported attempt (issue 24) ---
 
-FAST_COACD = dict(preprocess_resolution=20, max_convex_hull=8, threshold=0.15, mcts_iterations=30, mcts_nodes=8,
-                  mcts_max_depth=2, resolution=500, max_input_faces=3000)
-
-
-def _asset(out: Path, text: str, density: float) -> Path:
-    """L0 of a text request (draft, a fast convex decomposition) and an L1 physical.json of foam at `density`."""
-    from contracts.request import AssetRequest
-    from flows.l0_geometry import L0Result, write_l0
-    from tasks.geometry import pipeline, sources
-    from tasks.geometry.outputs import load_l0
-    from tasks.physical.model import build_physical_model
-
-    s = pipeline.settings_from_contract("draft", coacd_overrides=FAST_COACD)
-    mesh, info = sources.build_mesh(AssetRequest(text=text), s)
-    proxy = pipeline.build_proxy(mesh, s.coacd)
-    particles = pipeline.build_particles(mesh, s.particles)
-    gaussians = pipeline.build_gaussians(mesh, particles, s)
-    write_l0(L0Result(mesh, proxy, particles, gaussians, info,
-                      pipeline.check_geometry(mesh, proxy, particles, gaussians)), out)
-    from tasks.asset_dir import AssetDir
-    from tests.asset_records import physical_record
-
-    a = load_l0(out)
-    phys = build_physical_model(a.particles_m, a.volumes_m3, a.spacing_m, density, 0.6, 0.8, "foam")
-    AssetDir(out).write_physical(physical_record(phys))
-    return out
-
-
 @pytest.fixture(scope="module")
-def small_cube(tmp_path_factory: pytest.TempPathFactory) -> Path:
+def small_cube(foam_cube_template: Path) -> Path:
     """A 3 cm foam cube (L0 + L1): graspable by every gripper."""
-    return _asset(tmp_path_factory.mktemp("l3r") / "cube", "a soft foam cube 3 cm", 86.0)
+    return foam_cube_template
 
 
 def _tol() -> TrialTolerances:

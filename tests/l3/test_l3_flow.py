@@ -18,31 +18,10 @@ from flows.l3_manipulation import L3Options, run_l3
 from tasks.asset_dir import AssetDir
 from tests.asset_records import material_record, physical_record
 
-FAST_COACD = dict(preprocess_resolution=20, max_convex_hull=8, threshold=0.15, mcts_iterations=30, mcts_nodes=8,
-                  mcts_max_depth=2, resolution=500, max_input_faces=3000)
-
-
 @pytest.fixture(scope="module")
-def cube_template(tmp_path_factory: pytest.TempPathFactory) -> Path:
+def cube_template(foam_cube_template: Path) -> Path:
     """L0 of 'a soft foam cube 3 cm' and an L1 physical.json (foam prior: density 86 kg/m^3, mu 0.8)."""
-    from contracts.request import AssetRequest
-    from flows.l0_geometry import L0Result, write_l0
-    from tasks.geometry import pipeline, sources
-    from tasks.geometry.outputs import load_l0
-    from tasks.physical.model import build_physical_model
-
-    s = pipeline.settings_from_contract("draft", coacd_overrides=FAST_COACD)
-    mesh, info = sources.build_mesh(AssetRequest(text="a soft foam cube 3 cm"), s)
-    proxy = pipeline.build_proxy(mesh, s.coacd)
-    particles = pipeline.build_particles(mesh, s.particles)
-    gaussians = pipeline.build_gaussians(mesh, particles, s)
-    out = tmp_path_factory.mktemp("l3") / "cube"
-    write_l0(L0Result(mesh, proxy, particles, gaussians, info, pipeline.check_geometry(mesh, proxy, particles,
-                                                                                         gaussians)), out)
-    a = load_l0(out)
-    phys = build_physical_model(a.particles_m, a.volumes_m3, a.spacing_m, 86.0, 0.6, 0.8, "foam")
-    AssetDir(out).write_physical(physical_record(phys))
-    return out
+    return foam_cube_template
 
 
 @pytest.fixture
