@@ -612,8 +612,14 @@ def _crumpled_sized(size: SizeSpec, reading: concepts.Reading) -> SizeSpec:
         return size.model_copy(update={"longest_m": wad_size(dims[0] * width), "extents_m": (None, None, None),
                                        "flat": False, "stated": f"{size.stated}: the flat sheet's, balled up"})
     across = crumpled_size(dims[0] * width)[0]
+    said = f"{size.stated}: the flat sheet's, bunched into a heap"
+    if across > HEAP_MAX_M:  # ('black molton 3 x 6 m, bundled': an 18 m2 heap is ~2.1 m across) built as big as L0
+        across, said = HEAP_MAX_M, f"{said} (built {HEAP_MAX_M:g} m across, the most L0 builds)"  # builds
     return size.model_copy(update={"longest_m": across, "extents_m": (None, None, None), "flat": False,
-                                   "stated": f"{size.stated}: the flat sheet's, bunched into a heap"})
+                                   "stated": said})
+
+
+HEAP_MAX_M = 0.95 * MAX_SIZE_M  # the widest heap of cloth L0 builds [m]
 
 
 _DUSTED = re.compile(r"\b(?:dusted|powdered|sugared|floured|sprinkled with (?:icing|powdered|caster) sugar|"

@@ -439,6 +439,11 @@ def _hardness_band(entry: LexiconEntry) -> dict:
             "youngs_modulus_source": f"Shore A {lo:g}-{hi:g} ({entry.hardness_source}) by Gent's relation"}
 
 
+# states only a cloth or sheet takes: an unknown noun said so is a cloth in that state
+_CLOTH_STATE = re.compile(r"\b(?:crumpled|bunched|balled up|bundled|scrunched|wadded|in a heap|heaped|folded|"
+                          r"rolled up|draped|hemmed|unfolded)\b")
+
+
 def _fallback(t: str, noun: str | None, donor: LexiconEntry | None, donor_plan: tuple[str, dict] | None,
               donor_words: str) -> tuple[LexiconEntry, ConceptMatch]:
     """The generic concept for an unknown noun, by meaning: its stated shape or body-plan word, then its category,
@@ -454,6 +459,11 @@ def _fallback(t: str, noun: str | None, donor: LexiconEntry | None, donor_plan: 
         return lex.entries[key], _match(lex.entries[key], "body_plan", noun, f"{what}: built a generic "
                                         f"{key[8:].replace('_', ' ')} in its stated shape ('{donor_words}')", material)
     plan_hits, cat_hits = _find(t, BODY_PLAN_WORDS), _find(t, CATEGORY_WORDS)
+    cloth = _CLOTH_STATE.search(t) if material in (None, "textile") and not plan_hits else None
+    if cloth is not None:  # 'black molton 3x6 m, bundled', 'a play parachute bunched up in a heap': a cloth in that
+        key = "generic_cloth"  # state, not a soft block
+        return lex.entries[key], _match(lex.entries[key], "category", noun, f"{what}: said '{cloth.group(0)}', so "
+                                        f"built as a generic cloth in that state", material)
     if plan_hits:
         key, level, why = BODY_PLAN_WORDS[plan_hits[-1][2]], "body_plan", f"from '{plan_hits[-1][2]}'"
     elif cat_hits:
