@@ -24,6 +24,7 @@ from tasks.geometry.grammar.parts import _euler_z_to, box, cone, ellipsoid, part
 from tasks.geometry.meshing import mesh_program, program_volume, sample_program
 from tasks.geometry.sdf import REVEAL_CUT, program_bounds, program_sdf
 from tasks.geometry.wordnet import wordnet
+from tasks.render.finish import with_look
 
 # Words that say what an unknown object is like (checked only when the head noun is not in the lexicon).
 BODY_PLAN_WORDS: dict[str, str] = {
@@ -139,6 +140,7 @@ class Reading:
     look_only: bool = False  # the donor lends only its look ('a cat-shaped pillow' weighs what the pillow weighs)
     pouch: pouch_words.PouchOf | None = None  # 'a bag of frozen peas': a pouch of a fill (tasks.geometry.pouch_words)
     vacuum: bool = False  # 'vacuum-packed X': X on the sealed film of a vacuum pack
+    sleeve: pouch_words.Sleeved | None = None  # 'X still in its plastic sleeve': X folded in its clear packaging (#46)
     params: dict = field(default_factory=dict)  # plan parameters bound from the text ('6 mm thick': the sheet's)
 
 
@@ -577,6 +579,11 @@ def read_text(text: str, serving: bool = True) -> Reading:
     t = _STYLE.sub(lambda m: f"{m.group(1)} {m.group(2)}" if f"{m.group(1)} {m.group(2)}" in noun_index()
                    else m.group(0), _expand_diminutives(_plush_before(normalise(text))))  # 'a muppet-style puppet': a
     # muppet puppet
+    sleeved = pouch_words.sleeve_contents(t)
+    if sleeved is not None and sleeved.contents != t:  # 'an airline blanket still in its plastic sleeve': the
+        inner = _in_packaging(sleeved)  # blanket folded in its clear sleeve (a food's vacuum pack is below)
+        if inner is not None:
+            return inner
     contents = pouch_words.vacuum_contents(t)
     if contents is not None and contents != t:  # 'vacuum sealed pork chop': the chop, on its sealed film
         inner = read_text(contents)
@@ -710,6 +717,33 @@ def read_text(text: str, serving: bool = True) -> Reading:
         return Reading(match=match, entry=entry, warnings=[note], phrase=phrase, pouch=pouch, size_m=size)
     return Reading(match=match, entry=entry, donor=donor_entry, donor_plan=donor_plan, warnings=warnings,
                    phrase=phrase, size_m=size_m, look_only=look and not match.by_analogy)
+
+
+FILM_LOOK = "film"  # goods seen through a clear film: its gloss in the stills (tasks.render.finish.LOOKS)
+SLEEVED_PLANS = frozenset({"sheet", "garment", "sock"})  # folded textiles sold or stored in a clear film (#46)
+SLEEVED_MAX_M = 1.0  # a sheet larger than this as built is no folded one (a duvet laid flat) [m]
+
+
+def _in_packaging(sleeved: pouch_words.Sleeved) -> Reading | None:
+    """The reading of folded textile goods in their clear packaging ('a new bath towel still in the shrink wrap',
+    'a pack of 3 folded socks in a clear bag', 'a vacuum-sealed bag of 5 clean tshirts'): the goods' own concept,
+    a garment folded, with the pack kind and count (drawn through the film in `build`); None when the goods are
+    not a folded textile the lexicon knows (a pork chop's vacuum pack, a pillow's space-saver bag)."""
+    inner = read_text(sleeved.contents)
+    entry = inner.entry
+    rolled = entry.params.get("state") == "rolled"
+    folded_drawing = entry.catalogue is not None and entry.drawn_state == "folded"
+    if inner.match.by_analogy or entry.category != "textile" or inner.donor is not None \
+            or inner.donor_plan is not None or inner.pouch is not None or rolled \
+            or not (entry.plan in SLEEVED_PLANS or folded_drawing) \
+            or (entry.plan == "sheet" and entry.params.get("state") != "folded" and entry.size_m > SLEEVED_MAX_M):
+        return None
+    if entry.plan == "garment" and not (inner.phrase is not None and "folded" in inner.phrase.states):
+        folded = read_text(f"folded {sleeved.contents}")  # a shirt in its packaging is folded
+        if folded.entry.key == entry.key:
+            inner = folded
+    inner.sleeve = sleeved
+    return inner
 
 
 # soft goods a vacuum bag stores squeezed flat (a duvet, clothes, a pillow, plush toys), not a food's sealed film
@@ -1221,7 +1255,37 @@ def build(reading: Reading, text: str) -> tuple[ShapeProgram, ConceptMatch, list
         if piece is not None:  # the film's few grams are in the piece's mass: the density over the whole
             match = match.model_copy(update={"density_kg_per_m3": piece / max(program_volume(program), 1e-12)})
         states = [*states, "vacuum-packed"]
+    if reading.sleeve is not None:  # the goods folded in their clear packaging (#46)
+        program, match = _in_sleeve(reading.sleeve, entry, program, match, "body" in applied)
+        states = [*states, "in a vacuum bag" if reading.sleeve.kind == "vacuum" else "in a clear sleeve"]
     return program, match.model_copy(update={"colors": applied, "states": states}), warnings
+
+
+def _in_sleeve(sleeved: pouch_words.Sleeved, entry: LexiconEntry, program: ShapeProgram, match: ConceptMatch,
+               said_colour: bool) -> tuple[ShapeProgram, ConceptMatch]:
+    """The goods' program packed (`count` of them, several garments in different colours unless one was said) in
+    the clear film of their sleeve or vacuum bag; the mass the goods' times the count plus the film's."""
+    one = match.typical_mass_kg if match.typical_mass_kg is not None else (
+        match.density_kg_per_m3 * program_volume(program) if match.density_kg_per_m3 is not None else None)
+    palette: tuple[tuple[float, float, float], ...] = ()
+    if sleeved.count > 1 and entry.plan in ("garment", "sock") and not said_colour:
+        palette = tuple(load_lexicon().colors[c] for c in pouch_words.PACK_PALETTE)
+    count = min(sleeved.count, pouch_words.SLEEVE_MAX_COUNT)
+    packed = pouch_words.film_sleeved(pouch_words.packed_goods(program, count, palette, shingled=entry.plan == "sock"), sleeved.kind)
+    if one is None:
+        return packed, match.model_copy(update={"finish": with_look(match.finish, FILM_LOOK)})
+    goods = one * sleeved.count
+    film = pouch_words.film_kg(packed, sleeved.kind)
+    mass = goods + film
+    what = entry.key.replace("_", " ")
+    source = f"{sleeved.count} x " if sleeved.count > 1 else ""
+    return packed, match.model_copy(update={
+        "finish": with_look(match.finish, FILM_LOOK), "typical_mass_kg": mass, "density_kg_per_m3": mass / max(program_volume(packed), 1e-12),
+        "typical_size_m": float(grammar.program_extents(packed, 48).max()),
+        "mass_source": f"{source}the {what}'s typical mass ({match.mass_source}) plus the "
+                       f"{'vacuum bag' if sleeved.kind == 'vacuum' else 'sleeve'}'s film ({film * 1000:.0f} g: "
+                       f"{pouch_words.VACUUM_FILM_M * 1e6 if sleeved.kind == 'vacuum' else pouch_words.SLEEVE_FILM_M * 1e6:.0f} "
+                       f"um polyethylene{' and its valve' if sleeved.kind == 'vacuum' else ''})"})
 
 
 _HALF_EATEN = re.compile(r"\b(?:half eaten|partly eaten|partially eaten|half finished)\b")

@@ -13,7 +13,7 @@ import numpy as np
 
 from contracts.shape import Part, ShapeProgram
 from tasks.geometry import fill_words
-from tasks.geometry.grammar.parts import part_group, squashed_parts, superellipsoid
+from tasks.geometry.grammar.parts import box, cylinder, limb, part_group, squashed_parts, superellipsoid
 from tasks.geometry.meshing import sample_program
 from tasks.geometry.sdf import program_bounds
 
@@ -250,3 +250,272 @@ def painted_marks(program: ShapeProgram, emblem: str, rgb_of: dict[str, tuple[fl
             p = p.model_copy(update={"color_rgb": rgb_of["black"]})
         out.append(p)
     return program.model_copy(update={"parts": out})
+
+
+# Folded textiles in their own packaging (#46): 'an airline blanket still in its plastic sleeve', 'a new bath towel
+# still in the shrink wrap', 'a pack of 3 folded socks in a clear bag', 'a vacuum-sealed bag of 5 clean tshirts' are
+# the goods folded, seen through a clear film pressed round them, with the film's flat sealed border (a sleeve's
+# crimped seal at its ends, a vacuum bag's valve): not a cushion, a sponge or a pouch of unknown goods.
+_SEE_THROUGH_WORDS = r"(?:clear|transparent|see through|plastic|poly|polythene|polyethylene|cellophane|shrink|" \
+                     r"sealed|retail|original|zip|ziploc|ziplock|vacuum|vac)"
+SLEEVE = re.compile(
+    r"\b(?:still\s+|new\s+|folded\s+|sealed\s+|packed\s+|packaged\s+|wrapped\s+|bagged\s+|up\s+)*(?:in|inside|into)\s+"
+    r"(?:an?|the|its|their)?\s*(?:own\s+|original\s+|new\s+)?(?:"
+    rf"(?:{_SEE_THROUGH_WORDS}\s+){{1,3}}(?:bag|pouch|pack|packet|sack)"
+    rf"|(?:{_SEE_THROUGH_WORDS}\s+){{0,3}}(?:sleeve|wrap|wrapper|wrapping|packaging|package|film|cellophane|"
+    r"polybag|poly bag|plastic))\b"
+    r"|\b(?:shrink|plastic|cellophane|film|poly)[\s-]*(?:wrapped|wrap|sleeved|bagged)\b|\bpolybagged\b"
+    r"|\bin\s+(?:the|its)\s+(?:original\s+)?packaging\b|\bstill\s+(?:packaged|sealed|wrapped|bagged)\b")
+_VACUUM_KIND = re.compile(r"\b(?:vacuum|vac|cryovac|cryovacked|space saver|compression)\b")
+_CONTENTS_COUNT = re.compile(r"^(?:an?\s+|the\s+|some\s+)?(?:(?:pack|packet|set|bundle|stack|pile|bag|pouch)\s+of\s+)?"
+                             r"(\d+|two|three|four|five|six|seven|eight|nine|ten|twelve)\s*"
+                             r"(?:(?:pairs?|packs?)\s+of\s+|packs?\s+)?")
+_NUMBER_WORDS = {"two": 2, "three": 3, "four": 4, "five": 5, "six": 6, "seven": 7, "eight": 8, "nine": 9, "ten": 10,
+                 "twelve": 12}
+SLEEVE_MAX_COUNT = 6  # folded goods drawn in one pack at most (the rest would not be seen through the top) [-]
+
+
+@dataclass(frozen=True)
+class Sleeved:
+    """Goods in their packaging: the words that name the goods, how many, and the pack's kind ('sleeve': a clear
+    sleeve or shrink wrap sealed at its ends; 'vacuum': a vacuum bag pressed flat, with its valve)."""
+
+    contents: str
+    count: int = 1
+    kind: str = "sleeve"
+
+
+def sleeve_contents(text: str) -> Sleeved | None:
+    """The goods a request says are in their clear packaging ('airline blanket still in its plastic sleeve' ->
+    'airline blanket'; 'a pack of 3 folded socks in a clear bag' -> 3 x 'folded socks'; 'vacuum-sealed bag of 5 clean
+    tshirts' -> 5 x 'clean tshirts'), else None. Whether the goods are ones drawn so is the caller's to judge."""
+    t = " ".join(text.lower().replace("-", " ").split())
+    kind = "vacuum" if _VACUUM_KIND.search(t) else "sleeve"
+    if SLEEVE.search(t) is not None:
+        rest = SLEEVE.sub(" ", t)
+        rest = VACUUM.sub(" ", rest)
+    elif VACUUM.search(t) is not None:
+        rest = vacuum_contents(t) or ""
+    else:
+        return None
+    rest = re.sub(r"\b(?:still|brand new|new|unopened|unused)\b", " ", rest)
+    rest = re.sub(r"\s+", " ", rest).strip(" ,.")
+    m = _OF.search(rest)
+    if m is not None and m.start() < 12:  # 'a bag of 5 clean tshirts', 'a pack of 3 folded socks': the goods
+        rest = rest[m.start(1):]
+    if kind == "vacuum":
+        rest = re.sub(rf"^(?:an?\s+|the\s+)?(?:{_CONTAINER_RX})\s+(?:of\s+)?", "", rest)
+    count = 1
+    c = _CONTENTS_COUNT.match(rest)
+    if c is not None:
+        count = int(c.group(1)) if c.group(1).isdigit() else _NUMBER_WORDS[c.group(1)]
+        rest = rest[c.end():]
+    rest = re.sub(r"\s+", " ", rest).strip(" ,.")
+    if not rest:
+        return None
+    return Sleeved(contents=rest, count=max(1, count), kind=kind)
+
+
+# how packed goods and their film are drawn (#46)
+SHINGLE_PITCH = 0.4  # shingled goods' spacing / one's width (socks fanned in a pack) [-]
+SHINGLE_RISE = 0.6  # each shingled one's rise over the last / one's height [-]
+STACK_RISE = 0.75  # a stacked one's rise over the one under it / one's height: pressed by the film [-]
+STACK_PARTS = 1  # parts of each stacked one under the top one (its body) [-]
+STACK_OFFSET = 0.035  # a stacked one's offset from the one over it / its extent: its edge seen [-]
+FILM_PARTS = 10  # parts kept for the film, its seal, valve and glare (of the program's 64) [-]
+PACK_PALETTE = ("navy", "red", "light grey", "green", "yellow", "black")  # unsaid colours of several folded garments
+SLEEVE_SIDE = 0.05  # a sleeve's film beyond the goods on its long sides / the goods' footprint [-]
+SLEEVE_END = 0.13  # its sealed end beyond the goods / the goods' length [-]
+VACUUM_PRESSED = 0.6  # goods in a vacuum bag: their height pressed to this share [-]
+VACUUM_SIDE = 0.12  # a vacuum bag's flat sealed border beyond the goods / their footprint [-]
+FILM_RAISED = 0.2  # the flat film's middle over the goods' bottom / its thickness: mostly under them (thin goods
+# show over it) [-]
+FILM_TINT = 0.15  # goods seen through the film: their colours moved this share towards the film's [-]
+FILM_RGB = (0.86, 0.9, 0.94)  # clear film over a white ground (linear RGB)
+GLARE_RGB = (0.97, 0.98, 1.0)  # the film's glare streaks
+VALVE_RGB = (0.04, 0.16, 0.55)  # a vacuum bag's valve cap (blue)
+SLEEVE_FILM_M = 50e-6  # an LDPE retail sleeve's film (40-60 um) [m]
+VACUUM_FILM_M = 100e-6  # a PA/PE vacuum storage bag's film (80-120 um) [m]
+FILM_DENSITY = 930.0  # polyethylene [kg/m^3]
+VALVE_KG = 0.015  # a vacuum bag's valve and zip track (retail spare valves ~10-20 g) [kg]
+
+
+def _solid_box(program: ShapeProgram) -> tuple[np.ndarray, np.ndarray]:
+    """The program's solid box (lo, hi) [m], from its draft field (the parts' boxes overstate blends and turns)."""
+    field, origin, spacing = sample_program(program, 40)
+    idx = np.argwhere(field < 0)
+    if len(idx):
+        return origin + idx.min(axis=0) * spacing, origin + (idx.max(axis=0) + 1) * spacing
+    lo, hi = program_bounds(program)
+    return np.asarray(lo, dtype=np.float64), np.asarray(hi, dtype=np.float64)
+
+
+def _shifted(p: Part, shift: np.ndarray, name: str, rgb: tuple[float, float, float] | None = None) -> Part:
+    x, y, z = p.transform.translation_m
+    update: dict[str, object] = {"name": name, "transform": p.transform.model_copy(update={
+        "translation_m": (x + float(shift[0]), y + float(shift[1]), z + float(shift[2]))})}
+    if rgb is not None:
+        update["color_rgb"] = rgb
+    return p.model_copy(update=update)
+
+
+def packed_goods(program: ShapeProgram, count: int, palette: tuple[tuple[float, float, float], ...] = (),
+                 shingled: bool = False) -> ShapeProgram:
+    """`count` of the folded goods as a pack holds them: a stack, the top one whole and those under it by their
+    largest plain parts, each a little off the one above so its edge shows (five folded T-shirts); shingled (socks):
+    side by side, each over the last by SHINGLE_PITCH of one's width, as a retail pack fans them. Each copy's body
+    colour is the next of `palette` when given (five T-shirts of different colours). The top copy comes first, so its
+    own cuts (a collar's hollow, its outline) cut only it."""
+    count = max(1, min(count, SLEEVE_MAX_COUNT))
+    if count == 1 and not palette:
+        return program
+    lo, hi = _solid_box(program)
+    ext = hi - lo
+    axis = 1 if ext[1] <= ext[0] else 0  # shingled along the shorter side
+    body = program.parts[0].color_rgb
+    plain = [p for p in program.parts if p.operation == "union"]
+    if shingled and len(plain) < len(program.parts):
+        shingled = False  # (a copy's cut would cut its neighbours)
+    room = MAX_PARTS_FOR_GOODS - len(program.parts)
+    keep = max(1, min(STACK_PARTS, room // max(count - 1, 1)))  # (a folded shirt's sleeves, without its outline's
+    # trim, stick out past a stacked one's edge: its body is what is seen)
+    lower = plain if shingled else sorted(plain, key=lambda p: -float(np.prod(np.asarray(_part_extent(p)))))[:keep]
+    lower = [p for p in program.parts if p in lower]  # (in their own order)
+    out: list[Part] = []
+    for k in range(count):
+        shift = np.zeros(3)
+        if shingled:  # the last one on top: drawn first
+            j = count - 1 - k
+            shift[axis] = SHINGLE_PITCH * float(ext[axis]) * (j - 0.5 * (count - 1))
+            shift[2] = SHINGLE_RISE * float(ext[2]) * j
+        else:
+            shift[2] = -STACK_RISE * float(ext[2]) * k
+            shift[0] = STACK_OFFSET * float(ext[0]) * (1 if k % 2 else -1) * (k > 0)
+            shift[1] = STACK_OFFSET * float(ext[1]) * (1 if (k // 2) % 2 else -1) * (k > 0)
+        rgb = palette[k % len(palette)] if palette else None
+        for p in program.parts if k == 0 else lower:
+            own = rgb if rgb is not None and p.color_rgb == body else None
+            out.append(_shifted(p, shift, p.name if k == 0 else f"{p.name} {k + 1}", own))
+    return program.model_copy(update={"parts": out})
+
+
+MAX_PARTS_FOR_GOODS = 64 - FILM_PARTS
+
+
+def _part_extent(p: Part) -> tuple[float, float, float]:
+    prim = p.primitive
+    for attr in ("size_m", "radii_m"):
+        v = getattr(prim, attr, None)
+        if v is not None:
+            return tuple(float(a) * float(s) for a, s in zip(v, p.transform.scale))  # type: ignore[return-value]
+    r = float(getattr(prim, "radius_m", getattr(prim, "radius_bottom_m", 0.01)))
+    h = float(getattr(prim, "height_m", getattr(prim, "length_m", r)))
+    return (r, r, h)
+
+
+def film_sleeved(program: ShapeProgram, kind: str = "sleeve") -> ShapeProgram:
+    """The goods in a clear film pressed round them, seen through it (their colours a little towards the film's,
+    two glare streaks across their top), the film's flat sealed border round them: a sleeve's crimped seals at its
+    two ends, a vacuum bag's wider border with its valve on top and its zip track along one end."""
+    if kind == "vacuum":
+        program = program.model_copy(update={"parts": squashed_parts(program.parts, (1.0, 1.0, VACUUM_PRESSED))})
+    lo, hi = _solid_box(program)
+    ext = hi - lo
+    centre = (lo + hi) / 2.0
+    long_ax = 0 if ext[0] >= ext[1] else 1
+    short_ax = 1 - long_ax
+    tinted_parts = [p.model_copy(update={"color_rgb": tuple(float((1 - FILM_TINT) * c + FILM_TINT * f)
+                                                            for c, f in zip(p.color_rgb, FILM_RGB))})
+                    for p in program.parts]
+    half = np.zeros(3)
+    if kind == "vacuum":
+        half[long_ax] = float(ext[long_ax]) * (0.5 + VACUUM_SIDE)
+        half[short_ax] = float(ext[short_ax]) * 0.5 + float(ext[long_ax]) * VACUUM_SIDE
+    else:
+        half[long_ax] = float(ext[long_ax]) * (0.5 + SLEEVE_END)
+        half[short_ax] = float(ext[short_ax]) * 0.5 + float(ext[long_ax]) * SLEEVE_SIDE
+    longest = float(2 * half[:2].max())
+    film_t = max(FILM_THICKNESS * float(ext[2]) * 0.6, FILM_MIN_THICKNESS * longest)
+    half[2] = film_t / 2
+    film = superellipsoid("film", tuple(float(v) for v in half), (float(centre[0]), float(centre[1]),
+                                                                     float(lo[2]) + FILM_RAISED * film_t),
+                          ns=0.2, ew=0.25).model_copy(update={"color_rgb": FILM_RGB})
+    parts: list[Part] = [*tinted_parts, film]
+    top = float(hi[2])
+    for side, sign in (("left", -1.0), ("right", 1.0)):  # each end: the film drawn down from the top edge to its seal
+        cap = np.zeros(3)
+        cap[long_ax] = (VACUUM_SIDE if kind == "vacuum" else SLEEVE_END) * 0.85 * float(ext[long_ax])
+        cap[short_ax] = 0.5 * float(ext[short_ax])
+        cap[2] = 0.5 * float(ext[2])
+        at = np.array(centre, dtype=np.float64)
+        at[long_ax] += sign * 0.5 * float(ext[long_ax])
+        at[2] = lo[2]
+        parts.append(superellipsoid(f"{side} film end", tuple(float(v) for v in cap), tuple(float(v) for v in at),
+                                    ns=0.9, ew=0.35, blend=0.5 * film_t).model_copy(update={"color_rgb": FILM_RGB}))
+    r = max(0.7 * FILM_MIN_THICKNESS * longest, 0.01 * longest)
+    for k, (u, v) in enumerate(((-0.18, -0.22), (0.12, 0.18))):  # glare: two streaks slanting across the top
+        a = np.array(centre, dtype=np.float64)
+        b = np.array(centre, dtype=np.float64)
+        a[long_ax] += (u - 0.16) * float(ext[long_ax])
+        b[long_ax] += (u + 0.16) * float(ext[long_ax])
+        a[short_ax] += (v - 0.22) * float(ext[short_ax])
+        b[short_ax] += (v + 0.22) * float(ext[short_ax])
+        a[2] = b[2] = top
+        parts.append(squashed_parts([limb(f"film glare {k + 1}", tuple(a), tuple(b), r)], (1.0, 1.0, 0.5))[0]
+                     .model_copy(update={"color_rgb": GLARE_RGB}))
+    if kind == "vacuum":
+        at = np.array(centre, dtype=np.float64)
+        at[long_ax] += 0.22 * float(ext[long_ax])
+        at[short_ax] += 0.18 * float(ext[short_ax])
+        vr = 0.07 * float(min(ext[0], ext[1]))
+        vh = max(0.5 * vr, 2.2 * FILM_MIN_THICKNESS * longest)
+        parts.append(cylinder_part("valve", 1.35 * vr, 2.0 * vh, (float(at[0]), float(at[1]), top - 0.5 * vh),
+                                   GLARE_RGB))  # (sunk into the goods' top: one body with them)
+        parts.append(cylinder_part("valve cap", vr, vh, (float(at[0]), float(at[1]), top + 0.8 * vh), VALVE_RGB))
+        track = np.zeros(3)
+        track[long_ax] = 2.5 * film_t
+        track[short_ax] = 2 * half[short_ax] * 0.9
+        track[2] = 1.8 * film_t
+        where = np.array(centre, dtype=np.float64)
+        where[long_ax] -= half[long_ax] - 3.0 * film_t
+        where[2] = lo[2] + (FILM_RAISED + 0.4) * film_t
+        parts.append(box_part("zip track", tuple(float(v) for v in track), tuple(float(v) for v in where), VALVE_RGB,
+                              0.4 * film_t))
+    else:  # each sealed end: a band of crimp ridges across it
+        for side, sign in (("left", -1.0), ("right", 1.0)):
+            for j in range(4):
+                at = np.array(centre, dtype=np.float64)
+                at[long_ax] += sign * (0.5 * float(ext[long_ax]) + (0.25 + 0.18 * j) * SLEEVE_END * float(
+                    ext[long_ax]))
+                at[2] = lo[2] + (FILM_RAISED + 0.5) * film_t
+                a, b = at.copy(), at.copy()
+                a[short_ax] -= 0.92 * half[short_ax]
+                b[short_ax] += 0.92 * half[short_ax]
+                parts.append(limb(f"{side} crimp {j + 1}", tuple(a), tuple(b), 0.55 * film_t)
+                             .model_copy(update={"color_rgb": FILM_RGB}))
+    floor = np.array(centre, dtype=np.float64)  # the film's ends drawn down to its bottom, not under it
+    floor[2] = lo[2] + (FILM_RAISED - 0.5) * film_t - 0.5 * float(ext[2])
+    cut = box("film floor", (4.0 * float(half[0]), 4.0 * float(half[1]), float(ext[2])), tuple(float(v) for v in floor),
+              op="subtract").model_copy(update={"color_rgb": FILM_RGB})
+    return program.model_copy(update={"parts": [*parts[:63], cut]})
+
+
+def cylinder_part(name: str, radius: float, height: float, at: tuple[float, float, float],
+                  rgb: tuple[float, float, float]) -> Part:
+    return cylinder(name, radius, height, at, edge=0.25 * min(radius, height)).model_copy(update={"color_rgb": rgb})
+
+
+def box_part(name: str, size: tuple[float, ...], at: tuple[float, ...], rgb: tuple[float, float, float],
+             edge: float) -> Part:
+    return box(name, size, at, edge=edge).model_copy(update={"color_rgb": rgb})
+
+
+def film_kg(program: ShapeProgram, kind: str) -> float:
+    """The pack's own film (its two faces over the drawn film's footprint) and a vacuum bag's valve [kg]."""
+    film = next((p for p in program.parts if p.name == "film"), None)
+    if film is None:
+        return 0.0
+    rx, ry, _ = film.primitive.radii_m  # type: ignore[union-attr]
+    area = 2.0 * (2 * rx) * (2 * ry)
+    return area * (VACUUM_FILM_M if kind == "vacuum" else SLEEVE_FILM_M) * FILM_DENSITY + (
+        VALVE_KG if kind == "vacuum" else 0.0)

@@ -17,8 +17,10 @@ def test_soft_goods_said_vacuum_packed_are_a_space_saver_bag_at_their_mass() -> 
     assert d.entry == "vacuum_storage_bag" and d.concept is not None
     assert d.concept.typical_mass_kg == pytest.approx(1.5 + 0.15)  # the queen down duvet's 1.5 kg and the film
     assert 0.5 * 1.65 <= planned_mass(text) <= 2.0 * 1.65  # it was refused as a 2.3 m object
-    sweater = catalogue.design_from_text("a vacuum sealed sweater")
-    assert sweater.entry == "vacuum_storage_bag" and sweater.concept.typical_mass_kg == pytest.approx(0.45 + 0.15)
+    sweater = catalogue.design_from_text("a vacuum sealed sweater")  # (session 46: a folded garment is drawn in the
+    # bag's clear film, weighing the sweater and the film of a bag its size; a duvet, pillow or plush is the bag)
+    assert sweater.entry == "sweater" and "in a vacuum bag" in sweater.concept.states
+    assert 0.45 < sweater.concept.typical_mass_kg < 0.45 + 0.1
     assert catalogue.design_from_text("vacuum sealed pork chop").entry == "pork_chop"  # food: on its sealed film
 
 
