@@ -202,6 +202,9 @@ def parse_size(text: str) -> SizeSpec:
         own = {1: m.group(2), 3: m.group(4)}  # '30 cm by 1 m': a number's own unit, else the last one
         dims = [float(m.group(i)) * (_UNITS[_unit_key(own[i])] if own.get(i) else unit) for i in (1, 3, 5)
                 if m.group(i) is not None]
+        rest = t[: m.start()] + " " + t[m.end():]
+        if max(dims) < MIN_SIZE_M and (_ONE_RE.search(rest) or _DIMS_RE.search(rest)):  # 'draught strip, 5 m
+            return parse_size(rest)  # roll, 9mm x 6mm': sides under any object's are its cross-section's
         return SizeSpec(extents_m=tuple(dims) + (None,) * (3 - len(dims)), stated=m.group(0))
     t = _FEET_INCHES.sub(_feet_inches_sum, t)  # '5 ft 6 in' is one size
     ext: list[float | None] = [None, None, None]
@@ -338,13 +341,14 @@ def check_size(size: SizeSpec) -> None:
 
 # what a stated size measures of a hand-drawn shape drawn in a state (its entry's drawn_state)
 _DRAWN_STATE_SIZES = {"folded": "the flat size of a shape drawn folded", "coiled": "the length of a good drawn coiled",
-                      "bundled": "the length of a fabric drawn bundled in a heap"}
+                      "bundled": "the length of a fabric drawn bundled in a heap",
+                      "rolled": "the sheet's length of a good drawn rolled"}
 _MATERIAL_STATES = ("rolled", "coiled", "folded", "bundled", "crumpled")  # a hand-drawn good of a thin material
 FOLDED_FLAT_SHARE = 1.6  # a size stated for a good drawn folded over this many times its typical (folded) size is
 # its flat size ('a 32 in reflector folded down': 80 cm open, ~30 cm folded) [-]
 MATERIAL_SIZE_SHARE = 0.1  # a bare size under this share of such a good's typical size measures its material [-]
-_FOLD_STATE = re.compile(r"\b(?:fold(?:ed|ing)?|roll(?:ed|ing)?|coil(?:ed|ing)?|crumpled|bunched|bundled|balled)\b",
-                         re.IGNORECASE)
+_FOLD_STATE = re.compile(r"\b(?:fold(?:ed|ing)?|roll(?:ed|ing)?|coil(?:ed|ing)?|crumpled|bunched|bundled|balled|"
+                         r"tangled|knotted|wound)\b", re.IGNORECASE)
 
 
 def check_text_size(request: AssetRequest) -> None:
@@ -398,6 +402,9 @@ _WORD_SIZE = re.compile(rf"\b({'|'.join(sorted(_NUMBER_WORDS, key=len, reverse=T
                         rf"(?={_UNIT_WORDS}[\s-]+(?:long|tall|wide|high|across|thick|deep|in diameter|of)\b)", re.I)
 
 
+# a length then 'roll' after the goods ('foam draught strip 5m roll', 'bubble wrap 10 m roll'): the goods, rolled (the
+# roll was read as a bread roll)
+_SIZE_ROLL = re.compile(r"(?<=[a-z]\s)(\d+(?:\.\d+)?\s*(?:m|metres?|meters?|ft|feet|foot|yd|yards?))\s+rolls?\b", re.I)
 # a product's count of uses ('a 5-in-1 reflector', 'a 3 in 1 charger') is no size (it was read as 5 inches)
 _N_IN_ONE = re.compile(r"\b\d+\s*-\s*in\s*-\s*1\b|\b\d+\s+in\s+1\b(?=\s+[a-z])", re.I)
 
@@ -407,6 +414,7 @@ def normalise_sizes(text: str) -> str:
     dimension as digits ('about a metre long' -> 'about 1 metre long', 'half a metre wide' -> '0.5 metre wide'), or a
     length of a material ('one metre of tubing' -> '1 metre of tubing')."""
     text = _N_IN_ONE.sub(" ", text)
+    text = _SIZE_ROLL.sub(lambda m: f"{m.group(1)}, rolled ", text)  # 'foam strip 5m roll': the strip, rolled
     text = _WORD_SIZE.sub(lambda m: f"{_NUMBER_WORDS[m.group(1).lower()]} ", text)
     text = _NEOPRENE_NOTATION.sub(lambda m: f"{m.group(1)} mm neoprene", text)  # ('3/2 mm wetsuit')
     text = _FRACTION_SIZE.sub(_fraction_decimal, text)
@@ -1073,6 +1081,10 @@ def design_from_text(text: str, size_hint_m: float | None = None) -> Design:
         # sheet, folded': a flat size over what L0 builds) or coiled ('2 metre tinsel garland': its length laid out)
         size = SizeSpec(stated=f"{size.stated}: {said_of}, built at its typical size")
         stated = None  # the drawing keeps its own typical size
+    if stated is not None and stated > MAX_SIZE_M and size_hint_m is None and drawn is not None and drawn.catalogue \
+            and _FOLD_STATE.search(text_n):  # 'PVC skipping rope 3 m, tangled', 'a 5 m roll of wadding': a hand-drawn
+        size = SizeSpec(stated=f"{size.stated}: the length of its material, built at its typical size")  # good's
+        stated = None  # material laid out, longer than L0 builds: the drawing keeps its typical size
     if stated is not None and stated > MAX_SIZE_M and size_hint_m is None:  # a big sheet said folded: folded to fit
         concepts.fold_to_fit(reading, stated, MAX_SIZE_M)
     program, match, build_warnings = concepts.build(reading, stripped)

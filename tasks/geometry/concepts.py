@@ -554,6 +554,8 @@ def modifier_word(word: str) -> bool:
 
 
 _STYLE = re.compile(r"\b([a-z]+)[\s-]+style\s+([a-z]+)\b")  # 'a muppet-style puppet'
+_STYLE_AFTER = re.compile(r"(?<=[a-z])\s+(?:[a-z]+[\s-]+)?style\b(?=\s*(?:,|;|$))")  # '3 rolled bath towels spa style':
+# how they are rolled, not an object named 'style'
 
 
 _ASIDE = re.compile(r"\([^()]*\)")
@@ -577,7 +579,7 @@ def read_text(text: str, serving: bool = True) -> Reading:
     lex = load_lexicon()
     text = _without_asides(text)
     t = _STYLE.sub(lambda m: f"{m.group(1)} {m.group(2)}" if f"{m.group(1)} {m.group(2)}" in noun_index()
-                   else m.group(0), _expand_diminutives(_plush_before(normalise(text))))  # 'a muppet-style puppet': a
+                   else m.group(0), _STYLE_AFTER.sub("", _expand_diminutives(_plush_before(normalise(text)))))  # 'a muppet-style puppet': a
     # muppet puppet
     sleeved = pouch_words.sleeve_contents(t)
     if sleeved is not None and sleeved.contents != t:  # 'an airline blanket still in its plastic sleeve': the
@@ -697,6 +699,12 @@ def read_text(text: str, serving: bool = True) -> Reading:
     elif donor_plan is not None:
         match = match.model_copy(update={"shape_from": f"{donor_plan[0]}"})
     pouch = _pouch_of(t_shape, phrase, entry, match)
+    if pouch is not None and entry.key in OPAQUE_SACKS and pouch.piece_key is None:  # 'a bin bag full of soft toys':
+        note = f"'{phrase.noun_phrase or entry.nouns[0]}' holds {pouch.fill.key.replace('_', ' ')}: its fill sets " \
+               f"the mass"  # the black bin bag, tied, its mass the fill's (it was a white pouch with a label)
+        return Reading(match=match.model_copy(update={"analogy": [
+            f"{entry.nouns[0]} of {pouch.fill.key} ({pouch.fill.source})"]}), entry=entry, warnings=[note],
+            phrase=phrase, pouch=pouch, size_m=None)
     if pouch is not None:  # 'a bag of frozen peas', 'a saline bag': a pouch of the fill, whatever the noun found
         entry = lex.entries["generic_pouch"]
         noun = " ".join([*phrase.compounds, phrase.head or "bag"])
@@ -840,6 +848,7 @@ def _pouch_of(t: str, phrase: phrase_mod.Phrase, entry: LexiconEntry, match: Con
     return found if found is not None else pieces
 
 
+OPAQUE_SACKS = frozenset({"trash_bag"})  # sacks that keep their own look when said to hold a fill (a black bin bag)
 FILM_BAGS = frozenset({"carrier_bag"})  # a plastic bag 'of' goods the lexicon knows is a bag of them, seen through
 SEEN_PIECE_M = 0.015  # goods at least this long are told apart through a bag's film (grains, peas, beans are not) [m]
 
@@ -1214,7 +1223,8 @@ def build(reading: Reading, text: str) -> tuple[ShapeProgram, ConceptMatch, list
             program, applied = apply_colors(program, implied)
     if goods is not None and goods.fill_color:
         program = goods_words.painted_fill(program, goods.fill_color)
-        if reading.pouch is not None and "body" not in applied:  # a clear bag shows its fill (an IV bag its film)
+        if reading.pouch is not None and "body" not in applied and entry.key not in OPAQUE_SACKS:  # a clear bag
+            # shows its fill (an IV bag its film; a bin bag is black)
             see = "white" if reading.pouch.port == "iv" else goods.fill_color
             program, _ = apply_colors(program, see)
             program = _keep_part_colors(program, see)

@@ -112,8 +112,22 @@ MASS_UNITS_KG: dict[str, float] = {"kg": 1.0, "kgs": 1.0, "kilo": 1.0, "kilos": 
                                    "grams": 1e-3, "gramme": 1e-3, "grammes": 1e-3, "mg": 1e-6, "lb": 0.45359237,
                                    "lbs": 0.45359237, "pound": 0.45359237, "pounds": 0.45359237,
                                    "oz": 0.028349523125, "ounce": 0.028349523125, "ounces": 0.028349523125}
+# a fabric's weight grade in ounces is no mass of the object ('2oz poly wadding', '12 oz canvas', '10oz denim',
+# '8 oz per yard')
+_FABRIC_GRADE = re.compile(r"\s*(?:/\s*(?:sq|yd|yard|m)\b|per\s+(?:sq|square|yard|metre|meter|m)\b)|\s+(?:(?!of\b)[a-z]+\s+)?"
+                           r"(?:wadding|batting|canvas|denim|duck|fleece|fabric|twill|felt|hessian|burlap|wool|cotton|"
+                           r"leather|vinyl)\b", re.I)
 _MASS = re.compile(r"(?<![\w.])(\d+(?:\.\d+)?|\d*\.\d+)\s*(" + "|".join(sorted(MASS_UNITS_KG, key=len, reverse=True))
                    + r")(?![a-z])", re.I)
+
+
+def _mass_match(text: str) -> re.Match[str] | None:
+    """The first mass in the text that is not a fabric's weight grade in ounces."""
+    for m in _MASS.finditer(text):
+        if m.group(2).lower() in ("oz", "ounce", "ounces") and _FABRIC_GRADE.match(text, m.end()):
+            continue
+        return m
+    return None
 
 
 @dataclass
@@ -135,7 +149,7 @@ def read_stated_mass(text: str) -> StatedMass | None:
     """The object's mass said in a request ('sand-filled ankle weight, 1 kg' -> 1.0 kg; '2 lb' -> 0.907 kg;
     'a quarter-pound bag' -> 0.113 kg); the first one wins. None when no mass is stated ('a 2 l bag' is a volume;
     'weighs about' alone is no number)."""
-    m = _MASS.search(text)
+    m = _mass_match(text)
     f = _FRACTION_MASS.search(text)
     if f is not None and (m is None or f.start() < m.start()):
         kg = _FRACTIONS[" ".join(f.group(1).lower().split())] * MASS_UNITS_KG[f.group(2).lower()]

@@ -42,7 +42,8 @@ def is_english(word: str) -> bool:
     if word in known:
         return True
     return any(word.endswith(end) and word[: -len(end)] + repl in known for end, repl in _ENDINGS
-               if len(word) > len(end) + 2)
+               if len(word) > len(end) + 2 and not (end == "s" and word.endswith("ss")))  # ('octopuss' is no
+    # plural: a word in -s takes -es)
 
 
 def _doubled(word: str) -> str:
