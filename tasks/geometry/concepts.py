@@ -372,6 +372,8 @@ def _head(main: str) -> tuple[tuple[int, int, str] | None, tuple[int, int, str] 
         if w in phrase_mod.STATE_WORDS:
             continue  # 'burp cloths, folded and stacked': a state, not an unknown object
         if not _known_word(w) and len(w) > 2:
+            if hits and spelling.is_english(w) and not wordnet().physical_senses(w):
+                continue  # 'pack of 6 bungee cords, tangled': a word after the named object that names no thing
             tail_unknown = w
             break
     if not hits:

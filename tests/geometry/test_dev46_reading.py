@@ -82,3 +82,13 @@ def test_a_bin_bag_of_goods_is_the_black_bin_bag_weighed_by_what_it_holds() -> N
         masses[goods] = planned_mass(f"a bin bag full of {goods}")
     assert masses["soft toys"] < masses["clothes"] < masses["sand"]  # the fill's bulk density sets the mass
     assert 10.0 <= masses["sand"] <= 40.0  # a kitchen bin bag of sand (~1,500 kg/m3 loose): ~10-25 kg
+
+
+@pytest.mark.parametrize(("text", "concept"), [
+    ("pack of 6 bungee cords, tangled", "bungee_cord"),  # (was a sealed pouch of 'tangled')
+    ("a teddy bear, floppy", "teddy_bear"),
+    ("a sponge, squished", "kitchen_sponge"),
+])
+def test_a_word_after_the_named_object_that_names_no_thing_is_no_object(text: str, concept: str) -> None:
+    assert design_from_text(text).entry == concept
+    assert design_from_text("a duck gizmo").entry == "generic_block"  # (an unknown noun still is one)
