@@ -493,6 +493,8 @@ def _unknown_container(t: str, unknown: str | None, phrase: phrase_mod.Phrase
         return None
     lex = load_lexicon()
     goods = _GOODS_OF.search(t)
+    if goods is None and word in pouch_words.NET_NOUNS:
+        return None  # a net holding nothing is no bag ('a fishing net', 'a basketball net')
     key = "generic_pouch" if goods is not None else "generic_bag"
     held = f"a {word} of {goods.group(1).strip()}" if goods is not None else f"a {word}"
     what = "a sealed pouch (what it holds is not in the lexicon)" if goods is not None else "a fabric bag"
@@ -832,6 +834,10 @@ def _pouch_of(t: str, phrase: phrase_mod.Phrase, entry: LexiconEntry, match: Con
         return None
     noun = match.noun or ""
     holds = _HOLDS.search(t) is not None  # 'a grocery bag with six oranges inside': the bag holds them
+    if pouch_words.NET_WORDS.search(t) and not pouch_words.NET_WORDS.search(noun) and (
+            _pieces_pouch(t) is not None or pouch_words.pouch_of(t, phrase.head, phrase.compounds) is not None):
+        holds = True  # 'a sack of potatoes in open-weave burlap', 'a mesh sack of mussels': goods seen through a net,
+        # not the lexicon's closed sack ('a mesh laundry bag', 'a hay net' are nets of their own)
     if entry.key in FILM_BAGS and noun and re.search(rf"\b{re.escape(noun)}\s+of\b", t) and _pieces_pouch(t):
         holds = True  # 'a plastic bag of cotton rounds': goods the lexicon knows, seen through the film
     found = pouch_words.pouch_of(t, phrase.head, phrase.compounds)
@@ -868,14 +874,16 @@ def _pieces_pouch(t: str) -> pouch_words.PouchOf | None:
         return None
     piece = load_lexicon().entries[noun_index()[hits[-1][2]][0]]
     domain = concept_domain(piece.key)
-    if (before and domain != "food") or domain == "animal" or piece.size_m > (PIECE_MAX_SIZE_M if domain == "food" else GOODS_MAX_SIZE_M) \
+    net = pouch_words.NET_WORDS.search(t) is not None  # a net of potatoes: goods too big for a film bag's heap
+    largest = (NET_PIECE_MAX_SIZE_M if net else PIECE_MAX_SIZE_M) if domain == "food" else GOODS_MAX_SIZE_M
+    if (before and domain != "food") or domain == "animal" or piece.size_m > largest \
             or piece.plan in ("pouch", "bag", "mould", "sheet"):  # (cups and moulds come nested:
         # goods_words.nested_stack; sheets stacked: _state_params)
         return None
     program = concept_program(piece.key)
     volume = program_volume(program, 32)
     solid = piece.mass_kg / volume if piece.mass_kg and volume > 0 else piece.solid_density_kg_per_m3
-    color = piece.colors.get("body") or "beige"
+    color = piece.colors.get("body") or (_nearest_colour(program.parts[0].color_rgb) if net else "beige")
     said = [w for _s, _e, w in _find(words[: hits[-1][0]], load_lexicon().colors)]
     fullness = fill_words.stated_fullness(t)  # 'a bag of taffy, half full'
     fill = fill_words.Fill(f"pieces of {piece.key}", m.group(0), fullness[0] if fullness else 0.8,  # type: ignore[union-attr]
@@ -886,6 +894,18 @@ def _pieces_pouch(t: str) -> pouch_words.PouchOf | None:
     lo, hi = program_bounds(program)
     ext = np.asarray(hi) - np.asarray(lo)
     stated = _COUNT.search(words[: hits[-1][0]])
+    if net and stated is None and piece.mass_kg and domain == "food":  # a net bag of produce or shellfish: its usual
+        # load, not a few ('a net of tennis balls' is still the few of a pack)
+        pack = load_lexicon().entries["generic_pouch"]
+        unit = goods_words.bag_capacity_m3("pouch", {**pack.params, "form": "mesh"}, 1.0)
+        size = float((NET_BAG_KG / (fill.fraction * fill.bulk_density_kg_per_m3 * unit)) ** (1.0 / 3.0))
+        fill = fill_words.Fill(fill.key, fill.words, fill.fraction, fill.bulk_density_kg_per_m3, fill.color,
+                               f"{fill.source}; a net bag's usual load {NET_BAG_KG:g} kg ({NET_BAG_SOURCE})")
+        box_fill = volume / max(float(np.prod(ext)), 1e-12)
+        return pouch_words.PouchOf(fill=fill, piece_m=(float(ext[0]), float(ext[1]), float(ext[2])),
+                                   piece_shape="block" if box_fill > 0.86 else "cylinder" if box_fill > 0.66 else "ball",
+                                   piece_colors=tuple(dict.fromkeys(said)) or (color,), piece_key=piece.key,
+                                   piece_colors_said=bool(said), size_m=size)
     if (stated is not None or float(ext.max()) > PACK_PIECE_M) and piece.mass_kg:
         # a pack of a few: the count drawn (or the count said: 'with six oranges inside'), not a heap's packing
         pack = load_lexicon().entries["generic_pouch"]
@@ -928,6 +948,17 @@ _GOODS_OF = re.compile(rf"\b(?:{'|'.join(sorted(pouch_words.CONTAINERS, key=len,
 _GOODS_BEFORE = re.compile(rf"((?:[a-z]+\s+){{1,4}}?)(?:{'|'.join(sorted(pouch_words.CONTAINERS, key=len, reverse=True))})"
                            r"\b(?!\s+(?:of|with|containing|full of|filled with)\b)")
 GOODS_MAX_SIZE_M = 0.15  # a good small enough to be sold several to a bag or pack ('a pack of sponges') [m]
+NET_PIECE_MAX_SIZE_M = 0.13  # a food sold by the net bag may be bigger than one sold loose in a film bag (potatoes,
+# grapefruit) [m]
+NET_BAG_KG = 1.36  # a net bag of produce or shellfish with no mass said: 3 lb [kg]
+NET_BAG_SOURCE = "US retail produce and shellfish: onions, citrus, potatoes, clams and mussels are sold in 2, 3 and " \
+    "5 lb consumer mesh bags, 3 lb the commonest"
+
+
+def _nearest_colour(rgb: tuple[float, float, float]) -> str:
+    """The lexicon's colour word nearest an RGB (a hand-drawn piece's own colour, to name what a net of them shows)."""
+    colours = load_lexicon().colors
+    return min(colours, key=lambda w: float(np.sum((np.asarray(colours[w]) - np.asarray(rgb)) ** 2)))
 
 
 def _qualified(surface: str, phrase: phrase_mod.Phrase) -> str:
@@ -1237,14 +1268,18 @@ def build(reading: Reading, text: str) -> tuple[ShapeProgram, ConceptMatch, list
         program = _towel_coloured(program, entry)  # 'a towel elephant': all towel, but its eyes
     program = _contrast_seams(program, target)
     program = _label_colored(program)
+    meshed = target.plan == "pouch" and params.get("form", target.params.get("form")) == "mesh"
     if reading.pouch is not None and reading.pouch.piece_key is not None and target.plan == "pouch":
         program = pack_pieces.drawn_pieces(program, concept_program(reading.pouch.piece_key),
-                                           keep_colours=not reading.pouch.piece_colors_said)
-    elif target.plan == "pouch" and (shown := pack_pieces.picture_of(
+                                           keep_colours=not reading.pouch.piece_colors_said, picture=not meshed)
+    elif target.plan == "pouch" and not meshed and (shown := pack_pieces.picture_of(
             entry.key, reading.pouch.fill.key if reading.pouch is not None else None)) is not None:
         program = pack_pieces.pictured(program, concept_program(shown))  # its goods' picture, not an emblem
     if reading.pouch is not None and target.plan == "pouch":
         program = pouch_words.painted_marks(program, str(params.get("emblem", "none")), load_lexicon().colors)
+    if reading.pouch is not None and meshed:  # a mesh sack: its net, clips and what it holds in their colours
+        program = pouch_words.net_colored(program, reading.pouch, load_lexicon().colors,
+                                          _net_colour(normalise(text)))
     if keychain:
         program = _on_key_ring(program)
         states.append("keychain")
@@ -1298,6 +1333,19 @@ def _in_sleeve(sleeved: pouch_words.Sleeved, entry: LexiconEntry, program: Shape
                        f"{'vacuum bag' if sleeved.kind == 'vacuum' else 'sleeve'}'s film ({film * 1000:.0f} g: "
                        f"{pouch_words.VACUUM_FILM_M * 1e6 if sleeved.kind == 'vacuum' else pouch_words.SLEEVE_FILM_M * 1e6:.0f} "
                        f"um polyethylene{' and its valve' if sleeved.kind == 'vacuum' else ''})"})
+
+
+_NET_COLOUR = re.compile(r"\b([a-z]+(?: [a-z]+)?)\s+(?:net|nets|netted|netting|mesh|string|open weave)\b")
+
+
+def _net_colour(text: str) -> str | None:
+    """The colour a request gives a mesh sack's net ('a red mesh bag of onions', 'a green hay net'), else None."""
+    m = _NET_COLOUR.search(text)
+    if m is None:
+        return None
+    colours = load_lexicon().colors
+    words = m.group(1)
+    return words if words in colours else words.split()[-1] if words.split()[-1] in colours else None
 
 
 _HALF_EATEN = re.compile(r"\b(?:half eaten|partly eaten|partially eaten|half finished)\b")

@@ -14,7 +14,7 @@ from contracts.concept import ConceptMatch
 from contracts.lexicon import LexiconEntry, load_lexicon
 from contracts.shape import MAX_PARTS, Part, ShapeProgram
 from tasks.geometry import fill_words, grammar
-from tasks.geometry.grammar.goods import BAG_CAPACITY
+from tasks.geometry.grammar.goods import BAG_CAPACITY, PouchParams, net_capacity
 from tasks.geometry.grammar.parts import ellipsoid, limb, part_group
 from tasks.geometry.meshing import program_volume
 from tasks.geometry.pouch_words import stated_volume_m3
@@ -110,6 +110,8 @@ def bag_capacity_m3(plan: str, params: dict, size_m: float) -> float:
     """What a bag or pouch of this plan and size holds when filled round [m^3]: BAG_CAPACITY x height x width x
     min(height, width), its height the unit frame's length 1."""
     p = grammar.plan_parameters(plan, {**params, "fill": 0.0})
+    if isinstance(p, PouchParams) and p.form == "mesh":  # a net sack holds what its drawn body holds
+        return net_capacity(p) * (size_m / _unit_longest(plan, p.model_dump())) ** 3
     height = size_m / _unit_longest(plan, p.model_dump())
     width = float(getattr(p, "width", 1.0)) * height
     return BAG_CAPACITY * height * width * min(height, width)

@@ -107,28 +107,30 @@ def _picture(program: ShapeProgram, piece: ShapeProgram) -> tuple[list[Part], np
     return [label, *named], at[:2] - LABEL_MARGIN * half, at[:2] + LABEL_MARGIN * half
 
 
-def drawn_pieces(program: ShapeProgram, piece: ShapeProgram, keep_colours: bool = True) -> ShapeProgram:
+def drawn_pieces(program: ShapeProgram, piece: ShapeProgram, keep_colours: bool = True,
+                 picture: bool = True) -> ShapeProgram:
     """`program` with each piece slot ('fill N') replaced by the piece's parts fitted into the slot's box (its
     longest axis along the slot's longest, uniformly scaled, turned as the slot is), and one piece drawn large in
     low relief on the pack's top (its printed picture; the slots under it left out). keep_colours: the piece's own
     colours (unsaid goods); else each piece all in its slot's colour ('pink and white marshmallows'). With no slots
-    (goods too small to draw one by one) the picture alone; unchanged when nothing fits within MAX_PARTS."""
+    (goods too small to draw one by one) the picture alone; unchanged when nothing fits within MAX_PARTS. picture:
+    False for a net sack (no printed front: its goods are seen through the net)."""
     slots = [i for i, p in enumerate(program.parts)
              if part_group(p.name) == "fill" and p.primitive.kind in SLOT_KINDS and p.operation == "union"]
     if not slots:  # goods too small or too many to draw one by one ('a bag of m&ms'): their picture alone
-        return pictured(program, piece)
-    picture, foot_lo, foot_hi = _picture(program, piece) if len(slots) >= PICTURE_MIN_SLOTS else (
+        return pictured(program, piece) if picture else program
+    picture_parts, foot_lo, foot_hi = _picture(program, piece) if picture and len(slots) >= PICTURE_MIN_SLOTS else (
         [], np.zeros(2), np.zeros(2))
-    if picture and not keep_colours:
-        picture = [picture[0], *(q.model_copy(update={"color_rgb": program.parts[slots[0]].color_rgb})
-                                 for q in picture[1:])]
+    if picture_parts and not keep_colours:
+        picture_parts = [picture_parts[0], *(q.model_copy(update={"color_rgb": program.parts[slots[0]].color_rgb})
+                                             for q in picture_parts[1:])]
     mid, half = (foot_lo + foot_hi) / 2, (foot_hi - foot_lo) / 2
-    covered = {i for i in slots if picture and np.all(np.abs(np.asarray(program.parts[i].transform.translation_m[:2])
+    covered = {i for i in slots if picture_parts and np.all(np.abs(np.asarray(program.parts[i].transform.translation_m[:2])
                                                              - mid) < half)}
     shown = [i for i in slots if i not in covered]
     if not shown:
         return program
-    budget = (MAX_PARTS - (len(program.parts) - len(slots)) - len(picture)) // len(shown)
+    budget = (MAX_PARTS - (len(program.parts) - len(slots)) - len(picture_parts)) // len(shown)
     parts = piece_parts(piece, budget)
     if not parts:
         return program
@@ -151,7 +153,7 @@ def drawn_pieces(program: ShapeProgram, piece: ShapeProgram, keep_colours: bool 
             out.append(q.model_copy(update={"name": p.name if j == 0 else f"{p.name} {q.name}",
                                             "color_rgb": q.color_rgb if keep_colours else p.color_rgb,
                                             "blend_m": p.blend_m if j == 0 else q.blend_m}))
-    return program.model_copy(update={"parts": out + picture})
+    return program.model_copy(update={"parts": out + picture_parts})
 
 
 @functools.lru_cache(maxsize=1)

@@ -19,7 +19,8 @@ from tasks.geometry.sdf import program_bounds
 
 # container nouns that, with a fill, are a pouch of it ('a bag of peas', 'a saline bag'); a box or jar is rigid
 CONTAINERS = frozenset({"bag", "bags", "pouch", "pouches", "pack", "packs", "packet", "packets", "sachet", "sachets",
-                        "sack", "sacks", "baggie", "baggy", "ziploc", "ziplock", "bladder"})
+                        "sack", "sacks", "baggie", "baggy", "ziploc", "ziplock", "bladder", "net", "nets"})
+NET_NOUNS = frozenset({"net", "nets"})  # a container only with goods in it ('a net of lemons'; not 'a fishing net')
 _CONTAINER_RX = "|".join(sorted(CONTAINERS, key=len, reverse=True))
 _OF = re.compile(rf"\b(?:{_CONTAINER_RX})\s+(?:of|with|containing|full of|filled with)\s+(?:some\s+)?"
                  r"([a-z]+(?:\s+[a-z]+){0,2})")
@@ -194,7 +195,11 @@ PACK_EMBLEMS: dict[str, tuple[str, bool]] = {
 EMBLEM_COLORS = {"paw": "dark brown", "bone": "dark brown", "fish": "orange", "sprout": "green", "bowl": "tan",
                  "drop": "light blue", "pad": "light blue", "piece": "red",
                  "wheat": "wheat", "cat": "dark brown", "bottle": "blue", "diaper": "light blue"}
-_NET = re.compile(r"\b(?:net|netted|mesh|string)\b")
+# a bag said to be a net ('a net bag of onions', 'a mesh sack of mussels', 'potatoes in open-weave burlap'): its goods
+# seen through a lattice of cords (tasks.geometry.grammar.goods.net_sack)
+NET_WORDS = re.compile(r"\b(?:net|nets|netted|netting|mesh|string bag|open[\s-]*weave|open[\s-]*weaved|loose[\s-]*weave|"
+                       r"leno|raschel)\b")
+_NET = NET_WORDS
 # fills sold in their own form of pack (#45): flour and sugar in a paper sack standing on its flat bottom, drink and
 # protein powders in a stand-up zip pouch of the powder's colour, sliced deli meat in a flat clear tray of slices
 SACK_FILLS = frozenset({"flour", "sugar"})
@@ -208,9 +213,9 @@ def pack_look(pouch: PouchOf, text: str) -> dict[str, object]:
     t = " ".join(text.lower().replace("-", " ").split())
     if pouch.fill.key == "clothes":
         return {"form": "laundry"}
+    if _NET.search(t) and pouch.port == "none" and (pouch.piece_m is not None or net_look(pouch) is not None):
+        return {"form": "mesh", **net_look(pouch)} if pouch.piece_m is None else {"form": "mesh"}  # type: ignore[dict-item]
     if pouch.piece_m is not None:
-        if _NET.search(t) and pouch.piece_shape == "ball":
-            return {"form": "mesh"}
         return {}
     if pouch.port == "none" and pouch.fill.key in DELI_FILLS:
         return {"form": "deli", "label": True, "crimp": False}
@@ -230,6 +235,53 @@ def pack_look(pouch: PouchOf, text: str) -> dict[str, object]:
     if stand:
         look["stand"] = True
     return look
+
+
+NET_COLOR = "red"  # a produce net's cords (onions, oranges, mussels), unless its fill has its own (fills.yaml `net`)
+NET_CLIP_COLOR = "light grey"  # its clips
+NET_CORD_COLOR = "black"  # a hay net's drawstring
+NET_PARTS = frozenset({"net", "neck", "tie", "ruffle", "tail"})  # parts of a mesh sack in the net's colour
+
+
+def net_look(pouch: PouchOf) -> dict[str, object] | None:
+    """A mesh sack's drawing of a fill with no pieces of its own to draw (contracts/vocab/fills.yaml `net`: hay
+    in tufts, wet grain a mash, their cell size), else None (the goods are drawn one by one)."""
+    if pouch.piece_m is not None:
+        return None
+    rec = fill_words.record(pouch.fill.key) or {}
+    net = rec.get("net") or {}
+    return {"contents": str(net.get("look", "mash")), "mesh_cell": float(net.get("cell", 0.1))}
+
+
+def net_colored(program: ShapeProgram, pouch: PouchOf, rgb_of: dict[str, tuple[float, float, float]],
+                said: str | None = None) -> ShapeProgram:
+    """A mesh sack of a fill coloured as it is seen: its core and lumps the fill's colour (a darker clump here and
+    there, hay's tufts in their straw shades: fills.yaml `net`), its cords and neck the net's colour (`said`: a
+    colour the request gives the net, else the fill's net colour, else red), its clips light grey, a drawstring
+    black. The goods' own pieces are left as drawn."""
+    rec = fill_words.record(pouch.fill.key) or {}
+    net = rec.get("net") or {}
+    shades = list(net.get("shades") or [pouch.fill.color])
+    net_rgb = rgb_of[said or str(net.get("color", NET_COLOR))]
+    fill_rgb = rgb_of[pouch.fill.color] if pouch.fill.color in rgb_of else None
+    out = []
+    for p in program.parts:
+        g = part_group(p.name)
+        if g in NET_PARTS:
+            p = p.model_copy(update={"color_rgb": net_rgb})
+        elif g == "clip":
+            p = p.model_copy(update={"color_rgb": rgb_of[NET_CLIP_COLOR]})
+        elif g in ("cord", "cord end"):
+            p = p.model_copy(update={"color_rgb": rgb_of[str(net["cord"])] if net.get("cord")
+                                     else net_rgb})
+        elif g == "body" and pouch.piece_colors:  # the goods' own colour between them, no film over it
+            p = p.model_copy(update={"color_rgb": rgb_of[pouch.piece_colors[0]]})
+        elif g in ("body", "lump") and fill_rgb is not None:
+            p = p.model_copy(update={"color_rgb": fill_rgb})
+        elif g in ("clump", "tuft", "straw"):  # a mash's darker clumps, hay's wisps in its straw shades
+            p = p.model_copy(update={"color_rgb": rgb_of[shades[0] if g == "tuft" else shades[-1]]})
+        out.append(p)
+    return program.model_copy(update={"parts": out})
 
 
 def painted_marks(program: ShapeProgram, emblem: str, rgb_of: dict[str, tuple[float, float, float]]

@@ -84,7 +84,9 @@ def test_clothes_come_in_a_drawstring_laundry_sack() -> None:
 
 def test_oranges_in_a_net_bag() -> None:
     groups = _groups("net bag of oranges")
-    assert len(groups["fill"]) >= 5 and len(groups["net"]) >= 10 and len(groups["clip"]) == 2
+    # (since session 46 the net is one lattice of cords over the whole sack, not three hoops round each orange:
+    # tests/geometry/test_mesh_sacks46.py)
+    assert len(groups["fill"]) >= 5 and len(groups["net"]) >= 8 and len(groups["clip"]) == 2
     assert _rgb("net bag of oranges", "net") == {tuple(round(c, 2) for c in load_lexicon().colors["red"])}
 
 

@@ -11,6 +11,7 @@ carries over."""
 
 from __future__ import annotations
 
+import warnings
 from typing import Literal
 
 import numpy as np
@@ -1165,11 +1166,21 @@ class PouchParams(Model):
                         "shelf)")
     form: Literal["pouch", "laundry", "mesh", "sack", "deli"] = Field(
         default="pouch", description="laundry: a soft drawstring sack standing full of clothes, bulging, its neck "
-        "cinched by a cord with a toggle, a sleeve hanging out; mesh: a net bag of round goods (oranges), the pieces "
-        "heaped inside a diamond net gathered into a clip at each end; sack: a paper sack of flour or sugar standing "
+        "cinched by a cord with a toggle, a sleeve hanging out; mesh: a bulging net sack lying on its side (a net bag "
+        "of onions, a mesh sack of mussels, a hay net, a mesh grain bag): what it holds packed in it (`contents`), a "
+        "lattice of net cords over it (`mesh_cell`), gathered into a clip at each end or a drawstring neck; sack: a "
+        "paper sack of flour or sugar standing "
         "on its flat bottom, a brick with its top folded down flat, gusset creases down its sides, its printed label "
         "facing out; deli: a flat clear tray of sliced deli meat, the slices folded and shingled along it, the sealed "
         "film's flange round its rim")
+    contents: Literal["pieces", "tufts", "mash"] = Field(
+        default="pieces", description="what a mesh sack holds, seen through its net: pieces (its goods one by one, "
+        "`piece`: onions, mussels, potatoes; plain lumps when `piece` is 0), tufts (a stuffed mass of hay or straw, "
+        "strands poking out through the cords; a drawstring neck), mash (a bulging mass of wet grain or mash in "
+        "small lumps; a drawstring neck)")
+    mesh_cell: float = Field(default=0.16, ge=0.05, le=0.3, description="a mesh sack's cord spacing / its length, "
+                             "drawn coarser than real so the draft mesher sees its cords: 0.16 a produce net, 0.15 a "
+                             "hay net, 0.1 a fine mesh grain bag [-]")
 
 
 LABEL_SIZE = (0.46, 0.62)  # a pack's printed label over its top: / length, / width [-]
@@ -1187,8 +1198,8 @@ def pouch(p: PouchParams) -> list[Part]:
     st = MIN_LAYER
     if p.form == "laundry":
         return _laundry_sack(p)
-    if p.form == "mesh" and max(p.piece) > 0:
-        return _net_bag(p)
+    if p.form == "mesh":
+        return net_sack(p)
     if p.form == "sack":
         return _paper_sack(p, h)
     if p.form == "deli":
@@ -1492,28 +1503,161 @@ def _laundry_sack(p: PouchParams) -> list[Part]:
     return parts
 
 
-def _net_bag(p: PouchParams) -> list[Part]:
-    """A net bag of round goods lying flat (length 1 along x): the pieces in a bottom layer and a top layer in its
-    hollows, each crossed by two strands of the net (its diamonds), both ends gathered into a clip."""
-    p = _countable(p)
-    r = 0.5 * max(p.piece)
-    w = p.width
-    nx, ny = max(2, int(0.84 / (2 * r))), max(2, int(w / (2 * r)))  # (two rows at least: a heap, not a line)
-    spots = [(-(nx - 1) * r + 2 * r * i, -(ny - 1) * r + 2 * r * j, r) for i in range(nx) for j in range(ny)]
-    spots += [(-(nx - 2) * r + 2 * r * i, -(ny - 2) * r + 2 * r * j, 2.35 * r) for i in range(nx - 1)
-              for j in range(max(ny - 1, 1))]
-    parts: list[Part] = [ellipsoid("body", (0.8 * nx * r, 0.8 * ny * r, 0.7 * r), (0, 0, 0.9 * r))]
-    strand = 0.07 * r
-    for k, at in enumerate(spots):
-        parts.append(ellipsoid(f"fill {k + 1}", (r, r, 0.95 * r), at))
-        for m, (tilt, turn) in enumerate(((90.0, 45.0), (90.0, -45.0), (30.0, 0.0))):  # its diamonds
-            parts.append(torus(f"net {3 * k + m + 1}", 0.99 * r, strand, at, rot=(tilt, 0.0, turn + 20.0 * k)))
-    end = nx * r + 0.4 * r
-    for side, sx in (("left", -1.0), ("right", 1.0)):
-        parts.append(tapered(f"{side} net", (sx * (end - 0.9 * r), 0, r), (sx * end, 0, 0.9 * r), 0.6 * r,
-                             0.15 * r, blend=0.05 * r))
-        parts.append(cylinder(f"{side} clip", 0.2 * r, 0.35 * r, (sx * end, 0, 0.9 * r), edge=0.05 * r,
-                              rot=(0, 90, 0), blend=0.01 * r))
+NET_PIECES_MAX = 22  # goods drawn one by one over a mesh sack's seen side (the rest its core's colour); more are
+# drawn larger than life, fewer of them, so each keeps two of its own parts within the 64-part budget [-]
+NET_PIECE_MAX_SCALE = 2.5  # ... at most this much larger [-]
+NET_SEEN_BELOW = 0.2  # goods and lumps are drawn over the sack's side down to this far under its middle (sin of the
+# angle; the underside lies on the ground, unseen) [-]
+NET_CORD = 0.011  # a net cord's radius / the sack's length (~1.4 draft cells across: a thinner one is not meshed) [-]
+NET_TAIL = 0.12  # a clipped net's gathered end beyond the goods / its length [-]
+NET_NECK = 0.2  # a drawstring sack's gathered neck, tie and ruffle beyond the goods / its length [-]
+NET_LUMPS = {"tufts": 0, "mash": 40}  # small bulges of a mash pressing out between the cords (grain, not buns) [-]
+NET_LOOP_CELLS = 1.3  # the cords along the sack are this much further apart than the rings round it (they gather
+# into a star at each end: fewer of them) [-]
+NET_TUFTS = 46  # wisps of hay over a hay net's mass, criss-crossing every way, poking out through its cords [-]
+
+
+def _cap_points(n: int, below: float, seed: float) -> np.ndarray:
+    """n nearly even unit directions over the sphere's cap z >= -below (a Fibonacci cap) (n, 3)."""
+    k = np.arange(n) + 0.5
+    z = 1.0 - (1.0 + below) * k / n
+    phi = np.pi * (3.0 - np.sqrt(5.0)) * k + seed
+    r = np.sqrt(np.clip(1.0 - z * z, 0.0, 1.0))
+    return np.stack([r * np.cos(phi), r * np.sin(phi), z], axis=1)
+
+
+def _frame_euler(normal: np.ndarray, twist: float) -> tuple[float, float, float]:
+    """XYZ Euler angles [deg] of a frame whose z is `normal`, its x turned by `twist` [rad] in the tangent plane."""
+    n = normal / max(float(np.linalg.norm(normal)), 1e-12)
+    ref = np.array([1.0, 0.0, 0.0]) if abs(n[0]) < 0.9 else np.array([0.0, 1.0, 0.0])
+    t1 = np.cross(ref, n)
+    t1 /= max(float(np.linalg.norm(t1)), 1e-12)
+    t2 = np.cross(n, t1)
+    x = np.cos(twist) * t1 + np.sin(twist) * t2
+    m = np.stack([x, np.cross(n, x), n], axis=1)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", UserWarning)
+        e = Rotation.from_matrix(m).as_euler("xyz", degrees=True)
+    return float(e[0]), float(e[1]), float(e[2])
+
+
+def _ellipsoid_area(a: float, b: float, c: float) -> float:
+    """Knud Thomsen's approximation of an ellipsoid's surface area [unit^2]."""
+    q = 1.6075
+    return float(4.0 * np.pi * (((a * b) ** q + (a * c) ** q + (b * c) ** q) / 3.0) ** (1.0 / q))
+
+
+def _net_cords(centre: np.ndarray, semi: np.ndarray, cell: float, r: float) -> list[Part]:
+    """A lattice of net cords over an ellipsoid (semi-axes `semi`, its long axis along x): rings round it across
+    its length and loops along it through both ends (each loop two cords), `cell` apart at its middle."""
+    A, B, C = (float(v) for v in semi)
+    parts: list[Part] = []
+    rings = max(2, int(round(2.0 * A / cell)) - 1)
+    for i in range(rings):
+        u = -1.0 + 2.0 * (i + 1) / (rings + 1)
+        k = np.sqrt(max(1.0 - u * u, 1e-6))
+        bi, ci = B * k, C * k
+        R = min(bi, ci)
+        parts.append(torus(f"net {len(parts) + 1}", R, r, (float(centre[0] + A * u), float(centre[1]), float(centre[2])),
+                           rot=(0.0, 90.0, 0.0), scale=(ci / R, bi / R, 1.0)))
+    loops = max(2, int(round(np.pi * (B + C) / (2.0 * NET_LOOP_CELLS * cell))))
+    for j in range(loops):
+        alpha = 90.0 + 180.0 * j / loops
+        ca, sa = np.cos(np.radians(alpha)), np.sin(np.radians(alpha))
+        rj = 1.0 / np.sqrt((ca / B) ** 2 + (sa / C) ** 2)
+        R = min(A, rj)
+        parts.append(torus(f"net {len(parts) + 1}", R, r, tuple(float(v) for v in centre), rot=(alpha, 0.0, 0.0),
+                           scale=(A / R, rj / R, 1.0)))
+    return parts
+
+
+def _net_body(p: PouchParams) -> tuple[float, tuple[float, float, float]]:
+    """A mesh sack's body: its centre along x and its semi-axes (length 1 along x, its ends' gathered net beyond)."""
+    drawstring = p.contents != "pieces"
+    B = p.width / 2
+    return (-NET_NECK / 2 if drawstring else 0.0), (0.5 - (NET_NECK / 2 if drawstring else NET_TAIL), B,
+                                                     (0.8 if drawstring else 0.72) * B)
+
+
+def net_capacity(p: PouchParams) -> float:
+    """What a mesh sack of length 1 holds: its drawn body's volume [unit^3] (goods_words.bag_capacity_m3)."""
+    _xc, (A, B, C) = _net_body(p)
+    return float(4.0 / 3.0 * np.pi * A * B * C)
+
+
+def net_sack(p: PouchParams) -> list[Part]:
+    """A mesh sack lying on its side (length 1 along x): its core (`body`, what it holds seen between the goods), the
+    goods packed over its seen side ('fill N' slots, drawn as the goods by tasks.geometry.pack_pieces; lumps and hay
+    wisps for a stuffed mass), a lattice of net cords pressed into them, and its ends gathered into a clip each
+    (goods) or a drawstring neck at +x (hay, mash), the drawstring's two ends hanging from it."""
+    drawstring = p.contents != "pieces"
+    xc, (A, B, C) = _net_body(p)
+    a, b, c = sorted(p.piece, reverse=True) if max(p.piece) > 0 else (0.0, 0.0, 0.0)
+    parts: list[Part] = []
+    centre = np.array([xc, 0.0, C])
+    if p.contents == "pieces" and a > 0:
+        cap = _ellipsoid_area(A, B, C) * (1.0 + NET_SEEN_BELOW) / 2.0
+        real = cap / (1.1 * a * b)
+        n = int(np.clip(round(real), 4, NET_PIECES_MAX))
+        k = float(np.clip(np.sqrt(real / n), 1.0, NET_PIECE_MAX_SCALE))
+        a, b, c = a * k, b * k, c * k
+        core = np.array([A, B, C]) - 0.6 * c  # the goods stand out of their core, the gaps between them its colour
+        parts.append(ellipsoid("body", tuple(float(v) for v in core), tuple(centre)))
+        # under the goods drawn, the sack's lower side filled out to its net (no cage of cords round an empty foot)
+        parts.append(ellipsoid("body 2", (float(core[0]), float(core[1] + 0.45 * c), float(core[2])),
+                               (float(centre[0]), 0.0, float(centre[2] - 0.3 * c))))
+        for i, d in enumerate(_cap_points(n, NET_SEEN_BELOW, 0.4)):
+            normal = d / core
+            at = centre + core * d + 0.1 * c * normal / np.linalg.norm(normal)
+            parts.append(ellipsoid(f"fill {i + 1}", (a / 2, b / 2, c / 2), tuple(float(v) for v in at),
+                                   rot=_frame_euler(normal, 2.39996 * i + 0.7)))
+        net_semi = core + 0.5 * c  # the cords pressed into the goods' tops (they hold them: one body), the goods
+        # bulging between them
+    else:
+        semi = np.array([A, B, C])
+        parts.append(ellipsoid("body", tuple(float(v) for v in semi), tuple(centre)))
+        lr = 0.055
+        for i, d in enumerate(_cap_points(NET_LUMPS.get(p.contents, 16), NET_SEEN_BELOW, 0.4)):
+            at = centre + 0.97 * semi * d  # bulges of the stuffed mass between the cords
+            name = "lump" if i % 3 else "clump"  # (a darker one here and there)
+            parts.append(ellipsoid(f"{name} {i + 1}", (1.15 * lr, lr, 0.5 * lr), tuple(float(v) for v in at),
+                                   rot=_frame_euler(d / semi, 1.7 * i), blend=0.35 * lr))
+        net_semi = semi + (0.02 if p.contents == "tufts" else 0.12 * lr)
+        if p.contents == "tufts":  # wisps of hay out through the cords every way, lying close along the surface
+            for i, d in enumerate(_cap_points(NET_TUFTS, 0.3, 1.1)):
+                normal = d / semi
+                normal /= np.linalg.norm(normal)
+                root = centre + (semi + 0.005) * d
+                along = np.cross(normal, [np.cos(1.9 * i), np.sin(1.9 * i), 0.35])
+                along /= max(float(np.linalg.norm(along)), 1e-9)
+                length = 0.08 + 0.06 * np.sin(3.3 * i) ** 2
+                rise = 0.55 if i % 3 == 0 else 0.2  # most lie along the mass, some stick out
+                tip = root + length * (0.8 * along + rise * normal)
+                tail = root - 0.7 * length * along - 0.01 * normal
+                parts.append(limb(f"{'straw' if i % 3 == 1 else 'tuft'} {i + 1}", tuple(float(v) for v in tail),
+                                  tuple(float(v) for v in tip), 0.011 if i % 2 else 0.0095, blend=0.004))
+    cell = p.mesh_cell
+    parts += _net_cords(centre, net_semi, cell, NET_CORD * (1.15 if cell >= 0.14 else 1.0))
+    end = float(net_semi[0])
+    z = float(centre[2])
+    r0 = 0.22 * float(min(net_semi[1], net_semi[2]))
+    if drawstring:  # the net gathered into a neck, its drawstring tied round it, the net's ends flaring past it
+        x0 = xc + end
+        parts.append(tapered("neck", (x0 - 0.1, 0.0, z), (x0 + 0.07, 0.0, z), 1.6 * r0, 0.03, blend=0.05))
+        parts.append(torus("tie", 0.035, 0.014, (x0 + 0.06, 0.0, z), rot=(0, 90, 0), blend=0.005))
+        parts.append(cone("ruffle", 0.025, 0.06, 0.07, (x0 + 0.1, 0.0, z), edge=0.008, rot=(0, 90, 0), blend=0.02))
+        for i, sy in enumerate((-1.0, 1.0)):  # the drawstring's two ends hanging to the ground
+            parts.append(limb(f"cord end {i + 1}", (x0 + 0.06, sy * 0.02, z), (x0 + 0.1 + 0.03 * i, sy * 0.09, 0.012),
+                              0.011, blend=0.004))
+    else:  # both ends of the net gathered into a clip, a tail of net past each
+        for side, sx in (("left", -1.0), ("right", 1.0)):
+            x0 = xc + sx * (float(parts[0].primitive.radii_m[0]) - 0.02)  # type: ignore[union-attr]  # (from the core)
+            x1 = xc + sx * (end + NET_TAIL * 0.5)
+            parts.append(tapered(f"{side} net", (x0, 0.0, z), (x1, 0.0, z), r0, 0.02, blend=0.03))
+            parts.append(cylinder(f"{side} clip", 0.028, 0.045, (x1, 0.0, z), edge=0.006, rot=(0, 90, 0),
+                                  blend=0.004))
+            parts.append(cone(f"{side} tail", 0.018, 0.04, 0.045, (x1 + sx * 0.04, 0.0, z), edge=0.006,
+                              rot=(0, sx * 90, 0), blend=0.008))
     return parts[:MAX_PARTS]
 
 
