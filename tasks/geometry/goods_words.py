@@ -329,11 +329,12 @@ def grouped(program: ShapeProgram, match: ConceptMatch, count: int) -> tuple[Sha
         return program, match
     ext = grammar.program_extents(program, 48)
     short, long_ = (1, 0) if ext[1] <= ext[0] else (0, 1)
-    shifts = []
+    per_row = min(GROUP_PER_ROW, int(np.ceil(np.sqrt(count)))) if count > GROUP_PER_ROW - 1 else count  # (five bean
+    shifts = []  # bags as 3 + 2, not a row of four and one: a Tetris L)
     for k in range(count):
         shift = [0.0, 0.0, 0.0]
-        shift[short] = GROUP_PITCH * float(ext[short]) * (k % GROUP_PER_ROW)
-        shift[long_] = GROUP_PITCH * float(ext[long_]) * (k // GROUP_PER_ROW)
+        shift[short] = GROUP_PITCH * float(ext[short]) * (k % per_row)
+        shift[long_] = GROUP_PITCH * float(ext[long_]) * (k // per_row)
         shifts.append(shift)
     return copies(program, match, shifts)
 

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import pytest
 
-from tasks.geometry import catalogue, size_words, spelling
+from tasks.geometry import catalogue, grammar, size_words, spelling
 from tasks.geometry.catalogue import design_from_text, parse_size
 from tests.geometry.test_mass_classes import planned_mass
 
@@ -92,3 +92,18 @@ def test_a_bin_bag_of_goods_is_the_black_bin_bag_weighed_by_what_it_holds() -> N
 def test_a_word_after_the_named_object_that_names_no_thing_is_no_object(text: str, concept: str) -> None:
     assert design_from_text(text).entry == concept
     assert design_from_text("a duck gizmo").entry == "generic_block"  # (an unknown noun still is one)
+
+
+def test_a_long_thick_rope_coiled_is_a_pile_of_loops_not_a_wide_flat_spiral() -> None:
+    """'battle rope 15m 38mm, coiled on floor' was a 1.7 m flat spiral of four turns (a thin white wire)."""
+    design = design_from_text("battle rope 15m 38mm, coiled on floor")
+    ext = grammar.program_extents(design.program, 48)
+    longest = catalogue.final_scale(design.size, design.program, design.concept.typical_size_m or 0.0)[0]
+    assert 0.4 <= longest <= 1.0 and ext[2] > 0.15 * ext[0]  # loops of an arm's span, laid one on another
+    assert 10.5 / 2 <= planned_mass("battle rope 15m 38mm, coiled on floor") <= 10.5 * 2  # 9-12 kg (retail)
+
+
+def test_five_of_a_thing_lie_in_a_compact_group_not_a_row_of_four_and_one() -> None:
+    ext = grammar.program_extents(design_from_text("five throwing beanbags").program, 48)
+    one = grammar.program_extents(design_from_text("a throwing beanbag").program, 48)
+    assert max(ext[0] / one[0], ext[1] / one[1]) < 3.0  # 3 + 2, not 4 + 1
