@@ -944,7 +944,7 @@ PACK_PIECES_ALONG = 3.4  # such a pack's length / one piece's: 2 x 2 to 3 x 2 of
 # scourers, cloths hold 3-6 [-]
 # 'a bag of pink and white marshmallows': the goods' words after the container, up to the end of the clause
 _GOODS_OF = re.compile(rf"\b(?:{'|'.join(sorted(pouch_words.CONTAINERS, key=len, reverse=True))})\s+(?:of|with|"
-                       r"containing|full of|filled with)\s+((?:[a-z0-9]+\s*){1,6}?)(?=$|[,.;]| with | from | on | in )")
+                       r"containing|full of|filled with)\s+((?:[a-z0-9]+\s*){1,6}?)(?=$|[,.;]|\b(?:with|from|on|in)\b)")
 _GOODS_BEFORE = re.compile(rf"((?:[a-z]+\s+){{1,4}}?)(?:{'|'.join(sorted(pouch_words.CONTAINERS, key=len, reverse=True))})"
                            r"\b(?!\s+(?:of|with|containing|full of|filled with)\b)")
 GOODS_MAX_SIZE_M = 0.15  # a good small enough to be sold several to a bag or pack ('a pack of sponges') [m]
