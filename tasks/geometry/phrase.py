@@ -41,9 +41,10 @@ PORTION_NOUNS = frozenset({"slice", "wedge", "piece", "chunk", "lump", "block", 
                            "strip", "cube", "disc", "disk", "roll", "stick", "scoop", "pair", "bunch",
                            "handful", "bundle", "pile", "stack", "coil", "skein", "wad", "blob", "glob", "dollop", "round",
                            "square", "segment", "half", "quarter", "portion", "brick", "pad", "head", "clove", "sprig",
-                           "bulb", "ear", "wheel", "log", "set", "section", "length"})
+                           "bulb", "ear", "wheel", "log", "set", "section", "length", "bolt"})
 # portions that are a state of their object
-PORTION_STATES = {"stack": "stacked", "pile": "stacked", "roll": "rolled", "coil": "rolled"}
+PORTION_STATES = {"stack": "stacked", "pile": "stacked", "roll": "rolled", "coil": "rolled", "bolt": "rolled"}  # (a
+# bolt of cloth is its roll)
 # nouns that name nothing in particular
 PLACEHOLDER_NOUNS = frozenset({"thing", "things", "object", "objects", "item", "items", "something", "stuff",
                                "one", "kind", "type", "sort", "version", "model"})

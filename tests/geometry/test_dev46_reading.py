@@ -107,3 +107,10 @@ def test_five_of_a_thing_lie_in_a_compact_group_not_a_row_of_four_and_one() -> N
     ext = grammar.program_extents(design_from_text("five throwing beanbags").program, 48)
     one = grammar.program_extents(design_from_text("a throwing beanbag").program, 48)
     assert max(ext[0] / one[0], ext[1] / one[1]) < 3.0  # 3 + 2, not 4 + 1
+
+
+def test_a_bolt_of_cloth_is_its_roll_and_its_length_the_sheets() -> None:
+    """Sealed set 33's one refusal: 'half a bolt of the grey wool suiting, like 10m' (10 m read as the object's size)."""
+    design = design_from_text("half a bolt of the grey wool suiting, like 10m")
+    assert "rolled" in design.concept.states
+    assert 3.75 / 2 <= planned_mass("half a bolt of the grey wool suiting, like 10m") <= 3.75 * 2  # 10 x 1.5 m, 250 g/m2
