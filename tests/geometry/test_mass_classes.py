@@ -7,6 +7,8 @@ Real masses: typical retail or reference figures for the object as described (th
 
 from __future__ import annotations
 
+import functools
+
 import numpy as np
 import pytest
 
@@ -89,6 +91,7 @@ MASSES: dict[str, tuple[float, str]] = {
 }
 
 
+@functools.cache  # (a pure function of the text: tests of several classes ask for the same texts)
 def planned_mass(text: str) -> float:
     """L1's planned mass [kg] of a text as L0 builds it at draft: the mass check's density x the mesh volume, with
     the material L1 reads (tasks.agents.intent) and the L1 contract's density bounds."""
