@@ -114,3 +114,12 @@ def test_a_bolt_of_cloth_is_its_roll_and_its_length_the_sheets() -> None:
     design = design_from_text("half a bolt of the grey wool suiting, like 10m")
     assert "rolled" in design.concept.states
     assert 3.75 / 2 <= planned_mass("half a bolt of the grey wool suiting, like 10m") <= 3.75 * 2  # 10 x 1.5 m, 250 g/m2
+
+
+def test_a_red_alginate_bag_of_scrubs_is_a_laundry_bag_of_clothes_not_alginate() -> None:
+    """Development set 46 after the new entries: 'alginate' (dental impression paste) took the hospital's soluble
+    red laundry bag; scrubs are clothes."""
+    text = "red alginate bag of dirty scrubs tied at the top, maybe 6 sets"
+    assert design_from_text(text).entry == "laundry_bag"
+    assert 2.7 / 2 <= planned_mass(text) <= 2.7 * 2  # six sets of poly-cotton scrubs (~0.45 kg a set)
+    assert design_from_text("blob of freshly mixed alginate").entry == "alginate_blob"
