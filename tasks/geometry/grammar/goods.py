@@ -12,6 +12,7 @@ carries over."""
 from __future__ import annotations
 
 import warnings
+from collections.abc import Iterator
 from typing import Literal
 
 import numpy as np
@@ -2119,6 +2120,23 @@ def heap(diameter: float, height: float, t: float, seed: float = 0.3, folds: int
     return parts
 
 
+def _heap_flaps(R: float, height: float, seed: float, tiers: tuple[tuple[float, ...], ...], offset: float
+                ) -> Iterator[tuple[int, int, float, float, float, float, float, Rotation]]:
+    """Each flap of a heap of cloth: (tier, index, width share, length, angle round the heap, distance out, drop, its
+    turn); tiers: (flaps, out from the centre, height, length, width) / the heap's radius R, each tier's flaps turned
+    `offset` of a step from the last's and each turned off the radial (overlapping, not a star)."""
+    for ti, (n, rho, zs, ln, wd) in enumerate(tiers):
+        for i in range(int(n)):
+            a = seed + 2 * np.pi * (i + offset * ti) / n + 0.35 * np.sin(3.3 * i + seed)
+            length = (ln + 0.15 * np.sin(2.1 * i + seed)) * R
+            drop = zs * height
+            tilt = float(np.degrees(np.arctan2(drop, 0.8 * length)))
+            skew = 28 * np.sin(2.3 * i + 1.7 * seed)
+            turn = Rotation.from_euler("z", np.degrees(a) + skew, degrees=True) * Rotation.from_euler(
+                "xy", [14 * np.sin(1.3 * i + seed), tilt], degrees=True)
+            yield ti, i, float(wd), float(length), float(a), float((rho + 0.08 * np.sin(2.9 * i)) * R), float(drop), turn
+
+
 def creased_heap(diameter: float, height: float, t: float, seed: float = 0.3) -> list[Part]:
     """A sheet balled up and dropped (a fitted sheet, a towel, a blanket): a low, lopsided mound under the cloth, the
     cloth lying over it in overlapping flaps (their edges seen all round, sloping from the top down to the floor), a
@@ -2127,19 +2145,10 @@ def creased_heap(diameter: float, height: float, t: float, seed: float = 0.3) ->
     R = diameter / 2
     parts = [ellipsoid("body", (0.62 * R, 0.52 * R, 0.6 * height), (0.05 * R, 0.0, 0.0))]
     tiers = ((6, 0.5, 0.32, 0.85, 0.8), (4, 0.18, 0.6, 0.6, 0.6))  # (flaps, out from the centre, height, size)
-    for ti, (n, rho, zs, ln, wd) in enumerate(tiers):
-        for i in range(n):
-            a = seed + 2 * np.pi * (i + 0.37 * ti) / n + 0.35 * np.sin(3.3 * i + seed)
-            length = (ln + 0.15 * np.sin(2.1 * i + seed)) * R
-            drop = zs * height
-            tilt = float(np.degrees(np.arctan2(drop, 0.8 * length)))
-            skew = 28 * np.sin(2.3 * i + 1.7 * seed)  # each flap turned off the radial: overlapping, not a star
-            turn = Rotation.from_euler("z", np.degrees(a) + skew, degrees=True) * Rotation.from_euler(
-                "xy", [14 * np.sin(1.3 * i + seed), tilt], degrees=True)
-            r_ = (rho + 0.08 * np.sin(2.9 * i)) * R
-            parts.append(box(f"{'corner' if ti == 0 else 'flap'} {i + 1}", (length, (wd + 0.15 * np.cos(1.7 * i)) * R, t),
-                             (r_ * np.cos(a), r_ * np.sin(a), drop / 2 + 0.6 * t + 0.1 * height * ti), edge=0.45 * t,
-                             rot=tuple(float(e) for e in turn.as_euler("xyz", degrees=True)), blend=0.03 * R))
+    for ti, i, wd, length, a, r_, drop, turn in _heap_flaps(R, height, seed, tiers, 0.37):
+        parts.append(box(f"{'corner' if ti == 0 else 'flap'} {i + 1}", (length, (wd + 0.15 * np.cos(1.7 * i)) * R, t),
+                         (r_ * np.cos(a), r_ * np.sin(a), drop / 2 + 0.6 * t + 0.1 * height * ti), edge=0.45 * t,
+                         rot=tuple(float(e) for e in turn.as_euler("xyz", degrees=True)), blend=0.03 * R))
     for i, (a, r, turn) in enumerate(_rng_angles(5, seed)):  # narrow folds over the top
         rho = 0.3 * R * r
         parts.append(ellipsoid(f"fold {i + 1}", ((0.16 + 0.06 * np.sin(i)) * R, 0.03 * R + 0.5 * t, 0.06 * height),
@@ -2162,29 +2171,20 @@ def quilted_heap(diameter: float, height: float, t: float, seed: float = 0.3, zi
     puff = 0.5 * t  # a baffle tube's radius: half the quilted layer (its channels' full height)
     flaps = ((5, 0.5, 0.3, 0.9, 0.55), (3, 0.16, 0.62, 0.65, 0.45))  # (flaps, out, height, length, width) / R
     zipped = False
-    for ti, (n, rho, zs, ln, wd) in enumerate(flaps):
-        for i in range(n):
-            a = seed + 2 * np.pi * (i + 0.41 * ti) / n + 0.35 * np.sin(3.3 * i + seed)
-            length = (ln + 0.15 * np.sin(2.1 * i + seed)) * R
-            drop = zs * height
-            tilt = float(np.degrees(np.arctan2(drop, 0.8 * length)))
-            skew = 28 * np.sin(2.3 * i + 1.7 * seed)
-            turn = Rotation.from_euler("z", np.degrees(a) + skew, degrees=True) * Rotation.from_euler(
-                "xy", [14 * np.sin(1.3 * i + seed), tilt], degrees=True)
-            r_ = (rho + 0.08 * np.sin(2.9 * i)) * R
-            centre = np.array([r_ * np.cos(a), r_ * np.sin(a), drop / 2 + puff + 0.1 * height * ti])
-            along, across = turn.apply([1.0, 0.0, 0.0]), turn.apply([0.0, 1.0, 0.0])
-            width = (wd + 0.1 * np.cos(1.7 * i)) * R
-            for k in range(QUILTED_HEAP_BAFFLES):  # the flap's channels, each a puffy tube along it
-                off = (k - (QUILTED_HEAP_BAFFLES - 1) / 2) * width / QUILTED_HEAP_BAFFLES
-                mid = centre + off * across
-                parts.append(limb(f"{'corner' if ti == 0 else 'flap'} {i + 1} baffle {k + 1}",
-                                  mid - along * (length / 2 - puff), mid + along * (length / 2 - puff), puff,
-                                  blend=0.1 * puff))
-            if zip_ and not zipped and ti == 0:  # the zip along the flap's outer edge, just proud of its tube
-                edge = centre + (width / 2 + 0.2 * puff) * across + 0.55 * puff * turn.apply([0.0, 0.0, 1.0])
-                parts.append(limb("zip", edge - along * 0.45 * length, edge + along * 0.45 * length, 0.3 * puff))
-                zipped = True
+    for ti, i, wd, length, a, r_, drop, turn in _heap_flaps(R, height, seed, flaps, 0.41):
+        centre = np.array([r_ * np.cos(a), r_ * np.sin(a), drop / 2 + puff + 0.1 * height * ti])
+        along, across = turn.apply([1.0, 0.0, 0.0]), turn.apply([0.0, 1.0, 0.0])
+        width = (wd + 0.1 * np.cos(1.7 * i)) * R
+        for k in range(QUILTED_HEAP_BAFFLES):  # the flap's channels, each a puffy tube along it
+            off = (k - (QUILTED_HEAP_BAFFLES - 1) / 2) * width / QUILTED_HEAP_BAFFLES
+            mid = centre + off * across
+            parts.append(limb(f"{'corner' if ti == 0 else 'flap'} {i + 1} baffle {k + 1}",
+                              mid - along * (length / 2 - puff), mid + along * (length / 2 - puff), puff,
+                              blend=0.1 * puff))
+        if zip_ and not zipped and ti == 0:  # the zip along the flap's outer edge, just proud of its tube
+            edge = centre + (width / 2 + 0.2 * puff) * across + 0.55 * puff * turn.apply([0.0, 0.0, 1.0])
+            parts.append(limb("zip", edge - along * 0.45 * length, edge + along * 0.45 * length, 0.3 * puff))
+            zipped = True
     parts.append(_op(box("ground", (8, 8, 8), (0, 0, 4)), "intersect"))
     return parts
 
