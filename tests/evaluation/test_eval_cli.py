@@ -9,6 +9,8 @@ from pathlib import Path
 
 import pytest
 
+from tests.cli_in_process import cli_in_process
+
 TINY = {"name": "tiny", "cases": [{"id": "cube", "kind": "text", "text": "a soft foam cube 3 cm",
                                    "intent": "soft foam", "expected_material": "pu_foam"}]}
 
@@ -20,23 +22,8 @@ def _cli(*args: str, env: dict[str, str] | None = None) -> subprocess.CompletedP
 
 def _cli_here(*args: str, api: str, monkeypatch: pytest.MonkeyPatch,
               capsys: pytest.CaptureFixture[str]) -> tuple[int, str]:
-    """`deformsmith eval ARGS` in this process (flows.cli.main.main, the real app standing in as a test's app, as
-    tests/geometry/test_analogy does) against the session's Prefect server: (exit code, stderr)."""
-    from cache.runtime import local_api_env
-    from flows.cli import main as cli_main
-    from flows.cli.apps import app
-
-    for key, value in local_api_env(api).items():
-        monkeypatch.setenv(key, value)
-    monkeypatch.setattr(cli_main, "app", app, raising=False)
-    monkeypatch.setattr(sys, "argv", ["deformsmith", "eval", *args])
-    capsys.readouterr()
-    code: object = 0
-    try:
-        cli_main.main()
-    except SystemExit as exc:
-        code = exc.code or 0
-    return int(code), capsys.readouterr().err  # type: ignore[call-overload]
+    """`deformsmith eval ARGS` in this process (tests/cli_in_process.py): (exit code, stderr)."""
+    return cli_in_process("eval", *args, api=api, monkeypatch=monkeypatch, capsys=capsys)
 
 
 def test_bad_inputs_fail_clearly(tmp_path: Path, cli_env: dict[str, str], prefect_api: str,

@@ -3,7 +3,6 @@ concept's record, the card's box, and --strict-concept refusing it with nothing 
 
 from __future__ import annotations
 
-import sys
 from pathlib import Path
 
 import pytest
@@ -12,6 +11,7 @@ from contracts.lexicon import load_lexicon
 from tasks.geometry import analogy, concepts
 from tasks.geometry.catalogue import design_from_text
 from tasks.geometry.concepts import SHAPE_WORDS, noun_index
+from tests.cli_in_process import cli_in_process
 
 def _explain(nouns: list[str], lexicon: dict) -> analogy.Analogy | None:
     return analogy.explain(nouns, lexicon, SHAPE_WORDS, concepts._material_words(), load_lexicon().colors)
@@ -78,24 +78,7 @@ def test_every_generic_concept_is_reported_as_an_analogy() -> None:
             assert c.by_analogy, text
 
 
-def _cli(*args: str, api: str, monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]) -> tuple[int, str]:
-    """`deformsmith ARGS` in this process against the session's Prefect server: (exit code, stderr). The real app
-    stands in as a test's app, so the command returns here instead of ending the process (flows.cli.main.main)."""
-    from cache.runtime import local_api_env
-    from flows.cli import main as cli_main
-    from flows.cli.apps import app
-
-    for key, value in local_api_env(api).items():
-        monkeypatch.setenv(key, value)
-    monkeypatch.setattr(cli_main, "app", app, raising=False)
-    monkeypatch.setattr(sys, "argv", ["deformsmith", *args])
-    capsys.readouterr()
-    code: object = 0
-    try:
-        cli_main.main()
-    except SystemExit as exc:
-        code = exc.code or 0
-    return int(code), capsys.readouterr().err  # type: ignore[call-overload]
+_cli = cli_in_process
 
 
 def test_strict_concept_refuses_an_analogy_and_writes_nothing(tmp_path: Path, prefect_api: str,
