@@ -661,7 +661,7 @@ _PURPOSE = re.compile(r"^(?P<object>.*\w.*?)\s*,?\s+\bfor\s+(?:(?:an?|the|your|m
 
 
 # 'a slice of pizza, from a 14 in pie', 'a wedge cut from a 20 cm cheese wheel': the size is the whole's
-_FROM_WHOLE = re.compile(r"\s*,?\s*\b(?:cut\s+|taken\s+)?(?:from|off|of)\s+an?\s+(?P<size>(?:[\d.]+\s*(?:-\s*)?"
+_FROM_WHOLE = re.compile(r"\s*,?\s*\b(?:cut\s+|taken\s+)?(?:from|off|of)\s+an?\s+(?P<size>(?P<measure>[\d.]+\s*(?:-\s*)?"
                          r"(?:in|inch|inches|\"|cm|mm|m|ft)\b)\s*(?:[a-z-]+\s+){0,2}?(?:pie|pizza|cake|tart|quiche|"
                          r"wheel|loaf|round|cheesecake|flan)s?)\b", re.IGNORECASE)
 _CUT_FROM_WHOLE = frozenset({"slice", "wedge", "piece", "portion", "quarter", "half", "segment"})
@@ -672,10 +672,10 @@ def _whole_sized(text: str) -> tuple[str, float | None]:
     m = _FROM_WHOLE.search(text)
     if m is None:
         return text, None
-    kept = ""
+    kept = ""  # ('a slice of pizza from a 14 in pie': the clause goes)
     if re.search(rf"\b(?:{'|'.join(_CUT_FROM_WHOLE)})s?$", text[: m.start()].strip(), re.IGNORECASE):
-        kept = " " + re.sub(r"[\d.]+\s*(?:-\s*)?(?:in|inch|inches|\"|cm|mm|m|ft)\b\s*", "", m.group(0).strip(), count=1)  # 'half of a 10 inch cake': the cake is the
-    return text[: m.start()] + kept + text[m.end():], parse_size(m.group("size")).longest_m  # object, its size the whole's
+        kept = text[m.start():m.start("measure")] + text[m.end("measure"):m.end()]  # 'half of a 10 inch cake': the
+    return text[: m.start()] + kept + text[m.end():], parse_size(m.group("size")).longest_m  # cake, sized as the whole
 
 
 # a size or stiffness said not to be ('regular size not mini', 'the soft kind, not the stiff one'): not a modifier

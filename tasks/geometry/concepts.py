@@ -21,7 +21,7 @@ from tasks.geometry.catalogue_programs import catalogue_program
 from tasks.geometry.grammar.goods import PouchParams, SheetParams, folded_footprint, piece_grid, roll_radius
 from tasks.geometry.grammar.things import smiley
 from tasks.geometry.grammar.parts import _euler_z_to, box, cone, ellipsoid, part_group, relief, rotated_parts, squashed_parts, torus
-from tasks.geometry.meshing import mesh_program, program_volume, sample_program
+from tasks.geometry.meshing import mesh_program, program_volume, solid_bounds
 from tasks.geometry.sdf import REVEAL_CUT, program_bounds, program_sdf
 from tasks.geometry.wordnet import wordnet
 from tasks.render.finish import with_look
@@ -1992,13 +1992,7 @@ def relief_of(text: str, entry: LexiconEntry) -> tuple[str | None, bool]:
 
 def _body_envelope(program: ShapeProgram, resolution: int = 40) -> tuple[np.ndarray, np.ndarray]:
     """(centre, half extents) [m] of the solid a program describes, from its signed distances on a grid."""
-    field_, origin, spacing = sample_program(program, resolution)
-    idx = np.argwhere(field_ < 0)
-    if idx.size == 0:  # thinner than a grid cell (a film, a thin sheet): its primitives' bounds
-        lo_b, hi_b = program_bounds(program)
-        lo, hi = np.asarray(lo_b, dtype=np.float64), np.asarray(hi_b, dtype=np.float64)
-        return (lo + hi) / 2.0, (hi - lo) / 2.0
-    lo, hi = origin + idx.min(axis=0) * spacing, origin + (idx.max(axis=0) + 1) * spacing
+    lo, hi = solid_bounds(program, resolution)
     return (lo + hi) / 2.0, (hi - lo) / 2.0
 
 

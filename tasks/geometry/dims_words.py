@@ -161,8 +161,9 @@ def bind(text: str, entry: LexiconEntry | None, states: list[str]) -> Bound | No
             bound.notes.append(f"{length:g} m of it is built coiled")
         rolled = params.get("state", entry.params.get("state")) == "rolled"
         hank = rolled and (bool(params.get("hank")) or (isinstance(p0, StrapParams) and coiled_as_hank(p0)))
-        loose = bool(p0.round) and _unit_longest("strap", params) * length > HANK_RADIUS_M * 2.5  # type: ignore[attr-defined]
-        if rolled and (hank or loose or _unit_longest("strap", params) * length > MAX_SIZE_M):  # a long coil wound
+        spiral = _unit_longest("strap", params) * length  # the coil as a flat spiral [m]
+        loose = bool(p0.round) and spiral > HANK_RADIUS_M * 2.5  # type: ignore[attr-defined]
+        if rolled and (hank or loose or spiral > MAX_SIZE_M):  # a long coil wound
             # as tight (a round cord whose flat spiral would be wider than a hand coils it: loops, a 15 m battle rope)
             tight = np.sqrt(0.55 * length / (1.45 * np.pi * max(width, 1e-6)))  # as its cord allows (r1 - r0 =
             params["turns"] = float(np.clip(max(tight, float(p0.turns)), 1.0, 8.0))  # type: ignore[attr-defined]  # 0.55 r1 = turns x width)

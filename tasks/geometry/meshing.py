@@ -92,6 +92,17 @@ def sample_program(program: ShapeProgram, resolution: int) -> tuple[np.ndarray, 
 
 
 
+def solid_bounds(program: ShapeProgram, resolution: int = 40) -> tuple[np.ndarray, np.ndarray]:
+    """(lo, hi) corners [m] of the solid a program describes, from its signed distances on a grid (its parts' boxes
+    overstate blends, turns and cuts); a solid thinner than a cell (a film) is its primitives' bounds."""
+    field_, origin, spacing = sample_program(program, resolution)
+    idx = np.argwhere(field_ < 0)
+    if idx.size == 0:
+        lo, hi = program_bounds(program)
+        return np.asarray(lo, dtype=np.float64), np.asarray(hi, dtype=np.float64)
+    return origin + idx.min(axis=0) * spacing, origin + (idx.max(axis=0) + 1) * spacing
+
+
 def program_volume(program: ShapeProgram, resolution: int = 40) -> float:
     """The volume of the solid a program describes [m^3], from its signed distances on a grid."""
     field_, _origin, spacing = sample_program(program, resolution)

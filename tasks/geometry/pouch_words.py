@@ -11,11 +11,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from contracts.shape import Part, ShapeProgram
+from contracts.shape import MAX_PARTS, Part, ShapeProgram
 from tasks.geometry import fill_words
 from tasks.geometry.grammar.parts import box, cylinder, limb, part_group, squashed_parts, superellipsoid
-from tasks.geometry.meshing import sample_program
-from tasks.geometry.sdf import program_bounds
+from tasks.geometry.meshing import solid_bounds
+from tasks.geometry.sdf import primitive_half_extent
 
 # container nouns that, with a fill, are a pouch of it ('a bag of peas', 'a saline bag'); a box or jar is rigid
 CONTAINERS = frozenset({"bag", "bags", "pouch", "pouches", "pack", "packs", "packet", "packets", "sachet", "sachets",
@@ -146,12 +146,7 @@ def film_wrapped(program: ShapeProgram, rgb: tuple[float, float, float] = (0.93,
     """The program lying on the flat sealed film of a vacuum pack: a thin rounded sheet under it, its footprint
     FILM_BORDER wider on every side; the piece pressed a little flatter by the film (a vacuum pack flattens)."""
     pressed = program.model_copy(update={"parts": squashed_parts(program.parts, (1.0, 1.0, 0.9))})
-    field, origin, spacing = sample_program(pressed, 40)
-    idx = np.argwhere(field < 0)
-    if len(idx):  # the solid's own box (the parts' boxes overstate blends and rotations)
-        lo, hi = origin + idx.min(axis=0) * spacing, origin + (idx.max(axis=0) + 1) * spacing
-    else:
-        lo, hi = (np.asarray(v, dtype=np.float64) for v in program_bounds(pressed))
+    lo, hi = solid_bounds(pressed)  # the solid's own box (the parts' boxes overstate blends and rotations)
     ext = hi - lo
     centre = (lo + hi) / 2.0
     film_t = max(FILM_THICKNESS * float(ext[2]), FILM_MIN_THICKNESS * float(ext[:2].max() * (1 + 2 * FILM_BORDER)))
@@ -392,16 +387,6 @@ FILM_DENSITY = 930.0  # polyethylene [kg/m^3]
 VALVE_KG = 0.015  # a vacuum bag's valve and zip track (retail spare valves ~10-20 g) [kg]
 
 
-def _solid_box(program: ShapeProgram) -> tuple[np.ndarray, np.ndarray]:
-    """The program's solid box (lo, hi) [m], from its draft field (the parts' boxes overstate blends and turns)."""
-    field, origin, spacing = sample_program(program, 40)
-    idx = np.argwhere(field < 0)
-    if len(idx):
-        return origin + idx.min(axis=0) * spacing, origin + (idx.max(axis=0) + 1) * spacing
-    lo, hi = program_bounds(program)
-    return np.asarray(lo, dtype=np.float64), np.asarray(hi, dtype=np.float64)
-
-
 def _shifted(p: Part, shift: np.ndarray, name: str, rgb: tuple[float, float, float] | None = None) -> Part:
     x, y, z = p.transform.translation_m
     update: dict[str, object] = {"name": name, "transform": p.transform.model_copy(update={
@@ -421,7 +406,7 @@ def packed_goods(program: ShapeProgram, count: int, palette: tuple[tuple[float, 
     count = max(1, min(count, SLEEVE_MAX_COUNT))
     if count == 1 and not palette:
         return program
-    lo, hi = _solid_box(program)
+    lo, hi = solid_bounds(program)
     ext = hi - lo
     axis = 1 if ext[1] <= ext[0] else 0  # shingled along the shorter side
     body = program.parts[0].color_rgb
@@ -431,7 +416,7 @@ def packed_goods(program: ShapeProgram, count: int, palette: tuple[tuple[float, 
     room = MAX_PARTS_FOR_GOODS - len(program.parts)
     keep = max(1, min(STACK_PARTS, room // max(count - 1, 1)))  # (a folded shirt's sleeves, without its outline's
     # trim, stick out past a stacked one's edge: its body is what is seen)
-    lower = plain if shingled else sorted(plain, key=lambda p: -float(np.prod(np.asarray(_part_extent(p)))))[:keep]
+    lower = plain if shingled else sorted(plain, key=lambda p: -float(np.prod(primitive_half_extent(p) * np.asarray(p.transform.scale))))[:keep]
     lower = [p for p in program.parts if p in lower]  # (in their own order)
     out: list[Part] = []
     for k in range(count):
@@ -451,18 +436,7 @@ def packed_goods(program: ShapeProgram, count: int, palette: tuple[tuple[float, 
     return program.model_copy(update={"parts": out})
 
 
-MAX_PARTS_FOR_GOODS = 64 - FILM_PARTS
-
-
-def _part_extent(p: Part) -> tuple[float, float, float]:
-    prim = p.primitive
-    for attr in ("size_m", "radii_m"):
-        v = getattr(prim, attr, None)
-        if v is not None:
-            return tuple(float(a) * float(s) for a, s in zip(v, p.transform.scale))  # type: ignore[return-value]
-    r = float(getattr(prim, "radius_m", getattr(prim, "radius_bottom_m", 0.01)))
-    h = float(getattr(prim, "height_m", getattr(prim, "length_m", r)))
-    return (r, r, h)
+MAX_PARTS_FOR_GOODS = MAX_PARTS - FILM_PARTS
 
 
 def film_sleeved(program: ShapeProgram, kind: str = "sleeve") -> ShapeProgram:
@@ -471,7 +445,7 @@ def film_sleeved(program: ShapeProgram, kind: str = "sleeve") -> ShapeProgram:
     two ends, a vacuum bag's wider border with its valve on top and its zip track along one end."""
     if kind == "vacuum":
         program = program.model_copy(update={"parts": squashed_parts(program.parts, (1.0, 1.0, VACUUM_PRESSED))})
-    lo, hi = _solid_box(program)
+    lo, hi = solid_bounds(program)
     ext = hi - lo
     centre = (lo + hi) / 2.0
     long_ax = 0 if ext[0] >= ext[1] else 1

@@ -59,11 +59,12 @@ def l1_plan(asset: L0Asset, intent: str | None, contract: StageContract | None =
     rho = priors["density_kg_per_m3"]
     drange = entry.prior_ranges.get("density_kg_per_m3", (rho / 2, rho * 2))
     field = contract.field("density_kg_per_m3")
-    mass = mass_check(float(np.sum(asset.volumes_m3)), longest_extent_m(asset), float(asset.mesh.area), material,
+    longest = longest_extent_m(asset)
+    mass = mass_check(float(np.sum(asset.volumes_m3)), longest, float(asset.mesh.area), material,
                       rho, drange, concept_of(asset.record), entry.shell_wall_thickness_m,
                       "density_kg_per_m3" in explicit_numbers(words.intent)[1], (field.low, field.high),
                       asset.body.enclosed_volume_m3 if asset.shell and asset.body is not None else None,
-                      dataclasses.replace(Surface.of(asset.mesh), longest_m=longest_extent_m(asset)))
+                      dataclasses.replace(Surface.of(asset.mesh), longest_m=longest))
     priors["density_kg_per_m3"] = mass.density_kg_per_m3
     lo, hi = mass.band_kg
     bands = [TargetBand(metric="mass_kg", unit="kg", low=lo, high=hi, scale="log", source=mass.source)]

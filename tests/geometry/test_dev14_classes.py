@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 from contracts.shape import Part, ShapeProgram
-from tasks.geometry import catalogue, concepts
+from tasks.geometry import catalogue, concepts, meshing
 from tasks.geometry.concepts import concept_domain
 from tests.geometry.test_mass_classes import planned_mass
 
@@ -111,8 +111,8 @@ def test_a_body_thinner_than_the_envelope_grid_has_its_bounds_as_envelope(monkey
     not slumped (it is not ball-like)."""
     film = ShapeProgram(name="film", category="textile", parts=[Part(
         name="body", primitive={"kind": "ellipsoid", "radii_m": (0.5, 0.3, 0.0004)})])
-    monkeypatch.setattr(concepts, "sample_program", lambda program, resolution: (np.ones((8, 8, 8)), np.zeros(3),
-                                                                                 0.1))  # no sample inside the film
+    monkeypatch.setattr(meshing, "sample_program", lambda program, resolution: (np.ones((8, 8, 8)), np.zeros(3),
+                                                                                0.1))  # no sample inside the film
     centre, half = concepts._body_envelope(film)
     assert half == pytest.approx((0.5, 0.3, 0.0004), rel=0.05) and np.abs(centre).max() < 1e-6
     assert concepts.slumped(film, 0.7) is None
