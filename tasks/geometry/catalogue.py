@@ -759,7 +759,11 @@ _TASK_CLAUSE = re.compile(r"\s*,?\s+(?:(?:(?:that|which|so that|so)\s+)?" + _ROB
 def _task_clause_stripped(text: str) -> str:
     """The description without a request's opening ('can you make', 'I need') or a trailing clause about the robot's
     task (the object it names is the head)."""
-    stripped = _TASK_CLAUSE.sub("", _REQUEST_OPENING.sub("", text))
+    commanded = _COMMAND_OPENING.sub("", text)
+    if commanded != text:  # ('put that cake back': the verb's particle, not the object's)
+        commanded = _TRAILING_PARTICLE.sub("", commanded)
+    stripped = _TASK_CLAUSE.sub("", _REQUEST_OPENING.sub("", commanded))
+    stripped = _TRAILING_FILLER.sub("", _TRAILING_COMMAND.sub("", stripped))
     stripped = _STAND_UP.sub("standing", stripped)  # 'a stand-up pouch' (the parse took 'stand' for the object)
     return stripped if re.search(r"[a-z]", stripped, re.I) else text
 
@@ -773,6 +777,27 @@ _REQUEST_OPENING = re.compile(
     r"(?:me\s+|us\s+)?)?|(?:make|create|generate|build|model|simulate|give|design|pick\s+up)\s+(?:me\s+|us\s+)?(?=an?\s|the\s|"
     r"some\s|one\s|two\s|three\s))", re.IGNORECASE)
 _STAND_UP = re.compile(r"\bstand[- ]up\b(?=\s+[a-z])", re.IGNORECASE)
+# a command to the robot before the object, as a person on a shop floor types it ('grab that sponge off the table':
+# the parse took 'table' for the object; 'pls pick up sponge', 'hand me that croissant real quick': generic blocks):
+# a handling verb followed by a determiner (so 'a grab bag', 'a lift chair' stay the objects), or a two-word one
+# that is never part of a name ('pick up', 'hand me') with or without it
+_DETERMINER = r"(?:the|that|this|those|these|a|an|my|our|your|his|her|their|its|some|one|both|all|each|them)\b"
+_COMMAND_OPENING = re.compile(
+    r"^\s*(?:(?:hey|ok|okay|right|alright|so|um|robot)\s*,?\s+)*(?:(?:(?:can|could|would|will)\s+(?:you|u)\s+)?(?:(?:please|pls|plz)\s+)?)"
+    r"(?:(?:(?:pick|grab|lift|scoop|fish)\s+up|(?:hand|pass|bring|get|grab|fetch|give|toss|throw)\s+(?:me|us))\s+(?:" + _DETERMINER
+    + r"\s*)?|(?:grab|lift|move|put|place|set|toss|throw|chuck|take|carry|fetch|bring|get|pass|hand|stack|load|unload|"
+    r"stow|hang|shift|slide|collect|clear|remove|transfer|return|store|pack|bag|box|hold|retrieve|grasp|pick)\s+"
+    + _DETERMINER + r"\s*)", re.IGNORECASE)
+_TRAILING_PARTICLE = re.compile(r"\s+(?:back|away|down|over|aside)[\s.!]*$", re.IGNORECASE)
+# what to do with it, said after the object ('cakes - bin it', 'towel, fold it and put it away')
+_TRAILING_COMMAND = re.compile(r"\s*[-\u2013\u2014,;:]+\s*(?:(?:and|then|pls|please|just)\s+)*(?:bin|toss|put|move|bag|box|"
+                               r"take|throw|chuck|stack|fold|hang|dump|wash|return|store|leave|place|drop|send|get|"
+                               r"bring|carry|give|hand|pass|tidy|clear|lift|grab|pick)\s+(?:it|them|that|those|this|these|"
+                               r"one)\b.*$", re.IGNORECASE)
+# filler a person types after the object ('... real quick', '... asap thanks')
+_TRAILING_FILLER = re.compile(r"[\s,.!]+(?:(?:real|really|super)\s+quick(?:ly)?|quick(?:ly)?|asap|pls|plz|please|"
+                              r"thx|thanks|thank\s+you|ta|for\s+me|cheers)(?:[\s,.!]+(?:pls|plz|please|thx|thanks|"
+                              r"cheers|ta))*[\s.!]*$", re.IGNORECASE)
 
 
 _OF_WORDS = re.compile(r"\b([a-z]+) of ((?:[a-z]+ ){1,2})([a-z]+)\b", re.IGNORECASE)
@@ -1001,9 +1026,15 @@ def _as_meat(text: str, reading: concepts.Reading) -> str | None:
     if noun is None or concepts.concept_domain(reading.entry.key) != "animal" or _TOY_WORDS.search(text) \
             or (re.search(r"\bwhole\b", text, re.I) and reading.entry.plan != "bird") \
             or reading.entry.category in ("meat", "fish", "seafood", "food") \
-            or not FOOD_CUES & set(re.findall(r"[a-z]+", text.lower())):
+            or not FOOD_CUES & set(re.findall(r"[a-z]+", _TRAY_AS_DESTINATION.sub(" ", text.lower()))):
         return None
     return _noun_swapped(text, noun, "meat")
+
+
+# a tray the object is put into is where it goes, not what it is sold on ('lift the jellyfish into the tray' was
+# minced meat; 'a chicken on a foam tray' is still meat)
+_TRAY_AS_DESTINATION = re.compile(r"\b(?:(?:into|onto|to)\s+(?:(?:the|a|an|that|this|its|my|your|our)\s+)?|"
+                                  r"(?:in|on)\s+the\s+)(?:[a-z]+\s+)?tray\b")
 
 
 def design_from_text(text: str, size_hint_m: float | None = None) -> Design:
