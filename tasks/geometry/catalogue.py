@@ -764,6 +764,10 @@ def _task_clause_stripped(text: str) -> str:
         commanded = _TRAILING_PARTICLE.sub("", commanded)
     stripped = _TASK_CLAUSE.sub("", _REQUEST_OPENING.sub("", commanded))
     stripped = _TRAILING_FILLER.sub("", _TRAILING_COMMAND.sub("", stripped))
+    stripped = _A_COUPLE.sub("two ", stripped)
+    times = _TIMES_AFTER.search(stripped) or _TIMES_BEFORE.search(stripped)
+    if times is not None and 1 < int(times.group("n")) <= 99:  # 'hair weft x2', '2x bath towel': two of them
+        stripped = f"{times.group('n')} {(stripped[: times.start()] + ' ' + stripped[times.end():]).strip()}"
     stripped = _STAND_UP.sub("standing", stripped)  # 'a stand-up pouch' (the parse took 'stand' for the object)
     return stripped if re.search(r"[a-z]", stripped, re.I) else text
 
@@ -788,6 +792,10 @@ _COMMAND_OPENING = re.compile(
     + r"\s*)?|(?:grab|lift|move|put|place|set|toss|throw|chuck|take|carry|fetch|bring|get|pass|hand|stack|load|unload|"
     r"stow|hang|shift|slide|collect|clear|remove|transfer|return|store|pack|bag|box|hold|retrieve|grasp|pick)\s+"
     + _DETERMINER + r"\s*)", re.IGNORECASE)
+_A_COUPLE = re.compile(r"\b(?:an?\s+)?couple\s+(?:of\s+)?(?=[a-z])", re.IGNORECASE)  # ('a couple of feijoas' was a
+# generic block: two of them)
+_TIMES_AFTER = re.compile(r"(?<![\d.])[\s,(]+x\s?(?P<n>\d+)\)?[\s.!]*$", re.IGNORECASE)
+_TIMES_BEFORE = re.compile(r"^\s*(?P<n>\d+)\s?x\s+(?=[a-z])", re.IGNORECASE)
 _TRAILING_PARTICLE = re.compile(r"\s+(?:back|away|down|over|aside)[\s.!]*$", re.IGNORECASE)
 # what to do with it, said after the object ('cakes - bin it', 'towel, fold it and put it away')
 _TRAILING_COMMAND = re.compile(r"\s*[-\u2013\u2014,;:]+\s*(?:(?:and|then|pls|please|just)\s+)*(?:bin|toss|put|move|bag|box|"
@@ -1042,6 +1050,7 @@ def design_from_text(text: str, size_hint_m: float | None = None) -> Design:
     modifiers and colours; an unknown noun takes a fallback by meaning, recorded in `concept` and `warnings`."""
     if not text or not text.strip():
         raise InputError("the description is empty")
+    text = text.replace("\u00d7", " x ")  # a typed multiplication sign ('30\u00d740 cm', 'hair weft \u00d72') is an x
     unsized = _THE_KIND.sub(_kind_colours, _NEGATED.sub(" ", text))  # ('not mini', 'the big grey kind': no sizes)
     asked = _task_clause_stripped(normalise_sizes(unsized))  # ('pls make a down jacket stuffed into its own pocket':
     # the request's opening is not the goods)
