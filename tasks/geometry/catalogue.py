@@ -764,7 +764,8 @@ def _task_clause_stripped(text: str) -> str:
         commanded = _TRAILING_PARTICLE.sub("", commanded)
     stripped = _TASK_CLAUSE.sub("", _REQUEST_OPENING.sub("", commanded))
     stripped = _TRAILING_FILLER.sub("", _TRAILING_COMMAND.sub("", stripped))
-    stripped = _A_COUPLE.sub("two ", stripped)
+    stripped = _A_COUPLE.sub("two ", _SORT_OF.sub("", stripped))
+    stripped = _THING_AFTER.sub(lambda m: m.group(1) if _is_noun_word(m.group(1)) else m.group(0), stripped)
     times = _TIMES_AFTER.search(stripped) or _TIMES_BEFORE.search(stripped)
     if times is not None and 1 < int(times.group("n")) <= 99:  # 'hair weft x2', '2x bath towel': two of them
         stripped = f"{times.group('n')} {(stripped[: times.start()] + ' ' + stripped[times.end():]).strip()}"
@@ -794,6 +795,22 @@ _COMMAND_OPENING = re.compile(
     + _DETERMINER + r"\s*)", re.IGNORECASE)
 _A_COUPLE = re.compile(r"\b(?:an?\s+)?couple\s+(?:of\s+)?(?=[a-z])", re.IGNORECASE)  # ('a couple of feijoas' was a
 # generic block: two of them)
+# a speaker unsure of the name ('some sort of yogurt stick', 'the party hat thing': generic blocks)
+_SORT_OF = re.compile(r"\b(?:(?:some|a|an|this|that|the)\s+)?(?:sort|kind|type)\s+of\s+(?:an?\s+)?(?=[a-z])", re.IGNORECASE)
+_THING_AFTER = re.compile(r"\b([a-z]+)\s+(?:thing|thingy|thingie|thingamajig|thingummy|whatsit|doohickey|doodad)s?\b",
+                          re.IGNORECASE)
+
+
+@functools.lru_cache(maxsize=1)
+def _noun_words() -> frozenset[str]:
+    """The last words of the lexicon's nouns ('hat', 'stick', 'eiderdown')."""
+    return frozenset(n.split()[-1] for n in concepts.noun_index())
+
+
+def _is_noun_word(word: str) -> bool:
+    return word.lower() in _noun_words()
+
+
 _TIMES_AFTER = re.compile(r"(?<![\d.])[\s,(]+x\s?(?P<n>\d+)\)?[\s.!]*$", re.IGNORECASE)
 _TIMES_BEFORE = re.compile(r"^\s*(?P<n>\d+)\s?x\s+(?=[a-z])", re.IGNORECASE)
 _TRAILING_PARTICLE = re.compile(r"\s+(?:back|away|down|over|aside)[\s.!]*$", re.IGNORECASE)

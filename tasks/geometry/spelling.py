@@ -27,12 +27,16 @@ wanna kinda sorta gotta lemme gimme ya yeah okay ok hmm thx thanks""".split())
 
 @functools.lru_cache(maxsize=1)
 def english_words() -> frozenset[str]:
-    """Every lemma of WordNet's noun, verb, adjective and adverb indexes (one-word lemmas; ~130k)."""
+    """Every lemma of WordNet's noun, verb, adjective and adverb indexes and their irregular forms (one-word)."""
     words: set[str] = set()
     folder = data_dir()
     for pos in ("noun", "verb", "adj", "adv"):
         with open(folder / f"index.{pos}", encoding="utf-8") as fh:
             words.update(line.split(" ", 1)[0] for line in fh if not line.startswith(" "))
+        exceptions = folder / f"{pos}.exc"  # irregular forms ('came', 'threw', 'mice', 'worse'): 'came' was read as a
+        if exceptions.exists():  # camel
+            with open(exceptions, encoding="utf-8") as fh:
+                words.update(line.split(" ", 1)[0] for line in fh if line.strip())
     return frozenset(w for w in words if w.isalpha())
 
 

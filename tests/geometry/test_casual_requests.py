@@ -29,6 +29,9 @@ TEMPLATES = [
     "move the {} to the bin",
     "{} thx",
     "hey, could you please pick up the {}",
+    "the {} thing",
+    "some sort of {}",
+    "{} that came back",
 ]
 
 
@@ -73,3 +76,12 @@ def test_sides_are_no_count() -> None:
     """'30 x 40' is a towel's sides, not forty towels."""
     assert len(catalogue.design_from_text("towel 30 x 40").program.parts) == \
         len(catalogue.design_from_text("a towel").program.parts)
+
+
+def test_an_irregular_verb_is_english_not_a_misspelt_noun() -> None:
+    """WordNet's exception lists hold the irregular forms: 'came' is no misspelt 'camel' ('party hat that came in'
+    built a plush deer), 'threw' no 'throw'."""
+    from tasks.geometry.spelling import is_english
+
+    assert is_english("came") and is_english("threw") and is_english("mice")
+    assert _entry("party hat that came in") == _entry("party hat")
