@@ -883,8 +883,12 @@ def _mass_sized(size: SizeSpec, match: ConceptMatch, stated: size_words.StatedMa
     k = float(np.clip((stated.kg / match.typical_mass_kg) ** (1.0 / 3.0), 1.0 / MASS_SIZED_MAX, MASS_SIZED_MAX))
     if abs(k - 1.0) <= 0.05:
         return size
-    return size.model_copy(update={"longest_m": match.typical_size_m * k,
-                                   "stated": f"sized to weigh the stated {stated.stated} at its typical density"})
+    longest = match.typical_size_m * k
+    capped = longest > MAX_SIZE_M  # ('2kg eiderdown' was refused as a 2.37 m duvet: built at L0's longest, denser)
+    return size.model_copy(update={
+        "longest_m": min(longest, MAX_SIZE_M),
+        "stated": f"sized to weigh the stated {stated.stated} at its typical density"
+                  + (f" (at most {MAX_SIZE_M:g} m, the longest L0 builds: denser to weigh it)" if capped else "")})
 
 
 _UNITLESS_DIMS = re.compile(r"(?<![\w.])(\d+(?:\.\d+)?)\s*x\s*(\d+(?:\.\d+)?)(?:\s*x\s*(\d+(?:\.\d+)?))?(?![\w.]|\s*(?:"
@@ -996,7 +1000,8 @@ def _stuffed_in_sack(text: str) -> tuple[str, str] | None:
     return f"a compression sack, {kg * 1000:.4g} g{size}", note
 
 
-_TOY_WORDS = re.compile(r"\b(?:plush|toy|toys|stuffed|squeaky|squeaker|rubber|figurine|puppet|costume|felt|knitted|"
+_TOY_WORDS = re.compile(r"\b(?:plush|toy|toys|inflatable|blow[- ]up|vinyl|stuffed|squeaky|squeaker|rubber|figurine|"
+                        r"puppet|costume|felt|knitted|"
                         r"crochet(?:ed)?|silicone|cuddly|soft toy|teddy|doll|pillow|cushion|slippers?)\b", re.I)
 
 

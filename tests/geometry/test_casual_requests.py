@@ -85,3 +85,19 @@ def test_an_irregular_verb_is_english_not_a_misspelt_noun() -> None:
 
     assert is_english("came") and is_english("threw") and is_english("mice")
     assert _entry("party hat that came in") == _entry("party hat")
+
+
+def test_a_stated_mass_past_the_longest_l0_builds_is_built_at_it_not_refused() -> None:
+    """'2kg eiderdown' (a winter duvet's real mass) sized the duvet to 2.37 m by its density and was refused; it is
+    built at L0's 2 m, denser, and weighs the 2 kg said."""
+    from contracts.request import MAX_SIZE_M
+    from tests.geometry.test_mass_classes import planned_mass
+
+    d = catalogue.design_from_text("2kg eiderdown")
+    assert d.entry == "duvet" and d.size.longest_m == MAX_SIZE_M and "at most" in (d.size.stated or "")
+    assert abs(planned_mass("2kg eiderdown") - 2.0) < 0.1
+
+
+def test_an_inflatable_animal_in_cling_film_is_no_meat() -> None:
+    assert _entry("inflatable crocodile wrapped in cling film") == _entry("inflatable crocodile")
+    assert _entry("raw chicken wrapped in cling film") == "whole_chicken"
