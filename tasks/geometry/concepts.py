@@ -206,18 +206,17 @@ def plurals(noun: str) -> list[str]:
 
 @functools.lru_cache(maxsize=1)
 def noun_index() -> dict[str, tuple[str, str, bool]]:
-    """Surface form -> (concept key, noun, exact) for every lexicon noun and its plurals."""
+    """Surface form -> (concept key, noun, exact) for every lexicon noun and its plurals; a noun an entry lists
+    beats another entry's plural of its own noun ('ski gloves', the pair drawn, is not 'ski glove' made plural)."""
     lex = load_lexicon()
     index: dict[str, tuple[str, str, bool]] = {}
-    for key, entry in lex.entries.items():
-        for i, noun in enumerate(entry.nouns):
-            if noun.startswith("("):
-                continue
-            n = plain(noun)
-            exact = i == 0
-            index.setdefault(n, (key, n, exact))
-            for pl in plurals(n):
-                index.setdefault(pl, (key, n, False))
+    nouns = [(key, plain(noun), i == 0) for key, entry in lex.entries.items() for i, noun in enumerate(entry.nouns)
+             if not noun.startswith("(")]
+    for key, n, exact in nouns:
+        index.setdefault(n, (key, n, exact))
+    for key, n, _exact in nouns:
+        for pl in plurals(n):
+            index.setdefault(pl, (key, n, False))
     return index
 
 
