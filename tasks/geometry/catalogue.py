@@ -770,8 +770,8 @@ _REQUEST_OPENING = re.compile(
     r"^\s*(?:(?:(?:can|could|would|will)\s+(?:you|we|i)\s+(?:(?:please|pls|plz)\s+)?|(?:please|pls|plz)\s+|i(?:'d|\s+would)\s+like\s+"
     r"(?:to\s+(?:have|get|see|make|simulate|model)\s+)?|i\s+(?:want|need)\s+(?:to\s+(?:have|make|simulate|model)\s+)?|"
     r"we\s+need\s+|let's\s+|lets\s+)(?:(?:make|create|generate|build|model|simulate|give|get|design|add)\s+"
-    r"(?:me\s+|us\s+)?)?|(?:make|create|generate|build|model|simulate|give|design|pick\s+up)\s+(?:me\s+|us\s+)?(?=an?\s|the\s|"
-    r"some\s|one\s|two\s|three\s))", re.IGNORECASE)
+    r"(?:me\s+|us\s+)?)?|(?:make|create|generate|build|model|simulate|give|design|pick\s+up|grab|fetch|bring)\s+(?:me\s+|us\s+)?"
+    r"(?=an?\s|the\s|some\s|one\s|two\s|three\s|that\s|this\s))", re.IGNORECASE)  # ('grab that rolled up fleece')
 _STAND_UP = re.compile(r"\bstand[- ]up\b(?=\s+[a-z])", re.IGNORECASE)
 
 
@@ -1006,6 +1006,18 @@ def _as_meat(text: str, reading: concepts.Reading) -> str | None:
     return _noun_swapped(text, noun, "meat")
 
 
+_AIR_LOST = frozenset({"deflated", "flat"})
+
+
+def _as_air_ball(text: str, reading: concepts.Reading) -> str | None:
+    """The text with a bare 'ball' made a soccer ball when it is said deflated or flat: a solid rubber ball (the bare
+    noun's entry) holds no air to lose; the ball that goes flat is an air-filled one, drawn dented with its panels
+    ('deflated ball in the corner' was a red rubber disc, named a wax-coated cheese); else None."""
+    if reading.match.noun != "ball" or reading.phrase is None or not _AIR_LOST & set(reading.phrase.states):
+        return None
+    return _noun_swapped(text, "ball", "soccer ball")
+
+
 def design_from_text(text: str, size_hint_m: float | None = None) -> Design:
     """Map a description to a lexicon concept's program (grammar body plan or catalogue shape), the stated size, the
     modifiers and colours; an unknown noun takes a fallback by meaning, recorded in `concept` and `warnings`."""
@@ -1040,6 +1052,11 @@ def design_from_text(text: str, size_hint_m: float | None = None) -> Design:
     if hose is not None:  # '10 ft of 3/4 in silicone hose': a length of tubing, coiled
         reading = concepts.read_text(hose)
         reading.warnings.insert(0, "a length of hose many times a moulded hose's size: built as tubing, coiled")
+    air = _as_air_ball(stripped, reading)
+    if air is not None:  # 'a deflated ball': a soccer ball gone flat, not a solid rubber ball squashed
+        reading = concepts.read_text(air)
+        reading.warnings.insert(0, "a 'ball' said deflated or flat: an air-filled ball (a soccer ball) gone flat, not a "
+                                   "solid rubber ball")
     meat = _as_meat(stripped, reading)
     if meat is not None:  # 'a pound of ground lamb', 'a whole raw chicken': the meat, not the animal
         reading = concepts.read_text(meat)
