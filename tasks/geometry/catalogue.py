@@ -1067,6 +1067,18 @@ _TRAY_AS_DESTINATION = re.compile(r"\b(?:(?:into|onto|to)\s+(?:(?:the|a|an|that|
                                   r"(?:in|on)\s+the\s+)(?:[a-z]+\s+)?tray\b")
 
 
+_AIR_LOST = frozenset({"deflated", "flat"})
+
+
+def _as_air_ball(text: str, reading: concepts.Reading) -> str | None:
+    """The text with a bare 'ball' made a soccer ball when it is said deflated or flat: a solid rubber ball (the bare
+    noun's entry) holds no air to lose; the ball that goes flat is an air-filled one, drawn dented with its panels
+    ('deflated ball in the corner' was a red rubber disc, named a wax-coated cheese); else None."""
+    if reading.match.noun != "ball" or reading.phrase is None or not _AIR_LOST & set(reading.phrase.states):
+        return None
+    return _noun_swapped(text, "ball", "soccer ball")
+
+
 def design_from_text(text: str, size_hint_m: float | None = None) -> Design:
     """Map a description to a lexicon concept's program (grammar body plan or catalogue shape), the stated size, the
     modifiers and colours; an unknown noun takes a fallback by meaning, recorded in `concept` and `warnings`."""
@@ -1102,6 +1114,11 @@ def design_from_text(text: str, size_hint_m: float | None = None) -> Design:
     if hose is not None:  # '10 ft of 3/4 in silicone hose': a length of tubing, coiled
         reading = concepts.read_text(hose)
         reading.warnings.insert(0, "a length of hose many times a moulded hose's size: built as tubing, coiled")
+    air = _as_air_ball(stripped, reading)
+    if air is not None:  # 'a deflated ball': a soccer ball gone flat, not a solid rubber ball squashed
+        reading = concepts.read_text(air)
+        reading.warnings.insert(0, "a 'ball' said deflated or flat: an air-filled ball (a soccer ball) gone flat, not a "
+                                   "solid rubber ball")
     meat = _as_meat(stripped, reading)
     if meat is not None:  # 'a pound of ground lamb', 'a whole raw chicken': the meat, not the animal
         reading = concepts.read_text(meat)

@@ -136,6 +136,11 @@ AFTER_NOUN_ADVERBS = frozenset({"still", "already", "just", "now", "again", "als
                                 "kinda", "somewhat", "all"})
 
 
+# nouns in -ing that the small model tags as a verb's participle ('a pork dumpling': 'dumpling' ended the phrase and
+# 'pork' was the object)
+ING_NOUNS = frozenset({"dumpling"})
+
+
 def _boundary(doc: Any, i: int, known: Callable[[str], bool] = lambda w: False) -> bool:
     """True when token i ends the object's own noun phrase (said after its first noun): punctuation, a preposition
     ('on its belly', 'with a green leaf'; not a known noun the tagger took for one: 'cotton oven mitt'), an
@@ -145,7 +150,7 @@ def _boundary(doc: Any, i: int, known: Callable[[str], bool] = lambda w: False) 
     word = tok.text.lower()
     nxt = doc[i + 1] if i + 1 < len(doc) else None
     prev = doc[i - 1] if i > 0 else None
-    if tok.pos_ == "ADP" and not tok.is_stop and known(word):
+    if tok.pos_ == "ADP" and not tok.is_stop and known(word) or word in ING_NOUNS:
         return False
     if nxt is not None and not tok.is_stop and known(f"{word} {nxt.text.lower()}"):
         return False  # a two-word lexicon noun the tagger split ('a saline iv bag': 'iv' tagged a preposition)

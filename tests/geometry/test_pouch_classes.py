@@ -140,7 +140,7 @@ def _hw(text: str) -> tuple[float, float, np.ndarray]:
     ("a proved dough ball sitting on a board", 0.55),
     ("a sagging sand-filled slam ball", 0.8),
     ("a ball of cookie dough, a bit slumped", 0.85),  # (the mozzarella is hand-drawn since session 43)
-    ("a squashed burrata", 0.8),
+    ("a squashed bocconcini", 0.8),  # (the burrata is drawn by hand, split and slumped, since session 47)
 ])
 def test_slump_words_settle_a_round_body_on_a_flat_base(text: str, most: float) -> None:
     ratio, base, _ext = _hw(text)
@@ -150,9 +150,9 @@ def test_slump_words_settle_a_round_body_on_a_flat_base(text: str, most: float) 
 
 
 def test_slump_is_proportional_to_its_degree_word() -> None:
-    slight, _b, _e = _hw("a slightly slumped burrata")  # (the mozzarella is drawn by hand since session 43)
-    very, _b, _e = _hw("a very slumped burrata")
-    plain, _b, _e = _hw("a burrata")
+    slight, _b, _e = _hw("a slightly slumped bocconcini")  # (the mozzarella is drawn by hand since session 43, the
+    very, _b, _e = _hw("a very slumped bocconcini")  # burrata since session 47)
+    plain, _b, _e = _hw("a bocconcini")
     assert very < slight < plain
 
 
