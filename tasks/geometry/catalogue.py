@@ -766,6 +766,9 @@ def _task_clause_stripped(text: str) -> str:
     stripped = _TRAILING_FILLER.sub("", _TRAILING_COMMAND.sub("", stripped))
     stripped = _A_COUPLE.sub("two ", _SORT_OF.sub("", stripped))
     stripped = _THING_AFTER.sub(lambda m: m.group(1) if _is_noun_word(m.group(1)) else m.group(0), stripped)
+    bed = _BED_SIZE_AFTER.search(stripped)
+    if bed is not None and _is_noun_word(bed.group("noun")):  # 'duvet king', 'fleece blanket queen': a bed's size,
+        stripped = f"{bed.group('size')} size {stripped[: bed.start('sep')].strip()}"  # not a king or a queen insect
     times = _TIMES_AFTER.search(stripped) or _TIMES_BEFORE.search(stripped)
     if times is not None and 1 < int(times.group("n")) <= 99:  # 'hair weft x2', '2x bath towel': two of them
         stripped = f"{times.group('n')} {(stripped[: times.start()] + ' ' + stripped[times.end():]).strip()}"
@@ -811,6 +814,8 @@ def _is_noun_word(word: str) -> bool:
     return word.lower() in _noun_words()
 
 
+_BED_SIZE_AFTER = re.compile(r"\b(?P<noun>[a-z]+)(?P<sep>\s*,?\s+)(?P<size>queen|king|super\s*king|twin|double)(?:\s*size)?"
+                             r"[\s.!]*$", re.IGNORECASE)
 _TIMES_AFTER = re.compile(r"(?<![\d.])[\s,(]+x\s?(?P<n>\d+)\)?[\s.!]*$", re.IGNORECASE)
 _TIMES_BEFORE = re.compile(r"^\s*(?P<n>\d+)\s?x\s+(?=[a-z])", re.IGNORECASE)
 _TRAILING_PARTICLE = re.compile(r"\s+(?:back|away|down|over|aside)[\s.!]*$", re.IGNORECASE)

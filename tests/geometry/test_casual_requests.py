@@ -101,3 +101,9 @@ def test_a_stated_mass_past_the_longest_l0_builds_is_built_at_it_not_refused() -
 def test_an_inflatable_animal_in_cling_film_is_no_meat() -> None:
     assert _entry("inflatable crocodile wrapped in cling film") == _entry("inflatable crocodile")
     assert _entry("raw chicken wrapped in cling film") == "whole_chicken"
+
+
+@pytest.mark.parametrize(("text", "plain"), [("duvet king", "king size duvet"),  # (a generic block)
+                                             ("fleece blanket queen", "queen size fleece blanket")])  # (a queen insect)
+def test_a_bed_size_said_after_the_bedding_is_its_size(text: str, plain: str) -> None:
+    assert _entry(text) == _entry(plain)
