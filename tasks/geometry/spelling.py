@@ -14,6 +14,7 @@ from tasks.geometry.wordnet import data_dir
 MIN_LENGTH = 5  # shorter words are too often another real word one letter away; a word one letter shorter is read
 # only as a lexicon word with one letter added or two swapped ('towl': a towel) [-]
 MIN_WRONG_LENGTH = 6  # a word read with one letter typed as another at least this long ('eaten' is no 'eater') [-]
+MIN_TWO_SLIPS_LENGTH = 6  # a word read with two slips is at least this long ('tounge': a tongue) [-]
 CUTOFF = 0.85  # difflib's similarity ratio a correction needs (one letter in 7: 0.93; two in 8: 0.88) [-]
 MARGIN = 0.03  # how much nearer the best word must be than the next (else the word is left as written) [-]
 # endings an English word takes that WordNet's lemma indexes do not list ('tangled', 'squished', 'bunched', 'eaten')
@@ -22,7 +23,8 @@ _ENDINGS = (("ies", "y"), ("ied", "y"), ("es", ""), ("s", ""), ("ed", ""), ("ed"
 _WORD = re.compile(r"[a-z]+")
 # how people type that no dictionary lists ('thats' is no misspelt 'hats')
 CASUAL = frozenset("""thats whats dont doesnt didnt cant wont isnt arent wasnt im ive youre theyre lets pls plz gonna
-wanna kinda sorta gotta lemme gimme ya yeah okay ok hmm thx thanks""".split())
+wanna kinda sorta gotta lemme gimme ya yeah okay ok hmm thx thanks approx appx aprox qty pcs pkt pkts incl excl
+asst misc""".split())
 
 
 @functools.lru_cache(maxsize=1)
@@ -139,7 +141,48 @@ def _corrections(text: str, vocab: frozenset[str], phrases: frozenset[str]) -> t
         if len(close) == 1 or (len(close) == 2 and difflib.SequenceMatcher(None, w, close[0]).ratio()
                                > difflib.SequenceMatcher(None, w, close[1]).ratio() + MARGIN):
             out.append((w, close[0]))
+            continue
+        two = _two_slips_away(w, vocab) if len(w) >= MIN_TWO_SLIPS_LENGTH else set()  # last, two slips ('tounge':
+        if len(two) == 1:  # a tongue, 'sossages': sausages), only to the one word that starts as it does
+            out.append((w, two.pop()))
     return tuple(out)
+
+
+def _slips(a: str, b: str, limit: int = 2) -> int:
+    """Typing slips between two words (optimal string alignment: a letter left out, added, typed as another, or two
+    typed in turn), counted up to limit + 1."""
+    if abs(len(a) - len(b)) > limit:
+        return limit + 1
+    prev2: list[int] = []
+    prev = list(range(len(b) + 1))
+    for i in range(1, len(a) + 1):
+        cur = [i] + [0] * len(b)
+        for j in range(1, len(b) + 1):
+            cost = a[i - 1] != b[j - 1]
+            cur[j] = min(prev[j] + 1, cur[j - 1] + 1, prev[j - 1] + cost)
+            if i > 1 and j > 1 and a[i - 1] == b[j - 2] and a[i - 2] == b[j - 1]:
+                cur[j] = min(cur[j], prev2[j - 2] + 1)
+        if min(cur) > limit:
+            return limit + 1
+        prev2, prev = prev, cur
+    return prev[-1]
+
+
+def _two_slips_away(word: str, vocab: frozenset[str]) -> set[str]:
+    """The vocabulary's words at most two slips from `word` that start with its letter (a slip rarely hits the
+    first); none when one is a single slip away (that one is already taken above, or there are several)."""
+    bones = _consonants(word)
+    slips = {v: _slips(word, v) for v in vocab if v[0] == word[0] and abs(len(v) - len(word)) <= 2}
+    if any(n <= 1 for n in slips.values()):  # ('beenie' with 'beanie' and 'weenie': a slip two ways, left as is)
+        return set()
+    return {v for v, n in slips.items() if n <= 2 and _consonants(v) == bones}
+
+
+def _consonants(word: str) -> str:
+    """A word's consonants, doubled ones once: two slips are read only where they keep its sound's frame ('tounge'
+    and 'tongue': tng; 'sossages' and 'sausages': ssgs), not where they make another word ('shemagh' is no 'sheath',
+    'ballgown' no 'balloon', 'punchbag' no 'punching')."""
+    return re.sub(r"(.)\1+", r"\1", re.sub(r"[aeiouy]", "", word))
 
 
 def corrected(text: str, vocabulary: Iterable[str], phrases: Iterable[str] = ()) -> str:

@@ -107,3 +107,23 @@ def test_an_inflatable_animal_in_cling_film_is_no_meat() -> None:
                                              ("fleece blanket queen", "queen size fleece blanket")])  # (a queen insect)
 def test_a_bed_size_said_after_the_bedding_is_its_size(text: str, plain: str) -> None:
     assert _entry(text) == _entry(plain)
+
+
+@pytest.mark.parametrize(("text", "plain"), [("ox tounge", "ox tongue"), ("2m string of pork sossages, coiled",
+                                                                             "2m string of pork sausages, coiled"),
+                                             ("a cinamon roll", "a cinnamon roll")])
+def test_a_word_two_slips_off_is_read_as_the_one_it_sounds_like(text: str, plain: str) -> None:
+    """Two typing slips ('tounge', 'sossages') are read as the lexicon word that starts the same and keeps the same
+    consonants (both were generic shapes before session 47)."""
+    assert _entry(text) == _entry(plain)
+
+
+@pytest.mark.parametrize("word", ["shemagh", "ballgown", "punchbag", "approx"])
+def test_a_word_two_slips_from_another_with_other_consonants_is_left_as_written(word: str) -> None:
+    """A real word the dictionary lacks is no misspelt lexicon word ('shemagh' two slips from 'sheath', 'ballgown' from
+    'balloon', 'approx' from 'apron': 'whole squid approx 30cm' was built as an apron)."""
+    from tasks.geometry import concepts
+    from tasks.geometry.spelling import corrections
+
+    vocab = {w for noun in concepts.noun_index() for w in noun.split()}
+    assert not [c for c in corrections(f"a {word}", vocab) if c[0] == word]

@@ -92,8 +92,8 @@ def test_unknown_nouns_never_become_a_different_named_object(text: str) -> None:
 
 
 def test_fallback_levels_follow_what_the_text_says() -> None:
-    d = design_from_text("a four-legged plush snerkle")
-    assert (d.entry, d.concept.fallback_level, d.concept.noun) == ("generic_quadruped", "body_plan", "snerkle")
+    d = design_from_text("a four-legged plush zorblat")
+    assert (d.entry, d.concept.fallback_level, d.concept.noun) == ("generic_quadruped", "body_plan", "zorblat")
     d = design_from_text("an exotic fruit")
     assert (d.entry, d.concept.fallback_level) == ("generic_round_fruit", "category")
     d = design_from_text("a silicone wobbler")
