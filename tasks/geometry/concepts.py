@@ -1237,7 +1237,9 @@ def build(reading: Reading, text: str) -> tuple[ShapeProgram, ConceptMatch, list
     if goods is not None and goods.count and match.category not in STUFFED_CATEGORIES:
         group, match = goods_words.grouped(program, match, goods.count)
         if group is not program:
-            states.append(f"{len(group.parts) // len(program.parts)} of them")
+            drawn = len(group.parts) // len(program.parts)
+            states.append(f"{drawn} of them" if drawn >= goods.count else
+                          f"{drawn} of the {goods.count} drawn (the most a program's parts hold), weighing all")
             program = group
     if goods is not None and goods.nested:  # 'a pack of 12 muffin cups': the cups nested in a stack
         program, match = goods_words.nested_stack(program, match, goods.nested)

@@ -77,7 +77,8 @@ HAND_RISE = 0.35  # the middle one's lift / one's height [-]
 GROUP_MAX = 12  # pieces drawn side by side at most [-]
 GROUP_PER_ROW = 4  # pieces in a row before the next row [-]
 GROUP_PITCH = 0.9  # the pieces' spacing / one piece's extent: touching, as the mesher keeps one body (as duplicated)
-UNGROUPED_PLANS = frozenset({"sheet", "mould", "pouch", "bag", "garment", "strap", "glove", "sock"})
+UNGROUPED_PLANS = frozenset({"sheet", "mould", "pouch", "bag", "garment", "glove", "sock"})  # (straps are grouped: 'a
+# pack of 6 bungee cords' was one cord of one cord's mass)
 NEST_DEFAULT = 6  # cups in a pack or stack that gives no count [-]
 NEST_STEP = 0.12  # the rise of each nested cup over the one below, / one cup's height [-]
 
@@ -324,6 +325,7 @@ def grouped(program: ShapeProgram, match: ConceptMatch, count: int) -> tuple[Sha
     parts = list(program.parts)  # (a copy's carved parts, a peach's crease, carve only its own)
     if any(p.operation not in ("union", "subtract") for p in parts):
         return program, match
+    asked = count
     count = max(1, min(count, MAX_PARTS // max(len(parts), 1)))
     if count < 2:
         return program, match
@@ -336,7 +338,13 @@ def grouped(program: ShapeProgram, match: ConceptMatch, count: int) -> tuple[Sha
         shift[short] = GROUP_PITCH * float(ext[short]) * (k % per_row)
         shift[long_] = GROUP_PITCH * float(ext[long_]) * (k // per_row)
         shifts.append(shift)
-    return copies(program, match, shifts)
+    many, match = copies(program, match, shifts)
+    if asked > count:  # more asked than a program's parts draw: the ones drawn weigh all of them
+        k = asked / count
+        match = match.model_copy(update={
+            "typical_mass_kg": match.typical_mass_kg * k if match.typical_mass_kg else None,
+            "density_kg_per_m3": match.density_kg_per_m3 * k if match.density_kg_per_m3 else None})
+    return many, match
 
 
 def hand_of(program: ShapeProgram, match: ConceptMatch, count: int) -> tuple[ShapeProgram, ConceptMatch]:

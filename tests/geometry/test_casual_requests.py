@@ -127,3 +127,13 @@ def test_a_word_two_slips_from_another_with_other_consonants_is_left_as_written(
 
     vocab = {w for noun in concepts.noun_index() for w in noun.split()}
     assert not [c for c in corrections(f"a {word}", vocab) if c[0] == word]
+
+
+def test_a_pack_of_more_straps_than_a_program_draws_weighs_all_of_them() -> None:
+    """'a pack of 6 bungee cords' was one cord of one cord's mass (straps were never grouped): as many cords as the
+    64 parts hold lie side by side (4 of 15 parts), weighing the 6."""
+    from tests.geometry.test_mass_classes import planned_mass
+
+    d, one = catalogue.design_from_text("a pack of 6 bungee cords"), catalogue.design_from_text("a bungee cord")
+    assert len(d.program.parts) == 4 * len(one.program.parts)
+    assert 0.8 * 6 <= planned_mass("a pack of 6 bungee cords") / planned_mass("a bungee cord") <= 1.2 * 6
