@@ -759,7 +759,7 @@ _TASK_CLAUSE = re.compile(r"\s*,?\s+(?:(?:(?:that|which|so that|so)\s+)?" + _ROB
 def _task_clause_stripped(text: str) -> str:
     """The description without a request's opening ('can you make', 'I need') or a trailing clause about the robot's
     task (the object it names is the head)."""
-    commanded = _COMMAND_OPENING.sub("", text)
+    commanded = _COMMAND_OPENING.sub("", _LABEL_OPENING.sub("", text))
     if commanded != text:  # ('put that cake back': the verb's particle, not the object's)
         commanded = _TRAILING_PARTICLE.sub("", commanded)
     stripped = _TASK_CLAUSE.sub("", _REQUEST_OPENING.sub("", commanded))
@@ -795,7 +795,12 @@ _COMMAND_OPENING = re.compile(
     r"(?:(?:(?:pick|grab|lift|scoop|fish)\s+up|(?:hand|pass|bring|get|grab|fetch|give|toss|throw)\s+(?:me|us))\s+(?:" + _DETERMINER
     + r"\s*)?|(?:grab|lift|move|put|place|set|toss|throw|chuck|take|carry|fetch|bring|get|pass|hand|stack|load|unload|"
     r"stow|hang|shift|slide|collect|clear|remove|transfer|return|store|pack|bag|box|hold|retrieve|grasp|pick)\s+"
-    + _DETERMINER + r"\s*)", re.IGNORECASE)
+    + _DETERMINER + r"\s*|(?:(?:i'?m|i\s+am|we'?re|we\s+are)\s+)?(?:looking|searching|asking)\s+for\s+(?:" + _DETERMINER
+    + r"\s*)?|(?:someone|somebody|a\s+customer|the\s+customer)\s+(?:left|dropped|returned|brought\s+in)\s+" + _DETERMINER
+    + r"\s*)", re.IGNORECASE)
+# a label before the object, as on a ticket or a list ('item: mitten', 'order 42: plush zebra', 'next up - towel')
+_LABEL_OPENING = re.compile(r"^\s*(?:item|items|order|ticket|job|task|product|sku|object|next\s+up|next|lot|no\.?)"
+                            r"\s*(?:#?\s*\d+)?\s*[:#\-\u2013]\s*", re.IGNORECASE)
 _A_COUPLE = re.compile(r"\b(?:an?\s+)?couple\s+(?:of\s+)?(?=[a-z])", re.IGNORECASE)  # ('a couple of feijoas' was a
 # generic block: two of them)
 # a speaker unsure of the name ('some sort of yogurt stick', 'the party hat thing': generic blocks)

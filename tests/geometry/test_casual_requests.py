@@ -32,6 +32,10 @@ TEMPLATES = [
     "the {} thing",
     "some sort of {}",
     "{} that came back",
+    "item: {}",
+    "order 42: {}",
+    "looking for the {}",
+    "someone left a {} here",
 ]
 
 
