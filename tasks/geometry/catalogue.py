@@ -764,6 +764,11 @@ def _task_clause_stripped(text: str) -> str:
         commanded = _TRAILING_PARTICLE.sub("", commanded)
     stripped = _TASK_CLAUSE.sub("", _REQUEST_OPENING.sub("", commanded))
     stripped = _TRAILING_FILLER.sub("", _TRAILING_COMMAND.sub("", stripped))
+    others = _OTHER_OBJECTS.search(stripped)  # 'plush axolotl, then the towel': the first one named
+    if others is not None and re.search(r"[a-z]", stripped[: others.start()], re.IGNORECASE) \
+            and not re.search(r"\b(?:with|w/|has|having)\b", stripped[: others.start()], re.IGNORECASE):  # ('with a
+        # rainbow mane and a gold horn': the unicorn's features)
+        stripped = stripped[: others.start()]
     stripped = _A_COUPLE.sub("two ", _SORT_OF.sub("", stripped))
     stripped = _THING_AFTER.sub(lambda m: m.group(1) if _is_noun_word(m.group(1)) else m.group(0), stripped)
     bed = _BED_SIZE_AFTER.search(stripped)
@@ -829,6 +834,11 @@ _TRAILING_COMMAND = re.compile(r"\s*[-\u2013\u2014,;:]+\s*(?:(?:and|then|pls|ple
                                r"take|throw|chuck|stack|fold|hang|dump|wash|return|store|leave|place|drop|send|get|"
                                r"bring|carry|give|hand|pass|tidy|clear|lift|grab|pick)\s+(?:it|them|that|those|this|these|"
                                r"one)\b.*$", re.IGNORECASE)
+# more objects after the first, each with its own determiner ('tomato then the towel', 'axolotls or the sponge',
+# 'fishball plus the bag it came in'): the first is the request's object ('a cup and saucer', 'fish and chips' have
+# no determiner and stay one object)
+_OTHER_OBJECTS = re.compile(r"\s*,?\s+(?:and\s+then|then|and|or|plus|also|as\s+well\s+as|followed\s+by|&)\s+(?:also\s+)?"
+                            r"(?:the|a|an|its|their|that|this|my|your|some|his|her|our)\s+[a-z]", re.IGNORECASE)
 # filler a person types after the object ('... real quick', '... asap thanks')
 _TRAILING_FILLER = re.compile(r"[\s,.!]+(?:(?:real|really|super)\s+quick(?:ly)?|quick(?:ly)?|asap|pls|plz|please|"
                               r"thx|thanks|thank\s+you|ta|for\s+me|cheers)(?:[\s,.!]+(?:pls|plz|please|thx|thanks|"

@@ -141,3 +141,19 @@ def test_a_pack_of_more_straps_than_a_program_draws_weighs_all_of_them() -> None
     d, one = catalogue.design_from_text("a pack of 6 bungee cords"), catalogue.design_from_text("a bungee cord")
     assert len(d.program.parts) == 4 * len(one.program.parts)
     assert 0.8 * 6 <= planned_mass("a pack of 6 bungee cords") / planned_mass("a bungee cord") <= 1.2 * 6
+
+
+@pytest.mark.parametrize(("text", "entry_of"), [("tomato then the towel", "tomato"), ("axolotl or the sponge", "axolotl"),
+                                                ("croissant plus the bag it came in", "croissant"),
+                                                ("a plush dog and a plush cat", "a plush dog")])
+def test_the_first_of_several_objects_named_is_the_object(text: str, entry_of: str) -> None:
+    """More objects after the first, each with its own determiner, are not the request's object ('tomato then the
+    towel' built the towel)."""
+    assert _entry(text) == _entry(entry_of)
+
+
+def test_features_listed_after_with_stay_the_objects() -> None:
+    """'with a rainbow mane and a gold horn' lists the unicorn's features, not a second object."""
+    said = "big fluffy white unicorn plushie with a rainbow mane and a gold horn"
+    assert catalogue._task_clause_stripped(said).endswith("and a gold horn")
+    assert _entry("big fluffy white unicorn plushie with a rainbow mane and a gold horn") == _entry("unicorn plushie")
