@@ -157,3 +157,10 @@ def test_features_listed_after_with_stay_the_objects() -> None:
     said = "big fluffy white unicorn plushie with a rainbow mane and a gold horn"
     assert catalogue._task_clause_stripped(said).endswith("and a gold horn")
     assert _entry("big fluffy white unicorn plushie with a rainbow mane and a gold horn") == _entry("unicorn plushie")
+
+
+def test_a_short_coiled_cord_builds() -> None:
+    """'halter leads 40cm' (a lead rope coiled in a hank, said short) crashed with a negative torus radius."""
+    d = catalogue.design_from_text("halter leads 40cm")
+    assert d.entry == "lead_rope" and all(p.primitive.major_radius_m > 0 for p in d.program.parts
+                                          if p.primitive.kind == "torus")

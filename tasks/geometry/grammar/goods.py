@@ -3354,7 +3354,8 @@ def coiled_as_hank(p: StrapParams) -> bool:
 
 def _hank(p: StrapParams) -> list[Part]:
     """A rope of length 1 coiled in `turns` loops stacked into one ring lying on the ground: the ring's section holds
-    the cord's volume at HANK_PACKING; single loops, a little off round and tilted, are drawn over it."""
+    the cord's volume at HANK_PACKING; single loops, a little off round and tilted, are drawn over it (a loop's
+    radius at least a quarter of the ring's: a short thick cord, 'halter leads 40cm', made it negative, a crash)."""
     R = 1.0 / (2 * np.pi * p.turns)
     d = max(p.width, 1e-4)
     rb = max(float(np.sqrt(d * d / (4 * HANK_PACKING * 2 * np.pi * R))), 0.6 * d)
@@ -3365,7 +3366,7 @@ def _hank(p: StrapParams) -> list[Part]:
         lift = rb * np.sin(a * 3.0)
         spread = rb * np.cos(a * 3.0) * 0.8
         tilt = (4.0 * np.sin(1.7 * i), 4.0 * np.cos(2.3 * i), 0.0)
-        parts.append(torus(f"loop {i + 1}", R + spread, r, (0.3 * rb * np.cos(a), 0.3 * rb * np.sin(a),
+        parts.append(torus(f"loop {i + 1}", max(R + spread, 0.25 * R), r, (0.3 * rb * np.cos(a), 0.3 * rb * np.sin(a),
                                                           rb + 0.8 * lift), rot=tilt))
     if p.ends in ("plug", "coupling"):
         parts += _coil_end(R, rb, d, p.ends)
