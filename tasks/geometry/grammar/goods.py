@@ -211,10 +211,10 @@ def sheet(p: SheetParams) -> list[Part]:
     if p.state == "crumpled":
         if p.stiff:
             return wad(wad_size(w), seed=0.3 + 3 * w)
-        d, height = crumpled_size(w)
         if p.quilt:  # a sleeping bag or a duvet bunched up: its flaps puffy baffled tubes, its zip along one
+            d, height = crumpled_size(w)
             return quilted_heap(d, height, t * PUFF, seed=0.3 + 3 * w, zip_=p.zip)
-        return creased_heap(d, height, t, seed=0.3 + 3 * w)
+        return cloth_heap(p, t)
     if p.state == "twisted":
         return _twisted(p)
     if p.state == "knotted":
@@ -2189,6 +2189,166 @@ def quilted_heap(diameter: float, height: float, t: float, seed: float = 0.3, zi
     return parts
 
 
+CRUMPLE_THIN = 0.0025  # a cloth thinner than this / its flat length (a bed sheet, a tablecloth, a napkin, a silk scarf)
+# crumples into many thin, sharp folds with thin edges draped out on the floor [-]
+CRUMPLE_SOFT = 0.0038  # a cloth at least this thick / its length and no towel's border (a fleece or wool blanket, a
+# throw) bunches into a few thick, soft rolls; between the two (a towel, a tea towel) the creased terry heap [-]
+CRUMPLE_CELLS = 64  # the draft mesher's cells along a heap's extent (about 2.2 of its radii) [-]
+THIN_FLAP_CELLS = 2.2  # a thin cloth's built flap at least this many of those cells thick [-]
+THIN_FOLDS = 12  # a thin cloth's sharp folds running from its heap's top down to the floor (two bars each) [-]
+SOFT_ROLLS = 5  # thick soft rolls over a bunched blanket (two segments each) [-]
+STRIP_WIDTH = 0.4  # a sheet narrower than this / its length (a scarf, a runner) shows its two ends trailing out [-]
+
+
+def crumple_class(p: SheetParams) -> Literal["thin", "terry", "soft"]:
+    """How a cloth bunches (its thickness / its flat length): 'thin' (a sheet, a tablecloth, a napkin, a silk scarf:
+    many thin sharp folds), 'soft' (a blanket, a throw: a few thick soft rolls) or 'terry' (a towel, or anything with
+    a towel's woven border: the creased heap of overlapping flaps)."""
+    if p.thickness < CRUMPLE_THIN:
+        return "thin"
+    if p.thickness >= CRUMPLE_SOFT and not p.border:
+        return "soft"
+    return "terry"
+
+
+def _ridge_euler(along: np.ndarray, up: np.ndarray, roll: float = 0.0) -> tuple[float, float, float]:
+    """Extrinsic xyz Euler angles [deg] of a part whose local x lies along `along`, its local z as near `up` as
+    square to it allows, turned `roll` degrees about its own x."""
+    x = along / np.linalg.norm(along)
+    z = up - np.dot(up, x) * x
+    z = z / np.linalg.norm(z)
+    frame = np.stack([x, np.cross(z, x), z], axis=1)
+    turn = Rotation.from_matrix(frame) * Rotation.from_euler("x", roll, degrees=True)
+    return tuple(float(e) for e in turn.as_euler("xyz", degrees=True))  # type: ignore[return-value]
+
+
+def _flap_decor(p: SheetParams, k: int, centre: np.ndarray, turn: Rotation, length: float, width: float,
+                t: float) -> list[Part]:
+    """A flap's share of the cloth's pattern, lying on its top: a stripe across it (and one along it for a check), a
+    towel's woven border band near its outer end, or a hem band along that end; none for a plain cloth."""
+    along, across, up = (turn.apply(v) for v in ([1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]))
+    rot = tuple(float(e) for e in turn.as_euler("xyz", degrees=True))
+    lift = centre + 0.35 * t * up
+    out: list[Part] = []
+    if p.stripes:
+        at = lift + (0.12 + 0.12 * np.sin(1.9 * k)) * length * along
+        out.append(box(f"stripe {2 * k + 1}", (0.2 * length, 0.96 * width, 0.9 * t), tuple(at), edge=0.3 * t, rot=rot,
+                       blend=0.1 * t))
+        if p.checks:
+            at = lift + 0.18 * np.cos(2.3 * k) * width * across
+            out.append(box(f"check {2 * k + 1}", (0.9 * length, 0.2 * width, 0.95 * t), tuple(at), edge=0.3 * t,
+                           rot=rot, blend=0.1 * t))
+    if p.border or p.hem:
+        at = lift + (0.5 - (0.2 if p.border else 0.07)) * length * along
+        out.append(box(f"{'border' if p.border else 'hem'} {k + 1}", (0.1 * length, 0.96 * width, 0.9 * t), tuple(at),
+                       edge=0.3 * t, rot=rot, blend=0.1 * t))
+    return out
+
+
+def cloth_heap(p: SheetParams, t: float) -> list[Part]:
+    """A cloth crumpled and dropped, drawn by how it bunches (crumple_class): a thin cloth as a low mound under many
+    thin flaps draped out to the floor, crossed by sharp folds running from its top down to the floor; a blanket as a
+    rounder mound under thick soft-edged flaps with a few thick soft rolls over it and rolled edges; a towel as the
+    creased heap. Each keeps its pattern (stripes, checks, a border or hem band on its flaps) and its fringe; a strip
+    (a scarf) its two ends trailing out of the heap. (One thick creased heap for every cloth: a crumpled bed sheet,
+    blanket and tablecloth all read as a towel to blind judges, session 47.)"""
+    w = p.width
+    d, height = crumpled_size(w)
+    seed = 0.3 + 3 * w
+    kind = crumple_class(p)
+    if kind == "terry" and not (p.stripes or p.border or p.hem or p.fringe) and w >= STRIP_WIDTH:
+        return creased_heap(d, height, t, seed=seed)
+    R = d / 2
+    cell = 2.2 * R / CRUMPLE_CELLS
+    if kind == "thin":
+        tl = min(t, max(p.thickness, THIN_FLAP_CELLS * cell))
+        body = ellipsoid("body", (0.6 * R, 0.5 * R, 0.6 * height), (0.04 * R, 0.0, 0.0))
+        tiers = ((7, 0.55, 0.3, 0.9, 0.62), (4, 0.22, 0.36, 0.55, 0.5))
+    elif kind == "soft":
+        tl = 1.2 * t
+        body = ellipsoid("body", (0.62 * R, 0.54 * R, 0.66 * height), (0.04 * R, 0.0, 0.0))
+        tiers = ((6, 0.5, 0.32, 0.85, 0.8), (3, 0.18, 0.6, 0.6, 0.6))
+    else:
+        tl = t
+        body = ellipsoid("body", (0.62 * R, 0.52 * R, 0.6 * height), (0.05 * R, 0.0, 0.0))
+        tiers = ((6, 0.5, 0.32, 0.85, 0.8), (4, 0.18, 0.6, 0.6, 0.6))
+    parts = [body]
+    decor: list[Part] = []
+    ends: list[tuple[np.ndarray, Rotation, float, float]] = []  # the tier-0 flaps' (centre, turn, length, width)
+    flaps: list[tuple[np.ndarray, Rotation, float, float, int]] = []  # every flap's, and its tier
+    strip = w < STRIP_WIDTH
+    for ti, i, wd, length, a, r_, drop, turn in _heap_flaps(R, height, seed, tiers, 0.37):
+        width = (wd + 0.15 * np.cos(1.7 * i)) * R
+        if strip and ti == 0 and i < 2:  # a strip's two ends trailing out along the floor
+            length, width, drop = 2.2 * R, min(width, 0.9 * w), 0.25 * height
+            turn = Rotation.from_euler("z", np.degrees(a), degrees=True) * Rotation.from_euler(
+                "y", np.degrees(np.arctan2(drop, length)), degrees=True)
+        centre = np.array([r_ * np.cos(a), r_ * np.sin(a), drop / 2 + 0.6 * tl + 0.1 * height * ti])
+        if strip and ti == 0 and i < 2:
+            centre[:2] = (0.45 * R + 0.5 * length) * np.array([np.cos(a), np.sin(a)])
+            centre[2] = drop / 2 + 0.6 * tl
+        rot = tuple(float(e) for e in turn.as_euler("xyz", degrees=True))
+        parts.append(box(f"{'corner' if ti == 0 else 'flap'} {i + 1}", (length, width, tl), tuple(centre),
+                         edge=(0.49 if kind == "soft" else 0.45) * tl, rot=rot, blend=0.03 * R))
+        flaps.append((centre, turn, length, width, ti))
+        if ti == 0:
+            ends.append((centre, turn, length, width))
+            decor += _flap_decor(p, i, centre, turn, length, width, tl)
+    if kind == "thin":  # many thin, sharp folds: square bars turned 45 deg about their length (a crest up), sunk
+        # into the cloth, running from the top down over the mound and the draped flaps to the floor
+        for i, (a, r, _) in enumerate(_rng_angles(THIN_FOLDS, seed + 0.5)):
+            sq = (0.06 + 0.015 * np.sin(2.3 * i)) * R
+            a2 = a + 0.35 * np.sin(1.7 * i + seed)
+            a0 = a - 0.3 * np.sin(1.7 * i + seed)  # (the folds start apart, no star at the top)
+            pts = [np.array([(0.12 + 0.22 * r) * R * np.cos(a0), (0.12 + 0.22 * r) * R * np.sin(a0),
+                             (0.58 - 0.1 * r) * height]),
+                   np.array([0.52 * R * np.cos(0.5 * (a + a2)), 0.52 * R * np.sin(0.5 * (a + a2)), 0.4 * height]),
+                   np.array([(0.85 + 0.12 * np.sin(2.9 * i)) * R * np.cos(a2),
+                             (0.85 + 0.12 * np.sin(2.9 * i)) * R * np.sin(a2), 0.3 * sq])]
+            for j in range(2):
+                lo, hi = pts[j], pts[j + 1]
+                seg = hi - lo
+                normal = np.array([-seg[2] * seg[0], -seg[2] * seg[1], float(np.hypot(seg[0], seg[1])) ** 2])
+                parts.append(box(f"fold {i + 1}" if j == 0 else f"fold {i + 1} {j + 1}",
+                                 (float(np.linalg.norm(seg)) + 0.2 * sq, sq, sq), tuple(0.5 * (lo + hi)),
+                                 edge=0.1 * sq, rot=_ridge_euler(seg, normal, 45.0), blend=0.5 * sq))
+    elif kind == "soft":  # a few thick soft rolls over the top and down its side, and rolled edges on the floor
+        rr = 0.1 * R + 0.4 * tl
+        for i, (a, r, _) in enumerate(_rng_angles(SOFT_ROLLS, seed + 0.9)):
+            a2 = a + 0.5 * np.sin(1.7 * i + seed)
+            top = np.array([0.25 * R * r * np.cos(a), 0.25 * R * r * np.sin(a), 0.62 * height])
+            mid = np.array([0.5 * R * np.cos(0.5 * (a + a2)), 0.5 * R * np.sin(0.5 * (a + a2)), 0.42 * height])
+            low = np.array([0.85 * R * np.cos(a2), 0.85 * R * np.sin(a2), 0.6 * rr])
+            parts += [limb(f"fold {i + 1}", top, mid, rr, blend=0.4 * rr),
+                      limb(f"fold {i + 1} 2", mid, low, 0.9 * rr, blend=0.4 * rr)]
+        for k, (centre, turn, length, width) in enumerate(ends[:3]):  # a flap's outer edge rolled over
+            across = turn.apply([0.0, 1.0, 0.0])
+            tip = centre + turn.apply([0.45 * length, 0.0, 0.3 * tl])
+            parts.append(limb(f"rolled edge {k + 1}", tip - 0.45 * width * across, tip + 0.45 * width * across,
+                              0.8 * tl, blend=0.3 * tl))
+    else:  # a towel's narrow folds over the top
+        for i, (a, r, turn_deg) in enumerate(_rng_angles(5, seed)):
+            rho = 0.3 * R * r
+            parts.append(ellipsoid(f"fold {i + 1}", ((0.16 + 0.06 * np.sin(i)) * R, 0.03 * R + 0.5 * tl,
+                                                     0.06 * height), (rho * np.cos(a), rho * np.sin(a), 0.56 * height),
+                                   rot=(0, 0, float(np.degrees(a) + 90 + turn_deg)), blend=0.04 * R))
+    if p.fringe:  # tassels beyond the outer ends of two flaps (a strip's two ends)
+        for k, (centre, turn, length, width) in enumerate(ends[:2]):
+            along, across = turn.apply([1.0, 0.0, 0.0]), turn.apply([0.0, 1.0, 0.0])
+            n = 4
+            tlen = min(0.35 * width, 0.2 * length)
+            for j in range(n):
+                a0 = centre + 0.5 * length * along + (-0.4 + 0.8 * j / (n - 1)) * width * across
+                a0[2] = max(a0[2], 0.5 * tl)
+                b0 = a0 + tlen * np.array([along[0], along[1], 0.0]) / np.hypot(along[0], along[1])
+                b0[2] = 0.5 * tl
+                parts.append(limb(f"tassel {n * k + j + 1}", a0, b0, max(0.45 * tl, 0.9 * cell), blend=0.2 * tl))
+    room = MAX_PARTS - 1 - len(parts)
+    parts += decor[:room]
+    parts.append(_op(box("ground", (8, 8, 8), (0, 0, 4)), "intersect"))
+    return parts
+
+
 WAD_FACETS = 22  # planes cutting a paper wad's core into creased facets
 WAD_CREASES = 6  # folded ridges standing out of it
 WAD_VALLEYS = 8  # creases pressed into it
@@ -2587,22 +2747,47 @@ def garment(p: GarmentParams) -> list[Part]:
     ground = parts.pop()
     R = d / 2
     if p.kind == "top":
-        # one sleeve trails out over the floor, the other only shows its cuff; the hood lies over the heap's edge
-        for k, (a0, bend, ln, out) in enumerate(((0.35, 0.9, 0.42, 0.1), (2.6, -0.6, 0.06, -0.12))):
+        # both sleeves out over the floor, flat (a long one trailing, the other bent back), each ending in its cuff
+        # (a short sleeve in its hem band); the collar (or a neckline's band) on the heap's top, a shirt's buttons
+        # down from it and the body's hem band along the floor; the hood over the heap's edge. (One round sleeve out
+        # of a lobed heap read as a bird or a ladle: session 47's crumpled shirt.)
+        for k, (a0, bend, ln, out) in enumerate(((0.35, 0.9, 0.42, 0.1), (2.5, -1.1, 0.24, 0.0))):
             if p.sleeves == "none":
                 break
             side = "left" if k == 0 else "right"
             ln = ln if p.sleeves == "long" else min(ln, 0.16)
             sr = 0.11 if p.sleeves == "long" else 0.13
-            start = np.array([0.6 * R * np.cos(a0), 0.6 * R * np.sin(a0), 0.3 * height])
-            mid = np.array([(R + out) * np.cos(a0), (R + out) * np.sin(a0), 1.1 * t])
+            start = np.array([0.55 * R * np.cos(a0), 0.55 * R * np.sin(a0), 0.25 * height])
+            mid = np.array([(R + out) * np.cos(a0), (R + out) * np.sin(a0), 0.8 * t])
             a1 = a0 + bend
             end = mid + ln * np.array([np.cos(a1), np.sin(a1), 0])
-            end[2] = 1.1 * t
-            parts += _flat_chain(f"{side} sleeve", [start, mid, end], sr, 2.2 * t, blend=0.04)
-            if p.cuffs and p.sleeves == "long":
-                dd = (end - mid) / np.linalg.norm(end - mid)
-                parts.append(_flat_limb(f"{side} cuff", end - 0.07 * dd, end + 0.03 * dd, 0.9 * sr, 2.5 * t, 0.005))
+            end[2] = 0.8 * t
+            parts += [_flat_limb(f"{side} sleeve", start, mid, sr, 1.6 * t, 0.04),  # (narrowing to its cuff)
+                      _flat_limb(f"{side} sleeve 2", mid, end, 0.75 * sr, 1.4 * t, 0.04)]
+            dd = (end - mid) / np.linalg.norm(end - mid)
+            band = "cuff" if p.sleeves == "long" else "hem"
+            parts.append(box(f"{side} {band}", (0.07, 1.6 * sr, 1.8 * t), tuple(end - 0.02 * dd), edge=0.4 * t,
+                             rot=(0, 0, float(np.degrees(np.arctan2(dd[1], dd[0])))), blend=0.004))
+        top = np.array([0.05 * R, 0.08 * R, 0.62 * height])
+        if not p.hood:  # the neckline on the heap's top: a band round the neck opening, a shirt's collar points
+            parts.append(scaled(torus("collar band" if p.collar else "neckline", 0.09, 0.3 * t + 0.012, top,
+                                      rot=(12, -8, 20)), (1.2, 1.0, 1.0)))
+            parts.append(_op(ellipsoid("neck opening", (0.08, 0.065, 0.05), top + np.array([0.0, 0.0, 0.03]),
+                                       rot=(12, -8, 20)), "subtract", 0.01))
+            if p.collar:
+                for j, sgn in enumerate((-1.0, 1.0)):
+                    parts.append(box(f"collar {j + 1}", (0.11, 0.06, 0.5 * t),
+                                     tuple(top + np.array([-0.07, sgn * 0.05, 0.02])), edge=0.2 * t,
+                                     rot=(sgn * 14.0, -18.0, 20.0 + sgn * 35.0), blend=0.01))
+            if p.zip and p.collar:  # a shirt's buttons down its placket from the collar
+                for j in range(3):
+                    at = top + np.array([-0.14 - 0.09 * j, -0.02 * j, -0.11 * height * (j + 1)])
+                    parts.append(cylinder(f"button {j + 1}", 0.016, 0.5 * t, tuple(at), rot=(0, -25, 0),
+                                          blend=0.004))
+        a_hem = 4.3
+        hem_at = np.array([0.62 * R * np.cos(a_hem), 0.62 * R * np.sin(a_hem), 0.3 * height])
+        parts.append(box("hem", (0.06, 0.7 * R, 1.2 * t), tuple(hem_at), edge=0.4 * t,
+                         rot=(0, 30, float(np.degrees(a_hem))), blend=0.02))
         if p.hood:
             hc = np.array([-0.5 * R, -0.45 * R, 0.6 * height])
             parts.append(ellipsoid("hood", (0.22, 0.18, 0.12), hc, blend=0.03, rot=(0, -15, 35)))
