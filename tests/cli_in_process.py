@@ -10,14 +10,15 @@ import sys
 import pytest
 
 
-def cli_in_process(*args: str, api: str, monkeypatch: pytest.MonkeyPatch,
-                   capsys: pytest.CaptureFixture[str]) -> tuple[int, str]:
-    """(exit code, stderr) of `deformsmith ARGS`."""
+def cli_run(*args: str, api: str | None, monkeypatch: pytest.MonkeyPatch,
+            capsys: pytest.CaptureFixture[str]) -> tuple[int, str, str]:
+    """(exit code, stdout, stderr) of `deformsmith ARGS`; `api`: the session's Prefect server (conftest's
+    `prefect_api`), or None for a command that runs no flows (card, inspect, view: it starts no server either)."""
     from cache.runtime import local_api_env
     from flows.cli import main as cli_main
     from flows.cli.apps import app
 
-    for key, value in local_api_env(api).items():
+    for key, value in (local_api_env(api) if api is not None else {}).items():
         monkeypatch.setenv(key, value)
     monkeypatch.setattr(cli_main, "app", app, raising=False)
     monkeypatch.setattr(sys, "argv", ["deformsmith", *args])
@@ -27,4 +28,12 @@ def cli_in_process(*args: str, api: str, monkeypatch: pytest.MonkeyPatch,
         cli_main.main()
     except SystemExit as exc:
         code = exc.code or 0
-    return int(code), capsys.readouterr().err  # type: ignore[call-overload]
+    out = capsys.readouterr()
+    return int(code), out.out, out.err  # type: ignore[call-overload]
+
+
+def cli_in_process(*args: str, api: str | None, monkeypatch: pytest.MonkeyPatch,
+                   capsys: pytest.CaptureFixture[str]) -> tuple[int, str]:
+    """(exit code, stderr) of `deformsmith ARGS`."""
+    code, _, err = cli_run(*args, api=api, monkeypatch=monkeypatch, capsys=capsys)
+    return code, err

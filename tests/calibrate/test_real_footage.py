@@ -36,10 +36,18 @@ def centres() -> np.ndarray:
     return bouncing_centres(DROP, R, E, FPS, hold_s=0.1)
 
 
-def test_a_hand_that_holds_and_leaves_is_not_the_object(centres: np.ndarray) -> None:
+@pytest.fixture(scope="module")
+def drawn(centres: np.ndarray) -> np.ndarray:
+    """clean_frames(CAM, centres, R), drawn once for the module (~1 s): each test breaks its own copy."""
+    frames = clean_frames(CAM, centres, R)
+    frames.setflags(write=False)
+    return frames
+
+
+def test_a_hand_that_holds_and_leaves_is_not_the_object(drawn: np.ndarray) -> None:
     """An arm (a skin-coloured bar, far bigger than the ball) holds the ball, then swings away through the picture
     while the ball falls: the largest region is the arm, the tracked one must be the ball."""
-    frames = clean_frames(CAM, centres, R)
+    frames = drawn.copy()
     hold = int(0.1 * FPS)
     for i in range(len(frames)):
         x0 = 80 + (0 if i < hold else 2 * (i - hold))  # the arm leaves to the right, two pixels a frame
@@ -56,10 +64,10 @@ def test_a_hand_that_holds_and_leaves_is_not_the_object(centres: np.ndarray) -> 
     assert float(np.median(tr.box_width)) == pytest.approx(2 * R * CAM.px_per_m, abs=2.0)
 
 
-def test_a_shadow_over_the_scene_while_the_ball_falls_is_not_the_object(centres: np.ndarray) -> None:
+def test_a_shadow_over_the_scene_while_the_ball_falls_is_not_the_object(drawn: np.ndarray) -> None:
     """The filmer's soft shadow darkens the left half of the scene by 15 % in the first half of the clip (their
     camera brightened as they stepped away): the ball is tracked through it and its rebound is the drawn one."""
-    frames = clean_frames(CAM, centres, R)
+    frames = drawn.copy()
     xx = np.arange(CAM.width_px, dtype=np.float32)
     shade = 1.0 - 0.15 / (1.0 + np.exp((xx - 95.0) / 8.0))  # a soft edge across the ball's column
     for i in range(len(frames) // 2):
@@ -142,10 +150,10 @@ def test_the_settle_rule_follows_a_rolling_line_and_refuses_a_clip_still_bouncin
     assert settle_time(t, y, 0.0, 1.5, 10) is None
 
 
-def test_the_background_takes_the_clear_region_at_rest_not_a_speck_of_noise(centres: np.ndarray) -> None:
+def test_the_background_takes_the_clear_region_at_rest_not_a_speck_of_noise(drawn: np.ndarray) -> None:
     """A few pixels that change between the first and the last frames below the ball's rest (a speck at the
     picture's bottom) are not the object at rest: the reference is the ball's, of its area and colour."""
-    frames = clean_frames(CAM, centres, R)
+    frames = drawn.copy()
     frames[-len(frames) // 3:, 236:239, 10:13] += 25.0
     frames = degrade(frames, 3.0, 80)
     thr = noise_threshold(frames)
@@ -155,10 +163,10 @@ def test_the_background_takes_the_clear_region_at_rest_not_a_speck_of_noise(cent
     assert np.linalg.norm(np.asarray(ref.colour) - np.asarray(BALL)) < 25.0
 
 
-def test_each_bounce_restitution_from_the_timing_alone(centres: np.ndarray) -> None:
+def test_each_bounce_restitution_from_the_timing_alone(drawn: np.ndarray) -> None:
     """The flights between impacts give each impact's restitution without a scale (a clip whose size is unsure
     still shows whether its ball's restitution changes with the speed): the drawn 0.6 at every bounce long enough."""
-    frames = degrade(clean_frames(CAM, centres, R), 3.0, 80)
+    frames = degrade(drawn.copy(), 3.0, 80)
     d = analyse(track_object(frames, FPS))
     assert len(d.bounces) >= 3
     for b in d.bounces:

@@ -12,7 +12,7 @@ from contracts.errors import InputError
 from tasks.calibrate.metrics import analyse, impact_amplitude, video_metrics
 from tasks.calibrate.scale import video_scale
 from tasks.calibrate.synthetic import Camera, bouncing_centres, disc_video, scene
-from tasks.calibrate.track import track_object
+from tasks.calibrate.track import Track, track_object
 from tasks.calibrate.video import read_video, write_video
 
 FPS, DROP, R = 240.0, 0.15, 0.02
@@ -26,9 +26,14 @@ def bounce() -> tuple[np.ndarray, np.ndarray]:
     return disc_video(CAM, centres, R, noise_grey=4.0, jpeg_quality=75), centres
 
 
-def test_the_tracked_rebound_equals_the_drawn_one(bounce: tuple[np.ndarray, np.ndarray]) -> None:
-    frames, _ = bounce
-    tr = track_object(frames, FPS)
+@pytest.fixture(scope="module")
+def bounce_track(bounce: tuple[np.ndarray, np.ndarray]) -> Track:
+    """track_object of the bounce's video, once for the tests that read the same track."""
+    return track_object(bounce[0], FPS)
+
+
+def test_the_tracked_rebound_equals_the_drawn_one(bounce_track: Track) -> None:
+    tr = bounce_track
     d = analyse(tr)
     assert tr.dropped == 0
     assert d.left_floor and d.resting
@@ -39,9 +44,8 @@ def test_the_tracked_rebound_equals_the_drawn_one(bounce: tuple[np.ndarray, np.n
     assert d.drop_px == pytest.approx(DROP * CAM.px_per_m, rel=0.02)
 
 
-def test_the_scale_from_the_size_and_from_gravity(bounce: tuple[np.ndarray, np.ndarray]) -> None:
-    frames, _ = bounce
-    d = analyse(track_object(frames, FPS))
+def test_the_scale_from_the_size_and_from_gravity(bounce_track: Track) -> None:
+    d = analyse(bounce_track)
     by_size = video_scale(d, 2 * R, None)
     assert by_size.source == "size" and by_size.metres_per_px == pytest.approx(1e-3, rel=0.04)
     by_gravity = video_scale(d, None, None)

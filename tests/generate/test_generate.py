@@ -12,6 +12,7 @@ from pathlib import Path
 import pytest
 
 from tasks.record.fingerprint import content_fingerprint
+from tests.cli_in_process import cli_run
 
 REPO = Path(__file__).resolve().parents[2]
 # The default asset is also the cheapest to simulate at draft: draft fixes ~20 cells along the longest extent, so a
@@ -143,28 +144,26 @@ def test_killed_generate_resumes_and_yields_the_same_asset(tmp_path: Path) -> No
     assert not [p for p in tmp_path.iterdir() if ".partial-" in p.name]
 
 
-def _cli(*args: str, env: dict[str, str] | None = None) -> subprocess.CompletedProcess[str]:
-    return subprocess.run([sys.executable, "-m", "flows.cli.main", *args], capture_output=True, text=True, timeout=120,
-                          env=dict(os.environ, PYTHONPATH=str(REPO), **(env or {})), cwd=REPO)
-
-
-def test_view_names_the_recordings_and_fails_clearly_without_a_display(tmp_path: Path) -> None:
+def test_view_names_the_recordings_and_fails_clearly_without_a_display(
+        tmp_path: Path, monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]) -> None:
+    """(In this process, tests/cli_in_process.py: `view` and `inspect` run no flows.)"""
     (tmp_path / "recordings").mkdir()
     for name in ("L1_place.rrd", "L2_drop.rrd"):
         (tmp_path / "recordings" / name).write_bytes(b"")
-    dry = _cli("view", str(tmp_path), "--dry-run")
-    assert dry.returncode == 0 and "L1_place.rrd" in dry.stdout and "L2_drop.rrd" in dry.stdout
-    env = {k: v for k, v in os.environ.items() if k not in ("DISPLAY", "WAYLAND_DISPLAY")}
-    headless = subprocess.run([sys.executable, "-m", "flows.cli.main", "view", str(tmp_path)], capture_output=True,
-                              text=True, timeout=120, env=dict(env, PYTHONPATH=str(REPO)), cwd=REPO)
-    assert headless.returncode != 0 and headless.stderr.startswith("error:")
-    empty = _cli("view", str(tmp_path / "nothing"))
-    assert empty.returncode != 0 and "no recordings" in empty.stderr
+    code, out, _ = cli_run("view", str(tmp_path), "--dry-run", api=None, monkeypatch=monkeypatch, capsys=capsys)
+    assert code == 0 and "L1_place.rrd" in out and "L2_drop.rrd" in out
+    monkeypatch.delenv("DISPLAY", raising=False)
+    monkeypatch.delenv("WAYLAND_DISPLAY", raising=False)
+    code, _, err = cli_run("view", str(tmp_path), api=None, monkeypatch=monkeypatch, capsys=capsys)
+    assert code != 0 and err.startswith("error:")
+    code, _, err = cli_run("view", str(tmp_path / "nothing"), api=None, monkeypatch=monkeypatch, capsys=capsys)
+    assert code != 0 and "no recordings" in err
 
 
-def test_inspect_a_non_asset_is_one_clear_error(tmp_path: Path) -> None:
-    out = _cli("inspect", str(tmp_path))
-    assert out.returncode != 0 and out.stderr.startswith("error:") and "asset.json" in out.stderr
+def test_inspect_a_non_asset_is_one_clear_error(tmp_path: Path, monkeypatch: pytest.MonkeyPatch,
+                                                capsys: pytest.CaptureFixture[str]) -> None:
+    code, _, err = cli_run("inspect", str(tmp_path), api=None, monkeypatch=monkeypatch, capsys=capsys)
+    assert code != 0 and err.startswith("error:") and "asset.json" in err
 
 
 def test_stale_working_directories_of_dead_processes_are_removed(tmp_path: Path) -> None:
@@ -197,7 +196,8 @@ def test_prefect_log_level_is_ours_unless_the_user_set_one(monkeypatch: pytest.M
     assert os.environ["PREFECT_LOGGING_LEVEL"] == "INFO"
 
 
-def test_view_also_opens_the_probe_recordings_the_records_name_in_the_cache(tmp_path: Path) -> None:
+def test_view_also_opens_the_probe_recordings_the_records_name_in_the_cache(
+        tmp_path: Path, monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]) -> None:
     """A default asset leaves its L1 and L2 probe recordings in the cache (#38 item 5): `view` opens them from there
     beside the asset's own, and names those the cache no longer holds."""
     import json
@@ -210,7 +210,8 @@ def test_view_also_opens_the_probe_recordings_the_records_name_in_the_cache(tmp_
     (asset / "material.json").write_text(json.dumps({"cached_recordings": {
         "recordings/L2_drop.rrd": "recordings/L2_drop-0123456789abcdef.rrd",
         "recordings/L2_lift.rrd": "recordings/L2_lift-fedcba9876543210.rrd"}}))
-    dry = _cli("view", str(asset), "--dry-run", env={"DEFORMSMITH_CACHE": str(cache)})
-    assert dry.returncode == 0, dry.stderr
-    assert "L3_pick_and_place.rrd" in dry.stdout and str(cache / "recordings" / "L2_drop-0123456789abcdef.rrd") in dry.stdout
-    assert "L2_lift" not in dry.stdout and "recordings/L2_lift.rrd: not in the asset" in dry.stderr
+    monkeypatch.setenv("DEFORMSMITH_CACHE", str(cache))
+    code, out, err = cli_run("view", str(asset), "--dry-run", api=None, monkeypatch=monkeypatch, capsys=capsys)
+    assert code == 0, err
+    assert "L3_pick_and_place.rrd" in out and str(cache / "recordings" / "L2_drop-0123456789abcdef.rrd") in out
+    assert "L2_lift" not in out and "recordings/L2_lift.rrd: not in the asset" in err

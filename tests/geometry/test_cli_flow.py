@@ -14,22 +14,18 @@ import trimesh
 from plyfile import PlyData
 
 from contracts.request import AssetRequest
+from tests.cli_in_process import cli_run
 
 REPO = Path(__file__).resolve().parents[2]
 
 
-def _cli(*args: str, env: dict[str, str]) -> subprocess.CompletedProcess[str]:
-    """The command against the session's Prefect server (conftest's `cli_env`: it starts none of its own)."""
-    return subprocess.run([sys.executable, "-m", "flows.cli.main", *args], cwd=REPO, capture_output=True, text=True,
-                          env=env, timeout=300)
-
-
-def test_geometry_command_writes_a_loadable_asset(tmp_path: Path, cli_env: dict[str, str]) -> None:
+def test_geometry_command_writes_a_loadable_asset(tmp_path: Path, prefect_api: str, monkeypatch: pytest.MonkeyPatch,
+                                                  capsys: pytest.CaptureFixture[str]) -> None:
     out = tmp_path / "turtle"
-    proc = _cli("geometry", "a soft plush turtle toy, about 25 cm long", "--out", str(out), "--no-cache", "--json",
-                env=cli_env)
-    assert proc.returncode == 0, proc.stderr
-    record = json.loads(proc.stdout)
+    code, stdout, err = cli_run("geometry", "a soft plush turtle toy, about 25 cm long", "--out", str(out),
+                                "--no-cache", "--json", api=prefect_api, monkeypatch=monkeypatch, capsys=capsys)
+    assert code == 0, err
+    record = json.loads(stdout)
     assert record["passed"] and record["info"]["entry"] == "plush_turtle"
     for rel in ("mesh.glb", "gaussians.ply", "geometry.json", "renders/front.png", "renders/side.png",
                 "renders/top.png", record["files"]["urdf"], "particles.zarr"):
@@ -68,8 +64,10 @@ def test_geometry_command_writes_a_loadable_asset(tmp_path: Path, cli_env: dict[
 ])
 def test_bad_input_is_one_clear_line_and_leaves_nothing(tmp_path: Path, args: list[str], message: str,
                                                        cli_env: dict[str, str]) -> None:
+    """(A subprocess: no traceback on the process's stderr, where Prefect's log handlers write too.)"""
     out = tmp_path / "asset"
-    proc = _cli("geometry", *args, "--out", str(out), "--no-cache", env=cli_env)
+    proc = subprocess.run([sys.executable, "-m", "flows.cli.main", "geometry", *args, "--out", str(out), "--no-cache"],
+                          cwd=REPO, capture_output=True, text=True, env=cli_env, timeout=300)
     assert proc.returncode != 0
     assert message in proc.stderr and "Traceback" not in proc.stderr
     assert list(tmp_path.iterdir()) == []

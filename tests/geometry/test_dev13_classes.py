@@ -5,6 +5,8 @@ Real masses: typical retail or rule figures (the source in each line)."""
 
 from __future__ import annotations
 
+import functools
+
 import numpy as np
 import pytest
 import trimesh
@@ -21,11 +23,17 @@ from tests.geometry.helpers import run, settings
 from tests.geometry.test_mass_classes import planned_mass
 
 
+@functools.cache
+def _draft_l0(text: str) -> tuple:
+    """run() of the text at draft, once per text in this module (both hull tests build 'a ball of chunky yarn': the
+    default run's sample of each); the tests only read it."""
+    return run(AssetRequest(text=text), settings("draft"))
+
+
 @pytest.mark.parametrize("text", ["a ball of chunky yarn", "a yarn pom pom"])
 def test_a_grooved_near_convex_object_is_proxied_by_its_hull(text: str) -> None:
     """A yarn ball's grooves kept CoACD splitting into its whole budget (40 s on a core): its hull covers it."""
-    s = settings("draft")
-    mesh, _info, proxy, _p, _g, checks = run(AssetRequest(text=text), s)
+    mesh, _info, proxy, _p, _g, checks = _draft_l0(text)
     assert len(proxy["part_vertex_count"]) == 1
     # the hull's own excess (<= 1/0.93) and CoACD's remeshing (a few percent: its voxel copy is slightly fuller)
     assert 1.0 <= checks.metrics["proxy_volume_ratio"] <= 1.15
@@ -36,7 +44,7 @@ def test_a_near_convex_object_settles_on_the_table(text: str) -> None:
     """A grooved one's hull is CoACD's faceted root hull (the smooth hull of every vertex of a ball kept rolling in
     pybullet: 11 of 40 throughput requests failed L1's settle gate), smooth ones keep CoACD's parts (a marshmallow's
     one root hull jittered on its flat face)."""
-    mesh, _info, proxy, _p, _g, _c = run(AssetRequest(text=text), settings("draft"))
+    mesh, _info, proxy, _p, _g, _c = _draft_l0(text)
     hulls = proxy_parts(proxy)
     body = RigidBodySpec(hulls_m=[h.vertices for h in hulls], mass_kg=0.1,
                          center_of_mass_m=np.asarray(pipeline.arrays_to_mesh(mesh).center_mass), friction=0.6)

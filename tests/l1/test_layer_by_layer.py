@@ -6,8 +6,6 @@ name) and 'very stiff' rubber ordinary rubber."""
 from __future__ import annotations
 
 import json
-import subprocess
-import sys
 from pathlib import Path
 
 import pytest
@@ -21,6 +19,7 @@ from tasks.physical.plan import l1_plan, l1_targets
 from flows.l2_material import l2_targets
 from tasks.agents.vocab import load_material_vocab
 from tasks.geometry.outputs import L0Asset, load_l0
+from tests.cli_in_process import cli_run
 
 
 def generate_path(asset: L0Asset, request: AssetRequest) -> tuple[TargetBehaviour, str, TargetBehaviour]:
@@ -96,16 +95,19 @@ def test_an_asset_stored_without_its_request_falls_back_to_what_l0_built() -> No
     assert layer_path(asset)[1] == "sponge"
 
 
-def test_geometry_command_stores_the_request_and_physical_reads_it(tmp_path: Path, cli_env: dict[str, str]) -> None:
+def test_geometry_command_stores_the_request_and_physical_reads_it(tmp_path: Path, prefect_api: str,
+                                                                   monkeypatch: pytest.MonkeyPatch,
+                                                                   capsys: pytest.CaptureFixture[str]) -> None:
     """`deformsmith geometry TEXT --intent ...` keeps the whole request (material words never key L0's cache) and L1
-    on the directory derives the material generate derives (a mesh input keeps the check fast)."""
+    on the directory derives the material generate derives (a mesh input keeps the check fast). (The command in this
+    process: tests/cli_in_process.py.)"""
     box = tmp_path / "box.obj"
     trimesh.creation.box(extents=(0.12, 0.08, 0.03)).export(box)
     out = tmp_path / "asset"
-    cmd = [sys.executable, "-m", "flows.cli.main", "geometry", "a gel pack", "--mesh", str(box), "--size-m", "0.12",
-           "--intent", "very soft gel", "--out", str(out), "--no-cache"]
-    proc = subprocess.run(cmd, capture_output=True, text=True, timeout=300, env=cli_env)
-    assert proc.returncode == 0, proc.stderr
+    code, _, err = cli_run("geometry", "a gel pack", "--mesh", str(box), "--size-m", "0.12", "--intent",
+                           "very soft gel", "--out", str(out), "--no-cache", api=prefect_api, monkeypatch=monkeypatch,
+                           capsys=capsys)
+    assert code == 0, err
     stored = json.loads((out / "geometry.json").read_text(encoding="utf-8"))["request"]
     assert stored["text"] == "a gel pack" and stored["material_intent"] == "very soft gel"
     assert stored["size_hint_m"] == 0.12 and Path(stored["mesh_path"]) == box

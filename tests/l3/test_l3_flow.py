@@ -17,6 +17,7 @@ from contracts.stage import load_contract
 from flows.l3_manipulation import L3Options, run_l3
 from tasks.asset_dir import AssetDir
 from tests.asset_records import material_record, physical_record
+from tests.cli_in_process import cli_in_process
 
 @pytest.fixture(scope="module")
 def cube_template(foam_cube_template: Path) -> Path:
@@ -57,10 +58,11 @@ def test_a_trial_over_the_force_budget_is_labelled_and_never_accepted(cube_asset
     assert stored["passed"] is False and stored["attempt"] is None
 
 
-def test_cli_rejects_a_directory_without_an_asset(tmp_path: Path, cli_env: dict[str, str]) -> None:
+def test_cli_rejects_a_directory_without_an_asset(tmp_path: Path, prefect_api: str, monkeypatch: pytest.MonkeyPatch,
+                                                  capsys: pytest.CaptureFixture[str]) -> None:
     for cmd in (["manipulate", str(tmp_path)], ["replay", str(tmp_path)]):  # against the session's Prefect server
-        r = subprocess.run([sys.executable, "-m", "flows.cli.main", *cmd], capture_output=True, text=True, env=cli_env)
-        assert r.returncode != 0 and "error:" in r.stderr
+        code, err = cli_in_process(*cmd, api=prefect_api, monkeypatch=monkeypatch, capsys=capsys)
+        assert code != 0 and "error:" in err
 
 
 def _as_gel(asset: Path) -> Material:

@@ -118,11 +118,25 @@ class ImportSite:
     text: str
 
 
+_LINE = re.compile(r"[^\r\n]*(?:\r\n|\r|\n)|[^\r\n]+\Z")  # a line as the parser splits them (ast's _splitlines_no_ff)
+
+
+def source_segment(parser_lines: list[str], node: ast.stmt) -> str:
+    """ast.get_source_segment(source, node) from the source's lines as the parser splits them (_LINE), split once per
+    file: get_source_segment splits the whole source again for every statement (~15 s over tasks/ on CI's CPU)."""
+    end = node.end_lineno if node.end_lineno is not None else node.lineno
+    part = "".join(parser_lines[node.lineno - 1:end])
+    here = ast.Pass(lineno=1, col_offset=node.col_offset, end_lineno=end - node.lineno + 1,
+                    end_col_offset=node.end_col_offset)
+    return ast.get_source_segment(part, here) or ""
+
+
 @functools.cache  # (both tasks/ checks below read every tasks/ file: each is tokenized and parsed once)
 def own_imports(source: str, module: str, is_package: bool = False) -> tuple[ImportSite, ...]:
     """The import statements of `source` that name our own packages (relative ones made absolute)."""
     package = module.split(".") if is_package else module.split(".")[:-1]
     lines = source.splitlines()
+    parser_lines = _LINE.findall(source)
     comments: dict[int, str] = {}
     for tok in tokenize.generate_tokens(io.StringIO(source).readline):
         if tok.type == tokenize.COMMENT:
@@ -138,7 +152,7 @@ def own_imports(source: str, module: str, is_package: bool = False) -> tuple[Imp
                           if n in comments)
         if not reason and above in comments and lines[above - 1].lstrip().startswith("#"):
             reason = comments[above]
-        found.append(ImportSite(own, node.lineno, in_function, reason, ast.get_source_segment(source, node) or ""))
+        found.append(ImportSite(own, node.lineno, in_function, reason, source_segment(parser_lines, node)))
 
     def visit(node: ast.AST, in_function: bool) -> None:
         if isinstance(node, ast.Import):

@@ -6,8 +6,6 @@ from __future__ import annotations
 
 import json
 import shutil
-import subprocess
-import sys
 from pathlib import Path
 
 import numpy as np
@@ -16,6 +14,7 @@ import pytest
 from tasks.render.card import CARD_HTML, CARD_PNG, build_card
 from tasks.render.card_data import card_data
 from tasks.render.card_text import si
+from tests.cli_in_process import cli_in_process
 
 FIXTURES = Path(__file__).parent / "card_fixtures"  # the JSON records of a draft turtle (L3) and a sponge (--no-l3)
 
@@ -86,12 +85,12 @@ def test_card_of_an_asset_without_l3_says_so(tmp_path: Path) -> None:
     assert (root / CARD_PNG).stat().st_size > 10_000
 
 
-def test_card_command_on_a_non_asset_is_one_error_line_and_writes_nothing(tmp_path: Path) -> None:
+def test_card_command_on_a_non_asset_is_one_error_line_and_writes_nothing(
+        tmp_path: Path, monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]) -> None:
     (tmp_path / "notes.txt").write_text("not an asset")
-    proc = subprocess.run([sys.executable, "-m", "flows.cli.main", "card", str(tmp_path)], capture_output=True,
-                          text=True, timeout=120)
-    assert proc.returncode == 2
-    lines = proc.stderr.strip().splitlines()
+    code, err = cli_in_process("card", str(tmp_path), api=None, monkeypatch=monkeypatch, capsys=capsys)
+    assert code == 2
+    lines = err.strip().splitlines()
     assert len(lines) == 1 and lines[0].startswith("error:") and "asset.json" in lines[0]
     assert sorted(p.name for p in tmp_path.iterdir()) == ["notes.txt"]
 
