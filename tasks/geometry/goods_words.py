@@ -340,10 +340,10 @@ def grouped(program: ShapeProgram, match: ConceptMatch, count: int) -> tuple[Sha
         shifts.append(shift)
     many, match = copies(program, match, shifts)
     if asked > count:  # more asked than a program's parts draw: the ones drawn weigh all of them
-        k = asked / count
+        share = asked / count
         match = match.model_copy(update={
-            "typical_mass_kg": match.typical_mass_kg * k if match.typical_mass_kg else None,
-            "density_kg_per_m3": match.density_kg_per_m3 * k if match.density_kg_per_m3 else None})
+            "typical_mass_kg": match.typical_mass_kg * share if match.typical_mass_kg else None,
+            "density_kg_per_m3": match.density_kg_per_m3 * share if match.density_kg_per_m3 else None})
     return many, match
 
 
