@@ -164,3 +164,9 @@ def test_a_short_coiled_cord_builds() -> None:
     d = catalogue.design_from_text("halter leads 40cm")
     assert d.entry == "lead_rope" and all(p.primitive.major_radius_m > 0 for p in d.program.parts
                                           if p.primitive.kind == "torus")
+
+
+def test_gummi_bears_are_sweets_not_a_teddy() -> None:
+    """Sealed set 34 (post-hoc): 'a gummi bears bag, 5oz' built a teddy bear ('gummi' is the Haribo spelling)."""
+    assert _entry("a gummi bear") == "gummy_bear"
+    assert _entry("a gummi bears bag, 5oz") == _entry("a bag of gummy bears")
