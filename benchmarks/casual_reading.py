@@ -14,6 +14,9 @@ import json
 import random
 import time
 
+from contracts.errors import InputError
+from tasks.geometry import catalogue, concepts
+
 FAMILIES: dict[str, list[str]] = {
     "commands": ["grab that {} off the table", "pls pick up {}", "hand me that {} real quick",
                  "lift the {} into the tray", "move the {} to the bin", "can you grab the {} pls",
@@ -35,8 +38,6 @@ FAMILIES: dict[str, list[str]] = {
 
 
 def _nouns(n: int, seed: int) -> list[str]:
-    from tasks.geometry import concepts
-
     pool = sorted(k for k in concepts.noun_index() if 1 <= len(k.split()) <= 2 and k.isascii() and " of " not in k)
     return random.Random(seed).sample(pool, n)
 
@@ -44,9 +45,6 @@ def _nouns(n: int, seed: int) -> list[str]:
 def run(n_nouns: int, seed: int, nouns: list[str] | None = None) -> dict:
     """Read every wording; the fraction read as the bare noun per family and overall, with the misses (`nouns`: a
     fixed list, to compare two versions of the lexicon on the same nouns)."""
-    from tasks.geometry import catalogue
-    from contracts.errors import InputError
-
     def entry(text: str) -> str:
         try:
             return catalogue.design_from_text(text).entry

@@ -770,7 +770,7 @@ def _task_clause_stripped(text: str) -> str:
         # rainbow mane and a gold horn': the unicorn's features)
         stripped = stripped[: others.start()]
     stripped = _A_COUPLE.sub("two ", _SORT_OF.sub("", stripped))
-    stripped = _THING_AFTER.sub(lambda m: m.group(1) if _is_noun_word(m.group(1)) else m.group(0), stripped)
+    stripped = _THING_AFTER.sub(lambda m: m.group(1) if _names_a_thing(m.group(1)) else m.group(0), stripped)
     bed = _BED_SIZE_AFTER.search(stripped)
     if bed is not None and _is_noun_word(bed.group("noun")):  # 'duvet king', 'fleece blanket queen': a bed's size,
         stripped = f"{bed.group('size')} size {stripped[: bed.start('sep')].strip()}"  # not a king or a queen insect
@@ -810,8 +810,20 @@ _A_COUPLE = re.compile(r"\b(?:an?\s+)?couple\s+(?:of\s+)?(?=[a-z])", re.IGNORECA
 # generic block: two of them)
 # a speaker unsure of the name ('some sort of yogurt stick', 'the party hat thing': generic blocks)
 _SORT_OF = re.compile(r"\b(?:(?:some|a|an|this|that|the)\s+)?(?:sort|kind|type)\s+of\s+(?:an?\s+)?(?=[a-z])", re.IGNORECASE)
-_THING_AFTER = re.compile(r"\b([a-z]+)\s+(?:thing|thingy|thingie|thingamajig|thingummy|whatsit|doohickey|doodad)s?\b",
-                          re.IGNORECASE)
+_THING_AFTER = re.compile(r"\b((?:[a-z]+\s+)?[a-z]+)\s+(?:thing|thingy|thingie|thingamajig|thingummy|whatsit|doohickey|"
+                          r"doodad)s?\b", re.IGNORECASE)
+
+
+def _names_a_thing(words: str) -> bool:
+    """The one or two words before 'thing' are a lexicon noun ('party hat', 'eiderdown'), not a material or a quality
+    ('a rubber thingamajig', 'a soft squishy thing' stay an unknown thing of that material)."""
+    words = words.lower()
+    return words in concepts.noun_index() or (words.split()[-1] in concepts.noun_index() and len(words.split()) == 2
+                                               and words.split()[-1] not in _NOT_THING_NAMES)
+
+
+_NOT_THING_NAMES = frozenset({"squishy", "soft", "fluffy", "fuzzy", "bouncy", "stretchy"})  # (qualities the lexicon
+# also lists as nouns: a squishy is a toy)
 
 
 @functools.lru_cache(maxsize=1)
