@@ -75,8 +75,6 @@ LOOKS: dict[str, Finish] = {  # a lexicon entry's own look (its `finish`), where
     # film (a blanket in its plastic sleeve, T-shirts in a vacuum bag): the film's glossy highlights over them
     "bloomy": Finish(gloss=0.04, shininess=8.0, grain_m=0.0012, grain_depth=0.3, mottle_m=0.006, mottle=0.07),  # a
     # soft cheese's white mould rind (a brie): matte and velvety, not a gel's gloss
-    "dusted": Finish(gloss=0.03, shininess=6.0, grain_m=0.0008, grain_depth=0.35, mottle_m=0.004, mottle=0.09),  # a
-    # floured dough (a raw dumpling, wonton wrappers): dry, matte, a fine powdery grain
     "wool": Finish(sheen=0.3, grain_m=0.003, grain_depth=0.9, mottle_m=0.008, mottle=0.1),  # wool and fur on the skin
     # or in a clump: crimped locks, no gloss
     "leather": Finish(gloss=0.2, shininess=26.0, grain_m=0.0015, grain_depth=0.1, mottle_m=0.012, mottle=0.06),  # smooth

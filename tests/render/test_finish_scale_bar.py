@@ -114,14 +114,14 @@ def test_the_written_stills_carry_the_bar(tmp_path: Path) -> None:
 
 
 def test_every_lexicon_look_is_a_finish_and_reaches_the_concept() -> None:
-    """An entry's `finish` names one of LOOKS (a typo would silently fall back to its material's), and the concept L0
-    records carries it to the stills."""
+    """An entry's `finish` names one of LOOKS or the white powder of DUSTED, joined by '+' (a typo would silently fall
+    back to its material's), and the concept L0 records carries it to the stills."""
     from contracts.lexicon import load_lexicon
     from tasks.geometry import catalogue
-    from tasks.render.finish import LOOKS
+    from tasks.render.finish import DUSTED, LOOKS
 
-    looks = {e.finish for e in load_lexicon().entries.values() if e.finish}
-    assert looks and looks <= set(LOOKS)
+    looks = {w for e in load_lexicon().entries.values() if e.finish for w in e.finish.split("+")}
+    assert looks and looks <= set(LOOKS) | {DUSTED}
     concept = catalogue.design_from_text("a salmon fillet").concept
     assert concept is not None and concept.finish == "fish"
     assert finish_for(concept.default_material, concept.category, concept.finish) is LOOKS["fish"]
