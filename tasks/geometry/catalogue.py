@@ -770,6 +770,10 @@ def _task_clause_stripped(text: str) -> str:
         # rainbow mane and a gold horn': the unicorn's features)
         stripped = stripped[: others.start()]
     stripped = _A_COUPLE.sub("two ", _SORT_OF.sub("", stripped))
+    stripped = _counted_in_dozens(stripped)
+    trailing = _TRAILING_COUNT.search(stripped)
+    if trailing is not None and 1 < int(trailing.group("n")) <= 99 and not re.match(r"\s*\d", stripped):
+        stripped = f"{trailing.group('n')} {stripped[: trailing.start()].strip()}"  # 'corn tortillas, like a dozen'
     stripped = _THING_AFTER.sub(lambda m: m.group(1) if _names_a_thing(m.group(1)) else m.group(0), stripped)
     bed = _BED_SIZE_AFTER.search(stripped)
     if bed is not None and _is_noun_word(bed.group("noun")):  # 'duvet king', 'fleece blanket queen': a bed's size,
@@ -806,6 +810,24 @@ _COMMAND_OPENING = re.compile(
 # a label before the object, as on a ticket or a list ('item: mitten', 'order 42: plush zebra', 'next up - towel')
 _LABEL_OPENING = re.compile(r"^\s*(?:item|items|order|ticket|job|task|product|sku|object|next\s+up|next|lot|no\.?)"
                             r"\s*(?:#?\s*\d+)?\s*[:#\-\u2013]\s*", re.IGNORECASE)
+_DOZENS = ((re.compile(r"\bhalf\s+(?:a\s+)?dozen\b", re.I), "6"), (re.compile(r"\ba\s+baker'?s\s+dozen\b", re.I), "13"),
+           (re.compile(r"\b(?:a|one)\s+dozen\b", re.I), "12"), (re.compile(r"\btwo\s+dozen\b", re.I), "24"),
+           (re.compile(r"\bthree\s+dozen\b", re.I), "36"))
+_HEDGED_COUNT = re.compile(r"\b(?:about|around|approx\.?|approximately|roughly|like|maybe|some|~)\s*(?=\d{1,2}\s+[a-z])",
+                           re.IGNORECASE)  # ('about 12 eggs' was one egg: the hedge hid the count)
+# a count said after the object ('a stack of corn tortillas, like a dozen': one tortilla); not a ticket, size or
+# pack count ('#17', 'size 9', '10 count')
+_TRAILING_COUNT = re.compile(r",\s*(?:(?:like|about|around|maybe|roughly|approx\.?|approximately)\s+)?(?P<n>\d{1,2})"
+                             r"\s*(?:of\s+them|pieces|pcs)?\s*$", re.IGNORECASE)
+
+
+def _counted_in_dozens(text: str) -> str:
+    """'a dozen', 'half a dozen', "a baker's dozen" as numbers, and a hedge before a count dropped ('about 12')."""
+    for pattern, number in _DOZENS:
+        text = pattern.sub(number, text)
+    return _HEDGED_COUNT.sub("", text)
+
+
 _A_COUPLE = re.compile(r"\b(?:an?\s+)?couple\s+(?:of\s+)?(?=[a-z])", re.IGNORECASE)  # ('a couple of feijoas' was a
 # generic block: two of them)
 # a speaker unsure of the name ('some sort of yogurt stick', 'the party hat thing': generic blocks)
@@ -1111,6 +1133,36 @@ def _as_air_ball(text: str, reading: concepts.Reading) -> str | None:
     return _noun_swapped(text, "ball", "soccer ball")
 
 
+SERVED_LOOSE = frozenset({"popcorn"})  # a snack asked for by the serving: 'a large popcorn' is a bag of it, not a kernel
+_ONE_PIECE = re.compile(r"\b(?:piece|pieces|kernel|kernels|single|one popped)\b")
+
+
+def _as_serving_bag(text: str, reading: concepts.Reading) -> str | None:
+    """The text with a loose snack's noun made 'bag of <noun>' when no piece of it is asked for ('a large popcorn',
+    'grab the popcorn': a cinema serving, it was one 0.13 g kernel); else None."""
+    if reading.match.concept not in SERVED_LOOSE or reading.match.noun is None or _ONE_PIECE.search(text) \
+            or reading.pouch is not None or re.search(r"\b(?:bag|bucket|tub|box|carton|cup)\b", text):
+        return None
+    return _noun_swapped(text, reading.match.noun, f"bag of {reading.match.noun}")
+
+
+_BEFORE_ROLL = re.compile(r"\b((?:[a-z]+\s+){1,2})roll\b")
+
+
+def _as_material_roll(text: str, reading: concepts.Reading) -> str | None:
+    """The text with 'X roll' made 'roll of X' when X is a fabric or other material, not a food ('a dacron offcut
+    roll', 'a canvas roll': a roll of cloth, it was a bread roll); else None."""
+    if reading.match.concept != "bread_roll" or reading.match.noun != "roll":
+        return None
+    m = _BEFORE_ROLL.search(text)
+    if m is None:
+        return None
+    words = [w for w in m.group(1).split() if w not in concepts.STOP_WORDS]
+    if not words or not any(concepts.material_word(w) for w in words):
+        return None
+    return text[:m.start()] + "roll of " + " ".join(words) + text[m.end():]
+
+
 def design_from_text(text: str, size_hint_m: float | None = None) -> Design:
     """Map a description to a lexicon concept's program (grammar body plan or catalogue shape), the stated size, the
     modifiers and colours; an unknown noun takes a fallback by meaning, recorded in `concept` and `warnings`."""
@@ -1151,6 +1203,14 @@ def design_from_text(text: str, size_hint_m: float | None = None) -> Design:
         reading = concepts.read_text(air)
         reading.warnings.insert(0, "a 'ball' said deflated or flat: an air-filled ball (a soccer ball) gone flat, not a "
                                    "solid rubber ball")
+    cloth_roll = _as_material_roll(stripped, reading)
+    if cloth_roll is not None:  # 'a dacron offcut roll': a roll of the cloth
+        reading = concepts.read_text(cloth_roll)
+        reading.warnings.insert(0, "a roll named after its material: a roll of it, not a bread roll")
+    loose = _as_serving_bag(stripped, reading)
+    if loose is not None:  # 'a large popcorn': a serving bag of it
+        reading = concepts.read_text(loose)
+        reading.warnings.insert(0, "a snack asked for by the serving, not a piece of it: built as a bag of it")
     meat = _as_meat(stripped, reading)
     if meat is not None:  # 'a pound of ground lamb', 'a whole raw chicken': the meat, not the animal
         reading = concepts.read_text(meat)

@@ -90,6 +90,9 @@ MEASURE_NOUNS = frozenset({"loaf", "block", "piece", "slice", "ball", "lump", "c
                            "cube", "wedge", "stick", "sheet", "bunch", "scoop", "handful", "pair", "head", "wheel"})
 PATTERN_WORDS = ("striped", "stripes", "spotted", "spots", "polka dot", "dotted", "checked", "checkered", "plaid",
                  "tartan", "patterned", "floral", "camo", "camouflage", "rainbow", "tie dye", "speckled")
+# the words of the patterns that name no object ('tie' of 'tie dye' is also a tie, 'dot' was matched inside 'polka
+# dot' and any substring of a pattern was taken for one: 'a sail tie' was read as a sail)
+PATTERN_TOKENS = frozenset(w for p in PATTERN_WORDS for w in p.split()) - {"tie"}
 STOP_WORDS = frozenset("""a an the of with and or in on for to from made that which is are it its one some this very
 really super extra about around approximately roughly approx like shaped shape form looks looking resembling cute
 little small big large tiny mini huge giant soft squishy fluffy fuzzy furry cuddly stuffed plush plushie plushies plushy
@@ -317,11 +320,14 @@ def _shape_donor(text: str) -> tuple[str, object | None, str]:
     return rest, None, words  # 'an oddly shaped sponge': no donor
 
 
+BAG_HEADS = frozenset({"bag", "bags", "sack", "sacks"})  # a bag named after what it holds ('a sail bag')
+
+
 def _known_word(w: str) -> bool:
     """A word that is not an unknown object noun: grammar, adjectives, colours, materials, categories, nouns."""
     vocab = (STOP_WORDS, load_lexicon().colors, GENERIC_NOUNS, MEASURE_NOUNS, SHAPE_WORDS, _material_words(),
              CATEGORY_WORDS, noun_index())
-    return any(w in v for v in vocab) or re.fullmatch(r"[\d.]+", w) is not None or any(w in p for p in PATTERN_WORDS)
+    return any(w in v for v in vocab) or re.fullmatch(r"[\d.]+", w) is not None or w in PATTERN_TOKENS
 
 
 @functools.lru_cache(maxsize=1)
@@ -341,6 +347,21 @@ def _material_in(text: str) -> str | None:
     return _material_words()[max(hits, key=lambda h: h[1] - h[0])[2]] if hits else None
 
 
+_CLOTH_KINDS = frozenset({"fabric", "material", "textile", "cloth", "foam", "leather", "rubber", "plastic", "felt"})
+
+
+def material_word(word: str) -> bool:
+    """True for a word naming a material a roll or sheet is made of: the material vocabulary's non-food words, or a
+    noun WordNet files under fabric, material or the like and never as a food ('dacron', 'canvas', 'offcut' is not)."""
+    if word in _material_words():
+        return _material_words()[word] not in _FOOD_MATERIALS and _material_words()[word] not in ("cheese", "processed_meat")
+    senses = wordnet().physical_senses(word)
+    if not senses or any(s.lexname == "noun.food" for s in senses):
+        return False
+    return any(a.lemmas[0].replace("_", " ") in _CLOTH_KINDS for s in senses[:2]
+               for a in (s, *wordnet().ancestors(s, 4)))
+
+
 def _ends_on_longest(main: str, hits: list[tuple[int, int, str]]) -> list[tuple[int, int, str]]:
     """The hits with a longer noun of the index that ends on the clause's last word put last, when an earlier,
     longer hit had taken its first words ('air activated hand warmer packet': 'air activated hand warmer' took 'hand
@@ -354,6 +375,20 @@ def _ends_on_longest(main: str, hits: list[tuple[int, int, str]]) -> list[tuple[
         if phrase in noun_index() and hits[-1][0] < start < hits[-1][1]:
             return [h for h in hits if h[1] <= start] + [(start, words[-1][1], phrase)]
     return hits
+
+
+def _holds_things(key: str) -> bool:
+    """True for a lexicon object that is itself a bag or envelope ('a poly mailer bag' is the mailer)."""
+    entry = load_lexicon().entries[key]
+    return entry.plan == "bag" or any(n.split()[-1] in (*BAG_HEADS, "envelope", "envelopes", "mailer", "mailers",
+                                                        "pouch", "pouches") for n in entry.nouns)
+
+
+def _measured_stuff(main: str, start: int, last: tuple[int, int, str]) -> bool:
+    """True when the word at ``start`` is the stuff a measure noun is made of ('a ball of masa': the masa, not a
+    rubber ball; the word was skipped as naming no thing, since WordNet files masa as no object)."""
+    return re.fullmatch(r"\s+of\s+(?:\w+\s+)?", main[last[1]:start]) is not None \
+        and noun_index()[last[2]][1].split()[-1] in MEASURE_NOUNS
 
 
 def _head(main: str) -> tuple[tuple[int, int, str] | None, tuple[int, int, str] | None, str | None]:
@@ -370,8 +405,13 @@ def _head(main: str) -> tuple[tuple[int, int, str] | None, tuple[int, int, str] 
             break  # 'a foam star cutout', 'a heart shape': the form word after a named object is that object
         if w in phrase_mod.STATE_WORDS:
             continue  # 'burp cloths, folded and stacked': a state, not an unknown object
+        if w in BAG_HEADS and hits and concept_domain(noun_index()[hits[-1][2]][0]) == "thing" \
+                and hits[-1][2] not in _material_words() and not _holds_things(noun_index()[hits[-1][2]][0]):
+            tail_unknown = w  # 'a sail bag', 'a duvet bag': the bag that holds the thing (it was the 3 kg sail);
+            break  # a food's bag is a bag of it ('a popcorn bag'), read as before
         if not _known_word(w) and len(w) > 2:
-            if hits and spelling.is_english(w) and not wordnet().physical_senses(w):
+            if hits and spelling.is_english(w) and not wordnet().physical_senses(w) \
+                    and not _measured_stuff(main, start, hits[-1]):
                 continue  # 'pack of 6 bungee cords, tangled': a word after the named object that names no thing
             tail_unknown = w
             break
@@ -442,6 +482,10 @@ def _hardness_band(entry: LexiconEntry) -> dict:
             "youngs_modulus_source": f"Shore A {lo:g}-{hi:g} ({entry.hardness_source}) by Gent's relation"}
 
 
+LUMP_PORTIONS = frozenset({"ball", "lump", "blob", "glob", "dollop", "chunk", "hunk", "knob", "scoop"})  # portions
+# of a soft matter formed by hand ('a ball of masa'); a block, slice or sheet of an unknown stuff keeps its generic
+
+
 # states only a cloth or sheet takes: an unknown noun said so is a cloth in that state
 _CLOTH_STATE = re.compile(r"\b(?:crumpled|bunched|balled up|bundled|scrunched|wadded|in a heap|heaped|folded|"
                           r"rolled up|draped|hemmed|unfolded)\b")
@@ -454,6 +498,10 @@ def _fallback(t: str, noun: str | None, donor: LexiconEntry | None, donor_plan: 
     lex = load_lexicon()
     what = f"'{noun}' is not in the lexicon" if noun else "no object is named"
     material = _material_in(t)
+    if donor is None and donor_plan is not None and material is None and donor_words.split()[:1] in (
+            [p] for p in LUMP_PORTIONS):  # 'a ball of masa': a lump of soft matter, not a 15 cm foam ball of 20 g
+        return lex.entries["generic_lump"], _match(lex.entries["generic_lump"], "body_plan", noun, f"{what}: built "
+                                                   f"as a lump of soft matter in its stated shape ('{donor_words}')")
     if donor is not None or donor_plan is not None:
         plan = donor.plan if donor is not None else None
         key = PLAN_GENERIC.get(plan or "", "generic_block")
@@ -476,8 +524,10 @@ def _fallback(t: str, noun: str | None, donor: LexiconEntry | None, donor_plan: 
         note = f"{what}: built a generic {key[8:]} of {material} (the only thing the text says about it)"
         return lex.entries[key], _match(lex.entries[key], "material", noun, note, material)
     else:
-        note = f"{what} and no body plan, category or material: built a generic soft block"
-        return lex.entries["generic_block"], _match(lex.entries["generic_block"], "generic", noun, note)
+        note = f"{what} and no body plan, category or material: built a generic soft object of a typical mass"
+        entry = lex.entries["generic_object"]  # the median mass of what people ask for, not a 26 g foam block
+        return entry, _match(entry, "generic", noun, note).model_copy(update={
+            "typical_mass_kg": entry.mass_kg, "mass_source": entry.mass_source})
     level_: FallbackLevel = level  # type: ignore[assignment]
     return lex.entries[key], _match(lex.entries[key], level_, noun,
                                     f"{what}: built a generic {key[8:].replace('_', ' ')} {why}")
@@ -553,7 +603,7 @@ def modifier_word(word: str) -> bool:
     """True for a word that qualifies an object without naming a kind of it: colours, sizes, softness, age, and
     the stop words ('a soft pink iv fluid bag' is an 'iv fluid bag')."""
     return word in load_lexicon().colors or (word in STOP_WORDS and word not in noun_index()) \
-        or word in phrase_mod.STATE_WORDS or any(word in p for p in PATTERN_WORDS)
+        or word in phrase_mod.STATE_WORDS or word in PATTERN_TOKENS
 
 
 _STYLE = re.compile(r"\b([a-z]+)[\s-]+style\s+([a-z]+)\b")  # 'a muppet-style puppet'

@@ -23,7 +23,7 @@ def test_an_unknown_noun_in_a_cloths_state_is_a_cloth(text: str, state: str) -> 
     design = design_from_text(text)
     assert design.entry == "generic_cloth" and state in design.concept.states
     assert design.concept.by_analogy  # (said so: the first line and the card say it is a guess)
-    assert design_from_text("a flimflam").entry == "generic_block"  # (no state: still the soft block)
+    assert design_from_text("a flimflam").entry == "generic_object"  # (no state: still the generic object)
     assert design_from_text("a folded foam flimflam").entry != "generic_cloth"  # (foam: not a cloth)
 
 
@@ -91,7 +91,7 @@ def test_a_bin_bag_of_goods_is_the_black_bin_bag_weighed_by_what_it_holds() -> N
 ])
 def test_a_word_after_the_named_object_that_names_no_thing_is_no_object(text: str, concept: str) -> None:
     assert design_from_text(text).entry == concept
-    assert design_from_text("a duck gizmo").entry == "generic_block"  # (an unknown noun still is one)
+    assert design_from_text("a duck gizmo").entry == "generic_object"  # (an unknown noun still is one)
 
 
 def test_a_long_thick_rope_coiled_is_a_pile_of_loops_not_a_wide_flat_spiral() -> None:

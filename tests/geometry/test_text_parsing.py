@@ -100,7 +100,8 @@ def test_fallback_levels_follow_what_the_text_says() -> None:
     assert (d.entry, d.concept.fallback_level, d.concept.default_material) == ("generic_blob", "material", "silicone")
     assert d.concept.typical_mass_kg is None  # a material alone says nothing about the object's mass
     d = design_from_text("a zorblat")
-    assert (d.entry, d.concept.fallback_level) == ("generic_block", "generic")
+    assert (d.entry, d.concept.fallback_level) == ("generic_object", "generic")
+    assert d.concept.typical_mass_kg == pytest.approx(0.18)  # a typical requested object's mass, said so
     d = design_from_text("a zorblat shaped like a cat")  # its stated shape, but not the cat's identity or mass
     assert (d.entry, d.concept.fallback_level, d.concept.shape_from) == ("generic_quadruped", "body_plan", "plush_cat")
     assert {"head", "tail"} <= {part_group(p.name) for p in d.program.parts}
