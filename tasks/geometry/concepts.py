@@ -734,9 +734,13 @@ def read_text(text: str, serving: bool = True) -> Reading:
         if donor_entry is None and donor_plan is None and shape_noun in SHAPE_WORDS:
             donor_plan, donor_words = SHAPE_WORDS[shape_noun], shape_noun  # 'a foam disc': the noun is the shape
         container = _unknown_container(t_shape, unknown, phrase) if donor_entry is None and donor_plan is None else None
-        explained = None if container else _by_wordnet(phrase, unknown, t, donor_entry, donor_plan, donor_words)
+        stuff = _portion_of_material(shape_noun, phrase, donor_plan) if container is None else None
+        explained = None if container or stuff else _by_wordnet(phrase, unknown, t, donor_entry, donor_plan,
+                                                                 donor_words)
         if container is not None:
             entry, match = container
+        elif stuff is not None:
+            entry, match = stuff
         elif explained is not None:
             entry, match, donor_entry, donor_plan, size_m = explained
         else:
@@ -1067,6 +1071,19 @@ def bindings(text: str) -> Bindings:
             colors.setdefault("body", word)
     return Bindings(head=p.head, noun_phrase=p.noun_phrase, portion=p.portion, states=p.states,
                     shape=donor_words or p.shape_words or None, material=_material_in(t), colors=colors)
+
+
+def _portion_of_material(noun: str | None, phrase: phrase_mod.Phrase, donor_plan: tuple[str, dict] | None
+                         ) -> tuple[LexiconEntry, ConceptMatch] | None:
+    """A sheet, block or strip of a material the vocabulary names ('a sheet of neoprene', 'a block of latex'): that
+    material in the portion's shape, its mass from the material's density (WordNet's gloss of 'neoprene' built a
+    rubber ball); else None."""
+    if noun is None or donor_plan is None or phrase.portion not in PORTION_SHAPES or noun not in _material_words():
+        return None
+    material = _material_words()[noun]
+    entry = load_lexicon().entries[MATERIAL_GENERIC.get(material, "generic_block")]
+    note = f"a {phrase.portion} of {noun}: built as that material in the {phrase.portion}'s shape"
+    return entry, _match(entry, "material", noun, note, material)
 
 
 def _by_wordnet(phrase: phrase_mod.Phrase, unknown: str | None, t: str, donor: LexiconEntry | None,

@@ -92,3 +92,20 @@ def test_a_count_in_dozens_hedged_or_said_after_the_object_is_counted(text: str,
 @pytest.mark.parametrize("text", ["grab the sweaty jersey on the floor, #17", "gel insoles in the packet, size 9"])
 def test_a_number_after_the_object_that_is_no_count_stays_one(text: str) -> None:
     assert planned_mass(text) == pytest.approx(planned_mass(text.split(",")[0]), rel=0.05)
+
+
+@pytest.mark.parametrize("text", ["take the wet rashie off the bench n put it in the rinse tank", "a rash vest"])
+def test_a_rash_guard_is_a_swim_shirt_not_a_padded_vest(text: str) -> None:
+    assert _entry(text) == "rash_guard"
+    assert 0.12 < planned_mass("a rash guard") < 0.25  # retail: 0.15-0.22 kg
+
+
+def test_an_unknown_mask_is_built_as_a_face_mask_not_a_dress() -> None:
+    design = catalogue.design_from_text("a halloween mask")
+    assert design.concept is not None and design.concept.shape_from == "face_mask"
+
+
+def test_a_sheet_of_a_named_material_is_that_material_in_a_sheet() -> None:
+    design = catalogue.design_from_text("a sheet of rubber")
+    assert design.concept is not None and design.concept.fallback_level == "material"
+    assert design.concept.default_material == "rubber" and design.concept.shape_from == "sheet"
