@@ -1133,6 +1133,17 @@ def _as_air_ball(text: str, reading: concepts.Reading) -> str | None:
     return _noun_swapped(text, "ball", "soccer ball")
 
 
+# food that is not food: a prop, a toy, a display model ('a fake roast chicken' weighed the real 1.3 kg one)
+_FAKE_FOOD = re.compile(r"\b(?:fake|faux|toy|prop|props|pretend|play[- ]food|replica|artificial|imitation|dummy|decoy|"
+                        r"(?:plastic|foam|vinyl|felt)(?!\s+(?:\w+\s+)?(?:tray|trays|tub|tubs|box|boxes|bag|bags|wrap|"
+                        r"wrapped|wrapping|film|sleeve|container|containers|clamshell|punnet|cup|cups|bottle|pouch|"
+                        r"packaging|pack|packet|lid|plate|plates|bowl|basket|crate|net|case|dome|cover|sheet)\b)(?!\s*-?\s*"
+                        r"wrapped))\b(?<!\bin plastic)", re.IGNORECASE)
+FAKE_FOOD_MATERIAL = "slow_rise_foam"  # prior 130 kg/m3 (60-250): squishy foam and hollow-vinyl play food alike
+FAKE_FOOD_SOURCE = "play and prop food is PU or slow-rise foam or hollow PVC: a vinyl toy banana ~20 g, a foam " \
+    "display roast chicken ~0.25 kg (~60-250 kg/m3 effective), not the food's own mass"
+
+
 SERVED_LOOSE = frozenset({"popcorn"})  # a snack asked for by the serving: 'a large popcorn' is a bag of it, not a kernel
 _ONE_PIECE = re.compile(r"\b(?:piece|pieces|kernel|kernels|single|one popped)\b")
 
@@ -1216,6 +1227,12 @@ def design_from_text(text: str, size_hint_m: float | None = None) -> Design:
         reading = concepts.read_text(meat)
         reading.warnings.insert(0, f"'{reading.phrase.text if reading.phrase else stripped}': said raw, ground or "
                                    f"cooked, so meat, not the animal")
+    if _FAKE_FOOD.search(stripped) and concepts.concept_domain(reading.entry.key) == "food" and reading.pouch is None:
+        reading.match = reading.match.model_copy(update={  # 'a fake roast chicken': the food's look, a prop's mass
+            "default_material": FAKE_FOOD_MATERIAL, "density_kg_per_m3": None, "typical_mass_kg": None,
+            "typical_mass_range_kg": None, "mass_source": FAKE_FOOD_SOURCE, "restitution": None})
+        reading.warnings.insert(0, "said fake, toy or prop food: the food's shape and colours in foam or hollow vinyl, "
+                                   "its mass that material's, not the food's")
     thin = reading.donor or reading.entry
     if size_hint_m is None and reading.match.fallback_level in ("exact", "synonym") \
             and (thin is None or thin.plan not in dims_words.THIN_PLANS):  # (a known object: '3 mm rubber beads' are 3 mm)

@@ -109,3 +109,18 @@ def test_a_sheet_of_a_named_material_is_that_material_in_a_sheet() -> None:
     design = catalogue.design_from_text("a sheet of rubber")
     assert design.concept is not None and design.concept.fallback_level == "material"
     assert design.concept.default_material == "rubber" and design.concept.shape_from == "sheet"
+
+
+@pytest.mark.parametrize(("fake", "real"), [("a fake roast chicken", "a roast chicken"), ("a prop cake", "a cake"),
+                                            ("a plastic toy banana", "a banana")])
+def test_fake_or_toy_food_has_the_foods_shape_and_a_props_mass(fake: str, real: str) -> None:
+    design = catalogue.design_from_text(fake)
+    assert design.entry == catalogue.design_from_text(real).entry  # the food's look
+    assert design.concept is not None and design.concept.default_material == catalogue.FAKE_FOOD_MATERIAL
+    assert planned_mass(fake) < 0.5 * planned_mass(real)  # foam or hollow vinyl, not the food
+
+
+@pytest.mark.parametrize("text", ["cake in a plastic box", "a croissant on a plastic plate", "a plastic wrapped cucumber"])
+def test_food_in_plastic_or_foam_packaging_is_still_food(text: str) -> None:
+    design = catalogue.design_from_text(text)
+    assert design.concept is not None and design.concept.default_material != catalogue.FAKE_FOOD_MATERIAL
