@@ -53,7 +53,14 @@ def _overlap(sense: Sense, context: set[str]) -> int:
     """Words of the request found in a sense's definition and its nearest kinds (simplified Lesk): 'an arm sling' is
     the bandage that supports a forearm, not the drink."""
     text = " ".join([sense.definition, *(a.name for a in wordnet().ancestors(sense, 3))]).lower()
-    return sum(1 for w in context if len(w) > 2 and w in text)
+    return sum(1 for w in context if len(w) > 2 and w not in _LESK_STOP and w in text)
+
+
+# words of a request that say nothing of which sense is meant ('the used gown' matched 'used for official occasions':
+# the ceremonial robe, built as a 1.2 kg bathrobe)
+_LESK_STOP = frozenset({"used", "use", "the", "and", "for", "with", "from", "off", "put", "that", "this", "its", "one",
+                        "pick", "grab", "hand", "pass", "take", "get", "into", "onto", "out", "please", "pls", "can",
+                        "you", "made", "make", "new", "old", "some", "any", "all"})
 
 
 # words that say a noun is eaten: 'ground beef on a foam tray', 'a raw whole chicken' are meat, not the animal

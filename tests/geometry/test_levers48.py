@@ -124,3 +124,13 @@ def test_fake_or_toy_food_has_the_foods_shape_and_a_props_mass(fake: str, real: 
 def test_food_in_plastic_or_foam_packaging_is_still_food(text: str) -> None:
     design = catalogue.design_from_text(text)
     assert design.concept is not None and design.concept.default_material != catalogue.FAKE_FOOD_MATERIAL
+
+
+def test_a_function_word_of_the_request_does_not_choose_a_nouns_sense() -> None:
+    design = catalogue.design_from_text("pick up the used gown off the floor and put it in the linen cart")
+    assert design.concept is not None and design.concept.shape_from == "dress"  # ('used' chose WordNet's ceremonial
+    # robe, 'used for official occasions': a 1.2 kg bathrobe)
+
+
+def test_a_bag_of_cotton_candy_weighs_spun_sugar_not_hard_candy() -> None:
+    assert 0.02 < planned_mass("pick up the bag of cotton candy on the hook") < 0.12  # 1-3 oz bagged (was 0.5 kg)
