@@ -79,6 +79,8 @@ LOOKS: dict[str, Finish] = {  # a lexicon entry's own look (its `finish`), where
     # or in a clump: crimped locks, no gloss
     "leather": Finish(gloss=0.2, shininess=26.0, grain_m=0.0015, grain_depth=0.1, mottle_m=0.012, mottle=0.06),  # smooth
     # leather goods (a handbag): a soft sheen, a fine pebble, no woven grain
+    "foil": Finish(gloss=0.85, shininess=90.0, grain_m=0.005, grain_depth=0.6, mottle_m=0.01, mottle=0.18),  # a metal
+    # foil or aluminised film (a space blanket): a mirror's sharp highlights broken by crinkles (it was a grey towel)
 }
 CATEGORY_MATERIAL = {  # a category's usual class where the material class is not known
     "foam": "pu_foam", "plush_animal": "plush", "plush": "plush", "rubber_toy": "rubber", "fruit": "fruit",
