@@ -134,3 +134,9 @@ def test_a_function_word_of_the_request_does_not_choose_a_nouns_sense() -> None:
 
 def test_a_bag_of_cotton_candy_weighs_spun_sugar_not_hard_candy() -> None:
     assert 0.02 < planned_mass("pick up the bag of cotton candy on the hook") < 0.12  # 1-3 oz bagged (was 0.5 kg)
+
+
+def test_a_dinghy_jib_is_a_third_of_a_mainsail() -> None:
+    assert _entry("grab the dinghy jib off the floor, its flaked") == "jib_sail"
+    assert 0.7 < planned_mass("a dinghy jib") < 1.3 < 2.5 < planned_mass("a mainsail")  # 0.8-1.2 kg vs ~3 kg
+    assert _entry("bagged jib off a 30 footer") == "boat_sail"  # a yacht's jib: 4-5 kg, nearer the mainsail's
