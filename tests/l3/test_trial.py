@@ -79,10 +79,10 @@ def test_a_force_guarded_closure_holds_a_stiff_object_within_the_force_budget(cu
     phys = PhysicalModel(**{**cube.physical.model_dump(), "density_kg_per_m3": rho,
                             "mass_kg": rho * cube.physical.volume_m3, "category": "rubber"})
     rubber = Material(youngs_modulus_pa=1.5e6, poisson_ratio=0.45, damping_rate_per_s=5.0)
-    # a quicker lift and a shorter carry than the draft plan (a stiff rubber needs small steps): the guard acts in
-    # the closure, the hold is tested over the lift and the carry
-    plan = cube.plan(0.002, grip_force_limit_n=8.0, lift_duration_s=0.25, transport_duration_s=0.3,
-                     target_xy_m=(0.05, 0.03), release_duration_s=0.15, retreat_duration_s=0.1)
+    # a quicker lift, a shorter carry and a quicker release than the draft plan (a stiff rubber needs small steps):
+    # the guard acts in the closure, the hold is tested over the lift and the carry (the trial goes on until rest)
+    plan = cube.plan(0.002, grip_force_limit_n=8.0, lift_duration_s=0.25, transport_duration_s=0.2,
+                     target_xy_m=(0.05, 0.03), release_duration_s=0.1, retreat_duration_s=0.05, settle_duration_s=0.05)
     r = run_trial(cube.body, phys, rubber, plan, tolerances=TrialTolerances(lift_height_m=0.05))
     m, guard = r.metrics, r.info["grip_guard"]
     assert m["grip_guard_stopped"] == 1 and guard["normal_force_n"] >= 8.0 * 0.5
