@@ -674,6 +674,10 @@ def read_text(text: str, serving: bool = True) -> Reading:
         if unknown is not None and phrase.head and phrase.head not in noun_index() and phrase.head in main.split() \
                 and known_noun(phrase.head):
             unknown = phrase.head  # 'an iv fluid bag' is a bag, whatever 'fluid' is
+        if phrase.portion in PORTION_SHAPES and phrase.head in _material_words() and phrase.head not in noun_index() \
+                and (head is None or head[2].split()[-1] != phrase.head):
+            head, compound, unknown = None, None, phrase.head  # 'a sheet of crepe rubber' is rubber, whatever
+            # food 'crepe' names; 'a block of memory foam' foam, not an unknown 'memory'
     look = donor is not None  # a stated shape ('X-shaped', 'shaped like X'), not a portion ('a slice of')
     if donor is None and phrase.portion in PORTION_SHAPES:
         donor, donor_words = PORTION_SHAPES[phrase.portion], f"{phrase.portion} of"

@@ -34,6 +34,7 @@ HANK_RADIUS_MIN_M = 0.08  # the tightest loop a hand coils [m]
 HANK_RADIUS_PER_SQRT = 0.5  # a coil's loop radius over sqrt(length x cord diameter): 10 m of XLR cable (6.5 mm) in
 # 25 cm loops, 15 m of garden hose (19 mm) in 53 cm loops, a 60 m climbing rope (9.8 mm) at the arm span [-]
 CROSS_SECTION_MAX = 0.06  # a bare size under this share of the good's typical size measures its cross-section [-]
+COIL_NOT_CORD = 8.0  # a round cord's bare or stated diameter over this many times its own is the coil's size [-]
 CROSS_WORDS = {"thick": "thickness", "thickness": "thickness", "diameter": "diameter", "dia": "diameter",
                "gauge": "diameter", "wide": "width", "width": "width", "across": "diameter", "round": "diameter",
                "od": "diameter", "outer": "diameter", "outside": "diameter", "external": "diameter", "id": "inner",
@@ -138,6 +139,10 @@ def bind(text: str, entry: LexiconEntry | None, states: list[str]) -> Bound | No
         outer = [v for w, v, _s in cross if w == "diameter"]
         if inner and bore0 > 0 and not outer:  # '6 mm ID' alone: the wall the tube has at its own bore ratio
             width = thickness = inner[0][0] / bore0
+        coil_words = [s for w, v, s in cross if p0.round and w in (None, "diameter")  # type: ignore[attr-defined]
+                      and v > COIL_NOT_CORD * w0 * length0]
+        cross = [c for c in cross if c[2] not in coil_words]  # 'a 60 m climbing rope, 40 cm across': the coil's
+        # size, not a 40 cm cord
         for w, v, s in cross:
             if w == "inner":
                 bound.consumed.append(s)

@@ -3370,12 +3370,13 @@ class StrapParams(Model):
     bore: float = Field(default=0.0, ge=0.0, lt=1.0, description="a tube's inner over outer diameter (drawn solid; "
                         "its mass is the wall's: tasks.geometry.dims_words) [-]")
     turns: float = Field(default=3.0, ge=1.0, le=60.0, description="turns of a coil (a flat spiral draws at most 8) [-]")
-    ends: Literal["none", "handles", "buckle", "ring", "hose", "hooks", "leash", "plug", "coupling"] = Field(
+    ends: Literal["none", "handles", "buckle", "ring", "hose", "hooks", "leash", "plug", "coupling", "wrapped"] = Field(
         default="none", description="what the ends carry; hose: an inflatable cuff's (a blood pressure cuff): its "
         "rubber tube and plug out of one face, a hook-and-loop patch; hooks: a J-hook at each end (a bungee cord); "
         "buckle: a metal frame buckle (laid in a loop: the belt buckled, its tip through the buckle); leash: a "
         "handle loop sewn at one end and a snap clip at the other (a dog leash, laid wavy); plug / coupling: a coiled "
-        "cord's free end trailing out of the coil to a cable's connector / a hose's threaded coupling")
+        "cord's free end trailing out of the coil to a cable's connector / a hose's threaded coupling; wrapped: a "
+        "rope's coil with its free end wound round the coil a few turns and its tail out (a climber's coil)")
 
 
 def _strip_dims(p: StrapParams, extent: float) -> tuple[float, float]:
@@ -3544,17 +3545,37 @@ def _hank(p: StrapParams) -> list[Part]:
     R = 1.0 / (2 * np.pi * p.turns)
     d = max(p.width, 1e-4)
     rb = max(float(np.sqrt(d * d / (4 * HANK_PACKING * 2 * np.pi * R))), 0.6 * d)
-    parts = [torus("body", R, rb, (0, 0, rb))]
-    r = max(0.5 * d, 0.18 * rb)
-    for i in range(HANK_STRANDS):  # loops on the ring's top and sides, each turned a little about x and y
-        a = 2 * np.pi * i / HANK_STRANDS
-        lift = rb * np.sin(a * 3.0)
-        spread = rb * np.cos(a * 3.0) * 0.8
-        tilt = (4.0 * np.sin(1.7 * i), 4.0 * np.cos(2.3 * i), 0.0)
-        parts.append(torus(f"loop {i + 1}", max(R + spread, 0.25 * R), r, (0.3 * rb * np.cos(a), 0.3 * rb * np.sin(a),
-                                                          rb + 0.8 * lift), rot=tilt))
+    r = max(0.5 * d, 0.3 * rb)  # a strand a third of the section wide: seen as rope, not as a tube's texture
+    parts = [torus("body", R, 0.85 * rb, (0, 0, 0.85 * rb))]  # the core the loops lie on
+    for i in range(HANK_STRANDS):  # loops side by side and on one another, each off centre the other way (by
+        # the golden angle), so along the ring they drift across the coil and cross, as a hand-coiled rope's do
+        a = 2.39996 * i
+        dr = (i % 3 - 1) * 0.55 * rb
+        dz = (0.45 + 0.35 * ((i // 3) % 2)) * rb
+        off = 0.45 * rb * np.array([np.cos(a), np.sin(a)])
+        parts.append(torus(f"loop {i + 1}", max(R + dr, 0.25 * R), r, (float(off[0]), float(off[1]), rb + dz - r),
+                           rot=(2.0 * np.sin(1.7 * i), 2.0 * np.cos(2.3 * i), 0.0)))
     if p.ends in ("plug", "coupling"):
         parts += _coil_end(R, rb, d, p.ends)
+    elif p.ends == "wrapped":
+        parts += _coil_wraps(R, rb, d)
+    return parts
+
+
+COIL_WRAPS = 3  # turns of a rope's free end round its coil [-]
+
+
+def _coil_wraps(R: float, rb: float, d: float) -> list[Part]:
+    """A rope coil's binding: its free end wound COIL_WRAPS times round the coil's section at one side (rings across
+    the ring, each as thick as the cord), then out over the table as a short tail."""
+    r = max(d / 2, TAIL_MIN_RADIUS * (R + rb))  # no thinner than the mesher sees at the coil's extent
+    zc = 0.9 * rb
+    parts = [torus(f"wrap {k + 1}", 1.05 * rb + r, r, (R, (k - (COIL_WRAPS - 1) / 2) * 2.4 * r, zc), rot=(90, 0, 0))
+             for k in range(COIL_WRAPS)]
+    y_end = (COIL_WRAPS - 1) / 2 * 2.4 * r
+    pts = [np.array([R + 1.05 * rb + r, y_end, zc]), np.array([R + rb + 0.2 * R, y_end + 0.25 * R, r]),
+           np.array([R + rb + 0.3 * R, y_end + 0.6 * R, r])]
+    parts += [limb(f"tail {k + 1}", pts[k], pts[k + 1], r, blend=r) for k in range(2)]
     return parts
 
 

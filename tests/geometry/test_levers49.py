@@ -1,0 +1,73 @@
+"""Session 49's readings and redraws (issue #35): long coats are coats, not a 0.6 kg fleece jacket ('overcoat' reached
+WordNet's 'coating'); a coiled rope is loops crossing round a core with its free end wound round the coil (a smooth
+ring read as an inner tube, set 34); a climbing rope and a battle rope are their own ropes at their own mass; a
+round cord's stated 'across' far over its own diameter is the coil's size (it built a 4 m coil of a 40 cm cord);
+a sheet or block of a material phrase is that material ('a sheet of crepe rubber' was the pancake); a bag of cheese
+or of nacho cheese is a pouch of it (a 0.2 kg cheese block)."""
+
+from __future__ import annotations
+
+import pytest
+
+from tasks.geometry import catalogue
+from tasks.geometry.grammar.parts import part_group
+from tests.geometry.test_mass_classes import planned_mass
+
+
+@pytest.mark.parametrize(("text", "entry", "kg"), [
+    ("a wool overcoat", "overcoat", 1.8),  # retail: knee-length wool overcoats 1.5-2.2 kg
+    ("the khaki trench coat", "trench_coat", 1.2),  # cotton-gabardine trench coats 1.0-1.5 kg
+    ("a navy peacoat", "pea_coat", 1.6),  # 32-34 oz melton peacoats 1.4-1.9 kg
+])
+def test_a_long_coat_is_a_coat_with_lapels_and_buttons_at_its_mass(text: str, entry: str, kg: float) -> None:
+    design = catalogue.design_from_text(text)
+    assert design.entry == entry
+    groups = {part_group(p.name) for p in design.program.parts}
+    assert {"lapel", "button", "sleeve"} <= groups, groups
+    assert 0.67 <= planned_mass(text) / kg <= 1.5
+
+
+def test_a_bare_coat_is_still_the_jacket() -> None:
+    assert catalogue.design_from_text("a coat").entry == "jacket"
+
+
+@pytest.mark.parametrize(("text", "entry", "kg"), [
+    ("a climbing rope", "climbing_rope", 3.8),  # 60 m x 9.8 mm dynamic rope, 61-64 g/m
+    ("a coiled 60 m dynamic climbing rope, about 40 cm across the coil", "climbing_rope", 3.8),
+    ("a battle rope", "battle_rope", 10.5),  # 38 mm x 15 m, 9-12 kg
+    ("a coiled 60 m nylon rope", "rope_length", 3.9),  # 10 mm nylon ~6.5 kg per 100 m
+])
+def test_a_long_coiled_rope_is_crossing_loops_with_its_end_wound_round(text: str, entry: str, kg: float) -> None:
+    design = catalogue.design_from_text(text)
+    assert design.entry == entry
+    groups = {part_group(p.name) for p in design.program.parts}
+    assert {"body", "loop", "wrap", "tail"} <= groups, groups
+    assert 0.5 <= planned_mass(text) / kg <= 2.0
+
+
+def test_a_coils_size_said_across_is_not_the_cords_diameter() -> None:
+    """'40 cm across' of a 60 m rope is its coil (it was taken for a 40 cm cord: a 4 m coil, refused)."""
+    design = catalogue.design_from_text("a 60 m climbing rope, about 40 cm across the coil")
+    assert design.size.extents_m[:2] == (0.4, 0.4)
+    thin = catalogue.design_from_text("a climbing rope, 10 mm")  # a cord's own size is still its diameter
+    assert thin.size.longest_m is not None and 0.4 <= thin.size.longest_m <= 0.8
+
+
+@pytest.mark.parametrize(("text", "material"), [("a sheet of crepe rubber", "rubber"),
+                                                ("a block of memory foam", "pu_foam")])
+def test_a_portion_of_a_material_phrase_is_that_material(text: str, material: str) -> None:
+    concept = catalogue.design_from_text(text).concept
+    assert concept is not None and concept.fallback_level == "material"
+    assert concept.default_material == material
+
+
+@pytest.mark.parametrize(("text", "fill", "kg"), [
+    ("a bag of cheese", "shredded cheese", 0.23),  # retail 8 oz bags of shredded cheese
+    ("a bag of shredded mozzarella", "shredded cheese", 0.23),
+    ("a bag of nacho cheese sauce", "cheese sauce", 3.0),  # foodservice dispenser bags 106-140 oz
+])
+def test_a_bag_of_cheese_is_a_pouch_of_it(text: str, fill: str, kg: float) -> None:
+    design = catalogue.design_from_text(text)
+    assert design.entry == "generic_pouch"
+    assert any(fill in w for w in design.warnings), design.warnings
+    assert 0.5 <= planned_mass(text) / kg <= 2.0
