@@ -71,3 +71,27 @@ def test_a_bag_of_cheese_is_a_pouch_of_it(text: str, fill: str, kg: float) -> No
     assert design.entry == "generic_pouch"
     assert any(fill in w for w in design.warnings), design.warnings
     assert 0.5 <= planned_mass(text) / kg <= 2.0
+
+
+def test_a_hockey_glove_is_a_padded_gauntlet_glove_at_its_mass() -> None:
+    """It was the 40 g knitted glove: now rolls of padding across the fingers and the back of the hand, a flared
+    gauntlet cuff with a rolled edge, at a senior hockey glove's 0.35-0.45 kg."""
+    design = catalogue.design_from_text("a hockey glove")
+    assert design.entry == "hockey_glove"
+    names = [p.name for p in design.program.parts]
+    assert sum("roll" in n for n in names) >= 8 and "cuff roll" in names, names
+    assert 0.67 <= planned_mass("a hockey glove") / 0.4 <= 1.5
+    assert catalogue.design_from_text("a glove").entry == "knit_glove"
+
+
+def test_a_jersey_laid_flat_shows_its_number_and_a_hockey_jersey_its_stripes() -> None:
+    """A flat jersey drew no number (only a folded one did: the blind judges named a red T-shirt); a hockey jersey
+    was the short-sleeved 0.19 kg football shirt: long sleeves with bands round them and the hem, ~0.45 kg."""
+    flat = {part_group(p.name) for p in catalogue.design_from_text("a soccer jersey").program.parts}
+    assert "number" in flat, flat
+    design = catalogue.design_from_text("a hockey jersey")
+    assert design.entry == "hockey_jersey"
+    names = " ".join(p.name for p in design.program.parts)
+    assert "sleeve stripe" in names and "hem stripe" in names and "number" in names
+    assert 0.67 <= planned_mass("a hockey jersey") / 0.45 <= 1.5
+    assert catalogue.design_from_text("a jersey").entry == "sports_jersey"

@@ -1739,6 +1739,9 @@ class GloveParams(Model):
     spread: float = Field(default=6.0, ge=0.0, le=20.0, description="angle between fingers [deg]")
     boxing: bool = Field(default=False, description="a boxing glove: a padded fist curled over the palm, the thumb "
                          "pressed to its side, a round cuff with a strap band, lying on its little-finger side")
+    padded: bool = Field(default=False, description="a padded sports glove (an ice hockey or lacrosse glove): "
+                         "rolls of padding across each finger and the back of the hand, and a rolled edge round the "
+                         "gauntlet cuff's opening")
     state: Literal["flat", "inflated"] = Field(default="flat", description="inflated: blown up like a balloon and "
                                                  "tied off (a party trick with a disposable glove): a round palm, "
                                                  "fat fingers spread, the cuff gathered into a knot")
@@ -1817,6 +1820,15 @@ def glove(p: GloveParams) -> list[Part]:
             base = np.array([pl / 2 - 0.03, y, z])
             tip = base + length * np.array([np.cos(a), np.sin(a), 0.0])
             parts.append(_flat_limb(name, base, tip, fr, t, blend=0.02))
+            if p.padded:  # two padded rolls across the finger's back
+                for k, at in enumerate((0.35, 0.72)):
+                    c = base + at * (tip - base) + np.array([0.0, 0.0, 0.12 * t])
+                    parts.append(ellipsoid(f"{name} roll {k + 1}", (0.13 * length, 1.15 * fr, 0.5 * t),
+                                           tuple(float(v) for v in c), rot=(0, 0, float(np.degrees(a))), blend=0.01))
+    if p.padded and not p.mitten:  # the back of the hand: two padded bars across it
+        for k, x in enumerate((-0.07, 0.06)):
+            parts.append(superellipsoid(f"back roll {k + 1}", (0.05, 0.46 * pw, 0.3 * t), (x, 0, 1.05 * t), ns=0.5,
+                                        ew=0.5, blend=0.01))
     ta = np.radians(40 + p.spread)
     tb = np.array([-0.05, pw / 2 - 0.02, z])
     parts.append(_flat_limb("thumb", tb, tb + 0.6 * pl * np.array([np.cos(ta), np.sin(ta), 0.0]),
@@ -1826,6 +1838,11 @@ def glove(p: GloveParams) -> list[Part]:
         c = cone("cuff", pw / 2, pw / 2 * p.flare, cl + 0.04, (-pl / 2 - cl / 2 + 0.02, 0, z), edge=0.2 * t,
                  blend=0.03, rot=(0, -90, 0))
         parts.append(scaled(c, (min(1.0, t / pw), 1, 1)))
+        if p.padded:  # the gauntlet's opening: a rolled edge across it
+            x = -pl / 2 - cl + 0.03
+            half = pw / 2 * p.flare
+            parts.append(_flat_limb("cuff roll", np.array([x, -half, z]), np.array([x, half, z]), 0.6 * t,
+                                    1.15 * t, blend=0.01))
     return parts
 
 
@@ -2468,12 +2485,23 @@ def _top_flat(p: GarmentParams, t: float) -> list[Part]:
                                        (0.22, side * (w / 2 + 0.02), z)), "subtract", 0.02))
             continue
         parts.append(_flat_limb(f"{'left' if side > 0 else 'right'} sleeve", shoulder, tip, sr, t, blend=0.04))
+        if p.motif == "number" and p.sleeves == "long":  # a hockey jersey's two bands round the sleeve
+            d = (tip - shoulder) / np.linalg.norm(tip - shoulder)
+            for k, at in enumerate((0.62, 0.8)):
+                c = shoulder + at * (tip - shoulder)
+                parts.append(_flat_limb(f"{'left' if side > 0 else 'right'} sleeve stripe {k + 1}", c - 0.03 * d,
+                                        c + 0.03 * d, 1.04 * sr, 1.2 * t, blend=0.002))
         if p.cuffs and p.sleeves == "long":
             d = (tip - shoulder) / np.linalg.norm(tip - shoulder)
             parts.append(_flat_limb(f"{'left' if side > 0 else 'right'} cuff", tip - 0.1 * d, tip + 0.02 * d,
                                     0.85 * sr, 1.25 * t, blend=0.005))
     if p.cuffs:
         parts.append(box("hem", (0.08, w * 0.96, 1.25 * t), (-0.46, 0, 0.625 * t), edge=0.5 * t, blend=0.005))
+    if p.motif == "number":  # a jersey's big number ('10') on the front, long-sleeved ones a band round the hem
+        parts.append(box("number 1", (0.3, 0.05, 1.3 * t), (-0.02, 0.16 * w, 0.65 * t), edge=0.2 * t, blend=0.002))
+        parts.append(scaled(torus("number 2", 0.075, 0.024, (-0.02, -0.12 * w, 0.65 * t)), (1.9, 1.0, 1.3 * t / 0.048)))
+        if p.sleeves == "long":
+            parts.append(box("hem stripe", (0.07, w * 0.98, 1.2 * t), (-0.36, 0, 0.6 * t), edge=0.3 * t, blend=0.002))
     if p.baffles:  # quilted: grooves across the body and the sleeves, the zip and collar laid over them
         parts += quilting(0.92, w + 1.0, t, p.baffles, 0)
     if p.hood:
