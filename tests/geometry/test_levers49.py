@@ -95,3 +95,18 @@ def test_a_jersey_laid_flat_shows_its_number_and_a_hockey_jersey_its_stripes() -
     assert "sleeve stripe" in names and "hem stripe" in names and "number" in names
     assert 0.67 <= planned_mass("a hockey jersey") / 0.45 <= 1.5
     assert catalogue.design_from_text("a jersey").entry == "sports_jersey"
+
+
+@pytest.mark.parametrize(("text", "entry", "kg"), [
+    ("a suede moccasin", "moccasin", 0.25),  # one adult moccasin 0.2-0.3 kg (was a generic block by the sneaker)
+    ("hockey pants", "hockey_pants", 1.4),  # padded senior breezers 1.2-1.6 kg (were 0.55 kg trousers)
+    ("a pair of hockey breezers", "hockey_pants", 1.4),  # (an unknown noun: a 0.18 kg generic object)
+])
+def test_a_moccasin_and_hockey_pants_are_their_own_at_their_mass(text: str, entry: str, kg: float) -> None:
+    assert catalogue.design_from_text(text).entry == entry
+    assert 0.67 <= planned_mass(text) / kg <= 1.5
+
+
+def test_a_moccasin_has_its_raised_apron_over_the_toe() -> None:
+    groups = {part_group(p.name) for p in catalogue.design_from_text("a moccasin").program.parts}
+    assert {"sole", "upper", "apron", "foot opening"} <= groups, groups
