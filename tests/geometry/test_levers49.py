@@ -110,3 +110,14 @@ def test_a_moccasin_and_hockey_pants_are_their_own_at_their_mass(text: str, entr
 def test_a_moccasin_has_its_raised_apron_over_the_toe() -> None:
     groups = {part_group(p.name) for p in catalogue.design_from_text("a moccasin").program.parts}
     assert {"sole", "upper", "apron", "foot opening"} <= groups, groups
+
+
+def test_a_skirt_flares_from_a_belted_waistband_with_fanned_pleats() -> None:
+    """Set 34's skirt was named 'a flat blue tarpaulin with a grommet' (its waistband button): now an A-line whose
+    hem is ~1.3x its waist, a waistband with belt loops and eight pleats fanning to the hem, at 0.2-0.4 kg."""
+    design = catalogue.design_from_text("a knee-length pleated skirt")
+    assert design.entry == "skirt"
+    names = [p.name for p in design.program.parts]
+    assert sum(n.startswith("belt loop") for n in names) == 4 and sum(n.startswith("pleat") for n in names) == 8
+    assert "waistband button" not in names
+    assert 0.2 <= planned_mass("a knee-length pleated skirt") <= 0.4
