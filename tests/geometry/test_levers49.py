@@ -121,3 +121,20 @@ def test_a_skirt_flares_from_a_belted_waistband_with_fanned_pleats() -> None:
     assert sum(n.startswith("belt loop") for n in names) == 4 and sum(n.startswith("pleat") for n in names) == 8
     assert "waistband button" not in names
     assert 0.2 <= planned_mass("a knee-length pleated skirt") <= 0.4
+
+
+@pytest.mark.parametrize(("text", "entry", "kg"), [
+    ("hand me that rolled up offcut of veg tan", "leather_piece", 0.3),  # was a generic vegetable ('veg')
+    ("a leather offcut", "leather_piece", 0.3),  # 7-8 oz veg-tan ~2.5-3 kg/m2 (was a generic object)
+    ("pass me a bivvy bag", "survival_bivvy", 0.3),  # packed polyethylene survival bags 0.1-0.4 kg
+    ("grab the casualty bag, the red one", "casualty_bag", 2.0),  # insulated patient wraps 1.5-2.5 kg
+])
+def test_trade_goods_of_set_34_are_their_own_at_their_mass(text: str, entry: str, kg: float) -> None:
+    assert catalogue.design_from_text(text).entry == entry
+    assert 0.5 <= planned_mass(text) / kg <= 2.0
+
+
+def test_a_leather_offcut_looks_like_leather_and_a_leather_bag_is_still_a_bag() -> None:
+    concept = catalogue.design_from_text("a leather offcut").concept
+    assert concept is not None and concept.finish == "leather"
+    assert catalogue.design_from_text("a leather bag").entry == "generic_bag"
