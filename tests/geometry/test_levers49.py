@@ -138,3 +138,22 @@ def test_a_leather_offcut_looks_like_leather_and_a_leather_bag_is_still_a_bag() 
     concept = catalogue.design_from_text("a leather offcut").concept
     assert concept is not None and concept.finish == "leather"
     assert catalogue.design_from_text("a leather bag").entry == "generic_bag"
+
+
+@pytest.mark.parametrize(("text", "entry", "kg"), [
+    ("a bike cover", "protective_cover", 0.6),  # polyester bike / barbecue covers 0.3-1.0 kg (a 0.18 kg generic object)
+    ("the bbq cover", "protective_cover", 0.6),
+    ("a car cover", "car_cover", 3.0),  # car covers 2-5 kg
+    ("the bunched up sail cover", "sail_cover", 2.5),  # acrylic mainsail covers 2-4 kg (was 'up sail cover')
+    ("a duvet cover", "duvet_cover", 1.0),  # double/queen cotton 0.8-1.3 kg (was built like the duvet)
+    ("a mattress protector", "mattress_protector", 1.2),  # queen 0.9-1.5 kg (was the 4 kg topper)
+])
+def test_a_cover_is_a_cover_of_cloth_at_its_mass(text: str, entry: str, kg: float) -> None:
+    assert catalogue.design_from_text(text).entry == entry
+    assert 0.67 <= planned_mass(text) / kg <= 1.5
+
+
+@pytest.mark.parametrize(("text", "entry"), [("a cushion cover", "box_cushion_cover"), ("a seat cover", "car_seat_cover"),
+                                             ("a steering wheel cover", "steering_wheel_cover")])
+def test_covers_the_lexicon_already_knew_are_unchanged(text: str, entry: str) -> None:
+    assert catalogue.design_from_text(text).entry == entry
