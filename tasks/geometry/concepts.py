@@ -623,6 +623,27 @@ def _without_asides(text: str) -> str:
     return rest
 
 
+_ARTICLE = re.compile(r"\b(?:a|an|the|that|this|those|these|some|my|our|your)\s+\S")
+_RELATIVE = re.compile(r"\s+(?:like\s+)?(?:they|you|we|i|he|she|people|kids|the\s+[a-z]+s)(?:'d|'ll|'re| would| will|"
+                       r" always| usually| often| normally| all)?\s+(?:keep|use|have|had|put|leave|play|give|gave|wear|"
+                       r"take|get|got|bring|throw|love|like|need|hand|sell|carry|see|saw|buy|bought|make|chew|chase|"
+                       r"squeeze|hug|stuff)s?\b.*$")
+
+
+_REFILL = re.compile(r"(?<=[a-z])\s+(?:refill|refills|replacement|replacements|spare|spares)\b(?=\s*(?:$|[,.;(]))")
+
+
+def _without_relative_clause(text: str) -> str:
+    """The text without a relative clause after the object ('a dalmatian plush like they'd keep at a fire station',
+    'the crinkle ball the cats keep batting around': the parser took 'keep' for the object's noun); only after a
+    determiner's phrase, so a request's own 'can you get me ...' stays."""
+    first = _ARTICLE.search(text)
+    if first is None:
+        return text
+    m = _RELATIVE.search(text, first.end())
+    return text[:m.start()] if m is not None else text
+
+
 def read_text(text: str, serving: bool = True) -> Reading:
     """The concept a description names, with its shape donor, colours and fallback level.
 
@@ -634,6 +655,7 @@ def read_text(text: str, serving: bool = True) -> Reading:
     t = _STYLE.sub(lambda m: f"{m.group(1)} {m.group(2)}" if f"{m.group(1)} {m.group(2)}" in noun_index()
                    else m.group(0), _STYLE_AFTER.sub("", _expand_diminutives(_plush_before(normalise(text)))))  # 'a muppet-style puppet': a
     # muppet puppet
+    t = _REFILL.sub("", _without_relative_clause(t))  # 'a mop head refill' is a mop head
     sleeved = pouch_words.sleeve_contents(t)
     if sleeved is not None and sleeved.contents != t:  # 'an airline blanket still in its plastic sleeve': the
         inner = _in_packaging(sleeved)  # blanket folded in its clear sleeve (a food's vacuum pack is below)

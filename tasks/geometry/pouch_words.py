@@ -19,7 +19,8 @@ from tasks.geometry.sdf import primitive_half_extent
 
 # container nouns that, with a fill, are a pouch of it ('a bag of peas', 'a saline bag'); a box or jar is rigid
 CONTAINERS = frozenset({"bag", "bags", "pouch", "pouches", "pack", "packs", "packet", "packets", "sachet", "sachets",
-                        "sack", "sacks", "baggie", "baggy", "ziploc", "ziplock", "bladder", "net", "nets"})
+                        "sack", "sacks", "baggie", "baggy", "ziploc", "ziplock", "bladder", "net", "nets", "punnet",
+                        "punnets"})  # (a punnet of berries: its fruit, film-lidded, at the fruit's mass)
 NET_NOUNS = frozenset({"net", "nets"})  # a container only with goods in it ('a net of lemons'; not 'a fishing net')
 _CONTAINER_RX = "|".join(sorted(CONTAINERS, key=len, reverse=True))
 _OF = re.compile(rf"\b(?:{_CONTAINER_RX})\s+(?:of|with|containing|full of|filled with)\s+(?:some\s+)?"

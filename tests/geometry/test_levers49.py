@@ -157,3 +157,36 @@ def test_a_cover_is_a_cover_of_cloth_at_its_mass(text: str, entry: str, kg: floa
                                              ("a steering wheel cover", "steering_wheel_cover")])
 def test_covers_the_lexicon_already_knew_are_unchanged(text: str, entry: str) -> None:
     assert catalogue.design_from_text(text).entry == entry
+
+
+@pytest.mark.parametrize(("text", "entry"), [
+    ("can you make a 12 inch dalmatian plush like they'd keep at a fire station", "plush_dalmatian"),  # 'keep'
+    ("the lil crinkle ball the cats keep batting around", "crinkle_ball"),  # was a generic ball named 'keep'
+    ("a blanket we use on the couch", "throw_blanket"),
+    ("can you get me the blue ball", "rubber_ball"),  # the request's own verb stays
+    ("cotton string mop head refill", "string_mop"),  # 'refill' was taken for an unknown object
+])
+def test_a_relative_clause_or_a_refill_word_does_not_name_the_object(text: str, entry: str) -> None:
+    assert catalogue.design_from_text(text).entry == entry
+
+
+@pytest.mark.parametrize(("text", "entry", "kg"), [
+    ("3 metres of velvet folded up", "fabric_cut", 1.5),  # 3 m x 1.4 m upholstery velvet ~350 g/m2 (a garment)
+    ("2 yards of grey wool tweed folded on the cutting table", "fabric_cut", 0.8),  # 1.8 m x 1.5 m at ~300 g/m2
+    ("a fuzzy pipe cleaner bent into a zigzag", "pipe_cleaner", 0.0015),  # 100 chenille stems 120-180 g
+    ("knitted leg warmers", "leg_warmers", 0.08),  # 60-100 g each (a generic object named 'warmers')
+    ("loose nylon coil zipper", "zipper_length", 0.012),  # a 50 cm #5 coil zipper 10-15 g
+    ("a ripe aguacate", "avocado", 0.2),  # Spanish for avocado: it was by analogy only
+    ("grab the fleece hat outta the lost gear box", "beanie_hat", 0.08),
+])
+def test_words_of_trades_and_languages_name_their_objects(text: str, entry: str, kg: float) -> None:
+    assert catalogue.design_from_text(text).entry == entry
+    assert 0.5 <= planned_mass(text) / kg <= 2.0
+
+
+def test_a_punnet_of_berries_is_its_berries_and_a_bare_hat_or_zip_is_not_taken_over() -> None:
+    design = catalogue.design_from_text("a punnet of strawberries")
+    assert design.entry == "generic_pouch" and any("strawberr" in w for w in design.warnings)
+    assert 0.2 <= planned_mass("a punnet of strawberries") <= 0.8  # UK punnets 227-400 g
+    assert catalogue.design_from_text("a plush toy in a hat").entry != "beanie_hat"
+    assert catalogue.design_from_text("a zip lock bag").entry == "zip_bag"
