@@ -788,7 +788,7 @@ def _task_clause_stripped(text: str) -> str:
 # a request's opening words before the object ('Can you make a pair of jeans': 'can' was read as a tin can)
 # ('pick up a besan laddu': 'pick' was read as a guitar pick)
 _REQUEST_OPENING = re.compile(
-    r"^\s*(?:(?:(?:can|could|would|will)\s+(?:you|we|i)\s+(?:(?:please|pls|plz)\s+)?|(?:please|pls|plz)\s+|i(?:'d|\s+would)\s+like\s+"
+    r"^\s*(?:(?:(?:can|could|would|will|cn|cld)\s+(?:you|u|ya|we|i)\s+(?:(?:please|pls|plz)\s+)?|(?:please|pls|plz)\s+|i(?:'d|\s+would)\s+like\s+"
     r"(?:to\s+(?:have|get|see|make|simulate|model)\s+)?|i\s+(?:want|need)\s+(?:to\s+(?:have|make|simulate|model)\s+)?|"
     r"we\s+need\s+|let's\s+|lets\s+)(?:(?:make|create|generate|build|model|simulate|give|get|design|add)\s+"
     r"(?:me\s+|us\s+)?)?|(?:make|create|generate|build|model|simulate|give|design|pick\s+up)\s+(?:me\s+|us\s+)?(?=an?\s|the\s|"
@@ -1163,7 +1163,9 @@ _BEFORE_ROLL = re.compile(r"\b((?:[a-z]+\s+){1,2})roll\b")
 def _as_material_roll(text: str, reading: concepts.Reading) -> str | None:
     """The text with 'X roll' made 'roll of X' when X is a fabric or other material, not a food ('a dacron offcut
     roll', 'a canvas roll': a roll of cloth, it was a bread roll); else None."""
-    if reading.match.concept != "bread_roll" or reading.match.noun != "roll":
+    cloth = reading.entry.plan == "sheet" and reading.entry.category == "textile" \
+        and "roll" not in (reading.match.noun or "").split()  # ('grab the dacron offcut roll': dacron is a cloth)
+    if not cloth and (reading.match.concept != "bread_roll" or reading.match.noun != "roll"):
         return None
     m = _BEFORE_ROLL.search(text)
     if m is None:
@@ -1323,7 +1325,12 @@ def design_from_text(text: str, size_hint_m: float | None = None) -> Design:
     else:
         size = _mass_sized(size, fill_match, mass)
     if size.unfold is not None and size.explicit:  # a folded sheet's stated size is its flat one: check what is built
-        check_size(SizeSpec(longest_m=final_scale(size, program, 0.0)[0], stated=size.stated))
+        folded = final_scale(size, program, 0.0)[0]
+        if folded > MAX_SIZE_M:  # ('a queen size duvet folded in thirds' is still 2.28 m long one way)
+            raise InputError(f"folded as said, the {size.stated} sheet is still {folded:.2f} m long, over the "
+                             f"{MAX_SIZE_M:g} m L0 builds; say it folded in quarters, or give a smaller "
+                             f"size")
+        check_size(SizeSpec(longest_m=folded, stated=size.stated))
     else:
         check_size(size)
     # a flat good's stated sizes keep its typical thickness (or state it): its mass follows its built area; so does a

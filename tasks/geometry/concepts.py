@@ -627,9 +627,11 @@ _ARTICLE = re.compile(r"\b(?:a|an|the|that|this|those|these|some|my|our|your)\s+
 _RELATIVE = re.compile(r"\s+(?:like\s+)?(?:they|you|we|i|he|she|people|kids|the\s+[a-z]+s)(?:'d|'ll|'re| would| will|"
                        r" always| usually| often| normally| all)?\s+(?:keep|use|have|had|put|leave|play|give|gave|wear|"
                        r"take|get|got|bring|throw|love|like|need|hand|sell|carry|see|saw|buy|bought|make|chew|chase|"
-                       r"squeeze|hug|stuff)s?\b.*$")
+                       r"squeeze|hug|stuff)s?\b[^,;.()]*")
 
 
+_FASTENED_ON = re.compile(r"\b(?:tie|clip|slip|stick|pull|press|sew|iron|strap|zip|snap|velcro|hook|button)[- ]on\s+"
+                          r"(?=[a-z])")
 _REFILL = re.compile(r"(?<=[a-z])\s+(?:refill|refills|replacement|replacements|spare|spares)\b(?=\s*(?:$|[,.;(]))")
 
 
@@ -641,7 +643,8 @@ def _without_relative_clause(text: str) -> str:
     if first is None:
         return text
     m = _RELATIVE.search(text, first.end())
-    return text[:m.start()] if m is not None else text
+    return text[:m.start()] + text[m.end():] if m is not None else text  # (up to its comma: 'the thing you
+    # squeeze when stressed, shaped like a star' keeps its shape)
 
 
 def read_text(text: str, serving: bool = True) -> Reading:
@@ -655,7 +658,8 @@ def read_text(text: str, serving: bool = True) -> Reading:
     t = _STYLE.sub(lambda m: f"{m.group(1)} {m.group(2)}" if f"{m.group(1)} {m.group(2)}" in noun_index()
                    else m.group(0), _STYLE_AFTER.sub("", _expand_diminutives(_plush_before(normalise(text)))))  # 'a muppet-style puppet': a
     # muppet puppet
-    t = _REFILL.sub("", _without_relative_clause(t))  # 'a mop head refill' is a mop head
+    t = _FASTENED_ON.sub("", _REFILL.sub("", _without_relative_clause(t)))  # 'a mop head refill' is a mop head,
+    # 'a tie-on seat cushion' a seat cushion (not a tie)
     sleeved = pouch_words.sleeve_contents(t)
     if sleeved is not None and sleeved.contents != t:  # 'an airline blanket still in its plastic sleeve': the
         inner = _in_packaging(sleeved)  # blanket folded in its clear sleeve (a food's vacuum pack is below)
