@@ -153,11 +153,13 @@ _WITH_ABBREVIATION = re.compile(r"(?<![\w.])w/(o\b)?\s*(?=[a-z])|(?<![\w./])w(?=
 
 
 def plain(text: str) -> str:
-    """Lower case, hyphens and punctuation as spaces (so 'four-legged' reads as 'four legged')."""
+    """Lower case, hyphens and punctuation as spaces (so 'four-legged' reads as 'four legged'), a question or
+    exclamation mark as a full stop."""
     t = text.lower().replace("×", "x")
     t = _WITH_ABBREVIATION.sub(
         lambda m: m.group(0) if re.search(r"\d\s*$", t[:m.start()]) else "without " if m.group(1) else "with ", t)
     t = re.sub(r"[-_/]", " ", t)
+    t = re.sub(r"\s*[?!]+", ".", t)  # a question's end ends its sentence ('my apron? canvas one': the apron)
     t = re.sub(r"[^a-z0-9.,;' ]", " ", t)
     return re.sub(r"\s+", " ", t).strip()
 

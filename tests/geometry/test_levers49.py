@@ -219,3 +219,10 @@ def test_a_folded_sheet_still_too_long_says_so_and_quarters_fit() -> None:
         catalogue.design_from_text("queen size duvet folded in thirds on the bed")
     assert catalogue.design_from_text("queen size duvet folded in quarters").entry == "duvet"
     assert 0.8 <= planned_mass("queen size duvet folded in quarters") <= 3.0  # queen duvets 1.2-2.5 kg
+
+
+def test_a_question_mark_ends_the_sentence_that_names_the_object() -> None:
+    """Set 36 (post-hoc): 'Could you bring me my apron? Canvas one, ...' built a cut of canvas (this session's new
+    fabric noun) because '?' was dropped and the two sentences read as one."""
+    text = "Could you bring me my apron? Canvas one, covered in slip, hanging on the hook."
+    assert catalogue.design_from_text(text).entry == "apron"
