@@ -773,7 +773,8 @@ def _task_clause_stripped(text: str) -> str:
     stripped = _counted_in_dozens(stripped)
     trailing = _TRAILING_COUNT.search(stripped)
     if trailing is not None and 1 < int(trailing.group("n")) <= 99 and not re.match(r"\s*\d", stripped):
-        stripped = f"{trailing.group('n')} {stripped[: trailing.start()].strip()}"  # 'corn tortillas, like a dozen'
+        stripped = f"{trailing.group('n')} {(stripped[: trailing.start()] + stripped[trailing.end():]).strip()}"  # 'corn
+        # tortillas, like a dozen'
     stripped = _THING_AFTER.sub(lambda m: m.group(1) if _names_a_thing(m.group(1)) else m.group(0), stripped)
     bed = _BED_SIZE_AFTER.search(stripped)
     if bed is not None and _is_noun_word(bed.group("noun")):  # 'duvet king', 'fleece blanket queen': a bed's size,
@@ -818,7 +819,8 @@ _HEDGED_COUNT = re.compile(r"\b(?:about|around|approx\.?|approximately|roughly|l
 # a count said after the object ('a stack of corn tortillas, like a dozen': one tortilla); not a ticket, size or
 # pack count ('#17', 'size 9', '10 count')
 _TRAILING_COUNT = re.compile(r",\s*(?:(?:like|about|around|maybe|roughly|approx\.?|approximately)\s+)?(?P<n>\d{1,2})"
-                             r"\s*(?:of\s+them|pieces|pcs)?\s*$", re.IGNORECASE)
+                             r"\s*(?:of\s+them|pieces|pcs)?\s*(?=$|[,.;])", re.IGNORECASE)  # (or a clause of its own:
+# 'a stack of the black tees, like a dozen, still folded')
 
 
 def _counted_in_dozens(text: str) -> str:

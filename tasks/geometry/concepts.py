@@ -1340,6 +1340,10 @@ def build(reading: Reading, text: str) -> tuple[ShapeProgram, ConceptMatch, list
             states.append(f"{drawn} of them" if drawn >= goods.count else
                           f"{drawn} of the {goods.count} drawn (the most a program's parts hold), weighing all")
             program = group
+    if goods is not None and goods.stacked:  # '12 folded t-shirts': a pile of them
+        (program, match), drawn = goods_words.piled(program, match, goods.stacked)
+        states.append(f"a stack of {goods.stacked}" if drawn >= goods.stacked else
+                      f"a stack of {goods.stacked}, {drawn} drawn (the most a program's parts hold), weighing all")
     if goods is not None and goods.nested:  # 'a pack of 12 muffin cups': the cups nested in a stack
         program, match = goods_words.nested_stack(program, match, goods.nested)
         states.append(f"a stack of {goods.nested}")

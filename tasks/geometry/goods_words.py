@@ -79,6 +79,8 @@ GROUP_PER_ROW = 4  # pieces in a row before the next row [-]
 GROUP_PITCH = 0.9  # the pieces' spacing / one piece's extent: touching, as the mesher keeps one body (as duplicated)
 UNGROUPED_PLANS = frozenset({"sheet", "mould", "pouch", "bag", "garment", "glove", "sock"})  # (straps are grouped: 'a
 # pack of 6 bungee cords' was one cord of one cord's mass)
+STACKED_PLANS = frozenset({"garment"})  # a count of these is a pile, one on another (not laid side by side)
+STACK_RISE = 0.9  # each stacked copy's rise over the one below, / one copy's height (soft goods settle a little) [-]
 NEST_DEFAULT = 6  # cups in a pack or stack that gives no count [-]
 NEST_STEP = 0.12  # the rise of each nested cup over the one below, / one cup's height [-]
 
@@ -96,6 +98,7 @@ class GoodsChange:
     bunch: bool = False
     hand: int = 0
     nested: int = 0
+    stacked: int = 0
     fill_color: str | None = None
     notes: tuple[str, ...] = ()
 
@@ -191,6 +194,9 @@ def apply(target: LexiconEntry, portion: str | None, text: str, params: dict, si
     if count is not None:
         out.count = count
         out.notes += (f"{count} of them side by side",)
+    elif plan in STACKED_PLANS and portion not in PAIR_WORDS and (many := group_count(text)) is not None:
+        out.stacked = many  # '12 folded t-shirts', 'a stack of the black tees, like a dozen': one on another (each
+        out.notes += (f"{many} of them stacked",)  # was one garment of one garment's mass)
     if portion in BUNCH_WORDS and plan in HAND_PLANS and size_m > BUNCH_PIECE_MAX_M:
         # 'a bunch of bananas': a hand of them, side by side from one crown; 'a bunch of carrots' the same, their
         # leafy tops gathered
@@ -415,6 +421,24 @@ def nested_stack(program: ShapeProgram, match: ConceptMatch, count: int) -> tupl
     count = max(1, min(count, MAX_PARTS // max(len(program.parts), 1)))
     rise = NEST_STEP * float(grammar.program_extents(program, 32)[2])
     return copies(program, match, [(0.0, 0.0, k * rise) for k in range(count)])
+
+
+def piled(program: ShapeProgram, match: ConceptMatch, count: int) -> tuple[ProgramMatch, int]:
+    """`count` copies one on another, each STACK_RISE of one's height above the one below, as many as a program's 64
+    parts hold (a garment of 33 parts or more is drawn once); the drawn ones weigh all `count` (the typical mass and
+    density times the share not drawn). Returns ((program, match), the number drawn)."""
+    drawn = max(1, min(count, MAX_PARTS // max(len(program.parts), 1)))
+    rise = STACK_RISE * float(grammar.program_extents(program, 32)[2])
+    many, match = copies(program, match, [(0.0, 0.0, k * rise) for k in range(drawn)])
+    if count > drawn:
+        share = count / drawn
+        match = match.model_copy(update={
+            "typical_mass_kg": match.typical_mass_kg * share if match.typical_mass_kg else None,
+            "density_kg_per_m3": match.density_kg_per_m3 * share if match.density_kg_per_m3 else None})
+    return (many, match), drawn
+
+
+ProgramMatch = tuple[ShapeProgram, ConceptMatch]
 
 
 def copies(program: ShapeProgram, match: ConceptMatch, shifts: Sequence[Sequence[float]]

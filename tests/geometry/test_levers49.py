@@ -226,3 +226,17 @@ def test_a_question_mark_ends_the_sentence_that_names_the_object() -> None:
     fabric noun) because '?' was dropped and the two sentences read as one."""
     text = "Could you bring me my apron? Canvas one, covered in slip, hanging on the hook."
     assert catalogue.design_from_text(text).entry == "apron"
+
+
+@pytest.mark.parametrize(("text", "count", "one"), [
+    ("twelve folded t-shirts", 12, "a folded t-shirt"),
+    ("Bring me a stack of the medium black tees, like a dozen, still folded.", 12, "a folded t-shirt"),  # (set 36,
+    # post-hoc: it was one tee)
+    ("3 folded sweaters", 3, "a folded sweater"),
+])
+def test_a_count_of_garments_is_a_pile_weighing_all_of_them(text: str, count: int, one: str) -> None:
+    """A count of garments was dropped (a garment is no good laid side by side): twelve folded T-shirts were one
+    T-shirt of 0.15 kg. They are now piled one on another, as many drawn as a program's parts hold, weighing all."""
+    design = catalogue.design_from_text(text)
+    assert any(s.startswith(f"a stack of {count}") for s in design.concept.states), design.concept.states
+    assert 0.7 * count <= planned_mass(text) / planned_mass(one) <= 1.3 * count
