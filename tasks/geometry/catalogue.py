@@ -402,6 +402,22 @@ _WORD_SIZE = re.compile(rf"\b({'|'.join(sorted(_NUMBER_WORDS, key=len, reverse=T
                         rf"(?={_UNIT_WORDS}[\s-]+(?:long|tall|wide|high|across|thick|deep|in diameter|of)\b)", re.I)
 
 
+# number words before a unit of mass ('the two-and-a-half kilo one', 'a five pound bag of flour', 'half a kilo of
+# mince') as digits, so the stated mass binds ('a' alone is left: 'a pound cake')
+_MASS_NUMBERS = {"one": 1, "two": 2, "three": 3, "four": 4, "five": 5, "six": 6, "seven": 7, "eight": 8, "nine": 9,
+                 "ten": 10, "eleven": 11, "twelve": 12, "fifteen": 15, "twenty": 20, "twenty five": 25, "fifty": 50}
+_WORD_MASS = re.compile(r"\b(?:(?P<n>" + "|".join(sorted(_MASS_NUMBERS, key=len, reverse=True)).replace(" ", r"[\s-]")
+                        + r")(?P<half>[\s-]+and[\s-]+a[\s-]+half)?|(?P<halfa>half[\s-]+an?))[\s-]+"
+                        r"(?=(?:kilo(?:gram)?s?|kgs?|pounds?|lbs?|grams?|ounces?|oz)\b(?!\s+cake))", re.I)
+
+
+def _mass_in_digits(m: re.Match[str]) -> str:
+    if m.group("halfa"):
+        return "0.5 "
+    n = _MASS_NUMBERS[re.sub(r"[\s-]+", " ", m.group("n").lower())] + (0.5 if m.group("half") else 0.0)
+    return f"{n:g} "
+
+
 # a length then 'roll' after the goods ('foam draught strip 5m roll', 'bubble wrap 10 m roll'): the goods, rolled (the
 # roll was read as a bread roll)
 _SIZE_ROLL = re.compile(r"(?<=[a-z]\s)(\d+(?:\.\d+)?\s*(?:m|metres?|meters?|ft|feet|foot|yd|yards?))\s+rolls?\b", re.I)
@@ -416,6 +432,7 @@ def normalise_sizes(text: str) -> str:
     text = _N_IN_ONE.sub(" ", text)
     text = _SIZE_ROLL.sub(lambda m: f"{m.group(1)}, rolled ", text)  # 'foam strip 5m roll': the strip, rolled
     text = _WORD_SIZE.sub(lambda m: f"{_NUMBER_WORDS[m.group(1).lower()]} ", text)
+    text = _WORD_MASS.sub(_mass_in_digits, text)
     text = _NEOPRENE_NOTATION.sub(lambda m: f"{m.group(1)} mm neoprene", text)  # ('3/2 mm wetsuit')
     text = _FRACTION_SIZE.sub(_fraction_decimal, text)
     text = _WITH_SLASH.sub(lambda m: " without " if m.group(1) else " with ", text)

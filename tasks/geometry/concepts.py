@@ -649,7 +649,31 @@ def _without_relative_clause(text: str) -> str:
     # squeeze when stressed, shaped like a star' keeps its shape)
 
 
+_APPOSITIVE = re.compile(r",\s*(?:the|a|an|that|this)\s+(?P<np>[a-z][a-z' ]*?)\s*(?=[,.;]|$)")
+_NOT_A_NAME = frozenset({"one", "ones", "kind", "size", "type", "sort", "same", "other", "big", "small", "usual"})
+
+
 def read_text(text: str, serving: bool = True) -> Reading:
+    """The concept a description names (`_read_once`); when that is a guess and an appositive names an object the
+    lexicon knows ('the crown line bag, the red stuff sack': the stuff sack, not a generic bag named after a crown
+    line), the appositive's."""
+    reading = _read_once(text, serving)
+    if not reading.match.by_analogy and not reading.entry.key.startswith("generic"):
+        return reading
+    for m in _APPOSITIVE.finditer(plain(text)):
+        words = m.group("np").split()
+        if "of" in words or words[-1] in _NOT_A_NAME or not any(" ".join(words[k:]) in noun_index()
+                                                               for k in range(len(words))):
+            continue
+        other = _read_once(m.group("np"), serving)
+        if not other.match.by_analogy and not other.entry.key.startswith("generic"):
+            other.warnings.append(f"built as the '{m.group('np')}' said after the comma: the first words name "
+                                  "nothing the lexicon knows")
+            return other
+    return reading
+
+
+def _read_once(text: str, serving: bool = True) -> Reading:
     """The concept a description names, with its shape donor, colours and fallback level.
 
     The parse (tasks.geometry.phrase) finds the object's own noun phrase; the lexicon is searched in it, so words
@@ -1340,7 +1364,8 @@ def build(reading: Reading, text: str) -> tuple[ShapeProgram, ConceptMatch, list
             states.append(f"{drawn} of them" if drawn >= goods.count else
                           f"{drawn} of the {goods.count} drawn (the most a program's parts hold), weighing all")
             program = group
-    if goods is not None and goods.stacked:  # '12 folded t-shirts': a pile of them
+    if goods is not None and goods.stacked and reading.sleeve is None:  # '12 folded t-shirts': a pile of them (in
+        # their packaging they are stacked through its film below)
         (program, match), drawn = goods_words.piled(program, match, goods.stacked)
         states.append(f"a stack of {goods.stacked}" if drawn >= goods.stacked else
                       f"a stack of {goods.stacked}, {drawn} drawn (the most a program's parts hold), weighing all")

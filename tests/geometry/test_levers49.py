@@ -240,3 +240,30 @@ def test_a_count_of_garments_is_a_pile_weighing_all_of_them(text: str, count: in
     design = catalogue.design_from_text(text)
     assert any(s.startswith(f"a stack of {count}") for s in design.concept.states), design.concept.states
     assert 0.7 * count <= planned_mass(text) / planned_mass(one) <= 1.3 * count
+
+
+@pytest.mark.parametrize(("text", "kg"), [
+    ("a bag of rice, the two-and-a-half kilo one", 2.5),  # (set 36, post-hoc: 'the two-and-a-half kilo one' of
+    ("a two kilo bag of rice", 2.0),  # spawn was read as no mass at all)
+    ("a five pound bag of flour", 2.27),
+    ("a twenty five kg sack of rice", 25.0),
+])
+def test_a_mass_said_in_words_is_the_stated_mass(text: str, kg: float) -> None:
+    concept = catalogue.design_from_text(text).concept
+    assert concept is not None and concept.stated_mass_kg == pytest.approx(kg, rel=0.01)
+    assert planned_mass(text) == pytest.approx(kg, rel=0.05)
+
+
+def test_a_pound_cake_is_no_mass() -> None:
+    concept = catalogue.design_from_text("a pound cake").concept
+    assert concept is not None and concept.stated_mass_kg is None
+
+
+@pytest.mark.parametrize(("text", "entry"), [
+    ("Bring me the crown line bag, the red stuff sack.", "stuff_sack"),  # (set 36, post-hoc: a 0.15 kg generic bag)
+    ("a floof, the big fluffy towel", "bath_towel"),
+    ("the casualty bag, the red one", "casualty_bag"),  # a known first noun keeps its object
+    ("a ball, the size of a grape", "rubber_ball"),  # 'the size of' names no object
+])
+def test_an_appositive_names_the_object_when_the_first_words_are_a_guess(text: str, entry: str) -> None:
+    assert catalogue.design_from_text(text).entry == entry
