@@ -603,8 +603,9 @@ def _rolled_sized(size: SizeSpec, program: ShapeProgram, reading: concepts.Readi
     typical_sheet = float(ext[0]) / width
     sheet_len, roll_len = size.extents_m[0], size.extents_m[1]
     said = size.longest_m
-    if sheet_len is None and roll_len is None and said is not None \
-            and abs(np.log(said / typical_sheet)) < abs(np.log(said / float(ext.max()))):
+    if sheet_len is None and said is not None and (roll_len is not None and said > roll_len or roll_len is None
+                                                    and abs(np.log(said / typical_sheet)) < abs(np.log(said / float(ext.max())))):
+        # ('a bandage roll, 10 cm wide x 4.5 m': the width stated, the bare 4.5 m the sheet's length)
         sheet_len = said  # nearer the flat sheet's length than the roll's ('a 183 cm foam sleeping mat, rolled',
         # 'boxing hand wraps, rolled, 180 inch'): the sheet's length, not the roll's
         size = size.model_copy(update={"longest_m": None, "extents_m": (sheet_len, None, None)})

@@ -1713,6 +1713,8 @@ def _state_params(reading: Reading, warnings: list[str]) -> tuple[list[str], dic
         said = [st for st in said if st != "flat"]
     if count is not None and "rolled" not in said and not a_roll:  # 'a pack of 10 felt sheets', '3 burp cloths
         said = ["stacked", *(st for st in said if st != "stacked")]  # folded and stacked' (rolls: side by side)
+    if a_roll:  # a roll is no stack of sheets ('two rolls of toilet paper, one stacked on the other': rolls, not a
+        said = [st for st in said if st != "stacked"]  # sheet of no volume)
     shown = [st for st in said if st in can]  # ('curled up' is lying, for an animal)
     # carried by the material and mass, or a pose the shape has anyway (a teddy sits), not drawn apart
     shapeless = {"stuffed", "filled", "inflated", "hollow", "flat", "sitting", "lying", "standing"}

@@ -267,3 +267,19 @@ def test_a_pound_cake_is_no_mass() -> None:
 ])
 def test_an_appositive_names_the_object_when_the_first_words_are_a_guess(text: str, entry: str) -> None:
     assert catalogue.design_from_text(text).entry == entry
+
+
+def test_rolls_said_stacked_are_rolls_not_a_sheet_of_no_volume() -> None:
+    """'two rolls of toilet paper, one stacked on the other' failed: 'stacked' made the roll a stack of its 0.1 mm
+    sheet ('program has no volume'); it is two rolls, at two rolls' mass."""
+    text = "two rolls of toilet paper, one stacked on the other"
+    assert catalogue.design_from_text(text).entry == "toilet_roll"
+    assert planned_mass(text) == pytest.approx(planned_mass("two rolls of toilet paper"), rel=0.05)
+
+
+def test_a_rolls_width_and_bare_length_are_the_sheets() -> None:
+    """'elastic crepe bandage roll, 10 cm wide x 4.5 m' was refused as a 4.5 m object: the width stated, the bare
+    4.5 m is the sheet's length, rolled (a 4.5 m bandage builds as its ~10 cm roll)."""
+    design = catalogue.design_from_text("elastic crepe bandage roll, 10 cm wide x 4.5 m")
+    assert design.entry == "elastic_bandage" and design.size.longest_m is None
+    assert max(v for v in design.size.extents_m if v is not None) < 0.2
