@@ -87,7 +87,8 @@ def cli_env(prefect_api: str) -> dict[str, str]:
 # files choose their own fixed samples.
 _SWEEP_FILES = re.compile(r"tests/geometry/test_(?:(?:dev|sealed)\d+\w*_classes|lexicon_s\d+\w*|audit\d+\w*|"
                           r"mass_classes|pouch_classes|goods|grammar|details_poses|material_dims|stable_pose|bend|seat|"
-                          r"dev38_reading|redraw\d+\w*)\.py$")
+                          r"dev38_reading|redraw\d+\w*|levers\d+|crumple\d+|sleeved_goods\d+|mesh_sacks\d+|snacks\d+|"
+                          r"(?:dev|sealed)\d+_(?:reading|lexicon|redraw\d+)|packs\d+|cov\d+_c\d+|dev\d+_d\d+|folded_look\d+)\.py$")
 
 
 SWEEP_SAMPLE = 24  # the default run keeps one phrase in this many of each sweep test (one in three until session 40,

@@ -5,7 +5,6 @@ from __future__ import annotations
 
 import functools
 import json
-import time
 from pathlib import Path
 
 import cv2
@@ -362,7 +361,8 @@ def test_soft_material_with_a_rigid_file_name_is_allowed(tmp_path: Path) -> None
 
 def test_large_photo_is_reduced_as_it_is_read(tmp_path: Path) -> None:
     """A 12-megapixel phone JPEG (landscape pixels, EXIF orientation 6 = portrait) is decoded reduced and upright,
-    and L0's mesh step takes about as long as on the small photo."""
+    and L0 builds from it. (How long it takes beside the small photo is a figure of `benchmarks/photo_bench.py
+    --large`, not of a timed test.)"""
     from PIL import Image
 
     small = _scene(tmp_path, "teddy_bear", "IMG_small.png")
@@ -377,14 +377,11 @@ def test_large_photo_is_reduced_as_it_is_read(tmp_path: Path) -> None:
     truth = cv2.resize(photo_scenes.scene_mask("teddy_bear").astype(np.uint8), (768, 1024)).astype(bool)
     assert _iou(image.segment(loaded)[0], truth) > 0.9  # upright, not on its side
     s = _fast()
-    sources.build_mesh(AssetRequest(image_path=small, size_hint_m=0.3), s)  # warm caches
-    t0 = time.process_time()  # (CPU time: the wall time on a loaded machine measures the other processes too)
-    sources.build_mesh(AssetRequest(image_path=small, size_hint_m=0.3), s)
-    t_small = time.process_time() - t0
-    t0 = time.process_time()
-    sources.build_mesh(AssetRequest(image_path=big, size_hint_m=0.3), s)
-    t_big = time.process_time() - t0
-    assert t_big < 1.5 * t_small + 1.0, (t_big, t_small)
+    small_mesh, _ = sources.build_mesh(AssetRequest(image_path=small, size_hint_m=0.3), s)
+    big_mesh, _ = sources.build_mesh(AssetRequest(image_path=big, size_hint_m=0.3), s)
+    # the same teddy at the same size from either photo (the big one is read at the small one's scale)
+    extent = [np.ptp(m["vertices"], axis=0) for m in (small_mesh, big_mesh)]
+    assert np.allclose(np.sort(extent[1]), np.sort(extent[0]), rtol=0.1), extent
 
 
 _SOFT = [r for r in _manifest() if r["soft"]]
