@@ -619,10 +619,14 @@ def _rolled_sized(size: SizeSpec, program: ShapeProgram, reading: concepts.Readi
                         stated=f"{size.stated}{ROLL_OWN_LENGTH}"), True
     if sheet_len is not None and roll_len is not None and roll_len > sheet_len and width <= 1.0:
         sheet_len, roll_len = roll_len, sheet_len  # '70 x 140 cm' rolled: rolled along its length, as the typical one
-    k = float(np.sqrt((sheet_len or typical_sheet) / typical_sheet))
+    layers, how = 1, "rolled"
+    while roll_len is not None and roll_len > MAX_SIZE_M and layers < 4:  # an 8 x 10 ft rug: folded in half along
+        roll_len, layers, how = roll_len / 2, layers * 2, "folded lengthwise to fit, then rolled"  # its length first,
+        # as a long rug is rolled for carrying (each fold doubles the layers the roll's cross-section holds)
+    k = float(np.sqrt((sheet_len or typical_sheet) * layers / typical_sheet))
     ext_m = (roll_len or float(ext[0]), float(ext[1]) * k, float(ext[2]) * k)
     return size.model_copy(update={"extents_m": ext_m, "long": False, "flat": False,
-                                   "stated": f"{size.stated}: the sheet's length and width, rolled"}), False
+                                   "stated": f"{size.stated}: the sheet's length and width, {how}"}), False
 
 
 def _crumpled_sized(size: SizeSpec, reading: concepts.Reading) -> SizeSpec:
@@ -782,6 +786,7 @@ def _task_clause_stripped(text: str) -> str:
         commanded = _TRAILING_PARTICLE.sub("", commanded)
     stripped = _TASK_CLAUSE.sub("", _REQUEST_OPENING.sub("", commanded))
     stripped = _TRAILING_FILLER.sub("", _TRAILING_COMMAND.sub("", stripped))
+    stripped = re.sub(r"\s+(?=[,.!])", "", _POLITE.sub("", stripped)).strip()  # 'yuba sheet pls, one, off the rod': 'pls' was the noun
     others = _OTHER_OBJECTS.search(stripped)  # 'plush axolotl, then the towel': the first one named
     if others is not None and re.search(r"[a-z]", stripped[: others.start()], re.IGNORECASE) \
             and not re.search(r"\b(?:with|w/|has|having)\b", stripped[: others.start()], re.IGNORECASE):  # ('with a
@@ -899,6 +904,10 @@ _TRAILING_FILLER = re.compile(r"[\s,.!]+(?:(?:real|really|super)\s+quick(?:ly)?|
                               r"cheers|ta))*[\s.!]*$", re.IGNORECASE)
 
 
+# a please or thanks typed anywhere in the request (the opening and the end are read above)
+_POLITE = re.compile(r"(?<![a-z'])(?:pls|plz|please|thx)(?![a-z'])\s*", re.IGNORECASE)
+
+
 _OF_WORDS = re.compile(r"\b([a-z]+) of ((?:[a-z]+ ){1,2})([a-z]+)\b", re.IGNORECASE)
 
 
@@ -965,24 +974,30 @@ def _mass_sized(size: SizeSpec, match: ConceptMatch, stated: size_words.StatedMa
                   + (f" (at most {MAX_SIZE_M:g} m, the longest L0 builds: denser to weigh it)" if capped else "")})
 
 
-_UNITLESS_DIMS = re.compile(r"(?<![\w.])(\d+(?:\.\d+)?)\s*x\s*(\d+(?:\.\d+)?)(?:\s*x\s*(\d+(?:\.\d+)?))?(?![\w.]|\s*(?:"
+_SIDE_WORDS = {"one": 1, "two": 2, "three": 3, "four": 4, "five": 5, "six": 6, "seven": 7, "eight": 8, "nine": 9,
+               "ten": 10, "eleven": 11, "twelve": 12}
+_SIDE = r"(\d+(?:\.\d+)?|" + "|".join(_SIDE_WORDS) + r")"
+_UNITLESS_DIMS = re.compile(rf"(?<![\w.]){_SIDE}\s*(?:x|by)\s*{_SIDE}(?:\s*(?:x|by)\s*{_SIDE})?(?![\w.]|\s*(?:"
                             r"mm|cm|m|in|inch|inches|ft|feet|foot|\"|')\b)", re.IGNORECASE)
 UNITLESS_UNITS = (("cm", 0.01), ("in", 0.0254))  # a bare 'A x B x C' is read in the one of these nearer its typical size
+UNITLESS_SHEET_UNITS = (*UNITLESS_UNITS, ("ft", 0.3048))  # ... and a rug's, a mat's or a tarp's also in feet ('an 8x10
+# jute, rolled', 'the little 2 by 3 Persian': rug sizes are said in feet)
 UNITLESS_REACH = 3.0  # ... and only within this factor of it, else the typical size is built (and said) [-]
 
 
 def _unitless_dims(text: str, reading: concepts.Reading) -> SizeSpec | None:
     """Sides said with no unit ('24x24x4 high density foam slab', 'sofa seat cushion, about 24x24x5'): read in
-    centimetres or inches, whichever puts the longest side nearer the object's typical size (within UNITLESS_REACH
-    of it); a flat sheet's stated size is its unfolded one, so a sheet is left to its typical size."""
+    centimetres or inches (a sheet also in feet), whichever puts the longest side nearer the object's typical size
+    (within UNITLESS_REACH of it); a sheet's, like any stated size, is its size laid out flat."""
     m = _UNITLESS_DIMS.search(text)
     entry = reading.donor or reading.entry
-    if m is None or entry is None or not entry.size_m or entry.plan == "sheet" or entry.drawn_state:
+    if m is None or entry is None or not entry.size_m or entry.drawn_state:
         return None
-    dims = [float(g) for g in m.groups() if g is not None]
+    dims = [float(_SIDE_WORDS.get(g.lower(), g)) for g in m.groups() if g is not None]
     if min(dims) <= 0:
         return None
-    unit, k = min(UNITLESS_UNITS, key=lambda u: abs(np.log(max(dims) * u[1] / entry.size_m)))
+    units = UNITLESS_SHEET_UNITS if entry.plan == "sheet" else UNITLESS_UNITS
+    unit, k = min(units, key=lambda u: abs(np.log(max(dims) * u[1] / entry.size_m)))
     if abs(np.log(max(dims) * k / entry.size_m)) > np.log(UNITLESS_REACH):
         return None
     return SizeSpec(extents_m=tuple(sorted((d * k for d in dims), reverse=True)) + (None,) * (3 - len(dims)),

@@ -41,7 +41,8 @@ PORTION_NOUNS = frozenset({"slice", "wedge", "piece", "chunk", "lump", "block", 
                            "strip", "cube", "disc", "disk", "roll", "stick", "scoop", "pair", "bunch",
                            "handful", "bundle", "pile", "stack", "coil", "skein", "wad", "blob", "glob", "dollop", "round",
                            "square", "segment", "half", "quarter", "portion", "brick", "pad", "head", "clove", "sprig",
-                           "bulb", "ear", "wheel", "log", "set", "section", "length", "bolt"})
+                           "bulb", "ear", "wheel", "log", "set", "section", "length", "bolt", "cluster", "clump",
+                           "nest", "tuft", "heap"})
 # portions that are a state of their object
 PORTION_STATES = {"stack": "stacked", "pile": "stacked", "roll": "rolled", "coil": "rolled", "bolt": "rolled"}  # (a
 # bolt of cloth is its roll)

@@ -1,0 +1,70 @@
+"""Session 50's readings and entries (issue #35): a 'pls' mid-request is no noun; a cluster, clump or nest of a thing
+is the thing; a bare rug is an area rug (it was the 0.8 m bath mat), carpet and its samples, tiles and pads are
+their own goods; a rug's bare 'A by B' is in feet; a rug too wide to roll is folded lengthwise first; a gi is a
+folded martial-arts uniform tied with its belt; a Kevlar sleeve is an arm sleeve."""
+
+from __future__ import annotations
+
+import pytest
+
+from contracts.errors import InputError
+from tasks.geometry import catalogue
+from tests.geometry.test_mass_classes import planned_mass
+
+
+def test_a_please_mid_request_is_no_noun() -> None:
+    design = catalogue.design_from_text("yuba sheet pls, one, off the drying rod")
+    assert design.concept is not None and design.concept.noun != "pls"
+    assert catalogue.design_from_text("a sponge pls, the yellow one").entry == "kitchen_sponge"
+    assert catalogue.design_from_text("the towel please, the blue one").entry == "bath_towel"
+
+
+@pytest.mark.parametrize(("text", "entry"), [
+    ("a cluster of oyster mushrooms", "oyster_mushroom"),
+    ("a nest of tagliatelle", "pasta_nest"),
+    ("hand me a clump of the oyster mushrooms, a whole one", "oyster_mushroom"),
+])
+def test_a_cluster_clump_or_nest_of_a_thing_is_the_thing(text: str, entry: str) -> None:
+    assert catalogue.design_from_text(text).entry == entry
+
+
+@pytest.mark.parametrize(("text", "entry", "kg"), [
+    ("a rug", "area_rug", 4.5),  # 4 x 6 ft pile rug, 1.5-3 kg/m2
+    ("a persian rug, rolled up", "area_rug", 4.5),
+    ("carpet", "area_rug", 4.5),
+    ("a felt rug pad", "rug_pad", 2.0),  # 4 x 6 ft, 1/4 in felt, 0.8-1.1 kg/m2
+    ("a carpet tile", "carpet_tile", 1.0),  # 50 x 50 cm, 3.5-5 kg/m2
+    ("Hand me one of the carpet samples, the grey shag square.", "carpet_sample", 0.25),
+    ("a white judo gi, folded", "gi_folded", 1.5),  # judo / BJJ gi 1.2-2.2 kg
+    ("the Kevlar sleeve, the left one", "arm_sleeve", 0.06),  # 18 in cut-resistant sleeve 40-90 g
+])
+def test_rugs_carpet_a_gi_and_a_sleeve_are_their_own_goods_at_their_mass(text: str, entry: str, kg: float) -> None:
+    assert catalogue.design_from_text(text).entry == entry
+    assert 0.67 <= planned_mass(text) / kg <= 1.5
+
+
+def test_a_bath_rug_is_still_the_bath_mat() -> None:
+    assert catalogue.design_from_text("a bath rug").entry == "bath_mat"
+
+
+@pytest.mark.parametrize(("text", "sides_m"), [
+    ("a 2 by 3 rug", (0.914, 0.610)),  # rug sizes are said in feet
+    ("a 4x6 rug", (1.829, 1.219)),
+    ("a bath mat 50 x 80", (0.8, 0.5)),  # ... a bath mat's in centimetres: the unit nearer its typical size
+    ("a 24 by 24 by 4 foam slab", (0.24, 0.24)),  # 'by' as 'x'
+])
+def test_bare_sides_are_read_in_the_unit_nearer_the_typical_size(text: str, sides_m: tuple[float, float]) -> None:
+    extents = catalogue.design_from_text(text).size.extents_m
+    assert extents[0] == pytest.approx(sides_m[0], abs=0.002) and extents[1] == pytest.approx(sides_m[1], abs=0.002)
+
+
+def test_a_rug_too_wide_to_roll_is_folded_lengthwise_then_rolled() -> None:
+    """An 8 x 10 ft rug rolled is 2.44 m long, over the 2 m L0 builds: folded in half along its length first (as a big
+    rug is carried), a 1.22 m roll whose cross-section holds both layers (wider than the 5 x 8 ft rug's roll)."""
+    big = catalogue.design_from_text("the 8x10 jute rug, rolled up")
+    small = catalogue.design_from_text("a 5x8 rug, rolled up")
+    assert big.entry == "area_rug" and big.size.extents_m[0] == pytest.approx(1.219, abs=0.002)
+    assert "folded lengthwise" in (big.size.stated or "")
+    assert big.size.extents_m[1] > small.size.extents_m[1]
+    with pytest.raises(InputError, match="outside the supported range"):  # flat, it is bigger than L0 builds
+        catalogue.design_from_text("an 8x10 rug")
