@@ -997,11 +997,14 @@ def _unitless_dims(text: str, reading: concepts.Reading) -> SizeSpec | None:
     if min(dims) <= 0:
         return None
     units = UNITLESS_SHEET_UNITS if entry.plan == "sheet" else UNITLESS_UNITS
-    unit, k = min(units, key=lambda u: abs(np.log(max(dims) * u[1] / entry.size_m)))
-    if abs(np.log(max(dims) * k / entry.size_m)) > np.log(UNITLESS_REACH):
+    near = [u for u in units if abs(np.log(max(dims) * u[1] / entry.size_m)) <= np.log(UNITLESS_REACH)]
+    fits = [u for u in near if max(dims) * u[1] <= MAX_SIZE_M or _FOLDED_OR_ROLLED.search(text)]
+    if not near:
         return None
+    unit, k = min(fits or near, key=lambda u: abs(np.log(max(dims) * u[1] / entry.size_m)))  # ('silk scarf 90x90':
+    # 90 cm, not the 2.3 m of 90 inches L0 cannot build; a flat 8 x 10 ft rug is still 8 x 10 ft, and refused)
     return SizeSpec(extents_m=tuple(sorted((d * k for d in dims), reverse=True)) + (None,) * (3 - len(dims)),
-                    stated=f"{m.group(0).strip()} (no unit: read in {unit}, nearer the "
+                    stated=f"{m.group(0).strip()} (no unit: read in {unit}, near the "
                            f"{entry.key.replace('_', ' ')}'s typical {entry.size_m:g} m)")
 
 

@@ -52,6 +52,7 @@ def test_a_bath_rug_is_still_the_bath_mat() -> None:
     ("a 4x6 rug", (1.829, 1.219)),
     ("a bath mat 50 x 80", (0.8, 0.5)),  # ... a bath mat's in centimetres: the unit nearer its typical size
     ("a 24 by 24 by 4 foam slab", (0.24, 0.24)),  # 'by' as 'x'
+    ("silk scarf 90x90", (0.9, 0.9)),  # 90 cm, not 90 inches (2.3 m, over what L0 builds), though nearer 1.6 m
 ])
 def test_bare_sides_are_read_in_the_unit_nearer_the_typical_size(text: str, sides_m: tuple[float, float]) -> None:
     extents = catalogue.design_from_text(text).size.extents_m
