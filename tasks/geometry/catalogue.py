@@ -1267,7 +1267,10 @@ def design_from_text(text: str, size_hint_m: float | None = None) -> Design:
         reading = concepts.read_text(meat)
         reading.warnings.insert(0, f"'{reading.phrase.text if reading.phrase else stripped}': said raw, ground or "
                                    f"cooked, so meat, not the animal")
-    if _FAKE_FOOD.search(stripped) and concepts.concept_domain(reading.entry.key) == "food" and reading.pouch is None:
+    fake = _FAKE_FOOD.search(stripped)
+    if fake is not None and fake.group(0).lower() in (reading.match.noun or "").split():
+        fake = None  # the lexicon's own name of the thing ('foam clay' is a modelling clay, not a foam prop of clay)
+    if fake is not None and concepts.concept_domain(reading.entry.key) == "food" and reading.pouch is None:
         reading.match = reading.match.model_copy(update={  # 'a fake roast chicken': the food's look, a prop's mass
             "default_material": FAKE_FOOD_MATERIAL, "density_kg_per_m3": None, "typical_mass_kg": None,
             "typical_mass_range_kg": None, "mass_source": FAKE_FOOD_SOURCE, "restitution": None})

@@ -69,3 +69,18 @@ def test_a_rug_too_wide_to_roll_is_folded_lengthwise_then_rolled() -> None:
     assert big.size.extents_m[1] > small.size.extents_m[1]
     with pytest.raises(InputError, match="outside the supported range"):  # flat, it is bigger than L0 builds
         catalogue.design_from_text("an 8x10 rug")
+
+
+@pytest.mark.parametrize(("text", "kg"), [
+    ("a bag of clay", None),
+    ("Can you get me a bag of the stoneware clay? The 12.5 kilo one, unopened.", 12.5),
+])
+def test_a_bag_of_clay_is_a_sack_of_pugged_clay(text: str, kg: float | None) -> None:
+    """A pottery's bag of clay is pugged clay sealed in its plastic sack (set 36: 'a bag of the stoneware clay, the
+    12.5 kilo one' was a 10 cm ball of clay, named 'an orange playground ball'); a ball of clay is still the ball."""
+    design = catalogue.design_from_text(text)
+    assert design.entry == "generic_pouch" and design.concept is not None
+    assert "pouch of clay" in (design.concept.fallback_note or "")
+    if kg is not None:
+        assert design.concept.stated_mass_kg == pytest.approx(kg)
+    assert catalogue.design_from_text("a ball of clay").entry == "potters_clay"
