@@ -786,6 +786,7 @@ def _task_clause_stripped(text: str) -> str:
         commanded = _TRAILING_PARTICLE.sub("", commanded)
     stripped = _TASK_CLAUSE.sub("", _REQUEST_OPENING.sub("", commanded))
     stripped = _TRAILING_FILLER.sub("", _TRAILING_COMMAND.sub("", stripped))
+    stripped = _SNACK_FLAVOUR.sub(" ", stripped)  # 'salt and vinegar crisps': crisps, not a pouch of salt
     stripped = re.sub(r"\s+(?=[,.!])", "", _POLITE.sub("", stripped)).strip()  # 'yuba sheet pls, one, off the rod': 'pls' was the noun
     others = _OTHER_OBJECTS.search(stripped)  # 'plush axolotl, then the towel': the first one named
     if others is not None and re.search(r"[a-z]", stripped[: others.start()], re.IGNORECASE) \
@@ -904,6 +905,13 @@ _TRAILING_FILLER = re.compile(r"[\s,.!]+(?:(?:real|really|super)\s+quick(?:ly)?|
                               r"cheers|ta))*[\s.!]*$", re.IGNORECASE)
 
 
+# a snack's flavour before it ('salt and vinegar crisps', 'sour cream & onion chips', 'cheese and onion'): the
+# flavour's words named a pouch of salt or of onion
+_FLAVOUR_WORDS = r"(?:salt|salted|sea|vinegar|sour|cream|onion|cheese|cheddar|bbq|barbecue|prawn|cocktail|chilli|chili|" \
+                 r"lime|paprika|sweet|jalapeno|ranch|original|smoky|smoked|bacon|beef|chicken|pickle|pickled|dill|" \
+                 r"plain|lightly|ready|spicy|hot|honey|mustard|pepper|black|roast|roasted|garlic|herb|tomato|ketchup)"
+_SNACK_FLAVOUR = re.compile(rf"\b{_FLAVOUR_WORDS}(?:\s+(?:and|&|n|'n'|with)?\s*{_FLAVOUR_WORDS})*(?=\s+(?:crisps|chips|"
+                            r"potato\s+chips|tortilla\s+chips|puffs|pretzels|popcorn)\b)", re.IGNORECASE)
 # a please or thanks typed anywhere in the request (the opening and the end are read above)
 _POLITE = re.compile(r"(?<![a-z'])(?:pls|plz|please|thx)(?![a-z'])\s*", re.IGNORECASE)
 

@@ -851,6 +851,12 @@ def _in_packaging(sleeved: pouch_words.Sleeved) -> Reading | None:
     a garment folded, with the pack kind and count (drawn through the film in `build`); None when the goods are
     not a folded textile the lexicon knows (a pork chop's vacuum pack, a pillow's space-saver bag)."""
     inner = read_text(sleeved.contents)
+    if inner.entry.category == "textile" and inner.entry.catalogue is not None and inner.entry.drawn_state is None:
+        for said in (f"folded {sleeved.contents}", f"{inner.entry.nouns[0]} packet"):  # ('a rain poncho still in the
+            packed = read_text(said)  # packet': a drawing laid out flat; the lexicon's folded or packed one is what
+            if packed.entry.key != inner.entry.key and not packed.match.by_analogy:  # its packet holds)
+                inner = packed
+                break
     entry = inner.entry
     rolled = entry.params.get("state") == "rolled"
     folded_drawing = entry.catalogue is not None and entry.drawn_state == "folded"
@@ -942,7 +948,9 @@ def _pouch_of(t: str, phrase: phrase_mod.Phrase, entry: LexiconEntry, match: Con
     if phrase.head not in pouch_words.CONTAINERS or phrase.portion is not None:
         return None
     noun = match.noun or ""
-    holds = _HOLDS.search(t) is not None  # 'a grocery bag with six oranges inside': the bag holds them
+    held = _HOLDS.search(t)
+    holds = held is not None and not _HOLDS_NOTHING_NAMED.search(held.group(0))  # 'a grocery bag with six oranges
+    # inside': the bag holds them ('a makeup bag with a few things in it' names none: the lexicon's makeup bag)
     if pouch_words.NET_WORDS.search(t) and not pouch_words.NET_WORDS.search(noun) and (
             _pieces_pouch(t) is not None or pouch_words.pouch_of(t, phrase.head, phrase.compounds) is not None):
         holds = True  # 'a sack of potatoes in open-weave burlap', 'a mesh sack of mussels': goods seen through a net,
@@ -1045,6 +1053,8 @@ def _pieces_pouch(t: str) -> pouch_words.PouchOf | None:
 
 _HOLDS = re.compile(r"\b(?:bag|bags|pouch|sack|pack|packet|box)\s+(?:with|containing|holding)\s+(?:\w+\s+){1,4}?"
                     r"(?:inside|in it|in them|within)\b|\b(?:bag|pouch|sack)\s+(?:containing|holding|full of)\b")
+_HOLDS_NOTHING_NAMED = re.compile(r"\b(?:things?|stuff|bits|bits and bobs|odds and ends|items?|something|some)\s+"
+                                  r"(?:inside|in it|in them|within)\b")
 _COUNTS = {"two": 2, "three": 3, "four": 4, "five": 5, "six": 6, "seven": 7, "eight": 8, "nine": 9, "ten": 10,
            "eleven": 11, "twelve": 12, "a dozen": 12, "dozen": 12, "twenty": 20}
 _COUNT = re.compile(r"\b(\d+|" + "|".join(sorted(_COUNTS, key=len, reverse=True)) + r")\s+(?:\w+\s+){0,2}$")

@@ -11,6 +11,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from contracts.concept import ConceptMatch
+from contracts.errors import InputError
 from contracts.lexicon import LexiconEntry, load_lexicon
 from contracts.shape import MAX_PARTS, Part, ShapeProgram
 from tasks.geometry import fill_words, grammar
@@ -142,6 +143,9 @@ def apply(target: LexiconEntry, portion: str | None, text: str, params: dict, si
             out.match = match.model_copy(update={"typical_mass_kg": match.typical_mass_kg * 2
                                                  if match.typical_mass_kg else None})
             out.notes += ("a pair: two of them",)
+        elif portion not in BUNCH_WORDS and (count := group_count(text)) is not None and target.category == "textile":
+            out.stacked = count  # '5 yellow mesh pinnies': cloth goods in a pile, one on another (laid side by side,
+            out.notes += (f"{count} of them stacked",)  # five flat vests apart were five bodies, four of them dropped)
         elif portion not in BUNCH_WORDS and (count := group_count(text)) is not None:
             out.count = count
             out.notes += (f"{count} of them side by side",)
@@ -423,12 +427,22 @@ def nested_stack(program: ShapeProgram, match: ConceptMatch, count: int) -> tupl
     return copies(program, match, [(0.0, 0.0, k * rise) for k in range(count)])
 
 
+def _height(program: ShapeProgram) -> float:
+    """A program's height [m], sampled finer when a thin good (a flat leg warmer) falls between a coarse grid's cells."""
+    for resolution in (32, 64, 128):
+        try:
+            return float(grammar.program_extents(program, resolution)[2])
+        except InputError:
+            continue
+    raise InputError(f"program '{program.name}' has no volume")
+
+
 def piled(program: ShapeProgram, match: ConceptMatch, count: int) -> tuple[ProgramMatch, int]:
     """`count` copies one on another, each STACK_RISE of one's height above the one below, as many as a program's 64
     parts hold (a garment of 33 parts or more is drawn once); the drawn ones weigh all `count` (the typical mass and
     density times the share not drawn). Returns ((program, match), the number drawn)."""
     drawn = max(1, min(count, MAX_PARTS // max(len(program.parts), 1)))
-    rise = STACK_RISE * float(grammar.program_extents(program, 32)[2])
+    rise = STACK_RISE * _height(program)
     many, match = copies(program, match, [(0.0, 0.0, k * rise) for k in range(drawn)])
     if count > drawn:
         share = count / drawn

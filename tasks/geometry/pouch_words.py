@@ -313,7 +313,9 @@ SLEEVE = re.compile(
     rf"|(?:{_SEE_THROUGH_WORDS}\s+){{0,3}}(?:sleeve|wrap|wrapper|wrapping|packaging|package|film|cellophane|"
     r"polybag|poly bag|plastic))\b"
     r"|\b(?:shrink|plastic|cellophane|film|poly)[\s-]*(?:wrapped|wrap|sleeved|bagged)\b|\bpolybagged\b"
-    r"|\bin\s+(?:the|its)\s+(?:original\s+)?packaging\b|\bstill\s+(?:packaged|sealed|wrapped|bagged)\b")
+    r"|\bin\s+(?:the|its)\s+(?:original\s+)?packaging\b|\bstill\s+(?:packaged|sealed|wrapped|bagged)\b"
+    r"|\b(?:still\s+)?(?:in|inside)\s+(?:the|its|their)\s+(?:own\s+|original\s+)?(?:packet|package)\b")  # ('a rain
+# poncho still in the packet': the goods a packet of their own holds, folded)
 _VACUUM_KIND = re.compile(r"\b(?:vacuum|vac|cryovac|cryovacked|space saver|compression)\b")
 _CONTENTS_COUNT = re.compile(r"^(?:an?\s+|the\s+|some\s+)?(?:(?:pack|packet|set|bundle|stack|pile|bag|pouch)\s+of\s+)?"
                              r"(\d+|two|three|four|five|six|seven|eight|nine|ten|twelve)\s*"
