@@ -1377,8 +1377,8 @@ def design_from_text(text: str, size_hint_m: float | None = None) -> Design:
         folded = final_scale(size, program, 0.0)[0]
         if folded > MAX_SIZE_M:  # ('a queen size duvet folded in thirds' is still 2.28 m long one way)
             raise InputError(f"folded as said, the {size.stated} sheet is still {folded:.2f} m long, over the "
-                             f"{MAX_SIZE_M:g} m L0 builds; say it folded in quarters, or give a smaller "
-                             f"size")
+                             f"{MAX_SIZE_M:g} m L0 builds; say it rolled (a roll too wide is folded "
+                             f"lengthwise first), or give a smaller size")
         check_size(SizeSpec(longest_m=folded, stated=size.stated))
     else:
         check_size(size)

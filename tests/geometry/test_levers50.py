@@ -135,3 +135,12 @@ def test_a_poncho_still_in_its_packet_is_the_packed_poncho() -> None:
     design = catalogue.design_from_text("one of those cheap plastic rain ponchos still in the packet")
     assert design.entry == "poncho_pouch"
     assert planned_mass("a rain poncho in its packet") < 0.15
+
+
+def test_a_sheet_folded_but_still_too_long_says_what_fits() -> None:
+    """'folded bird netting, like 4m by 10m' (set 37) is 2.5 m long folded three times: the error says to roll it
+    (rolled, it is folded lengthwise and built) rather than 'folded in quarters' (5 m)."""
+    with pytest.raises(InputError, match="say it rolled"):
+        catalogue.design_from_text("folded bird netting, like 4m by 10m")
+    rolled = catalogue.design_from_text("bird netting, 4m by 10m, rolled")
+    assert max(v for v in rolled.size.extents_m if v is not None) <= 2.0
