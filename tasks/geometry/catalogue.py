@@ -778,15 +778,25 @@ _TASK_CLAUSE = re.compile(r"\s*,?\s+(?:(?:(?:that|which|so that|so)\s+)?" + _ROB
                           r"|(?:for|to)\s+" + _ROBOT + r")\b.*$", re.IGNORECASE)
 
 
+# a command that puts the object in a state ('roll up the foam sleeping mat from under the bunk' was a bread roll,
+# 'fold the tea towel'): the object in that state
+_STATE_DONE = {"roll": "rolled up", "fold": "folded", "crumple": "crumpled", "scrunch": "crumpled", "coil": "coiled"}
+_STATE_COMMAND = re.compile(r"^\s*(?:(?:can|could|would|will)\s+(?:you|u)\s+)?(?:(?:please|pls|plz)\s+)?(?P<verb>roll|fold|"
+                            r"crumple|scrunch|coil)(?:\s+up)?\s+(?:the|that|this|my|our|your|those|these)\s+(?P<rest>.+?)"
+                            r"(?:\s+up)?\s*$", re.IGNORECASE)
+
+
 def _task_clause_stripped(text: str) -> str:
     """The description without a request's opening ('can you make', 'I need') or a trailing clause about the robot's
     task (the object it names is the head)."""
+    text = _STATE_COMMAND.sub(lambda m: f"{m.group('rest')}, {_STATE_DONE[m.group('verb').lower()]}", text)
     commanded = _COMMAND_OPENING.sub("", _LABEL_OPENING.sub("", text))
     if commanded != text:  # ('put that cake back': the verb's particle, not the object's)
         commanded = _TRAILING_PARTICLE.sub("", commanded)
     stripped = _TASK_CLAUSE.sub("", _REQUEST_OPENING.sub("", commanded))
     stripped = _TRAILING_FILLER.sub("", _TRAILING_COMMAND.sub("", stripped))
     stripped = _SNACK_FLAVOUR.sub(" ", stripped)  # 'salt and vinegar crisps': crisps, not a pouch of salt
+    stripped = _ice_cream_flavoured(stripped)  # 'one scoop of strawberry in a waffle cone': not a strawberry
     stripped = re.sub(r"\s+(?=[,.!])", "", _POLITE.sub("", stripped)).strip()  # 'yuba sheet pls, one, off the rod': 'pls' was the noun
     others = _OTHER_OBJECTS.search(stripped)  # 'plush axolotl, then the towel': the first one named
     if others is not None and re.search(r"[a-z]", stripped[: others.start()], re.IGNORECASE) \
@@ -912,6 +922,38 @@ _FLAVOUR_WORDS = r"(?:salt|salted|sea|vinegar|sour|cream|onion|cheese|cheddar|bb
                  r"plain|lightly|ready|spicy|hot|honey|mustard|pepper|black|roast|roasted|garlic|herb|tomato|ketchup)"
 _SNACK_FLAVOUR = re.compile(rf"\b{_FLAVOUR_WORDS}(?:\s+(?:and|&|n|'n'|with)?\s*{_FLAVOUR_WORDS})*(?=\s+(?:crisps|chips|"
                             r"potato\s+chips|tortilla\s+chips|puffs|pretzels|popcorn)\b)", re.IGNORECASE)
+# an ice cream's flavour is not the object ('one scoop of strawberry in a waffle cone' was a strawberry, 'blue
+# raspberry slushie' a raspberry): a scoop of a flavour is ice cream, a scoop in a cone an ice cream cone, and the
+# flavour gives the scoop its colour where it has one (mint green, strawberry pink)
+_ICE_FLAVOURS = {"strawberry": "pink", "raspberry": "pink", "cherry": "pink", "bubblegum": "pink", "mango": "orange",
+                 "orange": "orange", "peach": "orange", "lemon": "yellow", "banana": "yellow", "pistachio": "light green",
+                 "mint": "light green", "blueberry": "lavender", "lavender": "lavender", "coffee": "light brown",
+                 "mocha": "light brown", "caramel": "caramel", "chocolate": "chocolate", "vanilla": "",
+                 "cookies and cream": "", "cookie dough": "", "rocky road": "chocolate", "neapolitan": ""}
+_ICE_FLAVOUR = r"(?P<flavour>" + "|".join(sorted(_ICE_FLAVOURS, key=len, reverse=True)) + r")(?:\s+(?:chocolate\s+)?chips?|" \
+               r"\s+swirl|\s+ripple|\s+crunch)?"
+_SCOOP_IN_CONE = re.compile(r"\b(?:(?:an?|one|single|two|double|three|triple)\s+)?scoops?\s+of\s+(?:(?P<colour>blue|red|"
+                            r"green|pink)\s+)?" + _ICE_FLAVOUR + r"(?:\s+(?:ice\s+cream|gelato|sorbet))?\s+(?:in|on)\s+"
+                            r"(?:an?|the)\s+(?:(?:waffle|sugar|cake|wafer)\s+)?cone\b", re.IGNORECASE)
+_SCOOP_OF_FLAVOUR = re.compile(r"(?P<pre>\bscoops?\s+of\s+)" + _ICE_FLAVOUR + r"\b(?!\s+(?:ice\s+cream|gelato|sorbet|frozen))",
+                               re.IGNORECASE)
+_FLAVOURED_ICE = re.compile(r"\b(?P<colour>(?:blue|red|green|pink)\s+)?" + _ICE_FLAVOUR + r"(?P<ice>\s+(?:ice\s+cream|gelato|"
+                            r"sorbet|frozen\s+yogurt|slushie|slushy|slush|milkshake|shake|smoothie|popsicle|ice\s+lolly)\b)",
+                            re.IGNORECASE)
+
+
+def _ice_cream_flavoured(text: str) -> str:
+    """A flavour said of ice cream read as its colour, not as the fruit ('scoop of strawberry in a waffle cone' ->
+    'pink strawberry flavour ice cream cone')."""
+    def coloured(m: re.Match[str], ice: str) -> str:
+        flavour = m.group("flavour").lower()
+        colour = (m.groupdict().get("colour") or "").strip() or _ICE_FLAVOURS[flavour]
+        return f"{colour + ' ' if colour else ''}{flavour} flavour{ice}"
+    text = _SCOOP_IN_CONE.sub(lambda m: coloured(m, " ice cream cone"), text)
+    text = _SCOOP_OF_FLAVOUR.sub(lambda m: m.group("pre") + coloured(m, " ice cream"), text)
+    return _FLAVOURED_ICE.sub(lambda m: coloured(m, m.group("ice")), text)
+
+
 # a please or thanks typed anywhere in the request (the opening and the end are read above)
 _POLITE = re.compile(r"(?<![a-z'])(?:pls|plz|please|thx)(?![a-z'])\s*", re.IGNORECASE)
 

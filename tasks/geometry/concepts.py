@@ -161,7 +161,19 @@ def plain(text: str) -> str:
     t = re.sub(r"[-_/]", " ", t)
     t = re.sub(r"\s*[?!]+", ".", t)  # a question's end ends its sentence ('my apron? canvas one': the apron)
     t = re.sub(r"[^a-z0-9.,;' ]", " ", t)
-    return re.sub(r"\s+", " ", t).strip()
+    t = re.sub(r"\s+", " ", t).strip()
+    for idiom, meaning in _IDIOMS:
+        t = idiom.sub(meaning, t)
+    return t
+
+
+# set phrases whose words the parse would take apart ('two eggs sunny side up' built a plush sun for 'side', a
+# jack-o'-lantern a generic object): read as the object they name (after `plain`: hyphens are spaces)
+_IDIOMS = [
+    (re.compile(r"\b(eggs?) (?:sunny side up|over (?:easy|medium|hard))\b"), r"fried \1"),
+    (re.compile(r"\b(?:sunny side up|over (?:easy|medium|hard)) (eggs?)\b"), r"fried \1"),
+    (re.compile(r"\bjack ?o ?' ?lanterns?\b|\bjack o lanterns?\b"), "carved pumpkin"),
+]
 
 
 def normalise(text: str) -> str:
