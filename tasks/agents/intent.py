@@ -166,6 +166,9 @@ _MEASURE_OF = re.compile(r"\b(?:roll|rolls)\s+of\b")
 # food classes: 'stuffed' said of a food is its filling, not a stuffed toy's plush (sealed set 29's calzone weighed 40 g)
 _FOOD_CLASSES = frozenset({"cheese", "processed_meat", "firm_produce", "bread", "fruit", "marshmallow", "dough", "gel"})
 _STUFFED = re.compile(r"\bstuffed\b")
+# what comes with a food is a topping or side, not its material ('hot cocoa with marshmallows' is a drink, not a
+# marshmallow); 'made with' still names it
+_FOOD_WITH = re.compile(r"(?<!made )\bwith\b.*$")
 
 
 # a material said of a surface only: a coating, dip, lining or trim ('rubber-coated', 'latex-dipped', 'fleece-lined',
@@ -200,6 +203,7 @@ def _match_material(text: str, vocab: MaterialVocab, concept_material: str | Non
     text = _SURFACE_ONLY.sub(" ", text)  # 'rubber-coated gloves' are knit gloves, not solid rubber
     if concept_material in _FOOD_CLASSES:
         text = _STUFFED.sub(" ", text)  # 'a calzone stuffed with ricotta', 'a stuffed pepper': a filling, not plush
+        text = _FOOD_WITH.sub(" ", text)
     for name, entry in vocab.materials.items():
         for word in entry.words:
             if concept_material not in (None, name) and set(word.lower().split()) <= own_words:
