@@ -987,6 +987,8 @@ def _pouch_of(t: str, phrase: phrase_mod.Phrase, entry: LexiconEntry, match: Con
 
 OPAQUE_SACKS = frozenset({"trash_bag"})  # sacks that keep their own look when said to hold a fill (a black bin bag)
 FILM_BAGS = frozenset({"carrier_bag"})  # a plastic bag 'of' goods the lexicon knows is a bag of them, seen through
+SPREADS = frozenset({"whipped_cream", "mashed_potatoes", "tzatziki"})  # soft foods that take their container's shape:
+# never pieces in a bag ('a piping bag full of whipped cream' is the piping bag, not a pouch of dollops)
 SEEN_PIECE_M = 0.015  # goods at least this long are told apart through a bag's film (grains, peas, beans are not) [m]
 
 
@@ -1005,7 +1007,7 @@ def _pieces_pouch(t: str) -> pouch_words.PouchOf | None:
     domain = concept_domain(piece.key)
     net = pouch_words.NET_WORDS.search(t) is not None  # a net of potatoes: goods too big for a film bag's heap
     largest = (NET_PIECE_MAX_SIZE_M if net else PIECE_MAX_SIZE_M) if domain == "food" else GOODS_MAX_SIZE_M
-    if (before and domain != "food") or domain == "animal" or piece.size_m > largest \
+    if (before and domain != "food") or domain == "animal" or piece.size_m > largest or piece.key in SPREADS \
             or piece.plan in ("pouch", "bag", "mould", "sheet"):  # (cups and moulds come nested:
         # goods_words.nested_stack; sheets stacked: _state_params)
         return None

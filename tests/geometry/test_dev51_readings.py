@@ -74,3 +74,19 @@ def test_a_command_to_roll_or_fold_is_the_object_in_that_state(text: str, entry:
     design = catalogue.design_from_text(text)
     assert design.entry == entry
     assert design.concept is not None and state in design.concept.states
+
+
+@pytest.mark.parametrize(("text", "entry"), [
+    ("piping bag full of whipped cream", "piping_bag"),
+    ("bag of mashed potatoes", "mashed_potatoes"),
+])
+def test_a_soft_food_in_a_bag_is_not_a_pouch_of_pieces(text: str, entry: str) -> None:
+    """Once whipped cream was an entry, 'a piping bag full of whipped cream' became a pouch of 2 cream dollops: a
+    spread takes its container's shape and is never pieces in a bag."""
+    design = catalogue.design_from_text(text)
+    assert design.entry == entry and design.concept is not None and not design.concept.by_analogy
+
+
+def test_a_topping_is_not_the_material_of_a_drink() -> None:
+    """'hot cocoa with marshmallows' weighed 0.22 kg as marshmallow foam; it is a 16 oz drink (~0.48 kg)."""
+    assert 0.5 <= planned_mass("paper cup of hot cocoa with marshmallows") / 0.48 <= 2.0
