@@ -121,6 +121,10 @@ class SizeSpec(Model):
         if self.long:  # '150 cm pool noodle', '135 cm long body pillow': the length only
             length = self.longest_m if not given else (given[0][1] if len(given) == 1 and given[0][0] in (0, i0)
                                                         else None)
+            sides = [v for i, v in given if i != 2]
+            if len(given) == 2 and len(sides) == 2 and min(sides) > ROLLED_FROM * ext[i1]:
+                length = min(sides)  # 'a rolled up 24x36 inch poster': the flat sheet it is rolled from, rolled
+                # along its shorter side (it was a 0.9 x 0.6 m solid tube of 5.5 kg)
             if length is not None and length > 1.5 * ext[i1]:
                 out = ext.copy()
                 out[i0] = length
@@ -568,6 +572,8 @@ def _not_implied(mods: list[str], program: ShapeProgram, plan: str | None) -> li
 # scales them as a whole; other long goods are cut or sewn to length at their usual cross-section
 _GROWN = frozenset({"fruit", "vegetable", "meat", "plush_animal", "rubber_toy", "silicone_toy", "egg", "dairy", "dough",
                     "jelly", "candy", "marshmallow", "tofu", "foam_toy", "balloon", "ball"})
+ROLLED_FROM = 3.0  # a long good's two stated sides, both this many times its cross-section, are the sheet it is
+# rolled from [-]
 LONG_RATIO = 2.5  # a long good: its length over its next extent at least this [-]
 
 

@@ -24,7 +24,7 @@ from tests.geometry.test_mass_classes import planned_mass
     ("white disposable coverall suit", "coveralls"),
     ("collapsible fabric tunnel", "play_tunnel"),
     ("little plush bolster bed", "pet_bed"),
-    ("thin plastic sheet covering the sofa", "drop_cloth"),
+    ("thin plastic sheet covering the sofa", "plastic_sheeting"),
     ("pouch of apple puree", "yogurt_pouch"),
     ("grilled portobello mushroom cap", "mushroom"),
     ("hamburger bun", "bread_roll"),
