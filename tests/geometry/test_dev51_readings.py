@@ -21,7 +21,7 @@ from tests.geometry.test_mass_classes import planned_mass
     ("grilled sea bass", "whole_fish"),
     ("little pat of butter", "butter"),
     ("crumpled paper water cup", "crushed_paper_cup"),
-    ("white disposable coverall suit", "coveralls"),
+    ("white disposable coverall suit", "disposable_coverall"),
     ("collapsible fabric tunnel", "play_tunnel"),
     ("little plush bolster bed", "pet_bed"),
     ("thin plastic sheet covering the sofa", "plastic_sheeting"),

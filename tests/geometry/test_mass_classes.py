@@ -75,7 +75,7 @@ MASSES: dict[str, tuple[float, str]] = {
     "a cushion shaped like a cat": (0.35, "retail listings of 40 cm cat-shaped cushions (0.25-0.5 kg)"),
     "a plush snake one metre long": (0.3, "retail listings of 40 in (1 m) plush snakes (0.25-0.4 kg)"),
     "a foam garden kneeler": (0.2, "retail listings of 45 x 25 cm EVA foam garden kneelers (0.15-0.25 kg)"),
-    "a foam knee pad": (0.15, "retail listings of 40 x 20 x 3 cm foam kneeling pads (0.1-0.2 kg)"),
+    "a foam knee pad": (0.5, "retail listings of pairs of gel and foam work knee pads (0.4-0.6 kg the pair; built as the pair)"),
     # stuffed toys weigh their sourced mass at the built size, whatever the grammar's body volume or pose
     "a soft toy rabbit with long floppy ears": (0.2, "Jellycat Bashful Bunny medium, 31 cm, ~0.2 kg"),
     "a stuffed elephant sitting up": (0.25, "retail listings of 25 cm plush elephants (0.2-0.4 kg)"),
