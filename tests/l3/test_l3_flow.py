@@ -47,7 +47,9 @@ def test_a_trial_over_the_force_budget_is_labelled_and_never_accepted(cube_asset
     base = base.model_copy(update={"parameters": {**base.parameters, "hold_force_margin": None}})
     gates = [g.model_copy(update={"threshold": 0.05}) if g.metric == "max_finger_force_n" else g
              for g in base.hard_gates]
-    record, outcome = run_l3(cube_asset, L3Options(squeeze_depth_m=0.003, held_out=()),
+    # a 4 mm trial lattice (the draft cap for the Franka Hand's pads; 2.5 mm by default for this 3 cm cube): a 3 mm
+    # squeeze in position control is newtons per finger at either resolution, far over the 0.05 N budget
+    record, outcome = run_l3(cube_asset, L3Options(squeeze_depth_m=0.003, held_out=(), particle_spacing_m=0.004),
                              contract=base.model_copy(update={"hard_gates": gates}), recordings=False)
     assert not record.passed and outcome.status == "no_valid_candidate"
     assert all(a.labels["force_budget_violated"] == 1 for a in record.attempts)

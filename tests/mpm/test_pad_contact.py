@@ -81,8 +81,9 @@ def test_pad_squeeze_on_cuda_matches_the_cpu() -> None:
 
 
 def _squeeze_and_carry(slide: bool, yaw_deg: float = 0.0, device: str = "cpu") -> tuple[float, float]:
-    """Two pads squeeze a 3 cm foam cube by 2 mm each, then carry it 7.5 cm along the closing axis (the motion that
-    makes pad faces cross lattice planes fastest), lattice fixed or moving with the pads: (normal force before, after)."""
+    """Two pads squeeze a 3 cm foam cube by 2 mm each, then carry it 5 cm (ten 5 mm lattice planes) along the closing
+    axis (the motion that makes pad faces cross lattice planes fastest), lattice fixed or moving with the pads: (normal
+    force over 50 ms of holding still before the carry, after it)."""
     import math
 
     edge, dx, gap, squeeze, v = 0.03, 0.005, 0.003, 0.002, 0.02
@@ -112,17 +113,18 @@ def _squeeze_and_carry(slide: bool, yaw_deg: float = 0.0, device: str = "cpu") -
     move(v * u, -v * u)
     assert sim.advance((gap + squeeze) / v).health.ok
     move(np.zeros(3), np.zeros(3))
-    before = normal(sim.advance(0.1))
+    before = normal(sim.advance(0.05))
     move(0.25 * u, 0.25 * u)
-    assert sim.advance(0.3).health.ok
+    assert sim.advance(0.2).health.ok
     move(np.zeros(3), np.zeros(3))
-    return before, normal(sim.advance(0.1))
+    return before, normal(sim.advance(0.05))
 
 
 def test_a_lattice_moving_with_the_pads_keeps_the_squeeze_while_carrying() -> None:
     """Grid contact sees the pad faces only at nodes: carried across lattice planes, the pads release and re-grip a
-    node layer at every crossing and the squeeze leaks away (measured: 2.4 -> 0.3 N over 7.5 cm); a lattice moving
-    with the pads (Control.set_grid_velocity) keeps the contact geometry, and the force, as it was."""
+    node layer at every crossing and the squeeze leaks away (measured: 2.30 -> 0.51 N over 7.5 cm, 2.30 -> 0.58 N over
+    the 5 cm here); a lattice moving with the pads (Control.set_grid_velocity) keeps the contact geometry, and the
+    force, as it was (-0.9 % over 7.5 cm, -1.0 % over 5 cm)."""
     before, after = _squeeze_and_carry(slide=True, yaw_deg=30.0)
     assert before > 1.0 and abs(after - before) <= 0.05 * before, (before, after)
     before_fixed, after_fixed = _squeeze_and_carry(slide=False, yaw_deg=30.0)
