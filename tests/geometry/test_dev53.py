@@ -1,0 +1,37 @@
+"""Session 53 dev list (post-hoc from sealed set 39's misses): a berry basket of strawberries, an inflatable guitar, a
+pair of thunder sticks, a rubber finger tip, a child's eye patch, a nut milk bag of pulp, a glasses strap, a pack and a
+stick of gum, a road atlas, a bottle of contact lens solution, a manila envelope of pages and a lawn and leaf bag build
+as their own entries at their real mass (each was a generic ball, block, pouch or another good's entry)."""
+
+from __future__ import annotations
+
+import pytest
+
+from tasks.geometry import catalogue
+from tests.geometry.test_mass_classes import planned_mass
+
+
+@pytest.mark.parametrize(("text", "entry", "kg"), [
+    ("full 1 quart green pulp punnet of strawberries, heaped", "berry_basket", 0.68),
+    ("I need an inflatable guitar like the ones people grab for karaoke, about a metre long", "inflatable_guitar", 0.12),
+    ("pair of inflatable thunder sticks, 2 feet long", "thunder_sticks", 0.045),
+    ("rubber finger tip for counting cash size 11 1/2 medium", "rubber_finger_tip", 0.003),
+    ("adhesive eye patch for a kid (amblyopia), like ortopad", "adhesive_eye_patch", 0.0012),
+    ("wet nut milk bag still full of almond pulp after squeezing", "nut_milk_bag", 0.23),
+    ("kids neoprene glasses strap croakies", "glasses_strap", 0.008),
+    ("pack of Extra gum, 15 sticks, peppermint", "gum_pack", 0.041),
+    ("a stick of gum", "gum_stick", 0.0027),
+    ("a spiral road atlas", "road_atlas", 1.0),
+    ("squeezable bottle of contact lens solution 10 fl oz", "lens_solution_bottle", 0.33),
+    ("10x13 manila envelope with about 20 pages in it", "manila_envelope", 0.12),
+    ("brown paper yard waste bag, 30 gal, stuffed full of dry leaves", "lawn_leaf_bag", 6.0),
+])
+def test_dev53_request_builds_its_entry_at_its_mass(text: str, entry: str, kg: float) -> None:
+    assert catalogue.design_from_text(text).entry == entry
+    assert 0.5 <= planned_mass(text) / kg <= 2.0
+
+
+def test_a_bag_of_milk_and_an_envelope_are_not_taken_by_the_new_goods() -> None:
+    """'nut milk bag' beats 'milk bag' only when 'nut' is said; a plain envelope is still the padded mailer."""
+    assert catalogue.design_from_text("a bag of milk").entry == "milk_bag"
+    assert catalogue.design_from_text("a bubble mailer").entry == "padded_envelope"
