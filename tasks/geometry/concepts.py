@@ -976,6 +976,10 @@ def _pouch_of(t: str, phrase: phrase_mod.Phrase, entry: LexiconEntry, match: Con
             entry.plan in ("pouch", "bag") or phrase.head in noun.split()):
         return None  # the lexicon's own bag ('an ice bag', 'a zip bag', 'a bag of bait squid', 'a whirlpak bag with
         # a water sample'); the bare 'pouch' is no drawstring pouch
+    if not match.by_analogy and not holds and entry.plan not in ("pouch", "bag") \
+            and any(n.startswith(f"{phrase.head} of ") for n in entry.nouns):
+        return None  # an entry that is the pack itself ('a pack of cheese slices': the sliced provolone's stack, which
+        # lists 'pack of sliced provolone'), not a pouch of the fill a word of it names ('cheese')
     pieces = _pieces_pouch(t)
     if pieces is not None and pieces.piece_m is not None and (found is None or (
             max(pieces.piece_m) >= SEEN_PIECE_M and found.port == "none")):

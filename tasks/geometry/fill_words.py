@@ -90,6 +90,17 @@ _FULL_OF = re.compile(r"\b((?:\d{1,3}\s*%|[a-z]+(?:\s+[a-z]+)?)\s+)?(full|filled
                       r"(?:up\s+)?(?:of|with)\s+(?:some\s+|dry\s+|loose\s+)?([a-z]+(?:\s+[a-z]+)?)")
 _X_FILLED = re.compile(r"\b([a-z]+(?:\s+[a-z]+)?)[\s-]filled\b")
 _BAG_OF = re.compile(r"\b(?:bag|pouch|sack|sachet|packet)\s+of\s+([a-z]+(?:\s+[a-z]+)?)")
+# 'a quart ziplock bag w/ travel size liquids', 'a toiletry bag holding toothpaste and a razor': what a container is
+# said to hold, when it is a fill of the table
+_HOLDING = re.compile(r"\b(?:bag|pouch|sack|case|kit|cube|tote)\s+(?:w/|with|holding|containing)\s+(?:some\s+|a few\s+|"
+                      r"about\s+\d+\s+|\d+\s+)?([a-z]+(?:\s+[a-z]+){0,2})")
+# 'half full - toothpaste, razor, deodorant': how full, then what with, after a dash, colon or bracket
+# (the request's dash may be gone, 'half full toothpaste, razor': then an amount is said before 'full'; the words after
+# name a fill of the table and no container: 'a full makeup bag' is the bag, full)
+_FULL_LISTED = re.compile(r"\b((?:half|halfway|a quarter|quarter|three quarters|a third|two thirds|partly|partially|"
+                          r"mostly|nearly|almost)\s+)?(full|filled|stuffed|packed|loaded)(\s*[-:(,]\s*|\s+)"
+                          r"(?:with\s+|of\s+)?([a-z]+(?:\s+[a-z]+){0,2})")
+_CONTAINER = re.compile(r"\b(?:bag|bags|pouch|case|kit|sack|tote|box|cube|bin|basket)\b")
 
 
 def _fill_key(words: str) -> tuple[str, dict] | None:
@@ -100,9 +111,22 @@ def _fill_key(words: str) -> tuple[str, dict] | None:
     return None
 
 
+def _leading_fill(words: str) -> tuple[str, dict] | None:
+    """The fill the words start with ('travel size liquids for ...'), else None ('a straw hole', 'top rolled down':
+    a fill word further in is another thing's)."""
+    table = fills()
+    words = _QUALIFIERS.sub("", words)  # ('travel size liquids' reaches here as 'small liquids')
+    return next(((w, table[w]) for w in table if words == w or words.startswith(f"{w} ")), None)
+
+
+_QUALIFIERS = re.compile(r"^(?:(?:small|little|mini|tiny|big|large|assorted|various|several|some|loose|my|his|her|"
+                         r"their|our)\s+)+")
+
+
 def read_fill(text: str) -> Fill | None:
     """The fill a request states, if any: 'half full of rice' (0.5 of rice), 'filled with sand' (0.8), 'a
-    sand-filled weight' (0.8), 'a bag of marbles' (0.8); None when no fill word of the table is named."""
+    sand-filled weight' (0.8), 'a bag of marbles' (0.8), 'a zip bag w/ travel size liquids' (0.8), 'half full -
+    toothpaste, razor' (0.5); None when no fill word of the table is named."""
     t = " ".join(text.lower().replace("-", " ").split())
     for m in _FULL_OF.finditer(t):
         hit = _fill_key(m.group(3))
@@ -117,6 +141,21 @@ def read_fill(text: str) -> Fill | None:
     share, words = (said[0], f"{said[1]} ") if said is not None else (0.8, "")
     for m in _X_FILLED.finditer(t2):
         hit = _fill_key(m.group(1))
+        if hit is not None:
+            w, rec = hit
+            return Fill(rec["key"], words + m.group(0).strip(), share, float(rec["bulk_density_kg_per_m3"]),
+                        rec["color"], rec["source"])
+    for m in _FULL_LISTED.finditer(t2):
+        if not (m.group(1) or m.group(3).strip()) or _CONTAINER.search(m.group(4)):
+            continue
+        hit = _leading_fill(m.group(4))
+        if hit is not None:
+            w, rec = hit
+            share = said[0] if said is not None else AMOUNTS[m.group(2)]
+            return Fill(rec["key"], m.group(0).strip(), share, float(rec["bulk_density_kg_per_m3"]), rec["color"],
+                        rec["source"])
+    for m in _HOLDING.finditer(t2.replace("w/", "w/ ")):
+        hit = _leading_fill(m.group(1))
         if hit is not None:
             w, rec = hit
             return Fill(rec["key"], words + m.group(0).strip(), share, float(rec["bulk_density_kg_per_m3"]),

@@ -145,6 +145,21 @@ def test_a_fill_gives_its_mass_and_shows_in_its_colour() -> None:
     assert sand is not None and sand.key == "sand" and read_fill("a tote bag") is None
 
 
+def test_what_a_bag_holds_is_its_fill_when_said_with_or_listed() -> None:
+    """'w/ travel size liquids' and 'half full - toothpaste, razor' name a fill (sealed set 39: a quart security bag
+    weighed 3 g, a half-full toiletry bag its empty 81 g); a container's own noun is not its fill."""
+    liquids = read_fill("quart ziplock bag w/ travel size liquids for airport security, 4 bottles")
+    assert liquids is not None and liquids.key == "travel_liquids"
+    listed = read_fill("toiletry bag about half full toothpaste, razor, deodorant")  # (normalised: the dash is gone)
+    assert listed is not None and listed.key == "cosmetics" and listed.fraction == 0.5
+    assert read_fill("a full makeup bag") is None and read_fill("a tote bag with handles") is None
+    d = _design("quart ziplock bag w/ travel size liquids for airport security, 4 bottles")
+    assert d.entry == "zip_bag" and d.concept.stated_mass_kg is not None
+    assert 0.21 <= d.concept.stated_mass_kg <= 0.84  # four to five 100 ml bottles: ~0.42 kg
+    toiletry = _design("toiletry bag about half full - toothpaste, razor, deodorant")
+    assert toiletry.entry == "makeup_bag" and (toiletry.concept.stated_mass_kg or 0.0) > 0.12  # (empty: 0.08 kg)
+
+
 @pytest.mark.parametrize("text,kg", [("ankle weight, 1 kg", 1.0), ("a 500 g bean bag", 0.5), ("2 lb ankle weight",
                                                                                              0.907),
                                      ("an 8 oz pouch", 0.227), ("a 25 cm teddy", None), ("a 2 l bag", None)])
