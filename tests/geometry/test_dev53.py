@@ -1,6 +1,6 @@
 """Session 53 dev list (post-hoc from sealed set 39's misses): a berry basket of strawberries, an inflatable guitar, a
 pair of thunder sticks, a rubber finger tip, a child's eye patch, a nut milk bag of pulp, a glasses strap, a pack and a
-stick of gum, a road atlas, a bottle of contact lens solution, a manila envelope of pages and a lawn and leaf bag build
+stick of gum, a road atlas, a bottle of contact lens solution, a manila envelope of pages, a lawn and leaf bag and a glasses pouch build
 as their own entries at their real mass (each was a generic ball, block, pouch or another good's entry)."""
 
 from __future__ import annotations
@@ -25,6 +25,8 @@ from tests.geometry.test_mass_classes import planned_mass
     ("squeezable bottle of contact lens solution 10 fl oz", "lens_solution_bottle", 0.33),
     ("10x13 manila envelope with about 20 pages in it", "manila_envelope", 0.12),
     ("brown paper yard waste bag, 30 gal, stuffed full of dry leaves", "lawn_leaf_bag", 6.0),
+    ("Could you make a soft drawstring glasses pouch, the thin suede-ish one they give you with sunglasses",
+     "glasses_pouch", 0.008),
 ])
 def test_dev53_request_builds_its_entry_at_its_mass(text: str, entry: str, kg: float) -> None:
     assert catalogue.design_from_text(text).entry == entry
