@@ -4,6 +4,7 @@ along a known path; the round trip draws an MPM rollout's particles (each a disc
 
 from __future__ import annotations
 
+from collections.abc import Iterable, Iterator
 from dataclasses import dataclass
 
 import cv2
@@ -55,14 +56,20 @@ def draw(bg: np.ndarray, xy_px: np.ndarray, radius_px: float, colour: tuple[int,
     r = max(1, int(round(radius_px * scale)))
     for x, y in np.rint(np.asarray(xy_px) * scale).astype(int).tolist():
         cv2.circle(cover, (x, y), r, 255, -1, cv2.LINE_AA, SHIFT)
-    a = cover.astype(np.float32)[..., None] / 255.0
-    shade = np.asarray(colour, np.float32)
-    return bg * (1.0 - a) + shade * a
+    out = np.array(bg, dtype=np.result_type(bg.dtype, np.float32))  # (the disc blended where it covers: the same
+    rows, cols = np.nonzero(cover.any(axis=1))[0], np.nonzero(cover.any(axis=0))[0]  # values as over the whole
+    if rows.size == 0:  # frame, a small disc on a long clip's frames ~10x faster)
+        return out
+    win = np.s_[rows[0]:rows[-1] + 1, cols[0]:cols[-1] + 1]
+    a = cover[win].astype(np.float32)[..., None] / 255.0
+    out[win] = out[win] * (1.0 - a) + np.asarray(colour, np.float32) * a
+    return out
 
 
-def degrade(frames: np.ndarray, noise_grey: float, jpeg_quality: int | None, seed: int = 0) -> np.ndarray:
+def degrade(frames: Iterable[np.ndarray], noise_grey: float, jpeg_quality: int | None, seed: int = 0) -> np.ndarray:
     """Camera noise (Gaussian, sigma in grey levels) and a JPEG round trip of every frame (None: none; a video
-    writer compresses them): uint8 RGB frames."""
+    writer compresses them): uint8 RGB frames. `frames` may be drawn one at a time (a generator): a long clip's float
+    frames are never all held (640 float64 frames are 370 MB, and allocating them took seconds)."""
     rng = np.random.default_rng(seed)
     out = []
     for f in frames:
@@ -80,7 +87,7 @@ def disc_video(cam: Camera, centres_xz_m: np.ndarray, radius_m: float, noise_gre
     """One disc of `radius_m` per frame at the given world centres (F, 2)."""
     bg = scene(cam, seed)
     xs, ys = cam.project(centres_xz_m[:, 0], centres_xz_m[:, 1])
-    frames = np.stack([draw(bg, np.array([[x, y]]), radius_m * cam.px_per_m) for x, y in zip(xs, ys)])
+    frames = (draw(bg, np.array([[x, y]]), radius_m * cam.px_per_m) for x, y in zip(xs, ys))
     return degrade(frames, noise_grey, jpeg_quality, seed)
 
 
@@ -88,11 +95,13 @@ def particle_video(cam: Camera, positions_m: np.ndarray, spacing_m: float, noise
                    jpeg_quality: int | None = 80, seed: int = 0) -> np.ndarray:
     """Each frame's particles (F, N, 3) seen from the side (y is depth), each a disc of half the spacing."""
     bg = scene(cam, seed)
-    frames = []
-    for x in positions_m:
-        px, py = cam.project(x[:, 0], x[:, 2])
-        frames.append(draw(bg, np.stack([px, py], axis=1), 0.5 * spacing_m * cam.px_per_m))
-    return degrade(np.stack(frames), noise_grey, jpeg_quality, seed)
+
+    def frames() -> Iterator[np.ndarray]:
+        for x in positions_m:
+            px, py = cam.project(x[:, 0], x[:, 2])
+            yield draw(bg, np.stack([px, py], axis=1), 0.5 * spacing_m * cam.px_per_m)
+
+    return degrade(frames(), noise_grey, jpeg_quality, seed)
 
 
 def bouncing_centres(drop_m: float, radius_m: float, restitution: float, fps: float, hold_s: float = 0.05,
