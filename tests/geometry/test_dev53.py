@@ -27,6 +27,7 @@ from tests.geometry.test_mass_classes import planned_mass
     ("brown paper yard waste bag, 30 gal, stuffed full of dry leaves", "lawn_leaf_bag", 6.0),
     ("Could you make a soft drawstring glasses pouch, the thin suede-ish one they give you with sunglasses",
      "glasses_pouch", 0.008),
+    ("one very ripe mango, a bit soft", "mango", 0.45),
 ])
 def test_dev53_request_builds_its_entry_at_its_mass(text: str, entry: str, kg: float) -> None:
     assert catalogue.design_from_text(text).entry == entry
@@ -37,3 +38,10 @@ def test_a_bag_of_milk_and_an_envelope_are_not_taken_by_the_new_goods() -> None:
     """'nut milk bag' beats 'milk bag' only when 'nut' is said; a plain envelope is still the padded mailer."""
     assert catalogue.design_from_text("a bag of milk").entry == "milk_bag"
     assert catalogue.design_from_text("a bubble mailer").entry == "padded_envelope"
+
+
+def test_a_mango_is_green_at_its_shoulder_and_blushed_red_not_an_orange_egg() -> None:
+    """Set 39's mango (a plain orange egg) was named a potato: the redraw has a green stem shoulder and a red blush."""
+    parts = catalogue.design_from_text("a mango").program.parts
+    assert any(p.color_rgb[1] > 1.3 * p.color_rgb[0] for p in parts)  # green
+    assert any(p.color_rgb[0] > 5 * p.color_rgb[1] for p in parts)  # red
