@@ -21,7 +21,7 @@ from tasks.geometry.catalogue_programs import catalogue_program, catalogue_yaml
 from tasks.geometry.grammar.goods import crumpled_size, wad_size
 from tasks.geometry.grammar.parts import part_group
 from tasks.geometry.sdf import program_bounds
-from tasks.render.finish import DUSTED, with_look
+from tasks.render.finish import DUSTED, MUDDY, with_look
 
 
 _UNITS = {"mm": 0.001, "millimeter": 0.001, "millimetre": 0.001, "cm": 0.01, "centimeter": 0.01,
@@ -660,6 +660,8 @@ HEAP_MAX_M = 0.95 * MAX_SIZE_M  # the widest heap of cloth L0 builds [m]
 
 _DUSTED = re.compile(r"\b(?:dusted|powdered|sugared|floured|sprinkled with (?:icing|powdered|caster) sugar|"
                      r"(?:icing|powdered) sugar on top|coated in (?:icing|powdered) sugar|dusting of)\b")
+_MUDDY = re.compile(r"\b(?:muddy|mud caked|mud covered|mud splattered|caked (?:in|with) mud|covered in mud|"
+                    r"splattered with mud|grimy)\b")  # (not 'dirty' or 'soiled': dirty laundry, a soiled diaper)
 _SQUARE = re.compile(r"\bsquare\b(?!\s+(?:of|metres?|meters?|feet|foot|inch(?:es)?|yards?)\b)")
 
 
@@ -1442,6 +1444,8 @@ def design_from_text(text: str, size_hint_m: float | None = None) -> Design:
         match = concepts.size_scaled(match, *final_scale(scaled, program, match.typical_size_m or 0.0))
     if _DUSTED.search(text_n):  # 'dusted with icing sugar', 'floured': the powder in the stills
         match = match.model_copy(update={"finish": with_look(match.finish, DUSTED)})
+    if _MUDDY.search(text_n.replace("-", " ")):  # 'muddy garden gloves', 'a mud-caked boot': blotches of mud
+        match = match.model_copy(update={"finish": with_look(match.finish, MUDDY)})
     said = size_words.read_size_words(_strip_numeric_sizes(text_n), frozenset(MODIFIERS))
     spelt = [f"read '{wrong}' as '{right}'" for wrong, right in spelling.corrections(
         concepts.plain(text), concepts.lexicon_words(), concepts.lexicon_phrases())]

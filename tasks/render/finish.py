@@ -42,6 +42,8 @@ class Finish:
     line_tone: float = 0.55  # how far a line's colour goes towards white
     dust: float = 0.0  # a white powder on the upward faces (sugar, flour, starch): how far it whitens them
     dust_m: float = 0.0015  # size of the powder's specks
+    mud: float = 0.0  # brown dirt in blotches, thickest low down (a muddy glove, a dirty rag): how far it browns them
+    mud_m: float = 0.025  # size of the blotches
 
 
 MATTE = Finish()
@@ -91,11 +93,15 @@ CATEGORY_MATERIAL = {  # a category's usual class where the material class is no
 
 DUSTED = "dusted"  # a look said in the request ('dusted with icing sugar'), joined to the entry's own with '+'
 DUST = 0.75
+MUDDY = "muddy"  # a look said in the request ('muddy', 'mud-caked', 'dirty'): blotches of mud
+MUD = 0.85
+MUD_RGB = np.array([0.29, 0.2, 0.11])  # wet soil's brown (0..1, as albedos)
 
 
 def finish_for(material: str | None, category: str | None = None, look: str | None = None) -> Finish:
     """The entry's own look (LOOKS), else the finish of a material class (contracts/vocab/materials.yaml), else of the
-    category's usual class, else MATTE; a look ending '+dusted' (or 'dusted') adds a white powder over its top."""
+    category's usual class, else MATTE; a look ending '+dusted' (or 'dusted') adds a white powder over its top, one
+    with 'muddy' blotches of mud."""
     looks = (look or "").split("+")
     own = next((w for w in looks if w in LOOKS), None)
     if own is not None:
@@ -104,7 +110,8 @@ def finish_for(material: str | None, category: str | None = None, look: str | No
         base = FINISHES[str(material)]
     else:
         base = FINISHES.get(CATEGORY_MATERIAL.get(category or "", ""), MATTE)
-    return replace(base, dust=DUST) if DUSTED in looks else base
+    base = replace(base, dust=DUST) if DUSTED in looks else base
+    return replace(base, mud=MUD) if MUDDY in looks else base
 
 
 def with_look(look: str | None, added: str) -> str:
@@ -173,6 +180,13 @@ def shade_pixels(albedo: np.ndarray, normals: np.ndarray, points_m: np.ndarray, 
         speck = value_noise(points_m / max(finish.dust_m, MIN_GRAIN_PX * pixel_m), 5)
         amount = finish.dust * up * np.clip(0.25 + 1.3 * speck, 0.0, 1.0)
         colour = colour + amount[:, None] * (0.97 - colour)
+    if finish.mud > 0:  # blotches of mud, more of it low on the object (a dry patch is left here and there)
+        z = np.asarray(points_m, np.float64)[:, 2]
+        low = np.clip(1.0 - (z - z.min()) / max(float(np.ptp(z)), 1e-9), 0.0, 1.0) if z.size else z
+        size = max(finish.mud_m, MIN_GRAIN_PX * pixel_m)  # two octaves: rounded blotches with ragged edges
+        blotch = 0.65 * value_noise(points_m / size, 7) + 0.35 * value_noise(points_m / (0.37 * size), 8)
+        amount = finish.mud * np.clip((blotch + 0.3 * low - 0.6) * 3.0, 0.0, 1.0)
+        colour = colour + amount[:, None] * (MUD_RGB - colour)
     if finish.lines_m > 0 and finish.lines_m > 3 * pixel_m:  # pale lines across the long axis, a little slanted
         u = (points_m[:, 0] * 0.94 + points_m[:, 1] * 0.34 + 0.2 * points_m[:, 2]) / finish.lines_m
         wobble = 0.25 * (value_noise(points_m / (3 * finish.lines_m), 3) - 0.5)

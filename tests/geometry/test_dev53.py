@@ -5,9 +5,11 @@ as their own entries at their real mass (each was a generic ball, block, pouch o
 
 from __future__ import annotations
 
+import numpy as np
 import pytest
 
 from tasks.geometry import catalogue
+from tasks.render.finish import finish_for, shade_pixels
 from tests.geometry.test_mass_classes import planned_mass
 
 
@@ -45,3 +47,23 @@ def test_a_mango_is_green_at_its_shoulder_and_blushed_red_not_an_orange_egg() ->
     parts = catalogue.design_from_text("a mango").program.parts
     assert any(p.color_rgb[1] > 1.3 * p.color_rgb[0] for p in parts)  # green
     assert any(p.color_rgb[0] > 5 * p.color_rgb[1] for p in parts)  # red
+
+
+def test_muddy_goods_are_blotched_brown_mostly_low_down() -> None:
+    """Set 39's 'pair of muddy cotton garden gloves' built the green coated garden glove, clean: a cotton glove is
+    cream knit, and 'muddy' (or 'mud-caked', 'grimy'; not 'dirty': dirty laundry is worn clothes) puts blotches of brown mud on it, more of them low down."""
+    match = catalogue.design_from_text("pair of muddy cotton garden gloves").concept
+    assert match.concept == "cotton_work_glove" and (match.finish or "").endswith("muddy")
+    assert catalogue.design_from_text("a cotton glove").concept.finish is None
+    assert "muddy" not in (catalogue.design_from_text("a mesh bag of dirty laundry").concept.finish or "")
+    plain, muddy = finish_for("textile", "textile", None), finish_for("textile", "textile", match.finish)
+    assert muddy.mud > 0 and plain.mud == 0
+    pts = np.random.default_rng(0).uniform(0.0, 0.2, (4000, 3))
+    cream = np.repeat(np.array([[0.85, 0.8, 0.65]]), len(pts), 0)
+    up, eye = np.repeat(np.array([[0.0, 0.0, 1.0]]), len(pts), 0), np.array([0.0, 0.0, 1.0])
+    clean = shade_pixels(cream, up, pts, eye, eye, plain, 1e-4)
+    dirty = shade_pixels(cream, up, pts, eye, eye, muddy, 1e-4)
+    browned = (clean - dirty).sum(axis=1) > 0.3
+    assert 0.1 < browned.mean() < 0.9  # blotches, not a coat
+    low, high = pts[:, 2] < 0.05, pts[:, 2] > 0.15
+    assert browned[low].mean() > browned[high].mean() + 0.1
