@@ -63,9 +63,10 @@ def _names_object(text: str, noun: str) -> bool:
     return re.search(r"(?<![a-z])" + re.escape(noun) + r"(?![a-z])" + end, text) is not None
 
 
-# where the object is, not what it is: 'a cardigan draped over an office chair', 'a rag on the workbench'
+# where the object is, or what it is for, not what it is: 'a cardigan draped over an office chair', 'a rag on the
+# workbench', 'a plastic tablecloth for a long table' (set 40's was refused as a rigid table)
 _PLACE = re.compile(r"\s+(?:on top of|next to|on|onto|in|into|inside|under|underneath|over|across|against|atop|"
-                    r"behind|beside|besides|near|from|off|at)\s+(?:an?|the|its|his|her|their|my|your|some)\s")
+                    r"behind|beside|besides|near|from|off|at|for)\s+(?:an?|the|its|his|her|their|my|your|some)\s")
 
 
 def _own_words(text: str) -> str:

@@ -967,6 +967,32 @@ _POLITE = re.compile(r"(?<![a-z'])(?:pls|plz|please|thx)(?![a-z'])\s*", re.IGNOR
 
 
 _OF_WORDS = re.compile(r"\b([a-z]+) of ((?:[a-z]+ ){1,2})([a-z]+)\b", re.IGNORECASE)
+# a material said after its noun at a clause's end, as a listing does ('adult BP cuff nylon w/ bladder', 'tote bag
+# canvas'): the material is not the head noun (set 40's cuff was built as a generic 'nylon' garment)
+_MATERIAL_LAST = re.compile(r"(?P<before>[a-z]+) (?P<mat>nylon|canvas|cotton|leather|vinyl|fleece|wool|polyester|"
+                            r"neoprene|silicone|rubber|latex|suede|denim|velvet|satin|silk|linen|felt|burlap|"
+                            r"microfiber|microfibre)(?=\s*(?:$|[,;(]|w/|with\b|\band\b))", re.IGNORECASE)
+_NOT_A_NOUN_BEFORE = frozenset({"of", "in", "with", "and", "or", "from", "made", "pure", "real", "faux", "genuine",
+                                "soft", "thick", "thin", "heavy", "light", "a", "an", "the", "some", "no"})
+
+
+def _material_fronted(text: str) -> str:
+    """'adult BP cuff nylon w/ bladder' -> 'nylon adult BP cuff w/ bladder': a material after its noun at a clause's end
+    goes to the clause's front, where a material word is read as one (not after 'made of', 'faux', 'soft' ...)."""
+    m = _MATERIAL_LAST.search(text)
+    if m is None or m.group("before").lower() in _NOT_A_NOUN_BEFORE:
+        return text
+    start = max(text.rfind(",", 0, m.start()) + 1, 0)
+    clause = text[start:m.start("mat")].rstrip()
+    words = concepts.plain(clause).split()
+    known = concepts.noun_index()
+    if " of " in f" {' '.join(words)} " or not any(" ".join(words[-k:]) in known for k in (1, 2, 3)) \
+            or any(" ".join([*words[-k:], m.group("mat").lower()]) in known for k in (0, 1, 2)):
+        return text  # the material is the goods ('a sheet of crepe rubber', 'an aerial silk', 'sheep fleece'), or no
+        # noun the lexicon knows comes before it
+    lead = re.match(r"\s*(?:(?:i need|i want|make me|make|need)\s+)?(?:an?\s+|the\s+)?", clause, re.IGNORECASE)
+    cut = start + (lead.end() if lead else 0)
+    return text[:cut] + m.group("mat") + " " + text[cut:m.start("mat")].rstrip() + text[m.end("mat"):]
 
 
 def _of_words_moved(text: str) -> str:
@@ -1279,7 +1305,7 @@ def design_from_text(text: str, size_hint_m: float | None = None) -> Design:
         raise InputError("the description is empty")
     text = text.replace("\u00d7", " x ")  # a typed multiplication sign ('30\u00d740 cm', 'hair weft \u00d72') is an x
     unsized = _THE_KIND.sub(_kind_colours, _NEGATED.sub(" ", text))  # ('not mini', 'the big grey kind': no sizes)
-    asked = _task_clause_stripped(normalise_sizes(unsized))  # ('pls make a down jacket stuffed into its own pocket':
+    asked = _material_fronted(_task_clause_stripped(normalise_sizes(unsized)))  # ('pls make a down jacket stuffed into its own pocket':
     # the request's opening is not the goods)
     packed = _stuffed_in_sack(_purpose_stripped(asked))
     if packed is not None:
