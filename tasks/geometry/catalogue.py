@@ -377,7 +377,9 @@ _SURF_GOODS = r"(?:wetsuits?|shorty|springsuit|steamer|fullsuit|booties?|dive\s+
 _MM = r"(?P<mm>\d+(?:\.\d+)?)\s*(?:mm|millimet(?:er|re)s?)"
 _STOCK_THICKNESS = re.compile(rf"(?<![\w.]){_MM}\s+(?:thick\s+)?"
                               rf"(?=(?:{'|'.join(_STOCK_WORDS)})\b|(?:[a-z]+\s+){{1,2}}{_SURF_GOODS}\b)", re.I)
-_THICKNESS_AFTER = re.compile(rf"(?P<kept>\b{_SURF_GOODS}\b(?:[\s,]+[a-z]+){{0,2}}[\s,]+){_MM}\b", re.I)
+_THICKNESS_AFTER = re.compile(rf"(?P<kept>\b(?:{_SURF_GOODS}|eva\s+foam|eva|craft\s+foam)\b(?:[\s,]+[a-z]+){{0,2}}[\s,]+)"
+                              rf"{_MM}\b", re.I)  # ('EVA foam chestplate 10mm': set 40's was a 1 cm block of 8 mg)
+STOCK_MAX_M = dims_words.STOCK_MAX_M  # sheet stock is said up to half an inch thick ('10mm EVA foam') [m]
 # a wetsuit's neoprene in its own notation, thickest panel first ('3/2 mm', '5/4/3mm'): not a fraction of a mm
 _NEOPRENE_NOTATION = re.compile(r"(?<![\w./])(\d+(?:\.\d+)?)(?:/\d+(?:\.\d+)?)+\s*-?\s*mm\b(\s+neoprene\b)?", re.I)
 
@@ -388,9 +390,10 @@ def stock_thickness_stripped(text: str) -> tuple[str, list[str]]:
     notes: list[str] = []
 
     def drop(m: re.Match[str]) -> str:
-        if float(m.group("mm")) * 1e-3 >= MIN_SIZE_M:
-            return m.group(0)
-        kept = m.groupdict().get("kept") or ""
+        kept = m.groupdict().get("kept")
+        if float(m.group("mm")) * 1e-3 > STOCK_MAX_M or (kept is None and float(m.group("mm")) * 1e-3 >= MIN_SIZE_M):
+            return m.group(0)  # (before its stock, a centimetre or more is the object's: 'a 12mm foam ball'; after
+        kept = kept or ""  # a foam good's name, up to half an inch is its stock's: 'EVA foam chestplate 10mm')
         notes.append(f"'{m.group(0)[len(kept):].strip()}' is the thickness of the material, not the object's size")
         return kept
     return _THICKNESS_AFTER.sub(drop, _STOCK_THICKNESS.sub(drop, text)), notes

@@ -12,10 +12,13 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from contracts.lexicon import LexiconEntry
-from contracts.request import MAX_SIZE_M, MIN_SIZE_M
+from contracts.request import MAX_SIZE_M
 from contracts.shape import ShapeProgram
 from tasks.geometry import grammar
 from tasks.geometry.grammar.goods import HANK_MIN_TURNS, StrapParams, coiled_as_hank
+
+STOCK_MAX_M = 0.0127  # sheet stock is said up to half an inch thick ('10mm EVA foam', '12 mm neoprene'): a bare size
+# no larger on a sheet good is its thickness [m]
 
 _UNITS = {"mm": 0.001, "millimeter": 0.001, "millimetre": 0.001, "millimeters": 0.001, "millimetres": 0.001,
           "cm": 0.01, "centimeter": 0.01, "centimetre": 0.01, "centimeters": 0.01, "centimetres": 0.01, "m": 1.0,
@@ -109,7 +112,7 @@ def bind(text: str, entry: LexiconEntry | None, states: list[str]) -> Bound | No
         t0 = float(grammar.plan_parameters("sheet", params).thickness)  # type: ignore[attr-defined]
         own = t0 * length0  # the sheet's typical thickness [m]
         thick = [(v, s) for w, v, s in cross if w == "thickness"] or [(v, s) for w, v, s in cross
-                                                                       if w is None and (v < MIN_SIZE_M or
+                                                                       if w is None and (v <= STOCK_MAX_M or
                                                                                          own / 2.5 <= v <= own * 2.5)]
         if not thick:  # (a bare size too small for any object L0 builds, 'a 6 mm yoga mat', is its thickness too, and
             return None  # so is one near the sheet's own thickness: 'a 5cm memory foam topper'; '4 inch' on a

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 from tasks.agents.intent import rigid_object
 from tasks.geometry import catalogue
+from tests.geometry.test_mass_classes import planned_mass
 
 
 def test_what_an_object_is_for_is_not_the_object() -> None:
@@ -23,3 +24,14 @@ def test_a_material_after_its_noun_is_not_the_head() -> None:
     assert catalogue.design_from_text("a tote bag canvas").entry == "tote_bag"
     assert catalogue.design_from_text("an aerial silk").entry == "aerial_silk"
     assert catalogue.design_from_text("freshly sheared sheep fleece, rolled up").entry == "sheep_fleece"
+
+
+def test_up_to_half_an_inch_after_a_foam_good_or_on_a_sheet_is_its_stock() -> None:
+    """'EVA foam chestplate 10mm' was a 1 cm generic block of 8 mg, and '10mm eva foam sheet' a 1 cm sheet: 10 mm is
+    the EVA's thickness (the chestplate is a foam armour plate, ~0.2 kg); before its stock a centimetre is still the
+    object's ('a 12mm foam ball')."""
+    chest = catalogue.design_from_text("EVA foam chestplate 10mm, painted, for a Mandalorian build")
+    assert chest.entry == "foam_armor_plate" and chest.size.longest_m is None
+    assert 0.1 <= planned_mass("EVA foam chestplate 10mm, painted, for a Mandalorian build") <= 0.4
+    assert catalogue.design_from_text("10mm eva foam sheet").size.longest_m is None
+    assert catalogue.design_from_text("a 12mm foam ball").size.longest_m == 0.012
