@@ -35,3 +35,11 @@ def test_up_to_half_an_inch_after_a_foam_good_or_on_a_sheet_is_its_stock() -> No
     assert 0.1 <= planned_mass("EVA foam chestplate 10mm, painted, for a Mandalorian build") <= 0.4
     assert catalogue.design_from_text("10mm eva foam sheet").size.longest_m is None
     assert catalogue.design_from_text("a 12mm foam ball").size.longest_m == 0.012
+
+
+def test_a_long_wig_said_by_its_length_weighs_a_wig() -> None:
+    """'36 inch silver lace front wig' scaled the curly costume wig to 0.91 m: 9.75 kg (32x); a long straight wig is
+    drawn lying with its hair laid out, 0.92 m from cap to tips, ~0.3 kg."""
+    text = "36 inch silver lace front wig for my Geralt cosplay lol"
+    assert catalogue.design_from_text(text).entry == "long_wig"
+    assert 0.15 <= planned_mass(text) <= 0.6
