@@ -43,3 +43,10 @@ def test_a_long_wig_said_by_its_length_weighs_a_wig() -> None:
     text = "36 inch silver lace front wig for my Geralt cosplay lol"
     assert catalogue.design_from_text(text).entry == "long_wig"
     assert 0.15 <= planned_mass(text) <= 0.6
+
+
+def test_a_tempur_neck_pillow_is_the_contoured_bed_pillow_not_a_travel_one() -> None:
+    """Set 40's 'tempur neck pillow, medium' built the 0.13 kg U-shaped travel pillow (the TEMPUR-Neck is a 50 cm
+    contoured memory foam bed pillow, ~1.15 kg); a memory foam travel neck pillow stays the travel pillow."""
+    assert catalogue.design_from_text("tempur neck pillow, medium").entry == "memory_foam_pillow"
+    assert catalogue.design_from_text("memory foam travel neck pillow").entry == "neck_pillow"
