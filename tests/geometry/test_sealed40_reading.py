@@ -50,3 +50,10 @@ def test_a_tempur_neck_pillow_is_the_contoured_bed_pillow_not_a_travel_one() -> 
     contoured memory foam bed pillow, ~1.15 kg); a memory foam travel neck pillow stays the travel pillow."""
     assert catalogue.design_from_text("tempur neck pillow, medium").entry == "memory_foam_pillow"
     assert catalogue.design_from_text("memory foam travel neck pillow").entry == "neck_pillow"
+
+
+def test_a_canvas_training_dummy_is_a_dog_bumper_not_a_babys_dummy() -> None:
+    """Set 40's 'canvas training dummy 3" x 12"' built a 7 g pacifier; a baby's dummy still is one."""
+    assert catalogue.design_from_text('canvas training dummy 3" x 12", kinda chewed up').entry == "retrieving_bumper"
+    assert 0.125 <= planned_mass('canvas training dummy 3" x 12", kinda chewed up') <= 0.5
+    assert catalogue.design_from_text("a baby dummy").entry == "pacifier"
