@@ -379,7 +379,6 @@ _STOCK_THICKNESS = re.compile(rf"(?<![\w.]){_MM}\s+(?:thick\s+)?"
                               rf"(?=(?:{'|'.join(_STOCK_WORDS)})\b|(?:[a-z]+\s+){{1,2}}{_SURF_GOODS}\b)", re.I)
 _THICKNESS_AFTER = re.compile(rf"(?P<kept>\b(?:{_SURF_GOODS}|eva\s+foam|eva|craft\s+foam)\b(?:[\s,]+[a-z]+){{0,2}}[\s,]+)"
                               rf"{_MM}\b", re.I)  # ('EVA foam chestplate 10mm': set 40's was a 1 cm block of 8 mg)
-STOCK_MAX_M = dims_words.STOCK_MAX_M  # sheet stock is said up to half an inch thick ('10mm EVA foam') [m]
 # a wetsuit's neoprene in its own notation, thickest panel first ('3/2 mm', '5/4/3mm'): not a fraction of a mm
 _NEOPRENE_NOTATION = re.compile(r"(?<![\w./])(\d+(?:\.\d+)?)(?:/\d+(?:\.\d+)?)+\s*-?\s*mm\b(\s+neoprene\b)?", re.I)
 
@@ -391,7 +390,7 @@ def stock_thickness_stripped(text: str) -> tuple[str, list[str]]:
 
     def drop(m: re.Match[str]) -> str:
         kept = m.groupdict().get("kept")
-        if float(m.group("mm")) * 1e-3 > STOCK_MAX_M or (kept is None and float(m.group("mm")) * 1e-3 >= MIN_SIZE_M):
+        if float(m.group("mm")) * 1e-3 > dims_words.STOCK_MAX_M or (kept is None and float(m.group("mm")) * 1e-3 >= MIN_SIZE_M):
             return m.group(0)  # (before its stock, a centimetre or more is the object's: 'a 12mm foam ball'; after
         kept = kept or ""  # a foam good's name, up to half an inch is its stock's: 'EVA foam chestplate 10mm')
         notes.append(f"'{m.group(0)[len(kept):].strip()}' is the thickness of the material, not the object's size")
@@ -993,7 +992,7 @@ def _material_fronted(text: str) -> str:
             or any(" ".join([*words[-k:], m.group("mat").lower()]) in known for k in (0, 1, 2)):
         return text  # the material is the goods ('a sheet of crepe rubber', 'an aerial silk', 'sheep fleece'), or no
         # noun the lexicon knows comes before it
-    lead = re.match(r"\s*(?:(?:i need|i want|make me|make|need)\s+)?(?:an?\s+|the\s+)?", clause, re.IGNORECASE)
+    lead = re.match(r"\s*(?:an?\s+|the\s+)?", clause, re.IGNORECASE)  # (the request's opening is gone already)
     cut = start + (lead.end() if lead else 0)
     return text[:cut] + m.group("mat") + " " + text[cut:m.start("mat")].rstrip() + text[m.end("mat"):]
 

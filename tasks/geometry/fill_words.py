@@ -33,6 +33,11 @@ class Fill:
     color: str
     source: str
 
+    @classmethod
+    def of(cls, rec: dict, words: str, fraction: float) -> Fill:
+        """The fill of a table record ('key', bulk density, colour, source), read from `words` at `fraction`."""
+        return cls(rec["key"], words, fraction, float(rec["bulk_density_kg_per_m3"]), rec["color"], rec["source"])
+
     def mass_kg(self, capacity_m3: float) -> float:
         """The fill's mass in a bag of this capacity [kg]."""
         return self.fraction * capacity_m3 * self.bulk_density_kg_per_m3
@@ -72,8 +77,9 @@ def _amount(words: str) -> float | None:
     return None
 
 
-_FULLNESS = re.compile(r"\b(half|halfway|a quarter|quarter|three quarters|a third|two thirds|partly|partially|mostly|"
-                       r"nearly|almost)\s+(full|empty|used)\b")  # ('half-used': half of it used, half empty)
+_AMOUNT_WORDS = (r"half|halfway|a quarter|quarter|three quarters|a third|two thirds|partly|partially|mostly|nearly|"
+                 r"almost")
+_FULLNESS = re.compile(rf"\b({_AMOUNT_WORDS})\s+(full|empty|used)\b")  # ('half-used': half of it used, half empty)
 
 
 def stated_fullness(text: str) -> tuple[float, str] | None:
@@ -92,13 +98,12 @@ _X_FILLED = re.compile(r"\b([a-z]+(?:\s+[a-z]+)?)[\s-]filled\b")
 _BAG_OF = re.compile(r"\b(?:bag|pouch|sack|sachet|packet)\s+of\s+([a-z]+(?:\s+[a-z]+)?)")
 # 'a quart ziplock bag w/ travel size liquids', 'a toiletry bag holding toothpaste and a razor': what a container is
 # said to hold, when it is a fill of the table
-_HOLDING = re.compile(r"\b(?:bag|pouch|sack|case|kit|cube|tote)\s+(?:w/|with|holding|containing)\s+(?:some\s+|a few\s+|"
-                      r"about\s+\d+\s+|\d+\s+)?([a-z]+(?:\s+[a-z]+){0,2})")
+_HOLDING = re.compile(r"\b(?:bag|pouch|sack|case|kit|cube|tote)\s+(?:w/\s*|(?:with|holding|containing)\s+)"
+                      r"(?:some\s+|a few\s+|about\s+\d+\s+|\d+\s+)?([a-z]+(?:\s+[a-z]+){0,2})")
 # 'half full - toothpaste, razor, deodorant': how full, then what with, after a dash, colon or bracket
 # (the request's dash may be gone, 'half full toothpaste, razor': then an amount is said before 'full'; the words after
 # name a fill of the table and no container: 'a full makeup bag' is the bag, full)
-_FULL_LISTED = re.compile(r"\b((?:half|halfway|a quarter|quarter|three quarters|a third|two thirds|partly|partially|"
-                          r"mostly|nearly|almost)\s+)?(full|filled|stuffed|packed|loaded)(\s*[-:(,]\s*|\s+)"
+_FULL_LISTED = re.compile(rf"\b((?:{_AMOUNT_WORDS})\s+)?(full|filled|stuffed|packed|loaded)(\s*[-:(,]\s*|\s+)"
                           r"(?:with\s+|of\s+)?([a-z]+(?:\s+[a-z]+){0,2})")
 _CONTAINER = re.compile(r"\b(?:bag|bags|pouch|case|kit|sack|tote|box|cube|bin|basket)\b")
 
@@ -111,6 +116,10 @@ def _fill_key(words: str) -> tuple[str, dict] | None:
     return None
 
 
+_QUALIFIERS = re.compile(r"^(?:(?:small|little|mini|tiny|big|large|assorted|various|several|some|loose|my|his|her|"
+                         r"their|our)\s+)+")
+
+
 def _leading_fill(words: str) -> tuple[str, dict] | None:
     """The fill the words start with ('travel size liquids for ...'), else None ('a straw hole', 'top rolled down':
     a fill word further in is another thing's)."""
@@ -118,9 +127,6 @@ def _leading_fill(words: str) -> tuple[str, dict] | None:
     words = _QUALIFIERS.sub("", words)  # ('travel size liquids' reaches here as 'small liquids')
     return next(((w, table[w]) for w in table if words == w or words.startswith(f"{w} ")), None)
 
-
-_QUALIFIERS = re.compile(r"^(?:(?:small|little|mini|tiny|big|large|assorted|various|several|some|loose|my|his|her|"
-                         r"their|our)\s+)+")
 
 
 def read_fill(text: str) -> Fill | None:
@@ -133,37 +139,26 @@ def read_fill(text: str) -> Fill | None:
         if hit is None:
             continue
         amount = _amount(f"{m.group(1) or ''} {m.group(2)}") or 0.8
-        w, rec = hit
-        return Fill(rec["key"], m.group(0).strip(), amount, float(rec["bulk_density_kg_per_m3"]), rec["color"],
-                    rec["source"])
+        return Fill.of(hit[1], m.group(0).strip(), amount)
     t2 = " ".join(text.lower().split())
     said = stated_fullness(text)  # 'a half-full bag of compost': the bag of compost, half full
     share, words = (said[0], f"{said[1]} ") if said is not None else (0.8, "")
     for m in _X_FILLED.finditer(t2):
         hit = _fill_key(m.group(1))
         if hit is not None:
-            w, rec = hit
-            return Fill(rec["key"], words + m.group(0).strip(), share, float(rec["bulk_density_kg_per_m3"]),
-                        rec["color"], rec["source"])
+            return Fill.of(hit[1], words + m.group(0).strip(), share)
     for m in _FULL_LISTED.finditer(t2):
         if not (m.group(1) or m.group(3).strip()) or _CONTAINER.search(m.group(4)):
             continue
         hit = _leading_fill(m.group(4))
         if hit is not None:
-            w, rec = hit
-            share = said[0] if said is not None else AMOUNTS[m.group(2)]
-            return Fill(rec["key"], m.group(0).strip(), share, float(rec["bulk_density_kg_per_m3"]), rec["color"],
-                        rec["source"])
-    for m in _HOLDING.finditer(t2.replace("w/", "w/ ")):
+            return Fill.of(hit[1], m.group(0).strip(), said[0] if said is not None else AMOUNTS[m.group(2)])
+    for m in _HOLDING.finditer(t2):
         hit = _leading_fill(m.group(1))
         if hit is not None:
-            w, rec = hit
-            return Fill(rec["key"], words + m.group(0).strip(), share, float(rec["bulk_density_kg_per_m3"]),
-                        rec["color"], rec["source"])
+            return Fill.of(hit[1], words + m.group(0).strip(), share)
     for m in _BAG_OF.finditer(t):
         hit = _fill_key(m.group(1))
         if hit is not None:
-            w, rec = hit
-            return Fill(rec["key"], words + m.group(0).strip(), share, float(rec["bulk_density_kg_per_m3"]),
-                        rec["color"], rec["source"])
+            return Fill.of(hit[1], words + m.group(0).strip(), share)
     return None

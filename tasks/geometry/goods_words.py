@@ -215,9 +215,7 @@ def apply(target: LexiconEntry, portion: str | None, text: str, params: dict, si
     fill = fill or fill_words.read_fill(text)
     if fill is None and plan == "pouch" and target.material == "gel" and "capacity" not in (match.stated_mass_source or ""):
         if stated_volume_m3(text) is not None:  # 'a 2 l saline bag': the bag's own liquid, the stated volume of it
-            rec = fill_words.fills()["water"]
-            fill = fill_words.Fill("water", "its liquid", float(target.params.get("fill", 0.6)),
-                                   float(rec["bulk_density_kg_per_m3"]), rec["color"], rec["source"])
+            fill = fill_words.Fill.of(fill_words.fills()["water"], "its liquid", float(target.params.get("fill", 0.6)))
     if fill is not None and plan in FILLABLE_PLANS and "fill" in fields \
             and not _named_with_fill(target, match):  # 'a bag of sugar' is its own entry
         out.params["fill"] = float(np.clip(fill.fraction, 0.05, 1.0))

@@ -70,16 +70,13 @@ def pouch_of(text: str, head: str | None, compounds: list[str]) -> PouchOf | Non
     m = _OF.search(t)
     hit = fill_words._fill_key(m.group(1)) if fill is None and m is not None else None
     if hit is not None:  # 'a bag of frozen mixed veg': the fill's words further after 'of'
-        fill = fill_words.Fill(hit[1]["key"], m.group(0), 0.8, float(hit[1]["bulk_density_kg_per_m3"]),  # type: ignore[union-attr]
-                               hit[1]["color"], hit[1]["source"])
+        fill = fill_words.Fill.of(hit[1], m.group(0), 0.8)  # type: ignore[union-attr]
     if fill is None:
         joined = [" ".join(compounds[k:]) for k in range(len(compounds) - 1)]  # 'a dog food bag': 'dog food'
         for w in [*(j for j in joined if j in fill_words.fills()), *reversed(compounds)]:  # 'a rice bag', 'a pea bag'
             hit = fill_words._fill_key(w) or fill_words._fill_key(f"{w}s")
             if hit is not None:
-                words, rec = hit
-                fill = fill_words.Fill(rec["key"], f"{w} {head}", 0.8, float(rec["bulk_density_kg_per_m3"]),
-                                       rec["color"], rec["source"])
+                fill = fill_words.Fill.of(hit[1], f"{w} {head}", 0.8)
                 break
     if fill is None:
         return None

@@ -5,8 +5,7 @@ from __future__ import annotations
 
 import pytest
 
-from tasks.geometry import catalogue
-from tests.geometry.test_mass_classes import planned_mass
+from tests.geometry.test_mass_classes import assert_builds_at_its_mass
 
 
 @pytest.mark.parametrize(("text", "entry", "kg"), [
@@ -17,8 +16,7 @@ from tests.geometry.test_mass_classes import planned_mass
     ("rolled up poster", "rolled_poster", 0.1),
 ])
 def test_dev52_request_builds_its_entry_at_its_mass(text: str, entry: str, kg: float) -> None:
-    assert catalogue.design_from_text(text).entry == entry
-    assert 0.5 <= planned_mass(text) / kg <= 2.0
+    assert_builds_at_its_mass(text, entry, kg)
 
 
 def test_a_rolled_good_said_by_its_flat_size_is_rolled_along_the_shorter_side() -> None:

@@ -4,8 +4,7 @@ from __future__ import annotations
 
 import pytest
 
-from tasks.geometry import catalogue
-from tests.geometry.test_mass_classes import planned_mass
+from tests.geometry.test_mass_classes import assert_builds_at_its_mass
 
 
 @pytest.mark.parametrize(("text", "entry", "kg"), [
@@ -16,5 +15,4 @@ from tests.geometry.test_mass_classes import planned_mass
     ("beeswax foundaton sheet for a deep frame", "beeswax_foundation", 0.045),
 ])
 def test_dev52_new_request_builds_its_entry_at_its_mass(text: str, entry: str, kg: float) -> None:
-    assert catalogue.design_from_text(text).entry == entry
-    assert 0.5 <= planned_mass(text) / kg <= 2.0
+    assert_builds_at_its_mass(text, entry, kg)

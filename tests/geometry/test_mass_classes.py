@@ -112,6 +112,14 @@ def planned_mass(text: str) -> float:
     return check.density_kg_per_m3 * float(mesh.volume)
 
 
+def assert_builds_at_its_mass(text: str, entry: str, kg: float) -> None:
+    """The request builds the lexicon entry `entry` and L1 plans its mass within 2x of the real `kg` (the check of
+    every development list's and redraw's goods)."""
+    assert catalogue.design_from_text(text).entry == entry, text
+    mass = planned_mass(text)
+    assert 0.5 <= mass / kg <= 2.0, f"{text}: {mass:.3g} kg, real ~{kg:g} kg"
+
+
 @pytest.mark.parametrize("text", sorted(CONCEPTS))
 def test_phrase_builds_its_concept(text: str) -> None:
     d = catalogue.design_from_text(text)

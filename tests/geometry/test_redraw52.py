@@ -6,8 +6,7 @@ from __future__ import annotations
 
 import pytest
 
-from tasks.geometry import catalogue
-from tests.geometry.test_mass_classes import planned_mass
+from tests.geometry.test_mass_classes import assert_builds_at_its_mass
 
 
 @pytest.mark.parametrize(("text", "entry", "kg"), [
@@ -19,5 +18,4 @@ from tests.geometry.test_mass_classes import planned_mass
     ("silicone tamping mat", "tamping_mat", 0.15),
 ])
 def test_redraw52_request_builds_its_entry_at_its_mass(text: str, entry: str, kg: float) -> None:
-    assert catalogue.design_from_text(text).entry == entry
-    assert 0.5 <= planned_mass(text) / kg <= 2.0
+    assert_builds_at_its_mass(text, entry, kg)
