@@ -7,10 +7,13 @@ working directory from hits and re-executes only what never finished. The workin
 
 from __future__ import annotations
 
+import contextvars
 import shutil
+import time
 from collections.abc import Callable
+from concurrent.futures import Future, ThreadPoolExecutor
 from pathlib import Path
-from typing import TypedDict
+from typing import TypedDict, TypeVar
 
 import cache  # (sets the local Prefect environment before prefect is imported)
 from cache.prefect_flow import lean_flow
@@ -18,7 +21,7 @@ from contracts.agents import AgentConfig
 from contracts.asset_dir import DEFAULT_KEEP, KeepTrials
 from contracts.errors import RequirementNotMet, StageFailure
 from contracts.manifest import AssetManifest
-from contracts.manipulation import ManipulationRecord
+from contracts.manipulation import ManipulationRecord, TrialRow
 from contracts.request import AssetRequest
 from contracts.sim import Device, SimConfig
 from flows import l0_geometry, l1_physical, l2_material, l3_manipulation, renders
@@ -28,10 +31,11 @@ from tasks.export.physgaussian import write_physgaussian_export
 from tasks.manifest_summary import (
     asset_files, cache_keys, l3_summary, manipulation_outcome, provenance, reported_plan, stage_summary,
 )
-from tasks.manipulation.pick_place_video import write_pick_and_place_video
+from tasks.manipulation.pick_place_video import prerender_pick_and_place_video, write_pick_and_place_video
 from tasks.publish import check_out_dir, publish_directory, working_dir
 from tasks.request import CheckedRequest, checked_request
 
+T = TypeVar("T")
 StageCallback = Callable[[str, str], None]  # (stage, message)
 TIMINGS: dict[str, float] = {}  # wall time per layer of the last generate_asset call in this process [s]
 
@@ -43,6 +47,15 @@ class _StageClock(TypedDict):
     t: float
 
 
+def timed_stage(stage: str, work: Callable[[], T]) -> T:
+    """work(), its wall time recorded in TIMINGS[stage] (a stage run beside another one, in a thread of its own)."""
+    start = time.perf_counter()
+    try:
+        return work()
+    finally:
+        TIMINGS[stage] = time.perf_counter() - start
+
+
 def require_l3(manifest: AssetManifest, out_dir: Path) -> None:
     """`--require-l3`: RequirementNotMet (exit 7) when L3 ran and did not pass; the asset is already published."""
     l3 = next((s for s in manifest.validation if s.stage == "L3"), None)
@@ -52,13 +65,27 @@ def require_l3(manifest: AssetManifest, out_dir: Path) -> None:
 
 def run_manipulation(work: Path, device: Device, quality: str, agents: AgentConfig | None,
                      cpu_threads: int = 1, progress: Callable[[str], None] | None = None,
-                     keep: KeepTrials = DEFAULT_KEEP, on_video: Callable[[], None] | None = None) -> ManipulationRecord:
+                     keep: KeepTrials = DEFAULT_KEEP, on_video: Callable[[], None] | None = None,
+                     beside: ThreadPoolExecutor | None = None) -> ManipulationRecord:
     """L3 on the working directory and the pick-and-place video of the shown attempt; the manipulation record.
     keep: which trials' states and recordings the asset keeps (tasks.manipulation.keep; the rest stay cached).
-    on_video: called as the video starts (generate times it apart)."""
+    on_video: called as the video starts (generate times it apart).
+    beside: a pool that draws the video of the first selection trial that passes while L3's later trials run (it is
+    the trial reported unless a later one fails); the video then only copies it from the cache."""
     options = (l3_manipulation.L3Options(device=device, cpu_threads=cpu_threads) if quality == "draft"
                else l3_manipulation.L3Options.standard(device, cpu_threads))
-    record, _ = l3_manipulation.run_l3(work, options, agents, progress=progress, keep=keep)
+    early: list[Future[bool]] = []
+
+    def draw_early(row: TrialRow, passed: bool) -> None:
+        if beside is not None and not early and row.role == "selection" and passed and row.data_key:
+            early.append(beside.submit(contextvars.copy_context().run, prerender_pick_and_place_video, row.data_key,
+                                       device))
+
+    try:
+        record, _ = l3_manipulation.run_l3(work, options, agents, progress=progress, keep=keep, on_stored=draw_early)
+    finally:
+        for drawn in early:  # (L3's error waits for it: the cache entry is complete or absent)
+            drawn.exception()
     if on_video is not None:
         on_video()
     write_pick_and_place_video(work, record, device)
@@ -122,8 +149,6 @@ def generate(checked: AssetRequest | CheckedRequest, out_dir: Path, device: Devi
     L3 (``manipulate``) validates the asset with a robot: its outcome (passed or not, with the failed gates and the
     labelled attempts) is part of the published asset, since the deformable asset itself was established by L0-L2.
     """
-    import time
-
     report = on_stage or (lambda stage, message: None)
     clock: _StageClock = {"stage": "", "t": time.perf_counter()}
     TIMINGS.clear()
@@ -165,17 +190,23 @@ def generate(checked: AssetRequest | CheckedRequest, out_dir: Path, device: Devi
         material, o2 = l2_material.run_l2(work, request, agents, sim=sim, physical=physical, keep=keep)
         if material is None:
             raise StageFailure("L2", o2.message)
-        note("renders", "drop protocol: 5 s drop at 30 fps, two views")
-
-        protocol = renders.render_drop_protocol(work, physical, material, sim)
+        note("renders", "drop protocol: 5 s drop at 30 fps, two views" + (" (beside L3)" if manipulate else ""))
         adir = AssetDir(work)  # what L0, L1 and L2 wrote, validated
         validation = [stage_summary(adir.geometry()), stage_summary(adir.physical()), stage_summary(adir.material())]
         plan, outcome, l3 = None, None, None
-        if manipulate:
-            note("L3", "manipulation: Panda pick-and-place in the MPM")
-            l3 = run_manipulation(work, device, request.quality, agents, cpu_threads,  # "L3 trial k of n: ..." lines
-                                  progress=lambda message: report("L3", message.removeprefix("L3").lstrip(": ")),
-                                  keep=keep, on_video=lambda: note("pick_and_place_video"))
+        if not manipulate:
+            protocol = renders.render_drop_protocol(work, physical, material, sim)
+        else:  # the drop renders carry L2's material, not L3's: drawn in a thread while L3 runs (they share the
+            # cores), then the pick-and-place video of L3's first passed trial (run_manipulation)
+            with ThreadPoolExecutor(max_workers=1, thread_name_prefix="beside-l3") as pool:
+                drawn = pool.submit(contextvars.copy_context().run, timed_stage, "renders",
+                                    lambda: renders.render_drop_protocol(work, physical, material, sim))
+                clock["stage"] = ""  # the renders' time is the thread's own (timed_stage), not the clock's
+                note("L3", "manipulation: Panda pick-and-place in the MPM")
+                l3 = run_manipulation(work, device, request.quality, agents, cpu_threads,  # "L3 trial k of n" lines
+                                      progress=lambda message: report("L3", message.removeprefix("L3").lstrip(": ")),
+                                      keep=keep, on_video=lambda: note("pick_and_place_video"), beside=pool)
+                protocol = drawn.result()  # (an L3 error waits for the renders here before the work dir goes)
             validation.append(l3_summary(l3))
             plan = reported_plan(l3)  # adopted, else the best tried under the material the asset carries
             outcome = manipulation_outcome(validation[-1].metrics)

@@ -44,7 +44,7 @@ from flows.l3_material import revalidate_in_l2
 from tasks.asset_dir import AssetDir
 from tasks.geometry.outputs import load_l0
 from tasks.manipulation.body import auto_trial_spacing, trial_body
-from tasks.manipulation.context import (SURFACE_SAMPLES, HoldInputs, L3Context, L3Options, body_from,
+from tasks.manipulation.context import (SURFACE_SAMPLES, HoldInputs, L3Context, L3Options, OnStored, body_from,
                                         failed_metrics, hold_inputs, initial_values, material_of, plan_executable,
                                         with_squeeze_range)
 from tasks.manipulation.keep import keep_trials
@@ -196,25 +196,26 @@ def grasp_selection_task(points_m: np.ndarray, normals: np.ndarray, center_of_ma
 def run_l3(asset_dir: Path, options: L3Options | None = None, agents: AgentConfig | None = None,
            contract: StageContract | None = None, material: Material | None = None,
            recordings: bool = True, progress: Progress | None = None,
-           keep: KeepTrials = DEFAULT_KEEP) -> tuple[ManipulationRecord, StageOutcome]:
+           keep: KeepTrials = DEFAULT_KEEP, on_stored: OnStored | None = None) -> tuple[ManipulationRecord, StageOutcome]:
     """Run L3 on an asset directory (L0 + L1, L2 or a prior): the l3-manipulation flow against the local Prefect
     runtime; write manipulation.json; return (record, outcome)."""
     with cache.local_runtime():
-        return l3_manipulation(asset_dir, options, agents, contract, material, recordings, progress, keep)
+        return l3_manipulation(asset_dir, options, agents, contract, material, recordings, progress, keep, on_stored)
 
 
 @lean_flow(name="l3-manipulation", validate_parameters=False, persist_result=False)
 def l3_manipulation(asset_dir: Path, options: L3Options | None = None, agents: AgentConfig | None = None,
                     contract: StageContract | None = None, material: Material | None = None, recordings: bool = True,
-                    progress: Progress | None = None,
-                    keep: KeepTrials = DEFAULT_KEEP) -> tuple[ManipulationRecord, StageOutcome]:
+                    progress: Progress | None = None, keep: KeepTrials = DEFAULT_KEEP,
+                    on_stored: OnStored | None = None) -> tuple[ManipulationRecord, StageOutcome]:
     """L3: grasps, the harness stage over pick-and-place trials (a subflow), robustness and held-out trials (cached
     tasks), material revisions revalidated by L2 (the l2-revalidation subflow), manipulation.json.
 
     An object no gripper can hold is a result, not an error: manipulation.json and evidence/ record the reason as
     L3's one attempt (status 'no_grasp'). progress: a sink for 'L3 trial k of at most n: ... (elapsed)' lines.
     keep: 'adopted' (the default) leaves the reported trial's states and recording in the asset and every other
-    trial's in the cache, its row naming the key (tasks.manipulation.keep); 'all' keeps every trial's in the asset."""
+    trial's in the cache, its row naming the key (tasks.manipulation.keep); 'all' keeps every trial's in the asset.
+    on_stored: told of each trial once it is stored: its row, and whether it passed (L3Context.on_stored)."""
     asset_dir = Path(asset_dir)
     options = options or L3Options()
     contract = contract or load_contract("L3")
@@ -227,7 +228,7 @@ def l3_manipulation(asset_dir: Path, options: L3Options | None = None, agents: A
     except NoGraspError as exc:
         report.say(f"L3: {exc}")
         return no_grasp_outcome(asset_dir, options, contract, material, str(exc))
-    ctx.progress, ctx.recordings = report, recordings
+    ctx.progress, ctx.recordings, ctx.on_stored = report, recordings, on_stored
     report.say(f"L3: {len(ctx.grasps)} grasp candidates, the best {ctx.grasps[0].width_m * 1000:.0f} mm wide; "
                f"{len(ctx.body.particles_m)} particles per trial")
 

@@ -12,6 +12,7 @@ from __future__ import annotations
 import functools
 import json
 import math
+from collections.abc import Callable
 from dataclasses import asdict, dataclass, field, replace
 from pathlib import Path
 from typing import Any, Protocol, TypedDict
@@ -205,6 +206,9 @@ def tolerances_from(contract: StageContract) -> TrialTolerances:
                            slip_tolerance_m=p.slip_tolerance_m, force_budget_n=force_budget_n(contract))
 
 
+OnStored = Callable[[TrialRow, bool], None]  # a stored trial's row and whether it passed every hard gate
+
+
 @dataclass
 class L3Context:
     """Everything a trial needs that L3 does not edit."""
@@ -228,6 +232,8 @@ class L3Context:
     progress: L3Progress = field(default_factory=L3Progress)
     l0: L0Asset | None = None  # the L0 data the body was built from (L2's revalidation probes it too)
     runner: TrialRunner | None = None  # runs the cached trial task (the flow's); needed before the first trial
+    on_stored: OnStored | None = None  # told of each trial once it is stored (generate: the video of a passed
+    # selection trial is drawn while L3 goes on)
 
     @property
     def grip_force_limit_n(self) -> float | None:
@@ -313,6 +319,9 @@ class L3Context:
                                       cache_key=key, recording=rrd,
                                       condition=TrialCondition(target_xy_m=list(plan.target_xy_m), yaw_deg=yaw_deg),
                                       **stored))
+        if self.on_stored is not None:
+            self.on_stored(self.attempts[-1], not trial_reason(probe.metrics, self.contract,
+                                                               tolerances_from(self.contract)))
         return probe.model_copy(update={"cache_key": key, "recording": attempt_path(n) if n is not None else None})
 
     def under(self, values: dict[str, float], conditions: tuple[tuple[float, float, float], ...], role: str,

@@ -3,12 +3,14 @@ cached as a file by what it shows (the recorded attempt's bytes) and the code an
 
 from __future__ import annotations
 
+import shutil
 from pathlib import Path
 
-from cache import content_key
+from cache import CacheMiss, CacheStore, cache_root, content_key, scratch_dir
 from cache.files import cached_file, source_digest
 from contracts.manipulation import ManipulationRecord
-from tasks.manipulation.replay import replay
+from tasks.manipulation.data import read_attempt_folder
+from tasks.manipulation.replay import draw_attempt, replay
 from tasks.record.trials import reported_attempt
 
 ROOT = Path(__file__).resolve().parents[2]  # the repository: the renderer's sources are named from it
@@ -24,9 +26,22 @@ def write_pick_and_place_video(work: Path, record: ManipulationRecord, device: s
         video.unlink(missing_ok=True)
         return None
     video.parent.mkdir(parents=True, exist_ok=True)
-    cached_file(pick_and_place_video_key(work, n, device), video,
+    cached_file(pick_and_place_video_key(work, n, device, folder=_cached_states(record, n)), video,
                 lambda path: replay(work, n, video=path, device=device))
     return video
+
+
+def _cached_states(record: ManipulationRecord, attempt: int) -> Path | None:
+    """The attempt's full-rate states as the cache holds them (what replay draws when the asset keeps them thinned,
+    and what prerender_pick_and_place_video keys the video by), else None (the asset's folder keys it)."""
+    row = next((r for r in record.attempts if r.attempt == attempt and r.data_key), None)
+    if row is None:
+        return None
+    try:
+        folder = CacheStore(cache_root()).get(row.data_key)
+    except CacheMiss:
+        return None
+    return folder if isinstance(folder, Path) and folder.is_dir() else None
 
 
 def renderer_sources() -> list[Path]:
@@ -40,10 +55,31 @@ def renderer_sources() -> list[Path]:
             ROOT / "contracts" / "grippers"]
 
 
-def pick_and_place_video_key(work: Path, attempt: int, device: str = "cpu") -> str:
+def pick_and_place_video_key(work: Path, attempt: int, device: str = "cpu", folder: Path | None = None) -> str:
     """The video's cache key: the recorded attempt's bytes, the code and libraries that render and encode it and the
     device that draws it (a GPU's pictures are keyed apart: within a colour level, not the same bytes; rendering it
-    takes ~10 s on the CPU; a warm rerun copies it)."""
+    takes ~10 s on the CPU; a warm rerun copies it). folder: the attempt's data elsewhere (its cache entry: the same
+    bytes, the same key) instead of work/interaction/attempt_NNN."""
     code = source_digest(renderer_sources(), ("imageio", "imageio-ffmpeg", "numpy", "opencv-python-headless",
                                               "opencv-python", "pybullet", "scipy", "warp-lang"))
-    return content_key("pick_and_place_video", code, work / "interaction" / f"attempt_{attempt:03d}", device)
+    return content_key("pick_and_place_video", code, folder or work / "interaction" / f"attempt_{attempt:03d}", device)
+
+
+def prerender_pick_and_place_video(data_key: str, device: str = "cpu") -> bool:
+    """Draw the video of a stored trial into the cache before L3 ends (generate: beside L3's later trials), from the
+    trial's cache entry, which nothing changes while L3 goes on (L3 may thin or remove the asset's copy). It is stored
+    under the key write_pick_and_place_video computes when that trial is the one reported, which then only copies it.
+    True when the cache holds the video; False when it holds no entry `data_key`."""
+    try:
+        folder = CacheStore(cache_root()).get(data_key)
+    except CacheMiss:
+        return False
+    if not isinstance(folder, Path) or not folder.is_dir():
+        return False
+    scratch = scratch_dir(prefix="ds-pick-place-video-")
+    try:
+        cached_file(pick_and_place_video_key(folder, 0, device, folder=folder), scratch / "pick_and_place.mp4",
+                    lambda path: draw_attempt(*read_attempt_folder(folder), video=path, device=device))
+    finally:
+        shutil.rmtree(scratch, ignore_errors=True)
+    return True

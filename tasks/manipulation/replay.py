@@ -82,12 +82,22 @@ def replay(asset_dir: Path, attempt: int | None = None, frames_dir: Path | None 
     trial: the trial's one number (from 1, tasks.record.trials; default: the trial manipulation.json reports);
     attempt: its interaction folder index instead. Frames are rendered one at a time and streamed to the files (a
     long attempt never sits in memory)."""
-    import imageio.v2 as imageio
-
     attempt, trial = _which(Path(asset_dir), attempt, trial)
     arrays, attrs = _read(Path(asset_dir), attempt, trial)
     if trial is not None:
         attrs = {**attrs, "trial": trial}
+    out = draw_attempt(arrays, attrs, frames_dir, video, rrd, width, height, device)
+    out.trial = trial
+    return out
+
+
+def draw_attempt(arrays: dict[str, np.ndarray], attrs: dict, frames_dir: Path | None = None,
+                 video: Path | None = None, rrd: Path | None = None, width: int = VIDEO_SIZE[0],
+                 height: int = VIDEO_SIZE[1], device: str = "cpu") -> ReplayResult:
+    """replay's drawing of one attempt's arrays and attributes (as tasks.manipulation.data reads them): PNG frames, a
+    video and a recording, each optional."""
+    import imageio.v2 as imageio
+
     writer = None
     if video is not None:
         video = Path(video)
@@ -122,7 +132,6 @@ def replay(asset_dir: Path, attempt: int | None = None, frames_dir: Path | None 
         out.video = video
     if rrd is not None:
         out.recording = write_rrd(arrays, attrs, Path(rrd))
-    out.trial = trial
     return out
 
 

@@ -1,6 +1,7 @@
 """L2's screening on the material's specimen (the paper's batched screening before the harness): compress three
-stiffnesses and drop three damping rates, each set in one lock-step rollout (a cached task), then keep a start value
-whose metric is already well inside its band, else interpolate the value that hits the band's centre.
+stiffnesses (a rollout each, side by side) and drop three damping rates (one lock-step rollout), each set a cached
+task, then keep a start value whose metric is already well inside its band, else interpolate the value that hits the
+band's centre.
 
 The screening task is a cached task (its key: name, version and inputs, as it was in flows/l2_material.py); the flow
 calls screen() with the L0 asset, the frozen physical model, the contract and the targets.
@@ -28,7 +29,11 @@ from tasks.probes.rollout import DeformableBody, plan_batches, rollouts
 
 TASK_VERSION = "2"  # the screening task's; each probe's own version is in its module (tasks/probes/deformable_probes/)
 SCREEN_SCHEDULE = "auto"  # how object candidates share rollouts (tasks.probes.rollout.plan_batches)
-SPECIMEN_SCREEN_SCHEDULE = "batch"  # the screening's three specimen candidates in one lock-step rollout
+# the specimen's candidates as plan_batches' 'auto' groups them: the three moduli a rollout each at its own time step
+# and length, side by side on the CPU (one lock-step batch ran every scene at the stiffest dt for the softest duration,
+# 3x the steps on one core: 15.8 s of the cold main job's 32 s of L2 on the 2-core CPU); the damping sweep shares one
+# time step, so it stays one rollout
+SPECIMEN_SCREEN_SCHEDULE = "auto"
 SCREEN_KEEP_MARGIN = 0.1  # a start value is kept when its metric is inside its band less 10 % of the width at each end
 
 
@@ -114,8 +119,8 @@ def screen_rollouts(physical: PhysicalModel, positions_m: np.ndarray, volumes_m3
 def screen(asset: L0Asset, physical: PhysicalModel, contract: StageContract, targets: TargetBehaviour,
            start: dict[str, float], sim: SimConfig,
            fixed: dict[str, float] | None = None) -> tuple[dict[str, float], dict[str, Any]]:
-    """Screening on the material's specimen: compress three stiffnesses, drop three damping rates (each set in one
-    lock-step rollout, SPECIMEN_SCREEN_SCHEDULE); keep a start value whose metric is already well inside its band
+    """Screening on the material's specimen: compress three stiffnesses, drop three damping rates (scheduled by
+    SPECIMEN_SCREEN_SCHEDULE); keep a start value whose metric is already well inside its band
     (start_in_band), else interpolate the value that hits the band's centre. fixed: material fields that every
     candidate carries and the screening does not vary (the class's viscosity). Returns (initial values, summary)."""
     fixed = dict(fixed or {})

@@ -19,8 +19,9 @@ from tasks.publish import write_text_atomic
 from tasks.throughput.samplers import GpuStats, GpuUse, HostMemoryStats
 
 REPORT_JSON = "throughput_report.json"
-# generate's stages in the order they run (flows.generate.TIMINGS, as the request process's result file carries them);
-# 'other' is the rest of the request's wall time: process start, imports, the request check, Prefect's set-up
+# generate's stages in the order they start (flows.generate.TIMINGS, as the request process's result file carries
+# them; with L3 the renders run beside it, so the stages' seconds may add up to more than the wall time); 'other' is
+# the rest of the request's wall time: process start, imports, the request check, Prefect's set-up
 STAGES = ("L0", "L1", "L2", "renders", "L3", "pick_and_place_video", "card", "publish")
 OTHER = "other"
 

@@ -53,7 +53,7 @@ def test_the_device_keys_the_video_apart_and_reaches_replay(tmp_path: Path, monk
         Path(video).write_bytes(device.encode())
 
     monkeypatch.setattr(ppv, "replay", fake_replay)
-    record = cast(ManipulationRecord, SimpleNamespace(attempt=1))
+    record = cast(ManipulationRecord, SimpleNamespace(attempt=1, attempts=[]))
     for device in ("cuda", "cpu", "cuda"):  # the second cuda run: the cache's copy
         video = write_pick_and_place_video(tmp_path, record, device)
         assert video is not None and video.read_bytes() == device.encode()
@@ -78,3 +78,40 @@ def test_generate_draws_the_video_on_the_runs_device(tmp_path: Path, monkeypatch
     monkeypatch.setattr(generate, "write_pick_and_place_video", video)
     assert generate.run_manipulation(tmp_path, "cuda", "draft", None) is record
     assert seen == {"l3": "cuda", "video": "cuda"}
+
+
+def test_a_video_drawn_early_from_the_cached_states_is_the_one_the_asset_copies(
+        tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    """generate draws the video of L3's passed selection trial while later trials run (prerender_pick_and_place_video,
+    from the trial's cache entry); at the end write_pick_and_place_video finds it under the same key and copies it,
+    even when the asset's own copy of the states was thinned since (other bytes: the key follows the cached states)."""
+    from cache.files import cached_file
+    from contracts.manipulation import TrialRow
+
+    def store_states(path: Path) -> None:
+        path.mkdir(parents=True)
+        (path / "particles_x_m").write_bytes(b"full-rate")
+
+    data_key = "ab" * 32  # the trial row's key of its states
+    work = tmp_path / "work"
+    cached_file(data_key, work / "interaction" / "attempt_000", store_states)
+    drawn: list[bytes] = []
+
+    def draw(arrays: Any, attrs: Any, video: Path, device: str = "cpu") -> None:
+        drawn.append(arrays)
+        Path(video).write_bytes(b"mp4 of " + arrays)
+
+    monkeypatch.setattr(ppv, "read_attempt_folder", lambda folder: ((Path(folder) / "particles_x_m").read_bytes(), {}))
+    monkeypatch.setattr(ppv, "draw_attempt", draw)
+    assert ppv.prerender_pick_and_place_video(data_key) and drawn == [b"full-rate"]
+    assert not ppv.prerender_pick_and_place_video("cd" * 32)  # an entry the cache does not hold
+    (work / "interaction" / "attempt_000" / "particles_x_m").write_bytes(b"thinned")  # keep_trials' thinning
+
+    def no_replay(*args: Any, **kwargs: Any) -> None:
+        raise AssertionError("the video was drawn again")
+
+    monkeypatch.setattr(ppv, "replay", no_replay)
+    row = TrialRow(attempt=0, role="selection", action="", labels={}, data_key=data_key)
+    record = cast(ManipulationRecord, SimpleNamespace(attempt=0, attempts=[row]))
+    video = write_pick_and_place_video(work, record)
+    assert video is not None and video.read_bytes() == b"mp4 of full-rate" and drawn == [b"full-rate"]
