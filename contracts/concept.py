@@ -44,6 +44,10 @@ class ConceptMatch(Model):
                                           "typical size [kg]")
     typical_size_m: float | None = Field(default=None, gt=0, description="longest extent the typical mass refers "
                                          "to [m]")
+    mass_size_exponents: tuple[float, float] | None = Field(
+        default=None, description="an object whose make-up is unknown: its typical mass x (built / typical size)^k "
+        "with k the first exponent below the typical size and the second above it; None: 3 for a solid, 2 for a "
+        "hollow shell")
     typical_mass_range_kg: tuple[float, float] | None = Field(
         default=None, description="plausible mass range of the real object at the built size [kg]")
     mass_source: str | None = Field(default=None, description="where the typical mass comes from (a product "

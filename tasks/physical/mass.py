@@ -90,6 +90,8 @@ def _typical(concept: ConceptMatch, longest_m: float, volume_m3: float | None,
     if concept.typical_size_m is None:
         return concept.typical_mass_kg, f"{_g(concept.typical_mass_kg)}, not scaled (no typical size)"
     exponent = HOLLOW_EXPONENT if concept.hollow else SOLID_EXPONENT
+    if concept.mass_size_exponents is not None:  # an unknown object: as the lexicon's objects grow (concepts)
+        exponent = concept.mass_size_exponents[longest_m > concept.typical_size_m]
     m = concept.typical_mass_kg * (longest_m / concept.typical_size_m) ** exponent
     return m, (f"{_g(concept.typical_mass_kg)} at {concept.typical_size_m:g} m x ({longest_m:.3g} m / "
                f"{concept.typical_size_m:g} m)^{exponent:g}")

@@ -80,6 +80,15 @@ def test_an_unknown_object_weighs_a_typical_requested_object() -> None:
     assert 0.09 < planned_mass("a blorf") < 0.36  # within 2x of the 0.18 kg median, not 26 g
 
 
+def test_an_unknown_object_of_a_stated_size_weighs_as_named_objects_of_that_size_do() -> None:
+    """Set 41's 1.5 m windsock (its noun unknown then) was a solid 1.5 x 1.05 x 0.6 m block of the generic density:
+    25 kg, L1's cap. An unknown object grows as the lexicon's objects do (slope 1.1 in log mass over log size above
+    0.15 m; their median at 1.3-1.7 m is 0.7 kg) and shrinks as they do below it (slope 1.86)."""
+    big, small = planned_mass("a blorf, about 1.5 m long"), planned_mass("a blorf, 5 cm")
+    assert 1.0 < big < 4.0
+    assert 0.006 < small < 0.02 and planned_mass("a blorf") < planned_mass("a blorf, 60 cm") < big
+
+
 @pytest.mark.parametrize(("text", "count"), [
     ("a dozen corn tortillas", 12), ("hand me a stack of corn tortillas, like a dozen", 12),
     ("corn tortillas, 12", 12), ("half a dozen eggs", 6), ("about 12 eggs", 12)])
