@@ -294,22 +294,37 @@ def strip_sizes(text: str) -> str:
 
 # nouns of an object's parts: a size word before one describes the part, not the object ('a bunny with long ears')
 PART_NOUNS = frozenset("""ear ears leg legs arm arms tail tails neck necks nose snout trunk eye eyes hair mane fur
-handle handles sleeve sleeves strap straps finger fingers whisker whiskers horn horns wing wings foot feet paw paws
+hand hands handle handles sleeve sleeves strap straps finger fingers whisker whiskers horn horns wing wings foot feet paw paws
 tentacle tentacles beak brim visor stem stems fringe tassel tassels cord cords tube hose lace laces ribbon ribbons
 bristle bristles spike spikes fin fins tongue teeth claws claw toes antenna antennae lashes eyelashes bill mouth
 crest hood cuff cuffs collar pocket pockets zip zipper loop""".split())
 _PART_ADJ_SUFFIXES = ("eared", "legged", "tailed", "necked", "haired", "sleeved", "handled", "nosed", "snouted",
                       "limbed", "armed", "winged", "brimmed", "furred")
 _LIE_WORDS = frozenset({"lying", "laying", "lies", "lie", "lay", "laid", "sprawled", "stretched", "spread"})
+_DETERMINERS = frozenset({"my", "your", "his", "her", "its", "our", "their", "the", "a", "an", "this", "that"})
+# the stuff a soft good is made of, as a listing says it after the noun ('tote bag canvas', '..., thin cotton')
+STUFF_WORDS = ("nylon", "canvas", "cotton", "leather", "vinyl", "fleece", "wool", "polyester", "neoprene", "silicone",
+               "rubber", "latex", "suede", "denim", "velvet", "satin", "silk", "linen", "felt", "burlap", "microfiber",
+               "microfibre")
 
 
 def _binds_elsewhere(words: list[str], i: int) -> bool:
-    """True when the modifier at words[i] describes a part ('long ears', 'long-eared') or a pose ('lying flat')."""
+    """True when the modifier at words[i] describes a part ('long ears', 'long-eared', 'with big puffy sleeves'), a
+    pose ('lying flat'), the stuff the object is made of when said last ('..., thin cotton') or how much ('a little
+    squashed'), or is no modifier ('round my head')."""
     nxt = words[i + 1:i + 3]
     if nxt and (nxt[0] in PART_NOUNS or nxt[0].endswith(_PART_ADJ_SUFFIXES)):
         return True
     if nxt and nxt[0] == "and" and i + 3 < len(words) and words[i + 3] in PART_NOUNS:
         return True  # 'long and floppy ears'
+    if "with" in words[:i] and PART_NOUNS & set(words[i + 1:i + 4]):
+        return True  # 'a chemise with big puffy sleeves' (a 2.7x chemise), 'a jester with ... little wooden hands'
+    if len(words) == i + 2 and words[i + 1] in STUFF_WORDS:
+        return True  # 'a gamcha ..., thin cotton': the cloth is thin, not the head wrap flattened
+    if words[i] == "little" and i > 0 and words[i - 1] == "a" and nxt and nxt[0].endswith("ed"):
+        return True  # 'a little squashed': slightly (a cowboy hat was shrunk to 0.34 of its volume)
+    if words[i] == "round" and nxt and nxt[0] in _DETERMINERS:
+        return True  # 'tied round my head': a preposition
     return words[i] in ("flat", "flattened") and i > 0 and words[i - 1] in _LIE_WORDS
 
 
@@ -971,9 +986,8 @@ _POLITE = re.compile(r"(?<![a-z'])(?:pls|plz|please|thx)(?![a-z'])\s*", re.IGNOR
 _OF_WORDS = re.compile(r"\b([a-z]+) of ((?:[a-z]+ ){1,2})([a-z]+)\b", re.IGNORECASE)
 # a material said after its noun at a clause's end, as a listing does ('adult BP cuff nylon w/ bladder', 'tote bag
 # canvas'): the material is not the head noun (set 40's cuff was built as a generic 'nylon' garment)
-_MATERIAL_LAST = re.compile(r"(?P<before>[a-z]+) (?P<mat>nylon|canvas|cotton|leather|vinyl|fleece|wool|polyester|"
-                            r"neoprene|silicone|rubber|latex|suede|denim|velvet|satin|silk|linen|felt|burlap|"
-                            r"microfiber|microfibre)(?=\s*(?:$|[,;(]|w/|with\b|\band\b))", re.IGNORECASE)
+_MATERIAL_LAST = re.compile(rf"(?P<before>[a-z]+) (?P<mat>{'|'.join(STUFF_WORDS)})(?=\s*(?:$|[,;(]|w/|with\b|\band\b))",
+                            re.IGNORECASE)
 _NOT_A_NOUN_BEFORE = frozenset({"of", "in", "with", "and", "or", "from", "made", "pure", "real", "faux", "genuine",
                                 "soft", "thick", "thin", "heavy", "light", "a", "an", "the", "some", "no"})
 

@@ -820,6 +820,8 @@ def _read_once(text: str, serving: bool = True) -> Reading:
         else:
             entry, match = _fallback(t, unknown, donor_entry, donor_plan, donor_words)
         warnings.append(match.fallback_note or "")
+    if donor_plan is not None and donor_words in SHAPE_WORDS and _own_form(entry, donor_words):
+        donor_plan, donor_words = None, ""  # 'a gujiya, the crescent shaped ...': its drawing is the crescent pastry
     if donor_plan is not None and phrase.portion and (phrase.portion in entry.key or phrase.portion in
                                                        " ".join(entry.nouns) or (donor_plan[0] == entry.plan
                                                                                  and phrase.portion != "slice")):
