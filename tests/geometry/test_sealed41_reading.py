@@ -35,3 +35,11 @@ def test_a_shape_word_naming_the_entrys_own_form_keeps_its_drawing() -> None:
     plain = catalogue.design_from_text("a gujiya")
     assert said.entry == plain.entry == "gujiya" and said.concept is not None and said.concept.shape_from is None
     assert len(said.program.parts) == len(plain.program.parts)
+
+
+def test_a_memory_foam_neck_pillow_is_the_u_shaped_travel_pillow_a_tempur_neck_the_contoured_bed_pillow() -> None:
+    """Set 41's 'memory foam neck pillow, U shape' built the 1.3 kg contoured bed pillow (a noun session 53 gave it for
+    set 40's TEMPUR-Neck): said plainly, a memory foam neck pillow is the U-shaped travel pillow (~0.3 kg)."""
+    assert catalogue.design_from_text("memory foam neck pillow, U shape, grey velour cover").entry == "neck_pillow"
+    assert catalogue.design_from_text("tempur neck pillow, medium").entry == "memory_foam_pillow"
+    assert catalogue.design_from_text("contoured memory foam neck pillow").entry == "memory_foam_pillow"
