@@ -190,23 +190,28 @@ def generate(checked: AssetRequest | CheckedRequest, out_dir: Path, device: Devi
         material, o2 = l2_material.run_l2(work, request, agents, sim=sim, physical=physical, keep=keep)
         if material is None:
             raise StageFailure("L2", o2.message)
-        note("renders", "drop protocol: 5 s drop at 30 fps, two views" + (" (beside L3)" if manipulate else ""))
+        beside = manipulate and device == "cpu"  # (on CUDA, a second thread's launches would break L3's graph capture)
+        note("renders", "drop protocol: 5 s drop at 30 fps, two views" + (" (beside L3)" if beside else ""))
         adir = AssetDir(work)  # what L0, L1 and L2 wrote, validated
         validation = [stage_summary(adir.geometry()), stage_summary(adir.physical()), stage_summary(adir.material())]
         plan, outcome, l3 = None, None, None
-        if not manipulate:
-            protocol = renders.render_drop_protocol(work, physical, material, sim)
-        else:  # the drop renders carry L2's material, not L3's: drawn in a thread while L3 runs (they share the
-            # cores), then the pick-and-place video of L3's first passed trial (run_manipulation)
-            with ThreadPoolExecutor(max_workers=1, thread_name_prefix="beside-l3") as pool:
+        with ThreadPoolExecutor(max_workers=1, thread_name_prefix="beside-l3") as pool:
+            if beside:  # the drop renders carry L2's material, not L3's: drawn in a thread while L3 runs on the
+                # other core, then the pick-and-place video of L3's first passed trial (run_manipulation)
                 drawn = pool.submit(contextvars.copy_context().run, timed_stage, "renders",
                                     lambda: renders.render_drop_protocol(work, physical, material, sim))
                 clock["stage"] = ""  # the renders' time is the thread's own (timed_stage), not the clock's
+            else:
+                protocol = renders.render_drop_protocol(work, physical, material, sim)
+            if manipulate:
                 note("L3", "manipulation: Panda pick-and-place in the MPM")
                 l3 = run_manipulation(work, device, request.quality, agents, cpu_threads,  # "L3 trial k of n" lines
                                       progress=lambda message: report("L3", message.removeprefix("L3").lstrip(": ")),
-                                      keep=keep, on_video=lambda: note("pick_and_place_video"), beside=pool)
+                                      keep=keep, on_video=lambda: note("pick_and_place_video"),
+                                      beside=pool if beside else None)
+            if beside:
                 protocol = drawn.result()  # (an L3 error waits for the renders here before the work dir goes)
+        if l3 is not None:
             validation.append(l3_summary(l3))
             plan = reported_plan(l3)  # adopted, else the best tried under the material the asset carries
             outcome = manipulation_outcome(validation[-1].metrics)
