@@ -244,7 +244,7 @@ def test_a_cloth_book_has_covers_pages_and_a_spine() -> None:
 
 
 def test_an_unknown_garment_or_bag_is_built_by_analogy_in_the_new_plans() -> None:
-    kaftan = _design("a silk kaftan")  # (a kimono is drawn since session 44: the folded yukata)
+    kaftan = _design("a silk dashiki")  # (a kimono is drawn since session 44, a kaftan is the tunic since 54)
     assert kaftan.concept.by_analogy and kaftan.concept.body_plan == "garment"
     assert "sleeve" in {part_group(p.name) for p in kaftan.program.parts}
     cravat = _design("a striped cravat")  # (a necktie has its own entry since session 36)
