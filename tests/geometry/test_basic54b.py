@@ -34,7 +34,6 @@ from tests.geometry.test_mass_classes import assert_builds_at_its_mass
     ("a float", "pool_float", 1.2),
     ("a mop", "string_mop", 0.25),
     ("a garland", "tinsel_garland", 0.04),
-    ("a pelt", "sheepskin", 3.3),
     ("a hide", "rolled_leather_hide", 2.6),
 ])
 def test_basic54b_noun_builds_a_typical_member_at_its_mass(text: str, entry: str, kg: float) -> None:
