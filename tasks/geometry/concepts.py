@@ -647,7 +647,7 @@ _ARTICLE = re.compile(r"\b(?:a|an|the|that|this|those|these|some|my|our|your)\s+
 _RELATIVE = re.compile(r"\s+(?:like\s+)?(?:they|you|we|i|he|she|people|kids|the\s+[a-z]+s)(?:'d|'ll|'re| would| will|"
                        r" always| usually| often| normally| all)?\s+(?:keep|use|have|had|put|leave|play|give|gave|wear|"
                        r"take|get|got|bring|throw|love|like|need|hand|sell|carry|see|saw|buy|bought|make|chew|chase|"
-                       r"squeeze|hug|stuff)s?\b[^,;.()]*")
+                       r"squeeze|hug|stuff|serve|eat|order|cook|hang|stack|fold|wash|pack|stock|feed)s?\b[^,;.()]*")
 
 
 _FASTENED_ON = re.compile(r"\b(?:tie|clip|slip|stick|pull|press|sew|iron|strap|zip|snap|velcro|hook|button)[- ]on\s+"

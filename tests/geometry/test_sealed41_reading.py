@@ -43,3 +43,10 @@ def test_a_memory_foam_neck_pillow_is_the_u_shaped_travel_pillow_a_tempur_neck_t
     assert catalogue.design_from_text("memory foam neck pillow, U shape, grey velour cover").entry == "neck_pillow"
     assert catalogue.design_from_text("tempur neck pillow, medium").entry == "memory_foam_pillow"
     assert catalogue.design_from_text("contoured memory foam neck pillow").entry == "memory_foam_pillow"
+
+
+def test_a_clause_saying_where_they_serve_it_names_no_shape() -> None:
+    """Set 42's 'half a roast chicken like they serve in the tents' built the dome tent ('like ... tents' read as its
+    shape): a relative clause with 'serve', 'eat', 'hang', 'fold' ... is dropped as one with 'keep' or 'sell' was."""
+    assert catalogue.design_from_text("a roast chicken like they serve in the tents").entry == "roast_chicken"
+    assert catalogue.design_from_text("a towel folded like they fold them in hotels").entry == "bath_towel"
