@@ -35,6 +35,7 @@ import numpy as np
 import zarr
 from zarr.codecs import BloscCodec, TransposeCodec
 
+from cache import CacheMiss, CacheStore, cache_root
 from contracts.errors import InputError
 from tasks.manipulation import particle_frames
 
@@ -175,6 +176,17 @@ def read_attempt(asset_dir: Path, index: int | None = None) -> tuple[dict[str, n
     if n not in indices:
         raise InputError(f"{asset_dir} has no attempt {n}; stored attempts: {indices}")
     return read_attempt_folder(interaction_dir(asset_dir) / f"attempt_{n:03d}")
+
+
+def cached_attempt_folder(data_key: str | None) -> Path | None:
+    """The attempt folder the cache holds under a trial row's data_key (checked by key, digests included), else None."""
+    if not data_key:
+        return None
+    try:
+        found = CacheStore(cache_root()).get(data_key)
+    except CacheMiss:
+        return None
+    return found if isinstance(found, Path) and found.is_dir() else None
 
 
 def read_attempt_folder(folder: Path) -> tuple[dict[str, np.ndarray], dict[str, Any]]:

@@ -18,11 +18,11 @@ import re
 import shutil
 from pathlib import Path
 
-from cache import CacheMiss, CacheStore, cache_resolve, cache_root
+from cache import cache_resolve
 from contracts.asset_dir import DEFAULT_KEEP, KEEP_TRIALS, KeepTrials, attempt_path
 from contracts.errors import InputError
 from contracts.manipulation import ManipulationRecord, TrialRow
-from tasks.manipulation.data import INTERACTION, attempt_indices, thin_frames
+from tasks.manipulation.data import INTERACTION, attempt_indices, cached_attempt_folder, thin_frames
 from tasks.record.trials import data_location, reported_attempt
 
 _TRIAL_RECORDING = re.compile(r"^L3_trial_\d+\.rrd$")
@@ -32,13 +32,7 @@ KEPT_FRAMES_BYTES = 3 * 2**20  # the reported trial's particle frames in a defau
 
 def _in_cache(row: TrialRow) -> bool:
     """The trial's interaction data is an intact entry of the cache (checked by key, digests included)."""
-    if not row.data_key:
-        return False
-    try:
-        found = CacheStore(cache_root()).get(row.data_key)
-    except CacheMiss:
-        return False
-    return isinstance(found, Path) and found.is_dir()
+    return cached_attempt_folder(row.data_key) is not None
 
 
 def keep_trials(asset_dir: Path, record: ManipulationRecord, keep: KeepTrials = DEFAULT_KEEP) -> ManipulationRecord:

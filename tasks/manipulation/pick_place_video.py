@@ -6,10 +6,10 @@ from __future__ import annotations
 import shutil
 from pathlib import Path
 
-from cache import CacheMiss, CacheStore, cache_root, content_key, scratch_dir
+from cache import content_key, scratch_dir
 from cache.files import cached_file, source_digest
 from contracts.manipulation import ManipulationRecord
-from tasks.manipulation.data import read_attempt_folder
+from tasks.manipulation.data import cached_attempt_folder, read_attempt_folder
 from tasks.manipulation.replay import draw_attempt, replay
 from tasks.record.trials import reported_attempt
 
@@ -26,22 +26,12 @@ def write_pick_and_place_video(work: Path, record: ManipulationRecord, device: s
         video.unlink(missing_ok=True)
         return None
     video.parent.mkdir(parents=True, exist_ok=True)
-    cached_file(pick_and_place_video_key(work, n, device, folder=_cached_states(record, n)), video,
+    # keyed by the full-rate states the cache holds (what replay draws when the asset keeps them thinned, and what
+    # prerender_pick_and_place_video keys it by), else by the asset's folder
+    cached = cached_attempt_folder(next((r.data_key for r in record.attempts if r.attempt == n), None))
+    cached_file(pick_and_place_video_key(work, n, device, folder=cached), video,
                 lambda path: replay(work, n, video=path, device=device))
     return video
-
-
-def _cached_states(record: ManipulationRecord, attempt: int) -> Path | None:
-    """The attempt's full-rate states as the cache holds them (what replay draws when the asset keeps them thinned,
-    and what prerender_pick_and_place_video keys the video by), else None (the asset's folder keys it)."""
-    row = next((r for r in record.attempts if r.attempt == attempt and r.data_key), None)
-    if row is None:
-        return None
-    try:
-        folder = CacheStore(cache_root()).get(row.data_key)
-    except CacheMiss:
-        return None
-    return folder if isinstance(folder, Path) and folder.is_dir() else None
 
 
 def renderer_sources() -> list[Path]:
@@ -60,9 +50,14 @@ def pick_and_place_video_key(work: Path, attempt: int, device: str = "cpu", fold
     device that draws it (a GPU's pictures are keyed apart: within a colour level, not the same bytes; rendering it
     takes ~10 s on the CPU; a warm rerun copies it). folder: the attempt's data elsewhere (its cache entry: the same
     bytes, the same key) instead of work/interaction/attempt_NNN."""
+    return states_video_key(folder or work / "interaction" / f"attempt_{attempt:03d}", device)
+
+
+def states_video_key(states: Path, device: str = "cpu") -> str:
+    """The video's cache key from an attempt folder's bytes (pick_and_place_video_key's)."""
     code = source_digest(renderer_sources(), ("imageio", "imageio-ffmpeg", "numpy", "opencv-python-headless",
                                               "opencv-python", "pybullet", "scipy", "warp-lang"))
-    return content_key("pick_and_place_video", code, folder or work / "interaction" / f"attempt_{attempt:03d}", device)
+    return content_key("pick_and_place_video", code, states, device)
 
 
 def prerender_pick_and_place_video(data_key: str, device: str = "cpu") -> bool:
@@ -70,15 +65,12 @@ def prerender_pick_and_place_video(data_key: str, device: str = "cpu") -> bool:
     trial's cache entry, which nothing changes while L3 goes on (L3 may thin or remove the asset's copy). It is stored
     under the key write_pick_and_place_video computes when that trial is the one reported, which then only copies it.
     True when the cache holds the video; False when it holds no entry `data_key`."""
-    try:
-        folder = CacheStore(cache_root()).get(data_key)
-    except CacheMiss:
-        return False
-    if not isinstance(folder, Path) or not folder.is_dir():
+    folder = cached_attempt_folder(data_key)
+    if folder is None:
         return False
     scratch = scratch_dir(prefix="ds-pick-place-video-")
     try:
-        cached_file(pick_and_place_video_key(folder, 0, device, folder=folder), scratch / "pick_and_place.mp4",
+        cached_file(states_video_key(folder, device), scratch / "pick_and_place.mp4",
                     lambda path: draw_attempt(*read_attempt_folder(folder), video=path, device=device))
     finally:
         shutil.rmtree(scratch, ignore_errors=True)

@@ -14,11 +14,11 @@ from pathlib import Path
 
 import numpy as np
 
-from cache import CacheMiss, CacheStore, cache_root
+from cache import cache_root
 from contracts.asset_dir import attempt_path
 from contracts.errors import InputError
 from tasks.asset_dir import AssetDir
-from tasks.manipulation.data import read_attempt, read_attempt_folder
+from tasks.manipulation.data import cached_attempt_folder, read_attempt, read_attempt_folder
 from tasks.manipulation.scene import VIDEO_FPS, VIDEO_SIZE
 from tasks.manipulation.video import PickPlaceVideo
 from tasks.record import ProbeRecording
@@ -164,11 +164,7 @@ def _cached_attempt(asset_dir: Path, attempt: int) -> tuple[str | None, Path | N
     row = next((r for r in record.attempts if r.attempt == attempt), None) if record is not None else None
     if row is None or not row.data_key:
         return None, None
-    try:
-        folder = CacheStore(cache_root()).get(row.data_key)
-    except CacheMiss:
-        return row.data_key, None
-    return row.data_key, folder if isinstance(folder, Path) and folder.is_dir() else None
+    return row.data_key, cached_attempt_folder(row.data_key)
 
 
 def _which(asset_dir: Path, attempt: int | None, trial: int | None) -> tuple[int | None, int | None]:

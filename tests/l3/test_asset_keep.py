@@ -132,6 +132,7 @@ def test_a_reported_trial_over_the_budget_keeps_every_sth_frame_and_replay_reads
     """A large object's reported trial (a cat bed's: 122 MB of particle frames) would make the asset: its frames
     beyond the budget are thinned in time, the first and last kept, the rest of the trial (controls, forces) whole;
     the row says the stride, and replay reads every frame from the cache entry."""
+    from cache import CacheStore
     from tasks.asset_dir import AssetDir
     from tasks.manipulation import keep
     from tasks.manipulation.data import frame_bytes, interaction_dir, read_attempt, read_attempt_folder
@@ -154,7 +155,7 @@ def test_a_reported_trial_over_the_budget_keeps_every_sth_frame_and_replay_reads
     assert row.frame_stride >= 3 and '"frame_stride"' in (asset / "manipulation.json").read_text()
     assert frame_bytes(folder) <= 1.2 * budget  # (one more frame: the last)
     got, attrs = read_attempt(asset, 1)
-    want, _ = read_attempt_folder(keep.CacheStore(cache_dir).get(row.data_key))
+    want, _ = read_attempt_folder(CacheStore(cache_dir).get(row.data_key))
     n = len(want["frame_t_s"])
     assert attrs["frames_full"] == n and attrs["frame_stride"] == row.frame_stride
     idx = np.unique(np.r_[np.arange(0, n, row.frame_stride), n - 1])
