@@ -24,7 +24,8 @@ from tasks.probes.metrics import (
     center_of_mass, compressive_strain, cross_section_area, det_f, kinetic_energy, top_bottom_layers,
 )
 from tasks.probes.rollout import (
-    DeformableBody, Rollout, dx_of, fundamental_period_s, make_result, run_scheduled, sample_interval_s,
+    DeformableBody, Rollout, dx_of, fundamental_period_s, make_result, quasi_static_mass_scale, run_scheduled,
+    sample_interval_s, scaled_gravity,
 )
 
 G = 9.81  # m/s^2
@@ -39,6 +40,26 @@ VOLUME_CHANGE_MAX = 0.05
 # ~2e-9 M g H (draft turtle, E = 2.4 MPa, nu = 0.48); its peak kinetic energy is that same noise, so the ratio test
 # alone would call a body that never moved unstable.
 KE_AT_REST = 1e-7
+
+# Quasi-static probes run a stiff body mass-scaled (rollout.quasi_static_mass_scale: density x k, gravity / k) up to a
+# fundamental period; a body already as slow (the plush turtle, 36 ms) runs as it is.
+# The rest: 3 s is still >= 150 periods of 0.02 s, sampled every 0.02 s.
+STABILITY_QS_PERIOD_S = 0.02
+# The compression: each phase lasts max(floor, periods x T); up to T = 0.01 s every phase keeps its floor. The plate
+# first crosses its 1.5 dx gap, so the squeeze itself is only the share strain H / (gap + strain H) of the loading
+# time: the bound is also that squeeze over COMPRESS_QS_SQUEEZE_PERIODS. At 5 periods the tennis ball's specimen
+# cube (k = 23) held the unscaled modulus within 0.3 %; a 3 cm cube squeezed over 1.8 periods held a strain 14 %
+# short (0.040 against 0.046; benchmarks/quasi_static_scaling.py, tasks/probes/BENCHMARKS.md).
+COMPRESS_PHASES = {"settle": (0.1, 8.0), "load": (0.2, 20.0), "hold": (0.1, 6.0), "recover": (0.2, 10.0)}
+COMPRESS_QS_PERIOD_S = min(floor / periods for floor, periods in COMPRESS_PHASES.values())
+COMPRESS_QS_SQUEEZE_PERIODS = 5.0
+
+
+def compress_qs_period_s(gap_m: float, squeeze_m: float) -> float:
+    """The compression's mass-scaling bound [s]: COMPRESS_QS_PERIOD_S, or less where the squeeze (squeeze_m after a
+    gap_m approach, in the loading's shortest time) would last under COMPRESS_QS_SQUEEZE_PERIODS periods."""
+    load_s = COMPRESS_PHASES["load"][0]
+    return min(COMPRESS_QS_PERIOD_S, load_s * squeeze_m / (gap_m + squeeze_m) / COMPRESS_QS_SQUEEZE_PERIODS)
 
 
 def kinetic_energy_settles(late_j: float, peak_j: float, mass_kg: float, height_m: float) -> bool:
@@ -69,7 +90,9 @@ def compress(body: DeformableBody, materials: Material | Sequence[Material], str
     (draft turtle, E = 2.4 MPa: recovery 0.92 with the layer, 0.98 without it, 0.98 with that push switched off).
     The body first settles under gravity (h0); the plate then
     descends at a slow constant speed (loading time >= 20 fundamental periods 4H/c, c = sqrt(E/rho)) until the
-    measured strain e = 1 - h/h0 reaches `strain`, and holds.
+    measured strain e = 1 - h/h0 reaches `strain`, and holds. A body whose period is under compress_qs_period_s() (a
+    stiff rubber) is mass-scaled to it (density x k, gravity / k: the same weight, forces and stresses; k in the params
+    as mass_scale): its phases keep their shortest durations and their periods, at sqrt(k) x the time step.
       effective_modulus_pa   secant stress / strain at the held strain: (F / A) / e, with F the mean vertical force the
                              body exerts on the plate during the hold [N] and A the cross-section at mid height [m^2]
                              (particle volume in a two-layer slab / its thickness; the contact area for a prism)
@@ -104,13 +127,16 @@ def _compress(body: DeformableBody, mats: Sequence[Material], strain: float, sim
     gap = 1.5 * dx
     z_plate0 = hi[2] + 0.5 * s + gap + half_t
     cxy = 0.5 * (lo[:2] + hi[:2])
-    scenes = [SceneSpec(x0, body.volumes_m3, body.density_kg_per_m3, m, ground=True, ground_friction=0.0,
-                        colliders=[box_collider(half, friction=0.0, position_m=(cxy[0], cxy[1], z_plate0), name="plate")])
-              for m in mats]
-    T = max(fundamental_period_s(body, m) for m in mats)
-    dt_s = sample_interval_s(body, mats)
-    t_settle, t_load, t_hold = max(0.1, 8 * T), max(0.2, 20 * T), max(0.1, 6 * T)
-    t_release, t_recover = 0.1, max(0.2, 10 * T)
+    bound = compress_qs_period_s(gap, strain * H)
+    ks = [quasi_static_mass_scale(body, m, bound) for m in mats]
+    scenes = [SceneSpec(x0, body.volumes_m3, body.density_kg_per_m3 * k, m, ground=True, ground_friction=0.0,
+                        colliders=[box_collider(half, friction=0.0, position_m=(cxy[0], cxy[1], z_plate0), name="plate")],
+                        gravity_m_per_s2=scaled_gravity(sim, k))
+              for m, k in zip(mats, ks)]
+    T = max(fundamental_period_s(body, m, k) for m, k in zip(mats, ks))
+    dt_s = sample_interval_s(body, mats, mass_scales=ks)
+    t_settle, t_load, t_hold, t_recover = (max(floor, periods * T) for floor, periods in COMPRESS_PHASES.values())
+    t_release = 0.1
     travel_max = gap + 2.0 * strain * H
     v_load = (gap + strain * H) / t_load
     n_est = int((t_settle + 1.5 * t_load + t_hold + t_release + t_recover) / dt_s)
@@ -168,8 +194,8 @@ def _compress(body: DeformableBody, mats: Sequence[Material], strain: float, sim
             for i in range(B):
                 run.sim.control.set_collider(i, 0, linear_velocity_m_per_s=(0.0, 0.0, 0.0))
     out = []
-    params = {"strain": strain, "area_m2": area}
     for i in range(len(mats)):
+        params = {"strain": strain, "area_m2": area, **_mass_scale_param(ks[i])}
         metrics = run.gate_metrics(i)
         if run.ok and forces and h_rec:
             F = float(np.mean([f[i] for f in forces]))
@@ -183,8 +209,19 @@ def _compress(body: DeformableBody, mats: Sequence[Material], strain: float, sim
                 "recovery_ratio": min(1.0, (h_r - h_l) / applied) if applied > 0 else math.nan,
             })
         out.append(make_result("compress", params, metrics, run.health(i), run.wall_s, held_out, run.time_s))
-    run.close([f"compress to strain {strain}: E={m.youngs_modulus_pa:.4g} Pa" for m in mats[:1]])
+    run.close([f"compress to strain {strain}: E={m.youngs_modulus_pa:.4g} Pa{_mass_scale_note(k)}"
+               for m, k in zip(mats[:1], ks)])
     return out
+
+
+def _mass_scale_param(k: float) -> dict[str, float]:
+    """A quasi-static rollout's mass scale as a probe parameter (none when the body ran unscaled)."""
+    return {"mass_scale": k} if k > 1.0 else {}
+
+
+def _mass_scale_note(k: float) -> str:
+    """The recording's note of a mass-scaled rollout."""
+    return f", mass-scaled x{k:.3g} (density x k, gravity / k)" if k > 1.0 else ""
 
 
 # -- drop ----------------------------------------------------------------------------------------------------------
@@ -432,6 +469,9 @@ def stability(body: DeformableBody, materials: Material | Sequence[Material], du
       stable_long_rollout  1 if the engine stayed healthy, ke_decay_ratio <= 0.1 (or the late kinetic energy is
                            below 1e-7 M g H: at rest, see KE_AT_REST), late_drift_ratio <= 0.01, deformation_ratio <= 0.25 and
                            volume_change <= 0.05; else 0
+    A body whose fundamental period is under STABILITY_QS_PERIOD_S (a stiff rubber) rests mass-scaled to it (density
+    x k, gravity / k: the same weight and stresses; its kinetic energy is still compared with M g H, which k leaves as
+    it was; k in the params as mass_scale).
     """
     sim = sim or SimConfig()
     mats = _as_list(materials)
@@ -442,8 +482,9 @@ def stability(body: DeformableBody, materials: Material | Sequence[Material], du
 def _stability(body: DeformableBody, mats: Sequence[Material], duration: float, sim: SimConfig,
                paths: Sequence[Path | None], held_out: bool) -> list[ProbeResult]:
     x0, H = body.positions_m, body.height_m
-    scenes = [SceneSpec(x0, body.volumes_m3, body.density_kg_per_m3, m, ground_friction=body.ground_friction)
-              for m in mats]
+    ks = [quasi_static_mass_scale(body, m, STABILITY_QS_PERIOD_S) for m in mats]
+    scenes = [SceneSpec(x0, body.volumes_m3, body.density_kg_per_m3 * k, m, ground_friction=body.ground_friction,
+                        gravity_m_per_s2=scaled_gravity(sim, k)) for m, k in zip(mats, ks)]
     dt_s = 0.02
     run = Rollout(scenes, sim, paths, "stability", int(duration / dt_s))
     M = body.mass_kg
@@ -483,9 +524,9 @@ def _stability(body: DeformableBody, mats: Sequence[Material], duration: float, 
                             "volume_change": dvol, "stable_long_rollout": 1.0 if stable else 0.0})
         else:
             metrics["stable_long_rollout"] = 0.0
-        out.append(make_result("stability", {"duration_s": duration}, metrics, run.health(i), run.wall_s, held_out,
-                               run.time_s))
-    run.close([f"rest rollout {duration} s"])
+        out.append(make_result("stability", {"duration_s": duration, **_mass_scale_param(ks[i])}, metrics,
+                               run.health(i), run.wall_s, held_out, run.time_s))
+    run.close([f"rest rollout {duration} s{_mass_scale_note(ks[0])}"])
     return out
 
 

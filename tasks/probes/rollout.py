@@ -67,15 +67,36 @@ def dx_of(body: DeformableBody, sim: SimConfig) -> float:
     return float(sim.dx_m) if sim.dx_m is not None else 2.0 * float(np.mean(body.volumes_m3) ** (1.0 / 3.0))
 
 
-def fundamental_period_s(body: DeformableBody, material: Material) -> float:
-    """Longest elastic period across the height, 4 H / c with the bar speed c = sqrt(E / rho) [s]."""
-    return 4.0 * body.height_m / math.sqrt(material.youngs_modulus_pa / body.density_kg_per_m3)
+def fundamental_period_s(body: DeformableBody, material: Material, mass_scale: float = 1.0) -> float:
+    """Longest elastic period across the height, 4 H / c with the bar speed c = sqrt(E / (k rho)) [s] (k: the
+    rollout's mass scale, 1 unless quasi_static_mass_scale() set one)."""
+    return 4.0 * body.height_m / math.sqrt(material.youngs_modulus_pa / (mass_scale * body.density_kg_per_m3))
 
 
-def sample_interval_s(body: DeformableBody, materials: Sequence[Material], longest_s: float = 5e-3) -> float:
+def sample_interval_s(body: DeformableBody, materials: Sequence[Material], longest_s: float = 5e-3,
+                      mass_scales: Sequence[float] | None = None) -> float:
     """Sampling interval: a sixth of the shortest fundamental period, within [1 ms, longest_s]."""
-    t = min(fundamental_period_s(body, m) for m in materials) / 6.0
+    ks = list(mass_scales) if mass_scales is not None else [1.0] * len(materials)
+    t = min(fundamental_period_s(body, m, k) for m, k in zip(materials, ks)) / 6.0
     return float(min(longest_s, max(1e-3, t)))
+
+
+def quasi_static_mass_scale(body: DeformableBody, material: Material, period_s: float) -> float:
+    """Mass scaling of a quasi-static rollout (explicit FEM's classic device for slow loading): the factor k >= 1 that
+    makes the body's fundamental period 4H/c at least period_s. The rollout multiplies the density by k and divides
+    gravity by k, so every static load (the weight M g, a plate's force, the friction it allows) and the material's
+    stresses at a given strain stay as they were, while the elastic waves slow by sqrt(k) and the CFL step grows by
+    sqrt(k) (the Kelvin-Voigt viscous step by k). Valid only where inertia plays no part: loading at least ~20 periods
+    long, and rests; never for a drop or an accelerated lift. 1 for a body already that slow (a plush toy)."""
+    return max(1.0, (period_s / fundamental_period_s(body, material)) ** 2)
+
+
+def scaled_gravity(sim: SimConfig, mass_scale: float) -> tuple[float, float, float] | None:
+    """A scene's gravity under mass scale k: SimConfig's gravity / k (None, SimConfig's own, when k = 1)."""
+    if mass_scale == 1.0:
+        return None
+    gx, gy, gz = sim.gravity_m_per_s2
+    return (gx / mass_scale, gy / mass_scale, gz / mass_scale)
 
 
 @dataclass
@@ -293,4 +314,5 @@ def make_result(kind: str, params: dict[str, float], metrics: dict[str, float], 
 
 
 __all__ = ["SCHEDULES", "DeformableBody", "Rollout", "SceneLog", "dx_of", "fundamental_period_s", "make_result",
-           "plan_batches", "rollouts", "run_batched", "run_scheduled", "sample_interval_s"]
+           "plan_batches", "quasi_static_mass_scale", "rollouts", "run_batched", "run_scheduled", "sample_interval_s",
+           "scaled_gravity"]

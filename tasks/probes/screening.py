@@ -27,7 +27,7 @@ from tasks.probes.probe import Probe, ProbeContext
 from tasks.probes.registry import probe as find_probe
 from tasks.probes.rollout import DeformableBody, plan_batches, rollouts
 
-TASK_VERSION = "2"  # the screening task's; each probe's own version is in its module (tasks/probes/deformable_probes/)
+TASK_VERSION = "3"  # the screening task's; bump it with a screened probe's VERSION (tasks/probes/deformable_probes/): 3, compress's 3
 SCREEN_SCHEDULE = "auto"  # how object candidates share rollouts (tasks.probes.rollout.plan_batches)
 # the specimen's candidates as plan_batches' 'auto' groups them: the three moduli a rollout each at its own time step
 # and length, side by side on the CPU (one lock-step batch ran every scene at the stiffest dt for the softest duration,

@@ -14,7 +14,7 @@ from tasks.probes import deformable
 from tasks.probes.mpm_probe import MpmGateMetrics, body_inputs, l2_parameters, run_batch
 from tasks.probes.probe import ProbeContext, ProbeModule
 
-VERSION = "2"  # bump when tasks/probes/{deformable,rollout,metrics}.py change what the probe returns
+VERSION = "3"  # 3: a stiff body is mass-scaled (deformable.compress_qs_period_s); bump when deformable.py changes it
 
 
 class CompressMetrics(MpmGateMetrics):

@@ -15,7 +15,7 @@ from tasks.probes.deformable_probes.compress import CompressMetrics, measure
 from tasks.probes.mpm_probe import body_inputs, l2_parameters, run_batch
 from tasks.probes.probe import ProbeContext, ProbeModule
 
-VERSION = "2"  # bump when tasks/probes/{deformable,rollout,metrics,specimen}.py change what the probe returns
+VERSION = "3"  # 3: a stiff specimen is mass-scaled (deformable.compress_qs_period_s); bump when tasks/probes/{deformable,rollout,metrics,specimen}.py change what the probe returns
 
 
 def batch(positions_m: np.ndarray, volumes_m3: np.ndarray, physical: PhysicalModel, materials: list[Material],
