@@ -1,5 +1,6 @@
 """The screening task's cache key on a fixed input, recorded before it moved from flows/l2_material.py to
-tasks/probes/screening.py (#37): its name, version and inputs are unchanged, so every cached screening still hits."""
+tasks/probes/screening.py (#37): its name, version and inputs are unchanged, so every cached screening still hits.
+Re-recorded at TASK_VERSION 3 (session 55: the screened compression mass-scales a stiff specimen)."""
 
 from __future__ import annotations
 
@@ -11,7 +12,7 @@ from contracts.sim import SimConfig
 from flows.harness import probe_cache_key
 from tasks.probes.screening import screen_task
 
-KEY = "383a942cd53ce751200c5446e52cfc4a656055e95f5f9b0f9e5ffa3d6d42ba26"
+KEY = "cbfee423b00e0ea7ee72a69cc4e3fbc1949db2a49ec4aa1acd1f300a65ad51f0"
 
 
 def test_the_screening_task_key_is_unchanged() -> None:

@@ -35,17 +35,17 @@ L1_EXECUTED = [  # (the rigid probes' VERSION 3, slide 4, session 40: at rest by
 ]
 L1_RECORDINGS = {"place": "L1_place-d826a6cb4b5d7663.rrd", "rigid_drop": "L1_drop-00be9819d51df611.rrd",
                  "slide": "L1_slide-dc6cb286d9c79e6d.rrd"}
-L2_EXECUTED = [
-    ("l2.compress", "3fc7a8f8b3d2688e3bfbd66db2fc2e34a9923a30fad68ad0a31d28b22c8a1140"),
-    ("l2.compress", "9bc1a776551aabd1867f79e19feb37abf7ad0b35655f56fe4c25c191cb40a4e3"),
+L2_EXECUTED = [  # (compress, specimen_compress and stability at VERSION 3, session 55: a stiff body mass-scaled)
+    ("l2.compress", "2920bcb9ab1dc348f8735563bd5b041b24620b50755d571363b23c7e3d0d95a8"),
+    ("l2.compress", "867c7276979846daad8bf2ef0b8bf500627f0d7da8a68881bb09be78ad6e4f55"),
     ("l2.drop", "86d762f77a2d102db07b0cb3eddf6a8f62b35c7e049bc637d77d74a16976c477"),
     ("l2.drop", "b792fda9ebebabf244b66c585c97046a7c7b455ca02b726c71c76d02df0014c5"),
     ("l2.lift", "a059916499bcfdece2d45dce8c8567efb9c555cb26da2304761106740e3a3ef7"),
-    ("l2.specimen_compress", "3bfd6f577534f169c3080010b91b48c35cb637ee8ccdaa96dd77fe9ff4ae2528"),
-    ("l2.specimen_compress", "84e280590e2309fa2f7a4add686260ee358075c3600a654405f0029444ae6b26"),
+    ("l2.specimen_compress", "6da64c09ec1deae8b28e8934a2a2b79a265777bba1b429000a95f4ab41fc8cc9"),
+    ("l2.specimen_compress", "fef59572a5797eedff0744abcb43f3dd530c5a826ae6b06062abfe5234cf5f1d"),
     ("l2.specimen_drop", "21850ecd48a22a4bf201efe0d4a5d923fba23bcbad6da509923c24dde8cd3660"),
     ("l2.specimen_drop", "9beded2da274bb0a2dc9256902fa8e98350897095feeb9bd8ef54f2c9db68d7e"),
-    ("l2.stability", "56f68ab571d5efdf33aebdba9180b95756a94e3da640bf9292ef54b87aaaebe4"),
+    ("l2.stability", "285bf09a89f33a98828c3b9066b08e871b425735626d83e0d19a088c4eb0da61"),
 ]
 L2_RECORDINGS = {
     "compress": "L2_compress-87e4a452a522f455.rrd", "drop": "L2_drop-9e5982be63dad9e9.rrd",
