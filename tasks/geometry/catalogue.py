@@ -1243,14 +1243,25 @@ def _length_of_hose(text: str, reading: concepts.Reading, size: SizeSpec) -> str
 
 def _as_meat(text: str, reading: concepts.Reading) -> str | None:
     """The text with an animal's name made 'meat' when the words say it is eaten (raw, ground, cooked, a tray, a
-    pound) and nothing says it is a toy; else None."""
+    pound) and nothing says it is a toy; a bird said so and not cut up made the whole bird when the lexicon has it
+    ('a thawed chicken' the whole raw chicken, not ground meat); else None."""
     noun = reading.match.noun
     if noun is None or concepts.concept_domain(reading.entry.key) != "animal" or _TOY_WORDS.search(text) \
             or (re.search(r"\bwhole\b", text, re.I) and reading.entry.plan != "bird") \
             or reading.entry.category in ("meat", "fish", "seafood", "food") \
             or not FOOD_CUES & set(re.findall(r"[a-z]+", _TRAY_AS_DESTINATION.sub(" ", text.lower()))):
         return None
+    whole = f"whole {noun.lower()}"
+    if reading.entry.plan == "bird" and whole in concepts.noun_index() and not _CUT_UP.search(text) \
+            and not re.search(rf"\bwhole\s+{re.escape(noun)}\b", text, re.I):
+        return _noun_swapped(text, noun, whole)
     return _noun_swapped(text, noun, "meat")
+
+
+# words that say a bird is eaten in pieces, not whole ('ground turkey', 'chicken breasts', 'a tray of raw chicken')
+_CUT_UP = re.compile(r"\b(?:ground|minced?|fillets?|breasts?|thighs?|wings?|drumsticks?|legs?|diced|sliced|chopped|"
+                     r"boneless|skinless|pieces?|strips?|nuggets?|tenders?|trays?|packs?|pounds?|lbs?|kg|grams?|"
+                     r"portions?|cuts?|cubes?)\b", re.I)
 
 
 # a tray the object is put into is where it goes, not what it is sold on ('lift the jellyfish into the tray' was
