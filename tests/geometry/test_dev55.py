@@ -1,5 +1,6 @@
 """Session 55 (post-hoc from sealed set 42's misses): a bird said thawed, frozen or cooked is the whole bird, not
-ground meat; a hard hat and a motorcycle helmet are refused as rigid, not built as a felt hat and a foam bike helmet."""
+ground meat; a hard hat and a motorcycle helmet are refused as rigid, not built as a felt hat and a foam bike helmet;
+a lifebuoy is the foam ring, not the 40 kg mooring buoy."""
 
 from __future__ import annotations
 
@@ -16,6 +17,8 @@ from tests.geometry.test_mass_classes import assert_builds_at_its_mass
     ("a thawed quail", "whole_quail", 0.14),
     ("a frozen chicken", "whole_chicken", 1.6),
     ("a thawed turkey", "whole_turkey", 6.0),
+    ("an orange life ring on the dock", "lifebuoy", 2.5),
+    ("a life buoy", "lifebuoy", 2.5),
 ])
 def test_a_bird_said_eaten_and_whole_builds_the_whole_bird(text: str, entry: str, kg: float) -> None:
     assert_builds_at_its_mass(text, entry, kg)
@@ -26,13 +29,15 @@ def test_a_bird_said_eaten_and_whole_builds_the_whole_bird(text: str, entry: str
     ("raw chicken breasts", "chicken_breast"),
     ("a thawed rabbit", "ground_meat"),  # no whole rabbit in the lexicon: meat as before
     ("a quail", "plush_quail"),  # nothing says it is eaten: the bird
+    ("a buoy", "mooring_buoy"),  # the lifebuoy takes no plain buoy, nor the swim ring
+    ("a swim ring", "swim_ring"),
 ])
 def test_cut_or_live_birds_keep_their_reading(text: str, entry: str) -> None:
     assert catalogue.design_from_text(text).entry == entry
 
 
 @pytest.mark.parametrize("text", ["a hard hat", "a yellow construction hard hat", "a motorcycle helmet",
-                                  "a full face helmet", "a football helmet"])
+                                  "a full face helmet", "a football helmet", "a pith helmet"])
 def test_hard_shells_are_refused_as_rigid(text: str) -> None:
     with pytest.raises(InputError, match="rigid object"):
         check_rigid_object(text)
