@@ -17,6 +17,11 @@ device runs to make back to back (/var/tmp survives between calls only while the
     carry [".gpuwheels/pNN"]:  python3 deployments/gpu_wheels.py receive .gpuwheels/pNN && \
                                python3 deployments/gpu_wheels.py install
 
+Before `prepare` and the calls, `python deployments/gpu_wheels.py park [--keep docs/results/NAME ...]` moves the
+big evidence folders (docs/blind/, and every docs/results/ folder but the kept ones: ~40 of the tracked tree's ~55 MB)
+into `.gpuparked/` (git-ignored, so it does not travel), which leaves each call ~44 MB for wheels instead of ~10;
+`unpark` puts them back (do it before any commit: while parked, git sees them deleted).
+
 `install` (on the device, standard library only) joins the parts, checks their SHA-256, installs every wheel with
 `pip install --no-index --no-deps --target /var/tmp/site`, builds pybullet from its sdist there
 (`--no-build-isolation`: the image's setuptools and wheel), and runs `pip check` over the result. Then every command
@@ -67,6 +72,64 @@ MB = 1_000_000
 PART_MAX = 60 * MB  # the issue's bound on one part
 CALL_MAX = 64 * 1024 * 1024  # what one device call carries: the working tree and the carried folder together
 MARGIN = 8 * MB  # files added to the tree between `prepare` and the calls (docs grow ~2 MB a session: contact sheets)
+
+
+PARKED = ".gpuparked"  # where `park` moves the evidence folders: inside the repo, git-ignored, not carried
+PARK_FOLDERS = ("docs/blind",)  # parked whole
+PARK_CHILDREN = ("docs/results",)  # each child parked, but those named by --keep
+
+
+def _exclude(root: Path, entry: str) -> None:
+    """Add `entry` to the repository's .git/info/exclude once."""
+    exclude = root / ".git" / "info" / "exclude"
+    exclude.parent.mkdir(parents=True, exist_ok=True)
+    lines = exclude.read_text(encoding="utf-8").splitlines() if exclude.is_file() else []
+    if entry not in lines:
+        exclude.write_text("\n".join([*lines, entry]) + "\n", encoding="utf-8")
+
+
+def park(root: Path, keep: list[str]) -> list[str]:
+    """Move the evidence folders out of what a device call carries, into root/.gpuparked (their paths kept beneath
+    it); the relative paths moved. Refused while something is parked already."""
+    parked = root / PARKED
+    if parked.exists() and any(parked.iterdir()):
+        raise SystemExit(f"{PARKED}/ is not empty: run `unpark` first")
+    kept = {Path(k).as_posix().rstrip("/") for k in keep}
+    moves = [f for f in PARK_FOLDERS if (root / f).is_dir()]
+    for folder in PARK_CHILDREN:
+        if (root / folder).is_dir():
+            moves += sorted(c.relative_to(root).as_posix() for c in (root / folder).iterdir()
+                            if c.relative_to(root).as_posix() not in kept)
+    _exclude(root, f"/{PARKED}/")
+    for rel in moves:
+        (parked / rel).parent.mkdir(parents=True, exist_ok=True)
+        shutil.move(root / rel, parked / rel)
+    return moves
+
+
+def unpark(root: Path) -> list[str]:
+    """Move everything parked back where it was; the relative paths restored. Refused, moving nothing, when one of
+    them exists again in the tree."""
+    parked = root / PARKED
+    if not parked.is_dir():
+        return []
+    moves = []
+    for top in [*PARK_FOLDERS, *PARK_CHILDREN]:
+        src = parked / top
+        if not src.exists():
+            continue
+        if top in PARK_FOLDERS:
+            moves.append(top)
+        else:
+            moves += sorted(c.relative_to(parked).as_posix() for c in src.iterdir())
+    clash = [m for m in moves if (root / m).exists()]
+    if clash:
+        raise SystemExit(f"cannot unpark: {clash[0]} exists in the tree again; move it aside first")
+    for rel in moves:
+        (root / rel).parent.mkdir(parents=True, exist_ok=True)
+        shutil.move(parked / rel, root / rel)
+    shutil.rmtree(parked)
+    return moves
 
 
 def norm(name: str) -> str:
@@ -288,6 +351,12 @@ def main() -> None:
     r.set_defaults(fn=receive)
     i = sub.add_parser("install", help="device: join, check and install into /var/tmp/site")
     i.set_defaults(fn=install)
+    k = sub.add_parser("park", help="here: move the evidence folders out of what a call carries (.gpuparked/)")
+    k.add_argument("--keep", action="append", default=[], help="a docs/results/ folder the device needs (repeatable)")
+    k.set_defaults(fn=lambda a: print(f"parked {len(park(REPO, a.keep))} folders in {PARKED}/; "
+                                      "`unpark` before any commit"))
+    u = sub.add_parser("unpark", help="here: put the parked folders back")
+    u.set_defaults(fn=lambda a: print(f"restored {len(unpark(REPO))} folders"))
     args = ap.parse_args()
     args.fn(args)
 
