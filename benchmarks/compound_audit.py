@@ -4,8 +4,10 @@
 
 For each head noun, every WordNet noun 'X head' (index.noun, one modifier) that no lexicon entry lists is read as
 'a X head'; those read as a named object (fallback level exact or synonym) are printed with the entry they built.
-Most are true kinds of it ('bowler hat' -> the felt hat); the rest are another object the head noun took ('sweat suit'
--> the business suit, 'black kite' -> the diamond kite): a review list for the lexicon, not a pass/fail test.
+Since session 56 a compound whose modifier is a noun is read by analogy (tasks.geometry.concepts._unlisted_compound:
+'a sweat suit' is built as the business suit and says so); what is left here is read through a qualifier (a colour,
+'black kite'; a material), a WordNet synonym the lexicon lists, or a form the reading does not split (hyphenated or
+possessive modifiers, 'ten-gallon hat', "bishop's hat"): a review list for the lexicon, not a pass/fail test.
 """
 
 from __future__ import annotations

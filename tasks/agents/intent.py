@@ -107,9 +107,21 @@ def rigid_object(text: str, vocab: MaterialVocab | None = None, also: tuple[str,
         return None
     soft = [w for entry in vocab.materials.values() for w in entry.words] + list(vocab.objects) + vocab.soft_words
     soft += _soft_lexicon_nouns()
-    if any(_contains_phrase(t, w) for t in texts for w in soft):
+    if any(_soft_outside(t, w, rigid) for t in texts for w in soft):
         return None
     return max(rigid, key=len)
+
+
+def _soft_outside(text: str, soft: str, rigid: list[str]) -> bool:
+    """True when the soft word is in the text other than as a word of a rigid noun found there: the 'ball' of 'a
+    bowling ball' says nothing soft, the 'plush' of 'a plush bowling ball' does ('a baby spoon' is a lexicon noun
+    holding 'spoon': it contains the rigid word, not the other way round)."""
+    if not _contains_phrase(text, soft):
+        return False
+    inside = [r for r in rigid if r != soft and _contains_phrase(r, soft)]
+    for r in inside:
+        text = re.sub(rf"(?<![a-z]){re.escape(r)}(?![a-z])", " ", text)
+    return _contains_phrase(text, soft)
 
 
 def check_rigid_object(text: str, vocab: MaterialVocab | None = None, where: str = "",

@@ -69,7 +69,7 @@ FOOD_CUES = frozenset({"raw", "cooked", "ground", "minced", "mince", "frozen", "
                        "fillet", "fillets", "boneless", "skinless", "plucked", "shrink", "wrapped", "lb", "pound"})
 
 
-def _best_sense(noun: str, context: set[str] | None = None) -> Sense | None:
+def best_sense(noun: str, context: set[str] | None = None) -> Sense | None:
     """The physical sense of a noun: the one whose definition shares most words with the request, then one whose
     first word is the noun itself, else the most frequent; artifacts, food, animals and plants before natural objects
     and substances ('mould' the container, not soil)."""
@@ -110,12 +110,12 @@ def explain(candidates: list[str], lexicon_nouns: dict[str, Any], shape_words: d
     too_general = set(v["too_general"])
     for noun in candidates:
         if noun in lexicon_nouns and noun != candidates[0]:  # 'a spatula head': the part of a spatula
-            own = _best_sense(noun, context_words) or Sense(0, (noun,), "", "noun.artifact", (), (), ())
+            own = best_sense(noun, context_words) or Sense(0, (noun,), "", "noun.artifact", (), (), ())
             out = Analogy(noun=candidates[0], sense=own, concept=lexicon_nouns[noun][0], named_donor=True,
                           kind=noun)
             out.chain.append(f"a part or kind of '{noun}', which the lexicon knows")
             return out
-        found = _best_sense(noun, context_words)
+        found = best_sense(noun, context_words)
         if found is None:
             continue
         sense = found

@@ -451,6 +451,48 @@ def _head(main: str) -> tuple[tuple[int, int, str] | None, tuple[int, int, str] 
     return head, donor, tail_unknown
 
 
+@dataclass(frozen=True)
+class _Compound:
+    """How to read 'X head' when the noun X before the lexicon's head noun makes with it a WordNet noun that no entry
+    lists: as the lexicon noun WordNet gives as its synonym (``synonym``: 'a mandarin orange' is the mandarin), else
+    by analogy with the head's entry when the compound is a thing of the same kind (an object, a food, an animal:
+    ``kind_of`` when WordNet files it under the head noun), else as an unknown noun ('a white-tailed kite' is a bird,
+    not the toy kite)."""
+
+    words: str                       # 'sweat suit'
+    gloss: str = ""                  # WordNet's definition of it
+    synonym: tuple[int, int, str] | None = None  # the hit to read instead
+    kind_of: str | None = None       # the head noun, when WordNet says the compound is a kind of it ('bowler hat')
+    by_head: bool = False            # built by analogy with the head's entry
+
+
+def _unlisted_compound(main: str, head: tuple[int, int, str]) -> _Compound | None:
+    """The compound the noun just before the lexicon's head noun makes with it, when WordNet knows it as a physical
+    thing and no entry lists it ('a sweat suit' is no business suit, 'a bowler hat' a kind of hat): see _Compound.
+    None when the word before only qualifies the entry (colours, sizes, states and materials: 'a wool hat', 'a black
+    kite') or the compound names nothing physical ('a small cap' is a stock)."""
+    before = re.findall(r"[a-z]+", main[:head[0]])
+    if not before or modifier_word(before[-1]) or before[-1] in _material_words() \
+            or not wordnet().senses(before[-1]):
+        return None
+    words = f"{before[-1]} {head[2]}"
+    senses = wordnet().physical_senses(words)
+    if words in noun_index() or not senses:
+        return None
+    for s in senses:  # WordNet's synonym that the lexicon lists
+        other = next((w.replace("_", " ") for w in s.lemmas if w.replace("_", " ") in noun_index()), None)
+        if other is not None:
+            return _Compound(words, s.definition, synonym=(head[0] - len(before[-1]) - 1, head[1], other))
+    domain = concept_domain(noun_index()[head[2]][0])
+    own = head[2].replace(" ", "_")
+    for s in senses:  # a kind of the head noun's own thing ('bowler hat' < 'hat'; 'lily pad' < the leaf: no)
+        if any(own in anc.lemmas and analogy_mod.domain_of_sense(anc) == domain
+               for anc in wordnet().ancestors(s, 3)):
+            return _Compound(words, s.definition, kind_of=head[2], by_head=True)
+    sense = analogy_mod.best_sense(words, set(re.findall(r"[a-z]+", main))) or senses[0]
+    return _Compound(words, sense.definition, by_head=analogy_mod.domain_of_sense(sense) == domain)
+
+
 def _kin_in_pose(entry: LexiconEntry, posable: LexiconEntry, poses: set[str]) -> LexiconEntry:
     """The shape that can take a pose: the entry's posable one when its plan has the pose, else the first entry of
     the same animal whose plan has it (a seated plush bunny cannot lie down; the lexicon's lop rabbit, a quadruped,
@@ -748,6 +790,11 @@ def _read_once(text: str, serving: bool = True) -> Reading:
                 and (head is None or head[2].split()[-1] != phrase.head):
             head, compound, unknown = None, None, phrase.head  # 'a sheet of crepe rubber' is rubber, whatever
             # food 'crepe' names; 'a block of memory foam' foam, not an unknown 'memory'
+    named_compound = _unlisted_compound(main, head) if head is not None and unknown is None else None
+    if named_compound is not None and named_compound.synonym is not None:  # 'a welcome mat': WordNet's doormat
+        head, compound = named_compound.synonym, None
+    elif named_compound is not None and not named_compound.by_head:  # 'a white-tailed kite': a bird, no toy kite
+        head, compound, unknown = None, None, named_compound.words
     look = donor is not None  # a stated shape ('X-shaped', 'shaped like X'), not a portion ('a slice of')
     if donor is None and phrase.portion in PORTION_SHAPES:
         donor, donor_words = PORTION_SHAPES[phrase.portion], f"{phrase.portion} of"
@@ -786,6 +833,16 @@ def _read_once(text: str, serving: bool = True) -> Reading:
                            f"there, a {entry.nouns[0]} (both kinds of {kin} in WordNet)")
             match = match.model_copy(update={"analogy": [f"{noun}: a kind of {kin} (WordNet)",
                                                          f"nearest kin in the lexicon: {entry.nouns[0]} ({entry.key})"]})
+        if named_compound is not None and named_compound.by_head and kin is None:
+            said = f"it is a kind of '{named_compound.kind_of}' (WordNet)" if named_compound.kind_of else \
+                f"WordNet: '{named_compound.gloss}'"  # 'a sweat suit' as the business suit: a guess, said so
+            match = _match(entry, "hypernym", named_compound.words, f"'{named_compound.words}' is not in the "
+                           f"lexicon: {said}, so it was built by analogy with the lexicon's {entry.nouns[0]}")
+            match = match.model_copy(update={"analogy": [
+                f"{named_compound.words}: " + (f"a kind of {named_compound.kind_of}" if named_compound.kind_of
+                                               else f"'{named_compound.gloss}'") + " (WordNet)",
+                f"built as the lexicon's {entry.nouns[0]} ({entry.key}), the noun it ends in: its shape, material "
+                "and typical mass"]})
         if compound is not None and donor is None and entry.takes_shape:
             donor_entry = lex.entries[noun_index()[compound[2]][0]]
             donor_words = compound[2]

@@ -10,7 +10,7 @@ from __future__ import annotations
 import pytest
 
 from tasks.geometry import catalogue
-from tasks.geometry.analogy import _best_sense
+from tasks.geometry.analogy import best_sense
 from tasks.geometry.concepts import bindings, plain
 from tests.geometry.test_mass_classes import planned_mass
 
@@ -58,7 +58,7 @@ def test_the_requests_own_noun_is_a_class_before_its_kinds(text: str, cls: str) 
 
 
 def test_an_object_sense_comes_before_a_genus() -> None:
-    sense = _best_sense("pan", {"flexible", "black", "rubber", "feed", "zebras"})
+    sense = best_sense("pan", {"flexible", "black", "rubber", "feed", "zebras"})
     assert sense is not None and "vessel" in sense.definition  # not 'chimpanzees' (the genus Pan)
     d = catalogue.design_from_text("a pan for the goats")
     assert d.concept is not None and d.concept.fallback_level == "hypernym", d.entry  # a pan, built as a vessel

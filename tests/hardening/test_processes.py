@@ -85,8 +85,8 @@ def test_a_request_orphaned_before_it_watches_stops(tmp_path: Path) -> None:
     flag = tmp_path / "stopped"
     subprocess.run([sys.executable, "-c", ORPHANED_EARLY, str(flag)], cwd=REPO, timeout=60,
                    env={**os.environ, "PYTHONPATH": str(REPO)}, check=True)
-    deadline = time.monotonic() + 20.0
-    while not flag.is_file() and time.monotonic() < deadline:
+    deadline = time.monotonic() + 20.0  # (the child's open() makes the file before its write() fills it)
+    while not (flag.is_file() and flag.read_text() == "stopped") and time.monotonic() < deadline:
         time.sleep(0.1)
     assert flag.is_file() and flag.read_text() == "stopped"
 
