@@ -162,3 +162,19 @@ def test_modifiers_fallback_and_absurd_sizes() -> None:
     with pytest.raises(InputError, match="outside the supported range"):
         catalogue.design_from_text("a 2 mm sponge")
     assert len(catalogue.entry_names()) >= 40
+
+
+def test_winding_numbers_in_blocks_equal_each_point_alone() -> None:
+    """The block split (a bounded working set) gives every point the number it has on its own, bit for bit."""
+    import trimesh
+
+    from tasks.geometry import checks
+
+    mesh = trimesh.creation.icosphere(subdivisions=5, radius=0.1)  # 20,480 faces: 12 points a block
+    pts = np.random.default_rng(0).uniform(-0.15, 0.15, (40, 3))
+    together = checks.winding_numbers(mesh, pts)
+    alone = np.array([checks.winding_numbers(mesh, p[None, :])[0] for p in pts])
+    assert checks._WINDING_BLOCK // len(mesh.faces) < len(pts)  # several blocks
+    np.testing.assert_array_equal(together, alone)
+    inside = np.linalg.norm(pts, axis=1) < 0.099
+    np.testing.assert_allclose(together[inside], 1.0, atol=1e-9)
