@@ -178,7 +178,7 @@ FAMILY_WORDS: dict[str, frozenset[str]] = {
 _MEASURE_OF = re.compile(r"\b(?:roll|rolls)\s+of\b")
 # food classes: 'stuffed' said of a food is its filling, not a stuffed toy's plush (sealed set 29's calzone weighed 40 g)
 _FOOD_CLASSES = frozenset({"cheese", "processed_meat", "firm_produce", "bread", "fruit", "marshmallow", "dough", "gel"})
-_STUFFED = re.compile(r"\bstuffed\b")
+_STUFFED = re.compile(r"\b(?:stuffed|fluffy)\b")
 # what comes with a food is a topping or side, not its material ('hot cocoa with marshmallows' is a drink, not a
 # marshmallow); 'made with' still names it
 _FOOD_WITH = re.compile(r"(?<!made )\bwith\b.*$")
@@ -215,7 +215,8 @@ def _match_material(text: str, vocab: MaterialVocab, concept_material: str | Non
     text = _MEASURE_OF.sub(" ", text)  # 'a roll of bubble wrap' names no bread
     text = _SURFACE_ONLY.sub(" ", text)  # 'rubber-coated gloves' are knit gloves, not solid rubber
     if concept_material in _FOOD_CLASSES:
-        text = _STUFFED.sub(" ", text)  # 'a calzone stuffed with ricotta', 'a stuffed pepper': a filling, not plush
+        text = _STUFFED.sub(" ", text)  # 'a calzone stuffed with ricotta', 'a stuffed pepper': a filling, not plush;
+        # 'a fluffy pancake': a texture, not a plush toy's density (sealed set 43's pancake weighed a quarter)
         text = _FOOD_WITH.sub(" ", text)
     for name, entry in vocab.materials.items():
         for word in entry.words:

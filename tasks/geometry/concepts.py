@@ -202,8 +202,12 @@ _IRREGULAR = {"mouse": ["mice"], "goose": ["geese"], "octopus": ["octopuses", "o
 
 
 def plurals(noun: str) -> list[str]:
-    """Plural forms of a noun (of its last word when it has several)."""
-    *head, last = noun.split()
+    """Plural forms of a noun (of its last word when it has several; of the word before 'of' in a measure phrase:
+    'slices of ham', 'bags of ice')."""
+    words = noun.split()
+    if len(words) > 2 and words[1] == "of":
+        return [" ".join([f, *words[1:]]) for f in plurals(words[0])]
+    *head, last = words
     if last in _IRREGULAR:
         forms = _IRREGULAR[last]
     elif re.search(r"(s|x|z|ch|sh)$", last):
