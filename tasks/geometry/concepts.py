@@ -838,13 +838,12 @@ def _read_once(text: str, serving: bool = True) -> Reading:
             match = match.model_copy(update={"analogy": [f"{noun}: a kind of {kin} (WordNet)",
                                                          f"nearest kin in the lexicon: {entry.nouns[0]} ({entry.key})"]})
         if named_compound is not None and named_compound.by_head and kin is None:
-            said = f"it is a kind of '{named_compound.kind_of}' (WordNet)" if named_compound.kind_of else \
-                f"WordNet: '{named_compound.gloss}'"  # 'a sweat suit' as the business suit: a guess, said so
-            match = _match(entry, "hypernym", named_compound.words, f"'{named_compound.words}' is not in the "
-                           f"lexicon: {said}, so it was built by analogy with the lexicon's {entry.nouns[0]}")
+            kind, words = named_compound.kind_of, named_compound.words  # 'a sweat suit' as the business suit: a guess
+            said = f"it is a kind of '{kind}' (WordNet)" if kind else f"WordNet: '{named_compound.gloss}'"
+            match = _match(entry, "hypernym", words, f"'{words}' is not in the lexicon: {said}, so it was built by "
+                           f"analogy with the lexicon's {entry.nouns[0]}")
             match = match.model_copy(update={"analogy": [
-                f"{named_compound.words}: " + (f"a kind of {named_compound.kind_of}" if named_compound.kind_of
-                                               else f"'{named_compound.gloss}'") + " (WordNet)",
+                f"{words}: " + (f"a kind of {kind}" if kind else f"'{named_compound.gloss}'") + " (WordNet)",
                 f"built as the lexicon's {entry.nouns[0]} ({entry.key}), the noun it ends in: its shape, material "
                 "and typical mass"]})
         if compound is not None and donor is None and entry.takes_shape:

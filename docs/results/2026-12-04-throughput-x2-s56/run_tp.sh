@@ -3,15 +3,17 @@
 # cold, with --gpus G and K workers per GPU (default 12), stopped after WINDOW_S (SIGINT; the report,
 # OUT/throughput_report.json, covers what finished: copied to $OUT).
 # usage (device, wheels installed, from the repo root): bash run_tp.sh G WINDOW_S [K]
+# SCRATCH (default /var/tmp): where the runs write; DEFORMSMITH_WHEEL_SITE as deployments/gpu_wheels.py takes it
 set -u
 G=$1; W=$2; K=${3:-12}; T=g${G}k$K
-export PYTHONPATH=/var/tmp/site:. WARP_CACHE_PATH=/var/tmp/warp_$T PYTHONUNBUFFERED=1 PREFECT_HOME=/var/tmp/ph_$T
+S=${SCRATCH:-/var/tmp}; SITE=${DEFORMSMITH_WHEEL_SITE:-$S/site}
+export PYTHONPATH=$SITE:. WARP_CACHE_PATH=$S/warp_$T PYTHONUNBUFFERED=1 PREFECT_HOME=$S/ph_$T
 nvidia-smi --query-gpu=index,name,memory.used --format=csv,noheader | tee $OUT/log_$T.txt
 nproc | tee -a $OUT/log_$T.txt
 git log -1 --format='%H %s' >> $OUT/log_$T.txt 2>&1
 t0=$(date +%s)
 timeout -k 20 -s INT $W python3 -m flows.cli.main bench throughput benchmarks/throughput_requests.jsonl --gpus $G \
-  --workers-per-gpu $K --out /var/tmp/tp_$T --json > $OUT/throughput_$T.json 2> $OUT/throughput_err_$T.txt
+  --workers-per-gpu $K --out $S/tp_$T --json > $OUT/throughput_$T.json 2> $OUT/throughput_err_$T.txt
 echo "rc=$? wall_s=$(( $(date +%s) - t0 ))" | tee -a $OUT/log_$T.txt
-cp /var/tmp/tp_$T/throughput_report.json $OUT/throughput_report_$T.json
-cp /var/tmp/tp_$T/_throughput/records.jsonl $OUT/records_$T.jsonl
+cp $S/tp_$T/throughput_report.json $OUT/throughput_report_$T.json
+cp $S/tp_$T/_throughput/records.jsonl $OUT/records_$T.jsonl
