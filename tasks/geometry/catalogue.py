@@ -446,11 +446,30 @@ _SIZE_ROLL = re.compile(r"(?<=[a-z]\s)(\d+(?:\.\d+)?\s*(?:m|metres?|meters?|ft|f
 _N_IN_ONE = re.compile(r"\b\d+\s*-\s*in\s*-\s*1\b|\b\d+\s+in\s+1\b(?=\s+[a-z])", re.I)
 
 
+_HYPHENED_NOUN = re.compile(r"\b([a-z]+(?:-[a-z]+)+)\s+([a-z]+)\b", re.I)
+
+
+def _hyphened_synonyms(text: str) -> str:
+    """'a ten-gallon hat' -> 'a cowboy hat': a hyphened compound WordNet knows as a physical thing that no lexicon
+    entry lists, named by its WordNet synonym that one does (before 'ten-gallon' reads as a volume)."""
+    def named(m: re.Match[str]) -> str:
+        words = f"{m.group(1)} {m.group(2)}".lower()
+        if words in concepts.noun_index():
+            return m.group(0)
+        for sense in wordnet().physical_senses(words):
+            other = next((w.replace("_", " ") for w in sense.lemmas if w.replace("_", " ") in concepts.noun_index()),
+                         None)
+            if other is not None:
+                return other
+        return m.group(0)
+    return _HYPHENED_NOUN.sub(named, text) if "-" in text else text
+
+
 def normalise_sizes(text: str) -> str:
     """'an 8-cm-tall cat' -> 'an 8 cm tall cat' (so the size binds to its axis); number words before a unit and a
     dimension as digits ('about a metre long' -> 'about 1 metre long', 'half a metre wide' -> '0.5 metre wide'), or a
     length of a material ('one metre of tubing' -> '1 metre of tubing')."""
-    text = _N_IN_ONE.sub(" ", text)
+    text = _hyphened_synonyms(_N_IN_ONE.sub(" ", text))
     text = _SIZE_ROLL.sub(lambda m: f"{m.group(1)}, rolled ", text)  # 'foam strip 5m roll': the strip, rolled
     text = _WORD_SIZE.sub(lambda m: f"{_NUMBER_WORDS[m.group(1).lower()]} ", text)
     text = _WORD_MASS.sub(_mass_in_digits, text)
@@ -781,7 +800,7 @@ def _purpose_stripped(text: str) -> str:
 _PORTION_PLURALS = "slices|rashers|strips|wedges|fillets|cubes|sheets|sticks|chunks|pieces|cutlets|steaks|chops"
 _NOT_FOOD_WORD = frozenset("on in with from for and or stacked folded rolled piled laid lying on a the of to at by "
                            "each fanned overlapping".split())
-_COUNTED_PORTIONS = re.compile(r"\b(\d+|two|three|four|five|six|seven|eight|nine|ten|twelve|a few|several|some)\s+"
+_COUNTED_PORTIONS = re.compile(r"\b(\d+|two|three|four|five|six|seven|eight|nine|ten|twelve|a few|few|a couple of|several|some)\s+"
                                rf"({_PORTION_PLURALS})\s+of\s+([a-z][a-z-]*)(?:\s+([a-z][a-z-]*))?", re.I)
 
 

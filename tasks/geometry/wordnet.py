@@ -104,14 +104,16 @@ class WordNet:
     def lemma(self, word: str) -> str | None:
         """The index form of a noun ('yoga mat' -> 'yoga_mat', 'mice' -> 'mouse', 'socks' -> 'sock'), if WordNet
         has it."""
-        w = word.strip().lower().replace(" ", "_").replace("-", "_")
-        if w in self._index:
-            return w
-        if w in self._exceptions and self._exceptions[w] in self._index:
-            return self._exceptions[w]
-        for suffix, repl in (("ies", "y"), ("ves", "f"), ("es", ""), ("s", "")):
-            if w.endswith(suffix) and w[: -len(suffix)] + repl in self._index:
-                return w[: -len(suffix)] + repl
+        kept = word.strip().lower().replace(" ", "_")
+        # (WordNet keeps the hyphen of 'ten-gallon hat', 't-shirt', 'pom-pom')
+        for w in dict.fromkeys((kept, kept.replace("-", "_")) if "-" in kept else (kept,)):
+            if w in self._index:
+                return w
+            if w in self._exceptions and self._exceptions[w] in self._index:
+                return self._exceptions[w]
+            for suffix, repl in (("ies", "y"), ("ves", "f"), ("es", ""), ("s", "")):
+                if w.endswith(suffix) and w[: -len(suffix)] + repl in self._index:
+                    return w[: -len(suffix)] + repl
         return None
 
     def senses(self, word: str) -> list[Sense]:
