@@ -1,4 +1,7 @@
-"""`deformsmith batch`: many requests from a JSONL file, each in its own process, at most N at a time, one report.
+"""`deformsmith batch`: many requests from a JSONL file, at most N at a time in processes of their own, one report.
+
+Each of the N workers is a process that serves up to `requests_per_worker` requests one after another (imports,
+Warp's kernels and the Prefect client load once for them) and is then replaced; 1 runs each request in a new process.
 
 A line is an AssetRequest as JSON plus an optional "name" (the output directory under the batch root). A malformed
 line, an invalid request, a StageFailure or a hard crash fails that request alone; the report says why. Reruns are
@@ -9,8 +12,10 @@ The Prefect flows that deployments run (one request per run, a batch fanned out 
 
 from __future__ import annotations
 
+import json
 import os
 import queue
+import select
 import signal
 import subprocess
 import sys
@@ -28,8 +33,8 @@ from cache import runtime
 from cache.config import ENV_VAR
 from contracts.errors import InputError
 from tasks.batch_requests import (
-    BatchItem, BatchReport, ItemCallback, RequestResult, cache_counts, failed_result, not_started, parse_requests,
-    process_result,
+    REQUESTS_PER_WORKER, BatchItem, BatchReport, ItemCallback, RequestResult, cache_counts, failed_result, not_started,
+    parse_requests, process_result,
 )
 from tasks.probes.workers import child_probe_workers
 from tasks.processes import Children, sigterm_as_interrupt, signal_group
@@ -80,6 +85,101 @@ def run_one(item: BatchItem, out_root: Path, device: str, job: str, env: dict[st
                           timed_out, children.stopping.is_set())
 
 
+class ServedWorker:
+    """One worker process (`python -m flows.batch_job --serve`) of a batch slot, started on its first request and
+    again after a crash, a timeout or `requests_per_worker` requests. A request's wall time counts the worker's start
+    when the worker started for it."""
+
+    def __init__(self, slot: int, out_root: Path, device: str, env: dict[str, str], children: Children,
+                 requests_per_worker: int) -> None:
+        self.slot, self.out_root, self.device, self.env = slot, out_root, device, env
+        self.children, self.requests_per_worker = children, requests_per_worker
+        self.proc: subprocess.Popen[bytes] | None = None
+        self.served = 0
+
+    def _start(self) -> bool:
+        logs = self.out_root / LOG_DIR
+        logs.mkdir(parents=True, exist_ok=True)
+        log = logs / f"_worker-{self.slot}.log"  # (its stderr from the start, so that a failed start is in it too)
+        cmd = [sys.executable, "-P", "-m", "flows.batch_job", "--serve", "--log", str(log), "--device", self.device,
+               "--parent-pid", str(os.getpid())]  # (-P: see run_one)
+        with log.open("a", encoding="utf-8") as fh:
+            self.proc = self.children.start(cmd, stdin=subprocess.PIPE, stdout=subprocess.PIPE, stderr=fh,
+                                            env=self.env)
+        self.served = 0
+        return self.proc is not None
+
+    def _ended(self) -> int:
+        """Wait for the worker to end; its exit status."""
+        assert self.proc is not None
+        proc, self.proc = self.proc, None
+        rc = proc.wait()
+        for stream in (proc.stdin, proc.stdout):
+            if stream is not None:
+                stream.close()
+        self.children.finished(proc)
+        return rc
+
+    def close(self, grace_s: float = 30.0) -> None:
+        """End the worker: the end of its orders, then SIGKILL after grace_s."""
+        if self.proc is None:
+            return
+        try:
+            assert self.proc.stdin is not None
+            self.proc.stdin.close()
+            self.proc.wait(timeout=grace_s)
+        except (OSError, subprocess.TimeoutExpired):
+            signal_group(self.proc, signal.SIGKILL)
+        self._ended()
+
+    def run(self, item: BatchItem, job: str, cache_dir: Path, timeout_s: float | None = None) -> RequestResult:
+        """Serve one request (as run_one, in this slot's worker)."""
+        assert item.request is not None
+        if self.children.stopping.is_set():
+            return not_started(item)
+        logs = self.out_root / LOG_DIR
+        logs.mkdir(parents=True, exist_ok=True)
+        log, result_file = logs / f"{item.name}.log", logs / f"{item.name}.result.json"
+        result_file.unlink(missing_ok=True)
+        request_file = logs / f"{item.name}.request.json"
+        request_file.write_text(item.request.model_dump_json(), encoding="utf-8")
+        events = cache_dir / "events.jsonl"
+        since = events.stat().st_size if events.is_file() else 0
+        order = json.dumps({"name": item.name, "request": str(request_file), "out": str(self.out_root / item.name),
+                            "result": str(result_file), "log": str(log), "job": job}) + "\n"
+        t0 = time.perf_counter()
+        if self.proc is not None and self.proc.poll() is not None:
+            self._ended()  # (it ended while idle: a fresh one)
+        if self.proc is None and not self._start():
+            return not_started(item)
+        assert self.proc is not None and self.proc.stdin is not None and self.proc.stdout is not None
+        pid, answered, timed_out = self.proc.pid, False, None
+        try:
+            self.proc.stdin.write(order.encode())
+            self.proc.stdin.flush()
+            deadline = None if timeout_s is None else time.monotonic() + timeout_s
+            while True:
+                wait = None if deadline is None else max(0.0, deadline - time.monotonic())
+                ready, _, _ = select.select([self.proc.stdout], [], [], wait)
+                if not ready:
+                    timed_out = f"timed out after {timeout_s:g} s"
+                    signal_group(self.proc, signal.SIGKILL)
+                    break
+                answered = bool(self.proc.stdout.readline())
+                break  # (an answer, or the end of the worker)
+        except OSError:  # (it died before reading the order)
+            answered = False
+        rc = 0
+        if answered:
+            self.served += 1
+            if self.served >= self.requests_per_worker:
+                self.close()
+        else:
+            rc = self._ended()
+        return process_result(item, rc, time.perf_counter() - t0, result_file, log,
+                              cache_counts(events, pid, since), timed_out, self.children.stopping.is_set())
+
+
 @contextmanager
 def prefect_api_for_children() -> Iterator[dict[str, str]]:
     """The Prefect environment the child processes share: the user's server, else one local server for the whole
@@ -109,19 +209,23 @@ def prefect_api_for_children() -> Iterator[dict[str, str]]:
 def run_batch(requests_jsonl: Path, out_root: Path, concurrency: int = 1, device: str = "cpu",
               job: str = DEFAULT_JOB, timeout_s: float | None = None,
               on_result: ItemCallback | None = None, worker_envs: list[dict[str, str]] | None = None,
-              on_interrupt: Callable[[], None] | None = None) -> BatchReport:
-    """Run every request of a JSONL file in its own process, `concurrency` at a time; write and return the report.
+              on_interrupt: Callable[[], None] | None = None,
+              requests_per_worker: int = REQUESTS_PER_WORKER) -> BatchReport:
+    """Run every request of a JSONL file in `concurrency` worker processes, each serving up to requests_per_worker
+    of them one after another (1: a new process for each); write and return the report.
     worker_envs: one environment overlay per worker (`concurrency` of them), a request process running under a free
     one (the throughput benchmark pins each worker to a GPU this way: CUDA_VISIBLE_DEVICES). on_interrupt: called at
     once on Ctrl-C or SIGTERM, before the children are stopped (which may outlast the command line's ~1.3 s backstop;
     the throughput benchmark records its session's end there)."""
     if concurrency < 1:
         raise InputError(f"concurrency must be >= 1, got {concurrency}")
+    if requests_per_worker < 1:
+        raise InputError(f"requests per worker must be >= 1, got {requests_per_worker}")
     if worker_envs is not None and len(worker_envs) != concurrency:
         raise InputError(f"{len(worker_envs)} worker environments for {concurrency} workers")
-    free: queue.SimpleQueue[dict[str, str]] = queue.SimpleQueue()
-    for overlay in worker_envs or [{}] * concurrency:
-        free.put(overlay)
+    free: queue.SimpleQueue[tuple[int, dict[str, str]]] = queue.SimpleQueue()
+    for slot, overlay in enumerate(worker_envs or [{}] * concurrency):
+        free.put((slot, overlay))
     if device not in ("cpu", "cuda"):
         raise InputError(f"device must be cpu or cuda, got '{device}'")
     requests_jsonl, out_root = Path(requests_jsonl).absolute(), Path(out_root).absolute()
@@ -148,13 +252,20 @@ def run_batch(requests_jsonl: Path, out_root: Path, concurrency: int = 1, device
         with prefect_api_for_children() as prefect_env, sigterm_as_interrupt():
             env = {**os.environ, **prefect_env, ENV_VAR: str(cache_dir),
                    **child_probe_workers(concurrency)}  # the requests' probe threads share the cores
+            workers: dict[int, ServedWorker] = {}
             with ThreadPoolExecutor(max_workers=concurrency) as pool:
                 def run_in_slot(item: BatchItem) -> RequestResult:  # (at most `concurrency` run: one is free)
-                    overlay = free.get()
+                    slot, overlay = free.get()
                     try:
-                        return run_one(item, out_root, device, job, {**env, **overlay}, cache_dir, timeout_s, children)
+                        if requests_per_worker == 1:
+                            return run_one(item, out_root, device, job, {**env, **overlay}, cache_dir, timeout_s,
+                                           children)
+                        if slot not in workers:
+                            workers[slot] = ServedWorker(slot, out_root, device, {**env, **overlay}, children,
+                                                         requests_per_worker)
+                        return workers[slot].run(item, job, cache_dir, timeout_s)
                     finally:
-                        free.put(overlay)
+                        free.put((slot, overlay))
 
                 futures = [pool.submit(run_in_slot, item) for item in runnable]
                 handled: set[Any] = set()
@@ -173,6 +284,9 @@ def run_batch(requests_jsonl: Path, out_root: Path, concurrency: int = 1, device
                     for fut in futures:
                         if fut not in handled:
                             done(fut.result())
+                finally:
+                    for worker in workers.values():
+                        worker.close()
     report = BatchReport.build(list(results.values()), time.perf_counter() - t0, requests_file=str(requests_jsonl),
                                out_root=str(out_root), concurrency=concurrency, device=device)
     report.write(out_root)

@@ -9,7 +9,7 @@ from pathlib import Path
 
 import cache
 from flows.batch import DEFAULT_JOB, LOG_DIR, NO_L3_JOB, run_batch
-from tasks.batch_requests import ItemCallback, RequestResult
+from tasks.batch_requests import REQUESTS_PER_WORKER, ItemCallback, RequestResult
 from tasks.throughput.ledger import Ledger, SamplerStats, benchmark_items, gpu_slots
 from tasks.throughput.report import RunConfig, ThroughputReport, build_report
 from tasks.throughput.samplers import GpuSampler, HostMemorySampler, nvidia_smi_available
@@ -20,7 +20,8 @@ BEAT_S = 5.0  # how often the session's entry in the ledger says it runs, with t
 
 def run_throughput(requests_jsonl: Path, out_root: Path, gpus: list[str] | None = None, workers_per_gpu: int = 1,
                    concurrency: int = 1, l3: bool = True, limit: int | None = None, timeout_s: float | None = None,
-                   job: str | None = None, on_result: ItemCallback | None = None) -> ThroughputReport:
+                   job: str | None = None, on_result: ItemCallback | None = None,
+                   requests_per_worker: int = REQUESTS_PER_WORKER) -> ThroughputReport:
     """Run the benchmark's requests not yet done in out_root (gpus: pin workers_per_gpu workers to each, on CUDA;
     None: `concurrency` workers on the CPU), then write and return the report of every session in out_root. An
     interrupted run records what finished and re-raises; the same command resumes it."""
@@ -29,7 +30,7 @@ def run_throughput(requests_jsonl: Path, out_root: Path, gpus: list[str] | None 
     items = benchmark_items(requests_jsonl, limit)
     workers = len(gpus) * workers_per_gpu if gpus else concurrency
     config = RunConfig(device="cuda" if gpus else "cpu", gpus=gpus, workers_per_gpu=workers_per_gpu if gpus else None,
-                       workers=workers, l3=l3)
+                       workers=workers, l3=l3, requests_per_worker=requests_per_worker)
     ledger = Ledger(out_root)
     session = ledger.start_session(config)
     todo, _ = ledger.plan(items, session.index)
@@ -70,7 +71,7 @@ def run_throughput(requests_jsonl: Path, out_root: Path, gpus: list[str] | None 
             run_batch(ledger.write_requests(todo, session.index), out_root, concurrency=workers,
                       device=config.device, job=job or (DEFAULT_JOB if l3 else NO_L3_JOB), timeout_s=timeout_s,
                       on_result=record, worker_envs=gpu_slots(gpus, workers_per_gpu) if gpus else None,
-                      on_interrupt=interrupted)
+                      on_interrupt=interrupted, requests_per_worker=requests_per_worker)
     finally:  # also when interrupted: the session's end and samples are recorded, and the report written (again,
         stop_heartbeat()  # with the stopped requests' records, when the process lives that long)
         for sampler in (gpu_sampler, host_sampler):

@@ -23,6 +23,8 @@ NAME_RE = re.compile(r"^[A-Za-z0-9][A-Za-z0-9._-]{0,95}$")
 Status = Literal["ok", "failed"]
 ItemCallback = Callable[["RequestResult"], None]
 INTERRUPTED = "interrupted"
+REQUESTS_PER_WORKER = 20  # requests a batch's worker process serves before a fresh one replaces it (what a long-lived
+# process may gather, host or GPU memory, is returned this often) [-]
 
 
 class BatchItem(BaseModel):

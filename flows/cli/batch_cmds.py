@@ -1,4 +1,4 @@
-"""`deformsmith batch REQUESTS.jsonl`: every request in its own process, a concurrency limit, one report."""
+"""`deformsmith batch REQUESTS.jsonl`: the requests in worker processes, a concurrency limit, one report."""
 
 from __future__ import annotations
 
@@ -9,7 +9,7 @@ import typer
 from cache import use_cache_root
 from flows.cli.apps import app, check_device, console, emit_json, fail, results
 from tasks.preflight import check_locations
-from tasks.batch_requests import REPORT_JSON
+from tasks.batch_requests import REPORT_JSON, REQUESTS_PER_WORKER
 from tasks.report.tables import batch_table
 
 
@@ -17,7 +17,11 @@ from tasks.report.tables import batch_table
 def batch(
     requests: Path = typer.Argument(..., help="JSONL file: one AssetRequest per line (+ optional \"name\")"),
     out: Path = typer.Option(Path("out/batch"), "--out", help="batch root: one asset directory per request"),
-    concurrency: int = typer.Option(1, "--concurrency", "-j", help="requests running at once (one process each)"),
+    concurrency: int = typer.Option(1, "--concurrency", "-j", help="requests running at once (one worker process "
+                                    "each)"),
+    requests_per_worker: int = typer.Option(REQUESTS_PER_WORKER, "--requests-per-worker", help="requests "
+                                            "each worker process serves one after another before a fresh one "
+                                            "replaces it (1: a new process for each request)"),
     device: str = typer.Option("cpu", "--device", help="cpu | cuda (the MPM's Warp device)"),
     timeout_s: float = typer.Option(None, "--timeout-s", help="kill a request that runs longer than this [s]"),
     cache_dir: Path = typer.Option(None, "--cache", help="cache root (shared by every request)"),
@@ -34,6 +38,8 @@ def batch(
         fail("--require-l3 needs L3: drop --no-l3")
     if concurrency < 1:
         fail(f"--concurrency must be >= 1, got {concurrency}")
+    if requests_per_worker < 1:
+        fail(f"--requests-per-worker must be >= 1, got {requests_per_worker}")
     check_device(device)
     if not requests.is_file():
         fail(f"requests file not found: {requests}")
@@ -48,7 +54,7 @@ def batch(
     try:
         with console.status(f"running requests from {requests} ({concurrency} at a time)"):
             report = run_batch(requests, out, concurrency=concurrency, device=device, timeout_s=timeout_s,
-                               on_result=on_result,
+                               on_result=on_result, requests_per_worker=requests_per_worker,
                                job=REQUIRE_L3_JOB if require_l3 else DEFAULT_JOB if l3 else NO_L3_JOB)
     except KeyboardInterrupt:  # run_batch stopped the children and wrote the report first
         console.print(f"report (interrupted): {out / REPORT_JSON}")

@@ -10,6 +10,7 @@ import typer
 from cache import use_cache_root
 from contracts.errors import DeformSmithError
 from flows.cli.apps import bench_app, check_device, console, emit_report, fail
+from tasks.batch_requests import REQUESTS_PER_WORKER
 from tasks.preflight import check_locations
 from tasks.throughput.ledger import DIR, benchmark_items
 from tasks.throughput.report import REPORT_JSON, summary_lines
@@ -36,6 +37,9 @@ def throughput(
     workers_per_gpu: int = typer.Option(None, "--workers-per-gpu", help="request processes at once on each GPU "
                                         "(default 1)"),
     concurrency: int = typer.Option(1, "--concurrency", "-j", help="on the CPU (no --gpus): requests at once"),
+    requests_per_worker: int = typer.Option(REQUESTS_PER_WORKER, "--requests-per-worker", help="requests "
+                                            "each worker process serves one after another before a fresh one "
+                                            "replaces it (1: a new process for each request)"),
     out: Path = typer.Option(Path("out/throughput"), "--out", help="root of the assets, the logs, the run's records "
                              f"({DIR}/) and the report ({REPORT_JSON}); a rerun with the same --out resumes"),
     cache_dir: Path = typer.Option(None, "--cache", help="cache root (default OUT/_cache: a new --out runs cold, "
@@ -61,6 +65,8 @@ def throughput(
         fail("--concurrency is for the CPU: with --gpus, the workers are --gpus x --workers-per-gpu")
     if concurrency < 1:
         fail(f"--concurrency must be >= 1, got {concurrency}")
+    if requests_per_worker < 1:
+        fail(f"--requests-per-worker must be >= 1, got {requests_per_worker}")
     if limit is not None and limit < 1:
         fail(f"--limit must be >= 1, got {limit}")
     if not requests.is_file():
@@ -85,7 +91,7 @@ def throughput(
         with console.status(f"{n} requests from {requests} on {where}"):
             report = run_throughput(requests, out, gpus=gpu_ids, workers_per_gpu=workers_per_gpu or 1,
                                     concurrency=concurrency, l3=l3, limit=limit, timeout_s=timeout_s,
-                                    on_result=on_result)
+                                    on_result=on_result, requests_per_worker=requests_per_worker)
     except KeyboardInterrupt:  # what finished is recorded: the same command resumes
         console.print(f"interrupted; rerun the same command to resume ({out / DIR})")
         raise

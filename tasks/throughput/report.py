@@ -34,6 +34,8 @@ class RunConfig(BaseModel):
     workers_per_gpu: int | None = None
     workers: int = Field(description="requests running at once")
     l3: bool
+    requests_per_worker: int = Field(default=1, description="requests a worker process serves before a fresh one "
+                                     "replaces it (1: a new process for each; runs recorded before it was an option)")
 
 
 class RequestRecord(BaseModel):

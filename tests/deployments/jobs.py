@@ -14,7 +14,8 @@ from contracts.request import AssetRequest
 
 
 def quick_job(request: AssetRequest, out_dir: Path, device: str) -> dict[str, Any]:
-    """'sleep N' sleeps; 'crash' dies by SIGKILL; 'stage-fail' raises StageFailure; else publishes a marker asset."""
+    """'sleep N' sleeps; 'crash' dies by SIGKILL; 'stage-fail' raises StageFailure; 'print' prints a line; else
+    publishes a marker asset naming the process that ran it."""
     text = request.text or ""
     if text.startswith("sleep"):
         time.sleep(float(text.split()[1]))
@@ -22,8 +23,11 @@ def quick_job(request: AssetRequest, out_dir: Path, device: str) -> dict[str, An
         os.kill(os.getpid(), signal.SIGKILL)
     if text == "stage-fail":
         raise StageFailure("L2", "no material passed the gates")
+    if text.startswith("print"):
+        print(f"output of {text}", flush=True)
     out_dir.mkdir(parents=True, exist_ok=True)
-    (out_dir / "asset.json").write_text(json.dumps({"request": request.model_dump(mode="json")}), encoding="utf-8")
+    (out_dir / "asset.json").write_text(json.dumps({"request": request.model_dump(mode="json"), "pid": os.getpid()}),
+                                        encoding="utf-8")
     return {"asset_dir": str(out_dir)}
 
 
