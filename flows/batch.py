@@ -153,7 +153,7 @@ class ServedWorker:
         if self.proc is None and not self._start():
             return not_started(item)
         assert self.proc is not None and self.proc.stdin is not None and self.proc.stdout is not None
-        pid, answered, timed_out = self.proc.pid, False, None
+        pid, answer, timed_out = self.proc.pid, b"", None
         try:
             self.proc.stdin.write(order.encode())
             self.proc.stdin.flush()
@@ -165,15 +165,15 @@ class ServedWorker:
                     timed_out = f"timed out after {timeout_s:g} s"
                     signal_group(self.proc, signal.SIGKILL)
                     break
-                answered = bool(self.proc.stdout.readline())
+                answer = self.proc.stdout.readline()
                 break  # (an answer, or the end of the worker)
         except OSError:  # (it died before reading the order)
-            answered = False
+            answer = b""
         rc = 0
-        if answered:
+        if answer:
             self.served += 1
-            if self.served >= self.requests_per_worker:
-                self.close()
+            if json.loads(answer).get("retire") or self.served >= self.requests_per_worker:
+                self.close()  # (a failed request retires its worker: see flows.batch_job.serve)
         else:
             rc = self._ended()
         return process_result(item, rc, time.perf_counter() - t0, result_file, log,

@@ -113,7 +113,9 @@ def output_to(log: Path) -> Iterator[None]:
 def serve(device: str, orders: IO[str], answers: IO[str]) -> int:
     """Run the orders read from `orders`, one JSON object per line ({"name", "request", "out", "result", "log",
     "job"}: files as for one request, the request's output going to "log"), one after another; after each result file
-    is written, its name on `answers` as a JSON line. Ends at the end of `orders`."""
+    is written, its name on `answers` as a JSON line. Ends at the end of `orders`, or after a failed request (its answer
+    says "retire": what failed may have left this process unfit, a CUDA context after a device error, so a fresh
+    worker serves the next)."""
     for line in orders:
         if not line.strip():
             continue
@@ -125,8 +127,11 @@ def serve(device: str, orders: IO[str], answers: IO[str]) -> int:
             except Exception as exc:  # (an unreadable order: this request fails, the worker serves on)
                 result = {"status": "failed", "reason": f"{type(exc).__name__}: {exc}", "asset_dir": None}
             _write_atomic(Path(order["result"]), result)
-        answers.write(json.dumps({"done": order["name"]}) + "\n")
+        retire = result["status"] != "ok"
+        answers.write(json.dumps({"done": order["name"], "retire": retire}) + "\n")
         answers.flush()
+        if retire:
+            break
     return 0
 
 
