@@ -18,6 +18,10 @@ import os
 import tempfile
 from pathlib import Path
 
+from cache import use_cache_root
+from flows.throughput import run_throughput
+from tasks.record.fingerprint import content_fingerprint
+
 REPO = Path(__file__).resolve().parents[1]
 
 
@@ -30,10 +34,6 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--out", type=Path, default=None, help="where the two runs go (default: a new temporary folder)")
     ap.add_argument("--json", action="store_true")
     args = ap.parse_args(argv)
-
-    from cache import use_cache_root
-    from flows.throughput import run_throughput
-    from tasks.record.fingerprint import content_fingerprint
 
     root = args.out or Path(tempfile.mkdtemp(prefix="served_workers_"))
     runs: dict[str, dict] = {}
