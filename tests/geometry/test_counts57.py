@@ -5,6 +5,8 @@ volume)."""
 
 from __future__ import annotations
 
+import functools
+
 import pytest
 
 from tasks.geometry import catalogue
@@ -14,6 +16,11 @@ from tests.geometry.test_mass_classes import planned_mass
 HAM_SLICE_KG = 0.028  # the lexicon's ham slice (USDA: 1 slice ~28 g)
 
 
+@functools.lru_cache(maxsize=1)
+def _one_slice_kg() -> float:
+    return planned_mass("a slice of ham")
+
+
 @pytest.mark.parametrize(("text", "count"), [
     ("few slices of ham folded in deli paper", 3),
     ("a couple of slices of ham", 2),
@@ -21,7 +28,7 @@ HAM_SLICE_KG = 0.028  # the lexicon's ham slice (USDA: 1 slice ~28 g)
 ])
 def test_a_count_without_a_number_weighs_that_many(text: str, count: int) -> None:
     assert catalogue.design_from_text(text).entry == "ham_slice"
-    one = planned_mass("a slice of ham")
+    one = _one_slice_kg()
     assert one == pytest.approx(HAM_SLICE_KG, rel=0.35)
     assert planned_mass(text) == pytest.approx(count * one, rel=0.15)  # (pieces side by side: where they touch,
     # their meshes' union loses up to ~12 %)
