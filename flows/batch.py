@@ -48,13 +48,10 @@ REQUIRE_L3_JOB = "flows.batch_job:generate_job_requiring_l3"
 # ---- the local runner: one process per request ------------------------------------------------------
 
 
-def run_one(item: BatchItem, out_root: Path, device: str, job: str, env: dict[str, str], cache_dir: Path,
-            timeout_s: float | None = None, children: Children | None = None) -> RequestResult:
-    """Run one request in a child process (`python -m flows.batch_job`) and read back its result."""
+def _request_files(item: BatchItem, out_root: Path, cache_dir: Path) -> tuple[Path, Path, Path, Path, int]:
+    """A request's log, result file (removed) and request file (written) under OUT/_logs, the cache's execution log
+    and its size now (the request's cache counts are read from there)."""
     assert item.request is not None
-    children = children or Children()
-    if children.stopping.is_set():
-        return not_started(item)
     logs = out_root / LOG_DIR
     logs.mkdir(parents=True, exist_ok=True)
     log, result_file = logs / f"{item.name}.log", logs / f"{item.name}.result.json"
@@ -62,7 +59,17 @@ def run_one(item: BatchItem, out_root: Path, device: str, job: str, env: dict[st
     request_file = logs / f"{item.name}.request.json"
     request_file.write_text(item.request.model_dump_json(), encoding="utf-8")
     events = cache_dir / "events.jsonl"
-    since = events.stat().st_size if events.is_file() else 0
+    return log, result_file, request_file, events, events.stat().st_size if events.is_file() else 0
+
+
+def run_one(item: BatchItem, out_root: Path, device: str, job: str, env: dict[str, str], cache_dir: Path,
+            timeout_s: float | None = None, children: Children | None = None) -> RequestResult:
+    """Run one request in a child process (`python -m flows.batch_job`) and read back its result."""
+    assert item.request is not None
+    children = children or Children()
+    if children.stopping.is_set():
+        return not_started(item)
+    log, result_file, request_file, events, since = _request_files(item, out_root, cache_dir)
     # -P: the working directory is not put on sys.path, so a folder there named like one of our packages (a user's
     # `cache/` or `tasks/`) cannot shadow it in the child (it would, under an editable install)
     cmd = [sys.executable, "-P", "-m", "flows.batch_job", "--request", str(request_file), "--out", str(out_root / item.name),
@@ -137,14 +144,7 @@ class ServedWorker:
         assert item.request is not None
         if self.children.stopping.is_set():
             return not_started(item)
-        logs = self.out_root / LOG_DIR
-        logs.mkdir(parents=True, exist_ok=True)
-        log, result_file = logs / f"{item.name}.log", logs / f"{item.name}.result.json"
-        result_file.unlink(missing_ok=True)
-        request_file = logs / f"{item.name}.request.json"
-        request_file.write_text(item.request.model_dump_json(), encoding="utf-8")
-        events = cache_dir / "events.jsonl"
-        since = events.stat().st_size if events.is_file() else 0
+        log, result_file, request_file, events, since = _request_files(item, self.out_root, cache_dir)
         order = json.dumps({"name": item.name, "request": str(request_file), "out": str(self.out_root / item.name),
                             "result": str(result_file), "log": str(log), "job": job}) + "\n"
         t0 = time.perf_counter()
