@@ -157,16 +157,12 @@ class ServedWorker:
         try:
             self.proc.stdin.write(order.encode())
             self.proc.stdin.flush()
-            deadline = None if timeout_s is None else time.monotonic() + timeout_s
-            while True:
-                wait = None if deadline is None else max(0.0, deadline - time.monotonic())
-                ready, _, _ = select.select([self.proc.stdout], [], [], wait)
-                if not ready:
-                    timed_out = f"timed out after {timeout_s:g} s"
-                    signal_group(self.proc, signal.SIGKILL)
-                    break
-                answer = self.proc.stdout.readline()
-                break  # (an answer, or the end of the worker)
+            ready, _, _ = select.select([self.proc.stdout], [], [], timeout_s)
+            if ready:
+                answer = self.proc.stdout.readline()  # (an answer, or b"" at the end of the worker)
+            else:
+                timed_out = f"timed out after {timeout_s:g} s"
+                signal_group(self.proc, signal.SIGKILL)
         except OSError:  # (it died before reading the order)
             answer = b""
         rc = 0

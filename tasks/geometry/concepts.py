@@ -475,14 +475,10 @@ def _unlisted_compound(main: str, head: tuple[int, int, str]) -> _Compound | Non
     thing and no entry lists it ('a sweat suit' is no business suit, 'a bowler hat' a kind of hat): see _Compound.
     None when the word before only qualifies the entry (colours, sizes, states and materials: 'a wool hat', 'a black
     kite') or the compound names nothing physical ('a small cap' is a stock)."""
-    hyphened = re.search(r"([a-z]+(?:-[a-z]+)+)\s+$", main[:head[0]])
-    if hyphened is not None and wordnet().physical_senses(f"{hyphened.group(1)} {head[2]}"):
-        before = [hyphened.group(1)]  # 'a ten-gallon hat': WordNet's cowboy hat ('gallon hat' is none)
-    else:
-        before = re.findall(r"[a-z]+", main[:head[0]])
-        if not before or modifier_word(before[-1]) or before[-1] in _material_words() \
-                or not wordnet().senses(before[-1]):
-            return None
+    before = re.findall(r"[a-z]+", main[:head[0]])
+    if not before or modifier_word(before[-1]) or before[-1] in _material_words() \
+            or not wordnet().senses(before[-1]):
+        return None
     words = f"{before[-1]} {head[2]}"
     senses = wordnet().physical_senses(words)
     if words in noun_index() or not senses:
@@ -1857,16 +1853,14 @@ def _folded_strip(reading: Reading, text: str) -> dict:
 
 MAX_STACKED = 12  # sheets drawn in a stack (SheetParams.layers) [-]
 _SHEET_COUNT = re.compile(r"\b(?:pack|packet|set|bundle|stack|pile|box)\s+of\s+(\d+|[a-z]+)\b|"
-                          r"^\s*(a few|a couple of|a couple|\d+|[a-z]+)\s+(?!cm\b|mm\b|m\b|in\b|inch)")
-# a count said without a number ('a few slices of ham' was one slice, a fifth of the six a deli folds) [-]
-_VAGUE_COUNTS = {"a few": 3, "few": 3, "a couple of": 2, "a couple": 2, "several": 4}
+                          r"^\s*(?:a\s+(?=few\b|couple\b))?(couple of|\d+|[a-z]+)\s+(?!cm\b|mm\b|m\b|in\b|inch)")
 
 
 def _sheet_count(text: str) -> int | None:
     """The number of sheets a text stacks ('a pack of 10 felt sheets', 'three tea towels'), at least 2; else None."""
     for m in _SHEET_COUNT.finditer(text):
         word = m.group(1) or m.group(2)
-        n = int(word) if word.isdigit() else _COUNTS.get(word, _VAGUE_COUNTS.get(word))
+        n = int(word) if word.isdigit() else _COUNTS.get(word, goods_words.VAGUE_COUNTS.get(word))
         if n is not None and n >= 2:
             return n
     return None

@@ -47,10 +47,11 @@ PUFFER_MASS = 1.3  # a down or padded garment over the same garment unpadded (re
 # 'a pack of 12 silicone muffin cups', 'a stack of cupcake liners': open cups sold nested one in another
 _NESTED = re.compile(r"\b(?:pack|packet|stack|sleeve|set|box|tube|pile)s?\s+of\s+(?:(\d+|a dozen|dozen|two|three|four|"
                      r"five|six|seven|eight|nine|ten|twelve|twenty)\s+)?")
+# a count said without a number, after an optional 'a' ('a few slices of ham' was one slice, a fifth of the six a
+# deli folds) [-]
+VAGUE_COUNTS = {"few": 3, "couple of": 2, "couple": 2, "several": 4}
 _COUNT_WORDS = {"a dozen": 12, "dozen": 12, "two": 2, "three": 3, "four": 4, "five": 5, "six": 6, "seven": 7,
-                "eight": 8, "nine": 9, "ten": 10, "twelve": 12, "twenty": 20,
-                "few": 3, "couple of": 2, "couple": 2, "several": 4}  # (a count said without a number: 'a few
-# slices of ham' was one slice, a fifth of the six a deli folds)
+                "eight": 8, "nine": 9, "ten": 10, "twelve": 12, "twenty": 20, **VAGUE_COUNTS}
 # a number that makes a compound adjective ('two-tone', 'three-layer', '2 ply'), not a count
 _COMPOUND_AFTER = ("tone|toned|sided|layer|layered|ply|way|piece|seater|handed|legged|headed|colou?r|colou?red|step|"
                    "tier|tiered|wheeled|part|eyed|armed|pronged|lobed|fingered|toed|pointed|tailed")
