@@ -2187,7 +2187,8 @@ def pose_of(text: str) -> str | None:
 
 def ear_params(text: str, plan: str | None) -> dict[str, typing.Any]:
     """Plan parameters for ear words ('long floppy ears' -> lop ears, longer) when the plan draws ears."""
-    if plan is None or plan not in grammar.PLANS or "ears" not in grammar.PLANS[plan][0].model_fields:
+    fields = grammar.PLANS[plan][0].model_fields if plan is not None and plan in grammar.PLANS else {}
+    if "ears" not in fields:
         return {}
     words = [w for m in _EAR_WORDS.finditer(normalise(text)) for w in m.group(0).split()]
     kind = next((_EAR_KIND[w] for w in words if w in _EAR_KIND), None)
@@ -2195,8 +2196,8 @@ def ear_params(text: str, plan: str | None) -> dict[str, typing.Any]:
     out: dict[str, typing.Any] = {}
     if kind is not None:
         out["ears"] = kind
-    if size is not None:
-        out["ear_size"] = size
+    if size is not None and "ear_size" in fields:  # (a bird's ear tufts have no size: 'a long-eared owl' was an
+        out["ear_size"] = size  # error about the bird plan's parameters)
     return out
 
 

@@ -212,3 +212,10 @@ def test_curled_up_is_a_ring_not_a_sphinx() -> None:
     e = curled.extents
     assert 0.8 < e[0] / e[1] < 1.25 and e[2] < 0.6 * e[:2].max()
     assert lying.extents[0] / lying.extents[1] > 1.6
+
+
+def test_ear_words_on_a_plan_whose_ears_have_no_size_build_the_animal() -> None:
+    """'a long-eared owl': the bird plan draws ear tufts of no size; the size word was passed to it and the request
+    ended in an error about the plan's parameters."""
+    assert catalogue.design_from_text("a long-eared owl").entry == "plush_owl"
+    assert catalogue.design_from_text("a big-eared bat").entry == "plush_bat"
