@@ -56,7 +56,8 @@ def main(argv: list[str] | None = None) -> int:
         if rec.status == "ok" and a.is_dir() and b.is_dir():
             (same if content_fingerprint(a) == content_fingerprint(b) else differ).append(rec.name)
     base = runs["process_per_request"]["assets_per_hour"]
-    result = {"requests": str(args.requests), "limit": args.limit, "concurrency": args.concurrency, "l3": args.l3,
+    given = args.requests.resolve()
+    result = {"requests": str(given.relative_to(REPO)) if given.is_relative_to(REPO) else str(args.requests), "limit": args.limit, "concurrency": args.concurrency, "l3": args.l3,
               "cpu_count": os.cpu_count(), "runs": runs,
               "served_over_process_rate": round(runs["served"]["assets_per_hour"] / base, 3) if base else None,
               "assets_equal_by_fingerprint": len(same), "assets_differing": differ, "out": str(root)}
