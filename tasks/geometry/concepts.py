@@ -103,7 +103,7 @@ kids kid childs child children pet dog cat new old toy toys piece whole half sli
 feet foot meter metre meters metres millimetre millimeter centimetre centimeter x by diameter across high tall deep
 length width height thickness depth size sized shaped light heavy dense wobbly gooey sticky fat skinny weighted
 textured velvety knitted crocheted felt fleece minky furry hairy woolly wool cotton vinyl latex squishmallow
-squishmallows jellycat ikea giant jumbo medium pocket keychain handmade homemade kitchen bath bathroom dish thing
+squishmallows jellycat ikea giant jumbo medium pocket keychain keychains keyring keyrings prize prizes handmade homemade kitchen bath bathroom dish thing
 things object objects item items something stuff upright sideways backwards forwards facedown faceup prone supine
 tilted leaning propped perched crouching kneeling squatting""".split())  # (the last: how it is posed, not what)
 
@@ -2307,6 +2307,24 @@ def _said_empty(text: str) -> bool:
         and _PART_EMPTY.search(text) is None and fill_words.stated_fullness(text) is None  # ('half full, kinda
     # crushed': half its water is still in it)
 
+_HELD = re.compile(r"\bwith\s+(?!(?:its|their|the)\b)((?:a|an|one|some|two|three|four|five|six|\d+)?\s*[a-z][a-z' -]{1,40}?)\s+"
+                   r"(?:in it|in there|inside(?: it)?|in them)\b")
+
+
+def held_object(text: str) -> tuple[str, float] | None:
+    """What a container holds, said as 'with X in it' or 'with X inside', when X reads as a named lexicon object:
+    (X, its typical mass times its count [kg]); else None."""
+    said = _HELD.search(normalise(text))
+    if said is None:
+        return None
+    what = said.group(1).strip()
+    reading = read_text(what)
+    if reading.match.fallback_level not in ("exact", "synonym") or not reading.match.typical_mass_kg:
+        return None
+    count = goods_words.group_count(what) or 1
+    return what, count * float(reading.match.typical_mass_kg)
+
+
 def inflatable(entry: LexiconEntry) -> bool:
     """An object that holds its shape by air (an inflatable, a beach ball): it can be deflated."""
     return entry.material == "inflatable" or entry.category == "inflatable"
@@ -2468,6 +2486,11 @@ def _whole_object(reading: Reading, program: ShapeProgram, match: ConceptMatch, 
         states.append("empty")
         match = _as_built_mass(match, before, EMPTY_FACTORS, target.empty_mass_kg,
                                f"empty: {target.empty_mass_kg:g} kg")
+    elif target.empty_mass_kg is not None and (held := held_object(text)) is not None:
+        what, kg = held  # 'a paper bag with a croissant in it': the bag and the croissant (it was a 1 kg seed bag)
+        states.append(f"holding {what}")
+        match = _as_built_mass(match, program, (1.0, 1.0, 1.0), target.empty_mass_kg + kg,
+                               f"holding {what}: {target.empty_mass_kg:g} kg + {kg:g} kg")
     elif target.plan == "bottle" and target.empty_mass_kg is not None \
             and (fullness := fill_words.stated_fullness(text)) is not None:
         # 'a half-empty water bottle': its shell and that share of its contents (a bottle's typical mass is full)

@@ -64,6 +64,17 @@ _COUNT = r"(\d+|" + "|".join(sorted(_COUNT_WORDS, key=len, reverse=True)) + r")"
 _GROUP_COUNT = re.compile(r"\b(?:pack|packet|set|bundle|box|bag|net|tray|punnet|carton|pile|heap)\s+of\s+" + _COUNT
                           + r"(?:\s+(?!" + _NOT_COUNTED + r")|\s*$)|^\s*(?:a\s+)?" + _COUNT + r"\s+(?!" + _NOT_COUNTED
                           + r")|\b" + _COUNT + r"[- ]pack\b")  # ('rolls, a pile of 10': the count ends the text)
+# an entry that is itself a pack of goods ('pack of baby wipes', 'bag of chips'): a count in its text is what it holds,
+# unless the packs themselves are counted (an '80-pack of wipes' is one pack of 80)
+_PACK_NOUN = re.compile(r"^(?:pack|packet|bag|box|sack|pouch|tub|carton|bottle|jar|tube|roll)\s+of\s+")
+_PACKS_COUNT = re.compile(r"\b" + _COUNT + r"\s+(?:[a-z]+\s+)?(?:packs|packets|bags|boxes|sacks|pouches|tubs|cartons)\b")
+
+
+def is_pack(target: LexiconEntry) -> bool:
+    """An entry that is a pack of goods by its own nouns ('pack of baby wipes', 'bag of chips')."""
+    return any(_PACK_NOUN.match(noun) for noun in target.nouns)
+
+
 _HAND_COUNT = re.compile(r"\b(?:bunch|hand)\s+of\s+" + _COUNT + r"\b|^\s*(?:a\s+)?" + _COUNT + r"\s+(?:[a-z]+\s+)?bunch")
 HAND_PLANS = frozenset({"elongated"})
 PART_UNROLLED = re.compile(r"\b(?:partly|partially|part|half|a bit|a little|slightly|somewhat|loosely)\s+unrolled\b")
@@ -198,6 +209,8 @@ def apply(target: LexiconEntry, portion: str | None, text: str, params: dict, si
     goods = goods and stack is None
     # (a pouch is a good of its own, 'three juggling beanbags', unless it is the pack the count is inside of)
     count = group_count(text) if goods and portion not in PAIR_WORDS | BUNCH_WORDS else None
+    if count is not None and plan == "pouch" and is_pack(target) and not _PACKS_COUNT.search(text):
+        count = None  # 'a pack of 80 baby wipes' is one pack (it was 12 packs, 4.4 kg); '3 packs of wipes' is three
     if count is not None:
         out.count = count
         out.notes += (f"{count} of them side by side",)

@@ -208,8 +208,9 @@ def parse(text: str, known: Callable[[str], bool] | None = None,
             span.append(tok)
             seen_noun = True
             continue
-        if tok.pos_ == "PRON" or tok.is_punct:
-            continue
+        if tok.pos_ == "PRON" and not (tok.tag_ == "DT" and is_known(word)) or tok.is_punct:
+            continue  # (a known noun the tagger took for a determiner is no pronoun: 'tablecloth folded up, white
+            # with blue flowers' was tagged PRON/DT and read as a flower)
         span.append(tok)
         if _is_noun(tok) or is_known(word):
             seen_noun = True
