@@ -1030,6 +1030,24 @@ def _material_fronted(text: str) -> str:
     return text[:cut] + m.group("mat") + " " + text[cut:m.start("mat")].rstrip() + text[m.end("mat"):]
 
 
+_GOODS_IN = re.compile(r"^(?:some\s+)?(?P<goods>[a-z][a-z' -]*?)\s+in\s+(?:an?|its|their|the)\s+"
+                       r"(?P<container>(?:[\w.-]+\s+){0,3}?(?:bag|packet|pouch|sack|pack|net|punnet|carton))\b(?P<rest>.*)$",
+                       re.I)
+
+
+def _goods_in_container(text: str) -> str:
+    """'chia seeds in a 250g packet' -> '250g packet of chia seeds' when the goods are a fill of the table (loose
+    goods: the packet is the object, they fill it; it was a round fruit); one object in a bag is left as said."""
+    m = _GOODS_IN.match(text.strip())
+    if m is None:
+        return text
+    goods = m.group("goods").strip().lower()
+    if goods.startswith(("a ", "an ", "one ")) or not any(
+            goods == w or goods.endswith(f" {w}") for w in fill_words.fills()):
+        return text
+    return f"{m.group('container')} of {m.group('goods').strip()}{m.group('rest')}"
+
+
 def _of_words_moved(text: str) -> str:
     """'a tube of acrylic paint' -> 'a acrylic tube of paint' when the lexicon knows 'tube of paint' and not 'tube of
     acrylic paint' (the words between hid the noun: a paint tube was built as a generic block); the moved words still
@@ -1196,13 +1214,15 @@ def _stuffed_in_sack(text: str) -> tuple[str, str] | None:
         return goods_text + size, (f"'{goods_text}' in {sack}: built as the goods seen through the clear bag (the bag, "
                                    f"a few grams of film, is not drawn)")
     own = concepts.plain(re.sub(r"^(?:an?|the)\s+", "", f"{goods_text} in its pouch", flags=re.I))
-    if re.search(r"\bpouch\b", sack, re.I) and concepts.noun_index().get(own, ("packed_pouch",))[0] != "packed_pouch":
+    if re.search(r"\b(?:pouch|pocket)\b", sack, re.I) \
+            and concepts.noun_index().get(own, ("packed_pouch",))[0] != "packed_pouch":
         return own + size, f"'{m.group(0).strip()}': built as the {own}"  # an entry of its own: 'a rain poncho
         # folded in its little pouch' is the flat retail packet, 'a down jacket stuffed in its own pouch' the packed
         # jacket's own drawing (the generic packed pouch weighs the goods, below)
-    if re.search(r"\bpouch\b", sack, re.I) and re.search(r"\b(?:packable|foldable|pack[- ]?away)\b|\bown\s+pouch\b",
-                                                        m.group(0), re.I):  # a packable bag or jacket in its own
-        # pouch is a small zipped pouch (a stuff sack is a sleeping bag's): its mass the goods'
+    if re.search(r"\b(?:pouch|pocket)\b", sack, re.I) and re.search(
+            r"\b(?:packable|foldable|pack[- ]?away)\b|\bown\s+(?:pouch|pocket)\b", m.group(0), re.I):
+        # a packable bag or jacket in its own pouch or pocket is a small zipped pouch (a stuff sack is a sleeping
+        # bag's): its mass the goods'
         return (f"a packed zip pouch, {kg * 1000:.4g} g{size}",
                 f"'{goods_text}' packed in {sack}: built as the small zipped pouch, weighing the "
                 f"{c.concept.replace('_', ' ')} ({kg:.3g} kg)")
@@ -1357,7 +1377,8 @@ def design_from_text(text: str, size_hint_m: float | None = None) -> Design:
     if packed is not None:
         design = design_from_text(packed[0], size_hint_m)
         return design.model_copy(update={"warnings": [packed[1], *design.warnings]})
-    text_n = _cut_words_stripped(_purpose_stripped(_pair_first(_portions_compounded(_of_words_moved(asked)))))
+    text_n = _cut_words_stripped(_purpose_stripped(_pair_first(_portions_compounded(_of_words_moved(
+        _goods_in_container(asked))))))
     text_n, whole_m = _whole_sized(text_n)
     size = parse_size(text_n)
     if size_hint_m is not None:

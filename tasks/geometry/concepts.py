@@ -1049,12 +1049,22 @@ def _pouch_of(t: str, phrase: phrase_mod.Phrase, entry: LexiconEntry, match: Con
         return None  # an entry that is the pack itself ('a pack of cheese slices': the sliced provolone's stack, which
         # lists 'pack of sliced provolone'), not a pouch of the fill a word of it names ('cheese')
     pieces = _pieces_pouch(t)
+    if pieces is not None and found is not None and found.piece_m is not None \
+            and len(found.fill.words.split(" of ", 1)[-1].split()) > _goods_noun_words(pieces, t):
+        return found  # a fill drawn by its own pieces and named more fully than the goods the lexicon knows ('gummy
+        # sweets' are the candy fill's coloured pieces, not the wrapped sweet that 'sweets' names)
     if pieces is not None and pieces.piece_m is not None and (found is None or (
             max(pieces.piece_m) >= SEEN_PIECE_M and found.port == "none")):
         # goods the lexicon knows, big enough to be seen one by one ('a bag of gummy bears', 'a bag of cotton balls'):
         # drawn through the film, not a generic fill's label ('candy' read as a bag of flour)
         return pieces
     return found if found is not None else pieces
+
+
+def _goods_noun_words(pieces: pouch_words.PouchOf, t: str) -> int:
+    """The words of the longest noun of a pouch's lexicon goods that the request says (singular or plural)."""
+    nouns = load_lexicon().entries[pieces.piece_key].nouns if pieces.piece_key else []
+    return max((len(n.split()) for n in nouns if re.search(rf"\b{re.escape(n)}(?:s|es)?\b", t)), default=0)
 
 
 OPAQUE_SACKS = frozenset({"trash_bag"})  # sacks that keep their own look when said to hold a fill (a black bin bag)
@@ -2085,13 +2095,16 @@ def _towel_coloured(program: ShapeProgram, towel: LexiconEntry) -> ShapeProgram:
 
 def _own_colours_unsaid(text: str, reading: Reading, entry: LexiconEntry) -> str:
     """The text without the colour words of the object's own name that its entry already paints ('a salmon nigiri'
-    is a white rice base under salmon, not salmon all over); other colour words ('a red cabbage' of a green entry)
-    stay."""
+    is a white rice base under salmon, not salmon all over) or that colour a modifier ('chocolate chip'); other colour
+    words ('a red cabbage' of a green entry) stay."""
     noun = reading.match.noun
     if not noun or not entry.colors:
         return text
     painted = set(entry.colors.values())
-    own = [w for w in noun.split() if w in load_lexicon().colors and w in painted]
+    words = noun.split()
+    own = [w for i, w in enumerate(words) if w in load_lexicon().colors and (w in painted or i < len(words) - 2)]
+    # (a colour word before another modifier names that modifier's colour, not the object's: 'a chocolate chip
+    # cookie' was chocolate-brown all over and named a burger patty; 'a red cabbage' stays red)
     for word in own:
         text = re.sub(rf"\b{re.escape(word)}\b(?=[^.,;]*\b{re.escape(noun.split()[-1])}\b)", " ", text, count=1)
     return text
@@ -2325,6 +2338,16 @@ def held_object(text: str) -> tuple[str, float] | None:
     return what, count * float(reading.match.typical_mass_kg)
 
 
+FLAT_DRAWN_RATIO = 0.05  # a program whose thinnest extent is at most this share of its longest is drawn flat (a
+# foil number balloon: 0.02; a pool float, 0.1, still deflates) [-]
+
+
+def _drawn_flat(program: ShapeProgram) -> bool:
+    """A program already as flat as a deflated skin (a foil balloon's outline)."""
+    size = np.sort(grammar.program_extents(program))
+    return bool(size[0] <= FLAT_DRAWN_RATIO * size[2])
+
+
 def inflatable(entry: LexiconEntry) -> bool:
     """An object that holds its shape by air (an inflatable, a beach ball): it can be deflated."""
     return entry.material == "inflatable" or entry.category == "inflatable"
@@ -2474,7 +2497,9 @@ def _whole_object(reading: Reading, program: ShapeProgram, match: ConceptMatch, 
         program = dented(program, half)  # a ball with less air: its skin dished in, the same skin's mass
         states.append("half deflated" if half else "deflated")
     elif inflatable(target) and (half or said_states & (_DEFLATED | {"deflated"})):
-        before, program = program, deflated(program, half)
+        before = program
+        if not _drawn_flat(program):  # (a foil number balloon is drawn flat already: squashed and spread, its
+            program = deflated(program, half)  # strokes were a jumble)
         states.append("half inflated" if half else "deflated")
         skin = target.empty_mass_kg if target.empty_mass_kg is not None and _said_empty(text) \
             else target.mass_kg  # 'a crumpled empty chip bag': the film alone

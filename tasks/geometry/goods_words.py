@@ -66,8 +66,22 @@ _GROUP_COUNT = re.compile(r"\b(?:pack|packet|set|bundle|box|bag|net|tray|punnet|
                           + r")|\b" + _COUNT + r"[- ]pack\b")  # ('rolls, a pile of 10': the count ends the text)
 # an entry that is itself a pack of goods ('pack of baby wipes', 'bag of chips'): a count in its text is what it holds,
 # unless the packs themselves are counted (an '80-pack of wipes' is one pack of 80)
-_PACK_NOUN = re.compile(r"^(?:pack|packet|bag|box|sack|pouch|tub|carton|bottle|jar|tube|roll)\s+of\s+")
+_PACK_NOUN = re.compile(r"^(?:pack|packet|bag|box|sack|pouch|tub|carton)\s+of\s+")  # (a roll of toilet paper is one roll)
 _PACKS_COUNT = re.compile(r"\b" + _COUNT + r"\s+(?:[a-z]+\s+)?(?:packs|packets|bags|boxes|sacks|pouches|tubs|cartons)\b")
+
+
+_COUNT_IN_NOUN = re.compile(r"\b" + _COUNT + r"\b")
+
+
+def counted(text: str, match: ConceptMatch, target: LexiconEntry) -> int | None:
+    """group_count, unless the count is the entry's own noun's ('two pack of kitchen roll' is the twin pack, drawn
+    and weighed as two rolls: it weighed four) or is what a pack holds ('a pack of 80 baby wipes' is one pack: it was
+    12 packs, 4.4 kg; 'a box of 6 chicken nuggets' one box; '3 packs of wipes' are three)."""
+    if match.noun and _COUNT_IN_NOUN.search(match.noun):
+        return None
+    if is_pack(target) and not _PACKS_COUNT.search(text):
+        return None
+    return group_count(text)
 
 
 def is_pack(target: LexiconEntry) -> bool:
@@ -157,10 +171,10 @@ def apply(target: LexiconEntry, portion: str | None, text: str, params: dict, si
             out.match = match.model_copy(update={"typical_mass_kg": match.typical_mass_kg * 2
                                                  if match.typical_mass_kg else None})
             out.notes += ("a pair: two of them",)
-        elif portion not in BUNCH_WORDS and (count := group_count(text)) is not None and target.category == "textile":
+        elif portion not in BUNCH_WORDS and (count := counted(text, match, target)) is not None and target.category == "textile":
             out.stacked = count  # '5 yellow mesh pinnies': cloth goods in a pile, one on another (laid side by side,
             out.notes += (f"{count} of them stacked",)  # five flat vests apart were five bodies, four of them dropped)
-        elif portion not in BUNCH_WORDS and (count := group_count(text)) is not None:
+        elif portion not in BUNCH_WORDS and (count := counted(text, match, target)) is not None:
             out.count = count
             out.notes += (f"{count} of them side by side",)
         return out
@@ -208,13 +222,11 @@ def apply(target: LexiconEntry, portion: str | None, text: str, params: dict, si
         or rolled  # ('two toilet rolls': two rolls side by side)
     goods = goods and stack is None
     # (a pouch is a good of its own, 'three juggling beanbags', unless it is the pack the count is inside of)
-    count = group_count(text) if goods and portion not in PAIR_WORDS | BUNCH_WORDS else None
-    if count is not None and plan == "pouch" and is_pack(target) and not _PACKS_COUNT.search(text):
-        count = None  # 'a pack of 80 baby wipes' is one pack (it was 12 packs, 4.4 kg); '3 packs of wipes' is three
+    count = counted(text, match, target) if goods and portion not in PAIR_WORDS | BUNCH_WORDS else None
     if count is not None:
         out.count = count
         out.notes += (f"{count} of them side by side",)
-    elif plan in STACKED_PLANS and portion not in PAIR_WORDS and (many := group_count(text)) is not None:
+    elif plan in STACKED_PLANS and portion not in PAIR_WORDS and (many := counted(text, match, target)) is not None:
         out.stacked = many  # '12 folded t-shirts', 'a stack of the black tees, like a dozen': one on another (each
         out.notes += (f"{many} of them stacked",)  # was one garment of one garment's mass)
     if portion in BUNCH_WORDS and plan in HAND_PLANS and size_m > BUNCH_PIECE_MAX_M:

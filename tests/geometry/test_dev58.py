@@ -66,3 +66,59 @@ def test_a_bag_holding_one_named_object_weighs_the_bag_and_the_object() -> None:
     held = planned_mass("paper bag with a croissant in it")
     assert 0.06 <= held <= 0.15
     assert planned_mass("a paper bag with its handles") > 0.5  # 'its handles' is no content
+
+
+def test_a_jacket_packed_into_its_own_pocket_is_the_small_packed_pouch() -> None:
+    # 'pocket' went to the sleeping bag's compression sack (a stuff sack of 1.5 kg); 'pouch' did not
+    design = catalogue.design_from_text("rain jacket stuffed into its own pocket")
+    assert design.entry != "stuff_sack"
+    assert planned_mass("rain jacket stuffed into its own pocket") < 0.6
+
+
+def test_a_fill_named_more_fully_than_a_lexicon_good_is_that_fill() -> None:
+    from tasks.geometry.concepts import read_text
+
+    gummies = read_text("a bag of gummy sweets from the prize counter").pouch
+    assert gummies is not None and gummies.fill.key == "candy"  # not the wrapped sweet 'sweets' names
+    bears = read_text("a bag of gummy bears").pouch
+    assert bears is not None and bears.piece_key == "gummy_bear"  # the lexicon's own goods, named as fully
+
+
+def test_loose_goods_in_a_container_are_the_container_of_them() -> None:
+    # 'chia seeds in a 250g packet' was a 250 g round fruit
+    design = catalogue.design_from_text("chia seeds in a 250g packet")
+    assert design.concept.body_plan in ("pouch", "catalogue:generic_pouch") or "pouch" in design.entry
+    assert planned_mass("chia seeds in a 250g packet") == pytest.approx(0.25, rel=0.2)
+    assert catalogue.design_from_text("a hoodie in a clear plastic bag").entry == "hoodie"  # one object: as said
+
+
+def test_a_count_inside_the_entry_noun_is_not_counted_again() -> None:
+    twin = planned_mass("two pack of kitchen roll")
+    assert catalogue.design_from_text("two pack of kitchen roll").entry == "kitchen_roll_twin_pack"
+    assert 0.25 <= twin <= 0.5  # two 2-ply rolls (~0.35 kg); it weighed four
+
+
+def test_a_colour_word_of_a_modifier_does_not_paint_the_object() -> None:
+    cookie = catalogue.design_from_text("a chocolate chip cookie").program.parts[0].color_rgb
+    chocolate = catalogue.design_from_text("a chocolate cookie").program.parts[0].color_rgb
+    assert cookie[0] > 0.5 > chocolate[0]  # a golden cookie; a chocolate one is dark
+    red = catalogue.design_from_text("a red cabbage").program.parts[0].color_rgb
+    assert red[0] > 2 * red[1]
+
+
+def test_a_count_inside_a_box_is_what_it_holds() -> None:
+    one = planned_mass("box of 6 chicken nuggets")
+    assert catalogue.design_from_text("box of 6 chicken nuggets").entry == "nugget_box"
+    assert 0.05 <= one <= 0.2  # a six-piece box (~100-110 g); it built six boxes
+    assert planned_mass("2 boxes of chicken nuggets") == pytest.approx(2 * one, rel=0.2)
+
+
+def test_a_balloon_drawn_flat_keeps_its_outline_when_deflated() -> None:
+    from tasks.geometry import grammar
+
+    plain = catalogue.design_from_text("a gold foil number balloon").program
+    flat = catalogue.design_from_text("deflated gold foil number balloon")
+    assert "deflated" in flat.concept.states
+    assert len(flat.program.parts) == len(plain.parts)  # the '2' as drawn, not its strokes squashed and spread
+    lilo = catalogue.design_from_text("a deflated pool float").program  # a thick one still flattens
+    assert grammar.program_extents(lilo)[2] < 0.05
