@@ -131,6 +131,8 @@ UNIT_WORDS = frozenset({"ml", "l", "litre", "liter", "litres", "liters", "millil
 
 
 # words that, after the object's noun, start what is said of it, whatever the tagger makes of them
+# participles the tagger takes for nouns after the object's noun: they end its phrase
+AFTER_NOUN_PARTICIPLES = frozenset({"split", "halved", "quartered"})
 AFTER_NOUN_ADVERBS = frozenset({"still", "already", "just", "now", "again", "also", "too", "soaking", "sopping",
                                 "dripping", "freshly", "recently", "completely", "totally", "fully", "partly",
                                 "partially", "mostly", "nearly", "almost", "barely", "slightly", "very", "really",
@@ -159,6 +161,9 @@ def _boundary(doc: Any, i: int, known: Callable[[str], bool] = lambda w: False) 
         return True
     if tok.pos_ == "CCONJ":
         return prev is not None and _is_noun(prev)
+    if word in AFTER_NOUN_PARTICIPLES and not (prev is not None and known(f"{prev.text.lower()} {word}")):
+        return True  # 'baked potato split with sour cream': 'split' tagged a noun was the head (WordNet's banana split:
+        # a 5 g wrapped sweet); 'a banana split' is still one
     if word in AFTER_NOUN_ADVERBS:
         return True  # 'an airline blanket still in its sleeve' ('still' was the head: a distilling still), 'a glove
         # soaking wet, inside out' ('wet' was)

@@ -122,3 +122,9 @@ def test_a_balloon_drawn_flat_keeps_its_outline_when_deflated() -> None:
     assert len(flat.program.parts) == len(plain.parts)  # the '2' as drawn, not its strokes squashed and spread
     lilo = catalogue.design_from_text("a deflated pool float").program  # a thick one still flattens
     assert grammar.program_extents(lilo)[2] < 0.05
+
+
+def test_a_participle_tagged_a_noun_after_the_object_is_not_the_object() -> None:
+    # sealed set 44: 'split' was the head (WordNet's banana split, a 5 g sweet), the potato lost (0.01x its mass)
+    assert catalogue.design_from_text("baked potato split with sour cream").entry == "potato"
+    assert planned_mass("baked potato split with sour cream") > 0.1
