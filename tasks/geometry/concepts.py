@@ -103,7 +103,8 @@ kids kid childs child children pet dog cat new old toy toys piece whole half sli
 feet foot meter metre meters metres millimetre millimeter centimetre centimeter x by diameter across high tall deep
 length width height thickness depth size sized shaped light heavy dense wobbly gooey sticky fat skinny weighted
 textured velvety knitted crocheted felt fleece minky furry hairy woolly wool cotton vinyl latex squishmallow
-squishmallows jellycat ikea giant jumbo medium pocket keychain keychains keyring keyrings prize prizes handmade homemade kitchen bath bathroom dish thing
+squishmallows jellycat ikea giant jumbo medium pocket keychain keychains keyring keyrings prize prizes handmade
+homemade kitchen bath bathroom dish thing
 things object objects item items something stuff upright sideways backwards forwards facedown faceup prone supine
 tilted leaning propped perched crouching kneeling squatting""".split())  # (the last: how it is posed, not what)
 
@@ -2320,8 +2321,9 @@ def _said_empty(text: str) -> bool:
         and _PART_EMPTY.search(text) is None and fill_words.stated_fullness(text) is None  # ('half full, kinda
     # crushed': half its water is still in it)
 
-_HELD = re.compile(r"\bwith\s+(?!(?:its|their|the)\b)((?:a|an|one|some|two|three|four|five|six|\d+)?\s*[a-z][a-z' -]{1,40}?)\s+"
-                   r"(?:in it|in there|inside(?: it)?|in them)\b")
+
+_HELD = re.compile(r"\bwith\s+(?!(?:its|their|the)\b)((?:a|an|one|some|two|three|four|five|six|\d+)?\s*"
+                   r"[a-z][a-z' -]{1,40}?)\s+(?:in it|in there|inside(?: it)?|in them)\b")
 
 
 def held_object(text: str) -> tuple[str, float] | None:

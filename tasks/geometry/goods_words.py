@@ -68,8 +68,6 @@ _GROUP_COUNT = re.compile(r"\b(?:pack|packet|set|bundle|box|bag|net|tray|punnet|
 # unless the packs themselves are counted (an '80-pack of wipes' is one pack of 80)
 _PACK_NOUN = re.compile(r"^(?:pack|packet|bag|box|sack|pouch|tub|carton)\s+of\s+")  # (a roll of toilet paper is one roll)
 _PACKS_COUNT = re.compile(r"\b" + _COUNT + r"\s+(?:[a-z]+\s+)?(?:packs|packets|bags|boxes|sacks|pouches|tubs|cartons)\b")
-
-
 _COUNT_IN_NOUN = re.compile(r"\b" + _COUNT + r"\b")
 
 

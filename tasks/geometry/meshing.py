@@ -110,19 +110,27 @@ MAX_THIN_RESOLUTION = 600  # the most cells along the longest extent for that fi
 
 def thin_resolution(program: ShapeProgram, resolution: int, cells_across: int) -> int:
     """Cells along the longest extent that put `cells_across` cells across the thinnest one (more than
-    `resolution`, at most MAX_THIN_RESOLUTION): for a body thinner than a cell, which no grid point falls inside (a
-    deflated air mattress: 4 cm thick, 2.3 m long; its volume was 0 and its density a division by zero)."""
-    size = np.sort(program_bounds(program)[1] - program_bounds(program)[0])
+    `resolution`, at most MAX_THIN_RESOLUTION)."""
+    lo, hi = program_bounds(program)
+    size = np.sort(np.asarray(hi) - np.asarray(lo))
     across = int(np.ceil(cells_across * size[2] / max(float(size[0]), 1e-12)))  # longest / thinnest
     return min(MAX_THIN_RESOLUTION, max(resolution + 1, across))
 
 
+def sample_solid(program: ShapeProgram, resolution: int, cells_across: int) -> tuple[np.ndarray, np.ndarray, float]:
+    """sample_program, sampled again finer (thin_resolution) when no grid point falls inside the body: a body
+    thinner than a cell (a deflated air mattress: 4 cm thick, 2.3 m long; its volume was 0, its density a division
+    by zero and its mesh an error)."""
+    field, origin, spacing = sample_program(program, resolution)
+    if not (field < 0).any():
+        field, origin, spacing = sample_program(program, thin_resolution(program, resolution, cells_across))
+    return field, origin, spacing
+
+
 def program_volume(program: ShapeProgram, resolution: int = 40) -> float:
     """The volume of the solid a program describes [m^3], from its signed distances on a grid (a finer one for a
-    body thinner than a cell: thin_resolution)."""
-    field_, _origin, spacing = sample_program(program, resolution)
-    if not (field_ < 0).any():
-        field_, _origin, spacing = sample_program(program, thin_resolution(program, resolution, VOLUME_CELLS_ACROSS))
+    body thinner than a cell: sample_solid)."""
+    field_, _origin, spacing = sample_solid(program, resolution, VOLUME_CELLS_ACROSS)
     return float(np.count_nonzero(field_ < 0)) * spacing ** 3
 
 def slender_resolution(program: ShapeProgram, resolution: int) -> int:
@@ -136,9 +144,7 @@ def slender_resolution(program: ShapeProgram, resolution: int) -> int:
 def mesh_program(program: ShapeProgram, resolution: int) -> trimesh.Trimesh:
     """Watertight, vertex-coloured mesh of a shape program (program frame, metres); `resolution` cells along its
     longest extent, more for a slender one (slender_resolution)."""
-    field, origin, spacing = sample_program(program, slender_resolution(program, resolution))
-    if not (field < 0).any():  # thinner than a cell
-        field, origin, spacing = sample_program(program, thin_resolution(program, resolution, MESH_CELLS_ACROSS))
+    field, origin, spacing = sample_solid(program, slender_resolution(program, resolution), MESH_CELLS_ACROSS)
     mesh = mesh_from_field(field, origin, spacing)
     rgb = part_colors(mesh.vertices, program, sharpness_m=COLOR_SHARPNESS * spacing)
     mesh.visual = trimesh.visual.ColorVisuals(mesh, vertex_colors=linear_to_srgb8(rgb))

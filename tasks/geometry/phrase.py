@@ -130,9 +130,9 @@ UNIT_WORDS = frozenset({"ml", "l", "litre", "liter", "litres", "liters", "millil
                         "kilograms", "gallon", "pint", "quart", "size", "mm", "cm", "inch", "inches"})
 
 
-# words that, after the object's noun, start what is said of it, whatever the tagger makes of them
 # participles the tagger takes for nouns after the object's noun: they end its phrase
 AFTER_NOUN_PARTICIPLES = frozenset({"split", "halved", "quartered"})
+# words that, after the object's noun, start what is said of it, whatever the tagger makes of them
 AFTER_NOUN_ADVERBS = frozenset({"still", "already", "just", "now", "again", "also", "too", "soaking", "sopping",
                                 "dripping", "freshly", "recently", "completely", "totally", "fully", "partly",
                                 "partially", "mostly", "nearly", "almost", "barely", "slightly", "very", "really",

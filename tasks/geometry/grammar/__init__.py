@@ -16,7 +16,7 @@ from contracts.errors import InputError
 from contracts.shape import Part, ShapeProgram
 from tasks.geometry.grammar import animals, food, goods, things
 from tasks.geometry.grammar.parts import part_group
-from tasks.geometry.meshing import MESH_CELLS_ACROSS, mesh_program, sample_program, thin_resolution
+from tasks.geometry.meshing import MESH_CELLS_ACROSS, mesh_program, sample_solid
 from tasks.geometry.sdf import program_bounds
 
 RGB = tuple[float, float, float]
@@ -158,11 +158,8 @@ def build_program(plan: str, params: dict[str, Any] | None, colors: dict[str, RG
 def program_extents(program: ShapeProgram, resolution: int = 48) -> np.ndarray:
     """Extents (x, y, z) [m] of the solid a program describes, from its signed distances on a grid (within about a
     cell; the primitives' bounding boxes overstate rotated and subtracted parts)."""
-    field, _, spacing = sample_program(program, resolution)
+    field, _, spacing = sample_solid(program, resolution, MESH_CELLS_ACROSS)
     inside = field < 0
-    if not inside.any():  # thinner than a cell (a deflated air mattress)
-        field, _, spacing = sample_program(program, thin_resolution(program, resolution, MESH_CELLS_ACROSS))
-        inside = field < 0
     if not inside.any():
         raise InputError(f"program '{program.name}' has no volume")
     ext = []
