@@ -96,6 +96,17 @@ class Part(Model):
 
 
 MAX_PARTS = 64  # parts in one ShapeProgram
+MAX_PRINT_CHARS = 32  # characters of one printed line pair (a pack's product name)
+
+
+class Print(Model):
+    """Words printed on a part's outer face, as a pack's label carries its product's name (colour only: no relief)."""
+
+    text: str = Field(min_length=1, max_length=MAX_PRINT_CHARS, pattern=r"^[A-Z0-9 &'.,-]+$",
+                      description="the words, upper case (one or two lines, split at a space)")
+    part: str = Field(default="label", description="name of the part whose outer face carries the print")
+    color_rgb: RGB | None = Field(default=None, description="ink, linear RGB in [0, 1]; None: black or white, "
+                                                            "whichever stands out on the part's colour")
 
 
 class ShapeProgram(Model):
@@ -107,3 +118,4 @@ class ShapeProgram(Model):
     target_extent_m: Vec3 | None = Field(
         default=None, description="if given, the mesh is scaled to this bounding box (x, y, z) [m]"
     )
+    prints: list[Print] = Field(default_factory=list, max_length=2, description="words printed on parts' faces")

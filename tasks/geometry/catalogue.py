@@ -14,7 +14,7 @@ from contracts.errors import InputError
 from contracts.lexicon import load_lexicon
 from contracts.request import MAX_SIZE_M, MIN_SIZE_M, AssetRequest
 from contracts.shape import ShapeProgram
-from tasks.geometry import concepts, dims_words, fill_words, grammar, pouch_words, size_words, spelling
+from tasks.geometry import concepts, dims_words, fill_words, grammar, label_words, pouch_words, size_words, spelling
 from tasks.geometry.analogy import FOOD_CUES
 from tasks.geometry.wordnet import wordnet
 from tasks.geometry.catalogue_programs import catalogue_program, catalogue_yaml
@@ -1161,7 +1161,7 @@ def _label_mass_used(mass: size_words.StatedMass | None, text: str, reading: con
 
 
 def _fill_sized(size: SizeSpec, program: ShapeProgram, match: ConceptMatch,
-                stated: size_words.StatedMass | None) -> tuple[SizeSpec, ConceptMatch]:
+                stated: size_words.StatedMass | None, text: str = "") -> tuple[SizeSpec, ConceptMatch]:
     """A bag weighed by its fill (tasks.geometry.goods_words: fill x capacity) at the size it is built: a stated size
     scales the fill's mass with the bag's volume; a stated mass with no size sizes the bag to hold it ('a 1 kg bag of
     frozen peas' is a bigger bag than the typical 0.5 kg one)."""
@@ -1181,9 +1181,18 @@ def _fill_sized(size: SizeSpec, program: ShapeProgram, match: ConceptMatch,
         if abs(k - 1.0) > 0.02:
             return size, match.model_copy(update={"stated_mass_kg": match.stated_mass_kg * k ** 3,
                                                   "stated_mass_source": f"{source}; x {k ** 3:.3g} for the stated size"})
+    said = float(np.prod(size.axis_scale))
+    if not size.explicit and stated is None and abs(said - 1.0) > 0.02 and "sized to hold the stated" not in source \
+            and _SIZED_BAG.search(text):  # 'a small bag of fudge': a smaller bag of it (not 'a quart bag of
+        # travel size liquids': the size word is the goods')
+        return size, match.model_copy(update={"stated_mass_kg": match.stated_mass_kg * said,
+                                              "stated_mass_source": f"{source}; x {said:.3g} for its size word"})
     return size, match
 
 
+# a size word said of the bag itself ('a small bag of fudge', 'a big resealable pouch of nuts')
+_SIZED_BAG = re.compile(r"\b(?:small|little|big|large|huge|giant|tiny|mini|jumbo)\s+(?:[a-z]+\s+){0,2}?(?:bag|pouch|sack|"
+                        r"packet|pack|bags|pouches|sacks|packets|packs)\b", re.IGNORECASE)
 _STUFFED_IN = re.compile(r"^(?P<goods>.*\w.*?)\s*,?\s+(?:(?:stuffed|packed|compressed|rolled|folded|squashed|crammed|"
                          r"jammed|squeezed|shoved|stowed)\s+(?:up\s+|"
                          r"away\s+)?in(?:to|side)?\s+(?:its|a|an|the|their|his|her)\s+(?:own\s+)?(?P<sack>(?:[\w-]+\s+)"
@@ -1364,6 +1373,13 @@ def _as_material_roll(text: str, reading: concepts.Reading) -> str | None:
     return text[:m.start()] + "roll of " + " ".join(words) + text[m.end():]
 
 
+def _respelt(words: str, text: str) -> str:
+    """Normalised words with the request's misspellings as read ('marshmellows' -> 'marshmallows')."""
+    for wrong, right in spelling.corrections(concepts.plain(text), concepts.lexicon_words(), concepts.lexicon_phrases()):
+        words = re.sub(rf"\b{re.escape(wrong)}\b", right, words)
+    return words
+
+
 def design_from_text(text: str, size_hint_m: float | None = None) -> Design:
     """Map a description to a lexicon concept's program (grammar body plan or catalogue shape), the stated size, the
     modifiers and colours; an unknown noun takes a fallback by meaning, recorded in `concept` and `warnings`."""
@@ -1511,7 +1527,7 @@ def design_from_text(text: str, size_hint_m: float | None = None) -> Design:
     size, tighter = _rolled_sized(size, program, reading)
     size = _crumpled_sized(size, reading)
     size = _draped_sized(size, program, reading)
-    size, fill_match = _fill_sized(size, program, fill_match, mass)
+    size, fill_match = _fill_sized(size, program, fill_match, mass, text_n)
     if mass is None:
         match = fill_match
     else:
@@ -1543,6 +1559,10 @@ def design_from_text(text: str, size_hint_m: float | None = None) -> Design:
     spelt = [f"read '{wrong}' as '{right}'" for wrong, right in spelling.corrections(
         concepts.plain(text), concepts.lexicon_words(), concepts.lexicon_phrases())]
     warnings = [w for w in said.warnings + reading.warnings + build_warnings + spelt if w]
+    program = label_words.labelled(program, _respelt(concepts.normalise(stripped), text), match.noun,
+                                   concepts.concept_domain(match.concept) == "food",
+                                   (reading.donor or reading.entry) is not None
+                                   and (reading.donor or reading.entry).plan == "pouch")
     score = {"exact": 2.0, "synonym": 1.0}.get(match.fallback_level, 0.0)
     return Design(entry=match.concept, program=program, size=size, modifiers=mods, warnings=warnings,
                   match_score=score, concept=match)

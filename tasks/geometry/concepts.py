@@ -1530,7 +1530,7 @@ def build(reading: Reading, text: str) -> tuple[ShapeProgram, ConceptMatch, list
     program, match, states = _eaten(entry, program, match, normalise(text), states)
     program, match, states = _halved(entry, program, match, normalise(text), states)
     match, states = _soaked(match, target, normalise(text), states)
-    match = graded(match, normalise(text))
+    match = graded(match, normalise(text), normalise(reading.phrase.noun_phrase or "") if reading.phrase else None)
     if reading.vacuum:  # the piece on the flat sealed film of its vacuum pack; the film's mass is the piece's
         before, program = program, pouch_words.film_wrapped(program)
         piece = match.density_kg_per_m3 * program_volume(before) if match.density_kg_per_m3 is not None \
@@ -2111,6 +2111,9 @@ def _own_colours_unsaid(text: str, reading: Reading, entry: LexiconEntry) -> str
     return text
 
 
+# 'cream' said as the food: after a cream's kind, or joined to another food ('jam and cream'; 'black and cream' is
+# two colours: the word before 'and' is a colour)
+_CREAM_THE_FOOD = re.compile(r"\b(?:clotted|whipped|sour|double|single|squirty|ice|and|with|&|plus|n)\s*$")
 PART_ALIASES = {"frosting": ("icing", "buttercream", "frosted", "glaze")}  # other words for a part ('pink icing')
 
 
@@ -2128,10 +2131,13 @@ def apply_colors(program: ShapeProgram, text: str) -> tuple[ShapeProgram, dict[s
             group_words[form] = g
     applied: dict[str, str] = {}
     primary: str | None = None
-    for _start, end, word in hits:
+    for start, end, word in hits:
         after = re.findall(r"[a-z]+", text[end:])[:3]
         if after and (after[0] in _SPOTS + _STRIPES or after[:2] == ["polka", "dots"]):
             continue  # 'black spots': the pattern's colour (apply_pattern)
+        if word == "cream" and _CREAM_THE_FOOD.search(text[:start]) and not any(
+                w in lex.colors for w in re.findall(r"[a-z]+", text[:start])[-2:-1]):
+            continue  # 'the jam and cream kind', 'with clotted cream': the food, not a colour
         if word in group_words and (not after or after[0] not in group_words) and len(groups) > 1:
             continue  # 'a hot dog with mustard': the word names a part, drawn in its own colour already
         bound = next((group_words[w] for w in after if w in group_words), None)
@@ -2733,10 +2739,48 @@ FOAM_GRADES = {"memory foam": 60.0, "viscoelastic foam": 60.0, "visco elastic fo
                "high density foam": 40.0}
 
 
-def graded(match: ConceptMatch, text: str) -> ConceptMatch:
+# Fabrics [g/m^2] (mill and retail data sheets): a sheer or light one said of a garment or linen whose entry is of a
+# heavy one weighs it by their ratio ('a satin robe' is a quarter of the terry bathrobe); a chunky hand knit said of a
+# blanket, the same. Light: tulle 15-35, chiffon and organza 30-60, voile and gauze 50-90, muslin 60-110, silk habotai
+# and charmeuse 50-100, satin 90-130, lace 60-120, taffeta 60-100. Heavy: flannel 150-220, fleece 200-300, velvet
+# 250-350, corduroy 250-350, wool coating and knits 300-450, denim 300-450, canvas 300-400, sherpa 300-400, terry
+# towelling 350-550, chunky hand knits 600-1000
+LIGHT_FABRIC_GSM = {"tulle": 25.0, "chiffon": 45.0, "organza": 40.0, "voile": 60.0, "gauze": 70.0, "muslin": 90.0,
+                    "silk": 75.0, "satin": 110.0, "lace": 90.0, "taffeta": 80.0}
+HEAVY_FABRIC_GSM = {"chunky knit": 800.0, "terry": 450.0, "terrycloth": 450.0, "towelling": 450.0, "toweling": 450.0,
+                    "sherpa": 350.0, "wool": 350.0, "knit": 400.0, "knitted": 400.0, "denim": 380.0, "canvas": 350.0,
+                    "velvet": 300.0, "velour": 300.0, "corduroy": 300.0, "fleece": 260.0, "flannel": 190.0}
+CHUNKY_PLANS = frozenset({"sheet"})  # a chunky knit weighs more than its entry only as a blanket or throw (a chunky
+# beanie's typical mass is one already)
+
+
+def _fabric_in(words: str, table: dict[str, float]) -> str | None:
+    """The first fabric of a table (most telling first) named in normalised words."""
+    return next((f for f in table if re.search(rf"\b{f}\b", words)), None)
+
+
+def _fabric_factor(match: ConceptMatch, object_words: str, own: str) -> tuple[float, str]:
+    """(factor, why) of a light fabric said of a heavy-fabric garment or linen entry, or a chunky knit of a blanket
+    ('a satin robe': satin ~110 g/m^2 for its terry ~450: x0.24); (1, '') otherwise. object_words: the words of the
+    object's own noun phrase (a 'linen bag' it is put in names no fabric of the gown)."""
+    if match.fallback_level not in ("exact", "synonym") or match.body_plan not in THIN_GOODS_PLANS:
+        return 1.0, ""
+    its = _fabric_in(own, HEAVY_FABRIC_GSM)
+    light = _fabric_in(object_words, LIGHT_FABRIC_GSM)
+    said, gsm = (light, LIGHT_FABRIC_GSM[light]) if light else (None, 0.0)
+    if said is None and match.body_plan in CHUNKY_PLANS and re.search(r"\bchunky knit", object_words):
+        said, gsm = "chunky knit", HEAVY_FABRIC_GSM["chunky knit"]
+    if said is None or its is None or its == said or re.search(rf"\b{said}\b", own):
+        return 1.0, ""
+    ratio = gsm / HEAVY_FABRIC_GSM[its]
+    return ratio, f"{said} (~{gsm:g} g/m^2) for its {its} (~{HEAVY_FABRIC_GSM[its]:g} g/m^2): x{ratio:.2g}"
+
+
+def graded(match: ConceptMatch, text: str, object_words: str | None = None) -> ConceptMatch:
     """The match weighed for a heavier grade of its material that the text names and its entry is not already made
     of: 'a neoprene pencil case' (a textile good's fabric x SHEET_FABRICS), 'a memory foam bed pillow' (a PU-foam
-    good's density raised to FOAM_GRADES); a stated mass or a hollow shell is kept."""
+    good's density raised to FOAM_GRADES), a light fabric of a heavy one's garment or linen (_fabric_factor, the
+    fabric among the object's own words); a stated mass or a hollow shell is kept."""
     entry = load_lexicon().entries.get(match.concept)
     if entry is None or match.stated_mass_kg or match.hollow or match.density_kg_per_m3 is None:
         return match
@@ -2747,6 +2791,8 @@ def graded(match: ConceptMatch, text: str) -> ConceptMatch:
             if re.search(rf"\b{word}\b", text) and not re.search(rf"\b{word}\b", own):
                 factor, why = f, f"{word}: x{f:g} the areal mass of a woven fabric"
                 break
+        if factor == 1.0:
+            factor, why = _fabric_factor(match, object_words if object_words is not None else text, own)
     elif match.default_material == "pu_foam":
         for words, rho in FOAM_GRADES.items():
             if re.search(rf"\b{words}\b", text) and not re.search(rf"\b{words}\b", own) \

@@ -67,6 +67,13 @@ def retail_bag_m(key: str) -> float | None:
     return float(rec["bag_m"]) if rec is not None and "bag_m" in rec else None
 
 
+def retail_pack_kg(key: str) -> tuple[float, str] | None:
+    """(mass [kg], source) of the retail pack a fill is usually sold in when smaller than a filled food bag of it (a bag
+    of sweets: 150 g), if the table gives one."""
+    rec = record(key)
+    return (float(rec["pack_kg"]), str(rec["pack_source"])) if rec is not None and "pack_kg" in rec else None
+
+
 def _amount(words: str) -> float | None:
     words = " ".join(words.split())
     if m := re.search(r"(\d{1,3})\s*%", words):

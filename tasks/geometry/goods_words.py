@@ -43,6 +43,8 @@ PUFFER_BAFFLES = 7  # a puffer's baffles from hem to collar [-]
 PUFFER_MASS = 1.3  # a down or padded garment over the same garment unpadded (retail: puffers 0.6-1.0 kg, fleece and
 # rain jackets 0.35-0.9 kg) [-]
 
+GENERIC_POUCH = "generic_pouch"  # the sealed pouch a container noun with goods is built as (tasks.geometry.concepts)
+
 
 # 'a pack of 12 silicone muffin cups', 'a stack of cupcake liners': open cups sold nested one in another
 _NESTED = re.compile(r"\b(?:pack|packet|stack|sleeve|set|box|tube|pile)s?\s+of\s+(?:(\d+|a dozen|dozen|two|three|four|"
@@ -66,8 +68,10 @@ _GROUP_COUNT = re.compile(r"\b(?:pack|packet|set|bundle|box|bag|net|tray|punnet|
                           + r")|\b" + _COUNT + r"[- ]pack\b")  # ('rolls, a pile of 10': the count ends the text)
 # an entry that is itself a pack of goods ('pack of baby wipes', 'bag of chips'): a count in its text is what it holds,
 # unless the packs themselves are counted (an '80-pack of wipes' is one pack of 80)
-_PACK_NOUN = re.compile(r"^(?:pack|packet|bag|box|sack|pouch|tub|carton)\s+of\s+")  # (a roll of toilet paper is one roll)
-_PACKS_COUNT = re.compile(r"\b" + _COUNT + r"\s+(?:[a-z]+\s+)?(?:packs|packets|bags|boxes|sacks|pouches|tubs|cartons)\b")
+# (a roll of toilet paper is one roll; 'a portion of onion rings, like 8 of them' is one portion of eight)
+_PACK_NOUN = re.compile(r"^(?:pack|packet|bag|box|sack|pouch|tub|carton|portion|serving|pile|plate|basket)\s+of\s+")
+_PACKS_COUNT = re.compile(r"\b" + _COUNT + r"\s+(?:[a-z]+\s+)?(?:packs|packets|bags|boxes|sacks|pouches|tubs|cartons|"
+                          r"portions|servings|piles|plates|baskets)\b")
 _COUNT_IN_NOUN = re.compile(r"\b" + _COUNT + r"\b")
 
 
@@ -256,6 +260,15 @@ def apply(target: LexiconEntry, portion: str | None, text: str, params: dict, si
             out.match = out.match.model_copy(update={"typical_size_m": out.size_m})
             said = f" (sized to hold the stated {volume * 1e3:g} l)"
         fill_kg = fill.mass_kg(cap)
+        pack = _retail_pack(fill) if volume is None and target.key == GENERIC_POUCH else None
+        full_kg = fill_kg / max(fill.fraction, 1e-9) * float(target.params.get("fill", fill.fraction))
+        if pack is not None and full_kg > pack[0]:  # 'a bag of gummy sweets': the retail pack of them, ~150 g, as
+            k = (pack[0] / full_kg) ** (1.0 / 3.0)  # sold (full); 'half full', half of it
+            out.size_m *= k
+            cap = bag_capacity_m3(plan, {**target.params, **out.params}, out.size_m)
+            fill_kg = fill.mass_kg(cap)
+            out.match = out.match.model_copy(update={"typical_size_m": out.size_m})
+            said = f" (the usual retail pack: {pack[1]})"
         if plan == "pouch":  # a pouch entry's typical mass is filled: its empty film or fabric by area
             p = grammar.plan_parameters(plan, {**target.params, **out.params})
             area = 2.0 * out.size_m ** 2 * float(getattr(p, "width", 0.6)) / _unit_longest(plan, p.model_dump()) ** 2
@@ -272,6 +285,18 @@ def apply(target: LexiconEntry, portion: str | None, text: str, params: dict, si
             and (fullness := fill_words.stated_fullness(text)) is not None:
         _part_full(out, target, *fullness)
     return out
+
+
+def _retail_pack(fill: fill_words.Fill) -> tuple[float, str] | None:
+    """The retail pack of a fill (fill_words.retail_pack_kg): its own, or, for goods drawn as pieces ('a bag of
+    almonds', pieces of almond), the pack of the fill its words name (nuts)."""
+    pack = fill_words.retail_pack_kg(fill.key)
+    if pack is None and fill_words.record(fill.key) is None:
+        words = f" {fill.words} "
+        named = next((rec["key"] for word, rec in fill_words.fills().items() if "pack_kg" in rec
+                      and re.search(rf"\b{re.escape(word.removesuffix('s'))}s?\b", words)), None)
+        pack = fill_words.retail_pack_kg(named) if named is not None else None
+    return pack
 
 
 def _named_with_fill(target: LexiconEntry, match: ConceptMatch) -> bool:

@@ -8,6 +8,7 @@ from skimage.measure import marching_cubes
 
 from contracts.errors import InputError
 from contracts.shape import ShapeProgram
+from tasks.geometry import prints
 from tasks.geometry.sdf import grid_program_sdf, part_colors, program_bounds
 
 _CHUNK = 1_000_000
@@ -146,7 +147,11 @@ def mesh_program(program: ShapeProgram, resolution: int) -> trimesh.Trimesh:
     longest extent, more for a slender one (slender_resolution)."""
     field, origin, spacing = sample_solid(program, slender_resolution(program, resolution), MESH_CELLS_ACROSS)
     mesh = mesh_from_field(field, origin, spacing)
+    if program.prints:  # (fine enough under the words to carry them in its vertex colours)
+        mesh = prints.refine_under_prints(mesh, program, spacing)
     rgb = part_colors(mesh.vertices, program, sharpness_m=COLOR_SHARPNESS * spacing)
+    if program.prints:
+        rgb = prints.printed_colors(mesh.vertices, rgb, program, mesh.vertex_normals)
     mesh.visual = trimesh.visual.ColorVisuals(mesh, vertex_colors=linear_to_srgb8(rgb))
     if program.target_extent_m is not None:
         scale_to_extents(mesh, np.asarray(program.target_extent_m, dtype=np.float64))

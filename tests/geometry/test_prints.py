@@ -1,0 +1,99 @@
+"""Words printed on a pack's label: the goods read from the request, placed on the label's outer face, carried by a
+refined, still watertight mesh into the vertex colours the stills and the splats show."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+import trimesh
+from pydantic import ValidationError
+
+from contracts.shape import Print, ShapeProgram
+from tasks.geometry import catalogue, label_words, prints
+from tasks.geometry.meshing import mesh_program
+from tasks.render.finish import MATTE
+from tasks.render.views import render_view
+
+GOODS = [
+    ("1kg bag of rolled oats", "ROLLED OATS"),
+    ("pack of nappies size 3", "NAPPIES"),
+    ("chia seeds in a 250g packet", "CHIA SEEDS"),
+    ("bag of sugared almonds tied with ribbon", "SUGARED ALMONDS"),
+    ("bag of prawn crackers, unopened", "PRAWN CRACKERS"),
+    ("small ketchup sachet", "KETCHUP"),
+    ("a protein bar in its wrapper", "PROTEIN BAR"),
+    ("half eaten bag of marshmellows with the top rolled down", None),  # (its own drawing has no label)
+]
+
+
+@pytest.mark.parametrize(("text", "printed"), GOODS)
+def test_a_pack_prints_the_goods_the_request_names(text: str, printed: str | None) -> None:
+    program = catalogue.design_from_text(text).program
+    assert [p.text for p in program.prints] == ([printed] if printed else [])
+
+
+@pytest.mark.parametrize("text", ["a tote bag", "a sleeping bag", "a small bean bag", "a paper bag", "a plush turtle",
+                                  "a standup pouch", "a hockey bag", "a folded t-shirt"])
+def test_a_bag_that_is_not_a_pack_of_goods_prints_nothing(text: str) -> None:
+    assert catalogue.design_from_text(text).program.prints == []
+
+
+@pytest.mark.parametrize(("text", "noun", "words"), [
+    ("bag of gummy sweets from the prize counter", "bag", "gummy sweets"),
+    ("pouch of dishwasher tablets half full", "pouch", "dishwasher tablets"),
+    ("box of 6 chicken nuggets", "box", "chicken nuggets"),
+    ("a bag of small red rose petals, open", "bag", "red rose petals"),  # (three words at most)
+    ("pocket pack of tissues", "pocket pack of tissues", "tissues"),
+    ("an empty zip bag", "zip bag", None),
+])
+def test_goods_words_are_what_follows_the_container(text: str, noun: str, words: str | None) -> None:
+    assert label_words.goods_words(text, noun) == words
+
+
+def test_print_text_is_upper_case_words_of_bounded_length() -> None:
+    with pytest.raises(ValidationError):
+        Print(text="oats")
+    with pytest.raises(ValidationError):
+        Print(text="A" * 40)
+    program = catalogue.design_from_text("1kg bag of rolled oats").program
+    assert ShapeProgram.model_validate_json(program.model_dump_json()) == program
+
+
+def test_red_green_refinement_keeps_the_mesh_watertight_and_its_volume() -> None:
+    mesh = trimesh.creation.icosphere(subdivisions=2)
+    chosen = mesh.triangles_center[:, 2] > 0.6
+    v, f = prints.red_green(np.asarray(mesh.vertices), np.asarray(mesh.faces), chosen)
+    refined = trimesh.Trimesh(v, f, process=False)
+    assert refined.is_watertight and refined.is_winding_consistent
+    assert len(refined.faces) >= len(mesh.faces) + 3 * int(chosen.sum())
+    assert refined.volume == pytest.approx(mesh.volume, rel=1e-9)  # (midpoints on the flat faces)
+    low = mesh.triangles_center[:, 2] < -0.2  # far from the chosen faces: untouched
+    assert {tuple(sorted(t)) for t in np.asarray(mesh.faces)[low]} <= {tuple(sorted(t)) for t in f}
+
+
+def _label_top(mesh: trimesh.Trimesh, program: ShapeProgram) -> np.ndarray:
+    pl = prints.placement(program, program.prints[0])
+    rel = np.asarray(mesh.vertices) - pl.centre
+    return (np.abs(rel @ pl.r) < pl.half_r) & (np.abs(rel @ pl.u) < pl.half_u) \
+        & (np.asarray(mesh.vertex_normals) @ pl.n > 0.9) & (np.asarray(mesh.vertices) @ pl.n > pl.face_level)
+
+
+def test_the_label_carries_dark_letters_only_on_its_outer_face() -> None:
+    program = catalogue.design_from_text("1kg bag of rolled oats").program
+    plain = mesh_program(program.model_copy(update={"prints": []}), 64)
+    mesh = mesh_program(program, 64)
+    assert mesh.is_watertight and mesh.volume == pytest.approx(plain.volume, rel=1e-6)
+    assert len(mesh.faces) > len(plain.faces)  # refined under the words
+    dark = np.asarray(mesh.visual.vertex_colors)[:, :3].max(axis=1) < 60
+    top = _label_top(mesh, program)
+    assert 0.05 < dark[top].mean() < 0.6  # letters, not a filled block
+    assert not dark[~top & (np.asarray(mesh.vertex_normals)[:, 2] < 0.0)].any()  # no ink under the pack
+    assert not (np.asarray(plain.visual.vertex_colors)[:, :3].max(axis=1) < 60).any()
+
+
+def test_the_printed_words_show_in_the_three_quarter_still() -> None:
+    program = catalogue.design_from_text("1kg bag of rolled oats").program
+    with_words = render_view(mesh_program(program, 64), "iso", 256, MATTE)
+    without = render_view(mesh_program(program.model_copy(update={"prints": []}), 64), "iso", 256, MATTE)
+    dark = lambda img: int((img.max(axis=2) < 70).sum())  # noqa: E731
+    assert dark(with_words) > dark(without) + 150
