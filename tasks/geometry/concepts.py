@@ -2193,7 +2193,7 @@ GOODS_PLANS = frozenset({"sheet", "pouch", "glove", "sock", "hat", "tool", "moul
                          "book"})
 _RELIEF_SAID = frozenset({"spikes", "nubs"})  # asked for in words: say so when it cannot be drawn
 _DEFLATED = frozenset({"deflated", "flat", "crumpled"})
-_HALF_INFLATED = re.compile(r"\b(?:half|partly|partially|semi|part) (?:inflated|deflated|blown up|full)\b")
+_HALF_INFLATED = re.compile(r"\b(?:half|partly|partially|semi|part) (?:inflated|deflated|blown up|full|flat)\b")
 # a little air gone is half deflated, not flat ('a slightly flat tennis ball' was squashed to a bar of soap)
 _SLIGHTLY_FLAT = re.compile(r"\b(?:slightly|a bit|a little(?: bit)?|a touch|somewhat|kinda|kind of|a tad)\s+"
                             r"(?:flat|flattened|deflated|squashed|soft|low on air)\b")

@@ -25,7 +25,8 @@ def test_a_body_thinner_than_a_cell_has_its_volume_and_its_mesh() -> None:
 
 def test_a_deflated_air_mattress_is_built_and_weighs_its_skin() -> None:
     match = catalogue.design_from_text("single air mattress deflated and folded up").concept
-    assert "deflated" in match.states
+    # (the deflated air bed drawn folded since session 59, s59_linen.yaml; before, the pool float's deflated state)
+    assert "deflated" in match.states or match.concept == "deflated_air_bed"
     mass = planned_mass("single air mattress deflated")
     assert 0.3 <= mass <= 3.0  # a PVC air bed's skin (0.9-2.5 kg), not its inflated volume's
 
@@ -44,7 +45,7 @@ def test_a_count_inside_a_pack_is_what_it_holds(text: str, packs: int) -> None:
 
 @pytest.mark.parametrize(("text", "entry"), [
     ("can u do a green dinosaur plush prize, 40cm long", "plush_dinosaur"),
-    ("little cat plush keyring", "plush_cat"),
+    ("little cat plush keyring", "plush_cat_keyring"),  # the small plush cat with its ring (session 59)
     ("giant banana plush prize, like 1 meter long", "plush_banana"),
 ])
 def test_a_plush_named_for_its_role_is_that_plush(text: str, entry: str) -> None:
