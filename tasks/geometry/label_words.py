@@ -41,6 +41,7 @@ def goods_words(text: str, noun: str | None, food: bool = False) -> str | None:
         words = " ".join(w for w in re.sub(r"\bof\b", " ", _CONTAINER_WORD.sub(" ", noun)).split()
                          if w not in CONTAINER_KINDS)
     words = _LEAD.sub("", " ".join(re.findall(r"[a-z0-9&'-]+", words)))
+    words = re.split(r"\bof\s+", words)[-1]  # 'a pack of 50 sheets of origami paper': the paper
     if all(w in CONTAINER_KINDS for w in words.split()):
         return None
     kept = words.split()[-MAX_WORDS:]

@@ -45,6 +45,7 @@ def test_a_bag_that_is_not_a_pack_of_goods_prints_nothing(text: str) -> None:
     ("a bag of small red rose petals, open", "bag", "red rose petals"),  # (three words at most)
     ("pocket pack of tissues", "pocket pack of tissues", "tissues"),
     ("an empty zip bag", "zip bag", None),
+    ("pack of 50 sheets of origami paper, still sealed", "pack", "origami paper"),  # (sealed set 45)
 ])
 def test_goods_words_are_what_follows_the_container(text: str, noun: str, words: str | None) -> None:
     assert label_words.goods_words(text, noun) == words
