@@ -2448,6 +2448,8 @@ class GarmentParams(Model):
                        "hanging")
     coat: bool = Field(default=False, description="a long buttoned coat (a lab coat, a doctor's coat): wide "
                        "notched lapels, a row of buttons down the front, two hip patch pockets and a breast pocket")
+    double_breasted: bool = Field(default=False, description="coat: two rows of buttons down the front (a "
+                                  "peacoat, a trench coat), not one")
     baffles: int = Field(default=0, ge=0, le=12, description="quilted (down-filled) baffles across the body, and "
                          "along the sleeves in proportion: a puffy layer with stitched grooves (a puffer jacket or "
                          "vest) [-]")
@@ -2520,8 +2522,9 @@ def _top_flat(p: GarmentParams, t: float) -> list[Part]:
         for side in (1, -1):
             parts.append(box(f"{'left' if side > 0 else 'right'} lapel", (0.34, 0.11, 1.8 * t),
                              (0.31, side * 0.08, 1.1 * t), edge=0.4 * t, rot=(0, 0, -side * 18), blend=0.004))
-        for i, x in enumerate(np.linspace(0.12, -0.36, 4)):
-            parts.append(cylinder(f"button {i + 1}", 0.026, 1.6 * t, (float(x), 0.0, 1.2 * t), edge=0.3 * t,
+        cols = (0.0,) if not p.double_breasted else (0.075 * w / 0.78, -0.075 * w / 0.78)  # one row or two
+        for i, (x, y) in enumerate((x, y) for x in np.linspace(0.12, -0.36, 4) for y in cols):
+            parts.append(cylinder(f"button {i + 1}", 0.026, 1.6 * t, (float(x), float(y), 1.2 * t), edge=0.3 * t,
                                   blend=0.002))
         parts.append(superellipsoid("breast pocket", (0.07, 0.08 * w, 0.7 * t), (0.2, -0.28 * w, t), ns=0.2, ew=0.3,
                                     blend=0.004))
