@@ -1048,6 +1048,24 @@ def _goods_in_container(text: str) -> str:
     return f"{m.group('container')} of {m.group('goods').strip()}{m.group('rest')}"
 
 
+# '200g bag dried shiitake mushrooms': a weighed pack before its goods without 'of' (sealed set 45: one 200 g mushroom)
+_WEIGHED_PACK = re.compile(r"^(?P<pack>.*?\b\d+(?:\.\d+)?\s*(?:g|kg|grams?|oz|lbs?)\s+(?:[a-z]+\s+)?"
+                           r"(?:bag|pack|packet|pouch|sack|tub))\s+(?P<goods>(?!of\b)[a-z][a-z ]*?)(?P<rest>\s*(?:,.*)?)$",
+                           re.IGNORECASE)
+
+
+def _weighed_pack_of(text: str) -> str:
+    """'200g bag dried shiitake mushrooms' -> '200g bag of dried shiitake mushrooms' when the goods are a fill of the
+    table (as _goods_in_container)."""
+    m = _WEIGHED_PACK.match(text.strip())
+    if m is None:
+        return text
+    goods = m.group("goods").strip().lower()
+    if not any(goods == w or goods.endswith(f" {w}") for w in fill_words.fills()):
+        return text
+    return f"{m.group('pack')} of {m.group('goods').strip()}{m.group('rest')}"
+
+
 def _of_words_moved(text: str) -> str:
     """'a tube of acrylic paint' -> 'a acrylic tube of paint' when the lexicon knows 'tube of paint' and not 'tube of
     acrylic paint' (the words between hid the noun: a paint tube was built as a generic block); the moved words still
@@ -1394,7 +1412,7 @@ def design_from_text(text: str, size_hint_m: float | None = None) -> Design:
         design = design_from_text(packed[0], size_hint_m)
         return design.model_copy(update={"warnings": [packed[1], *design.warnings]})
     text_n = _cut_words_stripped(_purpose_stripped(_pair_first(_portions_compounded(_of_words_moved(
-        _goods_in_container(asked))))))
+        _goods_in_container(_weighed_pack_of(asked)))))))
     text_n, whole_m = _whole_sized(text_n)
     size = parse_size(text_n)
     if size_hint_m is not None:

