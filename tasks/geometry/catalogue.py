@@ -1042,10 +1042,14 @@ def _goods_in_container(text: str) -> str:
     if m is None:
         return text
     goods = m.group("goods").strip().lower()
-    if goods.startswith(("a ", "an ", "one ")) or not any(
-            goods == w or goods.endswith(f" {w}") for w in fill_words.fills()):
+    if goods.startswith(("a ", "an ", "one ")) or not _fill_goods(goods):
         return text
     return f"{m.group('container')} of {m.group('goods').strip()}{m.group('rest')}"
+
+
+def _fill_goods(goods: str) -> bool:
+    """Whether lower-case goods words end in a fill of the table (loose goods a bag is filled with)."""
+    return any(goods == w or goods.endswith(f" {w}") for w in fill_words.fills())
 
 
 # '200g bag dried shiitake mushrooms': a weighed pack before its goods without 'of' (sealed set 45: one 200 g mushroom)
@@ -1060,8 +1064,7 @@ def _weighed_pack_of(text: str) -> str:
     m = _WEIGHED_PACK.match(text.strip())
     if m is None:
         return text
-    goods = m.group("goods").strip().lower()
-    if not any(goods == w or goods.endswith(f" {w}") for w in fill_words.fills()):
+    if not _fill_goods(m.group("goods").strip().lower()):
         return text
     return f"{m.group('pack')} of {m.group('goods').strip()}{m.group('rest')}"
 
@@ -1391,9 +1394,9 @@ def _as_material_roll(text: str, reading: concepts.Reading) -> str | None:
     return text[:m.start()] + "roll of " + " ".join(words) + text[m.end():]
 
 
-def _respelt(words: str, text: str) -> str:
+def _respelt(words: str, corrections: list[tuple[str, str]]) -> str:
     """Normalised words with the request's misspellings as read ('marshmellows' -> 'marshmallows')."""
-    for wrong, right in spelling.corrections(concepts.plain(text), concepts.lexicon_words(), concepts.lexicon_phrases()):
+    for wrong, right in corrections:
         words = re.sub(rf"\b{re.escape(wrong)}\b", right, words)
     return words
 
@@ -1574,13 +1577,12 @@ def design_from_text(text: str, size_hint_m: float | None = None) -> Design:
     if _MUDDY.search(text_n.replace("-", " ")):  # 'muddy garden gloves', 'a mud-caked boot': blotches of mud
         match = match.model_copy(update={"finish": with_look(match.finish, MUDDY)})
     said = size_words.read_size_words(_strip_numeric_sizes(text_n), frozenset(MODIFIERS))
-    spelt = [f"read '{wrong}' as '{right}'" for wrong, right in spelling.corrections(
-        concepts.plain(text), concepts.lexicon_words(), concepts.lexicon_phrases())]
+    corrections = spelling.corrections(concepts.plain(text), concepts.lexicon_words(), concepts.lexicon_phrases())
+    spelt = [f"read '{wrong}' as '{right}'" for wrong, right in corrections]
     warnings = [w for w in said.warnings + reading.warnings + build_warnings + spelt if w]
-    program = label_words.labelled(program, _respelt(concepts.normalise(stripped), text), match.noun,
+    program = label_words.labelled(program, _respelt(concepts.normalise(stripped), corrections), match.noun,
                                    concepts.concept_domain(match.concept) == "food",
-                                   (reading.donor or reading.entry) is not None
-                                   and (reading.donor or reading.entry).plan == "pouch")
+                                   drawn is not None and drawn.plan == "pouch")
     score = {"exact": 2.0, "synonym": 1.0}.get(match.fallback_level, 0.0)
     return Design(entry=match.concept, program=program, size=size, modifiers=mods, warnings=warnings,
                   match_score=score, concept=match)

@@ -144,7 +144,6 @@ def placement(program: ShapeProgram, pr: Print) -> Placement | None:
                         for sa in (-1, 1) for sb in (-1, 1)])
     rs, us = (corners - centre) @ r, (corners - centre) @ u
     lo_r, hi_r, lo_u, hi_u = rs.min(), rs.max(), us.min(), us.max()
-    block_c = centre.copy()
     pictures = _pictures(program, pr.part)
     if pictures:
         pr_lo, pr_hi, pu_lo, pu_hi = np.inf, -np.inf, np.inf, -np.inf
