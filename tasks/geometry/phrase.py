@@ -134,6 +134,11 @@ UNIT_WORDS = frozenset({"ml", "l", "litre", "liter", "litres", "liters", "millil
                         "kilograms", "gallon", "pint", "quart", "size", "mm", "cm", "inch", "inches"})
 
 
+# determiners that, after the object's noun, begin another noun phrase
+NEW_PHRASE_DETERMINERS = frozenset({"the", "a", "an", "this", "these", "those", "my", "your", "his", "her", "our",
+                                    "their", "its", "another"})
+
+
 # participles the tagger takes for nouns after the object's noun: they end its phrase
 AFTER_NOUN_PARTICIPLES = frozenset({"split", "halved", "quartered"})
 # words that, after the object's noun, start what is said of it, whatever the tagger makes of them
@@ -178,6 +183,15 @@ def _boundary(doc: Any, i: int, known: Callable[[str], bool] = lambda w: False) 
     return False
 
 
+def _contact_clause(doc: Any, i: int) -> bool:
+    """True when a determiner at i begins a relative clause without 'that': the determiner, adjectives, a noun and a
+    finite verb ('the dog found', 'my gran knitted')."""
+    j = i + 1
+    while j < len(doc) and doc[j].pos_ == "ADJ":
+        j += 1
+    return j + 1 < len(doc) and _is_noun(doc[j]) and doc[j + 1].tag_ in ("VBD", "VBZ", "VBP")
+
+
 def _names_with_next(doc: Any, i: int, is_known: Callable[[str], bool]) -> bool:
     """True when a placeholder word starts a known two-word noun with the next token ('a stuff sack')."""
     return i + 1 < len(doc) and is_known(f"{doc[i].text.lower()} {doc[i + 1].text.lower()}")
@@ -209,6 +223,9 @@ def parse(text: str, known: Callable[[str], bool] | None = None,
             portion = span[-1].text.lower()
             span, seen_noun = [], False
             continue
+        if seen_noun and word in NEW_PHRASE_DETERMINERS and _contact_clause(doc, i):
+            break  # a relative clause without 'that' after the object's noun: 'a faded tennis ball the dog found' (it
+            # was a plush dog, development set 60)
         if word in UNIT_WORDS or tok.pos_ in ("DET", "NUM") or tok.tag_ in ("CD", "PRP$", "POS"):
             continue
         if seen_noun and _boundary(doc, i, is_known) and not (tok.tag_ in ("VB", "VBP", "VBZ") and is_known(word)):

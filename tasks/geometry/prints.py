@@ -195,14 +195,21 @@ def ink(points: np.ndarray, program: ShapeProgram, pr: Print, pl: Placement) -> 
     return out
 
 
-def ink_rgb(pr: Print, program: ShapeProgram) -> np.ndarray:
-    """The print's ink (linear RGB): its own, else near-black on a light part and white on a dark one."""
+DARK_INK, LIGHT_INK = np.array([0.01, 0.01, 0.012]), np.array([0.92, 0.92, 0.92])
+LIGHT_SURFACE = 0.18  # a surface of more linear luminance than this takes dark ink, else light [-]
+
+
+def ink_rgb(pr: Print, program: ShapeProgram, under: np.ndarray | None = None) -> np.ndarray:
+    """The print's ink (linear RGB): its own; else, for each colour `under` it (N, 3), near-black on a light surface
+    and white on a dark one (letters over a label's white picture on a blue label were white on white, development
+    set 60); without `under`, against its part's colour."""
     if pr.color_rgb is not None:
         return np.asarray(pr.color_rgb, dtype=np.float64)
-    part = _part(program, pr.part)
-    c = np.asarray(part.color_rgb if part is not None else (0.8, 0.8, 0.8), dtype=np.float64)
-    luminance = float(c @ np.array([0.2126, 0.7152, 0.0722]))
-    return np.array([0.01, 0.01, 0.012]) if luminance > 0.18 else np.array([0.92, 0.92, 0.92])
+    if under is None:
+        part = _part(program, pr.part)
+        under = np.asarray([part.color_rgb if part is not None else (0.8, 0.8, 0.8)], dtype=np.float64)
+    light = np.asarray(under, dtype=np.float64) @ np.array([0.2126, 0.7152, 0.0722]) > LIGHT_SURFACE
+    return np.where(light[:, None], DARK_INK, LIGHT_INK)
 
 
 FACING_COS = 0.5  # a surface turned further than 60 deg from a print's normal takes none of its ink (a picture's sides)
@@ -220,7 +227,7 @@ def printed_colors(points: np.ndarray, rgb: np.ndarray, program: ShapeProgram,
         cover = ink(points, program, pr, pl)[:, None]
         if normals is not None:
             cover = cover * (np.asarray(normals) @ pl.n > FACING_COS)[:, None]
-        out = out * (1.0 - cover) + ink_rgb(pr, program)[None, :] * cover
+        out = out * (1.0 - cover) + np.broadcast_to(ink_rgb(pr, program, out), out.shape) * cover
     return out
 
 

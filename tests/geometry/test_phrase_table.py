@@ -28,6 +28,8 @@ TABLE = [
     ('a sleeping puppy curled up on a cushion', 'puppy', 'puppy', None, ['lying', 'curled'], None, 'pu_foam', {}),
     ('a teddy bear sitting on a shelf', 'bear', 'teddy bear', None, ['sitting'], None, 'plush', {}),
     ('an IV fluid bag', 'bag', 'fluid bag', None, [], None, None, {}),
+    ('a faded tennis ball the dog found', 'ball', 'faded tennis ball', None, [], None, '*', {}),
+    ('a scarf my gran knitted', 'scarf', 'scarf', None, [], None, '*', {}),
     ('a saline bag hanging from a hook', 'bag', 'saline bag', None, ['hung'], None, None, {}),
     ('a hockey-puck-like disc', 'disc', 'disc', None, [], 'hockey puck', None, {}),
     ('a sponge-like foam block', 'block', 'foam block', None, [], 'sponge', 'pu_foam', {}),
