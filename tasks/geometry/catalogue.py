@@ -14,7 +14,8 @@ from contracts.errors import InputError
 from contracts.lexicon import load_lexicon
 from contracts.request import MAX_SIZE_M, MIN_SIZE_M, AssetRequest
 from contracts.shape import ShapeProgram
-from tasks.geometry import concepts, dims_words, fill_words, grammar, label_words, pouch_words, size_words, spelling
+from tasks.geometry import (concepts, container_words, dims_words, fill_words, grammar, label_words, pouch_words,
+                            size_words, spelling)
 from tasks.geometry.analogy import FOOD_CUES
 from tasks.geometry.wordnet import wordnet
 from tasks.geometry.catalogue_programs import catalogue_program, catalogue_yaml
@@ -1355,7 +1356,8 @@ def _as_air_ball(text: str, reading: concepts.Reading) -> str | None:
 _FAKE_FOOD = re.compile(r"\b(?:fake|faux|toy|prop|props|pretend|play[- ]food|replica|artificial|imitation|dummy|decoy|"
                         r"(?:plastic|foam|vinyl|felt)(?!\s+(?:\w+\s+)?(?:tray|trays|tub|tubs|box|boxes|bag|bags|wrap|"
                         r"wrapped|wrapping|film|sleeve|container|containers|clamshell|punnet|cup|cups|bottle|pouch|"
-                        r"packaging|pack|packet|lid|plate|plates|bowl|basket|crate|net|case|dome|cover|sheet)\b)(?!\s*-?\s*"
+                        r"packaging|pack|packet|lid|plate|plates|bowl|basket|crate|net|case|dome|cover|sheet|jug|jugs|"
+                        r"jar|jars|pot|pots|carton|cartons|tube|tubes)\b)(?!\s*-?\s*"
                         r"wrapped))\b(?<!\bin plastic)", re.IGNORECASE)
 FAKE_FOOD_MATERIAL = "slow_rise_foam"  # prior 130 kg/m3 (60-250): squishy foam and hollow-vinyl play food alike
 FAKE_FOOD_SOURCE = "play and prop food is PU or slow-rise foam or hollow PVC: a vinyl toy banana ~20 g, a foam " \
@@ -1392,6 +1394,21 @@ def _as_material_roll(text: str, reading: concepts.Reading) -> str | None:
     if not words or not any(concepts.material_word(w) for w in words):
         return None
     return text[:m.start()] + "roll of " + " ".join(words) + text[m.end():]
+
+
+def _as_container_of_goods(text: str, reading: concepts.Reading) -> tuple[str, str] | None:
+    """(the text read as the lexicon's container of the goods, the warning saying so) when the object is a container
+    of goods the lexicon does not name ('a tube of tomato puree', 'a box of 6 cereal bars': a generic block or bag
+    named after the container word); None when the reading found an entry or no container of goods was said."""
+    if reading.match.fallback_level in ("exact", "synonym") or reading.phrase is None:
+        return None
+    found = container_words.container_of_goods(text, reading.phrase.head,
+                                               [*reading.phrase.adjectives, *reading.phrase.compounds])
+    if found is None:
+        return None
+    noun, goods = found
+    return f"{noun} of {goods}, {text}", (f"'{goods}' in a container the lexicon does not name: built as its {noun}, "
+                                          f"the goods' name on its label")
 
 
 def _respelt(words: str, corrections: list[tuple[str, str]]) -> str:
@@ -1455,6 +1472,10 @@ def design_from_text(text: str, size_hint_m: float | None = None) -> Design:
         reading = concepts.read_text(meat)
         reading.warnings.insert(0, f"'{reading.phrase.text if reading.phrase else stripped}': said raw, ground or "
                                    f"cooked, so meat, not the animal")
+    held = _as_container_of_goods(stripped, reading)
+    if held is not None:  # 'a tube of tomato puree': the lexicon's squeeze tube, TOMATO PUREE on its label
+        stripped, reading = held[0], concepts.read_text(held[0])
+        reading.warnings.insert(0, held[1])
     fake = _FAKE_FOOD.search(stripped)
     if fake is not None and fake.group(0).lower() in (reading.match.noun or "").split():
         fake = None  # the lexicon's own name of the thing ('foam clay' is a modelling clay, not a foam prop of clay)
@@ -1580,8 +1601,9 @@ def design_from_text(text: str, size_hint_m: float | None = None) -> Design:
     corrections = spelling.corrections(concepts.plain(text), concepts.lexicon_words(), concepts.lexicon_phrases())
     spelt = [f"read '{wrong}' as '{right}'" for wrong, right in corrections]
     warnings = [w for w in said.warnings + reading.warnings + build_warnings + spelt if w]
+    bottled = drawn is not None and drawn.plan == "bottle" and label_words.food_goods(match.noun)  # ('ketchup bottle')
     program = label_words.labelled(program, _respelt(concepts.normalise(stripped), corrections), match.noun,
-                                   concepts.concept_domain(match.concept) == "food",
+                                   concepts.concept_domain(match.concept) == "food" or bottled,
                                    drawn is not None and drawn.plan == "pouch")
     score = {"exact": 2.0, "synonym": 1.0}.get(match.fallback_level, 0.0)
     return Design(entry=match.concept, program=program, size=size, modifiers=mods, warnings=warnings,

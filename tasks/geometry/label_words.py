@@ -11,11 +11,12 @@ from contracts.shape import MAX_PRINT_CHARS, Print, ShapeProgram
 from tasks.geometry.wordnet import wordnet
 
 CONTAINERS = ("multipack", "multi pack", "pocket pack", "pack", "packet", "package", "bag", "pouch", "sachet", "sack",
-              "carton", "box", "wrapper", "tub", "tube", "ream", "parcel")
+              "carton", "box", "wrapper", "tub", "tube", "ream", "parcel", "bottle", "jug", "pot")
 _CONTAINER = "|".join(sorted((re.escape(c) for c in CONTAINERS), key=len, reverse=True))
 _OF_GOODS = re.compile(rf"\b(?:{_CONTAINER})s?\s+of\s+(.+)")
-# words after the goods that say no more about them ('a bag of fudge tied with ribbon', 'oats, half full')
-_GOODS_END = re.compile(r"\s*(?:[,;(]|\b(?:with|in|inside|on|tied|from|for|that|which|half|still|top|torn|opened|"
+# words after the goods that say no more about them ('a bag of fudge tied with ribbon', 'oats, half full', 'lens
+# solution 10 fl oz')
+_GOODS_END = re.compile(r"(?<=[a-z])\s+(?=\d)|\s*(?:[,;(]|\b(?:with|in|inside|on|tied|from|for|that|which|half|still|top|torn|opened|"
                         r"unopened|sealed|resealed|size|open|closed|crushed|squashed|rolled down|folded|new|full|"
                         r"empty|and then|by|at|to|like|about|around|approx)\b)")
 _LEAD = re.compile(r"^(?:(?:a|an|the|some|of|fresh|loose|my|our|\d+(?:\.\d+)?)\s+)+")
@@ -24,7 +25,8 @@ _CONTAINER_WORD = re.compile(rf"\b(?:{_CONTAINER})s?\b")
 CONTAINER_KINDS = frozenset({"standup", "stand", "up", "paper", "plastic", "zip", "ziplock", "ziploc", "resealable",
                              "foil", "mesh", "kraft", "brown", "clear", "empty", "small", "large", "big", "little",
                              "mini", "giant", "reusable", "freezer", "gift", "party", "lunch", "sandwich", "shopping",
-                             "carrier", "tote", "gym", "school", "beach", "sleeping", "laundry", "garbage", "trash"})
+                             "carrier", "tote", "gym", "school", "beach", "sleeping", "laundry", "garbage", "trash", "gallon",
+                             "pint", "litre", "liter", "quart", "squeezy", "squeeze", "food", "retail"})
 LABEL_PARTS = ("label", "picture label")  # the parts a pack prints its name on, the first found
 MAX_WORDS = 3
 
@@ -49,18 +51,25 @@ def goods_words(text: str, noun: str | None, food: bool = False) -> str | None:
 
 
 @functools.lru_cache(maxsize=256)
-def _food_noun(noun: str | None) -> bool:
-    """Whether a pouch's noun names food before its container word ('ketchup sachet', 'cat food pouch'; not 'hockey
-    bag', 'bean bag'): its last other word's most frequent WordNet sense is a food."""
+def food_goods(noun: str | None) -> bool:
+    """Whether a container's noun names food before its container word ('ketchup bottle', 'cat food pouch'): its
+    last other word's most frequent WordNet sense is a food."""
     words = [w for w in _CONTAINER_WORD.sub(" ", noun or "").split() if w not in CONTAINER_KINDS]
     if not words:
         return False
+    senses = wordnet().senses(words[-1])
+    return bool(senses) and senses[0].lexname == "noun.food"
+
+
+@functools.lru_cache(maxsize=256)
+def _food_noun(noun: str | None) -> bool:
+    """Whether a pouch's noun names food before its container word ('ketchup sachet', 'cat food pouch'; not 'hockey
+    bag', 'bean bag'): food_goods, and not a thing of its own in WordNet."""
     own = " ".join(w for w in (noun or "").split() if w not in CONTAINER_KINDS)
     if any(s.lexname == "noun.artifact" for form in (own.replace(" ", "_"), own.replace(" ", ""))
            for s in wordnet().senses(form)):
         return False  # a thing of its own ('a bean bag', 'a tea bag'), not a pack of the food
-    senses = wordnet().senses(words[-1])
-    return bool(senses) and senses[0].lexname == "noun.food"
+    return food_goods(noun)
 
 
 def labelled(program: ShapeProgram, text: str, noun: str | None, food: bool = False,
