@@ -1070,6 +1070,22 @@ def _weighed_pack_of(text: str) -> str:
     return f"{m.group('pack')} of {m.group('goods').strip()}{m.group('rest')}"
 
 
+# 'red lentils, 500g bag', 'gummy bears, the big 160g bag': the pack said after its goods (development set 60: a chilli
+# pepper and one giant gummy bear)
+_TRAILING_PACK = re.compile(r"^(?P<goods>[^,]*?[a-z][^,]*?),\s*(?:the\s+|a\s+|in\s+an?\s+)?(?P<size>(?:(?:big|small|large|"
+                            r"little|family|sharing|giant|mini|medium|\d+(?:\.\d+)?\s*(?:g|kg|grams?|oz|lbs?|ml|l|"
+                            r"litres?|liters?))\s+)*)(?P<pack>bag|pack|packet|pouch|sack|box|tub|carton)\s*$",
+                            re.IGNORECASE)
+
+
+def _trailing_pack_first(text: str) -> str:
+    """'red lentils, 500g bag' -> '500g bag of red lentils' (a pack said after the goods, last in the request)."""
+    m = _TRAILING_PACK.match(text.strip())
+    if m is None:
+        return text
+    return f"{m.group('size')}{m.group('pack')} of {m.group('goods').strip()}"
+
+
 def _of_words_moved(text: str) -> str:
     """'a tube of acrylic paint' -> 'a acrylic tube of paint' when the lexicon knows 'tube of paint' and not 'tube of
     acrylic paint' (the words between hid the noun: a paint tube was built as a generic block); the moved words still
@@ -1432,7 +1448,7 @@ def design_from_text(text: str, size_hint_m: float | None = None) -> Design:
         design = design_from_text(packed[0], size_hint_m)
         return design.model_copy(update={"warnings": [packed[1], *design.warnings]})
     text_n = _cut_words_stripped(_purpose_stripped(_pair_first(_portions_compounded(_of_words_moved(
-        _goods_in_container(_weighed_pack_of(asked)))))))
+        _goods_in_container(_weighed_pack_of(_trailing_pack_first(asked))))))))
     text_n, whole_m = _whole_sized(text_n)
     size = parse_size(text_n)
     if size_hint_m is not None:
