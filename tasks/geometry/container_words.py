@@ -43,6 +43,14 @@ def _drink(goods: str) -> bool:
     return any(a.name == "beverage" for s in wordnet().senses(words[-1])[:2] for a in wordnet().ancestors(s))
 
 
+def _stuff(goods: str) -> bool:
+    """Whether the goods' last word is, by its most frequent WordNet sense, a food or a substance (what a container
+    holds: 'honey', 'shower gel'; not 'gift', 'felt')."""
+    words = goods.split()
+    senses = wordnet().senses(words[-1]) if words else []
+    return bool(senses) and senses[0].lexname in ("noun.food", "noun.substance")
+
+
 def _goods(words: str) -> str:
     """The goods words: up to what is said after them, less container-kind words, numbers and units."""
     words = _GOODS_END.split(words, maxsplit=1)[0]
@@ -61,9 +69,11 @@ def container_of_goods(text: str, head: str | None, before_head: list[str]) -> t
         container = single
         m = re.search(rf"\b{single}s?\s+of\s+(.+)", low)
         goods = _goods(m.group(1)) if m else _goods(" ".join(before_head))
+        if m is None and not _stuff(goods):
+            return None  # ('a felt gift box' is a box, not one of felt gifts)
     else:
         m = _IN_CONTAINER.match(re.sub(r"^(?:a|an|some|the)\s+", "", low))
-        if m is not None and m.group("container") in CONTAINER_NOUNS:
+        if m is not None and m.group("container") in CONTAINER_NOUNS and _stuff(_goods(m.group("goods"))):
             container, goods = m.group("container"), _goods(m.group("goods"))
     if container is None or not goods:
         return None

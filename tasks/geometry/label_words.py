@@ -19,7 +19,8 @@ _OF_GOODS = re.compile(rf"\b(?:{_CONTAINER})s?\s+of\s+(.+)")
 _GOODS_END = re.compile(r"(?<=[a-z])\s+(?=\d)|\s*(?:[,;(]|\b(?:with|in|inside|on|tied|from|for|that|which|half|still|top|torn|opened|"
                         r"unopened|sealed|resealed|size|open|closed|crushed|squashed|rolled down|folded|new|full|"
                         r"empty|and then|by|at|to|like|about|around|approx)\b)")
-_LEAD = re.compile(r"^(?:(?:a|an|the|some|of|fresh|loose|my|our|\d+(?:\.\d+)?)\s+)+")
+_LEAD = re.compile(r"^(?:(?:a|an|the|some|of|fresh|loose|my|our|\d+(?:\.\d+)?|two|three|four|five|six|seven|eight|"
+                   r"nine|ten|eleven|twelve|dozen|half|couple|pair|few)\s+)+")  # (a count is not the goods' name)
 _CONTAINER_WORD = re.compile(rf"\b(?:{_CONTAINER})s?\b")
 # words of a container's own kind, not of goods in it ('a standup pouch', 'a paper bag', 'an empty zip bag')
 CONTAINER_KINDS = frozenset({"standup", "stand", "up", "paper", "plastic", "zip", "ziplock", "ziploc", "resealable",

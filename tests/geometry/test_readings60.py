@@ -24,3 +24,9 @@ def test_dev60_request_builds_its_entry_at_its_mass(text: str, entry: str, kg: f
 @pytest.mark.parametrize("text", ["a hoodie, the big one", "a towel, folded"])
 def test_a_trailing_phrase_without_a_pack_word_is_left_alone(text: str) -> None:
     assert catalogue._trailing_pack_first(text) == text
+
+
+@pytest.mark.parametrize(("text", "printed"), [("a bag of six bread rolls", "BREAD ROLLS"),
+                                               ("pack of two tea towels with a lemon print", "TEA TOWELS")])
+def test_a_count_in_words_is_not_printed_as_the_goods_name(text: str, printed: str) -> None:
+    assert [p.text for p in catalogue.design_from_text(text).program.prints] == [printed]
