@@ -30,3 +30,9 @@ def test_a_trailing_phrase_without_a_pack_word_is_left_alone(text: str) -> None:
                                                ("pack of two tea towels with a lemon print", "TEA TOWELS")])
 def test_a_count_in_words_is_not_printed_as_the_goods_name(text: str, printed: str) -> None:
     assert [p.text for p in catalogue.design_from_text(text).program.prints] == [printed]
+
+
+@pytest.mark.parametrize(("text", "entry", "kg"), [("a birthday card in an envelope", "greeting_card", 0.025),
+                                                  ("a cheese string", "string_cheese", 0.022)])
+def test_dev60_objects_build_their_entries(text: str, entry: str, kg: float) -> None:
+    assert_builds_at_its_mass(text, entry, kg)
