@@ -25,7 +25,7 @@ from tasks.geometry.particles import ParticleSettings
 from tasks.geometry.pipeline import Arrays, BuildInfo, L0Settings
 
 TASK_VERSION = "1"  # bump when tasks/geometry changes what these tasks return
-MESH_VERSION = "30"  # l0.mesh alone; 2: marching cubes no longer pinches the surface at samples on the level;
+MESH_VERSION = "31"  # l0.mesh alone; 2: marching cubes no longer pinches the surface at samples on the level;
 # 3: BuildInfo.generator / design_attempts (LLM Designer, reconstruction backends); 4: text -> lexicon concept and
 # grammar program (BuildInfo.concept), colours and shape phrases; 5: photos keep their upright, lathe / inflation,
 # size from the concept (#35); 6: standing toys seated on a flat base (canonical.seat_flat), pouches and slumps (#35);
@@ -65,7 +65,8 @@ MESH_VERSION = "30"  # l0.mesh alone; 2: marching cubes no longer pinches the su
 # 28: session 41's (a round cord of many turns coiled as a hank with its end and fitting; sealed set 27's redraws)
 # 29: sessions 42-59's redraws and readings, a pack's goods printed on its label (tasks.geometry.prints), a bag of
 # goods weighed as their retail pack, a light fabric weighing a heavy-fabric garment; 30: a print's ink contrasts
-# with what lies under each letter, containers of goods (session 60)
+# with what lies under each letter, containers of goods (session 60); 31: a central part prints both faces, a long face
+# turned up reads along its length
 PROXY_VERSION = "6"  # l0.proxy alone; 2: CoACD's coarse copy keeps cells across a long or flat good's thinnest side;
 # 3: a mesh that hugs its convex hull is proxied by CoACD's root hull (collision.NEAR_CONVEX_*: a yarn ball 40 s -> 0.3 s)
 # 4: CoACD's pieces merged down to the budget by ours (collision.merge_hulls: a dog bed 38 -> 20 s), the coarse copy

@@ -117,7 +117,38 @@ def _lines(text: str, along: float, across: float) -> tuple[int, float]:
     return best
 
 
-def placement(program: ShapeProgram, pr: Print) -> Placement | None:
+LONG_READING_GAIN = 1.5  # words on a face turned up read along its length when that makes them this much larger [-]
+
+
+def _letter(text: str, half: np.ndarray, axes: np.ndarray, in_plane: list[int], r: np.ndarray) -> float:
+    """The letter height [m] of words reading along r on a face of the part's in-plane half extents."""
+    i = max(in_plane, key=lambda k: abs(float(np.dot(axes[k], r))))
+    j = in_plane[0] if i == in_plane[1] else in_plane[1]
+    return _lines(text, FACE_SHARE[0] * 2.0 * half[i], FACE_SHARE[1] * 2.0 * half[j])[1]
+
+
+def placements(program: ShapeProgram, pr: Print) -> list[Placement]:
+    """Where a print lies: its placement, and on a central part (a pack's body, a tube's) the same words on the
+    opposite face too, as a real pack prints both sides (a tube turned over to rest on its stable side showed a blank
+    face, development set 60)."""
+    first = placement(program, pr)
+    if first is None:
+        return []
+    back = placement(program, pr, back=True) if _central(program, pr.part) else None
+    return [first] if back is None else [first, back]
+
+
+def _central(program: ShapeProgram, name: str) -> bool:
+    """Whether a part's centre lies within CENTRAL_SHARE of its half thickness of the body's (a pack's body)."""
+    part = _part(program, name)
+    if part is None:
+        return False
+    centre, axes, half = _box(part)
+    k = int(np.argmin(half))
+    return abs(float(np.dot(centre - _program_centre(program), axes[k]))) < CENTRAL_SHARE * half[k]
+
+
+def placement(program: ShapeProgram, pr: Print, back: bool = False) -> Placement | None:
     """The print's place on its part's outer face (the face of the part's thinnest axis turned away from the body),
     reading upright from the view camera that face turns to; beside the label's picture (parts named 'emblem' or
     'picture') when the band left there is wide enough. None when the program has no such part."""
@@ -129,7 +160,7 @@ def placement(program: ShapeProgram, pr: Print) -> Placement | None:
     offset = float(np.dot(centre - _program_centre(program), axes[k]))
     if abs(offset) < CENTRAL_SHARE * half[k]:  # a central part (a pack's body): its face the renders see first
         offset = float(np.dot(SEEN_FIRST, axes[k]))
-    n = axes[k] * (1.0 if offset >= 0.0 else -1.0)
+    n = axes[k] * (1.0 if offset >= 0.0 else -1.0) * (-1.0 if back else 1.0)
     toward, up = max(_FACING, key=lambda f: float(np.dot(f[0], n)))
     u = np.asarray(up, dtype=np.float64) - np.dot(up, n) * n
     if np.linalg.norm(u) < 1e-6:
@@ -138,6 +169,12 @@ def placement(program: ShapeProgram, pr: Print) -> Placement | None:
     # read along the face's edge nearest the view's screen-right, upright in that view
     right = np.cross(u / np.linalg.norm(u), n)
     r = max((s * axes[i] for i in in_plane for s in (1.0, -1.0)), key=lambda a: float(np.dot(a, right)))
+    along_long = max((s * axes[i] for i in in_plane for s in (1.0, -1.0)), key=lambda a: (
+        float(np.dot(np.abs(a), half[in_plane[0]] * np.abs(axes[in_plane[0]]) + half[in_plane[1]]
+                     * np.abs(axes[in_plane[1]]))), float(np.dot(a, right))))
+    if float(np.dot(n, (0.0, 0.0, 1.0))) > 0.7 and _letter(pr.text, half, axes, in_plane, along_long) \
+            > LONG_READING_GAIN * _letter(pr.text, half, axes, in_plane, r):
+        r = along_long  # a face turned up, long and narrow (a tube lying down): the words along its length, larger
     u = np.cross(n, r)
     # the face's extents along r and u, and the pictures on it
     corners = np.array([centre + sa * half[in_plane[0]] * axes[in_plane[0]] + sb * half[in_plane[1]] * axes[in_plane[1]]
@@ -220,10 +257,7 @@ def printed_colors(points: np.ndarray, rgb: np.ndarray, program: ShapeProgram,
     """Linear RGB at points (program frame; with their outward normals, only those facing the print's way) with the
     program's prints inked over it."""
     out = np.asarray(rgb, dtype=np.float64).copy()
-    for pr in program.prints:
-        pl = placement(program, pr)
-        if pl is None:
-            continue
+    for pr, pl in ((each, pl) for each in program.prints for pl in placements(program, each)):
         cover = ink(points, program, pr, pl)[:, None]
         if normals is not None:
             cover = cover * (np.asarray(normals) @ pl.n > FACING_COS)[:, None]
@@ -235,10 +269,7 @@ def refine_under_prints(mesh: trimesh.Trimesh, program: ShapeProgram, spacing_m:
     """The mesh with its faces under each print split (red-green: halved edges, neighbours closed so the mesh stays
     watertight) until their edges are about EDGE_PER_LETTER of the letters' height (at most MAX_LEVELS halvings)."""
     v, f = np.asarray(mesh.vertices, dtype=np.float64), np.asarray(mesh.faces, dtype=np.int64)
-    for pr in program.prints:
-        pl = placement(program, pr)
-        if pl is None:
-            continue
+    for pl in (pl for pr in program.prints for pl in placements(program, pr)):
         levels = int(np.clip(np.ceil(np.log2(spacing_m / max(EDGE_PER_LETTER * pl.letter_m, 1e-9))), 0, MAX_LEVELS))
         for _ in range(levels):
             rel = v[f].mean(axis=1) - pl.centre

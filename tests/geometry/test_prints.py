@@ -119,3 +119,22 @@ def test_words_over_a_light_picture_on_a_dark_label_are_dark() -> None:
     without = render_view(mesh_program(program.model_copy(update={"prints": []}), 64), "iso", 256, MATTE)
     dark = lambda img: int((img.max(axis=2) < 70).sum())  # noqa: E731
     assert dark(with_words) > dark(without) + 100
+
+
+def test_words_on_a_long_narrow_face_turned_up_read_along_its_length() -> None:
+    """A tube lying down: its words read across the 4 cm width were 7 mm high and unseen (development set 60)."""
+    program = catalogue.design_from_text("a tube of tomato puree").program
+    pl = prints.placement(program, program.prints[0])
+    assert abs(pl.r[0]) > 0.99 and pl.letter_m > 0.012
+
+
+def test_a_pack_body_prints_both_faces_so_it_shows_whichever_way_it_rests() -> None:
+    """A tube turned over to its stable side showed its blank face to every camera (development set 60)."""
+    program = catalogue.design_from_text("a tube of tomato puree").program
+    assert len(prints.placements(program, program.prints[0])) == 2
+    mesh = mesh_program(program, 64)
+    dark = np.asarray(mesh.visual.vertex_colors)[:, :3].max(axis=1) < 60
+    nz = np.asarray(mesh.vertex_normals)[:, 2]
+    assert (dark & (nz > 0.5)).sum() > 200 and (dark & (nz < -0.5)).sum() > 200
+    label = catalogue.design_from_text("1kg bag of rolled oats").program  # a label on top prints once
+    assert len(prints.placements(label, label.prints[0])) == 1
