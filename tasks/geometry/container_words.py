@@ -19,6 +19,9 @@ CONTAINER_NOUNS: dict[str, tuple[str, str]] = {
     "carton": ("retail box", "milk carton"),
     "jug": ("milk jug", "milk jug"),
 }
+# a container said with no goods, as the lexicon's kind of it ('a spray bottle'; not a bare box, tube, pot or jug (a
+# pitcher), which name many other things)
+BARE_CONTAINERS = {"bottle": "squeeze bottle", "tub": "food tub"}
 DRINK_WORDS = frozenset({"water", "juice", "drink", "drinks", "squash", "pop", "soda", "milk", "milkshake", "smoothie",
                          "lemonade", "cola", "coke", "kombucha", "iced tea", "cordial"})
 # words of a container's own kind, not goods ('a squeezy plastic bottle')
@@ -26,7 +29,7 @@ KIND_WORDS = frozenset({"squeezy", "squeeze", "plastic", "cardboard", "paper", "
                         "little", "mini", "giant", "travel", "family", "sized", "size", "crushed", "squashed",
                         "dented", "half", "full", "open", "opened", "new", "old", "upside", "down", "those", "one",
                         "of", "the", "a", "an", "bear", "shaped", "kind", "litre", "liter", "ml", "l", "oz", "g", "kg",
-                        "pint", "gallon"})
+                        "pint", "gallon", "spray", "pump", "trigger", "sports", "squirt", "refill"})
 _GOODS_END = re.compile(r"\s*(?:[,;(]|\b(?:with|in|inside|on|for|that|which|half|still|from|the|and then|by|at|to|"
                         r"like|about|around|approx|gone|bit|slightly)\b)")
 _IN_CONTAINER = re.compile(r"^(?P<goods>[a-z][a-z' ]*?)\s+in\s+(?:an?|the|its|one of (?:those|these|the)|those|these)"
@@ -69,6 +72,8 @@ def container_of_goods(text: str, head: str | None, before_head: list[str]) -> t
         container = single
         m = re.search(rf"\b{single}s?\s+of\s+(.+)", low)
         goods = _goods(m.group(1)) if m else _goods(" ".join(before_head))
+        if m is None and not goods and single in BARE_CONTAINERS:
+            return BARE_CONTAINERS[single], ""  # 'a spray bottle': the container, empty of named goods
         if m is None and not _stuff(goods):
             return None  # ('a felt gift box' is a box, not one of felt gifts)
     else:
@@ -76,6 +81,6 @@ def container_of_goods(text: str, head: str | None, before_head: list[str]) -> t
         if m is not None and m.group("container") in CONTAINER_NOUNS and _stuff(_goods(m.group("goods"))):
             container, goods = m.group("container"), _goods(m.group("goods"))
     if container is None or not goods:
-        return None
+        return None  # (a bare container is answered above)
     food, drink = CONTAINER_NOUNS[container]
     return (drink if _drink(goods) else food), goods
