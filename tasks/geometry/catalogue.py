@@ -1423,8 +1423,6 @@ def _as_container_of_goods(text: str, reading: concepts.Reading) -> tuple[str, s
     if found is None:
         return None
     noun, goods = found
-    if not goods:
-        return f"{noun}, {text}", f"a container of no named goods: built as the lexicon's {noun}"
     return f"{noun} of {goods}, {text}", (f"'{goods}' in a container the lexicon does not name: built as its {noun}, "
                                           f"the goods' name on its label")
 

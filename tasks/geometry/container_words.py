@@ -19,9 +19,6 @@ CONTAINER_NOUNS: dict[str, tuple[str, str]] = {
     "carton": ("retail box", "milk carton"),
     "jug": ("milk jug", "milk jug"),
 }
-# a container said with no goods, as the lexicon's kind of it ('a spray bottle'; not a bare box, tube, pot or jug (a
-# pitcher), which name many other things)
-BARE_CONTAINERS = {"bottle": "squeeze bottle", "tub": "food tub"}
 DRINK_WORDS = frozenset({"water", "juice", "drink", "drinks", "squash", "pop", "soda", "milk", "milkshake", "smoothie",
                          "lemonade", "cola", "coke", "kombucha", "iced tea", "cordial"})
 # words of a container's own kind, not goods ('a squeezy plastic bottle')
@@ -72,8 +69,6 @@ def container_of_goods(text: str, head: str | None, before_head: list[str]) -> t
         container = single
         m = re.search(rf"\b{single}s?\s+of\s+(.+)", low)
         goods = _goods(m.group(1)) if m else _goods(" ".join(before_head))
-        if m is None and not goods and single in BARE_CONTAINERS:
-            return BARE_CONTAINERS[single], ""  # 'a spray bottle': the container, empty of named goods
         if m is None and not _stuff(goods):
             return None  # ('a felt gift box' is a box, not one of felt gifts)
     else:
@@ -81,6 +76,6 @@ def container_of_goods(text: str, head: str | None, before_head: list[str]) -> t
         if m is not None and m.group("container") in CONTAINER_NOUNS and _stuff(_goods(m.group("goods"))):
             container, goods = m.group("container"), _goods(m.group("goods"))
     if container is None or not goods:
-        return None  # (a bare container is answered above)
+        return None  # (a bare 'bottle' stays unknown: a photo of one is drawn as the lathe of its silhouette)
     food, drink = CONTAINER_NOUNS[container]
     return (drink if _drink(goods) else food), goods
