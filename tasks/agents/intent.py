@@ -64,9 +64,10 @@ def _names_object(text: str, noun: str) -> bool:
 
 
 # where the object is, or what it is for, not what it is: 'a cardigan draped over an office chair', 'a rag on the
-# workbench', 'a plastic tablecloth for a long table' (set 40's was refused as a rigid table)
+# workbench', 'a plastic tablecloth for a long table' (set 40's was refused as a rigid table), or what comes with it
+# ('a little pot of pasta salad with a fork in the lid': sealed set 46's was refused as a rigid fork)
 _PLACE = re.compile(r"\s+(?:on top of|next to|on|onto|in|into|inside|under|underneath|over|across|against|atop|"
-                    r"behind|beside|besides|near|from|off|at|for)\s+(?:an?|the|its|his|her|their|my|your|some)\s")
+                    r"behind|beside|besides|near|from|off|at|for|with)\s+(?:an?|the|its|his|her|their|my|your|some)\s")
 
 
 def _own_words(text: str) -> str:
@@ -86,7 +87,8 @@ def _soft_lexicon_nouns() -> tuple[str, ...]:
 
 
 # measure words that, before 'of', shape the goods named after them: 'a vacuum brick of hop pellets' is the pellets
-MEASURE_OF_WORDS = frozenset({"brick", "block", "bar", "slab", "cube", "stick", "log", "sheet", "roll"})
+# ('a pot of pasta salad': a plastic food pot, sealed set 46)
+MEASURE_OF_WORDS = frozenset({"brick", "block", "bar", "slab", "cube", "stick", "log", "sheet", "roll", "pot"})
 
 
 def _measures_goods(text: str, word: str) -> bool:

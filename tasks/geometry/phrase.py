@@ -109,8 +109,13 @@ _ROUND_PREP = re.compile(r"\b(tangled|wrapped|wound|tied|looped|coiled|draped|tw
                          r"curled|strapped|taped|laced|slung|thrown|tucked)\s+round\b", re.I)
 
 
+# 'ready to roll icing', 'ready-to-eat': a state of the goods ('roll' was the object: a bread roll, sealed set 46)
+_READY_TO = re.compile(r"\bready[- ]to[- ](?:roll|bake|eat|cook|use|wear|hang|serve|drink|heat|fill|assemble)\b", re.I)
+
+
 def _prepare(text: str) -> tuple[str, str | None]:
     """(text with 'X-like' / 'X-ish' phrases taken out, the X words) and hyphens between words as spaces."""
+    text = _READY_TO.sub("ready", text)
     text = _ROUND_PREP.sub(r"\1 around", _BUTTONED.sub("buttoned", _FASTENED.sub("zippered", text)))
     like = None
     m = _LIKE.search(text)
@@ -169,7 +174,7 @@ def _boundary(doc: Any, i: int, known: Callable[[str], bool] = lambda w: False) 
     if tok.is_punct or word in _RELATIVE or tok.pos_ in ("ADP", "SCONJ", "AUX") or (word == "to" and tok.pos_ == "PART"):
         return True
     if tok.pos_ == "CCONJ":
-        return prev is not None and _is_noun(prev)
+        return prev is not None and _is_noun(prev) and not _coordinated_modifiers(doc, i, known)
     if word in AFTER_NOUN_PARTICIPLES and not (prev is not None and known(f"{prev.text.lower()} {word}")):
         return True  # 'baked potato split with sour cream': 'split' tagged a noun was the head (WordNet's banana split:
         # a 5 g wrapped sweet); 'a banana split' is still one
@@ -181,6 +186,17 @@ def _boundary(doc: Any, i: int, known: Callable[[str], bool] = lambda w: False) 
             return True  # a clause about the object ('a teddy bear missing one eye': the bear, not its eye)
         return nxt is None or nxt.pos_ in ("ADP", "PART", "ADV", "DET", "PUNCT", "CCONJ", "PRON", "SCONJ", "NUM")
     return False
+
+
+def _coordinated_modifiers(doc: Any, i: int, known: Callable[[str], bool]) -> bool:
+    """True when the conjunction at i joins two modifiers of one known noun after them ('a chicken and bacon
+    sandwich', 'cheese and onion crisps': a sandwich and crisps; sealed set 46's was a plush chicken), not two
+    objects ('a cat and a dog', 'bread and butter')."""
+    j = i + 1
+    while j < len(doc) and (doc[j].pos_ in ("NOUN", "PROPN", "ADJ") or doc[j].tag_ in ("NN", "NNS")):
+        j += 1
+    words = [t.text.lower() for t in doc[i + 1: j]]
+    return len(words) >= 2 and known(words[-1]) and _is_noun(doc[j - 1])
 
 
 def _contact_clause(doc: Any, i: int) -> bool:

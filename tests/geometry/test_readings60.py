@@ -36,3 +36,23 @@ def test_a_count_in_words_is_not_printed_as_the_goods_name(text: str, printed: s
                                                   ("a cheese string", "string_cheese", 0.022)])
 def test_dev60_objects_build_their_entries(text: str, entry: str, kg: float) -> None:
     assert_builds_at_its_mass(text, entry, kg)
+
+
+@pytest.mark.parametrize(("text", "entry"), [
+    ("a chicken and bacon sandwich in the cardboard triangle", "ham_sandwich"),  # (a plush chicken, sealed set 46)
+    ("a ham and cheese sandwich", "ham_sandwich"),  # (a whole ham)
+    ("a cat and a dog", "plush_cat"),  # two objects: the first
+])
+def test_modifiers_joined_by_and_before_a_noun_are_its_modifiers(text: str, entry: str) -> None:
+    assert catalogue.design_from_text(text).entry == entry
+
+
+def test_ready_to_roll_is_a_state_of_the_goods_not_a_bread_roll() -> None:
+    assert catalogue.design_from_text("500g block of white ready to roll icing").entry != "bread_roll"
+
+
+def test_what_comes_with_a_soft_object_is_not_refused_as_rigid() -> None:
+    from tasks.agents.intent import rigid_object
+    assert rigid_object("little pot of pasta salad with a fork in the lid") is None  # (refused: sealed set 46)
+    assert rigid_object("a fork") == "fork" and rigid_object("a cooking pot") == "pot"
+    assert catalogue.design_from_text("little pot of pasta salad with a fork in the lid").entry == "food_tub"
