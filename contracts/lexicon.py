@@ -59,6 +59,8 @@ class LexiconEntry(Model):
     empty_mass_kg: float | None = Field(default=None, gt=0, le=25.0, description="mass of a filled object (a "
                                         "hot-water bottle, a gel pack) with nothing in it [kg]; its source is in "
                                         "mass_source")
+    walled: bool = Field(default=False, description="its walls hold their shape with nothing in it (a tub, a carton box, "
+                         "an egg box): said empty it weighs empty_mass_kg as built, not squashed flat like a bag")
     restitution: float | None = Field(default=None, gt=0.0, le=1.0, description="coefficient of restitution of the "
                                       "real object on a hard floor, e = sqrt(rebound height / drop height), where its "
                                       "governing body or maker publishes a rebound rule; L2 calibrates the material's "

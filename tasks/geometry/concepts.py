@@ -2314,7 +2314,6 @@ def posed(program: ShapeProgram, pose: str) -> ShapeProgram:
 # world-axis scale of a deflated inflatable (spread flat, keyed False) or a half inflated one (True), an emptied bag
 DEFLATE_FACTORS: dict[bool, tuple[float, float, float]] = {False: (1.25, 1.25, 0.14), True: (1.1, 1.1, 0.55)}
 EMPTY_FACTORS = (1.0, 1.0, 0.17)
-WALLED_CONTAINERS = frozenset({"food_tub", "retail_box", "milk_jug", "egg_box"})  # hold their shape empty
 
 
 
@@ -2516,7 +2515,7 @@ def _whole_object(reading: Reading, program: ShapeProgram, match: ConceptMatch, 
                                "the same skin, with less air: its mass is the skin's")
         match = match.model_copy(update={"density_kg_per_m3": skin / program_volume(program)})  # skin / body
     elif target.empty_mass_kg is not None and _said_empty(text):
-        walled = target.key in WALLED_CONTAINERS  # (an empty tub or egg box keeps its shape)
+        walled = target.walled  # (an empty tub or egg box keeps its shape)
         before, program = program, (program if walled else emptied(program))
         states.append("empty")
         match = _as_built_mass(match, before, (1.0, 1.0, 1.0) if walled else EMPTY_FACTORS, target.empty_mass_kg,

@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import re
 
+from tasks.geometry import label_words
 from tasks.geometry.wordnet import wordnet
 
 # container word -> the lexicon noun of that container (a drink's when the goods are a drink)
@@ -21,12 +22,13 @@ CONTAINER_NOUNS: dict[str, tuple[str, str]] = {
 }
 DRINK_WORDS = frozenset({"water", "juice", "drink", "drinks", "squash", "pop", "soda", "milk", "milkshake", "smoothie",
                          "lemonade", "cola", "coke", "kombucha", "iced tea", "cordial"})
-# words of a container's own kind, not goods ('a squeezy plastic bottle')
-KIND_WORDS = frozenset({"squeezy", "squeeze", "plastic", "cardboard", "paper", "empty", "big", "small", "large",
-                        "little", "mini", "giant", "travel", "family", "sized", "size", "crushed", "squashed",
-                        "dented", "half", "full", "open", "opened", "new", "old", "upside", "down", "those", "one",
-                        "of", "the", "a", "an", "bear", "shaped", "kind", "litre", "liter", "ml", "l", "oz", "g", "kg",
-                        "pint", "gallon", "spray", "pump", "trigger", "sports", "squirt", "refill"})
+# words of a container's own kind, not goods ('a squeezy plastic bottle'): a pack's (label_words) and these
+KIND_WORDS = label_words.CONTAINER_KINDS | frozenset({
+    "cardboard", "sized", "size", "crushed", "squashed", "dented", "half", "full", "open", "opened", "new", "old",
+    "upside", "down", "those", "one", "of", "the", "a", "an", "bear", "shaped", "kind", "ml", "l", "oz", "g", "kg",
+    "travel", "family", "spray", "pump", "trigger", "sports", "squirt", "refill"})
+# what ends goods words, said after 'of' or before the container word ('crushed' and a measure there are kind words:
+# label_words' end, which stops at them, would leave nothing of 'a crushed 2 litre fizzy drink bottle')
 _GOODS_END = re.compile(r"\s*(?:[,;(]|\b(?:with|in|inside|on|for|that|which|half|still|from|the|and then|by|at|to|"
                         r"like|about|around|approx|gone|bit|slightly)\b)")
 _IN_CONTAINER = re.compile(r"^(?P<goods>[a-z][a-z' ]*?)\s+in\s+(?:an?|the|its|one of (?:those|these|the)|those|these)"

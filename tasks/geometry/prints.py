@@ -158,7 +158,7 @@ def placement(program: ShapeProgram, pr: Print, back: bool = False) -> Placement
     centre, axes, half = _box(part)
     k = int(np.argmin(half))
     offset = float(np.dot(centre - _program_centre(program), axes[k]))
-    if abs(offset) < CENTRAL_SHARE * half[k]:  # a central part (a pack's body): its face the renders see first
+    if _central(program, pr.part):  # a central part (a pack's body): its face the renders see first
         offset = float(np.dot(SEEN_FIRST, axes[k]))
     n = axes[k] * (1.0 if offset >= 0.0 else -1.0) * (-1.0 if back else 1.0)
     toward, up = max(_FACING, key=lambda f: float(np.dot(f[0], n)))
